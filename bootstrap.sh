@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# One-command set-up: installs missing Debian packages, configures (CMake +
+# Ninja) into build/, builds, then runs what was asked:
+#   ./bootstrap.sh demo [facial demo options...]   the main job
+#   ./bootstrap.sh test [ctest options...]         the whole test suite
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools glslang-dev
+  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
+  libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
+  libcgif-dev xvfb xauth
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "bootstrap: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  local jobs
+  jobs=$(nproc)
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build build -j"$jobs"
+}
+
+mode="${1:-}"
+[ $# -gt 0 ] && shift
+case "$mode" in
+  demo)
+    install_missing_packages
+    build
+    exec build/bin/facial demo "$@"
+    ;;
+  test)
+    install_missing_packages
+    build
+    # Validation layer on: any validation message fails the test that caused it.
+    export FACIAL_VALIDATION=1
+    exec ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
+    ;;
+  *)
+    echo "usage: $0 demo [options] | $0 test [ctest options]" >&2
+    exit 2
+    ;;
+esac

@@ -1,0 +1,129 @@
+#pragma once
+// CPU-side scene data: what a glTF face becomes after import. Flat arrays,
+// no renderer types, so the facial component, tools and tests share it and
+// the Vulkan layer uploads it as is.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace eng {
+
+struct Aabb {
+  glm::vec3 min{std::numeric_limits<float>::max()};
+  glm::vec3 max{-std::numeric_limits<float>::max()};
+
+  void extend(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+  void extend(const Aabb& b) { if (b.valid()) { extend(b.min); extend(b.max); } }
+  bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  glm::vec3 size() const { return max - min; }
+  float diagonal() const { return valid() ? glm::length(max - min) : 0.0f; }
+};
+
+// One morph target of one primitive. Arrays are either empty (attribute not
+// morphed) or exactly primitive.vertexCount() long.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;  // deltas
+  std::vector<glm::vec3> normals;    // deltas
+  std::vector<glm::vec3> tangents;   // deltas of tangent.xyz
+};
+
+struct Primitive {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;    // always filled by the loader (generated when absent)
+  std::vector<glm::vec2> texcoords;  // empty when the primitive has none
+  std::vector<glm::vec4> tangents;   // empty when the primitive has none
+  std::vector<uint32_t> indices;     // triangle list (generated 0..n-1 for non-indexed input)
+  int material = -1;                 // index into Model::materials, -1 = default material
+  std::vector<MorphTarget> targets;  // same count and order as the owning Mesh::targetNames
+
+  size_t vertexCount() const { return positions.size(); }
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Primitive> primitives;
+  std::vector<std::string> targetNames;  // mesh.extras.targetNames, fallback "target_N"
+  std::vector<float> defaultWeights;     // mesh.weights, zeros when absent; size == targetNames.size()
+};
+
+struct Image {
+  std::string name;  // uri or image name, for messages
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba8;  // width * height * 4
+};
+
+// A texture that fades in with a named morph target's weight (texture
+// cross-blending). The engine treats it generically: layer weight = weight of
+// `target` on the drawn mesh, blended in the fragment shader.
+struct DetailLayer {
+  int image = -1;      // index into Model::images (RGBA: rgb colour, a coverage)
+  std::string target;  // morph target name whose weight drives this layer
+  float strength = 1;  // scales the weight
+};
+
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};
+  int baseColorImage = -1;  // index into Model::images, sRGB encoded
+  float roughness = 0.6f;
+  float metallic = 0.0f;
+  bool doubleSided = false;
+  std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
+};
+
+struct Node {
+  std::string name;
+  int parent = -1;
+  std::vector<int> children;
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  glm::mat4 matrix{1.0f};  // used instead of T*R*S when hasMatrix
+  bool hasMatrix = false;
+  int mesh = -1;
+
+  glm::mat4 localTransform() const;
+};
+
+enum class Interpolation { Step, Linear, CubicSpline };
+
+// A glTF animation channel targeting a node's `weights`. values holds
+// targetCount floats per key (x3 for CUBICSPLINE: in-tangent, value, out-tangent).
+struct WeightsChannel {
+  int node = -1;
+  int mesh = -1;
+  Interpolation interpolation = Interpolation::Linear;
+  size_t targetCount = 0;
+  std::vector<float> times;
+  std::vector<float> values;
+};
+
+struct Animation {
+  std::string name;
+  std::vector<WeightsChannel> channels;  // only weights channels are kept
+  float duration() const;
+};
+
+struct Model {
+  std::string sourcePath;
+  std::vector<Node> nodes;
+  std::vector<int> roots;  // nodes of the default scene (or all parentless nodes)
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Image> images;
+  std::vector<Animation> animations;
+  std::vector<std::string> warnings;  // non-fatal problems met while loading
+
+  glm::mat4 worldTransform(int node) const;
+  // World-space bounds of every mesh instance at rest (no morphing).
+  Aabb bounds() const;
+  size_t totalVertexCount() const;
+};
+
+}  // namespace eng

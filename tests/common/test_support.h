@@ -1,0 +1,27 @@
+#pragma once
+// Shared helpers for the test executables.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace testing_support {
+
+// ../shared beside the project; empty path when it is absent.
+std::filesystem::path sharedDir();
+// Skips the current test (with a message saying why) when ../shared is absent.
+#define FACIAL_REQUIRE_SHARED()                                                              \
+  do {                                                                                       \
+    if (::testing_support::sharedDir().empty())                                              \
+      GTEST_SKIP() << "../shared is absent beside the project: third-party asset test skipped"; \
+  } while (0)
+
+std::filesystem::path sourceDir();
+std::filesystem::path binaryDir();
+
+// A fresh directory under the build tree for one test, removed first if present.
+std::filesystem::path freshTempDir(const std::string& name);
+
+void writeFile(const std::filesystem::path& path, const std::string& bytes);
+
+}  // namespace testing_support
