@@ -1,0 +1,27 @@
+#pragma once
+// glTF 2.0 import (.gltf with external or data: buffers, and .glb) into the
+// CPU scene model. Every accessor is read with bounds checks of our own;
+// external files are confined to the model's folder and never path-expanded.
+#include <cstddef>
+#include <filesystem>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+
+namespace eng {
+
+// Limits that keep hostile files from allocating gigabytes. The defaults fit
+// any real face model with room to spare.
+struct GltfLoadLimits {
+  size_t maxFileBytes = size_t{512} << 20;     // the .gltf/.glb and each external file
+  size_t maxDecodedBytes = size_t{1} << 30;    // all accessor data decoded into the Model
+  size_t maxImagePixels = size_t{64} << 20;    // width * height of one decoded image
+};
+
+// Loads a .gltf or .glb (detected by content: the "glTF" magic, else JSON).
+// Fatal problems come back as one-line errors naming the file; survivable
+// ones (broken image, unsupported primitive mode) land in Model::warnings.
+Result<Model> loadModel(const std::filesystem::path& path);
+Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits& limits);
+
+}  // namespace eng
