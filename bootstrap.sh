@@ -11,7 +11,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools glslang-dev
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
-  libcgif-dev xvfb xauth
+  libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
 )
 
 install_missing_packages() {
