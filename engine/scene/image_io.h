@@ -1,8 +1,10 @@
 #pragma once
 // PNG writing and image reading (PNG, JPEG, ... via stb), RGBA8 only.
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "engine/core/result.h"
@@ -14,8 +16,14 @@ namespace eng {
 Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span<const uint8_t> rgba8);
 // Encodes to PNG in memory (for embedding into .glb).
 Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rgba8);
-// Decodes any stb-supported image to RGBA8; `name` is used in messages and Image::name.
-Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name);
+// Images larger than this are refused before decoding (a forged header can
+// claim 60000 x 60000 pixels).
+inline constexpr size_t kDefaultMaxImagePixels = size_t{64} << 20;
+
+// Decodes any stb-supported image (PNG, JPEG, BMP, TGA, ...) to RGBA8; `name`
+// is used in messages and becomes Image::name.
+Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name,
+                          size_t maxPixels = kDefaultMaxImagePixels);
 Result<Image> readImage(const std::filesystem::path& path);
 
 }  // namespace eng

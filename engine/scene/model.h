@@ -107,6 +107,7 @@ struct WeightsChannel {
 struct Animation {
   std::string name;
   std::vector<WeightsChannel> channels;  // only weights channels are kept
+  size_t otherChannelCount = 0;          // node TRS channels in the source file, not kept
   float duration() const;
 };
 

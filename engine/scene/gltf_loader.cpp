@@ -1,0 +1,607 @@
+#include "engine/scene/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
+#include "engine/scene/gltf_accessor_reader.h"
+#include "engine/scene/gltf_file_access.h"
+#include "engine/scene/image_io.h"
+#include "engine/scene/normals.h"
+
+namespace eng {
+namespace {
+
+// Extensions whose absence would change what the file means and that we do honour.
+bool isSupportedExtension(const std::string& name) { return name == "KHR_mesh_quantization"; }
+
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') out += "; ";
+    else if (c != '\r') out += c;
+  }
+  return out;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+// tinygltf's image hook: keep the encoded bytes and decode later with our own
+// limits, so one broken image becomes a warning instead of a failed load.
+// It also checks what tinygltf does not: that an image's bufferView fits its buffer.
+struct ImageHookContext {
+  const tinygltf::Model* gltf = nullptr;
+};
+
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+  const auto* ctx = static_cast<const ImageHookContext*>(user);
+  if (image->bufferView >= 0) {
+    const tinygltf::Model& gltf = *ctx->gltf;
+    const auto& bv = gltf.bufferViews[static_cast<size_t>(image->bufferView)];
+    const size_t bufferSize = gltf.buffers[static_cast<size_t>(bv.buffer)].data.size();
+    if (bv.byteOffset > bufferSize || bv.byteLength > bufferSize - bv.byteOffset) {
+      if (err)
+        *err += "image " + std::to_string(index) + ": bufferView " + std::to_string(image->bufferView) + " (bytes " +
+                std::to_string(bv.byteOffset) + ".." + std::to_string(bv.byteOffset + bv.byteLength) +
+                ") is out of range of buffer " + std::to_string(bv.buffer) + " (" + std::to_string(bufferSize) +
+                " bytes)\n";
+      return false;
+    }
+  }
+  if (size < 0) return false;
+  image->image.assign(bytes, bytes + size);
+  image->width = image->height = image->component = -1;  // still encoded
+  return true;
+}
+
+class ModelBuilder {
+ public:
+  ModelBuilder(std::string file, const tinygltf::Model& gltf, const GltfLoadLimits& limits,
+               const GltfFileAccess& files)
+      : file_(std::move(file)), gltf_(gltf), limits_(limits), files_(files), reader_(gltf, limits.maxDecodedBytes) {}
+
+  Result<Model> build() {
+    model_.sourcePath = file_;
+    if (auto ok = checkExtensions(); !ok) return ok.error();
+    if (auto ok = loadImages(); !ok) return ok.error();
+    loadMaterials();
+    for (size_t m = 0; m < gltf_.meshes.size(); ++m)
+      if (auto ok = loadMesh(static_cast<int>(m)); !ok) return ok.error();
+    if (auto ok = loadNodes(); !ok) return ok.error();
+    if (auto ok = loadAnimations(); !ok) return ok.error();
+    return std::move(model_);
+  }
+
+ private:
+  Error fail(const std::string& message) const { return makeError(file_ + ": " + message); }
+  void warn(std::string message) { model_.warnings.push_back(std::move(message)); }
+
+  std::string meshLabel(int m) const {
+    const std::string& name = gltf_.meshes[m].name;
+    return "mesh " + std::to_string(m) + (name.empty() ? "" : " '" + name + "'");
+  }
+
+  Result<void> checkExtensions() {
+    for (const std::string& ext : gltf_.extensionsRequired)
+      if (!isSupportedExtension(ext))
+        return fail("requires glTF extension " + ext + ", which this loader does not support");
+    for (const std::string& ext : gltf_.extensionsUsed) {
+      const bool required =
+          std::find(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end(), ext) != gltf_.extensionsRequired.end();
+      if (!required && !isSupportedExtension(ext)) warn("optional extension " + ext + " ignored");
+    }
+    return {};
+  }
+
+  Result<void> loadImages() {
+    imageRemap_.assign(gltf_.images.size(), -1);
+    for (size_t i = 0; i < gltf_.images.size(); ++i) {
+      const tinygltf::Image& src = gltf_.images[i];
+      const std::string label = src.uri.empty() || isDataUri(src.uri) ? (src.name.empty() ? "embedded" : src.name) : src.uri;
+      if (src.image.empty()) {
+        if (!src.uri.empty() && !isDataUri(src.uri)) {
+          // tinygltf only warns about an unreadable image file; a face without
+          // its texture is a broken asset, so this is fatal.
+          std::string why = files_.problemFor(src.uri);
+          if (why.empty() && !files_.problems().empty()) why = files_.problems().back();
+          if (why.empty()) why = "image file '" + src.uri + "' could not be read";
+          return fail("image " + std::to_string(i) + ": " + why);
+        }
+        warn("image " + std::to_string(i) + " ('" + label + "') has no data; skipped");
+        continue;
+      }
+      auto decoded = decodeImage(src.image, label, limits_.maxImagePixels);
+      if (!decoded) {
+        warn("image " + std::to_string(i) + " skipped: " + decoded.error().message);
+        continue;
+      }
+      imageRemap_[i] = static_cast<int>(model_.images.size());
+      model_.images.push_back(std::move(*decoded));
+    }
+    return {};
+  }
+
+  int imageOfTexture(int texture, const std::string& where) {
+    if (texture < 0) return -1;
+    if (static_cast<size_t>(texture) >= gltf_.textures.size()) {
+      warn(where + " refers to texture " + std::to_string(texture) + ", the file has " +
+           std::to_string(gltf_.textures.size()) + "; ignored");
+      return -1;
+    }
+    const int source = gltf_.textures[texture].source;
+    if (source < 0) return -1;  // e.g. an extension-only source we do not decode
+    if (static_cast<size_t>(source) >= imageRemap_.size()) {
+      warn(where + ": texture " + std::to_string(texture) + " refers to image " + std::to_string(source) +
+           ", the file has " + std::to_string(imageRemap_.size()) + "; ignored");
+      return -1;
+    }
+    return imageRemap_[source];
+  }
+
+  int modelImage(int gltfImage, const std::string& where) {
+    if (gltfImage < 0 || static_cast<size_t>(gltfImage) >= imageRemap_.size()) {
+      warn(where + " refers to image " + std::to_string(gltfImage) + ", the file has " +
+           std::to_string(imageRemap_.size()) + "; ignored");
+      return -1;
+    }
+    return imageRemap_[gltfImage];
+  }
+
+  void loadMaterials() {
+    for (size_t i = 0; i < gltf_.materials.size(); ++i) {
+      const tinygltf::Material& src = gltf_.materials[i];
+      const std::string where = "material " + std::to_string(i);
+      Material mat;
+      mat.name = src.name;
+      const auto& pbr = src.pbrMetallicRoughness;
+      if (pbr.baseColorFactor.size() == 4)
+        mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                        pbr.baseColorFactor[3]);
+      mat.baseColorImage = imageOfTexture(pbr.baseColorTexture.index, where);
+      mat.roughness = static_cast<float>(pbr.roughnessFactor);
+      mat.metallic = static_cast<float>(pbr.metallicFactor);
+      mat.doubleSided = src.doubleSided;
+      if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||
+          !std::isfinite(glm::dot(mat.baseColorFactor, mat.baseColorFactor))) {
+        warn(where + " has non-finite factors; defaults used");
+        mat.baseColorFactor = glm::vec4(1.0f);
+        mat.roughness = 1.0f;
+        mat.metallic = 1.0f;
+      }
+      if (src.extras.IsObject() && src.extras.Has("detailLayers")) {
+        const tinygltf::Value& layers = src.extras.Get("detailLayers");
+        for (size_t l = 0; layers.IsArray() && l < layers.ArrayLen(); ++l) {
+          const tinygltf::Value& layer = layers.Get(static_cast<int>(l));
+          const std::string lw = where + " detail layer " + std::to_string(l);
+          if (!layer.IsObject() || !layer.Has("image") || !layer.Get("image").IsNumber() || !layer.Has("target") ||
+              !layer.Get("target").IsString()) {
+            warn(lw + " needs an integer 'image' and a string 'target'; ignored");
+            continue;
+          }
+          DetailLayer d;
+          d.image = modelImage(layer.Get("image").GetNumberAsInt(), lw);
+          d.target = layer.Get("target").Get<std::string>();
+          if (layer.Has("strength") && layer.Get("strength").IsNumber())
+            d.strength = static_cast<float>(layer.Get("strength").GetNumberAsDouble());
+          if (d.image < 0 || !std::isfinite(d.strength)) {
+            warn(lw + " has no usable image or strength; ignored");
+            continue;
+          }
+          mat.detailLayers.push_back(std::move(d));
+        }
+      }
+      model_.materials.push_back(std::move(mat));
+    }
+  }
+
+  // Triangle list from the primitive's vertex order (indices or 0..n-1) and mode.
+  static std::vector<uint32_t> triangulate(const std::vector<uint32_t>& order, int mode) {
+    std::vector<uint32_t> tris;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      tris.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(order.size() / 3 * 3));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < order.size(); ++i) {
+        // Every other strip triangle is flipped to keep one winding.
+        if (i % 2 == 0) tris.insert(tris.end(), {order[i], order[i + 1], order[i + 2]});
+        else tris.insert(tris.end(), {order[i + 1], order[i], order[i + 2]});
+      }
+    } else {  // fan
+      for (size_t i = 1; i + 1 < order.size(); ++i) tris.insert(tris.end(), {order[0], order[i], order[i + 1]});
+    }
+    return tris;
+  }
+
+  template <int N>
+  Result<std::vector<glm::vec<N, float>>> readAttribute(int accessor, size_t expectedCount, const std::string& what) {
+    auto values = reader_.readVec<N>(accessor, what);
+    if (!values) return fail(values.error().message);
+    if (expectedCount != SIZE_MAX && values->size() != expectedCount)
+      return fail(what + " has " + std::to_string(values->size()) + " elements, its primitive has " +
+                  std::to_string(expectedCount) + " vertices");
+    return values;
+  }
+
+  // Returns false (with a warning) for primitives we skip.
+  Result<bool> loadPrimitive(int m, int p, Primitive& out, size_t& targetCount, bool& targetCountKnown) {
+    const tinygltf::Primitive& src = gltf_.meshes[m].primitives[p];
+    const std::string label = meshLabel(m) + " primitive " + std::to_string(p);
+    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warn(label + " has mode " + std::to_string(mode) + " (points or lines); skipped");
+      return false;
+    }
+    const auto posIt = src.attributes.find("POSITION");
+    if (posIt == src.attributes.end()) {
+      warn(label + " has no POSITION attribute; skipped");
+      return false;
+    }
+    auto positions = readAttribute<3>(posIt->second, SIZE_MAX, label + " POSITION");
+    if (!positions) return positions.error();
+    out.positions = std::move(*positions);
+    const size_t n = out.positions.size();
+    if (n == 0) {
+      warn(label + " has no vertices; skipped");
+      return false;
+    }
+    if (n > UINT32_MAX) return fail(label + " has " + std::to_string(n) + " vertices, more than 32-bit indices address");
+
+    bool generatedNormals = false;
+    if (auto it = src.attributes.find("NORMAL"); it != src.attributes.end()) {
+      auto normals = readAttribute<3>(it->second, n, label + " NORMAL");
+      if (!normals) return normals.error();
+      out.normals = std::move(*normals);
+    } else {
+      generatedNormals = true;
+    }
+    if (auto it = src.attributes.find("TEXCOORD_0"); it != src.attributes.end()) {
+      auto uvs = readAttribute<2>(it->second, n, label + " TEXCOORD_0");
+      if (!uvs) return uvs.error();
+      out.texcoords = std::move(*uvs);
+    }
+    if (auto it = src.attributes.find("TANGENT"); it != src.attributes.end()) {
+      auto tangents = readAttribute<4>(it->second, n, label + " TANGENT");
+      if (!tangents) return tangents.error();
+      out.tangents = std::move(*tangents);
+    }
+
+    std::vector<uint32_t> order;
+    if (src.indices >= 0) {
+      auto indices = reader_.readIndices(src.indices, label + " indices");
+      if (!indices) return fail(indices.error().message);
+      for (size_t i = 0; i < indices->size(); ++i)
+        if ((*indices)[i] >= n)
+          return fail(label + ": index " + std::to_string((*indices)[i]) + " at position " + std::to_string(i) +
+                      " is out of range of " + std::to_string(n) + " vertices");
+      order = std::move(*indices);
+    } else {
+      order.resize(n);
+      for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
+      warn(label + " has " + std::to_string(order.size()) + " indices, not a multiple of 3; the last " +
+           std::to_string(order.size() % 3) + " ignored");
+    out.indices = triangulate(order, mode);
+    if (generatedNormals) out.normals = computeSmoothNormals(out.positions, out.indices);
+
+    if (src.material >= 0 && static_cast<size_t>(src.material) >= model_.materials.size()) {
+      warn(label + " refers to material " + std::to_string(src.material) + ", the file has " +
+           std::to_string(model_.materials.size()) + "; default material used");
+      out.material = -1;
+    } else {
+      out.material = src.material;
+    }
+
+    if (!targetCountKnown) {
+      targetCount = src.targets.size();
+      targetCountKnown = true;
+    } else if (src.targets.size() != targetCount) {
+      return fail(label + " has " + std::to_string(src.targets.size()) + " morph targets, the mesh's other primitives have " +
+                  std::to_string(targetCount));
+    }
+    out.targets.resize(src.targets.size());
+    bool warnedOther = false;
+    for (size_t t = 0; t < src.targets.size(); ++t) {
+      MorphTarget& target = out.targets[t];
+      for (const auto& [semantic, accessor] : src.targets[t]) {
+        const std::string what = label + " target " + std::to_string(t) + " " + semantic;
+        if (semantic == "POSITION" || semantic == "NORMAL" || semantic == "TANGENT") {
+          auto deltas = readAttribute<3>(accessor, n, what);
+          if (!deltas) return deltas.error();
+          (semantic == "POSITION" ? target.positions : semantic == "NORMAL" ? target.normals : target.tangents) =
+              std::move(*deltas);
+        } else if (!warnedOther) {
+          warn(label + " morphs " + semantic + ", which is ignored (only POSITION, NORMAL, TANGENT are morphed)");
+          warnedOther = true;
+        }
+      }
+      // Normals we made up must follow the shape too: derive their deltas
+      // from the fully applied target.
+      if (generatedNormals && !target.positions.empty()) {
+        std::vector<glm::vec3> moved(n);
+        for (size_t v = 0; v < n; ++v) moved[v] = out.positions[v] + target.positions[v];
+        target.normals = computeSmoothNormals(moved, out.indices);
+        for (size_t v = 0; v < n; ++v) target.normals[v] -= out.normals[v];
+      }
+    }
+    return true;
+  }
+
+  Result<void> loadMesh(int m) {
+    const tinygltf::Mesh& src = gltf_.meshes[m];
+    Mesh mesh;
+    mesh.name = src.name;
+    size_t targetCount = 0;
+    bool targetCountKnown = false;
+    for (size_t p = 0; p < src.primitives.size(); ++p) {
+      Primitive prim;
+      auto kept = loadPrimitive(m, static_cast<int>(p), prim, targetCount, targetCountKnown);
+      if (!kept) return kept.error();
+      if (*kept) mesh.primitives.push_back(std::move(prim));
+    }
+    if (!targetCountKnown) targetCount = src.weights.size();
+
+    std::vector<std::string> names;
+    if (src.extras.IsObject() && src.extras.Has("targetNames")) {
+      const tinygltf::Value& list = src.extras.Get("targetNames");
+      bool allStrings = list.IsArray();
+      for (size_t i = 0; allStrings && i < list.ArrayLen(); ++i) {
+        const tinygltf::Value& v = list.Get(static_cast<int>(i));
+        if (!v.IsString()) allStrings = false;
+        else names.push_back(v.Get<std::string>());
+      }
+      if (!allStrings || names.size() != targetCount) {
+        warn(meshLabel(m) + ": extras.targetNames is not a list of " + std::to_string(targetCount) +
+             " strings; names target_N used");
+        names.clear();
+      }
+    }
+    if (names.empty())
+      for (size_t t = 0; t < targetCount; ++t) names.push_back("target_" + std::to_string(t));
+    mesh.targetNames = std::move(names);
+
+    mesh.defaultWeights.assign(targetCount, 0.0f);
+    if (!src.weights.empty()) {
+      if (src.weights.size() != targetCount) {
+        warn(meshLabel(m) + " has " + std::to_string(src.weights.size()) + " default weights for " +
+             std::to_string(targetCount) + " targets; zeros used");
+      } else {
+        for (size_t t = 0; t < targetCount; ++t) {
+          const float w = static_cast<float>(src.weights[t]);
+          if (!std::isfinite(w)) return fail(meshLabel(m) + ": default weight " + std::to_string(t) + " is not finite");
+          mesh.defaultWeights[t] = w;
+        }
+      }
+    }
+    model_.meshes.push_back(std::move(mesh));
+    return {};
+  }
+
+  Result<void> loadNodes() {
+    const size_t count = gltf_.nodes.size();
+    model_.nodes.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      const tinygltf::Node& src = gltf_.nodes[i];
+      Node& node = model_.nodes[i];
+      const std::string label = "node " + std::to_string(i) + (src.name.empty() ? "" : " '" + src.name + "'");
+      node.name = src.name;
+      if (src.mesh >= 0 && static_cast<size_t>(src.mesh) >= model_.meshes.size())
+        return fail(label + " refers to mesh " + std::to_string(src.mesh) + ", the file has " +
+                    std::to_string(model_.meshes.size()));
+      node.mesh = src.mesh;
+      bool finite = true;
+      auto num = [&](double v) {
+        finite = finite && std::isfinite(v);
+        return static_cast<float>(v);
+      };
+      if (src.matrix.size() == 16) {
+        node.hasMatrix = true;
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) node.matrix[c][r] = num(src.matrix[c * 4 + r]);  // column-major, like glm
+      } else {
+        if (src.translation.size() == 3)
+          node.translation = glm::vec3(num(src.translation[0]), num(src.translation[1]), num(src.translation[2]));
+        if (src.rotation.size() == 4)
+          node.rotation = glm::quat(num(src.rotation[3]), num(src.rotation[0]), num(src.rotation[1]), num(src.rotation[2]));
+        if (src.scale.size() == 3) node.scale = glm::vec3(num(src.scale[0]), num(src.scale[1]), num(src.scale[2]));
+      }
+      if (!finite) return fail(label + " has a non-finite transform");
+      for (int child : src.children) {
+        if (child < 0 || static_cast<size_t>(child) >= count)
+          return fail(label + " has child " + std::to_string(child) + ", the file has " + std::to_string(count) + " nodes");
+        if (static_cast<size_t>(child) == i) return fail(label + " is its own child");
+        node.children.push_back(child);
+      }
+    }
+    for (size_t i = 0; i < count; ++i)
+      for (int child : model_.nodes[i].children) {
+        Node& c = model_.nodes[child];
+        if (c.parent >= 0)
+          return fail("node " + std::to_string(child) + " has two parents (nodes " + std::to_string(c.parent) + " and " +
+                      std::to_string(i) + ")");
+        c.parent = static_cast<int>(i);
+      }
+    for (size_t i = 0; i < count; ++i) {
+      int n = static_cast<int>(i);
+      for (size_t steps = 0; n >= 0; ++steps, n = model_.nodes[n].parent)
+        if (steps > count) return fail("the node hierarchy has a cycle through node " + std::to_string(i));
+    }
+
+    int scene = gltf_.defaultScene;
+    if (scene >= static_cast<int>(gltf_.scenes.size())) {
+      warn("default scene " + std::to_string(scene) + " does not exist; first scene used");
+      scene = -1;
+    }
+    if (scene < 0 && !gltf_.scenes.empty()) scene = 0;
+    if (scene >= 0) {
+      for (int root : gltf_.scenes[scene].nodes) {
+        if (root < 0 || static_cast<size_t>(root) >= count) {
+          warn("scene " + std::to_string(scene) + " lists node " + std::to_string(root) + ", which does not exist; ignored");
+          continue;
+        }
+        if (model_.nodes[root].parent >= 0) {
+          warn("scene " + std::to_string(scene) + " lists node " + std::to_string(root) + ", which has a parent; ignored");
+          continue;
+        }
+        model_.roots.push_back(root);
+      }
+    } else {
+      for (size_t i = 0; i < count; ++i)
+        if (model_.nodes[i].parent < 0) model_.roots.push_back(static_cast<int>(i));
+    }
+    if (model_.roots.empty() && !model_.meshes.empty()) warn("no scene node shows any mesh; nothing would be drawn");
+    return {};
+  }
+
+  Result<void> loadAnimations() {
+    for (size_t a = 0; a < gltf_.animations.size(); ++a) {
+      const tinygltf::Animation& src = gltf_.animations[a];
+      Animation anim;
+      anim.name = src.name.empty() ? "animation_" + std::to_string(a) : src.name;
+      for (size_t c = 0; c < src.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& ch = src.channels[c];
+        if (ch.target_path != "weights") {
+          ++anim.otherChannelCount;
+          continue;
+        }
+        const std::string label = "animation '" + anim.name + "' channel " + std::to_string(c);
+        if (ch.target_node < 0 || static_cast<size_t>(ch.target_node) >= model_.nodes.size() ||
+            model_.nodes[ch.target_node].mesh < 0) {
+          warn(label + " animates the weights of node " + std::to_string(ch.target_node) + ", which has no mesh; skipped");
+          continue;
+        }
+        if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= src.samplers.size()) {
+          warn(label + " uses sampler " + std::to_string(ch.sampler) + ", the animation has " +
+               std::to_string(src.samplers.size()) + "; skipped");
+          continue;
+        }
+        const tinygltf::AnimationSampler& sampler = src.samplers[ch.sampler];
+        WeightsChannel out;
+        out.node = ch.target_node;
+        out.mesh = model_.nodes[ch.target_node].mesh;
+        out.targetCount = model_.meshes[out.mesh].targetNames.size();
+        if (sampler.interpolation == "STEP") out.interpolation = Interpolation::Step;
+        else if (sampler.interpolation == "CUBICSPLINE") out.interpolation = Interpolation::CubicSpline;
+        else if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") out.interpolation = Interpolation::Linear;
+        else {
+          warn(label + " has unknown interpolation '" + sampler.interpolation + "'; LINEAR used");
+        }
+        auto times = reader_.readScalars(sampler.input, label + " input");
+        if (!times) return fail(times.error().message);
+        auto values = reader_.readScalars(sampler.output, label + " output");
+        if (!values) return fail(values.error().message);
+        const size_t perKey = out.targetCount * (out.interpolation == Interpolation::CubicSpline ? 3 : 1);
+        if (values->size() != times->size() * perKey) {
+          warn(label + ": output has " + std::to_string(values->size()) + " values, expected " +
+               std::to_string(times->size() * perKey) + " (" + std::to_string(times->size()) + " keys x " +
+               std::to_string(perKey) + "); skipped");
+          continue;
+        }
+        if (!std::is_sorted(times->begin(), times->end())) {
+          warn(label + ": key times are not increasing; skipped");
+          continue;
+        }
+        out.times = std::move(*times);
+        out.values = std::move(*values);
+        anim.channels.push_back(std::move(out));
+      }
+      model_.animations.push_back(std::move(anim));
+    }
+    return {};
+  }
+
+  std::string file_;
+  const tinygltf::Model& gltf_;
+  const GltfLoadLimits& limits_;
+  const GltfFileAccess& files_;
+  GltfAccessorReader reader_;
+  Model model_;
+  std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
+};
+
+enum class Container { Json, Glb };
+
+Result<Container> detectContainer(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
+  if (hasGlbMagic(bytes)) return Container::Glb;
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".glb") {
+    auto glb = parseGlb(bytes);  // names the wrong magic or the truncation
+    return glb.error();
+  }
+  size_t i = 0;
+  if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF) i = 3;  // UTF-8 BOM
+  while (i < bytes.size() && std::isspace(bytes[i])) ++i;
+  if (i < bytes.size() && bytes[i] == '{') return Container::Json;
+  if (bytes.empty()) return makeError("file is empty");
+  return makeError("neither glTF JSON nor a GLB (no '{' and no 'glTF' magic at the start)");
+}
+
+}  // namespace
+
+Result<Model> loadModel(const std::filesystem::path& path) { return loadModel(path, GltfLoadLimits{}); }
+
+Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits& limits) {
+  const std::string file = path.string();
+  try {
+    auto bytes = readFileBytes(path, limits.maxFileBytes);
+    if (!bytes) return bytes.error();
+    auto container = detectContainer(*bytes, path);
+    if (!container) return makeError(file + ": " + container.error().message);
+
+    std::error_code ec;
+    const std::filesystem::path baseDir = std::filesystem::absolute(path, ec).parent_path();
+    GltfFileAccess files(baseDir, limits.maxFileBytes);
+    tinygltf::Model gltf;
+    ImageHookContext imageHook{&gltf};
+    tinygltf::TinyGLTF parser;
+    parser.SetFsCallbacks(files.callbacks());
+    parser.SetImageLoader(&keepEncodedImage, &imageHook);
+
+    std::string err, warn;
+    bool parsed = false;
+    if (*container == Container::Glb) {
+      auto glb = parseGlb(*bytes);
+      if (!glb) return makeError(file + ": " + glb.error().message);
+      parsed = parser.LoadBinaryFromMemory(&gltf, &err, &warn, bytes->data(), static_cast<unsigned>(bytes->size()),
+                                           files.baseDirString());
+    } else {
+      parsed = parser.LoadASCIIFromString(&gltf, &err, &warn, reinterpret_cast<const char*>(bytes->data()),
+                                          static_cast<unsigned>(bytes->size()), files.baseDirString());
+    }
+    if (!parsed) {
+      // What our file access refused or could not find says more than tinygltf's summary.
+      if (!files.problems().empty()) return makeError(file + ": " + files.problems().front());
+      return makeError(file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
+    }
+    ModelBuilder builder(file, gltf, limits, files);
+    auto model = builder.build();
+    if (!model) return model;
+    for (std::string& line : splitLines(warn))
+      if (line.find("Failed to load external") == std::string::npos && line.find("File not found") == std::string::npos)
+        model->warnings.push_back("tinygltf: " + line);
+    return model;
+  } catch (const std::bad_alloc&) {
+    return makeError(file + ": out of memory while loading");
+  } catch (const std::exception& e) {
+    return makeError(file + ": " + e.what());
+  }
+}
+
+}  // namespace eng

@@ -1,0 +1,77 @@
+#include "engine/scene/image_io.h"
+
+#include <algorithm>
+#include <climits>
+#include <memory>
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include "engine/scene/file_bytes.h"
+
+namespace eng {
+namespace {
+
+constexpr size_t kMaxImageFileBytes = size_t{512} << 20;
+
+Result<void> checkRgbaSize(int w, int h, size_t bytes, const std::string& what) {
+  if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) * 4 != bytes)
+    return makeError(what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
+                     std::to_string(static_cast<uint64_t>(std::max(w, 0)) * std::max(h, 0) * 4) +
+                     " RGBA8 bytes, got " + std::to_string(bytes));
+  if (static_cast<uint64_t>(w) * 4 > INT_MAX || static_cast<uint64_t>(w) * h * 4 > INT_MAX)
+    return makeError(what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " is too large for PNG");
+  return {};
+}
+
+void appendBytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<uint8_t>*>(context);
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rgba8) {
+  if (auto ok = checkRgbaSize(w, h, rgba8.size(), "encodePng"); !ok) return ok.error();
+  std::vector<uint8_t> png;
+  if (!stbi_write_png_to_func(appendBytes, &png, w, h, 4, rgba8.data(), w * 4))
+    return makeError("encodePng: stb failed to encode a " + std::to_string(w) + "x" + std::to_string(h) + " image");
+  return png;
+}
+
+Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span<const uint8_t> rgba8) {
+  if (auto ok = checkRgbaSize(w, h, rgba8.size(), path.string()); !ok) return ok.error();
+  auto png = encodePng(w, h, rgba8);
+  if (!png) return png.error();
+  return writeFileBytes(path, png->data(), png->size());
+}
+
+Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
+  if (encoded.empty()) return makeError(name + ": image data is empty");
+  if (encoded.size() > static_cast<size_t>(INT_MAX)) return makeError(name + ": image data is larger than 2 GiB");
+  int w = 0, h = 0, channels = 0;
+  const int len = static_cast<int>(encoded.size());
+  if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))
+    return makeError(name + ": not a decodable image (" + stbi_failure_reason() + ")");
+  if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) > maxPixels)
+    return makeError(name + ": image claims " + std::to_string(w) + "x" + std::to_string(h) +
+                     " pixels, more than the limit of " + std::to_string(maxPixels));
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(encoded.data(), len, &w, &h, &channels, 4),
+                                                    stbi_image_free);
+  if (!pixels) return makeError(name + ": image decode failed (" + stbi_failure_reason() + ")");
+  Image img;
+  img.name = name;
+  img.width = w;
+  img.height = h;
+  img.rgba8.assign(pixels.get(), pixels.get() + static_cast<size_t>(w) * h * 4);
+  return img;
+}
+
+Result<Image> readImage(const std::filesystem::path& path) {
+  auto bytes = readFileBytes(path, kMaxImageFileBytes);
+  if (!bytes) return bytes.error();
+  return decodeImage(*bytes, path.string());
+}
+
+}  // namespace eng

@@ -1,0 +1,60 @@
+#include "engine/scene/model.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace eng {
+
+glm::mat4 Node::localTransform() const {
+  if (hasMatrix) return matrix;
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
+  m *= glm::mat4_cast(rotation);
+  return glm::scale(m, scale);
+}
+
+float Animation::duration() const {
+  float d = 0.0f;
+  for (const WeightsChannel& c : channels)
+    if (!c.times.empty()) d = std::max(d, c.times.back());
+  return d;
+}
+
+glm::mat4 Model::worldTransform(int node) const {
+  glm::mat4 m(1.0f);
+  // The loader rejects cycles; the step bound keeps a hand-built bad graph finite.
+  for (size_t steps = 0; node >= 0 && node < static_cast<int>(nodes.size()) && steps <= nodes.size(); ++steps) {
+    m = nodes[node].localTransform() * m;
+    node = nodes[node].parent;
+  }
+  return m;
+}
+
+Aabb Model::bounds() const {
+  Aabb box;
+  std::vector<int> stack(roots.rbegin(), roots.rend());
+  std::vector<bool> seen(nodes.size(), false);
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n < 0 || n >= static_cast<int>(nodes.size()) || seen[n]) continue;
+    seen[n] = true;
+    const Node& node = nodes[n];
+    if (node.mesh >= 0 && node.mesh < static_cast<int>(meshes.size())) {
+      const glm::mat4 world = worldTransform(n);
+      for (const Primitive& prim : meshes[node.mesh].primitives)
+        for (const glm::vec3& p : prim.positions) box.extend(glm::vec3(world * glm::vec4(p, 1.0f)));
+    }
+    for (int c : node.children) stack.push_back(c);
+  }
+  return box;
+}
+
+size_t Model::totalVertexCount() const {
+  size_t n = 0;
+  for (const Mesh& mesh : meshes)
+    for (const Primitive& prim : mesh.primitives) n += prim.vertexCount();
+  return n;
+}
+
+}  // namespace eng
