@@ -1,0 +1,238 @@
+#include "facial/runtime/rbf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace facial {
+namespace {
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 arrays are mapped as packed float triples");
+
+// Below this reciprocal condition estimate the factored system is treated as
+// singular: solving it would amplify rounding noise past float precision.
+constexpr double kMinReciprocalCondition = 1e-14;
+// Relative spread (smallest / largest singular value of the centred layout)
+// under which the points count as coplanar or collinear.
+constexpr double kMinRelativeSpread = 1e-7;
+
+bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+std::string describe(const glm::vec3& p) {
+  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+}
+
+// Index of the first point with a non-finite coordinate, or -1.
+long firstNonFinite(std::span<const glm::vec3> points) {
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!finite(points[i])) return static_cast<long>(i);
+  return -1;
+}
+
+// First pair of points closer than `minSeparation`, found with a sweep over
+// the points sorted by x so large layouts stay O(n log n) in practice.
+bool findCoincidentPair(std::span<const glm::vec3> points, double minSeparation, size_t& a, size_t& b) {
+  std::vector<size_t> order(points.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t l, size_t r) { return points[l].x < points[r].x; });
+  for (size_t i = 0; i < order.size(); ++i) {
+    const glm::dvec3 pi(points[order[i]]);
+    for (size_t j = i + 1; j < order.size(); ++j) {
+      const glm::dvec3 pj(points[order[j]]);
+      if (pj.x - pi.x >= minSeparation) break;
+      if (glm::length(pj - pi) < minSeparation) {
+        a = std::min(order[i], order[j]);
+        b = std::max(order[i], order[j]);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void requireSize(size_t actual, size_t expected, const char* what) {
+  if (actual != expected)
+    throw std::invalid_argument(std::string("RBF: ") + what + " has " + std::to_string(actual) + " entries, expected " +
+                                std::to_string(expected));
+}
+
+void requireFinite(std::span<const glm::vec3> values, const char* what) {
+  const long bad = firstNonFinite(values);
+  if (bad >= 0)
+    throw std::invalid_argument(std::string("RBF: ") + what + " " + std::to_string(bad) + " is not finite " +
+                                describe(values[static_cast<size_t>(bad)]));
+}
+
+}  // namespace
+
+double RbfKernel::operator()(double r) const {
+  switch (type) {
+    case RbfKernelType::Biharmonic:
+      return r;
+    case RbfKernelType::Polyharmonic: {
+      double value = r;  // r^(2k+1) by repeated multiplication: exact for small k, no pow()
+      const double r2 = r * r;
+      for (int i = 0; i < k; ++i) value *= r2;
+      return value;
+    }
+    case RbfKernelType::Multiquadric:
+      return std::sqrt(r * r + double(c) * double(c));
+  }
+  return r;
+}
+
+eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> controlPoints, const RbfKernel& kernel,
+                                                     float minSeparation) {
+  const size_t n = controlPoints.size();
+  if (n < 4)
+    return eng::makeError("RBF: " + std::to_string(n) +
+                          " control points given, at least 4 are needed (the affine term has 4 unknowns)");
+  if (const long bad = firstNonFinite(controlPoints); bad >= 0)
+    return eng::makeError("RBF: control point " + std::to_string(bad) + " of " + std::to_string(n) +
+                          " is not finite " + describe(controlPoints[static_cast<size_t>(bad)]));
+  if (kernel.type == RbfKernelType::Polyharmonic && kernel.k < 1)
+    return eng::makeError("RBF: polyharmonic kernel needs k >= 1 (exponent 2k+1), got k = " + std::to_string(kernel.k));
+  if (kernel.type == RbfKernelType::Multiquadric && !(std::isfinite(kernel.c) && kernel.c > 0.0f))
+    return eng::makeError("RBF: multiquadric kernel needs a finite shape parameter c > 0, got c = " +
+                          std::to_string(kernel.c));
+  if (!(std::isfinite(minSeparation) && minSeparation >= 0.0f))
+    return eng::makeError("RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
+
+  if (size_t a = 0, b = 0; findCoincidentPair(controlPoints, minSeparation, a, b))
+    return eng::makeError("RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
+                          std::to_string(n) + " coincide " + describe(controlPoints[a]) + " (closer than minSeparation " +
+                          std::to_string(minSeparation) + ")");
+
+  RbfInterpolator rbf;
+  rbf.kernel_ = kernel;
+
+  // Normalise to a unit box: centre on the bounds, divide by the largest extent.
+  glm::dvec3 lo(controlPoints[0]), hi(controlPoints[0]);
+  for (const glm::vec3& p : controlPoints) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  const glm::dvec3 extent = hi - lo;
+  const double size = std::max({extent.x, extent.y, extent.z});
+  rbf.centre_ = (lo + hi) * 0.5;
+  rbf.invScale_ = size > 0.0 ? 1.0 / size : 1.0;
+  rbf.normalisedKernel_ = kernel;
+  rbf.normalisedKernel_.c = static_cast<float>(double(kernel.c) * rbf.invScale_);
+  rbf.points_.reserve(n);
+  for (const glm::vec3& p : controlPoints) rbf.points_.push_back(rbf.normalise(p));
+
+  // The affine part is solvable only when the points span 3D: check the
+  // singular values of the centred layout.
+  Eigen::MatrixX3d centred(static_cast<Eigen::Index>(n), 3);
+  glm::dvec3 mean(0.0);
+  for (const glm::dvec3& p : rbf.points_) mean += p;
+  mean /= double(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3 d = rbf.points_[i] - mean;
+    centred.row(static_cast<Eigen::Index>(i)) << d.x, d.y, d.z;
+  }
+  const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixX3d>(centred).singularValues();
+  if (spread(1) <= kMinRelativeSpread * spread(0))
+    return eng::makeError("RBF: the " + std::to_string(n) +
+                          " control points are collinear; the affine term needs a layout that spans 3D");
+  if (spread(2) <= kMinRelativeSpread * spread(0))
+    return eng::makeError("RBF: the " + std::to_string(n) +
+                          " control points are coplanar; the affine term needs a layout that spans 3D");
+
+  // [Phi P; P^T 0]: symmetric but indefinite, hence LU rather than Cholesky.
+  const Eigen::Index N = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(N + 4, N + 4);
+  for (Eigen::Index i = 0; i < N; ++i) {
+    rbf.basisRow(rbf.points_[static_cast<size_t>(i)], system.row(i));
+    system.block(N, i, 4, 1) = system.block(i, N, 1, 4).transpose();
+  }
+  rbf.inverseSystem_.compute(system);
+  const double rcond = rbf.inverseSystem_.rcond();
+  if (!(rcond > kMinReciprocalCondition))
+    return eng::makeError("RBF: the system for " + std::to_string(n) +
+                          " control points is numerically singular (reciprocal condition " + std::to_string(rcond) +
+                          "); spread the points out or use another kernel");
+  return rbf;
+}
+
+void RbfInterpolator::basisRow(const glm::dvec3& x, RowRef row) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(points_.size());
+  for (Eigen::Index j = 0; j < n; ++j) row(j) = normalisedKernel_(glm::length(x - points_[static_cast<size_t>(j)]));
+  row(n) = 1.0;
+  row(n + 1) = x.x;
+  row(n + 2) = x.y;
+  row(n + 3) = x.z;
+}
+
+Eigen::MatrixX3d RbfInterpolator::solve(std::span<const glm::vec3> displacements) const {
+  requireSize(displacements.size(), points_.size(), "displacement field");
+  requireFinite(displacements, "displacement");
+  const Eigen::Index n = static_cast<Eigen::Index>(points_.size());
+  Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(n + 4, 3);  // side conditions: zero rows
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const glm::vec3& d = displacements[static_cast<size_t>(i)];
+    rhs.row(i) << d.x, d.y, d.z;
+  }
+  return inverseSystem_.solve(rhs);
+}
+
+glm::vec3 RbfInterpolator::evaluate(const Eigen::MatrixX3d& coefficients, const glm::vec3& x) const {
+  requireSize(static_cast<size_t>(coefficients.rows()), points_.size() + 4, "coefficient matrix");
+  Eigen::RowVectorXd row(coefficients.rows());
+  basisRow(normalise(x), row);
+  const Eigen::RowVector3d value = row * coefficients;
+  return glm::vec3(static_cast<float>(value(0)), static_cast<float>(value(1)), static_cast<float>(value(2)));
+}
+
+Eigen::MatrixXd RbfInterpolator::influenceMatrix(std::span<const glm::vec3> points) const {
+  requireFinite(points, "point");
+  const Eigen::Index n = static_cast<Eigen::Index>(points_.size());
+  const Eigen::Index m = static_cast<Eigen::Index>(points.size());
+  // Columns of the inverse system for unit displacements of each control point
+  // (zero side-condition rows): A^-1 [I; 0].
+  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(n + 4, n);
+  unit.topRows(n).setIdentity();
+  const Eigen::MatrixXd coefficientsPerControl = inverseSystem_.solve(unit);
+  Eigen::MatrixXd basis(m, n + 4);
+  for (Eigen::Index v = 0; v < m; ++v) basisRow(normalise(points[static_cast<size_t>(v)]), basis.row(v));
+  return basis * coefficientsPerControl;
+}
+
+eng::Result<RbfDeformer> RbfDeformer::build(std::span<const glm::vec3> controlPoints, std::span<const glm::vec3> points,
+                                             const RbfKernel& kernel) {
+  eng::Result<RbfInterpolator> interpolator = RbfInterpolator::build(controlPoints, kernel);
+  if (!interpolator) return interpolator.error();
+  return build(*interpolator, points);
+}
+
+eng::Result<RbfDeformer> RbfDeformer::build(const RbfInterpolator& interpolator, std::span<const glm::vec3> points) {
+  if (const long bad = firstNonFinite(points); bad >= 0)
+    return eng::makeError("RBF deformer: point " + std::to_string(bad) + " of " + std::to_string(points.size()) +
+                          " is not finite " + describe(points[static_cast<size_t>(bad)]));
+  RbfDeformer deformer;
+  deformer.influence_ = interpolator.influenceMatrix(points).transpose().cast<float>();
+  return deformer;
+}
+
+eng::Result<void> RbfDeformer::apply(std::span<const glm::vec3> displacements, std::span<glm::vec3> out,
+                                     FalloffMask mask) const {
+  const size_t n = controlPointCount();
+  const size_t m = pointCount();
+  if (displacements.size() != n || out.size() != m || (!mask.empty() && mask.size() != m))
+    return eng::makeError("RBF deformer: apply got " + std::to_string(displacements.size()) + " displacements, " +
+                          std::to_string(out.size()) + " outputs, mask of " + std::to_string(mask.size()) +
+                          "; expected " + std::to_string(n) + " displacements, " + std::to_string(m) +
+                          " outputs, mask empty or " + std::to_string(m));
+  using Columns = Eigen::Matrix<float, 3, Eigen::Dynamic>;
+  const Eigen::Map<const Columns> d(&displacements.data()->x, 3, static_cast<Eigen::Index>(n));
+  Eigen::Map<Columns> result(&out.data()->x, 3, static_cast<Eigen::Index>(m));
+  for (Eigen::Index v = 0; v < static_cast<Eigen::Index>(m); ++v) {
+    result.col(v).noalias() = d * influence_.col(v);
+    if (!mask.empty()) result.col(v) *= mask[static_cast<size_t>(v)];
+  }
+  return {};
+}
+
+}  // namespace facial
