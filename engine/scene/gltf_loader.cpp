@@ -179,7 +179,7 @@ class ModelBuilder {
       mat.metallic = static_cast<float>(pbr.metallicFactor);
       mat.doubleSided = src.doubleSided;
       if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||
-          !std::isfinite(glm::dot(mat.baseColorFactor, mat.baseColorFactor))) {
+          glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor))) {
         warn(where + " has non-finite factors; defaults used");
         mat.baseColorFactor = glm::vec4(1.0f);
         mat.roughness = 1.0f;

@@ -1,0 +1,323 @@
+#include "engine/scene/gltf_writer.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
+#include "engine/scene/image_io.h"
+#include "engine/scene/model_check.h"
+
+// Why not tinygltf's writer: 2.7 cannot serialise sparse accessors and embeds
+// GLB images as base64 in the JSON. The JSON is written with nlohmann::json
+// and the container by glb_container.
+namespace eng {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr int kFloat = 5126;
+constexpr int kUnsignedShort = 5123;
+constexpr int kUnsignedInt = 5125;
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+const char* typeName(int components) {
+  switch (components) {
+    case 1: return "SCALAR";
+    case 2: return "VEC2";
+    case 3: return "VEC3";
+    default: return "VEC4";
+  }
+}
+
+// Collects the binary chunk and the bufferView/accessor JSON that indexes it.
+class BufferBuilder {
+ public:
+  int addView(const void* data, size_t size, int target) {
+    while (bin_.size() % 4 != 0) bin_.push_back(0);
+    Json view = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", size}};
+    if (target != 0) view["target"] = target;
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    bin_.insert(bin_.end(), bytes, bytes + size);
+    views_.push_back(std::move(view));
+    return static_cast<int>(views_.size()) - 1;
+  }
+
+  // Dense float accessor; min/max written when asked (POSITION needs them).
+  int addFloats(const float* values, size_t count, int components, int target, bool minMax) {
+    Json acc = {{"componentType", kFloat}, {"count", count}, {"type", typeName(components)}};
+    if (count > 0) acc["bufferView"] = addView(values, count * components * sizeof(float), target);
+    if (minMax) addMinMax(acc, values, count, components);
+    return addAccessor(std::move(acc));
+  }
+
+  // A morph delta accessor: sparse when the few moved vertices cost less than
+  // the dense array, no data at all (zeros) when nothing moves.
+  int addDeltas(const std::vector<glm::vec3>& deltas, bool minMax) {
+    const size_t n = deltas.size();
+    std::vector<uint32_t> moved;
+    for (size_t v = 0; v < n; ++v)
+      if (deltas[v] != glm::vec3(0.0f)) moved.push_back(static_cast<uint32_t>(v));
+    const float* flat = &deltas[0].x;
+    const bool shortIndices = n <= 65536;
+    const size_t indexSize = shortIndices ? 2 : 4;
+    const size_t sparseBytes = moved.size() * (indexSize + sizeof(glm::vec3));
+    if (!moved.empty() && sparseBytes >= n * sizeof(glm::vec3)) return addFloats(flat, n, 3, kArrayBuffer, minMax);
+
+    Json acc = {{"componentType", kFloat}, {"count", n}, {"type", "VEC3"}};
+    if (!moved.empty()) {
+      std::vector<glm::vec3> values;
+      values.reserve(moved.size());
+      for (uint32_t v : moved) values.push_back(deltas[v]);
+      int indexView;
+      if (shortIndices) {
+        std::vector<uint16_t> idx(moved.begin(), moved.end());
+        indexView = addView(idx.data(), idx.size() * 2, 0);
+      } else {
+        indexView = addView(moved.data(), moved.size() * 4, 0);
+      }
+      const int valueView = addView(values.data(), values.size() * sizeof(glm::vec3), 0);
+      acc["sparse"] = {{"count", moved.size()},
+                       {"indices", {{"bufferView", indexView}, {"componentType", shortIndices ? kUnsignedShort : kUnsignedInt}}},
+                       {"values", {{"bufferView", valueView}}}};
+    }
+    if (minMax) addMinMax(acc, flat, n, 3);
+    return addAccessor(std::move(acc));
+  }
+
+  int addIndices(const std::vector<uint32_t>& indices, size_t vertexCount) {
+    Json acc = {{"count", indices.size()}, {"type", "SCALAR"}};
+    if (vertexCount <= 65535) {
+      std::vector<uint16_t> shorts(indices.begin(), indices.end());
+      acc["componentType"] = kUnsignedShort;
+      acc["bufferView"] = addView(shorts.data(), shorts.size() * 2, kElementArrayBuffer);
+    } else {
+      acc["componentType"] = kUnsignedInt;
+      acc["bufferView"] = addView(indices.data(), indices.size() * 4, kElementArrayBuffer);
+    }
+    return addAccessor(std::move(acc));
+  }
+
+  const std::vector<uint8_t>& bin() const { return bin_; }
+  Json& views() { return views_; }
+  Json& accessors() { return accessors_; }
+
+ private:
+  static void addMinMax(Json& acc, const float* values, size_t count, int components) {
+    Json lo = Json::array(), hi = Json::array();
+    for (int c = 0; c < components; ++c) {
+      float mn = count ? values[c] : 0.0f, mx = mn;
+      for (size_t i = 1; i < count; ++i) {
+        mn = std::min(mn, values[i * components + c]);
+        mx = std::max(mx, values[i * components + c]);
+      }
+      lo.push_back(mn);
+      hi.push_back(mx);
+    }
+    acc["min"] = std::move(lo);
+    acc["max"] = std::move(hi);
+  }
+
+  int addAccessor(Json acc) {
+    accessors_.push_back(std::move(acc));
+    return static_cast<int>(accessors_.size()) - 1;
+  }
+
+  std::vector<uint8_t> bin_;
+  Json views_ = Json::array();
+  Json accessors_ = Json::array();
+};
+
+Json vec(const float* v, int n) {
+  Json a = Json::array();
+  for (int i = 0; i < n; ++i) a.push_back(v[i]);
+  return a;
+}
+
+const char* interpolationName(Interpolation i) {
+  switch (i) {
+    case Interpolation::Step: return "STEP";
+    case Interpolation::CubicSpline: return "CUBICSPLINE";
+    default: return "LINEAR";
+  }
+}
+
+// Percent-encodes a file name for a glTF uri (RFC 3986 unreserved kept).
+std::string uriEncode(const std::string& name) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') out += static_cast<char>(c);
+    else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
+  Json doc;
+  doc["asset"] = {{"version", "2.0"}, {"generator", "facial eng_scene"}};
+
+  if (!model.images.empty()) {
+    Json images = Json::array(), textures = Json::array();
+    for (size_t i = 0; i < model.images.size(); ++i) {
+      const Image& img = model.images[i];
+      auto png = encodePng(img.width, img.height, img.rgba8);
+      if (!png) return makeError("image " + std::to_string(i) + ": " + png.error().message);
+      Json image = {{"bufferView", buffers.addView(png->data(), png->size(), 0)}, {"mimeType", "image/png"}};
+      if (!img.name.empty()) image["name"] = img.name;
+      images.push_back(std::move(image));
+      textures.push_back({{"sampler", 0}, {"source", i}});
+    }
+    doc["images"] = std::move(images);
+    doc["samplers"] = Json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+    doc["textures"] = std::move(textures);
+  }
+
+  if (!model.materials.empty()) {
+    Json materials = Json::array();
+    for (const Material& mat : model.materials) {
+      Json pbr = {{"baseColorFactor", vec(&mat.baseColorFactor.x, 4)},
+                  {"metallicFactor", mat.metallic},
+                  {"roughnessFactor", mat.roughness}};
+      if (mat.baseColorImage >= 0) pbr["baseColorTexture"] = {{"index", mat.baseColorImage}};
+      Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
+      if (!mat.name.empty()) m["name"] = mat.name;
+      if (mat.doubleSided) m["doubleSided"] = true;
+      if (!mat.detailLayers.empty()) {
+        Json layers = Json::array();
+        for (const DetailLayer& d : mat.detailLayers)
+          layers.push_back({{"image", d.image}, {"target", d.target}, {"strength", d.strength}});
+        m["extras"] = {{"detailLayers", std::move(layers)}};
+      }
+      materials.push_back(std::move(m));
+    }
+    doc["materials"] = std::move(materials);
+  }
+
+  if (!model.meshes.empty()) {
+    Json meshes = Json::array();
+    for (const Mesh& mesh : model.meshes) {
+      Json prims = Json::array();
+      for (const Primitive& p : mesh.primitives) {
+        const size_t n = p.vertexCount();
+        Json attributes;
+        attributes["POSITION"] = buffers.addFloats(&p.positions[0].x, n, 3, kArrayBuffer, true);
+        if (!p.normals.empty()) attributes["NORMAL"] = buffers.addFloats(&p.normals[0].x, n, 3, kArrayBuffer, false);
+        if (!p.texcoords.empty())
+          attributes["TEXCOORD_0"] = buffers.addFloats(&p.texcoords[0].x, n, 2, kArrayBuffer, false);
+        if (!p.tangents.empty()) attributes["TANGENT"] = buffers.addFloats(&p.tangents[0].x, n, 4, kArrayBuffer, false);
+        Json prim = {{"attributes", std::move(attributes)}, {"indices", buffers.addIndices(p.indices, n)}, {"mode", 4}};
+        if (p.material >= 0) prim["material"] = p.material;
+        if (!p.targets.empty()) {
+          Json targets = Json::array();
+          for (const MorphTarget& t : p.targets) {
+            Json target = Json::object();
+            if (!t.positions.empty()) target["POSITION"] = buffers.addDeltas(t.positions, true);
+            if (!t.normals.empty()) target["NORMAL"] = buffers.addDeltas(t.normals, false);
+            if (!t.tangents.empty()) target["TANGENT"] = buffers.addDeltas(t.tangents, false);
+            targets.push_back(std::move(target));
+          }
+          prim["targets"] = std::move(targets);
+        }
+        prims.push_back(std::move(prim));
+      }
+      Json m = {{"primitives", std::move(prims)}};
+      if (!mesh.name.empty()) m["name"] = mesh.name;
+      if (!mesh.targetNames.empty()) {
+        m["weights"] = mesh.defaultWeights;
+        m["extras"] = {{"targetNames", mesh.targetNames}};
+      }
+      meshes.push_back(std::move(m));
+    }
+    doc["meshes"] = std::move(meshes);
+  }
+
+  if (!model.nodes.empty()) {
+    Json nodes = Json::array();
+    for (const Node& node : model.nodes) {
+      Json n = Json::object();
+      if (!node.name.empty()) n["name"] = node.name;
+      if (node.mesh >= 0) n["mesh"] = node.mesh;
+      if (!node.children.empty()) n["children"] = node.children;
+      if (node.hasMatrix) {
+        n["matrix"] = vec(&node.matrix[0][0], 16);
+      } else {
+        if (node.translation != glm::vec3(0.0f)) n["translation"] = vec(&node.translation.x, 3);
+        if (node.rotation != glm::quat(1.0f, 0.0f, 0.0f, 0.0f))
+          n["rotation"] = {node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w};
+        if (node.scale != glm::vec3(1.0f)) n["scale"] = vec(&node.scale.x, 3);
+      }
+      nodes.push_back(std::move(n));
+    }
+    doc["nodes"] = std::move(nodes);
+    doc["scenes"] = Json::array({{{"nodes", model.roots}}});
+    doc["scene"] = 0;
+  }
+
+  Json animations = Json::array();
+  for (const Animation& anim : model.animations) {
+    // glTF requires at least one channel; an animation with none has nothing to say.
+    if (anim.channels.empty()) continue;
+    Json samplers = Json::array(), channels = Json::array();
+    for (const WeightsChannel& ch : anim.channels) {
+      const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
+      const int output = buffers.addFloats(ch.values.data(), ch.values.size(), 1, 0, false);
+      channels.push_back({{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
+      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
+    }
+    Json a = {{"channels", std::move(channels)}, {"samplers", std::move(samplers)}};
+    if (!anim.name.empty()) a["name"] = anim.name;
+    animations.push_back(std::move(a));
+  }
+  if (!animations.empty()) doc["animations"] = std::move(animations);
+  return doc;
+}
+
+}  // namespace
+
+Result<void> saveModel(const Model& model, const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".glb" && ext != ".gltf") return makeError(file + ": unknown extension '" + ext + "' (use .glb or .gltf)");
+  if (auto ok = checkModel(model); !ok) return makeError(file + ": cannot save: " + ok.error().message);
+
+  try {
+    BufferBuilder buffers;
+    auto doc = buildDocument(model, buffers);
+    if (!doc) return makeError(file + ": " + doc.error().message);
+    if (buffers.bin().size() > UINT32_MAX - 1024)
+      return makeError(file + ": " + std::to_string(buffers.bin().size()) + " bytes of data exceed glTF's 4 GiB limit");
+    Json& json = *doc;
+    if (!buffers.bin().empty()) {
+      json["bufferViews"] = std::move(buffers.views());
+      Json buffer = {{"byteLength", buffers.bin().size()}};
+      if (ext == ".gltf") buffer["uri"] = uriEncode(path.stem().string() + ".bin");
+      json["buffers"] = Json::array({std::move(buffer)});
+    }
+    if (!buffers.accessors().empty()) json["accessors"] = std::move(buffers.accessors());
+
+    if (ext == ".glb") {
+      const std::vector<uint8_t> glb = buildGlb(json.dump(-1, ' ', false, Json::error_handler_t::replace), buffers.bin());
+      return writeFileBytes(path, glb.data(), glb.size());
+    }
+    if (!buffers.bin().empty()) {
+      std::filesystem::path binPath = path;
+      binPath.replace_extension(".bin");
+      if (auto ok = writeFileBytes(binPath, buffers.bin().data(), buffers.bin().size()); !ok) return ok;
+    }
+    const std::string text = json.dump(1, ' ', false, Json::error_handler_t::replace);
+    return writeFileBytes(path, text.data(), text.size());
+  } catch (const std::exception& e) {
+    return makeError(file + ": " + e.what());
+  }
+}
+
+}  // namespace eng
