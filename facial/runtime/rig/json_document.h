@@ -1,0 +1,38 @@
+#pragma once
+// Reading the rig layer's JSON inputs (expression presets, rig maps, VRM
+// extensions) with errors that name the source, the JSON path (RFC 6901
+// pointer) and the problem: "data/expressions.json: /expressions/happy/
+// actionUnits/AU13: unknown action unit".
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/result.h"
+
+namespace facial {
+
+// Object keys keep their file order (preset lists are shown in that order).
+using Json = nlohmann::ordered_json;
+
+inline constexpr size_t kMaxJsonFileBytes = size_t{16} << 20;
+
+// Reads and parses a whole file; missing, unreadable, oversized or malformed
+// files fail with "<path>: <problem>".
+eng::Result<Json> readJsonFile(const std::filesystem::path& path, size_t maxBytes = kMaxJsonFileBytes);
+// Parses text that came from `source` (a file name, "GLB JSON chunk of x.vrm").
+eng::Result<Json> parseJsonText(std::string_view text, std::string_view source);
+
+// "<source>: <path>: <problem>" (path "" reads as the document root "/").
+eng::Error jsonError(std::string_view source, std::string_view path, std::string_view problem);
+
+// JSON pointer of a child: childPath("/a", "b/c") == "/a/b~1c", childPath("/a", 3) == "/a/3".
+std::string childPath(std::string_view parent, std::string_view key);
+std::string childPath(std::string_view parent, size_t index);
+
+// The JSON type as a word for messages ("string", "array", ...).
+std::string_view jsonTypeName(const Json& value);
+
+}  // namespace facial
