@@ -1,0 +1,366 @@
+// glTF import results on files the tests write themselves: sparse and
+// quantized accessors, primitive modes, generated normals, hierarchy,
+// names/weights, animations, materials and images.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/image_io.h"
+#include "tests/common/test_support.h"
+#include "tests/scene/gltf_test_files.h"
+
+namespace {
+
+using scene_test::GltfFileBuilder;
+using scene_test::Json;
+using namespace scene_test;
+using testing_support::freshTempDir;
+
+eng::Model loadOk(const std::filesystem::path& path) {
+  auto model = eng::loadModel(path);
+  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
+  return model.ok() ? std::move(*model) : eng::Model{};
+}
+
+bool hasWarningContaining(const eng::Model& model, const std::string& text) {
+  for (const std::string& w : model.warnings)
+    if (w.find(text) != std::string::npos) return true;
+  return false;
+}
+
+void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-6f) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+TEST(GltfLoader, ReadsQuadTargetNamesAndDefaultWeightsFromGltfAndGlb) {
+  const auto dir = freshTempDir("loader_quad");
+  GltfFileBuilder b = quadWithTarget();
+  b.writeGltf(dir / "external.gltf", "external.bin");
+  b.writeGltf(dir / "datauri.gltf");
+  b.writeGlb(dir / "binary.glb");
+  for (const char* name : {"external.gltf", "datauri.gltf", "binary.glb"}) {
+    const eng::Model model = loadOk(dir / name);
+    ASSERT_EQ(model.meshes.size(), 1u) << name;
+    const eng::Mesh& mesh = model.meshes[0];
+    EXPECT_EQ(mesh.name, "Quad");
+    EXPECT_EQ(mesh.targetNames, std::vector<std::string>{"lift"});
+    EXPECT_EQ(mesh.defaultWeights, std::vector<float>{0.25f});
+    const eng::Primitive& prim = mesh.primitives.at(0);
+    EXPECT_EQ(prim.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+    ASSERT_EQ(prim.targets.size(), 1u);
+    EXPECT_EQ(prim.targets[0].positions[2], glm::vec3(0, 0, 1));
+    EXPECT_TRUE(prim.targets[0].normals.empty()) << "the file morphs no normals";
+    EXPECT_EQ(model.roots, std::vector<int>{0});
+    EXPECT_TRUE(model.warnings.empty());
+  }
+}
+
+TEST(GltfLoader, SparseTargetWithoutBufferViewIsZerosPlusSubstitutions) {
+  const auto dir = freshTempDir("loader_sparse_zero_base");
+  GltfFileBuilder b = quadWithTarget();
+  const std::vector<uint8_t> indices = {1, 3};
+  const std::vector<glm::vec3> values = {{0.5f, 0, 0}, {0, -2, 0}};
+  const int iv = b.addView(indices);
+  const int vv = b.addView(values);
+  const int sparse = b.addAccessor(-1, kFloat, 4, "VEC3");
+  b.doc["accessors"][sparse]["sparse"] = {{"count", 2},
+                                          {"indices", {{"bufferView", iv}, {"componentType", kUnsignedByte}}},
+                                          {"values", {{"bufferView", vv}}}};
+  b.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = sparse;
+  b.writeGltf(dir / "sparse.gltf", "sparse.bin");
+  const eng::Model model = loadOk(dir / "sparse.gltf");
+  const auto& deltas = model.meshes.at(0).primitives.at(0).targets.at(0).positions;
+  EXPECT_EQ(deltas, (std::vector<glm::vec3>{{0, 0, 0}, {0.5f, 0, 0}, {0, 0, 0}, {0, -2, 0}}));
+}
+
+TEST(GltfLoader, SparseOverABaseBufferViewReplacesOnlyListedElements) {
+  const auto dir = freshTempDir("loader_sparse_base");
+  GltfFileBuilder b = quadWithTarget();
+  const std::vector<glm::vec3> base(4, glm::vec3(1, 1, 1));
+  const std::vector<uint32_t> indices = {0};
+  const std::vector<glm::vec3> values = {{9, 8, 7}};
+  const int bv = b.addView(base);
+  const int iv = b.addView(indices);
+  const int vv = b.addView(values);
+  const int acc = b.addAccessor(bv, kFloat, 4, "VEC3");
+  b.doc["accessors"][acc]["sparse"] = {{"count", 1},
+                                       {"indices", {{"bufferView", iv}, {"componentType", kUnsignedInt}}},
+                                       {"values", {{"bufferView", vv}}}};
+  b.doc["meshes"][0]["primitives"][0]["targets"][0]["NORMAL"] = acc;
+  b.writeGlb(dir / "sparse_base.glb");
+  const eng::Model model = loadOk(dir / "sparse_base.glb");
+  const auto& normals = model.meshes.at(0).primitives.at(0).targets.at(0).normals;
+  EXPECT_EQ(normals, (std::vector<glm::vec3>{{9, 8, 7}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}}));
+}
+
+TEST(GltfLoader, DecodesQuantizedNormalizedAndIntegerComponents) {
+  const auto dir = freshTempDir("loader_quantized");
+  GltfFileBuilder b;
+  b.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+  b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+  // Positions: unsigned shorts, not normalized, 6 bytes padded to an 8-byte stride.
+  struct PackedPos { uint16_t x, y, z, pad; };
+  const std::vector<PackedPos> pos = {{0, 0, 0, 0}, {100, 0, 0, 0}, {0, 200, 0, 0}};
+  const int posAcc = b.addAccessor(b.addView(pos, 8), kUnsignedShort, 3, "VEC3");
+  // Normals: normalized signed bytes (127 -> 1, -128 clamps to -1), padded to 4 bytes.
+  const std::vector<int8_t> nrm = {0, 0, 127, 0, 0, -128, 0, 0, 64, 0, 0, 0};
+  const int nrmAcc = b.addAccessor(b.addView(nrm, 4), kByte, 3, "VEC3", true);
+  // Texcoords: normalized unsigned shorts.
+  const std::vector<uint16_t> uv = {0, 65535, 65535, 0, 32768, 32768};
+  const int uvAcc = b.addAccessor(b.addView(uv), kUnsignedShort, 3, "VEC2", true);
+  // Target deltas: normalized shorts, 8-byte stride.
+  const std::vector<int16_t> delta = {32767, 0, 0, 0, 0, -32768, 0, 0, 0, 0, 16384, 0};
+  const int deltaAcc = b.addAccessor(b.addView(delta, 8), kShort, 3, "VEC3", true);
+  // Indices: unsigned bytes.
+  const std::vector<uint8_t> idx = {0, 1, 2};
+  const int idxAcc = b.addAccessor(b.addView(idx), kUnsignedByte, 3, "SCALAR");
+  b.addMeshWithNode({{"primitives", Json::array({{{"attributes", {{"POSITION", posAcc}, {"NORMAL", nrmAcc},
+                                                                  {"TEXCOORD_0", uvAcc}}},
+                                                   {"indices", idxAcc},
+                                                   {"targets", Json::array({{{"POSITION", deltaAcc}}})}}})}});
+  b.writeGlb(dir / "quantized.glb");
+  const eng::Model model = loadOk(dir / "quantized.glb");
+  const eng::Primitive& p = model.meshes.at(0).primitives.at(0);
+  EXPECT_EQ(p.positions, (std::vector<glm::vec3>{{0, 0, 0}, {100, 0, 0}, {0, 200, 0}}));
+  expectNear(p.normals[0], {0, 0, 1});
+  expectNear(p.normals[1], {0, -1, 0});
+  expectNear(p.normals[2], {64.0f / 127.0f, 0, 0});
+  EXPECT_NEAR(p.texcoords[0].y, 1.0f, 1e-6f);
+  EXPECT_NEAR(p.texcoords[2].x, 32768.0f / 65535.0f, 1e-6f);
+  expectNear(p.targets[0].positions[0], {1, 0, 0});
+  expectNear(p.targets[0].positions[1], {0, -1, 0});
+  expectNear(p.targets[0].positions[2], {0, 0, 16384.0f / 32767.0f});
+  EXPECT_EQ(p.indices, (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_TRUE(model.warnings.empty());
+}
+
+TEST(GltfLoader, NonIndexedStripAndFanPrimitivesBecomeTriangleLists) {
+  const auto dir = freshTempDir("loader_modes");
+  GltfFileBuilder b;
+  const std::vector<glm::vec3> five = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}};
+  const int pos = b.addVec3(five, true);
+  b.addMeshWithNode({{"primitives", Json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", 4}},
+                                                 {{"attributes", {{"POSITION", pos}}}, {"mode", 5}},
+                                                 {{"attributes", {{"POSITION", pos}}}, {"mode", 6}},
+                                                 {{"attributes", {{"POSITION", pos}}}, {"mode", 1}}})}});
+  b.writeGltf(dir / "modes.gltf");
+  const eng::Model model = loadOk(dir / "modes.gltf");
+  const auto& prims = model.meshes.at(0).primitives;
+  ASSERT_EQ(prims.size(), 3u) << "the LINES primitive is skipped";
+  EXPECT_EQ(prims[0].indices, (std::vector<uint32_t>{0, 1, 2})) << "5 vertices: one triangle, 2 left over";
+  EXPECT_EQ(prims[1].indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 3, 2, 3, 4}));
+  EXPECT_EQ(prims[2].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
+  EXPECT_TRUE(hasWarningContaining(model, "mode 1"));
+  EXPECT_TRUE(hasWarningContaining(model, "not a multiple of 3"));
+}
+
+TEST(GltfLoader, GeneratesSmoothNormalsAndTheirMorphDeltasWhenNormalsAreAbsent) {
+  const auto dir = freshTempDir("loader_gen_normals");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");
+  b.writeGlb(dir / "no_normals.glb");
+  const eng::Model model = loadOk(dir / "no_normals.glb");
+  const eng::Primitive& p = model.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(p.normals.size(), 4u);
+  for (const glm::vec3& n : p.normals) expectNear(n, {0, 0, 1});
+  ASSERT_EQ(p.targets[0].normals.size(), 4u) << "lifting a corner tilts the normals, so deltas exist";
+  const glm::vec3 morphed = glm::normalize(p.normals[1] + p.targets[0].normals[1]);
+  EXPECT_LT(morphed.z, 0.99f);
+  EXPECT_NEAR(glm::length(morphed), 1.0f, 1e-5f);
+}
+
+TEST(GltfLoader, ReadsHierarchyWithTrsAndMatrixTransforms) {
+  const auto dir = freshTempDir("loader_nodes");
+  GltfFileBuilder b = quadWithTarget();
+  // node 0 (mesh) becomes a child of node 1 (TRS), which is a child of node 2 (matrix).
+  b.doc["nodes"].push_back({{"name", "mid"}, {"children", {0}}, {"translation", {1, 2, 3}},
+                            {"rotation", {0, 0.7071067811865476, 0, 0.7071067811865476}}, {"scale", {2, 2, 2}}});
+  b.doc["nodes"].push_back({{"name", "top"}, {"children", {1}},
+                            {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1}}});
+  b.doc["scenes"][0]["nodes"] = {2};
+  b.writeGlb(dir / "nodes.glb");
+  const eng::Model model = loadOk(dir / "nodes.glb");
+  ASSERT_EQ(model.nodes.size(), 3u);
+  EXPECT_EQ(model.roots, std::vector<int>{2});
+  EXPECT_EQ(model.nodes[0].parent, 1);
+  EXPECT_EQ(model.nodes[1].parent, 2);
+  EXPECT_TRUE(model.nodes[2].hasMatrix);
+  EXPECT_EQ(model.nodes[1].translation, glm::vec3(1, 2, 3));
+  EXPECT_EQ(model.nodes[1].scale, glm::vec3(2));
+  // The quad's corner (1,0,0): scaled x2 -> (2,0,0), rotated 90 deg about +Y -> (0,0,-2),
+  // translated -> (1,2,1), then the matrix adds 10 in x.
+  const glm::vec3 world = glm::vec3(model.worldTransform(0) * glm::vec4(1, 0, 0, 1));
+  expectNear(world, {11, 2, 1}, 1e-5f);
+}
+
+TEST(GltfLoader, WithoutScenesEveryParentlessNodeIsARoot) {
+  const auto dir = freshTempDir("loader_no_scene");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc.erase("scenes");
+  b.doc.erase("scene");
+  b.doc["nodes"].push_back({{"mesh", 0}, {"translation", {5, 0, 0}}});
+  b.writeGltf(dir / "noscene.gltf");
+  const eng::Model model = loadOk(dir / "noscene.gltf");
+  EXPECT_EQ(model.roots, (std::vector<int>{0, 1}));
+}
+
+TEST(GltfLoader, FallsBackToTargetNWhenNamesAreMissingOrMismatched) {
+  const auto dir = freshTempDir("loader_names");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["meshes"][0]["extras"]["targetNames"] = {"a", "b"};  // two names for one target
+  b.doc["meshes"][0].erase("weights");
+  b.writeGltf(dir / "names.gltf");
+  const eng::Model model = loadOk(dir / "names.gltf");
+  EXPECT_EQ(model.meshes.at(0).targetNames, std::vector<std::string>{"target_0"});
+  EXPECT_EQ(model.meshes.at(0).defaultWeights, std::vector<float>{0.0f});
+  EXPECT_TRUE(hasWarningContaining(model, "targetNames"));
+}
+
+TEST(GltfLoader, SeveralPrimitivesShareTheMeshTargets) {
+  const auto dir = freshTempDir("loader_shared_targets");
+  GltfFileBuilder b = quadWithTarget();
+  Json second = b.doc["meshes"][0]["primitives"][0];
+  b.doc["meshes"][0]["primitives"].push_back(second);
+  b.writeGlb(dir / "two.glb");
+  const eng::Model model = loadOk(dir / "two.glb");
+  ASSERT_EQ(model.meshes.at(0).primitives.size(), 2u);
+  EXPECT_EQ(model.meshes[0].targetNames.size(), 1u);
+  EXPECT_EQ(model.meshes[0].primitives[1].targets.size(), 1u);
+}
+
+TEST(GltfLoader, ReadsWeightsAnimationsWithEveryInterpolation) {
+  const auto dir = freshTempDir("loader_anim");
+  GltfFileBuilder b = quadWithTarget();
+  const int times = b.addScalars({0.0f, 0.5f, 2.0f});
+  const int linear = b.addScalars({0.0f, 1.0f, 0.0f});
+  const int cubic = b.addScalars({0, 0, 0, 0, 1, 0, 0, 0.5f, 0});  // in-tangent, value, out-tangent per key
+  const std::vector<uint8_t> stepBytes = {0, 255, 128};              // normalized unsigned bytes
+  const int step = b.addAccessor(b.addView(stepBytes), kUnsignedByte, 3, "SCALAR", true);
+  const int trs = b.addAccessor(b.addView(std::vector<glm::vec3>(3, glm::vec3(0))), kFloat, 3, "VEC3");
+  b.doc["animations"] = Json::array(
+      {{{"name", "blink"},
+        {"samplers", Json::array({{{"input", times}, {"output", linear}},
+                                  {{"input", times}, {"output", cubic}, {"interpolation", "CUBICSPLINE"}},
+                                  {{"input", times}, {"output", step}, {"interpolation", "STEP"}},
+                                  {{"input", times}, {"output", trs}}})},
+        {"channels", Json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}},
+                                  {{"sampler", 1}, {"target", {{"node", 0}, {"path", "weights"}}}},
+                                  {{"sampler", 2}, {"target", {{"node", 0}, {"path", "weights"}}}},
+                                  {{"sampler", 3}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+  b.writeGlb(dir / "anim.glb");
+  const eng::Model model = loadOk(dir / "anim.glb");
+  ASSERT_EQ(model.animations.size(), 1u);
+  const eng::Animation& anim = model.animations[0];
+  EXPECT_EQ(anim.name, "blink");
+  EXPECT_FLOAT_EQ(anim.duration(), 2.0f);
+  EXPECT_EQ(anim.otherChannelCount, 1u);
+  ASSERT_EQ(anim.channels.size(), 3u);
+  EXPECT_EQ(anim.channels[0].interpolation, eng::Interpolation::Linear);
+  EXPECT_EQ(anim.channels[0].values, (std::vector<float>{0, 1, 0}));
+  EXPECT_EQ(anim.channels[0].mesh, 0);
+  EXPECT_EQ(anim.channels[0].targetCount, 1u);
+  EXPECT_EQ(anim.channels[1].interpolation, eng::Interpolation::CubicSpline);
+  EXPECT_EQ(anim.channels[1].values.size(), 9u);
+  EXPECT_EQ(anim.channels[2].interpolation, eng::Interpolation::Step);
+  EXPECT_FLOAT_EQ(anim.channels[2].values[1], 1.0f);
+  EXPECT_NEAR(anim.channels[2].values[2], 128.0f / 255.0f, 1e-6f);
+}
+
+TEST(GltfLoader, WeightsChannelWithWrongValueCountIsSkippedWithAWarning) {
+  const auto dir = freshTempDir("loader_anim_bad");
+  GltfFileBuilder b = quadWithTarget();
+  const int times = b.addScalars({0.0f, 1.0f});
+  const int values = b.addScalars({0.0f, 1.0f, 0.5f});
+  b.doc["animations"] = Json::array({{{"samplers", Json::array({{{"input", times}, {"output", values}}})},
+                                      {"channels", Json::array({{{"sampler", 0},
+                                                                 {"target", {{"node", 0}, {"path", "weights"}}}}})}}});
+  b.writeGlb(dir / "anim_bad.glb");
+  const eng::Model model = loadOk(dir / "anim_bad.glb");
+  ASSERT_EQ(model.animations.size(), 1u);
+  EXPECT_TRUE(model.animations[0].channels.empty());
+  EXPECT_TRUE(hasWarningContaining(model, "expected 2"));
+}
+
+TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
+  const auto dir = freshTempDir("loader_material");
+  GltfFileBuilder b = quadWithTarget();
+  const std::vector<uint8_t> pixels = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128};
+  auto png = eng::encodePng(2, 2, pixels);
+  ASSERT_TRUE(png.ok());
+  b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}, {"name", "checker"}},
+                                 {{"uri", "data:image/png;base64," + scene_test::base64(*png)}}});
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"] = Json::array({{{"name", "skin"},
+                                     {"doubleSided", true},
+                                     {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}},
+                                                               {"baseColorTexture", {{"index", 0}}},
+                                                               {"roughnessFactor", 0.3},
+                                                               {"metallicFactor", 0.1}}},
+                                     {"extras", {{"detailLayers", Json::array({{{"image", 1}, {"target", "lift"},
+                                                                                {"strength", 0.75}}})}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.writeGlb(dir / "material.glb");
+  const eng::Model model = loadOk(dir / "material.glb");
+  ASSERT_EQ(model.images.size(), 2u);
+  EXPECT_EQ(model.images[0].width, 2);
+  EXPECT_EQ(model.images[0].rgba8, pixels);
+  EXPECT_EQ(model.images[1].rgba8, pixels) << "data: URI image";
+  ASSERT_EQ(model.materials.size(), 1u);
+  const eng::Material& m = model.materials[0];
+  EXPECT_EQ(m.name, "skin");
+  EXPECT_TRUE(m.doubleSided);
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(0.5f, 0.25f, 1, 1));
+  EXPECT_EQ(m.baseColorImage, 0);
+  EXPECT_FLOAT_EQ(m.roughness, 0.3f);
+  EXPECT_FLOAT_EQ(m.metallic, 0.1f);
+  ASSERT_EQ(m.detailLayers.size(), 1u);
+  EXPECT_EQ(m.detailLayers[0].image, 1);
+  EXPECT_EQ(m.detailLayers[0].target, "lift");
+  EXPECT_FLOAT_EQ(m.detailLayers[0].strength, 0.75f);
+  EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
+}
+
+TEST(GltfLoader, BrokenImageIsSkippedWithAWarningAndTheMaterialLosesItsTexture) {
+  const auto dir = freshTempDir("loader_broken_image");
+  GltfFileBuilder b = quadWithTarget();
+  const std::vector<uint8_t> junk = {0x89, 'P', 'N', 'G', 1, 2, 3, 4, 5, 6, 7, 8};
+  b.doc["images"] = Json::array({{{"bufferView", b.addView(junk)}, {"mimeType", "image/png"}}});
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  b.writeGlb(dir / "broken_image.glb");
+  const eng::Model model = loadOk(dir / "broken_image.glb");
+  EXPECT_TRUE(model.images.empty());
+  ASSERT_EQ(model.materials.size(), 1u);
+  EXPECT_EQ(model.materials[0].baseColorImage, -1);
+  EXPECT_TRUE(hasWarningContaining(model, "image 0 skipped"));
+}
+
+TEST(GltfLoader, OptionalUnknownExtensionIsIgnoredWithAWarning) {
+  const auto dir = freshTempDir("loader_optional_ext");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["extensionsUsed"] = {"KHR_materials_sheen"};
+  b.writeGltf(dir / "optional.gltf");
+  const eng::Model model = loadOk(dir / "optional.gltf");
+  EXPECT_TRUE(hasWarningContaining(model, "KHR_materials_sheen"));
+}
+
+TEST(GltfLoader, DetectsGlbByContentWhateverTheExtension) {
+  const auto dir = freshTempDir("loader_detect");
+  quadWithTarget().writeGlb(dir / "really_binary.gltf");
+  const eng::Model model = loadOk(dir / "really_binary.gltf");
+  EXPECT_EQ(model.meshes.size(), 1u);
+}
+
+TEST(GltfLoader, UriWithShellCharactersIsAPlainFileName) {
+  // A file really named like a shell expansion is read as is, never expanded.
+  const auto dir = freshTempDir("loader_literal_uri");
+  quadWithTarget().writeGltf(dir / "literal.gltf", "$(echo x) `y` ~z*.bin");
+  const eng::Model model = loadOk(dir / "literal.gltf");
+  EXPECT_EQ(model.meshes.size(), 1u);
+}
+
+}  // namespace
