@@ -22,12 +22,26 @@ namespace {
 // Extensions whose absence would change what the file means and that we do honour.
 bool isSupportedExtension(const std::string& name) { return name == "KHR_mesh_quantization"; }
 
+// tinygltf's error text as one readable line: newlines joined, the JSON
+// library's exception tag replaced, embedded data: URIs shortened.
 std::string oneLine(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   std::string out;
-  for (char c : text) {
-    if (c == '\n') out += "; ";
-    else if (c != '\r') out += c;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      out += "; ";
+    } else if (c == '[' && text.compare(i, 16, "[json.exception.") == 0 && text.find("] ", i) != std::string::npos) {
+      out += "invalid JSON: ";
+      i = text.find("] ", i) + 1;
+    } else if (c == 'd' && text.compare(i, 5, "data:") == 0) {
+      size_t end = i;
+      while (end < text.size() && text[end] != ' ' && text[end] != '\n') ++end;
+      out += end - i > 40 ? text.substr(i, 40) + "..." : text.substr(i, end - i);
+      i = end - 1;
+    } else if (c != '\r') {
+      out += c;
+    }
   }
   return out;
 }

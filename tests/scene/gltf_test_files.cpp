@@ -3,6 +3,8 @@
 #include <cstring>
 #include <fstream>
 
+#include <gtest/gtest.h>
+
 namespace scene_test {
 
 GltfFileBuilder::GltfFileBuilder() {
@@ -163,6 +165,19 @@ void writeBytes(const std::filesystem::path& path, const std::vector<uint8_t>& b
   std::filesystem::create_directories(path.parent_path());
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void replaceInFile(const std::filesystem::path& path, const std::string& from, const std::string& to) {
+  std::string text = readText(path);
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << "'" << from << "' not in " << path;
+  text.replace(at, from.size(), to);
+  writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
 }
 
 }  // namespace scene_test

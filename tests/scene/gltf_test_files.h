@@ -53,5 +53,8 @@ GltfFileBuilder quadWithTarget();
 
 std::string base64(const std::vector<uint8_t>& bytes);
 void writeBytes(const std::filesystem::path& path, const std::vector<uint8_t>& bytes);
+std::string readText(const std::filesystem::path& path);
+// Replaces the first occurrence of `from` in a text file (fails the test when absent).
+void replaceInFile(const std::filesystem::path& path, const std::string& from, const std::string& to);
 
 }  // namespace scene_test
