@@ -1,0 +1,57 @@
+// Set 0: what changes once per frame (camera, lights) and per instance
+// (transform + the instance's slice of the active-weight list).
+// Shared by every pipeline; mirrored by engine/vk/gpu_types.h.
+
+struct InstanceData {
+  mat4 model;
+  mat4 normalMatrix;   // inverse-transpose of model (upper 3x3 used)
+  uint activeOffset;   // first entry of this instance in activeWeights[]
+  uint activeCount;    // number of non-zero weights; 0 = rest pose
+  uint pad0;
+  uint pad1;
+};
+
+// One non-zero morph weight: target index within the drawn mesh.
+struct ActiveWeight {
+  uint target;
+  float weight;
+};
+
+layout(std140, set = 0, binding = 0) uniform FrameGlobals {
+  mat4 view;
+  mat4 proj;
+  mat4 viewProj;
+  vec4 cameraPosition;    // world space, w unused
+  vec4 keyDirection;      // world-space direction TOWARD the light, w unused
+  vec4 keyColor;          // linear rgb * intensity
+  vec4 fillDirection;
+  vec4 fillColor;
+  vec4 rimDirection;
+  vec4 rimColor;
+  vec4 skyAmbient;        // hemisphere ambient, linear rgb
+  vec4 groundAmbient;
+  vec4 backgroundTop;     // linear rgb
+  vec4 backgroundBottom;
+  vec4 skin;              // x diffuse wrap, y subsurface strength, z specular strength, w exposure
+  vec4 subsurfaceColor;   // warm tint added at the light terminator
+} frame;
+
+layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData instances[]; };
+layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
+
+// Per-draw constants (one primitive, its material). 48 bytes.
+layout(push_constant) uniform DrawConstants {
+  vec4 baseColorFactor;
+  float roughness;
+  float metallic;
+  uint detailLayerCount;
+  uint flags;             // DRAW_FLAG_* below
+  uint vertexCount;       // vertices of the primitive: stride of one target in the delta arrays
+  uint firstInstance;     // firstInstance of the draw, to number captured instances from 0
+  uint captureOffset;     // first captured vertex slot of this draw (capture variant only)
+  uint pad;
+} draw;
+
+const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
+const uint DRAW_FLAG_TANGENT_DELTAS = 2u;
+const uint DRAW_FLAG_DOUBLE_SIDED = 4u;

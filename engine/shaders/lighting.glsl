@@ -1,0 +1,58 @@
+// Skin-friendly three-point lighting (key, fill, rim), in linear space.
+// Wrapped diffuse softens the light/shadow transition the way light
+// scattering under skin does; a warm tint is added where the wrapped term
+// exceeds plain Lambert (the terminator) to fake the red bleed of subsurface
+// scattering; the specular lobe is a normalised Blinn-Phong with a low,
+// skin-like Fresnel reflectance so highlights stay gentle.
+
+const float PI = 3.14159265;
+
+struct SurfacePoint {
+  vec3 albedo;      // linear base colour
+  vec3 normal;      // unit, facing the viewer side for double-sided surfaces
+  vec3 toViewer;    // unit
+  float roughness;  // perceptual, [0.05, 1]
+  float metallic;
+};
+
+vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor) {
+  float wrap = frame.skin.x;
+  float nDotL = dot(s.normal, toLight);
+  float lambert = max(nDotL, 0.0);
+  float wrapped = max((nDotL + wrap) / (1.0 + wrap), 0.0);
+  // Positive only in the band the wrap adds around the terminator.
+  float terminator = max(wrapped - lambert, 0.0);
+
+  vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
+  vec3 diffuse = diffuseColor * wrapped + frame.subsurfaceColor.rgb * s.albedo * terminator * frame.skin.y;
+
+  vec3 h = normalize(toLight + s.toViewer);
+  float nDotH = max(dot(s.normal, h), 0.0);
+  float alpha = max(s.roughness * s.roughness, 0.02);
+  float shininess = 2.0 / (alpha * alpha) - 2.0;
+  float normalisation = (shininess + 8.0) / (8.0 * PI);
+  vec3 f0 = mix(vec3(0.028), s.albedo, s.metallic);  // 0.028: skin's reflectance at normal incidence
+  float vDotH = max(dot(s.toViewer, h), 0.0);
+  vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - vDotH, 5.0);
+  vec3 specular = fresnel * normalisation * pow(nDotH, shininess) * lambert * frame.skin.z;
+
+  return (diffuse + specular) * lightColor;
+}
+
+vec3 shadeThreePoint(SurfacePoint s) {
+  vec3 color = shadeLight(s, frame.keyDirection.xyz, frame.keyColor.rgb);
+  color += shadeLight(s, frame.fillDirection.xyz, frame.fillColor.rgb);
+  color += shadeLight(s, frame.rimDirection.xyz, frame.rimColor.rgb);
+  // Hemisphere ambient: sky from above, bounce from below.
+  float up = s.normal.y * 0.5 + 0.5;
+  color += s.albedo * (1.0 - s.metallic) * mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, up);
+  return color;
+}
+
+// Filmic shoulder (Reinhard on the max channel keeps hue): highlights roll off
+// instead of clipping to flat white on a pale face.
+vec3 toneMap(vec3 color) {
+  color *= frame.skin.w;
+  float peak = max(max(color.r, color.g), color.b);
+  return peak > 0.0 ? color * ((peak / (1.0 + peak * 0.25)) / peak) : color;
+}

@@ -1,0 +1,62 @@
+#version 450
+// Base colour (texture x factor), material detail layers blended by morph
+// weights (texture cross-blending), then three-point skin shading.
+#extension GL_GOOGLE_include_directive : require
+
+#include "frame.glsl"
+#include "lighting.glsl"
+
+layout(set = 1, binding = 3) uniform sampler2D baseColorTexture;      // sRGB, white when absent
+layout(set = 1, binding = 4) uniform sampler2DArray detailTextures;   // one layer per detail layer
+
+struct DetailLayer {
+  uint target;     // morph target of the drawn mesh whose weight drives the layer
+  float strength;  // scales that weight
+};
+layout(std430, set = 1, binding = 5) readonly buffer DetailLayers { DetailLayer detailLayers[]; };
+
+layout(location = 0) in vec3 inWorldPosition;
+layout(location = 1) in vec3 inWorldNormal;
+layout(location = 2) in vec2 inTexcoord;
+layout(location = 3) flat in uint inInstance;
+
+layout(location = 0) out vec4 outColor;
+
+// The weight of `target` for this instance, read from the same compact active
+// list that morphed the geometry (absent = zero weight).
+float activeWeight(InstanceData inst, uint target) {
+  uint end = inst.activeOffset + inst.activeCount;
+  for (uint i = inst.activeOffset; i < end; ++i) {
+    if (activeWeights[i].target == target) return activeWeights[i].weight;
+  }
+  return 0.0;
+}
+
+void main() {
+  vec4 base = texture(baseColorTexture, inTexcoord) * draw.baseColorFactor;
+
+  if (draw.detailLayerCount > 0u) {
+    InstanceData inst = instances[inInstance];
+    for (uint l = 0u; l < draw.detailLayerCount; ++l) {
+      float w = clamp(activeWeight(inst, detailLayers[l].target) * detailLayers[l].strength, 0.0, 1.0);
+      if (w > 0.0) {
+        vec4 layer = texture(detailTextures, vec3(inTexcoord, float(l)));
+        base.rgb = mix(base.rgb, layer.rgb, layer.a * w);
+      }
+    }
+  }
+
+  SurfacePoint s;
+  s.albedo = base.rgb;
+  s.toViewer = normalize(frame.cameraPosition.xyz - inWorldPosition);
+  vec3 n = inWorldNormal;
+  float n2 = dot(n, n);
+  // Degenerate normals (collapsed morph) fall back to facing the viewer.
+  n = n2 > 1e-24 ? n * inversesqrt(n2) : s.toViewer;
+  if ((draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
+  s.normal = n;
+  s.roughness = clamp(draw.roughness, 0.05, 1.0);
+  s.metallic = clamp(draw.metallic, 0.0, 1.0);
+
+  outColor = vec4(toneMap(shadeThreePoint(s)), 1.0);
+}

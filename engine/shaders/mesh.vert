@@ -1,0 +1,47 @@
+#version 450
+// Morphs one vertex of one instance and transforms it to clip space.
+// Built twice (see engine/vk/CMakeLists.txt): the render variant, and with
+// MORPH_CAPTURE the capture variant that writes the morphed object-space
+// vertex to a storage buffer (rasteriser discard) so tests can compare the
+// GPU result with the CPU reference.
+#extension GL_GOOGLE_include_directive : require
+
+#include "frame.glsl"
+#include "morph.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inTexcoord;
+layout(location = 3) in vec4 inTangent;  // xyz direction, w handedness (zeros when absent)
+
+#ifdef MORPH_CAPTURE
+// Three vec4 per captured vertex: position (w = 1), normal, tangent (w = handedness).
+layout(std430, set = 0, binding = 3) writeonly buffer Captured { vec4 captured[]; };
+#else
+layout(location = 0) out vec3 outWorldPosition;
+layout(location = 1) out vec3 outWorldNormal;
+layout(location = 2) out vec2 outTexcoord;
+layout(location = 3) flat out uint outInstance;
+#endif
+
+void main() {
+  uint vertex = uint(gl_VertexIndex);
+  InstanceData inst = instances[gl_InstanceIndex];
+  MorphedVertex m = morphVertex(vertex, inst, inPosition, inNormal, inTangent.xyz);
+
+#ifdef MORPH_CAPTURE
+  uint slot = draw.captureOffset + (uint(gl_InstanceIndex) - draw.firstInstance) * draw.vertexCount + vertex;
+  captured[slot * 3u + 0u] = vec4(m.position, 1.0);
+  captured[slot * 3u + 1u] = vec4(m.normal, 0.0);
+  captured[slot * 3u + 2u] = vec4(m.tangent, inTangent.w);
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  gl_PointSize = 1.0;
+#else
+  vec4 world = inst.model * vec4(m.position, 1.0);
+  outWorldPosition = world.xyz;
+  outWorldNormal = mat3(inst.normalMatrix) * m.normal;
+  outTexcoord = inTexcoord;
+  outInstance = uint(gl_InstanceIndex);
+  gl_Position = frame.viewProj * world;
+#endif
+}

@@ -1,0 +1,45 @@
+#include "engine/vk/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace eng::vk {
+
+OrbitCamera OrbitCamera::frame(const Aabb& bounds, float aspect, float fovYDegrees) {
+  OrbitCamera camera;
+  camera.fovYDegrees = fovYDegrees;
+  if (!bounds.valid()) return camera;
+  const glm::vec3 half = bounds.size() * 0.5f;
+  camera.target = bounds.center();
+  camera.sceneRadius = std::max(glm::length(half), 1e-6f);
+  // Fit the box's front face (seen from +Z) in the image with a small
+  // margin, then step back by half the depth so the nearest point fits too.
+  // Tighter than a bounding sphere: a head fills the frame instead of floating in it.
+  const float tanHalf = std::tan(glm::radians(fovYDegrees) * 0.5f);
+  const float margin = 1.12f;
+  const float fit = std::max(half.y, half.x / std::max(aspect, 1e-3f)) * margin / tanHalf;
+  camera.distance = std::max(fit + half.z, camera.sceneRadius * 1.05f);
+  return camera;
+}
+
+glm::vec3 OrbitCamera::position() const {
+  const float yaw = glm::radians(yawDegrees);
+  const float pitch = glm::radians(std::clamp(pitchDegrees, -89.0f, 89.0f));
+  const glm::vec3 dir{std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch)};
+  return target + dir * (distance / std::max(zoom, 1e-3f));
+}
+
+glm::mat4 OrbitCamera::view() const { return glm::lookAtRH(position(), target, glm::vec3(0.0f, 1.0f, 0.0f)); }
+
+glm::mat4 OrbitCamera::projection(float aspect) const {
+  const float d = distance / std::max(zoom, 1e-3f);
+  const float nearPlane = std::max(d - sceneRadius * 1.5f, d * 0.01f);
+  const float farPlane = d + sceneRadius * 1.5f;
+  glm::mat4 p = glm::perspectiveRH_ZO(glm::radians(fovYDegrees), aspect, nearPlane, farPlane);
+  p[1][1] *= -1.0f;  // Vulkan clip space: +y points down
+  return p;
+}
+
+}  // namespace eng::vk

@@ -1,0 +1,85 @@
+#pragma once
+// A Model uploaded for drawing: one vertex buffer, one index buffer, one
+// storage buffer of morph deltas (layout in engine/shaders/morph.glsl),
+// textures, and one descriptor set per primitive. Immutable once created;
+// any number of instances with their own weights draw from it.
+//
+// Lifetime: must not outlive the Context and SceneLayouts it was created with.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/vk/buffer.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_types.h"
+#include "engine/vk/gpu_image.h"
+#include "engine/vk/scene_layouts.h"
+
+namespace eng::vk {
+
+struct GpuPrimitive {
+  uint32_t vertexCount = 0;
+  uint32_t indexCount = 0;
+  // Byte offsets of the attribute arrays in GpuModel::vertexBuffer().
+  VkDeviceSize positionOffset = 0;
+  VkDeviceSize normalOffset = 0;
+  VkDeviceSize texcoordOffset = 0;   // zeros when the primitive has no texcoords
+  VkDeviceSize tangentOffset = 0;    // zeros when the primitive has no tangents
+  VkDeviceSize indexOffset = 0;      // in GpuModel::indexBuffer(), uint32 indices
+  DrawConstants constants;           // material, flags and vertexCount; instance fields left 0
+  VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1
+};
+
+struct GpuMesh {
+  std::string name;
+  uint32_t targetCount = 0;
+  uint32_t weightOffset = 0;  // first weight of this mesh in the model's flat weight vector
+  std::vector<GpuPrimitive> primitives;
+};
+
+// A node of the default scene that draws a mesh.
+struct GpuMeshNode {
+  int node = -1;
+  int mesh = -1;
+  glm::mat4 world{1.0f};
+};
+
+class GpuModel {
+ public:
+  // Checks the model's consistency first (sizes, indices, material and image
+  // indices); errors name the model file, mesh and primitive.
+  static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model);
+
+  const std::string& name() const { return name_; }
+  std::span<const GpuMesh> meshes() const { return meshes_; }
+  std::span<const GpuMeshNode> meshNodes() const { return meshNodes_; }
+  // Length of the model's flat weight vector (eng::WeightLayout(model).total()).
+  uint32_t weightCount() const { return weightCount_; }
+  const Aabb& bounds() const { return bounds_; }
+  VkBuffer vertexBuffer() const { return vertices_.handle(); }
+  VkBuffer indexBuffer() const { return indices_.handle(); }
+
+ private:
+  std::string name_;
+  std::vector<GpuMesh> meshes_;
+  std::vector<GpuMeshNode> meshNodes_;
+  uint32_t weightCount_ = 0;
+  Aabb bounds_;
+  Buffer vertices_;
+  Buffer indices_;
+  Buffer deltas_;
+  Buffer detailLayers_;
+  std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
+  std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
+  UniqueDescriptorPool descriptorPool_;
+};
+
+// The consistency checks GpuModel::create runs (exposed for tools and tests).
+Result<void> validateModelForGpu(const Model& model);
+
+}  // namespace eng::vk

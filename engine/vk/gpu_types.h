@@ -1,0 +1,81 @@
+#pragma once
+// C++ mirrors of the GLSL interface in engine/shaders/frame.glsl and
+// mesh.frag. Sizes are asserted so a change on one side cannot go unnoticed.
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace eng::vk {
+
+// One non-zero morph weight (std430: 8 bytes).
+struct ActiveWeight {
+  uint32_t target = 0;  // index among the drawn mesh's targets
+  float weight = 0.0f;
+};
+static_assert(sizeof(ActiveWeight) == 8);
+
+struct GpuInstance {
+  glm::mat4 model{1.0f};
+  glm::mat4 normalMatrix{1.0f};
+  uint32_t activeOffset = 0;
+  uint32_t activeCount = 0;
+  uint32_t pad0 = 0;
+  uint32_t pad1 = 0;
+};
+static_assert(sizeof(GpuInstance) == 144);
+
+// std140 uniform block; every member is a mat4 or vec4.
+struct FrameGlobals {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};
+  glm::mat4 viewProj{1.0f};
+  glm::vec4 cameraPosition{0.0f};
+  glm::vec4 keyDirection{0.0f};
+  glm::vec4 keyColor{0.0f};
+  glm::vec4 fillDirection{0.0f};
+  glm::vec4 fillColor{0.0f};
+  glm::vec4 rimDirection{0.0f};
+  glm::vec4 rimColor{0.0f};
+  glm::vec4 skyAmbient{0.0f};
+  glm::vec4 groundAmbient{0.0f};
+  glm::vec4 backgroundTop{0.0f};
+  glm::vec4 backgroundBottom{0.0f};
+  glm::vec4 skin{0.0f};  // wrap, subsurface strength, specular strength, exposure
+  glm::vec4 subsurfaceColor{0.0f};
+};
+static_assert(sizeof(FrameGlobals) == 3 * 64 + 13 * 16);
+
+struct DrawConstants {
+  glm::vec4 baseColorFactor{1.0f};
+  float roughness = 0.6f;
+  float metallic = 0.0f;
+  uint32_t detailLayerCount = 0;
+  uint32_t flags = 0;
+  uint32_t vertexCount = 0;
+  uint32_t firstInstance = 0;
+  uint32_t captureOffset = 0;
+  uint32_t pad = 0;
+};
+static_assert(sizeof(DrawConstants) == 48);
+
+enum DrawFlags : uint32_t {
+  kDrawFlagNormalDeltas = 1u,
+  kDrawFlagTangentDeltas = 2u,
+  kDrawFlagDoubleSided = 4u,
+};
+
+struct GpuDetailLayer {
+  uint32_t target = 0;
+  float strength = 1.0f;
+};
+static_assert(sizeof(GpuDetailLayer) == 8);
+
+// One captured vertex (three vec4 in the capture buffer).
+struct GpuCapturedVertex {
+  glm::vec4 position;
+  glm::vec4 normal;
+  glm::vec4 tangent;
+};
+static_assert(sizeof(GpuCapturedVertex) == 48);
+
+}  // namespace eng::vk

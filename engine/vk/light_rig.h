@@ -1,0 +1,42 @@
+#pragma once
+// The default look for faces: a three-point studio rig (key, fill, rim)
+// placed relative to the camera, so the face stays well lit while orbiting,
+// plus skin shading parameters and the backdrop. Colours are linear.
+#include <glm/glm.hpp>
+
+#include "engine/vk/camera.h"
+#include "engine/vk/gpu_types.h"
+
+namespace eng::vk {
+
+struct DirectionalLight {
+  float azimuthDegrees = 0.0f;    // around the camera's up axis; + = camera's right
+  float elevationDegrees = 0.0f;  // + = above
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+};
+
+struct LightRig {
+  // Warm key from the upper left of the camera, cool soft fill from the right,
+  // rim from behind-above to separate the head from the backdrop.
+  DirectionalLight key{-35.0f, 30.0f, {1.0f, 0.95f, 0.88f}, 2.4f};
+  DirectionalLight fill{50.0f, 5.0f, {0.80f, 0.88f, 1.0f}, 0.75f};
+  DirectionalLight rim{160.0f, 35.0f, {1.0f, 0.97f, 0.94f}, 1.6f};
+  glm::vec3 skyAmbient{0.16f, 0.17f, 0.19f};
+  glm::vec3 groundAmbient{0.10f, 0.08f, 0.07f};
+  float diffuseWrap = 0.45f;                     // 0 = Lambert
+  float subsurfaceStrength = 0.55f;              // warm tint at the terminator
+  glm::vec3 subsurfaceColor{1.0f, 0.32f, 0.20f};
+  float specularStrength = 0.55f;
+  float exposure = 1.0f;
+  glm::vec3 backgroundTop{0.20f, 0.21f, 0.23f};      // linear (~#7c7e83 in sRGB)
+  glm::vec3 backgroundBottom{0.045f, 0.047f, 0.052f};
+};
+
+// World-space direction toward a light given in camera-relative angles.
+glm::vec3 lightDirection(const OrbitCamera& camera, const DirectionalLight& light);
+
+// Everything the shaders read once per frame.
+FrameGlobals buildFrameGlobals(const OrbitCamera& camera, float aspect, const LightRig& rig);
+
+}  // namespace eng::vk

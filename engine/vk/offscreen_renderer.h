@@ -1,0 +1,58 @@
+#pragma once
+// Headless rendering of model instances to RGBA8 images, and GPU morph
+// capture. Everything a CLI command or a test needs besides the Context:
+//
+//   auto ctx = eng::vk::Context::create({});
+//   auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {.width = 512, .height = 512});
+//   auto gpuModel = renderer->upload(model);
+//   std::vector<float> weights = eng::WeightLayout(model).defaults();
+//   eng::vk::ModelInstance instance{&*gpuModel, glm::mat4(1.0f), weights};
+//   eng::vk::SceneView view{eng::vk::OrbitCamera::frame(model.bounds())};
+//   auto image = renderer->render(view, {&instance, 1});   // eng::Image, RGBA8
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_model.h"
+#include "engine/vk/offscreen_target.h"
+#include "engine/vk/scene_layouts.h"
+#include "engine/vk/scene_renderer.h"
+#include "engine/vk/scene_view.h"
+#include "engine/vk/shader_library.h"
+
+namespace eng::vk {
+
+struct OffscreenOptions {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+};
+
+class OffscreenRenderer {
+ public:
+  // `ctx` must outlive the renderer and every model it uploads.
+  static Result<OffscreenRenderer> create(const Context& ctx, const OffscreenOptions& options = {});
+
+  Result<GpuModel> upload(const Model& model) const;
+  Result<eng::Image> render(const SceneView& view, std::span<const ModelInstance> instances);
+  // Morphed vertices the GPU computes for each (instance, mesh, primitive).
+  Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
+
+  VkExtent2D extent() const { return target_.extent(); }
+  VkSampleCountFlagBits samples() const { return target_.format().samples; }
+  bool canCapture() const { return scene_.canCapture(); }
+
+ private:
+  const Context* ctx_ = nullptr;
+  // Heap-held: the scene renderer and uploaded models point at them.
+  std::unique_ptr<SceneLayouts> layouts_;
+  std::unique_ptr<ShaderLibrary> shaders_;
+  OffscreenTarget target_;
+  SceneRenderer scene_;
+};
+
+}  // namespace eng::vk

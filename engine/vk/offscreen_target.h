@@ -1,0 +1,47 @@
+#pragma once
+// Headless render target: MSAA colour (sRGB) + depth, resolved into a
+// single-sample image that is copied to a host-visible buffer and read back
+// as RGBA8 (sRGB-encoded, ready for PNG).
+#include <cstdint>
+#include <functional>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/vk/buffer.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_image.h"
+#include "engine/vk/render_pass.h"
+#include "engine/vk/unique_handle.h"
+
+namespace eng::vk {
+
+class OffscreenTarget {
+ public:
+  // samples is clamped to what the device supports (4 on every desktop GPU and lavapipe).
+  static Result<OffscreenTarget> create(const Context& ctx, uint32_t width, uint32_t height,
+                                        VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT);
+
+  VkRenderPass renderPass() const { return renderPass_.get(); }
+  const TargetFormat& format() const { return format_; }
+  VkExtent2D extent() const { return extent_; }
+
+  // One submission: begin the pass (clear), `inPass`, end it, copy the resolved
+  // image to the readback buffer, then `afterPass` (e.g. a host-read barrier); waits.
+  Result<void> render(const std::function<void(VkCommandBuffer)>& inPass,
+                      const std::function<void(VkCommandBuffer)>& afterPass = {});
+  // The last rendered image, RGBA8, top row first.
+  eng::Image readPixels() const;
+
+ private:
+  const Context* ctx_ = nullptr;
+  TargetFormat format_;
+  VkExtent2D extent_{0, 0};
+  UniqueRenderPass renderPass_;
+  GpuImage msaaColor_;
+  GpuImage depth_;
+  GpuImage resolved_;
+  UniqueFramebuffer framebuffer_;
+  Buffer readback_;
+};
+
+}  // namespace eng::vk

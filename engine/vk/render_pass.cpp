@@ -1,0 +1,110 @@
+#include "engine/vk/render_pass.h"
+
+#include <array>
+#include <vector>
+
+#include "engine/vk/vk_result.h"
+
+namespace eng::vk {
+
+Result<VkFormat> chooseDepthFormat(const Context& ctx) {
+  for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT,
+                     VK_FORMAT_D16_UNORM}) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), f, &props);
+    if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) return f;
+  }
+  return makeError("no depth attachment format supported by " + ctx.deviceInfo().name,
+                   VK_ERROR_FORMAT_NOT_SUPPORTED);
+}
+
+VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBits requested) {
+  VkSampleCountFlagBits best = VK_SAMPLE_COUNT_1_BIT;
+  const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
+  const VkSampleCountFlags supported = limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+  for (uint32_t bit = VK_SAMPLE_COUNT_1_BIT; bit <= static_cast<uint32_t>(requested); bit <<= 1) {
+    if (supported & bit) best = static_cast<VkSampleCountFlagBits>(bit);
+  }
+  return best;
+}
+
+Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
+                                               VkImageLayout finalLayout) {
+  const bool msaa = format.samples != VK_SAMPLE_COUNT_1_BIT;
+  std::vector<VkAttachmentDescription> attachments;
+
+  VkAttachmentDescription color{};
+  color.format = format.color;
+  color.samples = format.samples;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : finalLayout;
+  attachments.push_back(color);
+
+  VkAttachmentDescription depth{};
+  depth.format = format.depth;
+  depth.samples = format.samples;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  attachments.push_back(depth);
+
+  if (msaa) {
+    VkAttachmentDescription resolve{};
+    resolve.format = format.color;
+    resolve.samples = VK_SAMPLE_COUNT_1_BIT;
+    resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    resolve.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    resolve.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    resolve.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    resolve.finalLayout = finalLayout;
+    attachments.push_back(resolve);
+  }
+
+  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference resolveRef{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &colorRef;
+  subpass.pDepthStencilAttachment = &depthRef;
+  subpass.pResolveAttachments = msaa ? &resolveRef : nullptr;
+
+  constexpr VkPipelineStageFlags kAttachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  constexpr VkAccessFlags kAttachmentWrites =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  const std::array dependencies{
+      // Previous use of the attachments (last frame, a copy, the presentation engine
+      // via the acquire semaphore's stage) before this pass writes them.
+      VkSubpassDependency{VK_SUBPASS_EXTERNAL, 0, kAttachmentStages | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          kAttachmentStages, VK_ACCESS_TRANSFER_READ_BIT | kAttachmentWrites,
+                          kAttachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT, 0},
+      // The resolved image is copied (readback, screenshot) after the pass.
+      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                          VK_ACCESS_TRANSFER_READ_BIT, 0},
+  };
+
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = static_cast<uint32_t>(attachments.size());
+  info.pAttachments = attachments.data();
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
+  info.pDependencies = dependencies.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
+  return UniqueRenderPass(ctx.device(), pass);
+}
+
+}  // namespace eng::vk

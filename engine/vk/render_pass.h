@@ -1,0 +1,30 @@
+#pragma once
+// The one render-pass shape every target uses: multisampled colour + depth,
+// resolved into a single-sample image (an offscreen image or a swapchain
+// image). With 1 sample the colour attachment is that image directly.
+#include <vulkan/vulkan.h>
+
+#include "engine/core/result.h"
+#include "engine/vk/context.h"
+#include "engine/vk/unique_handle.h"
+
+namespace eng::vk {
+
+struct TargetFormat {
+  VkFormat color = VK_FORMAT_R8G8B8A8_SRGB;
+  VkFormat depth = VK_FORMAT_D32_SFLOAT;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+};
+
+// The first depth format the device can render to (D32, D32S8, D24S8, D16).
+Result<VkFormat> chooseDepthFormat(const Context& ctx);
+
+// `requested` clamped to what the device supports for colour and depth together.
+VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBits requested);
+
+// Clears colour and depth; the resolved image ends in `finalLayout` and may be
+// copied from right after the pass (the pass orders its writes before transfers).
+Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
+                                               VkImageLayout finalLayout);
+
+}  // namespace eng::vk

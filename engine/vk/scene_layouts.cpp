@@ -1,0 +1,102 @@
+#include "engine/vk/scene_layouts.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "engine/vk/gpu_types.h"
+#include "engine/vk/texture.h"
+#include "engine/vk/vk_result.h"
+
+namespace eng::vk {
+namespace {
+
+Result<UniqueDescriptorSetLayout> createSetLayout(const Context& ctx,
+                                                  std::span<const VkDescriptorSetLayoutBinding> bindings) {
+  VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  info.bindingCount = static_cast<uint32_t>(bindings.size());
+  info.pBindings = bindings.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &layout));
+  return UniqueDescriptorSetLayout(ctx.device(), layout);
+}
+
+VkDescriptorSetLayoutBinding binding(uint32_t index, VkDescriptorType type, VkShaderStageFlags stages) {
+  return {index, type, 1, stages, nullptr};
+}
+
+}  // namespace
+
+Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
+  SceneLayouts s;
+  constexpr VkShaderStageFlags kVs = VK_SHADER_STAGE_VERTEX_BIT;
+  constexpr VkShaderStageFlags kFs = VK_SHADER_STAGE_FRAGMENT_BIT;
+  constexpr VkShaderStageFlags kBoth = kVs | kFs;
+
+  const std::array frameBindings{
+      binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kBoth),
+      binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
+      binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
+      binding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+  };
+  auto frameSet = createSetLayout(ctx, frameBindings);
+  if (!frameSet) return frameSet.error();
+  s.frameSet_ = std::move(frameSet).value();
+
+  const std::array primitiveBindings{
+      binding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+      binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+      binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+      binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFs),
+  };
+  auto primitiveSet = createSetLayout(ctx, primitiveBindings);
+  if (!primitiveSet) return primitiveSet.error();
+  s.primitiveSet_ = std::move(primitiveSet).value();
+
+  const std::array setLayouts{s.frameSet_.get(), s.primitiveSet_.get()};
+  VkPushConstantRange push{kBoth, 0, sizeof(DrawConstants)};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = static_cast<uint32_t>(setLayouts.size());
+  layoutInfo.pSetLayouts = setLayouts.data();
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &push;
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreatePipelineLayout(ctx.device(), &layoutInfo, nullptr, &pipelineLayout));
+  s.pipelineLayout_ = UniquePipelineLayout(ctx.device(), pipelineLayout);
+
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = VK_FILTER_LINEAR;
+  samplerInfo.minFilter = VK_FILTER_LINEAR;
+  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  samplerInfo.anisotropyEnable = ctx.deviceInfo().samplerAnisotropy ? VK_TRUE : VK_FALSE;
+  samplerInfo.maxAnisotropy = std::min(8.0f, ctx.deviceInfo().properties.limits.maxSamplerAnisotropy);
+  samplerInfo.maxLod = VK_LOD_CLAMP_NONE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
+  s.sampler_ = UniqueSampler(ctx.device(), sampler);
+
+  const std::array<uint8_t, 4> whitePixel{255, 255, 255, 255};
+  const std::array<std::span<const uint8_t>, 1> whiteLayers{whitePixel};
+  auto white = createTexture(ctx, {1, 1, whiteLayers, VK_IMAGE_VIEW_TYPE_2D, "white texture"});
+  if (!white) return white.error();
+  s.white_ = std::move(white).value();
+
+  const std::array<uint8_t, 4> clearPixel{0, 0, 0, 0};
+  const std::array<std::span<const uint8_t>, 1> clearLayers{clearPixel};
+  auto empty = createTexture(ctx, {1, 1, clearLayers, VK_IMAGE_VIEW_TYPE_2D_ARRAY, "empty detail array"});
+  if (!empty) return empty.error();
+  s.emptyDetail_ = std::move(empty).value();
+
+  const std::vector<std::byte> zeros(256);
+  auto placeholder = Buffer::createWithData(ctx, zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "placeholder storage");
+  if (!placeholder) return placeholder.error();
+  s.placeholder_ = std::move(placeholder).value();
+  return s;
+}
+
+}  // namespace eng::vk

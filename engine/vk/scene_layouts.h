@@ -1,0 +1,45 @@
+#pragma once
+// The resource interface every scene pipeline shares (see engine/shaders/
+// frame.glsl, morph.glsl, mesh.frag): descriptor set layouts, the pipeline
+// layout, the texture sampler, and the placeholder resources bound where a
+// primitive has nothing (no texture, no detail layers, no tangent deltas).
+//
+//   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output
+//   set 1 (per primitive): 0-2 position/normal/tangent deltas, 3 base colour,
+//                          4 detail-layer array, 5 detail-layer parameters
+//   push constants:        DrawConstants (48 bytes), vertex + fragment
+#include "engine/core/result.h"
+#include "engine/vk/buffer.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_image.h"
+#include "engine/vk/unique_handle.h"
+
+namespace eng::vk {
+
+class SceneLayouts {
+ public:
+  static Result<SceneLayouts> create(const Context& ctx);
+
+  VkDescriptorSetLayout frameSetLayout() const { return frameSet_.get(); }
+  VkDescriptorSetLayout primitiveSetLayout() const { return primitiveSet_.get(); }
+  VkPipelineLayout pipelineLayout() const { return pipelineLayout_.get(); }
+  VkSampler sampler() const { return sampler_.get(); }
+
+  // 1x1 white sRGB texture: base colour when a material has none.
+  const GpuImage& whiteTexture() const { return white_; }
+  // 1x1, one transparent layer: the detail array of materials without layers.
+  const GpuImage& emptyDetailArray() const { return emptyDetail_; }
+  // 256 zero bytes: storage-buffer bindings that a draw never reads.
+  const Buffer& placeholderBuffer() const { return placeholder_; }
+
+ private:
+  UniqueDescriptorSetLayout frameSet_;
+  UniqueDescriptorSetLayout primitiveSet_;
+  UniquePipelineLayout pipelineLayout_;
+  UniqueSampler sampler_;
+  GpuImage white_;
+  GpuImage emptyDetail_;
+  Buffer placeholder_;
+};
+
+}  // namespace eng::vk

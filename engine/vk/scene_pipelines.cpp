@@ -1,0 +1,179 @@
+#include "engine/vk/scene_pipelines.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/vk/vk_result.h"
+
+namespace eng::vk {
+namespace {
+
+Result<UniqueShaderModule> createModule(const Context& ctx, const ShaderLibrary& shaders, const char* name) {
+  std::span<const uint32_t> code = shaders.spirv(name);
+  if (code.empty()) return makeError(std::string("shader program '") + name + "' is not in the shader library");
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = code.size_bytes();
+  info.pCode = code.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+  return UniqueShaderModule(ctx.device(), module);
+}
+
+VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits flags, VkShaderModule module) {
+  VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  s.stage = flags;
+  s.module = module;
+  s.pName = "main";
+  return s;
+}
+
+// Describes one pipeline; fixed-function state differs only in these fields.
+struct PipelineShape {
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  bool meshVertices = true;  // the four per-vertex attribute streams
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
+  bool depth = true;
+  bool rasterizerDiscard = false;
+};
+
+Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& layouts, VkRenderPass renderPass,
+                                      VkSampleCountFlagBits samples, const PipelineShape& shape) {
+  // Separate streams (binding = location): position, normal, texcoord, tangent.
+  const std::array bindings{
+      VkVertexInputBindingDescription{0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
+      VkVertexInputBindingDescription{1, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
+      VkVertexInputBindingDescription{2, sizeof(glm::vec2), VK_VERTEX_INPUT_RATE_VERTEX},
+      VkVertexInputBindingDescription{3, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX},
+  };
+  const std::array attributes{
+      VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{1, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{3, 3, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+  };
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  if (shape.meshVertices) {
+    vertexInput.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+    vertexInput.pVertexBindingDescriptions = bindings.data();
+    vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attributes.size());
+    vertexInput.pVertexAttributeDescriptions = attributes.data();
+  }
+  VkPipelineInputAssemblyStateCreateInfo inputAssembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  inputAssembly.topology = shape.topology;
+
+  // Viewport and scissor are dynamic (targets resize); the capture pipeline
+  // rasterises nothing, so it gets a fixed 1x1 viewport and no dynamic state.
+  const VkViewport unitViewport{0, 0, 1, 1, 0, 1};
+  const VkRect2D unitScissor{{0, 0}, {1, 1}};
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  if (shape.rasterizerDiscard) {
+    viewport.pViewports = &unitViewport;
+    viewport.pScissors = &unitScissor;
+  }
+  const std::array dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  if (!shape.rasterizerDiscard) {
+    dynamic.dynamicStateCount = static_cast<uint32_t>(dynamicStates.size());
+    dynamic.pDynamicStates = dynamicStates.data();
+  }
+
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.rasterizerDiscardEnable = shape.rasterizerDiscard ? VK_TRUE : VK_FALSE;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = shape.cull;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // glTF winding; the projection flips y, not the winding
+  raster.lineWidth = 1.0f;
+
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = samples;
+
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = shape.depth ? VK_TRUE : VK_FALSE;
+  depth.depthWriteEnable = shape.depth ? VK_TRUE : VK_FALSE;
+  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+
+  VkPipelineColorBlendAttachmentState blendAttachment{};
+  blendAttachment.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = 1;
+  blend.pAttachments = &blendAttachment;
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = static_cast<uint32_t>(shape.stages.size());
+  info.pStages = shape.stages.data();
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &inputAssembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamic;
+  info.layout = layouts.pipelineLayout();
+  info.renderPass = renderPass;
+  info.subpass = 0;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  return UniquePipeline(ctx.device(), pipeline);
+}
+
+}  // namespace
+
+Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLayouts& layouts,
+                                              const ShaderLibrary& shaders, VkRenderPass renderPass,
+                                              VkSampleCountFlagBits samples) {
+  auto meshVert = createModule(ctx, shaders, "mesh_vert");
+  if (!meshVert) return meshVert.error();
+  auto meshFrag = createModule(ctx, shaders, "mesh_frag");
+  if (!meshFrag) return meshFrag.error();
+  auto bgVert = createModule(ctx, shaders, "background_vert");
+  if (!bgVert) return bgVert.error();
+  auto bgFrag = createModule(ctx, shaders, "background_frag");
+  if (!bgFrag) return bgFrag.error();
+
+  ScenePipelines p;
+  PipelineShape mesh;
+  mesh.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, meshVert->get()),
+                 stage(VK_SHADER_STAGE_FRAGMENT_BIT, meshFrag->get())};
+  auto culled = createPipeline(ctx, layouts, renderPass, samples, mesh);
+  if (!culled) return culled.error();
+  p.meshCulled_ = std::move(culled).value();
+  mesh.cull = VK_CULL_MODE_NONE;
+  auto doubleSided = createPipeline(ctx, layouts, renderPass, samples, mesh);
+  if (!doubleSided) return doubleSided.error();
+  p.meshDoubleSided_ = std::move(doubleSided).value();
+
+  PipelineShape background;
+  background.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, bgVert->get()),
+                       stage(VK_SHADER_STAGE_FRAGMENT_BIT, bgFrag->get())};
+  background.meshVertices = false;
+  background.cull = VK_CULL_MODE_NONE;
+  background.depth = false;
+  auto bg = createPipeline(ctx, layouts, renderPass, samples, background);
+  if (!bg) return bg.error();
+  p.background_ = std::move(bg).value();
+
+  if (ctx.deviceInfo().vertexPipelineStores) {
+    auto captureVert = createModule(ctx, shaders, "capture_vert");
+    if (!captureVert) return captureVert.error();
+    PipelineShape capture;
+    capture.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, captureVert->get())};
+    capture.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;  // every vertex exactly once per instance
+    capture.cull = VK_CULL_MODE_NONE;
+    capture.depth = false;
+    capture.rasterizerDiscard = true;
+    auto cap = createPipeline(ctx, layouts, renderPass, samples, capture);
+    if (!cap) return cap.error();
+    p.capture_ = std::move(cap).value();
+  }
+  return p;
+}
+
+}  // namespace eng::vk

@@ -1,0 +1,33 @@
+#pragma once
+// The graphics pipelines of the scene, built from the shader library's
+// current SPIR-V for one render pass: mesh (back-face culled and double
+// sided), background gradient, and the morph-capture variant (vertex stage
+// only, rasteriser discard; absent when the device cannot store from
+// vertex shaders).
+#include <vulkan/vulkan.h>
+
+#include "engine/core/result.h"
+#include "engine/vk/context.h"
+#include "engine/vk/scene_layouts.h"
+#include "engine/vk/shader_library.h"
+#include "engine/vk/unique_handle.h"
+
+namespace eng::vk {
+
+class ScenePipelines {
+ public:
+  static Result<ScenePipelines> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
+                                       VkRenderPass renderPass, VkSampleCountFlagBits samples);
+
+  VkPipeline mesh(bool doubleSided) const { return doubleSided ? meshDoubleSided_.get() : meshCulled_.get(); }
+  VkPipeline background() const { return background_.get(); }
+  VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
+
+ private:
+  UniquePipeline meshCulled_;
+  UniquePipeline meshDoubleSided_;
+  UniquePipeline background_;
+  UniquePipeline capture_;
+};
+
+}  // namespace eng::vk

@@ -1,0 +1,309 @@
+#include "engine/vk/scene_renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <string>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "engine/core/log.h"
+#include "engine/vk/active_weights.h"
+#include "engine/vk/vk_result.h"
+
+namespace eng::vk {
+
+Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayouts& layouts,
+                                            const ShaderLibrary& shaders, VkRenderPass renderPass,
+                                            VkSampleCountFlagBits samples, uint32_t frameSlots) {
+  if (frameSlots == 0) return makeError("scene renderer: frameSlots must be >= 1");
+  SceneRenderer r;
+  r.ctx_ = &ctx;
+  r.layouts_ = &layouts;
+  r.shaders_ = &shaders;
+  r.renderPass_ = renderPass;
+  r.samples_ = samples;
+  auto pipelines = ScenePipelines::create(ctx, layouts, shaders, renderPass, samples);
+  if (!pipelines) return pipelines.error();
+  r.pipelines_ = std::move(pipelines).value();
+  r.pipelineGeneration_ = shaders.generation();
+
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * frameSlots}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = frameSlots;
+  poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
+  poolInfo.pPoolSizes = poolSizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  r.descriptorPool_ = UniqueDescriptorPool(ctx.device(), pool);
+
+  r.slots_.resize(frameSlots);
+  for (Slot& slot : r.slots_) {
+    const VkDescriptorSetLayout setLayout = layouts.frameSetLayout();
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout;
+    ENG_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &alloc, &slot.descriptorSet));
+    auto globals = Buffer::create(ctx, sizeof(FrameGlobals), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::Upload,
+                                  "frame globals");
+    if (!globals) return globals.error();
+    slot.globals = std::move(globals).value();
+    auto instances = Buffer::create(ctx, 64 * sizeof(GpuInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    MemoryUsage::Upload, "instances");
+    if (!instances) return instances.error();
+    slot.instances = std::move(instances).value();
+    auto active = Buffer::create(ctx, 1024 * sizeof(ActiveWeight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                 MemoryUsage::Upload, "active weights");
+    if (!active) return active.error();
+    slot.active = std::move(active).value();
+    r.writeDescriptors(slot);
+  }
+  return r;
+}
+
+Result<void> SceneRenderer::ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                                           MemoryUsage memory, const char* name) {
+  if (buffer && buffer.size() >= bytes) return {};
+  // Grow geometrically so a slowly growing scene reallocates rarely.
+  const VkDeviceSize size = std::max<VkDeviceSize>(bytes, buffer ? buffer.size() * 2 : bytes);
+  auto grown = Buffer::create(*ctx_, std::max<VkDeviceSize>(size, 256), usage, memory, name);
+  if (!grown) return grown.error();
+  buffer = std::move(grown).value();
+  writeDescriptors(slot);
+  return {};
+}
+
+void SceneRenderer::writeDescriptors(Slot& slot) const {
+  const VkDescriptorBufferInfo globals{slot.globals.handle(), 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo instances{slot.instances.handle(), 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
+                                       0, VK_WHOLE_SIZE};
+  auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = slot.descriptorSet;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pBufferInfo = info;
+    return w;
+  };
+  const std::array writes{
+      write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &globals),
+      write(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instances),
+      write(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &active),
+      write(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
+  };
+  vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInstance> instances, Mode mode) {
+  if (slotIndex >= slots_.size())
+    return makeError("scene renderer: frame slot " + std::to_string(slotIndex) + " of " +
+                     std::to_string(slots_.size()));
+  Slot& slot = slots_[slotIndex];
+  slot.batches.clear();
+  slot.members.clear();
+  slot.capturedVertices = 0;
+  instanceScratch_.clear();
+  activeScratch_.clear();
+  modelScratch_.clear();
+
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const ModelInstance& inst = instances[i];
+    if (!inst.model) return makeError("instance " + std::to_string(i) + ": no model");
+    if (inst.weights.size() != inst.model->weightCount())
+      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
+                       std::to_string(inst.weights.size()) + " weights given, the model has " +
+                       std::to_string(inst.model->weightCount()));
+    if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
+      modelScratch_.push_back(inst.model);
+  }
+
+  for (const GpuModel* model : modelScratch_) {
+    memberScratch_.clear();
+    for (size_t i = 0; i < instances.size(); ++i) {
+      if (instances[i].model == model) memberScratch_.push_back(static_cast<uint32_t>(i));
+    }
+    const uint32_t instanceCount = static_cast<uint32_t>(memberScratch_.size());
+    const uint32_t membersOffset = static_cast<uint32_t>(slot.members.size());
+    slot.members.insert(slot.members.end(), memberScratch_.begin(), memberScratch_.end());
+
+    // The active list of every (instance, mesh): the only per-frame morph data.
+    const std::span<const GpuMesh> meshes = model->meshes();
+    rangeScratch_.assign(memberScratch_.size() * meshes.size(), {});
+    for (size_t k = 0; k < memberScratch_.size(); ++k) {
+      const ModelInstance& inst = instances[memberScratch_[k]];
+      for (size_t m = 0; m < meshes.size(); ++m) {
+        const size_t start = activeScratch_.size();
+        activeScratch_.resize(start + meshes[m].targetCount);
+        ActiveWeightsJob job{inst.weights.subspan(meshes[m].weightOffset, meshes[m].targetCount),
+                             std::span(activeScratch_).subspan(start)};
+        if (auto valid = job.Validate(); !valid)
+          return makeError("instance " + std::to_string(memberScratch_[k]) + " (" + model->name() + ") mesh " +
+                           std::to_string(m) + ": " + valid.error().message);
+        const uint32_t count = job.Run();
+        activeScratch_.resize(start + count);
+        rangeScratch_[k * meshes.size() + m] = {static_cast<uint32_t>(start), count};
+      }
+    }
+
+    auto addBatches = [&](uint32_t mesh, const glm::mat4& world) {
+      const uint32_t firstInstance = static_cast<uint32_t>(instanceScratch_.size());
+      for (size_t k = 0; k < memberScratch_.size(); ++k) {
+        GpuInstance record;
+        record.model = mode == Mode::Draw ? instances[memberScratch_[k]].transform * world : glm::mat4(1.0f);
+        record.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(record.model)));
+        const ActiveRange range = rangeScratch_[k * meshes.size() + mesh];
+        record.activeOffset = range.offset;
+        record.activeCount = range.count;
+        instanceScratch_.push_back(record);
+      }
+      for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
+        slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices, membersOffset});
+        if (mode == Mode::Capture) slot.capturedVertices += meshes[mesh].primitives[p].vertexCount * instanceCount;
+      }
+    };
+    if (mode == Mode::Draw) {
+      for (const GpuMeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), node.world);
+    } else {
+      for (uint32_t m = 0; m < meshes.size(); ++m) addBatches(m, glm::mat4(1.0f));
+    }
+  }
+
+  ENG_TRY(ensureCapacity(slot, slot.instances, instanceScratch_.size() * sizeof(GpuInstance),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instances"));
+  ENG_TRY(ensureCapacity(slot, slot.active, activeScratch_.size() * sizeof(ActiveWeight),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "active weights"));
+  if (mode == Mode::Capture)
+    ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
+  if (!instanceScratch_.empty())
+    std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
+  if (!activeScratch_.empty())
+    std::memcpy(slot.active.mapped(), activeScratch_.data(), activeScratch_.size() * sizeof(ActiveWeight));
+  return {};
+}
+
+Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
+                                    std::span<const ModelInstance> instances) {
+  ENG_TRY(build(slot, instances, Mode::Draw));
+  std::memcpy(slots_[slot].globals.mapped(), &globals, sizeof(FrameGlobals));
+  return {};
+}
+
+Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelInstance> instances) {
+  if (!canCapture())
+    return makeError("morph capture needs vertexPipelineStoresAndAtomics, which " + ctx_->deviceInfo().name +
+                     " does not support");
+  return build(slot, instances, Mode::Capture);
+}
+
+void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const {
+  const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+  const std::array<VkBuffer, 4> buffers{batch.model->vertexBuffer(), batch.model->vertexBuffer(),
+                                        batch.model->vertexBuffer(), batch.model->vertexBuffer()};
+  const std::array<VkDeviceSize, 4> offsets{prim.positionOffset, prim.normalOffset, prim.texcoordOffset,
+                                            prim.tangentOffset};
+  vkCmdBindVertexBuffers(cmd, 0, 4, buffers.data(), offsets.data());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 1, 1,
+                          &prim.descriptorSet, 0, nullptr);
+  constants = prim.constants;
+  constants.firstInstance = batch.firstInstance;
+  constants.captureOffset = batch.captureOffset;
+}
+
+void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D extent) const {
+  const Slot& slot = slots_[slotIndex];
+  const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
+                          &slot.descriptorSet, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+
+  VkPipeline bound = VK_NULL_HANDLE;
+  for (const Batch& batch : slot.batches) {
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0);
+    if (pipeline != bound) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+      bound = pipeline;
+    }
+    DrawConstants constants;
+    bindPrimitive(cmd, batch, constants);
+    vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(DrawConstants), &constants);
+    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), prim.indexOffset, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, prim.indexCount, batch.instanceCount, 0, 0, batch.firstInstance);
+  }
+}
+
+void SceneRenderer::recordCapture(VkCommandBuffer cmd, uint32_t slotIndex) const {
+  const Slot& slot = slots_[slotIndex];
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
+                          &slot.descriptorSet, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.capture());
+  for (const Batch& batch : slot.batches) {
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    DrawConstants constants;
+    bindPrimitive(cmd, batch, constants);
+    vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(DrawConstants), &constants);
+    // Non-indexed points: every vertex runs exactly once per instance.
+    vkCmdDraw(cmd, prim.vertexCount, batch.instanceCount, 0, batch.firstInstance);
+  }
+}
+
+void SceneRenderer::recordCaptureReadBarrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+std::vector<CapturedPrimitive> SceneRenderer::readCapture(uint32_t slotIndex) const {
+  const Slot& slot = slots_[slotIndex];
+  std::vector<CapturedPrimitive> out;
+  if (!slot.capture) return out;
+  const auto* captured = reinterpret_cast<const GpuCapturedVertex*>(slot.capture.mapped());
+  for (const Batch& batch : slot.batches) {
+    const uint32_t n = batch.model->meshes()[batch.mesh].primitives[batch.primitive].vertexCount;
+    for (uint32_t k = 0; k < batch.instanceCount; ++k) {
+      CapturedPrimitive& c = out.emplace_back();
+      c.instance = slot.members[batch.membersOffset + k];
+      c.mesh = static_cast<int>(batch.mesh);
+      c.primitive = static_cast<int>(batch.primitive);
+      c.positions.resize(n);
+      c.normals.resize(n);
+      c.tangents.resize(n);
+      const GpuCapturedVertex* src = captured + batch.captureOffset + size_t{k} * n;
+      for (uint32_t v = 0; v < n; ++v) {
+        c.positions[v] = glm::vec3(src[v].position);
+        c.normals[v] = glm::vec3(src[v].normal);
+        c.tangents[v] = src[v].tangent;
+      }
+    }
+  }
+  return out;
+}
+
+bool SceneRenderer::refreshPipelines() {
+  if (shaders_->generation() == pipelineGeneration_) return false;
+  pipelineGeneration_ = shaders_->generation();
+  auto rebuilt = ScenePipelines::create(*ctx_, *layouts_, *shaders_, renderPass_, samples_);
+  if (!rebuilt) {
+    logError("shader hot reload: pipelines not rebuilt, keeping the previous ones: " + rebuilt.error().message);
+    return false;
+  }
+  vkDeviceWaitIdle(ctx_->device());  // the old pipelines may still be in flight
+  pipelines_ = std::move(rebuilt).value();
+  return true;
+}
+
+}  // namespace eng::vk

@@ -1,0 +1,119 @@
+#pragma once
+// Draws model instances into a render pass of any target. Per frame the CPU
+// writes only the instance records (transform + slice of the active list) and
+// the compact active-weight list; each mesh of a model draws ALL instances of
+// that model in one instanced draw per primitive.
+//
+// Frame slots: the caller owns synchronisation; prepare(slot) may only be
+// called once the GPU has finished the previous commands recorded for that slot.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/core/result.h"
+#include "engine/vk/buffer.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_model.h"
+#include "engine/vk/gpu_types.h"
+#include "engine/vk/scene_layouts.h"
+#include "engine/vk/scene_pipelines.h"
+#include "engine/vk/shader_library.h"
+
+namespace eng::vk {
+
+struct ModelInstance {
+  const GpuModel* model = nullptr;
+  glm::mat4 transform{1.0f};
+  // The model's flat weight vector (eng::WeightLayout order), model->weightCount() long.
+  std::span<const float> weights;
+};
+
+// Morphed vertices of one primitive of one instance, in the mesh's own space.
+struct CapturedPrimitive {
+  size_t instance = 0;  // index into the instances given to prepareCapture
+  int mesh = -1;
+  int primitive = -1;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;  // xyz morphed + renormalised, w = handedness (zeros without tangents)
+};
+
+class SceneRenderer {
+ public:
+  // `layouts` and `shaders` must outlive the renderer.
+  static Result<SceneRenderer> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
+                                      VkRenderPass renderPass, VkSampleCountFlagBits samples,
+                                      uint32_t frameSlots);
+
+  // Writes slot's frame data. Errors (naming the instance and mesh): null
+  // model, wrong number of weights, non-finite weight.
+  Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
+  // Inside the render pass: background, then every prepared draw.
+  void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent) const;
+
+  // Morph capture (tests, tools): prepare, record inside the render pass,
+  // then the barrier after it, submit, wait, and read.
+  bool canCapture() const { return pipelines_.capture() != VK_NULL_HANDLE; }
+  Result<void> prepareCapture(uint32_t slot, std::span<const ModelInstance> instances);
+  void recordCapture(VkCommandBuffer cmd, uint32_t slot) const;
+  static void recordCaptureReadBarrier(VkCommandBuffer cmd);
+  std::vector<CapturedPrimitive> readCapture(uint32_t slot) const;
+
+  // When the shader library holds newer SPIR-V than the pipelines, rebuilds
+  // them (after vkDeviceWaitIdle). On failure logs and keeps the old ones.
+  // Returns true when pipelines were replaced.
+  bool refreshPipelines();
+
+ private:
+  enum class Mode { Draw, Capture };
+  // One primitive drawn for `instanceCount` instances from `firstInstance`.
+  struct Batch {
+    const GpuModel* model = nullptr;
+    uint32_t mesh = 0;
+    uint32_t primitive = 0;
+    uint32_t firstInstance = 0;
+    uint32_t instanceCount = 0;
+    uint32_t captureOffset = 0;  // first captured vertex slot (capture mode)
+    uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
+  };
+  struct Slot {
+    Buffer globals;
+    Buffer instances;
+    Buffer active;
+    Buffer capture;
+    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
+    std::vector<Batch> batches;
+    std::vector<uint32_t> members;
+    uint32_t capturedVertices = 0;
+  };
+
+  Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
+  Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                              MemoryUsage memory, const char* name);
+  void writeDescriptors(Slot& slot) const;
+  void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
+
+  const Context* ctx_ = nullptr;
+  const SceneLayouts* layouts_ = nullptr;
+  const ShaderLibrary* shaders_ = nullptr;
+  VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
+  uint64_t pipelineGeneration_ = 0;
+  ScenePipelines pipelines_;
+  UniqueDescriptorPool descriptorPool_;
+  std::vector<Slot> slots_;
+  // Scratch reused every frame (capacity persists: no allocation in steady state).
+  std::vector<GpuInstance> instanceScratch_;
+  std::vector<ActiveWeight> activeScratch_;
+  std::vector<const GpuModel*> modelScratch_;
+  std::vector<uint32_t> memberScratch_;
+  struct ActiveRange {
+    uint32_t offset = 0;
+    uint32_t count = 0;
+  };
+  std::vector<ActiveRange> rangeScratch_;  // per (member, mesh) of the model being laid out
+};
+
+}  // namespace eng::vk

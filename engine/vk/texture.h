@@ -1,0 +1,24 @@
+#pragma once
+// sRGB RGBA8 textures with a full mip chain (generated on the GPU by blits).
+#include <cstdint>
+#include <span>
+
+#include "engine/core/result.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_image.h"
+
+namespace eng::vk {
+
+struct TextureSource {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  // One RGBA8 span per array layer, each width * height * 4 bytes.
+  std::span<const std::span<const uint8_t>> layers;
+  VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;  // or 2D_ARRAY
+  const char* debugName = "texture";
+};
+
+// Ends in SHADER_READ_ONLY_OPTIMAL. Sizes are checked against the layer data.
+Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source);
+
+}  // namespace eng::vk
