@@ -1,0 +1,133 @@
+// Expressions scheme: rigs whose controls are whole expressions (VRM 1.0 /
+// 0.x presets, or targets named after emotions such as RobotExpressive's
+// "Angry"/"Surprised"/"Sad"). The emotion channels drive them; AU45 drives blink.
+#include <array>
+#include <cstdio>
+#include <vector>
+
+#include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/rig_schemes.h"
+
+namespace facial {
+namespace {
+
+struct Aliases {
+  Emotion emotion;
+  std::array<std::string_view, 4> names;  // lower case; VRM 1.0 name first, then VRM 0.x
+};
+
+constexpr std::array kEmotionAliases = {
+    Aliases{Emotion::Neutral, {"neutral"}},
+    Aliases{Emotion::Happy, {"happy", "joy"}},
+    Aliases{Emotion::Sad, {"sad", "sorrow"}},
+    Aliases{Emotion::Surprise, {"surprised", "surprise"}},
+    Aliases{Emotion::Fear, {"fear", "fearful", "afraid", "scared"}},
+    Aliases{Emotion::Anger, {"angry", "anger"}},
+    Aliases{Emotion::Disgust, {"disgust", "disgusted"}},
+};
+constexpr std::array<std::string_view, 1> kBlink = {"blink"};
+constexpr std::array<std::string_view, 2> kBlinkLeft = {"blinkleft", "blink_l"};
+constexpr std::array<std::string_view, 2> kBlinkRight = {"blinkright", "blink_r"};
+
+std::string key(std::string_view name) {
+  if (const size_t cut = name.find_last_of(".:|"); cut != std::string_view::npos) name = name.substr(cut + 1);
+  return asciiLower(name);
+}
+
+// Every target named by the first alias that names any (a face and its
+// eyelashes may both carry "blink").
+template <size_t N>
+std::vector<uint32_t> findAll(std::span<const std::string> names, const std::array<std::string_view, N>& aliases) {
+  std::vector<uint32_t> found;
+  for (std::string_view alias : aliases) {
+    if (alias.empty()) continue;
+    for (uint32_t t = 0; t < names.size(); ++t)
+      if (key(names[t]) == alias) found.push_back(t);
+    if (!found.empty()) break;
+  }
+  return found;
+}
+
+std::vector<uint32_t> targetsOf(std::span<const std::string> names, Emotion emotion) {
+  for (const Aliases& a : kEmotionAliases)
+    if (a.emotion == emotion) return findAll(names, a.names);
+  return {};
+}
+
+std::string gainText(float gain) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%.2f", double(gain));
+  return text;
+}
+
+bool isExpressionName(const std::string& name) {
+  const std::string k = key(name);
+  auto in = [&](const auto& list) {
+    for (std::string_view alias : list)
+      if (!alias.empty() && k == alias) return true;
+    return false;
+  };
+  for (const Aliases& a : kEmotionAliases)
+    if (in(a.names)) return true;
+  return in(kBlink) || in(kBlinkLeft) || in(kBlinkRight);
+}
+
+// An emotion the rig lacks, approximated by neighbours it has (fear reads as
+// surprise with distress, disgust as a milder anger with sadness).
+struct Fallback {
+  Emotion missing;
+  Emotion a;
+  float gainA;
+  Emotion b;
+  float gainB;
+};
+constexpr std::array kFallbacks = {
+    Fallback{Emotion::Fear, Emotion::Surprise, 0.55f, Emotion::Sad, 0.45f},
+    Fallback{Emotion::Disgust, Emotion::Anger, 0.5f, Emotion::Sad, 0.3f},
+};
+
+}  // namespace
+
+SchemeRecognition recogniseExpressions(std::span<const std::string> targetNames) {
+  SchemeRecognition r;
+  for (const std::string& name : targetNames) r.recognised += isExpressionName(name) ? 1 : 0;
+  r.detail = std::to_string(r.recognised) + " of " + std::to_string(targetNames.size()) +
+             " targets are emotion / blink expressions";
+  return r;
+}
+
+void mapExpressions(RigMappingBuilder& builder) {
+  const std::span<const std::string> names = builder.targetNames();
+  for (const Aliases& a : kEmotionAliases)
+    for (uint32_t t : findAll(names, a.names)) builder.add(emotionInput(a.emotion), t, 1.0f);
+
+  for (const Fallback& f : kFallbacks) {
+    if (!targetsOf(names, f.missing).empty()) continue;
+    std::string how;
+    for (auto [neighbour, gain] : {std::pair{f.a, f.gainA}, std::pair{f.b, f.gainB}}) {
+      const std::vector<uint32_t> targets = targetsOf(names, neighbour);
+      for (uint32_t t : targets) builder.add(emotionInput(f.missing), t, gain);
+      if (!targets.empty()) how += std::string(how.empty() ? "" : " + ") + "'" + names[targets[0]] + "' " + gainText(gain);
+    }
+    if (!how.empty())
+      builder.note(std::string(emotionName(f.missing)) + ": the rig has no such expression; approximated as " + how);
+  }
+
+  const uint32_t blinkL = *actionUnitIndex("AU45_Blink_L");
+  const uint32_t blinkR = *actionUnitIndex("AU45_Blink_R");
+  const std::vector<uint32_t> left = findAll(names, kBlinkLeft);
+  const std::vector<uint32_t> right = findAll(names, kBlinkRight);
+  if (!left.empty() && !right.empty()) {
+    for (uint32_t t : left) builder.add(blinkL, t, 1.0f);
+    for (uint32_t t : right) builder.add(blinkR, t, 1.0f);
+  } else {
+    for (uint32_t t : findAll(names, kBlink)) {
+      builder.add(blinkL, t, 0.5f);
+      builder.add(blinkR, t, 0.5f);
+    }
+  }
+  builder.note("expression rigs take the emotion channels; among the action units only AU45 (blink) is mapped, "
+               "the expressions carry their own brows and mouth");
+}
+
+}  // namespace facial

@@ -1,0 +1,184 @@
+#include "facial/runtime/rig/rig_mapping.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "facial/runtime/rig/action_units.h"
+
+namespace facial {
+
+std::string_view rigSchemeName(RigScheme scheme) {
+  switch (scheme) {
+    case RigScheme::ActionUnits: return "FACS action units";
+    case RigScheme::Candide3: return "CANDIDE-3";
+    case RigScheme::Arkit52: return "ARKit 52 blend shapes";
+    case RigScheme::Expressions: return "emotion expressions (VRM)";
+    case RigScheme::Custom: return "custom rig map";
+  }
+  return "?";
+}
+
+uint32_t rigInputCount() { return static_cast<uint32_t>(actionUnits().size() + kEmotionCount); }
+
+uint32_t emotionInput(Emotion emotion) {
+  return static_cast<uint32_t>(actionUnits().size()) + static_cast<uint32_t>(emotion);
+}
+
+std::string_view rigInputName(uint32_t input) {
+  const size_t channels = actionUnits().size();
+  if (input < channels) return actionUnits()[input].name;
+  if (input < channels + kEmotionCount) return emotionNames()[input - channels];
+  return "?";
+}
+
+std::optional<uint32_t> rigInputIndex(std::string_view name) {
+  if (std::optional<uint32_t> au = actionUnitIndex(name)) return au;
+  if (std::optional<uint32_t> e = emotionIndex(name)) return static_cast<uint32_t>(actionUnits().size()) + *e;
+  return std::nullopt;
+}
+
+std::string RigMappingReport::summary() const {
+  auto list = [](const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
+    return out.empty() ? std::string("none") : out;
+  };
+  std::string text = "scheme: " + std::string(rigSchemeName(scheme));
+  if (!detail.empty()) text += " (" + detail + ")";
+  text += "\nunmapped targets (" + std::to_string(unmappedTargets.size()) + "): " + list(unmappedTargets);
+  text += "\nunmapped inputs (" + std::to_string(unmappedInputs.size()) + "): " + list(unmappedInputs);
+  for (const std::string& n : notes) text += "\nnote: " + n;
+  return text;
+}
+
+std::span<const uint32_t> RigMapping::targets(uint32_t input) const {
+  if (input + 1 >= offsets_.size()) return {};
+  return std::span<const uint32_t>(entryTargets_).subspan(offsets_[input], offsets_[input + 1] - offsets_[input]);
+}
+
+std::span<const float> RigMapping::gains(uint32_t input) const {
+  if (input + 1 >= offsets_.size()) return {};
+  return std::span<const float>(entryGains_).subspan(offsets_[input], offsets_[input + 1] - offsets_[input]);
+}
+
+eng::Result<void> RigMapping::validate() const {
+  const size_t inputs = rigInputCount();
+  if (offsets_.size() != inputs + 1)
+    return eng::makeError("rig mapping: " + std::to_string(offsets_.size()) + " row offsets, expected " +
+                          std::to_string(inputs + 1));
+  if (entryTargets_.size() != entryGains_.size())
+    return eng::makeError("rig mapping: " + std::to_string(entryTargets_.size()) + " entry targets but " +
+                          std::to_string(entryGains_.size()) + " gains");
+  if (offsets_.front() != 0 || offsets_.back() != entryTargets_.size())
+    return eng::makeError("rig mapping: row offsets span [" + std::to_string(offsets_.front()) + ", " +
+                          std::to_string(offsets_.back()) + "), expected [0, " +
+                          std::to_string(entryTargets_.size()) + ")");
+  for (size_t i = 0; i < inputs; ++i)
+    if (offsets_[i] > offsets_[i + 1])
+      return eng::makeError("rig mapping: row offsets decrease at input " + std::to_string(i) + " (" +
+                            std::string(rigInputName(static_cast<uint32_t>(i))) + ")");
+  for (size_t e = 0; e < entryTargets_.size(); ++e) {
+    if (entryTargets_[e] >= targetNames_.size())
+      return eng::makeError("rig mapping: entry " + std::to_string(e) + " drives target " +
+                            std::to_string(entryTargets_[e]) + " of " + std::to_string(targetNames_.size()));
+    if (!std::isfinite(entryGains_[e]))
+      return eng::makeError("rig mapping: entry " + std::to_string(e) + " has a non-finite gain");
+  }
+  for (uint32_t t : drivenTargets_)
+    if (t >= targetNames_.size())
+      return eng::makeError("rig mapping: driven target " + std::to_string(t) + " of " +
+                            std::to_string(targetNames_.size()));
+  if (!(minWeight_ < maxWeight_))
+    return eng::makeError("rig mapping: empty weight range [" + std::to_string(minWeight_) + ", " +
+                          std::to_string(maxWeight_) + "]");
+  return {};
+}
+
+eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                    std::span<float> targetWeights) const {
+  const size_t channels = actionUnits().size();
+  if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount) ||
+      targetWeights.size() != targetNames_.size())
+    return eng::makeError("rig mapping: apply got " + std::to_string(auWeights.size()) + " AU weights, " +
+                          std::to_string(emotionWeights.size()) + " emotion weights, " +
+                          std::to_string(targetWeights.size()) + " target weights; expected " +
+                          std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount) + ", " +
+                          std::to_string(targetNames_.size()));
+  for (size_t i = 0; i < auWeights.size(); ++i)
+    if (!std::isfinite(auWeights[i]))
+      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
+  for (size_t i = 0; i < emotionWeights.size(); ++i)
+    if (!std::isfinite(emotionWeights[i]))
+      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
+
+  for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
+  auto accumulate = [&](uint32_t input, float weight) {
+    if (weight == 0.0f) return;
+    for (uint32_t e = offsets_[input]; e < offsets_[input + 1]; ++e) targetWeights[entryTargets_[e]] += weight * entryGains_[e];
+  };
+  for (uint32_t i = 0; i < channels; ++i) accumulate(i, auWeights[i]);
+  for (uint32_t i = 0; i < emotionWeights.size(); ++i) accumulate(static_cast<uint32_t>(channels) + i, emotionWeights[i]);
+  for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
+  return {};
+}
+
+RigMappingBuilder::RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames)
+    : scheme_(scheme), targetNames_(targetNames.begin(), targetNames.end()) {}
+
+void RigMappingBuilder::add(uint32_t input, uint32_t target, float gain) { entries_.push_back({input, target, gain}); }
+
+void RigMappingBuilder::setWeightRange(float minWeight, float maxWeight) {
+  minWeight_ = minWeight;
+  maxWeight_ = maxWeight;
+}
+
+eng::Result<RigMapping> RigMappingBuilder::build() const {
+  const uint32_t inputs = rigInputCount();
+  for (const Entry& e : entries_) {
+    if (e.input >= inputs)
+      return eng::makeError("rig mapping builder: input " + std::to_string(e.input) + " of " + std::to_string(inputs));
+    if (e.target >= targetNames_.size())
+      return eng::makeError("rig mapping builder: target " + std::to_string(e.target) + " of " +
+                            std::to_string(targetNames_.size()) + " for input " + std::string(rigInputName(e.input)));
+    if (!std::isfinite(e.gain))
+      return eng::makeError("rig mapping builder: non-finite gain for " + std::string(rigInputName(e.input)) + " -> " +
+                            targetNames_[e.target]);
+  }
+  // Sort by (input, target) and merge repeats so every row is ascending and unique.
+  std::vector<Entry> sorted = entries_;
+  std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
+    return a.input != b.input ? a.input < b.input : a.target < b.target;
+  });
+  RigMapping mapping;
+  mapping.targetNames_ = targetNames_;
+  mapping.minWeight_ = minWeight_;
+  mapping.maxWeight_ = maxWeight_;
+  mapping.offsets_.assign(inputs + 1, 0);
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    const Entry& e = sorted[i];
+    if (i > 0 && sorted[i - 1].input == e.input && sorted[i - 1].target == e.target) {
+      mapping.entryGains_.back() += e.gain;
+      continue;
+    }
+    mapping.entryTargets_.push_back(e.target);
+    mapping.entryGains_.push_back(e.gain);
+    ++mapping.offsets_[e.input + 1];
+  }
+  for (uint32_t i = 0; i < inputs; ++i) mapping.offsets_[i + 1] += mapping.offsets_[i];
+
+  std::vector<bool> driven(targetNames_.size(), false);
+  for (uint32_t t : mapping.entryTargets_) driven[t] = true;
+  for (uint32_t t = 0; t < driven.size(); ++t) {
+    if (driven[t]) mapping.drivenTargets_.push_back(t);
+    else mapping.report_.unmappedTargets.push_back(targetNames_[t]);
+  }
+  for (uint32_t i = 0; i < inputs; ++i)
+    if (mapping.offsets_[i] == mapping.offsets_[i + 1]) mapping.report_.unmappedInputs.emplace_back(rigInputName(i));
+  mapping.report_.scheme = scheme_;
+  mapping.report_.detail = detail_;
+  mapping.report_.notes = notes_;
+  if (eng::Result<void> valid = mapping.validate(); !valid) return valid.error();
+  return mapping;
+}
+
+}  // namespace facial

@@ -1,0 +1,76 @@
+// buildRigMapping(): rig map file or scheme detection.
+#include <array>
+#include <system_error>
+
+#include "facial/runtime/rig/rig_mapping.h"
+#include "facial/runtime/rig/rig_schemes.h"
+#include "facial/runtime/rig/rigmap_file.h"
+
+namespace facial {
+namespace {
+
+struct SchemeEntry {
+  RigScheme scheme;
+  SchemeRecognition (*recognise)(std::span<const std::string>);
+  void (*map)(RigMappingBuilder&);
+  size_t minimumRecognised;  // fewer recognised names than this is a coincidence, not a rig
+};
+
+// Detection order: the most specific vocabulary first (CANDIDE names are
+// FACS-numbered too; VRM rigs may also carry ARKit custom expressions, which
+// are richer than whole emotions).
+constexpr std::array kSchemes = {
+    SchemeEntry{RigScheme::Candide3, recogniseCandide3, mapCandide3, 4},
+    SchemeEntry{RigScheme::ActionUnits, recogniseActionUnitNames, mapActionUnitNames, 3},
+    SchemeEntry{RigScheme::Arkit52, recogniseArkit52, mapArkit52, 10},
+    SchemeEntry{RigScheme::Expressions, recogniseExpressions, mapExpressions, 1},
+};
+
+eng::Result<RigMapping> buildWith(const SchemeEntry& entry, std::span<const std::string> targetNames,
+                                  const SchemeRecognition& recognition) {
+  RigMappingBuilder builder(entry.scheme, targetNames);
+  builder.setDetail(recognition.detail);
+  entry.map(builder);
+  return builder.build();
+}
+
+}  // namespace
+
+eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, const RigMappingOptions& options) {
+  if (!options.rigmapFile.empty()) return loadRigMap(options.rigmapFile, targetNames);
+  const std::string model = options.modelName.empty() ? std::string("the model") : "'" + options.modelName + "'";
+  std::filesystem::path rigmap;
+  if (!options.modelName.empty()) {
+    // Only the file name part: a model name never walks out of the rig map folder.
+    const std::filesystem::path stem = std::filesystem::path(options.modelName).filename();
+    rigmap = (options.rigmapDirectory.empty() ? std::filesystem::path("data/rigmaps") : options.rigmapDirectory) /
+             (stem.string() + ".json");
+    std::error_code ec;
+    if (!options.rigmapDirectory.empty() && std::filesystem::is_regular_file(rigmap, ec))
+      return loadRigMap(rigmap, targetNames);
+  }
+  for (const SchemeEntry& entry : kSchemes) {
+    const SchemeRecognition recognition = entry.recognise(targetNames);
+    if (recognition.recognised >= entry.minimumRecognised) return buildWith(entry, targetNames, recognition);
+  }
+  std::string sample;
+  for (size_t i = 0; i < targetNames.size() && i < 4; ++i) sample += (i ? ", " : "") + targetNames[i];
+  return eng::makeError("rig mapping: no scheme recognises the " + std::to_string(targetNames.size()) +
+                        " target names of " + model + (sample.empty() ? "" : " (" + sample + ", ...)") +
+                        "; write a rig map " + (rigmap.empty() ? std::string("data/rigmaps/<model>.json") : rigmap.string()));
+}
+
+eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme) {
+  for (const SchemeEntry& entry : kSchemes) {
+    if (entry.scheme != scheme) continue;
+    const SchemeRecognition recognition = entry.recognise(targetNames);
+    if (recognition.recognised == 0)
+      return eng::makeError("rig mapping: the " + std::string(rigSchemeName(scheme)) + " scheme recognises none of the " +
+                            std::to_string(targetNames.size()) + " target names");
+    return buildWith(entry, targetNames, recognition);
+  }
+  return eng::makeError("rig mapping: " + std::string(rigSchemeName(scheme)) +
+                        " is not a built-in scheme (load a rig map file instead)");
+}
+
+}  // namespace facial
