@@ -1,0 +1,53 @@
+#pragma once
+// One key of a scalar curve and the interpolation of the segment it starts.
+// Keys live in sorted flat arrays (a timeline track, a keyed easing curve);
+// sampling walks them with a cursor so forward playback costs O(1) amortised.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace facial {
+
+// How the segment [key k, key k+1] is filled; key k's mode decides.
+enum class KeyInterpolation : uint8_t {
+  Step,     // hold key k's value until key k+1
+  Linear,   // straight line
+  Cosine,   // (1 - cos(pi s)) / 2 ease between the two values
+  Hermite,  // cubic Hermite: key k's outTangent, key k+1's inTangent (value per second)
+};
+
+struct Keyframe {
+  float time = 0;
+  float value = 0;
+  float inTangent = 0;   // d value / d time arriving at this key (Hermite segments ending here)
+  float outTangent = 0;  // d value / d time leaving this key (Hermite segment starting here)
+  KeyInterpolation interpolation = KeyInterpolation::Linear;
+};
+
+std::string_view toString(KeyInterpolation interpolation);
+std::optional<KeyInterpolation> keyInterpolationFromString(std::string_view name);
+
+// Problem with a key array (unsorted or duplicate times, non-finite numbers,
+// empty), or nullopt when it is usable. Messages name the key index.
+std::optional<std::string> validateKeys(std::span<const Keyframe> keys);
+
+// Value of the segment that starts at k0 and ends at k1, at `time` in [k0.time, k1.time].
+float interpolateSegment(const Keyframe& k0, const Keyframe& k1, float time);
+// d value / d time of that segment at `time` (0 for Step).
+float segmentDerivative(const Keyframe& k0, const Keyframe& k1, float time);
+
+// Index of the segment holding `time`: the last key with key.time <= time,
+// clamped to [0, keys.size() - 2] (0 for a single key). Binary search.
+uint32_t findSegment(std::span<const Keyframe> keys, float time);
+// Same answer, starting from `cursor` (the previous answer): a few steps
+// forward for playback, a binary search for seeks and backward jumps.
+uint32_t findSegment(std::span<const Keyframe> keys, float time, uint32_t cursor);
+
+// The curve's value at `time`; before the first key / after the last the
+// end values hold. keys must pass validateKeys.
+float sampleKeys(std::span<const Keyframe> keys, float time);
+float sampleKeys(std::span<const Keyframe> keys, float time, uint32_t& cursor);
+
+}  // namespace facial

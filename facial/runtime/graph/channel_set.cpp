@@ -1,0 +1,48 @@
+#include "facial/runtime/graph/channel_set.h"
+
+namespace facial {
+namespace {
+
+bool endsWith(std::string_view s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
+}
+
+FaceSide sideFromSuffix(std::string_view name) {
+  if (endsWith(name, "_L") || endsWith(name, "Left") || endsWith(name, "_left")) return FaceSide::Left;
+  if (endsWith(name, "_R") || endsWith(name, "Right") || endsWith(name, "_right")) return FaceSide::Right;
+  return FaceSide::Both;
+}
+
+}  // namespace
+
+ChannelSet ChannelSet::actionUnits() {
+  ChannelSet set;
+  for (const ActionUnitInfo& au : facial::actionUnits())
+    set.channels_.push_back({std::string(au.name), au.region, au.side});
+  return set;
+}
+
+eng::Result<ChannelSet> ChannelSet::fromNames(std::span<const std::string> names) {
+  ChannelSet set;
+  set.channels_.reserve(names.size());
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    if (name.empty()) return eng::makeError("channel " + std::to_string(i) + " has an empty name");
+    if (set.find(name)) return eng::makeError("channel name '" + name + "' appears twice");
+    if (auto au = actionUnitIndex(name)) {
+      const ActionUnitInfo& info = facial::actionUnits()[*au];
+      set.channels_.push_back({name, info.region, info.side});
+    } else {
+      set.channels_.push_back({name, std::nullopt, sideFromSuffix(name)});
+    }
+  }
+  return set;
+}
+
+std::optional<uint32_t> ChannelSet::find(std::string_view name) const {
+  for (uint32_t i = 0; i < channels_.size(); ++i)
+    if (channels_[i].name == name) return i;
+  return std::nullopt;
+}
+
+}  // namespace facial

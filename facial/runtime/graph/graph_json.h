@@ -1,0 +1,56 @@
+#pragma once
+// Graph files (data/graphs/*.json), version 1. Nodes nest as a tree under
+// "root"; parameters and timelines are referred to by name:
+//
+//   {"version": 1,
+//    "channels": "actionUnits",                       // or ["eyeBlink_L", "jawOpen", ...]
+//    "parameters": [{"name": "happy", "type": "trigger"},
+//                   {"name": "x", "type": "float", "default": 0}],
+//    "timelines": {"talk": "../timelines/talk.json"}, // path (relative to this file) or inline object
+//    "root": {"type": "blink", "input": {
+//      "type": "stateMachine", "defaultState": "neutral",
+//      "states": [
+//        {"name": "neutral", "node": {"type": "pose", "preset": "neutral"},
+//         "transitions": [{"to": "happy", "duration": 0.8, "curve": "cosine",
+//                          "conditions": [{"parameter": "happy"}]}]},
+//        {"name": "happy", "node": {"type": "pose", "preset": "happy", "intensity": 0.9}}],
+//      "anyState": [{"to": "neutral", "duration": 0.5, "exitTime": 10}]}}}
+//
+// Node types and their keys (inputs are nested node objects; "float inputs"
+// take a number or a float parameter's name):
+//   pose         preset + intensity | weights ({"channel": w} or [w, ...]); scale; overrideBlink none|block|blend
+//   blend        a, b, factor, curve
+//   bilinear     shapes [[Q11, Q12, ...], [Q21, Q22, ...]], shape, expression (float parameter), duration, curve
+//   controlMap   neutral, up (+y, E1), down (-y, E2), right (+x, E3), left (-x, E4), x, y
+//   freeformMap  neutral, poles [{"at": [x, y], "node": {...}}], x, y
+//   additive     base, layer, weight, mask {"region": any|upper|lower, "side": any|left|right|both}
+//   timeline     timeline (name), loop once|clamp|loop|pingpong, speed
+//   stateMachine states [{name, node, transitions}], anyState [transitions], defaultState
+//     transition to, duration, curve, exitTime, priority, interruptible, canTransitionToSelf,
+//                conditions [{"parameter": p, "op": ">"|">="|"<"|"<="|"=="|"!=", "value": v}
+//                            | {"parameter": bool, "value": true} | {"parameter": trigger}]
+//   blink        input, channels, wideChannels, amount, minInterval, maxInterval, closeDuration,
+//                closedDuration, openDuration, doubleBlinkChance, doubleBlinkGap, wideStart, wideFull
+// Every node may carry a "name" (GraphDefinition::findNode). Curves: see curve_json.h.
+// Errors read "file: /root/input/states/2/transitions/0/duration: problem".
+#include <filesystem>
+
+#include "engine/core/result.h"
+#include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/preset_lookup.h"
+#include "facial/runtime/rig/json_document.h"
+
+namespace facial {
+
+inline constexpr int kGraphFileVersion = 1;
+
+struct GraphLoadOptions {
+  PresetLookup presets;  // empty: a graph that names a preset fails to load, saying so
+};
+
+eng::Result<SharedGraphDefinition> loadGraph(const std::filesystem::path& path, const GraphLoadOptions& options = {});
+// `source` names the document in messages; relative timeline paths resolve against its folder.
+eng::Result<SharedGraphDefinition> parseGraph(const Json& document, const std::filesystem::path& source,
+                                              const GraphLoadOptions& options = {});
+
+}  // namespace facial

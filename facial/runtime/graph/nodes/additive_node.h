@@ -1,0 +1,43 @@
+#pragma once
+// Additive action-unit layer: speech, a blink or a gesture riding on top of
+// an emotion. Per channel c:
+//   out[c] = clamp(base[c] + weight * mask[c] * layer[c], 0, 1)
+// The mask selects channels by face region and side (action_units.h): a
+// channel passes when it matches both the region (any / upper / lower) and
+// the side (any / left / right / both = bilateral channels only). Channels of
+// unknown region (raw target names) pass only a region of "any". Lanes come
+// from the base: the layer does not change what the emotion asks of blinking.
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "facial/runtime/graph/channel_set.h"
+#include "facial/runtime/graph/node_types.h"
+#include "facial/runtime/graph/parameters.h"
+
+namespace facial {
+
+struct RegionMask {
+  std::optional<FaceRegion> region;  // nullopt: any region
+  std::optional<FaceSide> side;      // nullopt: any side
+
+  // 1 when the channel passes, else 0.
+  float weight(const ChannelInfo& channel) const;
+};
+
+struct AdditiveNode {
+  NodeIndex base = kNoNode;
+  NodeIndex layer = kNoNode;
+  FloatInput weight = FloatInput::fixed(1.0f);
+  RegionMask mask;
+
+  std::vector<float> maskWeights;  // derived at build: one per channel
+
+  static constexpr uint32_t kScratchPoses = 1;
+  void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {base, layer}); }
+  std::optional<std::string> prepare(const BuildContext& ctx);
+  void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
+};
+
+}  // namespace facial

@@ -1,0 +1,21 @@
+#include "facial/runtime/graph/nodes/blend_node.h"
+
+#include <algorithm>
+
+#include "facial/runtime/graph/nodes/build_context.h"
+#include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/graph/pose_jobs.h"
+
+namespace facial {
+
+std::optional<std::string> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
+
+void BlendNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const {
+  ctx.evaluate(a, out);
+  ScratchPose p1(ctx.scratch);
+  ctx.evaluate(b, p1.pose());
+  const float t = curve(std::clamp(ctx.read(factor), 0.0f, 1.0f));
+  LerpPoseJob{.a = out, .b = p1.pose(), .t = t, .out = out}.Run();
+}
+
+}  // namespace facial

@@ -1,0 +1,30 @@
+#pragma once
+// What a node sees while the graph is built: the channels, parameters and
+// timelines it may refer to, and where it was declared (a JSON pointer or
+// "node 3 (blend)") so its problems name the spot.
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "facial/runtime/graph/channel_set.h"
+#include "facial/runtime/graph/parameters.h"
+#include "facial/runtime/graph/timeline.h"
+
+namespace facial {
+
+struct BuildContext {
+  const ChannelSet& channels;
+  std::span<const ParameterDecl> parameters;
+  std::span<const Timeline> timelines;
+  std::string origin;
+
+  // "<origin>/<subpath>: <problem>" (no subpath: "<origin>: <problem>").
+  std::string problem(std::string_view subpath, std::string_view problem) const;
+  // Problem when `input` names a parameter that does not exist.
+  std::optional<std::string> checkInput(const FloatInput& input, std::string_view field) const;
+  // Problem unless `parameter` exists and has type `type`.
+  std::optional<std::string> checkParameter(ParameterIndex parameter, ParameterType type, std::string_view field) const;
+};
+
+}  // namespace facial

@@ -1,0 +1,42 @@
+#include "facial/runtime/graph/nodes/control_map_node.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "facial/runtime/graph/nodes/build_context.h"
+#include "facial/runtime/graph/nodes/eval_context.h"
+
+namespace facial {
+
+ControlMapWeights controlMapWeights(float x, float y) {
+  ControlMapWeights w;
+  x = std::clamp(x, -1.0f, 1.0f);
+  y = std::clamp(y, -1.0f, 1.0f);
+  const float l1 = std::abs(x) + std::abs(y);
+  if (l1 > 1.0f) {
+    x /= l1;
+    y /= l1;
+  }
+  w.x = x;
+  w.y = y;
+  if (x >= 0.0f) w.e3 = x;
+  else w.e4 = std::abs(x);
+  if (y >= 0.0f) w.e1 = y;
+  else w.e2 = std::abs(y);
+  w.neutral = std::max(0.0f, 1.0f - (w.e1 + w.e2 + w.e3 + w.e4));  // max: rounding of the projection only
+  return w;
+}
+
+std::optional<std::string> ControlMapNode::prepare(const BuildContext& ctx) {
+  if (auto p = ctx.checkInput(x, "x")) return p;
+  return ctx.checkInput(y, "y");
+}
+
+void ControlMapNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const {
+  const ControlMapWeights w = controlMapWeights(ctx.read(x), ctx.read(y));
+  const std::array<NodeIndex, 5> nodes = {neutral, e1, e2, e3, e4};
+  const std::array<float, 5> weights = {w.neutral, w.e1, w.e2, w.e3, w.e4};
+  ctx.evaluateWeightedSum(nodes, weights, out);
+}
+
+}  // namespace facial

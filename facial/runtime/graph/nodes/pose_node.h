@@ -1,0 +1,33 @@
+#pragma once
+// Pose node: a constant weight vector, typically an expression preset at an
+// intensity (resolved when the graph is built, see preset_lookup.h) or
+// explicit weights, optionally scaled at run time by a parameter.
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "facial/runtime/graph/node_types.h"
+#include "facial/runtime/graph/parameters.h"
+
+namespace facial {
+
+// VRM 1.0 overrideBlink: what an expression does to procedural blinking
+// while it shows, weighted by how much it shows (see blink_node.h).
+enum class OverrideBlink : uint8_t { None, Block, Blend };
+std::string_view toString(OverrideBlink mode);
+std::optional<OverrideBlink> overrideBlinkFromString(std::string_view name);
+
+struct PoseNode {
+  std::vector<float> weights;                  // one per channel, each in [0,1]
+  FloatInput scale = FloatInput::fixed(1.0f);  // multiplies weights and the override lane
+  OverrideBlink overrideBlink = OverrideBlink::None;
+
+  static constexpr uint32_t kScratchPoses = 0;
+  void inputs(std::vector<NodeIndex>&) const {}
+  std::optional<std::string> prepare(const BuildContext& ctx);
+  void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
+};
+
+}  // namespace facial

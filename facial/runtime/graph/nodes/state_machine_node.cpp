@@ -1,0 +1,229 @@
+#include "facial/runtime/graph/nodes/state_machine_node.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/nodes/build_context.h"
+#include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/graph/pose_jobs.h"
+
+namespace facial {
+
+std::string_view toString(ConditionOp op) {
+  switch (op) {
+    case ConditionOp::Greater: return ">";
+    case ConditionOp::GreaterEqual: return ">=";
+    case ConditionOp::Less: return "<";
+    case ConditionOp::LessEqual: return "<=";
+    case ConditionOp::Equal: return "==";
+    case ConditionOp::NotEqual: return "!=";
+    case ConditionOp::IsTrue: return "true";
+    case ConditionOp::IsFalse: return "false";
+    case ConditionOp::Triggered: return "triggered";
+  }
+  return "triggered";
+}
+
+std::optional<ConditionOp> conditionOpFromString(std::string_view name) {
+  for (ConditionOp op : {ConditionOp::Greater, ConditionOp::GreaterEqual, ConditionOp::Less, ConditionOp::LessEqual,
+                         ConditionOp::Equal, ConditionOp::NotEqual, ConditionOp::IsTrue, ConditionOp::IsFalse,
+                         ConditionOp::Triggered})
+    if (toString(op) == name) return op;
+  return std::nullopt;
+}
+
+bool TransitionCondition::holds(std::span<const float> parameters) const {
+  const float v = parameters[parameter];
+  switch (op) {
+    case ConditionOp::Greater: return v > threshold;
+    case ConditionOp::GreaterEqual: return v >= threshold;
+    case ConditionOp::Less: return v < threshold;
+    case ConditionOp::LessEqual: return v <= threshold;
+    case ConditionOp::Equal: return v == threshold;
+    case ConditionOp::NotEqual: return v != threshold;
+    case ConditionOp::IsTrue:
+    case ConditionOp::Triggered: return v != 0.0f;
+    case ConditionOp::IsFalse: return v == 0.0f;
+  }
+  return false;
+}
+
+std::optional<uint32_t> StateMachineNode::findState(std::string_view name) const {
+  for (uint32_t i = 0; i < states.size(); ++i)
+    if (states[i].name == name) return i;
+  return std::nullopt;
+}
+
+StateMachineStatus StateMachineNode::status(const State& state) const {
+  StateMachineStatus s;
+  s.current = state.current;
+  if (state.blending && state.liveSource != State::kNone) s.liveSource = state.liveSource;
+  s.blending = state.blending;
+  s.fromSnapshot = state.blending && state.liveSource == State::kNone;
+  s.blendProgress = state.blending ? std::min(1.0f, state.blendTime / state.transition->duration) : 1.0f;
+  s.stateTime = state.stateTime;
+  return s;
+}
+
+void StateMachineNode::inputs(std::vector<NodeIndex>& out) const {
+  for (const MachineState& s : states) out.push_back(s.node);
+}
+
+namespace {
+
+std::optional<std::string> prepareTransitions(const BuildContext& ctx, const StateMachineNode& machine,
+                                              std::vector<Transition>& transitions, const std::string& path,
+                                              bool anyState) {
+  for (size_t i = 0; i < transitions.size(); ++i) {
+    Transition& t = transitions[i];
+    const std::string where = path + "/" + std::to_string(i);
+    auto target = machine.findState(t.to);
+    if (!target) return ctx.problem(where + "/to", "no state named '" + t.to + "'");
+    t.target = *target;
+    if (!std::isfinite(t.duration) || t.duration <= 0.0f)
+      return ctx.problem(where + "/duration",
+                         "must be a finite number > 0 (got " + std::to_string(t.duration) +
+                             "); a cut would make the face jump");
+    if (!(t.curve.maxSlope() < INFINITY))
+      return ctx.problem(where + "/curve", "the curve jumps (step key or vertical bezier end): the face would pop");
+    if (t.exitTime && (!std::isfinite(*t.exitTime) || *t.exitTime < 0.0f))
+      return ctx.problem(where + "/exitTime", "must be a finite number >= 0 (got " + std::to_string(*t.exitTime) + ")");
+    if (t.conditions.empty() && !t.exitTime)
+      return ctx.problem(where, "has neither conditions nor an exit time, so it would fire at once, every frame");
+    if (t.canTransitionToSelf && !anyState)
+      return ctx.problem(where + "/canTransitionToSelf", "only any-state transitions take this flag");
+    for (size_t c = 0; c < t.conditions.size(); ++c) {
+      const TransitionCondition& cond = t.conditions[c];
+      const std::string field = where + "/conditions/" + std::to_string(c) + "/parameter";
+      const ParameterType needed = cond.op == ConditionOp::Triggered ? ParameterType::Trigger
+                                   : (cond.op == ConditionOp::IsTrue || cond.op == ConditionOp::IsFalse)
+                                       ? ParameterType::Bool
+                                       : ParameterType::Float;
+      if (auto p = ctx.checkParameter(cond.parameter, needed, field)) return p;
+      if (!std::isfinite(cond.threshold))
+        return ctx.problem(where + "/conditions/" + std::to_string(c) + "/value", "is not finite");
+    }
+  }
+  std::stable_sort(transitions.begin(), transitions.end(),
+                   [](const Transition& a, const Transition& b) { return a.priority > b.priority; });
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> StateMachineNode::prepare(const BuildContext& ctx) {
+  if (states.empty()) return ctx.problem("states", "a state machine needs at least one state");
+  for (size_t i = 0; i < states.size(); ++i) {
+    if (states[i].name.empty()) return ctx.problem("states/" + std::to_string(i) + "/name", "empty state name");
+    if (findState(states[i].name) != i)
+      return ctx.problem("states/" + std::to_string(i) + "/name", "state '" + states[i].name + "' is declared twice");
+  }
+  if (defaultState.empty()) {
+    defaultIndex = 0;
+  } else if (auto d = findState(defaultState)) {
+    defaultIndex = *d;
+  } else {
+    return ctx.problem("defaultState", "no state named '" + defaultState + "'");
+  }
+  for (size_t i = 0; i < states.size(); ++i)
+    if (auto p = prepareTransitions(ctx, *this, states[i].transitions, "states/" + std::to_string(i) + "/transitions",
+                                    false))
+      return p;
+  return prepareTransitions(ctx, *this, anyState, "anyState", true);
+}
+
+StateMachineNode::State StateMachineNode::makeState(const GraphDefinition& definition, NodeIndex, uint64_t) const {
+  State state;
+  state.snapshot.assign(definition.poseStride(), 0.0f);
+  state.lastOutput.assign(definition.poseStride(), 0.0f);
+  reset(state);
+  return state;
+}
+
+void StateMachineNode::reset(State& state) const {
+  state.current = defaultIndex;
+  state.liveSource = State::kNone;
+  state.stateTime = 0.0f;
+  state.blending = false;
+  state.blendTime = 0.0f;
+  state.transition = nullptr;
+  state.hasOutput = false;
+}
+
+const Transition* StateMachineNode::choose(const State& state, std::span<const float> parameters) const {
+  auto fires = [&](const Transition& t) {
+    if (t.exitTime && state.stateTime < *t.exitTime) return false;
+    for (const TransitionCondition& c : t.conditions)
+      if (!c.holds(parameters)) return false;
+    return true;
+  };
+  // Both lists are sorted by priority; on a tie the any-state transition wins.
+  const Transition* best = nullptr;
+  for (const Transition& t : anyState) {
+    if (t.target == state.current && !t.canTransitionToSelf) continue;
+    if (fires(t)) {
+      best = &t;
+      break;
+    }
+  }
+  for (const Transition& t : states[state.current].transitions) {
+    if (best && t.priority <= best->priority) break;
+    if (fires(t)) return &t;
+  }
+  return best;
+}
+
+void StateMachineNode::begin(EvalContext& ctx, State& state, const Transition& transition) const {
+  for (const TransitionCondition& c : transition.conditions)
+    if (c.op == ConditionOp::Triggered) ctx.parameters[c.parameter] = 0.0f;
+  if (!state.hasOutput) {
+    // Nothing has been shown yet: start in the destination, nothing to blend from.
+    state.blending = false;
+    state.liveSource = State::kNone;
+  } else if (state.blending || transition.target == state.current) {
+    // Interrupting (or re-entering): blend from exactly what is on screen.
+    std::copy(state.lastOutput.begin(), state.lastOutput.end(), state.snapshot.begin());
+    state.liveSource = State::kNone;
+    state.blending = true;
+  } else {
+    state.liveSource = state.current;
+    state.blending = true;
+  }
+  state.current = transition.target;
+  state.stateTime = 0.0f;
+  state.blendTime = 0.0f;
+  state.transition = state.blending ? &transition : nullptr;
+  ctx.reset(states[transition.target].node);
+}
+
+void StateMachineNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const {
+  State& state = ctx.state<State>(self);
+  state.stateTime += ctx.dt;
+  if (state.blending) {
+    state.blendTime += ctx.dt;
+    if (state.blendTime >= state.transition->duration) {
+      state.blending = false;
+      state.liveSource = State::kNone;
+      state.transition = nullptr;
+    }
+  }
+  if (!state.blending || state.transition->interruptible)
+    if (const Transition* t = choose(state, ctx.parameters)) begin(ctx, state, *t);
+
+  ctx.evaluate(states[state.current].node, out);
+  if (state.blending) {
+    const float w = state.transition->curve(state.blendTime / state.transition->duration);
+    if (state.liveSource != State::kNone) {
+      ScratchPose source(ctx.scratch);
+      ctx.evaluate(states[state.liveSource].node, source.pose());
+      LerpPoseJob{.a = source.pose(), .b = out, .t = w, .out = out}.Run();
+    } else {
+      LerpPoseJob{.a = state.snapshot, .b = out, .t = w, .out = out}.Run();
+    }
+  }
+  std::copy(out.begin(), out.end(), state.lastOutput.begin());
+  state.hasOutput = true;
+}
+
+}  // namespace facial

@@ -1,0 +1,108 @@
+#include "facial/runtime/graph/timeline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facial {
+
+std::string_view toString(LoopMode mode) {
+  switch (mode) {
+    case LoopMode::Once: return "once";
+    case LoopMode::Loop: return "loop";
+    case LoopMode::PingPong: return "pingpong";
+  }
+  return "once";
+}
+
+std::optional<LoopMode> loopModeFromString(std::string_view name) {
+  if (name == "clamp") return LoopMode::Once;
+  for (LoopMode m : {LoopMode::Once, LoopMode::Loop, LoopMode::PingPong})
+    if (toString(m) == name) return m;
+  return std::nullopt;
+}
+
+float clipTime(LoopMode mode, float duration, float playbackTime) {
+  if (!(duration > 0.0f)) return 0.0f;
+  switch (mode) {
+    case LoopMode::Once: return std::clamp(playbackTime, 0.0f, duration);
+    case LoopMode::Loop: {
+      const float t = std::fmod(playbackTime, duration);
+      return t < 0.0f ? t + duration : t;
+    }
+    case LoopMode::PingPong: {
+      float t = std::fmod(playbackTime, 2.0f * duration);
+      if (t < 0.0f) t += 2.0f * duration;
+      return t <= duration ? t : 2.0f * duration - t;
+    }
+  }
+  return 0.0f;
+}
+
+void Timeline::addTrack(std::string channel, std::span<const Keyframe> trackKeys) {
+  tracks.push_back({std::move(channel), static_cast<uint32_t>(keys.size()), static_cast<uint32_t>(trackKeys.size())});
+  keys.insert(keys.end(), trackKeys.begin(), trackKeys.end());
+}
+
+std::span<const Keyframe> Timeline::trackKeys(size_t track) const {
+  const TimelineTrack& t = tracks[track];
+  return std::span<const Keyframe>(keys).subspan(t.firstKey, t.keyCount);
+}
+
+const TimelineTrack* Timeline::findTrack(std::string_view channel) const {
+  for (const TimelineTrack& t : tracks)
+    if (t.channel == channel) return &t;
+  return nullptr;
+}
+
+float Timeline::lastKeyTime() const {
+  float last = 0.0f;
+  for (size_t i = 0; i < tracks.size(); ++i)
+    if (tracks[i].keyCount > 0) last = std::max(last, trackKeys(i).back().time);
+  return last;
+}
+
+std::optional<std::string> Timeline::validate() const {
+  if (!std::isfinite(duration) || duration <= 0.0f)
+    return "duration must be a finite number > 0 (got " + std::to_string(duration) + ")";
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    const TimelineTrack& t = tracks[i];
+    const std::string where = "track " + std::to_string(i) + " ('" + t.channel + "')";
+    if (t.channel.empty()) return "track " + std::to_string(i) + " has an empty channel name";
+    for (size_t j = 0; j < i; ++j)
+      if (tracks[j].channel == t.channel)
+        return where + " animates the same channel as track " + std::to_string(j);
+    if (size_t{t.firstKey} + t.keyCount > keys.size())
+      return where + " keys [" + std::to_string(t.firstKey) + ", " + std::to_string(t.firstKey + t.keyCount) +
+             ") run past the " + std::to_string(keys.size()) + " keys";
+    const std::span<const Keyframe> k = trackKeys(i);
+    if (auto problem = validateKeys(k)) return where + ": " + *problem;
+    if (k.front().time < 0.0f || k.back().time > duration)
+      return where + ": key times [" + std::to_string(k.front().time) + ", " + std::to_string(k.back().time) +
+             "] leave the clip [0, " + std::to_string(duration) + "]";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> TimelineSampleJob::Validate() const {
+  if (!timeline) return std::string("TimelineSampleJob: no timeline");
+  const size_t tracks = timeline->tracks.size();
+  if (trackChannels.size() != tracks || cursors.size() != tracks)
+    return "TimelineSampleJob: timeline '" + timeline->name + "' has " + std::to_string(tracks) + " tracks, " +
+           std::to_string(trackChannels.size()) + " channel indices and " + std::to_string(cursors.size()) +
+           " cursors given";
+  for (uint32_t c : trackChannels)
+    if (c >= out.size())
+      return "TimelineSampleJob: channel index " + std::to_string(c) + " outside the pose of " +
+             std::to_string(out.size());
+  if (!std::isfinite(time)) return std::string("TimelineSampleJob: time is not finite");
+  return std::nullopt;
+}
+
+bool TimelineSampleJob::Run() const {
+  if (Validate()) return false;
+  for (size_t i = 0; i < trackChannels.size(); ++i)
+    out[trackChannels[i]] = sampleKeys(timeline->trackKeys(i), time, cursors[i]);
+  return true;
+}
+
+}  // namespace facial

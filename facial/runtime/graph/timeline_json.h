@@ -1,0 +1,27 @@
+#pragma once
+// Timeline files (data/timelines/*.json), version 1:
+//   {"version": 1, "name": "talk", "duration": 2.0, "loop": "loop",
+//    "tracks": [{"channel": "AU26_JawDrop", "interpolation": "cosine",
+//                "keys": [[0, 0], [0.25, 0.6], {"t": 0.5, "v": 0, "interp": "hermite", "in": 0, "out": -1}]}]}
+// "duration" defaults to the last key time, "loop" (once|clamp, loop, pingpong)
+// to once, "interpolation" (a track's default per key) to linear.
+#include <filesystem>
+
+
+#include "engine/core/result.h"
+#include "facial/runtime/graph/json_reader.h"
+#include "facial/runtime/graph/timeline.h"
+
+namespace facial {
+
+inline constexpr int kTimelineFileVersion = 1;
+
+// Errors read "file: /tracks/2/keys/3: problem".
+eng::Result<Timeline> loadTimeline(const std::filesystem::path& path);
+// A timeline object (without "version" when inline in a graph); throws JsonProblem.
+Timeline parseTimeline(const JsonNode& node, std::string defaultName);
+
+Json timelineToJson(const Timeline& timeline);
+eng::Result<void> saveTimeline(const Timeline& timeline, const std::filesystem::path& path);
+
+}  // namespace facial
