@@ -1,0 +1,56 @@
+#pragma once
+// Keyframe (blend shape) sets exported as OBJ files -- neutral.obj plus one
+// OBJ per expression -- turned into one glTF-ready Model: the neutral mesh
+// with one morph target per file (position and normal differences).
+//
+// A glTF vertex is a unique (v, vt, vn) corner of the NEUTRAL mesh; targets
+// are mapped through the same corners, so UV seams and hard edges survive.
+// Faces are grouped into one primitive per material; n-gons are fanned.
+// Sparse storage of targets that move few vertices happens in saveModel.
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+
+namespace eng {
+
+struct ObjTargetFile {
+  std::string name;  // morph target name (unique, non-empty)
+  std::filesystem::path path;
+};
+
+struct ObjKeyframeOptions {
+  // Pair re-ordered vertices by position (then across shared edges)
+  // instead of requiring identical vertex and face order.
+  bool matchByPosition = false;
+  // Distance at which two vertices coincide, as a fraction of the neutral's
+  // bounding-box diagonal.
+  float relativeTolerance = 1e-5f;
+};
+
+struct ObjTargetReport {
+  std::string name;
+  size_t movedVertices = 0;      // glTF vertices with a non-zero position delta
+  size_t unmatchedVertices = 0;  // --match-by-position: neutral vertices without a partner (delta 0)
+};
+
+struct ObjKeyframeImport {
+  Model model;
+  std::vector<ObjTargetReport> targets;
+};
+
+Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutral, std::span<const ObjTargetFile> targets,
+                                             const ObjKeyframeOptions& options = {});
+
+struct ObjKeyframeFolder {
+  std::filesystem::path neutral;
+  std::vector<ObjTargetFile> targets;  // sorted by name
+};
+
+// DIR/neutral.obj plus every other *.obj in DIR, each a target named after its file.
+Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir);
+
+}  // namespace eng

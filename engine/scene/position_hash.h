@@ -1,0 +1,38 @@
+#pragma once
+// A uniform-grid spatial hash over a fixed point set: "which points lie
+// within r of p" in O(1) expected time, so matching two 100k-vertex meshes
+// by position stays linear instead of O(n^2).
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace eng {
+
+class PositionHash {
+ public:
+  // cellSize > 0; queries with radius <= cellSize look at the 27 cells around p.
+  PositionHash(std::span<const glm::vec3> points, float cellSize);
+
+  // Indices of points within `radius` of p (radius <= cellSize), nearest first.
+  std::vector<uint32_t> near(const glm::vec3& p, float radius) const;
+
+ private:
+  struct CellKey {
+    int32_t x, y, z;
+    bool operator==(const CellKey&) const = default;
+  };
+  struct CellKeyHash {
+    size_t operator()(const CellKey& k) const;
+  };
+  CellKey cellOf(const glm::vec3& p) const;
+
+  std::span<const glm::vec3> points_;
+  float cellSize_;
+  std::vector<uint32_t> order_;  // point indices grouped by cell
+  std::unordered_map<CellKey, std::pair<uint32_t, uint32_t>, CellKeyHash> cells_;  // [begin, end) into order_
+};
+
+}  // namespace eng
