@@ -1,0 +1,31 @@
+#pragma once
+// Small OBJ keyframe meshes written by the tests: a grid of quads (or
+// triangles) with optional normals, texcoords, CRLF endings, displaced
+// vertices and a shuffled vertex order.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace scene_test {
+
+struct GridObj {
+  int nx = 4, ny = 3;  // cells; (nx+1)*(ny+1) vertices
+  bool quads = true;
+  bool normals = true;
+  bool texcoords = true;
+  bool crlf = false;
+  std::string material;  // "usemtl" name (with "mtllib <material>.mtl"), empty = none
+  // Position of grid vertex i (default: (x, y, 0)); targets override it.
+  std::function<glm::vec3(int index, glm::vec3 rest)> position;
+  std::function<glm::vec3(int index)> normal;  // default (0, 0, 1)
+  // File order of the vertices: line k holds grid vertex order[k] (empty = identity).
+  std::vector<int> order;
+
+  int vertexCount() const { return (nx + 1) * (ny + 1); }
+  glm::vec3 rest(int index) const;
+  std::string text() const;
+};
+
+}  // namespace scene_test
