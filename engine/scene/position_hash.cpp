@@ -21,8 +21,8 @@ PositionHash::CellKey PositionHash::cellOf(const glm::vec3& p) const {
   return {axis(p.x), axis(p.y), axis(p.z)};
 }
 
-PositionHash::PositionHash(std::span<const glm::vec3> points, float cellSize)
-    : points_(points), cellSize_(cellSize > 0.0f ? cellSize : 1e-6f) {
+PositionHash::PositionHash(std::span<const glm::vec3> points, float maxRadius)
+    : points_(points), cellSize_(maxRadius > 0.0f ? 2.0f * maxRadius : 2e-6f) {
   std::vector<std::pair<CellKey, uint32_t>> keyed(points.size());
   for (size_t i = 0; i < points.size(); ++i) keyed[i] = {cellOf(points[i]), static_cast<uint32_t>(i)};
   std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
@@ -44,11 +44,17 @@ PositionHash::PositionHash(std::span<const glm::vec3> points, float cellSize)
 std::vector<uint32_t> PositionHash::near(const glm::vec3& p, float radius) const {
   std::vector<std::pair<float, uint32_t>> found;
   const CellKey c = cellOf(p);
+  // With cells twice the radius, the ball around p reaches at most one
+  // neighbour per axis: the one on the side of the nearer cell wall.
+  auto side = [this](float v, int32_t cell) {
+    return static_cast<double>(v) / cellSize_ - cell < 0.5 ? -1 : 1;
+  };
+  const int sx = side(p.x, c.x), sy = side(p.y, c.y), sz = side(p.z, c.z);
   const float r2 = radius * radius;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        auto it = cells_.find({c.x + dx, c.y + dy, c.z + dz});
+  for (int dz = 0; dz <= 1; ++dz)
+    for (int dy = 0; dy <= 1; ++dy)
+      for (int dx = 0; dx <= 1; ++dx) {
+        auto it = cells_.find({c.x + dx * sx, c.y + dy * sy, c.z + dz * sz});
         if (it == cells_.end()) continue;
         for (uint32_t i = it->second.first; i < it->second.second; ++i) {
           const glm::vec3 d = points_[order_[i]] - p;

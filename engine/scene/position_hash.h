@@ -13,10 +13,10 @@ namespace eng {
 
 class PositionHash {
  public:
-  // cellSize > 0; queries with radius <= cellSize look at the 27 cells around p.
-  PositionHash(std::span<const glm::vec3> points, float cellSize);
+  // Queries up to maxRadius look at the 8 cells of side 2 * maxRadius around p.
+  PositionHash(std::span<const glm::vec3> points, float maxRadius);
 
-  // Indices of points within `radius` of p (radius <= cellSize), nearest first.
+  // Indices of points within `radius` of p (radius <= maxRadius), nearest first.
   std::vector<uint32_t> near(const glm::vec3& p, float radius) const;
 
  private:

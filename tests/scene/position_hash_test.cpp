@@ -14,12 +14,13 @@ TEST(PositionHash, FindsExactlyThePointsWithinTheRadiusNearestFirst) {
   for (glm::vec3& p : points) p = {u(rng), u(rng), u(rng)};
   const float radius = 0.05f;
   const eng::PositionHash hash(points, radius);
-  for (int q = 0; q < 200; ++q) {
+  for (int q = 0; q < 300; ++q) {
     const glm::vec3 p = q % 2 ? points[q] : glm::vec3(u(rng), u(rng), u(rng));
+    const float r = q % 3 == 0 ? radius * 0.3f : radius;
     std::vector<uint32_t> brute;
     for (uint32_t i = 0; i < points.size(); ++i)
-      if (glm::dot(points[i] - p, points[i] - p) <= radius * radius) brute.push_back(i);
-    std::vector<uint32_t> found = hash.near(p, radius);
+      if (glm::dot(points[i] - p, points[i] - p) <= r * r) brute.push_back(i);
+    std::vector<uint32_t> found = hash.near(p, r);
     for (size_t i = 1; i < found.size(); ++i)
       EXPECT_LE(glm::length(points[found[i - 1]] - p), glm::length(points[found[i]] - p));
     std::sort(found.begin(), found.end());
