@@ -121,7 +121,7 @@ class GraphParser {
     }
     node.scale = floatInput(j, "scale", 1.0f);
     if (auto o = j.find("overrideBlink")) {
-      auto mode = overrideBlinkFromString(o->string());
+      auto mode = vrmOverrideFromString(o->string());
       if (!mode) o->fail("unknown overrideBlink (expected none, block or blend)");
       node.overrideBlink = *mode;
     }

@@ -7,17 +7,17 @@
 
 namespace facial {
 
-std::string_view toString(OverrideBlink mode) {
+std::string_view toString(VrmOverride mode) {
   switch (mode) {
-    case OverrideBlink::None: return "none";
-    case OverrideBlink::Block: return "block";
-    case OverrideBlink::Blend: return "blend";
+    case VrmOverride::None: return "none";
+    case VrmOverride::Block: return "block";
+    case VrmOverride::Blend: return "blend";
   }
   return "none";
 }
 
-std::optional<OverrideBlink> overrideBlinkFromString(std::string_view name) {
-  for (OverrideBlink m : {OverrideBlink::None, OverrideBlink::Block, OverrideBlink::Blend})
+std::optional<VrmOverride> vrmOverrideFromString(std::string_view name) {
+  for (VrmOverride m : {VrmOverride::None, VrmOverride::Block, VrmOverride::Blend})
     if (toString(m) == name) return m;
   return std::nullopt;
 }
@@ -37,8 +37,8 @@ void PoseNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const
   const float s = ctx.read(scale);
   const size_t channels = weights.size();
   for (size_t c = 0; c < channels; ++c) out[c] = s * weights[c];
-  out[channels + kLaneOverrideBlinkBlock] = overrideBlink == OverrideBlink::Block ? s : 0.0f;
-  out[channels + kLaneOverrideBlinkBlend] = overrideBlink == OverrideBlink::Blend ? s : 0.0f;
+  out[channels + kLaneOverrideBlinkBlock] = overrideBlink == VrmOverride::Block ? s : 0.0f;
+  out[channels + kLaneOverrideBlinkBlend] = overrideBlink == VrmOverride::Blend ? s : 0.0f;
 }
 
 }  // namespace facial

@@ -10,19 +10,20 @@
 
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
+#include "facial/runtime/rig/vrm_expressions.h"
 
 namespace facial {
 
-// VRM 1.0 overrideBlink: what an expression does to procedural blinking
-// while it shows, weighted by how much it shows (see blink_node.h).
-enum class OverrideBlink : uint8_t { None, Block, Blend };
-std::string_view toString(OverrideBlink mode);
-std::optional<OverrideBlink> overrideBlinkFromString(std::string_view name);
+// JSON names of VRM overrides: "none", "block", "blend".
+std::string_view toString(VrmOverride mode);
+std::optional<VrmOverride> vrmOverrideFromString(std::string_view name);
 
 struct PoseNode {
   std::vector<float> weights;                  // one per channel, each in [0,1]
   FloatInput scale = FloatInput::fixed(1.0f);  // multiplies weights and the override lane
-  OverrideBlink overrideBlink = OverrideBlink::None;
+  // VRM 1.0 overrideBlink: what this expression does to procedural blinking
+  // while it shows, weighted by how much it shows (see blink_node.h).
+  VrmOverride overrideBlink = VrmOverride::None;
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>&) const {}

@@ -1,0 +1,101 @@
+#include "facial/runtime/graph/timeline_json.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/common/test_support.h"
+
+using namespace facial;
+
+namespace {
+
+std::filesystem::path writeTimeline(const std::string& name, const std::string& text) {
+  const auto path = testing_support::freshTempDir("timeline_json_" + name) / (name + ".json");
+  testing_support::writeFile(path, text);
+  return path;
+}
+
+std::string loadError(const std::string& name, const std::string& text) {
+  auto t = loadTimeline(writeTimeline(name, text));
+  EXPECT_FALSE(t.ok()) << name << " loaded";
+  return t.ok() ? std::string() : t.error().message;
+}
+
+}  // namespace
+
+TEST(TimelineJson, ReadsTracksKeysAndDefaults) {
+  auto t = loadTimeline(writeTimeline("talk", R"({"version": 1, "loop": "pingpong", "tracks": [
+      {"channel": "AU26_JawDrop", "interpolation": "cosine", "keys": [[0, 0], [0.25, 0.6],
+        {"t": 0.5, "v": 0.1, "interp": "hermite", "out": -1}, [1.0, 0]]},
+      {"channel": "AU25_LipsPart", "keys": [[0.2, 0.4]]}]})"));
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  EXPECT_EQ(t->name, "talk");  // from the file name
+  EXPECT_FLOAT_EQ(t->duration, 1.0f);  // last key
+  EXPECT_EQ(t->loop, LoopMode::PingPong);
+  ASSERT_EQ(t->tracks.size(), 2u);
+  const auto jaw = t->trackKeys(0);
+  EXPECT_EQ(jaw[1].interpolation, KeyInterpolation::Cosine);
+  EXPECT_EQ(jaw[2].interpolation, KeyInterpolation::Hermite);
+  EXPECT_FLOAT_EQ(jaw[2].outTangent, -1.0f);
+  EXPECT_EQ(t->trackKeys(1)[0].interpolation, KeyInterpolation::Linear);
+}
+
+TEST(TimelineJson, SaveThenLoadGivesTheSameTimeline) {
+  Timeline t;
+  t.name = "round";
+  t.duration = 3.0f;
+  t.loop = LoopMode::Loop;
+  const std::vector<Keyframe> keys = {{0.0f, 0.1f, 0, 0, KeyInterpolation::Step},
+                                      {1.1f, 0.7f, 0.5f, -0.25f, KeyInterpolation::Hermite},
+                                      {2.9f, 0.3f, 0, 0, KeyInterpolation::Cosine}};
+  t.addTrack("AU1_InnerBrowRaiser", keys);
+  const auto path = testing_support::freshTempDir("timeline_json_round") / "round.json";
+  ASSERT_TRUE(saveTimeline(t, path).ok());
+  auto back = loadTimeline(path);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->name, "round");
+  EXPECT_EQ(back->duration, 3.0f);
+  EXPECT_EQ(back->loop, LoopMode::Loop);
+  ASSERT_EQ(back->keys.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back->keys[i].time, keys[i].time);
+    EXPECT_EQ(back->keys[i].value, keys[i].value);
+    EXPECT_EQ(back->keys[i].inTangent, keys[i].inTangent);
+    EXPECT_EQ(back->keys[i].outTangent, keys[i].outTangent);
+    EXPECT_EQ(back->keys[i].interpolation, keys[i].interpolation);
+  }
+}
+
+TEST(TimelineJsonValidity, ErrorsNameFilePointerAndProblem) {
+  const std::string unsorted = loadError("unsorted", R"({"version": 1, "tracks": [
+      {"channel": "a", "keys": [[0, 0], [1, 1]]},
+      {"channel": "b", "keys": [[0, 0], [0.5, 1], [0.4, 0]]}]})");
+  EXPECT_NE(unsorted.find("unsorted.json: /tracks/1/keys/2: key time"), std::string::npos) << unsorted;
+
+  const std::string version = loadError("version", R"({"version": 2, "tracks": []})");
+  EXPECT_NE(version.find("version.json: /version: unsupported version 2"), std::string::npos) << version;
+
+  const std::string interp = loadError("interp", R"({"version": 1, "tracks": [
+      {"channel": "a", "keys": [{"t": 0, "v": 0, "interp": "bouncy"}, [1, 1]]}]})");
+  EXPECT_NE(interp.find("/tracks/0/keys/0/interp: unknown interpolation 'bouncy'"), std::string::npos) << interp;
+
+  const std::string shortDuration = loadError("short", R"({"version": 1, "duration": 0.5, "tracks": [
+      {"channel": "a", "keys": [[0, 0], [1, 1]]}]})");
+  EXPECT_NE(shortDuration.find("/duration: duration 0.5"), std::string::npos) << shortDuration;
+
+  const std::string typo = loadError("typo", R"({"version": 1, "tracks": [{"chanel": "a", "keys": [[0, 0]]}]})");
+  EXPECT_NE(typo.find("/tracks/0/chanel: unknown key"), std::string::npos) << typo;
+
+  const std::string twice = loadError("twice", R"({"version": 1, "tracks": [
+      {"channel": "a", "keys": [[0, 0], [1, 1]]}, {"channel": "a", "keys": [[0, 1]]}]})");
+  EXPECT_NE(twice.find("/tracks/1/channel: channel 'a' already has a track"), std::string::npos) << twice;
+
+  const std::string nan = loadError("nan", R"({"version": 1, "tracks": [{"channel": "a", "keys": [[0, "x"]]}]})");
+  EXPECT_NE(nan.find("/tracks/0/keys/0/1: expected a number, got string"), std::string::npos) << nan;
+
+  const std::string broken = loadError("broken", R"({"version": 1, "tracks": [)");
+  EXPECT_NE(broken.find("broken.json: invalid JSON"), std::string::npos) << broken;
+
+  auto missing = loadTimeline("/nonexistent/dir/none.json");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("none.json"), std::string::npos);
+}
