@@ -30,7 +30,7 @@ eng::Result<float> readWeight(const Json& value, std::string_view source, const 
     return jsonError(source, path, "weight must be a number, got " + std::string(jsonTypeName(value)));
   const double w = value.get<double>();
   if (!std::isfinite(w)) return jsonError(source, path, "weight is not a finite number");
-  if (w < 0.0 || w > 1.0) return jsonError(source, path, "weight " + std::to_string(w) + " is outside [0, 1]");
+  if (w < 0.0 || w > 1.0) return jsonError(source, path, "weight " + formatNumber(w) + " is outside [0, 1]");
   return static_cast<float>(w);
 }
 

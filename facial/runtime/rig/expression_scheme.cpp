@@ -2,10 +2,10 @@
 // 0.x presets, or targets named after emotions such as RobotExpressive's
 // "Angry"/"Surprised"/"Sad"). The emotion channels drive them; AU45 drives blink.
 #include <array>
-#include <cstdio>
 #include <vector>
 
 #include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/json_document.h"
 #include "facial/runtime/rig/rig_schemes.h"
 
 namespace facial {
@@ -52,12 +52,6 @@ std::vector<uint32_t> targetsOf(std::span<const std::string> names, Emotion emot
   for (const Aliases& a : kEmotionAliases)
     if (a.emotion == emotion) return findAll(names, a.names);
   return {};
-}
-
-std::string gainText(float gain) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%.2f", double(gain));
-  return text;
 }
 
 bool isExpressionName(const std::string& name) {
@@ -107,7 +101,7 @@ void mapExpressions(RigMappingBuilder& builder) {
     for (auto [neighbour, gain] : {std::pair{f.a, f.gainA}, std::pair{f.b, f.gainB}}) {
       const std::vector<uint32_t> targets = targetsOf(names, neighbour);
       for (uint32_t t : targets) builder.add(emotionInput(f.missing), t, gain);
-      if (!targets.empty()) how += std::string(how.empty() ? "" : " + ") + "'" + names[targets[0]] + "' " + gainText(gain);
+      if (!targets.empty()) how += std::string(how.empty() ? "" : " + ") + "'" + names[targets[0]] + "' " + formatNumber(gain);
     }
     if (!how.empty())
       builder.note(std::string(emotionName(f.missing)) + ": the rig has no such expression; approximated as " + how);

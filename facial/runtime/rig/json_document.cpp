@@ -1,5 +1,6 @@
 #include "facial/runtime/rig/json_document.h"
 
+#include <cstdio>
 #include <fstream>
 #include <system_error>
 
@@ -52,6 +53,12 @@ std::string childPath(std::string_view parent, std::string_view key) {
 }
 
 std::string childPath(std::string_view parent, size_t index) { return std::string(parent) + "/" + std::to_string(index); }
+
+std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 std::string_view jsonTypeName(const Json& value) { return value.type_name(); }
 

@@ -32,6 +32,9 @@ eng::Error jsonError(std::string_view source, std::string_view path, std::string
 std::string childPath(std::string_view parent, std::string_view key);
 std::string childPath(std::string_view parent, size_t index);
 
+// A number as people write it in messages: 1, 0.5, 100, 1e+20.
+std::string formatNumber(double value);
+
 // The JSON type as a word for messages ("string", "array", ...).
 std::string_view jsonTypeName(const Json& value);
 

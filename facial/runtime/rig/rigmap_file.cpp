@@ -16,7 +16,7 @@ eng::Result<float> readNumber(const Json& value, std::string_view source, const 
   const double x = value.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi)
     return jsonError(source, path,
-                     "value " + value.dump() + " is outside [" + Json(lo).dump() + ", " + Json(hi).dump() + "]");
+                     "value " + formatNumber(x) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
   return static_cast<float>(x);
 }
 

@@ -1,0 +1,315 @@
+#include "facial/bake/vrm_import.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
+#include "facial/runtime/rig/json_document.h"
+
+namespace facial {
+namespace {
+
+constexpr size_t kMaxVrmFileBytes = size_t{512} << 20;
+
+constexpr std::array<std::string_view, 18> kVrm1Presets = {
+    "happy", "angry", "sad", "relaxed", "surprised", "aa", "ih", "ou", "ee", "oh",
+    "blink", "blinkLeft", "blinkRight", "lookUp", "lookDown", "lookLeft", "lookRight", "neutral"};
+constexpr std::array<std::string_view, 18> kVrm0Presets = {
+    "unknown", "neutral", "a", "i", "u", "e", "o", "blink", "joy",
+    "angry", "sorrow", "fun", "lookup", "lookdown", "lookleft", "lookright", "blink_l", "blink_r"};
+
+template <size_t N>
+bool contains(const std::array<std::string_view, N>& list, std::string_view name) {
+  for (std::string_view s : list)
+    if (s == name) return true;
+  return false;
+}
+
+// Parsing context: source name for messages, the document, the flat target layout.
+struct Context {
+  std::string_view source;
+  const Json& gltf;
+  VrmExpressionSet& set;
+};
+
+eng::Result<size_t> readIndex(const Context& c, const Json& object, std::string_view key, const std::string& path,
+                              size_t limit, std::string_view limitWhat) {
+  const std::string keyPath = childPath(path, key);
+  if (!object.contains(key)) return jsonError(c.source, keyPath, "missing");
+  const Json& v = object[std::string(key)];
+  if (!v.is_number_integer() || v.get<int64_t>() < 0)
+    return jsonError(c.source, keyPath, "must be a non-negative integer, got " + v.dump());
+  const size_t index = static_cast<size_t>(v.get<int64_t>());
+  if (index >= limit)
+    return jsonError(c.source, keyPath,
+                     std::to_string(index) + " is out of range (" + std::to_string(limit) + " " + std::string(limitWhat) + ")");
+  return index;
+}
+
+eng::Result<float> readBindWeight(const Context& c, const Json& bind, const std::string& path, double maxWeight) {
+  const std::string keyPath = childPath(path, "weight");
+  if (!bind.contains("weight")) return jsonError(c.source, keyPath, "missing");
+  const Json& v = bind["weight"];
+  if (!v.is_number()) return jsonError(c.source, keyPath, "must be a number, got " + std::string(jsonTypeName(v)));
+  const double w = v.get<double>();
+  if (!std::isfinite(w) || w < 0.0 || w > maxWeight)
+    return jsonError(c.source, keyPath, "weight " + formatNumber(w) + " is outside [0, " + formatNumber(maxWeight) + "]");
+  return static_cast<float>(w / maxWeight);
+}
+
+eng::Result<bool> readBool(const Context& c, const Json& object, std::string_view key, const std::string& path) {
+  if (!object.contains(key)) return false;
+  const Json& v = object[std::string(key)];
+  if (!v.is_boolean()) return jsonError(c.source, childPath(path, key), "must be true or false, got " + v.dump());
+  return v.get<bool>();
+}
+
+// Flat, mesh-major target list of the document.
+eng::Result<void> readTargets(const Context& c) {
+  VrmExpressionSet& set = c.set;
+  set.meshTargetOffsets.push_back(0);
+  if (!c.gltf.contains("meshes")) return {};
+  const Json& meshes = c.gltf["meshes"];
+  if (!meshes.is_array()) return jsonError(c.source, "/meshes", "must be an array");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const std::string path = childPath("/meshes", m);
+    const Json& mesh = meshes[m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+      return jsonError(c.source, path, "a mesh must be an object with a primitives array");
+    size_t count = 0;
+    const Json& primitives = mesh["primitives"];
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      const Json& prim = primitives[p];
+      const size_t n = prim.is_object() && prim.contains("targets") && prim["targets"].is_array() ? prim["targets"].size() : 0;
+      if (p == 0) count = n;
+      else if (n != count)
+        return jsonError(c.source, childPath(childPath(childPath(path, "primitives"), p), "targets"),
+                         std::to_string(n) + " morph targets, primitive 0 has " + std::to_string(count));
+    }
+    const std::string meshName =
+        mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "mesh_" + std::to_string(m);
+    const Json* names = nullptr;
+    if (mesh.contains("extras") && mesh["extras"].is_object() && mesh["extras"].contains("targetNames") &&
+        mesh["extras"]["targetNames"].is_array() && mesh["extras"]["targetNames"].size() == count)
+      names = &mesh["extras"]["targetNames"];
+    for (size_t t = 0; t < count; ++t) {
+      const std::string targetName =
+          names && (*names)[t].is_string() ? (*names)[t].get<std::string>() : "target_" + std::to_string(t);
+      set.targetNames.push_back(meshName + "/" + targetName);
+    }
+    set.meshTargetOffsets.push_back(static_cast<uint32_t>(set.targetNames.size()));
+  }
+  return {};
+}
+
+size_t meshTargetCount(const VrmExpressionSet& set, size_t mesh) {
+  return set.meshTargetOffsets[mesh + 1] - set.meshTargetOffsets[mesh];
+}
+
+void warnUnappliedBinds(const Context& c, const Json& expression, const std::string& path,
+                        std::initializer_list<std::string_view> keys) {
+  for (std::string_view key : keys)
+    if (expression.contains(key) && expression[std::string(key)].is_array() && !expression[std::string(key)].empty())
+      c.set.warnings.push_back(std::string(c.source) + ": " + childPath(path, key) +
+                               ": material binds are not applied (morph targets only)");
+}
+
+eng::Result<VrmOverride> readOverride(const Context& c, const Json& expression, std::string_view key,
+                                      const std::string& path) {
+  if (!expression.contains(key)) return VrmOverride::None;
+  const Json& v = expression[std::string(key)];
+  const std::string text = v.is_string() ? v.get<std::string>() : std::string();
+  if (text == "none") return VrmOverride::None;
+  if (text == "block") return VrmOverride::Block;
+  if (text == "blend") return VrmOverride::Blend;
+  return jsonError(c.source, childPath(path, key), "must be \"none\", \"block\" or \"blend\", got " + v.dump());
+}
+
+eng::Result<void> readVrm1Expression(const Context& c, const std::string& name, const Json& e, const std::string& path,
+                                     bool isPreset) {
+  if (!e.is_object()) return jsonError(c.source, path, "an expression must be an object");
+  VrmExpression expression;
+  expression.name = name;
+  expression.isPreset = isPreset;
+  expression.group = isPreset ? vrmProceduralGroup(name) : VrmProceduralGroup::None;
+  auto binary = readBool(c, e, "isBinary", path);
+  if (!binary) return binary.error();
+  expression.isBinary = *binary;
+  auto blink = readOverride(c, e, "overrideBlink", path);
+  if (!blink) return blink.error();
+  auto lookAt = readOverride(c, e, "overrideLookAt", path);
+  if (!lookAt) return lookAt.error();
+  auto mouth = readOverride(c, e, "overrideMouth", path);
+  if (!mouth) return mouth.error();
+  expression.overrideBlink = *blink;
+  expression.overrideLookAt = *lookAt;
+  expression.overrideMouth = *mouth;
+  warnUnappliedBinds(c, e, path, {"materialColorBinds", "textureTransformBinds"});
+
+  expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
+  if (e.contains("morphTargetBinds")) {
+    const std::string bindsPath = childPath(path, "morphTargetBinds");
+    const Json& binds = e["morphTargetBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    const Json* nodes = c.gltf.contains("nodes") && c.gltf["nodes"].is_array() ? &c.gltf["nodes"] : nullptr;
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {node, index, weight}");
+      auto node = readIndex(c, bind, "node", bindPath, nodes ? nodes->size() : 0, "nodes");
+      if (!node) return node.error();
+      const Json& nodeJson = (*nodes)[*node];
+      if (!nodeJson.is_object() || !nodeJson.contains("mesh") || !nodeJson["mesh"].is_number_integer())
+        return jsonError(c.source, childPath(bindPath, "node"), "node " + std::to_string(*node) + " has no mesh");
+      const int64_t mesh = nodeJson["mesh"].get<int64_t>();
+      if (mesh < 0 || static_cast<size_t>(mesh) + 1 >= c.set.meshTargetOffsets.size())
+        return jsonError(c.source, childPath(childPath("/nodes", *node), "mesh"),
+                         std::to_string(mesh) + " is out of range (" + std::to_string(c.set.meshTargetOffsets.size() - 1) +
+                             " meshes)");
+      auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, size_t(mesh)),
+                             "morph targets on mesh " + std::to_string(mesh));
+      if (!index) return index.error();
+      auto weight = readBindWeight(c, bind, bindPath, 1.0);
+      if (!weight) return weight.error();
+      c.set.binds.push_back({c.set.meshTargetOffsets[size_t(mesh)] + static_cast<uint32_t>(*index), *weight});
+    }
+  }
+  expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
+  c.set.expressions.push_back(std::move(expression));
+  return {};
+}
+
+eng::Result<void> readVrm1(const Context& c, const Json& vrm) {
+  c.set.specVersion = 1;
+  if (!vrm.is_object()) return jsonError(c.source, "/extensions/VRMC_vrm", "must be an object");
+  if (!vrm.contains("expressions")) return {};
+  const Json& expressions = vrm["expressions"];
+  const std::string path = "/extensions/VRMC_vrm/expressions";
+  if (!expressions.is_object()) return jsonError(c.source, path, "must be an object {preset, custom}");
+  for (const char* kind : {"preset", "custom"}) {
+    if (!expressions.contains(kind)) continue;
+    const std::string kindPath = childPath(path, kind);
+    const Json& list = expressions[kind];
+    if (!list.is_object()) return jsonError(c.source, kindPath, "must be an object of name: expression");
+    const bool presets = std::string_view(kind) == "preset";
+    for (const auto& [name, e] : list.items()) {
+      const std::string ePath = childPath(kindPath, name);
+      bool isPreset = presets;
+      if (presets && !contains(kVrm1Presets, name)) {
+        c.set.warnings.push_back(std::string(c.source) + ": " + ePath + ": not a VRM 1.0 preset name; treated as custom");
+        isPreset = false;
+      }
+      if (!presets && contains(kVrm1Presets, name))
+        return jsonError(c.source, ePath, "a custom expression must not reuse the preset name '" + name + "'");
+      if (auto r = readVrm1Expression(c, name, e, ePath, isPreset); !r) return r.error();
+    }
+  }
+  return {};
+}
+
+eng::Result<void> readVrm0(const Context& c, const Json& vrm) {
+  c.set.specVersion = 0;
+  const std::string masterPath = "/extensions/VRM/blendShapeMaster";
+  if (!vrm.is_object() || !vrm.contains("blendShapeMaster")) return {};
+  const Json& master = vrm["blendShapeMaster"];
+  if (!master.is_object()) return jsonError(c.source, masterPath, "must be an object");
+  if (!master.contains("blendShapeGroups")) return {};
+  const std::string groupsPath = childPath(masterPath, "blendShapeGroups");
+  const Json& groups = master["blendShapeGroups"];
+  if (!groups.is_array()) return jsonError(c.source, groupsPath, "must be an array");
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::string path = childPath(groupsPath, g);
+    const Json& group = groups[g];
+    if (!group.is_object()) return jsonError(c.source, path, "a blend shape group must be an object");
+    std::string preset = "unknown";
+    if (group.contains("presetName")) {
+      if (!group["presetName"].is_string())
+        return jsonError(c.source, childPath(path, "presetName"), "must be a string");
+      preset = group["presetName"].get<std::string>();
+      if (preset.empty()) preset = "unknown";
+    }
+    if (!contains(kVrm0Presets, preset))
+      return jsonError(c.source, childPath(path, "presetName"), "'" + preset + "' is not a VRM 0.x preset name");
+    std::string name = preset;
+    if (preset == "unknown")
+      name = group.contains("name") && group["name"].is_string() && !group["name"].get<std::string>().empty()
+                 ? group["name"].get<std::string>()
+                 : "group_" + std::to_string(g);
+    for (const VrmExpression& existing : c.set.expressions) {
+      if (existing.name != name) continue;
+      c.set.warnings.push_back(std::string(c.source) + ": " + path + ": a second expression named '" + name +
+                               "'; renamed '" + name + " (" + std::to_string(g) + ")'");
+      name += " (" + std::to_string(g) + ")";
+      break;
+    }
+    VrmExpression expression;
+    expression.name = name;
+    expression.isPreset = preset != "unknown";
+    expression.group = expression.isPreset ? vrmProceduralGroup(preset) : VrmProceduralGroup::None;
+    auto binary = readBool(c, group, "isBinary", path);
+    if (!binary) return binary.error();
+    expression.isBinary = *binary;
+    warnUnappliedBinds(c, group, path, {"materialValues"});
+    expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
+    if (group.contains("binds")) {
+      const std::string bindsPath = childPath(path, "binds");
+      const Json& binds = group["binds"];
+      if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+      for (size_t b = 0; b < binds.size(); ++b) {
+        const std::string bindPath = childPath(bindsPath, b);
+        const Json& bind = binds[b];
+        if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {mesh, index, weight}");
+        auto mesh = readIndex(c, bind, "mesh", bindPath, c.set.meshTargetOffsets.size() - 1, "meshes");
+        if (!mesh) return mesh.error();
+        auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, *mesh),
+                               "morph targets on mesh " + std::to_string(*mesh));
+        if (!index) return index.error();
+        auto weight = readBindWeight(c, bind, bindPath, 100.0);  // VRM 0.x weights run 0..100
+        if (!weight) return weight.error();
+        c.set.binds.push_back({c.set.meshTargetOffsets[*mesh] + static_cast<uint32_t>(*index), *weight});
+      }
+    }
+    expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
+    c.set.expressions.push_back(std::move(expression));
+  }
+  return {};
+}
+
+}  // namespace
+
+eng::Result<VrmExpressionSet> importVrmExpressions(const Json& gltf, std::string_view source) {
+  if (!gltf.is_object()) return jsonError(source, "", "a glTF document must be an object");
+  const Json* extensions = gltf.contains("extensions") && gltf["extensions"].is_object() ? &gltf["extensions"] : nullptr;
+  const bool hasVrm1 = extensions && extensions->contains("VRMC_vrm");
+  const bool hasVrm0 = extensions && extensions->contains("VRM");
+  if (!hasVrm1 && !hasVrm0)
+    return jsonError(source, "/extensions", "no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
+  VrmExpressionSet set;
+  const Context c{source, gltf, set};
+  if (auto r = readTargets(c); !r) return r.error();
+  if (auto r = hasVrm1 ? readVrm1(c, (*extensions)["VRMC_vrm"]) : readVrm0(c, (*extensions)["VRM"]); !r)
+    return r.error();
+  if (hasVrm1 && hasVrm0)
+    set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");
+  if (auto valid = set.validate(); !valid) return eng::makeError(std::string(source) + ": " + valid.error().message);
+  return set;
+}
+
+eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
+  if (!bytes) return bytes.error();
+  std::string_view text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  if (eng::hasGlbMagic(*bytes)) {
+    eng::Result<eng::GlbChunks> chunks = eng::parseGlb(*bytes);
+    if (!chunks) return eng::makeError(name + ": " + chunks.error().message);
+    text = std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
+  }
+  eng::Result<Json> json = parseJsonText(text, name);
+  if (!json) return json.error();
+  return importVrmExpressions(*json, name);
+}
+
+}  // namespace facial

@@ -1,0 +1,29 @@
+#pragma once
+// VRM expressions from a glTF document's JSON into the pure runtime
+// VrmExpressionSet (vrm_expressions.h):
+//  - VRM 1.0: extensions.VRMC_vrm.expressions.{preset, custom}.<name> with
+//    morphTargetBinds [{node, index, weight 0..1}], isBinary,
+//    overrideBlink / overrideLookAt / overrideMouth ("none" | "block" | "blend");
+//  - VRM 0.x: extensions.VRM.blendShapeMaster.blendShapeGroups[] with
+//    {name, presetName, binds [{mesh, index, weight 0..100}], isBinary}; the
+//    expression is called by its presetName unless that is "unknown".
+// When both are present VRM 1.0 wins. Flat targets are mesh-major over the
+// document's meshes (mesh m's targets at meshTargetOffsets[m]), named
+// "<mesh name>/<target name>" from mesh.extras.targetNames ("target_N" without).
+// Material colour and texture transform binds are not applied: they are
+// listed in VrmExpressionSet::warnings. Errors name the source, JSON path and problem.
+#include <filesystem>
+#include <string_view>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "engine/core/result.h"
+#include "facial/runtime/rig/vrm_expressions.h"
+
+namespace facial {
+
+// A .vrm / .glb (binary container) or a .gltf / .json text document.
+eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file);
+eng::Result<VrmExpressionSet> importVrmExpressions(const nlohmann::ordered_json& gltf, std::string_view source);
+
+}  // namespace facial

@@ -1,0 +1,219 @@
+// CANDIDE-3 import: the distributed mask (../shared/candide3) becomes one
+// morphable mesh with FACS-named animation units and SU_ identity targets;
+// malformed files fail with file:line messages.
+#include "facial/bake/candide_import.h"
+
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "facial/runtime/rig/candide_units.h"
+#include "facial/runtime/rig/rig_mapping.h"
+#include "facial/runtime/rig/action_units.h"
+#include "tests/common/test_support.h"
+
+namespace facial {
+namespace {
+
+std::filesystem::path candideFile() { return testing_support::sharedDir() / "candide3" / "candide3.wfm"; }
+
+int targetIndex(const eng::Mesh& mesh, std::string_view name) {
+  const auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name);
+  return it == mesh.targetNames.end() ? -1 : static_cast<int>(it - mesh.targetNames.begin());
+}
+
+TEST(Candide3Import, LoadsTheDistributedMaskWithItsCounts) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = importCandide3(candideFile());
+  ASSERT_TRUE(model) << model.error().message;
+  EXPECT_TRUE(model->warnings.empty()) << model->warnings.front();
+  ASSERT_EQ(model->meshes.size(), 1u);
+  ASSERT_EQ(model->nodes.size(), 1u);
+  EXPECT_EQ(model->nodes[0].mesh, 0);
+  EXPECT_EQ(model->roots, std::vector<int>{0});
+  const eng::Mesh& mesh = model->meshes[0];
+  ASSERT_EQ(mesh.primitives.size(), 1u);
+  const eng::Primitive& prim = mesh.primitives[0];
+  EXPECT_EQ(prim.vertexCount(), 113u);
+  EXPECT_EQ(prim.indices.size(), 184u * 3u);
+  EXPECT_EQ(prim.normals.size(), 113u);
+  EXPECT_EQ(prim.texcoords.size(), 113u);
+  EXPECT_EQ(mesh.targetNames.size(), 14u + 38u);
+  EXPECT_EQ(prim.targets.size(), 14u + 38u);
+  EXPECT_EQ(mesh.defaultWeights, std::vector<float>(52, 0.0f));
+
+  size_t animationUnits = 0, shapeUnits = 0;
+  for (const std::string& name : mesh.targetNames) {
+    if (name.rfind("SU_", 0) == 0) ++shapeUnits;
+    else if (name.rfind("AU", 0) == 0) ++animationUnits;
+  }
+  EXPECT_EQ(animationUnits, 14u);
+  EXPECT_EQ(shapeUnits, 38u);
+  for (const CandideAnimationUnit& unit : candideAnimationUnits())
+    EXPECT_GE(targetIndex(mesh, candideTargetName(unit)), 0) << candideTargetName(unit);
+  EXPECT_EQ(mesh.targetNames[0], "AU9 Nose wrinkler");
+  EXPECT_EQ(mesh.targetNames[3], "AU26 Jaw drop");
+  EXPECT_EQ(mesh.targetNames[14], "SU_Head height");
+  EXPECT_EQ(mesh.targetNames.back(), "SU_Jaw z-position");
+}
+
+TEST(Candide3Import, MorphDeltasMatchTheFile) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = importCandide3(candideFile());
+  ASSERT_TRUE(model) << model.error().message;
+  const eng::Mesh& mesh = model->meshes[0];
+  const eng::Primitive& prim = mesh.primitives[0];
+  // "# Jaw drop": vertex 40 moves (0, -0.26, -0.05); vertex 0 (top of the head) does not.
+  const eng::MorphTarget& jaw = prim.targets[size_t(targetIndex(mesh, "AU26 Jaw drop"))];
+  EXPECT_FLOAT_EQ(jaw.positions[40].y, -0.26f);
+  EXPECT_FLOAT_EQ(jaw.positions[40].z, -0.05f);
+  EXPECT_EQ(jaw.positions[0], glm::vec3(0.0f));
+  EXPECT_EQ(jaw.positions.size(), 113u);
+  EXPECT_EQ(jaw.normals.size(), 113u);
+  // Vertex 3 is listed twice in "# Outer brow raiser" (x +0.02 and -0.02): the entries add up.
+  const eng::MorphTarget& brow = prim.targets[size_t(targetIndex(mesh, "AU2 Outer brow raiser"))];
+  EXPECT_NEAR(brow.positions[3].x, 0.0f, 1e-7f);
+  EXPECT_NEAR(brow.positions[3].y, 0.04f, 1e-6f);
+  // Vertex 0 at the file's coordinates.
+  EXPECT_EQ(prim.positions[0], glm::vec3(0.0f, 1.061f, -0.371f));
+}
+
+TEST(Candide3Import, TrianglesFaceTheViewerAndNormalsAreUnit) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = importCandide3(candideFile());
+  ASSERT_TRUE(model) << model.error().message;
+  const eng::Primitive& prim = model->meshes[0].primitives[0];
+  // Counter-clockwise seen from +z: the nose tip region's normal points at the viewer.
+  float facing = 0.0f;
+  for (size_t i = 0; i < prim.indices.size(); i += 3) {
+    const glm::vec3 &a = prim.positions[prim.indices[i]], &b = prim.positions[prim.indices[i + 1]],
+                    &c = prim.positions[prim.indices[i + 2]];
+    facing += glm::cross(b - a, c - a).z;
+  }
+  EXPECT_GT(facing, 0.0f);
+  for (const glm::vec3& n : prim.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+  EXPECT_GT(prim.normals[5].z, 0.5f);  // vertex 5: the nose tip (0, -0.222, 0.21)
+}
+
+TEST(Candide3Import, ImportedNamesAreDetectedAsTheCandideScheme) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = importCandide3(candideFile());
+  ASSERT_TRUE(model) << model.error().message;
+  const std::vector<std::string>& names = model->meshes[0].targetNames;
+  auto mapping = buildRigMapping(names);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Candide3);
+  // The 38 identity targets and the two jaw pushes are reported, not driven.
+  EXPECT_EQ(mapping->report().unmappedTargets.size(), 38u + 2u);
+  EXPECT_NE(std::find(mapping->report().unmappedTargets.begin(), mapping->report().unmappedTargets.end(),
+                      "SU_Head height"),
+            mapping->report().unmappedTargets.end());
+
+  // A smile (AU12 both sides) runs the lip corner depressor backwards.
+  std::vector<float> au(actionUnits().size(), 0.0f);
+  au[*actionUnitIndex("AU12_LipCornerPuller_L")] = 1.0f;
+  au[*actionUnitIndex("AU12_LipCornerPuller_R")] = 1.0f;
+  std::vector<float> weights(names.size(), 0.25f);
+  ASSERT_TRUE(mapping->apply(au, weights));
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU15 Lip corner depressor"))], -1.0f);
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU26 Jaw drop"))], 0.0f);
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "SU_Head height"))], 0.25f);  // untouched
+}
+
+// ---- malformed files ----
+
+const char* kTinyMask = R"(# VERTEX LIST:
+4
+0 0 0
+1 0 0
+0 1 0
+0 0 1
+
+# FACE LIST:
+2
+0 1 2
+0 2 3
+
+# ANIMATION UNITS LIST:
+1
+
+# Jaw drop
+2
+1 0 -0.1 0
+1 0 -0.1 0
+
+# SHAPE UNITS LIST:
+1
+
+# Head height
+1
+2 0 0.2 0
+
+# ANIMATION PARAMETERS:
+0.5
+
+# SHAPE PARAMETERS:
+0
+
+# TEXTURE:
+0 0
+1 0
+0 1
+1 1
+
+# END OF FILE
+)";
+
+TEST(Candide3ImportValidity, AMinimalFileParses) {
+  auto model = parseCandide3(kTinyMask, "tiny.wfm");
+  ASSERT_TRUE(model) << model.error().message;
+  const eng::Mesh& mesh = model->meshes[0];
+  EXPECT_EQ(mesh.targetNames, (std::vector<std::string>{"AU26 Jaw drop", "SU_Head height"}));
+  EXPECT_EQ(mesh.defaultWeights, (std::vector<float>{0.5f, 0.0f}));
+  EXPECT_FLOAT_EQ(mesh.primitives[0].targets[0].positions[1].y, -0.2f);
+}
+
+std::string errorFor(std::string text) {
+  auto model = parseCandide3(text, "mask.wfm");
+  return model ? std::string("(accepted)") : model.error().message;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Candide3ImportValidity, ErrorsNameFileLineAndProblem) {
+  EXPECT_EQ(errorFor(replaced(kTinyMask, "1 0 0\n", "1 zero 0\n")),
+            "mask.wfm:4: expected three finite numbers 'x y z' for vertex 1 of 4, got '1 zero 0'");
+  EXPECT_EQ(errorFor(replaced(kTinyMask, "0 2 3\n", "0 2 9\n")),
+            "mask.wfm:11: vertex index 9 out of range (4 vertices) in triangle 1 of 2");
+  EXPECT_EQ(errorFor(replaced(kTinyMask, "# FACE LIST:", "# FACES:")),
+            "mask.wfm:8: expected '# FACE LIST:', got '# FACES:'");
+  EXPECT_EQ(errorFor(replaced(kTinyMask, "1 0 -0.1 0\n1 0", "7 0 -0.1 0\n1 0")),
+            "mask.wfm:18: vertex index 7 out of range (4 vertices) in 'Jaw drop'");
+  EXPECT_EQ(errorFor(replaced(kTinyMask, "0 0 0\n1 0 0", "0 0 nan\n1 0 0")).substr(0, 12), "mask.wfm:3: ");
+  EXPECT_NE(errorFor(replaced(kTinyMask, "# ANIMATION UNITS LIST:\n1", "# ANIMATION UNITS LIST:\n2")).find(
+                "expected the name line '# <name>' of animation unit 1 of 2, got '# SHAPE UNITS LIST:'"),
+            std::string::npos);
+  EXPECT_NE(errorFor(replaced(kTinyMask, "# VERTEX LIST:\n4", "# VERTEX LIST:\n99999999999")).find(
+                "exceeds the limit"),
+            std::string::npos);
+  EXPECT_NE(errorFor("# VERTEX LIST:\n4\n0 0 0\n").find("mask.wfm:3: file ends before vertex 1 of 4"),
+            std::string::npos);
+  EXPECT_NE(errorFor(replaced(kTinyMask, "0 1\n1 1\n", "0 1\n")).find("TEXTURE (u v per vertex) lists 6 values, expected 8"),
+            std::string::npos);
+  EXPECT_NE(errorFor(replaced(kTinyMask, "# END OF FILE", "trailing junk")).find("unexpected line 'trailing junk'"),
+            std::string::npos);
+}
+
+TEST(Candide3ImportValidity, MissingFileNamesIt) {
+  auto model = importCandide3(testing_support::freshTempDir("candide") / "nope.wfm");
+  ASSERT_FALSE(model);
+  EXPECT_NE(model.error().message.find("nope.wfm: file not found"), std::string::npos) << model.error().message;
+}
+
+}  // namespace
+}  // namespace facial

@@ -1,0 +1,251 @@
+// VRM import: small VRM 1.0 / 0.x documents written by the test (as .gltf
+// JSON and as a binary .vrm container) become VrmExpressionSets; emotions
+// drive them through a rig mapping; malformed extensions are refused with
+// file + JSON path + problem.
+#include "facial/bake/vrm_import.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/scene/glb_container.h"
+#include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/rig/rig_mapping.h"
+#include "tests/common/test_support.h"
+
+namespace facial {
+namespace {
+
+// One face mesh (4 targets) on node 1, a teeth mesh (1 target) on node 2, node 0 without mesh.
+Json vrm1Document() {
+  return Json::parse(R"({
+    "asset": {"version": "2.0"},
+    "nodes": [{"name": "root"}, {"name": "face", "mesh": 0}, {"name": "teeth", "mesh": 1}],
+    "meshes": [
+      {"name": "Face", "primitives": [{"attributes": {}, "targets": [{}, {}, {}, {}]},
+                                      {"attributes": {}, "targets": [{}, {}, {}, {}]}],
+       "extras": {"targetNames": ["Fcl_Joy", "Fcl_Blink", "Fcl_Angry", "Fcl_A"]}},
+      {"primitives": [{"attributes": {}, "targets": [{}]}]}
+    ],
+    "extensionsUsed": ["VRMC_vrm"],
+    "extensions": {"VRMC_vrm": {"specVersion": "1.0", "expressions": {
+      "preset": {
+        "happy": {"morphTargetBinds": [{"node": 1, "index": 0, "weight": 1.0}], "overrideBlink": "block",
+                  "materialColorBinds": [{"material": 0, "type": "color", "targetValue": [1, 0, 0, 1]}]},
+        "blink": {"morphTargetBinds": [{"node": 1, "index": 1, "weight": 1.0}]},
+        "angry": {"morphTargetBinds": [{"node": 1, "index": 2, "weight": 0.8}], "overrideBlink": "blend",
+                  "overrideMouth": "block"},
+        "aa": {"morphTargetBinds": [{"node": 1, "index": 3, "weight": 1.0}, {"node": 2, "index": 0, "weight": 0.5}]},
+        "neutral": {}
+      },
+      "custom": {"smirk": {"isBinary": true, "morphTargetBinds": [{"node": 1, "index": 0, "weight": 0.4}]}}
+    }}}
+  })");
+}
+
+Json vrm0Document() {
+  return Json::parse(R"({
+    "asset": {"version": "2.0"},
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"name": "Body", "primitives": [{"attributes": {}, "targets": [{}, {}, {}, {}, {}]}]}],
+    "extensions": {"VRM": {"blendShapeMaster": {"blendShapeGroups": [
+      {"name": "Joy", "presetName": "joy", "binds": [{"mesh": 0, "index": 0, "weight": 100}]},
+      {"name": "Sorrow", "presetName": "sorrow", "binds": [{"mesh": 0, "index": 1, "weight": 60}]},
+      {"name": "Blink_L", "presetName": "blink_l", "binds": [{"mesh": 0, "index": 2, "weight": 100}]},
+      {"name": "Blink_R", "presetName": "blink_r", "binds": [{"mesh": 0, "index": 3, "weight": 100}]},
+      {"name": "Wink", "presetName": "unknown", "isBinary": true, "binds": [{"mesh": 0, "index": 4, "weight": 100}],
+       "materialValues": [{"materialName": "eye", "propertyName": "_Color", "targetValue": [1, 1, 1, 1]}]}
+    ]}}}
+  })");
+}
+
+size_t expressionIndex(const VrmExpressionSet& set, std::string_view name) {
+  for (size_t i = 0; i < set.expressions.size(); ++i)
+    if (set.expressions[i].name == name) return i;
+  ADD_FAILURE() << "no expression " << name;
+  return 0;
+}
+
+TEST(VrmImport, ReadsVrm1PresetAndCustomExpressions) {
+  auto set = importVrmExpressions(vrm1Document(), "avatar.gltf");
+  ASSERT_TRUE(set) << set.error().message;
+  EXPECT_EQ(set->specVersion, 1);
+  EXPECT_EQ(set->expressionNames(), (std::vector<std::string>{"happy", "blink", "angry", "aa", "neutral", "smirk"}));
+  EXPECT_EQ(set->targetNames, (std::vector<std::string>{"Face/Fcl_Joy", "Face/Fcl_Blink", "Face/Fcl_Angry",
+                                                        "Face/Fcl_A", "mesh_1/target_0"}));
+  EXPECT_EQ(set->meshTargetOffsets, (std::vector<uint32_t>{0, 4, 5}));
+  const VrmExpression& happy = set->expressions[expressionIndex(*set, "happy")];
+  EXPECT_TRUE(happy.isPreset);
+  EXPECT_EQ(happy.overrideBlink, VrmOverride::Block);
+  EXPECT_EQ(happy.overrideMouth, VrmOverride::None);
+  const VrmExpression& angry = set->expressions[expressionIndex(*set, "angry")];
+  EXPECT_EQ(angry.overrideBlink, VrmOverride::Blend);
+  EXPECT_EQ(angry.overrideMouth, VrmOverride::Block);
+  EXPECT_FLOAT_EQ(set->binds[angry.firstBind].weight, 0.8f);
+  const VrmExpression& aa = set->expressions[expressionIndex(*set, "aa")];
+  EXPECT_EQ(aa.group, VrmProceduralGroup::Mouth);
+  ASSERT_EQ(aa.bindCount, 2u);
+  EXPECT_EQ(set->binds[aa.firstBind + 1].target, 4u);  // node 2 -> mesh 1 -> flat target 4
+  const VrmExpression& smirk = set->expressions[expressionIndex(*set, "smirk")];
+  EXPECT_FALSE(smirk.isPreset);
+  EXPECT_TRUE(smirk.isBinary);
+  EXPECT_EQ(set->expressions[expressionIndex(*set, "blink")].group, VrmProceduralGroup::Blink);
+  ASSERT_EQ(set->warnings.size(), 1u);  // the material colour bind is not applied
+  EXPECT_NE(set->warnings[0].find("/extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds"),
+            std::string::npos);
+}
+
+TEST(VrmImport, ReadsVrm0GroupsWithPercentWeights) {
+  auto set = importVrmExpressions(vrm0Document(), "old.vrm");
+  ASSERT_TRUE(set) << set.error().message;
+  EXPECT_EQ(set->specVersion, 0);
+  EXPECT_EQ(set->expressionNames(), (std::vector<std::string>{"joy", "sorrow", "blink_l", "blink_r", "Wink"}));
+  EXPECT_FLOAT_EQ(set->binds[set->expressions[1].firstBind].weight, 0.6f);
+  EXPECT_EQ(set->expressions[2].group, VrmProceduralGroup::Blink);
+  EXPECT_FALSE(set->expressions[4].isPreset);
+  EXPECT_TRUE(set->expressions[4].isBinary);
+  EXPECT_EQ(set->warnings.size(), 1u);  // materialValues
+}
+
+TEST(VrmImport, LoadsTextAndBinaryFiles) {
+  const std::filesystem::path dir = testing_support::freshTempDir("vrm_import");
+  const std::string json = vrm1Document().dump();
+  testing_support::writeFile(dir / "avatar.gltf", json);
+  const std::vector<uint8_t> glb = eng::buildGlb(json, {});
+  testing_support::writeFile(dir / "avatar.vrm", std::string(glb.begin(), glb.end()));
+  for (const char* file : {"avatar.gltf", "avatar.vrm"}) {
+    auto set = loadVrmExpressions(dir / file);
+    ASSERT_TRUE(set) << set.error().message;
+    EXPECT_EQ(set->expressions.size(), 6u) << file;
+  }
+}
+
+TEST(VrmImport, EmotionPresetsDriveVrmExpressionsWithOverrides) {
+  auto set = importVrmExpressions(vrm1Document(), "avatar.gltf");
+  ASSERT_TRUE(set) << set.error().message;
+  const std::vector<std::string> names = set->expressionNames();
+  auto mapping = buildRigMapping(names);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Expressions);
+
+  std::vector<float> au(actionUnits().size(), 0.0f), emotions(kEmotionCount, 0.0f);
+  std::vector<float> expressionWeights(names.size(), 0.0f), morph(set->targetCount(), 0.0f);
+  auto drive = [&] {
+    ASSERT_TRUE(mapping->apply(au, emotions, expressionWeights));
+    ASSERT_TRUE(set->apply(expressionWeights, morph));
+  };
+  // A blink alone closes the eyes (AU45 both sides -> blink).
+  au[*actionUnitIndex("AU45_Blink_L")] = 1.0f;
+  au[*actionUnitIndex("AU45_Blink_R")] = 1.0f;
+  drive();
+  EXPECT_FLOAT_EQ(morph[1], 1.0f);
+  // Happy (overrideBlink block) suppresses the same blink.
+  emotions[static_cast<size_t>(Emotion::Happy)] = 0.7f;
+  drive();
+  EXPECT_FLOAT_EQ(expressionWeights[expressionIndex(*set, "happy")], 0.7f);
+  EXPECT_FLOAT_EQ(morph[0], 0.7f);
+  EXPECT_FLOAT_EQ(morph[1], 0.0f);
+  // Anger blends the blink down instead.
+  emotions[static_cast<size_t>(Emotion::Happy)] = 0.0f;
+  emotions[static_cast<size_t>(Emotion::Anger)] = 0.25f;
+  drive();
+  EXPECT_FLOAT_EQ(morph[1], 0.75f);
+  EXPECT_FLOAT_EQ(morph[2], 0.2f);
+}
+
+TEST(VrmImport, Vrm0PresetNamesMapToEmotions) {
+  auto set = importVrmExpressions(vrm0Document(), "old.vrm");
+  ASSERT_TRUE(set);
+  auto mapping = buildRigMapping(set->expressionNames());
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Expressions);
+  ASSERT_EQ(mapping->targets(emotionInput(Emotion::Happy)).size(), 1u);
+  EXPECT_EQ(mapping->targets(emotionInput(Emotion::Happy))[0], 0u);  // joy
+  EXPECT_EQ(mapping->targets(emotionInput(Emotion::Sad))[0], 1u);    // sorrow
+  EXPECT_EQ(mapping->targets(*actionUnitIndex("AU45_Blink_L"))[0], 2u);
+  EXPECT_EQ(mapping->targets(*actionUnitIndex("AU45_Blink_R"))[0], 3u);
+  EXPECT_NE(std::find(mapping->report().unmappedTargets.begin(), mapping->report().unmappedTargets.end(), "Wink"),
+            mapping->report().unmappedTargets.end());
+}
+
+// ---- refused documents ----
+
+std::string errorOf(const Json& document) {
+  auto set = importVrmExpressions(document, "bad.vrm");
+  return set ? std::string("(accepted)") : set.error().message;
+}
+
+TEST(VrmImportValidity, BindsAreCheckedAgainstTheDocument) {
+  Json doc = vrm1Document();
+  Json& happyBind = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"]["morphTargetBinds"][0];
+  happyBind["index"] = 7;
+  EXPECT_EQ(errorOf(doc), "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/morphTargetBinds/0/index: "
+                          "7 is out of range (4 morph targets on mesh 0)");
+  happyBind["index"] = 0;
+  happyBind["weight"] = 1.5;
+  EXPECT_NE(errorOf(doc).find("happy/morphTargetBinds/0/weight: weight 1.5 is outside [0, 1]"), std::string::npos)
+      << errorOf(doc);
+  happyBind["weight"] = 1.0;
+  happyBind["node"] = 0;  // the root node has no mesh
+  EXPECT_NE(errorOf(doc).find("happy/morphTargetBinds/0/node: node 0 has no mesh"), std::string::npos);
+  happyBind["node"] = 9;
+  EXPECT_NE(errorOf(doc).find("node: 9 is out of range (3 nodes)"), std::string::npos);
+  happyBind["node"] = "face";
+  EXPECT_NE(errorOf(doc).find("node: must be a non-negative integer"), std::string::npos);
+}
+
+TEST(VrmImportValidity, FieldsAreCheckedByType) {
+  Json doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["angry"]["overrideBlink"] = "sometimes";
+  EXPECT_NE(errorOf(doc).find("preset/angry/overrideBlink: must be \"none\", \"block\" or \"blend\", got \"sometimes\""),
+            std::string::npos);
+  doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["blink"]["isBinary"] = "yes";
+  EXPECT_NE(errorOf(doc).find("preset/blink/isBinary: must be true or false"), std::string::npos);
+  doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["expressions"]["custom"]["happy"] = Json::object();
+  EXPECT_NE(errorOf(doc).find("custom/happy: a custom expression must not reuse the preset name"), std::string::npos);
+  doc = vrm1Document();
+  doc["meshes"][0]["primitives"][1]["targets"] = Json::array({Json::object()});
+  EXPECT_NE(errorOf(doc).find("/meshes/0/primitives/1/targets: 1 morph targets, primitive 0 has 4"),
+            std::string::npos);
+}
+
+TEST(VrmImportValidity, Vrm0WeightsRunToOneHundredAndPresetsAreKnown) {
+  Json doc = vrm0Document();
+  Json& group = doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][1];
+  group["binds"][0]["weight"] = 150;
+  EXPECT_NE(errorOf(doc).find("blendShapeGroups/1/binds/0/weight: weight 150 is outside [0, 100]"),
+            std::string::npos)
+      << errorOf(doc);
+  group["binds"][0]["weight"] = 50;
+  group["binds"][0]["mesh"] = 3;
+  EXPECT_NE(errorOf(doc).find("binds/0/mesh: 3 is out of range (1 meshes)"), std::string::npos);
+  group["binds"][0]["mesh"] = 0;
+  group["presetName"] = "grin";
+  EXPECT_NE(errorOf(doc).find("blendShapeGroups/1/presetName: 'grin' is not a VRM 0.x preset name"), std::string::npos);
+}
+
+TEST(VrmImportValidity, NonVrmAndBrokenFilesAreNamed) {
+  EXPECT_EQ(errorOf(Json::parse(R"({"asset": {"version": "2.0"}})")),
+            "bad.vrm: /extensions: no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
+  const std::filesystem::path dir = testing_support::freshTempDir("vrm_import_bad");
+  std::vector<uint8_t> glb = eng::buildGlb(vrm1Document().dump(), {});
+  glb.resize(glb.size() / 2);  // truncated container
+  testing_support::writeFile(dir / "cut.vrm", std::string(glb.begin(), glb.end()));
+  auto cut = loadVrmExpressions(dir / "cut.vrm");
+  ASSERT_FALSE(cut);
+  EXPECT_NE(cut.error().message.find("cut.vrm: truncated GLB"), std::string::npos) << cut.error().message;
+  testing_support::writeFile(dir / "half.gltf", "{\"extensions\": {");
+  auto half = loadVrmExpressions(dir / "half.gltf");
+  ASSERT_FALSE(half);
+  EXPECT_NE(half.error().message.find("half.gltf: invalid JSON"), std::string::npos) << half.error().message;
+  auto missing = loadVrmExpressions(dir / "absent.vrm");
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("absent.vrm: file not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace facial
