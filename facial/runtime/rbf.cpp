@@ -212,7 +212,7 @@ eng::Result<RbfDeformer> RbfDeformer::build(const RbfInterpolator& interpolator,
     return eng::makeError("RBF deformer: point " + std::to_string(bad) + " of " + std::to_string(points.size()) +
                           " is not finite " + describe(points[static_cast<size_t>(bad)]));
   RbfDeformer deformer;
-  deformer.influence_ = interpolator.influenceMatrix(points).transpose().cast<float>();
+  deformer.influence_ = interpolator.influenceMatrix(points).cast<float>();
   return deformer;
 }
 
@@ -225,13 +225,29 @@ eng::Result<void> RbfDeformer::apply(std::span<const glm::vec3> displacements, s
                           std::to_string(out.size()) + " outputs, mask of " + std::to_string(mask.size()) +
                           "; expected " + std::to_string(n) + " displacements, " + std::to_string(m) +
                           " outputs, mask empty or " + std::to_string(m));
-  using Columns = Eigen::Matrix<float, 3, Eigen::Dynamic>;
-  const Eigen::Map<const Columns> d(&displacements.data()->x, 3, static_cast<Eigen::Index>(n));
-  Eigen::Map<Columns> result(&out.data()->x, 3, static_cast<Eigen::Index>(m));
-  for (Eigen::Index v = 0; v < static_cast<Eigen::Index>(m); ++v) {
-    result.col(v).noalias() = d * influence_.col(v);
-    if (!mask.empty()) result.col(v) *= mask[static_cast<size_t>(v)];
+  // Displacements go structure-of-arrays in chunks on the stack, so each output
+  // coordinate is a dot product of two contiguous float runs (vectorised) and
+  // the influence matrix is still read exactly once.
+  constexpr size_t kChunk = 256;
+  alignas(32) float xs[kChunk], ys[kChunk], zs[kChunk];
+  using Vec = Eigen::Map<const Eigen::VectorXf, Eigen::Aligned32>;
+  for (glm::vec3& o : out) o = glm::vec3(0.0f);
+  for (size_t first = 0; first < n; first += kChunk) {
+    const size_t count = std::min(kChunk, n - first);
+    for (size_t j = 0; j < count; ++j) {
+      xs[j] = displacements[first + j].x;
+      ys[j] = displacements[first + j].y;
+      zs[j] = displacements[first + j].z;
+    }
+    const Eigen::Index len = static_cast<Eigen::Index>(count);
+    const Vec x(xs, len), y(ys, len), z(zs, len);
+    for (size_t v = 0; v < m; ++v) {
+      const auto row = influence_.row(static_cast<Eigen::Index>(v)).segment(static_cast<Eigen::Index>(first), len);
+      out[v] += glm::vec3(row.dot(x), row.dot(y), row.dot(z));
+    }
   }
+  if (!mask.empty())
+    for (size_t v = 0; v < m; ++v) out[v] *= mask[v];
   return {};
 }
 

@@ -83,8 +83,9 @@ class RbfInterpolator {
 
 // Applies a displacement field to a fixed point set through a baked influence
 // matrix: out[v] = mask[v] * sum_j M(v, j) * displacement[j].
-// apply() allocates nothing; the matrix is stored transposed (one contiguous
-// column of n control weights per point) in float.
+// apply() allocates nothing; the matrix is stored row-major in float (one
+// contiguous row of n control weights per point) so each output coordinate is
+// one vectorised dot product.
 class RbfDeformer {
  public:
   static eng::Result<RbfDeformer> build(std::span<const glm::vec3> controlPoints, std::span<const glm::vec3> points,
@@ -97,15 +98,15 @@ class RbfDeformer {
   // naming the sizes otherwise.
   eng::Result<void> apply(std::span<const glm::vec3> displacements, std::span<glm::vec3> out,
                           FalloffMask mask = {}) const;
-  size_t pointCount() const { return static_cast<size_t>(influence_.cols()); }
-  size_t controlPointCount() const { return static_cast<size_t>(influence_.rows()); }
+  size_t pointCount() const { return static_cast<size_t>(influence_.rows()); }
+  size_t controlPointCount() const { return static_cast<size_t>(influence_.cols()); }
   // Influence of control point `control` on point `point`.
   float influence(size_t point, size_t control) const {
-    return influence_(static_cast<Eigen::Index>(control), static_cast<Eigen::Index>(point));
+    return influence_(static_cast<Eigen::Index>(point), static_cast<Eigen::Index>(control));
   }
 
  private:
-  Eigen::MatrixXf influence_;  // controls x points (transposed influence matrix)
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> influence_;  // points x controls
 };
 
 }  // namespace facial
