@@ -49,10 +49,16 @@ vec3 shadeThreePoint(SurfacePoint s) {
   return color;
 }
 
-// Filmic shoulder (Reinhard on the max channel keeps hue): highlights roll off
-// instead of clipping to flat white on a pale face.
+// Filmic curve (Narkowicz's ACES fit) applied to the brightest channel and
+// the colour scaled to match: highlights roll off smoothly instead of clipping
+// to flat white on a pale face, and hue is kept (per-channel ACES would push
+// skin toward orange).
+float filmic(float x) {
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
 vec3 toneMap(vec3 color) {
   color *= frame.skin.w;
   float peak = max(max(color.r, color.g), color.b);
-  return peak > 0.0 ? color * ((peak / (1.0 + peak * 0.25)) / peak) : color;
+  return peak > 1e-6 ? color * (filmic(peak) / peak) : vec3(0.0);
 }

@@ -19,12 +19,12 @@ struct DirectionalLight {
 struct LightRig {
   // Warm key from the upper left of the camera, cool soft fill from the right,
   // rim from behind-above to separate the head from the backdrop.
-  DirectionalLight key{-35.0f, 30.0f, {1.0f, 0.95f, 0.88f}, 2.4f};
-  DirectionalLight fill{50.0f, 5.0f, {0.80f, 0.88f, 1.0f}, 0.75f};
-  DirectionalLight rim{160.0f, 35.0f, {1.0f, 0.97f, 0.94f}, 1.6f};
-  glm::vec3 skyAmbient{0.16f, 0.17f, 0.19f};
-  glm::vec3 groundAmbient{0.10f, 0.08f, 0.07f};
-  float diffuseWrap = 0.45f;                     // 0 = Lambert
+  DirectionalLight key{-55.0f, 40.0f, {1.0f, 0.95f, 0.88f}, 1.5f};
+  DirectionalLight fill{60.0f, 0.0f, {0.80f, 0.88f, 1.0f}, 0.2f};
+  DirectionalLight rim{150.0f, 30.0f, {1.0f, 0.97f, 0.94f}, 1.2f};
+  glm::vec3 skyAmbient{0.05f, 0.055f, 0.065f};
+  glm::vec3 groundAmbient{0.025f, 0.02f, 0.018f};
+  float diffuseWrap = 0.3f;                     // 0 = Lambert
   float subsurfaceStrength = 0.55f;              // warm tint at the terminator
   glm::vec3 subsurfaceColor{1.0f, 0.32f, 0.20f};
   float specularStrength = 0.55f;

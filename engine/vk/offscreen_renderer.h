@@ -42,6 +42,7 @@ class OffscreenRenderer {
   // Morphed vertices the GPU computes for each (instance, mesh, primitive).
   Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
 
+  FrameStats lastFrameStats() const { return scene_.stats(0); }
   VkExtent2D extent() const { return target_.extent(); }
   VkSampleCountFlagBits samples() const { return target_.format().samples; }
   bool canCapture() const { return scene_.canCapture(); }

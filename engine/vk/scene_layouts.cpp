@@ -1,5 +1,6 @@
 #include "engine/vk/scene_layouts.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -73,7 +74,10 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
   samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  samplerInfo.anisotropyEnable = ctx.deviceInfo().samplerAnisotropy ? VK_TRUE : VK_FALSE;
+  // Anisotropic filtering is nearly free on GPUs but llvmpipe emulates it at
+  // a cost of seconds per frame; faces are seen head-on, so CPU devices skip it.
+  const bool cpuDevice = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  samplerInfo.anisotropyEnable = ctx.deviceInfo().samplerAnisotropy && !cpuDevice ? VK_TRUE : VK_FALSE;
   samplerInfo.maxAnisotropy = std::min(8.0f, ctx.deviceInfo().properties.limits.maxSamplerAnisotropy);
   samplerInfo.maxLod = VK_LOD_CLAMP_NONE;
   VkSampler sampler = VK_NULL_HANDLE;

@@ -180,6 +180,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   if (mode == Mode::Capture)
     ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
+  slot.stats = {static_cast<uint32_t>(slot.batches.size()), static_cast<uint32_t>(instanceScratch_.size()),
+                static_cast<uint32_t>(activeScratch_.size())};
   if (!instanceScratch_.empty())
     std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
   if (!activeScratch_.empty())
@@ -200,6 +202,8 @@ Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelI
                      " does not support");
   return build(slot, instances, Mode::Capture);
 }
+
+FrameStats SceneRenderer::stats(uint32_t slot) const { return slot < slots_.size() ? slots_[slot].stats : FrameStats{}; }
 
 void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const {
   const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];

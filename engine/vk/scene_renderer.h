@@ -40,6 +40,13 @@ struct CapturedPrimitive {
   std::vector<glm::vec4> tangents;  // xyz morphed + renormalised, w = handedness (zeros without tangents)
 };
 
+// What the last prepare() of a slot laid out (for tests, overlays, benchmarks).
+struct FrameStats {
+  uint32_t draws = 0;          // instanced draw calls, one per (mesh node, primitive)
+  uint32_t instances = 0;      // GPU instance records
+  uint32_t activeWeights = 0;  // entries of the active list uploaded this frame
+};
+
 class SceneRenderer {
  public:
   // `layouts` and `shaders` must outlive the renderer.
@@ -50,6 +57,7 @@ class SceneRenderer {
   // Writes slot's frame data. Errors (naming the instance and mesh): null
   // model, wrong number of weights, non-finite weight.
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
+  FrameStats stats(uint32_t slot) const;
   // Inside the render pass: background, then every prepared draw.
   void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent) const;
 
@@ -87,6 +95,7 @@ class SceneRenderer {
     std::vector<Batch> batches;
     std::vector<uint32_t> members;
     uint32_t capturedVertices = 0;
+    FrameStats stats;
   };
 
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);

@@ -1,0 +1,199 @@
+// Offscreen rendering of procedural models: background, shading, instancing,
+// culling, default material, and bad input.
+#include "engine/vk/offscreen_renderer.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/scene/weights.h"
+#include "tests/vk/image_probe.h"
+#include "tests/vk/test_models.h"
+#include "tests/vk/vk_test_context.h"
+
+namespace {
+
+using vk_test::pixel;
+
+eng::vk::SceneView viewOf(const eng::Aabb& bounds) {
+  return {eng::vk::OrbitCamera::frame(bounds), eng::vk::LightRig{}};
+}
+
+eng::Image renderOrFail(const eng::vk::SceneView& view, std::span<const eng::vk::ModelInstance> instances) {
+  auto image = vk_test::renderer().render(view, instances);
+  EXPECT_TRUE(image) << (image ? "" : image.error().message);
+  return image ? std::move(image).value() : eng::Image{};
+}
+
+TEST(OffscreenRender, EmptySceneIsTheBackgroundGradient) {
+  const eng::Image image = renderOrFail(viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}}), {});
+  ASSERT_EQ(image.width, 256);
+  ASSERT_EQ(image.height, 256);
+  const glm::ivec4 top = pixel(image, 128, 2);
+  const glm::ivec4 bottom = pixel(image, 128, 253);
+  EXPECT_GT(top.g, bottom.g + 40) << "lighter at the top";
+  EXPECT_EQ(top.a, 255);
+  // Neutral: no strong colour cast.
+  EXPECT_LT(std::abs(top.r - top.b), 20);
+}
+
+TEST(OffscreenRender, SphereCoversTheCentreAndIsLitFromTheKeySide) {
+  const eng::Model model = vk_test::makeSphereModel({});
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> weights(gpu->weightCount(), 0.0f);
+  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  const eng::Image background = renderOrFail(viewOf(model.bounds()), {});
+  const eng::Image image = renderOrFail(viewOf(model.bounds()), {&instance, 1});
+  const double coverage = vk_test::coverageAgainst(image, background);
+  EXPECT_GT(coverage, 0.3) << "the framed sphere fills much of the image";
+  EXPECT_LT(coverage, 0.9);
+  const glm::ivec4 centre = pixel(image, 128, 128);
+  EXPECT_GT(centre.r, centre.b) << "warm base colour";
+  // Key light from the camera's upper left: that side is brighter than the lower right.
+  const glm::ivec4 upperLeft = pixel(image, 90, 90);
+  const glm::ivec4 lowerRight = pixel(image, 166, 166);
+  EXPECT_GT(upperLeft.r + upperLeft.g + upperLeft.b, lowerRight.r + lowerRight.g + lowerRight.b + 30);
+}
+
+TEST(OffscreenRender, InstancesOfOneMeshDrawInOneCallWithTheirOwnWeights) {
+  vk_test::SphereSpec spec;
+  spec.targets = 2;
+  const eng::Model model = vk_test::makeSphereModel(spec);
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> rest{0.0f, 0.0f};
+  const std::vector<float> bulged{1.0f, 0.0f};
+  const std::vector<eng::vk::ModelInstance> instances{
+      {&*gpu, glm::translate(glm::mat4(1.0f), {-2.5f, 0, 0}), rest},
+      {&*gpu, glm::mat4(1.0f), bulged},
+      {&*gpu, glm::translate(glm::mat4(1.0f), {2.5f, 0, 0}), rest},
+  };
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-3.6f, -1.3f, -1.3f}, {3.6f, 1.3f, 1.3f}});
+  const eng::Image image = renderOrFail(view, instances);
+  const eng::vk::FrameStats stats = vk_test::renderer().lastFrameStats();
+  EXPECT_EQ(stats.draws, 1u) << "one primitive: one instanced draw for all three instances";
+  EXPECT_EQ(stats.instances, 3u);
+  EXPECT_EQ(stats.activeWeights, 1u) << "only the one non-zero weight is uploaded";
+
+  const eng::Image background = renderOrFail(view, {});
+  // Each instance covers its own third of the image.
+  for (int x : {40, 128, 216}) {
+    const glm::ivec4 p = pixel(image, x, 128), b = pixel(background, x, 128);
+    EXPECT_GT(std::abs(p.r - b.r) + std::abs(p.g - b.g), 30) << "instance at column " << x;
+  }
+  // Rendering the middle instance at rest changes only its pixels.
+  std::vector<eng::vk::ModelInstance> allRest = instances;
+  allRest[1].weights = rest;
+  const eng::Image restImage = renderOrFail(view, allRest);
+  size_t changedLeft = 0, changedMiddle = 0, changedRight = 0;
+  for (int y = 0; y < 256; ++y) {
+    for (int x = 0; x < 256; ++x) {
+      if (pixel(image, x, y) == pixel(restImage, x, y)) continue;
+      ++(x < 85 ? changedLeft : x > 185 ? changedRight : changedMiddle);
+    }
+  }
+  EXPECT_EQ(changedLeft, 0u);
+  EXPECT_EQ(changedRight, 0u);
+  EXPECT_GT(changedMiddle, 50u) << "the bulge of target t0 shows on the middle instance only";
+}
+
+TEST(OffscreenRender, BackFacesCulledUnlessDoubleSided) {
+  // A sphere seen from inside shows only back faces.
+  for (bool doubleSided : {false, true}) {
+    vk_test::SphereSpec spec;
+    spec.targets = 0;
+    spec.doubleSided = doubleSided;
+    spec.radius = 10.0f;
+    const eng::Model model = vk_test::makeSphereModel(spec);
+    auto gpu = vk_test::renderer().upload(model);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});  // camera inside the sphere
+    view.camera.sceneRadius = 20.0f;  // clip planes that reach the sphere around the camera
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    const eng::Image background = renderOrFail(view, {});
+    const eng::Image image = renderOrFail(view, {&instance, 1});
+    const double coverage = vk_test::coverageAgainst(image, background);
+    if (doubleSided)
+      EXPECT_GT(coverage, 0.95) << "double-sided: the inside is drawn";
+    else
+      EXPECT_EQ(coverage, 0.0) << "single-sided: back faces culled";
+  }
+}
+
+TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
+  vk_test::SphereSpec spec;
+  spec.withMaterial = false;
+  const eng::Model model = vk_test::makeSphereModel(spec);
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> weights(gpu->weightCount(), 0.0f);
+  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  const eng::Image image = renderOrFail(viewOf(model.bounds()), {&instance, 1});
+  const glm::ivec4 centre = pixel(image, 128, 128);
+  EXPECT_GT(centre.g, 100) << "light neutral clay";
+  EXPECT_LT(std::abs(centre.r - centre.g), 40);
+}
+
+TEST(OffscreenRenderValidity, WrongWeightCountNamesTheSizes) {
+  const eng::Model model = vk_test::makeSphereModel({});
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> weights(3, 0.0f);
+  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  auto image = vk_test::renderer().render(viewOf(model.bounds()), {&instance, 1});
+  ASSERT_FALSE(image);
+  EXPECT_NE(image.error().message.find("3 weights given, the model has 4"), std::string::npos)
+      << image.error().message;
+}
+
+TEST(OffscreenRenderValidity, NonFiniteWeightAndNullModelAreErrors) {
+  const eng::Model model = vk_test::makeSphereModel({});
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  std::vector<float> weights(4, 0.0f);
+  weights[2] = std::numeric_limits<float>::quiet_NaN();
+  const eng::vk::ModelInstance nan{&*gpu, glm::mat4(1.0f), weights};
+  auto image = vk_test::renderer().render(viewOf(model.bounds()), {&nan, 1});
+  ASSERT_FALSE(image);
+  EXPECT_NE(image.error().message.find("weight 2 of 4 is not finite"), std::string::npos) << image.error().message;
+
+  const eng::vk::ModelInstance none{nullptr, glm::mat4(1.0f), {}};
+  auto noModel = vk_test::renderer().render(viewOf(model.bounds()), {&none, 1});
+  ASSERT_FALSE(noModel);
+  EXPECT_NE(noModel.error().message.find("instance 0: no model"), std::string::npos);
+}
+
+TEST(OffscreenRenderValidity, InconsistentModelIsRejectedByName) {
+  eng::Model model = vk_test::makeSphereModel({});
+  model.sourcePath = "broken.glb";
+  model.meshes[0].primitives[0].indices.back() = 100000;
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_FALSE(gpu);
+  EXPECT_NE(gpu.error().message.find("broken.glb: mesh 0 primitive 0: index 100000 >= vertex count"),
+            std::string::npos)
+      << gpu.error().message;
+
+  eng::Model shortNormals = vk_test::makeSphereModel({});
+  shortNormals.meshes[0].primitives[0].normals.pop_back();
+  auto rejected = vk_test::renderer().upload(shortNormals);
+  ASSERT_FALSE(rejected);
+  EXPECT_NE(rejected.error().message.find("normals for"), std::string::npos) << rejected.error().message;
+
+  eng::Model badTarget = vk_test::makeSphereModel({});
+  badTarget.meshes[0].primitives[0].targets[1].positions.resize(5);
+  auto targetError = vk_test::renderer().upload(badTarget);
+  ASSERT_FALSE(targetError);
+  EXPECT_NE(targetError.error().message.find("target 1"), std::string::npos) << targetError.error().message;
+}
+
+TEST(OffscreenTargetValidity, ZeroSizeIsAnError) {
+  auto target = eng::vk::OffscreenTarget::create(vk_test::context(), 0, 64);
+  ASSERT_FALSE(target);
+  EXPECT_NE(target.error().message.find("0x64"), std::string::npos) << target.error().message;
+}
+
+}  // namespace

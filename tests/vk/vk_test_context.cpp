@@ -1,0 +1,43 @@
+#include "tests/vk/vk_test_context.h"
+
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace vk_test {
+
+void failOnValidationMessage(eng::LogLevel level, std::string_view message) {
+  ADD_FAILURE() << (level == eng::LogLevel::Error ? "Vulkan validation error: " : "Vulkan validation warning: ")
+                << message;
+}
+
+eng::vk::Context& context() {
+  static eng::vk::Context ctx = [] {
+    eng::vk::ContextOptions options;
+    options.applicationName = "test_vk";
+    options.validation = true;
+    options.onValidationMessage = failOnValidationMessage;
+    auto created = eng::vk::Context::create(options);
+    if (!created) {
+      std::fprintf(stderr, "test_vk: cannot create a Vulkan context: %s\n", created.error().message.c_str());
+      std::abort();
+    }
+    return std::move(created).value();
+  }();
+  return ctx;
+}
+
+eng::vk::OffscreenRenderer& renderer() {
+  static eng::vk::OffscreenRenderer r = [] {
+    auto created = eng::vk::OffscreenRenderer::create(context(), {256, 256});
+    if (!created) {
+      std::fprintf(stderr, "test_vk: cannot create the offscreen renderer: %s\n", created.error().message.c_str());
+      std::abort();
+    }
+    return std::move(created).value();
+  }();
+  return r;
+}
+
+}  // namespace vk_test
