@@ -160,6 +160,31 @@ TEST(StateMachineNode, AnyStateSelfTransitionRestartsFromTheSnapshot) {
   EXPECT_FLOAT_EQ(face.weights()[0], 0.5f);
 }
 
+TEST(StateMachineNode, InterruptingAnOvershootStartsFromTheDisplayedWeight) {
+  // A back-ease curve carries the blend past the destination (weight > 1,
+  // displayed as 1); the interruption must start from 1, not from the overshoot.
+  GraphBuilder b(threeChannels());
+  const ParameterIndex up = b.addTrigger("up"), down = b.addTrigger("down");
+  StateMachineNode m;
+  m.states = {{"low", addPose(b, {0, 0, 0}), {}}, {"high", addPose(b, {1, 0, 0}), {}}};
+  const EasingCurve backEase = EasingCurve::bezier({0.3f, 0.0f, 0.6f, 1.6f}).value();
+  m.states[0].transitions.push_back({.to = "high", .duration = 1.0f, .curve = backEase, .conditions = {trigger(up)}});
+  m.states[1].transitions.push_back({.to = "low", .duration = 1.0f, .conditions = {trigger(down)}});
+  b.setRoot(b.add(std::move(m)));
+  GraphInstance face = instantiate(buildGraph(b));
+  face.update(0.0f);
+  face.setTrigger(up);
+  face.update(0.0f);
+  face.update(0.8f);
+  ASSERT_GT(backEase(0.8f), 1.05f);  // the blend overshoots inside the graph here
+  EXPECT_FLOAT_EQ(face.weights()[0], 1.0f);
+  face.setTrigger(down);
+  face.update(0.0f);
+  EXPECT_FLOAT_EQ(face.weights()[0], 1.0f);
+  face.update(0.25f);
+  EXPECT_NEAR(face.weights()[0], 0.75f, 1e-5f);
+}
+
 TEST(StateMachineNodeValidity, ProblemsNameTheTransitionAndField) {
   auto error = [](auto edit) {
     GraphBuilder b(threeChannels());

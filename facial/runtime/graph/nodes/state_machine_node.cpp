@@ -182,8 +182,11 @@ void StateMachineNode::begin(EvalContext& ctx, State& state, const Transition& t
     state.blending = false;
     state.liveSource = State::kNone;
   } else if (state.blending || transition.target == state.current) {
-    // Interrupting (or re-entering): blend from exactly what is on screen.
-    std::copy(state.lastOutput.begin(), state.lastOutput.end(), state.snapshot.begin());
+    // Interrupting (or re-entering): blend from exactly what is on screen,
+    // i.e. last frame's weights as displayed, in [0,1]. (An overshooting
+    // curve may have pushed them outside; starting from the unclamped value
+    // would make the face hold still, then jump by the overshoot.)
+    for (size_t i = 0; i < state.snapshot.size(); ++i) state.snapshot[i] = std::clamp(state.lastOutput[i], 0.0f, 1.0f);
     state.liveSource = State::kNone;
     state.blending = true;
   } else {

@@ -7,8 +7,8 @@
 // Blending: out = (1 - c(tau / duration)) source + c(tau / duration) destination.
 // An uninterrupted transition blends from the source state evaluated live.
 // A transition that interrupts one in flight (or re-enters the current
-// state) snapshots the pose that was on screen last frame and blends from
-// that frozen snapshot, so whatever sequence of triggers arrives the output
+// state) snapshots the pose that was on screen last frame (clamped to [0,1]
+// like the displayed weights) and blends from that frozen snapshot, so whatever sequence of triggers arrives the output
 // never jumps: per frame it moves at most maxSlope(c) * dt / duration times
 // the distance between source and destination, plus what the destination's
 // own animation moves.
