@@ -451,10 +451,15 @@ class ModelBuilder {
                       std::to_string(i) + ")");
         c.parent = static_cast<int>(i);
       }
-    for (size_t i = 0; i < count; ++i) {
-      int n = static_cast<int>(i);
-      for (size_t steps = 0; n >= 0; ++steps, n = model_.nodes[n].parent)
-        if (steps > count) return fail("the node hierarchy has a cycle through node " + std::to_string(i));
+    // Every node has at most one parent, so a cycle shows up as a walk up
+    // the parents that meets itself. Each node is walked once: O(nodes).
+    std::vector<int> walkOf(count, -1);  // which walk visited the node, -1 none
+    for (int i = 0; i < static_cast<int>(count); ++i) {
+      for (int n = i; n >= 0; n = model_.nodes[n].parent) {
+        if (walkOf[n] == i) return fail("the node hierarchy has a cycle through node " + std::to_string(n));
+        if (walkOf[n] >= 0) break;  // joins an earlier walk, which ended at a root
+        walkOf[n] = i;
+      }
     }
 
     int scene = gltf_.defaultScene;

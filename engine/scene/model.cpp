@@ -32,20 +32,21 @@ glm::mat4 Model::worldTransform(int node) const {
 
 Aabb Model::bounds() const {
   Aabb box;
-  std::vector<int> stack(roots.rbegin(), roots.rend());
+  // Top-down with the parent's world matrix on the stack: linear in the node count.
+  std::vector<std::pair<int, glm::mat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
   std::vector<bool> seen(nodes.size(), false);
   while (!stack.empty()) {
-    const int n = stack.back();
+    const auto [n, parentWorld] = stack.back();
     stack.pop_back();
     if (n < 0 || n >= static_cast<int>(nodes.size()) || seen[n]) continue;
     seen[n] = true;
     const Node& node = nodes[n];
-    if (node.mesh >= 0 && node.mesh < static_cast<int>(meshes.size())) {
-      const glm::mat4 world = worldTransform(n);
+    const glm::mat4 world = parentWorld * node.localTransform();
+    if (node.mesh >= 0 && node.mesh < static_cast<int>(meshes.size()))
       for (const Primitive& prim : meshes[node.mesh].primitives)
         for (const glm::vec3& p : prim.positions) box.extend(glm::vec3(world * glm::vec4(p, 1.0f)));
-    }
-    for (int c : node.children) stack.push_back(c);
+    for (int c : node.children) stack.emplace_back(c, world);
   }
   return box;
 }

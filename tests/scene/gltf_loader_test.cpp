@@ -197,6 +197,22 @@ TEST(GltfLoader, ReadsHierarchyWithTrsAndMatrixTransforms) {
   expectNear(world, {11, 2, 1}, 1e-5f);
 }
 
+TEST(GltfLoader, DeepNodeChainLoadsWithoutRecursion) {
+  const auto dir = freshTempDir("loader_deep_chain");
+  GltfFileBuilder b = quadWithTarget();
+  const int depth = 20000;
+  // node k+1 is the parent of node k; node `depth` is the scene root.
+  for (int k = 1; k <= depth; ++k) b.doc["nodes"].push_back({{"children", {k - 1}}, {"translation", {0.001, 0, 0}}});
+  b.doc["scenes"][0]["nodes"] = {depth};
+  b.writeGlb(dir / "chain.glb");
+  const eng::Model model = loadOk(dir / "chain.glb");
+  ASSERT_EQ(model.nodes.size(), static_cast<size_t>(depth) + 1);
+  EXPECT_EQ(model.roots, std::vector<int>{depth});
+  const eng::Aabb box = model.bounds();
+  ASSERT_TRUE(box.valid());
+  EXPECT_NEAR(box.min.x, depth * 0.001f, 1e-2f);
+}
+
 TEST(GltfLoader, WithoutScenesEveryParentlessNodeIsARoot) {
   const auto dir = freshTempDir("loader_no_scene");
   GltfFileBuilder b = quadWithTarget();
