@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
 namespace facial {
 namespace {
 
@@ -48,10 +50,10 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
                             std::to_string(channel.times.size()) + " keys of " + std::to_string(perKey));
     for (size_t k = 1; k < channel.times.size(); ++k)
       if (!(channel.times[k] > channel.times[k - 1]))
-        return eng::makeError(where + ": key " + std::to_string(k) + " time " + std::to_string(channel.times[k]) +
+        return eng::makeError(where + ": key " + std::to_string(k) + " time " + formatNumber(channel.times[k]) +
                               " is not after the previous one (glTF requires strictly increasing times)");
     if (!channel.times.empty() && channel.times.front() < 0.0f)
-      return eng::makeError(where + ": negative key time " + std::to_string(channel.times.front()));
+      return eng::makeError(where + ": negative key time " + formatNumber(channel.times.front()));
     for (size_t t = 0; t < channel.targetCount; ++t) {
       const std::string& target = mesh.targetNames[t];
       if (timeline.findTrack(target)) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
 namespace facial {
 namespace {
 
@@ -24,7 +26,7 @@ std::optional<std::string> CubicBezier::validate() const {
   for (float v : {x1, y1, x2, y2})
     if (!std::isfinite(v)) return std::string("bezier handle is not a finite number");
   if (x1 < 0 || x1 > 1 || x2 < 0 || x2 > 1)
-    return "bezier handle x must lie in [0,1] (got x1=" + std::to_string(x1) + ", x2=" + std::to_string(x2) + ")";
+    return "bezier handle x must lie in [0,1] (got x1=" + formatNumber(x1) + ", x2=" + formatNumber(x2) + ")";
   return std::nullopt;
 }
 

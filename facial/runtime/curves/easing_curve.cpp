@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
 namespace facial {
 
 std::string_view toString(EasingType type) {
@@ -47,9 +49,9 @@ eng::Result<EasingCurve> EasingCurve::keyed(std::vector<Keyframe> keys) {
   if (keys.size() < 2 || keys.front().time != 0.0f || keys.front().value != 0.0f || keys.back().time != 1.0f ||
       keys.back().value != 1.0f)
     return eng::makeError("keyed curve must start at (0,0) and end at (1,1) (got " + std::to_string(keys.size()) +
-                          " keys from (" + std::to_string(keys.front().time) + "," +
-                          std::to_string(keys.front().value) + ") to (" + std::to_string(keys.back().time) + "," +
-                          std::to_string(keys.back().value) + "))");
+                          " keys from (" + formatNumber(keys.front().time) + "," +
+                          formatNumber(keys.front().value) + ") to (" + formatNumber(keys.back().time) + "," +
+                          formatNumber(keys.back().value) + "))");
   EasingCurve curve(EasingType::Keyed);
   double slope = 0.0;
   for (size_t i = 0; i + 1 < keys.size(); ++i) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
 namespace facial {
 
 std::string_view toString(KeyInterpolation interpolation) {
@@ -31,8 +33,8 @@ std::optional<std::string> validateKeys(std::span<const Keyframe> keys) {
         !std::isfinite(k.outTangent))
       return "key " + std::to_string(i) + " has a non-finite number";
     if (i > 0 && !(k.time > keys[i - 1].time))
-      return "key " + std::to_string(i) + " time " + std::to_string(k.time) + " is not after key " +
-             std::to_string(i - 1) + " time " + std::to_string(keys[i - 1].time) + " (keys must be sorted, no duplicates)";
+      return "key " + std::to_string(i) + " time " + formatNumber(k.time) + " is not after key " +
+             std::to_string(i - 1) + " time " + formatNumber(keys[i - 1].time) + " (keys must be sorted, no duplicates)";
   }
   return std::nullopt;
 }

@@ -28,8 +28,8 @@ std::vector<Keyframe> parseKeyframes(const JsonNode& keys, KeyInterpolation defa
       k.outTangent = key.numberOr("out", 0.0f);
     }
     if (i > 0 && !(k.time > out.back().time))
-      key.fail("key time " + std::to_string(k.time) + " is not after the previous key's " +
-               std::to_string(out.back().time) + " (keys must be sorted, no duplicates)");
+      key.fail("key time " + formatNumber(k.time) + " is not after the previous key's " +
+               formatNumber(out.back().time) + " (keys must be sorted, no duplicates)");
     out.push_back(k);
   }
   if (out.empty()) keys.fail("no keys");

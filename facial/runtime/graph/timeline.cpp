@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
 namespace facial {
 
 std::string_view toString(LoopMode mode) {
@@ -63,7 +65,7 @@ float Timeline::lastKeyTime() const {
 
 std::optional<std::string> Timeline::validate() const {
   if (!std::isfinite(duration) || duration <= 0.0f)
-    return "duration must be a finite number > 0 (got " + std::to_string(duration) + ")";
+    return "duration must be a finite number > 0 (got " + formatNumber(duration) + ")";
   for (size_t i = 0; i < tracks.size(); ++i) {
     const TimelineTrack& t = tracks[i];
     const std::string where = "track " + std::to_string(i) + " ('" + t.channel + "')";
@@ -77,8 +79,8 @@ std::optional<std::string> Timeline::validate() const {
     const std::span<const Keyframe> k = trackKeys(i);
     if (auto problem = validateKeys(k)) return where + ": " + *problem;
     if (k.front().time < 0.0f || k.back().time > duration)
-      return where + ": key times [" + std::to_string(k.front().time) + ", " + std::to_string(k.back().time) +
-             "] leave the clip [0, " + std::to_string(duration) + "]";
+      return where + ": key times [" + formatNumber(k.front().time) + ", " + formatNumber(k.back().time) +
+             "] leave the clip [0, " + formatNumber(duration) + "]";
   }
   return std::nullopt;
 }

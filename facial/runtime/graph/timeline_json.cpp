@@ -32,8 +32,8 @@ Timeline parseTimeline(const JsonNode& node, std::string defaultName) {
     timeline.duration = d->number();
     if (timeline.duration <= 0.0f) d->fail("duration must be > 0");
     if (timeline.lastKeyTime() > timeline.duration)
-      d->fail("duration " + std::to_string(timeline.duration) + " ends before the last key at " +
-              std::to_string(timeline.lastKeyTime()));
+      d->fail("duration " + formatNumber(timeline.duration) + " ends before the last key at " +
+              formatNumber(timeline.lastKeyTime()));
   } else {
     timeline.duration = timeline.lastKeyTime();
     if (timeline.duration <= 0.0f) node.fail("no \"duration\" and every key is at time 0");

@@ -7,6 +7,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
+#include "facial/runtime/rig/json_document.h"  // formatNumber
 
 namespace facial {
 
@@ -20,7 +21,7 @@ std::optional<std::string> BilinearNode::prepare(const BuildContext& ctx) {
     return ctx.problem("shapes", "needs two rows (face shapes) of the same length >= 2 (expressions), got " +
                                      std::to_string(shape1.size()) + " and " + std::to_string(shape2.size()));
   if (!std::isfinite(duration) || duration <= 0.0f)
-    return ctx.problem("duration", "must be a finite number > 0 (got " + std::to_string(duration) + ")");
+    return ctx.problem("duration", "must be a finite number > 0 (got " + formatNumber(duration) + ")");
   if (auto p = ctx.checkInput(shape, "shape")) return p;
   return ctx.checkParameter(expression, ParameterType::Float, "expression");
 }

@@ -7,6 +7,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/json_document.h"  // formatNumber
 
 namespace facial {
 namespace {
@@ -77,10 +78,10 @@ std::optional<std::string> BlinkNode::prepare(const BuildContext& ctx) {
                      Positive{"closeDuration", closeDuration}, Positive{"openDuration", openDuration},
                      Positive{"doubleBlinkGap", doubleBlinkGap}})
     if (!std::isfinite(p.value) || p.value <= 0.0f)
-      return ctx.problem(p.name, "must be a finite number > 0 (got " + std::to_string(p.value) + ")");
+      return ctx.problem(p.name, "must be a finite number > 0 (got " + formatNumber(p.value) + ")");
   if (maxInterval < minInterval)
-    return ctx.problem("maxInterval", "is shorter than minInterval (" + std::to_string(maxInterval) + " < " +
-                                          std::to_string(minInterval) + ")");
+    return ctx.problem("maxInterval", "is shorter than minInterval (" + formatNumber(maxInterval) + " < " +
+                                          formatNumber(minInterval) + ")");
   if (!std::isfinite(closedDuration) || closedDuration < 0.0f)
     return ctx.problem("closedDuration", "must be a finite number >= 0");
   if (!std::isfinite(doubleBlinkChance) || doubleBlinkChance < 0.0f || doubleBlinkChance > 1.0f)

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/pose_jobs.h"
 
 namespace facial {
 
@@ -27,7 +28,7 @@ void EvalContext::evaluateWeightedSum(std::span<const NodeIndex> inputs, std::sp
   for (size_t i = 0; i < inputs.size(); ++i) {
     if (weights[i] <= 0.0f) continue;
     evaluate(inputs[i], pose.pose());
-    for (size_t c = 0; c < out.size(); ++c) out[c] += weights[i] * pose.pose()[c];
+    AccumulatePoseJob{.input = pose.pose(), .weight = weights[i], .out = out}.Run();
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/rig/json_document.h"  // formatNumber
 
 namespace facial {
 
@@ -29,7 +30,7 @@ std::optional<std::string> PoseNode::prepare(const BuildContext& ctx) {
   for (size_t c = 0; c < weights.size(); ++c)
     if (!std::isfinite(weights[c]) || weights[c] < 0.0f || weights[c] > 1.0f)
       return ctx.problem("weights", "channel '" + ctx.channels[static_cast<uint32_t>(c)].name + "' weight " +
-                                        std::to_string(weights[c]) + " is not in [0,1]");
+                                        formatNumber(weights[c]) + " is not in [0,1]");
   return ctx.checkInput(scale, "scale");
 }
 

@@ -7,6 +7,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
+#include "facial/runtime/rig/json_document.h"  // formatNumber
 
 namespace facial {
 
@@ -83,12 +84,12 @@ std::optional<std::string> prepareTransitions(const BuildContext& ctx, const Sta
     t.target = *target;
     if (!std::isfinite(t.duration) || t.duration <= 0.0f)
       return ctx.problem(where + "/duration",
-                         "must be a finite number > 0 (got " + std::to_string(t.duration) +
+                         "must be a finite number > 0 (got " + formatNumber(t.duration) +
                              "); a cut would make the face jump");
     if (!(t.curve.maxSlope() < INFINITY))
       return ctx.problem(where + "/curve", "the curve jumps (step key or vertical bezier end): the face would pop");
     if (t.exitTime && (!std::isfinite(*t.exitTime) || *t.exitTime < 0.0f))
-      return ctx.problem(where + "/exitTime", "must be a finite number >= 0 (got " + std::to_string(*t.exitTime) + ")");
+      return ctx.problem(where + "/exitTime", "must be a finite number >= 0 (got " + formatNumber(*t.exitTime) + ")");
     if (t.conditions.empty() && !t.exitTime)
       return ctx.problem(where, "has neither conditions nor an exit time, so it would fire at once, every frame");
     if (t.canTransitionToSelf && !anyState)
