@@ -1,0 +1,99 @@
+// `facial info` and `facial convert` as a user runs them: exit codes and the
+// one-line error on bad input. Skips when the facial program is not built.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include "tests/common/test_support.h"
+#include "tests/scene/gltf_test_files.h"
+#include "tests/scene/obj_test_files.h"
+
+namespace {
+
+using testing_support::binaryDir;
+using testing_support::freshTempDir;
+
+struct CommandRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CommandRun facial(const std::string& args) {
+  const std::filesystem::path program = binaryDir() / "bin" / "facial";
+  CommandRun run;
+  FILE* pipe = popen(("'" + program.string() + "' " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) run.output.append(buf.data(), n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+#define REQUIRE_FACIAL_PROGRAM()                                                           \
+  do {                                                                                     \
+    if (!std::filesystem::exists(binaryDir() / "bin" / "facial"))                          \
+      GTEST_SKIP() << "build/bin/facial is not built (target facial_cli); command test skipped"; \
+  } while (0)
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+TEST(FacialInfoCommand, DescribesAModelAndItsTargets) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_info_ok");
+  scene_test::quadWithTarget().writeGlb(dir / "quad.glb");
+  const CommandRun text = facial("info " + quoted(dir / "quad.glb"));
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_NE(text.output.find("mesh 0 'Quad': 1 primitive(s), 1 target(s)"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("lift"), std::string::npos);
+  const CommandRun json = facial("info --json " + quoted(dir / "quad.glb"));
+  EXPECT_EQ(json.exitCode, 0);
+  const auto doc = nlohmann::json::parse(json.output);
+  EXPECT_EQ(doc["meshes"][0]["targetNames"][0], "lift");
+  EXPECT_EQ(doc["meshes"][0]["defaultWeights"][0], 0.25);
+  EXPECT_EQ(doc["meshes"][0]["primitives"][0]["vertices"], 4);
+}
+
+TEST(FacialInfoCommand, BadFilesExitNonZeroWithOneLineNamingTheFile) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_info_bad");
+  std::vector<uint8_t> glb = scene_test::quadWithTarget().glbBytes();
+  glb.resize(glb.size() / 2);
+  scene_test::writeBytes(dir / "truncated.glb", glb);
+  scene_test::GltfFileBuilder climb = scene_test::quadWithTarget();
+  climb.writeGltf(dir / "climb.gltf", "../../etc/passwd");
+  for (const char* name : {"truncated.glb", "climb.gltf", "missing.glb"}) {
+    const CommandRun run = facial("info " + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.output;
+    EXPECT_NE(run.output.find((dir / name).string()), std::string::npos) << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  }
+}
+
+TEST(FacialConvertCommand, ConvertsAnObjFolderAndRefusesAMismatchedTarget) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_convert");
+  scene_test::GridObj lifted;
+  lifted.position = [](int i, glm::vec3 r) { return i == 6 ? r + glm::vec3(0, 0, 1) : r; };
+  testing_support::writeFile(dir / "set" / "neutral.obj", scene_test::GridObj{}.text());
+  testing_support::writeFile(dir / "set" / "smile.obj", lifted.text());
+  const CommandRun ok = facial("convert " + quoted(dir / "set") + " --out " + quoted(dir / "face.glb"));
+  EXPECT_EQ(ok.exitCode, 0) << ok.output;
+  EXPECT_NE(ok.output.find("target smile"), std::string::npos) << ok.output;
+  const CommandRun info = facial("info " + quoted(dir / "face.glb"));
+  EXPECT_NE(info.output.find("smile"), std::string::npos) << info.output;
+
+  scene_test::GridObj other;
+  other.nx = 2;
+  testing_support::writeFile(dir / "other.obj", other.text());
+  const CommandRun bad = facial("convert " + quoted(dir / "set" / "neutral.obj") + " --target frown=" + quoted(dir / "other.obj") +
+                         " --out " + quoted(dir / "bad.glb"));
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.output.find("other.obj: topology differs"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.glb"));
+}
+
+}  // namespace
