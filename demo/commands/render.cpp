@@ -16,6 +16,7 @@
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/context.h"
+#include "engine/vk/framing_bounds.h"
 #include "engine/vk/offscreen_renderer.h"
 
 namespace cli {
@@ -106,7 +107,7 @@ int runRender(const RenderOptions& o) {
   if (!gpuModel) return fail(gpuModel.error().message);
 
   eng::vk::SceneView view;
-  view.camera = eng::vk::OrbitCamera::frame(model->bounds(), float(width) / float(height));
+  view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(*model), float(width) / float(height));
   view.camera.yawDegrees = o.yaw;
   view.camera.pitchDegrees = o.pitch;
   view.camera.zoom = o.zoom;

@@ -9,6 +9,7 @@
 #include "engine/core/log.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/detail_array.h"
+#include "engine/vk/scene_mesh_nodes.h"
 #include "engine/vk/texture.h"
 #include "engine/vk/vk_result.h"
 
@@ -162,18 +163,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   const WeightLayout weightLayout(model);
   gpu.weightCount_ = weightLayout.total();
 
-  // --- Scene nodes that draw meshes (default scene, depth first) ---
-  std::vector<int> stack(model.roots.rbegin(), model.roots.rend());
-  std::vector<bool> visited(model.nodes.size(), false);
-  while (!stack.empty()) {
-    int n = stack.back();
-    stack.pop_back();
-    if (visited[static_cast<size_t>(n)]) continue;  // cycles and shared children are drawn once
-    visited[static_cast<size_t>(n)] = true;
-    const Node& node = model.nodes[static_cast<size_t>(n)];
-    if (node.mesh >= 0) gpu.meshNodes_.push_back({n, node.mesh, model.worldTransform(n)});
-    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
-  }
+  for (const MeshNode& node : sceneMeshNodes(model)) gpu.meshNodes_.push_back({node.node, node.mesh, node.world});
 
   // --- Geometry, deltas and detail-layer parameters, laid out in three blobs ---
   const Material fallback = defaultMaterial();

@@ -19,6 +19,7 @@
 #include "engine/vk/gpu_types.h"
 #include "engine/vk/gpu_image.h"
 #include "engine/vk/scene_layouts.h"
+#include "engine/vk/scene_mesh_nodes.h"
 
 namespace eng::vk {
 
@@ -42,12 +43,6 @@ struct GpuMesh {
   std::vector<GpuPrimitive> primitives;
 };
 
-// A node of the default scene that draws a mesh.
-struct GpuMeshNode {
-  int node = -1;
-  int mesh = -1;
-  glm::mat4 world{1.0f};
-};
 
 class GpuModel {
  public:
@@ -57,7 +52,7 @@ class GpuModel {
 
   const std::string& name() const { return name_; }
   std::span<const GpuMesh> meshes() const { return meshes_; }
-  std::span<const GpuMeshNode> meshNodes() const { return meshNodes_; }
+  std::span<const MeshNode> meshNodes() const { return meshNodes_; }
   // Length of the model's flat weight vector (eng::WeightLayout(model).total()).
   uint32_t weightCount() const { return weightCount_; }
   const Aabb& bounds() const { return bounds_; }
@@ -67,7 +62,7 @@ class GpuModel {
  private:
   std::string name_;
   std::vector<GpuMesh> meshes_;
-  std::vector<GpuMeshNode> meshNodes_;
+  std::vector<MeshNode> meshNodes_;
   uint32_t weightCount_ = 0;
   Aabb bounds_;
   Buffer vertices_;

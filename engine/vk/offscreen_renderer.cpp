@@ -10,7 +10,7 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
   auto layouts = SceneLayouts::create(ctx);
   if (!layouts) return layouts.error();
   r.layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
-  r.shaders_ = std::make_unique<ShaderLibrary>();
+  r.shaders_ = std::make_unique<ShaderLibrary>(options.shaderSourceDir);
   auto target = OffscreenTarget::create(ctx, options.width, options.height, options.samples);
   if (!target) return target.error();
   r.target_ = std::move(target).value();
@@ -20,6 +20,8 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
   r.scene_ = std::move(scene).value();
   return r;
 }
+
+bool OffscreenRenderer::reloadChangedShaders() { return shaders_->reloadIfChanged() && scene_.refreshPipelines(); }
 
 Result<GpuModel> OffscreenRenderer::upload(const Model& model) const {
   return GpuModel::create(*ctx_, *layouts_, model);

@@ -10,6 +10,7 @@
 //   eng::vk::SceneView view{eng::vk::OrbitCamera::frame(model.bounds())};
 //   auto image = renderer->render(view, {&instance, 1});   // eng::Image, RGBA8
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <span>
 #include <vector>
@@ -30,6 +31,7 @@ struct OffscreenOptions {
   uint32_t width = 512;
   uint32_t height = 512;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+  std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
 };
 
 class OffscreenRenderer {
@@ -43,6 +45,10 @@ class OffscreenRenderer {
   Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
 
   FrameStats lastFrameStats() const { return scene_.stats(0); }
+  // Recompiles the shaders if their sources changed and rebuilds the
+  // pipelines; on a compile error logs it and keeps drawing with the old ones.
+  bool reloadChangedShaders();
+
   VkExtent2D extent() const { return target_.extent(); }
   VkSampleCountFlagBits samples() const { return target_.format().samples; }
   bool canCapture() const { return scene_.canCapture(); }

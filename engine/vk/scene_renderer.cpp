@@ -167,7 +167,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       }
     };
     if (mode == Mode::Draw) {
-      for (const GpuMeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), node.world);
+      for (const MeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), node.world);
     } else {
       for (uint32_t m = 0; m < meshes.size(); ++m) addBatches(m, glm::mat4(1.0f));
     }
