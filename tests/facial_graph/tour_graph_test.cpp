@@ -71,9 +71,11 @@ TEST(TourGraph, TriggersJumpTheQueueAndTalkMovesOnlyTheLowerFace) {
   ASSERT_TRUE(face.setFloat(*tour.graph->findParameter("talk"), 1.0f));
   face.update(0.3f);
   EXPECT_NE(face.weights()[*actionUnitIndex("AU26_JawDrop")], quiet[*actionUnitIndex("AU26_JawDrop")]);
-  for (uint32_t c = 0; c < quiet.size(); ++c)
-    if (actionUnits()[c].region == FaceRegion::Upper && actionUnits()[c].facsNumber != 45)
+  for (uint32_t c = 0; c < quiet.size(); ++c) {
+    if (actionUnits()[c].region == FaceRegion::Upper && actionUnits()[c].facsNumber != 45) {
       EXPECT_EQ(face.weights()[c], quiet[c]) << actionUnits()[c].name;
+    }
+  }
   for (int frame = 0; frame < 600; ++frame) face.update(1.0f / 60.0f);
   EXPECT_EQ(tour.stateName(face), "surprise");  // autoplay off: it stays
 }
