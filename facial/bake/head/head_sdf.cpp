@@ -1,0 +1,237 @@
+#include "facial/bake/head/head_sdf.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace facial {
+namespace {
+
+using glm::vec2;
+using glm::vec3;
+
+// Approximate ellipsoid distance (exact on the surface, bounded elsewhere).
+float ellipsoid(const vec3& p, const vec3& r) {
+  const float k0 = glm::length(p / r);
+  const float k1 = glm::length(p / (r * r));
+  return k1 > 0.0f ? k0 * (k0 - 1.0f) / k1 : -std::min({r.x, r.y, r.z});
+}
+
+// Polynomial smooth minimum: blends two shapes with a fillet of size ~k.
+float smin(float a, float b, float k) {
+  const float h = std::max(k - std::abs(a - b), 0.0f) / k;
+  return std::min(a, b) - h * h * k * 0.25f;
+}
+float smax(float a, float b, float k) { return -smin(-a, -b, k); }
+
+float smoothstep(float e0, float e1, float x) {
+  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+float dot2(const vec3& v) { return glm::dot(v, v); }
+
+// Cone with rounded ends of radii r1 at a and r2 at b.
+float roundCone(const vec3& p, const vec3& a, const vec3& b, float r1, float r2) {
+  const vec3 ba = b - a;
+  const float l2 = glm::dot(ba, ba);
+  const float rr = r1 - r2;
+  const float a2 = l2 - rr * rr;
+  const float il2 = 1.0f / l2;
+  const vec3 pa = p - a;
+  const float y = glm::dot(pa, ba);
+  const float z = y - l2;
+  const float x2 = dot2(pa * l2 - ba * y);
+  const float y2 = y * y * l2;
+  const float z2 = z * z * l2;
+  const float k = (rr > 0 ? 1.0f : -1.0f) * rr * rr * x2;
+  if ((z > 0 ? 1.0f : -1.0f) * a2 * z2 > k) return std::sqrt(x2 + z2) * il2 - r2;
+  if ((y > 0 ? 1.0f : -1.0f) * a2 * y2 < k) return std::sqrt(x2 + y2) * il2 - r1;
+  return (std::sqrt(x2 * a2 * il2) + y * rr) * il2 - r1;
+}
+
+// Piecewise smooth interpolation through (x, y) keys sorted by x.
+template <size_t N>
+float smoothKeys(const std::array<vec2, N>& keys, float x) {
+  if (x <= keys.front().x) return keys.front().y;
+  for (size_t i = 1; i < N; ++i)
+    if (x <= keys[i].x) {
+      const float t = smoothstep(keys[i - 1].x, keys[i].x, x);
+      return keys[i - 1].y + (keys[i].y - keys[i - 1].y) * t;
+    }
+  return keys.back().y;
+}
+
+float elevationFrom(const vec3& centre, const vec3& p) {
+  const vec3 d = p - centre;
+  return std::atan2(d.y, std::sqrt(d.x * d.x + d.z * d.z));
+}
+
+}  // namespace
+
+HeadSdf::HeadSdf(const HeadProportions& proportions) : prop_(proportions) {
+  seamElevation_ = elevationFrom(prop_.gridCentre, prop_.mouthSeamCentre);
+  // Walk along the seam cone until the skin reaches the mouth half-width.
+  seamGroove_ = false;
+  const float ce = std::cos(seamElevation_), se = std::sin(seamElevation_);
+  for (float azimuth = 0.0f; azimuth < 0.8f; azimuth += 0.0005f) {
+    const vec3 dir(ce * std::sin(azimuth), se, ce * std::cos(azimuth));
+    const std::optional<vec3> hit = castOut(prop_.gridCentre, dir);
+    if (hit && hit->x >= prop_.mouthHalfWidth) {
+      cornerAzimuth_ = azimuth;
+      break;
+    }
+  }
+  seamGroove_ = true;
+}
+
+float HeadSdf::face(const vec3& p) const {
+  // Cranium.
+  float d = ellipsoid(p - vec3(0.0f, 0.032f, -0.010f), vec3(0.0765f, 0.092f, 0.098f));
+  // Mid-face mass (maxilla and cheekbones).
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.018f, 0.028f), vec3(0.066f, 0.052f, 0.060f)), 0.025f);
+  // Mandible, narrowing toward the chin for a stylised V jaw.
+  {
+    const float taper = 1.0f - 0.30f * smoothstep(-0.03f, 0.08f, p.z);
+    vec3 j = p - vec3(0.0f, -0.052f, 0.022f);
+    j.x /= taper;
+    d = smin(d, ellipsoid(j, vec3(0.057f, 0.031f, 0.060f)) * taper, 0.02f);
+  }
+  // Chin and the muzzle over the teeth.
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0725f, 0.0625f), vec3(0.019f, 0.013f, 0.018f)), 0.015f);
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.061f), vec3(0.031f, 0.024f, 0.026f)), 0.02f);
+  // Brow ridge.
+  d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.068f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
+  // Cheekbones and cheek apples (mirrored).
+  const vec3 m(std::abs(p.x), p.y, p.z);
+  d = smin(d, ellipsoid(m - vec3(0.050f, -0.004f, 0.036f), vec3(0.020f, 0.014f, 0.032f)), 0.02f);
+  d = smin(d, ellipsoid(m - vec3(0.036f, -0.016f, 0.062f), vec3(0.019f, 0.016f, 0.017f)), 0.02f);
+  d = smin(d, ellipsoid(m - vec3(0.041f, -0.037f, 0.044f), vec3(0.018f, 0.018f, 0.022f)), 0.02f);
+  // Neck: elliptic cylinder merged under the skull, cut flat at the bottom.
+  {
+    const vec2 q(p.x / 0.044f, (p.z + 0.018f) / 0.048f);
+    const float neck = std::max((glm::length(q) - 1.0f) * 0.044f, p.y);
+    d = smin(d, neck, 0.03f);
+    d = smax(d, prop_.neckBottomY - p.y, 0.012f);
+  }
+  return d;
+}
+
+float HeadSdf::nose(const vec3& p) const {
+  float n = roundCone(p, vec3(0.0f, 0.020f, 0.081f), vec3(0.0f, -0.017f, 0.1005f), 0.0050f, 0.0070f);
+  n = smin(n, glm::length(p - vec3(0.0f, -0.0215f, 0.1005f)) - 0.0085f, 0.008f);
+  const vec3 m(std::abs(p.x), p.y, p.z);
+  n = smin(n, ellipsoid(m - vec3(0.0115f, -0.0265f, 0.0900f), vec3(0.0065f, 0.0060f, 0.0070f)), 0.005f);
+  // Nostrils: shallow dents under the tip.
+  n = smax(n, -ellipsoid(m - vec3(0.0058f, -0.0310f, 0.0965f), vec3(0.0030f, 0.0020f, 0.0042f)), 0.0015f);
+  return n;
+}
+
+float HeadSdf::lips(const vec3& p) const {
+  vec3 b = p;
+  b.z += 12.0f * p.x * p.x;  // follow the dental arch
+  vec3 bow = b;
+  const float ax = std::abs(p.x) / 0.0042f;
+  bow.y -= 0.0009f * std::exp(-(ax - 1.2f) * (ax - 1.2f)) - 0.0006f * std::exp(-ax * ax * 2.0f);  // cupid's bow
+  const float upper = ellipsoid(bow - vec3(0.0f, -0.0462f, 0.0885f), vec3(0.0255f, 0.0058f, 0.0078f));
+  const float lower = ellipsoid(b - vec3(0.0f, -0.0560f, 0.0866f), vec3(0.0225f, 0.0066f, 0.0088f));
+  return std::min(upper, lower);
+}
+
+float HeadSdf::eyeRegion(float d, const vec3& p) const {
+  for (float side : {1.0f, -1.0f}) {
+    const vec3 e(prop_.eyeCentre.x * side, prop_.eyeCentre.y, prop_.eyeCentre.z);
+    // Socket: a shallow dish in the face in front of the eye; the eyeball's
+    // lid shell rises out of it. Both are star-shaped around the eye, so rays
+    // from behind the eyeball cross the skin once.
+    const float r = prop_.eyeRadius;
+    d = smax(d, -ellipsoid(p - (e + vec3(0.0f, 0.1f, 1.5f) * r), vec3(1.6f, 1.25f, 0.95f) * r), 0.016f);
+    const float thickness = prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) *
+                                                         smoothstep(-0.004f, 0.004f, p.y - e.y);
+    d = smin(d, glm::length(p - e) - (prop_.eyeRadius + thickness), 0.0075f);
+  }
+  return d;
+}
+
+float HeadSdf::hairCoverage(const vec3& p) const {
+  // Hairline height around the head: forehead, temples, sideburns, nape.
+  static constexpr std::array<vec2, 7> kHairline = {vec2(0.00f, 0.070f), vec2(0.35f, 0.071f), vec2(0.62f, 0.062f),
+                                                    vec2(1.10f, 0.042f), vec2(1.45f, 0.022f), vec2(2.20f, -0.015f),
+                                                    vec2(3.15f, -0.045f)};
+  const float around = std::abs(std::atan2(p.x, p.z));
+  const float h = smoothKeys(kHairline, around);
+  return smoothstep(h - 0.0025f, h + 0.0025f, p.y);
+}
+
+float HeadSdf::hairVolume(const vec3& p) const {
+  static constexpr std::array<vec2, 7> kHairline = {vec2(0.00f, 0.070f), vec2(0.35f, 0.071f), vec2(0.62f, 0.062f),
+                                                    vec2(1.10f, 0.042f), vec2(1.45f, 0.022f), vec2(2.20f, -0.015f),
+                                                    vec2(3.15f, -0.045f)};
+  const float around = std::abs(std::atan2(p.x, p.z));
+  const float h = smoothKeys(kHairline, around);
+  return smoothstep(h - 0.002f, h + 0.009f, p.y);
+}
+
+float HeadSdf::distance(const vec3& p) const {
+  float d = face(p);
+  d = smin(d, nose(p), 0.008f);
+  d = smin(d, lips(p), 0.004f);
+  d = eyeRegion(d, p);
+  // The lip seam: a sharp groove along the seam cone between the mouth corners.
+  if (seamGroove_) {
+    const vec3 c = prop_.gridCentre;
+    const float elevation = elevationFrom(c, p);
+    const float around = std::atan2(p.x - c.x, p.z - c.z);
+    const float span = 1.0f - smoothstep(cornerAzimuth_ - 0.035f, cornerAzimuth_ + 0.006f, std::abs(around));
+    const float u = (elevation - seamElevation_) / 0.0075f;
+    d += 0.0012f * std::exp(-u * u) * span;
+  }
+  // Hair volume over the scalp, fuller on top.
+  const float hair = hairVolume(p);
+  if (hair > 0.0f) d -= hair * (0.003f + 0.004f * smoothstep(0.03f, 0.11f, p.y));
+  return d;
+}
+
+float HeadSdf::occlusion(const vec3& p, const vec3& n) const {
+  // Classic distance-field AO: how much closer the surface is than the
+  // sample distance along the normal, weighted toward near samples.
+  float blocked = 0.0f, weight = 1.0f;
+  for (int i = 1; i <= 5; ++i) {
+    const float h = 0.0022f * float(i);
+    blocked += weight * std::max(0.0f, h - distance(p + n * h)) / h;
+    weight *= 0.6f;
+  }
+  return std::clamp(1.0f - 0.75f * blocked, 0.0f, 1.0f);
+}
+
+glm::vec3 HeadSdf::normal(const vec3& p) const {
+  const float h = 1e-4f;
+  const vec3 g(distance(p + vec3(h, 0, 0)) - distance(p - vec3(h, 0, 0)),
+               distance(p + vec3(0, h, 0)) - distance(p - vec3(0, h, 0)),
+               distance(p + vec3(0, 0, h)) - distance(p - vec3(0, 0, h)));
+  const float len = glm::length(g);
+  return len > 0.0f ? g / len : vec3(0, 0, 1);
+}
+
+std::optional<glm::vec3> HeadSdf::castOut(const vec3& origin, const vec3& dir, float maxT) const {
+  float prevT = 0.0f;
+  float d = distance(origin);
+  if (d >= 0.0f) return std::nullopt;
+  float t = 0.0f;
+  while (t < maxT) {
+    prevT = t;
+    t += std::clamp(std::abs(d) * 0.6f, 1.5e-4f, 2.5e-3f);
+    d = distance(origin + dir * t);
+    if (d >= 0.0f) {
+      float lo = prevT, hi = t;
+      for (int i = 0; i < 40; ++i) {
+        const float mid = 0.5f * (lo + hi);
+        (distance(origin + dir * mid) < 0.0f ? lo : hi) = mid;
+      }
+      return origin + dir * (0.5f * (lo + hi));
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace facial
