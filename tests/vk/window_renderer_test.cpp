@@ -1,0 +1,218 @@
+// The window target: presenting, screenshots, resize, the ImGui overlay hook
+// and hot reload in window mode. Needs a display; ctest runs these under
+// xvfb-run (test vk.WindowTestsUnderXvfb).
+#include "engine/vk/window_renderer.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include "engine/scene/image_io.h"
+#include "tests/common/test_support.h"
+#include "tests/vk/image_probe.h"
+#include "tests/vk/test_models.h"
+#include "tests/vk/vk_test_context.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+#define FACIAL_REQUIRE_DISPLAY()                                                                       \
+  do {                                                                                                 \
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))                                    \
+      GTEST_SKIP() << "no display: window tests run under xvfb-run (ctest -R vk.WindowTestsUnderXvfb)"; \
+  } while (0)
+
+// A window, its context (validation on, messages fail the test) and renderer.
+struct WindowRig {
+  std::unique_ptr<eng::vk::Window> window;
+  std::optional<eng::vk::Context> ctx;
+  std::unique_ptr<eng::vk::WindowRenderer> renderer;
+
+  explicit WindowRig(const eng::vk::WindowRendererOptions& options = {}) {
+    auto w = eng::vk::Window::create({320, 240, "test_vk window", true});
+    if (!w) {
+      ADD_FAILURE() << w.error().message;
+      return;
+    }
+    window = std::move(w).value();
+    eng::vk::ContextOptions contextOptions;
+    contextOptions.validation = true;
+    contextOptions.onValidationMessage = vk_test::failOnValidationMessage;
+    window->configureContext(contextOptions);
+    auto c = eng::vk::Context::create(contextOptions);
+    if (!c) {
+      ADD_FAILURE() << c.error().message;
+      return;
+    }
+    ctx.emplace(std::move(c).value());
+    auto r = eng::vk::WindowRenderer::create(*ctx, *window, options);
+    if (!r) {
+      ADD_FAILURE() << r.error().message;
+      return;
+    }
+    renderer = std::move(r).value();
+  }
+  ~WindowRig() { renderer.reset(); }  // before the context
+  bool ok() const { return renderer != nullptr; }
+};
+
+struct SphereScene {
+  eng::Model model = vk_test::makeSphereModel({});
+  std::optional<eng::vk::GpuModel> gpu;
+  std::vector<float> weights = std::vector<float>(4, 0.0f);
+  eng::vk::ModelInstance instance;
+
+  explicit SphereScene(eng::vk::WindowRenderer& renderer) {
+    auto uploaded = renderer.upload(model);
+    if (!uploaded) {
+      ADD_FAILURE() << uploaded.error().message;
+      return;
+    }
+    gpu.emplace(std::move(uploaded).value());
+    instance = {&*gpu, glm::mat4(1.0f), weights};
+  }
+  eng::vk::FrameInput frame() const {
+    return {{eng::vk::OrbitCamera::frame(model.bounds()), {}}, {&instance, 1}, {}, {}};
+  }
+};
+
+eng::Image screenshotOf(WindowRig& rig, eng::vk::FrameInput frame, const std::string& name) {
+  frame.screenshot = testing_support::freshTempDir("window_" + name) / (name + ".png");
+  auto presented = rig.renderer->drawFrame(frame);
+  EXPECT_TRUE(presented) << (presented ? "" : presented.error().message);
+  auto image = eng::readImage(frame.screenshot);
+  EXPECT_TRUE(image) << (image ? "" : image.error().message);
+  return image ? std::move(image).value() : eng::Image{};
+}
+
+TEST(WindowRenderer, PresentsFramesAndSavesAScreenshot) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  for (int i = 0; i < 3; ++i) {
+    rig.window->pollEvents();
+    auto presented = rig.renderer->drawFrame(scene.frame());
+    ASSERT_TRUE(presented) << presented.error().message;
+    EXPECT_EQ(*presented, eng::vk::FrameResult::Presented);
+  }
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "present");
+  const VkExtent2D extent = rig.renderer->extent();
+  ASSERT_EQ(shot.width, int(extent.width));
+  ASSERT_EQ(shot.height, int(extent.height));
+  const glm::ivec4 centre = vk_test::pixel(shot, shot.width / 2, shot.height / 2);
+  const glm::ivec4 corner = vk_test::pixel(shot, 2, 2);
+  EXPECT_GT(centre.r, corner.r + 40) << "the warm sphere in the middle, backdrop in the corner";
+  EXPECT_EQ(rig.renderer->lastFrameStats().draws, 1u);
+}
+
+TEST(WindowRenderer, FollowsAResize) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  ASSERT_TRUE(rig.renderer->drawFrame(scene.frame()));
+  glfwSetWindowSize(rig.window->handle(), 400, 300);
+  for (int i = 0; i < 100 && rig.window->framebufferExtent().width != 400; ++i) {
+    rig.window->pollEvents();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(rig.window->framebufferExtent().width, 400u) << "the X server applied the new size";
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "resized");
+  EXPECT_EQ(rig.renderer->extent().width, 400u);
+  EXPECT_EQ(rig.renderer->extent().height, 300u);
+  EXPECT_EQ(shot.width, 400);
+  EXPECT_EQ(shot.height, 300);
+}
+
+TEST(WindowRenderer, ImGuiOverlayDrawsIntoTheScenePass) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ASSERT_TRUE(ImGui_ImplGlfw_InitForVulkan(rig.window->handle(), false));
+  const eng::vk::ImGuiVulkanInfo info = rig.renderer->imguiInfo();
+  ImGui_ImplVulkan_InitInfo init{};
+  init.Instance = info.instance;
+  init.PhysicalDevice = info.physicalDevice;
+  init.Device = info.device;
+  init.QueueFamily = info.queueFamily;
+  init.Queue = info.queue;
+  init.DescriptorPool = info.descriptorPool;
+  init.Subpass = info.subpass;
+  init.MinImageCount = info.minImageCount;
+  init.ImageCount = info.imageCount;
+  init.MSAASamples = info.msaaSamples;
+  ASSERT_TRUE(ImGui_ImplVulkan_Init(&init, info.renderPass));
+  auto fonts = rig.ctx->submitOneShot([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  ASSERT_TRUE(fonts) << fonts.error().message;
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+
+  const eng::Image without = screenshotOf(rig, scene.frame(), "no_overlay");
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  ImGui::SetNextWindowPos({10, 10});
+  ImGui::SetNextWindowSize({150, 80});
+  ImGui::Begin("overlay");
+  ImGui::Text("hello from ImGui");
+  ImGui::End();
+  ImGui::Render();
+  eng::vk::FrameInput frame = scene.frame();
+  frame.overlay = [](VkCommandBuffer cmd) { ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd); };
+  const eng::Image with = screenshotOf(rig, frame, "overlay");
+
+  vkDeviceWaitIdle(rig.ctx->device());
+  ImGui_ImplVulkan_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+
+  ASSERT_EQ(with.rgba8.size(), without.rgba8.size());
+  EXPECT_NE(vk_test::pixel(with, 40, 40), vk_test::pixel(without, 40, 40)) << "the ImGui window covers (40, 40)";
+  EXPECT_EQ(vk_test::pixel(with, 250, 200), vk_test::pixel(without, 250, 200)) << "the rest is the scene";
+}
+
+TEST(WindowRenderer, HotReloadsEditedShadersWhileRunning) {
+  FACIAL_REQUIRE_DISPLAY();
+  const fs::path dir = testing_support::freshTempDir("window_shader_sources");
+  for (const auto& entry : fs::directory_iterator(eng::vk::defaultShaderSourceDir()))
+    fs::copy_file(entry.path(), dir / entry.path().filename());
+  eng::vk::WindowRendererOptions options;
+  options.shaderSourceDir = dir;
+  WindowRig rig(options);
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  ASSERT_TRUE(rig.renderer->drawFrame(scene.frame()));
+
+  std::stringstream source;
+  source << std::ifstream(dir / "background.frag").rdbuf();
+  std::string text = source.str();
+  const std::string line = "outColor = vec4(color * vignette, 1.0);";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.replace(text.find(line), line.size(), "outColor = vec4(1.0, 0.0, 1.0, 1.0);");
+  const auto before = fs::last_write_time(dir / "background.frag");
+  testing_support::writeFile(dir / "background.frag", text);
+  fs::last_write_time(dir / "background.frag", before + std::chrono::seconds(2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));  // the renderer polls twice a second
+
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "hot_reload");
+  EXPECT_EQ(vk_test::pixel(shot, 2, 2), glm::ivec4(255, 0, 255, 255)) << "the edited backdrop shader is live";
+  EXPECT_EQ(rig.renderer->shaders().generation(), 1u);
+}
+
+}  // namespace
