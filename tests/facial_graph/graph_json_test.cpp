@@ -112,6 +112,9 @@ TEST(GraphJsonValidity, ErrorsNameTheFileTheJsonPointerAndTheProblem) {
   e = loadError("badOp", machineWith(R"({"to": "a", "conditions": [{"parameter": "level", "op": "~", "value": 1}]})"));
   EXPECT_NE(e.find("/conditions/0/op: unknown comparison '~'"), std::string::npos) << e;
 
+  e = loadError("priority", machineWith(R"({"to": "a", "exitTime": 1, "priority": 0.5})"));
+  EXPECT_NE(e.find("/root/states/2/transitions/0/priority: expected an integer, got 0.5"), std::string::npos) << e;
+
   e = loadError("unknownState", machineWith(R"({"to": "zz", "exitTime": 1})"));
   EXPECT_NE(e.find("/root/states/2/transitions/0/to: no state named 'zz'"), std::string::npos) << e;
 

@@ -254,7 +254,10 @@ class GraphParser {
       t.duration = j.numberOr("duration", t.duration);
       t.curve = curve(j);
       if (auto e = j.find("exitTime")) t.exitTime = e->number();
-      t.priority = static_cast<int>(j.numberOr("priority", 0.0f));
+      if (auto p = j.find("priority")) {
+        if (!p->raw().is_number_integer()) p->fail("expected an integer, got " + p->raw().dump());
+        t.priority = p->raw().get<int>();
+      }
       t.interruptible = j.booleanOr("interruptible", true);
       t.canTransitionToSelf = j.booleanOr("canTransitionToSelf", false);
       if (auto conditions = j.find("conditions"))
