@@ -1,0 +1,65 @@
+// `facial rig MODEL [--rigmap FILE] [--json]`: how the runtime drives a
+// model: the rig mapping's scheme, the targets no input drives, the inputs
+// that drive nothing, and the mapping's notes.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "demo/command.h"
+#include "demo/face_setup.h"
+#include "engine/scene/gltf_loader.h"
+
+namespace cli {
+namespace {
+
+struct RigOptions {
+  std::string model;
+  std::string rigmap;
+  bool json = false;
+};
+
+nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigMapping& rig) {
+  const facial::RigMappingReport& report = rig.report();
+  return {{"model", modelPath},
+          {"scheme", std::string(facial::rigSchemeName(report.scheme))},
+          {"detail", report.detail},
+          {"targetCount", rig.targetCount()},
+          {"drivenTargetCount", rig.drivenTargets().size()},
+          {"unmappedTargets", report.unmappedTargets},
+          {"unmappedInputs", report.unmappedInputs},
+          {"notes", report.notes}};
+}
+
+int runRig(const RigOptions& o) {
+  auto model = eng::loadModel(o.model);
+  if (!model) {
+    std::fprintf(stderr, "facial rig: error: %s\n", model.error().message.c_str());
+    return 1;
+  }
+  auto rig = buildModelRig(*model, o.rigmap);
+  if (!rig) {
+    std::fprintf(stderr, "facial rig: error: %s\n", rig.error().message.c_str());
+    return 1;
+  }
+  if (o.json) {
+    std::printf("%s\n",
+                toJson(o.model, *rig).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  } else {
+    std::printf("%s: %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(), rig->targetCount(),
+                rig->drivenTargets().size(), rig->report().summary().c_str());
+  }
+  return 0;
+}
+
+CommandRegistrar reg("rig", "Show how the expression runtime drives a model (rig mapping report)", [](CLI::App& app) {
+  auto o = std::make_shared<RigOptions>();
+  app.add_option("model", o->model, "glTF model (.gltf or .glb)")->required();
+  app.add_option("--rigmap", o->rigmap, "Rig map JSON to use instead of <data>/rigmaps/<model>.json or detection");
+  app.add_flag("--json", o->json, "Print machine-readable JSON instead of text");
+  return [o] { return runRig(*o); };
+});
+
+}  // namespace
+}  // namespace cli

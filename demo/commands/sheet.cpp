@@ -1,0 +1,110 @@
+// `facial sheet [--model M] [--compound] [--size N] [--intensity X]
+//  [--device D] --out sheet.png`
+// A labelled contact sheet of a model posed with the basic states (neutral
+// and the six basic emotions) or, with --compound, the compound presets.
+// Every tile comes from ONE headless renderer (one Vulkan context, one
+// upload) and one fixed camera, so tiles compare like for like.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "demo/command.h"
+#include "demo/face_setup.h"
+#include "demo/headless_model_renderer.h"
+#include "engine/image/contact_sheet.h"
+#include "engine/image/text.h"
+#include "engine/scene/image_io.h"
+
+namespace cli {
+namespace {
+
+struct SheetOptions {
+  std::string model;
+  bool compound = false;
+  uint32_t size = 256;
+  float intensity = 1.0f;
+  std::string device;
+  std::string out;
+};
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial sheet: error: %s\n", message.c_str());
+  return 1;
+}
+
+// "happily_surprised" -> "happily surprised"
+std::string labelOf(const std::string& presetName) {
+  std::string label = presetName;
+  std::replace(label.begin(), label.end(), '_', ' ');
+  return label;
+}
+
+// The largest label size (at most a tenth of the tile, 12..28 px) at which
+// every label fits its tile's width.
+float labelHeightFor(const eng::TextRenderer& text, const std::vector<eng::ContactSheetTile>& tiles, int tileWidth) {
+  float height = std::clamp(float(tileWidth) / 10.0f, 12.0f, 28.0f);
+  for (const eng::ContactSheetTile& tile : tiles)
+    while (height > 8.0f && text.measure(tile.label, height) > tileWidth - 4) height -= 1.0f;
+  return height;
+}
+
+int runSheet(const SheetOptions& o) {
+  if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
+  auto face = FaceSetup::load({.model = o.model});
+  if (!face) return fail(face.error().message);
+  const std::vector<const facial::ExpressionPreset*> presets = face->presets(o.compound);
+  if (presets.empty())
+    return fail(std::string("the expression presets hold no ") + (o.compound ? "compound" : "basic") + " expressions");
+
+  auto renderer = HeadlessModelRenderer::create(face->model(), {.width = o.size, .height = o.size, .device = o.device});
+  if (!renderer) return fail(renderer.error().message);
+  std::vector<float> weights(face->weightCount());
+  std::vector<eng::ContactSheetTile> tiles;
+  for (const facial::ExpressionPreset* preset : presets) {
+    if (auto posed = face->expressionWeights(*preset, o.intensity, weights); !posed) return fail(posed.error().message);
+    auto image = renderer->render(weights);
+    if (!image) return fail(image.error().message);
+    eng::ContactSheetTile tile;
+    tile.image.width = image->width;
+    tile.image.height = image->height;
+    tile.image.rgba = std::move(image->rgba8);
+    tile.label = labelOf(preset->name);
+    tiles.push_back(std::move(tile));
+  }
+
+  auto text = eng::TextRenderer::create();
+  if (!text) return fail(text.error().message);
+  eng::ContactSheetOptions sheetOptions;
+  sheetOptions.columns = std::min<int>(5, int(tiles.size() + 1) / 2);
+  sheetOptions.labelHeight = labelHeightFor(*text, tiles, int(o.size));
+  sheetOptions.title = face->name() + " - " + (o.compound ? "compound expressions" : "basic expressions") + " (" +
+                       std::string(facial::rigSchemeName(face->rig().scheme())) + " rig)";
+  auto sheet = eng::composeContactSheet(tiles, sheetOptions);
+  if (!sheet) return fail(sheet.error().message);
+  if (auto written = eng::writePng(o.out, sheet->width, sheet->height, sheet->rgba); !written)
+    return fail(written.error().message);
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  std::printf("wrote %s (%zu %s expressions of %s, %dx%d, %s)\n", o.out.c_str(), tiles.size(),
+              o.compound ? "compound" : "basic", face->name().c_str(), sheet->width, sheet->height,
+              renderer->deviceName().c_str());
+  return 0;
+}
+
+CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expressions, headless", [](CLI::App& app) {
+  auto o = std::make_shared<SheetOptions>();
+  app.add_option("--model,-m", o->model, "glTF model (default: the built-in head, <data>/head.glb)");
+  app.add_flag("--compound", o->compound, "The compound presets instead of neutral and the six basic emotions");
+  app.add_option("--size", o->size, "Tile size in pixels (square)")
+      ->check(CLI::Range(16u, 4096u))
+      ->capture_default_str();
+  app.add_option("--intensity,-i", o->intensity, "Strength of every preset, clamped to [0, 1]")->capture_default_str();
+  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
+  app.add_option("--out,-o", o->out, "Output PNG file")->required();
+  return [o] { return runSheet(*o); };
+});
+
+}  // namespace
+}  // namespace cli

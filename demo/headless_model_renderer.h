@@ -1,0 +1,55 @@
+#pragma once
+// One model rendered headless many times with different weights from one
+// fixed camera: ONE Vulkan context, offscreen target and GPU upload shared by
+// every frame (a contact sheet of expressions re-creates nothing per tile).
+// The camera frames eng::vk::framingBounds, so it stays put across weights.
+//
+//   auto renderer = cli::HeadlessModelRenderer::create(model, {.width = 256, .height = 256});
+//   auto image = renderer->render(weights);
+//   if (auto clean = renderer->checkValidation(); !clean) ...  // FACIAL_VALIDATION=1 runs
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/vk/context.h"
+#include "engine/vk/gpu_model.h"
+#include "engine/vk/offscreen_renderer.h"
+#include "engine/vk/scene_view.h"
+
+namespace cli {
+
+struct HeadlessRenderOptions {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  float yawDegrees = 0.0f;    // + = from the face's left
+  float pitchDegrees = 0.0f;  // + = from above
+  float zoom = 1.0f;          // > 1 = closer
+  std::string device;         // eng::vk::ContextOptions::device
+};
+
+class HeadlessModelRenderer {
+ public:
+  // `model` is uploaded once; it need not outlive the renderer.
+  static eng::Result<HeadlessModelRenderer> create(const eng::Model& model, const HeadlessRenderOptions& options);
+
+  // weights: the model's flat weight vector (eng::WeightLayout order).
+  eng::Result<eng::Image> render(std::span<const float> weights);
+
+  const std::string& deviceName() const { return context_->deviceInfo().name; }
+  // An error counting the validation messages reported so far (they were
+  // logged as they came), so a validation run fails loudly; ok otherwise.
+  eng::Result<void> checkValidation() const;
+
+ private:
+  // Declared in creation order: destroyed model first, context last.
+  std::unique_ptr<eng::vk::Context> context_;  // stable address: the renderer points at it
+  std::unique_ptr<eng::vk::OffscreenRenderer> renderer_;
+  eng::vk::GpuModel gpuModel_;
+  eng::vk::SceneView view_;
+  std::string modelName_;
+};
+
+}  // namespace cli
