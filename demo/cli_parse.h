@@ -1,0 +1,11 @@
+#pragma once
+// Option parsing shared by the subcommands.
+#include <cstdint>
+#include <string>
+
+namespace cli {
+
+// "WxH" with 1..16384 pixels per side.
+bool parseSize(const std::string& text, uint32_t& width, uint32_t& height);
+
+}  // namespace cli

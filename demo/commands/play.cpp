@@ -1,0 +1,133 @@
+// `facial play FILE.json [--model M] [--fps N] [--seconds S] [--size WxH] --out DIR [--video out.gif]`
+// Plays a graph (data/graphs/*.json) or a timeline (data/timelines/*.json)
+// on a face, headless, into numbered PNG frames and optionally a GIF.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "demo/cli_parse.h"
+#include "demo/command.h"
+#include "demo/face_setup.h"
+#include "demo/sequence_recorder.h"
+#include "engine/vk/context.h"
+#include "engine/vk/framing_bounds.h"
+#include "engine/vk/offscreen_renderer.h"
+#include "facial/runtime/character/face_driver.h"
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/preset_lookup.h"
+#include "facial/runtime/rig/action_units.h"
+
+namespace cli {
+namespace {
+
+struct PlayOptions {
+  std::string file;
+  std::string model;
+  float fps = 24.0f;
+  float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
+  std::string size = "512x512";
+  std::string out;
+  std::string video;
+};
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial play: error: %s\n", message.c_str());
+  return 1;
+}
+
+// A timeline file becomes a one-node graph so both kinds play the same way.
+eng::Result<facial::SharedGraphDefinition> graphForTimeline(const FaceSetup& face, const std::string& file,
+                                                            const nlohmann::json& document, float& length) {
+  nlohmann::json channels = nlohmann::json::array();
+  bool allActionUnits = true;
+  for (const auto& track : document.value("tracks", nlohmann::json::array())) {
+    const std::string channel = track.is_object() ? track.value("channel", "") : "";
+    channels.push_back(channel);
+    allActionUnits = allActionUnits && facial::actionUnitIndex(channel).has_value();
+  }
+  length = document.value("duration", 0.0f);
+  nlohmann::json graph = {
+      {"version", facial::kGraphFileVersion},
+      {"channels", allActionUnits ? nlohmann::json("actionUnits") : channels},
+      {"timelines", {{"clip", std::filesystem::absolute(file).string()}}},
+      {"root", {{"type", "timeline"}, {"timeline", "clip"}}},
+  };
+  facial::GraphLoadOptions options;
+  options.presets = facial::presetLookup(face.expressions());
+  return facial::parseGraph(graph, file, options);
+}
+
+int runPlay(const PlayOptions& o) {
+  uint32_t width = 0, height = 0;
+  if (!parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 512x512)");
+  std::ifstream in(o.file);
+  if (!in) return fail(o.file + ": cannot open file");
+  nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded() || !document.is_object()) return fail(o.file + ": not a JSON object");
+
+  auto setup = FaceSetup::load({.model = o.model});
+  if (!setup) return fail(setup.error().message);
+
+  float length = 24.0f;
+  facial::GraphLoadOptions graphOptions;
+  graphOptions.presets = facial::presetLookup(setup->expressions());
+  eng::Result<facial::SharedGraphDefinition> graph =
+      document.contains("tracks") ? graphForTimeline(*setup, o.file, document, length)
+                                  : facial::loadGraph(o.file, graphOptions);
+  if (!graph) return fail(graph.error().message);
+  const std::vector<std::string> targetNames = setup->layout().names();
+  auto face = facial::FaceDriver::create(*graph, &setup->rig(), targetNames, setup->baseWeights());
+  if (!face) return fail(o.file + ": " + face.error().message);
+
+  auto ctx = eng::vk::Context::create({});
+  if (!ctx) return fail("Vulkan: " + ctx.error().message);
+  auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {width, height});
+  if (!renderer) return fail("Vulkan: " + renderer.error().message);
+  auto gpuModel = renderer->upload(setup->model());
+  if (!gpuModel) return fail(gpuModel.error().message);
+
+  eng::vk::SceneView view;
+  view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(setup->model()), float(width) / float(height));
+
+  SequenceOptions sequence;
+  sequence.framesPerSecond = o.fps;
+  sequence.seconds = o.seconds > 0.0f ? o.seconds : length;
+  sequence.frameDir = o.out;
+  sequence.gifPath = o.video;
+  sequence.progressLabel = "play";
+  eng::vk::ModelInstance instance{&gpuModel.value(), glm::mat4(1.0f), {}};
+  auto summary = recordSequence(
+      *renderer, view, sequence,
+      [&](const FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
+        face->update(frame.dt);
+        instance.weights = face->targetWeights();
+        return std::span<const eng::vk::ModelInstance>(&instance, 1);
+      });
+  if (!summary) return fail(summary.error().message);
+  if (const uint32_t messages = ctx->validationMessageCount(); messages > 0)
+    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  std::printf("played %s on %s: %u frames (%.1f s at %.0f fps) in %.1f s (%.1f ms/frame render) -> %s%s%s\n",
+              o.file.c_str(), setup->name().c_str(), summary->frames, sequence.seconds, o.fps,
+              summary->totalSeconds, 1000.0 * summary->renderSeconds / std::max<uint32_t>(1, summary->frames),
+              o.out.c_str(), o.video.empty() ? "" : ", ", o.video.c_str());
+  return 0;
+}
+
+CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (and a GIF)", [](CLI::App& app) {
+  auto o = std::make_shared<PlayOptions>();
+  app.add_option("file", o->file, "Graph (data/graphs/*.json) or timeline (data/timelines/*.json)")->required();
+  app.add_option("--model,-m", o->model, "glTF face (default: the built-in head)");
+  app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
+  app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
+  app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();
+  app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
+  app.add_option("--video", o->video, "Also write an animated GIF here");
+  return [o] { return runPlay(*o); };
+});
+
+}  // namespace
+}  // namespace cli

@@ -1,0 +1,51 @@
+#pragma once
+// Headless playback: steps animated faces at a fixed frame rate, renders each
+// frame offscreen and writes numbered PNGs, optionally an animated GIF, and
+// keeps chosen frames for a contact sheet. Shared by `facial play` and the
+// demo's headless tour.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "engine/image/canvas.h"
+#include "engine/vk/offscreen_renderer.h"
+#include "engine/vk/scene_view.h"
+
+namespace cli {
+
+struct SequenceOptions {
+  float framesPerSecond = 24.0f;
+  float seconds = 10.0f;
+  std::filesystem::path frameDir;    // frame_0000.png ...; empty: no PNGs
+  std::filesystem::path gifPath;     // empty: no GIF
+  std::string progressLabel = "rendering";
+};
+
+// Called before frame `index` is rendered at time `time` (seconds): advance
+// the animation by dt and fill the instances to draw. Returns false to stop
+// with an error message in `error`.
+struct FrameContext {
+  uint32_t index = 0;
+  float time = 0;
+  float dt = 0;
+};
+using FrameStep = std::function<eng::Result<std::span<const eng::vk::ModelInstance>>(const FrameContext&)>;
+// Called after a frame was rendered, with its pixels (e.g. to keep it for a contact sheet).
+using FrameSink = std::function<void(const FrameContext&, const eng::Image&)>;
+
+struct SequenceSummary {
+  uint32_t frames = 0;
+  double renderSeconds = 0;   // GPU/lavapipe frame time, summed
+  double totalSeconds = 0;    // wall time incl. encoding
+};
+
+eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
+                                            const SequenceOptions& options, const FrameStep& step,
+                                            const FrameSink& sink = {});
+
+}  // namespace cli

@@ -1,0 +1,66 @@
+#include "facial/runtime/character/face_driver.h"
+
+#include <limits>
+
+#include "facial/runtime/rig/action_units.h"
+
+namespace facial {
+namespace {
+
+bool speaksActionUnits(const ChannelSet& channels) {
+  const auto aus = actionUnits();
+  if (channels.size() != aus.size()) return false;
+  for (uint32_t i = 0; i < aus.size(); ++i)
+    if (channels.channels()[i].name != aus[i].name) return false;
+  return true;
+}
+
+}  // namespace
+
+eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const RigMapping* rig,
+                                           std::span<const std::string> targetNames,
+                                           std::span<const float> baseWeights, uint64_t seed) {
+  if (!graph) return eng::makeError("face driver: no graph");
+  if (targetNames.size() != baseWeights.size())
+    return eng::makeError("face driver: " + std::to_string(targetNames.size()) + " target names but " +
+                          std::to_string(baseWeights.size()) + " base weights");
+  const ChannelSet& channels = graph->channels();
+  auto instance = GraphInstance::create(graph, seed);
+  if (!instance) return instance.error();
+  FaceDriver driver(std::move(*instance));
+  driver.targetWeights_.assign(baseWeights.begin(), baseWeights.end());
+
+  if (speaksActionUnits(channels)) {
+    if (!rig) return eng::makeError("face driver: the graph drives action units but the model has no rig mapping");
+    if (rig->targetCount() != baseWeights.size())
+      return eng::makeError("face driver: rig mapping covers " + std::to_string(rig->targetCount()) +
+                            " targets, the model has " + std::to_string(baseWeights.size()));
+    driver.rig_ = rig;
+    return driver;
+  }
+  // Raw target channels: match by name; a channel the model lacks is an error
+  // because its animation would silently do nothing.
+  driver.channelToTarget_.assign(channels.size(), std::numeric_limits<uint32_t>::max());
+  for (uint32_t c = 0; c < channels.size(); ++c) {
+    const std::string& name = channels.channels()[c].name;
+    for (uint32_t t = 0; t < targetNames.size(); ++t)
+      if (targetNames[t] == name) { driver.channelToTarget_[c] = t; break; }
+    if (driver.channelToTarget_[c] == std::numeric_limits<uint32_t>::max())
+      return eng::makeError("face driver: graph channel '" + name + "' is no morph target of the model");
+  }
+  return driver;
+}
+
+bool FaceDriver::update(float dt) {
+  if (!graph_.update(dt)) return false;
+  const std::span<const float> weights = graph_.weights();
+  if (rig_) {
+    // Sizes were checked in create(), so apply() cannot fail here.
+    (void)rig_->apply(weights, targetWeights_);
+  } else {
+    for (size_t c = 0; c < channelToTarget_.size(); ++c) targetWeights_[channelToTarget_[c]] = weights[c];
+  }
+  return true;
+}
+
+}  // namespace facial
