@@ -34,6 +34,9 @@ layout(std140, set = 0, binding = 0) uniform FrameGlobals {
   vec4 backgroundBottom;
   vec4 skin;              // x diffuse wrap, y subsurface strength, z specular strength, w exposure
   vec4 subsurfaceColor;   // warm tint added at the light terminator
+  mat4 keyLightViewProj;  // world -> key light's shadow-map clip space
+  vec4 shadow;            // y filter radius (shadow-map uv), z normal offset (world), w 1 = on
+  vec4 shadowColor;       // what of the key light remains in its shadow (warm: light bleeding under skin)
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData instances[]; };

@@ -7,6 +7,39 @@
 
 const float PI = 3.14159265;
 
+// The key light's shadow map (depth compare, bilinear: each tap is 2x2 PCF).
+layout(set = 0, binding = 4) uniform sampler2DShadow keyShadowMap;
+
+// Soft key-light visibility: a 5x5 grid of bilinear depth-compare taps (each
+// already a 2x2 PCF) spread over the penumbra radius: a smooth tent-shaped
+// falloff without the grain of rotated random taps.
+// Self-shadowing (acne, and the faceted "terminator" pattern of low-poly
+// skin) is avoided three ways: the receiver is pushed along its normal, the
+// compared depth is biased by how far a surface of this slope recedes
+// across the filter's footprint, and surfaces turned away from the key keep
+// their wrapped (subsurface) light: they are not lit directly anyway, and the
+// shadow map cannot tell the surface's own back from an occluder.
+float keyLightVisibility(vec3 worldPosition, vec3 normal) {
+  if (frame.shadow.w < 0.5) return 1.0;
+  float nDotL = dot(normal, frame.keyDirection.xyz);
+  float facing = smoothstep(0.0, 0.2, nDotL);
+  if (facing <= 0.0) return 1.0;
+  vec4 clip = frame.keyLightViewProj * vec4(worldPosition + normal * frame.shadow.z, 1.0);
+  vec3 ndc = clip.xyz / clip.w;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  // Depth spans 4 scene radii, uv 2.1: a slope of tan(theta) recedes 0.525 tan(theta) depth per uv.
+  float cosTheta = clamp(nDotL, 0.2, 1.0);
+  float tanTheta = sqrt(1.0 - cosTheta * cosTheta) / cosTheta;
+  float depth = ndc.z - frame.shadow.y * 0.525 * tanTheta - 0.0005;
+  float spacing = frame.shadow.y * 0.5;
+  float lit = 0.0;
+  for (int y = -2; y <= 2; ++y) {
+    for (int x = -2; x <= 2; ++x) lit += texture(keyShadowMap, vec3(uv + vec2(x, y) * spacing, depth));
+  }
+  return mix(1.0, lit / 25.0, facing);
+}
+
 struct SurfacePoint {
   vec3 albedo;      // linear base colour
   vec3 normal;      // unit, facing the viewer side for double-sided surfaces
@@ -39,8 +72,9 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor) {
   return (diffuse + specular) * lightColor;
 }
 
-vec3 shadeThreePoint(SurfacePoint s) {
-  vec3 color = shadeLight(s, frame.keyDirection.xyz, frame.keyColor.rgb);
+vec3 shadeThreePoint(SurfacePoint s, float keyVisibility) {
+  vec3 keyColor = frame.keyColor.rgb * mix(frame.shadowColor.rgb, vec3(1.0), keyVisibility);
+  vec3 color = shadeLight(s, frame.keyDirection.xyz, keyColor);
   color += shadeLight(s, frame.fillDirection.xyz, frame.fillColor.rgb);
   color += shadeLight(s, frame.rimDirection.xyz, frame.rimColor.rgb);
   // Hemisphere ambient: sky from above, bounce from below.

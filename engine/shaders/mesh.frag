@@ -58,5 +58,6 @@ void main() {
   s.roughness = clamp(draw.roughness, 0.05, 1.0);
   s.metallic = clamp(draw.metallic, 0.0, 1.0);
 
-  outColor = vec4(toneMap(shadeThreePoint(s)), 1.0);
+  float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
+  outColor = vec4(toneMap(shadeThreePoint(s, keyVisibility)), 1.0);
 }

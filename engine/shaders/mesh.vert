@@ -1,6 +1,7 @@
 #version 450
 // Morphs one vertex of one instance and transforms it to clip space.
-// Built twice (see engine/vk/CMakeLists.txt): the render variant, and with
+// Built three times (see engine/vk/CMakeLists.txt): the render variant; with
+// SHADOW_PASS the key light's shadow-map variant (position only); with
 // MORPH_CAPTURE the capture variant that writes the morphed object-space
 // vertex to a storage buffer (rasteriser discard) so tests can compare the
 // GPU result with the CPU reference.
@@ -14,10 +15,10 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) in vec4 inTangent;  // xyz direction, w handedness (zeros when absent)
 
-#ifdef MORPH_CAPTURE
+#if defined(MORPH_CAPTURE)
 // Three vec4 per captured vertex: position (w = 1), normal, tangent (w = handedness).
 layout(std430, set = 0, binding = 3) writeonly buffer Captured { vec4 captured[]; };
-#else
+#elif !defined(SHADOW_PASS)
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outTexcoord;
@@ -29,13 +30,15 @@ void main() {
   InstanceData inst = instances[gl_InstanceIndex];
   MorphedVertex m = morphVertex(vertex, inst, inPosition, inNormal, inTangent.xyz);
 
-#ifdef MORPH_CAPTURE
+#if defined(MORPH_CAPTURE)
   uint slot = draw.captureOffset + (uint(gl_InstanceIndex) - draw.firstInstance) * draw.vertexCount + vertex;
   captured[slot * 3u + 0u] = vec4(m.position, 1.0);
   captured[slot * 3u + 1u] = vec4(m.normal, 0.0);
   captured[slot * 3u + 2u] = vec4(m.tangent, inTangent.w);
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
   gl_PointSize = 1.0;
+#elif defined(SHADOW_PASS)
+  gl_Position = frame.keyLightViewProj * (inst.model * vec4(m.position, 1.0));
 #else
   vec4 world = inst.model * vec4(m.position, 1.0);
   outWorldPosition = world.xyz;

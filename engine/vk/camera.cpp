@@ -18,7 +18,7 @@ OrbitCamera OrbitCamera::frame(const Aabb& bounds, float aspect, float fovYDegre
   // margin, then step back by half the depth so the nearest point fits too.
   // Tighter than a bounding sphere: a head fills the frame instead of floating in it.
   const float tanHalf = std::tan(glm::radians(fovYDegrees) * 0.5f);
-  const float margin = 1.12f;
+  const float margin = 1.05f;
   const float fit = std::max(half.y, half.x / std::max(aspect, 1e-3f)) * margin / tanHalf;
   camera.distance = std::max(fit + half.z, camera.sceneRadius * 1.05f);
   return camera;

@@ -42,8 +42,11 @@ struct FrameGlobals {
   glm::vec4 backgroundBottom{0.0f};
   glm::vec4 skin{0.0f};  // wrap, subsurface strength, specular strength, exposure
   glm::vec4 subsurfaceColor{0.0f};
+  glm::mat4 keyLightViewProj{1.0f};
+  glm::vec4 shadow{0.0f};  // unused, filter radius (uv), normal offset (world), enabled
+  glm::vec4 shadowColor{0.0f};
 };
-static_assert(sizeof(FrameGlobals) == 3 * 64 + 13 * 16);
+static_assert(sizeof(FrameGlobals) == 4 * 64 + 15 * 16);
 
 struct DrawConstants {
   glm::vec4 baseColorFactor{1.0f};

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace eng::vk {
 
 glm::vec3 lightDirection(const OrbitCamera& camera, const DirectionalLight& light) {
@@ -12,6 +14,13 @@ glm::vec3 lightDirection(const OrbitCamera& camera, const DirectionalLight& ligh
   const float el = glm::radians(light.elevationDegrees);
   return glm::normalize(toCamera * (std::cos(el) * std::cos(az)) + right * (std::cos(el) * std::sin(az)) +
                         up * std::sin(el));
+}
+
+glm::mat4 keyLightViewProj(const OrbitCamera& camera, const glm::vec3& toLight) {
+  const float r = camera.sceneRadius * 1.05f;
+  const glm::vec3 up = std::abs(toLight.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  const glm::mat4 view = glm::lookAtRH(camera.target + toLight * (2.0f * r), camera.target, up);
+  return glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r) * view;
 }
 
 FrameGlobals buildFrameGlobals(const OrbitCamera& camera, float aspect, const LightRig& rig) {
@@ -32,6 +41,10 @@ FrameGlobals buildFrameGlobals(const OrbitCamera& camera, float aspect, const Li
   g.backgroundBottom = glm::vec4(rig.backgroundBottom, 1.0f);
   g.skin = glm::vec4(rig.diffuseWrap, rig.subsurfaceStrength, rig.specularStrength, rig.exposure);
   g.subsurfaceColor = glm::vec4(rig.subsurfaceColor, 0.0f);
+  g.keyLightViewProj = keyLightViewProj(camera, glm::vec3(g.keyDirection));
+  // The shadow map spans 2.1 scene radii: a penumbra of softness x radius is this much of its uv range.
+  g.shadow = glm::vec4(0.0f, rig.shadowSoftness / 2.1f, camera.sceneRadius * 0.004f, rig.keyShadow ? 1.0f : 0.0f);
+  g.shadowColor = glm::vec4(rig.shadowColor, 0.0f);
   return g;
 }
 

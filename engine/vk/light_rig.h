@@ -29,12 +29,21 @@ struct LightRig {
   glm::vec3 subsurfaceColor{1.0f, 0.32f, 0.20f};
   float specularStrength = 0.55f;
   float exposure = 1.0f;
+  // The key light casts soft shadows (nose, eye sockets, the inside of an open
+  // mouth); the other lights do not.
+  bool keyShadow = true;
+  float shadowSoftness = 0.012f;                  // penumbra radius, fraction of the scene radius
+  glm::vec3 shadowColor{0.10f, 0.035f, 0.025f};   // key light left in shadow: warm, as under skin
   glm::vec3 backgroundTop{0.20f, 0.21f, 0.23f};      // linear (~#7c7e83 in sRGB)
   glm::vec3 backgroundBottom{0.045f, 0.047f, 0.052f};
 };
 
 // World-space direction toward a light given in camera-relative angles.
 glm::vec3 lightDirection(const OrbitCamera& camera, const DirectionalLight& light);
+
+// The key light's orthographic view-projection, fitted around the camera's
+// orbit target and scene radius.
+glm::mat4 keyLightViewProj(const OrbitCamera& camera, const glm::vec3& toLight);
 
 // Everything the shaders read once per frame.
 FrameGlobals buildFrameGlobals(const OrbitCamera& camera, float aspect, const LightRig& rig);

@@ -31,14 +31,16 @@ Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<co
   const VkExtent2D extent = target_.extent();
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
-  ENG_TRY(target_.render([&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent); }));
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
+                          [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent); }, {}}));
   return target_.readPixels();
 }
 
 Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(target_.render([&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
-                         [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }));
+  ENG_TRY(target_.render({{},
+                          [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
+                          [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }}));
   return scene_.readCapture(0);
 }
 

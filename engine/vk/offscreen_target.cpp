@@ -79,9 +79,9 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
   return t;
 }
 
-Result<void> OffscreenTarget::render(const std::function<void(VkCommandBuffer)>& inPass,
-                                     const std::function<void(VkCommandBuffer)>& afterPass) {
+Result<void> OffscreenTarget::render(const Recorders& recorders) {
   return ctx_->submitOneShot([&](VkCommandBuffer cmd) {
+    if (recorders.beforePass) recorders.beforePass(cmd);
     std::array<VkClearValue, 3> clears{};
     clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
     clears[1].depthStencil = {1.0f, 0};
@@ -93,7 +93,7 @@ Result<void> OffscreenTarget::render(const std::function<void(VkCommandBuffer)>&
     begin.clearValueCount = format_.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
     begin.pClearValues = clears.data();
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    inPass(cmd);
+    if (recorders.inPass) recorders.inPass(cmd);
     vkCmdEndRenderPass(cmd);
 
     VkBufferImageCopy copy{};
@@ -106,7 +106,7 @@ Result<void> OffscreenTarget::render(const std::function<void(VkCommandBuffer)>&
     toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
                          0, nullptr);
-    if (afterPass) afterPass(cmd);
+    if (recorders.afterPass) recorders.afterPass(cmd);
   });
 }
 

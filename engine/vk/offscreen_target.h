@@ -25,10 +25,15 @@ class OffscreenTarget {
   const TargetFormat& format() const { return format_; }
   VkExtent2D extent() const { return extent_; }
 
-  // One submission: begin the pass (clear), `inPass`, end it, copy the resolved
-  // image to the readback buffer, then `afterPass` (e.g. a host-read barrier); waits.
-  Result<void> render(const std::function<void(VkCommandBuffer)>& inPass,
-                      const std::function<void(VkCommandBuffer)>& afterPass = {});
+  // What one submission records around the target's render pass.
+  struct Recorders {
+    std::function<void(VkCommandBuffer)> beforePass;  // e.g. the shadow pass
+    std::function<void(VkCommandBuffer)> inPass;      // the scene
+    std::function<void(VkCommandBuffer)> afterPass;   // after the readback copy, e.g. a host-read barrier
+  };
+  // One submission: beforePass, the pass (cleared) with inPass, a copy of the
+  // resolved image to the readback buffer, afterPass; waits for completion.
+  Result<void> render(const Recorders& recorders);
   // The last rendered image, RGBA8, top row first.
   eng::Image readPixels() const;
 

@@ -39,6 +39,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
       binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
       binding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+      binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
   };
   auto frameSet = createSetLayout(ctx, frameBindings);
   if (!frameSet) return frameSet.error();

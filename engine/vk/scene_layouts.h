@@ -4,7 +4,8 @@
 // layout, the texture sampler, and the placeholder resources bound where a
 // primitive has nothing (no texture, no detail layers, no tangent deltas).
 //
-//   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output
+//   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,
+//                          4 key-light shadow map
 //   set 1 (per primitive): 0-2 position/normal/tangent deltas, 3 base colour,
 //                          4 detail-layer array, 5 detail-layer parameters
 //   push constants:        DrawConstants (48 bytes), vertex + fragment

@@ -38,6 +38,8 @@ struct PipelineShape {
   VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
   bool depth = true;
   bool rasterizerDiscard = false;
+  bool colorOutput = true;   // false: depth-only pass (no colour attachment)
+  bool depthBias = false;    // slope-scaled bias against shadow acne
 };
 
 Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& layouts, VkRenderPass renderPass,
@@ -89,6 +91,11 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
   raster.cullMode = shape.cull;
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // glTF winding; the projection flips y, not the winding
   raster.lineWidth = 1.0f;
+  if (shape.depthBias) {
+    raster.depthBiasEnable = VK_TRUE;
+    raster.depthBiasConstantFactor = 1.5f;
+    raster.depthBiasSlopeFactor = 2.0f;
+  }
 
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = samples;
@@ -102,7 +109,7 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
   blendAttachment.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
+  blend.attachmentCount = shape.colorOutput ? 1 : 0;
   blend.pAttachments = &blendAttachment;
 
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
@@ -128,7 +135,7 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
 
 Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLayouts& layouts,
                                               const ShaderLibrary& shaders, VkRenderPass renderPass,
-                                              VkSampleCountFlagBits samples) {
+                                              VkSampleCountFlagBits samples, VkRenderPass shadowPass) {
   auto meshVert = createModule(ctx, shaders, "mesh_vert");
   if (!meshVert) return meshVert.error();
   auto meshFrag = createModule(ctx, shaders, "mesh_frag");
@@ -159,6 +166,17 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   auto bg = createPipeline(ctx, layouts, renderPass, samples, background);
   if (!bg) return bg.error();
   p.background_ = std::move(bg).value();
+
+  auto shadowVert = createModule(ctx, shaders, "shadow_vert");
+  if (!shadowVert) return shadowVert.error();
+  PipelineShape shadow;
+  shadow.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, shadowVert->get())};
+  shadow.cull = VK_CULL_MODE_NONE;  // double-sided and open meshes cast shadows too
+  shadow.colorOutput = false;
+  shadow.depthBias = true;
+  auto shadowPipeline = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
+  if (!shadowPipeline) return shadowPipeline.error();
+  p.shadow_ = std::move(shadowPipeline).value();
 
   if (ctx.deviceInfo().vertexPipelineStores) {
     auto captureVert = createModule(ctx, shaders, "capture_vert");

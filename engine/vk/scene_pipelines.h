@@ -1,9 +1,10 @@
 #pragma once
 // The graphics pipelines of the scene, built from the shader library's
 // current SPIR-V for one render pass: mesh (back-face culled and double
-// sided), background gradient, and the morph-capture variant (vertex stage
-// only, rasteriser discard; absent when the device cannot store from
-// vertex shaders).
+// sided), background gradient, the key light's shadow-map pass (depth only,
+// its own render pass), and the morph-capture variant (vertex stage only,
+// rasteriser discard; absent when the device cannot store from vertex
+// shaders).
 #include <vulkan/vulkan.h>
 
 #include "engine/core/result.h"
@@ -17,17 +18,20 @@ namespace eng::vk {
 class ScenePipelines {
  public:
   static Result<ScenePipelines> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
-                                       VkRenderPass renderPass, VkSampleCountFlagBits samples);
+                                       VkRenderPass renderPass, VkSampleCountFlagBits samples,
+                                       VkRenderPass shadowPass);
 
   VkPipeline mesh(bool doubleSided) const { return doubleSided ? meshDoubleSided_.get() : meshCulled_.get(); }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
+  VkPipeline shadow() const { return shadow_.get(); }    // depth only, for the shadow pass
 
  private:
   UniquePipeline meshCulled_;
   UniquePipeline meshDoubleSided_;
   UniquePipeline background_;
   UniquePipeline capture_;
+  UniquePipeline shadow_;
 };
 
 }  // namespace eng::vk

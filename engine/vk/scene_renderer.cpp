@@ -23,13 +23,17 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.shaders_ = &shaders;
   r.renderPass_ = renderPass;
   r.samples_ = samples;
-  auto pipelines = ScenePipelines::create(ctx, layouts, shaders, renderPass, samples);
+  auto shadowMap = ShadowMap::create(ctx);
+  if (!shadowMap) return shadowMap.error();
+  r.shadowMap_ = std::move(shadowMap).value();
+  auto pipelines = ScenePipelines::create(ctx, layouts, shaders, renderPass, samples, r.shadowMap_.renderPass());
   if (!pipelines) return pipelines.error();
   r.pipelines_ = std::move(pipelines).value();
   r.pipelineGeneration_ = shaders.generation();
 
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * frameSlots}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frameSlots}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = frameSlots;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -81,13 +85,17 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
   const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
                                        0, VK_WHOLE_SIZE};
-  auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info) {
+  const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
+                                     VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
+  auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info,
+                   const VkDescriptorImageInfo* image = nullptr) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = slot.descriptorSet;
     w.dstBinding = binding;
     w.descriptorCount = 1;
     w.descriptorType = type;
     w.pBufferInfo = info;
+    w.pImageInfo = image;
     return w;
   };
   const std::array writes{
@@ -95,6 +103,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
       write(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instances),
       write(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &active),
       write(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
+      write(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &shadow),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
@@ -219,6 +228,36 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   constants.captureOffset = batch.captureOffset;
 }
 
+void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const {
+  VkPipeline bound = VK_NULL_HANDLE;
+  for (const Batch& batch : slot.batches) {
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    if (bindMaterialPipelines) {
+      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0);
+      if (pipeline != bound) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        bound = pipeline;
+      }
+    }
+    DrawConstants constants;
+    bindPrimitive(cmd, batch, constants);
+    vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(DrawConstants), &constants);
+    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), prim.indexOffset, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, prim.indexCount, batch.instanceCount, 0, 0, batch.firstInstance);
+  }
+}
+
+void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
+  const Slot& slot = slots_[slotIndex];
+  shadowMap_.begin(cmd);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
+                          &slot.descriptorSet, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.shadow());
+  drawBatches(cmd, slot, false);
+  shadowMap_.end(cmd);
+}
+
 void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D extent) const {
   const Slot& slot = slots_[slotIndex];
   const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
@@ -229,22 +268,7 @@ void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D e
                           &slot.descriptorSet, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
   vkCmdDraw(cmd, 3, 1, 0, 0);
-
-  VkPipeline bound = VK_NULL_HANDLE;
-  for (const Batch& batch : slot.batches) {
-    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
-    const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0);
-    if (pipeline != bound) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-      bound = pipeline;
-    }
-    DrawConstants constants;
-    bindPrimitive(cmd, batch, constants);
-    vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof(DrawConstants), &constants);
-    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), prim.indexOffset, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, prim.indexCount, batch.instanceCount, 0, 0, batch.firstInstance);
-  }
+  drawBatches(cmd, slot, true);
 }
 
 void SceneRenderer::recordCapture(VkCommandBuffer cmd, uint32_t slotIndex) const {
@@ -300,7 +324,7 @@ std::vector<CapturedPrimitive> SceneRenderer::readCapture(uint32_t slotIndex) co
 bool SceneRenderer::refreshPipelines() {
   if (shaders_->generation() == pipelineGeneration_) return false;
   pipelineGeneration_ = shaders_->generation();
-  auto rebuilt = ScenePipelines::create(*ctx_, *layouts_, *shaders_, renderPass_, samples_);
+  auto rebuilt = ScenePipelines::create(*ctx_, *layouts_, *shaders_, renderPass_, samples_, shadowMap_.renderPass());
   if (!rebuilt) {
     logError("shader hot reload: pipelines not rebuilt, keeping the previous ones: " + rebuilt.error().message);
     return false;

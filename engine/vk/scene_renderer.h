@@ -20,6 +20,7 @@
 #include "engine/vk/scene_layouts.h"
 #include "engine/vk/scene_pipelines.h"
 #include "engine/vk/shader_library.h"
+#include "engine/vk/shadow_map.h"
 
 namespace eng::vk {
 
@@ -58,6 +59,8 @@ class SceneRenderer {
   // model, wrong number of weights, non-finite weight.
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
   FrameStats stats(uint32_t slot) const;
+  // Before the scene's render pass: the key light's shadow map for the prepared draws.
+  void recordShadowPass(VkCommandBuffer cmd, uint32_t slot) const;
   // Inside the render pass: background, then every prepared draw.
   void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent) const;
 
@@ -103,6 +106,7 @@ class SceneRenderer {
                               MemoryUsage memory, const char* name);
   void writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
+  void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const;
 
   const Context* ctx_ = nullptr;
   const SceneLayouts* layouts_ = nullptr;
@@ -110,6 +114,7 @@ class SceneRenderer {
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
   uint64_t pipelineGeneration_ = 0;
+  ShadowMap shadowMap_;
   ScenePipelines pipelines_;
   UniqueDescriptorPool descriptorPool_;
   std::vector<Slot> slots_;

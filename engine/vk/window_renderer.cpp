@@ -225,6 +225,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   ENG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+  scene_.recordShadowPass(cmd, slot);
   std::array<VkClearValue, 3> clears{};
   clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
   clears[1].depthStencil = {1.0f, 0};

@@ -96,12 +96,12 @@ TEST(ShaderHotReload, ChangedShaderIsUsedAndBrokenShaderKeepsThePrevious) {
   const glm::ivec4 before = centre();
   ASSERT_NE(before, glm::ivec4(0, 255, 0, 255));
 
-  // Edit: the fragment shader now writes pure green.
+  // Edit: main() of the fragment shader now ends by writing pure green.
   const fs::path frag = dir / "mesh.frag";
   std::string source = readText(frag);
-  const std::string lastLine = "outColor = vec4(toneMap(shadeThreePoint(s)), 1.0);";
-  ASSERT_NE(source.find(lastLine), std::string::npos);
-  source.replace(source.find(lastLine), lastLine.size(), "outColor = vec4(0.0, 1.0, 0.0, 1.0);");
+  const size_t end = source.rfind('}');
+  ASSERT_NE(end, std::string::npos);
+  source.insert(end, "  outColor = vec4(0.0, 1.0, 0.0, 1.0);\n");
   rewrite(frag, source);
   EXPECT_TRUE(renderer->reloadChangedShaders());
   EXPECT_EQ(centre(), glm::ivec4(0, 255, 0, 255));

@@ -202,9 +202,9 @@ TEST(WindowRenderer, HotReloadsEditedShadersWhileRunning) {
   std::stringstream source;
   source << std::ifstream(dir / "background.frag").rdbuf();
   std::string text = source.str();
-  const std::string line = "outColor = vec4(color * vignette, 1.0);";
-  ASSERT_NE(text.find(line), std::string::npos);
-  text.replace(text.find(line), line.size(), "outColor = vec4(1.0, 0.0, 1.0, 1.0);");
+  const size_t end = text.rfind('}');  // main() now ends by writing magenta
+  ASSERT_NE(end, std::string::npos);
+  text.insert(end, "  outColor = vec4(1.0, 0.0, 1.0, 1.0);\n");
   const auto before = fs::last_write_time(dir / "background.frag");
   testing_support::writeFile(dir / "background.frag", text);
   fs::last_write_time(dir / "background.frag", before + std::chrono::seconds(2));
