@@ -14,9 +14,9 @@ float smoothstep(float e0, float e1, float x) {
   return t * t * (3.0f - 2.0f * t);
 }
 
-// Deltas shorter than this (10 microns, far below a pixel) are treated as no
+// Deltas shorter than this (30 microns, far below a pixel) are treated as no
 // motion, so targets stay sparse where the masks fade out.
-constexpr float kNegligible = 1e-5f;
+constexpr float kNegligible = 3e-5f;
 
 float jawFactor(MaskDef::Jaw jaw, float jawSide) {
   switch (jaw) {

@@ -27,7 +27,7 @@ PartMesh buildEar(float side) {
   const float halfHeight = 0.0285f, halfWidth = 0.0165f;
   const float thickness = 0.0052f;  // outer side at the rim
 
-  PartMesh ear = sphereGrid(36, 72, [&](const glm::vec3& d) {
+  PartMesh ear = sphereGrid(28, 56, [&](const glm::vec3& d) {
     // d.z is the out axis; (d.x, d.y) the ear plane (x up, y forward).
     const float u = d.x, v = d.y;
     const float rho = std::min(1.0f, std::sqrt(u * u + v * v));

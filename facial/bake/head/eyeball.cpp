@@ -25,7 +25,7 @@ PartMesh buildEyeball(const EyeOpening& eye, const HeadProportions& p) {
   const glm::vec3 centre = eye.centre();
   const float r = eye.radius();
   const float iris = p.irisAngle;
-  return sphereGrid(40, 64, [&](const glm::vec3& d) {
+  return sphereGrid(32, 56, [&](const glm::vec3& d) {
     const float angle = std::acos(std::clamp(d.z, -1.0f, 1.0f)) * 180.0f / kPi;
     return centre + d * (r * (1.0f + bulge(angle, iris)));
   });

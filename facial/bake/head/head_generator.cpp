@@ -30,7 +30,7 @@ float smoothstep(float e0, float e1, float x) {
 }
 
 // Normal deltas below this are dropped (keeps targets sparse; invisible).
-constexpr float kNegligibleNormal = 3e-3f;
+constexpr float kNegligibleNormal = 8e-3f;
 
 // One primitive of the "Head" mesh under construction: its vertices are a
 // contiguous range of the deformable point set.
@@ -64,7 +64,8 @@ std::optional<vec3> snapToSkin(const glm::vec2& xy, const SkinSurface& s) {
     const float w0 = ((b.x - xy.x) * (c.y - xy.y) - (c.x - xy.x) * (b.y - xy.y)) / area;
     const float w1 = ((c.x - xy.x) * (a.y - xy.y) - (a.x - xy.x) * (c.y - xy.y)) / area;
     const float w2 = 1.0f - w0 - w1;
-    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
+    constexpr float kEdge = -1e-5f;  // points on a shared edge belong to both triangles
+    if (w0 < kEdge || w1 < kEdge || w2 < kEdge) continue;
     const vec3 hit = a * w0 + b * w1 + c * w2;
     if (!best || hit.z > best->z) best = hit;
   }

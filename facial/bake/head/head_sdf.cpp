@@ -133,8 +133,8 @@ float HeadSdf::lips(const vec3& p) const {
   vec3 bow = b;
   const float ax = std::abs(p.x) / 0.0042f;
   bow.y -= 0.0009f * std::exp(-(ax - 1.2f) * (ax - 1.2f)) - 0.0006f * std::exp(-ax * ax * 2.0f);  // cupid's bow
-  const float upper = ellipsoid(bow - vec3(0.0f, -0.0462f, 0.0885f), vec3(0.0255f, 0.0058f, 0.0078f));
-  const float lower = ellipsoid(b - vec3(0.0f, -0.0560f, 0.0866f), vec3(0.0225f, 0.0066f, 0.0088f));
+  const float upper = ellipsoid(bow - vec3(0.0f, -0.0464f, 0.0878f), vec3(0.0255f, 0.0052f, 0.0078f));
+  const float lower = ellipsoid(b - vec3(0.0f, -0.0557f, 0.0858f), vec3(0.0225f, 0.0060f, 0.0088f));
   return std::min(upper, lower);
 }
 

@@ -41,6 +41,11 @@ class Curve2 {
       max_ = glm::max(max_, p);
     }
   }
+  vec2 pointAt(float t) const {
+    const float x = std::clamp(t, 0.0f, 1.0f) * float(points_.size() - 1);
+    const size_t i = std::min(points_.size() - 2, static_cast<size_t>(x));
+    return glm::mix(points_[i], points_[i + 1], x - float(i));
+  }
   // Nearest point: curve parameter t in [0, 1] and signed distance (+ to the left of travel).
   bool nearest(const vec2& q, float reach, float& t, float& signedDistance) const {
     if (q.x < min_.x - reach || q.x > max_.x + reach || q.y < min_.y - reach || q.y > max_.y + reach) return false;
@@ -101,25 +106,55 @@ const std::vector<std::string>& skinDetailLayerNames() {
   return names;
 }
 
-SkinPainter::SkinPainter(const HeadProportions& proportions, const HeadSdf& sdf) : prop_(proportions), sdf_(sdf) {}
+float SkinPainter::browHalfWidth(float t) { return 0.0045f - 0.0031f * std::pow(t, 1.4f); }
+
+SkinPainter::SkinPainter(const HeadProportions& proportions, const HeadSdf& sdf) : prop_(proportions), sdf_(sdf) {
+  // Brow hairs: roots scattered over the brow body, each growing along the
+  // local hair direction (steeply up at the brow head, along the brow after,
+  // down toward the tail), with hashed jitter so no two are alike.
+  const Curve2& curve = browCurve();
+  constexpr int kHairs = 560;
+  for (int i = 0; i < kHairs; ++i) {
+    const float t = (i + latticeHash(i, 1, 0, 21u)) / kHairs;
+    const float across = (latticeHash(i, 2, 0, 21u) * 2.0f - 1.0f) * browHalfWidth(t) * 0.95f;
+    const vec2 onCurve = curve.pointAt(t);
+    const vec2 tangent = glm::normalize(curve.pointAt(std::min(1.0f, t + 0.01f)) - curve.pointAt(std::max(0.0f, t - 0.01f)));
+    const vec2 normal(-tangent.y, tangent.x);
+    BrowHair h;
+    h.root = onCurve + normal * across - tangent * 0.0012f;
+    const float along = std::atan2(tangent.y, tangent.x);
+    const float angle = along + (1.05f - 0.95f * smoothstep(0.04f, 0.3f, t)) + (latticeHash(i, 3, 0, 21u) - 0.5f) * 0.35f -
+                        0.25f * across / browHalfWidth(t);
+    const float length = 0.0030f + 0.0022f * latticeHash(i, 4, 0, 21u);
+    h.tip = h.root + vec2(std::cos(angle), std::sin(angle)) * length;
+    h.width = 0.00032f + 0.00012f * latticeHash(i, 5, 0, 21u);
+    h.darkness = 0.75f + 0.25f * latticeHash(i, 6, 0, 21u);
+    h.lo = glm::min(h.root, h.tip) - vec2(h.width);
+    h.hi = glm::max(h.root, h.tip) + vec2(h.width);
+    browHairs_.push_back(h);
+  }
+}
 
 float SkinPainter::browCoverage(const vec3& p) const {
   if (p.z < 0.045f) return 0.0f;
   const vec2 q(std::abs(p.x), p.y);
   float t = 0.0f, across = 0.0f;
   if (!browCurve().nearest(q, 0.008f, t, across)) return 0.0f;
-  // Thick, soft-ended head; thin, pointed tail.
-  const float half = 0.0047f - 0.0032f * std::pow(t, 1.4f);
-  const float band = 1.0f - smoothstep(half * 0.7f, half * (across > 0.0f ? 1.2f : 1.05f), std::abs(across));
-  const float ends = smoothstep(0.0f, 0.09f, t) * (1.0f - smoothstep(0.93f, 1.0f, t));
-  // Hair strokes: stripes across the local hair direction, which turns from
-  // steeply up at the brow head to along the brow and down at the tail.
-  const float angle = 1.15f - 1.0f * smoothstep(0.05f, 0.4f, t) - 0.45f * smoothstep(0.7f, 1.0f, t);
-  const vec2 dir(std::cos(angle), std::sin(angle));
-  const float along = glm::dot(q, dir), perp = glm::dot(q, vec2(-dir.y, dir.x));
-  const float strands = fractalNoise(vec3(perp * 1500.0f, along * 260.0f, 0.5f), 2, 7u);
-  const float density = 0.8f + 0.2f * smoothstep(0.40f, 0.70f, strands);
-  return band * ends * density;
+  // Soft body of the brow: thick, rounded head; thin, pointed tail.
+  const float half = browHalfWidth(t);
+  const float body = (1.0f - smoothstep(half * 0.6f, half * (across > 0.0f ? 1.15f : 1.0f), std::abs(across))) *
+                     smoothstep(0.0f, 0.08f, t) * (1.0f - smoothstep(0.92f, 1.0f, t));
+  // Individual hairs on top of it.
+  float hairs = 0.0f;
+  for (const BrowHair& h : browHairs_) {
+    if (q.x < h.lo.x || q.y < h.lo.y || q.x > h.hi.x || q.y > h.hi.y) continue;
+    const vec2 ab = h.tip - h.root;
+    const float f = std::clamp(glm::dot(q - h.root, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    const float d = glm::length(q - (h.root + ab * f));
+    const float width = h.width * (1.0f - 0.6f * f);  // hairs taper to the tip
+    hairs = std::max(hairs, h.darkness * (1.0f - smoothstep(width * 0.5f, width, d)));
+  }
+  return std::max(0.7f * body, hairs);
 }
 
 float SkinPainter::lipCoverage(const vec3& p) const {
@@ -130,7 +165,7 @@ float SkinPainter::lipCoverage(const vec3& p) const {
 vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   const vec3& p = t.position;
   const vec2 q(std::abs(p.x), p.y);
-  vec3 c = kSkin * (0.955f + 0.09f * fractalNoise(p * 160.0f, 3, 1u));
+  vec3 c = kSkin * (0.965f + 0.07f * fractalNoise(p * 140.0f, 2, 1u));
 
   // Warmth: cheeks, nose tip, chin; a little cooler under the jaw.
   c = glm::mix(c, srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * smoothstep(0.04f, 0.06f, p.z));
@@ -153,7 +188,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
     c = glm::mix(c, srgb(214, 128, 122), 0.5f * inner * smoothstep(0.9f, 1.0f, t.lidRing));
   }
 
-  c = glm::mix(c, kBrow, 0.96f * browCoverage(p));
+  c = glm::mix(c, kBrow, browCoverage(p));
 
   // Lips: darker where they roll in at the seam, a soft sheen on the lower lip.
   const float lip = lipCoverage(p);
@@ -179,7 +214,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   if (hair > 0.0f) {
     const vec3 fromCrown = p - vec3(0.0f, 0.125f, -0.02f);
     const float around = std::atan2(fromCrown.x, fromCrown.z);
-    const float strands = fractalNoise(vec3(around * 90.0f, glm::length(fromCrown) * 160.0f, 3.0f), 3, 5u);
+    const float strands = fractalNoise(vec3(around * 90.0f, glm::length(fromCrown) * 160.0f, 3.0f), 2, 5u);
     const vec3 hairColour = kHair * (0.7f + 0.6f * strands);
     c = glm::mix(c, hairColour, hair);
   }

@@ -37,11 +37,17 @@ class SkinPainter {
   glm::vec4 detail(const std::string& layer, const SkinTexel& t) const;
 
  private:
+  struct BrowHair {
+    glm::vec2 root, tip, lo, hi;  // front-projected, left brow; lo/hi bound it
+    float width, darkness;
+  };
+  static float browHalfWidth(float t);  // brow half-thickness along its curve
   float browCoverage(const glm::vec3& p) const;
   float lipCoverage(const glm::vec3& p) const;
 
   HeadProportions prop_;
   const HeadSdf& sdf_;
+  std::vector<BrowHair> browHairs_;
 };
 
 struct SkinImages {

@@ -112,15 +112,15 @@ class SkinBuilder {
   void layoutGrid() {
     // Columns: dense over the face, sparse at the back of the head.
     azimuths_ = distribute(-kPi, kPi, [](double a) {
-      return rad(1.05 + (3.6 - 1.05) * smoothstep(rad(38), rad(105), std::abs(a)));
+      return rad(1.12 + (5.0 - 1.12) * smoothstep(rad(38), rad(110), std::abs(a)));
     }, true);
     // Rows: dense from chin to brow, denser still across the lips.
     const double seam = sdf_.seamElevation();
     elevations_ = distribute(-kPi / 2, kPi / 2, [seam](double e) {
       const double outward = e > 0 ? smoothstep(rad(50), rad(78), e) : smoothstep(rad(60), rad(80), -e);
-      double s = 0.95 + (3.4 - 0.95) * outward;
+      double s = 1.0 + (4.5 - 1.0) * outward;
       const double lips = 1.0 - smoothstep(rad(5.5), rad(8.5), std::abs(e - seam));
-      s = s + (0.50 - s) * lips;
+      s = s + (0.55 - s) * lips;
       return rad(s);
     }, false);
     // Put one row exactly on the seam cone, shifting its neighbours smoothly.
@@ -301,7 +301,7 @@ class SkinBuilder {
     const vec3 e = eye.centre();
     const vec3 castOrigin = e - vec3(0.0f, 0.0f, 0.007f);
     const float rEye = eye.radius();
-    constexpr int kCast = 14;  // rings cast onto the surface between border and lid edge
+    constexpr int kCast = 12;  // rings cast onto the surface between border and lid edge
     // Per border vertex: margin angles and whether it is on the upper lid.
     std::vector<vec2> margin(n);
     std::vector<bool> upper(n);

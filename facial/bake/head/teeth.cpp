@@ -10,8 +10,8 @@ namespace facial {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr int kAlong = 120;  // columns along the arch
-constexpr int kAround = 28;  // vertices around the cross-section
+constexpr int kAlong = 84;  // columns along the arch
+constexpr int kAround = 20;  // vertices around the cross-section
 constexpr float kRoundness = 0.35f;  // superellipse exponent of the cross-section
 
 // Tooth borders as fractions of the half arch (incisors, canine, premolars, molar).

@@ -1,0 +1,32 @@
+#pragma once
+// Shared access to the built-in head for the facial_head tests: the landmark
+// file from data/ and the head generated from it (once per test program).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/scene/model.h"
+#include "facial/bake/head/head_generator.h"
+#include "facial/bake/head/head_rig_spec.h"
+
+namespace head_testing {
+
+const facial::HeadRigSpec& builtInSpec();
+const facial::GeneratedHead& builtInHead();
+
+const eng::Mesh& headMesh(const eng::Model& model);  // mesh "Head"
+const eng::Primitive& headPrimitive(const eng::Model& model, facial::HeadPrimitive p);
+int targetIndex(const eng::Mesh& mesh, const std::string& name);  // -1 when absent
+glm::vec3 landmark(const facial::GeneratedHead& head, const std::string& name);
+
+// Positions of a primitive with one target applied at `weight`.
+std::vector<glm::vec3> morphed(const eng::Primitive& prim, int target, float weight);
+size_t nearestVertex(const std::vector<glm::vec3>& positions, const glm::vec3& p);
+
+// Front-most hit (largest z) of the ray (x, y, +inf) -> -Z on a triangle list.
+std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+                               float x, float y);
+
+}  // namespace head_testing
