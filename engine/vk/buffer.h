@@ -3,6 +3,7 @@
 // Readback) stay mapped for their whole life.
 #include <cstddef>
 #include <span>
+#include <utility>
 
 #include <vulkan/vulkan.h>
 
@@ -15,6 +16,19 @@ namespace eng::vk {
 class Buffer {
  public:
   Buffer() = default;
+  Buffer(Buffer&&) noexcept = default;
+  // The buffer is destroyed before the memory it is bound to is freed.
+  Buffer& operator=(Buffer&& other) noexcept {
+    if (this != &other) {
+      buffer_.reset();
+      memory_ = std::move(other.memory_);
+      buffer_ = std::move(other.buffer_);
+      size_ = other.size_;
+      memoryFlags_ = other.memoryFlags_;
+      mapped_ = std::exchange(other.mapped_, nullptr);
+    }
+    return *this;
+  }
   // size must be > 0.
   static Result<Buffer> create(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
                                const char* debugName);
@@ -30,8 +44,8 @@ class Buffer {
   std::byte* mapped() const { return mapped_; }
 
  private:
+  UniqueMemory memory_;  // declared first: destroyed after the buffer
   UniqueBuffer buffer_;
-  UniqueMemory memory_;
   VkDeviceSize size_ = 0;
   VkMemoryPropertyFlags memoryFlags_ = 0;
   std::byte* mapped_ = nullptr;

@@ -1,6 +1,7 @@
 #pragma once
 // A VkImage with its own memory and one view over all its mips and layers.
 #include <cstdint>
+#include <utility>
 
 #include <vulkan/vulkan.h>
 
@@ -25,6 +26,19 @@ struct ImageDesc {
 class GpuImage {
  public:
   GpuImage() = default;
+  GpuImage(GpuImage&&) noexcept = default;
+  // View, then image, are destroyed before the memory is freed.
+  GpuImage& operator=(GpuImage&& other) noexcept {
+    if (this != &other) {
+      view_.reset();
+      image_.reset();
+      desc_ = other.desc_;
+      memory_ = std::move(other.memory_);
+      image_ = std::move(other.image_);
+      view_ = std::move(other.view_);
+    }
+    return *this;
+  }
   static Result<GpuImage> create(const Context& ctx, const ImageDesc& desc);
 
   VkImage handle() const { return image_.get(); }
@@ -34,8 +48,8 @@ class GpuImage {
 
  private:
   ImageDesc desc_;
+  UniqueMemory memory_;  // declared first: freed after the image and its view
   UniqueImage image_;
-  UniqueMemory memory_;
   UniqueImageView view_;
 };
 
