@@ -88,6 +88,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
 
 Result<void> WindowRenderer::recreateSwapchain() {
   vkDeviceWaitIdle(ctx_->device());
+  swapchainStale_ = true;  // until everything below succeeded
   framebuffers_.clear();
   renderFinished_.clear();
   auto swapchain = Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
@@ -100,7 +101,6 @@ Result<void> WindowRenderer::recreateSwapchain() {
 }
 
 Result<void> WindowRenderer::createSwapchainResources() {
-  swapchainStale_ = false;
   const VkExtent2D extent = swapchain_.extent();
   const bool msaa = format_.samples != VK_SAMPLE_COUNT_1_BIT;
   if (msaa) {
@@ -145,6 +145,7 @@ Result<void> WindowRenderer::createSwapchainResources() {
     ENG_VK_TRY(vkCreateSemaphore(ctx_->device(), &semInfo, nullptr, &sem));
     renderFinished_.emplace_back(ctx_->device(), sem);
   }
+  swapchainStale_ = false;
   return {};
 }
 
@@ -181,7 +182,12 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
       window_->waitEvents(0.05);
       return FrameResult::Skipped;
     case FrameAction::RecreateSwapchain:
-      ENG_TRY(recreateSwapchain());
+      if (auto rebuilt = recreateSwapchain(); !rebuilt) {
+        // Minimised between the size query and the rebuild: not an error, try again later.
+        const VkExtent2D now = window_->framebufferExtent();
+        if (now.width == 0 || now.height == 0) return FrameResult::Skipped;
+        return rebuilt.error();
+      }
       break;
     case FrameAction::Draw:
       break;
