@@ -1,0 +1,36 @@
+// `facial demo`: the virtual-character demo, the README's main job. Opens a
+// window when there is a display, else plays the scripted tour headless.
+#include <cstdlib>
+#include <memory>
+
+#include "demo/command.h"
+#include "demo/demo_options.h"
+
+namespace cli {
+namespace {
+
+bool hasDisplay() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+CommandRegistrar reg("demo", "The virtual character: a window, or the headless tour without a display",
+                     [](CLI::App& app) {
+  auto o = std::make_shared<DemoOptions>();
+  app.add_option("--model,-m", o->model, "glTF face (default: the built-in head)");
+  app.add_option("--graph", o->graph, "Animation graph (default: data/graphs/tour.json)");
+  app.add_flag("--headless", o->headless, "Render the tour to files even when a display is present");
+  app.add_option("--out,-o", o->out, "Headless output folder (default: out/demo-<date-time>)");
+  app.add_option("--size", o->size, "Frame or window size WxH");
+  app.add_option("--fps", o->fps, "Headless frame rate")->capture_default_str();
+  app.add_option("--seconds", o->seconds, "Headless length in seconds (default: one full tour)");
+  app.add_option("--crowd", o->crowd, "N faces in a grid, each with its own state machine and random triggers");
+  app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();
+  app.add_option("--quit-after", o->quitAfter, "Window: close after this many seconds (for tests)");
+  app.add_option("--screenshot", o->screenshot, "Window: write a screenshot here just before quitting");
+  return [o] { return (o->headless || !hasDisplay()) ? runHeadlessDemo(*o) : runWindowDemo(*o); };
+});
+
+}  // namespace
+}  // namespace cli

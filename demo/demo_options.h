@@ -1,0 +1,25 @@
+#pragma once
+// Options of `facial demo`, shared by its windowed and headless paths.
+#include <cstdint>
+#include <string>
+
+namespace cli {
+
+struct DemoOptions {
+  std::string model;               // empty: the built-in head
+  std::string graph;               // empty: data/graphs/tour.json
+  bool headless = false;           // forced headless even with a display
+  std::string out;                 // headless output folder (empty: out/demo-<time>)
+  std::string size = "";           // WxH; default 384x384 headless, 1280x800 windowed
+  float fps = 10.0f;               // headless frame rate
+  float seconds = 0.0f;            // headless length (0: one tour, all seven states and back)
+  uint32_t crowd = 0;              // >0: N faces in a grid, each with its own state machine
+  uint64_t seed = 1;
+  float quitAfter = 0.0f;          // windowed: close after this many seconds (tests), 0 = never
+  std::string screenshot;          // windowed: F12 target folder / test screenshot path
+};
+
+int runHeadlessDemo(const DemoOptions& options);
+int runWindowDemo(const DemoOptions& options);
+
+}  // namespace cli
