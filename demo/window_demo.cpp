@@ -1,0 +1,440 @@
+// `facial demo` with a display: the face in a live window, driven by the
+// tour graph's state machine with autoplay off. Keys 1-7 / the panel's
+// buttons trigger the seven basic emotions (the graph eases between them);
+// the intensity slider and the 2D pad override the graph while used; mouse
+// drag orbits, the wheel zooms, F12 saves a screenshot, Esc quits.
+// `--crowd N`: N faces in a grid, each its own FaceDriver with random triggers.
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "demo/cli_parse.h"
+#include "demo/demo_options.h"
+#include "demo/face_setup.h"
+#include "demo/window_idle_motion.h"
+#include "demo/window_imgui.h"
+#include "engine/vk/context.h"
+#include "engine/vk/framing_bounds.h"
+#include "engine/vk/window.h"
+#include "engine/vk/window_renderer.h"
+#include "facial/runtime/character/face_driver.h"
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/nodes/state_machine_node.h"
+#include "facial/runtime/graph/preset_lookup.h"
+
+namespace cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial demo: error: %s\n", message.c_str());
+  return 1;
+}
+
+// The seven triggers of the tour graph, in key order (1-7).
+constexpr std::array<const char*, 7> kEmotions = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
+// The study's control map: +x, -x, +y, -y poles around a neutral centre.
+struct PadPole {
+  int emotion;  // index into kEmotions
+  glm::vec2 axis;
+};
+constexpr std::array<PadPole, 4> kPadPoles = {{{1, {1, 0}}, {2, {-1, 0}}, {5, {0, 1}}, {3, {0, -1}}}};
+
+// Key presses queued by a GLFW callback: a fast press+release (xdotool, a
+// slow frame) lands between two ImGui frames and would be missed by polling.
+struct KeyQueue {
+  std::array<int, 32> keys{};
+  uint32_t count = 0;
+};
+KeyQueue* gKeyQueue = nullptr;
+
+void onKey(GLFWwindow*, int key, int, int action, int) {
+  if (action == GLFW_PRESS && gKeyQueue && gKeyQueue->count < gKeyQueue->keys.size())
+    gKeyQueue->keys[gKeyQueue->count++] = key;
+}
+
+// Who decides the weights of the (single) face.
+enum class Control { Graph, Slider, Pad };
+
+// One animated face: its graph driver, idle motion, place in the grid and
+// the weights it is drawn with this frame.
+struct Face {
+  facial::FaceDriver driver;
+  IdleMotion idle;
+  glm::mat4 placement{1.0f};
+  float nextTrigger = 0.0f;  // crowd: when it picks a new emotion
+};
+
+// The state machine whose current state the title shows: "emotions", else the first one.
+std::optional<facial::NodeIndex> findStateMachine(const facial::GraphDefinition& graph) {
+  if (auto node = graph.findNode("emotions"); node && graph.nodeAs<facial::StateMachineNode>(*node)) return node;
+  for (facial::NodeIndex n = 0; n < graph.nodes().size(); ++n)
+    if (graph.nodeAs<facial::StateMachineNode>(n)) return n;
+  return std::nullopt;
+}
+
+const char* stateName(const facial::GraphInstance& graph, std::optional<facial::NodeIndex> machine) {
+  if (!machine) return "graph";
+  const auto status = graph.stateMachineStatus(*machine);
+  const auto* node = graph.definition().nodeAs<facial::StateMachineNode>(*machine);
+  if (!status || !node || status->current >= node->states.size()) return "graph";
+  return node->states[status->current].name.c_str();
+}
+
+// F12's file: the --screenshot folder when given, else the current one.
+fs::path screenshotPathFor(const DemoOptions& o) {
+  char name[64];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(name, sizeof name, "facial-%Y%m%d-%H%M%S.png", std::localtime(&now));
+  return (o.screenshot.empty() ? fs::current_path() : fs::path(o.screenshot)) / name;
+}
+
+class WindowDemo {
+ public:
+  int run(const DemoOptions& o);
+
+ private:
+  int setUp(const DemoOptions& o);
+  void drawPanel();
+  void handleInput();
+  void trigger(int emotion);
+  void updateFaces(float dt);
+  void updateTitle(float dt);
+
+  DemoOptions options_;
+  std::optional<FaceSetup> setup_;
+  facial::SharedGraphDefinition graph_;
+  std::array<std::optional<facial::ParameterIndex>, kEmotions.size()> triggers_{};
+  std::optional<facial::NodeIndex> machine_;
+  std::vector<Face> faces_;
+  std::vector<float> weights_;  // faces_.size() x weightCount, what is drawn
+  std::vector<eng::vk::ModelInstance> instances_;
+
+  // The single face's overrides: full-intensity presets (empty when absent),
+  // the override weights and how much of them is shown (eased in and out).
+  std::array<std::vector<float>, kEmotions.size()> presetWeights_;
+  std::vector<float> overrideWeights_;
+  float overrideAmount_ = 0.0f;
+  Control control_ = Control::Graph;
+  int chosen_ = 1;  // the slider's expression (happy until a trigger says otherwise)
+  float intensity_ = 1.0f;
+  glm::vec2 pad_{0.0f};
+
+  std::unique_ptr<eng::vk::Window> window_;
+  std::optional<eng::vk::Context> ctx_;
+  std::unique_ptr<eng::vk::WindowRenderer> renderer_;
+  std::optional<eng::vk::GpuModel> gpuModel_;
+  std::unique_ptr<ImGuiLayer> ui_;
+  eng::vk::SceneView view_;
+  KeyQueue keys_;
+  bool orbiting_ = false;
+  bool screenshotRequested_ = false;
+  bool quitRequested_ = false;
+  std::mt19937 random_;
+  float frameMs_ = 0.0f;
+  float titleTimer_ = 0.0f;
+};
+
+int WindowDemo::setUp(const DemoOptions& o) {
+  options_ = o;
+  random_.seed(uint32_t(o.seed));
+  uint32_t width = 1280, height = 800;
+  if (!o.size.empty() && !parseSize(o.size, width, height))
+    return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
+
+  auto setup = FaceSetup::load({.model = o.model});
+  if (!setup) return fail(setup.error().message);
+  setup_.emplace(std::move(*setup));
+  const fs::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : fs::path(o.graph);
+  auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(setup_->expressions())});
+  if (!graph) return fail(graph.error().message);
+  graph_ = *graph;
+  for (size_t e = 0; e < kEmotions.size(); ++e) {
+    const auto p = graph_->findParameter(kEmotions[e]);
+    if (p && graph_->parameters()[*p].type == facial::ParameterType::Trigger) triggers_[e] = p;
+  }
+  machine_ = findStateMachine(*graph_);
+  const auto autoplay = graph_->findParameter("autoplay");
+
+  const uint32_t count = setup_->weightCount();
+  const uint32_t faceCount = std::max<uint32_t>(1, o.crowd);
+  const eng::Aabb bounds = eng::vk::framingBounds(setup_->model());
+  const std::vector<std::string> names = setup_->layout().names();
+  const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(faceCount))));
+  const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
+  eng::Aabb crowdBounds;
+  for (uint32_t i = 0; i < faceCount; ++i) {
+    auto driver = facial::FaceDriver::create(graph_, &setup_->rig(), names, setup_->baseWeights(), o.seed + i);
+    if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
+    if (autoplay) driver->graph().setBool(*autoplay, false);
+    const uint32_t row = i / columns, column = i % columns;
+    const uint32_t rows = (faceCount + columns - 1) / columns;
+    const glm::vec3 offset((float(column) - 0.5f * float(columns - 1)) * spacing.x,
+                           (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
+    Face face{std::move(*driver), IdleMotion::create(names, bounds, o.seed + i), glm::translate(glm::mat4(1.0f), offset),
+              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_)};
+    crowdBounds.extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
+    faces_.push_back(std::move(face));
+  }
+  weights_.assign(size_t(faceCount) * count, 0.0f);
+  overrideWeights_.assign(setup_->baseWeights().begin(), setup_->baseWeights().end());
+  for (size_t e = 0; e < kEmotions.size(); ++e) {
+    auto preset = setup_->findExpression(kEmotions[e]);
+    if (!preset) continue;
+    presetWeights_[e].assign(count, 0.0f);
+    if (auto r = setup_->expressionWeights(**preset, 1.0f, presetWeights_[e]); !r) return fail(r.error().message);
+  }
+
+  char title[256];
+  std::snprintf(title, sizeof title, "facial demo - %s", setup_->name().c_str());
+  auto window = eng::vk::Window::create({.width = int(width), .height = int(height), .title = title});
+  if (!window) return fail("window: " + window.error().message);
+  window_ = std::move(*window);
+  eng::vk::ContextOptions contextOptions;
+  window_->configureContext(contextOptions);
+  auto ctx = eng::vk::Context::create(contextOptions);
+  if (!ctx) return fail("Vulkan: " + ctx.error().message);
+  ctx_.emplace(std::move(*ctx));
+  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
+  if (!renderer) return fail("Vulkan: " + renderer.error().message);
+  renderer_ = std::move(*renderer);
+  auto gpuModel = renderer_->upload(setup_->model());
+  if (!gpuModel) return fail(gpuModel.error().message);
+  gpuModel_.emplace(std::move(*gpuModel));
+
+  // Before ImGui, which chains to it.
+  gKeyQueue = &keys_;
+  glfwSetKeyCallback(window_->handle(), onKey);
+  auto ui = ImGuiLayer::create(*ctx_, *renderer_, *window_);
+  if (!ui) return fail(ui.error().message);
+  ui_ = std::move(*ui);
+
+  view_.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
+  instances_.resize(faceCount);
+  for (uint32_t i = 0; i < faceCount; ++i)
+    instances_[i] = {&*gpuModel_, faces_[i].placement,
+                     std::span<const float>(weights_).subspan(size_t(i) * count, count)};
+  return 0;
+}
+
+void WindowDemo::trigger(int emotion) {
+  if (!triggers_[emotion]) return;
+  faces_[0].driver.graph().setTrigger(*triggers_[emotion]);
+  control_ = Control::Graph;
+  if (emotion != 0) chosen_ = emotion;
+}
+
+void WindowDemo::handleInput() {
+  const ImGuiIO& io = ImGui::GetIO();
+  for (uint32_t k = 0; k < keys_.count; ++k) {
+    const int key = keys_.keys[k];
+    if (key == GLFW_KEY_F12) screenshotRequested_ = true;
+    if (io.WantTextInput) continue;
+    if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kEmotions.size())) trigger(key - GLFW_KEY_1);
+    if (key == GLFW_KEY_ESCAPE) quitRequested_ = true;
+  }
+  keys_.count = 0;
+
+  // Orbit only with drags that start on the scene, not on the panel.
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse) orbiting_ = true;
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = false;
+  if (orbiting_) {
+    view_.camera.yawDegrees -= 0.3f * io.MouseDelta.x;
+    view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + 0.3f * io.MouseDelta.y, -80.0f, 80.0f);
+  }
+  if (!io.WantCaptureMouse && io.MouseWheel != 0.0f)
+    view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
+}
+
+void WindowDemo::drawPanel() {
+  ImGui::SetNextWindowPos({12, 12}, ImGuiCond_FirstUseEver);
+  ImGui::Begin("facial", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::Text("%s: %.1f ms/frame (%.0f fps)", setup_->name().c_str(), frameMs_, frameMs_ > 0 ? 1000.0f / frameMs_ : 0.0f);
+  if (faces_.size() > 1) {
+    ImGui::Text("%zu faces, random triggers", faces_.size());
+    ImGui::End();
+    return;
+  }
+  ImGui::Text("state: %s%s", stateName(faces_[0].driver.graph(), machine_),
+              control_ == Control::Slider ? " (slider)" : control_ == Control::Pad ? " (pad)" : "");
+  ImGui::Separator();
+  for (size_t e = 0; e < kEmotions.size(); ++e) {
+    if (e % 4 != 0) ImGui::SameLine();
+    char label[32];
+    std::snprintf(label, sizeof label, "%zu %s", e + 1, kEmotions[e]);
+    if (!triggers_[e]) ImGui::BeginDisabled();
+    if (ImGui::Button(label, {86, 0})) trigger(int(e));
+    if (!triggers_[e]) ImGui::EndDisabled();
+  }
+
+  ImGui::Separator();
+  char sliderLabel[48];
+  std::snprintf(sliderLabel, sizeof sliderLabel, "neutral -> %s", kEmotions[chosen_]);
+  if (ImGui::SliderFloat(sliderLabel, &intensity_, 0.0f, 1.0f, "%.2f") || ImGui::IsItemActive()) {
+    if (auto preset = setup_->findExpression(kEmotions[chosen_]); preset) {
+      control_ = Control::Slider;
+      // lerp(neutral, preset, intensity): the preset at that intensity over the model's defaults.
+      (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_);
+    }
+  }
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("control map (drag): happy +x, sad -x, surprise +y, anger -y");
+  const float side = 200.0f;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("pad", {side, side});
+  if (ImGui::IsItemActive()) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    pad_ = glm::clamp(glm::vec2((m.x - origin.x) / side * 2.0f - 1.0f, 1.0f - (m.y - origin.y) / side * 2.0f),
+                      glm::vec2(-1.0f), glm::vec2(1.0f));
+    control_ = Control::Pad;
+    // neutral + sum over poles of max(pad . axis, 0) * (pole - neutral).
+    const std::vector<float>& neutral = presetWeights_[0];
+    if (!neutral.empty()) {
+      std::copy(neutral.begin(), neutral.end(), overrideWeights_.begin());
+      for (const PadPole& pole : kPadPoles) {
+        const float w = std::max(glm::dot(pad_, pole.axis), 0.0f);
+        const std::vector<float>& target = presetWeights_[pole.emotion];
+        if (w <= 0.0f || target.empty()) continue;
+        for (size_t t = 0; t < overrideWeights_.size(); ++t) overrideWeights_[t] += w * (target[t] - neutral[t]);
+      }
+      for (float& v : overrideWeights_) v = std::clamp(v, 0.0f, 1.0f);
+    }
+  }
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 end{origin.x + side, origin.y + side}, mid{origin.x + side / 2, origin.y + side / 2};
+  draw->AddRectFilled(origin, end, IM_COL32(30, 34, 44, 255), 4.0f);
+  draw->AddRect(origin, end, IM_COL32(120, 130, 150, 255), 4.0f);
+  draw->AddLine({origin.x, mid.y}, {end.x, mid.y}, IM_COL32(80, 90, 110, 255));
+  draw->AddLine({mid.x, origin.y}, {mid.x, end.y}, IM_COL32(80, 90, 110, 255));
+  draw->AddText({end.x - 40, mid.y + 2}, IM_COL32(200, 200, 200, 255), "happy");
+  draw->AddText({origin.x + 4, mid.y + 2}, IM_COL32(200, 200, 200, 255), "sad");
+  draw->AddText({mid.x + 4, origin.y + 2}, IM_COL32(200, 200, 200, 255), "surprise");
+  draw->AddText({mid.x + 4, end.y - 16}, IM_COL32(200, 200, 200, 255), "anger");
+  const ImVec2 cursor{mid.x + pad_.x * side / 2, mid.y - pad_.y * side / 2};
+  draw->AddCircleFilled(cursor, 6.0f, control_ == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
+  if (control_ != Control::Graph && ImGui::Button("back to the graph")) control_ = Control::Graph;
+  ImGui::TextDisabled("drag: orbit  wheel: zoom  F12: screenshot  Esc: quit");
+  ImGui::End();
+}
+
+void WindowDemo::updateFaces(float dt) {
+  const uint32_t count = setup_->weightCount();
+  const bool crowd = faces_.size() > 1;
+  // Overrides ease in and out over ~0.25 s so taking and releasing control never pops.
+  const float towards = control_ == Control::Graph ? 0.0f : 1.0f;
+  overrideAmount_ += std::clamp(towards - overrideAmount_, -4.0f * dt, 4.0f * dt);
+  std::uniform_int_distribution<int> anyEmotion(0, int(kEmotions.size()) - 1);
+  std::uniform_real_distribution<float> wait(2.0f, 5.0f);
+  for (size_t i = 0; i < faces_.size(); ++i) {
+    Face& face = faces_[i];
+    if (crowd) {
+      face.nextTrigger -= dt;
+      if (face.nextTrigger <= 0.0f) {
+        if (const auto t = triggers_[anyEmotion(random_)]) face.driver.graph().setTrigger(*t);
+        face.nextTrigger = wait(random_);
+      }
+    }
+    face.driver.update(dt);
+    face.idle.update(dt);
+    std::span<float> out = std::span<float>(weights_).subspan(i * count, count);
+    const std::span<const float> graphWeights = face.driver.targetWeights();
+    if (!crowd && overrideAmount_ > 0.0f) {
+      for (uint32_t t = 0; t < count; ++t)
+        out[t] = graphWeights[t] + overrideAmount_ * (overrideWeights_[t] - graphWeights[t]);
+    } else {
+      std::copy(graphWeights.begin(), graphWeights.end(), out.begin());
+    }
+    face.idle.applyGaze(out);
+    instances_[i].transform = face.idle.transform(face.placement);
+  }
+}
+
+void WindowDemo::updateTitle(float dt) {
+  frameMs_ = frameMs_ == 0.0f ? 1000.0f * dt : 0.9f * frameMs_ + 0.1f * 1000.0f * dt;
+  titleTimer_ -= dt;
+  if (titleTimer_ > 0.0f) return;
+  titleTimer_ = 0.25f;
+  char title[256];
+  if (faces_.size() > 1)
+    std::snprintf(title, sizeof title, "facial demo - %zu x %s - %.1f ms", faces_.size(), setup_->name().c_str(), frameMs_);
+  else
+    std::snprintf(title, sizeof title, "facial demo - %s - %s - %.1f ms", setup_->name().c_str(),
+                  stateName(faces_[0].driver.graph(), machine_), frameMs_);
+  glfwSetWindowTitle(window_->handle(), title);
+}
+
+int WindowDemo::run(const DemoOptions& o) {
+  if (const int error = setUp(o); error != 0) return error;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
+  bool finalFrame = false;
+  int exitCode = 0;
+  while (!window_->shouldClose() && !quitRequested_) {
+    window_->pollEvents();
+    const Clock::time_point now = Clock::now();
+    // Clamped: a stall (window dragged, breakpoint) must not jump the animation.
+    const float dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
+    last = now;
+    const float elapsed = std::chrono::duration<float>(now - start).count();
+    if (o.quitAfter > 0.0f && elapsed >= o.quitAfter) finalFrame = true;
+
+    ui_->beginFrame();
+    handleInput();
+    drawPanel();
+    ui_->endFrame();
+    updateFaces(dt);
+    updateTitle(dt);
+
+    eng::vk::FrameInput frame{view_, instances_};
+    frame.overlay = ImGuiLayer::recorder();
+    fs::path shot;
+    if (finalFrame && !o.screenshot.empty()) {
+      shot = o.screenshot;
+    } else if (screenshotRequested_) {
+      shot = screenshotPathFor(o);
+      screenshotRequested_ = false;
+    }
+    frame.screenshot = shot;
+    auto drawn = renderer_->drawFrame(frame);
+    if (!drawn) {
+      exitCode = fail("frame: " + drawn.error().message);
+      break;
+    }
+    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) std::printf("screenshot: %s\n", shot.c_str());
+    // The last frame must really be drawn (not skipped while minimised) to end with its screenshot.
+    if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
+      break;
+  }
+  std::printf("demo: %s, %zu face(s), final state %s, %.1f ms/frame\n", setup_->name().c_str(), faces_.size(),
+              stateName(faces_[0].driver.graph(), machine_), frameMs_);
+  ui_.reset();
+  gKeyQueue = nullptr;
+  if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)
+    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  return exitCode;
+}
+
+}  // namespace
+
+int runWindowDemo(const DemoOptions& options) {
+  WindowDemo demo;
+  return demo.run(options);
+}
+
+}  // namespace cli

@@ -1,0 +1,61 @@
+#include "demo/window_imgui.h"
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
+
+namespace cli {
+
+eng::Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const eng::vk::Context& ctx,
+                                                            const eng::vk::WindowRenderer& renderer,
+                                                            const eng::vk::Window& window) {
+  IMGUI_CHECKVERSION();
+  std::unique_ptr<ImGuiLayer> layer(new ImGuiLayer(ctx.device()));
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
+  ImGui::StyleColorsDark();
+  // true: ImGui chains to callbacks installed before it (the demo's key queue).
+  if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return eng::Error{"ImGui: GLFW backend failed to start"};
+  layer->glfwReady_ = true;
+  const eng::vk::ImGuiVulkanInfo info = renderer.imguiInfo();
+  ImGui_ImplVulkan_InitInfo init{};
+  init.Instance = info.instance;
+  init.PhysicalDevice = info.physicalDevice;
+  init.Device = info.device;
+  init.QueueFamily = info.queueFamily;
+  init.Queue = info.queue;
+  init.DescriptorPool = info.descriptorPool;
+  init.Subpass = info.subpass;
+  init.MinImageCount = info.minImageCount;
+  init.ImageCount = info.imageCount;
+  init.MSAASamples = info.msaaSamples;
+  if (!ImGui_ImplVulkan_Init(&init, info.renderPass)) return eng::Error{"ImGui: Vulkan backend failed to start"};
+  layer->vulkanReady_ = true;
+  bool fontsOk = false;
+  auto fonts = ctx.submitOneShot([&](VkCommandBuffer cmd) { fontsOk = ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  if (!fonts) return eng::Error{"ImGui fonts: " + fonts.error().message};
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  if (!fontsOk) return eng::Error{"ImGui: font texture upload failed"};
+  return layer;
+}
+
+ImGuiLayer::~ImGuiLayer() {
+  if (device_ != VK_NULL_HANDLE) vkDeviceWaitIdle(device_);
+  if (vulkanReady_) ImGui_ImplVulkan_Shutdown();
+  if (glfwReady_) ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void ImGuiLayer::beginFrame() {
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+}
+
+void ImGuiLayer::endFrame() { ImGui::Render(); }
+
+eng::vk::OverlayRecorder ImGuiLayer::recorder() {
+  return [](VkCommandBuffer cmd) { ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd); };
+}
+
+}  // namespace cli
