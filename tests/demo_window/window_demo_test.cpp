@@ -125,18 +125,21 @@ TEST(WindowDemo, KeyTwoTurnsTheFaceHappyAndTheLastFrameIsSaved) {
   const fs::path model = builtInHead();
   ASSERT_FALSE(model.empty());
 
-  const DemoRun neutral = runDemo(testing_support::freshTempDir("demo_window_neutral"), model, 4.0f, "");
+  const DemoRun neutral = runDemo(testing_support::freshTempDir("demo_window_neutral"), model, 5.0f, "");
   eng::Image neutralShot;
   ASSERT_TRUE(ranCleanly(neutral, neutralShot));
   EXPECT_NE(neutral.log.find("final state neutral"), std::string::npos) << neutral.log;
   EXPECT_GT(facePixelFraction(neutralShot), 0.05) << "the face covers part of the frame";
 
-  const DemoRun happy = runDemo(testing_support::freshTempDir("demo_window_happy"), model, 6.0f, "2");
+  const DemoRun happy = runDemo(testing_support::freshTempDir("demo_window_happy"), model, 5.0f, "2");
   eng::Image happyShot;
   ASSERT_TRUE(ranCleanly(happy, happyShot));
   EXPECT_NE(happy.log.find("final state happy"), std::string::npos) << "key 2 triggers happy:\n" << happy.log;
   EXPECT_GT(facePixelFraction(happyShot), 0.05) << "the face covers part of the frame";
-  EXPECT_GT(meanDifference(neutralShot, happyShot), 1.0) << "the happy face differs from the neutral one";
+  // Same length and seed: the idle sway and blinks nearly match, the smile does not.
+  const double difference = meanDifference(neutralShot, happyShot);
+  std::printf("mean colour difference neutral vs happy: %.2f\n", difference);
+  EXPECT_GT(difference, 1.0) << "the happy face differs from the neutral one";
 }
 
 }  // namespace
