@@ -70,6 +70,20 @@ size_t nearestVertex(const std::vector<glm::vec3>& positions, const glm::vec3& p
   return best;
 }
 
+Eyeball eyeball(const eng::Model& model, int index) {
+  for (const eng::Mesh& m : model.meshes) {
+    if (m.name != "Eyes") continue;
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (const glm::vec3& p : m.primitives.at(static_cast<size_t>(index)).positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const float radius = (hi.x - lo.x) * 0.5f;
+    return {glm::vec3((lo.x + hi.x) * 0.5f, (lo.y + hi.y) * 0.5f, lo.z + radius), radius};
+  }
+  throw std::runtime_error("model has no mesh named Eyes");
+}
+
 std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices, float x,
                                float y) {
   std::optional<float> best;

@@ -25,6 +25,14 @@ glm::vec3 landmark(const facial::GeneratedHead& head, const std::string& name);
 std::vector<glm::vec3> morphed(const eng::Primitive& prim, int target, float weight);
 size_t nearestVertex(const std::vector<glm::vec3>& positions, const glm::vec3& p);
 
+struct Eyeball {
+  glm::vec3 centre;
+  float radius;
+};
+// Centre and radius of eyeball 0 (left) or 1 (right) of mesh "Eyes", from its
+// vertices (the cornea bulges forward, so the centre comes from x and y).
+Eyeball eyeball(const eng::Model& model, int index);
+
 // Front-most hit (largest z) of the ray (x, y, +inf) -> -Z on a triangle list.
 std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
                                float x, float y);

@@ -18,6 +18,9 @@ float smoothstep(float e0, float e1, float x) {
 // motion, so targets stay sparse where the masks fade out.
 constexpr float kNegligible = 3e-5f;
 
+// How far lid skin stays outside the eyeball while a lid target blends in.
+constexpr float kLidClearance = 0.0004f;
+
 float jawFactor(MaskDef::Jaw jaw, float jawSide) {
   switch (jaw) {
     case MaskDef::Jaw::Upper: return 1.0f - jawSide;
@@ -126,18 +129,30 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
     for (size_t k = 0; k < covered.size(); ++k) total[covered[k]] += out[k];
   }
 
-  // Eyelids slide over the eyeballs: keep each lid vertex's distance to its
-  // eyeball centre, so it travels around the ball rather than through it.
+  // Eyelids slide over the eyeballs: a lid vertex ends at its rest distance
+  // from its eyeball's centre, so it travels around the ball, not through it.
+  // A morph target moves vertices along straight lines, though, and the chord
+  // of an arc dips toward the centre; lid skin (outside the ball at rest) ends
+  // a little further out instead, so that the chord's middle still clears
+  // the ball by kLidClearance at every weight.
   for (size_t v = 0; v < n; ++v) {
     if (head.lidEye[v] < 0 || head.lidSlide[v] <= 0.0f) continue;
     const DeformableHead::Eye& eye = head.eyes[static_cast<size_t>(head.lidEye[v])];
     const glm::vec3 rest = head.positions[v];
-    const float radius = glm::length(rest - eye.centre);
-    const glm::vec3 moved = rest + total[v];
-    const glm::vec3 dir = moved - eye.centre;
+    const glm::vec3 from = rest - eye.centre;
+    const float radius = glm::length(from);
+    const glm::vec3 dir = rest + total[v] - eye.centre;
     const float len = glm::length(dir);
-    if (len <= 0.0f) continue;
-    const glm::vec3 slid = eye.centre + dir * (radius / len);
+    if (len <= 0.0f || radius <= 0.0f) continue;
+    float endRadius = radius;
+    if (radius > eye.radius) {
+      // |a + b| / 2 >= m for |a| = radius, |b| = endRadius, angle theta between.
+      const float m = eye.radius + kLidClearance;
+      const float cosTheta = std::clamp(glm::dot(from, dir) / (radius * len), -1.0f, 1.0f);
+      const float disc = radius * radius * cosTheta * cosTheta - radius * radius + 4.0f * m * m;
+      if (disc > 0.0f) endRadius = std::max(radius, -radius * cosTheta + std::sqrt(disc));
+    }
+    const glm::vec3 slid = eye.centre + dir * (endRadius / len);
     total[v] = glm::mix(total[v], slid - rest, head.lidSlide[v]);
   }
   for (glm::vec3& d : total)

@@ -17,7 +17,9 @@ float smoothstep(float e0, float e1, float x) {
 }
 
 // Corneal bulge as a fraction of the radius, by angle from the gaze axis.
-float bulge(float angleDegrees, float irisAngle) { return 0.03f * (1.0f - smoothstep(0.0f, irisAngle + 4.0f, angleDegrees)); }
+// Kept below the 0.4 mm the lid margins tuck into the ball, so lids sliding
+// over the cornea never cut through it.
+float bulge(float angleDegrees, float irisAngle) { return 0.017f * (1.0f - smoothstep(0.0f, irisAngle + 4.0f, angleDegrees)); }
 
 }  // namespace
 

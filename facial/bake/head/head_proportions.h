@@ -11,8 +11,8 @@ struct HeadProportions {
   // nose base so the nose underside still faces away from it).
   glm::vec3 gridCentre{0.0f, -0.018f, 0.0f};
 
-  glm::vec3 eyeCentre{0.0320f, 0.0090f, 0.0650f};  // left eyeball centre
-  float eyeRadius = 0.0155f;
+  glm::vec3 eyeCentre{0.0335f, 0.0090f, 0.0632f};  // left eyeball centre
+  float eyeRadius = 0.0172f;
   float upperLidThickness = 0.0013f;  // lid skin above the eyeball surface
   float lowerLidThickness = 0.0008f;
   // Eye opening (almond) in degrees around the eyeball centre, seen from the

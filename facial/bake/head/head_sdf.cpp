@@ -141,6 +141,8 @@ float HeadSdf::lips(const vec3& p) const {
 float HeadSdf::eyeRegion(float d, const vec3& p) const {
   for (float side : {1.0f, -1.0f}) {
     const vec3 e(prop_.eyeCentre.x * side, prop_.eyeCentre.y, prop_.eyeCentre.z);
+    // Beyond the socket's reach (dish radius + blend, lid shell + blend) nothing changes.
+    if (glm::length(p - e) > prop_.eyeRadius * 3.2f + 0.016f) continue;
     // Socket: a shallow dish in the face in front of the eye; the eyeball's
     // lid shell rises out of it. Both are star-shaped around the eye, so rays
     // from behind the eyeball cross the skin once.
@@ -173,12 +175,15 @@ float HeadSdf::hairVolume(const vec3& p) const {
 }
 
 float HeadSdf::distance(const vec3& p) const {
+  // Features are only evaluated near their bounding spheres: smin(a, b, k)
+  // equals a whenever b >= a + k, and rays and relaxation evaluate this
+  // function millions of times.
   float d = face(p);
-  d = smin(d, nose(p), 0.008f);
-  d = smin(d, lips(p), 0.004f);
+  if (glm::length(p - vec3(0.0f, -0.004f, 0.091f)) - 0.034f < d + 0.008f) d = smin(d, nose(p), 0.008f);
+  if (glm::length(p - vec3(0.0f, -0.051f, 0.086f)) - 0.031f < d + 0.004f) d = smin(d, lips(p), 0.004f);
   d = eyeRegion(d, p);
   // The lip seam: a sharp groove along the seam cone between the mouth corners.
-  if (seamGroove_) {
+  if (seamGroove_ && std::abs(p.y - prop_.mouthSeamCentre.y) < 0.02f && p.z > 0.04f) {
     const vec3 c = prop_.gridCentre;
     const float elevation = elevationFrom(c, p);
     const float around = std::atan2(p.x - c.x, p.z - c.z);
@@ -187,7 +192,7 @@ float HeadSdf::distance(const vec3& p) const {
     d += 0.0012f * std::exp(-u * u) * span;
   }
   // Hair volume over the scalp, fuller on top.
-  const float hair = hairVolume(p);
+  const float hair = p.y > -0.06f ? hairVolume(p) : 0.0f;
   if (hair > 0.0f) d -= hair * (0.003f + 0.004f * smoothstep(0.03f, 0.11f, p.y));
   return d;
 }
@@ -220,7 +225,9 @@ std::optional<glm::vec3> HeadSdf::castOut(const vec3& origin, const vec3& dir, f
   float t = 0.0f;
   while (t < maxT) {
     prevT = t;
-    t += std::clamp(std::abs(d) * 0.6f, 1.5e-4f, 2.5e-3f);
+    // Long strides deep inside, short ones near the skin so thin features
+    // (lids, lips) are not stepped over.
+    t += std::clamp(std::abs(d) * 0.6f, 1.5e-4f, std::abs(d) > 0.012f ? 6e-3f : 2.5e-3f);
     d = distance(origin + dir * t);
     if (d >= 0.0f) {
       float lo = prevT, hi = t;

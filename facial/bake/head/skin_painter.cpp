@@ -206,7 +206,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   {
     const vec3 m(std::abs(p.x), p.y, p.z);
     const vec3 d = (m - vec3(0.0058f, -0.0312f, 0.0965f)) / vec3(0.0032f, 0.0022f, 0.0042f);
-    c = glm::mix(c, srgb(92, 46, 42), 0.85f * std::exp(-glm::dot(d, d)) * smoothstep(0.2f, 0.6f, -t.normal.y));
+    c = glm::mix(c, srgb(118, 62, 56), 0.6f * std::exp(-glm::dot(d, d)) * smoothstep(0.35f, 0.75f, -t.normal.y));
   }
 
   // Hair: strands radiating from the crown.
@@ -278,7 +278,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     const float forehead = gauss2(vec2(p.x, p.y - 0.045f), 0.03f) * 0.6f;
     const float neck = smoothstep(-0.07f, -0.1f, p.y) * 0.4f;
     const float a = std::min(1.0f, cheeks + 0.8f * nose + forehead + neck);
-    return vec4(srgb(206, 70, 62), 0.55f * a * (1.0f - sdf_.hairCoverage(p)));
+    return vec4(srgb(206, 70, 62), 0.55f * a * (1.0f - sdf_.hairCoverage(p)) * (1.0f - browCoverage(p)));
   }
   if (layer == "pallor") {
     if (p.z < 0.0f) return out;
@@ -286,7 +286,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     const float lip = lipCoverage(p);
     const float cheeks = gauss2(q - vec2(0.036f, -0.018f), 0.02f);
     const vec3 colour = glm::mix(srgb(228, 224, 218), srgb(206, 184, 182), lip);
-    return vec4(colour, face * (0.42f + 0.2f * cheeks + 0.3f * lip));
+    return vec4(colour, face * (0.42f + 0.2f * cheeks + 0.3f * lip) * (1.0f - browCoverage(p)));
   }
   return out;
 }

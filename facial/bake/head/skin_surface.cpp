@@ -396,12 +396,21 @@ class SkinBuilder {
     out_.features[name + ".centre"] = e;
     out_.features[name + ".inner_corner"] = edgePoint(eye.upperLid(0.0f));
     out_.features[name + ".outer_corner"] = edgePoint(eye.upperLid(1.0f));
-    out_.features[name + ".upper_lid"] = edgePoint(eye.upperLid(0.45f));
-    out_.features[name + ".upper_lid_inner"] = edgePoint(eye.upperLid(0.2f));
+    // Lid edge points at tenths of the way from the inner corner (upper and
+    // lower at one fraction share their lateral angle, so a blink can move
+    // one straight onto the other), plus names for the middle and quarters.
+    for (int k = 1; k <= 9; ++k) {
+      const float t = k / 10.0f;
+      const std::string at = "@0." + std::to_string(k);
+      out_.features[name + ".upper_lid" + at] = edgePoint(eye.upperLid(t));
+      out_.features[name + ".lower_lid" + at] = edgePoint(eye.lowerLid(t));
+    }
+    out_.features[name + ".upper_lid"] = edgePoint(eye.upperLid(0.5f));
+    out_.features[name + ".upper_lid_inner"] = edgePoint(eye.upperLid(0.25f));
     out_.features[name + ".upper_lid_outer"] = edgePoint(eye.upperLid(0.75f));
-    out_.features[name + ".lower_lid"] = edgePoint(eye.lowerLid(0.55f));
+    out_.features[name + ".lower_lid"] = edgePoint(eye.lowerLid(0.5f));
     out_.features[name + ".lower_lid_inner"] = edgePoint(eye.lowerLid(0.25f));
-    out_.features[name + ".lower_lid_outer"] = edgePoint(eye.lowerLid(0.8f));
+    out_.features[name + ".lower_lid_outer"] = edgePoint(eye.lowerLid(0.75f));
     return {};
   }
 

@@ -1,6 +1,7 @@
 #include "facial/bake/head/uv_raster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace facial {
@@ -66,7 +67,14 @@ float linearToSrgb(float c) {
   return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 glm::vec3 srgb(int r, int g, int b) {
-  return glm::vec3(srgbToLinear(r / 255.0f), srgbToLinear(g / 255.0f), srgbToLinear(b / 255.0f));
+  // Painters call this per texel: decode the 256 possible values once.
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[size_t(i)] = srgbToLinear(i / 255.0f);
+    return t;
+  }();
+  auto at = [](int v) { return table[size_t(std::clamp(v, 0, 255))]; };
+  return glm::vec3(at(r), at(g), at(b));
 }
 
 std::vector<uint8_t> PaintImage::toSrgba8() const {
