@@ -67,7 +67,9 @@ int runExpress(const ExpressOptions& o) {
 CommandRegistrar reg("express", "Render a model posed with an expression preset, headless", [](CLI::App& app) {
   auto o = std::make_shared<ExpressOptions>();
   app.add_option("expression", o->expression, "Preset name from data/expressions.json (happy, sad, ...)")->required();
-  app.add_option("--intensity,-i", o->intensity, "Preset strength, clamped to [0, 1]")->capture_default_str();
+  app.add_option("--intensity,-i", o->intensity, "Preset strength, clamped to [0, 1]")
+      ->check(CLI::Number)
+      ->capture_default_str();
   app.add_option("--model,-m", o->model, "glTF model (default: the built-in head, <data>/head.glb)");
   app.add_option("--size", o->size, "Image size WxH")->capture_default_str();
   app.add_option("--yaw", o->yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
