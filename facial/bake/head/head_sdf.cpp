@@ -92,13 +92,13 @@ float HeadSdf::face(const vec3& p) const {
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.018f, 0.028f), vec3(0.066f, 0.052f, 0.060f)), 0.025f);
   // Mandible, narrowing toward the chin for a stylised V jaw.
   {
-    const float taper = 1.0f - 0.30f * smoothstep(-0.03f, 0.08f, p.z);
+    const float taper = 1.0f - 0.34f * smoothstep(-0.03f, 0.08f, p.z);
     vec3 j = p - vec3(0.0f, -0.052f, 0.022f);
     j.x /= taper;
     d = smin(d, ellipsoid(j, vec3(0.057f, 0.031f, 0.060f)) * taper, 0.02f);
   }
   // Chin and the muzzle over the teeth.
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0725f, 0.0625f), vec3(0.019f, 0.013f, 0.018f)), 0.015f);
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0730f, 0.0655f), vec3(0.0185f, 0.0135f, 0.0175f)), 0.015f);
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.061f), vec3(0.031f, 0.024f, 0.026f)), 0.02f);
   // Brow ridge.
   d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.068f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
@@ -109,8 +109,8 @@ float HeadSdf::face(const vec3& p) const {
   d = smin(d, ellipsoid(m - vec3(0.041f, -0.037f, 0.044f), vec3(0.018f, 0.018f, 0.022f)), 0.02f);
   // Neck: elliptic cylinder merged under the skull, cut flat at the bottom.
   {
-    const vec2 q(p.x / 0.044f, (p.z + 0.018f) / 0.048f);
-    const float neck = std::max((glm::length(q) - 1.0f) * 0.044f, p.y);
+    const vec2 q(p.x / 0.040f, (p.z + 0.024f) / 0.043f);
+    const float neck = std::max((glm::length(q) - 1.0f) * 0.040f, p.y);
     d = smin(d, neck, 0.03f);
     d = smax(d, prop_.neckBottomY - p.y, 0.012f);
   }
@@ -118,12 +118,12 @@ float HeadSdf::face(const vec3& p) const {
 }
 
 float HeadSdf::nose(const vec3& p) const {
-  float n = roundCone(p, vec3(0.0f, 0.020f, 0.081f), vec3(0.0f, -0.017f, 0.1005f), 0.0050f, 0.0070f);
-  n = smin(n, glm::length(p - vec3(0.0f, -0.0215f, 0.1005f)) - 0.0085f, 0.008f);
+  float n = roundCone(p, vec3(0.0f, 0.020f, 0.080f), vec3(0.0f, -0.017f, 0.0985f), 0.0050f, 0.0068f);
+  n = smin(n, glm::length(p - vec3(0.0f, -0.0215f, 0.0995f)) - 0.0084f, 0.008f);
   const vec3 m(std::abs(p.x), p.y, p.z);
   n = smin(n, ellipsoid(m - vec3(0.0115f, -0.0265f, 0.0900f), vec3(0.0065f, 0.0060f, 0.0070f)), 0.005f);
   // Nostrils: shallow dents under the tip.
-  n = smax(n, -ellipsoid(m - vec3(0.0058f, -0.0310f, 0.0965f), vec3(0.0030f, 0.0020f, 0.0042f)), 0.0015f);
+  n = smax(n, -ellipsoid(m - vec3(0.0058f, -0.0310f, 0.0948f), vec3(0.0030f, 0.0020f, 0.0042f)), 0.0015f);
   return n;
 }
 

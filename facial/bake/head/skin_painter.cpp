@@ -169,7 +169,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
 
   // Warmth: cheeks, nose tip, chin; a little cooler under the jaw.
   c = glm::mix(c, srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * smoothstep(0.04f, 0.06f, p.z));
-  c = glm::mix(c, srgb(232, 148, 132), 0.20f * gauss(glm::length(p - vec3(0.0f, -0.022f, 0.108f)), 0.009f));
+  c = glm::mix(c, srgb(232, 148, 132), 0.20f * gauss(glm::length(p - vec3(0.0f, -0.022f, 0.106f)), 0.009f));
   c = glm::mix(c, srgb(232, 158, 140), 0.10f * gauss2(vec2(p.x, p.y + 0.075f), 0.012f) * smoothstep(0.05f, 0.07f, p.z));
   c *= 1.0f - 0.08f * smoothstep(0.2f, 0.9f, -t.normal.y) * smoothstep(-0.06f, -0.09f, p.y);
 
@@ -205,8 +205,8 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   // Nostrils.
   {
     const vec3 m(std::abs(p.x), p.y, p.z);
-    const vec3 d = (m - vec3(0.0058f, -0.0312f, 0.0965f)) / vec3(0.0032f, 0.0022f, 0.0042f);
-    c = glm::mix(c, srgb(118, 62, 56), 0.6f * std::exp(-glm::dot(d, d)) * smoothstep(0.35f, 0.75f, -t.normal.y));
+    const vec3 d = (m - vec3(0.0058f, -0.0312f, 0.0948f)) / vec3(0.0032f, 0.0022f, 0.0042f);
+    c = glm::mix(c, srgb(128, 70, 62), 0.45f * std::exp(-glm::dot(d, d)) * smoothstep(0.45f, 0.85f, -t.normal.y));
   }
 
   // Hair: strands radiating from the crown.
