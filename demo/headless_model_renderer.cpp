@@ -9,7 +9,7 @@ namespace cli {
 eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Model& model,
                                                                  const HeadlessRenderOptions& options) {
   if (!(options.zoom > 0.0f) || !std::isfinite(options.zoom))
-    return eng::makeError("zoom " + std::to_string(options.zoom) + " must be a positive number");
+    return eng::makeError("zoom must be a positive number");
   if (!std::isfinite(options.yawDegrees) || !std::isfinite(options.pitchDegrees))
     return eng::makeError("yaw and pitch must be finite numbers of degrees");
   HeadlessModelRenderer r;

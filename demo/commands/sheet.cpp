@@ -85,8 +85,8 @@ int runSheet(const SheetOptions& o) {
   eng::ContactSheetOptions sheetOptions;
   sheetOptions.columns = std::min<int>(5, int(tiles.size() + 1) / 2);
   sheetOptions.labelHeight = labelHeightFor(*text, tiles, int(o.size));
-  sheetOptions.title = face->name() + " - " + (o.compound ? "compound expressions" : "basic expressions") + " (" +
-                       std::string(facial::rigSchemeName(face->rig().scheme())) + " rig)";
+  sheetOptions.title = face->name() + ": " + (o.compound ? "compound expressions" : "basic expressions") +
+                       ", rig: " + std::string(facial::rigSchemeName(face->rig().scheme()));
   auto sheet = eng::composeContactSheet(tiles, sheetOptions);
   if (!sheet) return fail(sheet.error().message);
   if (auto written = eng::writePng(o.out, sheet->width, sheet->height, sheet->rgba); !written)
