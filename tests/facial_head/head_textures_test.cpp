@@ -81,7 +81,9 @@ TEST(HeadTextures, DetailLayersAreDrivenByActionUnitsAndMostlyTransparent) {
     // Colour washes (flush, pallor) cover the face; wrinkles only lines of it.
     EXPECT_GT(transparent, (opaque + transparent) / 4) << img.name << " covers the whole head";
     const bool wrinkles = img.name.find("flush") == std::string::npos && img.name.find("pallor") == std::string::npos;
-    if (wrinkles) EXPECT_GT(transparent, 4 * opaque) << img.name << " covers too much";
+    if (wrinkles) {
+      EXPECT_GT(transparent, 4 * opaque) << img.name << " covers too much";
+    }
   }
 }
 
