@@ -17,6 +17,7 @@
 #include "engine/image/contact_sheet.h"
 #include "engine/image/text.h"
 #include "engine/scene/image_io.h"
+#include "facial/runtime/rig/emotions.h"
 
 namespace cli {
 namespace {
@@ -60,11 +61,21 @@ int runSheet(const SheetOptions& o) {
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
   auto face = FaceSetup::load({.model = o.model});
   if (!face) return fail(face.error().message);
-  const std::vector<const facial::ExpressionPreset*> presets = face->presets(o.compound);
-  if (presets.empty())
-    return fail(std::string("the expression presets hold no ") + (o.compound ? "compound" : "basic") + " expressions");
+  // Basic: exactly the emotion channels, in their order (neutral first).
+  std::vector<const facial::ExpressionPreset*> presets;
+  if (o.compound) {
+    presets = face->presets(true);
+    if (presets.empty()) return fail("the expression presets hold no compound expressions");
+  } else {
+    for (std::string_view emotion : facial::emotionNames()) {
+      auto preset = face->findExpression(emotion);
+      if (!preset) return fail(preset.error().message);
+      presets.push_back(*preset);
+    }
+  }
 
-  auto renderer = HeadlessModelRenderer::create(face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .device = o.device});
+  auto renderer = HeadlessModelRenderer::create(
+      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .device = o.device});
   if (!renderer) return fail(renderer.error().message);
   std::vector<float> weights(face->weightCount());
   std::vector<eng::ContactSheetTile> tiles;

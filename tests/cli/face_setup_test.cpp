@@ -124,8 +124,10 @@ TEST(FaceSetupValidity, MissingModelFileIsNamed) {
 
 TEST(FaceSetupValidity, BrokenPresetFileIsNamed) {
   const std::filesystem::path dir = testing_support::freshTempDir("face_setup_presets");
-  testing_support::writeFile(dir / "presets.json", R"({"version": 1, "expressions": {"x": {"actionUnits": {"AU99": 1}}}})");
-  auto face = FaceSetup::load({.model = writeTestFace("face_setup_presets_model"), .expressions = dir / "presets.json"});
+  testing_support::writeFile(dir / "presets.json",
+                             R"({"version": 1, "expressions": {"x": {"actionUnits": {"AU99": 1}}}})");
+  auto face =
+      FaceSetup::load({.model = writeTestFace("face_setup_presets_model"), .expressions = dir / "presets.json"});
   ASSERT_FALSE(face);
   EXPECT_NE(face.error().message.find("presets.json"), std::string::npos) << face.error().message;
   EXPECT_NE(face.error().message.find("AU99"), std::string::npos) << face.error().message;

@@ -77,8 +77,8 @@ TEST(RigCommandValidity, UnrecognisedTargetNamesSuggestARigMap) {
   ASSERT_TRUE(eng::saveModel(model, path));
   const CommandOutput run = runFacial({"rig", path.string()});
   EXPECT_NE(run.exitCode, 0);
-  EXPECT_NE(run.err.find("facial rig: error: " + path.string() + ": rig mapping: no scheme recognises the 5 target names"),
-            std::string::npos)
+  const std::string expected = "facial rig: error: " + path.string() + ": rig mapping: no scheme recognises the 5";
+  EXPECT_NE(run.err.find(expected), std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("rigmaps/odd.json"), std::string::npos) << run.err;
 }
