@@ -83,7 +83,8 @@ TEST_F(ExpressCommand, FacecapSmilesThroughTheArkitMapping) {
 
 // ---- refused input ----
 
-TEST_F(ExpressCommand, UnknownExpressionListsTheAvailableOnes) {
+using ExpressCommandValidity = ExpressCommand;
+TEST_F(ExpressCommandValidity, UnknownExpressionListsTheAvailableOnes) {
   const CommandOutput run =
       runFacial({"express", "elation", "--model", face_.string(), "--out", (dir_ / "x.png").string()});
   EXPECT_NE(run.exitCode, 0);
@@ -94,7 +95,7 @@ TEST_F(ExpressCommand, UnknownExpressionListsTheAvailableOnes) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
 }
 
-TEST_F(ExpressCommand, NonNumericOrNanIntensityIsRefused) {
+TEST_F(ExpressCommandValidity, NonNumericOrNanIntensityIsRefused) {
   for (const char* bad : {"nan", "NaN", "inf", "abc", ""}) {
     const CommandOutput run = runFacial(
         {"express", "happy", "--intensity", bad, "--model", face_.string(), "--out", (dir_ / "x.png").string()});
@@ -104,14 +105,14 @@ TEST_F(ExpressCommand, NonNumericOrNanIntensityIsRefused) {
   }
 }
 
-TEST_F(ExpressCommand, MissingModelFileIsNamed) {
+TEST_F(ExpressCommandValidity, MissingModelFileIsNamed) {
   const std::string missing = (dir_ / "no_such_face.glb").string();
   const CommandOutput run = runFacial({"express", "happy", "--model", missing, "--out", (dir_ / "x.png").string()});
   EXPECT_NE(run.exitCode, 0);
   EXPECT_NE(run.err.find("facial express: error: " + missing), std::string::npos) << run.err;
 }
 
-TEST_F(ExpressCommand, MissingBuiltInHeadIsNamed) {
+TEST_F(ExpressCommandValidity, MissingBuiltInHeadIsNamed) {
   const std::filesystem::path emptyData = testing_support::freshTempDir("express_empty_data");
   const CommandOutput run =
       runFacial({"express", "happy", "--out", (dir_ / "x.png").string()}, {"FACIAL_DATA_DIR=" + emptyData.string()});
@@ -119,7 +120,7 @@ TEST_F(ExpressCommand, MissingBuiltInHeadIsNamed) {
   EXPECT_NE(run.err.find((emptyData / "head.glb").string()), std::string::npos) << run.err;
 }
 
-TEST_F(ExpressCommand, BadSizeAndMissingOutputAreRefused) {
+TEST_F(ExpressCommandValidity, BadSizeAndMissingOutputAreRefused) {
   const CommandOutput badSize =
       runFacial({"express", "happy", "--model", face_.string(), "--size", "64", "--out", (dir_ / "x.png").string()});
   EXPECT_NE(badSize.exitCode, 0);

@@ -92,7 +92,8 @@ TEST_F(SheetCommand, FacecapCompoundMatchesGolden) {
 
 // ---- refused input ----
 
-TEST_F(SheetCommand, MissingModelFileIsNamed) {
+using SheetCommandValidity = SheetCommand;
+TEST_F(SheetCommandValidity, MissingModelFileIsNamed) {
   const std::string missing = (dir_ / "no_such_face.glb").string();
   const CommandOutput run = runFacial({"sheet", "--model", missing, "--out", (dir_ / "x.png").string()});
   EXPECT_NE(run.exitCode, 0);
@@ -100,7 +101,7 @@ TEST_F(SheetCommand, MissingModelFileIsNamed) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
 }
 
-TEST_F(SheetCommand, TileSizeOutOfRangeAndNanIntensityAreRefused) {
+TEST_F(SheetCommandValidity, TileSizeOutOfRangeAndNanIntensityAreRefused) {
   const std::filesystem::path face = writeTestFace("sheet_command_face");
   const CommandOutput tiny = runFacial({"sheet", "--model", face.string(), "--size", "4", "--out", "x.png"});
   EXPECT_NE(tiny.exitCode, 0);
