@@ -56,6 +56,9 @@ eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
       const float irisCover = 1.0f - smoothstep(p.irisAngle - 0.3f, p.irisAngle + 1.2f, angle);
       c = glm::mix(c, iris, irisCover);
       c = glm::mix(c, pupil, 1.0f - smoothstep(p.pupilAngle - 0.6f, p.pupilAngle + 0.6f, angle));
+      // The hidden back of the ball matches the pupil: a repeating sampler
+      // blends the first and last rows at the poles.
+      c = glm::mix(c, pupil, smoothstep(150.0f, 165.0f, angle));
       // Corneal highlights (fixed: the eyes do not turn).
       const float h1 = std::acos(std::clamp(glm::dot(d, highlightDir), -1.0f, 1.0f)) * 180.0f / kPi;
       const float h2 = std::acos(std::clamp(glm::dot(d, secondDir), -1.0f, 1.0f)) * 180.0f / kPi;

@@ -194,9 +194,15 @@ class SkinBuilder {
 
     const std::optional<vec3> bottom = cast(0.0, -kPi / 2), top = cast(0.0, kPi / 2);
     if (!bottom || !top) return eng::makeError("head skin: rays from the grid centre miss the crown or the neck");
-    bottomPole_ = addVertex(*bottom, vec2(0.5f, 1.0f), SkinPart::Skin);
-    topPole_ = addVertex(*top, vec2(0.5f, 0.0f), SkinPart::Skin);
-    out_.jawSide[bottomPole_] = 1.0f;
+    // One pole vertex per column (welded for normals): each pole triangle
+    // then covers only its own column of texture, which keeps the sampler's
+    // mip selection sane at the crown instead of averaging the whole image.
+    for (int i = 0; i < nc; ++i) {
+      const float u = (i + 0.5f) / nc;
+      bottomPoles_.push_back(addVertex(*bottom, vec2(u, rowV(0.0)), SkinPart::Skin, i ? bottomPoles_[0] : kNone));
+      topPoles_.push_back(addVertex(*top, vec2(u, rowV(1.0)), SkinPart::Skin, i ? topPoles_[0] : kNone));
+      out_.jawSide[bottomPoles_.back()] = 1.0f;
+    }
 
     const double seam = sdf_.seamElevation();
     const double corner = azimuths_[cornerL_];
@@ -207,7 +213,7 @@ class SkinBuilder {
         if (!hit)
           return eng::makeError("head skin: grid ray (column " + std::to_string(i) + ", row " + std::to_string(j) +
                                 ") found no surface");
-        const vec2 uv(float(i) / nc, 1.0f - float(j) / nr);
+        const vec2 uv(float(i) / nc, rowV(double(j) / nr));
         const uint32_t v = addVertex(*hit, uv, SkinPart::Skin);
         grid_[index(i, j)] = v;
         // Jaw side: a clean split across the lips, widening into a soft
@@ -236,8 +242,8 @@ class SkinBuilder {
 
   // Vertex at grid (i, j) as seen from a cell on side `above` of the seam.
   uint32_t at(int i, int j, bool cellAboveSeam) const {
-    if (j == 0) return bottomPole_;
-    if (j == rows()) return topPole_;
+    if (j == 0) return bottomPoles_[static_cast<size_t>(i % cols())];
+    if (j == rows()) return topPoles_[static_cast<size_t>(i % cols())];
     if (onSeam(i, j) && !cellAboveSeam) return lowerSeam_[i];
     return grid_[index(i, j)];
   }
@@ -250,9 +256,9 @@ class SkinBuilder {
         const uint32_t a = at(i, j, above), b = at(i + 1, j, above);
         const uint32_t c = at(i + 1, j + 1, above), d = at(i, j + 1, above);
         if (j == 0) {
-          tri(a, c, d);
+          tri(a, c, d);  // a: this column's bottom pole vertex
         } else if (j == rows() - 1) {
-          tri(a, b, c);
+          tri(a, b, d);  // d: this column's top pole vertex
         } else {
           // Split along the shorter diagonal for a smoother surface.
           const vec3 &pa = out_.positions[a], &pb = out_.positions[b], &pc = out_.positions[c],
@@ -269,6 +275,14 @@ class SkinBuilder {
     }
   }
 
+  // Texture v of a row fraction (0 = bottom pole, 1 = top pole). The crown
+  // and the neck's base sit a few texels in from the image edges, so a
+  // repeating sampler never blends hair into the neck or back.
+  static float rowV(double rowFraction) {
+    constexpr double kMargin = 0.006;
+    return static_cast<float>(kMargin + (1.0 - 2.0 * kMargin) * (1.0 - rowFraction));
+  }
+
   // Texture coordinate the grid would give a point: its direction from the
   // grid centre, mapped through the column/row angle tables.
   vec2 gridUv(const vec3& p) const {
@@ -281,7 +295,7 @@ class SkinBuilder {
       return i + (x - table[i]) / (table[i + 1] - table[i]);
     };
     return vec2(static_cast<float>(fractionalIndex(azimuths_, a.x) / cols()),
-                static_cast<float>(1.0 - fractionalIndex(elevations_, a.y) / rows()));
+                rowV(fractionalIndex(elevations_, a.y) / rows()));
   }
 
   // --- eyelids ---------------------------------------------------------------
@@ -521,7 +535,7 @@ class SkinBuilder {
   int seamRow_ = 0, cornerL_ = 0, cornerR_ = 0;
   PatchRect eyeRects_[2]{};
   std::vector<uint32_t> grid_, lowerSeam_;
-  uint32_t bottomPole_ = 0, topPole_ = 0;
+  std::vector<uint32_t> bottomPoles_, topPoles_;
 };
 
 }  // namespace
