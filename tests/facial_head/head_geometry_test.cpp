@@ -82,7 +82,7 @@ TEST(HeadGeometry, IsHeadSizedUprightAndFacesPlusZ) {
   const eng::Aabb box = model.bounds();
   ASSERT_TRUE(box.valid());
   EXPECT_GE(box.size().y, 0.20f);
-  EXPECT_LE(box.size().y, 0.27f);
+  EXPECT_LE(box.size().y, 0.25f);
   EXPECT_LT(box.size().x, box.size().y);
   // Centred: symmetric in x, origin inside the head.
   EXPECT_NEAR(box.min.x, -box.max.x, 1e-4f);

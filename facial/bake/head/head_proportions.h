@@ -30,7 +30,7 @@ struct HeadProportions {
 
   float crownY = 0.121f;
   float chinY = -0.085f;
-  float neckBottomY = -0.128f;
+  float neckBottomY = -0.118f;
 };
 
 }  // namespace facial

@@ -118,7 +118,7 @@ float HeadSdf::face(const vec3& p) const {
 }
 
 float HeadSdf::nose(const vec3& p) const {
-  float n = roundCone(p, vec3(0.0f, 0.020f, 0.080f), vec3(0.0f, -0.017f, 0.0985f), 0.0050f, 0.0068f);
+  float n = roundCone(p, vec3(0.0f, 0.018f, 0.0775f), vec3(0.0f, -0.017f, 0.0985f), 0.0048f, 0.0068f);
   n = smin(n, glm::length(p - vec3(0.0f, -0.0215f, 0.0995f)) - 0.0084f, 0.008f);
   const vec3 m(std::abs(p.x), p.y, p.z);
   n = smin(n, ellipsoid(m - vec3(0.0115f, -0.0265f, 0.0900f), vec3(0.0065f, 0.0060f, 0.0070f)), 0.005f);
