@@ -51,7 +51,7 @@ ToothRowShape lowerToothRow(const glm::vec3& seam) {
   r.frontZ = seam.z - 0.0092f;
   r.archDepth = 0.0105f;
   r.edgeY = seam.y - 0.0004f;
-  r.rootY = seam.y - 0.0095f;
+  r.rootY = seam.y - 0.0080f;
   r.thickness = 0.0050f;
   return r;
 }
@@ -118,7 +118,7 @@ PartMesh buildToothRow(const ToothRowShape& shape) {
 eng::Image paintTeethTexture(int width, int height) {
   PaintImage img(width, height);
   const glm::vec3 enamel = srgb(246, 242, 230), enamelRoot = srgb(232, 222, 196);
-  const glm::vec3 gap = srgb(150, 128, 112), gum = srgb(206, 108, 110);
+  const glm::vec3 gap = srgb(196, 184, 170), gum = srgb(206, 108, 110);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const float s = -1.0f + 2.0f * (x + 0.5f) / width;
@@ -126,7 +126,7 @@ eng::Image paintTeethTexture(int width, int height) {
       const float toward = signedPow(std::sin(a), kRoundness);
       const float front = std::cos(a);  // +1 front face, -1 inner face
       glm::vec3 c = glm::mix(enamel, enamelRoot, smoothstep(-0.2f, 0.6f, toward));
-      c = glm::mix(c, gap, 0.85f * (1.0f - smoothstep(0.004f, 0.012f, borderDistance(s))));
+      c = glm::mix(c, gap, 0.8f * (1.0f - smoothstep(0.002f, 0.008f, borderDistance(s))));
       // Gum line, higher between the teeth.
       const float gumLine = 0.55f - 0.18f * (1.0f - smoothstep(0.0f, 0.05f, borderDistance(s)));
       c = glm::mix(c, gum, smoothstep(gumLine - 0.04f, gumLine + 0.04f, toward));
