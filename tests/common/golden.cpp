@@ -70,9 +70,10 @@ std::filesystem::path goldenPath(const std::string& name) { return sourceDir() /
     return ::testing::AssertionSuccess() << name << ": " << d.differingPixels << " pixels differ";
 
   const std::filesystem::path outDir = binaryDir() / "test-tmp" / "goldens";
-  std::filesystem::create_directories(outDir);
   const std::filesystem::path actualPath = outDir / (name + ".actual.png");
   const std::filesystem::path diffPath = outDir / (name + ".diff.png");
+  // Names may carry folders ("sheets/head_basic"): create the one the files go in.
+  std::filesystem::create_directories(actualPath.parent_path());
   (void)eng::writePng(actualPath, actual.width, actual.height, actual.rgba8);
   auto failure = ::testing::AssertionFailure();
   if (!d.sameSize) {
