@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "demo/cli_parse.h"
 #include "demo/command.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
@@ -42,16 +43,6 @@ bool parseFloat(std::string_view text, float& out) {
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, out);
   return ec == std::errc() && ptr == end && std::isfinite(out);
-}
-
-bool parseSize(const std::string& text, uint32_t& w, uint32_t& h) {
-  const size_t x = text.find_first_of("xX");
-  if (x == std::string::npos) return false;
-  auto parse = [](std::string_view s, uint32_t& v) {
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    return ec == std::errc() && ptr == s.data() + s.size() && v > 0 && v <= 16384;
-  };
-  return parse(std::string_view(text).substr(0, x), w) && parse(std::string_view(text).substr(x + 1), h);
 }
 
 std::string lower(std::string s) {
