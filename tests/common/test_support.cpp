@@ -2,6 +2,8 @@
 
 #include <fstream>
 
+#include <unistd.h>
+
 namespace testing_support {
 
 std::filesystem::path sharedDir() {
@@ -14,7 +16,14 @@ std::filesystem::path sourceDir() { return FACIAL_SOURCE_DIR; }
 std::filesystem::path binaryDir() { return FACIAL_BINARY_DIR; }
 
 std::filesystem::path freshTempDir(const std::string& name) {
-  std::filesystem::path dir = binaryDir() / "test-tmp" / name;
+  // ctest runs tests in parallel processes: the running test's own name (or the process id
+  // outside a test) keeps one test from wiping a folder another is writing into.
+  std::string owner = "pid" + std::to_string(::getpid());
+  if (const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info())
+    owner = std::string(test->test_suite_name()) + "." + test->name();
+  for (char& c : owner)
+    if (c == '/') c = '_';  // parameterised test names contain '/'
+  std::filesystem::path dir = binaryDir() / "test-tmp" / owner / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
