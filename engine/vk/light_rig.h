@@ -19,10 +19,10 @@ struct DirectionalLight {
 struct LightRig {
   // Warm key from the upper left of the camera, cool soft fill from the right,
   // rim from behind-above to separate the head from the backdrop.
-  DirectionalLight key{-55.0f, 40.0f, {1.0f, 0.95f, 0.88f}, 1.5f};
-  DirectionalLight fill{60.0f, 0.0f, {0.80f, 0.88f, 1.0f}, 0.2f};
+  DirectionalLight key{-35.0f, 30.0f, {1.0f, 0.95f, 0.88f}, 1.3f};
+  DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.5f};
   DirectionalLight rim{150.0f, 30.0f, {1.0f, 0.97f, 0.94f}, 1.2f};
-  glm::vec3 skyAmbient{0.05f, 0.055f, 0.065f};
+  glm::vec3 skyAmbient{0.09f, 0.095f, 0.105f};
   glm::vec3 groundAmbient{0.025f, 0.02f, 0.018f};
   float diffuseWrap = 0.3f;                     // 0 = Lambert
   float subsurfaceStrength = 0.55f;              // warm tint at the terminator
@@ -32,8 +32,8 @@ struct LightRig {
   // The key light casts soft shadows (nose, eye sockets, the inside of an open
   // mouth); the other lights do not.
   bool keyShadow = true;
-  float shadowSoftness = 0.012f;                  // penumbra radius, fraction of the scene radius
-  glm::vec3 shadowColor{0.10f, 0.035f, 0.025f};   // key light left in shadow: warm, as under skin
+  float shadowSoftness = 0.02f;                  // penumbra radius, fraction of the scene radius
+  glm::vec3 shadowColor{0.22f, 0.10f, 0.07f};   // key light left in shadow: warm, as under skin
   glm::vec3 backgroundTop{0.20f, 0.21f, 0.23f};      // linear (~#7c7e83 in sRGB)
   glm::vec3 backgroundBottom{0.045f, 0.047f, 0.052f};
 };
