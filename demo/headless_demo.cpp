@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "demo/face_framing.h"
 #include "demo/cli_parse.h"
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
@@ -69,7 +70,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   const uint32_t crowd = std::max<uint32_t>(1, o.crowd);
   if (crowd > 1024) return fail("--crowd must be at most 1024");
 
-  auto setup = FaceSetup::load({.model = o.model});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
   facial::GraphLoadOptions graphOptions;
@@ -83,7 +84,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   const std::vector<std::string> targetNames = setup->layout().names();
   std::vector<facial::FaceDriver> faces;
   for (uint32_t i = 0; i < crowd; ++i) {
-    auto face = facial::FaceDriver::create(*graph, &setup->rig(), targetNames, setup->baseWeights(), o.seed + i);
+    auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights(), o.seed + i);
     if (!face) return fail(graphPath.string() + ": " + face.error().message);
     faces.push_back(std::move(*face));
   }
@@ -113,6 +114,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   }
   eng::vk::SceneView view;
   view.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
+  if (crowd == 1) view.camera.zoom = kFaceZoom;  // a crowd is framed as a whole
 
   std::vector<eng::vk::ModelInstance> instances(crowd);
   std::mt19937 random(static_cast<uint32_t>(o.seed));

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "demo/face_framing.h"
 #include "demo/cli_parse.h"
 #include "demo/command.h"
 #include "demo/face_setup.h"
@@ -92,6 +93,7 @@ int runPlay(const PlayOptions& o) {
 
   eng::vk::SceneView view;
   view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(setup->model()), float(width) / float(height));
+  view.camera.zoom = kFaceZoom;
 
   SequenceOptions sequence;
   sequence.framesPerSecond = o.fps;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "demo/face_framing.h"
 #include "demo/command.h"
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
@@ -29,7 +30,7 @@ struct SheetOptions {
   float intensity = 1.0f;
   // Why closer than `render`: the camera frames the model with every target
   // at full weight (neck and hair included); expressions read in the face.
-  float zoom = 1.4f;
+  float zoom = kFaceZoom;
   std::string device;
   std::string out;
 };

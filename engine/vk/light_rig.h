@@ -19,16 +19,16 @@ struct DirectionalLight {
 struct LightRig {
   // Warm key from the upper left of the camera, cool soft fill from the right,
   // rim from behind-above to separate the head from the backdrop.
-  DirectionalLight key{-35.0f, 30.0f, {1.0f, 0.95f, 0.88f}, 1.3f};
-  DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.5f};
+  DirectionalLight key{-40.0f, 35.0f, {1.0f, 0.95f, 0.88f}, 1.4f};
+  DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.35f};
   DirectionalLight rim{150.0f, 30.0f, {1.0f, 0.97f, 0.94f}, 1.2f};
-  glm::vec3 skyAmbient{0.09f, 0.095f, 0.105f};
+  glm::vec3 skyAmbient{0.07f, 0.075f, 0.085f};
   glm::vec3 groundAmbient{0.025f, 0.02f, 0.018f};
   float diffuseWrap = 0.3f;                     // 0 = Lambert
   float subsurfaceStrength = 0.55f;              // warm tint at the terminator
   glm::vec3 subsurfaceColor{1.0f, 0.32f, 0.20f};
   float specularStrength = 0.55f;
-  float exposure = 1.0f;
+  float exposure = 0.9f;
   // The key light casts soft shadows (nose, eye sockets, the inside of an open
   // mouth); the other lights do not.
   bool keyShadow = true;

@@ -57,6 +57,7 @@ std::filesystem::path goldenPath(const std::string& name) { return sourceDir() /
                                          const ImageTolerance& tolerance) {
   const std::filesystem::path golden = goldenPath(name);
   if (updateGoldensRequested()) {
+    std::filesystem::create_directories(golden.parent_path());
     if (auto written = eng::writePng(golden, actual.width, actual.height, actual.rgba8); !written)
       return ::testing::AssertionFailure() << "cannot update golden: " << written.error().message;
     return ::testing::AssertionSuccess() << "updated " << golden.string();
