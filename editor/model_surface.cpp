@@ -1,0 +1,89 @@
+#include "editor/model_surface.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "engine/scene/cpu_morph.h"
+#include "engine/scene/weights.h"
+
+namespace editor {
+
+eng::Result<ModelSurface> ModelSurface::create(const eng::Model& model) {
+  ModelSurface surface;
+  std::vector<bool> placed(model.meshes.size(), false);
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const int mesh = model.nodes[n].mesh;
+    if (mesh < 0 || size_t(mesh) >= model.meshes.size() || placed[size_t(mesh)]) continue;
+    placed[size_t(mesh)] = true;
+    const glm::mat4 world = model.worldTransform(int(n));
+    const glm::mat3 linear(world);
+    if (std::abs(glm::determinant(linear)) < 1e-20f) continue;  // collapsed node: nothing to pick
+    for (size_t p = 0; p < model.meshes[size_t(mesh)].primitives.size(); ++p) {
+      const eng::Primitive& primitive = model.meshes[size_t(mesh)].primitives[p];
+      if (primitive.indices.size() < 3) continue;
+      surface.primitives_.push_back({mesh, int(p), surface.rest_.size(), primitive.vertexCount(), world, glm::inverse(linear)});
+      for (const glm::vec3& v : primitive.positions) surface.rest_.push_back(glm::vec3(world * glm::vec4(v, 1.0f)));
+    }
+  }
+  if (surface.primitives_.empty())
+    return eng::makeError(model.sourcePath + ": no node places a mesh with triangles, nothing to pick or sculpt");
+  surface.posed_ = surface.rest_;
+  return surface;
+}
+
+eng::Result<void> ModelSurface::pose(const eng::Model& model, std::span<const float> weights) {
+  const eng::WeightLayout layout(model);
+  if (weights.size() != layout.total())
+    return eng::makeError("surface pose: " + std::to_string(weights.size()) + " weights given, the model has " +
+                          std::to_string(layout.total()));
+  for (const SurfacePrimitive& sp : primitives_) {
+    const eng::Primitive& primitive = model.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)];
+    scratch_.resize(primitive.vertexCount());
+    eng::morphPrimitiveCpu(primitive, layout.meshWeights(weights, sp.mesh), scratch_, {});
+    for (size_t v = 0; v < scratch_.size(); ++v) posed_[sp.firstVertex + v] = glm::vec3(sp.world * glm::vec4(scratch_[v], 1.0f));
+  }
+  return {};
+}
+
+std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const glm::vec3& origin,
+                                                const glm::vec3& direction) const {
+  std::optional<SurfaceHit> best;
+  float bestDistance = std::numeric_limits<float>::max();
+  for (size_t p = 0; p < primitives_.size(); ++p) {
+    const SurfacePrimitive& sp = primitives_[p];
+    const auto& indices = model.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)].indices;
+    const glm::vec3* v = posed_.data() + sp.firstVertex;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
+      if (i0 >= sp.vertexCount || i1 >= sp.vertexCount || i2 >= sp.vertexCount) continue;
+      // Moller-Trumbore, both faces (a click on a back-facing lip still counts).
+      const glm::vec3 e1 = v[i1] - v[i0], e2 = v[i2] - v[i0];
+      const glm::vec3 pv = glm::cross(direction, e2);
+      const float det = glm::dot(e1, pv);
+      if (std::abs(det) < 1e-20f) continue;
+      const float inv = 1.0f / det;
+      const glm::vec3 tv = origin - v[i0];
+      const float u = glm::dot(tv, pv) * inv;
+      if (u < 0.0f || u > 1.0f) continue;
+      const glm::vec3 qv = glm::cross(tv, e1);
+      const float w = glm::dot(direction, qv) * inv;
+      if (w < 0.0f || u + w > 1.0f) continue;
+      const float s = glm::dot(e2, qv) * inv;
+      if (s <= 0.0f || s >= bestDistance) continue;
+      bestDistance = s;
+      SurfaceHit hit;
+      hit.distance = s;
+      hit.primitive = p;
+      hit.triangle = uint32_t(t / 3);
+      hit.barycentric = {1.0f - u - w, u, w};
+      hit.posedPoint = origin + s * direction;
+      const glm::vec3* r = rest_.data() + sp.firstVertex;
+      hit.restPoint = hit.barycentric.x * r[i0] + hit.barycentric.y * r[i1] + hit.barycentric.z * r[i2];
+      best = hit;
+    }
+  }
+  return best;
+}
+
+}  // namespace editor

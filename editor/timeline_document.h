@@ -1,0 +1,158 @@
+#pragma once
+// The timeline editor's model: a keyframe clip being edited (tracks of keys
+// over the rig's channels), the key selection, and every edit as an undoable
+// command. Plain C++ with no UI, so the panel is a thin view over it and the
+// editing rules are unit-tested on their own.
+//
+// Keys carry stable ids (selection survives re-sorting); every track stays
+// sorted by time after every edit. A move is rigid: the whole selection
+// shifts by one time delta, clamped so no selected key leaves [0, duration];
+// a moved key landing on an unselected key of its track replaces it (as in
+// Blender's "overwrite" on transform end). Drags are one undo step:
+//
+//   doc.beginMove();
+//   doc.moveSelected(dt, dv);   // each frame, relative to beginMove()
+//   doc.endMove();              // commits one "move keys" step (none if nothing moved)
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "facial/runtime/curves/keyframe.h"
+#include "facial/runtime/graph/timeline.h"
+
+namespace editor {
+
+using KeyId = uint32_t;
+
+struct DocumentKey {
+  KeyId id = 0;
+  facial::Keyframe key;
+  // Cubic (Hermite) keys whose tangents the editor keeps as Catmull-Rom
+  // slopes through their neighbours; false keeps tangents as loaded.
+  bool autoTangents = false;
+};
+
+struct DocumentTrack {
+  std::string channel;
+  std::vector<DocumentKey> keys;  // sorted by time, at least kMinKeySpacing apart
+};
+
+struct KeyLocation {
+  size_t track = 0;
+  size_t index = 0;  // in the track's sorted keys
+};
+
+class TimelineDocument {
+ public:
+  static constexpr float kMinKeySpacing = 1e-3f;  // seconds; closer keys are one key
+  static constexpr float kMinDuration = 0.01f;
+
+  explicit TimelineDocument(std::string name = "untitled", float duration = 2.0f);
+  // Fails when the timeline does not validate (the message says why).
+  static eng::Result<TimelineDocument> fromTimeline(const facial::Timeline& timeline);
+  // A timeline file (timeline_json.h); errors name the file.
+  static eng::Result<TimelineDocument> load(const std::filesystem::path& path);
+
+  // The clip as the runtime plays it. Tracks without keys are left out.
+  facial::Timeline toTimeline() const;
+  // Writes the timeline file through a temporary sibling, so a failed save
+  // never damages an existing file. Fails (nothing written) when a track has
+  // no keys. Marks the document saved.
+  eng::Result<void> save(const std::filesystem::path& path);
+
+  const std::string& name() const { return state_.name; }
+  float duration() const { return state_.duration; }
+  facial::LoopMode loop() const { return state_.loop; }
+  std::span<const DocumentTrack> tracks() const { return state_.tracks; }
+  std::optional<size_t> findTrack(std::string_view channel) const;
+  std::optional<KeyLocation> locate(KeyId id) const;
+  const DocumentKey* key(KeyId id) const;
+  // The track's value at `time` (0 for a track without keys).
+  float sample(size_t track, float time) const;
+  // Values are clamped to this range on every edit ([0, 1]: channel weights).
+  float minValue() const { return minValue_; }
+  float maxValue() const { return maxValue_; }
+  void setValueRange(float minValue, float maxValue);
+
+  // Selection (not part of undo history).
+  std::span<const KeyId> selection() const { return selection_; }
+  bool isSelected(KeyId id) const;
+  // additive: toggles `id` in the selection; otherwise selects only it. Unknown ids are ignored.
+  void select(KeyId id, bool additive = false);
+  void selectTrack(size_t track);
+  void clearSelection() { selection_.clear(); }
+
+  // Edits: each successful one is one undo step; a failed one changes nothing
+  // and says why.
+  eng::Result<size_t> addTrack(std::string channel);
+  eng::Result<void> removeTrack(size_t track);
+  // A key at `time` (clamped into [0, duration]); an existing key closer than
+  // kMinKeySpacing gets the new value and interpolation instead. Selects it.
+  eng::Result<KeyId> setKey(size_t track, float time, float value,
+                            facial::KeyInterpolation interpolation = facial::KeyInterpolation::Linear);
+  eng::Result<void> deleteSelected();
+  // Cubic (Hermite) turns auto tangents on for those keys.
+  eng::Result<void> setSelectedInterpolation(facial::KeyInterpolation interpolation);
+  // Fails below kMinDuration, when not finite, or when keys lie beyond the new end.
+  eng::Result<void> setDuration(float duration);
+  eng::Result<void> setLoop(facial::LoopMode loop);
+
+  // Drag of the selection (see the file comment).
+  void beginMove();
+  // dt, dv relative to beginMove(); false when not moving or not finite.
+  bool moveSelected(float dt, float dv);
+  void endMove();
+  void cancelMove();
+  bool moving() const { return moveStart_.has_value(); }
+  // One-shot move: beginMove + moveSelected + endMove.
+  eng::Result<void> moveSelectedBy(float dt, float dv);
+
+  bool canUndo() const { return !undo_.empty(); }
+  bool canRedo() const { return !redo_.empty(); }
+  // What undo / redo would revert ("" when nothing).
+  std::string_view undoLabel() const { return undo_.empty() ? std::string_view() : undo_.back().label; }
+  std::string_view redoLabel() const { return redo_.empty() ? std::string_view() : redo_.back().label; }
+  bool undo();
+  bool redo();
+
+  // Unsaved changes since load / the last save (undoing back to it is clean again).
+  bool dirty() const { return state_.serial != savedSerial_; }
+  // Changes with every edit, undo and redo (players re-sample on change).
+  uint64_t revision() const { return revision_; }
+
+ private:
+  struct State {
+    std::string name;
+    float duration = 2.0f;
+    facial::LoopMode loop = facial::LoopMode::Loop;
+    std::vector<DocumentTrack> tracks;
+    uint64_t serial = 0;  // identifies this exact content (dirty tracking)
+  };
+  struct UndoStep {
+    std::string label;
+    State before;
+  };
+
+  void commit(std::string label, State before);
+  void normaliseTrack(DocumentTrack& track) const;
+  void dropStaleSelection();
+
+  State state_;
+  std::vector<KeyId> selection_;
+  std::vector<UndoStep> undo_;
+  std::vector<UndoStep> redo_;
+  std::optional<State> moveStart_;
+  KeyId nextId_ = 1;
+  uint64_t nextSerial_ = 1;
+  uint64_t savedSerial_ = 0;
+  uint64_t revision_ = 0;
+  float minValue_ = 0.0f;
+  float maxValue_ = 1.0f;
+};
+
+}  // namespace editor
