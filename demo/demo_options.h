@@ -7,6 +7,7 @@ namespace cli {
 
 struct DemoOptions {
   std::string model;               // empty: the built-in head
+  std::string rigmap;              // empty: <data>/rigmaps/<model>.json or the detected scheme
   std::string graph;               // empty: data/graphs/tour.json
   bool headless = false;           // forced headless even with a display
   std::string out;                 // headless output folder (empty: out/demo-<time>)

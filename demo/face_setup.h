@@ -21,7 +21,16 @@
 #include "facial/runtime/rig/expression_library.h"
 #include "facial/runtime/rig/rig_mapping.h"
 
+namespace CLI {
+class App;
+}
+
 namespace cli {
+
+// Declares the options every command that poses a face shares, with one
+// wording: --model/-m (default: the built-in head) and --rigmap (a rig map
+// file instead of <data>/rigmaps/<model>.json or detection).
+void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap);
 
 // The program's data folder: $FACIAL_DATA_DIR when set, else the source tree's data/.
 std::filesystem::path dataDirectory();
@@ -38,6 +47,22 @@ std::string modelNameOf(const std::filesystem::path& modelPath);
 // detected scheme. Errors start with the model file.
 eng::Result<facial::RigMapping> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile = {});
 
+// A rig for graphs that speak action units. The animation graph blends
+// presets as action-unit vectors, so a target bound to an emotion ("target
+// `happy` IS the happy emotion", a rig map's emotion key or the Expressions
+// scheme) would never move in the demo. Each emotion's binding is therefore
+// also reached from the action units through the least-squares decoding of
+// the basic presets: with P the (action units x emotions) matrix of the six
+// basic presets at intensity 1, the emotion weights of an AU vector a are
+// e = (P^T P)^-1 P^T a. This is exact for any linear mix of basic presets
+// (a preset at intensity s gives s on its own emotion and 0 on the others; a
+// cosine-eased transition gives the same easing on the two targets), and
+// action units no preset uses (AU45 blink) leak into no emotion. Neutral has
+// no action units and cannot be decoded: a neutral binding stays emotion-only
+// (noted in the report). AU rows of `rig` are kept as they are. Fails when
+// a basic preset is missing or the presets are linearly dependent.
+eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, const facial::ExpressionLibrary& presets);
+
 struct FaceSetupOptions {
   std::filesystem::path model;        // empty: defaultModelPath()
   std::filesystem::path expressions;  // empty: defaultExpressionsPath()
@@ -53,6 +78,11 @@ class FaceSetup {
   const std::string& name() const { return name_; }
   const eng::WeightLayout& layout() const { return layout_; }
   const facial::RigMapping& rig() const { return rig_; }
+  // The rig as a graph that speaks action units sees it (FaceDriver): the
+  // same rows, plus every emotion-level binding ("happy" -> a whole-expression
+  // target) re-expressed over action units, see actionUnitRig(). Equal to
+  // rig() when the rig binds no emotion.
+  const facial::RigMapping& graphRig() const { return graphRig_; }
   const facial::ExpressionLibrary& expressions() const { return expressions_; }
   uint32_t weightCount() const { return layout_.total(); }
   // The model's default weights: the base every expression starts from.
@@ -71,12 +101,14 @@ class FaceSetup {
                                       std::span<float> weights);
 
  private:
-  FaceSetup(eng::Model model, std::string name, facial::RigMapping rig, facial::ExpressionLibrary expressions);
+  FaceSetup(eng::Model model, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
+            facial::ExpressionLibrary expressions);
 
   eng::Model model_;
   std::string name_;
   eng::WeightLayout layout_;
   facial::RigMapping rig_;
+  facial::RigMapping graphRig_;
   facial::ExpressionLibrary expressions_;
   std::vector<float> baseWeights_;
   // Scratch reused by expressionWeights (no allocation per call).

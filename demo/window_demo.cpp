@@ -156,7 +156,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!o.size.empty() && !parseSize(o.size, width, height))
     return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
 
-  auto setup = FaceSetup::load({.model = o.model});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   const fs::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : fs::path(o.graph);
@@ -178,7 +178,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
   eng::Aabb crowdBounds;
   for (uint32_t i = 0; i < faceCount; ++i) {
-    auto driver = facial::FaceDriver::create(graph_, &setup_->rig(), names, setup_->baseWeights(), o.seed + i);
+    auto driver = facial::FaceDriver::create(graph_, &setup_->graphRig(), names, setup_->baseWeights(), o.seed + i);
     if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
     if (autoplay) driver->graph().setBool(*autoplay, false);
     const uint32_t row = i / columns, column = i % columns;

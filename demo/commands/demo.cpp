@@ -5,6 +5,7 @@
 
 #include "demo/command.h"
 #include "demo/demo_options.h"
+#include "demo/face_setup.h"
 
 namespace cli {
 namespace {
@@ -18,7 +19,7 @@ bool hasDisplay() {
 CommandRegistrar reg("demo", "The virtual character: a window, or the headless tour without a display",
                      [](CLI::App& app) {
   auto o = std::make_shared<DemoOptions>();
-  app.add_option("--model,-m", o->model, "glTF face (default: the built-in head)");
+  addFaceOptions(app, o->model, o->rigmap);
   app.add_option("--graph", o->graph, "Animation graph (default: data/graphs/tour.json)");
   app.add_flag("--headless", o->headless, "Render the tour to files even when a display is present");
   app.add_option("--out,-o", o->out, "Headless output folder (default: out/demo-<date-time>)");

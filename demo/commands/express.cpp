@@ -1,4 +1,4 @@
-// `facial express EXPRESSION [--intensity X] [--model M] [--size WxH]
+// `facial express EXPRESSION [--intensity X] [--model M] [--rigmap R] [--size WxH]
 //  [--yaw DEG] [--pitch DEG] [--zoom F] [--device D] --out F.png`
 // Poses a model with one expression preset through its rig mapping (the
 // model's default weights are the base, the targets the rig drives are
@@ -22,6 +22,7 @@ struct ExpressOptions {
   std::string expression;
   float intensity = 1.0f;
   std::string model;
+  std::string rigmap;
   std::string size = "512x512";
   float yaw = 0.0f;
   float pitch = 0.0f;
@@ -44,7 +45,7 @@ int runExpress(const ExpressOptions& o) {
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial express: note: intensity %g clamped to [0, 1]\n", o.intensity);
 
-  auto face = FaceSetup::load({.model = o.model});
+  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
   if (!preset) return fail(preset.error().message);
@@ -70,7 +71,7 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
   app.add_option("--intensity,-i", o->intensity, "Preset strength, clamped to [0, 1]")
       ->check(CLI::Number)
       ->capture_default_str();
-  app.add_option("--model,-m", o->model, "glTF model (default: the built-in head, <data>/head.glb)");
+  addFaceOptions(app, o->model, o->rigmap);
   app.add_option("--size", o->size, "Image size WxH")->capture_default_str();
   app.add_option("--yaw", o->yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
   app.add_option("--pitch", o->pitch, "Orbit pitch in degrees (+ = from above)")->capture_default_str();

@@ -1,0 +1,213 @@
+// End to end: the study's way of handing over a face -- one OBJ per
+// expression, same mesh -- through `facial convert` (folder form) to a glTF
+// that `facial express` and the headless `facial demo` drive with the seven
+// emotions through a rig map that says which target is which emotion.
+//
+// The test writes the set itself: the built-in head posed with each basic
+// preset (CPU morph), exported as position-only OBJs under artist-style names
+// that no built-in rig scheme recognises (smile.obj, frown.obj, ...), so the
+// rig map is what makes the set usable.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "demo/face_setup.h"
+#include "engine/scene/cpu_morph.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/weights.h"
+#include "tests/cli/cli_test_support.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli_test::runFacial;
+
+struct SetFile {
+  const char* preset;  // data/expressions.json
+  const char* file;    // the OBJ's name, hence the target's
+};
+constexpr SetFile kSet[] = {{"neutral", "neutral"}, {"happy", "smile"}, {"sad", "frown"},     {"anger", "scowl"},
+                            {"fear", "dread"},      {"surprise", "gasp"}, {"disgust", "sneer"}};
+
+// The whole model (every mesh instance, world space) posed with `weights`
+// as one OBJ: positions and triangles, no normals (the converter makes them).
+void writePosedObj(const eng::Model& model, std::span<const float> weights, const fs::path& path) {
+  const eng::WeightLayout layout(model);
+  std::ofstream out(path, std::ios::binary);
+  out << "# " << path.filename().string() << ": written by obj_keyframe_set_test\n";
+  std::string faces;
+  uint32_t base = 1;
+  char line[96];
+  for (int n = 0; n < int(model.nodes.size()); ++n) {
+    const int m = model.nodes[n].mesh;
+    if (m < 0) continue;
+    const glm::mat4 world = model.worldTransform(n);
+    for (const eng::Primitive& p : model.meshes[m].primitives) {
+      std::vector<glm::vec3> positions(p.vertexCount()), normals;
+      eng::morphPrimitiveCpu(p, layout.meshWeights(weights, m), positions, normals);
+      for (const glm::vec3& v : positions) {
+        const glm::vec3 w = glm::vec3(world * glm::vec4(v, 1.0f));
+        std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", w.x, w.y, w.z);
+        out << line;
+      }
+      for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+        std::snprintf(line, sizeof line, "f %u %u %u\n", base + p.indices[i], base + p.indices[i + 1],
+                      base + p.indices[i + 2]);
+        faces += line;
+      }
+      base += uint32_t(p.vertexCount());
+    }
+  }
+  out << faces;
+}
+
+// Mean colour distance per pixel over rows [y0, y1) of two same-size images.
+double meanDifference(const eng::Image& a, const eng::Image& b, int y0, int y1) {
+  double sum = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = (size_t(y) * a.width + x) * 4 + c;
+        sum += std::abs(int(a.rgba8[i]) - int(b.rgba8[i]));
+      }
+  return sum / double(size_t(y1 - y0) * a.width);
+}
+double meanDifference(const eng::Image& a, const eng::Image& b) { return meanDifference(a, b, 0, a.height); }
+
+// A rig map binding each emotion to its target at `gain`.
+std::string rigMapJson(float gain) {
+  std::string map = "{\"version\": 1, \"model\": \"study set\", \"map\": {";
+  for (size_t i = 1; i < std::size(kSet); ++i)
+    map += std::string(i > 1 ? ", " : "") + "\"" + kSet[i].preset + "\": [{\"target\": \"" + kSet[i].file +
+           "\", \"weight\": " + std::to_string(gain) + "}]";
+  return map + "}}\n";
+}
+
+class ObjKeyframeSet : public ::testing::Test {
+ protected:
+  // The seven OBJs, the rig map and the converted glTF (one per test: ctest
+  // runs each test in its own process).
+  void SetUp() override {
+    dir_ = testing_support::freshTempDir("obj_keyframe_set");
+    auto face = cli::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
+    ASSERT_TRUE(face) << face.error().message;
+    fs::create_directories(dir_ / "set");
+    std::vector<float> weights(face->weightCount());
+    for (const SetFile& f : kSet) {
+      auto preset = face->findExpression(f.preset);
+      ASSERT_TRUE(preset) << preset.error().message;
+      ASSERT_TRUE(face->expressionWeights(**preset, 1.0f, weights));
+      writePosedObj(face->model(), weights, dir_ / "set" / (std::string(f.file) + ".obj"));
+    }
+    testing_support::writeFile(rigmap(), rigMapJson(1.0f));
+
+    const auto converted = runFacial({"convert", (dir_ / "set").string(), "--out", glb().string()});
+    ASSERT_EQ(converted.exitCode, 0) << converted.out << converted.err;
+    convertOutput_ = converted.out;
+  }
+
+  fs::path glb() const { return dir_ / "study.glb"; }
+  fs::path rigmap() const { return dir_ / "map.json"; }
+
+  fs::path dir_;
+  std::string convertOutput_;
+};
+
+TEST_F(ObjKeyframeSet, FolderBecomesOneGlbWithSixNamedTargets) {
+  EXPECT_NE(convertOutput_.find("6 morph target(s)"), std::string::npos) << convertOutput_;
+  auto model = eng::loadModel(glb());
+  ASSERT_TRUE(model) << model.error().message;
+  ASSERT_EQ(model->meshes.size(), 1u);
+  std::vector<std::string> names = model->meshes[0].targetNames;
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"dread", "frown", "gasp", "scowl", "smile", "sneer"}));
+}
+
+TEST_F(ObjKeyframeSet, ExpressNeedsTheRigMapAndThenSmilesWhereTheMouthIs) {
+  // Without the map no scheme knows 'smile' or 'gasp': a clear error, no image.
+  const fs::path refused = dir_ / "refused.png";
+  const auto bare = runFacial({"express", "happy", "--model", glb().string(), "--size", "128x128", "--out", refused.string()});
+  EXPECT_NE(bare.exitCode, 0);
+  EXPECT_NE(bare.err.find("rig map"), std::string::npos) << bare.err;
+  EXPECT_FALSE(fs::exists(refused));
+
+  const fs::path neutralPng = dir_ / "express_neutral.png", happyPng = dir_ / "express_happy.png",
+                 halfPng = dir_ / "express_half.png";
+  const auto neutral = runFacial({"express", "neutral", "--model", glb().string(), "--rigmap", rigmap().string(),
+                                  "--size", "128x128", "--out", neutralPng.string()});
+  ASSERT_TRUE(cli_test::ranCleanly(neutral));
+  const auto happy = runFacial({"express", "happy", "--model", glb().string(), "--rigmap", rigmap().string(),
+                                "--size", "128x128", "--out", happyPng.string()});
+  ASSERT_TRUE(cli_test::ranCleanly(happy));
+  const auto half = runFacial({"express", "happy", "--intensity", "0.5", "--model", glb().string(), "--rigmap",
+                               rigmap().string(), "--size", "128x128", "--out", halfPng.string()});
+  ASSERT_TRUE(cli_test::ranCleanly(half));
+
+  const eng::Image a = cli_test::readPngOrFail(neutralPng), b = cli_test::readPngOrFail(happyPng),
+                   h = cli_test::readPngOrFail(halfPng);
+  ASSERT_EQ(a.width, 128);
+  ASSERT_EQ(b.width, 128);
+  ASSERT_EQ(h.width, 128);
+  // The smile (AU6+12+25 baked into smile.obj) moves cheeks and mouth, not the brows.
+  const double brows = meanDifference(a, b, 0, 48), mouth = meanDifference(a, b, 64, 128);
+  std::printf("neutral vs happy: top rows %.2f, lower half %.2f; half smile %.2f of %.2f overall\n", brows, mouth,
+              meanDifference(a, h), meanDifference(a, b));
+  EXPECT_GT(mouth, 1.0) << "the smile target moved the lower face";
+  EXPECT_GT(mouth, 3.0 * brows) << "the difference is in the lower face";
+  // Intensity 0.5 drives the target at 0.5: about half way.
+  EXPECT_GT(meanDifference(a, h), 0.2 * meanDifference(a, b));
+  EXPECT_LT(meanDifference(a, h), 0.8 * meanDifference(a, b));
+}
+
+TEST_F(ObjKeyframeSet, HeadlessDemoPlaysTheSevenEmotionTransitions) {
+  auto runDemo = [&](const fs::path& map, const fs::path& out) {
+    const auto demo = runFacial({"demo", "--headless", "--model", glb().string(), "--rigmap", map.string(), "--size",
+                                 "128x128", "--fps", "4", "--out", out.string()});
+    EXPECT_TRUE(cli_test::ranCleanly(demo)) << demo.out;
+    EXPECT_NE(demo.out.find("(7 states)"), std::string::npos) << demo.out;
+    EXPECT_TRUE(fs::exists(out / "tour.gif"));
+    EXPECT_TRUE(fs::exists(out / "contact_sheet.png"));
+    return demo.exitCode == 0;
+  };
+  ASSERT_TRUE(runDemo(rigmap(), dir_ / "demo"));
+  // The control: the same tour with every emotion bound at gain 0. Sway,
+  // breathing and timing are identical, so any difference is the expression.
+  const fs::path still = dir_ / "still.json";
+  testing_support::writeFile(still, rigMapJson(0.0f));
+  ASSERT_TRUE(runDemo(still, dir_ / "still"));
+
+  // The tour (data/graphs/tour.json) moves on 2.4 s after entering a state,
+  // blending 0.8 s (cosine) into the next, in the order neutral, happy, sad,
+  // anger, fear, surprise, disgust, neutral: state k is entered at 2.4 k s
+  // and fully shown from 2.4 k + 0.8 s until 2.4 (k + 1) s.
+  auto frameAt = [&](const char* run, double seconds) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", int(std::lround(seconds * 4.0)));
+    return cli_test::readPngOrFail(dir_ / run / "frames" / name);
+  };
+  auto expression = [&](double seconds) {
+    const eng::Image a = frameAt("demo", seconds), b = frameAt("still", seconds);
+    EXPECT_EQ(a.width, 128);
+    EXPECT_EQ(b.width, 128);
+    return a.width == b.width && a.height == b.height ? meanDifference(a, b) : 0.0;
+  };
+  EXPECT_LT(expression(1.6), 0.05) << "neutral at the start";
+  for (int k = 1; k < 7; ++k) {
+    const double held = expression(2.4 * k + 1.6), blending = expression(2.4 * k + 0.4);
+    std::printf("%s ('%s'): %.2f held, %.2f half way in\n", kSet[k].preset, kSet[k].file, held, blending);
+    EXPECT_GT(held, 0.5) << kSet[k].preset << " (target '" << kSet[k].file << "') shows in the tour";
+    if (k == 1) {
+      EXPECT_GT(blending, 0.15 * held) << "half way from neutral to happy, the smile is on its way";
+      EXPECT_LT(blending, 0.85 * held) << "half way from neutral to happy, the smile is not complete";
+    }
+  }
+  EXPECT_LT(expression(18.4), 0.05) << "the tour ends back at neutral";
+}
+
+}  // namespace
