@@ -2,6 +2,8 @@
 // texcoords, quads and n-gons, CRLF, materials, folder form, strict topology
 // errors and --match-by-position for re-ordered exports.
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <numeric>
 #include <random>
 
@@ -215,6 +217,42 @@ TEST(ObjKeyframes, ConvertedSetRoundTripsThroughGlbWithSparseTargets) {
   EXPECT_EQ(loaded->meshes[0].primitives[0].targets[0].positions, imported.model.meshes[0].primitives[0].targets[0].positions);
   const std::string glb = scene_test::readText(dir / "face.glb");
   EXPECT_NE(glb.find("\"sparse\""), std::string::npos) << "one moved vertex of 20 is stored sparse";
+}
+
+// A face-sized set: 100k vertices per file, two targets (one dense, one
+// local). Correctness at that size; the speed itself is measured by
+// facial_bench (BM_ConvertObjSet). The bound here only catches a fall into
+// quadratic behaviour, loose enough for a loaded 2-core CI machine.
+TEST(ObjKeyframes, HundredThousandVertexSetConvertsExactly) {
+  const auto dir = freshTempDir("obj_100k");
+  GridObj neutral;
+  neutral.nx = neutral.ny = 316;  // 317 x 317 = 100,489 vertices
+  neutral.normals = false;
+  GridObj lifted = neutral, dimple = neutral;
+  lifted.position = [](int, glm::vec3 r) { return r + glm::vec3(0, 0, 0.01f * r.x); };
+  dimple.position = [](int i, glm::vec3 r) { return i == 5000 ? r - glm::vec3(0, 0, 0.25f) : r; };
+  writeFile(dir / "neutral.obj", neutral.text());
+  writeFile(dir / "lifted.obj", lifted.text());
+  writeFile(dir / "dimple.obj", dimple.text());
+
+  const auto started = std::chrono::steady_clock::now();
+  const auto imported = importOk(dir / "neutral.obj", {{"lifted", dir / "lifted.obj"}, {"dimple", dir / "dimple.obj"}});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::printf("100k-vertex set, neutral + 2 targets: %.0f ms (%.0f ms per file)\n", 1e3 * seconds, 1e3 * seconds / 3);
+  ASSERT_EQ(imported.model.meshes.size(), 1u);
+  const eng::Primitive& prim = imported.model.meshes[0].primitives[0];
+  ASSERT_EQ(prim.vertexCount(), size_t(neutral.vertexCount()));
+  ASSERT_EQ(prim.targets.size(), 2u);
+  ASSERT_EQ(imported.targets[0].movedVertices, size_t(neutral.vertexCount()) - 317) << "every column but x = 0 moves";
+  ASSERT_EQ(imported.targets[1].movedVertices, 1u);
+  for (size_t v = 0; v < prim.vertexCount(); v += 997) {
+    const glm::vec3 expected(0, 0, 0.01f * prim.positions[v].x);
+    EXPECT_NEAR(glm::length(prim.targets[0].positions[v] - expected), 0.0f, 1e-6f) << "vertex " << v;
+  }
+  const int moved = vertexAt(prim, neutral.rest(5000));
+  ASSERT_GE(moved, 0);
+  EXPECT_EQ(prim.targets[1].positions[moved], glm::vec3(0, 0, -0.25f));
+  EXPECT_LT(seconds / 3, 2.0) << "far from 'well under a second per target': see facial_bench BM_ConvertObjSet";
 }
 
 TEST(ObjKeyframes, MatchByPositionRecoversAReorderedExport) {
