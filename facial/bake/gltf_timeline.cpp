@@ -111,9 +111,22 @@ float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
 eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options) {
   if (auto problem = timeline.validate()) return eng::makeError("timeline '" + timeline.name + "': " + *problem);
   int node = options.node;
-  if (node < 0)
-    for (size_t n = 0; n < model.nodes.size() && node < 0; ++n)
-      if (model.nodes[n].mesh >= 0) node = static_cast<int>(n);
+  if (node < 0) {
+    // A face file often holds several meshes (head, eyes, teeth): pick the
+    // first node whose mesh has a target for every track, else the first mesh.
+    int firstMeshNode = -1;
+    for (size_t n = 0; n < model.nodes.size() && node < 0; ++n) {
+      const int m = model.nodes[n].mesh;
+      if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
+      if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
+      const std::vector<std::string>& names = model.meshes[m].targetNames;
+      if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const TimelineTrack& track) {
+            return std::find(names.begin(), names.end(), track.channel) != names.end();
+          }))
+        node = static_cast<int>(n);
+    }
+    if (node < 0) node = firstMeshNode;
+  }
   if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || model.nodes[node].mesh < 0 ||
       static_cast<size_t>(model.nodes[node].mesh) >= model.meshes.size())
     return eng::makeError("timeline '" + timeline.name + "': node " + std::to_string(node) +
@@ -130,7 +143,8 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
     auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), timeline.tracks[i].channel);
     if (it == mesh.targetNames.end())
       return eng::makeError("timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
-                            "', which is not a morph target of mesh '" + mesh.name + "'");
+                            "', which is not a morph target of mesh '" + mesh.name + "' (node " + std::to_string(node) +
+                            ", " + std::to_string(targets) + " targets)");
     trackOfTarget[static_cast<size_t>(it - mesh.targetNames.begin())] = static_cast<int>(i);
   }
   bool allStep = true, allLinear = true;
@@ -159,7 +173,10 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
       }
     }
   }
+  // glTF has no duration of its own (an animation ends at its last key): a
+  // key at 0 and one at the timeline's end keep its holds at both ends.
   times.push_back(0.0f);
+  times.push_back(timeline.duration);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
 

@@ -16,6 +16,9 @@
 //     exact for Linear and Hermite segments (a cubic piece is fixed by its end values and slopes);
 //     Cosine segments are split at `sampleRate` and match to ~1e-4 at 30 Hz;
 //     a Step inside a mixed timeline holds, then ramps in the last `stepRamp` seconds.
+// Keys are also written at 0 and at the timeline's duration, so a hold at
+// either end survives (a glTF animation ends at its last key). When no node
+// is named, the first node whose mesh has a target for every track is used.
 // Targets without a track hold the mesh's default weight. Loop modes have no
 // glTF equivalent and are not written.
 #include <string>
