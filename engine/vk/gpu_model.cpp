@@ -6,6 +6,7 @@
 #include <span>
 #include <string>
 
+#include "engine/vk/descriptor_write.h"
 #include "engine/core/log.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/detail_array.h"
@@ -337,24 +338,13 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
                                        gp.constants.detailLayerCount * sizeof(GpuDetailLayer)}
               : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
 
-      auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* b,
-                       const VkDescriptorImageInfo* i) {
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = gp.descriptorSet;
-        w.dstBinding = binding;
-        w.descriptorCount = 1;
-        w.descriptorType = type;
-        w.pBufferInfo = b;
-        w.pImageInfo = i;
-        return w;
-      };
       const std::array writes{
-          write(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positions, nullptr),
-          write(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &normals, nullptr),
-          write(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &tangents, nullptr),
-          write(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &baseInfo),
-          write(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &detailInfo),
-          write(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams, nullptr),
+          bufferWrite(gp.descriptorSet, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positions),
+          bufferWrite(gp.descriptorSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &normals),
+          bufferWrite(gp.descriptorSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &tangents),
+          imageWrite(gp.descriptorSet, 3, &baseInfo),
+          imageWrite(gp.descriptorSet, 4, &detailInfo),
+          bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
       };
       vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }

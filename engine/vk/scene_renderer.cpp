@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "engine/vk/descriptor_write.h"
 #include "engine/core/log.h"
 #include "engine/vk/active_weights.h"
 #include "engine/vk/vk_result.h"
@@ -87,23 +88,12 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
                                        0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
                                      VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
-  auto write = [&](uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* info,
-                   const VkDescriptorImageInfo* image = nullptr) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = slot.descriptorSet;
-    w.dstBinding = binding;
-    w.descriptorCount = 1;
-    w.descriptorType = type;
-    w.pBufferInfo = info;
-    w.pImageInfo = image;
-    return w;
-  };
   const std::array writes{
-      write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &globals),
-      write(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instances),
-      write(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &active),
-      write(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
-      write(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &shadow),
+      bufferWrite(slot.descriptorSet, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &globals),
+      bufferWrite(slot.descriptorSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &instances),
+      bufferWrite(slot.descriptorSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &active),
+      bufferWrite(slot.descriptorSet, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
+      imageWrite(slot.descriptorSet, 4, &shadow),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -1,0 +1,29 @@
+#pragma once
+// One VkWriteDescriptorSet for a single buffer or image binding: the shape
+// every descriptor-set update in the renderer repeats.
+#include <vulkan/vulkan.h>
+
+namespace eng::vk {
+
+inline VkWriteDescriptorSet bufferWrite(VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                                        const VkDescriptorBufferInfo* buffer) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = type;
+  w.pBufferInfo = buffer;
+  return w;
+}
+
+inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, uint32_t binding, const VkDescriptorImageInfo* image) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = image;
+  return w;
+}
+
+}  // namespace eng::vk
