@@ -1,0 +1,378 @@
+#include "editor/app/editor_app.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "demo/cli_parse.h"
+#include "demo/face_setup.h"
+#include "demo/window_imgui.h"
+#include "editor/app/control_map_panel.h"
+#include "editor/app/face_delegate.h"
+#include "editor/app/sculpt_panel.h"
+#include "editor/app/state_machine_panel.h"
+#include "editor/app/timeline_panel.h"
+#include "editor/app/driver_channels.h"
+#include "engine/vk/context.h"
+#include "engine/vk/framing_bounds.h"
+#include "engine/vk/window.h"
+#include "engine/vk/window_renderer.h"
+
+namespace editor {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial-editor: error: %s\n", message.c_str());
+  return 1;
+}
+
+// Panel layout: fixed columns and a bottom strip, the face in the middle.
+struct Layout {
+  float width = 0, height = 0;
+  float side = 0;       // left and right column width
+  float bottom = 0;     // timeline strip height
+  float leftSplit = 0;  // state machine / control map boundary
+  // The free viewport rectangle.
+  float x0() const { return side; }
+  float x1() const { return width - side; }
+  float y1() const { return height - bottom; }
+
+  static Layout of(float width, float height) {
+    Layout l;
+    l.width = width;
+    l.height = height;
+    l.side = std::clamp(width * 0.25f, 240.0f, 340.0f);
+    l.bottom = std::clamp(height * 0.3f, 170.0f, 280.0f);
+    l.leftSplit = (height - l.bottom) * 0.5f;
+    return l;
+  }
+};
+
+class EditorApp : public FaceDelegate {
+ public:
+  int run(const EditorOptions& o);
+
+  // FaceDelegate
+  float currentValue(std::string_view channel) const override;
+  FaceSource source() const override { return source_; }
+  void takeControl(FaceSource source) override { source_ = source; }
+
+ private:
+  int setUp(const EditorOptions& o);
+  void drawPanels();
+  void handleViewportInput();
+  void drawControlPoints();
+  eng::vk::OrbitCamera renderCamera() const;
+  // World ray through a window pixel.
+  void rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const;
+  std::span<const float> faceWeights() const;
+  eng::Result<void> uploadDisplayModel();
+
+  std::optional<cli::FaceSetup> setup_;
+  StateMachinePanel machine_;
+  ControlMapPanel controlMap_;
+  std::unique_ptr<TimelinePanel> timeline_;
+  SculptPanel sculpt_;
+  FaceSource source_ = FaceSource::StateMachine;
+  std::vector<std::string> targetNames_;
+
+  std::unique_ptr<eng::vk::Window> window_;
+  std::optional<eng::vk::Context> ctx_;
+  std::unique_ptr<eng::vk::WindowRenderer> renderer_;
+  std::optional<eng::vk::GpuModel> gpuModel_;
+  uint64_t uploadedRevision_ = 0;
+  std::unique_ptr<cli::ImGuiLayer> ui_;
+  eng::vk::SceneView view_;  // camera: target = face centre, user yaw / pitch / zoom
+  eng::Aabb bounds_;
+  Layout layout_;
+  std::vector<float> displayWeights_;
+  eng::vk::ModelInstance instance_;
+  bool orbiting_ = false;
+  bool sculptDragging_ = false;
+  bool screenshotRequested_ = false;
+  float frameMs_ = 0.0f;
+};
+
+float EditorApp::currentValue(std::string_view channel) const {
+  switch (source_) {
+    case FaceSource::StateMachine: return driverChannelValue(machine_.driver(), targetNames_, channel);
+    case FaceSource::ControlMap: return driverChannelValue(controlMap_.active(), targetNames_, channel);
+    case FaceSource::Timeline: {
+      TimelineDocument& doc = timeline_->document();
+      if (const auto track = doc.findTrack(channel)) return doc.sample(*track, timeline_->playhead());
+      const auto it = std::find(targetNames_.begin(), targetNames_.end(), channel);
+      return it == targetNames_.end() ? 0.0f : timeline_->targetWeights()[size_t(it - targetNames_.begin())];
+    }
+  }
+  return 0.0f;
+}
+
+std::span<const float> EditorApp::faceWeights() const {
+  switch (source_) {
+    case FaceSource::StateMachine: return machine_.targetWeights();
+    case FaceSource::ControlMap: return controlMap_.targetWeights();
+    case FaceSource::Timeline: return timeline_->targetWeights();
+  }
+  return machine_.targetWeights();
+}
+
+int EditorApp::setUp(const EditorOptions& o) {
+  uint32_t width = 1280, height = 800;
+  if (!cli::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
+  auto setup = cli::FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  if (!setup) return fail(setup.error().message);
+  setup_.emplace(std::move(*setup));
+  targetNames_ = setup_->layout().names();
+  std::printf("facial-editor: %s, %u morph targets, rig %s\n", setup_->name().c_str(), setup_->weightCount(),
+              std::string(facial::rigSchemeName(setup_->rig().scheme())).c_str());
+
+  const std::string graphPath = o.graph.empty() ? (cli::dataDirectory() / "graphs" / "tour.json").string() : o.graph;
+  if (auto loaded = machine_.load(*setup_, graphPath); !loaded) return fail(loaded.error().message);
+  if (!o.trigger.empty() && !machine_.fire(o.trigger))
+    return fail(graphPath + ": no trigger parameter named '" + o.trigger + "'");
+  if (auto created = controlMap_.create(*setup_); !created) return fail(created.error().message);
+  timeline_ = std::make_unique<TimelinePanel>(*setup_);
+  if (!o.timeline.empty() && !timeline_->open(o.timeline)) return 1;  // the panel logged why
+  // Landmarks are in the built-in head's space: offered for that model only.
+  const bool builtIn = o.model.empty() || fs::weakly_canonical(o.model) == fs::weakly_canonical(cli::defaultModelPath());
+  const std::string landmarks = builtIn ? (cli::dataDirectory() / "head_landmarks.json").string() : std::string();
+  if (auto created = sculpt_.create(*setup_, landmarks); !created) return fail(created.error().message);
+
+  auto window = eng::vk::Window::create({.width = int(width), .height = int(height), .title = "facial editor - " + setup_->name()});
+  if (!window) return fail("window: " + window.error().message);
+  window_ = std::move(*window);
+  eng::vk::ContextOptions contextOptions;
+  contextOptions.applicationName = "facial-editor";
+  contextOptions.device = o.device;
+  window_->configureContext(contextOptions);
+  auto ctx = eng::vk::Context::create(contextOptions);
+  if (!ctx) return fail("Vulkan: " + ctx.error().message);
+  ctx_.emplace(std::move(*ctx));
+  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
+  if (!renderer) return fail("Vulkan: " + renderer.error().message);
+  renderer_ = std::move(*renderer);
+  auto ui = cli::ImGuiLayer::create(*ctx_, *renderer_, *window_);
+  if (!ui) return fail(ui.error().message);
+  ui_ = std::move(*ui);
+
+  bounds_ = eng::vk::framingBounds(setup_->model());
+  view_.camera = eng::vk::OrbitCamera::frame(bounds_, 1.0f);
+  if (auto uploaded = uploadDisplayModel(); !uploaded) return fail(uploaded.error().message);
+  return 0;
+}
+
+eng::Result<void> EditorApp::uploadDisplayModel() {
+  sculpt_.refresh();
+  if (gpuModel_ && uploadedRevision_ == sculpt_.displayRevision()) return {};
+  // The old model may still be read by frames in flight.
+  if (gpuModel_) vkDeviceWaitIdle(ctx_->device());
+  auto gpu = renderer_->upload(sculpt_.displayModel());
+  if (!gpu) return gpu.error();
+  gpuModel_.emplace(std::move(*gpu));
+  uploadedRevision_ = sculpt_.displayRevision();
+  return {};
+}
+
+// The face centred in the free middle of the window: the orbit camera looks at
+// a point shifted in its own image plane so the face centre lands on the
+// viewport's centre, and zooms so the face fills the viewport's height.
+eng::vk::OrbitCamera EditorApp::renderCamera() const {
+  eng::vk::OrbitCamera camera = view_.camera;
+  const float freeWidth = layout_.x1() - layout_.x0(), freeHeight = layout_.y1();
+  const float aspect = layout_.width / layout_.height;
+  const eng::vk::OrbitCamera fitted = eng::vk::OrbitCamera::frame(bounds_, freeWidth / std::max(freeHeight, 1.0f));
+  camera.distance = fitted.distance * layout_.height / std::max(freeHeight, 1.0f);
+  const float d = camera.distance / std::max(camera.zoom, 1e-3f);
+  const float halfHeight = d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f), halfWidth = halfHeight * aspect;
+  const float cx = (layout_.x0() + layout_.x1()) / layout_.width - 1.0f;  // NDC of the viewport centre
+  const float cy = layout_.y1() / layout_.height - 1.0f;
+  const glm::vec3 forward = glm::normalize(view_.camera.target - view_.camera.position());
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  const glm::vec3 up = glm::cross(right, forward);
+  camera.target = view_.camera.target - cx * halfWidth * right + cy * halfHeight * up;
+  return camera;
+}
+
+void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const {
+  const eng::vk::OrbitCamera camera = renderCamera();
+  const glm::mat4 inverse = glm::inverse(camera.projection(layout_.width / layout_.height) * camera.view());
+  const float x = 2.0f * px / layout_.width - 1.0f, y = 2.0f * py / layout_.height - 1.0f;
+  glm::vec4 nearPoint = inverse * glm::vec4(x, y, 0.0f, 1.0f), farPoint = inverse * glm::vec4(x, y, 1.0f, 1.0f);
+  origin = glm::vec3(nearPoint) / nearPoint.w;
+  direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+}
+
+void EditorApp::handleViewportInput() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false)) screenshotRequested_ = true;
+  timeline_->handleShortcuts();
+  const bool overViewport = !io.WantCaptureMouse;
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && overViewport) {
+    if (sculpt_.pickMode()) {
+      glm::vec3 origin, direction;
+      rayAt(io.MousePos.x, io.MousePos.y, origin, direction);
+      sculpt_.pick(origin, direction, faceWeights());
+    } else if (io.KeyShift && sculpt_.hasSelection()) {
+      sculptDragging_ = true;
+    } else {
+      orbiting_ = true;
+    }
+  }
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = sculptDragging_ = false;
+  if (orbiting_) {
+    view_.camera.yawDegrees -= 0.3f * io.MouseDelta.x;
+    view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + 0.3f * io.MouseDelta.y, -80.0f, 80.0f);
+  }
+  if (sculptDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+    // Screen-plane drag: pixels to world units at the face's depth.
+    const eng::vk::OrbitCamera camera = renderCamera();
+    const float d = camera.distance / std::max(camera.zoom, 1e-3f);
+    const float worldPerPixel = 2.0f * d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / layout_.height;
+    const glm::vec3 forward = glm::normalize(camera.target - camera.position());
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, forward);
+    sculpt_.dragSelected(worldPerPixel * (io.MouseDelta.x * right - io.MouseDelta.y * up));
+  }
+  if (overViewport && io.MouseWheel != 0.0f)
+    view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
+}
+
+void EditorApp::drawControlPoints() {
+  const auto points = sculpt_.points();
+  if (points.empty()) return;
+  const eng::vk::OrbitCamera camera = renderCamera();
+  const glm::mat4 clip = camera.projection(layout_.width / layout_.height) * camera.view();
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const auto toScreen = [&](const glm::vec3& p, ImVec2& out) {
+    const glm::vec4 c = clip * glm::vec4(p, 1.0f);
+    if (c.w <= 0.0f) return false;
+    out = {(c.x / c.w * 0.5f + 0.5f) * layout_.width, (c.y / c.w * 0.5f + 0.5f) * layout_.height};
+    return true;
+  };
+  for (size_t i = 0; i < points.size(); ++i) {
+    ImVec2 rest, moved;
+    if (!toScreen(points[i].rest, rest) || !toScreen(points[i].rest + points[i].displacement, moved)) continue;
+    const bool selected = int(i) == sculpt_.selected();
+    const ImU32 colour = selected ? IM_COL32(255, 180, 60, 255) : IM_COL32(90, 200, 255, 255);
+    draw->AddLine(rest, moved, colour, 1.5f);
+    draw->AddCircle(rest, 3.0f, colour);
+    draw->AddCircleFilled(moved, selected ? 5.0f : 4.0f, colour);
+  }
+}
+
+void EditorApp::drawPanels() {
+  const ImGuiWindowFlags docked = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+  const Layout& l = layout_;
+  ImGui::SetNextWindowPos({0, 0}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.side, l.leftSplit}, ImGuiCond_Always);
+  ImGui::Begin("State machine", nullptr, docked);
+  machine_.draw(*this);
+  ImGui::End();
+
+  ImGui::SetNextWindowPos({0, l.leftSplit}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.side, l.height - l.bottom - l.leftSplit}, ImGuiCond_Always);
+  ImGui::Begin("Control map", nullptr, docked);
+  controlMap_.draw(*this);
+  ImGui::End();
+
+  ImGui::SetNextWindowPos({l.width - l.side, 0}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.side, l.height - l.bottom}, ImGuiCond_Always);
+  ImGui::Begin("RBF sculpt", nullptr, docked);
+  sculpt_.draw();
+  ImGui::End();
+
+  ImGui::SetNextWindowPos({0, l.height - l.bottom}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.width, l.bottom}, ImGuiCond_Always);
+  ImGui::Begin("Timeline", nullptr, docked);
+  timeline_->draw(*this);
+  ImGui::End();
+
+  // Status over the viewport's top edge.
+  char status[160];
+  std::snprintf(status, sizeof status, "%s  |  face from: %s  |  %.1f ms", setup_->name().c_str(), faceSourceName(source_), frameMs_);
+  ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, 8.0f}, IM_COL32(230, 230, 235, 255), status);
+  ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, l.y1() - 22.0f}, IM_COL32(170, 170, 180, 255),
+                                          "drag: orbit   wheel: zoom   F12: screenshot   Ctrl+Z/Y: undo/redo");
+}
+
+int EditorApp::run(const EditorOptions& o) {
+  if (const int error = setUp(o); error != 0) return error;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
+  bool finalFrame = false;
+  int exitCode = 0;
+  while (!window_->shouldClose()) {
+    window_->pollEvents();
+    const Clock::time_point now = Clock::now();
+    const float dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
+    last = now;
+    frameMs_ = frameMs_ == 0.0f ? 1000.0f * dt : 0.9f * frameMs_ + 0.1f * 1000.0f * dt;
+    const float elapsed = std::chrono::duration<float>(now - start).count();
+    if (o.quitAfter > 0.0f && elapsed >= o.quitAfter) finalFrame = true;
+
+    const VkExtent2D extent = renderer_->extent();
+    layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
+    ui_->beginFrame();
+    handleViewportInput();
+    machine_.update(dt);
+    controlMap_.update(dt);
+    timeline_->update(dt);
+    drawPanels();
+    drawControlPoints();
+    ui_->endFrame();
+
+    if (auto uploaded = uploadDisplayModel(); !uploaded) {
+      exitCode = fail(uploaded.error().message);
+      break;
+    }
+    sculpt_.displayWeights(faceWeights(), displayWeights_);
+    instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_};
+    eng::vk::FrameInput frame{view_, {&instance_, 1}};
+    frame.view.camera = renderCamera();
+    frame.overlay = cli::ImGuiLayer::recorder();
+    fs::path shot;
+    if (finalFrame && !o.screenshot.empty()) {
+      shot = o.screenshot;
+    } else if (screenshotRequested_) {
+      shot = o.screenshot.empty() ? fs::path("facial-editor.png") : fs::path(o.screenshot);
+      screenshotRequested_ = false;
+    }
+    frame.screenshot = shot;
+    auto drawn = renderer_->drawFrame(frame);
+    if (!drawn) {
+      exitCode = fail("frame: " + drawn.error().message);
+      break;
+    }
+    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) std::printf("screenshot: %s\n", shot.c_str());
+    if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
+      break;
+  }
+  std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
+              setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
+              timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);
+  ui_.reset();
+  if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)
+    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  return exitCode;
+}
+
+}  // namespace
+
+int runEditor(const EditorOptions& options) {
+  EditorApp app;
+  return app.run(options);
+}
+
+}  // namespace editor

@@ -1,0 +1,23 @@
+#pragma once
+// facial-editor: the face in a window with four panels around it (state
+// machine and control map on the left, RBF sculpt on the right, the timeline
+// along the bottom). The face sits in the free middle of the window.
+#include <string>
+
+namespace editor {
+
+struct EditorOptions {
+  std::string model;     // empty: the built-in head
+  std::string rigmap;    // empty: data/rigmaps/<model>.json or the detected scheme
+  std::string graph;     // empty: data/graphs/tour.json
+  std::string timeline;  // opened in the timeline panel when given
+  std::string device;    // Vulkan device (discrete | integrated | cpu | name); empty: FACIAL_DEVICE / automatic
+  std::string size = "1280x800";
+  std::string trigger;   // fired on the state machine at start
+  float quitAfter = 0.0f;
+  std::string screenshot;  // written on the last frame (with --quit-after) or on F12
+};
+
+int runEditor(const EditorOptions& options);
+
+}  // namespace editor

@@ -1,0 +1,22 @@
+// facial-editor [--model M.glb] [--rigmap map.json] [--graph G.json] [--timeline T.json]
+//               [--quit-after S] [--screenshot out.png] [--device D]
+#include <CLI/CLI.hpp>
+
+#include "editor/app/editor_app.h"
+
+int main(int argc, char** argv) {
+  editor::EditorOptions o;
+  CLI::App app{"facial-editor: edit keyframe timelines, drive the state machine and the control map, "
+               "and sculpt expressions with RBF control points"};
+  app.add_option("--model", o.model, "glTF face (default: the built-in head, data/head.glb)");
+  app.add_option("--rigmap", o.rigmap, "Rig map JSON (default: data/rigmaps/<model>.json or the detected scheme)");
+  app.add_option("--graph", o.graph, "Animation graph with a state machine (default: data/graphs/tour.json)");
+  app.add_option("--timeline", o.timeline, "Timeline JSON to open in the timeline panel");
+  app.add_option("--device", o.device, "Vulkan device: discrete, integrated, cpu or a name substring");
+  app.add_option("--size", o.size, "Window size WxH")->capture_default_str();
+  app.add_option("--trigger", o.trigger, "Fire this state machine trigger at start (e.g. happy)");
+  app.add_option("--quit-after", o.quitAfter, "Close after this many seconds (tests)");
+  app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");
+  CLI11_PARSE(app, argc, argv);
+  return editor::runEditor(o);
+}

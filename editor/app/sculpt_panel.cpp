@@ -1,0 +1,247 @@
+#include "editor/app/sculpt_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "editor/atomic_file.h"
+#include "engine/scene/gltf_writer.h"
+#include "engine/vk/framing_bounds.h"
+#include "facial/bake/head/head_rig_spec.h"
+
+namespace editor {
+
+namespace {
+constexpr const char* kKernelNames[] = {"biharmonic  r", "polyharmonic  r^3", "multiquadric  sqrt(r^2+c^2)"};
+}
+
+eng::Result<void> SculptPanel::create(const cli::FaceSetup& face, const std::string& landmarksFile) {
+  face_ = &face;
+  working_ = face.model();
+  rebuildWorkingLayout();
+  auto surface = ModelSurface::create(working_);
+  if (!surface) return surface.error();
+  surface_.emplace(std::move(*surface));
+  const eng::Aabb bounds = working_.bounds();
+  size_ = std::max(bounds.diagonal(), 1e-6f);
+  sculpt_.emplace(surface_->restPositions(), bounds);
+  multiquadricC_ = 0.05f * size_;
+  if (!landmarksFile.empty()) {
+    auto spec = facial::loadHeadRigSpec(landmarksFile);
+    if (!spec) return spec.error();
+    for (const facial::LandmarkDef& l : spec->landmarks) {
+      if (l.kind == facial::LandmarkDef::Kind::Surface)
+        landmarks_.push_back({l.name, glm::vec3(l.xy, bounds.max.z + size_) + l.offset, true});
+      else if (l.kind == facial::LandmarkDef::Kind::Position)
+        landmarks_.push_back({l.name, l.position + l.offset, false});
+      // Feature landmarks are points only the head generator knows; not offered.
+    }
+  }
+  return {};
+}
+
+void SculptPanel::rebuildWorkingLayout() {
+  workingLayout_.emplace(working_);
+  workingScratch_.assign(workingLayout_->total(), 0.0f);
+}
+
+void SculptPanel::workingWeights(std::span<const float> faceWeights, std::span<float> out) const {
+  // The working model is the face's model with baked targets appended per mesh.
+  const eng::WeightLayout& faceLayout = face_->layout();
+  std::fill(out.begin(), out.end(), 0.0f);
+  for (int m = 0; m < faceLayout.meshCount(); ++m)
+    std::copy_n(faceWeights.begin() + faceLayout.offset(m), faceLayout.count(m), out.begin() + workingLayout_->offset(m));
+  for (const auto& [name, weight] : baked_) workingLayout_->setByName(out, name, weight);
+}
+
+const eng::Model& SculptPanel::displayModel() const { return showingPreview_ && preview_ ? preview_->model() : working_; }
+
+void SculptPanel::displayWeights(std::span<const float> faceWeights, std::vector<float>& out) {
+  workingWeights(faceWeights, workingScratch_);
+  if (showingPreview_ && preview_) {
+    out.resize(preview_->weightCount());
+    if (auto ok = preview_->weights(workingScratch_, sculpt_->points(), out); !ok) message_.report(ok.error().message, true);
+  } else {
+    out = workingScratch_;
+  }
+}
+
+void SculptPanel::refresh() {
+  const bool wanted = previewEnabled_ && !sculpt_->points().empty();
+  if (wanted && (!preview_ || preview_->layoutRevision() != sculpt_->layoutRevision())) {
+    const auto start = std::chrono::steady_clock::now();
+    if (auto prepared = sculpt_->prepare(); !prepared) {
+      // Keep the last good preview off; say why once per layout.
+      if (preview_ || message_.text != prepared.error().message) message_.report(prepared.error().message, true);
+      preview_.reset();
+    } else if (auto preview = SculptPreview::build(working_, *surface_, *sculpt_); !preview) {
+      message_.report(preview.error().message, true);
+      preview_.reset();
+    } else {
+      preview_.emplace(std::move(*preview));
+      solveMs_ = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    ++displayRevision_;
+  }
+  const bool showing = wanted && preview_.has_value();
+  if (showing != showingPreview_) {
+    showingPreview_ = showing;
+    ++displayRevision_;
+  }
+}
+
+bool SculptPanel::pick(const glm::vec3& origin, const glm::vec3& direction, std::span<const float> faceWeights) {
+  workingWeights(faceWeights, workingScratch_);
+  if (auto posed = surface_->pose(working_, workingScratch_); !posed) {
+    message_.report(posed.error().message, true);
+    return false;
+  }
+  const auto hit = surface_->raycast(working_, origin, direction);
+  if (!hit) return false;
+  auto added = sculpt_->addPoint("", hit->restPoint);
+  if (!added) {
+    message_.report(added.error().message, true);
+    return false;
+  }
+  selected_ = int(*added);
+  return true;
+}
+
+eng::Result<size_t> SculptPanel::addLandmark(const std::string& name) {
+  const auto it = std::find_if(landmarks_.begin(), landmarks_.end(), [&](const Landmark& l) { return l.name == name; });
+  if (it == landmarks_.end()) return eng::makeError("no landmark named '" + name + "'");
+  glm::vec3 point = it->rayOrigin;
+  if (it->onSurface) {
+    std::fill(workingScratch_.begin(), workingScratch_.end(), 0.0f);
+    if (auto posed = surface_->pose(working_, workingScratch_); !posed) return posed.error();  // the rest pose
+    const auto hit = surface_->raycast(working_, it->rayOrigin, {0.0f, 0.0f, -1.0f});
+    if (!hit) return eng::makeError("landmark '" + name + "' does not project onto this model's surface");
+    point = hit->restPoint;
+  }
+  auto added = sculpt_->addPoint(name, point);
+  if (added) selected_ = int(*added);
+  return added;
+}
+
+void SculptPanel::dragSelected(const glm::vec3& worldDelta) {
+  if (selected_ < 0 || size_t(selected_) >= sculpt_->points().size()) return;
+  const glm::vec3 d = sculpt_->points()[size_t(selected_)].displacement + worldDelta;
+  if (auto ok = sculpt_->setDisplacement(size_t(selected_), d); !ok) message_.report(ok.error().message, true);
+}
+
+eng::Result<void> SculptPanel::bake(const std::string& name) {
+  if (auto baked = bakeSculptTarget(working_, *surface_, *sculpt_, name); !baked) return baked;
+  rebuildWorkingLayout();
+  // The face keeps its look: the new target at full weight, the points back at rest.
+  baked_.emplace_back(name, 1.0f);
+  sculpt_->clearDisplacements();
+  preview_.reset();
+  ++displayRevision_;
+  return {};
+}
+
+eng::Result<void> SculptPanel::saveModel(const std::string& path) {
+  return replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
+    if (auto saved = eng::saveModel(working_, temp); !saved) return eng::makeError(path + ": " + saved.error().message);
+    return {};
+  });
+}
+
+void SculptPanel::draw() {
+  ImGui::Checkbox("Pick points on the face", &pickMode_);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", pickMode_ ? "Click the face to add a point." : "Shift+drag in the view moves the selected point.");
+  ImGui::PopStyleColor();
+  if (!landmarks_.empty()) {
+    landmarkChoice_ = std::clamp(landmarkChoice_, 0, int(landmarks_.size()) - 1);
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Add landmark").x - 24.0f);
+    if (ImGui::BeginCombo("##landmark", landmarks_[size_t(landmarkChoice_)].name.c_str())) {
+      for (size_t i = 0; i < landmarks_.size(); ++i)
+        if (ImGui::Selectable(landmarks_[i].name.c_str(), int(i) == landmarkChoice_)) landmarkChoice_ = int(i);
+      ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Add landmark"))
+      if (auto added = addLandmark(landmarks_[size_t(landmarkChoice_)].name); !added) message_.report(added.error().message, true);
+  }
+
+  // Control points.
+  const auto points = sculpt_->points();
+  if (selected_ >= int(points.size())) selected_ = int(points.size()) - 1;
+  ImGui::BeginChild("points", {0.0f, 110.0f}, true);
+  for (size_t i = 0; i < points.size(); ++i) {
+    char label[128];
+    const glm::vec3 d = points[i].displacement;
+    std::snprintf(label, sizeof label, "%s  (%.4f %.4f %.4f)##%zu", points[i].name.c_str(), d.x, d.y, d.z, i);
+    if (ImGui::Selectable(label, int(i) == selected_)) selected_ = int(i);
+  }
+  if (points.empty()) ImGui::TextDisabled("no control points yet");
+  ImGui::EndChild();
+  if (selected_ >= 0) {
+    glm::vec3 d = points[size_t(selected_)].displacement;
+    ImGui::SetNextItemWidth(-60.0f);
+    if (ImGui::DragFloat3("move", &d.x, 0.0005f * size_, -0.5f * size_, 0.5f * size_, "%.4f"))
+      (void)sculpt_->setDisplacement(size_t(selected_), d);
+    if (ImGui::Button("Reset point")) (void)sculpt_->setDisplacement(size_t(selected_), glm::vec3(0.0f));
+    ImGui::SameLine();
+    if (ImGui::Button("Remove point")) {
+      (void)sculpt_->removePoint(size_t(selected_));
+      selected_ = -1;
+    }
+    ImGui::SameLine();
+  }
+  if (ImGui::Button("Clear all")) {
+    sculpt_->clearPoints();
+    selected_ = -1;
+  }
+
+  // Kernel.
+  ImGui::SetNextItemWidth(-60.0f);
+  bool kernelChanged = ImGui::Combo("kernel", &kernelChoice_, kKernelNames, 3);
+  if (kernelChoice_ == 2) {
+    ImGui::SetNextItemWidth(-60.0f);
+    kernelChanged |= ImGui::DragFloat("c", &multiquadricC_, 0.001f * size_, 1e-4f * size_, size_, "%.4f");
+  }
+  if (kernelChanged) {
+    facial::RbfKernel kernel;
+    kernel.type = kernelChoice_ == 0 ? facial::RbfKernelType::Biharmonic
+                  : kernelChoice_ == 1 ? facial::RbfKernelType::Polyharmonic
+                                       : facial::RbfKernelType::Multiquadric;
+    kernel.k = 1;
+    kernel.c = multiquadricC_;
+    if (auto ok = sculpt_->setKernel(kernel); !ok) message_.report(ok.error().message, true);
+  }
+  bool pins = sculpt_->pinsEnabled();
+  if (ImGui::Checkbox("Pin the box corners", &pins)) sculpt_->setPinsEnabled(pins);
+  ImGui::SameLine();
+  ImGui::Checkbox("Preview", &previewEnabled_);
+  if (showingPreview_)
+    ImGui::TextDisabled("solve + preview upload data: %.1f ms, %zu points", solveMs_, points.size());
+
+  // Bake and save.
+  ImGui::Separator();
+  ImGui::SetNextItemWidth(-60.0f);
+  ImGui::InputText("##bakename", bakeName_, sizeof bakeName_);
+  ImGui::SameLine();
+  if (ImGui::Button("Bake")) {
+    if (auto baked = bake(bakeName_); baked)
+      message_.report(std::string("baked morph target '") + bakeName_ + "'", false);
+    else
+      message_.report(baked.error().message, true);
+  }
+  for (auto& [name, weight] : baked_) ImGui::SliderFloat(name.c_str(), &weight, 0.0f, 1.0f);
+  ImGui::SetNextItemWidth(-90.0f);
+  ImGui::InputText("##savepath", savePath_, sizeof savePath_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save .glb")) {
+    if (auto saved = saveModel(savePath_); saved)
+      message_.report(std::string("saved ") + savePath_, false);
+    else
+      message_.report(saved.error().message, true);
+  }
+  message_.draw();
+}
+
+}  // namespace editor

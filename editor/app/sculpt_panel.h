@@ -1,0 +1,88 @@
+#pragma once
+// RBF sculpt panel: control points picked on the face (a click ray-cast
+// against the CPU-morphed mesh, or a named landmark of the built-in head),
+// a displacement per point (XYZ drags, or Shift+drag in the view in the
+// screen plane), the kernel, a live whole-mesh preview, "bake" as a named
+// morph target and "save" as .glb. The sculpt itself is editor/sculpt_model.h;
+// this panel owns the working copy of the model the bakes go into and tells
+// the app which model to show (it never touches the renderer).
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "demo/face_setup.h"
+#include "editor/app/face_delegate.h"
+#include "editor/model_surface.h"
+#include "editor/sculpt_model.h"
+#include "engine/scene/weights.h"
+
+namespace editor {
+
+class SculptPanel {
+ public:
+  // landmarksFile: the built-in head's data/head_landmarks.json, or empty for other models.
+  eng::Result<void> create(const cli::FaceSetup& face, const std::string& landmarksFile);
+  void draw();
+
+  // Viewport hooks (the app turns mouse input into world rays and deltas).
+  bool pickMode() const { return pickMode_; }
+  // Adds a point where the ray meets the face as shown (faceWeights: the face layout).
+  bool pick(const glm::vec3& origin, const glm::vec3& direction, std::span<const float> faceWeights);
+  bool hasSelection() const { return selected_ >= 0; }
+  void dragSelected(const glm::vec3& worldDelta);
+
+  // What to draw: changes revision when the model to upload changes.
+  uint64_t displayRevision() const { return displayRevision_; }
+  const eng::Model& displayModel() const;
+  // faceWeights (the FaceSetup layout) -> weights of displayModel().
+  void displayWeights(std::span<const float> faceWeights, std::vector<float>& out);
+  // Keeps the preview in step with the sculpt (call once a frame before drawing).
+  void refresh();
+
+  std::span<const SculptPoint> points() const { return sculpt_->points(); }
+  int selected() const { return selected_; }
+  float modelSize() const { return size_; }
+  // For tests and scripted runs.
+  eng::Result<size_t> addLandmark(const std::string& name);
+  eng::Result<void> bake(const std::string& name);
+  eng::Result<void> saveModel(const std::string& path);
+  SculptModel& sculpt() { return *sculpt_; }
+
+ private:
+  void workingWeights(std::span<const float> faceWeights, std::span<float> out) const;
+  void rebuildWorkingLayout();
+
+  const cli::FaceSetup* face_ = nullptr;
+  eng::Model working_;  // the face's model plus the targets baked so far
+  std::optional<eng::WeightLayout> workingLayout_;
+  std::optional<ModelSurface> surface_;
+  std::optional<SculptModel> sculpt_;
+  std::optional<SculptPreview> preview_;
+  bool previewEnabled_ = true;
+  bool pickMode_ = false;
+  int selected_ = -1;
+  float size_ = 1.0f;
+  uint64_t displayRevision_ = 1;
+  bool showingPreview_ = false;
+  std::vector<float> workingScratch_;
+  std::vector<std::pair<std::string, float>> baked_;  // baked targets and their preview weight
+  struct Landmark {
+    std::string name;
+    glm::vec3 rayOrigin;  // cast along -Z onto the skin, or the point itself (rayLength 0)
+    bool onSurface;
+  };
+  std::vector<Landmark> landmarks_;
+  int landmarkChoice_ = 0;
+  int kernelChoice_ = 0;
+  float multiquadricC_ = 0.1f;
+  float solveMs_ = 0.0f;
+  char bakeName_[64] = "sculpted";
+  char savePath_[512] = "sculpted.glb";
+  PanelMessage message_;
+};
+
+}  // namespace editor

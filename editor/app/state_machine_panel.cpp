@@ -1,0 +1,138 @@
+#include "editor/app/state_machine_panel.h"
+
+#include <imgui.h>
+
+#include <cstring>
+
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/nodes/state_machine_node.h"
+#include "facial/runtime/graph/preset_lookup.h"
+
+namespace editor {
+
+namespace {
+
+// "emotions" when it is a state machine, else the first state machine node.
+std::optional<facial::NodeIndex> findStateMachine(const facial::GraphDefinition& graph) {
+  if (auto node = graph.findNode("emotions"); node && graph.nodeAs<facial::StateMachineNode>(*node)) return node;
+  for (facial::NodeIndex n = 0; n < graph.nodes().size(); ++n)
+    if (graph.nodeAs<facial::StateMachineNode>(n)) return n;
+  return std::nullopt;
+}
+
+}  // namespace
+
+eng::Result<void> StateMachinePanel::load(const cli::FaceSetup& face, const std::string& graphPath) {
+  face_ = &face;
+  auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(face.expressions())});
+  if (!graph) return graph.error();
+  const std::vector<std::string> names = face.layout().names();
+  auto driver = facial::FaceDriver::create(*graph, &face.rig(), names, face.baseWeights(), 1);
+  if (!driver) return eng::makeError(graphPath + ": " + driver.error().message);
+  // The editor drives the machine by hand: a graph's autoplay switch starts off.
+  if (const auto autoplay = (*graph)->findParameter("autoplay");
+      autoplay && (*graph)->parameters()[*autoplay].type == facial::ParameterType::Bool)
+    driver->graph().setBool(*autoplay, false);
+  driver_.emplace(std::move(*driver));
+  machine_ = findStateMachine(**graph);
+  loadedPath_ = graphPath;
+  std::snprintf(pathInput_, sizeof pathInput_, "%s", graphPath.c_str());
+  driver_->update(0.0f);
+  return {};
+}
+
+void StateMachinePanel::update(float dt) {
+  if (driver_) driver_->update(dt);
+}
+
+std::string StateMachinePanel::currentState() const {
+  if (!driver_ || !machine_) return {};
+  const auto status = driver_->graph().stateMachineStatus(*machine_);
+  const auto* node = driver_->graph().definition().nodeAs<facial::StateMachineNode>(*machine_);
+  if (!status || !node || status->current >= node->states.size()) return {};
+  return node->states[status->current].name;
+}
+
+bool StateMachinePanel::fire(std::string_view trigger) {
+  if (!driver_) return false;
+  const auto p = driver_->graph().definition().findParameter(trigger);
+  if (!p || driver_->graph().definition().parameters()[*p].type != facial::ParameterType::Trigger) return false;
+  return driver_->graph().setTrigger(*p);
+}
+
+void StateMachinePanel::draw(FaceDelegate& face) {
+  ImGui::SetNextItemWidth(-70.0f);
+  ImGui::InputText("##graph", pathInput_, sizeof pathInput_);
+  ImGui::SameLine();
+  if (ImGui::Button("Load##graph")) {
+    const std::string path = pathInput_;
+    auto previous = std::move(driver_);
+    if (auto loaded = load(*face_, path); loaded) {
+      message_.report("graph loaded: " + path, false);
+    } else {
+      driver_ = std::move(previous);
+      std::snprintf(pathInput_, sizeof pathInput_, "%s", loadedPath_.c_str());
+      message_.report(loaded.error().message, true);
+    }
+  }
+  message_.draw();
+  if (!driver_) return;
+  facial::GraphInstance& graph = driver_->graph();
+  const facial::GraphDefinition& definition = graph.definition();
+
+  const bool driving = face.source() == FaceSource::StateMachine;
+  if (!driving && ImGui::Button("Drive the face from this graph")) face.takeControl(FaceSource::StateMachine);
+  if (driving) ImGui::TextColored({0.55f, 0.85f, 1.0f, 1.0f}, "drives the face");
+
+  if (machine_) {
+    const auto status = graph.stateMachineStatus(*machine_);
+    const auto* node = definition.nodeAs<facial::StateMachineNode>(*machine_);
+    if (status && node) {
+      ImGui::Text("state: %s  (%.1f s)", node->states[status->current].name.c_str(), status->stateTime);
+      char overlay[96];
+      if (status->blending) {
+        const char* from = status->liveSource && *status->liveSource < node->states.size()
+                               ? node->states[*status->liveSource].name.c_str()
+                               : "snapshot";
+        std::snprintf(overlay, sizeof overlay, "%s -> %s  %.0f%%", from, node->states[status->current].name.c_str(),
+                      100.0f * status->blendProgress);
+      } else {
+        std::snprintf(overlay, sizeof overlay, "settled");
+      }
+      ImGui::ProgressBar(status->blending ? status->blendProgress : 1.0f, {-1.0f, 0.0f}, overlay);
+    }
+  } else {
+    ImGui::TextDisabled("this graph has no state machine");
+  }
+
+  ImGui::Separator();
+  ImGui::TextDisabled("triggers");
+  int shown = 0;
+  for (facial::ParameterIndex p = 0; p < definition.parameters().size(); ++p) {
+    const facial::ParameterDecl& decl = definition.parameters()[p];
+    if (decl.type != facial::ParameterType::Trigger) continue;
+    if (shown++ % 3 != 0) ImGui::SameLine();
+    ImGui::PushID(int(p));
+    if (ImGui::Button(decl.name.c_str(), {92.0f, 0.0f})) {
+      graph.setTrigger(p);
+      face.takeControl(FaceSource::StateMachine);
+    }
+    ImGui::PopID();
+  }
+  ImGui::Separator();
+  ImGui::TextDisabled("parameters");
+  for (facial::ParameterIndex p = 0; p < definition.parameters().size(); ++p) {
+    const facial::ParameterDecl& decl = definition.parameters()[p];
+    ImGui::PushID(int(p));
+    if (decl.type == facial::ParameterType::Float) {
+      float value = graph.parameters()[p];
+      if (ImGui::SliderFloat(decl.name.c_str(), &value, 0.0f, 1.0f)) graph.setFloat(p, value);
+    } else if (decl.type == facial::ParameterType::Bool) {
+      bool value = graph.parameters()[p] != 0.0f;
+      if (ImGui::Checkbox(decl.name.c_str(), &value)) graph.setBool(p, value);
+    }
+    ImGui::PopID();
+  }
+}
+
+}  // namespace editor

@@ -1,0 +1,374 @@
+#include "editor/app/timeline_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "facial/runtime/graph/timeline.h"
+
+namespace editor {
+
+namespace {
+
+constexpr const char* kInterpolationNames[] = {"step", "linear", "cosine", "cubic"};  // KeyInterpolation order
+constexpr float kNameColumn = 170.0f;
+constexpr float kRulerHeight = 20.0f;
+
+bool textCaseInsensitiveContains(const std::string& text, const char* filter) {
+  if (!filter[0]) return true;
+  std::string a = text, b = filter;
+  std::transform(a.begin(), a.end(), a.begin(), ::tolower);
+  std::transform(b.begin(), b.end(), b.begin(), ::tolower);
+  return a.find(b) != std::string::npos;
+}
+
+}  // namespace
+
+TimelinePanel::TimelinePanel(const cli::FaceSetup& face)
+    : document_("untitled", 2.0f), pose_(face.rig(), face.baseWeights()), weights_(face.baseWeights().begin(), face.baseWeights().end()) {}
+
+bool TimelinePanel::open(const std::string& path) {
+  auto loaded = TimelineDocument::load(path);
+  if (!loaded) {
+    message_.report(loaded.error().message, true);
+    return false;
+  }
+  document_ = std::move(*loaded);
+  std::snprintf(path_, sizeof path_, "%s", path.c_str());
+  playhead_ = 0.0f;
+  currentTrack_ = document_.tracks().empty() ? -1 : 0;
+  size_t unknown = 0;
+  for (const DocumentTrack& track : document_.tracks())
+    if (!pose_.knowsChannel(track.channel)) ++unknown;
+  message_.report("opened " + path + " (" + std::to_string(document_.tracks().size()) + " tracks" +
+                      (unknown ? ", " + std::to_string(unknown) + " on channels this face does not have" : std::string()) + ")",
+                  false);
+  posedRevision_ = UINT64_MAX;
+  return true;
+}
+
+bool TimelinePanel::save(const std::string& path) {
+  if (auto saved = document_.save(path); !saved) {
+    message_.report(saved.error().message, true);
+    return false;
+  }
+  message_.report("saved " + path, false);
+  return true;
+}
+
+void TimelinePanel::setPlayhead(float time) {
+  if (std::isfinite(time)) playhead_ = std::clamp(time, 0.0f, document_.duration());
+}
+
+void TimelinePanel::update(float dt) {
+  if (playing_ && std::isfinite(dt)) {
+    playhead_ += dt;
+    if (playhead_ > document_.duration()) {
+      if (loopPlayback_) {
+        playhead_ = std::fmod(playhead_, document_.duration());
+      } else {
+        playhead_ = document_.duration();
+        playing_ = false;
+      }
+    }
+  }
+  refreshPose();
+}
+
+void TimelinePanel::refreshPose() {
+  if (posedRevision_ == document_.revision() && posedTime_ == playhead_) return;
+  if (auto posed = pose_.pose(document_, playhead_, weights_); !posed) message_.report(posed.error().message, true);
+  posedRevision_ = document_.revision();
+  posedTime_ = playhead_;
+}
+
+void TimelinePanel::addKeys(FaceDelegate& face, bool allTracks) {
+  const auto interpolation = facial::KeyInterpolation(newKeyInterpolation_);
+  if (document_.tracks().empty() || (!allTracks && currentTrack_ < 0)) {
+    message_.report("add a track first (pick a channel, then 'Add track')", true);
+    return;
+  }
+  std::vector<KeyId> added;
+  const size_t first = allTracks ? 0 : size_t(currentTrack_);
+  const size_t last = allTracks ? document_.tracks().size() : size_t(currentTrack_) + 1;
+  for (size_t t = first; t < last; ++t) {
+    const float value = face.currentValue(document_.tracks()[t].channel);
+    auto key = document_.setKey(t, playhead_, value, interpolation);
+    if (!key) {
+      message_.report(key.error().message, true);
+      return;
+    }
+    added.push_back(*key);
+  }
+  document_.clearSelection();
+  for (KeyId id : added) document_.select(id, true);
+}
+
+void TimelinePanel::handleShortcuts() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;
+  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false)) {
+    if (io.KeyShift ? document_.redo() : document_.undo()) message_.report(io.KeyShift ? "redo" : "undo", false);
+  }
+  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false)) document_.redo();
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) && !document_.selection().empty())
+    (void)document_.deleteSelected();
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false) && !io.WantCaptureKeyboard) playing_ = !playing_;
+}
+
+void TimelinePanel::drawToolbar(FaceDelegate& face) {
+  // Files.
+  ImGui::SetNextItemWidth(220.0f);
+  ImGui::InputText("##path", path_, sizeof path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open")) open(path_);
+  ImGui::SameLine();
+  if (ImGui::Button(document_.dirty() ? "Save*" : "Save")) save(path_);
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  // Transport.
+  if (ImGui::Button("|<")) setPlayhead(0.0f);
+  ImGui::SameLine();
+  if (ImGui::Button(playing_ ? "Pause" : "Play", {52.0f, 0.0f})) {
+    playing_ = !playing_;
+    if (playing_) face.takeControl(FaceSource::Timeline);
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("Loop", &loopPlayback_);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70.0f);
+  float time = playhead_;
+  if (ImGui::DragFloat("##time", &time, 0.01f, 0.0f, document_.duration(), "%.2f s")) {
+    setPlayhead(time);
+    face.takeControl(FaceSource::Timeline);
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70.0f);
+  float duration = document_.duration();
+  if (ImGui::DragFloat("length", &duration, 0.01f, TimelineDocument::kMinDuration, 600.0f, "%.2f s")) {
+    if (auto set = document_.setDuration(duration); !set) message_.report(set.error().message, true);
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  if (!document_.canUndo()) ImGui::BeginDisabled();
+  if (ImGui::Button("Undo")) document_.undo();
+  if (!document_.canUndo()) ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (!document_.canRedo()) ImGui::BeginDisabled();
+  if (ImGui::Button("Redo")) document_.redo();
+  if (!document_.canRedo()) ImGui::EndDisabled();
+
+  // Keys.
+  if (ImGui::Button("Key track")) {
+    addKeys(face, false);
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key the selected track at the playhead with the value on screen");
+  ImGui::SameLine();
+  if (ImGui::Button("Key all")) addKeys(face, true);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80.0f);
+  ImGui::Combo("new keys", &newKeyInterpolation_, kInterpolationNames, 4);
+  ImGui::SameLine();
+  const bool hasSelection = !document_.selection().empty();
+  if (!hasSelection) ImGui::BeginDisabled();
+  if (ImGui::Button("Delete")) (void)document_.deleteSelected();
+  ImGui::SameLine();
+  int selectedInterpolation = -1;
+  if (hasSelection)
+    if (const DocumentKey* k = document_.key(document_.selection().front())) selectedInterpolation = int(k->key.interpolation);
+  ImGui::SetNextItemWidth(80.0f);
+  if (ImGui::Combo("selected", &selectedInterpolation, kInterpolationNames, 4))
+    (void)document_.setSelectedInterpolation(facial::KeyInterpolation(selectedInterpolation));
+  if (!hasSelection) ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  // Tracks.
+  const auto channels = pose_.channelNames();
+  channelChoice_ = std::clamp(channelChoice_, 0, int(channels.size()) - 1);
+  ImGui::SetNextItemWidth(190.0f);
+  if (ImGui::BeginCombo("##channel", channels.empty() ? "" : channels[size_t(channelChoice_)].c_str())) {
+    ImGui::SetNextItemWidth(-1.0f);
+    ImGui::InputTextWithHint("##filter", "filter", channelFilter_, sizeof channelFilter_);
+    for (size_t c = 0; c < channels.size(); ++c) {
+      if (!textCaseInsensitiveContains(channels[c], channelFilter_)) continue;
+      const bool used = document_.findTrack(channels[c]).has_value();
+      if (ImGui::Selectable(channels[c].c_str(), int(c) == channelChoice_, used ? ImGuiSelectableFlags_Disabled : 0))
+        channelChoice_ = int(c);
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Add track") && !channels.empty()) {
+    auto added = document_.addTrack(channels[size_t(channelChoice_)]);
+    if (added) currentTrack_ = int(*added);
+    else message_.report(added.error().message, true);
+  }
+  ImGui::SameLine();
+  if (currentTrack_ < 0) ImGui::BeginDisabled();
+  if (ImGui::Button("Remove track") && currentTrack_ >= 0) {
+    (void)document_.removeTrack(size_t(currentTrack_));
+    currentTrack_ = std::min(currentTrack_, int(document_.tracks().size()) - 1);
+  }
+  if (currentTrack_ < 0) ImGui::EndDisabled();
+}
+
+void TimelinePanel::drawTracks(FaceDelegate& face) {
+  ImGui::BeginChild("tracks", {0.0f, 0.0f}, true);
+  const auto tracks = document_.tracks();
+  if (currentTrack_ >= int(tracks.size())) currentTrack_ = int(tracks.size()) - 1;
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float rowHeight = std::clamp((avail.y - kRulerHeight) / float(std::max<size_t>(tracks.size(), 1)), 22.0f, 44.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float canvasLeft = origin.x + kNameColumn;
+  const float canvasWidth = std::max(avail.x - kNameColumn - 8.0f, 50.0f);
+  const float pxPerSecond = canvasWidth / document_.duration();
+  const float rowsTop = origin.y + kRulerHeight;
+  const float totalHeight = kRulerHeight + rowHeight * float(tracks.size());
+  const auto timeToX = [&](float t) { return canvasLeft + t * pxPerSecond; };
+  const auto valueToY = [&](size_t row, float v) {
+    const float top = rowsTop + float(row) * rowHeight + 3.0f, bottom = rowsTop + float(row + 1) * rowHeight - 3.0f;
+    const float span = document_.maxValue() - document_.minValue();
+    return bottom - (v - document_.minValue()) / span * (bottom - top);
+  };
+  const float valuePerPixel = (document_.maxValue() - document_.minValue()) / std::max(rowHeight - 6.0f, 1.0f);
+
+  // Track names.
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    ImGui::SetCursorScreenPos({origin.x, rowsTop + float(t) * rowHeight + (rowHeight - ImGui::GetTextLineHeight()) * 0.5f});
+    ImGui::PushID(int(t));
+    const bool known = pose_.knowsChannel(tracks[t].channel);
+    if (!known) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.4f, 1.0f));
+    if (ImGui::Selectable(tracks[t].channel.c_str(), currentTrack_ == int(t), 0, {kNameColumn - 8.0f, 0.0f})) {
+      currentTrack_ = int(t);
+      if (ImGui::GetIO().KeyCtrl) document_.selectTrack(t);
+    }
+    if (!known) {
+      ImGui::PopStyleColor();
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("this face has no channel '%s'", tracks[t].channel.c_str());
+    }
+    ImGui::PopID();
+  }
+
+  // The key canvas: one invisible button takes every click on ruler and rows.
+  ImGui::SetCursorScreenPos({canvasLeft, origin.y});
+  ImGui::InvisibleButton("canvas", {canvasWidth, std::max(totalHeight, kRulerHeight + rowHeight)});
+  const ImGuiIO& io = ImGui::GetIO();
+  const ImVec2 mouse = io.MousePos;
+  if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
+    std::optional<KeyId> hitKey;
+    const int row = int(std::floor((mouse.y - rowsTop) / rowHeight));
+    if (mouse.y >= rowsTop && row >= 0 && row < int(tracks.size())) {
+      currentTrack_ = row;
+      float best = 7.0f;
+      for (const DocumentKey& k : tracks[size_t(row)].keys) {
+        const float d = std::hypot(timeToX(k.key.time) - mouse.x, valueToY(size_t(row), k.key.value) - mouse.y);
+        if (d < best) {
+          best = d;
+          hitKey = k.id;
+        }
+      }
+    }
+    if (hitKey) {
+      if (io.KeyCtrl || io.KeyShift)
+        document_.select(*hitKey, true);
+      else if (!document_.isSelected(*hitKey))
+        document_.select(*hitKey);
+      if (document_.isSelected(*hitKey)) {
+        document_.beginMove();
+        draggingKeys_ = true;
+        dragStartX_ = mouse.x;
+        dragStartY_ = mouse.y;
+      }
+    } else {
+      if (!io.KeyCtrl) document_.clearSelection();
+      scrubbing_ = true;
+    }
+  }
+  if (ImGui::IsItemActive()) {
+    if (draggingKeys_) {
+      document_.moveSelected((mouse.x - dragStartX_) / pxPerSecond, -(mouse.y - dragStartY_) * valuePerPixel);
+      face.takeControl(FaceSource::Timeline);
+    } else if (scrubbing_) {
+      setPlayhead((mouse.x - canvasLeft) / pxPerSecond);
+      playing_ = false;
+      face.takeControl(FaceSource::Timeline);
+    }
+  } else {
+    if (draggingKeys_) document_.endMove();
+    draggingKeys_ = false;
+    scrubbing_ = false;
+  }
+
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float right = canvasLeft + canvasWidth;
+  // Ruler: a tick every 0.1 s, labelled every second (every 0.5 s on short clips).
+  draw->AddRectFilled({canvasLeft, origin.y}, {right, rowsTop}, IM_COL32(40, 44, 54, 255));
+  const float labelStep = document_.duration() <= 3.0f ? 0.5f : document_.duration() <= 12.0f ? 1.0f : 5.0f;
+  const float tickStep = labelStep / 5.0f;
+  for (int i = 0; float(i) * tickStep <= document_.duration() + 1e-4f; ++i) {
+    const float t = float(i) * tickStep, x = timeToX(t);
+    const bool major = i % 5 == 0;
+    draw->AddLine({x, rowsTop - (major ? 10.0f : 5.0f)}, {x, rowsTop}, IM_COL32(150, 150, 160, 255));
+    if (major) {
+      char label[16];
+      std::snprintf(label, sizeof label, "%.1f", double(t));
+      draw->AddText({x + 2.0f, origin.y + 1.0f}, IM_COL32(190, 190, 200, 255), label);
+      draw->AddLine({x, rowsTop}, {x, rowsTop + rowHeight * float(tracks.size())}, IM_COL32(55, 60, 72, 255));
+    }
+  }
+  // Rows: background, the curve, the keys.
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    const float top = rowsTop + float(t) * rowHeight;
+    draw->AddRectFilled({canvasLeft, top}, {right, top + rowHeight - 1.0f},
+                        int(t) == currentTrack_ ? IM_COL32(44, 52, 70, 255) : (t % 2 ? IM_COL32(32, 35, 42, 255) : IM_COL32(36, 39, 47, 255)));
+    if (tracks[t].keys.empty()) continue;
+    ImVec2 previous{canvasLeft, valueToY(t, document_.sample(t, 0.0f))};
+    for (float x = canvasLeft + 3.0f; x <= right; x += 3.0f) {
+      const ImVec2 p{x, valueToY(t, document_.sample(t, (x - canvasLeft) / pxPerSecond))};
+      draw->AddLine(previous, p, IM_COL32(110, 170, 230, 200), 1.5f);
+      previous = p;
+    }
+    for (const DocumentKey& k : tracks[t].keys) {
+      const ImVec2 c{timeToX(k.key.time), valueToY(t, k.key.value)};
+      const float r = 5.0f;
+      const ImU32 colour = document_.isSelected(k.id) ? IM_COL32(255, 180, 60, 255) : IM_COL32(225, 225, 235, 255);
+      if (k.key.interpolation == facial::KeyInterpolation::Step)
+        draw->AddRectFilled({c.x - r + 1, c.y - r + 1}, {c.x + r - 1, c.y + r - 1}, colour);
+      else if (k.key.interpolation == facial::KeyInterpolation::Linear)
+        draw->AddQuadFilled({c.x, c.y - r}, {c.x + r, c.y}, {c.x, c.y + r}, {c.x - r, c.y}, colour);
+      else
+        draw->AddCircleFilled(c, r - 0.5f, colour, 12);
+    }
+  }
+  // Playhead.
+  const float px = timeToX(playhead_);
+  draw->AddLine({px, origin.y}, {px, rowsTop + rowHeight * float(tracks.size())}, IM_COL32(255, 80, 80, 255), 2.0f);
+  draw->AddTriangleFilled({px - 6, origin.y}, {px + 6, origin.y}, {px, origin.y + 8}, IM_COL32(255, 80, 80, 255));
+  if (tracks.empty()) {
+    draw->AddText({canvasLeft + 10.0f, rowsTop + 8.0f}, IM_COL32(160, 160, 170, 255),
+                  "No tracks: pick a channel above and press 'Add track', or open a timeline file.");
+  }
+  ImGui::EndChild();
+}
+
+void TimelinePanel::draw(FaceDelegate& face) {
+  drawToolbar(face);
+  char status[160];
+  std::snprintf(status, sizeof status, "%s%s  %zu tracks  %zu selected  %s", document_.name().c_str(),
+                document_.dirty() ? " (modified)" : "", document_.tracks().size(), document_.selection().size(),
+                face.source() == FaceSource::Timeline ? "drives the face" : "");
+  ImGui::TextDisabled("%s", status);
+  if (!message_.text.empty()) {
+    ImGui::SameLine();
+    message_.draw();
+  }
+  drawTracks(face);
+  refreshPose();
+}
+
+}  // namespace editor

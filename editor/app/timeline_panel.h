@@ -1,0 +1,65 @@
+#pragma once
+// Timeline panel: the keyframe editor over a TimelineDocument. Track list on
+// the left, keys on a time ruler (height in a row = value), a playhead
+// scrubbed in float time, play / pause / loop, add key at the playhead from
+// the face on screen, select (ctrl: add) and drag keys in time and value,
+// delete, per-key interpolation, undo / redo, open / save.
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "demo/face_setup.h"
+#include "editor/app/face_delegate.h"
+#include "editor/timeline_document.h"
+#include "editor/timeline_pose.h"
+
+namespace editor {
+
+class TimelinePanel {
+ public:
+  TimelinePanel(const cli::FaceSetup& face);
+  // Opens a timeline file (errors shown in the panel and logged; the current document stays).
+  bool open(const std::string& path);
+  bool save(const std::string& path);
+
+  void update(float dt);
+  void draw(FaceDelegate& face);
+  // Keyboard shortcuts (Ctrl+Z, Ctrl+Y, Delete, Space) when no text field has focus.
+  void handleShortcuts();
+
+  // The face posed by the document at the playhead.
+  std::span<const float> targetWeights() const { return weights_; }
+  TimelineDocument& document() { return document_; }
+  float playhead() const { return playhead_; }
+  void setPlayhead(float time);
+  bool playing() const { return playing_; }
+  void setPlaying(bool playing) { playing_ = playing; }
+
+ private:
+  void drawToolbar(FaceDelegate& face);
+  void drawTracks(FaceDelegate& face);
+  void addKeys(FaceDelegate& face, bool allTracks);
+  void refreshPose();
+
+  TimelineDocument document_;
+  TimelinePose pose_;
+  std::vector<float> weights_;
+  uint64_t posedRevision_ = UINT64_MAX;
+  float posedTime_ = -1.0f;
+  float playhead_ = 0.0f;
+  bool playing_ = false;
+  bool loopPlayback_ = true;
+  int currentTrack_ = -1;
+  int newKeyInterpolation_ = 1;  // linear
+  int channelChoice_ = 0;
+  char path_[512] = "timeline.json";
+  char channelFilter_[64] = {};
+  // Drag state.
+  bool draggingKeys_ = false;
+  bool scrubbing_ = false;
+  float dragStartX_ = 0.0f, dragStartY_ = 0.0f;
+  PanelMessage message_;
+};
+
+}  // namespace editor

@@ -1,0 +1,41 @@
+#pragma once
+// Poses a face from a timeline document: each track's channel is a rig input
+// (an action unit like "AU12_LipCornerPuller_L" or an emotion) mapped through
+// the model's RigMapping, or one of the model's own morph target names
+// written directly. Sized at construction; pose() does not allocate.
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "editor/timeline_document.h"
+#include "engine/core/result.h"
+#include "facial/runtime/rig/rig_mapping.h"
+
+namespace editor {
+
+class TimelinePose {
+ public:
+  // rig must outlive this; baseWeights: the model's defaults (targets nothing drives).
+  TimelinePose(const facial::RigMapping& rig, std::span<const float> baseWeights);
+
+  // Every channel a track may use: the rig inputs, then the model's target names.
+  std::span<const std::string> channelNames() const { return channelNames_; }
+  bool knowsChannel(std::string_view channel) const;
+
+  // targets = base weights, rig inputs of the tracks applied, then target-named
+  // tracks written. Tracks on unknown channels are skipped and counted in
+  // unknownTracks(). Fails on a size mismatch (naming sizes).
+  eng::Result<void> pose(const TimelineDocument& document, float time, std::span<float> targets);
+  size_t unknownTracks() const { return unknownTracks_; }
+
+ private:
+  const facial::RigMapping* rig_;
+  std::vector<float> base_;
+  std::vector<std::string> channelNames_;
+  std::vector<float> actionUnits_;
+  std::vector<float> emotions_;
+  size_t unknownTracks_ = 0;
+};
+
+}  // namespace editor
