@@ -39,6 +39,12 @@ class HeadlessModelRenderer {
   eng::Result<eng::Image> render(std::span<const float> weights);
 
   const std::string& deviceName() const { return context_->deviceInfo().name; }
+
+  // For sequences that draw their own instances (eng::vk::ModelInstance with
+  // gpuModel()) through recordSequence: the renderer and the camera it uses.
+  eng::vk::OffscreenRenderer& offscreen() { return *renderer_; }
+  eng::vk::SceneView& view() { return view_; }
+  const eng::vk::GpuModel& gpuModel() const { return gpuModel_; }
   // An error counting the validation messages reported so far (they were
   // logged as they came), so a validation run fails loudly; ok otherwise.
   eng::Result<void> checkValidation() const;

@@ -1,4 +1,4 @@
-// `facial play FILE.json [--model M] [--fps N] [--seconds S] [--size WxH] --out DIR [--video out.gif]`
+// `facial play FILE.json [--model M] [--rigmap R] [--fps N] [--seconds S] [--size WxH] --out DIR [--video out.gif]`
 // Plays a graph (data/graphs/*.json) or a timeline (data/timelines/*.json)
 // on a face, headless, into numbered PNG frames and optionally a GIF.
 #include <cmath>
@@ -13,10 +13,8 @@
 #include "demo/cli_parse.h"
 #include "demo/command.h"
 #include "demo/face_setup.h"
+#include "demo/headless_model_renderer.h"
 #include "demo/sequence_recorder.h"
-#include "engine/vk/context.h"
-#include "engine/vk/framing_bounds.h"
-#include "engine/vk/offscreen_renderer.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -28,6 +26,8 @@ namespace {
 struct PlayOptions {
   std::string file;
   std::string model;
+  std::string rigmap;
+  std::string device;
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
   std::string size = "512x512";
@@ -70,7 +70,7 @@ int runPlay(const PlayOptions& o) {
   nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded() || !document.is_object()) return fail(o.file + ": not a JSON object");
 
-  auto setup = FaceSetup::load({.model = o.model});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!setup) return fail(setup.error().message);
 
   float length = 24.0f;
@@ -81,19 +81,12 @@ int runPlay(const PlayOptions& o) {
                                   : facial::loadGraph(o.file, graphOptions);
   if (!graph) return fail(graph.error().message);
   const std::vector<std::string> targetNames = setup->layout().names();
-  auto face = facial::FaceDriver::create(*graph, &setup->rig(), targetNames, setup->baseWeights());
+  auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights());
   if (!face) return fail(o.file + ": " + face.error().message);
 
-  auto ctx = eng::vk::Context::create({});
-  if (!ctx) return fail("Vulkan: " + ctx.error().message);
-  auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {width, height});
-  if (!renderer) return fail("Vulkan: " + renderer.error().message);
-  auto gpuModel = renderer->upload(setup->model());
-  if (!gpuModel) return fail(gpuModel.error().message);
-
-  eng::vk::SceneView view;
-  view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(setup->model()), float(width) / float(height));
-  view.camera.zoom = kFaceZoom;
+  auto renderer = HeadlessModelRenderer::create(
+      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .device = o.device});
+  if (!renderer) return fail(renderer.error().message);
 
   SequenceOptions sequence;
   sequence.framesPerSecond = o.fps;
@@ -101,17 +94,16 @@ int runPlay(const PlayOptions& o) {
   sequence.frameDir = o.out;
   sequence.gifPath = o.video;
   sequence.progressLabel = "play";
-  eng::vk::ModelInstance instance{&gpuModel.value(), glm::mat4(1.0f), {}};
+  eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
   auto summary = recordSequence(
-      *renderer, view, sequence,
+      renderer->offscreen(), renderer->view(), sequence,
       [&](const FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         face->update(frame.dt);
         instance.weights = face->targetWeights();
         return std::span<const eng::vk::ModelInstance>(&instance, 1);
       });
   if (!summary) return fail(summary.error().message);
-  if (const uint32_t messages = ctx->validationMessageCount(); messages > 0)
-    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
   std::printf("played %s on %s: %u frames (%.1f s at %.0f fps) in %.1f s (%.1f ms/frame render) -> %s%s%s\n",
               o.file.c_str(), setup->name().c_str(), summary->frames, sequence.seconds, o.fps,
               summary->totalSeconds, 1000.0 * summary->renderSeconds / std::max<uint32_t>(1, summary->frames),
@@ -122,12 +114,13 @@ int runPlay(const PlayOptions& o) {
 CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (and a GIF)", [](CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
   app.add_option("file", o->file, "Graph (data/graphs/*.json) or timeline (data/timelines/*.json)")->required();
-  app.add_option("--model,-m", o->model, "glTF face (default: the built-in head)");
+  addFaceOptions(app, o->model, o->rigmap);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();
   app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
   app.add_option("--video", o->video, "Also write an animated GIF here");
+  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
   return [o] { return runPlay(*o); };
 });
 
