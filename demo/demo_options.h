@@ -17,7 +17,9 @@ struct DemoOptions {
   uint32_t crowd = 0;              // >0: N faces in a grid, each with its own state machine
   uint64_t seed = 1;
   float quitAfter = 0.0f;          // windowed: close after this many seconds (tests), 0 = never
-  std::string screenshot;          // windowed: F12 target folder / test screenshot path
+  std::string screenshot;          // windowed: last frame's screenshot file (F12 shots go beside it)
+  std::string script;              // windowed: timed actions (window_script.h)
+  bool still = false;              // windowed: no idle sway, breathing or saccades (comparable shots)
 };
 
 int runHeadlessDemo(const DemoOptions& options);

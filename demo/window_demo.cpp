@@ -1,8 +1,10 @@
 // `facial demo` with a display: the face in a live window, driven by the
 // tour graph's state machine with autoplay off. Keys 1-7 / the panel's
 // buttons trigger the seven basic emotions (the graph eases between them);
-// the intensity slider and the 2D pad override the graph while used; mouse
-// drag orbits, the wheel zooms, F12 saves a screenshot, Esc quits.
+// the intensity slider and the 2D pad override the graph while used (the
+// pad drives a control-map node of its own graph); mouse drag orbits, the
+// wheel zooms, F12 saves a screenshot, Esc quits. `--script` replays timed
+// actions through the same paths (window_script.h); state changes are logged.
 // `--crowd N`: N faces in a grid, each its own FaceDriver with random triggers.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -26,12 +28,14 @@
 #include "demo/face_setup.h"
 #include "demo/window_idle_motion.h"
 #include "demo/window_imgui.h"
+#include "demo/window_script.h"
 #include "engine/vk/context.h"
 #include "engine/vk/framing_bounds.h"
 #include "engine/vk/window.h"
 #include "engine/vk/window_renderer.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/nodes/control_map_node.h"
 #include "facial/runtime/graph/nodes/state_machine_node.h"
 #include "facial/runtime/graph/preset_lookup.h"
 
@@ -47,12 +51,17 @@ int fail(const std::string& message) {
 
 // The seven triggers of the tour graph, in key order (1-7).
 constexpr std::array<const char*, 7> kEmotions = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
-// The study's control map: +x, -x, +y, -y poles around a neutral centre.
-struct PadPole {
-  int emotion;  // index into kEmotions
-  glm::vec2 axis;
-};
-constexpr std::array<PadPole, 4> kPadPoles = {{{1, {1, 0}}, {2, {-1, 0}}, {5, {0, 1}}, {3, {0, -1}}}};
+// The pad's graph: the study's 2D control map (ControlMapNode) with four
+// presets on the axes around neutral, as labelled on the pad, and blinks on
+// top so the face stays alive while it is held.
+constexpr const char* kPadGraph = R"({
+  "version": 1, "channels": "actionUnits",
+  "parameters": [{"name": "padX", "type": "float", "default": 0}, {"name": "padY", "type": "float", "default": 0}],
+  "root": {"type": "blink", "input": {"type": "controlMap", "name": "pad",
+    "neutral": {"type": "pose", "preset": "neutral"},
+    "right": {"type": "pose", "preset": "happy"}, "left": {"type": "pose", "preset": "sad"},
+    "up": {"type": "pose", "preset": "surprise"}, "down": {"type": "pose", "preset": "anger"},
+    "x": "padX", "y": "padY"}}})";
 
 // Key presses queued by a GLFW callback: a fast press+release (xdotool, a
 // slow frame) lands between two ImGui frames and would be missed by polling.
@@ -95,12 +104,17 @@ const char* stateName(const facial::GraphInstance& graph, std::optional<facial::
   return node->states[status->current].name.c_str();
 }
 
-// F12's file: the --screenshot folder when given, else the current one.
+// F12's file: beside the --screenshot file when one is given, else in the
+// current folder; "facial-<date>-<time>.png", "-2", "-3"... within a second.
 fs::path screenshotPathFor(const DemoOptions& o) {
-  char name[64];
+  char stamp[64];
   const std::time_t now = std::time(nullptr);
-  std::strftime(name, sizeof name, "facial-%Y%m%d-%H%M%S.png", std::localtime(&now));
-  return (o.screenshot.empty() ? fs::current_path() : fs::path(o.screenshot)) / name;
+  std::strftime(stamp, sizeof stamp, "facial-%Y%m%d-%H%M%S", std::localtime(&now));
+  const fs::path folder = o.screenshot.empty() ? fs::current_path() : fs::path(o.screenshot).parent_path();
+  fs::path path = folder / (std::string(stamp) + ".png");
+  std::error_code ec;
+  for (int n = 2; fs::exists(path, ec); ++n) path = folder / (std::string(stamp) + "-" + std::to_string(n) + ".png");
+  return path;
 }
 
 class WindowDemo {
@@ -109,10 +123,16 @@ class WindowDemo {
 
  private:
   int setUp(const DemoOptions& o);
+  int setUpPad(const fs::path& graphPath);
   void drawPanel();
   void handleInput();
+  void runScript(float elapsed);
   void trigger(int emotion);
+  void setIntensity(float intensity);
+  void setPad(glm::vec2 cursor);
+  void orbit(float yawDegrees, float pitchDegrees);
   void updateFaces(float dt);
+  void logStateChange();
   void updateTitle(float dt);
 
   DemoOptions options_;
@@ -124,15 +144,21 @@ class WindowDemo {
   std::vector<float> weights_;  // faces_.size() x weightCount, what is drawn
   std::vector<eng::vk::ModelInstance> instances_;
 
-  // The single face's overrides: full-intensity presets (empty when absent),
-  // the override weights and how much of them is shown (eased in and out).
-  std::array<std::vector<float>, kEmotions.size()> presetWeights_;
+  // The single face's overrides: the override weights and how much of them
+  // is shown (eased in and out). The slider poses a preset directly; the pad
+  // moves the cursor of its own graph's control map (padDriver_).
   std::vector<float> overrideWeights_;
   float overrideAmount_ = 0.0f;
   Control control_ = Control::Graph;
+  Control lastOverride_ = Control::Slider;  // what overrideWeights_ shows while easing out
   int chosen_ = 1;  // the slider's expression (happy until a trigger says otherwise)
   float intensity_ = 1.0f;
   glm::vec2 pad_{0.0f};
+  std::optional<facial::FaceDriver> padDriver_;
+  facial::ParameterIndex padX_ = 0, padY_ = 0;
+  std::vector<ScriptAction> script_;
+  size_t nextAction_ = 0;
+  std::string loggedState_;
 
   std::unique_ptr<eng::vk::Window> window_;
   std::optional<eng::vk::Context> ctx_;
@@ -192,11 +218,15 @@ int WindowDemo::setUp(const DemoOptions& o) {
   }
   weights_.assign(size_t(faceCount) * count, 0.0f);
   overrideWeights_.assign(setup_->baseWeights().begin(), setup_->baseWeights().end());
-  for (size_t e = 0; e < kEmotions.size(); ++e) {
-    auto preset = setup_->findExpression(kEmotions[e]);
-    if (!preset) continue;
-    presetWeights_[e].assign(count, 0.0f);
-    if (auto r = setup_->expressionWeights(**preset, 1.0f, presetWeights_[e]); !r) return fail(r.error().message);
+  if (faceCount == 1)
+    if (const int error = setUpPad(graphPath); error != 0) return error;
+  if (!o.script.empty()) {
+    auto script = loadWindowScript(o.script);
+    if (!script) return fail(script.error().message);
+    for (const ScriptAction& action : *script)
+      if (action.kind == ScriptAction::Kind::Trigger && !graph_->findParameter(action.name))
+        return fail(o.script + ": '" + action.name + "' is no trigger of " + graphPath.string());
+    script_ = std::move(*script);
   }
 
   char title[256];
@@ -231,9 +261,76 @@ int WindowDemo::setUp(const DemoOptions& o) {
   return 0;
 }
 
+int WindowDemo::setUpPad(const fs::path& graphPath) {
+  auto document = facial::parseJsonText(kPadGraph, "the pad's graph");
+  if (!document) return fail(document.error().message);
+  auto graph = facial::parseGraph(*document, graphPath, {.presets = facial::presetLookup(setup_->expressions())});
+  if (!graph) return fail(graph.error().message);
+  auto driver = facial::FaceDriver::create(*graph, &setup_->graphRig(), setup_->layout().names(),
+                                           setup_->baseWeights(), options_.seed);
+  if (!driver) return fail("the pad's graph: " + driver.error().message);
+  padX_ = *(*graph)->findParameter("padX");
+  padY_ = *(*graph)->findParameter("padY");
+  padDriver_.emplace(std::move(*driver));
+  return 0;
+}
+
+void WindowDemo::setIntensity(float intensity) {
+  intensity_ = std::clamp(intensity, 0.0f, 1.0f);
+  auto preset = setup_->findExpression(kEmotions[chosen_]);
+  if (!preset) return;
+  control_ = lastOverride_ = Control::Slider;
+  // lerp(neutral, preset, intensity): the preset at that intensity over the model's defaults.
+  (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_);
+}
+
+void WindowDemo::setPad(glm::vec2 cursor) {
+  if (!padDriver_) return;
+  pad_ = glm::clamp(cursor, glm::vec2(-1.0f), glm::vec2(1.0f));
+  padDriver_->graph().setFloat(padX_, pad_.x);
+  padDriver_->graph().setFloat(padY_, pad_.y);
+  control_ = lastOverride_ = Control::Pad;
+}
+
+void WindowDemo::orbit(float yawDegrees, float pitchDegrees) {
+  view_.camera.yawDegrees += yawDegrees;
+  view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + pitchDegrees, -80.0f, 80.0f);
+}
+
+void WindowDemo::runScript(float elapsed) {
+  // A pending screenshot holds the actions after it back: a shot shows
+  // everything scripted before it and nothing after, however slow the frames.
+  for (; nextAction_ < script_.size() && script_[nextAction_].time <= elapsed && !screenshotRequested_; ++nextAction_) {
+    const ScriptAction& a = script_[nextAction_];
+    std::printf("script: %.2f s\n", a.time);
+    switch (a.kind) {
+      case ScriptAction::Kind::Trigger: {
+        const auto known = std::find(kEmotions.begin(), kEmotions.end(), a.name);
+        if (known != kEmotions.end()) trigger(int(known - kEmotions.begin()));
+        else if (const auto p = graph_->findParameter(a.name)) faces_[0].driver.graph().setTrigger(*p);
+        break;
+      }
+      case ScriptAction::Kind::Intensity: setIntensity(a.a); break;
+      case ScriptAction::Kind::Pad: setPad({a.a, a.b}); break;
+      case ScriptAction::Kind::Graph: control_ = Control::Graph; break;
+      case ScriptAction::Kind::Orbit: orbit(a.a, a.b); break;
+      case ScriptAction::Kind::Screenshot: screenshotRequested_ = true; break;
+      case ScriptAction::Kind::Resize: glfwSetWindowSize(window_->handle(), int(a.a), int(a.b)); break;
+      case ScriptAction::Kind::Iconify: glfwIconifyWindow(window_->handle()); break;
+      case ScriptAction::Kind::Restore: glfwRestoreWindow(window_->handle()); break;
+    }
+  }
+}
+
 void WindowDemo::trigger(int emotion) {
   if (!triggers_[emotion]) return;
-  faces_[0].driver.graph().setTrigger(*triggers_[emotion]);
+  // The last press wins: triggers stay set until a transition consumes them,
+  // and two presses within one frame would otherwise both be pending and
+  // fire in the graph's priority order, not in the order they were pressed.
+  facial::GraphInstance& graph = faces_[0].driver.graph();
+  for (const auto& other : triggers_)
+    if (other) graph.resetTrigger(*other);
+  graph.setTrigger(*triggers_[emotion]);
   control_ = Control::Graph;
   if (emotion != 0) chosen_ = emotion;
 }
@@ -250,12 +347,12 @@ void WindowDemo::handleInput() {
   keys_.count = 0;
 
   // Orbit only with drags that start on the scene, not on the panel.
+  // The press frame's delta is not part of the drag: it holds the pointer's
+  // jump from wherever it was last seen (outside the window, before focus).
+  const bool wasOrbiting = orbiting_;
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse) orbiting_ = true;
   if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = false;
-  if (orbiting_) {
-    view_.camera.yawDegrees -= 0.3f * io.MouseDelta.x;
-    view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + 0.3f * io.MouseDelta.y, -80.0f, 80.0f);
-  }
+  if (orbiting_ && wasOrbiting) orbit(-0.3f * io.MouseDelta.x, 0.3f * io.MouseDelta.y);
   if (!io.WantCaptureMouse && io.MouseWheel != 0.0f)
     view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
 }
@@ -284,13 +381,8 @@ void WindowDemo::drawPanel() {
   ImGui::Separator();
   char sliderLabel[48];
   std::snprintf(sliderLabel, sizeof sliderLabel, "neutral -> %s", kEmotions[chosen_]);
-  if (ImGui::SliderFloat(sliderLabel, &intensity_, 0.0f, 1.0f, "%.2f") || ImGui::IsItemActive()) {
-    if (auto preset = setup_->findExpression(kEmotions[chosen_]); preset) {
-      control_ = Control::Slider;
-      // lerp(neutral, preset, intensity): the preset at that intensity over the model's defaults.
-      (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_);
-    }
-  }
+  float intensity = intensity_;
+  if (ImGui::SliderFloat(sliderLabel, &intensity, 0.0f, 1.0f, "%.2f") || ImGui::IsItemActive()) setIntensity(intensity);
 
   ImGui::Separator();
   ImGui::TextUnformatted("control map (drag): happy +x, sad -x, surprise +y, anger -y");
@@ -299,21 +391,7 @@ void WindowDemo::drawPanel() {
   ImGui::InvisibleButton("pad", {side, side});
   if (ImGui::IsItemActive()) {
     const ImVec2 m = ImGui::GetIO().MousePos;
-    pad_ = glm::clamp(glm::vec2((m.x - origin.x) / side * 2.0f - 1.0f, 1.0f - (m.y - origin.y) / side * 2.0f),
-                      glm::vec2(-1.0f), glm::vec2(1.0f));
-    control_ = Control::Pad;
-    // neutral + sum over poles of max(pad . axis, 0) * (pole - neutral).
-    const std::vector<float>& neutral = presetWeights_[0];
-    if (!neutral.empty()) {
-      std::copy(neutral.begin(), neutral.end(), overrideWeights_.begin());
-      for (const PadPole& pole : kPadPoles) {
-        const float w = std::max(glm::dot(pad_, pole.axis), 0.0f);
-        const std::vector<float>& target = presetWeights_[pole.emotion];
-        if (w <= 0.0f || target.empty()) continue;
-        for (size_t t = 0; t < overrideWeights_.size(); ++t) overrideWeights_[t] += w * (target[t] - neutral[t]);
-      }
-      for (float& v : overrideWeights_) v = std::clamp(v, 0.0f, 1.0f);
-    }
+    setPad({(m.x - origin.x) / side * 2.0f - 1.0f, 1.0f - (m.y - origin.y) / side * 2.0f});
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 end{origin.x + side, origin.y + side}, mid{origin.x + side / 2, origin.y + side / 2};
@@ -321,11 +399,15 @@ void WindowDemo::drawPanel() {
   draw->AddRect(origin, end, IM_COL32(120, 130, 150, 255), 4.0f);
   draw->AddLine({origin.x, mid.y}, {end.x, mid.y}, IM_COL32(80, 90, 110, 255));
   draw->AddLine({mid.x, origin.y}, {mid.x, end.y}, IM_COL32(80, 90, 110, 255));
+  // The map's reach: past the diamond |x| + |y| = 1 the cursor is pulled back onto it.
+  const ImVec2 diamond[4] = {{end.x, mid.y}, {mid.x, origin.y}, {origin.x, mid.y}, {mid.x, end.y}};
+  draw->AddPolyline(diamond, 4, IM_COL32(90, 110, 140, 255), ImDrawFlags_Closed, 1.0f);
   draw->AddText({end.x - 40, mid.y + 2}, IM_COL32(200, 200, 200, 255), "happy");
   draw->AddText({origin.x + 4, mid.y + 2}, IM_COL32(200, 200, 200, 255), "sad");
   draw->AddText({mid.x + 4, origin.y + 2}, IM_COL32(200, 200, 200, 255), "surprise");
   draw->AddText({mid.x + 4, end.y - 16}, IM_COL32(200, 200, 200, 255), "anger");
-  const ImVec2 cursor{mid.x + pad_.x * side / 2, mid.y - pad_.y * side / 2};
+  const facial::ControlMapWeights reached = facial::controlMapWeights(pad_.x, pad_.y);
+  const ImVec2 cursor{mid.x + reached.x * side / 2, mid.y - reached.y * side / 2};
   draw->AddCircleFilled(cursor, 6.0f, control_ == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
   if (control_ != Control::Graph && ImGui::Button("back to the graph")) control_ = Control::Graph;
   ImGui::TextDisabled("drag: orbit  wheel: zoom  F12: screenshot  Esc: quit");
@@ -340,6 +422,11 @@ void WindowDemo::updateFaces(float dt) {
   overrideAmount_ += std::clamp(towards - overrideAmount_, -4.0f * dt, 4.0f * dt);
   std::uniform_int_distribution<int> anyEmotion(0, int(kEmotions.size()) - 1);
   std::uniform_real_distribution<float> wait(2.0f, 5.0f);
+  if (padDriver_ && (control_ == Control::Pad || (lastOverride_ == Control::Pad && overrideAmount_ > 0.0f))) {
+    padDriver_->update(dt);
+    const std::span<const float> pad = padDriver_->targetWeights();
+    std::copy(pad.begin(), pad.end(), overrideWeights_.begin());
+  }
   for (size_t i = 0; i < faces_.size(); ++i) {
     Face& face = faces_[i];
     if (crowd) {
@@ -350,7 +437,7 @@ void WindowDemo::updateFaces(float dt) {
       }
     }
     face.driver.update(dt);
-    face.idle.update(dt);
+    if (!options_.still) face.idle.update(dt);
     std::span<float> out = std::span<float>(weights_).subspan(i * count, count);
     const std::span<const float> graphWeights = face.driver.targetWeights();
     if (!crowd && overrideAmount_ > 0.0f) {
@@ -362,6 +449,15 @@ void WindowDemo::updateFaces(float dt) {
     face.idle.applyGaze(out);
     instances_[i].transform = face.idle.transform(face.placement);
   }
+}
+
+// One line per state the single face enters, for logs and tests.
+void WindowDemo::logStateChange() {
+  if (faces_.size() != 1) return;
+  const char* state = stateName(faces_[0].driver.graph(), machine_);
+  if (loggedState_ == state) return;
+  loggedState_ = state;
+  std::printf("state: %s\n", state);
 }
 
 void WindowDemo::updateTitle(float dt) {
@@ -396,9 +492,11 @@ int WindowDemo::run(const DemoOptions& o) {
 
     ui_->beginFrame();
     handleInput();
+    runScript(elapsed);
     drawPanel();
     ui_->endFrame();
     updateFaces(dt);
+    logStateChange();
     updateTitle(dt);
 
     eng::vk::FrameInput frame{view_, instances_};
@@ -407,8 +505,7 @@ int WindowDemo::run(const DemoOptions& o) {
     if (finalFrame && !o.screenshot.empty()) {
       shot = o.screenshot;
     } else if (screenshotRequested_) {
-      shot = screenshotPathFor(o);
-      screenshotRequested_ = false;
+      shot = screenshotPathFor(o);  // kept requested until a frame is really presented (not skipped)
     }
     frame.screenshot = shot;
     auto drawn = renderer_->drawFrame(frame);
@@ -416,13 +513,19 @@ int WindowDemo::run(const DemoOptions& o) {
       exitCode = fail("frame: " + drawn.error().message);
       break;
     }
-    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) std::printf("screenshot: %s\n", shot.c_str());
+    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) {
+      std::printf("screenshot: %s\n", shot.c_str());
+      if (!finalFrame) screenshotRequested_ = false;
+    }
     // The last frame must really be drawn (not skipped while minimised) to end with its screenshot.
     if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
       break;
   }
-  std::printf("demo: %s, %zu face(s), final state %s, %.1f ms/frame\n", setup_->name().c_str(), faces_.size(),
-              stateName(faces_[0].driver.graph(), machine_), frameMs_);
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_->handle(), &width, &height);
+  std::printf("demo: %s, %zu face(s), final state %s, %.1f ms/frame, camera yaw %.1f pitch %.1f, window %dx%d\n",
+              setup_->name().c_str(), faces_.size(), stateName(faces_[0].driver.graph(), machine_), frameMs_,
+              view_.camera.yawDegrees, view_.camera.pitchDegrees, width, height);
   ui_.reset();
   gKeyQueue = nullptr;
   if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)

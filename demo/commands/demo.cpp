@@ -29,7 +29,12 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
   app.add_option("--crowd", o->crowd, "N faces in a grid, each with its own state machine and random triggers");
   app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();
   app.add_option("--quit-after", o->quitAfter, "Window: close after this many seconds (for tests)");
-  app.add_option("--screenshot", o->screenshot, "Window: write a screenshot here just before quitting");
+  app.add_option("--screenshot", o->screenshot,
+                 "Window: write the last frame here before quitting (F12 screenshots go to the same folder)");
+  app.add_option("--script", o->script,
+                 "Window: timed actions, one per line 'SECONDS ACTION ARGS' (trigger NAME, intensity X, pad X Y, "
+                 "graph, orbit YAW PITCH, screenshot, resize W H, iconify, restore)");
+  app.add_flag("--still", o->still, "Window: no idle sway, breathing or eye saccades (blinks stay)");
   return [o] { return (o->headless || !hasDisplay()) ? runHeadlessDemo(*o) : runWindowDemo(*o); };
 });
 

@@ -1,0 +1,38 @@
+#pragma once
+// `facial demo --script FILE`: timed actions for the window demo, so a
+// presentation, a recording or a test can drive the same code paths as the
+// keys, the panel and the mouse. One action per line, "SECONDS ACTION ARGS",
+// seconds since the window opened, in ascending order; '#' starts a comment:
+//
+//   1.0  trigger happy      the state machine's trigger, as key 2 or the panel button
+//   1.5  intensity 0.4      the slider: neutral -> the chosen expression at 0.4
+//   2.0  pad 0.7 -0.2       the control-map pad's cursor (x right, y up, [-1, 1])
+//   2.5  graph              give control back to the graph (the panel's button)
+//   3.0  orbit 30 -10       turn the camera by yaw/pitch degrees, as a mouse drag
+//   3.5  screenshot         as F12
+//   4.0  resize 900 600     the window's size in screen coordinates
+//   4.5  iconify            minimise / restore through the window manager
+//   5.0  restore
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/result.h"
+
+namespace cli {
+
+struct ScriptAction {
+  enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Screenshot, Resize, Iconify, Restore };
+  float time = 0.0f;
+  Kind kind = Kind::Screenshot;
+  std::string name;   // Trigger: the trigger parameter
+  float a = 0, b = 0;  // Intensity: a; Pad, Orbit: a, b; Resize: a x b
+};
+
+// Errors read "SOURCE:LINE: problem" (unknown action, missing or extra
+// arguments, non-finite numbers, values out of range, times going backwards).
+eng::Result<std::vector<ScriptAction>> parseWindowScript(std::string_view text, std::string_view source);
+eng::Result<std::vector<ScriptAction>> loadWindowScript(const std::filesystem::path& path);
+
+}  // namespace cli
