@@ -16,6 +16,7 @@ struct DemoOptions {
   float seconds = 0.0f;            // headless length (0: one tour, all seven states and back)
   uint32_t crowd = 0;              // >0: N faces in a grid, each with its own state machine
   uint64_t seed = 1;
+  std::string device;              // Vulkan device (eng::vk::ContextOptions::device); empty: FACIAL_DEVICE or the best
   float quitAfter = 0.0f;          // windowed: close after this many seconds (tests), 0 = never
   std::string screenshot;          // windowed: last frame's screenshot file (F12 shots go beside it)
   std::string script;              // windowed: timed actions (window_script.h)

@@ -16,6 +16,7 @@
 #include "demo/cli_parse.h"
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
+#include "demo/headless_model_renderer.h"
 #include "demo/sequence_recorder.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/scene/image_io.h"
@@ -42,14 +43,18 @@ std::filesystem::path defaultOutputDir() {
   return std::filesystem::path("out") / (std::string("demo-") + stamp);
 }
 
-// Length of one pass through every state and back to the first: the sum of
-// each state's first transition (exit time + blend), plus a short settle.
+// Length of one pass through every state and back to the first. A state's
+// exit time counts from the moment it is entered (its incoming blend
+// included), so a pass is the sum of the exit times, plus the last blend back
+// to the first state and a short settle.
 float tourLength(const facial::StateMachineNode& machine) {
-  float length = 0.0f;
+  float length = 0.0f, lastBlend = 0.0f;
   for (const facial::MachineState& state : machine.states)
-    if (!state.transitions.empty())
-      length += state.transitions.front().exitTime.value_or(0.0f) + state.transitions.front().duration;
-  return length + 0.5f;
+    if (!state.transitions.empty()) {
+      length += state.transitions.front().exitTime.value_or(0.0f);
+      lastBlend = state.transitions.front().duration;
+    }
+  return length + lastBlend + 0.5f;
 }
 
 // Idle life that does not belong to the graph: a slow head sway and breathing.
@@ -93,12 +98,8 @@ int runHeadlessDemo(const DemoOptions& o) {
   std::printf("facial demo: no display, playing the tour headless into %s\n", outDir.string().c_str());
   std::fflush(stdout);
 
-  auto ctx = eng::vk::Context::create({});
-  if (!ctx) return fail("Vulkan: " + ctx.error().message);
-  auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {width, height});
-  if (!renderer) return fail("Vulkan: " + renderer.error().message);
-  auto gpuModel = renderer->upload(setup->model());
-  if (!gpuModel) return fail(gpuModel.error().message);
+  auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width, .height = height, .device = o.device});
+  if (!renderer) return fail(renderer.error().message);
 
   // Crowd: a square grid of faces spaced by the model's size, framed together.
   const eng::Aabb bounds = eng::vk::framingBounds(setup->model());
@@ -112,7 +113,7 @@ int runHeadlessDemo(const DemoOptions& o) {
     crowdBounds.extend(bounds.min + offsets[i]);
     crowdBounds.extend(bounds.max + offsets[i]);
   }
-  eng::vk::SceneView view;
+  eng::vk::SceneView& view = renderer->view();
   view.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
   if (crowd == 1) view.camera.zoom = kFaceZoom;  // a crowd is framed as a whole
 
@@ -133,7 +134,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   std::vector<eng::ContactSheetTile> tiles;
   std::set<std::string> captured;
   auto summary = recordSequence(
-      *renderer, view, sequence,
+      renderer->offscreen(), view, sequence,
       [&](const FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         for (uint32_t i = 0; i < crowd; ++i) {
           if (crowd > 1 && frame.time >= nextTrigger[i]) {
@@ -145,7 +146,7 @@ int runHeadlessDemo(const DemoOptions& o) {
             nextTrigger[i] = frame.time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random);
           }
           faces[i].update(frame.dt);
-          instances[i] = {&gpuModel.value(),
+          instances[i] = {&renderer->gpuModel(),
                           glm::translate(glm::mat4(1.0f), offsets[i]) *
                               idleMotion(frame.time, 1.7f * float(i), bounds.center(), bounds.diagonal()),
                           faces[i].targetWeights()};
@@ -175,14 +176,13 @@ int runHeadlessDemo(const DemoOptions& o) {
     if (auto written = eng::writePng(sheetPath, sheet->width, sheet->height, sheet->rgba); !written)
       return fail(written.error().message);
   }
-  if (const uint32_t messages = ctx->validationMessageCount(); messages > 0)
-    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("facial demo: %u frames of %ux%u (%u face%s, %.1f s at %.0f fps) in %.1f s, %.1f ms/frame render on %s\n",
               summary->frames, width, height, crowd, crowd == 1 ? "" : "s", sequence.seconds, o.fps, total,
               1000.0 * summary->renderSeconds / std::max<uint32_t>(1, summary->frames),
-              ctx->deviceInfo().name.c_str());
+              renderer->deviceName().c_str());
   std::printf("  frames:        %s\n  animation:     %s\n", sequence.frameDir.string().c_str(),
               sequence.gifPath.string().c_str());
   if (!sheetPath.empty()) std::printf("  contact sheet: %s (%zu states)\n", sheetPath.string().c_str(), tiles.size());

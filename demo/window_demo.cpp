@@ -235,6 +235,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!window) return fail("window: " + window.error().message);
   window_ = std::move(*window);
   eng::vk::ContextOptions contextOptions;
+  contextOptions.device = options_.device;
   window_->configureContext(contextOptions);
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
