@@ -81,6 +81,23 @@ TEST(StateMachineNode, BoolConditionsAndExitTimes) {
   EXPECT_TRUE(m.status().blending);
 }
 
+TEST(StateMachineNode, ExitTimeCrossedMidStepStartsTheTransitionAtTheExitTime) {
+  Machine m;
+  m.face->setBool(m.flag, true);
+  m.step(0.1f);
+  m.face->setBool(m.flag, false);
+  m.step(0.5f);
+  m.step(1.4f);  // 1.9 s in C
+  EXPECT_EQ(m.status().current, 2u);
+  // 2.15 s: the exit (2 s) was 0.15 s ago, so C -> A (1 s, linear) is 0.15 s along, not starting now.
+  expectPose(m.step(0.25f), {0, 0.85f, 0});
+  EXPECT_EQ(m.status().current, 0u);
+  EXPECT_NEAR(m.status().stateTime, 0.15f, 1e-5f);
+  // The blend ends 1 s after the exit time, not 1 s after the step that noticed it.
+  expectPose(m.step(0.85f), {0, 0, 0});
+  EXPECT_FALSE(m.status().blending);
+}
+
 TEST(StateMachineNode, HigherPriorityWinsAndAnyStateReachesEveryState) {
   Machine m;
   m.face->setTrigger(m.toB);
