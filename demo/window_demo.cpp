@@ -125,6 +125,8 @@ class WindowDemo {
   int setUp(const DemoOptions& o);
   int setUpPad(const fs::path& graphPath);
   void drawPanel();
+  void notePanelExtent();
+  eng::vk::SceneView shownView() const;
   void handleInput();
   void runScript(float elapsed);
   void trigger(int emotion);
@@ -166,6 +168,8 @@ class WindowDemo {
   std::optional<eng::vk::GpuModel> gpuModel_;
   std::unique_ptr<ImGuiLayer> ui_;
   eng::vk::SceneView view_;
+  eng::Aabb framedBounds_;                   // what view_ frames: the face, or the whole crowd
+  float panelLeft_ = 0.0f, panelRight_ = 0.0f;  // the panel's columns this frame (ImGui pixels)
   KeyQueue keys_;
   bool orbiting_ = false;
   bool screenshotRequested_ = false;
@@ -255,6 +259,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   ui_ = std::move(*ui);
 
   view_.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
+  framedBounds_ = crowdBounds;
   instances_.resize(faceCount);
   for (uint32_t i = 0; i < faceCount; ++i)
     instances_[i] = {&*gpuModel_, faces_[i].placement,
@@ -358,12 +363,32 @@ void WindowDemo::handleInput() {
     view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
 }
 
+// The face is framed in the part of the window the panel leaves free (the
+// wider side of it), so a small window never hides half the face.
+void WindowDemo::notePanelExtent() {
+  panelLeft_ = ImGui::GetWindowPos().x;
+  panelRight_ = panelLeft_ + ImGui::GetWindowSize().x;
+}
+
+eng::vk::SceneView WindowDemo::shownView() const {
+  eng::vk::SceneView shown = view_;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  constexpr float kGap = 8.0f;
+  const float rightFree = display.x - panelRight_ - kGap, leftFree = panelLeft_ - kGap;
+  if (rightFree >= leftFree)
+    shown.camera.fitToRegion(framedBounds_, {display.x, display.y}, {panelRight_ + kGap, 0.0f}, {display.x, display.y});
+  else
+    shown.camera.fitToRegion(framedBounds_, {display.x, display.y}, {0.0f, 0.0f}, {leftFree, display.y});
+  return shown;
+}
+
 void WindowDemo::drawPanel() {
   ImGui::SetNextWindowPos({12, 12}, ImGuiCond_FirstUseEver);
   ImGui::Begin("facial", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("%s: %.1f ms/frame (%.0f fps)", setup_->name().c_str(), frameMs_, frameMs_ > 0 ? 1000.0f / frameMs_ : 0.0f);
   if (faces_.size() > 1) {
     ImGui::Text("%zu faces, random triggers", faces_.size());
+    notePanelExtent();
     ImGui::End();
     return;
   }
@@ -412,6 +437,7 @@ void WindowDemo::drawPanel() {
   draw->AddCircleFilled(cursor, 6.0f, control_ == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
   if (control_ != Control::Graph && ImGui::Button("back to the graph")) control_ = Control::Graph;
   ImGui::TextDisabled("drag: orbit  wheel: zoom  F12: screenshot  Esc: quit");
+  notePanelExtent();
   ImGui::End();
 }
 
@@ -500,7 +526,8 @@ int WindowDemo::run(const DemoOptions& o) {
     logStateChange();
     updateTitle(dt);
 
-    eng::vk::FrameInput frame{view_, instances_};
+    const eng::vk::SceneView shown = shownView();
+    eng::vk::FrameInput frame{shown, instances_};
     frame.overlay = ImGuiLayer::recorder();
     fs::path shot;
     if (finalFrame && !o.screenshot.empty()) {

@@ -39,7 +39,24 @@ glm::mat4 OrbitCamera::projection(float aspect) const {
   const float farPlane = d + sceneRadius * 1.5f;
   glm::mat4 p = glm::perspectiveRH_ZO(glm::radians(fovYDegrees), aspect, nearPlane, farPlane);
   p[1][1] *= -1.0f;  // Vulkan clip space: +y points down
+  // Lens shift: clip.xy gains -imageCentre * clip.w (clip.w = -z_view), so
+  // every point moves by imageCentre in NDC and perspective is unchanged.
+  p[2][0] -= imageCentre.x;
+  p[2][1] -= imageCentre.y;
   return p;
+}
+
+void OrbitCamera::fitToRegion(const Aabb& bounds, glm::vec2 imageSize, glm::vec2 regionMin, glm::vec2 regionMax) {
+  if (!(imageSize.x >= 1.0f) || !(imageSize.y >= 1.0f)) return;
+  const glm::vec2 lo = glm::clamp(regionMin, glm::vec2(0.0f), imageSize - 1.0f);
+  const glm::vec2 hi = glm::clamp(regionMax, lo + 1.0f, imageSize);
+  const glm::vec2 region = hi - lo;
+  // Distance that fits the bounds into a full-height image of the region's
+  // shape, scaled to the region's height; relative to the whole image's fit.
+  const OrbitCamera whole = frame(bounds, imageSize.x / imageSize.y, fovYDegrees);
+  const OrbitCamera inRegion = frame(bounds, region.x / region.y, fovYDegrees);
+  zoom *= std::min(1.0f, whole.distance * region.y / (inRegion.distance * imageSize.y));
+  imageCentre = (lo + hi) / imageSize - 1.0f;
 }
 
 }  // namespace eng::vk

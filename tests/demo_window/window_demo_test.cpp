@@ -135,6 +135,22 @@ double facePixelFraction(const eng::Image& shot) {
   return double(face) / double(total);
 }
 
+// Mean column of the face's pixels (those unlike the backdrop at the right
+// end of their own row: the backdrop is a vertical gradient), ignoring the
+// panel's rows at the top left.
+double faceCentreColumn(const eng::Image& shot, int panelRight, int panelBottom) {
+  double sum = 0.0;
+  size_t face = 0;
+  for (int y = 0; y < shot.height; ++y) {
+    const size_t backdrop = (size_t(y) * shot.width + shot.width - 3) * 4;
+    for (int x = 0; x < shot.width; ++x) {
+      if (x < panelRight && y < panelBottom) continue;
+      if (channelDistance(shot, (size_t(y) * shot.width + x) * 4, shot, backdrop) > 40) sum += x, ++face;
+    }
+  }
+  return face ? sum / double(face) : 0.0;
+}
+
 // Mean per-pixel colour distance over the right two thirds of the frame.
 double meanDifference(const eng::Image& a, const eng::Image& b) {
   double sum = 0;
@@ -220,6 +236,9 @@ TEST(WindowDemo, ResizeAndMinimiseRestoreKeepItDrawing) {
   EXPECT_NE(run.log.find("window 960x600"), std::string::npos) << run.log;
   EXPECT_NE(run.log.find("final state sad"), std::string::npos) << "still responsive after the restore:\n" << run.log;
   EXPECT_GT(facePixelFraction(shot), 0.05) << "the face is drawn after resizing and restoring";
+  // The panel (about 440 px wide) covers the left of a 960-px window: the
+  // face is framed in the free part beside it, not in the window's middle.
+  EXPECT_GT(faceCentreColumn(shot, 450, 400), 620.0) << "the face sits beside the panel";
 }
 
 TEST(WindowDemo, MouseDragOrbitsAndF12SavesAScreenshot) {

@@ -59,3 +59,49 @@ TEST(OrbitCamera, YawPitchAndZoomOrbitTheTarget) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(OrbitCamera, ImageCentreMovesTheTargetThereAndKeepsTheShape) {
+  const eng::Aabb box{{-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}};
+  eng::vk::OrbitCamera c = eng::vk::OrbitCamera::frame(box, 1.5f);
+  const glm::vec3 corner{1.0f, 1.0f, 1.0f};
+  const glm::vec3 centredCorner = project(c, 1.5f, corner);
+  c.imageCentre = {0.4f, -0.25f};
+  const glm::vec3 target = project(c, 1.5f, c.target);
+  EXPECT_NEAR(target.x, 0.4f, 1e-5f);
+  EXPECT_NEAR(target.y, -0.25f, 1e-5f);
+  const glm::vec3 shiftedCorner = project(c, 1.5f, corner);
+  EXPECT_NEAR(shiftedCorner.x - centredCorner.x, 0.4f, 1e-5f);  // a pure translation in the image
+  EXPECT_NEAR(shiftedCorner.y - centredCorner.y, -0.25f, 1e-5f);
+  EXPECT_NEAR(shiftedCorner.z, centredCorner.z, 1e-6f);          // depth untouched
+}
+
+TEST(OrbitCamera, FitToRegionPutsTheFramingInTheFreePartOfTheWindow) {
+  const eng::Aabb box{{-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}};
+  const float aspect = 960.0f / 600.0f;
+  const eng::vk::OrbitCamera whole = eng::vk::OrbitCamera::frame(box, aspect);
+  eng::vk::OrbitCamera region = whole;
+  // A 440-pixel panel on the left: the face belongs in x 440..960.
+  region.fitToRegion(box, {960.0f, 600.0f}, {440.0f, 0.0f}, {960.0f, 600.0f});
+  const glm::vec3 target = project(region, aspect, region.target);
+  EXPECT_NEAR((target.x + 1.0f) * 0.5f * 960.0f, 700.0f, 1e-2f);  // the region's centre column
+  EXPECT_NEAR(target.y, 0.0f, 1e-5f);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p{corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f};
+    const float x = (project(region, aspect, p).x + 1.0f) * 0.5f * 960.0f;
+    EXPECT_GE(x, 440.0f) << "corner " << corner << " is under the panel";
+    EXPECT_LE(x, 960.0f) << "corner " << corner;
+  }
+  EXPECT_LT(region.zoom, whole.zoom);  // the free part is narrower than the cube needs
+
+  // A tall, narrow box (a head) already fits beside the panel: moved, not shrunk.
+  const eng::Aabb head{{-0.3f, -1.0f, -0.3f}, {0.3f, 1.0f, 0.3f}};
+  eng::vk::OrbitCamera beside = eng::vk::OrbitCamera::frame(head, aspect);
+  beside.fitToRegion(head, {960.0f, 600.0f}, {440.0f, 0.0f}, {960.0f, 600.0f});
+  EXPECT_FLOAT_EQ(beside.zoom, 1.0f);
+  region.fitToRegion(box, {0.0f, 600.0f}, {0.0f, 0.0f}, {1.0f, 1.0f});  // degenerate image: no change
+  EXPECT_NEAR((project(region, aspect, region.target).x + 1.0f) * 0.5f * 960.0f, 700.0f, 1e-2f);
+}
+
+}  // namespace
