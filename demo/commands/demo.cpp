@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "demo/command.h"
+#include "demo/view_options.h"
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
 
@@ -27,7 +28,7 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
   app.add_option("--fps", o->fps, "Headless frame rate")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Headless length in seconds (default: one full tour)");
   app.add_option("--crowd", o->crowd, "N faces in a grid, each with its own state machine and random triggers");
-  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
+  addDeviceOption(app, o->device);
   app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();
   app.add_option("--quit-after", o->quitAfter, "Window: close after this many seconds (for tests)");
   app.add_option("--screenshot", o->screenshot,

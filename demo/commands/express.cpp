@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "demo/cli_parse.h"
 #include "demo/command.h"
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
+#include "demo/view_options.h"
 #include "engine/scene/image_io.h"
 
 namespace cli {
@@ -23,11 +23,7 @@ struct ExpressOptions {
   float intensity = 1.0f;
   std::string model;
   std::string rigmap;
-  std::string size = "512x512";
-  float yaw = 0.0f;
-  float pitch = 0.0f;
-  float zoom = 1.0f;
-  std::string device;
+  ViewOptions view;
   std::string out;
 };
 
@@ -37,9 +33,8 @@ int fail(const std::string& message) {
 }
 
 int runExpress(const ExpressOptions& o) {
-  uint32_t width = 0, height = 0;
-  if (!parseSize(o.size, width, height))
-    return fail("--size '" + o.size + "' is not WxH with 1..16384 pixels per side (e.g. 512x512)");
+  auto renderOptions = headlessRenderOptions(o.view);
+  if (!renderOptions) return fail(renderOptions.error().message);
   if (std::isnan(o.intensity)) return fail("--intensity must be a number in [0, 1], got nan");
   if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
   if (o.intensity < 0.0f || o.intensity > 1.0f)
@@ -52,8 +47,7 @@ int runExpress(const ExpressOptions& o) {
   std::vector<float> weights(face->weightCount());
   if (auto posed = face->expressionWeights(**preset, o.intensity, weights); !posed) return fail(posed.error().message);
 
-  auto renderer = HeadlessModelRenderer::create(
-      face->model(), {width, height, o.yaw, o.pitch, o.zoom, o.device});
+  auto renderer = HeadlessModelRenderer::create(face->model(), *renderOptions);
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights);
   if (!image) return fail(image.error().message);
@@ -61,7 +55,8 @@ int runExpress(const ExpressOptions& o) {
     return fail(written.error().message);
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
   std::printf("wrote %s (%s '%s' at %g, %ux%u, %s)\n", o.out.c_str(), face->name().c_str(), o.expression.c_str(),
-              std::fmin(std::fmax(o.intensity, 0.0f), 1.0f), width, height, renderer->deviceName().c_str());
+              std::fmin(std::fmax(o.intensity, 0.0f), 1.0f), renderOptions->width, renderOptions->height,
+              renderer->deviceName().c_str());
   return 0;
 }
 
@@ -72,11 +67,7 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
       ->check(CLI::Number)
       ->capture_default_str();
   addFaceOptions(app, o->model, o->rigmap);
-  app.add_option("--size", o->size, "Image size WxH")->capture_default_str();
-  app.add_option("--yaw", o->yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
-  app.add_option("--pitch", o->pitch, "Orbit pitch in degrees (+ = from above)")->capture_default_str();
-  app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
-  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
+  addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runExpress(*o); };
 });

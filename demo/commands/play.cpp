@@ -12,6 +12,7 @@
 #include "demo/face_framing.h"
 #include "demo/cli_parse.h"
 #include "demo/command.h"
+#include "demo/view_options.h"
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
 #include "demo/sequence_recorder.h"
@@ -120,7 +121,7 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();
   app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
   app.add_option("--video", o->video, "Also write an animated GIF here");
-  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
+  addDeviceOption(app, o->device);
   return [o] { return runPlay(*o); };
 });
 

@@ -11,14 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "demo/cli_parse.h"
 #include "demo/command.h"
+#include "demo/headless_model_renderer.h"
+#include "demo/view_options.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
-#include "engine/vk/context.h"
-#include "engine/vk/framing_bounds.h"
-#include "engine/vk/offscreen_renderer.h"
 
 namespace cli {
 namespace {
@@ -26,11 +24,7 @@ namespace {
 struct RenderOptions {
   std::string model;
   std::vector<std::string> weights;
-  std::string size = "512x512";
-  float yaw = 0.0f;
-  float pitch = 0.0f;
-  float zoom = 1.0f;
-  std::string device;
+  ViewOptions view;
   std::string out;
 };
 
@@ -66,10 +60,8 @@ std::string suggestNames(const std::vector<std::string>& names, const std::strin
 }
 
 int runRender(const RenderOptions& o) {
-  uint32_t width = 0, height = 0;
-  if (!parseSize(o.size, width, height))
-    return fail("--size '" + o.size + "' is not WxH with 1..16384 pixels per side (e.g. 512x512)");
-  if (!(o.zoom > 0.0f) || !std::isfinite(o.zoom)) return fail("--zoom must be a positive number");
+  auto renderOptions = headlessRenderOptions(o.view);
+  if (!renderOptions) return fail(renderOptions.error().message);
 
   auto model = eng::loadModel(o.model);
   if (!model) return fail(model.error().message);
@@ -88,26 +80,15 @@ int runRender(const RenderOptions& o) {
     }
   }
 
-  eng::vk::ContextOptions contextOptions;
-  contextOptions.device = o.device;
-  auto ctx = eng::vk::Context::create(contextOptions);
-  if (!ctx) return fail("Vulkan: " + ctx.error().message);
-  auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {width, height});
-  if (!renderer) return fail("Vulkan: " + renderer.error().message);
-  auto gpuModel = renderer->upload(*model);
-  if (!gpuModel) return fail(gpuModel.error().message);
-
-  eng::vk::SceneView view;
-  view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(*model), float(width) / float(height));
-  view.camera.yawDegrees = o.yaw;
-  view.camera.pitchDegrees = o.pitch;
-  view.camera.zoom = o.zoom;
-  const eng::vk::ModelInstance instance{&gpuModel.value(), glm::mat4(1.0f), weights};
-  auto image = renderer->render(view, {&instance, 1});
-  if (!image) return fail(o.model + ": rendering failed: " + image.error().message);
+  auto renderer = HeadlessModelRenderer::create(*model, *renderOptions);
+  if (!renderer) return fail(renderer.error().message);
+  auto image = renderer->render(weights);
+  if (!image) return fail(image.error().message);
   if (auto written = eng::writePng(o.out, image->width, image->height, image->rgba8); !written)
     return fail(written.error().message);
-  std::printf("wrote %s (%ux%u, %s)\n", o.out.c_str(), width, height, ctx->deviceInfo().name.c_str());
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  std::printf("wrote %s (%ux%u, %s)\n", o.out.c_str(), renderOptions->width, renderOptions->height,
+              renderer->deviceName().c_str());
   return 0;
 }
 
@@ -115,11 +96,7 @@ CommandRegistrar reg("render", "Render a model to a PNG, headless", [](CLI::App&
   auto o = std::make_shared<RenderOptions>();
   app.add_option("model", o->model, "glTF 2.0 file (.gltf or .glb)")->required();
   app.add_option("--weight,-w", o->weights, "Morph weight override NAME=VALUE (repeatable; all meshes with that target)");
-  app.add_option("--size", o->size, "Image size WxH")->capture_default_str();
-  app.add_option("--yaw", o->yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
-  app.add_option("--pitch", o->pitch, "Orbit pitch in degrees (+ = from above)")->capture_default_str();
-  app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
-  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring (default: FACIAL_DEVICE or automatic)");
+  addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runRender(*o); };
 });

@@ -13,6 +13,7 @@
 
 #include "demo/face_framing.h"
 #include "demo/command.h"
+#include "demo/view_options.h"
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
 #include "engine/image/contact_sheet.h"
@@ -121,7 +122,7 @@ CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expr
       ->check(CLI::Number)
       ->capture_default_str();
   app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
-  app.add_option("--device", o->device, "Vulkan device: discrete | integrated | cpu | name substring");
+  addDeviceOption(app, o->device);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runSheet(*o); };
 });

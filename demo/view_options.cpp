@@ -1,0 +1,36 @@
+#include "demo/view_options.h"
+
+#include <cmath>
+
+#include "demo/cli_parse.h"
+
+namespace cli {
+
+void addDeviceOption(CLI::App& app, std::string& device) {
+  app.add_option("--device", device,
+                 "Vulkan device: discrete | integrated | cpu | name substring (default: FACIAL_DEVICE or the best)");
+}
+
+void addViewOptions(CLI::App& app, ViewOptions& view) {
+  app.add_option("--size", view.size, "Image size WxH")->capture_default_str();
+  app.add_option("--yaw", view.yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
+  app.add_option("--pitch", view.pitch, "Orbit pitch in degrees (+ = from above)")->capture_default_str();
+  app.add_option("--zoom", view.zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
+  addDeviceOption(app, view.device);
+}
+
+eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view) {
+  HeadlessRenderOptions options;
+  if (!parseSize(view.size, options.width, options.height))
+    return eng::makeError("--size '" + view.size + "' is not WxH with 1..16384 pixels per side (e.g. 512x512)");
+  if (!(view.zoom > 0.0f) || !std::isfinite(view.zoom)) return eng::makeError("--zoom must be a positive number");
+  if (!std::isfinite(view.yaw) || !std::isfinite(view.pitch))
+    return eng::makeError("--yaw and --pitch must be finite numbers of degrees");
+  options.yawDegrees = view.yaw;
+  options.pitchDegrees = view.pitch;
+  options.zoom = view.zoom;
+  options.device = view.device;
+  return options;
+}
+
+}  // namespace cli

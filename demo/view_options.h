@@ -1,0 +1,30 @@
+#pragma once
+// The camera and device options every single-image command shares
+// (`render`, `express`), declared once with one wording, and turned into
+// HeadlessRenderOptions with the checks that name the bad option.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "demo/headless_model_renderer.h"
+#include "engine/core/result.h"
+
+namespace cli {
+
+struct ViewOptions {
+  std::string size = "512x512";
+  float yaw = 0.0f;
+  float pitch = 0.0f;
+  float zoom = 1.0f;
+  std::string device;
+};
+
+// --device alone, for commands that choose their own framing.
+void addDeviceOption(CLI::App& app, std::string& device);
+// --size --yaw --pitch --zoom --device.
+void addViewOptions(CLI::App& app, ViewOptions& view);
+
+// Size parsed, zoom/yaw/pitch checked; the error names the option and value.
+eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view);
+
+}  // namespace cli
