@@ -30,6 +30,21 @@ struct ScriptAction {
   float a = 0, b = 0;  // Intensity: a; Pad, Orbit: a, b; Resize: a x b
 };
 
+// The timed lines of any such script, before their actions are read: blank
+// lines and '#' comments dropped, the leading time checked (a number >= 0, not
+// before the previous line's). Other programs with their own actions (the
+// editor's --script) build on this and report "SOURCE:LINE: problem" alike.
+struct TimedScriptLine {
+  float time = 0.0f;
+  int line = 0;                     // 1-based, for messages
+  std::vector<std::string> words;   // the action and its arguments (at least the action)
+};
+eng::Result<std::vector<TimedScriptLine>> splitTimedScript(std::string_view text, std::string_view source);
+// The script's whole text; the error names the file.
+eng::Result<std::string> readScriptFile(const std::filesystem::path& path);
+// A finite number spelt entirely by `word`.
+bool parseScriptNumber(const std::string& word, float& value);
+
 // Errors read "SOURCE:LINE: problem" (unknown action, missing or extra
 // arguments, non-finite numbers, values out of range, times going backwards).
 eng::Result<std::vector<ScriptAction>> parseWindowScript(std::string_view text, std::string_view source);

@@ -1,5 +1,6 @@
 #include "editor/model_surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -46,6 +47,10 @@ eng::Result<void> ModelSurface::pose(const eng::Model& model, std::span<const fl
   return {};
 }
 
+namespace {
+constexpr float kEdgeSlack = 1e-5f;
+}  // namespace
+
 std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const glm::vec3& origin,
                                                 const glm::vec3& direction) const {
   std::optional<SurfaceHit> best;
@@ -58,6 +63,9 @@ std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const g
       const uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
       if (i0 >= sp.vertexCount || i1 >= sp.vertexCount || i2 >= sp.vertexCount) continue;
       // Moller-Trumbore, both faces (a click on a back-facing lip still counts).
+      // The barycentric bounds are widened by kEdgeSlack: a ray over an edge
+      // shared by two triangles (the mirror plane of a symmetric face) must
+      // not fall through both of them by rounding.
       const glm::vec3 e1 = v[i1] - v[i0], e2 = v[i2] - v[i0];
       const glm::vec3 pv = glm::cross(direction, e2);
       const float det = glm::dot(e1, pv);
@@ -65,10 +73,10 @@ std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const g
       const float inv = 1.0f / det;
       const glm::vec3 tv = origin - v[i0];
       const float u = glm::dot(tv, pv) * inv;
-      if (u < 0.0f || u > 1.0f) continue;
+      if (u < -kEdgeSlack || u > 1.0f + kEdgeSlack) continue;
       const glm::vec3 qv = glm::cross(tv, e1);
       const float w = glm::dot(direction, qv) * inv;
-      if (w < 0.0f || u + w > 1.0f) continue;
+      if (w < -kEdgeSlack || u + w > 1.0f + kEdgeSlack) continue;
       const float s = glm::dot(e2, qv) * inv;
       if (s <= 0.0f || s >= bestDistance) continue;
       bestDistance = s;
@@ -76,7 +84,8 @@ std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const g
       hit.distance = s;
       hit.primitive = p;
       hit.triangle = uint32_t(t / 3);
-      hit.barycentric = {1.0f - u - w, u, w};
+      const float bu = std::clamp(u, 0.0f, 1.0f), bw = std::clamp(w, 0.0f, 1.0f - bu);
+      hit.barycentric = {1.0f - bu - bw, bu, bw};
       hit.posedPoint = origin + s * direction;
       const glm::vec3* r = rest_.data() + sp.firstVertex;
       hit.restPoint = hit.barycentric.x * r[i0] + hit.barycentric.y * r[i1] + hit.barycentric.z * r[i2];

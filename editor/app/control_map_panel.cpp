@@ -78,6 +78,11 @@ void ControlMapPanel::setCursor(glm::vec2 cursor) {
   cursor_ = glm::clamp(cursor, glm::vec2(-1.0f), glm::vec2(1.0f));
 }
 
+void ControlMapPanel::dragCursor(glm::vec2 cursor, FaceDelegate& face) {
+  setCursor(cursor);
+  face.takeControl(FaceSource::ControlMap);
+}
+
 void ControlMapPanel::draw(FaceDelegate& face) {
   int layout = int(layout_);
   ImGui::RadioButton("4 poles (study)", &layout, 0);
@@ -93,8 +98,7 @@ void ControlMapPanel::draw(FaceDelegate& face) {
   };
   if (ImGui::IsItemActive()) {
     const ImVec2 m = ImGui::GetIO().MousePos;
-    setCursor({((m.x - origin.x) / side * 2.0f - 1.0f) / 0.85f, (1.0f - (m.y - origin.y) / side * 2.0f) / 0.85f});
-    face.takeControl(FaceSource::ControlMap);
+    dragCursor({((m.x - origin.x) / side * 2.0f - 1.0f) / 0.85f, (1.0f - (m.y - origin.y) / side * 2.0f) / 0.85f}, face);
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 end{origin.x + side, origin.y + side};

@@ -31,6 +31,8 @@ class ControlMapPanel {
 
   // Moves the cursor (clamped by the map) and takes control of the face.
   void setCursor(glm::vec2 cursor);
+  // The pad dragged to `cursor`: moves it and gives the face to the control map.
+  void dragCursor(glm::vec2 cursor, FaceDelegate& face);
   glm::vec2 cursor() const { return cursor_; }
   void setLayout(Layout layout) { layout_ = layout; }
   std::span<const float> targetWeights() const { return active().targetWeights(); }

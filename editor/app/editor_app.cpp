@@ -16,6 +16,7 @@
 #include "demo/face_setup.h"
 #include "demo/window_imgui.h"
 #include "editor/app/control_map_panel.h"
+#include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
 #include "editor/app/sculpt_panel.h"
 #include "editor/app/state_machine_panel.h"
@@ -72,6 +73,14 @@ class EditorApp : public FaceDelegate {
   int setUp(const EditorOptions& o);
   void drawPanels();
   void handleViewportInput();
+  // The viewport's mouse actions, shared by the mouse and the script.
+  bool pickAt(float px, float py);
+  bool dragSelectedByPixels(float dx, float dy);
+  void orbit(float yawDegrees, float pitchDegrees);
+  // Runs the script's actions due by `elapsed`; stops at a screenshot until it is written.
+  void runScript(float elapsed);
+  bool runAction(const EditorScriptAction& action);
+  void logTimeline() const;
   void drawControlPoints();
   eng::vk::OrbitCamera renderCamera() const;
   // World ray through a window pixel.
@@ -97,10 +106,16 @@ class EditorApp : public FaceDelegate {
   eng::Aabb bounds_;
   Layout layout_;
   std::vector<float> displayWeights_;
+  std::vector<glm::vec3> pointsOnFace_, pointsMoved_;  // control point markers, reused every frame
   eng::vk::ModelInstance instance_;
   bool orbiting_ = false;
   bool sculptDragging_ = false;
-  bool screenshotRequested_ = false;
+  fs::path defaultShot_;  // where F12 writes
+  fs::path pendingShot_;  // a screenshot asked for (F12, the script), written with the next presented frame
+  std::vector<EditorScriptAction> script_;
+  size_t nextAction_ = 0;
+  size_t failedActions_ = 0;
+  bool quitRequested_ = false;
   float frameMs_ = 0.0f;
 };
 
@@ -148,6 +163,21 @@ int EditorApp::setUp(const EditorOptions& o) {
   const bool builtIn = o.model.empty() || fs::weakly_canonical(o.model) == fs::weakly_canonical(cli::defaultModelPath());
   const std::string landmarks = builtIn ? (cli::dataDirectory() / "head_landmarks.json").string() : std::string();
   if (auto created = sculpt_.create(*setup_, landmarks); !created) return fail(created.error().message);
+  defaultShot_ = o.screenshot.empty() ? fs::path("facial-editor.png") : fs::path(o.screenshot);
+  if (!o.script.empty()) {
+    // Names the script needs are checked before the window opens.
+    auto script = loadEditorScript(o.script);
+    if (!script) return fail(script.error().message);
+    for (const EditorScriptAction& a : *script) {
+      if (a.kind == EditorScriptAction::Kind::Trigger && !machine_.hasTrigger(a.text))
+        return fail(a.source + ": no trigger parameter '" + a.text + "' in " + graphPath);
+      if (a.kind == EditorScriptAction::Kind::SculptLandmark && !sculpt_.hasLandmark(a.text))
+        return fail(a.source + ": '" + a.text + "' is not one of the sculpt panel's landmarks" +
+                    (builtIn ? " (the surface and position landmarks of data/head_landmarks.json)"
+                             : " (landmarks exist for the built-in head only)"));
+    }
+    script_ = std::move(*script);
+  }
 
   auto window = eng::vk::Window::create({.width = int(width), .height = int(height), .title = "facial editor - " + setup_->name()});
   if (!window) return fail("window: " + window.error().message);
@@ -215,14 +245,12 @@ void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& directio
 
 void EditorApp::handleViewportInput() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false)) screenshotRequested_ = true;
+  if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false) && pendingShot_.empty()) pendingShot_ = defaultShot_;
   timeline_->handleShortcuts();
   const bool overViewport = !io.WantCaptureMouse;
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && overViewport) {
     if (sculpt_.pickMode()) {
-      glm::vec3 origin, direction;
-      rayAt(io.MousePos.x, io.MousePos.y, origin, direction);
-      sculpt_.pick(origin, direction, faceWeights());
+      pickAt(io.MousePos.x, io.MousePos.y);
     } else if (io.KeyShift && sculpt_.hasSelection()) {
       sculptDragging_ = true;
     } else {
@@ -230,27 +258,100 @@ void EditorApp::handleViewportInput() {
     }
   }
   if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = sculptDragging_ = false;
-  if (orbiting_) {
-    view_.camera.yawDegrees -= 0.3f * io.MouseDelta.x;
-    view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + 0.3f * io.MouseDelta.y, -80.0f, 80.0f);
-  }
-  if (sculptDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
-    // Screen-plane drag: pixels to world units at the face's depth.
-    const eng::vk::OrbitCamera camera = renderCamera();
-    const float d = camera.distance / std::max(camera.zoom, 1e-3f);
-    const float worldPerPixel = 2.0f * d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / layout_.height;
-    const glm::vec3 forward = glm::normalize(camera.target - camera.position());
-    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
-    const glm::vec3 up = glm::cross(right, forward);
-    sculpt_.dragSelected(worldPerPixel * (io.MouseDelta.x * right - io.MouseDelta.y * up));
-  }
+  if (orbiting_) orbit(-0.3f * io.MouseDelta.x, 0.3f * io.MouseDelta.y);
+  if (sculptDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
+    dragSelectedByPixels(io.MouseDelta.x, io.MouseDelta.y);
   if (overViewport && io.MouseWheel != 0.0f)
     view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
 }
 
+bool EditorApp::pickAt(float px, float py) {
+  glm::vec3 origin, direction;
+  rayAt(px, py, origin, direction);
+  return sculpt_.pick(origin, direction, faceWeights());
+}
+
+bool EditorApp::dragSelectedByPixels(float dx, float dy) {
+  // Screen-plane drag: pixels to world units at the face's depth.
+  const eng::vk::OrbitCamera camera = renderCamera();
+  const float d = camera.distance / std::max(camera.zoom, 1e-3f);
+  const float worldPerPixel = 2.0f * d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / layout_.height;
+  const glm::vec3 forward = glm::normalize(camera.target - camera.position());
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  const glm::vec3 up = glm::cross(right, forward);
+  return sculpt_.dragSelected(worldPerPixel * (dx * right - dy * up));
+}
+
+void EditorApp::orbit(float yawDegrees, float pitchDegrees) {
+  view_.camera.yawDegrees += yawDegrees;
+  view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + pitchDegrees, -80.0f, 80.0f);
+}
+
+void EditorApp::logTimeline() const {
+  const TimelineDocument& doc = timeline_->document();
+  size_t keys = 0;
+  for (const DocumentTrack& track : doc.tracks()) keys += track.keys.size();
+  std::printf("timeline: %zu tracks, %zu keys, %zu selected, playhead %.3f s%s\n", doc.tracks().size(), keys,
+              doc.selection().size(), timeline_->playhead(), doc.dirty() ? ", modified" : "");
+}
+
+bool EditorApp::runAction(const EditorScriptAction& a) {
+  using Kind = EditorScriptAction::Kind;
+  switch (a.kind) {
+    case Kind::Trigger: return machine_.pressTrigger(a.text, *this);
+    case Kind::Pad: controlMap_.dragCursor({a.a, a.b}, *this); return true;
+    case Kind::Orbit: orbit(a.a, a.b); return true;
+    case Kind::TimelineOpen: return timeline_->open(a.text);
+    case Kind::TimelineSeek: timeline_->seek(a.a, *this); return true;
+    case Kind::TimelineKeyAll: return timeline_->keyAll(*this);
+    case Kind::TimelineKey: return timeline_->selectTrack(a.text) && timeline_->keyTrack(*this);
+    case Kind::TimelineMoveSelected: return timeline_->moveSelected(a.a, a.b, *this);
+    case Kind::TimelineDelete: return timeline_->deleteSelected();
+    case Kind::Undo: return timeline_->undo();
+    case Kind::Redo: return timeline_->redo();
+    case Kind::TimelineSave: return timeline_->save(a.text);
+    case Kind::SculptPick:
+      sculpt_.setPickMode(true);  // as ticking "Pick points on the face" before the click
+      return pickAt(a.a, a.b);
+    case Kind::SculptLandmark: return sculpt_.pressAddLandmark(a.text);
+    case Kind::SculptMove: return sculpt_.dragSelected({a.a, a.b, a.c});
+    case Kind::SculptDrag:
+      sculpt_.setPickMode(false);  // Shift+drag moves points only outside pick mode
+      return dragSelectedByPixels(a.a, a.b);
+    case Kind::SculptKernel: {
+      const facial::RbfKernelType type = a.text == "biharmonic"     ? facial::RbfKernelType::Biharmonic
+                                         : a.text == "polyharmonic" ? facial::RbfKernelType::Polyharmonic
+                                                                    : facial::RbfKernelType::Multiquadric;
+      return sculpt_.chooseKernel(type, a.hasNumber ? a.a : 0.0f);
+    }
+    case Kind::SculptBake: return sculpt_.pressBake(a.text);
+    case Kind::SculptSave: return sculpt_.pressSave(a.text);
+    case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
+    case Kind::Quit: quitRequested_ = true; return true;
+  }
+  return false;
+}
+
+void EditorApp::runScript(float elapsed) {
+  // A screenshot waits for its frame: it shows everything scripted before it
+  // and nothing after, however slow the frames.
+  for (; nextAction_ < script_.size() && script_[nextAction_].time <= elapsed && pendingShot_.empty() && !quitRequested_;
+       ++nextAction_) {
+    const EditorScriptAction& a = script_[nextAction_];
+    std::printf("script %.2f s: %s\n", a.time, a.source.substr(a.source.rfind(": ") + 2).c_str());
+    std::fflush(stdout);
+    if (!runAction(a)) {
+      ++failedActions_;
+      std::fprintf(stderr, "facial-editor: error: %s: failed (see above)\n", a.source.c_str());
+    }
+    const int k = int(a.kind);
+    if (k >= int(EditorScriptAction::Kind::TimelineOpen) && k <= int(EditorScriptAction::Kind::TimelineSave)) logTimeline();
+  }
+}
+
 void EditorApp::drawControlPoints() {
-  const auto points = sculpt_.points();
-  if (points.empty()) return;
+  if (sculpt_.points().empty()) return;
+  sculpt_.pointsOnFace(faceWeights(), pointsOnFace_, pointsMoved_);
   const eng::vk::OrbitCamera camera = renderCamera();
   const glm::mat4 clip = camera.projection(layout_.width / layout_.height) * camera.view();
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
@@ -260,14 +361,20 @@ void EditorApp::drawControlPoints() {
     out = {(c.x / c.w * 0.5f + 0.5f) * layout_.width, (c.y / c.w * 0.5f + 0.5f) * layout_.height};
     return true;
   };
-  for (size_t i = 0; i < points.size(); ++i) {
+  // A dark rim keeps the markers readable on light skin.
+  const ImU32 rim = IM_COL32(20, 24, 32, 220);
+  for (size_t i = 0; i < pointsOnFace_.size(); ++i) {
     ImVec2 rest, moved;
-    if (!toScreen(points[i].rest, rest) || !toScreen(points[i].rest + points[i].displacement, moved)) continue;
+    if (!toScreen(pointsOnFace_[i], rest) || !toScreen(pointsMoved_[i], moved)) continue;
     const bool selected = int(i) == sculpt_.selected();
     const ImU32 colour = selected ? IM_COL32(255, 180, 60, 255) : IM_COL32(90, 200, 255, 255);
+    const float radius = selected ? 5.0f : 4.0f;
+    draw->AddLine(rest, moved, rim, 3.5f);
     draw->AddLine(rest, moved, colour, 1.5f);
-    draw->AddCircle(rest, 3.0f, colour);
-    draw->AddCircleFilled(moved, selected ? 5.0f : 4.0f, colour);
+    draw->AddCircle(rest, 3.5f, rim, 12, 2.5f);
+    draw->AddCircle(rest, 3.5f, colour, 12, 1.2f);
+    draw->AddCircleFilled(moved, radius + 1.5f, rim, 16);
+    draw->AddCircleFilled(moved, radius, colour, 16);
   }
 }
 
@@ -326,6 +433,8 @@ int EditorApp::run(const EditorOptions& o) {
     layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
     ui_->beginFrame();
     handleViewportInput();
+    runScript(elapsed);
+    if (quitRequested_) finalFrame = true;
     machine_.update(dt);
     controlMap_.update(dt);
     timeline_->update(dt);
@@ -342,20 +451,17 @@ int EditorApp::run(const EditorOptions& o) {
     eng::vk::FrameInput frame{view_, {&instance_, 1}};
     frame.view.camera = renderCamera();
     frame.overlay = cli::ImGuiLayer::recorder();
-    fs::path shot;
-    if (finalFrame && !o.screenshot.empty()) {
-      shot = o.screenshot;
-    } else if (screenshotRequested_) {
-      shot = o.screenshot.empty() ? fs::path("facial-editor.png") : fs::path(o.screenshot);
-      screenshotRequested_ = false;
-    }
+    const fs::path shot = finalFrame && !o.screenshot.empty() ? fs::path(o.screenshot) : pendingShot_;
     frame.screenshot = shot;
     auto drawn = renderer_->drawFrame(frame);
     if (!drawn) {
       exitCode = fail("frame: " + drawn.error().message);
       break;
     }
-    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) std::printf("screenshot: %s\n", shot.c_str());
+    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) {
+      std::printf("screenshot: %s\n", shot.c_str());
+      if (shot == pendingShot_) pendingShot_.clear();
+    }
     if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
       break;
   }
@@ -365,6 +471,10 @@ int EditorApp::run(const EditorOptions& o) {
   ui_.reset();
   if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)
     return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  if (nextAction_ < script_.size() && exitCode == 0)
+    std::printf("facial-editor: closed before %zu scripted action(s) ran\n", script_.size() - nextAction_);
+  if (failedActions_ > 0 && exitCode == 0)
+    return fail(std::to_string(failedActions_) + " scripted action(s) failed (" + o.script + ")");
   return exitCode;
 }
 

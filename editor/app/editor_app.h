@@ -16,6 +16,7 @@ struct EditorOptions {
   std::string trigger;   // fired on the state machine at start
   float quitAfter = 0.0f;
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12
+  std::string script;      // timed actions (editor_script.h)
 };
 
 int runEditor(const EditorOptions& options);

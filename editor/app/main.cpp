@@ -1,5 +1,5 @@
 // facial-editor [--model M.glb] [--rigmap map.json] [--graph G.json] [--timeline T.json]
-//               [--quit-after S] [--screenshot out.png] [--device D]
+//               [--quit-after S] [--screenshot out.png] [--script actions.txt] [--device D]
 #include <CLI/CLI.hpp>
 
 #include "editor/app/editor_app.h"
@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   app.add_option("--trigger", o.trigger, "Fire this state machine trigger at start (e.g. happy)");
   app.add_option("--quit-after", o.quitAfter, "Close after this many seconds (tests)");
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");
+  app.add_option("--script", o.script,
+                 "Timed actions through the panels' own handlers, one a line: SECONDS ACTION ARGS "
+                 "(trigger, pad, timeline-*, undo, redo, sculpt-*, screenshot, quit; see README)");
   CLI11_PARSE(app, argc, argv);
   return editor::runEditor(o);
 }

@@ -99,13 +99,127 @@ bool SculptPanel::pick(const glm::vec3& origin, const glm::vec3& direction, std:
     return false;
   }
   const auto hit = surface_->raycast(working_, origin, direction);
-  if (!hit) return false;
-  auto added = sculpt_->addPoint("", hit->restPoint);
+  if (!hit) {
+    message_.report("no face under the cursor: nothing picked", true);
+    return false;
+  }
+  auto added = addPoint("", hit->restPoint, hit);
   if (!added) {
     message_.report(added.error().message, true);
     return false;
   }
+  reportPoint(*added);
+  return true;
+}
+
+eng::Result<size_t> SculptPanel::addPoint(const std::string& name, const glm::vec3& rest, const std::optional<SurfaceHit>& hit) {
+  auto added = sculpt_->addPoint(name, rest);
+  if (!added) return added;
+  std::optional<SurfaceAnchor> anchor;
+  if (hit) {
+    const SurfacePrimitive& sp = surface_->primitives()[hit->primitive];
+    const auto& indices = working_.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)].indices;
+    anchor = SurfaceAnchor{hit->primitive, {}, hit->barycentric};
+    for (int k = 0; k < 3; ++k) anchor->corner[k] = indices[size_t(hit->triangle) * 3 + size_t(k)];
+  }
+  anchors_.resize(sculpt_->points().size());
+  anchors_[*added] = anchor;
   selected_ = int(*added);
+  return added;
+}
+
+void SculptPanel::removePoint(size_t index) {
+  if (!sculpt_->removePoint(index)) return;
+  if (index < anchors_.size()) anchors_.erase(anchors_.begin() + std::ptrdiff_t(index));
+  selected_ = -1;
+}
+
+void SculptPanel::clearPoints() {
+  sculpt_->clearPoints();
+  anchors_.clear();
+  selected_ = -1;
+}
+
+void SculptPanel::pointsOnFace(std::span<const float> faceWeights, std::vector<glm::vec3>& onFace, std::vector<glm::vec3>& moved) {
+  const auto points = sculpt_->points();
+  onFace.resize(points.size());
+  moved.resize(points.size());
+  workingWeights(faceWeights, workingScratch_);
+  for (size_t i = 0; i < points.size(); ++i) {
+    onFace[i] = points[i].rest;
+    if (i < anchors_.size() && anchors_[i]) {
+      // The three corners morphed by the weights on screen (the GPU's sum, for three vertices).
+      const SurfaceAnchor& a = *anchors_[i];
+      const SurfacePrimitive& sp = surface_->primitives()[a.primitive];
+      const eng::Primitive& primitive = working_.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)];
+      const std::span<const float> weights = workingLayout_->meshWeights(workingScratch_, sp.mesh);
+      glm::vec3 local{0.0f};
+      for (int k = 0; k < 3; ++k) {
+        glm::vec3 corner = primitive.positions[a.corner[k]];
+        for (size_t t = 0; t < primitive.targets.size() && t < weights.size(); ++t)
+          if (weights[t] != 0.0f && a.corner[k] < primitive.targets[t].positions.size())
+            corner += weights[t] * primitive.targets[t].positions[a.corner[k]];
+        local += a.barycentric[k] * corner;
+      }
+      onFace[i] = glm::vec3(sp.world * glm::vec4(local, 1.0f));
+    }
+    moved[i] = onFace[i] + points[i].displacement;
+  }
+}
+
+void SculptPanel::reportPoint(size_t index) {
+  const SculptPoint& p = sculpt_->points()[index];
+  char text[160];
+  const std::string name = p.name.empty() ? "point " + std::to_string(index + 1) : p.name;
+  std::snprintf(text, sizeof text, "control point '%s' at (%.5f, %.5f, %.5f)", name.c_str(), p.rest.x, p.rest.y, p.rest.z);
+  message_.report(text, false);
+}
+
+bool SculptPanel::hasLandmark(const std::string& name) const {
+  return std::any_of(landmarks_.begin(), landmarks_.end(), [&](const Landmark& l) { return l.name == name; });
+}
+
+bool SculptPanel::pressAddLandmark(const std::string& name) {
+  auto added = addLandmark(name);
+  if (!added) {
+    message_.report(added.error().message, true);
+    return false;
+  }
+  reportPoint(*added);
+  return true;
+}
+
+bool SculptPanel::chooseKernel(facial::RbfKernelType type, float c) {
+  facial::RbfKernel kernel;
+  kernel.type = type;
+  kernel.k = 1;
+  kernel.c = c > 0.0f ? c : multiquadricC_;
+  if (auto ok = sculpt_->setKernel(kernel); !ok) {
+    message_.report(ok.error().message, true);
+    return false;
+  }
+  kernelChoice_ = type == facial::RbfKernelType::Biharmonic ? 0 : type == facial::RbfKernelType::Polyharmonic ? 1 : 2;
+  multiquadricC_ = kernel.c;
+  return true;
+}
+
+bool SculptPanel::pressBake(const std::string& name) {
+  std::snprintf(bakeName_, sizeof bakeName_, "%s", name.c_str());
+  if (auto baked = bake(name); !baked) {
+    message_.report(baked.error().message, true);
+    return false;
+  }
+  message_.report("baked morph target '" + name + "'", false);
+  return true;
+}
+
+bool SculptPanel::pressSave(const std::string& path) {
+  std::snprintf(savePath_, sizeof savePath_, "%s", path.c_str());
+  if (auto saved = saveModel(path); !saved) {
+    message_.report(saved.error().message, true);
+    return false;
+  }
+  message_.report("saved " + path, false);
   return true;
 }
 
@@ -113,22 +227,28 @@ eng::Result<size_t> SculptPanel::addLandmark(const std::string& name) {
   const auto it = std::find_if(landmarks_.begin(), landmarks_.end(), [&](const Landmark& l) { return l.name == name; });
   if (it == landmarks_.end()) return eng::makeError("no landmark named '" + name + "'");
   glm::vec3 point = it->rayOrigin;
+  std::optional<SurfaceHit> hit;
   if (it->onSurface) {
     std::fill(workingScratch_.begin(), workingScratch_.end(), 0.0f);
     if (auto posed = surface_->pose(working_, workingScratch_); !posed) return posed.error();  // the rest pose
-    const auto hit = surface_->raycast(working_, it->rayOrigin, {0.0f, 0.0f, -1.0f});
+    hit = surface_->raycast(working_, it->rayOrigin, {0.0f, 0.0f, -1.0f});
     if (!hit) return eng::makeError("landmark '" + name + "' does not project onto this model's surface");
     point = hit->restPoint;
   }
-  auto added = sculpt_->addPoint(name, point);
-  if (added) selected_ = int(*added);
-  return added;
+  return addPoint(name, point, hit);
 }
 
-void SculptPanel::dragSelected(const glm::vec3& worldDelta) {
-  if (selected_ < 0 || size_t(selected_) >= sculpt_->points().size()) return;
+bool SculptPanel::dragSelected(const glm::vec3& worldDelta) {
+  if (selected_ < 0 || size_t(selected_) >= sculpt_->points().size()) {
+    message_.report("no control point selected to move", true);
+    return false;
+  }
   const glm::vec3 d = sculpt_->points()[size_t(selected_)].displacement + worldDelta;
-  if (auto ok = sculpt_->setDisplacement(size_t(selected_), d); !ok) message_.report(ok.error().message, true);
+  if (auto ok = sculpt_->setDisplacement(size_t(selected_), d); !ok) {
+    message_.report(ok.error().message, true);
+    return false;
+  }
+  return true;
 }
 
 eng::Result<void> SculptPanel::bake(const std::string& name) {
@@ -163,8 +283,7 @@ void SculptPanel::draw() {
       ImGui::EndCombo();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Add landmark"))
-      if (auto added = addLandmark(landmarks_[size_t(landmarkChoice_)].name); !added) message_.report(added.error().message, true);
+    if (ImGui::Button("Add landmark")) pressAddLandmark(landmarks_[size_t(landmarkChoice_)].name);
   }
 
   // Control points.
@@ -183,19 +302,13 @@ void SculptPanel::draw() {
     glm::vec3 d = points[size_t(selected_)].displacement;
     ImGui::SetNextItemWidth(-60.0f);
     if (ImGui::DragFloat3("move", &d.x, 0.0005f * size_, -0.5f * size_, 0.5f * size_, "%.4f"))
-      (void)sculpt_->setDisplacement(size_t(selected_), d);
+      dragSelected(d - points[size_t(selected_)].displacement);
     if (ImGui::Button("Reset point")) (void)sculpt_->setDisplacement(size_t(selected_), glm::vec3(0.0f));
     ImGui::SameLine();
-    if (ImGui::Button("Remove point")) {
-      (void)sculpt_->removePoint(size_t(selected_));
-      selected_ = -1;
-    }
+    if (ImGui::Button("Remove point")) removePoint(size_t(selected_));
     ImGui::SameLine();
   }
-  if (ImGui::Button("Clear all")) {
-    sculpt_->clearPoints();
-    selected_ = -1;
-  }
+  if (ImGui::Button("Clear all")) clearPoints();
 
   // Kernel.
   ImGui::SetNextItemWidth(-60.0f);
@@ -204,15 +317,11 @@ void SculptPanel::draw() {
     ImGui::SetNextItemWidth(-60.0f);
     kernelChanged |= ImGui::DragFloat("c", &multiquadricC_, 0.001f * size_, 1e-4f * size_, size_, "%.4f");
   }
-  if (kernelChanged) {
-    facial::RbfKernel kernel;
-    kernel.type = kernelChoice_ == 0 ? facial::RbfKernelType::Biharmonic
-                  : kernelChoice_ == 1 ? facial::RbfKernelType::Polyharmonic
-                                       : facial::RbfKernelType::Multiquadric;
-    kernel.k = 1;
-    kernel.c = multiquadricC_;
-    if (auto ok = sculpt_->setKernel(kernel); !ok) message_.report(ok.error().message, true);
-  }
+  if (kernelChanged)
+    chooseKernel(kernelChoice_ == 0   ? facial::RbfKernelType::Biharmonic
+                 : kernelChoice_ == 1 ? facial::RbfKernelType::Polyharmonic
+                                      : facial::RbfKernelType::Multiquadric,
+                 multiquadricC_);
   bool pins = sculpt_->pinsEnabled();
   if (ImGui::Checkbox("Pin the box corners", &pins)) sculpt_->setPinsEnabled(pins);
   ImGui::SameLine();
@@ -225,22 +334,12 @@ void SculptPanel::draw() {
   ImGui::SetNextItemWidth(-60.0f);
   ImGui::InputText("##bakename", bakeName_, sizeof bakeName_);
   ImGui::SameLine();
-  if (ImGui::Button("Bake")) {
-    if (auto baked = bake(bakeName_); baked)
-      message_.report(std::string("baked morph target '") + bakeName_ + "'", false);
-    else
-      message_.report(baked.error().message, true);
-  }
+  if (ImGui::Button("Bake")) pressBake(bakeName_);
   for (auto& [name, weight] : baked_) ImGui::SliderFloat(name.c_str(), &weight, 0.0f, 1.0f);
   ImGui::SetNextItemWidth(-90.0f);
   ImGui::InputText("##savepath", savePath_, sizeof savePath_);
   ImGui::SameLine();
-  if (ImGui::Button("Save .glb")) {
-    if (auto saved = saveModel(savePath_); saved)
-      message_.report(std::string("saved ") + savePath_, false);
-    else
-      message_.report(saved.error().message, true);
-  }
+  if (ImGui::Button("Save .glb")) pressSave(savePath_);
   message_.draw();
 }
 

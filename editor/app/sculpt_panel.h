@@ -29,11 +29,22 @@ class SculptPanel {
   void draw();
 
   // Viewport hooks (the app turns mouse input into world rays and deltas).
+  // Each returns false after reporting why in the panel (and the log).
   bool pickMode() const { return pickMode_; }
-  // Adds a point where the ray meets the face as shown (faceWeights: the face layout).
+  void setPickMode(bool on) { pickMode_ = on; }
+  // Adds a point where the ray meets the face as shown (faceWeights: the face layout) and selects it.
   bool pick(const glm::vec3& origin, const glm::vec3& direction, std::span<const float> faceWeights);
   bool hasSelection() const { return selected_ >= 0; }
-  void dragSelected(const glm::vec3& worldDelta);
+  // Moves the selected point by a world-space delta (Shift+drag, the XYZ drags).
+  bool dragSelected(const glm::vec3& worldDelta);
+
+  // What the widgets do (the --script runs these too); false after reporting why.
+  bool pressAddLandmark(const std::string& name);
+  bool hasLandmark(const std::string& name) const;
+  // The kernel combo (and c for the multiquadric; c <= 0 keeps the current c).
+  bool chooseKernel(facial::RbfKernelType type, float c);
+  bool pressBake(const std::string& name);
+  bool pressSave(const std::string& path);
 
   // What to draw: changes revision when the model to upload changes.
   uint64_t displayRevision() const { return displayRevision_; }
@@ -44,6 +55,10 @@ class SculptPanel {
   void refresh();
 
   std::span<const SculptPoint> points() const { return sculpt_->points(); }
+  // Where the points are on the face as shown (faceWeights: the face layout):
+  // `onFace` follows the face's targets (expressions, baked sculpts) from the
+  // triangle each point was picked on, `moved` adds the point's displacement.
+  void pointsOnFace(std::span<const float> faceWeights, std::vector<glm::vec3>& onFace, std::vector<glm::vec3>& moved);
   int selected() const { return selected_; }
   float modelSize() const { return size_; }
   // For tests and scripted runs.
@@ -54,6 +69,11 @@ class SculptPanel {
 
  private:
   void workingWeights(std::span<const float> faceWeights, std::span<float> out) const;
+  void reportPoint(size_t index);
+  // Adds a point (and where it sits on the surface, for pointsOnFace) and selects it.
+  eng::Result<size_t> addPoint(const std::string& name, const glm::vec3& rest, const std::optional<SurfaceHit>& hit);
+  void removePoint(size_t index);
+  void clearPoints();
   void rebuildWorkingLayout();
 
   const cli::FaceSetup* face_ = nullptr;
@@ -76,6 +96,14 @@ class SculptPanel {
     bool onSurface;
   };
   std::vector<Landmark> landmarks_;
+  // Per point: the triangle corners (indices into the surface's flat vertex
+  // arrays) and barycentric weights it was picked at; none for points off the surface.
+  struct SurfaceAnchor {
+    size_t primitive = 0;  // into surface_->primitives()
+    uint32_t corner[3] = {0, 0, 0};
+    glm::vec3 barycentric{0.0f};
+  };
+  std::vector<std::optional<SurfaceAnchor>> anchors_;
   int landmarkChoice_ = 0;
   int kernelChoice_ = 0;
   float multiquadricC_ = 0.1f;

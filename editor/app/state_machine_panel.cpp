@@ -53,11 +53,21 @@ std::string StateMachinePanel::currentState() const {
   return node->states[status->current].name;
 }
 
-bool StateMachinePanel::fire(std::string_view trigger) {
+bool StateMachinePanel::hasTrigger(std::string_view trigger) const {
   if (!driver_) return false;
   const auto p = driver_->graph().definition().findParameter(trigger);
-  if (!p || driver_->graph().definition().parameters()[*p].type != facial::ParameterType::Trigger) return false;
-  return driver_->graph().setTrigger(*p);
+  return p && driver_->graph().definition().parameters()[*p].type == facial::ParameterType::Trigger;
+}
+
+bool StateMachinePanel::pressTrigger(std::string_view trigger, FaceDelegate& face) {
+  if (!fire(trigger)) return false;
+  face.takeControl(FaceSource::StateMachine);
+  return true;
+}
+
+bool StateMachinePanel::fire(std::string_view trigger) {
+  if (!hasTrigger(trigger)) return false;
+  return driver_->graph().setTrigger(*driver_->graph().definition().findParameter(trigger));
 }
 
 void StateMachinePanel::draw(FaceDelegate& face) {
@@ -113,10 +123,7 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     if (decl.type != facial::ParameterType::Trigger) continue;
     if (shown++ % 3 != 0) ImGui::SameLine();
     ImGui::PushID(int(p));
-    if (ImGui::Button(decl.name.c_str(), {92.0f, 0.0f})) {
-      graph.setTrigger(p);
-      face.takeControl(FaceSource::StateMachine);
-    }
+    if (ImGui::Button(decl.name.c_str(), {92.0f, 0.0f})) pressTrigger(decl.name, face);
     ImGui::PopID();
   }
   ImGui::Separator();

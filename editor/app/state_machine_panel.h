@@ -26,6 +26,9 @@ class StateMachinePanel {
   std::string currentState() const;
   // Fires a trigger parameter by name; false when the graph has none.
   bool fire(std::string_view trigger);
+  bool hasTrigger(std::string_view trigger) const;
+  // A trigger button: fires it and gives the face to the state machine.
+  bool pressTrigger(std::string_view trigger, FaceDelegate& face);
 
  private:
   const cli::FaceSetup* face_ = nullptr;

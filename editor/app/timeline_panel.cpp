@@ -84,11 +84,72 @@ void TimelinePanel::refreshPose() {
   posedTime_ = playhead_;
 }
 
-void TimelinePanel::addKeys(FaceDelegate& face, bool allTracks) {
+void TimelinePanel::seek(float time, FaceDelegate& face) {
+  setPlayhead(time);
+  playing_ = false;
+  face.takeControl(FaceSource::Timeline);
+}
+
+bool TimelinePanel::selectTrack(std::string_view channel) {
+  const auto track = document_.findTrack(channel);
+  if (!track) {
+    message_.report("no track on channel '" + std::string(channel) + "'", true);
+    return false;
+  }
+  currentTrack_ = int(*track);
+  return true;
+}
+
+bool TimelinePanel::moveSelected(float dt, float dv, FaceDelegate& face) {
+  if (document_.selection().empty()) {
+    message_.report("no keys selected to move", true);
+    return false;
+  }
+  if (auto moved = document_.moveSelectedBy(dt, dv); !moved) {
+    message_.report(moved.error().message, true);
+    return false;
+  }
+  face.takeControl(FaceSource::Timeline);
+  return true;
+}
+
+bool TimelinePanel::deleteSelected() {
+  if (document_.selection().empty()) {
+    message_.report("no keys selected to delete", true);
+    return false;
+  }
+  if (auto deleted = document_.deleteSelected(); !deleted) {
+    message_.report(deleted.error().message, true);
+    return false;
+  }
+  return true;
+}
+
+bool TimelinePanel::undo() {
+  const std::string label(document_.undoLabel());
+  if (!document_.undo()) {
+    message_.report("nothing to undo", true);
+    return false;
+  }
+  message_.report("undo: " + label, false);
+  return true;
+}
+
+bool TimelinePanel::redo() {
+  const std::string label(document_.redoLabel());
+  if (!document_.redo()) {
+    message_.report("nothing to redo", true);
+    return false;
+  }
+  message_.report("redo: " + label, false);
+  return true;
+}
+
+bool TimelinePanel::addKeys(FaceDelegate& face, bool allTracks) {
   const auto interpolation = facial::KeyInterpolation(newKeyInterpolation_);
   if (document_.tracks().empty() || (!allTracks && currentTrack_ < 0)) {
     message_.report("add a track first (pick a channel, then 'Add track')", true);
-    return;
+    return false;
   }
   std::vector<KeyId> added;
   const size_t first = allTracks ? 0 : size_t(currentTrack_);
@@ -98,23 +159,21 @@ void TimelinePanel::addKeys(FaceDelegate& face, bool allTracks) {
     auto key = document_.setKey(t, playhead_, value, interpolation);
     if (!key) {
       message_.report(key.error().message, true);
-      return;
+      return false;
     }
     added.push_back(*key);
   }
   document_.clearSelection();
   for (KeyId id : added) document_.select(id, true);
+  return true;
 }
 
 void TimelinePanel::handleShortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput) return;
-  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false)) {
-    if (io.KeyShift ? document_.redo() : document_.undo()) message_.report(io.KeyShift ? "redo" : "undo", false);
-  }
-  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false)) document_.redo();
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) && !document_.selection().empty())
-    (void)document_.deleteSelected();
+  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false)) io.KeyShift ? redo() : undo();
+  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false)) redo();
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) && !document_.selection().empty()) deleteSelected();
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false) && !io.WantCaptureKeyboard) playing_ = !playing_;
 }
 
@@ -155,27 +214,25 @@ void TimelinePanel::drawToolbar(FaceDelegate& face) {
   ImGui::TextDisabled("|");
   ImGui::SameLine();
   if (!document_.canUndo()) ImGui::BeginDisabled();
-  if (ImGui::Button("Undo")) document_.undo();
+  if (ImGui::Button("Undo")) undo();
   if (!document_.canUndo()) ImGui::EndDisabled();
   ImGui::SameLine();
   if (!document_.canRedo()) ImGui::BeginDisabled();
-  if (ImGui::Button("Redo")) document_.redo();
+  if (ImGui::Button("Redo")) redo();
   if (!document_.canRedo()) ImGui::EndDisabled();
 
   // Keys.
-  if (ImGui::Button("Key track")) {
-    addKeys(face, false);
-  }
+  if (ImGui::Button("Key track")) keyTrack(face);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key the selected track at the playhead with the value on screen");
   ImGui::SameLine();
-  if (ImGui::Button("Key all")) addKeys(face, true);
+  if (ImGui::Button("Key all")) keyAll(face);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80.0f);
   ImGui::Combo("new keys", &newKeyInterpolation_, kInterpolationNames, 4);
   ImGui::SameLine();
   const bool hasSelection = !document_.selection().empty();
   if (!hasSelection) ImGui::BeginDisabled();
-  if (ImGui::Button("Delete")) (void)document_.deleteSelected();
+  if (ImGui::Button("Delete")) deleteSelected();
   ImGui::SameLine();
   int selectedInterpolation = -1;
   if (hasSelection)
@@ -294,9 +351,7 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
       document_.moveSelected((mouse.x - dragStartX_) / pxPerSecond, -(mouse.y - dragStartY_) * valuePerPixel);
       face.takeControl(FaceSource::Timeline);
     } else if (scrubbing_) {
-      setPlayhead((mouse.x - canvasLeft) / pxPerSecond);
-      playing_ = false;
-      face.takeControl(FaceSource::Timeline);
+      seek((mouse.x - canvasLeft) / pxPerSecond, face);
     }
   } else {
     if (draggingKeys_) document_.endMove();

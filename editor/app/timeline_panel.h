@@ -36,10 +36,25 @@ class TimelinePanel {
   bool playing() const { return playing_; }
   void setPlaying(bool playing) { playing_ = playing; }
 
+  // What the widgets and shortcuts do (the --script runs these too). Each
+  // returns false after reporting why in the panel (and the log).
+  // Scrubbing the ruler: the playhead stops there and the timeline drives the face.
+  void seek(float time, FaceDelegate& face);
+  // Clicking a track's name.
+  bool selectTrack(std::string_view channel);
+  // "Key track" / "Key all": keys at the playhead with the values on screen, selected.
+  bool keyTrack(FaceDelegate& face) { return addKeys(face, false); }
+  bool keyAll(FaceDelegate& face) { return addKeys(face, true); }
+  // One drag of the selected keys by dt seconds and dv value (one undo step).
+  bool moveSelected(float dt, float dv, FaceDelegate& face);
+  bool deleteSelected();
+  bool undo();
+  bool redo();
+
  private:
   void drawToolbar(FaceDelegate& face);
   void drawTracks(FaceDelegate& face);
-  void addKeys(FaceDelegate& face, bool allTracks);
+  bool addKeys(FaceDelegate& face, bool allTracks);
   void refreshPose();
 
   TimelineDocument document_;

@@ -2,59 +2,22 @@
 // for a few seconds with --quit-after / --screenshot and checks the last
 // frame (face in the middle, the four panels drawn around it) and that the
 // validation layer stayed silent.
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
+#include "tests/editor/editor_run.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using editor_test::pixel;
+using editor_test::ranCleanly;
+using editor_test::runEditor;
 
-bool onPath(const char* program) {
-  return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-struct EditorRun {
-  int exitCode = -1;
-  std::string log;
-  eng::Image shot;
-  bool shotRead = false;
-};
-
-EditorRun runEditor(const fs::path& dir, const std::string& arguments) {
-  EditorRun run;
-  const fs::path program = fs::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
-  const fs::path shot = dir / "editor.png", log = dir / "editor.log";
-  const std::string command = "cd '" + dir.string() + "' && FACIAL_VALIDATION=1 xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                              program.string() + "' " + arguments + " --quit-after 4 --screenshot '" + shot.string() +
-                              "' >'" + log.string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  run.log = text.str();
-  if (auto image = eng::readImage(shot)) {
-    run.shot = std::move(*image);
-    run.shotRead = true;
-  }
-  return run;
-}
-
-glm::ivec3 pixel(const eng::Image& image, int x, int y) {
-  const size_t i = (size_t(y) * size_t(image.width) + size_t(x)) * 4;
-  return {image.rgba8[i], image.rgba8[i + 1], image.rgba8[i + 2]};
-}
-
-int distance(glm::ivec3 a, glm::ivec3 b) { return std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z); }
+int distance(glm::ivec3 a, glm::ivec3 b) { return editor_test::colourDistance(a, b); }
 
 // Fraction of pixels in [x0,x1) x [y0,y1) that differ from `reference` by more than 60.
 double differingFraction(const eng::Image& image, int x0, int y0, int x1, int y1, glm::ivec3 reference) {
@@ -88,18 +51,6 @@ double darkFraction(const eng::Image& image, int x0, int y0, int x1, int y1) {
   return double(dark) / double(std::max<size_t>(total, 1));
 }
 
-::testing::AssertionResult ranCleanly(const EditorRun& run) {
-  if (run.exitCode != 0) return ::testing::AssertionFailure() << "exit code " << run.exitCode << ":\n" << run.log;
-  if (run.log.find("validation on") == std::string::npos)
-    return ::testing::AssertionFailure() << "Vulkan validation was not active:\n" << run.log;
-  if (run.log.find("vulkan validation:") != std::string::npos)
-    return ::testing::AssertionFailure() << "Vulkan validation messages:\n" << run.log;
-  if (!run.shotRead) return ::testing::AssertionFailure() << "no screenshot:\n" << run.log;
-  if (run.shot.width != 1280 || run.shot.height != 800)
-    return ::testing::AssertionFailure() << "screenshot is " << run.shot.width << "x" << run.shot.height;
-  return ::testing::AssertionSuccess();
-}
-
 // The layout at 1280x800: columns of 320 px, a 240 px timeline strip.
 void expectFaceAndPanels(const eng::Image& shot) {
   // Viewport (x 320..960, y 0..560): the backdrop's colour just inside its top-right corner.
@@ -123,10 +74,10 @@ void expectFaceAndPanels(const eng::Image& shot) {
 }
 
 TEST(EditorWindow, BuiltInHeadWithAllPanels) {
-  if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed: the editor window cannot run headless";
+  REQUIRE_XVFB();
   const fs::path dir = testing_support::freshTempDir("editor_window_head");
   const fs::path timeline = testing_support::sourceDir() / "data" / "timelines" / "talk.json";
-  const EditorRun run = runEditor(dir, "--trigger happy --timeline '" + timeline.string() + "'");
+  const editor_test::EditorRun run = runEditor(dir, "--trigger happy --timeline '" + timeline.string() + "'");
   ASSERT_TRUE(ranCleanly(run));
   EXPECT_NE(run.log.find("state happy"), std::string::npos) << run.log;
   EXPECT_NE(run.log.find("3 timeline tracks"), std::string::npos) << run.log;
@@ -137,19 +88,19 @@ TEST(EditorWindow, BuiltInHeadWithAllPanels) {
 
 TEST(EditorWindow, ArkitFaceFromShared) {
   FACIAL_REQUIRE_SHARED();
-  if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed: the editor window cannot run headless";
+  REQUIRE_XVFB();
   const fs::path dir = testing_support::freshTempDir("editor_window_facecap");
-  const EditorRun run = runEditor(dir, "--model '" + (testing_support::sharedDir() / "assets" / "facecap.glb").string() + "' --trigger surprise");
+  const editor_test::EditorRun run = runEditor(dir, "--model '" + (testing_support::sharedDir() / "assets" / "facecap.glb").string() + "' --trigger surprise");
   ASSERT_TRUE(ranCleanly(run));
   EXPECT_NE(run.log.find("ARKit"), std::string::npos) << run.log;
   expectFaceAndPanels(run.shot);
 }
 
 TEST(EditorWindow, ABrokenTimelineIsAnErrorNamingTheFile) {
-  if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
+  REQUIRE_XVFB();
   const fs::path dir = testing_support::freshTempDir("editor_window_broken");
   testing_support::writeFile(dir / "broken.json", "{\"version\": 1, \"tracks\": 7}");
-  const EditorRun run = runEditor(dir, "--timeline '" + (dir / "broken.json").string() + "'");
+  const editor_test::EditorRun run = runEditor(dir, "--timeline '" + (dir / "broken.json").string() + "'");
   EXPECT_NE(run.exitCode, 0);
   EXPECT_NE(run.log.find("broken.json"), std::string::npos) << run.log;
 }

@@ -233,6 +233,30 @@ TEST(SculptModel, TheSavedGlbReloadsWithTheNewTarget) {
   EXPECT_NEAR(world.z, 0.25f, 1e-4f);
 }
 
+// A ray along the head's mirror plane runs exactly over the shared edges of
+// the midline triangles, where rounding can put it outside both neighbours;
+// the pick must still land on the front of the face (the editor's click on
+// the nose once went through to the back of the head).
+TEST(ModelSurface, RaysAlongTheMidlineSeamHitTheFrontOfTheFace) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  auto surface = ModelSurface::create(*model);
+  ASSERT_TRUE(surface);
+  int misses = 0, backHits = 0, rays = 0;
+  // Slightly tilted rays, as from a perspective camera in front of the face.
+  for (float y = -0.06f; y <= 0.06f; y += 0.0025f)
+    for (const float tilt : {-0.08f, -0.03f, 0.0f, 0.03f, 0.08f}) {
+      const glm::vec3 origin{0.0f, y, 0.28f};
+      const glm::vec3 direction = glm::normalize(glm::vec3(0.0f, tilt, -1.0f));
+      ++rays;
+      const auto hit = surface->raycast(*model, origin, direction);
+      if (!hit) ++misses;
+      else if (hit->restPoint.z < 0.0f) ++backHits;
+    }
+  EXPECT_EQ(misses, 0) << "of " << rays;
+  EXPECT_EQ(backHits, 0) << "of " << rays << " midline rays went through the face to the back of the head";
+}
+
 TEST(SculptModel, BuiltInHeadBakesAcrossAllItsPrimitives) {
   auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(model) << model.error().message;
@@ -243,6 +267,7 @@ TEST(SculptModel, BuiltInHeadBakesAcrossAllItsPrimitives) {
   const eng::Aabb bounds = model->bounds();
   auto hit = surface->raycast(*model, {0.0f, -0.0215f, bounds.max.z + 1.0f}, {0.0f, 0.0f, -1.0f});
   ASSERT_TRUE(hit);
+  EXPECT_GT(hit->restPoint.z, bounds.max.z - 0.02f) << "the front of the face, not the back of the head";
   ASSERT_TRUE(sculpt.addPoint("nose_tip", hit->restPoint));
   ASSERT_TRUE(sculpt.setDisplacement(0, {0.0f, 0.0f, 0.01f}));
   const size_t targetsBefore = model->meshes[0].targetNames.size();

@@ -1,0 +1,134 @@
+#include "editor/app/editor_script.h"
+
+#include <cmath>
+
+#include "demo/window_script.h"
+
+namespace editor {
+
+namespace {
+
+using Kind = EditorScriptAction::Kind;
+
+struct Verb {
+  std::string_view word;
+  Kind kind;
+  // Arguments: 'w' a word (name or path), 'n' a number; those after '?' may be left out.
+  std::string_view arguments;
+};
+constexpr Verb kVerbs[] = {
+    {"trigger", Kind::Trigger, "w"},
+    {"pad", Kind::Pad, "nn"},
+    {"orbit", Kind::Orbit, "nn"},
+    {"timeline-open", Kind::TimelineOpen, "w"},
+    {"timeline-seek", Kind::TimelineSeek, "n"},
+    {"timeline-key-all", Kind::TimelineKeyAll, ""},
+    {"timeline-key", Kind::TimelineKey, "w"},
+    {"timeline-move-selected", Kind::TimelineMoveSelected, "nn"},
+    {"timeline-delete", Kind::TimelineDelete, ""},
+    {"undo", Kind::Undo, ""},
+    {"redo", Kind::Redo, ""},
+    {"timeline-save", Kind::TimelineSave, "w"},
+    {"sculpt-pick", Kind::SculptPick, "nn"},
+    {"sculpt-landmark", Kind::SculptLandmark, "w"},
+    {"sculpt-move", Kind::SculptMove, "nnn"},
+    {"sculpt-drag", Kind::SculptDrag, "nn"},
+    {"sculpt-kernel", Kind::SculptKernel, "w?n"},
+    {"sculpt-bake", Kind::SculptBake, "w"},
+    {"sculpt-save", Kind::SculptSave, "w"},
+    {"screenshot", Kind::Screenshot, "?w"},
+    {"quit", Kind::Quit, ""},
+};
+
+std::string verbList() {
+  std::string list;
+  for (const Verb& v : kVerbs) list += (list.empty() ? "" : ", ") + std::string(v.word);
+  return list;
+}
+
+}  // namespace
+
+const char* editorScriptActionWord(Kind kind) {
+  for (const Verb& v : kVerbs)
+    if (v.kind == kind) return v.word.data();
+  return "?";
+}
+
+eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view text, std::string_view source) {
+  auto lines = cli::splitTimedScript(text, source);
+  if (!lines) return lines.error();
+  std::vector<EditorScriptAction> actions;
+  for (const cli::TimedScriptLine& timed : *lines) {
+    const std::string where = std::string(source) + ":" + std::to_string(timed.line) + ": ";
+    auto fail = [&](const std::string& problem) { return eng::makeError(where + problem); };
+    const std::vector<std::string>& words = timed.words;
+    const Verb* verb = nullptr;
+    for (const Verb& v : kVerbs)
+      if (v.word == words[0]) verb = &v;
+    if (!verb) return fail("unknown action '" + words[0] + "' (" + verbList() + ")");
+
+    const std::string_view spec = verb->arguments;
+    const size_t optionalAt = spec.find('?');
+    const size_t required = optionalAt == std::string_view::npos ? spec.size() : optionalAt;
+    const size_t most = spec.size() - (optionalAt == std::string_view::npos ? 0 : 1);
+    const size_t given = words.size() - 1;
+    if (given < required || given > most)
+      return fail("'" + words[0] + "' takes " +
+                  (required == most ? std::to_string(most) : std::to_string(required) + " or " + std::to_string(most)) +
+                  " argument(s), got " + std::to_string(given));
+
+    EditorScriptAction action;
+    action.time = timed.time;
+    action.line = timed.line;
+    action.kind = verb->kind;
+    action.source = where;
+    for (const std::string& w : words) action.source += (&w == &words[0] ? "" : " ") + w;
+    float* numbers[] = {&action.a, &action.b, &action.c};
+    size_t nextNumber = 0;
+    size_t argument = 1;
+    for (const char type : spec) {
+      if (type == '?') continue;
+      if (argument > given) break;
+      const std::string& word = words[argument++];
+      if (type == 'w') {
+        action.text = word;
+      } else {
+        if (!cli::parseScriptNumber(word, *numbers[nextNumber]))
+          return fail("'" + word + "' is not a finite number");
+        ++nextNumber;
+      }
+    }
+    action.hasNumber = nextNumber > 0;
+
+    switch (action.kind) {
+      case Kind::Pad:
+        if (std::abs(action.a) > 1.0f || std::abs(action.b) > 1.0f)
+          return fail("pad " + words[1] + " " + words[2] + " is outside [-1, 1]^2");
+        break;
+      case Kind::TimelineSeek:
+        if (action.a < 0.0f) return fail("timeline-seek " + words[1] + " is before 0 s");
+        break;
+      case Kind::SculptPick:
+        if (action.a < 0.0f || action.b < 0.0f) return fail("sculpt-pick " + words[1] + " " + words[2] + " is not a window pixel");
+        break;
+      case Kind::SculptKernel:
+        if (action.text != "biharmonic" && action.text != "polyharmonic" && action.text != "multiquadric")
+          return fail("unknown kernel '" + action.text + "' (biharmonic, polyharmonic, multiquadric)");
+        if (action.text != "multiquadric" && action.hasNumber)
+          return fail("only the multiquadric kernel takes a shape parameter c");
+        if (action.hasNumber && action.a <= 0.0f) return fail("multiquadric c " + words[2] + " must be > 0");
+        break;
+      default: break;
+    }
+    actions.push_back(std::move(action));
+  }
+  return actions;
+}
+
+eng::Result<std::vector<EditorScriptAction>> loadEditorScript(const std::filesystem::path& path) {
+  auto text = cli::readScriptFile(path);
+  if (!text) return text.error();
+  return parseEditorScript(*text, path.string());
+}
+
+}  // namespace editor

@@ -1,0 +1,63 @@
+#pragma once
+// `facial-editor --script FILE`: timed actions that go through the same panel
+// handlers as the buttons, keys and mouse, so a test, a demo or a batch bake
+// can drive the whole editor. The line format (seconds, '#' comments, times in
+// ascending order, errors "FILE:LINE: problem") is the window demo's
+// (demo/window_script.h); the actions are the editor's own:
+//
+//   0.5 trigger happy              a state machine trigger button
+//   0.8 pad 0.7 -0.2               the control map pad's cursor ([-1, 1]^2)
+//   1.0 orbit 20 -5                turn the camera (yaw / pitch degrees), as a drag in the view
+//   1.2 timeline-open T.json       the timeline panel's Open
+//   1.4 timeline-seek 0.5          scrub the playhead (the timeline drives the face)
+//   1.5 timeline-key-all           "Key all": every track at the playhead, value on screen
+//   1.6 timeline-key AU12          select the track, then "Key track"
+//   1.7 timeline-move-selected 0.1 0.2   drag the selected keys by dt seconds and dv value
+//   1.8 timeline-delete            the Delete key
+//   1.9 undo / redo                Ctrl+Z / Ctrl+Y
+//   2.0 timeline-save OUT.json     Save (through a temporary sibling)
+//   2.2 sculpt-pick 600 280        a click on the face at that window pixel in pick mode
+//   2.3 sculpt-landmark nose_tip   "Add landmark" (built-in head)
+//   2.4 sculpt-move 0 0.01 0       the selected point's XYZ drags (model units)
+//   2.5 sculpt-drag 40 -10         Shift+drag in the view by pixels (screen plane)
+//   2.6 sculpt-kernel multiquadric 0.02   biharmonic | polyharmonic | multiquadric [c]
+//   2.8 sculpt-bake smirk          Bake as a named morph target
+//   3.0 sculpt-save OUT.glb        Save .glb
+//   3.2 screenshot shot.png        as F12 (no path: where F12 writes); later actions wait for it
+//   3.5 quit                       close the window (the --screenshot frame is still written)
+//
+// Paths are one word (no spaces), relative to the working folder. An action
+// that fails at run time (a pick that misses, a save that cannot write) is
+// reported like the button's failure, the script goes on, and the program
+// exits with status 1.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/result.h"
+
+namespace editor {
+
+struct EditorScriptAction {
+  enum class Kind {
+    Trigger, Pad, Orbit,
+    TimelineOpen, TimelineSeek, TimelineKeyAll, TimelineKey, TimelineMoveSelected, TimelineDelete, Undo, Redo, TimelineSave,
+    SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptBake, SculptSave,
+    Screenshot, Quit,
+  };
+  float time = 0.0f;
+  int line = 0;
+  Kind kind = Kind::Quit;
+  std::string text;                      // the name or path argument ("" when none)
+  float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
+  bool hasNumber = false;                // sculpt-kernel: c was given
+  std::string source;                    // "FILE:LINE: ACTION ARGS" for messages
+};
+
+const char* editorScriptActionWord(EditorScriptAction::Kind kind);
+
+eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view text, std::string_view source);
+eng::Result<std::vector<EditorScriptAction>> loadEditorScript(const std::filesystem::path& path);
+
+}  // namespace editor
