@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include "editor/timeline_document.h"
 #include "engine/scene/gltf_loader.h"
@@ -176,6 +177,122 @@ TEST(EditorScript, SculptPickMovePreviewBakeAndSave) {
   std::printf("facial render crooked_nose=1 vs 0: %.3f over the image, %.3f in the corner\n", rendered, renderedCorner);
   EXPECT_GT(rendered, 0.2) << "the render shows the baked target";
   EXPECT_LT(renderedCorner, 0.05);
+}
+
+// ---------------------------------------------------------------------------
+// Timeline
+
+// The keys of a timeline file as (channel, time, value), loaded by the runtime's own reader.
+struct SavedKey {
+  std::string channel;
+  float time, value;
+};
+std::vector<SavedKey> savedKeys(const fs::path& path) {
+  auto timeline = facial::loadTimeline(path);
+  if (!timeline) {
+    ADD_FAILURE() << timeline.error().message;
+    return {};
+  }
+  std::vector<SavedKey> keys;
+  for (size_t t = 0; t < timeline->tracks.size(); ++t)
+    for (const facial::Keyframe& k : timeline->trackKeys(t)) keys.push_back({timeline->tracks[t].channel, k.time, k.value});
+  return keys;
+}
+
+TEST(EditorScript, TimelineKeyMoveDeleteUndoRedoAndSave) {
+  REQUIRE_XVFB();
+  const fs::path dir = testing_support::freshTempDir("editor_script_timeline");
+  const fs::path source = testing_support::sourceDir() / "data" / "timelines" / "talk.json";
+  fs::copy_file(source, dir / "talk.json");
+  // A save that cannot complete: the temporary sibling it writes first is a
+  // folder in the way, so the write fails and the old file must survive.
+  testing_support::writeFile(dir / "blocked.json", "old content\n");
+  fs::create_directory(dir / "blocked.saving.json");
+  testing_support::writeFile(dir / "timeline.txt",
+                             "0.2 timeline-open talk.json\n"
+                             "0.3 timeline-seek 0.5\n"
+                             "0.4 timeline-key-all\n"
+                             "0.5 timeline-move-selected 0.1 0.2\n"
+                             "0.6 screenshot keyed.png\n"
+                             "0.7 timeline-delete\n"
+                             "0.8 undo\n"
+                             "0.9 redo\n"
+                             "1.0 timeline-save after_redo.json\n"
+                             "1.1 undo\n"
+                             "1.2 timeline-save edited.json\n"
+                             "1.3 timeline-save no_such_folder/edited.json\n"
+                             "1.4 timeline-save blocked.json\n"
+                             "1.5 quit\n");
+  const editor_test::EditorRun run = runEditor(dir, "--script timeline.txt", 20.0f);
+  // Two saves were meant to fail: reported, the script went on, exit status 1.
+  EXPECT_EQ(run.exitCode, 1) << run.log;
+  ASSERT_TRUE(editor_test::validationSilent(run));
+  EXPECT_NE(run.log.find("2 scripted action(s) failed (timeline.txt)"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("error: timeline.txt:12: timeline-save no_such_folder/edited.json: failed"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("error: timeline.txt:13: timeline-save blocked.json: failed"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("no_such_folder/edited.json"), std::string::npos) << run.log;
+  EXPECT_FALSE(fs::exists(dir / "no_such_folder")) << "a failed save creates nothing";
+  EXPECT_EQ(editor_test::readText(dir / "blocked.json"), "old content\n") << "a failed save keeps the old file";
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".saving"), std::string::npos) << "left behind: " << entry.path();
+  EXPECT_EQ(editor_test::readText(source), editor_test::readText(dir / "talk.json")) << "the opened file was not saved over";
+
+  // After every timeline action the editor logs the document; the key count follows the edits.
+  std::vector<int> counts;
+  for (const std::smatch& m : logMatches(run.log, R"(timeline: 3 tracks, (\d+) keys)")) counts.push_back(std::stoi(m[1]));
+  // open, seek, key all, move, delete, undo, redo, save, undo, save, save (fails), save (fails)
+  EXPECT_EQ(counts, (std::vector<int>{27, 27, 30, 30, 27, 30, 27, 27, 30, 30, 30, 30})) << run.log;
+
+  // The keys: the original 27, plus one per track keyed at 0.5 s with the
+  // value on screen (the timeline's own curve there), moved to 0.6 s and up by 0.2.
+  auto original = editor::TimelineDocument::load(source);
+  ASSERT_TRUE(original) << original.error().message;
+  const std::vector<SavedKey> before = savedKeys(source), afterRedo = savedKeys(dir / "after_redo.json"),
+                              edited = savedKeys(dir / "edited.json");
+  ASSERT_EQ(before.size(), 27u);
+  ASSERT_EQ(afterRedo.size(), 27u) << "redo deleted the new keys again";
+  for (size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(afterRedo[i].channel, before[i].channel);
+    EXPECT_NEAR(afterRedo[i].time, before[i].time, 1e-5f);
+    EXPECT_NEAR(afterRedo[i].value, before[i].value, 1e-5f);
+  }
+  ASSERT_EQ(edited.size(), 30u);
+  for (size_t track = 0; track < original->tracks().size(); ++track) {
+    const std::string& channel = original->tracks()[track].channel;
+    const float expected = std::clamp(original->sample(track, 0.5f) + 0.2f, 0.0f, 1.0f);
+    int found = 0;
+    for (const SavedKey& k : edited) {
+      if (k.channel != channel) continue;
+      EXPECT_GT(std::abs(k.time - 0.5f), 1e-4f) << channel << ": the key moved away from 0.5 s";
+      if (std::abs(k.time - 0.6f) < 1e-4f) {
+        ++found;
+        EXPECT_NEAR(k.value, expected, 1e-4f) << channel;
+      }
+    }
+    EXPECT_EQ(found, 1) << channel << " has its moved key at 0.6 s";
+  }
+}
+
+TEST(EditorScript, ABrokenScriptIsRefusedNamingFileAndLine) {
+  // Parsed before the window opens: no display needed.
+  const fs::path dir = testing_support::freshTempDir("editor_script_broken");
+  const fs::path program = fs::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
+  const auto refusal = [&](const std::string& script) {
+    testing_support::writeFile(dir / "bad.txt", script);
+    const std::string command = "cd '" + dir.string() + "' && DISPLAY= '" + program.string() + "' --script bad.txt >log.txt 2>&1";
+    const int status = std::system(command.c_str());
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
+    return editor_test::readText(dir / "log.txt");
+  };
+  EXPECT_NE(refusal("0.5 sculpt-pick 10 10\n1.0 sculpt-wiggle 3\n").find("bad.txt:2: unknown action 'sculpt-wiggle'"),
+            std::string::npos);
+  EXPECT_NE(refusal("1 sculpt-move 0 1\n").find("bad.txt:1: 'sculpt-move' takes 3 argument(s), got 2"), std::string::npos);
+  EXPECT_NE(refusal("1 sculpt-kernel gaussian\n").find("bad.txt:1: unknown kernel 'gaussian'"), std::string::npos);
+  EXPECT_NE(refusal("1 timeline-seek nan\n").find("bad.txt:1: 'nan' is not a finite number"), std::string::npos);
+  EXPECT_NE(refusal("2 undo\n1 redo\n").find("bad.txt:2: time 1 s comes before the previous action's"), std::string::npos);
+  EXPECT_NE(refusal("1 trigger giggle\n").find("bad.txt:1: trigger giggle: no trigger parameter 'giggle'"), std::string::npos);
+  EXPECT_NE(refusal("1 sculpt-landmark mouth_corner_L\n").find("'mouth_corner_L' is not one of the sculpt panel's landmarks"),
+            std::string::npos);
 }
 
 }  // namespace
