@@ -346,6 +346,11 @@ void EditorApp::runScript(float elapsed) {
     }
     const int k = int(a.kind);
     if (k >= int(EditorScriptAction::Kind::TimelineOpen) && k <= int(EditorScriptAction::Kind::TimelineSave)) logTimeline();
+    if ((a.kind == EditorScriptAction::Kind::SculptMove || a.kind == EditorScriptAction::Kind::SculptDrag) && sculpt_.hasSelection()) {
+      const SculptPoint& p = sculpt_.points()[size_t(sculpt_.selected())];
+      std::printf("sculpt: '%s' displaced by (%.5f, %.5f, %.5f)\n", p.name.c_str(), p.displacement.x, p.displacement.y,
+                  p.displacement.z);
+    }
   }
 }
 

@@ -51,7 +51,6 @@ std::vector<std::smatch> logMatches(const std::string& log, const std::string& p
 // At 1280x800 the face fills the viewport (x 320..960, y 0..560): the nose
 // tip is about here.
 constexpr int kNoseX = 640, kNoseY = 316;
-const glm::vec3 kMove{0.008f, 0.0f, 0.006f};  // to the face's left (screen right) and out
 
 TEST(EditorScript, SculptPickMovePreviewBakeAndSave) {
   REQUIRE_XVFB();
@@ -67,8 +66,8 @@ TEST(EditorScript, SculptPickMovePreviewBakeAndSave) {
                              anchors +
                              "0.3 sculpt-pick " + std::to_string(kNoseX) + " " + std::to_string(kNoseY) + "  # the nose tip\n"
                              "0.4 screenshot unsculpted.png\n"
-                             "0.5 sculpt-move " + std::to_string(kMove.x) + " " + std::to_string(kMove.y) + " " +
-                             std::to_string(kMove.z) + "\n"
+                             "0.5 sculpt-move 0 0 0.006   # out of the face (the XYZ drags)\n"
+                             "0.5 sculpt-drag 15 0        # to screen right (Shift+drag in the view)\n"
                              "0.6 screenshot sculpted.png\n"
                              "0.7 sculpt-kernel multiquadric 0.02\n"
                              "0.8 screenshot multiquadric.png\n"
@@ -90,6 +89,16 @@ TEST(EditorScript, SculptPickMovePreviewBakeAndSave) {
   const eng::Aabb bounds = original->bounds();
   EXPECT_NEAR(picked.x, 0.0f, 0.002f) << run.log;
   EXPECT_GT(picked.z, bounds.max.z - 0.004f) << "the nose tip, not somewhere behind it:\n" << run.log;
+  // The XYZ move, then the screen-plane drag: from the front, screen right is +x.
+  const auto moves = logMatches(run.log, R"(sculpt: 'point 11' displaced by \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\))");
+  ASSERT_EQ(moves.size(), 2u) << run.log;
+  const glm::vec3 xyzMove{std::stof(moves[0][1]), std::stof(moves[0][2]), std::stof(moves[0][3])};
+  const glm::vec3 kMove{std::stof(moves[1][1]), std::stof(moves[1][2]), std::stof(moves[1][3])};
+  EXPECT_EQ(xyzMove, glm::vec3(0.0f, 0.0f, 0.006f));
+  EXPECT_GT(kMove.x, 0.004f) << "15 pixels to the right on a head about 450 pixels tall";
+  EXPECT_LT(kMove.x, 0.012f);
+  EXPECT_NEAR(kMove.y, 0.0f, 1e-5f);
+  EXPECT_NEAR(kMove.z, 0.006f, 1e-5f);
 
   // The preview bends the nose and leaves the face away from it alone.
   const eng::Image before = readShot(dir / "unsculpted.png"), after = readShot(dir / "sculpted.png");
@@ -209,27 +218,30 @@ TEST(EditorScript, TimelineKeyMoveDeleteUndoRedoAndSave) {
   testing_support::writeFile(dir / "blocked.json", "old content\n");
   fs::create_directory(dir / "blocked.saving.json");
   testing_support::writeFile(dir / "timeline.txt",
+                             "0.1 trigger happy\n"
                              "0.2 timeline-open talk.json\n"
-                             "0.3 timeline-seek 0.5\n"
-                             "0.4 timeline-key-all\n"
-                             "0.5 timeline-move-selected 0.1 0.2\n"
-                             "0.6 screenshot keyed.png\n"
-                             "0.7 timeline-delete\n"
-                             "0.8 undo\n"
-                             "0.9 redo\n"
-                             "1.0 timeline-save after_redo.json\n"
-                             "1.1 undo\n"
-                             "1.2 timeline-save edited.json\n"
-                             "1.3 timeline-save no_such_folder/edited.json\n"
-                             "1.4 timeline-save blocked.json\n"
-                             "1.5 quit\n");
+                             "0.2 pad 0 1                 # the control map's surprise pole drives the face\n"
+                             "0.9 timeline-key AU26_JawDrop  # its jaw keyed at the playhead (0 s, over the key there)\n"
+                             "1.0 timeline-seek 0.5\n"
+                             "1.1 timeline-key-all\n"
+                             "1.2 timeline-move-selected 0.1 0.2\n"
+                             "1.3 screenshot keyed.png\n"
+                             "1.4 timeline-delete\n"
+                             "1.5 undo\n"
+                             "1.6 redo\n"
+                             "1.7 timeline-save after_redo.json\n"
+                             "1.8 undo\n"
+                             "1.9 timeline-save edited.json\n"
+                             "2.0 timeline-save no_such_folder/edited.json\n"
+                             "2.1 timeline-save blocked.json\n"
+                             "2.2 quit\n");
   const editor_test::EditorRun run = runEditor(dir, "--script timeline.txt", 20.0f);
   // Two saves were meant to fail: reported, the script went on, exit status 1.
   EXPECT_EQ(run.exitCode, 1) << run.log;
   ASSERT_TRUE(editor_test::validationSilent(run));
   EXPECT_NE(run.log.find("2 scripted action(s) failed (timeline.txt)"), std::string::npos) << run.log;
-  EXPECT_NE(run.log.find("error: timeline.txt:12: timeline-save no_such_folder/edited.json: failed"), std::string::npos) << run.log;
-  EXPECT_NE(run.log.find("error: timeline.txt:13: timeline-save blocked.json: failed"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("error: timeline.txt:15: timeline-save no_such_folder/edited.json: failed"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("error: timeline.txt:16: timeline-save blocked.json: failed"), std::string::npos) << run.log;
   EXPECT_NE(run.log.find("no_such_folder/edited.json"), std::string::npos) << run.log;
   EXPECT_FALSE(fs::exists(dir / "no_such_folder")) << "a failed save creates nothing";
   EXPECT_EQ(editor_test::readText(dir / "blocked.json"), "old content\n") << "a failed save keeps the old file";
@@ -240,8 +252,9 @@ TEST(EditorScript, TimelineKeyMoveDeleteUndoRedoAndSave) {
   // After every timeline action the editor logs the document; the key count follows the edits.
   std::vector<int> counts;
   for (const std::smatch& m : logMatches(run.log, R"(timeline: 3 tracks, (\d+) keys)")) counts.push_back(std::stoi(m[1]));
-  // open, seek, key all, move, delete, undo, redo, save, undo, save, save (fails), save (fails)
-  EXPECT_EQ(counts, (std::vector<int>{27, 27, 30, 30, 27, 30, 27, 27, 30, 30, 30, 30})) << run.log;
+  // open, key (over the key at 0 s), seek, key all, move, delete, undo, redo, save, undo, save, save (fails), save (fails)
+  EXPECT_EQ(counts, (std::vector<int>{27, 27, 27, 30, 30, 27, 30, 27, 27, 30, 30, 30, 30})) << run.log;
+  EXPECT_NE(run.log.find("state happy"), std::string::npos) << "the trigger button's path:\n" << run.log;
 
   // The keys: the original 27, plus one per track keyed at 0.5 s with the
   // value on screen (the timeline's own curve there), moved to 0.6 s and up by 0.2.
@@ -251,7 +264,11 @@ TEST(EditorScript, TimelineKeyMoveDeleteUndoRedoAndSave) {
                               edited = savedKeys(dir / "edited.json");
   ASSERT_EQ(before.size(), 27u);
   ASSERT_EQ(afterRedo.size(), 27u) << "redo deleted the new keys again";
-  for (size_t i = 0; i < before.size(); ++i) {
+  // The jaw key at 0 s holds the control map's surprise (its jaw drops); the rest are as loaded.
+  ASSERT_EQ(afterRedo[0].channel, "AU26_JawDrop");
+  EXPECT_EQ(afterRedo[0].time, 0.0f);
+  EXPECT_GT(afterRedo[0].value, 0.1f) << "keyed from the face on screen (the control map's surprise)";
+  for (size_t i = 1; i < before.size(); ++i) {
     EXPECT_EQ(afterRedo[i].channel, before[i].channel);
     EXPECT_NEAR(afterRedo[i].time, before[i].time, 1e-5f);
     EXPECT_NEAR(afterRedo[i].value, before[i].value, 1e-5f);
