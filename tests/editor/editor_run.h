@@ -9,7 +9,6 @@
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
@@ -46,13 +45,18 @@ inline EditorRun runEditor(const std::filesystem::path& dir, const std::string& 
   namespace fs = std::filesystem;
   EditorRun run;
   const fs::path program = fs::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
-  const fs::path shot = dir / "editor.png", log = dir / "editor.log";
-  const std::string command = "cd '" + dir.string() + "' && FACIAL_VALIDATION=1 xvfb-run -a -s '-screen 0 1280x800x24' '" +
+  const fs::path shot = dir / "editor.png", log = dir / "editor.log", status = dir / "editor.status";
+  // The program's own exit status goes to a file: xvfb-run's would replace it
+  // with 5 when its clean-up of the temporary X authority fails.
+  const std::string command = "cd '" + dir.string() + "' && FACIAL_VALIDATION=1 xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"'" +
                               program.string() + "' " + arguments + " --quit-after " + std::to_string(seconds) +
-                              " --screenshot '" + shot.string() + "' >'" + log.string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+                              " --screenshot '" + shot.string() + "' >'" + log.string() + "' 2>&1; echo \\$? >'" +
+                              status.string() + "'\" >'" + (dir / "xvfb-run.log").string() + "' 2>&1";
+  fs::remove(status);
+  (void)std::system(command.c_str());
+  if (const std::string code = readText(status); !code.empty()) run.exitCode = std::stoi(code);
   run.log = readText(log);
+  if (run.exitCode == -1) run.log += "\n(no exit status; xvfb-run said:)\n" + readText(dir / "xvfb-run.log");
   if (auto image = eng::readImage(shot)) {
     run.shot = std::move(*image);
     run.shotRead = true;

@@ -103,7 +103,7 @@ TEST(EditorScript, SculptPickMovePreviewBakeAndSave) {
   // The preview bends the nose and leaves the face away from it alone.
   const eng::Image before = readShot(dir / "unsculpted.png"), after = readShot(dir / "sculpted.png");
   const eng::Image multiquadric = readShot(dir / "multiquadric.png"), baked = readShot(dir / "baked.png");
-  ASSERT_FALSE(HasFailure());
+  for (const eng::Image* shot : {&before, &after, &multiquadric, &baked}) ASSERT_EQ(shot->width, 1280);
   // Pixels that changed clearly (the texture under a sub-pixel shift changes a little everywhere).
   const auto changed = [](const eng::Image& a, const eng::Image& b, int x0, int y0, int x1, int y1) {
     size_t count = 0, total = 0;
