@@ -338,7 +338,7 @@ void EditorApp::runScript(float elapsed) {
   for (; nextAction_ < script_.size() && script_[nextAction_].time <= elapsed && pendingShot_.empty() && !quitRequested_;
        ++nextAction_) {
     const EditorScriptAction& a = script_[nextAction_];
-    std::printf("script %.2f s: %s\n", a.time, a.source.substr(a.source.rfind(": ") + 2).c_str());
+    std::printf("script %.2f s: %s\n", a.time, a.written.c_str());
     std::fflush(stdout);
     if (!runAction(a)) {
       ++failedActions_;

@@ -81,8 +81,8 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     action.time = timed.time;
     action.line = timed.line;
     action.kind = verb->kind;
-    action.source = where;
-    for (const std::string& w : words) action.source += (&w == &words[0] ? "" : " ") + w;
+    for (const std::string& w : words) action.written += (action.written.empty() ? "" : " ") + w;
+    action.source = where + action.written;
     float* numbers[] = {&action.a, &action.b, &action.c};
     size_t nextNumber = 0;
     size_t argument = 1;

@@ -52,6 +52,7 @@ struct EditorScriptAction {
   std::string text;                      // the name or path argument ("" when none)
   float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
   bool hasNumber = false;                // sculpt-kernel: c was given
+  std::string written;                   // "ACTION ARGS" as in the file
   std::string source;                    // "FILE:LINE: ACTION ARGS" for messages
 };
 
