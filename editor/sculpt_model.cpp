@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/scene/normals.h"
 #include "engine/scene/weights.h"
@@ -82,6 +83,15 @@ eng::Result<void> SculptModel::setKernel(const facial::RbfKernel& kernel) {
   return {};
 }
 
+eng::Result<void> SculptModel::setFalloffRadius(float radius) {
+  if (!std::isfinite(radius) || radius < 0.0f)
+    return eng::makeError("falloff radius must be a finite number >= 0 (got " + std::to_string(radius) + ")");
+  if (radius == falloffRadius_) return {};
+  falloffRadius_ = radius;
+  ++layoutRevision_;
+  return {};
+}
+
 void SculptModel::setPinsEnabled(bool enabled) {
   if (enabled == pinsEnabled_) return;
   pinsEnabled_ = enabled;
@@ -101,6 +111,18 @@ eng::Result<void> SculptModel::prepare() {
                           (pinsEnabled_ ? "" : " (turning the pins on adds eight fixed points)"));
   }
   deformer_.emplace(std::move(*deformer));
+  falloff_.clear();
+  if (falloffRadius_ > 0.0f) {
+    // 1 within half the radius of the nearest control point, smoothly 0 at the radius.
+    falloff_.resize(vertices_.size());
+    const float inner = 0.5f * falloffRadius_;
+    for (size_t v = 0; v < vertices_.size(); ++v) {
+      float nearest = std::numeric_limits<float>::max();
+      for (const SculptPoint& p : points_) nearest = std::min(nearest, glm::distance(vertices_[v], p.rest));
+      const float t = std::clamp((falloffRadius_ - nearest) / (falloffRadius_ - inner), 0.0f, 1.0f);
+      falloff_[v] = t * t * (3.0f - 2.0f * t);
+    }
+  }
   deformerRevision_ = layoutRevision_;
   solverDisplacements_.assign(controls.size(), glm::vec3(0.0f));
   return {};
@@ -112,7 +134,7 @@ eng::Result<void> SculptModel::vertexDisplacements(std::span<glm::vec3> out) {
     return eng::makeError("sculpt: room for " + std::to_string(out.size()) + " displacements, the surface has " +
                           std::to_string(vertices_.size()) + " vertices");
   for (size_t i = 0; i < points_.size(); ++i) solverDisplacements_[i] = points_[i].displacement;
-  return deformer_->apply(solverDisplacements_, out);
+  return deformer_->apply(solverDisplacements_, out, falloff_);
 }
 
 bool SculptModel::hasDisplacement() const {

@@ -57,6 +57,13 @@ class SculptModel {
   std::span<const glm::vec3> pins() const { return pins_; }
   float minSeparation() const { return minSeparation_; }
 
+  // Falloff radius (world units): vertices farther than this from every
+  // control point do not move, and the edit fades out smoothly from half the
+  // radius to the radius, so a sculpt stays local. 0 = no falloff (the RBF
+  // field reaches the whole face). Fails (unchanged) when negative or not finite.
+  float falloffRadius() const { return falloffRadius_; }
+  eng::Result<void> setFalloffRadius(float radius);
+
   // Changes when points are added or removed, or the kernel or pins change;
   // not on displacement edits.
   uint64_t layoutRevision() const { return layoutRevision_; }
@@ -66,7 +73,10 @@ class SculptModel {
   eng::Result<void> prepare();
   bool prepared() const { return deformer_.has_value() && deformerRevision_ == layoutRevision_; }
   // Influence of point `control` (index into points()) on vertex `vertex`; prepared() required.
-  float influence(size_t vertex, size_t control) const { return deformer_->influence(vertex, control); }
+  // The falloff is folded in, so the preview basis matches the baked target.
+  float influence(size_t vertex, size_t control) const {
+    return deformer_->influence(vertex, control) * (falloff_.empty() ? 1.0f : falloff_[vertex]);
+  }
 
   // World-space displacement of every surface vertex; out.size() == vertex count.
   // Fails when not prepared() or on a size mismatch.
@@ -81,6 +91,8 @@ class SculptModel {
   facial::RbfKernel kernel_;
   bool pinsEnabled_ = true;
   float minSeparation_ = 1e-6f;
+  float falloffRadius_ = 0.0f;
+  std::vector<float> falloff_;  // per vertex when falloffRadius_ > 0, built by prepare()
   uint64_t layoutRevision_ = 1;
   uint64_t deformerRevision_ = 0;
   std::optional<facial::RbfDeformer> deformer_;

@@ -214,23 +214,13 @@ eng::Result<void> EditorApp::uploadDisplayModel() {
   return {};
 }
 
-// The face centred in the free middle of the window: the orbit camera looks at
-// a point shifted in its own image plane so the face centre lands on the
-// viewport's centre, and zooms so the face fills the viewport's height.
+// The face centred in the free middle of the window (between the side panels,
+// above the timeline): a lens shift, so orbiting still turns about the face.
 eng::vk::OrbitCamera EditorApp::renderCamera() const {
   eng::vk::OrbitCamera camera = view_.camera;
-  const float freeWidth = layout_.x1() - layout_.x0(), freeHeight = layout_.y1();
-  const float aspect = layout_.width / layout_.height;
-  const eng::vk::OrbitCamera fitted = eng::vk::OrbitCamera::frame(bounds_, freeWidth / std::max(freeHeight, 1.0f));
-  camera.distance = fitted.distance * layout_.height / std::max(freeHeight, 1.0f);
-  const float d = camera.distance / std::max(camera.zoom, 1e-3f);
-  const float halfHeight = d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f), halfWidth = halfHeight * aspect;
-  const float cx = (layout_.x0() + layout_.x1()) / layout_.width - 1.0f;  // NDC of the viewport centre
-  const float cy = layout_.y1() / layout_.height - 1.0f;
-  const glm::vec3 forward = glm::normalize(view_.camera.target - view_.camera.position());
-  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
-  const glm::vec3 up = glm::cross(right, forward);
-  camera.target = view_.camera.target - cx * halfWidth * right + cy * halfHeight * up;
+  // Framed for the window as it is now (it may have been resized), then moved into the free part.
+  camera.distance = eng::vk::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
+  camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), 0.0f}, {layout_.x1(), layout_.y1()});
   return camera;
 }
 
@@ -324,6 +314,7 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
                                                                     : facial::RbfKernelType::Multiquadric;
       return sculpt_.chooseKernel(type, a.hasNumber ? a.a : 0.0f);
     }
+    case Kind::SculptFalloff: return sculpt_.chooseFalloff(a.a);
     case Kind::SculptBake: return sculpt_.pressBake(a.text);
     case Kind::SculptSave: return sculpt_.pressSave(a.text);
     case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;

@@ -34,6 +34,7 @@ constexpr Verb kVerbs[] = {
     {"sculpt-move", Kind::SculptMove, "nnn"},
     {"sculpt-drag", Kind::SculptDrag, "nn"},
     {"sculpt-kernel", Kind::SculptKernel, "w?n"},
+    {"sculpt-falloff", Kind::SculptFalloff, "n"},
     {"sculpt-bake", Kind::SculptBake, "w"},
     {"sculpt-save", Kind::SculptSave, "w"},
     {"screenshot", Kind::Screenshot, "?w"},
@@ -117,6 +118,9 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
         if (action.text != "multiquadric" && action.hasNumber)
           return fail("only the multiquadric kernel takes a shape parameter c");
         if (action.hasNumber && action.a <= 0.0f) return fail("multiquadric c " + words[2] + " must be > 0");
+        break;
+      case Kind::SculptFalloff:
+        if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
         break;
       default: break;
     }

@@ -43,7 +43,7 @@ struct EditorScriptAction {
   enum class Kind {
     Trigger, Pad, Orbit,
     TimelineOpen, TimelineSeek, TimelineKeyAll, TimelineKey, TimelineMoveSelected, TimelineDelete, Undo, Redo, TimelineSave,
-    SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptBake, SculptSave,
+    SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptFalloff, SculptBake, SculptSave,
     Screenshot, Quit,
   };
   float time = 0.0f;

@@ -189,6 +189,14 @@ bool SculptPanel::pressAddLandmark(const std::string& name) {
   return true;
 }
 
+bool SculptPanel::chooseFalloff(float radius) {
+  if (auto ok = sculpt_->setFalloffRadius(radius); !ok) {
+    message_.report(ok.error().message, true);
+    return false;
+  }
+  return true;
+}
+
 bool SculptPanel::chooseKernel(facial::RbfKernelType type, float c) {
   facial::RbfKernel kernel;
   kernel.type = type;
@@ -322,6 +330,10 @@ void SculptPanel::draw() {
                  : kernelChoice_ == 1 ? facial::RbfKernelType::Polyharmonic
                                       : facial::RbfKernelType::Multiquadric,
                  multiquadricC_);
+  float falloff = sculpt_->falloffRadius();
+  ImGui::SetNextItemWidth(-60.0f);
+  if (ImGui::SliderFloat("falloff", &falloff, 0.0f, 0.5f * size_, falloff > 0.0f ? "%.3f" : "off (whole face)"))
+    chooseFalloff(falloff);
   bool pins = sculpt_->pinsEnabled();
   if (ImGui::Checkbox("Pin the box corners", &pins)) sculpt_->setPinsEnabled(pins);
   ImGui::SameLine();

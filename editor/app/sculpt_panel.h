@@ -43,6 +43,8 @@ class SculptPanel {
   bool hasLandmark(const std::string& name) const;
   // The kernel combo (and c for the multiquadric; c <= 0 keeps the current c).
   bool chooseKernel(facial::RbfKernelType type, float c);
+  // The falloff slider (world units, 0 = the whole face follows).
+  bool chooseFalloff(float radius);
   bool pressBake(const std::string& name);
   bool pressSave(const std::string& path);
 

@@ -279,3 +279,55 @@ TEST(SculptModel, BuiltInHeadBakesAcrossAllItsPrimitives) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SculptModel, FalloffKeepsTheEditLocalAndThePreviewAgrees) {
+  eng::Model model = sphereModel();
+  auto surface = ModelSurface::create(model);
+  ASSERT_TRUE(surface);
+  SculptModel sculpt(surface->restPositions(), model.bounds());
+  const glm::vec3 picked = worldVertex(model, 60);
+  ASSERT_TRUE(sculpt.addPoint("a", picked));
+  ASSERT_TRUE(sculpt.setDisplacement(0, {0.0f, 0.3f, 0.0f}));
+  ASSERT_TRUE(sculpt.prepare());
+  std::vector<glm::vec3> global(surface->restPositions().size());
+  ASSERT_TRUE(sculpt.vertexDisplacements(global));
+
+  const uint64_t before = sculpt.layoutRevision();
+  ASSERT_TRUE(sculpt.setFalloffRadius(1.0f));  // the sphere is 4 units across
+  EXPECT_GT(sculpt.layoutRevision(), before) << "a new falloff re-prepares";
+  ASSERT_TRUE(sculpt.prepare());
+  std::vector<glm::vec3> local(global.size());
+  ASSERT_TRUE(sculpt.vertexDisplacements(local));
+  size_t far = 0;
+  for (size_t v = 0; v < local.size(); ++v) {
+    const float d = glm::distance(surface->restPositions()[v], picked);
+    if (d <= 0.5f) EXPECT_NEAR(glm::distance(local[v], global[v]), 0.0f, 1e-6f) << "inside half the radius: unchanged";
+    if (d >= 1.0f) {
+      EXPECT_EQ(local[v], glm::vec3(0.0f)) << "beyond the radius nothing moves";
+      far += glm::length(global[v]) > 1e-4f;  // ...where the unmasked field did move it
+    }
+  }
+  EXPECT_GT(far, 10u);
+
+  // The preview basis carries the same falloff as the baked target.
+  auto preview = editor::SculptPreview::build(model, *surface, sculpt);
+  ASSERT_TRUE(preview) << preview.error().message;
+  std::vector<float> weights(preview->weightCount());
+  ASSERT_TRUE(preview->weights(std::vector<float>{0.0f}, sculpt.points(), weights));
+  const eng::Primitive& previewPrimitive = preview->model().meshes[0].primitives[0];
+  std::vector<glm::vec3> previewed(previewPrimitive.vertexCount());
+  eng::morphPrimitiveCpu(previewPrimitive, weights, previewed, {});
+  eng::Model baked = sphereModel();
+  ASSERT_TRUE(editor::bakeSculptTarget(baked, *surface, sculpt, "local"));
+  std::vector<glm::vec3> expected(previewed.size());
+  eng::morphPrimitiveCpu(baked.meshes[0].primitives[0], std::vector<float>{0.0f, 1.0f}, expected, {});
+  for (size_t v = 0; v < expected.size(); ++v) ASSERT_NEAR(glm::distance(previewed[v], expected[v]), 0.0f, 1e-5f) << v;
+
+  EXPECT_FALSE(sculpt.setFalloffRadius(-1.0f));
+  EXPECT_FALSE(sculpt.setFalloffRadius(std::nanf("")));
+  EXPECT_FLOAT_EQ(sculpt.falloffRadius(), 1.0f);
+}
+
+}  // namespace
