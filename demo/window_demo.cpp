@@ -28,6 +28,7 @@
 #include "demo/face_setup.h"
 #include "demo/window_idle_motion.h"
 #include "demo/window_imgui.h"
+#include "demo/window_loop.h"
 #include "demo/window_script.h"
 #include "engine/vk/context.h"
 #include "engine/vk/framing_bounds.h"
@@ -503,52 +504,29 @@ void WindowDemo::updateTitle(float dt) {
 
 int WindowDemo::run(const DemoOptions& o) {
   if (const int error = setUp(o); error != 0) return error;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  Clock::time_point last = start;
-  bool finalFrame = false;
   int exitCode = 0;
-  while (!window_->shouldClose() && !quitRequested_) {
-    window_->pollEvents();
-    const Clock::time_point now = Clock::now();
-    // Clamped: a stall (window dragged, breakpoint) must not jump the animation.
-    const float dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
-    last = now;
-    const float elapsed = std::chrono::duration<float>(now - start).count();
-    if (o.quitAfter > 0.0f && elapsed >= o.quitAfter) finalFrame = true;
-
+  auto frame = [&](const WindowTick& tick) -> eng::Result<WindowFramePlan> {
     ui_->beginFrame();
     handleInput();
-    runScript(elapsed);
+    runScript(tick.elapsed);
     drawPanel();
     ui_->endFrame();
-    updateFaces(dt);
+    updateFaces(tick.dt);
     logStateChange();
-    updateTitle(dt);
-
-    const eng::vk::SceneView shown = shownView();
-    eng::vk::FrameInput frame{shown, instances_};
-    frame.overlay = ImGuiLayer::recorder();
-    fs::path shot;
-    if (finalFrame && !o.screenshot.empty()) {
-      shot = o.screenshot;
-    } else if (screenshotRequested_) {
-      shot = screenshotPathFor(o);  // kept requested until a frame is really presented (not skipped)
-    }
-    frame.screenshot = shot;
-    auto drawn = renderer_->drawFrame(frame);
-    if (!drawn) {
-      exitCode = fail("frame: " + drawn.error().message);
-      break;
-    }
-    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) {
-      std::printf("screenshot: %s\n", shot.c_str());
-      if (!finalFrame) screenshotRequested_ = false;
-    }
-    // The last frame must really be drawn (not skipped while minimised) to end with its screenshot.
-    if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
-      break;
-  }
+    updateTitle(tick.dt);
+    WindowFramePlan plan{.input = {shownView(), instances_}, .quit = quitRequested_};
+    plan.input.overlay = ImGuiLayer::recorder();
+    // Kept requested until a frame is really presented (not skipped).
+    if (screenshotRequested_) plan.requestedShot = screenshotPathFor(o);
+    return plan;
+  };
+  auto shotWritten = [&](const fs::path& shot) {
+    if (shot != fs::path(o.screenshot)) screenshotRequested_ = false;
+  };
+  if (auto ran = runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
+                               frame, shotWritten);
+      !ran)
+    exitCode = fail(ran.error().message);
   int width = 0, height = 0;
   glfwGetWindowSize(window_->handle(), &width, &height);
   std::printf("demo: %s, %zu face(s), final state %s, %.1f ms/frame, camera yaw %.1f pitch %.1f, window %dx%d\n",

@@ -15,6 +15,7 @@
 #include "demo/cli_parse.h"
 #include "demo/face_setup.h"
 #include "demo/window_imgui.h"
+#include "demo/window_loop.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
@@ -411,56 +412,36 @@ void EditorApp::drawPanels() {
 
 int EditorApp::run(const EditorOptions& o) {
   if (const int error = setUp(o); error != 0) return error;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  Clock::time_point last = start;
-  bool finalFrame = false;
   int exitCode = 0;
-  while (!window_->shouldClose()) {
-    window_->pollEvents();
-    const Clock::time_point now = Clock::now();
-    const float dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
-    last = now;
-    frameMs_ = frameMs_ == 0.0f ? 1000.0f * dt : 0.9f * frameMs_ + 0.1f * 1000.0f * dt;
-    const float elapsed = std::chrono::duration<float>(now - start).count();
-    if (o.quitAfter > 0.0f && elapsed >= o.quitAfter) finalFrame = true;
-
+  auto frame = [&](const cli::WindowTick& tick) -> eng::Result<cli::WindowFramePlan> {
+    frameMs_ = frameMs_ == 0.0f ? 1000.0f * tick.dt : 0.9f * frameMs_ + 0.1f * 1000.0f * tick.dt;
     const VkExtent2D extent = renderer_->extent();
     layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
     ui_->beginFrame();
     handleViewportInput();
-    runScript(elapsed);
-    if (quitRequested_) finalFrame = true;
-    machine_.update(dt);
-    controlMap_.update(dt);
-    timeline_->update(dt);
+    runScript(tick.elapsed);
+    machine_.update(tick.dt);
+    controlMap_.update(tick.dt);
+    timeline_->update(tick.dt);
     drawPanels();
     drawControlPoints();
     ui_->endFrame();
 
-    if (auto uploaded = uploadDisplayModel(); !uploaded) {
-      exitCode = fail(uploaded.error().message);
-      break;
-    }
+    if (auto uploaded = uploadDisplayModel(); !uploaded) return uploaded.error();
     sculpt_.displayWeights(faceWeights(), displayWeights_);
     instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_};
-    eng::vk::FrameInput frame{view_, {&instance_, 1}};
-    frame.view.camera = renderCamera();
-    frame.overlay = cli::ImGuiLayer::recorder();
-    const fs::path shot = finalFrame && !o.screenshot.empty() ? fs::path(o.screenshot) : pendingShot_;
-    frame.screenshot = shot;
-    auto drawn = renderer_->drawFrame(frame);
-    if (!drawn) {
-      exitCode = fail("frame: " + drawn.error().message);
-      break;
-    }
-    if (!shot.empty() && *drawn == eng::vk::FrameResult::Presented) {
-      std::printf("screenshot: %s\n", shot.c_str());
-      if (shot == pendingShot_) pendingShot_.clear();
-    }
-    if (finalFrame && (*drawn == eng::vk::FrameResult::Presented || o.screenshot.empty() || elapsed > o.quitAfter + 5.0f))
-      break;
-  }
+    cli::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
+    plan.input.view.camera = renderCamera();
+    plan.input.overlay = cli::ImGuiLayer::recorder();
+    return plan;
+  };
+  auto shotWritten = [&](const fs::path& shot) {
+    if (shot == pendingShot_) pendingShot_.clear();
+  };
+  if (auto ran = cli::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
+                                    frame, shotWritten);
+      !ran)
+    exitCode = fail(ran.error().message);
   std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);

@@ -1,0 +1,40 @@
+#pragma once
+// The frame loop the windowed programs (the demo, the editor) share: frame
+// time clamped against stalls, --quit-after ending on a frame that was really
+// presented (a minimised window skips frames) so it carries --screenshot, and
+// a requested screenshot kept until a presented frame wrote it.
+#include <filesystem>
+#include <functional>
+
+#include "engine/core/result.h"
+#include "engine/vk/window.h"
+#include "engine/vk/window_renderer.h"
+
+namespace cli {
+
+struct WindowLoopOptions {
+  float quitAfter = 0.0f;                 // seconds; 0 = run until the window closes
+  std::filesystem::path finalScreenshot;  // written by the last frame when quitAfter ends the run
+};
+
+struct WindowTick {
+  float dt = 0.0f;       // seconds since the last frame, at most 0.1
+  float elapsed = 0.0f;  // seconds since the loop started
+  bool finalFrame = false;
+};
+
+struct WindowFramePlan {
+  eng::vk::FrameInput input;             // what to draw (its screenshot is set by the loop)
+  std::filesystem::path requestedShot;   // F12 / scripted screenshot still to write, empty when none
+  bool quit = false;                     // end after this frame (it is the final one)
+};
+
+// `frame` does one frame's input, UI and animation and says what to draw;
+// `shotWritten` hears of every screenshot a presented frame wrote. Returns
+// ok when the window closed or the run ended, else the first error.
+eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer& renderer,
+                                const WindowLoopOptions& options,
+                                const std::function<eng::Result<WindowFramePlan>(const WindowTick&)>& frame,
+                                const std::function<void(const std::filesystem::path&)>& shotWritten);
+
+}  // namespace cli
