@@ -208,10 +208,11 @@ TEST(WindowDemo, KeysOneToSevenTriggerTheirStatesInOrder) {
   const fs::path model = builtInHead();
   ASSERT_FALSE(model.empty());
   // Each key interrupts the previous 0.6 s blend: the current state follows every press.
+  // A second between presses: a loaded 2-core machine can take half of that for one frame.
   // (The first second waits out the first frames, slow with validation on: presses
   // within one frame collapse to the last, as a player would want.)
   const DemoRun run = runDemo(testing_support::freshTempDir("demo_window_keys"), model,
-                              {.seconds = 7.0f, .xdotool = "sleep 1 key --delay 600 3 4 5 6 7 1 2"});
+                              {.seconds = 10.0f, .xdotool = "sleep 1 key --delay 1000 3 4 5 6 7 1 2"});
   eng::Image shot;
   ASSERT_TRUE(ranCleanly(run, shot));
   EXPECT_EQ(statesLogged(run.log),
@@ -249,11 +250,11 @@ TEST(WindowDemo, MouseDragOrbitsAndF12SavesAScreenshot) {
   // F12 first (the face from the front), then a 150-pixel drag on the scene (right of the panel).
   const DemoRun run = runDemo(
       dir, model,
-      {.seconds = 5.5f,
+      {.seconds = 7.5f,
        .arguments = "--still",
-       .xdotool = "sleep 1 key F12 sleep 1.2 mousemove --window %1 900 400 sleep 0.3 mousedown 1 sleep 0.2 "
-                  "mousemove --window %1 950 400 sleep 0.2 mousemove --window %1 1000 400 sleep 0.2 "
-                  "mousemove --window %1 1050 400 sleep 0.2 mouseup 1"});
+       .xdotool = "sleep 1 key F12 sleep 1.2 mousemove --window %1 900 400 sleep 0.5 mousedown 1 sleep 0.5 "
+                  "mousemove --window %1 950 400 sleep 0.5 mousemove --window %1 1000 400 sleep 0.5 "
+                  "mousemove --window %1 1050 400 sleep 0.5 mouseup 1"});
   eng::Image last;
   ASSERT_TRUE(ranCleanly(run, last));
   ASSERT_EQ(run.shots.size(), 2u) << "F12, then the last frame:\n" << run.log;
