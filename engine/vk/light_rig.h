@@ -19,7 +19,7 @@ struct DirectionalLight {
 struct LightRig {
   // Warm key from the upper left of the camera, cool soft fill from the right,
   // rim from behind-above to separate the head from the backdrop.
-  DirectionalLight key{-40.0f, 35.0f, {1.0f, 0.95f, 0.88f}, 1.4f};
+  DirectionalLight key{-30.0f, 45.0f, {1.0f, 0.95f, 0.88f}, 1.4f};
   DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.35f};
   DirectionalLight rim{150.0f, 30.0f, {1.0f, 0.97f, 0.94f}, 1.2f};
   glm::vec3 skyAmbient{0.07f, 0.075f, 0.085f};
