@@ -59,8 +59,9 @@ TEST(TimelineCommand, ExportThenImportKeepsTheCurves) {
   for (float t = 0.0f; t <= 2.0f; t += 0.05f) {
     EXPECT_NEAR(sampleTrack(*back, "AU26_JawDrop", t), sampleTrack(*original, "AU26_JawDrop", t), 2e-3f) << t;
     // The step holds 0.2 until 1 s, then ramps within a millisecond.
-    if (std::abs(t - 1.0f) > 0.01f)
+    if (std::abs(t - 1.0f) > 0.01f) {
       EXPECT_NEAR(sampleTrack(*back, "custom_shape", t), sampleTrack(*original, "custom_shape", t), 2e-3f) << t;
+    }
   }
 }
 

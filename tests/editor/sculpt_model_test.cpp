@@ -303,7 +303,9 @@ TEST(SculptModel, FalloffKeepsTheEditLocalAndThePreviewAgrees) {
   size_t far = 0;
   for (size_t v = 0; v < local.size(); ++v) {
     const float d = glm::distance(surface->restPositions()[v], picked);
-    if (d <= 0.5f) EXPECT_NEAR(glm::distance(local[v], global[v]), 0.0f, 1e-6f) << "inside half the radius: unchanged";
+    if (d <= 0.5f) {
+      EXPECT_NEAR(glm::distance(local[v], global[v]), 0.0f, 1e-6f) << "inside half the radius: unchanged";
+    }
     if (d >= 1.0f) {
       EXPECT_EQ(local[v], glm::vec3(0.0f)) << "beyond the radius nothing moves";
       far += glm::length(global[v]) > 1e-4f;  // ...where the unmasked field did move it

@@ -35,7 +35,9 @@ TEST(OrbitCamera, FramedBoxFitsTheImageAndFillsMostOfIt) {
       EXPECT_LE(ndc.z, 1.0f);
       maxY = std::max(maxY, std::abs(ndc.y));
     }
-    if (aspect >= 1.0f) EXPECT_GT(maxY, 0.75f) << "tall box fills the height";
+    if (aspect >= 1.0f) {
+      EXPECT_GT(maxY, 0.75f) << "tall box fills the height";
+    }
   }
 }
 
