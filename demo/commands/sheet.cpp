@@ -31,7 +31,7 @@ struct SheetOptions {
   float intensity = 1.0f;
   // Why closer than `render`: the camera frames the model with every target
   // at full weight (neck and hair included); expressions read in the face.
-  float zoom = kFaceZoom;
+  float zoom = kSheetTileZoom;
   std::string device;
   std::string out;
 };
