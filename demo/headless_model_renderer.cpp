@@ -41,10 +41,9 @@ eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> wei
 }
 
 eng::Result<void> HeadlessModelRenderer::checkValidation() const {
-  const uint32_t messages = context_->validationMessageCount();
-  if (messages == 0) return {};
-  return eng::makeError(std::to_string(messages) + " Vulkan validation message(s) while rendering " + modelName_ +
-                        " (logged above)");
+  if (auto clean = context_->checkValidation(); !clean)
+    return eng::makeError(modelName_ + ": " + clean.error().message);
+  return {};
 }
 
 }  // namespace cli

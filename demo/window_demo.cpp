@@ -534,8 +534,7 @@ int WindowDemo::run(const DemoOptions& o) {
               view_.camera.yawDegrees, view_.camera.pitchDegrees, width, height);
   ui_.reset();
   gKeyQueue = nullptr;
-  if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)
-    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  if (auto clean = ctx_->checkValidation(); !clean) return fail(clean.error().message);
   return exitCode;
 }
 

@@ -446,8 +446,7 @@ int EditorApp::run(const EditorOptions& o) {
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);
   ui_.reset();
-  if (const uint32_t messages = ctx_->validationMessageCount(); messages > 0)
-    return fail(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+  if (auto clean = ctx_->checkValidation(); !clean) return fail(clean.error().message);
   if (nextAction_ < script_.size() && exitCode == 0)
     std::printf("facial-editor: closed before %zu scripted action(s) ran\n", script_.size() - nextAction_);
   if (failedActions_ > 0 && exitCode == 0)

@@ -67,6 +67,13 @@ class Context {
   bool validationEnabled() const { return validationEnabled_; }
   // Validation messages seen so far (0 when validation is off).
   uint32_t validationMessageCount() const { return validation_->messageCount(); }
+  // An error counting the validation messages so far (each was logged as it
+  // came), ok when there were none: how a program ends a validation run.
+  Result<void> checkValidation() const {
+    if (const uint32_t messages = validationMessageCount(); messages > 0)
+      return makeError(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+    return {};
+  }
 
   // A memory type for `requirements` with the flags `usage` needs.
   Result<uint32_t> memoryTypeFor(const VkMemoryRequirements& requirements, MemoryUsage usage) const;
