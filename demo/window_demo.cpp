@@ -170,7 +170,7 @@ class WindowDemo {
   std::unique_ptr<ImGuiLayer> ui_;
   eng::vk::SceneView view_;
   eng::Aabb framedBounds_;                   // what view_ frames: the face, or the whole crowd
-  float panelLeft_ = 0.0f, panelRight_ = 0.0f;  // the panel's columns this frame (ImGui pixels)
+  float panelLeft_ = 0.0f, panelRight_ = 0.0f, panelBottom_ = 0.0f;  // the panel this frame (ImGui pixels)
   KeyQueue keys_;
   bool orbiting_ = false;
   bool screenshotRequested_ = false;
@@ -369,11 +369,29 @@ void WindowDemo::handleInput() {
 void WindowDemo::notePanelExtent() {
   panelLeft_ = ImGui::GetWindowPos().x;
   panelRight_ = panelLeft_ + ImGui::GetWindowSize().x;
+  panelBottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
 }
 
 eng::vk::SceneView WindowDemo::shownView() const {
   eng::vk::SceneView shown = view_;
   const ImVec2 display = ImGui::GetIO().DisplaySize;
+  if (!(display.x > 0.0f) || !(display.y > 0.0f)) return shown;
+  // Where the framed faces land in the whole window (their box's corners).
+  const glm::mat4 viewProj = shown.camera.projection(display.x / display.y) * shown.camera.view();
+  glm::vec2 lo(display.x, display.y), hi(0.0f);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p{corner & 1 ? framedBounds_.max.x : framedBounds_.min.x,
+                      corner & 2 ? framedBounds_.max.y : framedBounds_.min.y,
+                      corner & 4 ? framedBounds_.max.z : framedBounds_.min.z};
+    const glm::vec4 clip = viewProj * glm::vec4(p, 1.0f);
+    if (!(clip.w > 0.0f)) return shown;
+    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(display.x, display.y);
+    lo = glm::min(lo, pixel);
+    hi = glm::max(hi, pixel);
+  }
+  // Only a panel that covers them moves the faces aside (a small panel in a corner does not).
+  const bool covered = panelRight_ > lo.x && panelLeft_ < hi.x && panelBottom_ > lo.y;
+  if (!covered) return shown;
   constexpr float kGap = 8.0f;
   const float rightFree = display.x - panelRight_ - kGap, leftFree = panelLeft_ - kGap;
   if (rightFree >= leftFree)
