@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 #include "facial/runtime/graph/timeline.h"
 
@@ -37,7 +38,7 @@ bool TimelinePanel::open(const std::string& path) {
   }
   document_ = std::move(*loaded);
   std::snprintf(path_, sizeof path_, "%s", path.c_str());
-  playhead_ = 0.0f;
+  playTime_ = playhead_ = 0.0f;
   currentTrack_ = document_.tracks().empty() ? -1 : 0;
   size_t unknown = 0;
   for (const DocumentTrack& track : document_.tracks())
@@ -59,20 +60,22 @@ bool TimelinePanel::save(const std::string& path) {
 }
 
 void TimelinePanel::setPlayhead(float time) {
-  if (std::isfinite(time)) playhead_ = std::clamp(time, 0.0f, document_.duration());
+  if (std::isfinite(time)) playTime_ = playhead_ = std::clamp(time, 0.0f, document_.duration());
+}
+
+void TimelinePanel::togglePlaying() {
+  playing_ = !playing_;
+  // A clip that plays once and has reached its end starts again from the top.
+  if (playing_ && document_.loop() == facial::LoopMode::Once && playhead_ >= document_.duration()) setPlayhead(0.0f);
 }
 
 void TimelinePanel::update(float dt) {
   if (playing_ && std::isfinite(dt)) {
-    playhead_ += dt;
-    if (playhead_ > document_.duration()) {
-      if (loopPlayback_) {
-        playhead_ = std::fmod(playhead_, document_.duration());
-      } else {
-        playhead_ = document_.duration();
-        playing_ = false;
-      }
-    }
+    // Playback follows the clip's own loop mode, exactly as the runtime's timeline node plays it.
+    playTime_ += dt;
+    const facial::LoopMode mode = document_.loop();
+    if (mode == facial::LoopMode::Once && playTime_ >= document_.duration()) playing_ = false;
+    playhead_ = facial::clipTime(mode, document_.duration(), playTime_);
   }
   refreshPose();
 }
@@ -174,7 +177,7 @@ void TimelinePanel::handleShortcuts() {
   if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), false)) io.KeyShift ? redo() : undo();
   if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false)) redo();
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) && !document_.selection().empty()) deleteSelected();
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false) && !io.WantCaptureKeyboard) playing_ = !playing_;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false) && !io.WantCaptureKeyboard) togglePlaying();
 }
 
 void TimelinePanel::drawToolbar(FaceDelegate& face) {
@@ -192,11 +195,17 @@ void TimelinePanel::drawToolbar(FaceDelegate& face) {
   if (ImGui::Button("|<")) setPlayhead(0.0f);
   ImGui::SameLine();
   if (ImGui::Button(playing_ ? "Pause" : "Play", {52.0f, 0.0f})) {
-    playing_ = !playing_;
+    togglePlaying();
     if (playing_) face.takeControl(FaceSource::Timeline);
   }
   ImGui::SameLine();
-  ImGui::Checkbox("Loop", &loopPlayback_);
+  // The clip's loop mode (saved with it, undoable): how the runtime plays it past its end.
+  static constexpr const char* kLoopModes[] = {"once", "loop", "ping-pong"};
+  static constexpr facial::LoopMode kLoopValues[] = {facial::LoopMode::Once, facial::LoopMode::Loop,
+                                                     facial::LoopMode::PingPong};
+  int loopChoice = int(std::find(std::begin(kLoopValues), std::end(kLoopValues), document_.loop()) - std::begin(kLoopValues));
+  ImGui::SetNextItemWidth(90.0f);
+  if (ImGui::Combo("##loop", &loopChoice, kLoopModes, 3)) (void)document_.setLoop(kLoopValues[loopChoice]);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70.0f);
   float time = playhead_;

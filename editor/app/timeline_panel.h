@@ -35,6 +35,8 @@ class TimelinePanel {
   void setPlayhead(float time);
   bool playing() const { return playing_; }
   void setPlaying(bool playing) { playing_ = playing; }
+  // Play / pause (the button and Space); a once-only clip at its end restarts.
+  void togglePlaying();
 
   // What the widgets and shortcuts do (the --script runs these too). Each
   // returns false after reporting why in the panel (and the log).
@@ -64,7 +66,7 @@ class TimelinePanel {
   float posedTime_ = -1.0f;
   float playhead_ = 0.0f;
   bool playing_ = false;
-  bool loopPlayback_ = true;
+  float playTime_ = 0.0f;  // seconds played since the playhead was last set; the clip's loop mode maps it
   int currentTrack_ = -1;
   int newKeyInterpolation_ = 1;  // linear
   int channelChoice_ = 0;
