@@ -55,7 +55,7 @@ eng::Result<void> ControlMapPanel::create(const cli::FaceSetup& face) {
     const char* source = layout == Layout::FourPoles ? "editor control map (4 poles)" : "editor freeform map (6 poles)";
     auto graph = facial::parseGraph(mapGraph(layout), source, {.presets = facial::presetLookup(face.expressions())});
     if (!graph) return graph.error();
-    auto driver = facial::FaceDriver::create(*graph, &face.rig(), names, face.baseWeights(), 7);
+    auto driver = facial::FaceDriver::create(*graph, &face.graphRig(), names, face.baseWeights(), 7);
     if (!driver) return eng::makeError(std::string(source) + ": " + driver.error().message);
     x_[i] = *(*graph)->findParameter("x");
     y_[i] = *(*graph)->findParameter("y");

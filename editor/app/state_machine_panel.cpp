@@ -27,7 +27,7 @@ eng::Result<void> StateMachinePanel::load(const cli::FaceSetup& face, const std:
   auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(face.expressions())});
   if (!graph) return graph.error();
   const std::vector<std::string> names = face.layout().names();
-  auto driver = facial::FaceDriver::create(*graph, &face.rig(), names, face.baseWeights(), 1);
+  auto driver = facial::FaceDriver::create(*graph, &face.graphRig(), names, face.baseWeights(), 1);
   if (!driver) return eng::makeError(graphPath + ": " + driver.error().message);
   // The editor drives the machine by hand: a graph's autoplay switch starts off.
   if (const auto autoplay = (*graph)->findParameter("autoplay");

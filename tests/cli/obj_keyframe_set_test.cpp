@@ -17,10 +17,9 @@
 #include <gtest/gtest.h>
 
 #include "demo/face_setup.h"
-#include "engine/scene/cpu_morph.h"
 #include "engine/scene/gltf_loader.h"
-#include "engine/scene/weights.h"
 #include "tests/cli/cli_test_support.h"
+#include "tests/common/study_obj_set.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -28,44 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using cli_test::runFacial;
 
-struct SetFile {
-  const char* preset;  // data/expressions.json
-  const char* file;    // the OBJ's name, hence the target's
-};
-constexpr SetFile kSet[] = {{"neutral", "neutral"}, {"happy", "smile"}, {"sad", "frown"},     {"anger", "scowl"},
-                            {"fear", "dread"},      {"surprise", "gasp"}, {"disgust", "sneer"}};
-
-// The whole model (every mesh instance, world space) posed with `weights`
-// as one OBJ: positions and triangles, no normals (the converter makes them).
-void writePosedObj(const eng::Model& model, std::span<const float> weights, const fs::path& path) {
-  const eng::WeightLayout layout(model);
-  std::ofstream out(path, std::ios::binary);
-  out << "# " << path.filename().string() << ": written by obj_keyframe_set_test\n";
-  std::string faces;
-  uint32_t base = 1;
-  char line[96];
-  for (int n = 0; n < int(model.nodes.size()); ++n) {
-    const int m = model.nodes[n].mesh;
-    if (m < 0) continue;
-    const glm::mat4 world = model.worldTransform(n);
-    for (const eng::Primitive& p : model.meshes[m].primitives) {
-      std::vector<glm::vec3> positions(p.vertexCount()), normals;
-      eng::morphPrimitiveCpu(p, layout.meshWeights(weights, m), positions, normals);
-      for (const glm::vec3& v : positions) {
-        const glm::vec3 w = glm::vec3(world * glm::vec4(v, 1.0f));
-        std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", w.x, w.y, w.z);
-        out << line;
-      }
-      for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
-        std::snprintf(line, sizeof line, "f %u %u %u\n", base + p.indices[i], base + p.indices[i + 1],
-                      base + p.indices[i + 2]);
-        faces += line;
-      }
-      base += uint32_t(p.vertexCount());
-    }
-  }
-  out << faces;
-}
+using testing_support::kStudySet;
 
 // Mean colour distance per pixel over rows [y0, y1) of two same-size images.
 double meanDifference(const eng::Image& a, const eng::Image& b, int y0, int y1) {
@@ -80,15 +42,6 @@ double meanDifference(const eng::Image& a, const eng::Image& b, int y0, int y1) 
 }
 double meanDifference(const eng::Image& a, const eng::Image& b) { return meanDifference(a, b, 0, a.height); }
 
-// A rig map binding each emotion to its target at `gain`.
-std::string rigMapJson(float gain) {
-  std::string map = "{\"version\": 1, \"model\": \"study set\", \"map\": {";
-  for (size_t i = 1; i < std::size(kSet); ++i)
-    map += std::string(i > 1 ? ", " : "") + "\"" + kSet[i].preset + "\": [{\"target\": \"" + kSet[i].file +
-           "\", \"weight\": " + std::to_string(gain) + "}]";
-  return map + "}}\n";
-}
-
 class ObjKeyframeSet : public ::testing::Test {
  protected:
   // The seven OBJs, the rig map and the converted glTF (one per test: ctest
@@ -97,15 +50,15 @@ class ObjKeyframeSet : public ::testing::Test {
     dir_ = testing_support::freshTempDir("obj_keyframe_set");
     auto face = cli::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
     ASSERT_TRUE(face) << face.error().message;
-    fs::create_directories(dir_ / "set");
-    std::vector<float> weights(face->weightCount());
-    for (const SetFile& f : kSet) {
-      auto preset = face->findExpression(f.preset);
-      ASSERT_TRUE(preset) << preset.error().message;
-      ASSERT_TRUE(face->expressionWeights(**preset, 1.0f, weights));
-      writePosedObj(face->model(), weights, dir_ / "set" / (std::string(f.file) + ".obj"));
-    }
-    testing_support::writeFile(rigmap(), rigMapJson(1.0f));
+    testing_support::writeStudyObjSet(
+        face->model(), face->weightCount(),
+        [&](const char* name, std::vector<float>& weights) {
+          auto preset = face->findExpression(name);
+          if (!preset) ADD_FAILURE() << preset.error().message;
+          return preset && face->expressionWeights(**preset, 1.0f, weights).ok();
+        },
+        dir_ / "set");
+    testing_support::writeFile(rigmap(), testing_support::studyRigMapJson(1.0f));
 
     const auto converted = runFacial({"convert", (dir_ / "set").string(), "--out", glb().string()});
     ASSERT_EQ(converted.exitCode, 0) << converted.out << converted.err;
@@ -179,7 +132,7 @@ TEST_F(ObjKeyframeSet, HeadlessDemoPlaysTheSevenEmotionTransitions) {
   // The control: the same tour with every emotion bound at gain 0. Sway,
   // breathing and timing are identical, so any difference is the expression.
   const fs::path still = dir_ / "still.json";
-  testing_support::writeFile(still, rigMapJson(0.0f));
+  testing_support::writeFile(still, testing_support::studyRigMapJson(0.0f));
   ASSERT_TRUE(runDemo(still, dir_ / "still"));
 
   // The tour (data/graphs/tour.json) moves on 2.4 s after entering a state,
@@ -200,8 +153,8 @@ TEST_F(ObjKeyframeSet, HeadlessDemoPlaysTheSevenEmotionTransitions) {
   EXPECT_LT(expression(1.6), 0.05) << "neutral at the start";
   for (int k = 1; k < 7; ++k) {
     const double held = expression(2.4 * k + 1.6), blending = expression(2.4 * k + 0.4);
-    std::printf("%s ('%s'): %.2f held, %.2f half way in\n", kSet[k].preset, kSet[k].file, held, blending);
-    EXPECT_GT(held, 0.5) << kSet[k].preset << " (target '" << kSet[k].file << "') shows in the tour";
+    std::printf("%s ('%s'): %.2f held, %.2f half way in\n", kStudySet[k].preset, kStudySet[k].file, held, blending);
+    EXPECT_GT(held, 0.5) << kStudySet[k].preset << " (target '" << kStudySet[k].file << "') shows in the tour";
     if (k == 1) {
       EXPECT_GT(blending, 0.15 * held) << "half way from neutral to happy, the smile is on its way";
       EXPECT_LT(blending, 0.85 * held) << "half way from neutral to happy, the smile is not complete";

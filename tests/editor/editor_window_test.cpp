@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "demo/face_setup.h"
+#include "tests/common/study_obj_set.h"
 #include "tests/common/test_support.h"
 #include "tests/editor/editor_run.h"
 
@@ -94,6 +96,41 @@ TEST(EditorWindow, ArkitFaceFromShared) {
   ASSERT_TRUE(ranCleanly(run));
   EXPECT_NE(run.log.find("ARKit"), std::string::npos) << run.log;
   expectFaceAndPanels(run.shot);
+}
+
+// The study's hand-over (one OBJ per expression under artist names, converted
+// with `facial convert`) opens in the editor through a rig map, and the state
+// machine's triggers reach its emotion targets.
+TEST(EditorWindow, ConvertedObjExpressionSetPlaysThroughARigMap) {
+  REQUIRE_XVFB();
+  const fs::path dir = testing_support::freshTempDir("editor_window_obj_set");
+  auto head = cli::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
+  ASSERT_TRUE(head) << head.error().message;
+  testing_support::writeStudyObjSet(
+      head->model(), head->weightCount(),
+      [&](const char* name, std::vector<float>& weights) {
+        auto preset = head->findExpression(name);
+        if (!preset) ADD_FAILURE() << preset.error().message;
+        return preset && head->expressionWeights(**preset, 1.0f, weights).ok();
+      },
+      dir / "set");
+  testing_support::writeFile(dir / "map.json", testing_support::studyRigMapJson(1.0f));
+  const std::string convert = "'" + (fs::path(FACIAL_BINARY_DIR) / "bin" / "facial").string() + "' convert '" +
+                              (dir / "set").string() + "' --out '" + (dir / "study.glb").string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(convert.c_str()), 0);
+
+  const std::string face = "--model '" + (dir / "study.glb").string() + "' --rigmap '" + (dir / "map.json").string() + "'";
+  const editor_test::EditorRun neutral = runEditor(dir, face + " --trigger neutral", 3.0f);
+  ASSERT_TRUE(ranCleanly(neutral));
+  const editor_test::EditorRun anger = runEditor(dir, face + " --trigger anger", 3.0f);
+  ASSERT_TRUE(ranCleanly(anger));
+  EXPECT_NE(anger.log.find("study, face from state machine, state anger"), std::string::npos) << anger.log;
+  expectFaceAndPanels(anger.shot);
+  // The scowl target moved the face (the view's middle), not the panels around it.
+  size_t changed = 0, total = 0;
+  for (int y = 60; y < 520; ++y)
+    for (int x = 420; x < 860; ++x, ++total) changed += distance(pixel(anger.shot, x, y), pixel(neutral.shot, x, y)) > 24;
+  EXPECT_GT(double(changed) / double(total), 0.01) << "anger on the converted set differs from neutral";
 }
 
 TEST(EditorWindow, ABrokenTimelineIsAnErrorNamingTheFile) {
