@@ -27,7 +27,7 @@
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
 #include "demo/window_idle_motion.h"
-#include "demo/window_imgui.h"
+#include "engine/vk/imgui_layer.h"
 #include "demo/window_loop.h"
 #include "demo/window_script.h"
 #include "engine/vk/context.h"
@@ -167,7 +167,7 @@ class WindowDemo {
   std::optional<eng::vk::Context> ctx_;
   std::unique_ptr<eng::vk::WindowRenderer> renderer_;
   std::optional<eng::vk::GpuModel> gpuModel_;
-  std::unique_ptr<ImGuiLayer> ui_;
+  std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;
   eng::Aabb framedBounds_;                   // what view_ frames: the face, or the whole crowd
   float panelLeft_ = 0.0f, panelRight_ = 0.0f, panelBottom_ = 0.0f;  // the panel this frame (ImGui pixels)
@@ -255,7 +255,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   // Before ImGui, which chains to it.
   gKeyQueue = &keys_;
   glfwSetKeyCallback(window_->handle(), onKey);
-  auto ui = ImGuiLayer::create(*ctx_, *renderer_, *window_);
+  auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
 
@@ -533,7 +533,7 @@ int WindowDemo::run(const DemoOptions& o) {
     logStateChange();
     updateTitle(tick.dt);
     WindowFramePlan plan{.input = {shownView(), instances_}, .quit = quitRequested_};
-    plan.input.overlay = ImGuiLayer::recorder();
+    plan.input.overlay = eng::vk::ImGuiLayer::recorder();
     // Kept requested until a frame is really presented (not skipped).
     if (screenshotRequested_) plan.requestedShot = screenshotPathFor(o);
     return plan;

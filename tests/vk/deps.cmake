@@ -1,6 +1,4 @@
-set(TEST_DEPS eng_vk eng_scene imgui)
-# The window tests draw through ImGui's Vulkan backend (Debian's libimgui.a).
-target_include_directories(test_vk PRIVATE /usr/include/imgui)
+set(TEST_DEPS eng_vk eng_scene)
 # They need a display: ctest runs them under a virtual X server as one entry,
 # vk.WindowTestsUnderXvfb, and leaves them out of the per-test entries (run
 # by hand without a display, they skip with a message).

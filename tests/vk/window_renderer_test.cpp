@@ -13,12 +13,11 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <backends/imgui_impl_glfw.h>
-#include <backends/imgui_impl_vulkan.h>
 #include <gtest/gtest.h>
 #include <imgui.h>
 
 #include "engine/scene/image_io.h"
+#include "engine/vk/imgui_layer.h"
 #include "tests/common/test_support.h"
 #include "tests/vk/image_probe.h"
 #include "tests/vk/test_models.h"
@@ -142,45 +141,22 @@ TEST(WindowRenderer, ImGuiOverlayDrawsIntoTheScenePass) {
   WindowRig rig;
   ASSERT_TRUE(rig.ok());
   SphereScene scene(*rig.renderer);
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;
-  ASSERT_TRUE(ImGui_ImplGlfw_InitForVulkan(rig.window->handle(), false));
-  const eng::vk::ImGuiVulkanInfo info = rig.renderer->imguiInfo();
-  ImGui_ImplVulkan_InitInfo init{};
-  init.Instance = info.instance;
-  init.PhysicalDevice = info.physicalDevice;
-  init.Device = info.device;
-  init.QueueFamily = info.queueFamily;
-  init.Queue = info.queue;
-  init.DescriptorPool = info.descriptorPool;
-  init.Subpass = info.subpass;
-  init.MinImageCount = info.minImageCount;
-  init.ImageCount = info.imageCount;
-  init.MSAASamples = info.msaaSamples;
-  ASSERT_TRUE(ImGui_ImplVulkan_Init(&init, info.renderPass));
-  auto fonts = rig.ctx->submitOneShot([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
-  ASSERT_TRUE(fonts) << fonts.error().message;
-  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  // The layer the demo and the editor use: both ImGui backends on this renderer.
+  auto ui = eng::vk::ImGuiLayer::create(*rig.ctx, *rig.renderer, *rig.window);
+  ASSERT_TRUE(ui) << ui.error().message;
 
   const eng::Image without = screenshotOf(rig, scene.frame(), "no_overlay");
-  ImGui_ImplVulkan_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
-  ImGui::NewFrame();
+  (*ui)->beginFrame();
   ImGui::SetNextWindowPos({10, 10});
   ImGui::SetNextWindowSize({150, 80});
   ImGui::Begin("overlay");
   ImGui::Text("hello from ImGui");
   ImGui::End();
-  ImGui::Render();
+  (*ui)->endFrame();
   eng::vk::FrameInput frame = scene.frame();
-  frame.overlay = [](VkCommandBuffer cmd) { ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd); };
+  frame.overlay = eng::vk::ImGuiLayer::recorder();
   const eng::Image with = screenshotOf(rig, frame, "overlay");
-
-  vkDeviceWaitIdle(rig.ctx->device());
-  ImGui_ImplVulkan_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
+  ui->reset();  // waits for the GPU, shuts both backends down
 
   ASSERT_EQ(with.rgba8.size(), without.rgba8.size());
   EXPECT_NE(vk_test::pixel(with, 40, 40), vk_test::pixel(without, 40, 40)) << "the ImGui window covers (40, 40)";

@@ -1,23 +1,23 @@
-#include "demo/window_imgui.h"
+#include "engine/vk/imgui_layer.h"
 
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
-namespace cli {
+namespace eng::vk {
 
-eng::Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const eng::vk::Context& ctx,
-                                                            const eng::vk::WindowRenderer& renderer,
-                                                            const eng::vk::Window& window) {
+Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const Context& ctx,
+                                                            const WindowRenderer& renderer,
+                                                            const Window& window) {
   IMGUI_CHECKVERSION();
   std::unique_ptr<ImGuiLayer> layer(new ImGuiLayer(ctx.device()));
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
   ImGui::StyleColorsDark();
   // true: ImGui chains to callbacks installed before it (the demo's key queue).
-  if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return eng::Error{"ImGui: GLFW backend failed to start"};
+  if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return Error{"ImGui: GLFW backend failed to start"};
   layer->glfwReady_ = true;
-  const eng::vk::ImGuiVulkanInfo info = renderer.imguiInfo();
+  const ImGuiVulkanInfo info = renderer.imguiInfo();
   ImGui_ImplVulkan_InitInfo init{};
   init.Instance = info.instance;
   init.PhysicalDevice = info.physicalDevice;
@@ -29,13 +29,13 @@ eng::Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const eng::vk::Conte
   init.MinImageCount = info.minImageCount;
   init.ImageCount = info.imageCount;
   init.MSAASamples = info.msaaSamples;
-  if (!ImGui_ImplVulkan_Init(&init, info.renderPass)) return eng::Error{"ImGui: Vulkan backend failed to start"};
+  if (!ImGui_ImplVulkan_Init(&init, info.renderPass)) return Error{"ImGui: Vulkan backend failed to start"};
   layer->vulkanReady_ = true;
   bool fontsOk = false;
   auto fonts = ctx.submitOneShot([&](VkCommandBuffer cmd) { fontsOk = ImGui_ImplVulkan_CreateFontsTexture(cmd); });
-  if (!fonts) return eng::Error{"ImGui fonts: " + fonts.error().message};
+  if (!fonts) return Error{"ImGui fonts: " + fonts.error().message};
   ImGui_ImplVulkan_DestroyFontUploadObjects();
-  if (!fontsOk) return eng::Error{"ImGui: font texture upload failed"};
+  if (!fontsOk) return Error{"ImGui: font texture upload failed"};
   return layer;
 }
 
@@ -54,8 +54,8 @@ void ImGuiLayer::beginFrame() {
 
 void ImGuiLayer::endFrame() { ImGui::Render(); }
 
-eng::vk::OverlayRecorder ImGuiLayer::recorder() {
+OverlayRecorder ImGuiLayer::recorder() {
   return [](VkCommandBuffer cmd) { ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd); };
 }
 
-}  // namespace cli
+}  // namespace eng::vk

@@ -13,13 +13,13 @@
 #include "engine/vk/window.h"
 #include "engine/vk/window_renderer.h"
 
-namespace cli {
+namespace eng::vk {
 
 class ImGuiLayer {
  public:
-  static eng::Result<std::unique_ptr<ImGuiLayer>> create(const eng::vk::Context& ctx,
-                                                         const eng::vk::WindowRenderer& renderer,
-                                                         const eng::vk::Window& window);
+  static Result<std::unique_ptr<ImGuiLayer>> create(const Context& ctx,
+                                                         const WindowRenderer& renderer,
+                                                         const Window& window);
   ~ImGuiLayer();
   ImGuiLayer(const ImGuiLayer&) = delete;
   ImGuiLayer& operator=(const ImGuiLayer&) = delete;
@@ -27,7 +27,7 @@ class ImGuiLayer {
   void beginFrame();
   void endFrame();
   // Records the last endFrame()'s draw data inside the scene pass.
-  static eng::vk::OverlayRecorder recorder();
+  static OverlayRecorder recorder();
 
  private:
   explicit ImGuiLayer(VkDevice device) : device_(device) {}
@@ -36,4 +36,4 @@ class ImGuiLayer {
   bool vulkanReady_ = false;
 };
 
-}  // namespace cli
+}  // namespace eng::vk
