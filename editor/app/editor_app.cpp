@@ -14,7 +14,7 @@
 
 #include "demo/cli_parse.h"
 #include "demo/face_setup.h"
-#include "demo/window_imgui.h"
+#include "engine/vk/imgui_layer.h"
 #include "demo/window_loop.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
@@ -102,7 +102,7 @@ class EditorApp : public FaceDelegate {
   std::unique_ptr<eng::vk::WindowRenderer> renderer_;
   std::optional<eng::vk::GpuModel> gpuModel_;
   uint64_t uploadedRevision_ = 0;
-  std::unique_ptr<cli::ImGuiLayer> ui_;
+  std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;  // camera: target = face centre, user yaw / pitch / zoom
   eng::Aabb bounds_;
   Layout layout_;
@@ -193,7 +193,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
   renderer_ = std::move(*renderer);
-  auto ui = cli::ImGuiLayer::create(*ctx_, *renderer_, *window_);
+  auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
 
@@ -432,7 +432,7 @@ int EditorApp::run(const EditorOptions& o) {
     instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_};
     cli::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
     plan.input.view.camera = renderCamera();
-    plan.input.overlay = cli::ImGuiLayer::recorder();
+    plan.input.overlay = eng::vk::ImGuiLayer::recorder();
     return plan;
   };
   auto shotWritten = [&](const fs::path& shot) {
