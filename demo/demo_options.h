@@ -14,6 +14,7 @@ struct DemoOptions {
   std::string size = "";           // WxH; default 384x384 headless, 1280x800 windowed
   float fps = 10.0f;               // headless frame rate
   float seconds = 0.0f;            // headless length (0: one tour, all seven states and back)
+  std::string frame = "face";      // face (head and neck) | all (the whole model); windowed: F toggles
   uint32_t crowd = 0;              // >0: N faces in a grid, each with its own state machine
   uint64_t seed = 1;
   std::string device;              // Vulkan device (eng::vk::ContextOptions::device); empty: FACIAL_DEVICE or the best

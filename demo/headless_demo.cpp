@@ -17,6 +17,7 @@
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
+#include "demo/view_options.h"
 #include "demo/sequence_recorder.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/scene/image_io.h"
@@ -75,6 +76,8 @@ int runHeadlessDemo(const DemoOptions& o) {
   const uint32_t crowd = std::max<uint32_t>(1, o.crowd);
   if (crowd > 1024) return fail("--crowd must be at most 1024");
 
+  auto framing = framingModeOption(o.frame);
+  if (!framing) return fail(framing.error().message);
   auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
@@ -101,8 +104,9 @@ int runHeadlessDemo(const DemoOptions& o) {
   auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width, .height = height, .device = o.device});
   if (!renderer) return fail(renderer.error().message);
 
-  // Crowd: a square grid of faces spaced by the model's size, framed together.
-  const eng::Aabb bounds = eng::vk::framingBounds(setup->model());
+  // Crowd: a square grid of faces spaced by the framed part's size (the head,
+  // by default), framed together.
+  const eng::Aabb bounds = eng::vk::framingBounds(setup->model(), *framing);
   const uint32_t columns = static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<float>(crowd))));
   const float spacing = std::max(bounds.size().x, bounds.size().y) * 1.15f;
   std::vector<glm::vec3> offsets(crowd);
@@ -117,6 +121,8 @@ int runHeadlessDemo(const DemoOptions& o) {
   view.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
   if (crowd == 1) view.camera.zoom = kFaceZoom;  // a crowd is framed as a whole
 
+  // The head sways about the neck: the bottom of the framed head, not its centre.
+  const glm::vec3 swayPivot{bounds.center().x, bounds.min.y, bounds.center().z};
   std::vector<eng::vk::ModelInstance> instances(crowd);
   std::mt19937 random(static_cast<uint32_t>(o.seed));
   std::vector<float> nextTrigger(crowd, 0.0f);
@@ -148,7 +154,7 @@ int runHeadlessDemo(const DemoOptions& o) {
           faces[i].update(frame.dt);
           instances[i] = {&renderer->gpuModel(),
                           glm::translate(glm::mat4(1.0f), offsets[i]) *
-                              idleMotion(frame.time, 1.7f * float(i), bounds.center(), bounds.diagonal()),
+                              idleMotion(frame.time, 1.7f * float(i), swayPivot, bounds.diagonal()),
                           faces[i].targetWeights()};
         }
         return std::span<const eng::vk::ModelInstance>(instances);

@@ -24,7 +24,7 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   auto gpuModel = r.renderer_->upload(model);
   if (!gpuModel) return gpuModel.error();
   r.gpuModel_ = std::move(*gpuModel);
-  r.view_.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model),
+  r.view_.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model, options.framing),
                                                float(options.width) / float(options.height));
   r.view_.camera.yawDegrees = options.yawDegrees;
   r.view_.camera.pitchDegrees = options.pitchDegrees;

@@ -15,6 +15,7 @@
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 #include "engine/vk/context.h"
+#include "engine/vk/framing_bounds.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/offscreen_renderer.h"
 #include "engine/vk/scene_view.h"
@@ -27,6 +28,7 @@ struct HeadlessRenderOptions {
   float yawDegrees = 0.0f;    // + = from the face's left
   float pitchDegrees = 0.0f;  // + = from above
   float zoom = 1.0f;          // > 1 = closer
+  eng::vk::FramingMode framing = eng::vk::FramingMode::Face;  // head and neck, or the whole model
   std::string device;         // eng::vk::ContextOptions::device
 };
 

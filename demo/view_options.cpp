@@ -11,11 +11,24 @@ void addDeviceOption(CLI::App& app, std::string& device) {
                  "Vulkan device: discrete | integrated | cpu | name substring (default: FACIAL_DEVICE or the best)");
 }
 
+void addFramingOption(CLI::App& app, std::string& frame) {
+  app.add_option("--frame", frame,
+                 "What the camera frames: face (the head and neck, found from the morph targets) or all (the whole "
+                 "model)")
+      ->capture_default_str();
+}
+
+eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame) {
+  if (auto mode = eng::vk::parseFramingMode(frame)) return *mode;
+  return eng::makeError("--frame '" + frame + "' is neither 'face' nor 'all'");
+}
+
 void addViewOptions(CLI::App& app, ViewOptions& view) {
   app.add_option("--size", view.size, "Image size WxH")->capture_default_str();
   app.add_option("--yaw", view.yaw, "Orbit yaw in degrees (+ = from the face's left)")->capture_default_str();
   app.add_option("--pitch", view.pitch, "Orbit pitch in degrees (+ = from above)")->capture_default_str();
   app.add_option("--zoom", view.zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
+  addFramingOption(app, view.frame);
   addDeviceOption(app, view.device);
 }
 
@@ -26,6 +39,9 @@ eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view
   if (!(view.zoom > 0.0f) || !std::isfinite(view.zoom)) return eng::makeError("--zoom must be a positive number");
   if (!std::isfinite(view.yaw) || !std::isfinite(view.pitch))
     return eng::makeError("--yaw and --pitch must be finite numbers of degrees");
+  auto framing = framingModeOption(view.frame);
+  if (!framing) return framing.error();
+  options.framing = *framing;
   options.yawDegrees = view.yaw;
   options.pitchDegrees = view.pitch;
   options.zoom = view.zoom;

@@ -8,11 +8,13 @@
 
 #include "demo/headless_model_renderer.h"
 #include "engine/core/result.h"
+#include "engine/vk/framing_bounds.h"
 
 namespace cli {
 
 struct ViewOptions {
   std::string size = "512x512";
+  std::string frame = "face";
   float yaw = 0.0f;
   float pitch = 0.0f;
   float zoom = 1.0f;
@@ -21,7 +23,11 @@ struct ViewOptions {
 
 // --device alone, for commands that choose their own framing.
 void addDeviceOption(CLI::App& app, std::string& device);
-// --size --yaw --pitch --zoom --device.
+// --frame face|all, for every command that shows a face (default: face).
+void addFramingOption(CLI::App& app, std::string& frame);
+// The --frame value as a mode; the error names the option and the value.
+eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame);
+// --size --yaw --pitch --zoom --frame --device.
 void addViewOptions(CLI::App& app, ViewOptions& view);
 
 // Size parsed, zoom/yaw/pitch checked; the error names the option and value.

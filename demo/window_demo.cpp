@@ -28,6 +28,7 @@
 #include "demo/face_setup.h"
 #include "demo/window_idle_motion.h"
 #include "engine/vk/imgui_layer.h"
+#include "demo/view_options.h"
 #include "demo/window_loop.h"
 #include "demo/window_script.h"
 #include "engine/vk/context.h"
@@ -134,6 +135,7 @@ class WindowDemo {
   void setIntensity(float intensity);
   void setPad(glm::vec2 cursor);
   void orbit(float yawDegrees, float pitchDegrees);
+  void setFraming(eng::vk::FramingMode mode);
   void updateFaces(float dt);
   void logStateChange();
   void updateTitle(float dt);
@@ -169,7 +171,9 @@ class WindowDemo {
   std::optional<eng::vk::GpuModel> gpuModel_;
   std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;
-  eng::Aabb framedBounds_;                   // what view_ frames: the face, or the whole crowd
+  eng::Aabb framedBounds_;                   // what view_ frames: the head(s), or the whole model(s)
+  std::array<eng::Aabb, 2> crowdBounds_;     // by eng::vk::FramingMode: the heads, the whole models
+  eng::vk::FramingMode framing_ = eng::vk::FramingMode::Face;
   float panelLeft_ = 0.0f, panelRight_ = 0.0f, panelBottom_ = 0.0f;  // the panel this frame (ImGui pixels)
   KeyQueue keys_;
   bool orbiting_ = false;
@@ -203,11 +207,15 @@ int WindowDemo::setUp(const DemoOptions& o) {
 
   const uint32_t count = setup_->weightCount();
   const uint32_t faceCount = std::max<uint32_t>(1, o.crowd);
-  const eng::Aabb bounds = eng::vk::framingBounds(setup_->model());
+  auto framing = framingModeOption(o.frame);
+  if (!framing) return fail(framing.error().message);
+  framing_ = *framing;
+  const eng::Aabb bounds = eng::vk::framingBounds(setup_->model(), framing_);
+  const eng::Aabb other = eng::vk::framingBounds(
+      setup_->model(), framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face);
   const std::vector<std::string> names = setup_->layout().names();
   const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(faceCount))));
   const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
-  eng::Aabb crowdBounds;
   for (uint32_t i = 0; i < faceCount; ++i) {
     auto driver = facial::FaceDriver::create(graph_, &setup_->graphRig(), names, setup_->baseWeights(), o.seed + i);
     if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
@@ -218,7 +226,8 @@ int WindowDemo::setUp(const DemoOptions& o) {
                            (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
     Face face{std::move(*driver), IdleMotion::create(names, bounds, o.seed + i), glm::translate(glm::mat4(1.0f), offset),
               std::uniform_real_distribution<float>(0.5f, 3.0f)(random_)};
-    crowdBounds.extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
+    crowdBounds_[size_t(framing_)].extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
+    crowdBounds_[1 - size_t(framing_)].extend(eng::Aabb{other.min + offset, other.max + offset});
     faces_.push_back(std::move(face));
   }
   weights_.assign(size_t(faceCount) * count, 0.0f);
@@ -259,8 +268,8 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
 
-  view_.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
-  framedBounds_ = crowdBounds;
+  view_.camera = eng::vk::OrbitCamera::frame(crowdBounds_[size_t(framing_)], float(width) / float(height));
+  framedBounds_ = crowdBounds_[size_t(framing_)];
   instances_.resize(faceCount);
   for (uint32_t i = 0; i < faceCount; ++i)
     instances_[i] = {&*gpuModel_, faces_[i].placement,
@@ -342,6 +351,21 @@ void WindowDemo::trigger(int emotion) {
   if (emotion != 0) chosen_ = emotion;
 }
 
+// The camera re-framed on the heads or the whole models; the orbit angles
+// and the zoom the user chose are kept.
+void WindowDemo::setFraming(eng::vk::FramingMode mode) {
+  framing_ = mode;
+  framedBounds_ = crowdBounds_[size_t(mode)];
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float aspect = display.x > 0.0f && display.y > 0.0f ? display.x / display.y : 1.0f;
+  const eng::vk::OrbitCamera framed = eng::vk::OrbitCamera::frame(framedBounds_, aspect, view_.camera.fovYDegrees);
+  view_.camera.target = framed.target;
+  view_.camera.distance = framed.distance;
+  view_.camera.sceneRadius = framed.sceneRadius;
+  std::printf("framing: %s\n", std::string(eng::vk::framingModeName(mode)).c_str());
+  std::fflush(stdout);
+}
+
 void WindowDemo::handleInput() {
   const ImGuiIO& io = ImGui::GetIO();
   for (uint32_t k = 0; k < keys_.count; ++k) {
@@ -349,6 +373,8 @@ void WindowDemo::handleInput() {
     if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     if (io.WantTextInput) continue;
     if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kEmotions.size())) trigger(key - GLFW_KEY_1);
+    if (key == GLFW_KEY_F)
+      setFraming(framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face);
     if (key == GLFW_KEY_ESCAPE) quitRequested_ = true;
   }
   keys_.count = 0;
@@ -455,7 +481,7 @@ void WindowDemo::drawPanel() {
   const ImVec2 cursor{mid.x + reached.x * side / 2, mid.y - reached.y * side / 2};
   draw->AddCircleFilled(cursor, 6.0f, control_ == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
   if (control_ != Control::Graph && ImGui::Button("back to the graph")) control_ = Control::Graph;
-  ImGui::TextDisabled("drag: orbit  wheel: zoom  F12: screenshot  Esc: quit");
+  ImGui::TextDisabled("drag: orbit  wheel: zoom  F: face/whole model  F12: screenshot  Esc: quit");
   notePanelExtent();
   ImGui::End();
 }

@@ -32,6 +32,7 @@ struct PlayOptions {
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
   std::string size = "512x512";
+  std::string frame = "face";
   std::string out;
   std::string video;
 };
@@ -71,6 +72,8 @@ int runPlay(const PlayOptions& o) {
   nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded() || !document.is_object()) return fail(o.file + ": not a JSON object");
 
+  auto framing = framingModeOption(o.frame);
+  if (!framing) return fail(framing.error().message);
   auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
   if (!setup) return fail(setup.error().message);
 
@@ -86,7 +89,7 @@ int runPlay(const PlayOptions& o) {
   if (!face) return fail(o.file + ": " + face.error().message);
 
   auto renderer = HeadlessModelRenderer::create(
-      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .device = o.device});
+      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .framing = *framing, .device = o.device});
   if (!renderer) return fail(renderer.error().message);
 
   SequenceOptions sequence;
@@ -119,6 +122,7 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();
+  addFramingOption(app, o->frame);
   app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
   app.add_option("--video", o->video, "Also write an animated GIF here");
   addDeviceOption(app, o->device);

@@ -32,6 +32,7 @@ struct SheetOptions {
   // Why closer than `render`: the camera frames the model with every target
   // at full weight (neck and hair included); expressions read in the face.
   float zoom = kSheetTileZoom;
+  std::string frame = "face";
   std::string device;
   std::string out;
 };
@@ -61,6 +62,8 @@ int runSheet(const SheetOptions& o) {
   if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
+  auto framing = framingModeOption(o.frame);
+  if (!framing) return fail(framing.error().message);
   auto face = FaceSetup::load({.model = o.model});
   if (!face) return fail(face.error().message);
   // Basic: exactly the emotion channels, in their order (neutral first).
@@ -77,7 +80,7 @@ int runSheet(const SheetOptions& o) {
   }
 
   auto renderer = HeadlessModelRenderer::create(
-      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .device = o.device});
+      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .framing = *framing, .device = o.device});
   if (!renderer) return fail(renderer.error().message);
   std::vector<float> weights(face->weightCount());
   std::vector<eng::ContactSheetTile> tiles;
@@ -122,6 +125,7 @@ CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expr
       ->check(CLI::Number)
       ->capture_default_str();
   app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
+  addFramingOption(app, o->frame);
   addDeviceOption(app, o->device);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runSheet(*o); };

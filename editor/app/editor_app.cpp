@@ -104,7 +104,8 @@ class EditorApp : public FaceDelegate {
   uint64_t uploadedRevision_ = 0;
   std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;  // camera: target = face centre, user yaw / pitch / zoom
-  eng::Aabb bounds_;
+  eng::Aabb bounds_;  // what the camera frames: the head (F: the whole model)
+  eng::vk::FramingMode framing_ = eng::vk::FramingMode::Face;
   Layout layout_;
   std::vector<float> displayWeights_;
   std::vector<glm::vec3> pointsOnFace_, pointsMoved_;  // control point markers, reused every frame
@@ -197,7 +198,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
 
-  bounds_ = eng::vk::framingBounds(setup_->model());
+  bounds_ = eng::vk::framingBounds(setup_->model(), framing_);
   view_.camera = eng::vk::OrbitCamera::frame(bounds_, 1.0f);
   if (auto uploaded = uploadDisplayModel(); !uploaded) return fail(uploaded.error().message);
   return 0;
@@ -237,6 +238,12 @@ void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& directio
 void EditorApp::handleViewportInput() {
   const ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false) && pendingShot_.empty()) pendingShot_ = defaultShot_;
+  if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
+    // renderCamera() frames bounds_ each frame; the orbit target follows it.
+    framing_ = framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face;
+    bounds_ = eng::vk::framingBounds(setup_->model(), framing_);
+    view_.camera.target = eng::vk::OrbitCamera::frame(bounds_, 1.0f).target;
+  }
   timeline_->handleShortcuts();
   const bool overViewport = !io.WantCaptureMouse;
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && overViewport) {

@@ -1,12 +1,16 @@
 #include "engine/vk/framing_bounds.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/vk/scene_mesh_nodes.h"
 
 namespace eng::vk {
+namespace {
 
-Aabb framingBounds(const Model& model) {
+Aabb wholeModelBounds(const std::vector<MeshNode>& nodes, const Model& model) {
   Aabb box;
-  for (const MeshNode& node : sceneMeshNodes(model)) {
+  for (const MeshNode& node : nodes) {
     for (const Primitive& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) {
       const size_t n = prim.positions.size();
       auto extend = [&](const glm::vec3& p) { box.extend(glm::vec3(node.world * glm::vec4(p, 1.0f))); };
@@ -18,6 +22,71 @@ Aabb framingBounds(const Model& model) {
     }
   }
   return box;
+}
+
+Aabb morphedBounds(const std::vector<MeshNode>& nodes, const Model& model) {
+  Aabb box;
+  for (const MeshNode& node : nodes) {
+    for (const Primitive& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) {
+      const size_t n = prim.positions.size();
+      Aabb local;
+      for (const glm::vec3& p : prim.positions) local.extend(p);
+      // Deltas below a thousandth of the primitive's size are noise (quantised exports).
+      const float threshold = std::max(local.diagonal() * 1e-3f, 1e-12f);
+      for (const MorphTarget& target : prim.targets) {
+        if (target.positions.size() != n) continue;
+        for (size_t v = 0; v < n; ++v) {
+          if (glm::length(target.positions[v]) <= threshold) continue;
+          box.extend(glm::vec3(node.world * glm::vec4(prim.positions[v], 1.0f)));
+          box.extend(glm::vec3(node.world * glm::vec4(prim.positions[v] + target.positions[v], 1.0f)));
+        }
+      }
+    }
+  }
+  return box;
+}
+
+// The head around a face region: the model's vertices inside a box reaching
+// from the face centre about a face height up (skull, hair) and down (chin,
+// neck) and three quarters of one to the sides (ears), clipped to what is
+// there, so a bare head mask is framed as itself and a full body as its head.
+Aabb headAround(const Aabb& face, const std::vector<MeshNode>& nodes, const Model& model) {
+  const float size = std::max({face.size().x, face.size().y, 1e-6f});
+  const glm::vec3 c = face.center();
+  Aabb reach;
+  reach.min = c - glm::vec3(0.75f * size, 1.0f * size, 0.9f * size);
+  reach.max = c + glm::vec3(0.75f * size, 0.85f * size, 0.9f * size);
+  Aabb head = face;
+  for (const MeshNode& node : nodes) {
+    for (const Primitive& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) {
+      for (const glm::vec3& p : prim.positions) {
+        const glm::vec3 w(node.world * glm::vec4(p, 1.0f));
+        if (glm::all(glm::greaterThanEqual(w, reach.min)) && glm::all(glm::lessThanEqual(w, reach.max))) head.extend(w);
+      }
+    }
+  }
+  return head;
+}
+
+}  // namespace
+
+std::optional<FramingMode> parseFramingMode(std::string_view text) {
+  if (text == "face") return FramingMode::Face;
+  if (text == "all") return FramingMode::All;
+  return std::nullopt;
+}
+
+std::string_view framingModeName(FramingMode mode) { return mode == FramingMode::Face ? "face" : "all"; }
+
+Aabb morphedRegionBounds(const Model& model) { return morphedBounds(sceneMeshNodes(model), model); }
+
+Aabb framingBounds(const Model& model, FramingMode mode) {
+  const std::vector<MeshNode> nodes = sceneMeshNodes(model);
+  if (mode == FramingMode::Face) {
+    const Aabb face = morphedBounds(nodes, model);
+    if (face.valid()) return headAround(face, nodes, model);
+  }
+  return wholeModelBounds(nodes, model);
 }
 
 }  // namespace eng::vk

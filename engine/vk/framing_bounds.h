@@ -1,13 +1,33 @@
 #pragma once
-// Bounds to frame a morphing model by: the rest pose plus every morph target
-// at full weight, in world space. Unlike Model::bounds() (rest pose only) it
-// keeps shapes that morph far out (SimpleMorph) in view, and unlike the bounds
-// of the current pose it does not change with the weights, so the camera
-// stays put while a face animates or across renders of several expressions.
+// Bounds to frame a morphing model by, in world space. They include every
+// morph target at full weight, so shapes that morph far out (SimpleMorph)
+// stay in view, and they do not change with the weights, so the camera stays
+// put while a face animates or across renders of several expressions.
+//
+// Two framings:
+//  - All:  the whole model (rest pose plus every target).
+//  - Face: the head and neck. Most faces users bring are full-body avatars
+//    (Ready Player Me, VRoid, Mixamo): framing all of one leaves the face a
+//    few pixels tall. The face is where the morph targets move vertices; the
+//    head is the part of the model around it (hair cap, ears, neck stump).
+//    A model with no morph target falls back to All.
+#include <optional>
+#include <string_view>
+
 #include "engine/scene/model.h"
 
 namespace eng::vk {
 
-Aabb framingBounds(const Model& model);
+enum class FramingMode { Face, All };
+
+// "face" / "all"; nullopt otherwise.
+std::optional<FramingMode> parseFramingMode(std::string_view text);
+std::string_view framingModeName(FramingMode mode);
+
+Aabb framingBounds(const Model& model, FramingMode mode = FramingMode::All);
+
+// The world-space box of the vertices that some morph target moves (rest and
+// fully morphed positions); invalid when no target moves anything.
+Aabb morphedRegionBounds(const Model& model);
 
 }  // namespace eng::vk

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 
 #include "engine/vk/descriptor_write.h"
 #include "engine/core/log.h"
+#include "engine/scene/face_dressing.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/detail_array.h"
 #include "engine/vk/scene_mesh_nodes.h"
@@ -152,8 +154,16 @@ Result<void> validateModelForGpu(const Model& model) {
   return {};
 }
 
-Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& model) {
-  ENG_TRY(validateModelForGpu(model));
+Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& source) {
+  ENG_TRY(validateModelForGpu(source));
+  // An untextured face is dressed for display only: the CPU model (what
+  // tools inspect and export) stays as loaded.
+  std::optional<Model> dressed;
+  if (planFaceDressing(source).total() > 0) {
+    dressed = source;
+    dressUntexturedFace(*dressed);
+  }
+  const Model& model = dressed ? *dressed : source;
   const std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
   const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
   const VkDeviceSize storageAlign = std::max<VkDeviceSize>(limits.minStorageBufferOffsetAlignment, 16);

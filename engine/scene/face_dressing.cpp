@@ -1,0 +1,114 @@
+#include "engine/scene/face_dressing.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/scene/procedural_eyes.h"
+
+namespace eng {
+namespace {
+
+enum class Part { None, Teeth, Tongue, Skin };
+
+// Linear albedos: ivory teeth (a shade below white, so they do not glow in a
+// shadowed mouth), a muted tongue, and a mid skin tone with headroom both
+// ways for the key's highlights and the creases' shadows.
+constexpr glm::vec3 kTeethColour{0.62f, 0.58f, 0.50f};
+constexpr glm::vec3 kTongueColour{0.42f, 0.13f, 0.12f};
+constexpr glm::vec3 kSkinColour{0.60f, 0.42f, 0.34f};
+
+bool contains(std::string_view haystack, std::string_view needle) {
+  std::string h(haystack);
+  for (char& c : h) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return h.find(needle) != std::string::npos;
+}
+
+// The mesh's name and the names of the node drawing it and its parents.
+std::vector<std::string_view> namesOf(const Model& model, size_t mesh, int node) {
+  std::vector<std::string_view> names{model.meshes[mesh].name};
+  for (int depth = 0; node >= 0 && depth < 4; ++depth, node = model.nodes[size_t(node)].parent)
+    names.push_back(model.nodes[size_t(node)].name);
+  return names;
+}
+
+bool anyContains(const std::vector<std::string_view>& names, std::string_view needle) {
+  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return contains(n, needle); });
+}
+
+// An untextured material left at white: the author gave it no colour.
+bool unauthoredWhite(const Model& model, int material) {
+  if (material < 0) return true;
+  const Material& m = model.materials[size_t(material)];
+  return m.baseColorImage < 0 && m.baseColorFactor.r >= 0.99f && m.baseColorFactor.g >= 0.99f &&
+         m.baseColorFactor.b >= 0.99f;
+}
+
+struct PlannedPrimitive {
+  size_t mesh, primitive;
+  Part part;
+};
+
+std::vector<PlannedPrimitive> plan(const Model& model) {
+  std::vector<int> nodeOfMesh(model.meshes.size(), -1);
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    const int mesh = model.nodes[i].mesh;
+    if (mesh >= 0 && size_t(mesh) < model.meshes.size() && nodeOfMesh[size_t(mesh)] < 0) nodeOfMesh[size_t(mesh)] = int(i);
+  }
+  std::vector<PlannedPrimitive> planned;
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const Mesh& mesh = model.meshes[m];
+    const std::vector<std::string_view> names = namesOf(model, m, nodeOfMesh[m]);
+    const bool eyeNamed = std::any_of(names.begin(), names.end(),
+                                      [](std::string_view n) { return namesAnEyeball(std::string(n)); });
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const Primitive& prim = mesh.primitives[p];
+      if (!unauthoredWhite(model, prim.material)) continue;
+      Part part = Part::None;
+      if (anyContains(names, "teeth") || anyContains(names, "tooth"))
+        part = Part::Teeth;
+      else if (anyContains(names, "tongue"))
+        part = Part::Tongue;
+      else if (!eyeNamed && !mesh.targetNames.empty())
+        part = Part::Skin;
+      if (part != Part::None) planned.push_back({m, p, part});
+    }
+  }
+  return planned;
+}
+
+}  // namespace
+
+FaceDressing planFaceDressing(const Model& model) {
+  FaceDressing d;
+  d.eyes = findUntexturedEyes(model).size();
+  for (const PlannedPrimitive& p : plan(model)) (p.part == Part::Skin ? d.skin : d.mouth) += 1;
+  return d;
+}
+
+FaceDressing dressUntexturedFace(Model& model) {
+  // Planned before the eyes add their material, so an eye never counts as skin.
+  const std::vector<PlannedPrimitive> planned = plan(model);
+  FaceDressing d;
+  d.eyes = dressUntexturedEyes(model);
+  std::map<std::pair<int, Part>, int> dressedMaterial;  // (source material, part) -> new material
+  for (const PlannedPrimitive& p : planned) {
+    Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];
+    auto [it, added] = dressedMaterial.try_emplace({prim.material, p.part}, int(model.materials.size()));
+    if (added) {
+      Material material = prim.material >= 0 ? model.materials[size_t(prim.material)] : Material{};
+      const glm::vec3 colour = p.part == Part::Teeth ? kTeethColour : p.part == Part::Tongue ? kTongueColour : kSkinColour;
+      material.baseColorFactor = glm::vec4(colour, material.baseColorFactor.a);
+      material.name += p.part == Part::Teeth ? " (teeth)" : p.part == Part::Tongue ? " (tongue)" : " (skin tone)";
+      model.materials.push_back(std::move(material));
+    }
+    prim.material = it->second;
+    (p.part == Part::Skin ? d.skin : d.mouth) += 1;
+  }
+  return d;
+}
+
+}  // namespace eng

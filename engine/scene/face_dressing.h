@@ -1,0 +1,30 @@
+#pragma once
+// How a face that arrives without textures is shown. A scan or sculpt
+// exported untextured (facecap, many ARKit captures) is one plain white
+// material on skin, eyeballs and teeth alike: a plaster cast whose blank
+// eyes and washed-out shading hide every expression. For display only (the
+// loaded model itself is not changed), such a face is dressed:
+//  - eyeballs get the procedural eye (procedural_eyes.h);
+//  - teeth and tongue, found by name, get ivory and a muted pink;
+//  - the skin -- the untextured, white material of a mesh that carries morph
+//    targets -- gets a neutral mid skin tone, so shading keeps its contrast
+//    where a pale face would clip.
+// Anything textured or given a colour by its author is left as it is.
+#include <cstddef>
+
+#include "engine/scene/model.h"
+
+namespace eng {
+
+struct FaceDressing {
+  size_t eyes = 0;   // primitives dressed as eyeballs
+  size_t mouth = 0;  // teeth and tongue primitives
+  size_t skin = 0;   // primitives given the skin tone
+  size_t total() const { return eyes + mouth + skin; }
+};
+
+// What dressUntexturedFace would change, without changing anything.
+FaceDressing planFaceDressing(const Model& model);
+FaceDressing dressUntexturedFace(Model& model);
+
+}  // namespace eng
