@@ -30,7 +30,28 @@ std::filesystem::path defaultExpressionsPath() { return dataDirectory() / "expre
 
 std::string modelNameOf(const std::filesystem::path& modelPath) { return modelPath.stem().string(); }
 
-eng::Result<facial::RigMapping> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile) {
+std::vector<float> targetReach(const eng::Model& model) {
+  const eng::WeightLayout layout(model);
+  std::vector<float> reach(layout.total(), 0.0f);
+  const eng::Aabb face = eng::vk::morphedRegionBounds(model);
+  const float faceSize = face.valid() ? face.size().y : 0.0f;
+  if (!(faceSize > 0.0f)) return reach;
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    const int m = model.nodes[i].mesh;
+    if (m < 0 || size_t(m) >= model.meshes.size()) continue;
+    const glm::mat3 linear(model.worldTransform(int(i)));
+    const eng::Mesh& mesh = model.meshes[size_t(m)];
+    for (const eng::Primitive& prim : mesh.primitives) {
+      for (size_t t = 0; t < prim.targets.size() && t < layout.count(m); ++t) {
+        float& r = reach[layout.offset(m) + t];
+        for (const glm::vec3& d : prim.targets[t].positions) r = std::max(r, glm::length(linear * d) / faceSize);
+      }
+    }
+  }
+  return reach;
+}
+
+eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile) {
   const std::vector<std::string> targetNames = eng::WeightLayout(model).names();
   facial::RigMappingOptions options;
   options.modelName = modelNameOf(model.sourcePath);
@@ -38,7 +59,9 @@ eng::Result<facial::RigMapping> buildModelRig(const eng::Model& model, const std
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildRigMapping(targetNames, options);
   if (!rig) return eng::makeError(model.sourcePath + ": " + rig.error().message);
-  return rig;
+  auto calibrated = facial::calibrateRig(*rig, targetReach(model));
+  if (!calibrated) return eng::makeError(model.sourcePath + ": " + calibrated.error().message);
+  return calibrated;
 }
 
 eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, const facial::ExpressionLibrary& presets) {
@@ -101,8 +124,9 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   const std::filesystem::path modelPath = options.model.empty() ? defaultModelPath() : options.model;
   auto model = eng::loadModel(modelPath);
   if (!model) return model.error();
-  auto rig = buildModelRig(*model, options.rigmap);
-  if (!rig) return rig.error();
+  auto calibration = buildModelRig(*model, options.rigmap);
+  if (!calibration) return calibration.error();
+  auto rig = std::optional<facial::RigMapping>(std::move(calibration->rig));
   auto expressions =
       facial::ExpressionLibrary::load(options.expressions.empty() ? defaultExpressionsPath() : options.expressions);
   if (!expressions) return expressions.error();

@@ -19,6 +19,8 @@
 #include "engine/scene/model.h"
 #include "engine/scene/weights.h"
 #include "facial/runtime/rig/expression_library.h"
+#include "engine/vk/framing_bounds.h"
+#include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
 
 namespace CLI {
@@ -44,8 +46,12 @@ std::string modelNameOf(const std::filesystem::path& modelPath);
 
 // The rig mapping of a loaded model over its flat target names: `rigmapFile`
 // when given, else <data>/rigmaps/<model name>.json when it exists, else the
-// detected scheme. Errors start with the model file.
-eng::Result<facial::RigMapping> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile = {});
+// detected scheme; its action-unit strengths calibrated to the model
+// (facial/runtime/rig/rig_calibration.h). Errors start with the model file.
+eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile = {});
+// Per flat target: the largest world-space displacement at weight 1, divided
+// by the height of the region the targets move (the face).
+std::vector<float> targetReach(const eng::Model& model);
 
 // A rig for graphs that speak action units. The animation graph blends
 // presets as action-unit vectors, so a target bound to an emotion ("target

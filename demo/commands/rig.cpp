@@ -20,8 +20,12 @@ struct RigOptions {
   bool json = false;
 };
 
-nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigMapping& rig) {
+nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigCalibration& calibration) {
+  const facial::RigMapping& rig = calibration.rig;
   const facial::RigMappingReport& report = rig.report();
+  nlohmann::ordered_json units = nlohmann::ordered_json::array();
+  for (const facial::ActionUnitCalibration& u : calibration.units)
+    units.push_back({{"channel", u.channel}, {"reach", u.reach}, {"reference", u.reference}, {"scale", u.scale}});
   return {{"model", modelPath},
           {"scheme", std::string(facial::rigSchemeName(report.scheme))},
           {"detail", report.detail},
@@ -29,7 +33,8 @@ nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigMap
           {"drivenTargetCount", rig.drivenTargets().size()},
           {"unmappedTargets", report.unmappedTargets},
           {"unmappedInputs", report.unmappedInputs},
-          {"notes", report.notes}};
+          {"notes", report.notes},
+          {"calibration", units}};
 }
 
 int runRig(const RigOptions& o) {
@@ -47,8 +52,11 @@ int runRig(const RigOptions& o) {
     std::printf("%s\n",
                 toJson(o.model, *rig).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   } else {
-    std::printf("%s: %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(), rig->targetCount(),
-                rig->drivenTargets().size(), rig->report().summary().c_str());
+    std::printf("%s: %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(), rig->rig.targetCount(),
+                rig->rig.drivenTargets().size(), rig->rig.report().summary().c_str());
+    if (!rig->units.empty())
+      std::printf("action-unit strength calibration (largest vertex travel at 1 / face height):\n%s",
+                  rig->summary().c_str());
   }
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/scene/procedural_eyes.h"
+#include "engine/scene/vertex_occlusion.h"
 
 namespace eng {
 namespace {
@@ -92,6 +93,25 @@ FaceDressing planFaceDressing(const Model& model) {
 FaceDressing dressUntexturedFace(Model& model) {
   // Planned before the eyes add their material, so an eye never counts as skin.
   const std::vector<PlannedPrimitive> planned = plan(model);
+  const std::vector<EyePrimitive> eyes = findUntexturedEyes(model);
+  if (planned.empty() && eyes.empty()) return {};
+  // Baked on the undressed model (the geometry is the same): dark in the
+  // mouth bag, nostrils and around the eyeballs; never quite black.
+  const auto occlusion = bakeVertexOcclusion(model);
+  // floor: the darkest a fully hidden vertex gets. Teeth are hidden behind
+  // closed lips at rest but must stay teeth when the lips part.
+  auto shade = [&](size_t mesh, size_t primitive, float floor) {
+    Primitive& prim = model.meshes[mesh].primitives[primitive];
+    const std::vector<float>& visible = occlusion[mesh][primitive];
+    prim.colors.resize(prim.positions.size(), glm::vec4(1.0f));
+    for (size_t v = 0; v < prim.positions.size() && v < visible.size(); ++v) {
+      const float t = std::clamp((visible[v] - 0.05f) / 0.8f, 0.0f, 1.0f);
+      const float light = floor + (1.0f - floor) * t * t * (3.0f - 2.0f * t);
+      prim.colors[v] = glm::vec4(glm::vec3(prim.colors[v]) * light, prim.colors[v].a);
+    }
+  };
+  for (const PlannedPrimitive& p : planned) shade(p.mesh, p.primitive, p.part == Part::Teeth ? 0.55f : 0.12f);
+  for (const EyePrimitive& e : eyes) shade(size_t(e.mesh), size_t(e.primitive), 0.25f);
   FaceDressing d;
   d.eyes = dressUntexturedEyes(model);
   std::map<std::pair<int, Part>, int> dressedMaterial;  // (source material, part) -> new material

@@ -8,7 +8,10 @@
 //  - teeth and tongue, found by name, get ivory and a muted pink;
 //  - the skin -- the untextured, white material of a mesh that carries morph
 //    targets -- gets a neutral mid skin tone, so shading keeps its contrast
-//    where a pale face would clip.
+//    where a pale face would clip;
+//  - all of these get ambient occlusion baked into their vertex colours
+//    (vertex_occlusion.h), so the mouth's inside, nostrils and the rim of
+//    the lids read as deep.
 // Anything textured or given a colour by its author is left as it is.
 #include <cstddef>
 

@@ -37,6 +37,9 @@ struct Primitive {
   std::vector<glm::vec3> normals;    // always filled by the loader (generated when absent)
   std::vector<glm::vec2> texcoords;  // empty when the primitive has none
   std::vector<glm::vec4> tangents;   // empty when the primitive has none
+  // Linear RGBA multiplied into the base colour (glTF COLOR_0; baked
+  // ambient occlusion of a dressed face); empty = white.
+  std::vector<glm::vec4> colors;
   std::vector<uint32_t> indices;     // triangle list (generated 0..n-1 for non-indexed input)
   int material = -1;                 // index into Model::materials, -1 = default material
   std::vector<MorphTarget> targets;  // same count and order as the owning Mesh::targetNames

@@ -19,6 +19,7 @@ layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) flat in uint inInstance;
+layout(location = 4) in vec4 inColor;
 
 layout(location = 0) out vec4 outColor;
 
@@ -33,7 +34,7 @@ float activeWeight(InstanceData inst, uint target) {
 }
 
 void main() {
-  vec4 base = texture(baseColorTexture, inTexcoord) * draw.baseColorFactor;
+  vec4 base = texture(baseColorTexture, inTexcoord) * draw.baseColorFactor * inColor;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];
@@ -53,11 +54,17 @@ void main() {
   float n2 = dot(n, n);
   // Degenerate normals (collapsed morph) fall back to facing the viewer.
   n = n2 > 1e-24 ? n * inversesqrt(n2) : s.toViewer;
-  if ((draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
+  // The back of a double-sided shell seen through an opening is the inside
+  // of the head (an open mouth without a mouth bag, nostrils, eye holes): a
+  // cavity that the lights cannot reach. Lit like the outside, it fills an
+  // open mouth with skin; darkened, the mouth reads as open.
+  const bool inside = (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !gl_FrontFacing;
+  if (inside) n = -n;
   s.normal = n;
   s.roughness = clamp(draw.roughness, 0.05, 1.0);
   s.metallic = clamp(draw.metallic, 0.0, 1.0);
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
-  outColor = vec4(toneMap(shadeThreePoint(s, keyVisibility)), 1.0);
+  vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
+  outColor = vec4(toneMap(inside ? lit * 0.12 : lit), 1.0);
 }

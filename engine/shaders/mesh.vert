@@ -14,6 +14,7 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) in vec4 inTangent;  // xyz direction, w handedness (zeros when absent)
+layout(location = 4) in vec4 inColor;    // multiplies the base colour (ones when absent)
 
 #if defined(MORPH_CAPTURE)
 // Three vec4 per captured vertex: position (w = 1), normal, tangent (w = handedness).
@@ -23,6 +24,7 @@ layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outTexcoord;
 layout(location = 3) flat out uint outInstance;
+layout(location = 4) out vec4 outColor;
 #endif
 
 void main() {
@@ -45,6 +47,7 @@ void main() {
   outWorldNormal = mat3(inst.normalMatrix) * m.normal;
   outTexcoord = inTexcoord;
   outInstance = uint(gl_InstanceIndex);
+  outColor = inColor;
   gl_Position = frame.viewProj * world;
 #endif
 }

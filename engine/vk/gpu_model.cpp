@@ -201,6 +201,12 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
                                                  : vertexBlob.append(std::span(prim.texcoords), 16);
       gp.tangentOffset = prim.tangents.empty() ? vertexBlob.append(nullptr, n * sizeof(glm::vec4), 16)
                                                : vertexBlob.append(std::span(prim.tangents), 16);
+      if (prim.colors.size() == n) {
+        gp.colorOffset = vertexBlob.append(std::span(prim.colors), 16);
+      } else {
+        const std::vector<glm::vec4> white(n, glm::vec4(1.0f));
+        gp.colorOffset = vertexBlob.append(std::span(white), 16);
+      }
       gp.indexOffset = indexBlob.append(std::span(prim.indices), 16);
 
       DeltaRanges ranges;

@@ -31,6 +31,7 @@ struct GpuPrimitive {
   VkDeviceSize normalOffset = 0;
   VkDeviceSize texcoordOffset = 0;   // zeros when the primitive has no texcoords
   VkDeviceSize tangentOffset = 0;    // zeros when the primitive has no tangents
+  VkDeviceSize colorOffset = 0;      // ones (white) when the primitive has no vertex colours
   VkDeviceSize indexOffset = 0;      // in GpuModel::indexBuffer(), uint32 indices
   DrawConstants constants;           // material, flags and vertexCount; instance fields left 0
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1

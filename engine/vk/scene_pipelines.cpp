@@ -44,18 +44,20 @@ struct PipelineShape {
 
 Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& layouts, VkRenderPass renderPass,
                                       VkSampleCountFlagBits samples, const PipelineShape& shape) {
-  // Separate streams (binding = location): position, normal, texcoord, tangent.
+  // Separate streams (binding = location): position, normal, texcoord, tangent, colour.
   const std::array bindings{
       VkVertexInputBindingDescription{0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
       VkVertexInputBindingDescription{1, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
       VkVertexInputBindingDescription{2, sizeof(glm::vec2), VK_VERTEX_INPUT_RATE_VERTEX},
       VkVertexInputBindingDescription{3, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX},
+      VkVertexInputBindingDescription{4, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX},
   };
   const std::array attributes{
       VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
       VkVertexInputAttributeDescription{1, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
       VkVertexInputAttributeDescription{2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
       VkVertexInputAttributeDescription{3, 3, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
   };
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   if (shape.meshVertices) {

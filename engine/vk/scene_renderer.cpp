@@ -206,11 +206,11 @@ FrameStats SceneRenderer::stats(uint32_t slot) const { return slot < slots_.size
 
 void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const {
   const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
-  const std::array<VkBuffer, 4> buffers{batch.model->vertexBuffer(), batch.model->vertexBuffer(),
-                                        batch.model->vertexBuffer(), batch.model->vertexBuffer()};
-  const std::array<VkDeviceSize, 4> offsets{prim.positionOffset, prim.normalOffset, prim.texcoordOffset,
-                                            prim.tangentOffset};
-  vkCmdBindVertexBuffers(cmd, 0, 4, buffers.data(), offsets.data());
+  const VkBuffer vertices = batch.model->vertexBuffer();
+  const std::array<VkBuffer, 5> buffers{vertices, vertices, vertices, vertices, vertices};
+  const std::array<VkDeviceSize, 5> offsets{prim.positionOffset, prim.normalOffset, prim.texcoordOffset,
+                                            prim.tangentOffset, prim.colorOffset};
+  vkCmdBindVertexBuffers(cmd, 0, uint32_t(buffers.size()), buffers.data(), offsets.data());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 1, 1,
                           &prim.descriptorSet, 0, nullptr);
   constants = prim.constants;
