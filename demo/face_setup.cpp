@@ -1,5 +1,7 @@
 #include "demo/face_setup.h"
 
+#include "facial/runtime/rig/arkit_names.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -146,7 +148,17 @@ FaceSetup::FaceSetup(eng::Model model, std::string name, facial::RigMapping rig,
       expressions_(std::move(expressions)),
       baseWeights_(layout_.defaults()),
       actionUnitScratch_(facial::actionUnits().size(), 0.0f),
-      emotionScratch_(facial::kEmotionCount, 0.0f) {}
+      emotionScratch_(facial::kEmotionCount, 0.0f) {
+  // ARKit's 52 shapes are all expression (none is identity), so the neutral
+  // face has every one at 0. A file's default weights on them are a captured
+  // frame (facecap's look down, press the lips and sneer a little), not the
+  // face at rest; other targets (identity, body shapes) keep their defaults.
+  if (rig_.scheme() == facial::RigScheme::Arkit52) {
+    const std::vector<std::string> names = layout_.names();
+    for (size_t i = 0; i < names.size(); ++i)
+      if (facial::arkitIndex(names[i])) baseWeights_[i] = 0.0f;
+  }
+}
 
 eng::Result<const facial::ExpressionPreset*> FaceSetup::findExpression(std::string_view name) const {
   if (const facial::ExpressionPreset* preset = expressions_.find(name)) return preset;

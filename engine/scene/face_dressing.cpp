@@ -59,6 +59,13 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
     const int mesh = model.nodes[i].mesh;
     if (mesh >= 0 && size_t(mesh) < model.meshes.size() && nodeOfMesh[size_t(mesh)] < 0) nodeOfMesh[size_t(mesh)] = int(i);
   }
+  // Skin only on a model that is a face: it has eyeballs, or a mesh or node
+  // says head or face. A morphing sphere or cube sample stays as authored.
+  bool isFace = !findUntexturedEyes(model).empty();
+  for (size_t m = 0; m < model.meshes.size() && !isFace; ++m) {
+    const std::vector<std::string_view> names = namesOf(model, m, nodeOfMesh[m]);
+    isFace = anyContains(names, "head") || anyContains(names, "face");
+  }
   std::vector<PlannedPrimitive> planned;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const Mesh& mesh = model.meshes[m];
@@ -73,7 +80,7 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
         part = Part::Teeth;
       else if (anyContains(names, "tongue"))
         part = Part::Tongue;
-      else if (!eyeNamed && !mesh.targetNames.empty())
+      else if (isFace && !eyeNamed && !mesh.targetNames.empty())
         part = Part::Skin;
       if (part != Part::None) planned.push_back({m, p, part});
     }

@@ -7,7 +7,8 @@
 //  - eyeballs get the procedural eye (procedural_eyes.h);
 //  - teeth and tongue, found by name, get ivory and a muted pink;
 //  - the skin -- the untextured, white material of a mesh that carries morph
-//    targets -- gets a neutral mid skin tone, so shading keeps its contrast
+//    targets, on a model that is a face (it has eyeballs, or a mesh or node
+//    named head or face) -- gets a neutral mid skin tone, so shading keeps its contrast
 //    where a pale face would clip;
 //  - all of these get ambient occlusion baked into their vertex colours
 //    (vertex_occlusion.h), so the mouth's inside, nostrils and the rim of

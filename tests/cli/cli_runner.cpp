@@ -31,14 +31,21 @@ std::string readAll(const std::filesystem::path& path) {
 std::filesystem::path facialProgram() { return testing_support::binaryDir() / "bin" / "facial"; }
 
 CommandOutput runFacial(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
+  std::vector<std::string> assignments{"FACIAL_VALIDATION=1"};
+  assignments.insert(assignments.end(), environment.begin(), environment.end());
+  return runProgram(facialProgram(), args, assignments);
+}
+
+CommandOutput runProgram(const std::filesystem::path& program, const std::vector<std::string>& args,
+                         const std::vector<std::string>& environment) {
   static int runs = 0;
   const std::filesystem::path dir = testing_support::binaryDir() / "test-tmp" / "cli-runs";
   std::filesystem::create_directories(dir);
   const std::string stem = "run" + std::to_string(::getpid()) + "_" + std::to_string(runs++);
   const std::filesystem::path outFile = dir / (stem + ".out"), errFile = dir / (stem + ".err");
-  std::string command = "env FACIAL_VALIDATION=1";
+  std::string command = "env";
   for (const std::string& assignment : environment) command += " " + shellQuote(assignment);
-  command += " " + shellQuote(facialProgram().string());
+  command += " " + shellQuote(program.string());
   for (const std::string& arg : args) command += " " + shellQuote(arg);
   command += " >" + shellQuote(outFile.string()) + " 2>" + shellQuote(errFile.string()) + " </dev/null";
   const int status = std::system(command.c_str());

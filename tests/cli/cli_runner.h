@@ -17,6 +17,9 @@ struct CommandOutput {
 std::filesystem::path facialProgram();
 // `environment`: extra NAME=VALUE assignments for the child.
 CommandOutput runFacial(const std::vector<std::string>& args, const std::vector<std::string>& environment = {});
+// Any program, with only the given extra NAME=VALUE assignments.
+CommandOutput runProgram(const std::filesystem::path& program, const std::vector<std::string>& args,
+                         const std::vector<std::string>& environment = {});
 
 // How many times `needle` occurs in `text`.
 size_t countOccurrences(const std::string& text, const std::string& needle);

@@ -60,14 +60,16 @@ TEST_F(TestFaceSetup, BasicPresetsAreNeutralAndTheSixEmotionsInOrder) {
 }
 
 TEST_F(TestFaceSetup, DrivenTargetsAreOverwrittenOthersKeepTheirDefaults) {
+  // Driven targets reach the preset's strength as calibrated for this face
+  // (its shapes move far for its size, so the calibration damps them).
   const std::vector<float> happy = posed("happy", 1.0f);
-  EXPECT_FLOAT_EQ(happy[kSmileLeft], 1.0f);
-  EXPECT_FLOAT_EQ(happy[kSmileRight], 1.0f);
+  EXPECT_GT(happy[kSmileLeft], 0.5f);
+  EXPECT_FLOAT_EQ(happy[kSmileRight], happy[kSmileLeft]);
   EXPECT_FLOAT_EQ(happy[kBrowLower], 0.0f) << "driven: the default 0.3 is replaced by the preset's 0";
   EXPECT_FLOAT_EQ(happy[kCustom], 0.4f) << "no channel drives it: the model's default stays";
 
   const std::vector<float> anger = posed("anger", 1.0f);
-  EXPECT_FLOAT_EQ(anger[kBrowLower], 1.0f);
+  EXPECT_GT(anger[kBrowLower], 0.5f);
   EXPECT_FLOAT_EQ(anger[kSmileLeft], 0.0f);
 
   const std::vector<float> neutral = posed("neutral", 1.0f);
@@ -176,9 +178,12 @@ TEST(FaceSetupShared, FacecapIsDrivenThroughTheArkitScheme) {
   const int smile = face->layout().find(2, "mouthSmile_L"), gaze = face->layout().find(2, "eyeLookDown_L");
   ASSERT_GE(smile, 0);
   ASSERT_GE(gaze, 0);
-  EXPECT_FLOAT_EQ(weights[smile], 1.0f);
-  EXPECT_FLOAT_EQ(weights[gaze], face->baseWeights()[gaze]) << "gaze is no FACS channel: the file's default stays";
-  EXPECT_GT(weights[gaze], 0.3f);
+  EXPECT_GT(weights[smile], 0.85f) << "full smile, calibrated to facecap's strong mouthSmile";
+  EXPECT_LE(weights[smile], 1.0f);
+  EXPECT_FLOAT_EQ(weights[gaze], 0.0f) << "gaze is no FACS channel, and ARKit shapes rest at 0: the file's default "
+                                          "weights are a captured frame, not the neutral face";
+  const std::vector<float> defaults = face->layout().defaults();
+  EXPECT_GT(defaults[size_t(gaze)], 0.3f) << "the file's default (eyes looking down) is still what the model says";
 }
 
 // An action-unit graph reaches emotion-bound targets through the presets.

@@ -144,7 +144,7 @@ TEST(ArkitMapping, FaceCapHeadIsDrivenByEveryBasicEmotion) {
       {"sad", {"browInnerUp", "mouthFrown_L", "mouthFrown_R", "mouthShrugLower"}},
       {"surprise", {"browInnerUp", "browOuterUp_L", "browOuterUp_R", "eyeWide_L", "jawOpen"}},
       {"fear", {"browInnerUp", "eyeWide_L", "eyeWide_R", "mouthStretch_L", "mouthStretch_R", "browDown_L"}},
-      {"anger", {"browDown_L", "browDown_R", "eyeSquint_L", "mouthPress_L", "mouthPress_R"}},
+      {"anger", {"browDown_L", "browDown_R", "eyeSquint_L", "eyeSquint_R", "mouthUpperUp_L", "mouthUpperUp_R"}},
       {"disgust", {"noseSneer_L", "noseSneer_R", "mouthUpperUp_L", "mouthFrown_R", "mouthLowerDown_L"}},
   };
   for (const auto& [preset, shapes] : signature) {

@@ -1,0 +1,87 @@
+// The judge in the loop: the seven basic states rendered by `facial express`
+// at 256 px on the built-in head and on facecap, named by an independent
+// expression classifier (../shared/judge/fer_judge.py, FER-2013
+// mini-Xception; needs Debian's python3-opencv and opencv-data, which
+// ./bootstrap.sh installs). Skipped, saying so, without ../shared.
+//
+// What it asserts is a floor under what the faces reach today, so a change
+// that makes a state unreadable fails here. The target is 6 of 7 on
+// each face (goal 7/7); the README's "Expressions, judged" table gives the
+// latest per-tile result. The judge is a signal, not the target: faces are
+// fixed at their causes (framing, eyes, light, shape mixes), never tuned to
+// this classifier.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/cli_test_support.h"
+#include "tests/common/test_support.h"
+
+namespace cli_test {
+namespace {
+
+constexpr const char* kStates[] = {"neutral", "happy", "sad", "surprise", "fear", "anger", "disgust"};
+
+struct JudgeResult {
+  int recognised = -1;
+  int total = 0;
+  std::string report;  // the judge's lines
+};
+
+// Renders the seven states on `model` (empty: the built-in head) and judges them.
+JudgeResult judgeFace(const std::string& name, const std::string& model) {
+  const std::filesystem::path dir = testing_support::freshTempDir("judge_" + name);
+  std::vector<std::string> judgeArgs{(testing_support::sharedDir() / "judge" / "fer_judge.py").string()};
+  for (const char* state : kStates) {
+    const std::filesystem::path out = dir / (name + "_" + state + ".png");
+    std::vector<std::string> args{"express", state, "--size", "256x256", "--out", out.string()};
+    if (!model.empty()) args.insert(args.end(), {"--model", model});
+    const CommandOutput run = runFacial(args);
+    EXPECT_TRUE(ranCleanly(run)) << name << " " << state;
+    judgeArgs.push_back(out.string() + ":" + state);
+  }
+  const CommandOutput judged = runProgram("/usr/bin/python3", judgeArgs);
+  JudgeResult result;
+  result.report = judged.out + judged.err;
+  if (judged.exitCode != 0) return result;
+  std::istringstream lines(judged.out);
+  for (std::string line; std::getline(lines, line);)
+    if (std::sscanf(line.c_str(), "recognized %d/%d", &result.recognised, &result.total) == 2) break;
+  std::ofstream(dir / "judge.txt") << result.report;
+  return result;
+}
+
+class ExpressionJudge : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    FACIAL_REQUIRE_SHARED();
+    const CommandOutput probe = runProgram("/usr/bin/python3", {"-c", "import cv2, numpy"});
+    ASSERT_EQ(probe.exitCode, 0) << "the judge needs Debian's python3-opencv (./bootstrap.sh installs it):\n"
+                                 << probe.err;
+  }
+};
+
+TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) {
+  const JudgeResult r = judgeFace("head", "");
+  ASSERT_EQ(r.total, 7) << r.report;
+  std::printf("%s", r.report.c_str());
+  constexpr int kFloor = 2;
+  EXPECT_GE(r.recognised, kFloor) << r.report;
+}
+
+TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
+  const JudgeResult r = judgeFace("facecap", (testing_support::sharedDir() / "assets" / "facecap.glb").string());
+  ASSERT_EQ(r.total, 7) << r.report;
+  std::printf("%s", r.report.c_str());
+  constexpr int kFloor = 4;
+  EXPECT_GE(r.recognised, kFloor) << r.report;
+}
+
+}  // namespace
+}  // namespace cli_test

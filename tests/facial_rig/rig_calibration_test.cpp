@@ -1,0 +1,100 @@
+// Per-rig action-unit strength calibration: validity cases (sizes, bad
+// reaches, overrides) apart from result cases (scaling toward the reference,
+// bounds, blinks untouched, overrides applied).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/rig_calibration.h"
+
+namespace facial {
+namespace {
+
+// A FACS-named rig: one target per channel, identity gains.
+RigMapping facsRig(std::vector<std::string> names) {
+  auto rig = buildRigMapping(names, RigScheme::ActionUnits);
+  EXPECT_TRUE(rig) << rig.error().message;
+  return std::move(*rig);
+}
+
+const std::vector<std::string> kNames = {"AU12_LipCornerPuller_L", "AU26_JawDrop", "AU45_Blink_L", "AU4_BrowLowerer"};
+
+float gainOf(const RigMapping& rig, std::string_view channel) {
+  const auto gains = rig.gains(*actionUnitIndex(channel));
+  return gains.empty() ? 0.0f : gains[0];
+}
+
+TEST(RigCalibrationValidity, ReachCountMustMatchTheTargets) {
+  const RigMapping rig = facsRig(kNames);
+  const std::vector<float> reach(3, 0.05f);
+  auto calibrated = calibrateRig(rig, reach);
+  ASSERT_FALSE(calibrated);
+  EXPECT_NE(calibrated.error().message.find("3 target reaches for 4 targets"), std::string::npos)
+      << calibrated.error().message;
+}
+
+TEST(RigCalibrationValidity, NonFiniteOrNegativeReachIsRefused) {
+  const RigMapping rig = facsRig(kNames);
+  EXPECT_FALSE(calibrateRig(rig, std::vector<float>{0.1f, NAN, 0.1f, 0.1f}));
+  EXPECT_FALSE(calibrateRig(rig, std::vector<float>{0.1f, -1.0f, 0.1f, 0.1f}));
+}
+
+TEST(RigCalibrationValidity, OverrideMustNameAnActionUnit) {
+  const RigMapping rig = facsRig(kNames);
+  RigCalibrationOptions options;
+  options.overrides = {{"AU99_Nothing", 1.2f}};
+  auto calibrated = calibrateRig(rig, std::vector<float>(4, 0.05f), options);
+  ASSERT_FALSE(calibrated);
+  EXPECT_NE(calibrated.error().message.find("AU99_Nothing"), std::string::npos);
+}
+
+TEST(RigCalibration, WeakRowsAreRaisedStrongRowsDampedWithinBounds) {
+  const RigMapping rig = facsRig(kNames);
+  // Smile reaches half its reference, the jaw twice: scaled by 2 (bounded to 1.6) and 0.5 (bounded to 0.6).
+  const float smileRef = referenceReach("AU12_LipCornerPuller_L"), jawRef = referenceReach("AU26_JawDrop");
+  const float browRef = referenceReach("AU4_BrowLowerer");
+  auto calibrated = calibrateRig(rig, std::vector<float>{smileRef * 0.5f, jawRef * 2.0f, 0.2f, browRef * 1.25f});
+  ASSERT_TRUE(calibrated) << calibrated.error().message;
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU12_LipCornerPuller_L"), 1.6f);
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU26_JawDrop"), 0.6f);
+  EXPECT_NEAR(gainOf(calibrated->rig, "AU4_BrowLowerer"), 0.8f, 1e-5f);
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU45_Blink_L"), 1.0f) << "a blink closes the lid whatever its reach";
+  EXPECT_FALSE(calibrated->summary().empty());
+}
+
+TEST(RigCalibration, OutputStaysInsideTheWeightRange) {
+  const RigMapping rig = facsRig(kNames);
+  const float smileRef = referenceReach("AU12_LipCornerPuller_L");
+  auto calibrated = calibrateRig(rig, std::vector<float>{smileRef * 0.5f, 0.1f, 0.1f, 0.1f});
+  ASSERT_TRUE(calibrated);
+  std::vector<float> au(actionUnits().size(), 0.0f), targets(4, 0.0f);
+  au[*actionUnitIndex("AU12_LipCornerPuller_L")] = 1.0f;
+  ASSERT_TRUE(calibrated->rig.apply(au, targets));
+  EXPECT_FLOAT_EQ(targets[0], 1.0f) << "raised, but never driven past the rig's maximum (no extrapolation)";
+  au[*actionUnitIndex("AU12_LipCornerPuller_L")] = 0.0f;
+  ASSERT_TRUE(calibrated->rig.apply(au, targets));
+  EXPECT_FLOAT_EQ(targets[0], 0.0f) << "intensity 0 is still neutral";
+}
+
+TEST(RigCalibration, OverridesMultiplyTheMeasuredScale) {
+  const RigMapping rig = facsRig(kNames);
+  const float jawRef = referenceReach("AU26_JawDrop");
+  RigCalibrationOptions options;
+  options.overrides = {{"AU26_JawDrop", 0.5f}};
+  auto calibrated = calibrateRig(rig, std::vector<float>{0.1f, jawRef, 0.1f, 0.1f}, options);
+  ASSERT_TRUE(calibrated);
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU26_JawDrop"), 0.5f);
+}
+
+TEST(RigCalibration, UnmovedTargetsAreLeftAlone) {
+  const RigMapping rig = facsRig(kNames);
+  auto calibrated = calibrateRig(rig, std::vector<float>(4, 0.0f));
+  ASSERT_TRUE(calibrated);
+  for (const std::string& name : kNames) EXPECT_FLOAT_EQ(gainOf(calibrated->rig, name), 1.0f) << name;
+}
+
+}  // namespace
+}  // namespace facial
