@@ -1,0 +1,151 @@
+// How untextured faces are shown (engine/scene/face_dressing.h,
+// procedural_eyes.h, vertex_occlusion.h) and what the face framing frames
+// (engine/vk/framing_bounds.h), on models built here.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/scene/face_dressing.h"
+#include "engine/scene/procedural_eyes.h"
+#include "engine/scene/vertex_occlusion.h"
+#include "engine/vk/framing_bounds.h"
+#include "tests/vk/test_models.h"
+
+namespace {
+
+// Adds `part` (one sphere model) to `model` as a root node `name` at `at`, scaled by `scale`.
+void addPart(eng::Model& model, eng::Model part, const std::string& name, glm::vec3 at, glm::vec3 scale) {
+  const int mesh = int(model.meshes.size());
+  for (eng::Primitive& prim : part.meshes[0].primitives)
+    if (prim.material >= 0) prim.material += int(model.materials.size());
+  for (eng::Material& m : part.materials) model.materials.push_back(m);
+  model.meshes.push_back(std::move(part.meshes[0]));
+  eng::Node node;
+  node.name = name;
+  node.mesh = mesh;
+  node.translation = at;
+  node.scale = scale;
+  model.roots.push_back(int(model.nodes.size()));
+  model.nodes.push_back(node);
+}
+
+vk_test::SphereSpec whiteSphere(int targets) {
+  vk_test::SphereSpec spec;
+  spec.targets = targets;
+  spec.color = glm::vec4(1.0f);
+  return spec;
+}
+
+// A plaster head: a sphere with targets, two untextured eyeballs, teeth.
+eng::Model plasterHead() {
+  eng::Model model;
+  addPart(model, vk_test::makeSphereModel(whiteSphere(2)), "head", {0, 0, 0}, glm::vec3(1.0f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "eyeLeft", {0.35f, 0.2f, 0.85f}, glm::vec3(0.12f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "eyeRight", {-0.35f, 0.2f, 0.85f}, glm::vec3(0.12f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "teeth", {0, -0.4f, 0.8f}, glm::vec3(0.2f, 0.05f, 0.1f));
+  return model;
+}
+
+TEST(ProceduralEyes, UntexturedEyeballsAreFoundByNameAndShape) {
+  const eng::Model model = plasterHead();
+  const std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(model);
+  ASSERT_EQ(eyes.size(), 2u);
+  for (const eng::EyePrimitive& eye : eyes) {
+    EXPECT_NEAR(eye.radius, 1.0f, 0.02f) << "sphere fit in mesh space";
+    EXPECT_NEAR(eye.gazeAxis.z, 1.0f, 1e-4f) << "the face looks along +Z";
+  }
+}
+
+TEST(ProceduralEyes, TexturedEyesAndBrowsAreLeftAlone) {
+  eng::Model model = plasterHead();
+  model.nodes[1].name = "eyeBrowLeft";  // not a ball, whatever its shape
+  model.images.push_back(eng::proceduralEyeImage(8));
+  model.materials[size_t(model.meshes[2].primitives[0].material)].baseColorImage = 0;  // textured
+  EXPECT_TRUE(eng::findUntexturedEyes(model).empty());
+}
+
+TEST(ProceduralEyes, ImageHasWhiteScleraDarkPupilAndColouredIris) {
+  const eng::Image eye = eng::proceduralEyeImage(128);
+  auto at = [&](int x, int y) { return &eye.rgba8[(size_t(y) * 128 + size_t(x)) * 4]; };
+  const uint8_t* pupil = at(64, 64);
+  const uint8_t* iris = at(64 + 22, 64);  // between the pupil (rho .18) and the limbus (.47)
+  const uint8_t* sclera = at(64 + 45, 64);
+  EXPECT_LT(pupil[0] + pupil[1] + pupil[2], 60);
+  EXPECT_GT(sclera[0] + sclera[1] + sclera[2], 600);
+  EXPECT_GT(iris[0], iris[2]) << "a brown iris: more red than blue";
+  EXPECT_LT(iris[0] + iris[1] + iris[2], sclera[0] + sclera[1] + sclera[2]);
+}
+
+TEST(FaceDressing, PlasterHeadGetsEyesTeethSkinAndOcclusion) {
+  eng::Model model = plasterHead();
+  const eng::FaceDressing plan = eng::planFaceDressing(model);
+  EXPECT_EQ(plan.eyes, 2u);
+  EXPECT_EQ(plan.mouth, 1u);
+  EXPECT_EQ(plan.skin, 1u);
+  const size_t images = model.images.size();
+  const eng::FaceDressing done = eng::dressUntexturedFace(model);
+  EXPECT_EQ(done.total(), plan.total());
+  EXPECT_EQ(model.images.size(), images + 1) << "one eye texture for both eyes";
+  const eng::Primitive& eye = model.meshes[1].primitives[0];
+  EXPECT_EQ(eye.texcoords.size(), eye.positions.size());
+  EXPECT_EQ(model.materials[size_t(eye.material)].baseColorImage, int(images));
+  const eng::Primitive& skin = model.meshes[0].primitives[0];
+  const glm::vec4 tone = model.materials[size_t(skin.material)].baseColorFactor;
+  EXPECT_GT(tone.r, tone.g);
+  EXPECT_GT(tone.g, tone.b);
+  EXPECT_LT(tone.r, 0.9f) << "not plaster white";
+  EXPECT_EQ(skin.colors.size(), skin.positions.size()) << "occlusion baked into vertex colours";
+}
+
+TEST(FaceDressing, NonFaceModelsAndAuthoredColoursStayAsAuthored) {
+  eng::Model sphere = vk_test::makeSphereModel(whiteSphere(2));  // a morphing sample, no eyes, not named a face
+  EXPECT_EQ(eng::planFaceDressing(sphere).total(), 0u);
+  eng::Model coloured = plasterHead();
+  for (eng::Material& m : coloured.materials) m.baseColorFactor = glm::vec4(0.7f, 0.5f, 0.4f, 1.0f);
+  EXPECT_EQ(eng::planFaceDressing(coloured).skin, 0u);
+  EXPECT_EQ(eng::planFaceDressing(coloured).mouth, 0u);
+}
+
+TEST(VertexOcclusion, InsideOfAClosedShellIsDarkOutsideIsOpen) {
+  // A small ball inside a big one: the small ball sees only the big one's inside.
+  eng::Model model;
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "shell", {0, 0, 0}, glm::vec3(1.0f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "core", {0, 0, 0}, glm::vec3(0.3f));
+  const auto visible = eng::bakeVertexOcclusion(model, {.resolution = 64, .rays = 32, .reach = 1.0f});
+  float shell = 1.0f, core = 0.0f;
+  for (float v : visible[0][0]) shell = std::min(shell, v);
+  for (float v : visible[1][0]) core = std::max(core, v);
+  EXPECT_GT(shell, 0.8f) << "the outside of the shell sees the sky (grazing rays may touch the curve)";
+  EXPECT_LT(core, 0.1f) << "the ball inside sees none";
+}
+
+TEST(FaceFraming, FullBodyIsFramedAtItsHead) {
+  // A tall body without targets and a head whose targets move it: the face
+  // framing is the head and neck, not the body.
+  eng::Model model;
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "body", {0, 0.8f, 0}, glm::vec3(0.3f, 0.8f, 0.2f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(2)), "head", {0, 1.75f, 0}, glm::vec3(0.11f));
+  const eng::Aabb all = eng::vk::framingBounds(model, eng::vk::FramingMode::All);
+  const eng::Aabb face = eng::vk::framingBounds(model, eng::vk::FramingMode::Face);
+  ASSERT_TRUE(face.valid());
+  EXPECT_GT(all.size().y, 1.5f);
+  EXPECT_LT(face.size().y, 0.6f) << "head and neck, not the body";
+  EXPECT_NEAR(face.max.y, 1.75f + 0.11f * 1.3f, 0.1f) << "the top of the head (and its bumps) is in";
+  EXPECT_LT(face.min.y, 1.75f - 0.11f) << "the neck below the chin is in";
+  const eng::Aabb moved = eng::vk::morphedRegionBounds(model);
+  EXPECT_NEAR(moved.center().y, 1.75f, 0.05f);
+}
+
+TEST(FaceFraming, ModelWithoutTargetsFallsBackToTheWholeModel) {
+  eng::Model model = vk_test::makeSphereModel(whiteSphere(0));
+  const eng::Aabb all = eng::vk::framingBounds(model, eng::vk::FramingMode::All);
+  const eng::Aabb face = eng::vk::framingBounds(model, eng::vk::FramingMode::Face);
+  EXPECT_EQ(face.min, all.min);
+  EXPECT_EQ(face.max, all.max);
+  EXPECT_EQ(eng::vk::parseFramingMode("face"), eng::vk::FramingMode::Face);
+  EXPECT_EQ(eng::vk::parseFramingMode("all"), eng::vk::FramingMode::All);
+  EXPECT_FALSE(eng::vk::parseFramingMode("body"));
+}
+
+}  // namespace
