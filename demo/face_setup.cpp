@@ -1,6 +1,7 @@
 #include "demo/face_setup.h"
 
 #include "facial/runtime/rig/arkit_names.h"
+#include "facial/runtime/rig/rigmap_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,7 +62,13 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildRigMapping(targetNames, options);
   if (!rig) return eng::makeError(model.sourcePath + ": " + rig.error().message);
-  auto calibrated = facial::calibrateRig(*rig, targetReach(model));
+  facial::RigCalibrationOptions calibration;
+  if (const std::filesystem::path file = facial::rigMapFileFor(options); !file.empty()) {
+    auto rigmap = facial::loadRigMapFile(file, targetNames);
+    if (!rigmap) return eng::makeError(model.sourcePath + ": " + rigmap.error().message);
+    calibration.overrides = std::move(rigmap->calibration);
+  }
+  auto calibrated = facial::calibrateRig(*rig, targetReach(model), calibration);
   if (!calibrated) return eng::makeError(model.sourcePath + ": " + calibrated.error().message);
   return calibrated;
 }

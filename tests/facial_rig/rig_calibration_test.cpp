@@ -2,6 +2,7 @@
 // reaches, overrides) apart from result cases (scaling toward the reference,
 // bounds, blinks untouched, overrides applied).
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,8 @@
 
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/rig_calibration.h"
+#include "facial/runtime/rig/rigmap_file.h"
+#include "tests/common/test_support.h"
 
 namespace facial {
 namespace {
@@ -94,6 +97,45 @@ TEST(RigCalibration, UnmovedTargetsAreLeftAlone) {
   auto calibrated = calibrateRig(rig, std::vector<float>(4, 0.0f));
   ASSERT_TRUE(calibrated);
   for (const std::string& name : kNames) EXPECT_FLOAT_EQ(gainOf(calibrated->rig, name), 1.0f) << name;
+}
+
+}  // namespace
+}  // namespace facial
+
+namespace facial {
+namespace {
+
+std::filesystem::path writeRigMap(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = testing_support::freshTempDir("rig_calibration_" + name);
+  const std::filesystem::path file = dir / (name + ".json");
+  testing_support::writeFile(file, text);
+  return file;
+}
+
+TEST(RigMapCalibrationValidity, UnknownChannelAndOutOfRangeScaleAreNamed) {
+  const auto bad = loadRigMapFile(writeRigMap("bad", R"({"version": 1, "calibration": {"AU99": 1.2}})"), kNames);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("/calibration/AU99"), std::string::npos) << bad.error().message;
+  const auto big = loadRigMapFile(
+      writeRigMap("big", R"({"version": 1, "calibration": {"AU26_JawDrop": 9}})"), kNames);
+  ASSERT_FALSE(big);
+  EXPECT_NE(big.error().message.find("outside [0, 4]"), std::string::npos) << big.error().message;
+}
+
+TEST(RigMapCalibration, CalibrationOnlyFileTunesTheDetectedScheme) {
+  const std::filesystem::path file =
+      writeRigMap("face", R"({"version": 1, "calibration": {"AU26_JawDrop": 0.8}})");
+  auto parsed = loadRigMapFile(file, kNames);
+  ASSERT_TRUE(parsed) << parsed.error().message;
+  EXPECT_FALSE(parsed->mapping);
+  ASSERT_EQ(parsed->calibration.size(), 1u);
+  EXPECT_EQ(parsed->calibration[0].first, "AU26_JawDrop");
+  EXPECT_FLOAT_EQ(parsed->calibration[0].second, 0.8f);
+  auto rig = buildRigMapping(kNames, RigMappingOptions{"face", {}, file});
+  ASSERT_TRUE(rig) << rig.error().message;
+  EXPECT_EQ(rig->scheme(), RigScheme::ActionUnits) << "no map in the file: detection";
+  EXPECT_EQ(rigMapFileFor(RigMappingOptions{"face", {}, file}), file);
+  EXPECT_FALSE(loadRigMap(file, kNames)) << "as a mapping, the file has none";
 }
 
 }  // namespace

@@ -132,6 +132,10 @@ struct RigMappingOptions {
   std::filesystem::path rigmapFile;       // explicit rig map; wins over detection
 };
 
+// The rig map file buildRigMapping reads for `options`: rigmapFile when
+// given, else <rigmapDirectory>/<modelName>.json when it exists; empty when none.
+std::filesystem::path rigMapFileFor(const RigMappingOptions& options);
+
 // Custom rig map when one is given / found, else the first scheme the names
 // match (Candide3, ActionUnits, Arkit52, Expressions). Fails, suggesting a rig
 // map file, when no scheme recognises the names.

@@ -36,19 +36,28 @@ eng::Result<RigMapping> buildWith(const SchemeEntry& entry, std::span<const std:
 
 }  // namespace
 
+std::filesystem::path rigMapFileFor(const RigMappingOptions& options) {
+  if (!options.rigmapFile.empty()) return options.rigmapFile;
+  if (options.modelName.empty() || options.rigmapDirectory.empty()) return {};
+  // Only the file name part: a model name never walks out of the rig map folder.
+  const std::filesystem::path stem = std::filesystem::path(options.modelName).filename();
+  const std::filesystem::path rigmap = options.rigmapDirectory / (stem.string() + ".json");
+  std::error_code ec;
+  return std::filesystem::is_regular_file(rigmap, ec) ? rigmap : std::filesystem::path();
+}
+
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, const RigMappingOptions& options) {
-  if (!options.rigmapFile.empty()) return loadRigMap(options.rigmapFile, targetNames);
   const std::string model = options.modelName.empty() ? std::string("the model") : "'" + options.modelName + "'";
-  std::filesystem::path rigmap;
-  if (!options.modelName.empty()) {
-    // Only the file name part: a model name never walks out of the rig map folder.
-    const std::filesystem::path stem = std::filesystem::path(options.modelName).filename();
-    rigmap = (options.rigmapDirectory.empty() ? std::filesystem::path("data/rigmaps") : options.rigmapDirectory) /
-             (stem.string() + ".json");
-    std::error_code ec;
-    if (!options.rigmapDirectory.empty() && std::filesystem::is_regular_file(rigmap, ec))
-      return loadRigMap(rigmap, targetNames);
+  if (const std::filesystem::path file = rigMapFileFor(options); !file.empty()) {
+    auto rigmap = loadRigMapFile(file, targetNames);
+    if (!rigmap) return rigmap.error();
+    if (rigmap->mapping) return std::move(*rigmap->mapping);
+    // A calibration-only file: the detected scheme drives the model.
   }
+  std::filesystem::path rigmap;
+  if (!options.modelName.empty())
+    rigmap = (options.rigmapDirectory.empty() ? std::filesystem::path("data/rigmaps") : options.rigmapDirectory) /
+             (std::filesystem::path(options.modelName).filename().string() + ".json");
   for (const SchemeEntry& entry : kSchemes) {
     const SchemeRecognition recognition = entry.recognise(targetNames);
     if (recognition.recognised >= entry.minimumRecognised) return buildWith(entry, targetNames, recognition);

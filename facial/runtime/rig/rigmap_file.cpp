@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/json_document.h"
 
 namespace facial {
@@ -20,7 +21,8 @@ eng::Result<float> readNumber(const Json& value, std::string_view source, const 
   return static_cast<float>(x);
 }
 
-eng::Result<RigMapping> fromJson(const Json& root, std::string_view source, std::span<const std::string> targetNames) {
+eng::Result<RigMapFile> fromJson(const Json& root, std::string_view source, std::span<const std::string> targetNames) {
+  RigMapFile file;
   if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
   if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
   if (!root["version"].is_number_integer() || root["version"].get<int64_t>() != 1)
@@ -86,29 +88,55 @@ eng::Result<RigMapping> fromJson(const Json& root, std::string_view source, std:
                                  " targets)");
         }
       }
+    } else if (key == "calibration") {
+      if (!value.is_object())
+        return jsonError(source, path, "must be an object of action unit: scale, got " + std::string(jsonTypeName(value)));
+      for (const auto& [channel, scale] : value.items()) {
+        const std::string channelPath = childPath(path, channel);
+        const std::optional<uint32_t> input = rigInputIndex(channel);
+        if (!input || *input >= actionUnits().size())
+          return jsonError(source, channelPath, "unknown action unit channel (such as AU12_LipCornerPuller_L)");
+        auto factor = readNumber(scale, source, channelPath, 0.0, 4.0);
+        if (!factor) return factor.error();
+        file.calibration.emplace_back(channel, *factor);
+      }
     } else {
-      return jsonError(source, path, "unknown key (expected version, model, description, weightRange, map)");
+      return jsonError(source, path, "unknown key (expected version, model, description, weightRange, map, calibration)");
     }
   }
-  if (!hasMap) return jsonError(source, "/map", "missing");
+  if (!hasMap) {
+    if (file.calibration.empty()) return jsonError(source, "/map", "missing (a file without a map must calibrate)");
+    return file;  // calibration only: the detected scheme drives the model
+  }
   eng::Result<RigMapping> mapping = builder.build();
   if (!mapping) return eng::makeError(std::string(source) + ": " + mapping.error().message);
-  return mapping;
+  file.mapping = std::move(*mapping);
+  return file;
+}
+
+eng::Result<RigMapping> mappingOf(eng::Result<RigMapFile> file, std::string_view source) {
+  if (!file) return file.error();
+  if (!file->mapping) return jsonError(source, "/map", "missing");
+  return std::move(*file->mapping);
 }
 
 }  // namespace
 
-eng::Result<RigMapping> loadRigMap(const std::filesystem::path& file, std::span<const std::string> targetNames) {
+eng::Result<RigMapFile> loadRigMapFile(const std::filesystem::path& file, std::span<const std::string> targetNames) {
   eng::Result<Json> json = readJsonFile(file);
   if (!json) return json.error();
   return fromJson(*json, file.string(), targetNames);
+}
+
+eng::Result<RigMapping> loadRigMap(const std::filesystem::path& file, std::span<const std::string> targetNames) {
+  return mappingOf(loadRigMapFile(file, targetNames), file.string());
 }
 
 eng::Result<RigMapping> parseRigMap(std::string_view text, std::string_view source,
                                     std::span<const std::string> targetNames) {
   eng::Result<Json> json = parseJsonText(text, source);
   if (!json) return json.error();
-  return fromJson(*json, source, targetNames);
+  return mappingOf(fromJson(*json, source, targetNames), source);
 }
 
 }  // namespace facial

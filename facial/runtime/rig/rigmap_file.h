@@ -8,13 +8,22 @@
 //    "weightRange": [0, 1],               (optional, default [0, 1])
 //    "map": {
 //      "anger":        [{"target": "Angry", "weight": 1.0}],
-//      "AU45_Blink_L": [{"target": "EyeClose_L", "weight": 1.0}]}}
+//      "AU45_Blink_L": [{"target": "EyeClose_L", "weight": 1.0}]},
+//    "calibration": {"AU12_LipCornerPuller_L": 1.2}}  (optional)
+//
+// "calibration" scales action units on top of the measured per-rig
+// calibration (rig_calibration.h), factors in [0, 4]. A file with a
+// calibration and no map tunes the scheme detected from the target names
+// (e.g. data/rigmaps/facecap.json for an ARKit face).
 //
 // Keys of "map" are action-unit channel names (actionUnits()) or emotion
 // names (emotionNames()); weights are finite numbers in [-1, 1]; a target
 // must exist in the model (every target of that name is driven). Errors name
 // the file, the JSON path and the problem.
 #include <filesystem>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <span>
 #include <string>
 #include <string_view>
@@ -24,6 +33,13 @@
 
 namespace facial {
 
+struct RigMapFile {
+  std::optional<RigMapping> mapping;  // absent: the file only calibrates the detected scheme
+  std::vector<std::pair<std::string, float>> calibration;
+};
+
+eng::Result<RigMapFile> loadRigMapFile(const std::filesystem::path& file, std::span<const std::string> targetNames);
+// The mapping of a file that has one ("/map missing" otherwise).
 eng::Result<RigMapping> loadRigMap(const std::filesystem::path& file, std::span<const std::string> targetNames);
 eng::Result<RigMapping> parseRigMap(std::string_view json, std::string_view source,
                                     std::span<const std::string> targetNames);
