@@ -25,7 +25,7 @@ struct HeadProportions {
   float pupilAngle = 13.5f;
 
   // Mouth: the lip seam is the cone of rays from gridCentre through this point.
-  glm::vec3 mouthSeamCentre{0.0f, -0.0505f, 0.0915f};
+  glm::vec3 mouthSeamCentre{0.0f, -0.0505f, 0.0985f};  // on the closed lips
   float mouthHalfWidth = 0.0232f;  // x of the lip corners
 
   float crownY = 0.121f;

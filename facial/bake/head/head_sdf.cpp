@@ -149,10 +149,17 @@ HeadSdf::LipBand HeadSdf::lipBand(float ax) const {
   return b;
 }
 
+float HeadSdf::seamHeight(const vec3& p) const {
+  // Height of the seam cone above/below p: the lips are measured from the
+  // seam the mesh is split along, wherever the skin around it lies.
+  const vec3 d = p - prop_.gridCentre;
+  return prop_.gridCentre.y + std::tan(seamElevation_) * std::sqrt(d.x * d.x + d.z * d.z);
+}
+
 float HeadSdf::lipRaise(const vec3& p) const {
   if (p.z < 0.06f) return 0.0f;
   const LipBand b = lipBand(std::abs(p.x));
-  const float dy = p.y - prop_.mouthSeamCentre.y;
+  const float dy = p.y - seamHeight(p);
   if (dy >= 0.0f) {
     if (b.upperHeight <= 0.0f) return 0.0f;
     const float u = dy / b.upperHeight;
@@ -167,7 +174,7 @@ float HeadSdf::lipDistance(const vec3& p) const {
   // Front-projected distance to the vermilion outline (negative inside).
   const float ax = std::abs(p.x);
   const LipBand b = lipBand(ax);
-  const float dy = p.y - prop_.mouthSeamCentre.y;
+  const float dy = p.y - seamHeight(p);
   const float outside = dy >= 0.0f ? dy - b.upperHeight : -dy - b.lowerHeight;
   return std::max(outside, ax - (prop_.mouthHalfWidth + 0.0006f));
 }

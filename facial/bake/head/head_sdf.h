@@ -47,6 +47,7 @@ class HeadSdf {
   };
   LipBand lipBand(float ax) const;
   float lipRaise(const glm::vec3& p) const;
+  float seamHeight(const glm::vec3& p) const;  // y of the seam cone at p's distance from the grid centre
   float eyeRegion(float d, const glm::vec3& p) const;  // orbit carve + lid shell, both eyes
 
   HeadProportions prop_;
