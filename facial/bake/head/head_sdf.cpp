@@ -88,14 +88,14 @@ HeadSdf::HeadSdf(const HeadProportions& proportions) : prop_(proportions) {
 float HeadSdf::face(const vec3& p) const {
   // Cranium.
   float d = ellipsoid(p - vec3(0.0f, 0.032f, -0.010f), vec3(0.0765f, 0.092f, 0.098f));
-  // Mid-face mass (maxilla and cheekbones).
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.018f, 0.028f), vec3(0.060f, 0.056f, 0.060f)), 0.034f);
-  // Mandible, narrowing toward the chin for a stylised V jaw.
+  // Lower face: one volume from the cheekbones to the jaw, narrowing toward
+  // the chin (a stylised V jaw). One shape rather than a mid-face and a
+  // mandible blended together: their junction left a groove across the cheek.
   {
-    const float taper = 1.0f - 0.38f * smoothstep(-0.03f, 0.08f, p.z);
-    vec3 j = p - vec3(0.0f, -0.054f, 0.020f);
-    j.x /= taper;
-    d = smin(d, ellipsoid(j, vec3(0.054f, 0.030f, 0.062f)) * taper, 0.04f);
+    const float narrow = 1.0f - 0.30f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
+    vec3 f = p - vec3(0.0f, -0.030f, 0.024f);
+    f.x /= narrow;
+    d = smin(d, ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow, 0.03f);
   }
   // Chin and the muzzle over the teeth.
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.0750f, 0.0715f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
