@@ -146,7 +146,8 @@ TEST(HeadActionUnits, JawDropOpensTheMouthAndCarriesTheLowerTeeth) {
   const auto restZ = head_testing::frontHitZ(skin.positions, skin.indices, 0.001f, seam.y);
   const auto openZ = head_testing::frontHitZ(open, skin.indices, 0.001f, seam.y - 0.002f);
   ASSERT_TRUE(restZ.has_value());
-  EXPECT_TRUE(!openZ.has_value() || *openZ < *restZ - 0.01f) << "mouth still closed at the middle";
+  EXPECT_TRUE(!openZ.has_value() || *openZ < *restZ - 0.01f)
+      << "mouth still closed at the middle: skin at z " << openZ.value_or(0.0f) << ", at rest " << *restZ;
 }
 
 TEST(HeadActionUnits, NoOtherUnitMovesTheTeeth) {

@@ -19,13 +19,13 @@ struct HeadProportions {
   // front: lateral angle a (+ toward the outer corner), vertical angle b.
   float innerCornerA = -52.0f, innerCornerB = -5.0f;
   float outerCornerA = 57.0f, outerCornerB = 4.0f;
-  float upperLidHeight = 26.0f;  // degrees above the corner line at the peak
+  float upperLidHeight = 23.5f;  // degrees above the corner line at the peak
   float lowerLidDepth = 21.0f;   // degrees below the corner line at the lowest point
   float irisAngle = 34.0f;       // iris radius, degrees from the gaze axis
   float pupilAngle = 13.5f;
 
   // Mouth: the lip seam is the cone of rays from gridCentre through this point.
-  glm::vec3 mouthSeamCentre{0.0f, -0.0505f, 0.0915f};
+  glm::vec3 mouthSeamCentre{0.0f, -0.0505f, 0.0985f};  // on the closed lips
   float mouthHalfWidth = 0.0232f;  // x of the lip corners
 
   float crownY = 0.121f;

@@ -88,37 +88,38 @@ HeadSdf::HeadSdf(const HeadProportions& proportions) : prop_(proportions) {
 float HeadSdf::face(const vec3& p) const {
   // Cranium.
   float d = ellipsoid(p - vec3(0.0f, 0.032f, -0.010f), vec3(0.0765f, 0.092f, 0.098f));
-  // Mid-face mass (maxilla and cheekbones).
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.018f, 0.028f), vec3(0.066f, 0.052f, 0.060f)), 0.025f);
-  // Mandible, narrowing toward the chin for a stylised V jaw.
+  // Lower face: one volume from the cheekbones to the jaw, narrowing toward
+  // the chin (a stylised V jaw). One shape rather than a mid-face and a
+  // mandible blended together: their junction left a groove across the cheek.
   {
-    const float taper = 1.0f - 0.34f * smoothstep(-0.03f, 0.08f, p.z);
-    vec3 j = p - vec3(0.0f, -0.052f, 0.022f);
-    j.x /= taper;
-    d = smin(d, ellipsoid(j, vec3(0.057f, 0.031f, 0.060f)) * taper, 0.02f);
+    const float narrow = 1.0f - 0.30f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
+    vec3 f = p - vec3(0.0f, -0.030f, 0.024f);
+    f.x /= narrow;
+    d = smin(d, ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow, 0.03f);
   }
   // Chin and the muzzle over the teeth.
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0730f, 0.0655f), vec3(0.0185f, 0.0135f, 0.0175f)), 0.015f);
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.061f), vec3(0.031f, 0.024f, 0.026f)), 0.02f);
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0750f, 0.0715f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.063f), vec3(0.030f, 0.024f, 0.026f)), 0.022f);
   // Brow ridge.
   d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.068f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
-  // Cheekbones and cheek apples (mirrored).
+  // Cheekbones and cheek apples (mirrored), blended wide so they shape the
+  // face without reading as separate lumps.
   const vec3 m(std::abs(p.x), p.y, p.z);
-  d = smin(d, ellipsoid(m - vec3(0.050f, -0.004f, 0.036f), vec3(0.020f, 0.014f, 0.032f)), 0.02f);
-  d = smin(d, ellipsoid(m - vec3(0.036f, -0.016f, 0.062f), vec3(0.019f, 0.016f, 0.017f)), 0.02f);
-  d = smin(d, ellipsoid(m - vec3(0.041f, -0.037f, 0.044f), vec3(0.018f, 0.018f, 0.022f)), 0.02f);
+  d = smin(d, ellipsoid(m - vec3(0.050f, -0.004f, 0.036f), vec3(0.019f, 0.014f, 0.032f)), 0.026f);
+  d = smin(d, ellipsoid(m - vec3(0.035f, -0.015f, 0.060f), vec3(0.019f, 0.016f, 0.017f)), 0.028f);
   // Neck: elliptic cylinder merged under the skull, cut flat at the bottom.
   {
-    const vec2 q(p.x / 0.040f, (p.z + 0.024f) / 0.043f);
-    const float neck = std::max((glm::length(q) - 1.0f) * 0.040f, p.y);
-    d = smin(d, neck, 0.03f);
+    // A tighter blend under the jaw than around the skull: a readable jaw line.
+    const vec2 q(p.x / 0.038f, (p.z + 0.026f) / 0.042f);
+    const float neck = std::max((glm::length(q) - 1.0f) * 0.038f, p.y);
+    d = smin(d, neck, 0.02f + 0.01f * smoothstep(0.0f, -0.04f, p.z));
     d = smax(d, prop_.neckBottomY - p.y, 0.012f);
   }
   return d;
 }
 
 float HeadSdf::nose(const vec3& p) const {
-  float n = roundCone(p, vec3(0.0f, 0.018f, 0.0775f), vec3(0.0f, -0.017f, 0.0985f), 0.0048f, 0.0068f);
+  float n = roundCone(p, vec3(0.0f, 0.018f, 0.0770f), vec3(0.0f, -0.017f, 0.0985f), 0.0060f, 0.0068f);
   n = smin(n, glm::length(p - vec3(0.0f, -0.0215f, 0.0995f)) - 0.0084f, 0.008f);
   const vec3 m(std::abs(p.x), p.y, p.z);
   n = smin(n, ellipsoid(m - vec3(0.0115f, -0.0265f, 0.0900f), vec3(0.0065f, 0.0060f, 0.0070f)), 0.005f);
@@ -127,15 +128,55 @@ float HeadSdf::nose(const vec3& p) const {
   return n;
 }
 
-float HeadSdf::lips(const vec3& p) const {
-  vec3 b = p;
-  b.z += 12.0f * p.x * p.x;  // follow the dental arch
-  vec3 bow = b;
-  const float ax = std::abs(p.x) / 0.0042f;
-  bow.y -= 0.0009f * std::exp(-(ax - 1.2f) * (ax - 1.2f)) - 0.0006f * std::exp(-ax * ax * 2.0f);  // cupid's bow
-  const float upper = ellipsoid(bow - vec3(0.0f, -0.0464f, 0.0878f), vec3(0.0255f, 0.0052f, 0.0078f));
-  const float lower = ellipsoid(b - vec3(0.0f, -0.0557f, 0.0858f), vec3(0.0225f, 0.0060f, 0.0088f));
-  return std::min(upper, lower);
+// The lips are not separate shapes laid on the face: they are the muzzle's
+// own surface raised inside the vermilion outline. Within the outline the
+// raise grows from the seam (where the lips roll in) to a full lip and drops
+// off over the last fifth, which makes the vermilion border a crisp ridge;
+// toward the corners it fades to nothing, so the corners tuck into the face.
+HeadSdf::LipBand HeadSdf::lipBand(float ax) const {
+  const float w = prop_.mouthHalfWidth + 0.0006f;
+  const float f = std::min(ax / w, 1.0f);
+  const float across = std::max(0.0f, 1.0f - f * f);
+  LipBand b;
+  // Cupid's bow: two peaks either side of the philtrum, a dip on the midline.
+  const float bow = 0.0009f * std::exp(-std::pow((ax - 0.0047f) / 0.0026f, 2.0f)) -
+                    0.0005f * std::exp(-std::pow(ax / 0.0020f, 2.0f));
+  b.upperHeight = 0.0056f * std::pow(across, 0.55f) + bow * across;
+  b.lowerHeight = 0.0074f * std::pow(across, 0.6f);
+  b.upperRaise = 0.0022f * std::pow(across, 0.8f);
+  b.lowerRaise = 0.0032f * std::pow(across, 0.8f);
+  b.seamRaise = 0.0011f * std::pow(across, 0.8f);
+  return b;
+}
+
+float HeadSdf::seamHeight(const vec3& p) const {
+  // Height of the seam cone above/below p: the lips are measured from the
+  // seam the mesh is split along, wherever the skin around it lies.
+  const vec3 d = p - prop_.gridCentre;
+  return prop_.gridCentre.y + std::tan(seamElevation_) * std::sqrt(d.x * d.x + d.z * d.z);
+}
+
+float HeadSdf::lipRaise(const vec3& p) const {
+  if (p.z < 0.06f) return 0.0f;
+  const LipBand b = lipBand(std::abs(p.x));
+  const float dy = p.y - seamHeight(p);
+  if (dy >= 0.0f) {
+    if (b.upperHeight <= 0.0f) return 0.0f;
+    const float u = dy / b.upperHeight;
+    return (b.seamRaise + (b.upperRaise - b.seamRaise) * smoothstep(0.0f, 0.55f, u)) * (1.0f - smoothstep(0.80f, 1.0f, u));
+  }
+  if (b.lowerHeight <= 0.0f) return 0.0f;
+  const float u = -dy / b.lowerHeight;
+  return (b.seamRaise + (b.lowerRaise - b.seamRaise) * smoothstep(0.0f, 0.5f, u)) * (1.0f - smoothstep(0.72f, 1.05f, u));
+}
+
+float HeadSdf::lipDistance(const vec3& p) const {
+  // Front-projected distance to the vermilion outline (negative inside).
+  const float ax = std::abs(p.x);
+  const LipBand b = lipBand(ax);
+  const float dy = p.y - seamHeight(p);
+  const float outside = dy >= 0.0f ? dy - b.upperHeight : -dy - b.lowerHeight;
+  return std::max(outside, ax - (prop_.mouthHalfWidth + 0.0006f));
 }
 
 float HeadSdf::eyeRegion(float d, const vec3& p) const {
@@ -147,7 +188,9 @@ float HeadSdf::eyeRegion(float d, const vec3& p) const {
     // lid shell rises out of it. Both are star-shaped around the eye, so rays
     // from behind the eyeball cross the skin once.
     const float r = prop_.eyeRadius;
-    d = smax(d, -ellipsoid(p - (e + vec3(0.0f, 0.1f, 1.5f) * r), vec3(1.6f, 1.25f, 0.95f) * r), 0.016f);
+    // The dish stops short of the nose bridge (a dish reaching the midline
+    // leaves a thin ridge there with a dark crease along each side).
+    d = smax(d, -ellipsoid(p - (e + vec3(0.18f * side, 0.1f, 1.5f) * r), vec3(1.42f, 1.25f, 0.95f) * r), 0.016f);
     const float thickness = prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) *
                                                          smoothstep(-0.004f, 0.004f, p.y - e.y);
     d = smin(d, glm::length(p - e) - (prop_.eyeRadius + thickness), 0.0075f);
@@ -179,8 +222,8 @@ float HeadSdf::distance(const vec3& p) const {
   // equals a whenever b >= a + k, and rays and relaxation evaluate this
   // function millions of times.
   float d = face(p);
-  if (glm::length(p - vec3(0.0f, -0.004f, 0.091f)) - 0.034f < d + 0.008f) d = smin(d, nose(p), 0.008f);
-  if (glm::length(p - vec3(0.0f, -0.051f, 0.086f)) - 0.031f < d + 0.004f) d = smin(d, lips(p), 0.004f);
+  if (glm::length(p - vec3(0.0f, -0.004f, 0.091f)) - 0.034f < d + 0.011f) d = smin(d, nose(p), 0.011f);
+  if (std::abs(p.y - prop_.mouthSeamCentre.y) < 0.012f && std::abs(p.x) < 0.026f) d -= lipRaise(p);
   d = eyeRegion(d, p);
   // The lip seam: a sharp groove along the seam cone between the mouth corners.
   if (seamGroove_ && std::abs(p.y - prop_.mouthSeamCentre.y) < 0.02f && p.z > 0.04f) {

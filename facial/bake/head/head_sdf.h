@@ -25,8 +25,8 @@ class HeadSdf {
   // Hair coverage in [0, 1] at a point near the skin (1 = scalp under hair);
   // shared with the texture painter so the colour follows the hair volume.
   float hairCoverage(const glm::vec3& p) const;
-  // Distance to the lip shapes alone (vermilion where the skin lies on them).
-  float lipDistance(const glm::vec3& p) const { return lips(p); }
+  // Front-projected distance (metres) to the vermilion border, negative on the lips.
+  float lipDistance(const glm::vec3& p) const;
   // Ambient occlusion estimate in [0, 1] (1 = open) at a surface point with normal n.
   float occlusion(const glm::vec3& p, const glm::vec3& n) const;
   // Hair thickness profile (0..1), softer at the hairline than the colour.
@@ -40,7 +40,14 @@ class HeadSdf {
  private:
   float face(const glm::vec3& p) const;    // skull, jaw, cheeks, brow, chin
   float nose(const glm::vec3& p) const;
-  float lips(const glm::vec3& p) const;
+  // Vermilion outline and how far the lips stand out of the muzzle, by |x|.
+  struct LipBand {
+    float upperHeight, lowerHeight;           // border above / below the seam
+    float upperRaise, lowerRaise, seamRaise;  // at each lip's fullest and at the seam
+  };
+  LipBand lipBand(float ax) const;
+  float lipRaise(const glm::vec3& p) const;
+  float seamHeight(const glm::vec3& p) const;  // y of the seam cone at p's distance from the grid centre
   float eyeRegion(float d, const glm::vec3& p) const;  // orbit carve + lid shell, both eyes
 
   HeadProportions prop_;

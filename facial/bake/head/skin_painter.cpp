@@ -159,7 +159,7 @@ float SkinPainter::browCoverage(const vec3& p) const {
 
 float SkinPainter::lipCoverage(const vec3& p) const {
   if (p.z < 0.07f || std::abs(p.y - prop_.mouthSeamCentre.y) > 0.016f) return 0.0f;
-  return 1.0f - smoothstep(0.0004f, 0.0013f, sdf_.lipDistance(p));
+  return 1.0f - smoothstep(-0.00025f, 0.00015f, sdf_.lipDistance(p));
 }
 
 vec3 SkinPainter::baseColour(const SkinTexel& t) const {
@@ -178,7 +178,8 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
     const float outer = smoothstep(0.0f, 0.013f, std::abs(p.x) - prop_.eyeCentre.x);
     if (t.upperLid > 0.5f) {
       c = glm::mix(c, srgb(196, 140, 126), 0.22f * smoothstep(0.35f, 0.7f, t.lidRing) * (1.0f - smoothstep(0.88f, 0.95f, t.lidRing)));
-      const float lash = smoothstep(0.90f - 0.06f * outer, 0.975f, t.lidRing);
+      // A lash line thick enough to read at thumbnail size, winged at the outer corner.
+      const float lash = smoothstep(0.80f - 0.10f * outer, 0.95f, t.lidRing);
       c = glm::mix(c, kLash, lash);
     } else {
       c = glm::mix(c, srgb(150, 104, 92), 0.55f * smoothstep(0.95f, 0.99f, t.lidRing));
