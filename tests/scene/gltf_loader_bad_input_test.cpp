@@ -283,10 +283,10 @@ TEST(GltfLoaderBadInput, WrongAccessorType) {
 TEST(GltfLoaderBadInput, UnsupportedRequiredExtensionIsNamed) {
   const auto dir = freshTempDir("bad_required_ext");
   GltfFileBuilder b = quadWithTarget();
-  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
-  b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
-  b.writeGlb(dir / "meshopt.glb");
-  expectLoadError(dir / "meshopt.glb", "requires glTF extension EXT_meshopt_compression");
+  b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  b.writeGlb(dir / "instancing.glb");
+  expectLoadError(dir / "instancing.glb", "requires glTF extension EXT_mesh_gpu_instancing");
 }
 
 TEST(GltfLoaderBadInput, ImageBufferViewOutOfRange) {

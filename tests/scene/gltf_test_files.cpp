@@ -72,14 +72,21 @@ int GltfFileBuilder::addMeshWithNode(Json mesh) {
   return m;
 }
 
+// Buffer 0 is `bin`; buffers a test added after it (meshopt fallbacks) are kept.
+static void setBuffer0(Json& out, Json buffer0) {
+  if (!out.contains("buffers") || !out["buffers"].is_array() || out["buffers"].empty())
+    out["buffers"] = Json::array({std::move(buffer0)});
+  else
+    out["buffers"][0] = std::move(buffer0);
+}
+
 void GltfFileBuilder::writeGltf(const std::filesystem::path& path, const std::string& binFileName) const {
   Json out = doc;
   if (!bin.empty()) {
     if (binFileName.empty()) {
-      out["buffers"] = Json::array({{{"byteLength", bin.size()},
-                                     {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+      setBuffer0(out, {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}});
     } else {
-      out["buffers"] = Json::array({{{"byteLength", bin.size()}, {"uri", binFileName}}});
+      setBuffer0(out, {{"byteLength", bin.size()}, {"uri", binFileName}});
       writeBytes(path.parent_path() / binFileName, bin);
     }
   }
@@ -89,7 +96,7 @@ void GltfFileBuilder::writeGltf(const std::filesystem::path& path, const std::st
 
 std::vector<uint8_t> GltfFileBuilder::glbBytes() const {
   Json out = doc;
-  if (!bin.empty()) out["buffers"] = Json::array({{{"byteLength", bin.size()}}});
+  if (!bin.empty()) setBuffer0(out, {{"byteLength", bin.size()}});
   std::string json = out.dump();
   while (json.size() % 4) json += ' ';
   std::vector<uint8_t> padded = bin;

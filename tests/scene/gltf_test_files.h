@@ -40,7 +40,8 @@ class GltfFileBuilder {
   // mesh + node (+ scene 0 listing the node); returns the mesh index.
   int addMeshWithNode(Json mesh);
 
-  // The buffer JSON is filled in at write time.
+  // Buffer 0's JSON is filled in at write time (from `bin`); any further
+  // entries a test puts in doc["buffers"] are written as they are.
   void writeGltf(const std::filesystem::path& path, const std::string& binFileName = "") const;  // "" = data: URI
   std::vector<uint8_t> glbBytes() const;
   void writeGlb(const std::filesystem::path& path) const;
