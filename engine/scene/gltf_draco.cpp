@@ -7,6 +7,7 @@
 
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
+#include <nlohmann/json.hpp>
 
 namespace eng {
 namespace {
@@ -102,6 +103,10 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
     return makeError(where + ": the Draco stream (" + std::to_string(view.byteLength) + " bytes) is corrupt or truncated (" +
                      decoded.status().error_msg_string() + ")");
   const std::unique_ptr<draco::Mesh>& mesh = decoded.value();
+  // The decoded point count is used as is: Draco may split seam vertices
+  // into more points than the accessors declare (CesiumMan: 3572 for 3273),
+  // as other Draco loaders do. Uncompressed morph targets of such a primitive
+  // no longer match and are refused by the loader's count check.
   const uint32_t points = mesh->num_points();
   const uint32_t faces = mesh->num_faces();
 
@@ -178,6 +183,29 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
 }
 
 }  // namespace
+
+bool stubDracoIndices(nlohmann::json& doc) {
+  auto meshes = doc.find("meshes");
+  auto accessors = doc.find("accessors");
+  if (meshes == doc.end() || !meshes->is_array() || accessors == doc.end() || !accessors->is_array()) return false;
+  bool changed = false;
+  for (const nlohmann::json& mesh : *meshes) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (const nlohmann::json& prim : mesh["primitives"]) {
+      if (!prim.is_object() || !prim.contains("indices") || !prim["indices"].is_number_unsigned()) continue;
+      const nlohmann::json* draco = nullptr;
+      if (auto ext = prim.find("extensions"); ext != prim.end() && ext->is_object())
+        if (auto it = ext->find(kKhrDraco); it != ext->end() && it->is_object()) draco = &*it;
+      if (!draco || !draco->contains("bufferView") || !(*draco)["bufferView"].is_number_unsigned()) continue;
+      const size_t index = prim["indices"].get<size_t>();
+      if (index >= accessors->size() || !(*accessors)[index].is_object() || (*accessors)[index].contains("bufferView"))
+        continue;
+      (*accessors)[index]["bufferView"] = (*draco)["bufferView"];
+      changed = true;
+    }
+  }
+  return changed;
+}
 
 Result<size_t> decodeDracoPrimitives(tinygltf::Model& gltf, size_t maxDecodedBytes) {
   size_t budget = maxDecodedBytes;

@@ -5,6 +5,7 @@
 // them like any other accessor (with the same bounds checks).
 #include <cstddef>
 
+#include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
 #include "engine/core/result.h"
@@ -12,6 +13,12 @@
 namespace eng {
 
 inline constexpr const char* kKhrDraco = "KHR_draco_mesh_compression";
+
+// Before tinygltf: it refuses an indices accessor without a bufferView, which
+// is how Draco primitives without fallback data declare theirs. Such
+// accessors borrow the primitive's Draco bufferView until the decoder points
+// them at the decoded indices. Returns whether the document changed.
+bool stubDracoIndices(nlohmann::json& doc);
 
 // Decodes every Draco-compressed primitive; returns how many. Decoded bytes
 // are charged against `maxDecodedBytes`. Errors name the mesh and primitive

@@ -16,6 +16,7 @@
 #include "engine/scene/gltf_draco.h"
 #include "engine/scene/gltf_extensions.h"
 #include "engine/scene/gltf_file_access.h"
+#include "engine/scene/gltf_json_prepass.h"
 #include "engine/scene/gltf_meshopt.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/normals.h"
@@ -637,9 +638,9 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     if (!bytes) return bytes.error();
     auto container = detectContainer(*bytes, path);
     if (!container) return makeError(file + ": " + container.error().message);
-    // Meshopt placeholder buffers have no data; tinygltf would refuse them.
+    // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
-    auto placeholders = stubMeshoptPlaceholders(*bytes, *container == Container::Glb, stubbed);
+    auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);
     if (!placeholders) return makeError(file + ": " + placeholders.error().message);
     if (!stubbed.empty()) *bytes = std::move(stubbed);
 

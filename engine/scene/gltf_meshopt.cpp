@@ -7,7 +7,6 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/scene/glb_container.h"
 
 namespace eng {
 namespace {
@@ -15,11 +14,6 @@ namespace {
 // Three zero bytes: the smallest data: URI tinygltf accepts (it refuses empty ones).
 constexpr const char* kStandInUri = "data:application/octet-stream;base64,AAAA";
 constexpr size_t kStandInBytes = 3;
-
-bool mentionsMeshopt(std::span<const uint8_t> json) {
-  const std::string_view text(reinterpret_cast<const char*>(json.data()), json.size());
-  return text.find("_meshopt_compression") != std::string_view::npos;
-}
 
 const nlohmann::json* meshoptExtensionOf(const nlohmann::json& object) {
   if (!object.is_object()) return nullptr;
@@ -121,42 +115,20 @@ Result<void> decodeInto(uint8_t* dst, const CompressedView& cv, const uint8_t* s
 
 }  // namespace
 
-Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(std::span<const uint8_t> bytes, bool glb,
-                                                                std::vector<uint8_t>& rewritten) {
-  rewritten.clear();
-  std::span<const uint8_t> json = bytes;
-  GlbChunks chunks;
-  if (glb) {
-    auto parsed = parseGlb(bytes);
-    if (!parsed) return std::vector<MeshoptPlaceholder>{};  // the loader reports the container error
-    chunks = *parsed;
-    json = chunks.json;
-  }
-  if (!mentionsMeshopt(json)) return std::vector<MeshoptPlaceholder>{};
-  nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) return std::vector<MeshoptPlaceholder>{};  // tinygltf names the JSON error
-  auto buffers = doc.find("buffers");
-  if (buffers == doc.end() || !buffers->is_array()) return std::vector<MeshoptPlaceholder>{};
-
+Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(nlohmann::json& doc, bool glbHasBin) {
   std::vector<MeshoptPlaceholder> placeholders;
+  auto buffers = doc.find("buffers");
+  if (buffers == doc.end() || !buffers->is_array()) return placeholders;
   for (size_t i = 0; i < buffers->size(); ++i) {
     nlohmann::json& buffer = (*buffers)[i];
     if (!meshoptExtensionOf(buffer) || buffer.contains("uri")) continue;
-    // In a GLB, buffer 0 without a uri is the BIN chunk, which holds real data.
-    if (glb && i == 0 && chunks.hasBin) continue;
+    if (i == 0 && glbHasBin) continue;  // the BIN chunk holds real data
     auto length = buffer.find("byteLength");
     if (length == buffer.end() || !length->is_number_unsigned())
       return makeError("meshopt fallback buffer " + std::to_string(i) + " has no valid byteLength");
     placeholders.push_back({static_cast<int>(i), length->get<size_t>()});
     buffer["uri"] = kStandInUri;
     buffer["byteLength"] = kStandInBytes;
-  }
-  if (placeholders.empty()) return placeholders;
-  const std::string text = doc.dump();
-  if (glb) {
-    rewritten = buildGlb(text, chunks.bin);
-  } else {
-    rewritten.assign(text.begin(), text.end());
   }
   return placeholders;
 }

@@ -10,10 +10,10 @@
 // compressed view is decoded into them.
 #include <cstddef>
 #include <cstdint>
-#include <span>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
 #include "engine/core/result.h"
@@ -30,12 +30,10 @@ struct MeshoptPlaceholder {
   size_t byteLength = 0;
 };
 
-// Returns the placeholder buffers of a glTF JSON document or GLB (`bytes`);
-// when there are any, `rewritten` receives the same file with each of them
-// given a stand-in data: URI so that tinygltf accepts it. Files without
-// meshopt buffers come back untouched (empty list, `rewritten` empty).
-Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(std::span<const uint8_t> bytes, bool glb,
-                                                                std::vector<uint8_t>& rewritten);
+// Finds the placeholder buffers of a parsed glTF document and gives each a
+// stand-in data: URI so that tinygltf accepts it (see gltf_json_prepass.h).
+// `glbHasBin`: in a GLB with a BIN chunk, buffer 0 without a uri is that chunk.
+Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(nlohmann::json& doc, bool glbHasBin);
 
 struct MeshoptDecodeStats {
   size_t views = 0;  // buffer views decoded
