@@ -16,7 +16,7 @@ bool listed(const std::vector<std::string>& names, const std::string& name) {
 // What a handled extension did when nothing more specific was recorded.
 std::string defaultOutcome(const std::string& name) {
   if (name == kKhrMeshQuantization) return "applied: quantized accessors read as normalized/integer data";
-  if (isHandledExtension(name)) return "applied: listed, but nothing in the file uses it";
+  if (isHandledExtension(name)) return "ignored: listed, but nothing in the file uses it";
   return "ignored: not supported by this loader";
 }
 
