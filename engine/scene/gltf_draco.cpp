@@ -9,30 +9,10 @@
 #include <draco/core/decoder_buffer.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/scene/gltf_accessor_reader.h"
+
 namespace eng {
 namespace {
-
-int componentsOf(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-  }
-}
-
-size_t componentSize(int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // INT is not a valid vertex attribute type
-  }
-}
 
 // Appends `count` values of the accessor's component type, converted by Draco.
 template <class T>
@@ -156,8 +136,8 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
     if (accessor < 0 || static_cast<size_t>(accessor) >= gltf.accessors.size())
       return makeError(where + ": " + semantic + " accessor " + std::to_string(accessor) + " does not exist");
     const tinygltf::Accessor& acc = gltf.accessors[static_cast<size_t>(accessor)];
-    const int components = componentsOf(acc.type);
-    const size_t compSize = componentSize(acc.componentType);
+    const int components = gltfComponentCount(acc.type);
+    const size_t compSize = gltfComponentSize(acc.componentType);
     if (components == 0 || compSize == 0)
       return makeError(where + ": " + semantic + " accessor " + std::to_string(accessor) +
                        " has a type Draco data cannot be written as");

@@ -1,8 +1,9 @@
 // Compressed and extended glTF on files the tests write themselves: meshopt
 // (EXT_ and KHR_ names, every mode and filter, fallback buffers without data,
 // in .glb and .gltf), every KHR_mesh_quantization component type, WebP and
-// KTX2 textures, KHR_texture_transform, the required-extension policy, and
-// corrupt or truncated streams (one clear line, no crash).
+// KTX2 textures, KHR_texture_transform, and corrupt or truncated streams (one
+// clear line, no crash). The unknown-extension policy is tested with the
+// other loader tests (gltf_loader_test.cpp, gltf_loader_bad_input_test.cpp).
 #include <cmath>
 #include <cstring>
 
@@ -19,33 +20,6 @@ namespace {
 
 using namespace scene_test;
 using testing_support::freshTempDir;
-
-eng::Model loadOk(const std::filesystem::path& path) {
-  auto model = eng::loadModel(path);
-  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
-  return model.ok() ? std::move(*model) : eng::Model{};
-}
-
-void expectLoadError(const std::filesystem::path& path, const std::string& problem) {
-  auto model = eng::loadModel(path);
-  ASSERT_FALSE(model.ok()) << path << " loaded but should fail with: " << problem;
-  const std::string& message = model.error().message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-  EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "does not start with the file name: " << message;
-  EXPECT_NE(message.find(problem), std::string::npos) << "expected '" << problem << "' in: " << message;
-}
-
-bool hasWarningContaining(const eng::Model& model, const std::string& text) {
-  for (const std::string& w : model.warnings)
-    if (w.find(text) != std::string::npos) return true;
-  return false;
-}
-
-const eng::ExtensionUse* extensionRecord(const eng::Model& model, const std::string& name) {
-  for (const eng::ExtensionUse& e : model.extensions)
-    if (e.name == name) return &e;
-  return nullptr;
-}
 
 // ---------------------------------------------------------------------------
 // A meshopt-compressed file: encoded bytes in buffer 0 (the GLB BIN chunk or
@@ -502,22 +476,6 @@ TEST(GltfCompressed, TextureTransformIsBakedIntoTexcoords) {
   const eng::Model other = loadOk(dir / "transform_uv1.glb");
   EXPECT_EQ(other.meshes.at(0).primitives.at(0).texcoords[1], glm::vec2(1, 0));
   EXPECT_TRUE(hasWarningContaining(other, "KHR_texture_transform on TEXCOORD_1"));
-}
-
-// ---------------------------------------------------------------------------
-// The extension policy (an unknown *required* extension: gltf_loader_bad_input_test.cpp).
-
-TEST(GltfCompressed, UnknownUsedExtensionIsIgnoredWithAWarningAndRecorded) {
-  const auto dir = freshTempDir("compressed_unknown_used");
-  GltfFileBuilder b = quadWithTarget();
-  b.doc["extensionsUsed"] = {"KHR_materials_sheen"};
-  b.writeGlb(dir / "sheen.glb");
-  const eng::Model model = loadOk(dir / "sheen.glb");
-  EXPECT_TRUE(hasWarningContaining(model, "optional extension KHR_materials_sheen ignored"));
-  const eng::ExtensionUse* record = extensionRecord(model, "KHR_materials_sheen");
-  ASSERT_NE(record, nullptr);
-  EXPECT_FALSE(record->required);
-  EXPECT_EQ(record->outcome.rfind("ignored", 0), 0u) << record->outcome;
 }
 
 }  // namespace

@@ -15,16 +15,6 @@ namespace {
 using namespace scene_test;
 using testing_support::freshTempDir;
 
-// Loads `path` and checks the failure is one line naming the file and containing `problem`.
-void expectLoadError(const std::filesystem::path& path, const std::string& problem) {
-  auto model = eng::loadModel(path);
-  ASSERT_FALSE(model.ok()) << path << " loaded but should fail with: " << problem;
-  const std::string& message = model.error().message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-  EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "does not start with the file name: " << message;
-  EXPECT_NE(message.find(problem), std::string::npos) << "expected '" << problem << "' in: " << message;
-}
-
 TEST(GltfLoaderBadInput, MissingFile) {
   const auto dir = freshTempDir("bad_missing_file");
   expectLoadError(dir / "nothing.glb", "not found");

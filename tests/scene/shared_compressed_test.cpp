@@ -15,19 +15,8 @@
 
 namespace {
 
+using scene_test::extensionRecord;
 using testing_support::sharedDir;
-
-eng::Model load(const std::filesystem::path& path) {
-  auto model = eng::loadModel(path);
-  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
-  return model.ok() ? std::move(*model) : eng::Model{};
-}
-
-const eng::ExtensionUse* extensionRecord(const eng::Model& model, const std::string& name) {
-  for (const eng::ExtensionUse& e : model.extensions)
-    if (e.name == name) return &e;
-  return nullptr;
-}
 
 size_t triangleCount(const eng::Model& model) {
   size_t n = 0;
@@ -83,8 +72,8 @@ float largestDelta(const eng::Model& model, const std::string& target) {
 
 TEST(SharedCompressed, RobotMeshoptMatchesTheUncompressedRobot) {
   FACIAL_REQUIRE_SHARED();
-  const eng::Model packed = load(sharedDir() / "compressed" / "RobotExpressive.meshopt.glb");
-  const eng::Model original = load(sharedDir() / "assets" / "RobotExpressive.glb");
+  const eng::Model packed = scene_test::loadOk(sharedDir() / "compressed" / "RobotExpressive.meshopt.glb");
+  const eng::Model original = scene_test::loadOk(sharedDir() / "assets" / "RobotExpressive.glb");
   ASSERT_EQ(packed.meshes.size(), original.meshes.size());
   std::printf("  meshopt: %zu vertices, %zu triangles; original: %zu vertices, %zu triangles\n",
               packed.totalVertexCount(), triangleCount(packed), original.totalVertexCount(), triangleCount(original));
@@ -119,8 +108,8 @@ TEST(SharedCompressed, RobotMeshoptMatchesTheUncompressedRobot) {
 
 TEST(SharedCompressed, CesiumManDracoMatchesTheUncompressedCesiumMan) {
   FACIAL_REQUIRE_SHARED();
-  const eng::Model draco = load(sharedDir() / "compressed" / "CesiumMan-Draco" / "CesiumMan.gltf");
-  const eng::Model original = load(sharedDir() / "assets" / "khronos" / "CesiumMan" / "glTF-Binary" / "CesiumMan.glb");
+  const eng::Model draco = scene_test::loadOk(sharedDir() / "compressed" / "CesiumMan-Draco" / "CesiumMan.gltf");
+  const eng::Model original = scene_test::loadOk(sharedDir() / "assets" / "khronos" / "CesiumMan" / "glTF-Binary" / "CesiumMan.glb");
   ASSERT_EQ(draco.meshes.size(), 1u);
   ASSERT_EQ(original.meshes.size(), 1u);
   std::printf("  draco: %zu vertices, %zu triangles; original: %zu vertices, %zu triangles\n", draco.totalVertexCount(),
@@ -158,15 +147,6 @@ std::filesystem::path damagedCesiumMan(const std::string& name, const std::funct
   return dir / "CesiumMan.gltf";
 }
 
-void expectOneLineError(const std::filesystem::path& path, const std::string& problem) {
-  auto model = eng::loadModel(path);
-  ASSERT_FALSE(model.ok()) << path << " loaded";
-  const std::string& message = model.error().message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  EXPECT_EQ(message.rfind(path.string(), 0), 0u) << message;
-  EXPECT_NE(message.find(problem), std::string::npos) << "expected '" << problem << "' in: " << message;
-}
-
 TEST(SharedCompressedBadInput, DamagedDracoStreamsAreRefusedInOneLine) {
   FACIAL_REQUIRE_SHARED();
   const nlohmann::json doc = nlohmann::json::parse(
@@ -177,7 +157,7 @@ TEST(SharedCompressedBadInput, DamagedDracoStreamsAreRefusedInOneLine) {
   const std::string where = "mesh 0 primitive 0: the Draco stream";
 
   // Truncated: the view keeps only the first third of the stream.
-  expectOneLineError(damagedCesiumMan("draco_truncated",
+  scene_test::expectLoadError(damagedCesiumMan("draco_truncated",
                                       [&](std::string& gltf, std::vector<uint8_t>&) {
                                         nlohmann::json edited = nlohmann::json::parse(gltf);
                                         edited["bufferViews"][view]["byteLength"] = length / 3;
@@ -185,7 +165,7 @@ TEST(SharedCompressedBadInput, DamagedDracoStreamsAreRefusedInOneLine) {
                                       }),
                      where);
   // Not a Draco stream at all: the magic is overwritten.
-  expectOneLineError(damagedCesiumMan("draco_magic", [&](std::string&, std::vector<uint8_t>& bin) {
+  scene_test::expectLoadError(damagedCesiumMan("draco_magic", [&](std::string&, std::vector<uint8_t>& bin) {
                        std::fill(bin.begin() + offset, bin.begin() + offset + 8, uint8_t{0x5a});
                      }),
                      where);
