@@ -12,6 +12,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
+  libmeshoptimizer-dev libdraco-dev libwebp-dev
   python3-numpy python3-opencv opencv-data
 )
 

@@ -1,6 +1,7 @@
 // `facial info MODEL`: what a glTF file holds, as the engine sees it after
 // import (meshes, morph targets and their default weights, materials,
-// images, weights animations, import warnings). --json for tools.
+// images, weights animations, the glTF extensions the file lists and what
+// the loader did with each, import warnings). --json for tools.
 #include <cstdio>
 #include <string>
 
@@ -82,6 +83,10 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                           {"otherChannels", anim.otherChannelCount}});
   }
   j["animations"] = std::move(animations);
+  Json extensions = Json::array();
+  for (const eng::ExtensionUse& e : model.extensions)
+    extensions.push_back({{"name", e.name}, {"required", e.required}, {"outcome", e.outcome}});
+  j["extensions"] = std::move(extensions);
   j["warnings"] = model.warnings;
   return j;
 }
@@ -131,13 +136,18 @@ void printText(const eng::Model& model) {
       std::printf("      node %d (mesh %d): %zu keys x %zu weights, %s\n", ch.node, ch.mesh, ch.times.size(),
                   ch.targetCount, interpolationName(ch.interpolation));
   }
+  if (!model.extensions.empty()) {
+    std::printf("  %zu extension(s)\n", model.extensions.size());
+    for (const eng::ExtensionUse& e : model.extensions)
+      std::printf("    %-28s %-8s %s\n", e.name.c_str(), e.required ? "required" : "used", e.outcome.c_str());
+  }
   if (!model.warnings.empty()) {
     std::printf("  %zu warning(s)\n", model.warnings.size());
     for (const std::string& w : model.warnings) std::printf("    %s\n", w.c_str());
   }
 }
 
-CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, materials, images, animations",
+CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, materials, images, animations, extensions",
                      [](CLI::App& app) {
                        auto path = std::make_shared<std::string>();
                        auto json = std::make_shared<bool>(false);

@@ -21,29 +21,6 @@ const char* typeName(int type) {
   }
 }
 
-int componentsOf(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;  // matrices and junk are never read here
-  }
-}
-
-size_t componentSize(int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_INT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
-  }
-}
-
 std::string prefix(int accessor, std::string_view what) {
   return "accessor " + std::to_string(accessor) + " (" + std::string(what) + ")";
 }
@@ -131,6 +108,29 @@ bool fits(size_t offset, size_t count, size_t stride, size_t elementSize, size_t
 
 }  // namespace
 
+int gltfComponentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;  // matrices and junk are never read here
+  }
+}
+
+size_t gltfComponentSize(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
 GltfAccessorReader::GltfAccessorReader(const tinygltf::Model& gltf, size_t maxDecodedBytes)
     : gltf_(gltf), maxDecodedBytes_(maxDecodedBytes) {}
 
@@ -163,11 +163,11 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   if (!n) return n.error();
   const tinygltf::Accessor& acc = gltf_.accessors[index];
   const std::string where = prefix(index, what);
-  const int accComponents = componentsOf(acc.type);
+  const int accComponents = gltfComponentCount(acc.type);
   if (accComponents != components)
     return makeError(where + " has type " + typeName(acc.type) + ", expected " +
                      (components == 1 ? std::string("SCALAR") : "VEC" + std::to_string(components)));
-  const size_t compSize = componentSize(acc.componentType);
+  const size_t compSize = gltfComponentSize(acc.componentType);
   if (compSize == 0)
     return makeError(where + " has unknown componentType " + std::to_string(acc.componentType));
   if (indices && acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
@@ -206,7 +206,7 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
       return makeError(where + ": sparse count " + std::to_string(acc.sparse.count) + " is outside 0.." +
                        std::to_string(count));
     const int ict = acc.sparse.indices.componentType;
-    sparseIndexSize = componentSize(ict);
+    sparseIndexSize = gltfComponentSize(ict);
     if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
       return makeError(where + ": sparse indices have componentType " + std::to_string(ict) +

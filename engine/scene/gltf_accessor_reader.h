@@ -20,6 +20,11 @@
 
 namespace eng {
 
+// Components of an accessor type (SCALAR 1, VEC2..VEC4 2..4); 0 for matrices and unknown types.
+int gltfComponentCount(int type);
+// Bytes of one component of a componentType; 0 for unknown types.
+size_t gltfComponentSize(int componentType);
+
 class GltfAccessorReader {
  public:
   GltfAccessorReader(const tinygltf::Model& gltf, size_t maxDecodedBytes);

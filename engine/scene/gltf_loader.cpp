@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <sstream>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -12,15 +13,16 @@
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
 #include "engine/scene/gltf_accessor_reader.h"
+#include "engine/scene/gltf_draco.h"
+#include "engine/scene/gltf_extensions.h"
 #include "engine/scene/gltf_file_access.h"
+#include "engine/scene/gltf_json_prepass.h"
+#include "engine/scene/gltf_meshopt.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/normals.h"
 
 namespace eng {
 namespace {
-
-// Extensions whose absence would change what the file means and that we do honour.
-bool isSupportedExtension(const std::string& name) { return name == "KHR_mesh_quantization"; }
 
 // tinygltf's error text as one readable line: newlines joined, the JSON
 // library's exception tag replaced, embedded data: URIs shortened.
@@ -88,8 +90,9 @@ bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err,
 class ModelBuilder {
  public:
   ModelBuilder(std::string file, const tinygltf::Model& gltf, const GltfLoadLimits& limits,
-               const GltfFileAccess& files)
-      : file_(std::move(file)), gltf_(gltf), limits_(limits), files_(files), reader_(gltf, limits.maxDecodedBytes) {}
+               const GltfFileAccess& files, ExtensionOutcomes& outcomes)
+      : file_(std::move(file)), gltf_(gltf), limits_(limits), files_(files), outcomes_(outcomes),
+        reader_(gltf, limits.maxDecodedBytes) {}
 
   Result<Model> build() {
     model_.sourcePath = file_;
@@ -114,12 +117,12 @@ class ModelBuilder {
 
   Result<void> checkExtensions() {
     for (const std::string& ext : gltf_.extensionsRequired)
-      if (!isSupportedExtension(ext))
+      if (!isHandledExtension(ext))
         return fail("requires glTF extension " + ext + ", which this loader does not support");
     for (const std::string& ext : gltf_.extensionsUsed) {
       const bool required =
           std::find(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end(), ext) != gltf_.extensionsRequired.end();
-      if (!required && !isSupportedExtension(ext)) warn("optional extension " + ext + " ignored");
+      if (!required && !isHandledExtension(ext)) warn("optional extension " + ext + " ignored");
     }
     return {};
   }
@@ -141,7 +144,16 @@ class ModelBuilder {
         warn("image " + std::to_string(i) + " ('" + label + "') has no data; skipped");
         continue;
       }
+      if (isKtx2(src.image) || src.mimeType == "image/ktx2") {
+        warn("image " + std::to_string(i) + " ('" + label + "') is KTX2 (" + kKhrTextureBasisu +
+             "), which this build cannot transcode; skipped, its materials keep their factors");
+        outcomes_[kKhrTextureBasisu] = "skipped: " + std::to_string(++ktx2Skipped_) +
+                                       " KTX2 image(s), no Basis Universal transcoder in Debian; factors kept";
+        continue;
+      }
       auto decoded = decodeImage(src.image, label, limits_.maxImagePixels);
+      if (decoded && isWebp(src.image))
+        outcomes_[kExtTextureWebp] = "decoded: " + std::to_string(++webpDecoded_) + " WebP image(s) (libwebp)";
       if (!decoded) {
         warn("image " + std::to_string(i) + " skipped: " + decoded.error().message);
         continue;
@@ -159,8 +171,12 @@ class ModelBuilder {
            std::to_string(gltf_.textures.size()) + "; ignored");
       return -1;
     }
-    const int source = gltf_.textures[texture].source;
-    if (source < 0) return -1;  // e.g. an extension-only source we do not decode
+    bool basisuOnly = false;
+    const int source = textureImageSource(gltf_.textures[texture], basisuOnly);
+    if (basisuOnly)
+      warn(where + ": texture " + std::to_string(texture) + " has only a " + kKhrTextureBasisu +
+           " (KTX2) source, which this build cannot decode; the material keeps its factors");
+    if (source < 0) return -1;
     if (static_cast<size_t>(source) >= imageRemap_.size()) {
       warn(where + ": texture " + std::to_string(texture) + " refers to image " + std::to_string(source) +
            ", the file has " + std::to_string(imageRemap_.size()) + "; ignored");
@@ -189,6 +205,7 @@ class ModelBuilder {
         mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
                                         pbr.baseColorFactor[3]);
       mat.baseColorImage = imageOfTexture(pbr.baseColorTexture.index, where);
+      uvTransforms_.push_back(baseColorUvTransform(pbr.baseColorTexture, mat.baseColorImage, where));
       mat.roughness = static_cast<float>(pbr.roughnessFactor);
       mat.metallic = static_cast<float>(pbr.metallicFactor);
       mat.doubleSided = src.doubleSided;
@@ -321,6 +338,9 @@ class ModelBuilder {
     } else {
       out.material = src.material;
     }
+    // KHR_texture_transform baked into this primitive's own copy of TEXCOORD_0.
+    if (out.material >= 0 && uvTransforms_[out.material])
+      for (glm::vec2& uv : out.texcoords) uv = applyUvTransform(*uvTransforms_[out.material], uv);
 
     if (!targetCountKnown) {
       targetCount = src.targets.size();
@@ -545,16 +565,51 @@ class ModelBuilder {
     return {};
   }
 
+  // KHR_texture_transform of a base colour texture, when it can be baked into
+  // TEXCOORD_0 (the engine samples every texture of a material through it).
+  std::optional<UvTransform> baseColorUvTransform(const tinygltf::TextureInfo& info, int image, const std::string& where) {
+    std::string problem;
+    auto t = parseTextureTransform(info, problem);
+    if (!problem.empty()) warn(where + ": " + kKhrTextureTransform + " " + problem + "; ignored");
+    if (!t || image < 0) return std::nullopt;
+    const int set = t->texCoord >= 0 ? t->texCoord : info.texCoord;
+    if (set != 0) {
+      warn(where + ": " + kKhrTextureTransform + " on TEXCOORD_" + std::to_string(set) + ", only TEXCOORD_0 is read; ignored");
+      return std::nullopt;
+    }
+    outcomes_[kKhrTextureTransform] = "applied: baked into TEXCOORD_0 for " + std::to_string(++uvTransformed_) +
+                                      " material(s)' base colour";
+    return t;
+  }
+
   std::string file_;
   const tinygltf::Model& gltf_;
   const GltfLoadLimits& limits_;
   const GltfFileAccess& files_;
+  ExtensionOutcomes& outcomes_;
   GltfAccessorReader reader_;
   Model model_;
   std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
+  std::vector<std::optional<UvTransform>> uvTransforms_;  // per material
+  int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0;
 };
 
 enum class Container { Json, Glb };
+
+// Meshopt views and Draco primitives become plain buffer data before the
+// model is built, so everything after reads ordinary accessors.
+Result<void> decodeCompressedGeometry(tinygltf::Model& gltf, const std::vector<MeshoptPlaceholder>& placeholders,
+                                      const GltfLoadLimits& limits, ExtensionOutcomes& outcomes) {
+  auto meshopt = decodeMeshoptViews(gltf, placeholders, limits.maxDecodedBytes);
+  if (!meshopt) return meshopt.error();
+  const std::string views = "decoded: " + std::to_string(meshopt->views) + " buffer view(s) (meshoptimizer)";
+  if (meshopt->usedExt) outcomes[kExtMeshopt] = views;
+  if (meshopt->usedKhr) outcomes[kKhrMeshopt] = views;
+  auto draco = decodeDracoPrimitives(gltf, limits.maxDecodedBytes);
+  if (!draco) return draco.error();
+  if (*draco > 0) outcomes[kKhrDraco] = "decoded: " + std::to_string(*draco) + " primitive(s) (Draco)";
+  return {};
+}
 
 Result<Container> detectContainer(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
   if (hasGlbMagic(bytes)) return Container::Glb;
@@ -583,6 +638,11 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     if (!bytes) return bytes.error();
     auto container = detectContainer(*bytes, path);
     if (!container) return makeError(file + ": " + container.error().message);
+    // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
+    std::vector<uint8_t> stubbed;
+    auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);
+    if (!placeholders) return makeError(file + ": " + placeholders.error().message);
+    if (!stubbed.empty()) *bytes = std::move(stubbed);
 
     std::error_code ec;
     const std::filesystem::path baseDir = std::filesystem::absolute(path, ec).parent_path();
@@ -609,9 +669,13 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
       if (!files.problems().empty()) return makeError(file + ": " + files.problems().front());
       return makeError(file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
     }
-    ModelBuilder builder(file, gltf, limits, files);
+    ExtensionOutcomes outcomes;
+    if (auto ok = decodeCompressedGeometry(gltf, *placeholders, limits, outcomes); !ok)
+      return makeError(file + ": " + ok.error().message);
+    ModelBuilder builder(file, gltf, limits, files, outcomes);
     auto model = builder.build();
     if (!model) return model;
+    model->extensions = describeExtensions(gltf, outcomes);
     for (std::string& line : splitLines(warn))
       if (line.find("Failed to load external") == std::string::npos && line.find("File not found") == std::string::npos)
         model->warnings.push_back("tinygltf: " + line);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstring>
 #include <memory>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <webp/decode.h>
 
 #include "engine/scene/file_bytes.h"
 
@@ -30,7 +32,35 @@ void appendBytes(void* context, void* data, int size) {
   out->insert(out->end(), bytes, bytes + size);
 }
 
+// WebP (EXT_texture_webp) is not an stb format: libwebp decodes it.
+Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
+  int w = 0, h = 0;
+  if (!WebPGetInfo(encoded.data(), encoded.size(), &w, &h))
+    return makeError(name + ": not a decodable WebP image (bad header)");
+  if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) > maxPixels)
+    return makeError(name + ": image claims " + std::to_string(w) + "x" + std::to_string(h) +
+                     " pixels, more than the limit of " + std::to_string(maxPixels));
+  Image img;
+  img.name = name;
+  img.width = w;
+  img.height = h;
+  img.rgba8.resize(static_cast<size_t>(w) * h * 4);
+  if (!WebPDecodeRGBAInto(encoded.data(), encoded.size(), img.rgba8.data(), img.rgba8.size(), w * 4))
+    return makeError(name + ": WebP decode failed (corrupt or truncated data)");
+  return img;
+}
+
 }  // namespace
+
+bool isWebp(std::span<const uint8_t> encoded) {
+  return encoded.size() >= 12 && std::memcmp(encoded.data(), "RIFF", 4) == 0 &&
+         std::memcmp(encoded.data() + 8, "WEBP", 4) == 0;
+}
+
+bool isKtx2(std::span<const uint8_t> encoded) {
+  static constexpr uint8_t kMagic[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+  return encoded.size() >= sizeof(kMagic) && std::memcmp(encoded.data(), kMagic, sizeof(kMagic)) == 0;
+}
 
 Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rgba8) {
   if (auto ok = checkRgbaSize(w, h, rgba8.size(), "encodePng"); !ok) return ok.error();
@@ -50,6 +80,9 @@ Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span
 Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
   if (encoded.empty()) return makeError(name + ": image data is empty");
   if (encoded.size() > static_cast<size_t>(INT_MAX)) return makeError(name + ": image data is larger than 2 GiB");
+  if (isWebp(encoded)) return decodeWebp(encoded, name, maxPixels);
+  if (isKtx2(encoded))
+    return makeError(name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
   int w = 0, h = 0, channels = 0;
   const int len = static_cast<int>(encoded.size());
   if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))

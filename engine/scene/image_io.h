@@ -20,10 +20,13 @@ Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rg
 // claim 60000 x 60000 pixels).
 inline constexpr size_t kDefaultMaxImagePixels = size_t{64} << 20;
 
-// Decodes any stb-supported image (PNG, JPEG, BMP, TGA, ...) to RGBA8; `name`
-// is used in messages and becomes Image::name.
+// Decodes any stb-supported image (PNG, JPEG, BMP, TGA, ...) or WebP (libwebp)
+// to RGBA8; `name` is used in messages and becomes Image::name. KTX2 is
+// recognised and refused by name (no Basis Universal transcoder in Debian).
 Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name,
                           size_t maxPixels = kDefaultMaxImagePixels);
+bool isWebp(std::span<const uint8_t> encoded);  // RIFF....WEBP
+bool isKtx2(std::span<const uint8_t> encoded);  // the 12-byte KTX 2.0 identifier
 Result<Image> readImage(const std::filesystem::path& path);
 
 }  // namespace eng

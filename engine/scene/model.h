@@ -114,6 +114,14 @@ struct Animation {
   float duration() const;
 };
 
+// One glTF extension the file lists (extensionsUsed / extensionsRequired) and
+// what the loader did with it, for `facial info` and tools.
+struct ExtensionUse {
+  std::string name;
+  bool required = false;
+  std::string outcome;  // "decoded: ...", "applied: ...", "skipped: ...", "ignored: ..."
+};
+
 struct Model {
   std::string sourcePath;
   std::vector<Node> nodes;
@@ -123,6 +131,7 @@ struct Model {
   std::vector<Image> images;
   std::vector<Animation> animations;
   std::vector<std::string> warnings;  // non-fatal problems met while loading
+  std::vector<ExtensionUse> extensions;  // in the file's order, used ones first
 
   glm::mat4 worldTransform(int node) const;
   // World-space bounds of every mesh instance at rest (no morphing).

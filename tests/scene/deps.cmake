@@ -1,1 +1,5 @@
-set(TEST_DEPS eng_scene nlohmann_json::nlohmann_json)
+# The compressed-glTF tests encode their own files with the libraries the
+# loader decodes with (meshoptimizer, libwebp).
+find_package(meshoptimizer REQUIRED)
+pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
+set(TEST_DEPS eng_scene nlohmann_json::nlohmann_json meshoptimizer::meshoptimizer PkgConfig::WEBP)

@@ -18,18 +18,6 @@ using scene_test::Json;
 using namespace scene_test;
 using testing_support::freshTempDir;
 
-eng::Model loadOk(const std::filesystem::path& path) {
-  auto model = eng::loadModel(path);
-  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
-  return model.ok() ? std::move(*model) : eng::Model{};
-}
-
-bool hasWarningContaining(const eng::Model& model, const std::string& text) {
-  for (const std::string& w : model.warnings)
-    if (w.find(text) != std::string::npos) return true;
-  return false;
-}
-
 void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-6f) {
   EXPECT_NEAR(a.x, b.x, eps);
   EXPECT_NEAR(a.y, b.y, eps);
@@ -361,7 +349,11 @@ TEST(GltfLoader, OptionalUnknownExtensionIsIgnoredWithAWarning) {
   b.doc["extensionsUsed"] = {"KHR_materials_sheen"};
   b.writeGltf(dir / "optional.gltf");
   const eng::Model model = loadOk(dir / "optional.gltf");
-  EXPECT_TRUE(hasWarningContaining(model, "KHR_materials_sheen"));
+  EXPECT_TRUE(hasWarningContaining(model, "optional extension KHR_materials_sheen ignored"));
+  const eng::ExtensionUse* record = extensionRecord(model, "KHR_materials_sheen");
+  ASSERT_NE(record, nullptr);
+  EXPECT_FALSE(record->required);
+  EXPECT_EQ(record->outcome.rfind("ignored", 0), 0u) << record->outcome;
 }
 
 TEST(GltfLoader, DetectsGlbByContentWhateverTheExtension) {

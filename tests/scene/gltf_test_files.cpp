@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/gltf_loader.h"
+
 namespace scene_test {
 
 GltfFileBuilder::GltfFileBuilder() {
@@ -72,14 +74,21 @@ int GltfFileBuilder::addMeshWithNode(Json mesh) {
   return m;
 }
 
+// Buffer 0 is `bin`; buffers a test added after it (meshopt fallbacks) are kept.
+static void setBuffer0(Json& out, Json buffer0) {
+  if (!out.contains("buffers") || !out["buffers"].is_array() || out["buffers"].empty())
+    out["buffers"] = Json::array({std::move(buffer0)});
+  else
+    out["buffers"][0] = std::move(buffer0);
+}
+
 void GltfFileBuilder::writeGltf(const std::filesystem::path& path, const std::string& binFileName) const {
   Json out = doc;
   if (!bin.empty()) {
     if (binFileName.empty()) {
-      out["buffers"] = Json::array({{{"byteLength", bin.size()},
-                                     {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+      setBuffer0(out, {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}});
     } else {
-      out["buffers"] = Json::array({{{"byteLength", bin.size()}, {"uri", binFileName}}});
+      setBuffer0(out, {{"byteLength", bin.size()}, {"uri", binFileName}});
       writeBytes(path.parent_path() / binFileName, bin);
     }
   }
@@ -89,7 +98,7 @@ void GltfFileBuilder::writeGltf(const std::filesystem::path& path, const std::st
 
 std::vector<uint8_t> GltfFileBuilder::glbBytes() const {
   Json out = doc;
-  if (!bin.empty()) out["buffers"] = Json::array({{{"byteLength", bin.size()}}});
+  if (!bin.empty()) setBuffer0(out, {{"byteLength", bin.size()}});
   std::string json = out.dump();
   while (json.size() % 4) json += ' ';
   std::vector<uint8_t> padded = bin;
@@ -178,6 +187,33 @@ void replaceInFile(const std::filesystem::path& path, const std::string& from, c
   ASSERT_NE(at, std::string::npos) << "'" << from << "' not in " << path;
   text.replace(at, from.size(), to);
   writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+eng::Model loadOk(const std::filesystem::path& path) {
+  auto model = eng::loadModel(path);
+  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
+  return model.ok() ? std::move(*model) : eng::Model{};
+}
+
+void expectLoadError(const std::filesystem::path& path, const std::string& problem) {
+  auto model = eng::loadModel(path);
+  ASSERT_FALSE(model.ok()) << path << " loaded but should fail with: " << problem;
+  const std::string& message = model.error().message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+  EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "does not start with the file name: " << message;
+  EXPECT_NE(message.find(problem), std::string::npos) << "expected '" << problem << "' in: " << message;
+}
+
+bool hasWarningContaining(const eng::Model& model, const std::string& text) {
+  for (const std::string& w : model.warnings)
+    if (w.find(text) != std::string::npos) return true;
+  return false;
+}
+
+const eng::ExtensionUse* extensionRecord(const eng::Model& model, const std::string& name) {
+  for (const eng::ExtensionUse& e : model.extensions)
+    if (e.name == name) return &e;
+  return nullptr;
 }
 
 }  // namespace scene_test

@@ -10,6 +10,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "engine/scene/model.h"
+
 namespace scene_test {
 
 using Json = nlohmann::json;
@@ -40,7 +42,8 @@ class GltfFileBuilder {
   // mesh + node (+ scene 0 listing the node); returns the mesh index.
   int addMeshWithNode(Json mesh);
 
-  // The buffer JSON is filled in at write time.
+  // Buffer 0's JSON is filled in at write time (from `bin`); any further
+  // entries a test puts in doc["buffers"] are written as they are.
   void writeGltf(const std::filesystem::path& path, const std::string& binFileName = "") const;  // "" = data: URI
   std::vector<uint8_t> glbBytes() const;
   void writeGlb(const std::filesystem::path& path) const;
@@ -56,5 +59,12 @@ void writeBytes(const std::filesystem::path& path, const std::vector<uint8_t>& b
 std::string readText(const std::filesystem::path& path);
 // Replaces the first occurrence of `from` in a text file (fails the test when absent).
 void replaceInFile(const std::filesystem::path& path, const std::string& from, const std::string& to);
+
+// Loading checks shared by the loader tests.
+eng::Model loadOk(const std::filesystem::path& path);  // fails the test (and returns an empty model) on error
+// Loads `path` and checks the failure is one line naming the file and containing `problem`.
+void expectLoadError(const std::filesystem::path& path, const std::string& problem);
+bool hasWarningContaining(const eng::Model& model, const std::string& text);
+const eng::ExtensionUse* extensionRecord(const eng::Model& model, const std::string& name);  // nullptr when absent
 
 }  // namespace scene_test

@@ -73,6 +73,46 @@ TEST(FacialInfoCommand, BadFilesExitNonZeroWithOneLineNamingTheFile) {
   }
 }
 
+TEST(FacialInfoCommand, ListsEachExtensionWithWhatTheLoaderDidWithIt) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_info_extensions");
+  scene_test::GltfFileBuilder b = scene_test::quadWithTarget();
+  b.doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_mesh_quantization"};
+  b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+  b.writeGlb(dir / "quad.glb");
+  const CommandRun text = facial("info " + quoted(dir / "quad.glb"));
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_NE(text.output.find("2 extension(s)"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("KHR_materials_sheen          used     ignored: not supported"), std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("KHR_mesh_quantization        required applied"), std::string::npos) << text.output;
+  const CommandRun json = facial("info --json " + quoted(dir / "quad.glb"));
+  ASSERT_EQ(json.exitCode, 0) << json.output;
+  const auto doc = nlohmann::json::parse(json.output);
+  ASSERT_EQ(doc["extensions"].size(), 2u);
+  EXPECT_EQ(doc["extensions"][0]["name"], "KHR_materials_sheen");
+  EXPECT_EQ(doc["extensions"][0]["required"], false);
+  EXPECT_EQ(doc["extensions"][1]["name"], "KHR_mesh_quantization");
+  EXPECT_EQ(doc["extensions"][1]["required"], true);
+}
+
+TEST(FacialInfoCommand, ShowsTheMeshoptRobotAsDecoded) {
+  REQUIRE_FACIAL_PROGRAM();
+  FACIAL_REQUIRE_SHARED();
+  const CommandRun json =
+      facial("info --json " + quoted(testing_support::sharedDir() / "compressed" / "RobotExpressive.meshopt.glb"));
+  ASSERT_EQ(json.exitCode, 0) << json.output;
+  const auto doc = nlohmann::json::parse(json.output);
+  bool found = false;
+  for (const auto& e : doc["extensions"])
+    if (e["name"] == "EXT_meshopt_compression") {
+      found = true;
+      EXPECT_EQ(e["required"], true);
+      EXPECT_EQ(e["outcome"].get<std::string>().rfind("decoded: ", 0), 0u) << e.dump();
+    }
+  EXPECT_TRUE(found) << json.output;
+}
+
 TEST(FacialConvertCommand, ConvertsAnObjFolderAndRefusesAMismatchedTarget) {
   REQUIRE_FACIAL_PROGRAM();
   const auto dir = freshTempDir("cmd_convert");

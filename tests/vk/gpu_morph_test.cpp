@@ -157,10 +157,11 @@ TEST(GpuMorph, MeshWithoutNormalDeltasKeepsRestNormals) {
 
 std::vector<std::filesystem::path> sharedModels() {
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(testing_support::sharedDir() / "assets")) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
-  }
+  for (const char* folder : {"assets", "compressed"})  // compressed: meshopt / Draco variants
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(testing_support::sharedDir() / folder)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
+    }
   std::sort(files.begin(), files.end());
   return files;
 }

@@ -1,4 +1,4 @@
-// Every glTF file in ../shared/assets loads, uploads and renders something
+// Every glTF file in ../shared/assets and ../shared/compressed loads, uploads and renders something
 // (framed from its bounds, default weights).
 #include <algorithm>
 #include <filesystem>
@@ -18,10 +18,11 @@ namespace {
 TEST(SharedAssetsRender, EveryFileRendersNonEmpty) {
   FACIAL_REQUIRE_SHARED();
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(testing_support::sharedDir() / "assets")) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
-  }
+  for (const char* folder : {"assets", "compressed"})  // compressed: meshopt / Draco variants
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(testing_support::sharedDir() / folder)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
+    }
   std::sort(files.begin(), files.end());
   ASSERT_GE(files.size(), 7u);
   for (const std::filesystem::path& file : files) {
