@@ -40,6 +40,10 @@ std::string stringProperty(const tinygltf::Value& object, const char* name, cons
   return object.Get(name).Get<std::string>();
 }
 
+std::string meshoptVersion() {  // MESHOPTIMIZER_VERSION 180 = 0.18
+  return std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." + std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10);
+}
+
 struct CompressedView {
   int source = -1;  // buffer holding the encoded bytes
   size_t byteOffset = 0, byteLength = 0, byteStride = 0, count = 0;
@@ -74,9 +78,8 @@ Result<void> checkLayout(const CompressedView& cv, const std::string& where) {
     if (cv.filter == "QUATERNION" && cv.byteStride != 8)
       return makeError(where + ": QUATERNION filter needs byteStride 8, has " + std::to_string(cv.byteStride));
     if (cv.filter == "COLOR")
-      return makeError(where + ": filter COLOR (KHR_meshopt_compression) needs meshoptimizer 0.25 or later; "
-                       "this build has " + std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." +
-                       std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10));
+      return makeError(where + ": filter COLOR (KHR_meshopt_compression) needs a newer meshoptimizer than this build's " +
+                       meshoptVersion());
     if (cv.filter != "NONE" && cv.filter != "OCTAHEDRAL" && cv.filter != "QUATERNION" && cv.filter != "EXPONENTIAL")
       return makeError(where + ": unknown filter '" + cv.filter + "'");
   } else if (cv.mode == "TRIANGLES" || cv.mode == "INDICES") {
@@ -97,7 +100,8 @@ Result<void> decodeInto(uint8_t* dst, const CompressedView& cv, const uint8_t* s
     // 0xa0 | version: meshoptimizer 0.18 decodes version 0 only.
     if (cv.byteLength > 0 && (src[0] & 0xf0) == 0xa0 && (src[0] & 0x0f) > 0)
       return makeError(where + ": attribute stream version " + std::to_string(src[0] & 0x0f) +
-                       " needs a newer meshoptimizer than this build's (it decodes version 0)");
+                       " (KHR_meshopt_compression) needs a newer meshoptimizer than this build's " + meshoptVersion() +
+                       ", which decodes version 0");
     rc = meshopt_decodeVertexBuffer(dst, cv.count, cv.byteStride, src, cv.byteLength);
   } else if (cv.mode == "TRIANGLES") {
     rc = meshopt_decodeIndexBuffer(dst, cv.count, cv.byteStride, src, cv.byteLength);
