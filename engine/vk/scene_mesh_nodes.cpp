@@ -13,7 +13,7 @@ std::vector<MeshNode> sceneMeshNodes(const Model& model) {
     seen[static_cast<size_t>(n)] = true;  // shared children and cycles: once
     const Node& node = model.nodes[static_cast<size_t>(n)];
     if (node.mesh >= 0 && node.mesh < static_cast<int>(model.meshes.size()))
-      out.push_back({n, node.mesh, model.worldTransform(n)});
+      out.push_back({n, node.mesh, model.worldTransform(n), node.skin});
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
   }
   return out;
