@@ -29,8 +29,8 @@ std::vector<int> sceneMeshNodeIndices(const Model& model) {
   return out;
 }
 
-// Calls visit(world position, primitive, vertex, skin index or -1) for every
-// posed vertex of the default scene.
+// Calls visit(world position, primitive, vertex, mesh node, skin index or -1)
+// for every posed vertex of the default scene.
 template <class Visit>
 void forEachPosedVertex(const Model& model, const Pose& pose, std::span<const float> weights, Visit&& visit) {
   std::vector<glm::mat4> world;
@@ -48,7 +48,7 @@ void forEachPosedVertex(const Model& model, const Pose& pose, std::span<const fl
       positions.resize(prim.vertexCount());
       posePrimitiveCpu(model, n, prim, meshWeights, world, positions, {});
       for (size_t v = 0; v < positions.size(); ++v)
-        visit(glm::vec3(world[n] * glm::vec4(positions[v], 1.0f)), prim, v, skin);
+        visit(glm::vec3(world[n] * glm::vec4(positions[v], 1.0f)), prim, v, n, skin);
     }
   }
 }
@@ -66,7 +66,7 @@ std::string lastNameWord(std::string_view name) {
 
 Aabb posedBounds(const Model& model, const Pose& pose, std::span<const float> weights) {
   Aabb box;
-  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive&, size_t, int) { box.extend(p); });
+  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive&, size_t, int, int) { box.extend(p); });
   return box;
 }
 
@@ -89,8 +89,12 @@ Aabb posedJointRegionBounds(const Model& model, const Pose& pose, int joint, flo
   for (size_t s = 0; s < model.skins.size(); ++s)
     for (int node : model.skins[s].joints)
       slotInRegion[s].push_back(node >= 0 && static_cast<size_t>(node) < inRegion.size() && inRegion[node]);
-  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive& prim, size_t v, int skin) {
-    if (skin < 0) return;
+  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive& prim, size_t v, int node, int skin) {
+    if (skin < 0 || prim.influenceSets() == 0) {
+      // Rigid meshes hung under the joint (a robot's head, glasses) move with it whole.
+      if (inRegion[node]) box.extend(p);
+      return;
+    }
     const size_t sets = prim.influenceSets();
     float w = 0.0f;
     for (size_t s = 0; s < sets; ++s)

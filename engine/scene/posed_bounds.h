@@ -23,9 +23,10 @@ namespace eng {
 Aabb posedBounds(const Model& model, const Pose& pose, std::span<const float> weights = {});
 
 // World-space bounds of the posed vertices that `joint` (a node index) and
-// the joints under it move with a total skin weight >= minWeight: for the
-// head joint, the head (with hair, eyes, teeth skinned to it) without the
-// body. Invalid (Aabb::valid() false) when no vertex qualifies.
+// the joints under it move with a total skin weight >= minWeight, plus every
+// unskinned mesh hung under them: for the head joint, the head (with hair,
+// eyes, teeth skinned to it or parented to it) without the body. Invalid
+// (Aabb::valid() false) when no vertex qualifies.
 Aabb posedJointRegionBounds(const Model& model, const Pose& pose, int joint, float minWeight = 0.5f,
                             std::span<const float> weights = {});
 

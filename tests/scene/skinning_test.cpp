@@ -240,3 +240,69 @@ TEST(Skinning, SharedVrmHumanoidHeadBone) {
 }
 
 }  // namespace
+
+namespace {
+
+eng::Model loadShared(const std::string& relative) {
+  auto model = eng::loadModel(testing_support::sharedDir() / "assets" / relative);
+  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
+  return model.ok() ? std::move(*model) : eng::Model{};
+}
+
+bool isSkinJoint(const eng::Model& model, int node) {
+  for (const eng::Skin& skin : model.skins)
+    if (std::find(skin.joints.begin(), skin.joints.end(), node) != skin.joints.end()) return true;
+  return false;
+}
+
+TEST(SkinningSharedAssets, CesiumManWalksWithNineteenJoints) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model model = loadShared("khronos/CesiumMan/glTF-Binary/CesiumMan.glb");
+  ASSERT_EQ(model.skins.size(), 1u);
+  EXPECT_EQ(model.skins[0].joints.size(), 19u);
+  size_t skinned = 0, channels = 0;
+  for (const eng::Node& node : model.nodes) skinned += node.skin == 0 && node.mesh >= 0;
+  for (const eng::Animation& anim : model.animations) channels += anim.nodeChannels.size();
+  EXPECT_EQ(skinned, 1u);
+  EXPECT_EQ(channels, 57u) << "translation, rotation and scale of 19 joints";
+  // Bind pose: a T-pose about 1.5 m tall, arms out along Z (he faces +X);
+  // walking, the arms come down.
+  const eng::Pose rest = eng::restPose(model);
+  const eng::Aabb bind = eng::posedBounds(model, rest);
+  EXPECT_NEAR(bind.size().y, 1.5f, 0.1f);
+  EXPECT_GT(bind.size().z, 1.0f);
+  eng::Pose walk = rest;
+  for (const eng::Animation& anim : model.animations) eng::sampleAnimation(anim, 0.5f, walk);
+  EXPECT_LT(eng::posedBounds(model, walk).size().z, 0.75f * bind.size().z);
+  // No joint names: the head is the highest joint that moves vertices, and its region is the top of the body.
+  const int head = eng::findHeadJoint(model);
+  ASSERT_GE(head, 0);
+  EXPECT_TRUE(isSkinJoint(model, head));
+  const eng::Aabb face = eng::posedJointRegionBounds(model, rest, head);
+  ASSERT_TRUE(face.valid());
+  EXPECT_NEAR(face.max.y, bind.max.y, 0.02f);
+  EXPECT_GT(face.min.y, bind.min.y + 0.75f * bind.size().y);
+  EXPECT_LT(face.size().z, 0.3f * bind.size().z);
+}
+
+TEST(SkinningSharedAssets, RobotHandsSitOnItsArmsAndItsHeadJointIsNamed) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model model = loadShared("RobotExpressive.glb");
+  ASSERT_EQ(model.skins.size(), 2u);
+  const int head = eng::findHeadJoint(model);
+  ASSERT_GE(head, 0);
+  EXPECT_EQ(model.nodes[head].name, "Head");
+  EXPECT_TRUE(isSkinJoint(model, head));
+  // Raw vertices put the hands far out to the sides (they float away from
+  // the arms); skinned, the robot is narrower than tall.
+  const eng::Aabb raw = model.bounds();
+  const eng::Aabb posed = eng::posedBounds(model, eng::restPose(model));
+  EXPECT_LT(posed.size().x, 0.8f * raw.size().x);
+  EXPECT_LT(posed.size().x, posed.size().y);
+  const eng::Aabb face = eng::posedJointRegionBounds(model, eng::restPose(model), head);
+  ASSERT_TRUE(face.valid());
+  EXPECT_GT(face.min.y, posed.center().y) << "the head is the upper part";
+  EXPECT_NEAR(face.max.y, posed.max.y, 0.05f * posed.size().y);
+}
+
+}  // namespace
