@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/skeleton_pose.h"
 #include "engine/scene/skinning.h"
@@ -303,6 +304,35 @@ TEST(SkinningSharedAssets, RobotHandsSitOnItsArmsAndItsHeadJointIsNamed) {
   ASSERT_TRUE(face.valid());
   EXPECT_GT(face.min.y, posed.center().y) << "the head is the upper part";
   EXPECT_NEAR(face.max.y, posed.max.y, 0.05f * posed.size().y);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SkinningRoundTrip, SavedSkinLoadsBackTheSame) {
+  const eng::Model model = loadStrip({.jointType = kUnsignedByte, .weightType = kUnsignedShort,
+                                      .secondInfluenceSet = true, .interpolation = "CUBICSPLINE"},
+                                     "round_trip_source");
+  const auto dir = freshTempDir("skinning_round_trip");
+  ASSERT_TRUE(eng::saveModel(model, dir / "saved.glb"));
+  auto again = eng::loadModel(dir / "saved.glb");
+  ASSERT_TRUE(again) << again.error().message;
+  ASSERT_EQ(again->skins.size(), 1u);
+  EXPECT_EQ(again->skins[0].joints, model.skins[0].joints);
+  EXPECT_EQ(again->skins[0].inverseBindMatrices, model.skins[0].inverseBindMatrices);
+  EXPECT_EQ(again->skins[0].skeleton, 1);
+  EXPECT_EQ(again->nodes[0].skin, 0);
+  const eng::Primitive& a = model.meshes[0].primitives[0];
+  const eng::Primitive& b = again->meshes[0].primitives[0];
+  EXPECT_EQ(b.joints, a.joints);
+  ASSERT_EQ(b.jointWeights.size(), a.jointWeights.size());
+  for (size_t i = 0; i < a.jointWeights.size(); ++i)
+    EXPECT_LE(glm::length(b.jointWeights[i] - a.jointWeights[i]), 1e-6f) << i;
+  ASSERT_EQ(again->animations.size(), 1u);
+  ASSERT_EQ(again->animations[0].nodeChannels.size(), 1u);
+  EXPECT_EQ(again->animations[0].nodeChannels[0].interpolation, eng::Interpolation::CubicSpline);
+  EXPECT_EQ(again->animations[0].nodeChannels[0].values, model.animations[0].nodeChannels[0].values);
 }
 
 }  // namespace
