@@ -12,23 +12,6 @@
 namespace eng {
 namespace {
 
-// The nodes of the default scene that draw a mesh (depth first from the roots, each once).
-std::vector<int> sceneMeshNodeIndices(const Model& model) {
-  std::vector<int> out;
-  std::vector<int> stack(model.roots.rbegin(), model.roots.rend());
-  std::vector<bool> seen(model.nodes.size(), false);
-  while (!stack.empty()) {
-    const int n = stack.back();
-    stack.pop_back();
-    if (n < 0 || static_cast<size_t>(n) >= model.nodes.size() || seen[n]) continue;
-    seen[n] = true;
-    const Node& node = model.nodes[n];
-    if (node.mesh >= 0 && static_cast<size_t>(node.mesh) < model.meshes.size()) out.push_back(n);
-    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
-  }
-  return out;
-}
-
 // Calls visit(world position, primitive, vertex, mesh node, skin index or -1)
 // for every posed vertex of the default scene.
 template <class Visit>

@@ -64,6 +64,22 @@ void sampleChannel(const NodeChannel& ch, float time, std::array<float, 4>& out)
 
 }  // namespace
 
+std::vector<int> sceneMeshNodeIndices(const Model& model) {
+  std::vector<int> out;
+  std::vector<int> stack(model.roots.rbegin(), model.roots.rend());
+  std::vector<bool> seen(model.nodes.size(), false);
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n < 0 || static_cast<size_t>(n) >= model.nodes.size() || seen[n]) continue;
+    seen[n] = true;  // shared children and cycles: once
+    const Node& node = model.nodes[n];
+    if (node.mesh >= 0 && static_cast<size_t>(node.mesh) < model.meshes.size()) out.push_back(n);
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+  }
+  return out;
+}
+
 Pose restPose(const Model& model) {
   Pose pose;
   pose.translations.reserve(model.nodes.size());

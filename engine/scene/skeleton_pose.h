@@ -28,6 +28,10 @@ struct Pose {
   size_t nodeCount() const { return translations.size(); }
 };
 
+// The nodes of the default scene that draw a mesh, depth first from
+// Model::roots (children in order), each once: the draw order of the renderer.
+std::vector<int> sceneMeshNodeIndices(const Model& model);
+
 // Every node's own TRS (the bind / rest pose).
 Pose restPose(const Model& model);
 
