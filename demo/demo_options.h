@@ -9,6 +9,7 @@ struct DemoOptions {
   std::string model;               // empty: the built-in head
   std::string rigmap;              // empty: <data>/rigmaps/<model>.json or the detected scheme
   std::string graph;               // empty: data/graphs/tour.json
+  std::string clip;                // skeletal clip of the model under the face (name, index, "all"); empty: none
   bool headless = false;           // forced headless even with a display
   std::string out;                 // headless output folder (empty: out/demo-<time>)
   std::string size = "";           // WxH; default 384x384 headless, 1280x800 windowed

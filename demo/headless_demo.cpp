@@ -19,6 +19,7 @@
 #include "demo/headless_model_renderer.h"
 #include "demo/view_options.h"
 #include "demo/sequence_recorder.h"
+#include "demo/skeleton_motion.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/scene/image_io.h"
 #include "engine/vk/context.h"
@@ -59,11 +60,19 @@ float tourLength(const facial::StateMachineNode& machine) {
 }
 
 // Idle life that does not belong to the graph: a slow head sway and breathing.
+glm::quat idleHeadTurn(float t, float phase) {
+  return glm::angleAxis(glm::radians(2.5f) * std::sin(t * 0.45f + phase), glm::vec3(0, 1, 0)) *
+         glm::angleAxis(glm::radians(1.2f) * std::sin(t * 0.31f + 1.3f * phase), glm::vec3(1, 0, 0));
+}
+
+glm::vec3 idleBreathing(float t, float phase, float size) {
+  return glm::vec3(0.0f, 0.004f * size * std::sin(t * 1.6f + phase), 0.0f);
+}
+
+// Unskinned faces sway as a whole about `pivot`.
 glm::mat4 idleMotion(float t, float phase, const glm::vec3& pivot, float size) {
-  glm::mat4 m = glm::translate(glm::mat4(1.0f), pivot + glm::vec3(0.0f, 0.004f * size * std::sin(t * 1.6f + phase), 0.0f));
-  m = glm::rotate(m, glm::radians(2.5f) * std::sin(t * 0.45f + phase), glm::vec3(0, 1, 0));
-  m = glm::rotate(m, glm::radians(1.2f) * std::sin(t * 0.31f + 1.3f * phase), glm::vec3(1, 0, 0));
-  return glm::translate(m, -pivot);
+  return glm::translate(glm::mat4(1.0f), pivot + idleBreathing(t, phase, size)) * glm::mat4_cast(idleHeadTurn(t, phase)) *
+         glm::translate(glm::mat4(1.0f), -pivot);
 }
 
 }  // namespace
@@ -124,6 +133,10 @@ int runHeadlessDemo(const DemoOptions& o) {
   // The head sways about the neck: the bottom of the framed head, not its centre.
   const glm::vec3 swayPivot{bounds.center().x, bounds.min.y, bounds.center().z};
   std::vector<eng::vk::ModelInstance> instances(crowd);
+  // Skinned avatars turn the head joint instead of the whole model; --clip plays under every face.
+  auto skeleton = SkeletonMotion::create(setup->model(), o.clip);
+  if (!skeleton) return fail(skeleton.error().message);
+  std::vector<SkeletonMotion> skeletons(crowd, *skeleton);
   std::mt19937 random(static_cast<uint32_t>(o.seed));
   std::vector<float> nextTrigger(crowd, 0.0f);
   static constexpr const char* kTriggers[] = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
@@ -152,10 +165,19 @@ int runHeadlessDemo(const DemoOptions& o) {
             nextTrigger[i] = frame.time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random);
           }
           faces[i].update(frame.dt);
-          instances[i] = {&renderer->gpuModel(),
-                          glm::translate(glm::mat4(1.0f), offsets[i]) *
-                              idleMotion(frame.time, 1.7f * float(i), swayPivot, bounds.diagonal()),
-                          faces[i].targetWeights()};
+          const float phase = 1.7f * float(i);
+          const glm::mat4 place = glm::translate(glm::mat4(1.0f), offsets[i]);
+          if (skeletons[i].turnsHeadJoint()) {
+            skeletons[i].update(frame.time, idleHeadTurn(frame.time, phase));
+            instances[i] = {&renderer->gpuModel(),
+                            glm::translate(place, idleBreathing(frame.time, phase, bounds.diagonal())),
+                            faces[i].targetWeights(), skeletons[i].nodeWorld()};
+          } else {
+            skeletons[i].update(frame.time);
+            instances[i] = {&renderer->gpuModel(),
+                            place * idleMotion(frame.time, phase, swayPivot, bounds.diagonal()),
+                            faces[i].targetWeights(), skeletons[i].nodeWorld()};
+          }
         }
         return std::span<const eng::vk::ModelInstance>(instances);
       },

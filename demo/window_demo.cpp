@@ -27,6 +27,7 @@
 #include "demo/demo_options.h"
 #include "demo/face_setup.h"
 #include "demo/window_idle_motion.h"
+#include "demo/skeleton_motion.h"
 #include "engine/vk/imgui_layer.h"
 #include "demo/view_options.h"
 #include "demo/window_loop.h"
@@ -88,6 +89,8 @@ struct Face {
   IdleMotion idle;
   glm::mat4 placement{1.0f};
   float nextTrigger = 0.0f;  // crowd: when it picks a new emotion
+  SkeletonMotion skeleton;   // the --clip and, on skinned avatars, the idle head turn
+  float time = 0.0f;
 };
 
 // The state machine whose current state the title shows: "emotions", else the first one.
@@ -216,6 +219,8 @@ int WindowDemo::setUp(const DemoOptions& o) {
   const std::vector<std::string> names = setup_->layout().names();
   const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(faceCount))));
   const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
+  auto skeleton = SkeletonMotion::create(setup_->model(), o.clip);
+  if (!skeleton) return fail(skeleton.error().message);
   for (uint32_t i = 0; i < faceCount; ++i) {
     auto driver = facial::FaceDriver::create(graph_, &setup_->graphRig(), names, setup_->baseWeights(), o.seed + i);
     if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
@@ -225,7 +230,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
     const glm::vec3 offset((float(column) - 0.5f * float(columns - 1)) * spacing.x,
                            (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
     Face face{std::move(*driver), IdleMotion::create(names, bounds, o.seed + i), glm::translate(glm::mat4(1.0f), offset),
-              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_)};
+              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_), *skeleton};
     crowdBounds_[size_t(framing_)].extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
     crowdBounds_[1 - size_t(framing_)].extend(eng::Aabb{other.min + offset, other.max + offset});
     faces_.push_back(std::move(face));
@@ -519,7 +524,16 @@ void WindowDemo::updateFaces(float dt) {
       std::copy(graphWeights.begin(), graphWeights.end(), out.begin());
     }
     face.idle.applyGaze(out);
-    instances_[i].transform = face.idle.transform(face.placement);
+    face.time += dt;
+    if (face.skeleton.turnsHeadJoint()) {
+      // A skinned avatar turns its head joint; the body only breathes.
+      face.skeleton.update(face.time, face.idle.headTurn());
+      instances_[i].transform = face.idle.breathing(face.placement);
+    } else {
+      face.skeleton.update(face.time);
+      instances_[i].transform = face.idle.transform(face.placement);
+    }
+    instances_[i].nodeWorld = face.skeleton.nodeWorld();
   }
 }
 

@@ -86,19 +86,28 @@ void IdleMotion::update(float dt) {
   }
 }
 
-glm::mat4 IdleMotion::transform(const glm::mat4& placement) const {
-  const auto wave = [&](float period, int phase) {
-    return std::sin(glm::two_pi<float>() * time_ / period + phases_[phase]);
-  };
+float IdleMotion::wave(float period, int phase) const {
+  return std::sin(glm::two_pi<float>() * time_ / period + phases_[phase]);
+}
+
+float IdleMotion::lift() const { return kBreathLift * size_ * (0.5f + 0.5f * wave(kBreathPeriod, 4)); }
+
+glm::quat IdleMotion::headTurn() const {
   const float yaw = kYawDegrees * wave(kYawPeriod, 0) + kDriftDegrees * wave(kDriftPeriod, 3);
   const float nod = kNodDegrees * wave(kNodPeriod, 1);
   const float roll = kRollDegrees * wave(kRollPeriod, 2);
-  const float lift = kBreathLift * size_ * (0.5f + 0.5f * wave(kBreathPeriod, 4));
-  glm::mat4 m = glm::translate(placement, glm::vec3(0.0f, lift, 0.0f) + pivot_);
-  m = glm::rotate(m, glm::radians(yaw), glm::vec3(0, 1, 0));
-  m = glm::rotate(m, glm::radians(nod), glm::vec3(1, 0, 0));
-  m = glm::rotate(m, glm::radians(roll), glm::vec3(0, 0, 1));
+  return glm::angleAxis(glm::radians(yaw), glm::vec3(0, 1, 0)) * glm::angleAxis(glm::radians(nod), glm::vec3(1, 0, 0)) *
+         glm::angleAxis(glm::radians(roll), glm::vec3(0, 0, 1));
+}
+
+glm::mat4 IdleMotion::transform(const glm::mat4& placement) const {
+  glm::mat4 m = glm::translate(placement, glm::vec3(0.0f, lift(), 0.0f) + pivot_);
+  m *= glm::mat4_cast(headTurn());
   return glm::translate(m, -pivot_);
+}
+
+glm::mat4 IdleMotion::breathing(const glm::mat4& placement) const {
+  return glm::translate(placement, glm::vec3(0.0f, lift(), 0.0f));
 }
 
 void IdleMotion::applyGaze(std::span<float> weights) const {

@@ -10,6 +10,10 @@
 //   idle.update(dt);
 //   instance.transform = idle.transform(placement);
 //   idle.applyGaze(weights);
+//
+// A skinned avatar with a head joint turns only its head: the sway goes to
+// the joint (headTurn(), see demo/skeleton_motion.h) and the instance keeps
+// just the breathing (breathing(placement)).
 #include <array>
 #include <cstdint>
 #include <random>
@@ -17,6 +21,7 @@
 #include <string>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "engine/scene/model.h"
 
@@ -40,6 +45,10 @@ class IdleMotion {
   void update(float dt);
   // placement * sway about the neck * breathing lift.
   glm::mat4 transform(const glm::mat4& placement) const;
+  // The sway alone (yaw, nod, roll) as a rotation in model-space axes.
+  glm::quat headTurn() const;
+  // placement * breathing lift, without the sway.
+  glm::mat4 breathing(const glm::mat4& placement) const;
   // Adds the current gaze to the gaze targets, clamped to [0,1] (no-op without them).
   void applyGaze(std::span<float> weights) const;
   bool hasGaze() const { return hasGaze_; }
@@ -47,6 +56,8 @@ class IdleMotion {
  private:
   IdleMotion() = default;
   void pickSaccade();
+  float wave(float period, int phase) const;
+  float lift() const;
 
   bool hasGaze_ = false;
   GazeTargets gaze_;

@@ -28,6 +28,8 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
   app.add_option("--fps", o->fps, "Headless frame rate")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Headless length in seconds (default: one full tour)");
   addFramingOption(app, o->frame);
+  app.add_option("--clip", o->clip,
+                 "Skeletal animation of the model to play under the face: its name, its index, or 'all' (loops)");
   app.add_option("--crowd", o->crowd, "N faces in a grid, each with its own state machine and random triggers");
   addDeviceOption(app, o->device);
   app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();

@@ -1,6 +1,7 @@
-// `facial play FILE.json [--model M] [--rigmap R] [--fps N] [--seconds S] [--size WxH] --out DIR [--video out.gif]`
+// `facial play FILE.json [--model M] [--rigmap R] [--clip NAME|N|all] [--fps N] [--seconds S] [--size WxH] --out DIR [--video out.gif]`
 // Plays a graph (data/graphs/*.json) or a timeline (data/timelines/*.json)
-// on a face, headless, into numbered PNG frames and optionally a GIF.
+// on a face, headless, into numbered PNG frames and optionally a GIF; with
+// --clip, a skeletal animation of the model file plays under the face.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
 #include "demo/sequence_recorder.h"
+#include "demo/skeleton_motion.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -28,6 +30,7 @@ struct PlayOptions {
   std::string file;
   std::string model;
   std::string rigmap;
+  std::string clip;  // skeletal clip of the model: name, index or "all"; empty = rest pose
   std::string device;
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
@@ -88,6 +91,9 @@ int runPlay(const PlayOptions& o) {
   auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights());
   if (!face) return fail(o.file + ": " + face.error().message);
 
+  auto skeleton = SkeletonMotion::create(setup->model(), o.clip);
+  if (!skeleton) return fail(skeleton.error().message);
+
   auto renderer = HeadlessModelRenderer::create(
       setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .framing = *framing, .device = o.device});
   if (!renderer) return fail(renderer.error().message);
@@ -104,6 +110,8 @@ int runPlay(const PlayOptions& o) {
       [&](const FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         face->update(frame.dt);
         instance.weights = face->targetWeights();
+        skeleton->update(frame.time);
+        instance.nodeWorld = skeleton->nodeWorld();
         return std::span<const eng::vk::ModelInstance>(&instance, 1);
       });
   if (!summary) return fail(summary.error().message);
@@ -119,6 +127,8 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   auto o = std::make_shared<PlayOptions>();
   app.add_option("file", o->file, "Graph (data/graphs/*.json) or timeline (data/timelines/*.json)")->required();
   addFaceOptions(app, o->model, o->rigmap);
+  app.add_option("--clip", o->clip,
+                 "Skeletal animation of the model to play under the face: its name, its index, or 'all' (loops)");
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();

@@ -114,7 +114,8 @@ int gltfComponentCount(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;  // matrices and junk are never read here
+    case TINYGLTF_TYPE_MAT4: return 16;  // inverse bind matrices (float: no column padding)
+    default: return 0;  // other matrices and junk are never read here
   }
 }
 
@@ -166,7 +167,9 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   const int accComponents = gltfComponentCount(acc.type);
   if (accComponents != components)
     return makeError(where + " has type " + typeName(acc.type) + ", expected " +
-                     (components == 1 ? std::string("SCALAR") : "VEC" + std::to_string(components)));
+                     (components == 1    ? std::string("SCALAR")
+                      : components == 16 ? std::string("MAT4")
+                                         : "VEC" + std::to_string(components)));
   const size_t compSize = gltfComponentSize(acc.componentType);
   if (compSize == 0)
     return makeError(where + " has unknown componentType " + std::to_string(acc.componentType));

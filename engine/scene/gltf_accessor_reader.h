@@ -33,7 +33,7 @@ class GltfAccessorReader {
   Result<size_t> count(int accessor, std::string_view what) const;
 
   // Reads an accessor whose type has exactly `components` components
-  // (1 = SCALAR, 2..4 = VECn) into count * components floats.
+  // (1 = SCALAR, 2..4 = VECn, 16 = MAT4) into count * components floats.
   Result<std::vector<float>> readFloats(int accessor, int components, std::string_view what);
   // Same for SCALAR accessors whose component count per key is up to the caller (animation outputs).
   Result<std::vector<float>> readScalars(int accessor, std::string_view what) { return readFloats(accessor, 1, what); }

@@ -18,6 +18,7 @@
 #include "engine/scene/gltf_file_access.h"
 #include "engine/scene/gltf_json_prepass.h"
 #include "engine/scene/gltf_meshopt.h"
+#include "engine/scene/gltf_skin_reader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/normals.h"
 
@@ -102,6 +103,7 @@ class ModelBuilder {
     for (size_t m = 0; m < gltf_.meshes.size(); ++m)
       if (auto ok = loadMesh(static_cast<int>(m)); !ok) return ok.error();
     if (auto ok = loadNodes(); !ok) return ok.error();
+    if (auto ok = readSkins(reader_, gltf_, model_); !ok) return fail(ok.error().message);
     if (auto ok = loadAnimations(); !ok) return ok.error();
     return std::move(model_);
   }
@@ -311,6 +313,8 @@ class ModelBuilder {
       if (!tangents) return tangents.error();
       out.tangents = std::move(*tangents);
     }
+    if (auto ok = readSkinAttributes(reader_, gltf_, src, label, out, model_.warnings); !ok)
+      return fail(ok.error().message);
 
     std::vector<uint32_t> order;
     if (src.indices >= 0) {
@@ -515,11 +519,12 @@ class ModelBuilder {
       anim.name = src.name.empty() ? "animation_" + std::to_string(a) : src.name;
       for (size_t c = 0; c < src.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = src.channels[c];
+        const std::string label = "animation '" + anim.name + "' channel " + std::to_string(c);
         if (ch.target_path != "weights") {
           ++anim.otherChannelCount;
+          if (auto ok = readNodeChannel(reader_, src, c, label, model_, anim); !ok) return fail(ok.error().message);
           continue;
         }
-        const std::string label = "animation '" + anim.name + "' channel " + std::to_string(c);
         if (ch.target_node < 0 || static_cast<size_t>(ch.target_node) >= model_.nodes.size() ||
             model_.nodes[ch.target_node].mesh < 0) {
           warn(label + " animates the weights of node " + std::to_string(ch.target_node) + ", which has no mesh; skipped");

@@ -29,6 +29,7 @@ const char* typeName(int components) {
     case 1: return "SCALAR";
     case 2: return "VEC2";
     case 3: return "VEC3";
+    case 16: return "MAT4";
     default: return "VEC4";
   }
 }
@@ -86,6 +87,24 @@ class BufferBuilder {
     }
     if (minMax) addMinMax(acc, flat, n, 3);
     return addAccessor(std::move(acc));
+  }
+
+  // Group `set` of four joint indices per vertex (JOINTS_n), as UNSIGNED_SHORT.
+  int addJoints(const Primitive& p, size_t set) {
+    const size_t sets = p.influenceSets(), n = p.vertexCount();
+    std::vector<glm::u16vec4> joints(n);
+    for (size_t v = 0; v < n; ++v) joints[v] = p.joints[v * sets + set];
+    Json acc = {{"componentType", kUnsignedShort}, {"count", n}, {"type", "VEC4"}};
+    acc["bufferView"] = addView(joints.data(), joints.size() * sizeof(glm::u16vec4), kArrayBuffer);
+    return addAccessor(std::move(acc));
+  }
+
+  // Group `set` of four weights per vertex (WEIGHTS_n), as FLOAT.
+  int addJointWeights(const Primitive& p, size_t set) {
+    const size_t sets = p.influenceSets(), n = p.vertexCount();
+    std::vector<glm::vec4> weights(n);
+    for (size_t v = 0; v < n; ++v) weights[v] = p.jointWeights[v * sets + set];
+    return addFloats(&weights[0].x, n, 4, kArrayBuffer, false);
   }
 
   int addIndices(const std::vector<uint32_t>& indices, size_t vertexCount) {
@@ -213,6 +232,10 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
         if (!p.texcoords.empty())
           attributes["TEXCOORD_0"] = buffers.addFloats(&p.texcoords[0].x, n, 2, kArrayBuffer, false);
         if (!p.tangents.empty()) attributes["TANGENT"] = buffers.addFloats(&p.tangents[0].x, n, 4, kArrayBuffer, false);
+        for (size_t set = 0; set < p.influenceSets(); ++set) {
+          attributes["JOINTS_" + std::to_string(set)] = buffers.addJoints(p, set);
+          attributes["WEIGHTS_" + std::to_string(set)] = buffers.addJointWeights(p, set);
+        }
         Json prim = {{"attributes", std::move(attributes)}, {"indices", buffers.addIndices(p.indices, n)}, {"mode", 4}};
         if (p.material >= 0) prim["material"] = p.material;
         if (!p.targets.empty()) {
@@ -245,6 +268,7 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       Json n = Json::object();
       if (!node.name.empty()) n["name"] = node.name;
       if (node.mesh >= 0) n["mesh"] = node.mesh;
+      if (node.skin >= 0) n["skin"] = node.skin;
       if (!node.children.empty()) n["children"] = node.children;
       if (node.hasMatrix) {
         n["matrix"] = vec(&node.matrix[0][0], 16);
@@ -261,11 +285,34 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
     doc["scene"] = 0;
   }
 
+  if (!model.skins.empty()) {
+    Json skins = Json::array();
+    for (const Skin& skin : model.skins) {
+      Json sk = {{"joints", skin.joints}};
+      if (!skin.name.empty()) sk["name"] = skin.name;
+      if (skin.skeleton >= 0) sk["skeleton"] = skin.skeleton;
+      if (!skin.inverseBindMatrices.empty())
+        sk["inverseBindMatrices"] =
+            buffers.addFloats(&skin.inverseBindMatrices[0][0][0], skin.inverseBindMatrices.size(), 16, 0, false);
+      skins.push_back(std::move(sk));
+    }
+    doc["skins"] = std::move(skins);
+  }
+
   Json animations = Json::array();
   for (const Animation& anim : model.animations) {
     // glTF requires at least one channel; an animation with none has nothing to say.
-    if (anim.channels.empty()) continue;
+    if (anim.channels.empty() && anim.nodeChannels.empty()) continue;
     Json samplers = Json::array(), channels = Json::array();
+    for (const NodeChannel& ch : anim.nodeChannels) {
+      static constexpr const char* kPaths[] = {"translation", "rotation", "scale"};
+      const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
+      const int output = buffers.addFloats(ch.values.data(), ch.values.size() / ch.components(),
+                                           static_cast<int>(ch.components()), 0, false);
+      channels.push_back(
+          {{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", kPaths[static_cast<int>(ch.path)]}}}});
+      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
+    }
     for (const WeightsChannel& ch : anim.channels) {
       const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
       const int output = buffers.addFloats(ch.values.data(), ch.values.size(), 1, 0, false);

@@ -17,6 +17,8 @@ float Animation::duration() const {
   float d = 0.0f;
   for (const WeightsChannel& c : channels)
     if (!c.times.empty()) d = std::max(d, c.times.back());
+  for (const NodeChannel& c : nodeChannels)
+    if (!c.times.empty()) d = std::max(d, c.times.back());
   return d;
 }
 

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 namespace eng {
 
@@ -43,8 +44,15 @@ struct Primitive {
   std::vector<uint32_t> indices;     // triangle list (generated 0..n-1 for non-indexed input)
   int material = -1;                 // index into Model::materials, -1 = default material
   std::vector<MorphTarget> targets;  // same count and order as the owning Mesh::targetNames
+  // Skinning (JOINTS_n / WEIGHTS_n): influenceSets() groups of four per vertex,
+  // vertex-major (vertex v, group s at v * influenceSets() + s). Joint indices
+  // index the skin of the node that draws the mesh; weights sum to 1 per
+  // vertex (the loader renormalises). Both empty when the primitive is not skinned.
+  std::vector<glm::u16vec4> joints;
+  std::vector<glm::vec4> jointWeights;
 
   size_t vertexCount() const { return positions.size(); }
+  size_t influenceSets() const { return positions.empty() ? 0 : joints.size() / positions.size(); }
 };
 
 struct Mesh {
@@ -90,11 +98,36 @@ struct Node {
   glm::mat4 matrix{1.0f};  // used instead of T*R*S when hasMatrix
   bool hasMatrix = false;
   int mesh = -1;
+  int skin = -1;  // index into Model::skins; -1 = not skinned (or its skin was dropped)
 
   glm::mat4 localTransform() const;
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };
+
+// A glTF skin: the joints (nodes) whose world transforms deform the vertices
+// of the meshes drawn by nodes that use it.
+struct Skin {
+  std::string name;
+  std::vector<int> joints;                      // node indices
+  std::vector<glm::mat4> inverseBindMatrices;   // one per joint (identity when the file has none)
+  int skeleton = -1;                            // the skeleton root node, -1 when not given
+};
+
+enum class NodePath { Translation, Rotation, Scale };
+
+// A glTF animation channel targeting a node's translation, rotation or scale.
+// values holds 3 (translation, scale) or 4 (rotation quaternion x, y, z, w)
+// floats per key, x3 for CUBICSPLINE (in-tangent, value, out-tangent).
+struct NodeChannel {
+  int node = -1;
+  NodePath path = NodePath::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;
+  std::vector<float> values;
+
+  size_t components() const { return path == NodePath::Rotation ? 4 : 3; }
+};
 
 // A glTF animation channel targeting a node's `weights`. values holds
 // targetCount floats per key (x3 for CUBICSPLINE: in-tangent, value, out-tangent).
@@ -109,8 +142,9 @@ struct WeightsChannel {
 
 struct Animation {
   std::string name;
-  std::vector<WeightsChannel> channels;  // only weights channels are kept
-  size_t otherChannelCount = 0;          // node TRS channels in the source file, not kept
+  std::vector<WeightsChannel> channels;  // weights channels
+  std::vector<NodeChannel> nodeChannels;  // translation / rotation / scale channels (skeletal animation)
+  size_t otherChannelCount = 0;          // node TRS channels in the source file (those kept are in nodeChannels)
   float duration() const;
 };
 
@@ -130,6 +164,8 @@ struct Model {
   std::vector<Material> materials;
   std::vector<Image> images;
   std::vector<Animation> animations;
+  std::vector<Skin> skins;
+  int humanoidHead = -1;  // node of the VRM humanoid `head` bone (VRMC_vrm 1.0 / VRM 0.x), -1 when absent
   std::vector<std::string> warnings;  // non-fatal problems met while loading
   std::vector<ExtensionUse> extensions;  // in the file's order, used ones first
 

@@ -32,6 +32,10 @@ Result<void> checkPrimitive(const Primitive& p, size_t targetCount, size_t mater
     if (p.indices[i] >= n)
       return makeError(label + ": index " + std::to_string(p.indices[i]) + " at position " + std::to_string(i) +
                        " is out of range of " + std::to_string(n) + " vertices");
+  if (p.joints.size() != p.jointWeights.size() || p.joints.size() % n != 0)
+    return makeError(label + " has " + std::to_string(p.joints.size()) + " joint groups and " +
+                     std::to_string(p.jointWeights.size()) + " weight groups for " + std::to_string(n) + " vertices");
+  if (!allFinite(p.jointWeights)) return makeError(label + " has non-finite joint weights");
   if (p.material < -1 || (p.material >= 0 && static_cast<size_t>(p.material) >= materialCount))
     return makeError(label + " uses material " + std::to_string(p.material) + " of " + std::to_string(materialCount));
   if (!allFinite(p.positions) || !allFinite(p.normals) || !allFinite(p.texcoords) || !allFinite(p.tangents))
@@ -97,6 +101,8 @@ Result<void> checkModel(const Model& model) {
       if (c < 0 || c >= nodeCount || model.nodes[c].parent != i)
         return makeError(label + " lists child " + std::to_string(c) + " whose parent is not " + std::to_string(i));
     if (node.parent >= nodeCount) return makeError(label + " has parent " + std::to_string(node.parent));
+    if (node.skin < -1 || node.skin >= static_cast<int>(model.skins.size()))
+      return makeError(label + " uses skin " + std::to_string(node.skin) + " of " + std::to_string(model.skins.size()));
     const glm::vec4 trs[] = {glm::vec4(node.translation, 0.0f), glm::vec4(node.scale, 0.0f),
                              glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w),
                              node.matrix[0], node.matrix[1], node.matrix[2], node.matrix[3]};
@@ -106,6 +112,29 @@ Result<void> checkModel(const Model& model) {
   for (int root : model.roots)
     if (root < 0 || root >= nodeCount || model.nodes[root].parent != -1)
       return makeError("root " + std::to_string(root) + " is not a parentless node");
+  for (size_t s = 0; s < model.skins.size(); ++s) {
+    const Skin& skin = model.skins[s];
+    const std::string label = "skin " + std::to_string(s);
+    for (int j : skin.joints)
+      if (j < 0 || j >= nodeCount) return makeError(label + " has joint node " + std::to_string(j) + " of " + std::to_string(nodeCount));
+    if (!skin.inverseBindMatrices.empty() && skin.inverseBindMatrices.size() != skin.joints.size())
+      return makeError(label + " has " + std::to_string(skin.inverseBindMatrices.size()) + " inverse bind matrices for " +
+                       std::to_string(skin.joints.size()) + " joints");
+    for (const glm::mat4& m : skin.inverseBindMatrices)
+      for (int c = 0; c < 4; ++c)
+        if (glm::any(glm::isnan(m[c])) || glm::any(glm::isinf(m[c])))
+          return makeError(label + " has a non-finite inverse bind matrix");
+  }
+  for (size_t a = 0; a < model.animations.size(); ++a)
+    for (size_t c = 0; c < model.animations[a].nodeChannels.size(); ++c) {
+      const NodeChannel& ch = model.animations[a].nodeChannels[c];
+      const std::string label = "animation " + std::to_string(a) + " node channel " + std::to_string(c);
+      if (ch.node < 0 || ch.node >= nodeCount) return makeError(label + " targets node " + std::to_string(ch.node));
+      const size_t perKey = ch.components() * (ch.interpolation == Interpolation::CubicSpline ? 3 : 1);
+      if (ch.times.empty() || ch.values.size() != ch.times.size() * perKey)
+        return makeError(label + " has " + std::to_string(ch.values.size()) + " values for " +
+                         std::to_string(ch.times.size()) + " keys of " + std::to_string(perKey));
+    }
   for (size_t a = 0; a < model.animations.size(); ++a)
     for (size_t c = 0; c < model.animations[a].channels.size(); ++c) {
       const WeightsChannel& ch = model.animations[a].channels[c];

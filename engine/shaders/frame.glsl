@@ -7,8 +7,8 @@ struct InstanceData {
   mat4 normalMatrix;   // inverse-transpose of model (upper 3x3 used)
   uint activeOffset;   // first entry of this instance in activeWeights[]
   uint activeCount;    // number of non-zero weights; 0 = rest pose
-  uint pad0;
-  uint pad1;
+  uint jointOffset;    // first joint matrix of this instance's skin in jointMatrices[] (skin.glsl)
+  uint jointCount;     // joints of that skin; 0 = not skinned
 };
 
 // One non-zero morph weight: target index within the drawn mesh.
@@ -52,7 +52,7 @@ layout(push_constant) uniform DrawConstants {
   uint vertexCount;       // vertices of the primitive: stride of one target in the delta arrays
   uint firstInstance;     // firstInstance of the draw, to number captured instances from 0
   uint captureOffset;     // first captured vertex slot of this draw (capture variant only)
-  uint pad;
+  uint jointSets;         // groups of four joint influences per vertex; 0 = not skinned (skin.glsl)
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;

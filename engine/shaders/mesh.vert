@@ -1,14 +1,16 @@
 #version 450
-// Morphs one vertex of one instance and transforms it to clip space.
+// Morphs one vertex of one instance, skins it (skinned primitives), and
+// transforms it to clip space.
 // Built three times (see engine/vk/CMakeLists.txt): the render variant; with
 // SHADOW_PASS the key light's shadow-map variant (position only); with
-// MORPH_CAPTURE the capture variant that writes the morphed object-space
+// MORPH_CAPTURE the capture variant that writes the morphed and skinned object-space
 // vertex to a storage buffer (rasteriser discard) so tests can compare the
 // GPU result with the CPU reference.
 #extension GL_GOOGLE_include_directive : require
 
 #include "frame.glsl"
 #include "morph.glsl"
+#include "skin.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -31,6 +33,7 @@ void main() {
   uint vertex = uint(gl_VertexIndex);
   InstanceData inst = instances[gl_InstanceIndex];
   MorphedVertex m = morphVertex(vertex, inst, inPosition, inNormal, inTangent.xyz);
+  skinVertex(vertex, inst, m);
 
 #if defined(MORPH_CAPTURE)
   uint slot = draw.captureOffset + (uint(gl_InstanceIndex) - draw.firstInstance) * draw.vertexCount + vertex;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/scene/posed_bounds.h"
 #include "engine/vk/scene_mesh_nodes.h"
 
 namespace eng::vk {
@@ -82,11 +83,30 @@ Aabb morphedRegionBounds(const Model& model) { return morphedBounds(sceneMeshNod
 
 Aabb framingBounds(const Model& model, FramingMode mode) {
   const std::vector<MeshNode> nodes = sceneMeshNodes(model);
-  if (mode == FramingMode::Face) {
-    const Aabb face = morphedBounds(nodes, model);
-    if (face.valid()) return headAround(face, nodes, model);
+  if (model.skins.empty()) {
+    if (mode == FramingMode::Face) {
+      const Aabb face = morphedBounds(nodes, model);
+      if (face.valid()) return headAround(face, nodes, model);
+    }
+    return wholeModelBounds(nodes, model);
   }
-  return wholeModelBounds(nodes, model);
+  // A skinned model stands in the pose its skeleton defines (a mesh's own
+  // vertices may lie in an A-pose or in another frame altogether): framed
+  // posed, at rest. Its face is the part the head joint moves, with the neck
+  // below it.
+  const Pose pose = restPose(model);
+  if (mode == FramingMode::Face) {
+    if (const int head = findHeadJoint(model); head >= 0) {
+      Aabb region = posedJointRegionBounds(model, pose, head);
+      if (region.valid()) {
+        const float height = region.size().y;
+        region.min.y -= 0.3f * height;  // the neck
+        region.max.y += 0.05f * height;  // room above the crown
+        return region;
+      }
+    }
+  }
+  return posedBounds(model, pose);
 }
 
 }  // namespace eng::vk

@@ -10,7 +10,9 @@
 //    (Ready Player Me, VRoid, Mixamo): framing all of one leaves the face a
 //    few pixels tall. The face is where the morph targets move vertices; the
 //    head is the part of the model around it (hair cap, ears, neck stump).
-//    A model with no morph target falls back to All.
+//    A skinned model's head is what its head joint moves (engine/scene/
+//    posed_bounds.h), in the rest pose, with the neck below it. A model with
+//    neither falls back to All.
 #include <optional>
 #include <string_view>
 

@@ -10,6 +10,7 @@
 #include "engine/vk/descriptor_write.h"
 #include "engine/core/log.h"
 #include "engine/scene/face_dressing.h"
+#include "engine/scene/posed_bounds.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/detail_array.h"
 #include "engine/vk/scene_mesh_nodes.h"
@@ -73,6 +74,17 @@ VkDeviceSize appendDeltas(ByteBlob& blob, const Primitive& prim, Select select, 
   return offset;
 }
 
+// Joint influences as skin.glsl reads them: per vertex and group of four,
+// the joint indices then the weights' float bits (two uvec4).
+VkDeviceSize appendInfluences(ByteBlob& blob, const Primitive& prim, VkDeviceSize alignment) {
+  std::vector<glm::uvec4> packed(prim.joints.size() * 2);
+  for (size_t i = 0; i < prim.joints.size(); ++i) {
+    packed[2 * i] = glm::uvec4(prim.joints[i]);
+    std::memcpy(&packed[2 * i + 1], &prim.jointWeights[i], sizeof(glm::vec4));
+  }
+  return blob.append(std::span<const glm::uvec4>(packed), alignment);
+}
+
 struct DeltaRanges {
   VkDeviceSize position = 0, normal = 0, tangent = 0;
   VkDeviceSize size = 0;  // bytes of one attribute's range
@@ -113,6 +125,9 @@ Result<void> validateModelForGpu(const Model& model) {
                         " deltas for " + std::to_string(n) + " vertices");
         }
       }
+      if (prim.joints.size() != prim.jointWeights.size() || prim.joints.size() % n != 0)
+        return fail(std::to_string(prim.joints.size()) + " joint groups and " + std::to_string(prim.jointWeights.size()) +
+                    " weight groups for " + std::to_string(n) + " vertices");
       if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size()))
         return fail("material " + std::to_string(prim.material) + " out of range (" +
                     std::to_string(model.materials.size()) + " materials)");
@@ -142,10 +157,22 @@ Result<void> validateModelForGpu(const Model& model) {
     if (node.mesh < -1 || node.mesh >= static_cast<int>(model.meshes.size()))
       return makeError(file + ": node " + std::to_string(i) + " mesh " + std::to_string(node.mesh) +
                        " out of range (" + std::to_string(model.meshes.size()) + " meshes)");
+    if (node.skin < -1 || node.skin >= static_cast<int>(model.skins.size()))
+      return makeError(file + ": node " + std::to_string(i) + " skin " + std::to_string(node.skin) +
+                       " out of range (" + std::to_string(model.skins.size()) + " skins)");
     for (int child : node.children) {
       if (child < 0 || child >= static_cast<int>(model.nodes.size()))
         return makeError(file + ": node " + std::to_string(i) + " child " + std::to_string(child) + " out of range");
     }
+  }
+  for (size_t s = 0; s < model.skins.size(); ++s) {
+    const Skin& skin = model.skins[s];
+    if (skin.inverseBindMatrices.size() != skin.joints.size())
+      return makeError(file + ": skin " + std::to_string(s) + " has " + std::to_string(skin.inverseBindMatrices.size()) +
+                       " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
+    for (int joint : skin.joints)
+      if (joint < 0 || joint >= static_cast<int>(model.nodes.size()))
+        return makeError(file + ": skin " + std::to_string(s) + " joint " + std::to_string(joint) + " out of range");
   }
   for (int root : model.roots) {
     if (root < 0 || root >= static_cast<int>(model.nodes.size()))
@@ -170,15 +197,18 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
 
   GpuModel gpu;
   gpu.name_ = file;
-  gpu.bounds_ = model.bounds();
+  gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
   const WeightLayout weightLayout(model);
   gpu.weightCount_ = weightLayout.total();
 
-  for (const MeshNode& node : sceneMeshNodes(model)) gpu.meshNodes_.push_back({node.node, node.mesh, node.world});
+  gpu.meshNodes_ = sceneMeshNodes(model);
+  gpu.skins_ = model.skins;
+  poseWorldMatrices(model, restPose(model), gpu.restWorld_);
 
   // --- Geometry, deltas and detail-layer parameters, laid out in three blobs ---
   const Material fallback = defaultMaterial();
-  ByteBlob vertexBlob, indexBlob, deltaBlob, detailBlob;
+  ByteBlob vertexBlob, indexBlob, deltaBlob, detailBlob, skinBlob;
+  std::vector<std::vector<VkDeviceSize>> skinOffsets(model.meshes.size());
   std::vector<std::vector<DeltaRanges>> deltaRanges(model.meshes.size());
   std::vector<std::vector<VkDeviceSize>> detailOffsets(model.meshes.size());
   gpu.meshes_.resize(model.meshes.size());
@@ -231,6 +261,8 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
         ranges.tangent = appendDeltas(deltaBlob, prim, [](const MorphTarget& t) -> auto& { return t.tangents; },
                                       storageAlign);
       deltaRanges[m].push_back(ranges);
+      gp.constants.jointSets = static_cast<uint32_t>(prim.influenceSets());
+      skinOffsets[m].push_back(gp.constants.jointSets > 0 ? appendInfluences(skinBlob, prim, storageAlign) : 0);
 
       const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
       std::vector<GpuDetailLayer> layers;
@@ -272,6 +304,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   ENG_TRY(upload(indexBlob, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", gpu.indices_));
   ENG_TRY(upload(deltaBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "morph deltas", gpu.deltas_));
   ENG_TRY(upload(detailBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "detail layers", gpu.detailLayers_));
+  ENG_TRY(upload(skinBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint influences", gpu.skinInfluences_));
 
   // --- Textures: base colour images once each, one detail array per material ---
   gpu.textures_.resize(model.images.size());
@@ -303,7 +336,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   // --- Descriptor sets, one per primitive ---
   if (primitiveCount == 0) return gpu;
   const uint32_t sets = static_cast<uint32_t>(primitiveCount);
-  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * sets},
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
@@ -353,6 +386,11 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
               ? VkDescriptorBufferInfo{gpu.detailLayers_.handle(), detailOffsets[m][p],
                                        gp.constants.detailLayerCount * sizeof(GpuDetailLayer)}
               : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
+      const VkDescriptorBufferInfo influences =
+          gp.constants.jointSets > 0
+              ? VkDescriptorBufferInfo{gpu.skinInfluences_.handle(), skinOffsets[m][p],
+                                       prim.joints.size() * 2 * sizeof(glm::uvec4)}
+              : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
 
       const std::array writes{
           bufferWrite(gp.descriptorSet, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positions),
@@ -361,11 +399,20 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
           imageWrite(gp.descriptorSet, 3, &baseInfo),
           imageWrite(gp.descriptorSet, 4, &detailInfo),
           bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
+          bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
       };
       vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }
   }
   return gpu;
+}
+
+void GpuModel::jointMatrices(const MeshNode& node, std::span<const glm::mat4> world, std::vector<glm::mat4>& out) const {
+  if (node.skin < 0 || static_cast<size_t>(node.skin) >= skins_.size()) {
+    out.clear();
+    return;
+  }
+  skinJointMatrices(skins_[node.skin], world.empty() ? std::span<const glm::mat4>(restWorld_) : world, node.node, out);
 }
 
 }  // namespace eng::vk

@@ -1,7 +1,9 @@
 #pragma once
 // A Model uploaded for drawing: one vertex buffer, one index buffer, one
-// storage buffer of morph deltas (layout in engine/shaders/morph.glsl),
-// textures, and one descriptor set per primitive. Immutable once created;
+// storage buffer of morph deltas (layout in engine/shaders/morph.glsl), one
+// of joint influences (skin.glsl), textures, and one descriptor set per
+// primitive; the skins and the node hierarchy's rest pose stay on the CPU to
+// make each frame's joint matrices. Immutable once created;
 // any number of instances with their own weights draw from it.
 //
 // Lifetime: must not outlive the Context and SceneLayouts it was created with.
@@ -14,6 +16,7 @@
 
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
+#include "engine/scene/skeleton_pose.h"
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"
 #include "engine/vk/gpu_types.h"
@@ -57,6 +60,13 @@ class GpuModel {
   // Length of the model's flat weight vector (eng::WeightLayout(model).total()).
   uint32_t weightCount() const { return weightCount_; }
   const Aabb& bounds() const { return bounds_; }
+  // Nodes of the source model: the length of a pose's world matrices.
+  uint32_t nodeCount() const { return static_cast<uint32_t>(restWorld_.size()); }
+  // Model-space matrix of every node in the rest (bind) pose.
+  std::span<const glm::mat4> restWorld() const { return restWorld_; }
+  // The joint matrices of a skinned mesh node (node.skin >= 0) for the node
+  // world matrices `world` (nodeCount() long, or empty for the rest pose).
+  void jointMatrices(const MeshNode& node, std::span<const glm::mat4> world, std::vector<glm::mat4>& out) const;
   VkBuffer vertexBuffer() const { return vertices_.handle(); }
   VkBuffer indexBuffer() const { return indices_.handle(); }
 
@@ -70,6 +80,9 @@ class GpuModel {
   Buffer indices_;
   Buffer deltas_;
   Buffer detailLayers_;
+  Buffer skinInfluences_;
+  std::vector<Skin> skins_;
+  std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
   UniqueDescriptorPool descriptorPool_;

@@ -19,8 +19,8 @@ struct GpuInstance {
   glm::mat4 normalMatrix{1.0f};
   uint32_t activeOffset = 0;
   uint32_t activeCount = 0;
-  uint32_t pad0 = 0;
-  uint32_t pad1 = 0;
+  uint32_t jointOffset = 0;  // first joint matrix of the instance's skin (skin.glsl)
+  uint32_t jointCount = 0;   // 0 = not skinned
 };
 static_assert(sizeof(GpuInstance) == 144);
 
@@ -57,7 +57,7 @@ struct DrawConstants {
   uint32_t vertexCount = 0;
   uint32_t firstInstance = 0;
   uint32_t captureOffset = 0;
-  uint32_t pad = 0;
+  uint32_t jointSets = 0;  // groups of four joint influences per vertex, 0 = not skinned
 };
 static_assert(sizeof(DrawConstants) == 48);
 

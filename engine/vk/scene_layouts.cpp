@@ -40,6 +40,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
       binding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
       binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
   };
   auto frameSet = createSetLayout(ctx, frameBindings);
   if (!frameSet) return frameSet.error();
@@ -52,6 +53,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFs),
+      binding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
   };
   auto primitiveSet = createSetLayout(ctx, primitiveBindings);
   if (!primitiveSet) return primitiveSet.error();

@@ -13,7 +13,8 @@ namespace eng::vk {
 struct MeshNode {
   int node = -1;
   int mesh = -1;
-  glm::mat4 world{1.0f};
+  glm::mat4 world{1.0f};  // in the rest pose
+  int skin = -1;          // Node::skin: index into Model::skins, -1 = drawn unskinned
 };
 
 std::vector<MeshNode> sceneMeshNodes(const Model& model);

@@ -33,7 +33,7 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.pipelineGeneration_ = shaders.generation();
 
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * frameSlots},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frameSlots}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = frameSlots;
@@ -63,6 +63,10 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
                                  MemoryUsage::Upload, "active weights");
     if (!active) return active.error();
     slot.active = std::move(active).value();
+    auto joints = Buffer::create(ctx, 64 * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload,
+                                 "joint matrices");
+    if (!joints) return joints.error();
+    slot.joints = std::move(joints).value();
     r.writeDescriptors(slot);
   }
   return r;
@@ -84,6 +88,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
   const VkDescriptorBufferInfo globals{slot.globals.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo instances{slot.instances.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo joints{slot.joints.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
                                        0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
@@ -94,6 +99,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
       bufferWrite(slot.descriptorSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &active),
       bufferWrite(slot.descriptorSet, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
       imageWrite(slot.descriptorSet, 4, &shadow),
+      bufferWrite(slot.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &joints),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
@@ -108,6 +114,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   slot.capturedVertices = 0;
   instanceScratch_.clear();
   activeScratch_.clear();
+  jointScratch_.clear();
   modelScratch_.clear();
 
   for (size_t i = 0; i < instances.size(); ++i) {
@@ -117,6 +124,10 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
                        std::to_string(inst.weights.size()) + " weights given, the model has " +
                        std::to_string(inst.model->weightCount()));
+    if (!inst.nodeWorld.empty() && inst.nodeWorld.size() != inst.model->nodeCount())
+      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): pose of " +
+                       std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
+                       std::to_string(inst.model->nodeCount()));
     if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
       modelScratch_.push_back(inst.model);
   }
@@ -149,15 +160,24 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       }
     }
 
-    auto addBatches = [&](uint32_t mesh, const glm::mat4& world) {
+    // node: the mesh node drawn (its pose and skin), or null (capture of a mesh no scene node draws).
+    auto addBatches = [&](uint32_t mesh, const MeshNode* node) {
       const uint32_t firstInstance = static_cast<uint32_t>(instanceScratch_.size());
       for (size_t k = 0; k < memberScratch_.size(); ++k) {
+        const ModelInstance& inst = instances[memberScratch_[k]];
         GpuInstance record;
-        record.model = mode == Mode::Draw ? instances[memberScratch_[k]].transform * world : glm::mat4(1.0f);
+        if (mode == Mode::Draw)
+          record.model = inst.transform * (inst.nodeWorld.empty() ? node->world : inst.nodeWorld[node->node]);
         record.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(record.model)));
         const ActiveRange range = rangeScratch_[k * meshes.size() + mesh];
         record.activeOffset = range.offset;
         record.activeCount = range.count;
+        if (node && node->skin >= 0) {
+          model->jointMatrices(*node, inst.nodeWorld, skinScratch_);
+          record.jointOffset = static_cast<uint32_t>(jointScratch_.size());
+          record.jointCount = static_cast<uint32_t>(skinScratch_.size());
+          jointScratch_.insert(jointScratch_.end(), skinScratch_.begin(), skinScratch_.end());
+        }
         instanceScratch_.push_back(record);
       }
       for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
@@ -166,9 +186,13 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       }
     };
     if (mode == Mode::Draw) {
-      for (const MeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), node.world);
+      for (const MeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), &node);
     } else {
-      for (uint32_t m = 0; m < meshes.size(); ++m) addBatches(m, glm::mat4(1.0f));
+      for (uint32_t m = 0; m < meshes.size(); ++m) {
+        const auto nodes = model->meshNodes();
+        const auto first = std::find_if(nodes.begin(), nodes.end(), [&](const MeshNode& n) { return n.mesh == int(m); });
+        addBatches(m, first == nodes.end() ? nullptr : &*first);
+      }
     }
   }
 
@@ -176,15 +200,19 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instances"));
   ENG_TRY(ensureCapacity(slot, slot.active, activeScratch_.size() * sizeof(ActiveWeight),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "active weights"));
+  ENG_TRY(ensureCapacity(slot, slot.joints, jointScratch_.size() * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         MemoryUsage::Upload, "joint matrices"));
   if (mode == Mode::Capture)
     ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
   slot.stats = {static_cast<uint32_t>(slot.batches.size()), static_cast<uint32_t>(instanceScratch_.size()),
-                static_cast<uint32_t>(activeScratch_.size())};
+                static_cast<uint32_t>(activeScratch_.size()), static_cast<uint32_t>(jointScratch_.size())};
   if (!instanceScratch_.empty())
     std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
   if (!activeScratch_.empty())
     std::memcpy(slot.active.mapped(), activeScratch_.data(), activeScratch_.size() * sizeof(ActiveWeight));
+  if (!jointScratch_.empty())
+    std::memcpy(slot.joints.mapped(), jointScratch_.data(), jointScratch_.size() * sizeof(glm::mat4));
   return {};
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Draws model instances into a render pass of any target. Per frame the CPU
-// writes only the instance records (transform + slice of the active list) and
-// the compact active-weight list; each mesh of a model draws ALL instances of
+// writes only the instance records (transform + slice of the active list +
+// slice of the joint matrices), the compact active-weight list and the joint
+// matrices of skinned mesh nodes; each mesh of a model draws ALL instances of
 // that model in one instanced draw per primitive.
 //
 // Frame slots: the caller owns synchronisation; prepare(slot) may only be
@@ -29,9 +30,15 @@ struct ModelInstance {
   glm::mat4 transform{1.0f};
   // The model's flat weight vector (eng::WeightLayout order), model->weightCount() long.
   std::span<const float> weights;
+  // The instance's skeleton pose: every node's model-space matrix
+  // (eng::poseWorldMatrices), model->nodeCount() long; empty = the rest
+  // (bind) pose. Moves skinned meshes through their joints and rigid mesh nodes.
+  std::span<const glm::mat4> nodeWorld;
 };
 
-// Morphed vertices of one primitive of one instance, in the mesh's own space.
+// Morphed (then skinned) vertices of one primitive of one instance, in the
+// space of the mesh's node (the first scene node drawing the mesh supplies
+// the skin and the pose's joint matrices).
 struct CapturedPrimitive {
   size_t instance = 0;  // index into the instances given to prepareCapture
   int mesh = -1;
@@ -46,6 +53,7 @@ struct FrameStats {
   uint32_t draws = 0;          // instanced draw calls, one per (mesh node, primitive)
   uint32_t instances = 0;      // GPU instance records
   uint32_t activeWeights = 0;  // entries of the active list uploaded this frame
+  uint32_t jointMatrices = 0;  // joint matrices uploaded this frame
 };
 
 class SceneRenderer {
@@ -56,7 +64,7 @@ class SceneRenderer {
                                       uint32_t frameSlots);
 
   // Writes slot's frame data. Errors (naming the instance and mesh): null
-  // model, wrong number of weights, non-finite weight.
+  // model, wrong number of weights, non-finite weight, pose of the wrong size.
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
   FrameStats stats(uint32_t slot) const;
   // Before the scene's render pass: the key light's shadow map for the prepared draws.
@@ -93,6 +101,7 @@ class SceneRenderer {
     Buffer globals;
     Buffer instances;
     Buffer active;
+    Buffer joints;
     Buffer capture;
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
@@ -121,6 +130,8 @@ class SceneRenderer {
   // Scratch reused every frame (capacity persists: no allocation in steady state).
   std::vector<GpuInstance> instanceScratch_;
   std::vector<ActiveWeight> activeScratch_;
+  std::vector<glm::mat4> jointScratch_;
+  std::vector<glm::mat4> skinScratch_;
   std::vector<const GpuModel*> modelScratch_;
   std::vector<uint32_t> memberScratch_;
   struct ActiveRange {

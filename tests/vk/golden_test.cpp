@@ -1,5 +1,6 @@
-// Golden-image tests: faces at several weight sets and every Khronos sample,
-// rendered 256x256 on the test device and compared with tests/goldens/*.png.
+// Golden-image tests: faces at several weight sets, every Khronos sample, and
+// skinned models in their bind pose and in an animation pose, rendered
+// 256x256 on the test device and compared with tests/goldens/*.png.
 //
 // Regenerate (after a deliberate change of the look; look at every image):
 //   FACIAL_UPDATE_GOLDENS=1 build/bin/test_vk --gtest_filter='*Golden*'
@@ -17,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/posed_bounds.h"
+#include "engine/scene/skeleton_pose.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/framing_bounds.h"
 #include "tests/common/golden.h"
@@ -32,6 +35,8 @@ struct GoldenCase {
   std::vector<std::pair<std::string, float>> weights;  // over the model's defaults
   float yaw = 0.0f;
   float pitch = 0.0f;
+  std::string clip;      // skeletal animation to pose by ("all": every one), empty = bind pose
+  float clipTime = 0.0f;
 };
 
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.golden; }
@@ -48,11 +53,18 @@ TEST_P(GoldenAsset, MatchesGolden) {
   for (const auto& [name, value] : c.weights) ASSERT_GT(layout.setByName(weights, name, value), 0) << name;
   auto gpu = vk_test::renderer().upload(*model);
   ASSERT_TRUE(gpu) << gpu.error().message;
+  eng::Pose pose = eng::restPose(*model);
+  for (const eng::Animation& anim : model->animations)
+    if (c.clip == "all" || anim.name == c.clip) eng::sampleAnimation(anim, c.clipTime, pose);
+  std::vector<glm::mat4> world;
+  eng::poseWorldMatrices(*model, pose, world);
   eng::vk::SceneView view;
-  view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(*model));
+  // Skinned models are framed as posed (their raw vertices are not where they are drawn).
+  view.camera = eng::vk::OrbitCamera::frame(model->skins.empty() ? eng::vk::framingBounds(*model)
+                                                                  : eng::posedBounds(*model, pose, weights));
   view.camera.yawDegrees = c.yaw;
   view.camera.pitchDegrees = c.pitch;
-  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights, world};
   auto image = vk_test::renderer().render(view, {&instance, 1});
   ASSERT_TRUE(image) << image.error().message;
   EXPECT_TRUE(testing_support::matchesGolden(*image, c.golden));
@@ -82,6 +94,15 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"morph_stress_test", "khronos/MorphStressTest/MorphStressTest.gltf",
                    {{"Key 1", 1.0f}, {"Key 3", 0.5f}, {"Key 6", 1.0f}}, 0.0f, 25.0f},
         GoldenCase{"simple_morph", "khronos/SimpleMorph/SimpleMorph.gltf", {}}),
+    [](const auto& info) { return info.param.golden; });
+
+// Skinning: CesiumMan splits its walk into one clip per joint, so "all" plays the walk.
+INSTANTIATE_TEST_SUITE_P(
+    Skinned, GoldenAsset,
+    ::testing::Values(
+        GoldenCase{"cesium_man_bind_pose", "khronos/CesiumMan/glTF-Binary/CesiumMan.glb", {}, -90.0f, 0.0f},
+        GoldenCase{"cesium_man_walk", "khronos/CesiumMan/glTF-Binary/CesiumMan.glb", {}, -60.0f, 5.0f, "all", 0.5f},
+        GoldenCase{"robot_expressive_wave", "RobotExpressive.glb", {{"Surprised", 0.6f}}, 20.0f, 5.0f, "Wave", 0.9f}),
     [](const auto& info) { return info.param.golden; });
 
 // Needs no shared assets: instancing, morphing and detail layers together.

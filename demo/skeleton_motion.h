@@ -1,0 +1,60 @@
+#pragma once
+// The skeleton of a face in `facial play` and the demo: an optional skeletal
+// clip of the file, looping, plus an idle turn of the head joint (sway, nods)
+// for skinned avatars, where turning the whole model would swing the body
+// too. Faces without a skin and without a clip have nothing to pose:
+// nodeWorld() stays empty and the renderer draws the rest pose.
+//
+//   auto skeleton = SkeletonMotion::create(model, "Dance");   // or "3", "all", ""
+//   skeleton->update(time, idleHeadTurn);
+//   instance.nodeWorld = skeleton->nodeWorld();
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/scene/skeleton_pose.h"
+
+namespace cli {
+
+class SkeletonMotion {
+ public:
+  // clip: "" none; an animation's name; its index; "all" every skeletal clip
+  // at once (files that split one motion into a clip per joint, like
+  // CesiumMan). A clip that does not exist or moves no node is an error
+  // listing the clips. The model must outlive the object.
+  static eng::Result<SkeletonMotion> create(const eng::Model& model, const std::string& clip);
+
+  // Whether the head turn goes to a joint (skinned model with a head joint).
+  bool turnsHeadJoint() const { return headJoint_ >= 0; }
+  int headJoint() const { return headJoint_; }
+  // Whether there is a pose to upload (a clip or a head joint).
+  bool active() const { return !clips_.empty() || headJoint_ >= 0; }
+  float clipDuration() const { return duration_; }
+  std::string clipLabel() const { return label_; }
+
+  // The pose at `time` seconds (clips loop), with the head joint turned by
+  // `headTurn` about its own position, in model-space axes.
+  void update(float time, const glm::quat& headTurn = glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+  // Every node's model-space matrix after update(); empty when !active().
+  std::span<const glm::mat4> nodeWorld() const { return world_; }
+
+ private:
+  const eng::Model* model_ = nullptr;
+  std::vector<const eng::Animation*> clips_;
+  float duration_ = 0.0f;
+  std::string label_;
+  int headJoint_ = -1;
+  eng::Pose rest_;
+  eng::Pose pose_;
+  std::vector<glm::mat4> world_;
+};
+
+// Lists the model's skeletal clips for messages: "0 'Dance' (2.1 s), 1 ...".
+std::string skeletalClipList(const eng::Model& model);
+
+}  // namespace cli

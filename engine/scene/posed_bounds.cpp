@@ -1,0 +1,121 @@
+#include "engine/scene/posed_bounds.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/scene/skinning.h"
+#include "engine/scene/weights.h"
+
+namespace eng {
+namespace {
+
+// Calls visit(world position, primitive, vertex, mesh node, skin index or -1)
+// for every posed vertex of the default scene.
+template <class Visit>
+void forEachPosedVertex(const Model& model, const Pose& pose, std::span<const float> weights, Visit&& visit) {
+  std::vector<glm::mat4> world;
+  poseWorldMatrices(model, pose, world);
+  const WeightLayout layout(model);
+  const bool morph = !weights.empty() && weights.size() == layout.total();
+  std::vector<float> zeros;
+  std::vector<glm::vec3> positions;
+  for (const int n : sceneMeshNodeIndices(model)) {
+    const Node& node = model.nodes[n];
+    const int skin = node.skin >= 0 && static_cast<size_t>(node.skin) < model.skins.size() ? node.skin : -1;
+    zeros.assign(layout.count(node.mesh), 0.0f);
+    const std::span<const float> meshWeights = morph ? layout.meshWeights(weights, node.mesh) : std::span<const float>(zeros);
+    for (const Primitive& prim : model.meshes[node.mesh].primitives) {
+      positions.resize(prim.vertexCount());
+      posePrimitiveCpu(model, n, prim, meshWeights, world, positions, {});
+      for (size_t v = 0; v < positions.size(); ++v)
+        visit(glm::vec3(world[n] * glm::vec4(positions[v], 1.0f)), prim, v, n, skin);
+    }
+  }
+}
+
+// "mixamorig:Head" -> "head", "J_Bip_C_Head" -> "head", "Bip01 Head" -> "head".
+std::string lastNameWord(std::string_view name) {
+  const size_t cut = name.find_last_of(":_ .|");
+  if (cut != std::string_view::npos) name.remove_prefix(cut + 1);
+  std::string out;
+  for (char c : name) out.push_back(char(std::tolower(static_cast<unsigned char>(c))));
+  return out;
+}
+
+}  // namespace
+
+Aabb posedBounds(const Model& model, const Pose& pose, std::span<const float> weights) {
+  Aabb box;
+  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive&, size_t, int, int) { box.extend(p); });
+  return box;
+}
+
+Aabb posedJointRegionBounds(const Model& model, const Pose& pose, int joint, float minWeight,
+                            std::span<const float> weights) {
+  Aabb box;
+  if (joint < 0 || static_cast<size_t>(joint) >= model.nodes.size()) return box;
+  // The joint and every node under it.
+  std::vector<bool> inRegion(model.nodes.size(), false);
+  std::vector<int> stack{joint};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n < 0 || static_cast<size_t>(n) >= model.nodes.size() || inRegion[n]) continue;
+    inRegion[n] = true;
+    for (int c : model.nodes[n].children) stack.push_back(c);
+  }
+  // Per skin: which of its joint slots lie in the region.
+  std::vector<std::vector<bool>> slotInRegion(model.skins.size());
+  for (size_t s = 0; s < model.skins.size(); ++s)
+    for (int node : model.skins[s].joints)
+      slotInRegion[s].push_back(node >= 0 && static_cast<size_t>(node) < inRegion.size() && inRegion[node]);
+  forEachPosedVertex(model, pose, weights, [&](const glm::vec3& p, const Primitive& prim, size_t v, int node, int skin) {
+    if (skin < 0 || prim.influenceSets() == 0) {
+      // Rigid meshes hung under the joint (a robot's head, glasses) move with it whole.
+      if (inRegion[node]) box.extend(p);
+      return;
+    }
+    const size_t sets = prim.influenceSets();
+    float w = 0.0f;
+    for (size_t s = 0; s < sets; ++s)
+      for (int i = 0; i < 4; ++i) {
+        const size_t slot = prim.joints[v * sets + s][i];
+        if (slot < slotInRegion[skin].size() && slotInRegion[skin][slot]) w += prim.jointWeights[v * sets + s][i];
+      }
+    if (w >= minWeight) box.extend(p);
+  });
+  return box;
+}
+
+int findHeadJoint(const Model& model) {
+  if (model.skins.empty()) return -1;
+  if (model.humanoidHead >= 0 && static_cast<size_t>(model.humanoidHead) < model.nodes.size()) return model.humanoidHead;
+  for (const Skin& skin : model.skins)
+    for (int node : skin.joints)
+      if (node >= 0 && static_cast<size_t>(node) < model.nodes.size() && lastNameWord(model.nodes[node].name) == "head")
+        return node;
+  // No names to go by: the highest joint that moves a vertex itself.
+  std::vector<bool> weighted(model.nodes.size(), false);
+  for (const Node& node : model.nodes) {
+    if (node.mesh < 0 || node.skin < 0 || static_cast<size_t>(node.skin) >= model.skins.size()) continue;
+    const Skin& skin = model.skins[node.skin];
+    for (const Primitive& prim : model.meshes[node.mesh].primitives)
+      for (size_t i = 0; i < prim.joints.size(); ++i)
+        for (int k = 0; k < 4; ++k)
+          if (prim.jointWeights[i][k] > 0.0f && prim.joints[i][k] < skin.joints.size()) {
+            const int j = skin.joints[prim.joints[i][k]];
+            if (j >= 0 && static_cast<size_t>(j) < weighted.size()) weighted[j] = true;
+          }
+  }
+  std::vector<glm::mat4> world;
+  poseWorldMatrices(model, restPose(model), world);
+  int best = -1;
+  for (size_t n = 0; n < model.nodes.size(); ++n)
+    if (weighted[n] && (best < 0 || world[n][3].y > world[best][3].y)) best = static_cast<int>(n);
+  return best;
+}
+
+}  // namespace eng

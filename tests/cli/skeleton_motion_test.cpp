@@ -1,0 +1,95 @@
+// demo/skeleton_motion.h: skeletal clips chosen by name, index or "all", and
+// the idle head turn going to the head joint of skinned avatars (only).
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "demo/skeleton_motion.h"
+#include "engine/scene/gltf_loader.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+eng::Model loadShared(const std::string& relative) {
+  auto model = eng::loadModel(testing_support::sharedDir() / "assets" / relative);
+  EXPECT_TRUE(model.ok()) << (model.ok() ? "" : model.error().message);
+  return model.ok() ? std::move(*model) : eng::Model{};
+}
+
+glm::vec3 position(const glm::mat4& m) { return glm::vec3(m[3]); }
+
+TEST(SkeletonMotion, PicksClipsByNameIndexOrAll) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model robot = loadShared("RobotExpressive.glb");
+  auto wave = cli::SkeletonMotion::create(robot, "Wave");
+  ASSERT_TRUE(wave) << wave.error().message;
+  EXPECT_EQ(wave->clipLabel(), "Wave");
+  EXPECT_TRUE(wave->active());
+  auto byIndex = cli::SkeletonMotion::create(robot, "12");
+  ASSERT_TRUE(byIndex) << byIndex.error().message;
+  EXPECT_EQ(byIndex->clipLabel(), "Wave");
+  const eng::Model cesium = loadShared("khronos/CesiumMan/glTF-Binary/CesiumMan.glb");
+  auto all = cli::SkeletonMotion::create(cesium, "all");
+  ASSERT_TRUE(all) << all.error().message;
+  EXPECT_EQ(all->clipLabel(), "all 19 clips");
+  // The pose moves with time and the clip loops.
+  all->update(0.3f);
+  const std::vector<glm::mat4> early(all->nodeWorld().begin(), all->nodeWorld().end());
+  all->update(0.3f + all->clipDuration());
+  for (size_t n = 0; n < early.size(); ++n)
+    EXPECT_LE(glm::length(position(all->nodeWorld()[n]) - position(early[n])), 1e-4f) << n;
+  all->update(0.6f);
+  float moved = 0.0f;
+  for (size_t n = 0; n < early.size(); ++n) moved = std::max(moved, glm::length(position(all->nodeWorld()[n]) - position(early[n])));
+  EXPECT_GT(moved, 0.01f);
+}
+
+TEST(SkeletonMotion, UnknownClipIsOneErrorListingTheClips) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model robot = loadShared("RobotExpressive.glb");
+  for (const char* clip : {"Moonwalk", "14"}) {
+    auto motion = cli::SkeletonMotion::create(robot, clip);
+    ASSERT_FALSE(motion) << clip;
+    EXPECT_NE(motion.error().message.find("RobotExpressive.glb: no skeletal clip '" + std::string(clip) + "'"),
+              std::string::npos) << motion.error().message;
+    EXPECT_NE(motion.error().message.find("12 'Wave' (1.8 s)"), std::string::npos) << motion.error().message;
+  }
+  const eng::Model simple = loadShared("khronos/SimpleMorph/SimpleMorph.gltf");  // a weights animation only
+  auto none = cli::SkeletonMotion::create(simple, "all");
+  ASSERT_FALSE(none);
+  EXPECT_NE(none.error().message.find("has no skeletal clip"), std::string::npos) << none.error().message;
+}
+
+TEST(SkeletonMotion, HeadTurnTurnsOnlyTheHeadJointAboutItself) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model robot = loadShared("RobotExpressive.glb");
+  auto motion = cli::SkeletonMotion::create(robot, "");
+  ASSERT_TRUE(motion) << motion.error().message;
+  ASSERT_TRUE(motion->turnsHeadJoint());
+  const int head = motion->headJoint();
+  const int neck = robot.nodes[head].parent;
+  ASSERT_GE(neck, 0);
+  motion->update(0.0f);
+  const std::vector<glm::mat4> still(motion->nodeWorld().begin(), motion->nodeWorld().end());
+  const glm::quat turn = glm::angleAxis(glm::radians(30.0f), glm::vec3(0, 1, 0));
+  motion->update(0.0f, turn);
+  const auto turned = motion->nodeWorld();
+  EXPECT_LE(glm::length(position(turned[head]) - position(still[head])), 1e-5f) << "turns about the joint";
+  EXPECT_EQ(turned[neck], still[neck]) << "the body stays";
+  // The head's world rotation gained exactly the turn, in model-space axes.
+  const glm::mat3 expected = glm::mat3_cast(turn) * glm::mat3(still[head]);
+  for (int c = 0; c < 3; ++c) EXPECT_LE(glm::length(glm::mat3(turned[head])[c] - expected[c]), 1e-4f) << c;
+}
+
+TEST(SkeletonMotion, UnskinnedFaceWithoutClipHasNothingToPose) {
+  FACIAL_REQUIRE_SHARED();
+  const eng::Model facecap = loadShared("facecap.glb");
+  auto motion = cli::SkeletonMotion::create(facecap, "");
+  ASSERT_TRUE(motion) << motion.error().message;
+  EXPECT_FALSE(motion->turnsHeadJoint());
+  EXPECT_FALSE(motion->active());
+  motion->update(1.0f, glm::angleAxis(0.3f, glm::vec3(0, 1, 0)));
+  EXPECT_TRUE(motion->nodeWorld().empty());
+}
+
+}  // namespace
