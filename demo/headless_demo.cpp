@@ -75,7 +75,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   const uint32_t crowd = std::max<uint32_t>(1, o.crowd);
   if (crowd > 1024) return fail("--crowd must be at most 1024");
 
-  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
   facial::GraphLoadOptions graphOptions;

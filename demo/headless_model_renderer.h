@@ -28,6 +28,7 @@ struct HeadlessRenderOptions {
   float pitchDegrees = 0.0f;  // + = from above
   float zoom = 1.0f;          // > 1 = closer
   std::string device;         // eng::vk::ContextOptions::device
+  eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
 };
 
 class HeadlessModelRenderer {

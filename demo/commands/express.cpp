@@ -23,6 +23,7 @@ struct ExpressOptions {
   float intensity = 1.0f;
   std::string model;
   std::string rigmap;
+  std::vector<std::string> shapes;
   ViewOptions view;
   std::string out;
 };
@@ -40,7 +41,7 @@ int runExpress(const ExpressOptions& o) {
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial express: note: intensity %g clamped to [0, 1]\n", o.intensity);
 
-  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
   if (!preset) return fail(preset.error().message);
@@ -67,6 +68,7 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
       ->check(CLI::Number)
       ->capture_default_str();
   addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
   addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runExpress(*o); };

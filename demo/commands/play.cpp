@@ -28,6 +28,8 @@ struct PlayOptions {
   std::string file;
   std::string model;
   std::string rigmap;
+  std::vector<std::string> shapes;
+  std::string background;
   std::string device;
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
@@ -71,7 +73,7 @@ int runPlay(const PlayOptions& o) {
   nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded() || !document.is_object()) return fail(o.file + ": not a JSON object");
 
-  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
 
   float length = 24.0f;
@@ -85,8 +87,10 @@ int runPlay(const PlayOptions& o) {
   auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights());
   if (!face) return fail(o.file + ": " + face.error().message);
 
+  auto backdrop = parseBackground(o.background);
+  if (!backdrop) return fail(backdrop.error().message);
   auto renderer = HeadlessModelRenderer::create(
-      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .device = o.device});
+      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .device = o.device, .backdrop = *backdrop});
   if (!renderer) return fail(renderer.error().message);
 
   SequenceOptions sequence;
@@ -116,6 +120,8 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   auto o = std::make_shared<PlayOptions>();
   app.add_option("file", o->file, "Graph (data/graphs/*.json) or timeline (data/timelines/*.json)")->required();
   addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
+  addBackgroundOption(app, o->background);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();

@@ -26,6 +26,9 @@ namespace {
 
 struct SheetOptions {
   std::string model;
+  std::string rigmap;
+  std::vector<std::string> shapes;
+  std::string background;
   bool compound = false;
   uint32_t size = 256;
   float intensity = 1.0f;
@@ -61,7 +64,7 @@ int runSheet(const SheetOptions& o) {
   if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
-  auto face = FaceSetup::load({.model = o.model});
+  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!face) return fail(face.error().message);
   // Basic: exactly the emotion channels, in their order (neutral first).
   std::vector<const facial::ExpressionPreset*> presets;
@@ -76,8 +79,10 @@ int runSheet(const SheetOptions& o) {
     }
   }
 
+  auto backdrop = parseBackground(o.background);
+  if (!backdrop) return fail(backdrop.error().message);
   auto renderer = HeadlessModelRenderer::create(
-      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .device = o.device});
+      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .device = o.device, .backdrop = *backdrop});
   if (!renderer) return fail(renderer.error().message);
   std::vector<float> weights(face->weightCount());
   std::vector<eng::ContactSheetTile> tiles;
@@ -113,7 +118,9 @@ int runSheet(const SheetOptions& o) {
 
 CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expressions, headless", [](CLI::App& app) {
   auto o = std::make_shared<SheetOptions>();
-  app.add_option("--model,-m", o->model, "glTF model (default: the built-in head, <data>/head.glb)");
+  addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
+  addBackgroundOption(app, o->background);
   app.add_flag("--compound", o->compound, "The compound presets instead of neutral and the six basic emotions");
   app.add_option("--size", o->size, "Tile size in pixels (square)")
       ->check(CLI::Range(16u, 4096u))
