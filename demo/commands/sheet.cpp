@@ -103,6 +103,8 @@ int runSheet(const SheetOptions& o) {
   eng::ContactSheetOptions sheetOptions;
   sheetOptions.columns = std::min<int>(5, int(tiles.size() + 1) / 2);
   sheetOptions.labelHeight = labelHeightFor(*text, tiles, int(o.size));
+  // A transparent sheet keeps only the faces and the labels.
+  if (backdrop->kind == eng::vk::Backdrop::Kind::Transparent) sheetOptions.background = {0, 0, 0, 0};
   sheetOptions.title = face->name() + ": " + (o.compound ? "compound expressions" : "basic expressions") +
                        ", rig: " + std::string(facial::rigSchemeName(face->rig().scheme()));
   auto sheet = eng::composeContactSheet(tiles, sheetOptions);
