@@ -13,6 +13,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/obj_keyframes.h"
 #include "facial/bake/candide_import.h"
+#include "facial/bake/loop_subdivision.h"
 #include "facial/bake/vrm_import.h"
 #include "facial/runtime/rig/action_units.h"
 
@@ -117,6 +118,11 @@ eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<co
     } else if (start.starts_with("# VERTEX LIST")) {
       auto model = facial::importCandide3(path);
       if (!model) return model.error();
+      // 113 vertices shade and outline as facets: two Loop steps make the mask a smooth surface.
+      for (int step = 0; step < 2; ++step)
+        for (eng::Mesh& mesh : model->meshes)
+          for (eng::Primitive& prim : mesh.primitives)
+            if (auto smooth = facial::loopSubdivide(prim, path.string() + ": " + mesh.name); !smooth) return smooth.error();
       face = LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr};
     } else {
       return eng::makeError(path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
