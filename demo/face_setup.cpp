@@ -20,7 +20,8 @@
 namespace cli {
 
 void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap) {
-  app.add_option("--model,-m", model, "glTF face (default: the built-in head, <data>/head.glb)");
+  app.add_option("--model,-m", model,
+                 "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, <data>/head.glb)");
   app.add_option("--rigmap", rigmap,
                  "Rig map JSON naming which targets are which action unit or emotion "
                  "(default: <data>/rigmaps/<model>.json, else detected from the target names)");
@@ -325,6 +326,40 @@ eng::Result<void> FaceSetup::expressionWeights(const facial::ExpressionPreset& p
   if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
   std::copy(baseWeights_.begin(), baseWeights_.end(), weights.begin());
   return rig_.apply(actionUnitScratch_, emotionScratch_, weights);
+}
+
+eng::Result<eng::Model> FaceSetup::modelForPose(const facial::ExpressionPreset& preset, float intensity) {
+  eng::Model posed = model_;
+  if (!vrm_ || !vrm_->hasMaterialBinds() || !rig_.expressionStage()) return posed;
+  if (!std::isfinite(intensity))
+    return eng::makeError("expression '" + preset.name + "': intensity is not a finite number");
+  const float clamped = std::clamp(intensity, 0.0f, 1.0f);
+  if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();
+  if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
+  std::vector<float> expressionWeights(vrm_->expressions.size());
+  if (auto w = rig_.expressionWeights(actionUnitScratch_, emotionScratch_, expressionWeights); !w) return w.error();
+  if (posed.materials.size() != vrm_->materialCount)
+    return eng::makeError(name_ + ": the VRM expressions address " + std::to_string(vrm_->materialCount) +
+                          " materials, the model has " + std::to_string(posed.materials.size()));
+  std::vector<facial::VrmMaterialState> states(posed.materials.size());
+  for (size_t m = 0; m < states.size(); ++m) {
+    const glm::vec4& c = posed.materials[m].baseColorFactor;
+    states[m].color = {c.r, c.g, c.b, c.a};
+  }
+  if (auto moved = vrm_->applyMaterials(expressionWeights, states); !moved) return moved.error();
+  for (size_t m = 0; m < states.size(); ++m) {
+    const auto& c = states[m].color;
+    posed.materials[m].baseColorFactor = glm::clamp(glm::vec4(c[0], c[1], c[2], c[3]), 0.0f, 1.0f);
+  }
+  for (eng::Mesh& mesh : posed.meshes)
+    for (eng::Primitive& prim : mesh.primitives) {
+      if (prim.material < 0 || size_t(prim.material) >= states.size()) continue;
+      const facial::VrmMaterialState& s = states[size_t(prim.material)];
+      const glm::vec2 scale(s.uvScale[0], s.uvScale[1]), offset(s.uvOffset[0], s.uvOffset[1]);
+      if (scale == glm::vec2(1.0f) && offset == glm::vec2(0.0f)) continue;
+      for (glm::vec2& uv : prim.texcoords) uv = uv * scale + offset;
+    }
+  return posed;
 }
 
 }  // namespace cli

@@ -139,6 +139,13 @@ class FaceSetup {
   eng::Result<void> expressionWeights(const facial::ExpressionPreset& preset, float intensity,
                                       std::span<float> weights);
 
+  // The model as one pose shows it: for a VRM face whose expressions bind
+  // materials, a copy with the preset's material colour binds applied to the
+  // base colour factors and its texture transform binds to the texture
+  // coordinates (uv * scale + offset) of the primitives using those
+  // materials; otherwise model() itself. Same errors as expressionWeights.
+  eng::Result<eng::Model> modelForPose(const facial::ExpressionPreset& preset, float intensity);
+
  private:
   FaceSetup(LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
             facial::ExpressionLibrary expressions);

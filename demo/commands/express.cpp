@@ -48,7 +48,10 @@ int runExpress(const ExpressOptions& o) {
   std::vector<float> weights(face->weightCount());
   if (auto posed = face->expressionWeights(**preset, o.intensity, weights); !posed) return fail(posed.error().message);
 
-  auto renderer = HeadlessModelRenderer::create(face->model(), *renderOptions);
+  // VRM material binds (colour, texture transform) belong to the pose.
+  auto shown = face->modelForPose(**preset, o.intensity);
+  if (!shown) return fail(shown.error().message);
+  auto renderer = HeadlessModelRenderer::create(*shown, *renderOptions);
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights);
   if (!image) return fail(image.error().message);

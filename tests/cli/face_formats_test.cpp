@@ -10,9 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "demo/face_setup.h"
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
 #include "tests/cli/test_face.h"
+#include "tests/common/study_obj_set.h"
 #include "tests/common/test_support.h"
 
 namespace cli_test {
@@ -146,6 +149,80 @@ TEST(FaceFormats, ShapesBakeIntoTheRestMesh) {
   }
   EXPECT_TRUE(moved);
   EXPECT_EQ(model.meshes[0].defaultWeights[kCustom], 0.0f);  // not applied twice
+}
+
+TEST(FaceFormats, ObjKeyframeFolderOpensWithoutConverting) {
+  const std::filesystem::path dir = testing_support::freshTempDir("face_formats_obj");
+  const eng::Model face = makeTestFace();
+  const size_t weights = face.meshes[0].targetNames.size();
+  int next = 0;
+  testing_support::writeStudyObjSet(
+      face, weights,
+      [&](const char* name, std::vector<float>& w) {
+        std::fill(w.begin(), w.end(), 0.0f);
+        if (std::string(name) != "neutral") w[size_t(next++ % 4)] = 1.0f;
+        return true;
+      },
+      dir / "set");
+  testing_support::writeFile(dir / "map.json", testing_support::studyRigMapJson(1.0f));
+  const CommandOutput rig = runFacial({"rig", (dir / "set").string(), "--rigmap", (dir / "map.json").string()});
+  ASSERT_EQ(rig.exitCode, 0) << rig.err;
+  EXPECT_TRUE(contains(rig.out, "(OBJ keyframe set): 6 morph weight(s), 6 driven")) << rig.out;
+  EXPECT_TRUE(contains(rig.out, "emotion happy <- 'smile'")) << rig.out;
+  EXPECT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", (dir / "set").string(), "--rigmap",
+                                    (dir / "map.json").string(), "--size", "64x64", "--out", (dir / "happy.png").string()})));
+}
+
+// The test face turned into a VRM 1.0 avatar: 'happy' binds the left smile
+// target and turns the skin red; 'sad' is not defined (fear is composed).
+std::filesystem::path writeTestVrm(const std::string& name) {
+  const std::filesystem::path glb = writeTestFace(name);
+  auto bytes = eng::readFileBytes(glb, size_t{1} << 24);
+  EXPECT_TRUE(bytes);
+  auto chunks = eng::parseGlb(*bytes);
+  EXPECT_TRUE(chunks);
+  nlohmann::json json = nlohmann::json::parse(chunks->json.begin(), chunks->json.end());
+  int faceNode = 0;
+  for (size_t n = 0; n < json["nodes"].size(); ++n)
+    if (json["nodes"][n].contains("mesh")) faceNode = int(n);
+  json["extensionsUsed"] = {"VRMC_vrm"};
+  json["extensions"]["VRMC_vrm"] = {
+      {"specVersion", "1.0"},
+      {"expressions",
+       {{"preset",
+         {{"happy",
+           {{"morphTargetBinds", {{{"node", faceNode}, {"index", kSmileLeft}, {"weight", 1.0}}}},
+            {"materialColorBinds", {{{"material", 0}, {"type", "color"}, {"targetValue", {1.0, 0.0, 0.0, 1.0}}}}}}},
+          {"surprised", {{"morphTargetBinds", {{{"node", faceNode}, {"index", kJawDrop}, {"weight", 1.0}}}}}},
+          {"neutral", nlohmann::json::object()}}}}}};
+  const std::string text = json.dump();
+  const std::vector<uint8_t> vrm = eng::buildGlb(text, chunks->bin);
+  const std::filesystem::path path = glb.parent_path() / "face.vrm";
+  EXPECT_TRUE(eng::writeFileBytes(path, vrm.data(), vrm.size()));
+  return path;
+}
+
+TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_synthetic_vrm");
+  const CommandOutput rig = runFacial({"rig", vrm.string(), "--json"});
+  ASSERT_EQ(rig.exitCode, 0) << rig.err;
+  const nlohmann::json report = nlohmann::json::parse(rig.out, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << rig.out;
+  EXPECT_EQ(report["format"], "VRM");
+  EXPECT_EQ(report["drivenTargetCount"], 2);
+  EXPECT_EQ(report["emotions"][1], "happy <- 'happy'");
+  EXPECT_EQ(report["emotions"][4], "fear <- 'surprised' x0.55 (composed)");
+  const std::filesystem::path dir = vrm.parent_path();
+  for (const char* expression : {"neutral", "happy"})
+    ASSERT_TRUE(ranCleanly(runFacial({"express", expression, "--model", vrm.string(), "--size", "64x64", "--out",
+                                      (dir / (std::string(expression) + ".png")).string()})));
+  const eng::Image neutral = readPngOrFail(dir / "neutral.png"), happy = readPngOrFail(dir / "happy.png");
+  ASSERT_FALSE(neutral.rgba8.empty());
+  ASSERT_FALSE(happy.rgba8.empty());
+  const size_t centre = (size_t(32) * 64 + 32) * 4;
+  EXPECT_GT(int(happy.rgba8[centre]) - int(happy.rgba8[centre + 1]), 100) << "the skin turns red";
+  EXPECT_LT(int(neutral.rgba8[centre]) - int(neutral.rgba8[centre + 1]), 80);
+  EXPECT_GT(differingFraction(neutral, happy), 0.2);
 }
 
 // Alpha from coverage, colour un-premultiplied: edge pixels keep the colour of

@@ -31,6 +31,9 @@ void describeStage(const VrmExpressionSet& vrm, RigMappingReport& report) {
   if (const size_t n = vrm.unsupportedMaterialBinds())
     report.notes.push_back(std::to_string(n) + " material colour bind(s) address MToon colours (shade, matcap, rim, "
                            "outline) that a glTF PBR material does not have; not shown");
+  if (vrm.hasMaterialBinds())
+    report.notes.push_back("material colour (base colour) and texture transform binds show on single poses "
+                           "(express); animated faces (play, demo, editor) show the morph binds only");
   for (const std::string& w : vrm.warnings) report.notes.push_back(w);
 }
 
@@ -138,6 +141,32 @@ eng::Result<void> RigMapping::validate() const {
   return {};
 }
 
+eng::Result<void> RigMapping::checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const {
+  const size_t channels = actionUnits().size();
+  if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount))
+    return eng::makeError("rig mapping: got " + std::to_string(auWeights.size()) + " AU weights, " +
+                          std::to_string(emotionWeights.size()) + " emotion weights; expected " +
+                          std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount));
+  for (size_t i = 0; i < auWeights.size(); ++i)
+    if (!std::isfinite(auWeights[i]))
+      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
+  for (size_t i = 0; i < emotionWeights.size(); ++i)
+    if (!std::isfinite(emotionWeights[i]))
+      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
+  return {};
+}
+
+void RigMapping::accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                            std::span<float> rows) const {
+  const uint32_t channels = static_cast<uint32_t>(actionUnits().size());
+  auto add = [&](uint32_t input, float weight) {
+    if (weight == 0.0f) return;
+    for (uint32_t e = offsets_[input]; e < offsets_[input + 1]; ++e) rows[entryTargets_[e]] += weight * entryGains_[e];
+  };
+  for (uint32_t i = 0; i < channels; ++i) add(i, auWeights[i]);
+  for (uint32_t i = 0; i < emotionWeights.size(); ++i) add(channels + i, emotionWeights[i]);
+}
+
 eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
                                     std::span<float> targetWeights) const {
   const size_t channels = actionUnits().size();
@@ -148,32 +177,33 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
                           std::to_string(targetWeights.size()) + " target weights; expected " +
                           std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount) + ", " +
                           std::to_string(targetNames_.size()));
-  for (size_t i = 0; i < auWeights.size(); ++i)
-    if (!std::isfinite(auWeights[i]))
-      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
-  for (size_t i = 0; i < emotionWeights.size(); ++i)
-    if (!std::isfinite(emotionWeights[i]))
-      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
-
-  // Rows land on the morph targets, or on the expressions of the stage.
-  const std::span<float> rows = stage_ ? std::span<float>(controlScratch_) : targetWeights;
-  if (stage_) std::fill(rows.begin(), rows.end(), 0.0f);
-  else
-    for (uint32_t t : drivenTargets_) rows[t] = 0.0f;
-  auto accumulate = [&](uint32_t input, float weight) {
-    if (weight == 0.0f) return;
-    for (uint32_t e = offsets_[input]; e < offsets_[input + 1]; ++e) rows[entryTargets_[e]] += weight * entryGains_[e];
-  };
-  for (uint32_t i = 0; i < channels; ++i) accumulate(i, auWeights[i]);
-  for (uint32_t i = 0; i < emotionWeights.size(); ++i) accumulate(static_cast<uint32_t>(channels) + i, emotionWeights[i]);
+  if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
   if (!stage_) {
+    for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
+    accumulate(auWeights, emotionWeights, targetWeights);
     for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
     return {};
   }
-  for (float& w : rows) w = std::clamp(w, 0.0f, 1.0f);
-  // Sizes were checked when the mapping was built; the stage writes every target, only driven ones are kept.
-  if (auto resolved = stage_->apply(rows, stageScratch_); !resolved) return resolved;
+  // Rows land on the expressions; the stage resolves them (it writes every
+  // target, only the driven ones are kept).
+  std::fill(controlScratch_.begin(), controlScratch_.end(), 0.0f);
+  accumulate(auWeights, emotionWeights, controlScratch_);
+  for (float& w : controlScratch_) w = std::clamp(w, 0.0f, 1.0f);
+  if (auto resolved = stage_->apply(controlScratch_, stageScratch_); !resolved) return resolved;
   for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(stageScratch_[t], minWeight_, maxWeight_);
+  return {};
+}
+
+eng::Result<void> RigMapping::expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                                std::span<float> expressionWeights) const {
+  if (!stage_) return eng::makeError("rig mapping: no expression stage (not a VRM rig)");
+  if (expressionWeights.size() != controlNames_.size())
+    return eng::makeError("rig mapping: room for " + std::to_string(expressionWeights.size()) + " expression weights, the rig has " +
+                          std::to_string(controlNames_.size()));
+  if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
+  std::fill(expressionWeights.begin(), expressionWeights.end(), 0.0f);
+  accumulate(auWeights, emotionWeights, expressionWeights);
+  for (float& w : expressionWeights) w = std::clamp(w, 0.0f, 1.0f);
   return {};
 }
 

@@ -111,9 +111,17 @@ class RigMapping {
   eng::Result<void> apply(std::span<const float> auWeights, std::span<float> targetWeights) const {
     return apply(auWeights, {}, targetWeights);
   }
+  // Expression stage only: the expression weights (controlNames() order,
+  // clamped to [0, 1]) that apply() hands to the stage, e.g. for the stage's
+  // material binds (VrmExpressionSet::applyMaterials). Same checks as apply().
+  eng::Result<void> expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                      std::span<float> expressionWeights) const;
 
  private:
   friend class RigMappingBuilder;
+  eng::Result<void> checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const;
+  // rows[c] = sum over inputs of weight * gain for every control c the rows reach.
+  void accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights, std::span<float> rows) const;
 
   RigMappingReport report_;
   std::vector<std::string> targetNames_;
