@@ -1,7 +1,9 @@
 #pragma once
 // Everything a command needs to pose a face with the project's expressions:
-// the model, its rig mapping (data/rigmaps/<model>.json or the scheme its
-// target names follow) and the expression presets (data/expressions.json).
+// the face (loadFace: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3,
+// told apart by content), its rig mapping (data/rigmaps/<model>.json, a VRM's
+// expressions, or the scheme its target names follow) and the expression
+// presets (data/expressions.json).
 // It turns a preset + intensity into the model's flat weight vector
 // (eng::WeightLayout order), allocation-free after load:
 //
