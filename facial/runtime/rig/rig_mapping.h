@@ -31,7 +31,10 @@
 // targets; apply() turns the expression weights into morph weights through
 // the expressions' binds with VRM's isBinary and override rules
 // (vrm_expressions.h). targetNames() are then the model's morph targets and
-// controlNames() the expressions.
+// controlNames() the expressions. Code that rebuilds a mapping from its rows
+// (RigMappingBuilder over controlNames(), then setExpressionStage with the
+// shared stage, as attachExpressionStage and cli::actionUnitRig do) keeps
+// the stage; a builder over targetNames() would lose it.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
