@@ -2,12 +2,14 @@
 // Options of `facial demo`, shared by its windowed and headless paths.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace cli {
 
 struct DemoOptions {
   std::string model;               // empty: the built-in head
   std::string rigmap;              // empty: <data>/rigmaps/<model>.json or the detected scheme
+  std::vector<std::string> shapes; // --shape NAME=VALUE identity parameters (CANDIDE-3 shape units)
   std::string graph;               // empty: data/graphs/tour.json
   std::string clip;                // skeletal clip of the model under the face (name, index, "all"); empty: none
   bool headless = false;           // forced headless even with a display

@@ -1,7 +1,9 @@
 #pragma once
 // Everything a command needs to pose a face with the project's expressions:
-// the model, its rig mapping (data/rigmaps/<model>.json or the scheme its
-// target names follow) and the expression presets (data/expressions.json).
+// the face (loadFace: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3,
+// told apart by content), its rig mapping (data/rigmaps/<model>.json, a VRM's
+// expressions, or the scheme its target names follow) and the expression
+// presets (data/expressions.json).
 // It turns a preset + intensity into the model's flat weight vector
 // (eng::WeightLayout order), allocation-free after load:
 //
@@ -10,6 +12,7 @@
 //   auto happy = face->findExpression("happy");
 //   face->expressionWeights(**happy, 0.8f, weights);
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,6 +36,36 @@ namespace cli {
 // wording: --model/-m (default: the built-in head) and --rigmap (a rig map
 // file instead of <data>/rigmaps/<model>.json or detection).
 void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap);
+// --shape NAME=VALUE (repeatable): identity parameters (CANDIDE-3 shape units,
+// or any morph target) baked into the rest mesh before anything is drawn.
+void addShapeOption(CLI::App& app, std::vector<std::string>& shapes);
+
+// What a face file is, told by its content (not its extension).
+enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3 };
+std::string_view faceFormatName(FaceFormat format);
+
+// A face as loaded, before any rig: the model and, for VRM, its expressions.
+struct LoadedFace {
+  eng::Model model;
+  FaceFormat format = FaceFormat::Gltf;
+  std::shared_ptr<const facial::VrmExpressionSet> vrm;  // VRM only
+};
+
+// THE loader of every command, the demo and the editor. Picks the importer
+// by content: a folder is an OBJ keyframe set (neutral.obj + one OBJ per
+// target), "glTF" magic or a JSON object is glTF / GLB, and VRM when it has a
+// VRMC_vrm (1.0) or VRM (0.x) extension, "# VERTEX LIST" is a CANDIDE-3 .wfm.
+// `shapes` ("NAME=VALUE") are then baked into the rest mesh (bakeShapes).
+// Errors name the file and the problem.
+eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<const std::string> shapes = {});
+
+// positions += value * target deltas (normals likewise, renormalised) for
+// each "NAME=VALUE"; the target's default weight becomes 0 so the value is
+// not applied twice. NAME matches a morph target exactly, else ignoring case,
+// a "SU_" prefix and ' ' / '_' / '-' differences ("head_height" finds CANDIDE's
+// "SU_Head height"). Errors: malformed assignment, unknown name (listing the
+// model's shape units / targets).
+eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes);
 
 // The program's data folder: $FACIAL_DATA_DIR when set, else the source tree's data/.
 std::filesystem::path dataDirectory();
@@ -52,6 +85,11 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
 // Per flat target: the largest world-space displacement at weight 1, divided
 // by the height of the region the targets move (the face).
 std::vector<float> targetReach(const eng::Model& model);
+// The rig of a loaded face: a VRM's is detected over its expressions and
+// carried to the morph targets by their binds (facial::buildVrmRigMapping),
+// uncalibrated (its expressions are whole poses the author tuned); any other
+// face's as buildModelRig.
+eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const std::filesystem::path& rigmapFile = {});
 
 // A rig for graphs that speak action units. The animation graph blends
 // presets as action-unit vectors, so a target bound to an emotion ("target
@@ -73,6 +111,7 @@ struct FaceSetupOptions {
   std::filesystem::path model;        // empty: defaultModelPath()
   std::filesystem::path expressions;  // empty: defaultExpressionsPath()
   std::filesystem::path rigmap;       // empty: look-up / detection (buildModelRig)
+  std::vector<std::string> shapes;    // "NAME=VALUE" identity parameters (bakeShapes)
 };
 
 class FaceSetup {
@@ -81,6 +120,9 @@ class FaceSetup {
   static eng::Result<FaceSetup> load(const FaceSetupOptions& options = {});
 
   const eng::Model& model() const { return model_; }
+  FaceFormat format() const { return format_; }
+  // The VRM expressions (null unless format() is Vrm).
+  const facial::VrmExpressionSet* vrm() const { return vrm_.get(); }
   const std::string& name() const { return name_; }
   const eng::WeightLayout& layout() const { return layout_; }
   const facial::RigMapping& rig() const { return rig_; }
@@ -106,11 +148,20 @@ class FaceSetup {
   eng::Result<void> expressionWeights(const facial::ExpressionPreset& preset, float intensity,
                                       std::span<float> weights);
 
+  // The model as one pose shows it: for a VRM face whose expressions bind
+  // materials, a copy with the preset's material colour binds applied to the
+  // base colour factors and its texture transform binds to the texture
+  // coordinates (uv * scale + offset) of the primitives using those
+  // materials; otherwise model() itself. Same errors as expressionWeights.
+  eng::Result<eng::Model> modelForPose(const facial::ExpressionPreset& preset, float intensity);
+
  private:
-  FaceSetup(eng::Model model, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
+  FaceSetup(LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
             facial::ExpressionLibrary expressions);
 
   eng::Model model_;
+  FaceFormat format_ = FaceFormat::Gltf;
+  std::shared_ptr<const facial::VrmExpressionSet> vrm_;
   std::string name_;
   eng::WeightLayout layout_;
   facial::RigMapping rig_;

@@ -87,7 +87,7 @@ int runHeadlessDemo(const DemoOptions& o) {
 
   auto framing = framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
   facial::GraphLoadOptions graphOptions;

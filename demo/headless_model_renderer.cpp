@@ -29,6 +29,7 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   r.view_.camera.yawDegrees = options.yawDegrees;
   r.view_.camera.pitchDegrees = options.pitchDegrees;
   r.view_.camera.zoom = options.zoom;
+  r.view_.backdrop = options.backdrop;
   r.modelName_ = model.sourcePath;
   return r;
 }

@@ -30,6 +30,7 @@ struct HeadlessRenderOptions {
   float zoom = 1.0f;          // > 1 = closer
   eng::vk::FramingMode framing = eng::vk::FramingMode::Face;  // head and neck, or the whole model
   std::string device;         // eng::vk::ContextOptions::device
+  eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
 };
 
 class HeadlessModelRenderer {

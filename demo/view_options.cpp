@@ -30,6 +30,7 @@ void addViewOptions(CLI::App& app, ViewOptions& view) {
   app.add_option("--zoom", view.zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
   addFramingOption(app, view.frame);
   addDeviceOption(app, view.device);
+  addBackgroundOption(app, view.background);
 }
 
 eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view) {
@@ -46,7 +47,41 @@ eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view
   options.pitchDegrees = view.pitch;
   options.zoom = view.zoom;
   options.device = view.device;
+  auto backdrop = parseBackground(view.background);
+  if (!backdrop) return backdrop.error();
+  options.backdrop = *backdrop;
   return options;
+}
+
+// --background ------------------------------------------------------------
+
+void addBackgroundOption(CLI::App& app, std::string& background) {
+  app.add_option("--background", background,
+                 "Behind the face: studio (the default gradient), transparent (RGBA PNG, alpha from coverage) or "
+                 "#RRGGBB");
+}
+
+eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text) {
+  eng::vk::Backdrop backdrop;
+  if (text.empty() || text == "studio") return backdrop;
+  if (text == "transparent") {
+    backdrop.kind = eng::vk::Backdrop::Kind::Transparent;
+    return backdrop;
+  }
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  bool valid = text.size() == 7 && text[0] == '#';
+  for (size_t i = 1; valid && i < 7; ++i) valid = hex(text[i]) >= 0;
+  if (!valid)
+    return eng::makeError("--background '" + text + "' is not transparent, studio or a colour #RRGGBB (e.g. #20a0ff)");
+  backdrop.kind = eng::vk::Backdrop::Kind::Solid;
+  for (int c = 0; c < 3; ++c)
+    backdrop.srgb[c] = float(hex(text[1 + 2 * c]) * 16 + hex(text[2 + 2 * c])) / 255.0f;
+  return backdrop;
 }
 
 }  // namespace cli

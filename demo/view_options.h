@@ -19,6 +19,7 @@ struct ViewOptions {
   float pitch = 0.0f;
   float zoom = 1.0f;
   std::string device;
+  std::string background;  // --background (parseBackground)
 };
 
 // --device alone, for commands that choose their own framing.
@@ -32,5 +33,12 @@ void addViewOptions(CLI::App& app, ViewOptions& view);
 
 // Size parsed, zoom/yaw/pitch checked; the error names the option and value.
 eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view);
+
+// --background transparent|#RRGGBB|studio: what lies behind the face. For
+// commands that do not take every view option (sheet, play).
+void addBackgroundOption(CLI::App& app, std::string& background);
+// "" / "studio": the gradient; "transparent": RGBA with alpha from coverage;
+// "#RRGGBB": that colour. The error names the option and value.
+eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text);
 
 }  // namespace cli

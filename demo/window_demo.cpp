@@ -194,7 +194,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!o.size.empty() && !parseSize(o.size, width, height))
     return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
 
-  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   const fs::path graphPath = o.graph.empty() ? dataDirectory() / "graphs" / "tour.json" : fs::path(o.graph);

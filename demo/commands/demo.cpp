@@ -21,6 +21,7 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
                      [](CLI::App& app) {
   auto o = std::make_shared<DemoOptions>();
   addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
   app.add_option("--graph", o->graph, "Animation graph (default: data/graphs/tour.json)");
   app.add_flag("--headless", o->headless, "Render the tour to files even when a display is present");
   app.add_option("--out,-o", o->out, "Headless output folder (default: out/demo-<date-time>)");

@@ -23,6 +23,7 @@ struct ExpressOptions {
   float intensity = 1.0f;
   std::string model;
   std::string rigmap;
+  std::vector<std::string> shapes;
   ViewOptions view;
   std::string out;
 };
@@ -40,14 +41,17 @@ int runExpress(const ExpressOptions& o) {
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial express: note: intensity %g clamped to [0, 1]\n", o.intensity);
 
-  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
   if (!preset) return fail(preset.error().message);
   std::vector<float> weights(face->weightCount());
   if (auto posed = face->expressionWeights(**preset, o.intensity, weights); !posed) return fail(posed.error().message);
 
-  auto renderer = HeadlessModelRenderer::create(face->model(), *renderOptions);
+  // VRM material binds (colour, texture transform) belong to the pose.
+  auto shown = face->modelForPose(**preset, o.intensity);
+  if (!shown) return fail(shown.error().message);
+  auto renderer = HeadlessModelRenderer::create(*shown, *renderOptions);
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights);
   if (!image) return fail(image.error().message);
@@ -67,6 +71,7 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
       ->check(CLI::Number)
       ->capture_default_str();
   addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
   addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runExpress(*o); };

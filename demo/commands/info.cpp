@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demo/command.h"
+#include "demo/face_setup.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
 
@@ -151,14 +152,15 @@ CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, mate
                      [](CLI::App& app) {
                        auto path = std::make_shared<std::string>();
                        auto json = std::make_shared<bool>(false);
-                       app.add_option("model", *path, "glTF model (.gltf or .glb)")->required();
+                       app.add_option("model", *path, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
                        app.add_flag("--json", *json, "Print machine-readable JSON instead of text");
                        return [path, json]() -> int {
-                         auto model = eng::loadModel(*path);
-                         if (!model) {
-                           std::fprintf(stderr, "facial info: error: %s\n", model.error().message.c_str());
+                         auto face = loadFace(*path);
+                         if (!face) {
+                           std::fprintf(stderr, "facial info: error: %s\n", face.error().message.c_str());
                            return 1;
                          }
+                         const eng::Model* model = &face->model;
                          if (*json) std::printf("%s\n", toJson(*model).dump(2, ' ', false,
                                                                            nlohmann::ordered_json::error_handler_t::replace).c_str());
                          else printText(*model);

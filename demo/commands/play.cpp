@@ -31,6 +31,8 @@ struct PlayOptions {
   std::string model;
   std::string rigmap;
   std::string clip;  // skeletal clip of the model: name, index or "all"; empty = rest pose
+  std::vector<std::string> shapes;
+  std::string background;
   std::string device;
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
@@ -77,7 +79,7 @@ int runPlay(const PlayOptions& o) {
 
   auto framing = framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
 
   float length = 24.0f;
@@ -93,9 +95,15 @@ int runPlay(const PlayOptions& o) {
 
   auto skeleton = SkeletonMotion::create(setup->model(), o.clip);
   if (!skeleton) return fail(skeleton.error().message);
+  auto backdrop = parseBackground(o.background);
+  if (!backdrop) return fail(backdrop.error().message);
 
-  auto renderer = HeadlessModelRenderer::create(
-      setup->model(), {.width = width, .height = height, .zoom = kFaceZoom, .framing = *framing, .device = o.device});
+  auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width,
+                                                                 .height = height,
+                                                                 .zoom = kFaceZoom,
+                                                                 .framing = *framing,
+                                                                 .device = o.device,
+                                                                 .backdrop = *backdrop});
   if (!renderer) return fail(renderer.error().message);
 
   SequenceOptions sequence;
@@ -129,6 +137,8 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   addFaceOptions(app, o->model, o->rigmap);
   app.add_option("--clip", o->clip,
                  "Skeletal animation of the model to play under the face: its name, its index, or 'all' (loops)");
+  addShapeOption(app, o->shapes);
+  addBackgroundOption(app, o->background);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--seconds", o->seconds, "Length (default: the timeline's duration, 24 s for a graph)");
   app.add_option("--size", o->size, "Frame size WxH")->capture_default_str();

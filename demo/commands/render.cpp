@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "demo/cli_parse.h"
 #include "demo/command.h"
+#include "demo/face_setup.h"
 #include "demo/headless_model_renderer.h"
 #include "demo/view_options.h"
 #include "engine/scene/gltf_loader.h"
@@ -24,6 +26,7 @@ namespace {
 struct RenderOptions {
   std::string model;
   std::vector<std::string> weights;
+  std::vector<std::string> shapes;
   ViewOptions view;
   std::string out;
 };
@@ -33,11 +36,6 @@ int fail(const std::string& message) {
   return 1;
 }
 
-bool parseFloat(std::string_view text, float& out) {
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && std::isfinite(out);
-}
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -63,8 +61,9 @@ int runRender(const RenderOptions& o) {
   auto renderOptions = headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
 
-  auto model = eng::loadModel(o.model);
-  if (!model) return fail(model.error().message);
+  auto face = loadFace(o.model, o.shapes);
+  if (!face) return fail(face.error().message);
+  const eng::Model* model = &face->model;
   const eng::WeightLayout layout(*model);
   std::vector<float> weights = layout.defaults();
   for (const std::string& assignment : o.weights) {
@@ -94,8 +93,9 @@ int runRender(const RenderOptions& o) {
 
 CommandRegistrar reg("render", "Render a model to a PNG, headless", [](CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  app.add_option("model", o->model, "glTF 2.0 file (.gltf or .glb)")->required();
+  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
   app.add_option("--weight,-w", o->weights, "Morph weight override NAME=VALUE (repeatable; all meshes with that target)");
+  addShapeOption(app, o->shapes);
   addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runRender(*o); };

@@ -1,9 +1,12 @@
-// `facial rig MODEL [--rigmap FILE] [--json]`: how the runtime drives a
-// model: the rig mapping's scheme, the targets no input drives, the inputs
-// that drive nothing, and the mapping's notes.
+// `facial rig MODEL [--rigmap FILE] [--shape NAME=VALUE]... [--json]`: how
+// the runtime drives a face (any format loadFace reads): the rig mapping's
+// scheme, how each emotion is realised (composed ones say from what), the
+// VRM expression stage, visemes, the targets no input drives, the inputs that
+// drive nothing, and the mapping's notes.
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,18 +20,25 @@ namespace {
 struct RigOptions {
   std::string model;
   std::string rigmap;
+  std::vector<std::string> shapes;
   bool json = false;
 };
 
-nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigCalibration& calibration) {
+nlohmann::ordered_json toJson(const std::string& modelPath, FaceFormat format,
+                              const facial::RigCalibration& calibration) {
   const facial::RigMapping& rig = calibration.rig;
   const facial::RigMappingReport& report = rig.report();
   nlohmann::ordered_json units = nlohmann::ordered_json::array();
   for (const facial::ActionUnitCalibration& u : calibration.units)
     units.push_back({{"channel", u.channel}, {"reach", u.reach}, {"reference", u.reference}, {"scale", u.scale}});
   return {{"model", modelPath},
+          {"format", std::string(faceFormatName(format))},
           {"scheme", std::string(facial::rigSchemeName(report.scheme))},
           {"detail", report.detail},
+          {"expressionStage", report.stage},
+          {"emotions", report.emotions},
+          {"visemes", report.visemes},
+          {"unmappedExpressions", report.unmappedControls},
           {"targetCount", rig.targetCount()},
           {"drivenTargetCount", rig.drivenTargets().size()},
           {"unmappedTargets", report.unmappedTargets},
@@ -38,21 +48,22 @@ nlohmann::ordered_json toJson(const std::string& modelPath, const facial::RigCal
 }
 
 int runRig(const RigOptions& o) {
-  auto model = eng::loadModel(o.model);
-  if (!model) {
-    std::fprintf(stderr, "facial rig: error: %s\n", model.error().message.c_str());
+  auto face = loadFace(o.model, o.shapes);
+  if (!face) {
+    std::fprintf(stderr, "facial rig: error: %s\n", face.error().message.c_str());
     return 1;
   }
-  auto rig = buildModelRig(*model, o.rigmap);
+  auto rig = buildFaceRig(*face, o.rigmap);
   if (!rig) {
     std::fprintf(stderr, "facial rig: error: %s\n", rig.error().message.c_str());
     return 1;
   }
   if (o.json) {
     std::printf("%s\n",
-                toJson(o.model, *rig).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+                toJson(o.model, face->format, *rig).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   } else {
-    std::printf("%s: %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(), rig->rig.targetCount(),
+    std::printf("%s (%s): %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(),
+                std::string(faceFormatName(face->format)).c_str(), rig->rig.targetCount(),
                 rig->rig.drivenTargets().size(), rig->rig.report().summary().c_str());
     if (!rig->units.empty())
       std::printf("action-unit strength calibration (largest vertex travel at 1 / face height):\n%s",
@@ -63,8 +74,9 @@ int runRig(const RigOptions& o) {
 
 CommandRegistrar reg("rig", "Show how the expression runtime drives a model (rig mapping report)", [](CLI::App& app) {
   auto o = std::make_shared<RigOptions>();
-  app.add_option("model", o->model, "glTF model (.gltf or .glb)")->required();
+  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
   app.add_option("--rigmap", o->rigmap, "Rig map JSON to use instead of <data>/rigmaps/<model>.json or detection");
+  addShapeOption(app, o->shapes);
   app.add_flag("--json", o->json, "Print machine-readable JSON instead of text");
   return [o] { return runRig(*o); };
 });

@@ -26,6 +26,9 @@ namespace {
 
 struct SheetOptions {
   std::string model;
+  std::string rigmap;
+  std::vector<std::string> shapes;
+  std::string background;
   bool compound = false;
   uint32_t size = 256;
   float intensity = 1.0f;
@@ -64,7 +67,7 @@ int runSheet(const SheetOptions& o) {
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
   auto framing = framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto face = FaceSetup::load({.model = o.model});
+  auto face = FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!face) return fail(face.error().message);
   // Basic: exactly the emotion channels, in their order (neutral first).
   std::vector<const facial::ExpressionPreset*> presets;
@@ -79,8 +82,11 @@ int runSheet(const SheetOptions& o) {
     }
   }
 
+  auto backdrop = parseBackground(o.background);
+  if (!backdrop) return fail(backdrop.error().message);
   auto renderer = HeadlessModelRenderer::create(
-      face->model(), {.width = o.size, .height = o.size, .zoom = o.zoom, .framing = *framing, .device = o.device});
+      face->model(),
+      {.width = o.size, .height = o.size, .zoom = o.zoom, .framing = *framing, .device = o.device, .backdrop = *backdrop});
   if (!renderer) return fail(renderer.error().message);
   std::vector<float> weights(face->weightCount());
   std::vector<eng::ContactSheetTile> tiles;
@@ -101,6 +107,8 @@ int runSheet(const SheetOptions& o) {
   eng::ContactSheetOptions sheetOptions;
   sheetOptions.columns = std::min<int>(5, int(tiles.size() + 1) / 2);
   sheetOptions.labelHeight = labelHeightFor(*text, tiles, int(o.size));
+  // A transparent sheet keeps only the faces and the labels.
+  if (backdrop->kind == eng::vk::Backdrop::Kind::Transparent) sheetOptions.background = {0, 0, 0, 0};
   sheetOptions.title = face->name() + ": " + (o.compound ? "compound expressions" : "basic expressions") +
                        ", rig: " + std::string(facial::rigSchemeName(face->rig().scheme()));
   auto sheet = eng::composeContactSheet(tiles, sheetOptions);
@@ -116,7 +124,9 @@ int runSheet(const SheetOptions& o) {
 
 CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expressions, headless", [](CLI::App& app) {
   auto o = std::make_shared<SheetOptions>();
-  app.add_option("--model,-m", o->model, "glTF model (default: the built-in head, <data>/head.glb)");
+  addFaceOptions(app, o->model, o->rigmap);
+  addShapeOption(app, o->shapes);
+  addBackgroundOption(app, o->background);
   app.add_flag("--compound", o->compound, "The compound presets instead of neutral and the six basic emotions");
   app.add_option("--size", o->size, "Tile size in pixels (square)")
       ->check(CLI::Range(16u, 4096u))

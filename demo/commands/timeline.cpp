@@ -9,6 +9,7 @@
 #include <string>
 
 #include "demo/command.h"
+#include "demo/face_setup.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "facial/bake/gltf_timeline.h"
@@ -44,8 +45,9 @@ eng::Result<size_t> pickAnimation(const eng::Model& model, const std::string& wh
 }
 
 int runImport(const TimelineOptions& o) {
-  auto model = eng::loadModel(o.model);
-  if (!model) return fail(model.error().message);
+  auto face = loadFace(o.model);
+  if (!face) return fail(face.error().message);
+  eng::Model* model = &face->model;
   auto index = pickAnimation(*model, o.animation);
   if (!index) return fail(index.error().message);
   std::vector<std::string> warnings;
@@ -61,8 +63,9 @@ int runImport(const TimelineOptions& o) {
 int runExport(const TimelineOptions& o) {
   auto timeline = facial::loadTimeline(o.timeline);
   if (!timeline) return fail(timeline.error().message);
-  auto model = eng::loadModel(o.model);
-  if (!model) return fail(model.error().message);
+  auto face = loadFace(o.model);
+  if (!face) return fail(face.error().message);
+  eng::Model* model = &face->model;
   if (auto exported = facial::exportGltfTimeline(*model, *timeline, {.node = o.node}); !exported)
     return fail(o.timeline + " on " + o.model + ": " + exported.error().message);
   size_t droppedChannels = 0;

@@ -147,7 +147,7 @@ std::span<const float> EditorApp::faceWeights() const {
 int EditorApp::setUp(const EditorOptions& o) {
   uint32_t width = 1280, height = 800;
   if (!cli::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
-  auto setup = cli::FaceSetup::load({.model = o.model, .rigmap = o.rigmap});
+  auto setup = cli::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   targetNames_ = setup_->layout().names();

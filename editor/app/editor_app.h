@@ -3,12 +3,14 @@
 // machine and control map on the left, RBF sculpt on the right, the timeline
 // along the bottom). The face sits in the free middle of the window.
 #include <string>
+#include <vector>
 
 namespace editor {
 
 struct EditorOptions {
   std::string model;     // empty: the built-in head
   std::string rigmap;    // empty: data/rigmaps/<model>.json or the detected scheme
+  std::vector<std::string> shapes;  // --shape NAME=VALUE identity parameters (CANDIDE-3 shape units)
   std::string graph;     // empty: data/graphs/tour.json
   std::string timeline;  // opened in the timeline panel when given
   std::string device;    // Vulkan device (discrete | integrated | cpu | name); empty: FACIAL_DEVICE / automatic

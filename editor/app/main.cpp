@@ -2,13 +2,16 @@
 //               [--quit-after S] [--screenshot out.png] [--script actions.txt] [--device D]
 #include <CLI/CLI.hpp>
 
+#include "demo/face_setup.h"
 #include "editor/app/editor_app.h"
 
 int main(int argc, char** argv) {
   editor::EditorOptions o;
   CLI::App app{"facial-editor: edit keyframe timelines, drive the state machine and the control map, "
                "and sculpt expressions with RBF control points"};
-  app.add_option("--model", o.model, "glTF face (default: the built-in head, data/head.glb)");
+  app.add_option("--model", o.model,
+                 "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, data/head.glb)");
+  cli::addShapeOption(app, o.shapes);
   app.add_option("--rigmap", o.rigmap, "Rig map JSON (default: data/rigmaps/<model>.json or the detected scheme)");
   app.add_option("--graph", o.graph, "Animation graph with a state machine (default: data/graphs/tour.json)");
   app.add_option("--timeline", o.timeline, "Timeline JSON to open in the timeline panel");

@@ -83,7 +83,13 @@ void TextRenderer::draw(Canvas& canvas, std::string_view text, int x, int y, flo
           if (px < 0 || px >= canvas.width) continue;
           const float a = glyph[static_cast<size_t>(row) * gw + col] / 255.0f * (colour.a / 255.0f);
           uint8_t* p = canvas.rgba.data() + (static_cast<size_t>(py) * canvas.width + px) * 4;
-          for (int c = 0; c < 3; ++c) p[c] = static_cast<uint8_t>(p[c] * (1 - a) + colour[c] * a + 0.5f);
+          // "Over" with straight alpha, so labels also show on a transparent canvas
+          // (on an opaque one this is the plain mix).
+          const float below = p[3] / 255.0f * (1 - a);
+          const float out = a + below;
+          if (out <= 0.0f) continue;
+          for (int c = 0; c < 3; ++c) p[c] = static_cast<uint8_t>((colour[c] * a + p[c] * below) / out + 0.5f);
+          p[3] = static_cast<uint8_t>(out * 255.0f + 0.5f);
         }
       }
     }

@@ -1,8 +1,40 @@
 #include "engine/vk/offscreen_renderer.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 #include "engine/vk/vk_result.h"
 
 namespace eng::vk {
+namespace {
+
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+glm::vec3 srgbToLinear(const glm::vec3& c) { return {srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b)}; }
+float linearToSrgb(float c) { return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+
+// Over a (0,0,0,0) clear, the MSAA resolve averages samples in linear space:
+// a pixel a fraction a covered holds (a * colour, a), then sRGB-encoded (alpha
+// is not). Straight alpha, as PNG wants: decode, divide by a, encode.
+void unpremultiplySrgb(eng::Image& image) {
+  std::array<float, 256> decode{};
+  for (int i = 0; i < 256; ++i) decode[size_t(i)] = srgbToLinear(float(i) / 255.0f);
+  for (size_t p = 0; p + 3 < image.rgba8.size(); p += 4) {
+    const uint8_t a = image.rgba8[p + 3];
+    if (a == 0) {
+      image.rgba8[p] = image.rgba8[p + 1] = image.rgba8[p + 2] = 0;
+      continue;
+    }
+    if (a == 255) continue;
+    const float alpha = float(a) / 255.0f;
+    for (size_t c = 0; c < 3; ++c) {
+      const float straight = std::min(1.0f, decode[image.rgba8[p + c]] / alpha);
+      image.rgba8[p + c] = static_cast<uint8_t>(std::lround(linearToSrgb(straight) * 255.0f));
+    }
+  }
+}
+
+}  // namespace
 
 Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const OffscreenOptions& options) {
   OffscreenRenderer r;
@@ -31,9 +63,17 @@ Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<co
   const VkExtent2D extent = target_.extent();
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
+  const Backdrop& backdrop = view.backdrop;
+  glm::vec4 clear(0.0f, 0.0f, 0.0f, 1.0f);
+  if (backdrop.kind == Backdrop::Kind::Solid) clear = glm::vec4(srgbToLinear(backdrop.srgb), 1.0f);
+  if (backdrop.kind == Backdrop::Kind::Transparent) clear = glm::vec4(0.0f);
+  const bool studio = backdrop.kind == Backdrop::Kind::Studio;
   ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
-                          [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent); }, {}}));
-  return target_.readPixels();
+                          [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); }, {}},
+                         clear));
+  eng::Image image = target_.readPixels();
+  if (backdrop.kind == Backdrop::Kind::Transparent) unpremultiplySrgb(image);
+  return image;
 }
 
 Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<const ModelInstance> instances) {

@@ -79,13 +79,13 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
   return t;
 }
 
-Result<void> OffscreenTarget::render(const Recorders& recorders) {
+Result<void> OffscreenTarget::render(const Recorders& recorders, const glm::vec4& clearColor) {
   return ctx_->submitOneShot([&](VkCommandBuffer cmd) {
     if (recorders.beforePass) recorders.beforePass(cmd);
     std::array<VkClearValue, 3> clears{};
-    clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+    clears[0].color = {{clearColor.r, clearColor.g, clearColor.b, clearColor.a}};
     clears[1].depthStencil = {1.0f, 0};
-    clears[2].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+    clears[2].color = clears[0].color;
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = renderPass_.get();
     begin.framebuffer = framebuffer_.get();

@@ -33,7 +33,8 @@ class OffscreenTarget {
   };
   // One submission: beforePass, the pass (cleared) with inPass, a copy of the
   // resolved image to the readback buffer, afterPass; waits for completion.
-  Result<void> render(const Recorders& recorders);
+  // clearColor: linear RGBA the colour attachment starts from.
+  Result<void> render(const Recorders& recorders, const glm::vec4& clearColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   // The last rendered image, RGBA8, top row first.
   eng::Image readPixels() const;
 

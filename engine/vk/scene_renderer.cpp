@@ -276,7 +276,7 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) co
   shadowMap_.end(cmd);
 }
 
-void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D extent) const {
+void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D extent, bool drawBackdrop) const {
   const Slot& slot = slots_[slotIndex];
   const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent};
@@ -284,8 +284,10 @@ void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D e
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
                           &slot.descriptorSet, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
-  vkCmdDraw(cmd, 3, 1, 0, 0);
+  if (drawBackdrop) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+  }
   drawBatches(cmd, slot, true);
 }
 

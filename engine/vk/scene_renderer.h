@@ -70,7 +70,8 @@ class SceneRenderer {
   // Before the scene's render pass: the key light's shadow map for the prepared draws.
   void recordShadowPass(VkCommandBuffer cmd, uint32_t slot) const;
   // Inside the render pass: background, then every prepared draw.
-  void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent) const;
+  // drawBackdrop: false leaves the cleared colour (a solid or transparent backdrop).
+  void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent, bool drawBackdrop = true) const;
 
   // Morph capture (tests, tools): prepare, record inside the render pass,
   // then the barrier after it, submit, wait, and read.

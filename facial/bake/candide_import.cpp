@@ -298,7 +298,7 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   primitive.texcoords = std::move(texcoords);
 
   eng::Mesh mesh;
-  mesh.name = "candide3";
+  mesh.name = "candide3 face";  // "face": shown dressed like other untextured faces (skin tone, occlusion)
   for (const Unit& unit : *animationUnits) {
     const CandideAnimationUnit* known = findCandideUnit(unit.name);
     if (!known)

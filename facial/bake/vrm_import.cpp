@@ -108,12 +108,155 @@ size_t meshTargetCount(const VrmExpressionSet& set, size_t mesh) {
   return set.meshTargetOffsets[mesh + 1] - set.meshTargetOffsets[mesh];
 }
 
-void warnUnappliedBinds(const Context& c, const Json& expression, const std::string& path,
-                        std::initializer_list<std::string_view> keys) {
-  for (std::string_view key : keys)
-    if (expression.contains(key) && expression[std::string(key)].is_array() && !expression[std::string(key)].empty())
-      c.set.warnings.push_back(std::string(c.source) + ": " + childPath(path, key) +
-                               ": material binds are not applied (morph targets only)");
+eng::Result<std::array<float, 4>> readFloats(const Context& c, const Json& object, std::string_view key,
+                                             const std::string& path, size_t count, bool required) {
+  std::array<float, 4> out{};
+  const std::string keyPath = childPath(path, key);
+  if (!object.contains(key)) {
+    if (required) return jsonError(c.source, keyPath, "missing");
+    return out;
+  }
+  const Json& v = object[std::string(key)];
+  if (!v.is_array() || v.size() < count)
+    return jsonError(c.source, keyPath, "must be an array of " + std::to_string(count) + " numbers, got " + v.dump());
+  for (size_t i = 0; i < count; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+      return jsonError(c.source, childPath(keyPath, i), "must be a finite number, got " + v[i].dump());
+    out[i] = v[i].get<float>();
+  }
+  return out;
+}
+
+size_t materialCountOf(const Json& gltf) {
+  return gltf.contains("materials") && gltf["materials"].is_array() ? gltf["materials"].size() : 0;
+}
+
+// VRM 1.0 materialColorBinds [{material, type, targetValue[4]}] and
+// textureTransformBinds [{material, scale[2], offset[2]}].
+eng::Result<void> readVrm1MaterialBinds(const Context& c, const Json& e, const std::string& path, VrmExpression& expression) {
+  const size_t materials = materialCountOf(c.gltf);
+  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
+  if (e.contains("materialColorBinds")) {
+    const std::string bindsPath = childPath(path, "materialColorBinds");
+    const Json& binds = e["materialColorBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, type, targetValue}");
+      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
+      if (!material) return material.error();
+      const std::string type = bind.contains("type") && bind["type"].is_string() ? bind["type"].get<std::string>() : "";
+      VrmMaterialColorBind out;
+      out.material = static_cast<uint32_t>(*material);
+      bool known = false;
+      for (auto t : {VrmMaterialColorType::Color, VrmMaterialColorType::EmissionColor, VrmMaterialColorType::ShadeColor,
+                     VrmMaterialColorType::MatcapColor, VrmMaterialColorType::RimColor, VrmMaterialColorType::OutlineColor})
+        if (vrmMaterialColorTypeName(t) == type) {
+          out.type = t;
+          known = true;
+        }
+      if (!known)
+        return jsonError(c.source, childPath(bindPath, "type"),
+                         "must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " +
+                             (bind.contains("type") ? bind["type"].dump() : std::string("nothing")));
+      auto value = readFloats(c, bind, "targetValue", bindPath, 4, true);
+      if (!value) return value.error();
+      out.targetValue = *value;
+      c.set.materialColorBinds.push_back(out);
+    }
+  }
+  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
+
+  expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
+  if (e.contains("textureTransformBinds")) {
+    const std::string bindsPath = childPath(path, "textureTransformBinds");
+    const Json& binds = e["textureTransformBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, scale, offset}");
+      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
+      if (!material) return material.error();
+      VrmTextureTransformBind out;
+      out.material = static_cast<uint32_t>(*material);
+      if (bind.contains("scale")) {
+        auto scale = readFloats(c, bind, "scale", bindPath, 2, true);
+        if (!scale) return scale.error();
+        out.scale = {(*scale)[0], (*scale)[1]};
+      }
+      auto offset = readFloats(c, bind, "offset", bindPath, 2, false);
+      if (!offset) return offset.error();
+      out.offset = {(*offset)[0], (*offset)[1]};
+      c.set.textureTransformBinds.push_back(out);
+    }
+  }
+  expression.textureTransformBindCount =
+      static_cast<uint32_t>(c.set.textureTransformBinds.size()) - expression.firstTextureTransformBind;
+  return {};
+}
+
+// VRM 0.x materialValues [{materialName, propertyName, targetValue[]}]:
+// _Color / _EmissionColor / _ShadeColor / _SphereAdd / _RimColor / _OutlineColor
+// are colours, _MainTex_ST is a texture transform (scale xy, offset zw).
+eng::Result<void> readVrm0MaterialValues(const Context& c, const Json& group, const std::string& path,
+                                         VrmExpression& expression) {
+  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
+  expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
+  if (group.contains("materialValues")) {
+    const std::string valuesPath = childPath(path, "materialValues");
+    const Json& values = group["materialValues"];
+    if (!values.is_array()) return jsonError(c.source, valuesPath, "must be an array");
+    const size_t materials = materialCountOf(c.gltf);
+    for (size_t b = 0; b < values.size(); ++b) {
+      const std::string valuePath = childPath(valuesPath, b);
+      const Json& value = values[b];
+      if (!value.is_object() || !value.contains("materialName") || !value["materialName"].is_string() ||
+          !value.contains("propertyName") || !value["propertyName"].is_string())
+        return jsonError(c.source, valuePath, "a material value must be an object {materialName, propertyName, targetValue}");
+      const std::string materialName = value["materialName"].get<std::string>();
+      size_t material = materials;
+      for (size_t m = 0; m < materials; ++m)
+        if (c.gltf["materials"][m].is_object() && c.gltf["materials"][m].value("name", std::string()) == materialName) {
+          material = m;
+          break;
+        }
+      if (material == materials)
+        return jsonError(c.source, childPath(valuePath, "materialName"), "no material is named '" + materialName + "'");
+      const std::string property = value["propertyName"].get<std::string>();
+      auto target = readFloats(c, value, "targetValue", valuePath, 4, true);
+      if (!target) return target.error();
+      if (property == "_MainTex_ST") {
+        c.set.textureTransformBinds.push_back(
+            {static_cast<uint32_t>(material), {(*target)[0], (*target)[1]}, {(*target)[2], (*target)[3]}});
+        continue;
+      }
+      struct Property {
+        std::string_view name;
+        VrmMaterialColorType type;
+      };
+      constexpr std::array kProperties = {Property{"_Color", VrmMaterialColorType::Color},
+                                          Property{"_EmissionColor", VrmMaterialColorType::EmissionColor},
+                                          Property{"_ShadeColor", VrmMaterialColorType::ShadeColor},
+                                          Property{"_SphereAdd", VrmMaterialColorType::MatcapColor},
+                                          Property{"_RimColor", VrmMaterialColorType::RimColor},
+                                          Property{"_OutlineColor", VrmMaterialColorType::OutlineColor}};
+      bool known = false;
+      for (const Property& p : kProperties)
+        if (p.name == property) {
+          c.set.materialColorBinds.push_back({static_cast<uint32_t>(material), p.type, *target});
+          known = true;
+        }
+      if (!known)
+        c.set.warnings.push_back(std::string(c.source) + ": " + childPath(valuePath, "propertyName") + ": '" + property +
+                                 "' is not a colour or _MainTex_ST; ignored");
+    }
+  }
+  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
+  expression.textureTransformBindCount =
+      static_cast<uint32_t>(c.set.textureTransformBinds.size()) - expression.firstTextureTransformBind;
+  return {};
 }
 
 eng::Result<VrmOverride> readOverride(const Context& c, const Json& expression, std::string_view key,
@@ -146,7 +289,7 @@ eng::Result<void> readVrm1Expression(const Context& c, const std::string& name, 
   expression.overrideBlink = *blink;
   expression.overrideLookAt = *lookAt;
   expression.overrideMouth = *mouth;
-  warnUnappliedBinds(c, e, path, {"materialColorBinds", "textureTransformBinds"});
+  if (auto r = readVrm1MaterialBinds(c, e, path, expression); !r) return r.error();
 
   expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
   if (e.contains("morphTargetBinds")) {
@@ -251,7 +394,7 @@ eng::Result<void> readVrm0(const Context& c, const Json& vrm) {
     auto binary = readBool(c, group, "isBinary", path);
     if (!binary) return binary.error();
     expression.isBinary = *binary;
-    warnUnappliedBinds(c, group, path, {"materialValues"});
+    if (auto r = readVrm0MaterialValues(c, group, path, expression); !r) return r.error();
     expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
     if (group.contains("binds")) {
       const std::string bindsPath = childPath(path, "binds");
@@ -287,6 +430,7 @@ eng::Result<VrmExpressionSet> importVrmExpressions(const Json& gltf, std::string
   if (!hasVrm1 && !hasVrm0)
     return jsonError(source, "/extensions", "no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
   VrmExpressionSet set;
+  set.materialCount = static_cast<uint32_t>(materialCountOf(gltf));
   const Context c{source, gltf, set};
   if (auto r = readTargets(c); !r) return r.error();
   if (auto r = hasVrm1 ? readVrm1(c, (*extensions)["VRMC_vrm"]) : readVrm0(c, (*extensions)["VRM"]); !r)
@@ -297,7 +441,14 @@ eng::Result<VrmExpressionSet> importVrmExpressions(const Json& gltf, std::string
   return set;
 }
 
-eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file) {
+bool hasVrmExtension(const Json& gltf) {
+  return gltf.is_object() && gltf.contains("extensions") && gltf["extensions"].is_object() &&
+         (gltf["extensions"].contains("VRMC_vrm") || gltf["extensions"].contains("VRM"));
+}
+
+namespace {
+
+eng::Result<Json> readGltfJson(const std::filesystem::path& file) {
   const std::string name = file.string();
   eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
   if (!bytes) return bytes.error();
@@ -307,9 +458,24 @@ eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& fi
     if (!chunks) return eng::makeError(name + ": " + chunks.error().message);
     text = std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
   }
-  eng::Result<Json> json = parseJsonText(text, name);
+  return parseJsonText(text, name);
+}
+
+}  // namespace
+
+eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file) {
+  eng::Result<Json> json = readGltfJson(file);
   if (!json) return json.error();
-  return importVrmExpressions(*json, name);
+  return importVrmExpressions(*json, file.string());
+}
+
+eng::Result<std::optional<VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file) {
+  eng::Result<Json> json = readGltfJson(file);
+  if (!json) return json.error();
+  if (!hasVrmExtension(*json)) return std::optional<VrmExpressionSet>();
+  auto set = importVrmExpressions(*json, file.string());
+  if (!set) return set.error();
+  return std::optional<VrmExpressionSet>(std::move(*set));
 }
 
 }  // namespace facial

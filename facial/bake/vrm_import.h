@@ -10,9 +10,12 @@
 // When both are present VRM 1.0 wins. Flat targets are mesh-major over the
 // document's meshes (mesh m's targets at meshTargetOffsets[m]), named
 // "<mesh name>/<target name>" from mesh.extras.targetNames ("target_N" without).
-// Material colour and texture transform binds are not applied: they are
-// listed in VrmExpressionSet::warnings. Errors name the source, JSON path and problem.
+// Material colour binds (1.0 materialColorBinds, 0.x materialValues _Color,
+// _EmissionColor, ...) and texture transform binds (1.0 textureTransformBinds,
+// 0.x _MainTex_ST) address glTF materials by index (0.x: by name). Errors name
+// the source, JSON path and problem.
 #include <filesystem>
+#include <optional>
 #include <string_view>
 
 #include <nlohmann/json_fwd.hpp>
@@ -25,5 +28,9 @@ namespace facial {
 // A .vrm / .glb (binary container) or a .gltf / .json text document.
 eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file);
 eng::Result<VrmExpressionSet> importVrmExpressions(const nlohmann::ordered_json& gltf, std::string_view source);
+// The expressions of a glTF / GLB / VRM file, or nullopt when it has no VRM
+// extension (a plain glTF). Errors: unreadable file, broken container or JSON, broken VRM data.
+eng::Result<std::optional<VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file);
+bool hasVrmExtension(const nlohmann::ordered_json& gltf);
 
 }  // namespace facial

@@ -17,7 +17,7 @@ TEST(RigCommand, TextReportNamesSchemeAndUnmappedTargetsAndInputs) {
   const std::filesystem::path face = writeTestFace("rig_command_face");
   const CommandOutput run = runFacial({"rig", face.string()});
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_NE(run.out.find(face.string() + ": 5 morph weight(s), 4 driven"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(face.string() + " (glTF): 5 morph weight(s), 4 driven"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("scheme: FACS action units"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("unmapped targets (1): custom_shape"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("unmapped inputs ("), std::string::npos) << run.out;

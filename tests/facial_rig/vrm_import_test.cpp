@@ -23,6 +23,7 @@ Json vrm1Document() {
   return Json::parse(R"({
     "asset": {"version": "2.0"},
     "nodes": [{"name": "root"}, {"name": "face", "mesh": 0}, {"name": "teeth", "mesh": 1}],
+    "materials": [{"name": "skin"}, {"name": "eye"}],
     "meshes": [
       {"name": "Face", "primitives": [{"attributes": {}, "targets": [{}, {}, {}, {}]},
                                       {"attributes": {}, "targets": [{}, {}, {}, {}]}],
@@ -49,6 +50,7 @@ Json vrm0Document() {
   return Json::parse(R"({
     "asset": {"version": "2.0"},
     "nodes": [{"mesh": 0}],
+    "materials": [{"name": "skin"}, {"name": "eye"}],
     "meshes": [{"name": "Body", "primitives": [{"attributes": {}, "targets": [{}, {}, {}, {}, {}]}]}],
     "extensions": {"VRM": {"blendShapeMaster": {"blendShapeGroups": [
       {"name": "Joy", "presetName": "joy", "binds": [{"mesh": 0, "index": 0, "weight": 100}]},
@@ -92,9 +94,13 @@ TEST(VrmImport, ReadsVrm1PresetAndCustomExpressions) {
   EXPECT_FALSE(smirk.isPreset);
   EXPECT_TRUE(smirk.isBinary);
   EXPECT_EQ(set->expressions[expressionIndex(*set, "blink")].group, VrmProceduralGroup::Blink);
-  ASSERT_EQ(set->warnings.size(), 1u);  // the material colour bind is not applied
-  EXPECT_NE(set->warnings[0].find("/extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds"),
-            std::string::npos);
+  EXPECT_TRUE(set->warnings.empty());
+  EXPECT_EQ(set->materialCount, 2u);
+  ASSERT_EQ(happy.materialColorBindCount, 1u);
+  const VrmMaterialColorBind& red = set->materialColorBinds[happy.firstMaterialColorBind];
+  EXPECT_EQ(red.material, 0u);
+  EXPECT_EQ(red.type, VrmMaterialColorType::Color);
+  EXPECT_EQ(red.targetValue, (std::array<float, 4>{1, 0, 0, 1}));
 }
 
 TEST(VrmImport, ReadsVrm0GroupsWithPercentWeights) {
@@ -106,7 +112,9 @@ TEST(VrmImport, ReadsVrm0GroupsWithPercentWeights) {
   EXPECT_EQ(set->expressions[2].group, VrmProceduralGroup::Blink);
   EXPECT_FALSE(set->expressions[4].isPreset);
   EXPECT_TRUE(set->expressions[4].isBinary);
-  EXPECT_EQ(set->warnings.size(), 1u);  // materialValues
+  EXPECT_TRUE(set->warnings.empty());
+  ASSERT_EQ(set->expressions[4].materialColorBindCount, 1u);
+  EXPECT_EQ(set->materialColorBinds[0].material, 1u);  // by name: "eye"
 }
 
 TEST(VrmImport, LoadsTextAndBinaryFiles) {
@@ -245,6 +253,200 @@ TEST(VrmImportValidity, NonVrmAndBrokenFilesAreNamed) {
   auto missing = loadVrmExpressions(dir / "absent.vrm");
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("absent.vrm: file not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace facial
+
+// ---- the VRM rig: expressions as an expression stage of the rig mapping ----
+namespace facial {
+namespace {
+
+std::shared_ptr<const VrmExpressionSet> sharedSet(const Json& document) {
+  auto set = importVrmExpressions(document, "avatar.vrm");
+  if (!set) {
+    ADD_FAILURE() << set.error().message;
+    return nullptr;
+  }
+  return std::make_shared<const VrmExpressionSet>(std::move(*set));
+}
+
+std::vector<std::string> morphNames(const VrmExpressionSet& set) {
+  std::vector<std::string> names;
+  for (const std::string& n : set.targetNames) names.push_back(n.substr(n.find('/') + 1));
+  return names;
+}
+
+bool contains(const std::vector<std::string>& list, std::string_view text) {
+  return std::any_of(list.begin(), list.end(), [&](const std::string& s) { return s.find(text) != std::string::npos; });
+}
+
+TEST(VrmRig, EmotionsReachMorphTargetsThroughTheExpressionBindsAndOverrides) {
+  auto set = sharedSet(vrm1Document());
+  ASSERT_TRUE(set);
+  auto rig = buildVrmRigMapping(set, morphNames(*set));
+  ASSERT_TRUE(rig) << rig.error().message;
+  EXPECT_EQ(rig->scheme(), RigScheme::Expressions);
+  EXPECT_EQ(rig->targetCount(), 5u);  // the morph targets, not the 6 expressions
+  EXPECT_EQ(rig->controlNames().size(), 6u);
+  ASSERT_NE(rig->expressionStage(), nullptr);
+
+  std::vector<float> au(actionUnits().size(), 0.0f), emotions(kEmotionCount, 0.0f), morph(5, -1.0f);
+  au[*actionUnitIndex("AU45_Blink_L")] = 1.0f;
+  au[*actionUnitIndex("AU45_Blink_R")] = 1.0f;
+  ASSERT_TRUE(rig->apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[1], 1.0f);  // blink
+  EXPECT_FLOAT_EQ(morph[0], 0.0f);
+  EXPECT_FLOAT_EQ(morph[3], -1.0f);  // aa: no input drives the mouth; left as it was
+  emotions[size_t(Emotion::Happy)] = 0.7f;  // happy blocks the blink
+  ASSERT_TRUE(rig->apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[0], 0.7f);
+  EXPECT_FLOAT_EQ(morph[1], 0.0f);
+  emotions[size_t(Emotion::Happy)] = 0.0f;
+  emotions[size_t(Emotion::Anger)] = 0.25f;  // angry blends it down
+  ASSERT_TRUE(rig->apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[1], 0.75f);
+  EXPECT_FLOAT_EQ(morph[2], 0.2f);
+
+  const RigMappingReport& report = rig->report();
+  EXPECT_NE(report.stage.find("VRM 1.0 expressions, 6 expressions over 5 morph targets"), std::string::npos)
+      << report.stage;
+  EXPECT_NE(report.stage.find("1 material colour"), std::string::npos) << report.stage;
+  EXPECT_EQ(report.visemes, (std::vector<std::string>{"aa"}));
+  EXPECT_TRUE(contains(report.emotions, "happy <- 'happy'"));
+  EXPECT_TRUE(contains(report.emotions, "fear <- nothing")) << report.summary();
+  EXPECT_TRUE(contains(report.emotions, "disgust <- 'angry' x0.5 (composed)")) << report.summary();
+  EXPECT_TRUE(contains(report.notes, "expressions that bind nothing (no visible change on this model): 'neutral'"))
+      << report.summary();
+  EXPECT_EQ(report.unmappedControls, (std::vector<std::string>{"smirk"}));
+  EXPECT_NE(report.summary().find("emotion surprise <- nothing"), std::string::npos) << report.summary();
+}
+
+TEST(VrmRig, BinaryExpressionsSnapAndACopyAppliesIndependently) {
+  Json doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"]["isBinary"] = true;
+  auto set = sharedSet(doc);
+  ASSERT_TRUE(set);
+  auto rig = buildVrmRigMapping(set, morphNames(*set));
+  ASSERT_TRUE(rig) << rig.error().message;
+  const RigMapping copy = *rig;
+  std::vector<float> au(actionUnits().size(), 0.0f), emotions(kEmotionCount, 0.0f), morph(5, 0.0f);
+  emotions[size_t(Emotion::Happy)] = 0.4f;
+  ASSERT_TRUE(rig->apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[0], 0.0f);
+  emotions[size_t(Emotion::Happy)] = 0.6f;
+  ASSERT_TRUE(copy.apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[0], 1.0f);
+}
+
+TEST(VrmRig, RelaxedStandsInForAMissingHappyAndFearIsComposed) {
+  Json doc = vrm1Document();
+  Json& presets = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"];
+  presets["relaxed"] = presets["happy"];
+  presets.erase("happy");
+  presets["surprised"] = Json::parse(R"({"morphTargetBinds": [{"node": 1, "index": 3, "weight": 1.0}]})");
+  presets["sad"] = Json::parse(R"({"morphTargetBinds": [{"node": 1, "index": 2, "weight": 0.5}]})");
+  auto set = sharedSet(doc);
+  ASSERT_TRUE(set);
+  auto rig = buildVrmRigMapping(set, morphNames(*set));
+  ASSERT_TRUE(rig) << rig.error().message;
+  const RigMappingReport& report = rig->report();
+  EXPECT_TRUE(contains(report.emotions, "happy <- 'relaxed'")) << report.summary();
+  EXPECT_TRUE(contains(report.emotions, "fear <- 'sad' x0.45 + 'surprised' x0.55 (composed)") ||
+              contains(report.emotions, "fear <- 'surprised' x0.55 + 'sad' x0.45 (composed)"))
+      << report.summary();
+  EXPECT_TRUE(contains(report.notes, "'relaxed' stands in for it")) << report.summary();
+  std::vector<float> au(actionUnits().size(), 0.0f), emotions(kEmotionCount, 0.0f), morph(5, 0.0f);
+  emotions[size_t(Emotion::Fear)] = 1.0f;
+  ASSERT_TRUE(rig->apply(au, emotions, morph));
+  EXPECT_FLOAT_EQ(morph[3], 0.55f);   // surprised's bind
+  EXPECT_FLOAT_EQ(morph[2], 0.225f);  // sad's half-weight bind
+}
+
+TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
+  Json doc = vrm1Document();
+  Json& happy = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"];
+  happy["materialColorBinds"].push_back(Json::parse(R"({"material": 1, "type": "emissionColor", "targetValue": [0, 1, 0, 1]})"));
+  happy["materialColorBinds"].push_back(Json::parse(R"({"material": 1, "type": "rimColor", "targetValue": [1, 1, 1, 1]})"));
+  happy["textureTransformBinds"] = Json::parse(R"([{"material": 1, "scale": [0.5, 0.5], "offset": [0.5, 0]}])");
+  auto set = sharedSet(doc);
+  ASSERT_TRUE(set);
+  EXPECT_EQ(set->unsupportedMaterialBinds(), 1u);
+  std::vector<float> weights(set->expressions.size(), 0.0f);
+  weights[expressionIndex(*set, "happy")] = 0.5f;
+  std::vector<VrmMaterialState> materials(2);
+  materials[0].color = {0.2f, 0.2f, 0.2f, 1.0f};
+  ASSERT_TRUE(set->applyMaterials(weights, materials));
+  EXPECT_FLOAT_EQ(materials[0].color[0], 0.6f);  // halfway from 0.2 to 1
+  EXPECT_FLOAT_EQ(materials[0].color[1], 0.1f);
+  EXPECT_FLOAT_EQ(materials[1].emission[1], 0.5f);
+  EXPECT_FLOAT_EQ(materials[1].uvScale[0], 0.75f);
+  EXPECT_FLOAT_EQ(materials[1].uvOffset[0], 0.25f);
+  auto rig = buildVrmRigMapping(set, morphNames(*set));
+  ASSERT_TRUE(rig);
+  EXPECT_TRUE(contains(rig->report().notes, "1 material colour bind(s) address MToon colours")) << rig->report().summary();
+  std::vector<VrmMaterialState> wrong(1);
+  EXPECT_FALSE(set->applyMaterials(weights, wrong));
+}
+
+TEST(VrmRig, Vrm0MainTexStIsATextureTransform) {
+  Json doc = vrm0Document();
+  doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][0]["materialValues"] =
+      Json::parse(R"([{"materialName": "skin", "propertyName": "_MainTex_ST", "targetValue": [1, 1, 0.25, 0]}])");
+  auto set = importVrmExpressions(doc, "old.vrm");
+  ASSERT_TRUE(set) << set.error().message;
+  ASSERT_EQ(set->textureTransformBinds.size(), 1u);
+  EXPECT_EQ(set->textureTransformBinds[0].material, 0u);
+  EXPECT_FLOAT_EQ(set->textureTransformBinds[0].offset[0], 0.25f);
+  EXPECT_EQ(set->expressions[0].textureTransformBindCount, 1u);
+}
+
+TEST(VrmRigValidity, MaterialBindsAreChecked) {
+  Json doc = vrm1Document();
+  Json& bind = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"]["materialColorBinds"][0];
+  bind["type"] = "glow";
+  EXPECT_NE(errorOf(doc).find("happy/materialColorBinds/0/type: must be color, emissionColor"), std::string::npos)
+      << errorOf(doc);
+  bind["type"] = "color";
+  bind["material"] = 5;
+  EXPECT_NE(errorOf(doc).find("materialColorBinds/0/material: 5 is out of range (2 materials)"), std::string::npos);
+  bind["material"] = 0;
+  bind["targetValue"] = Json::array({1, 0});
+  EXPECT_NE(errorOf(doc).find("materialColorBinds/0/targetValue: must be an array of 4 numbers"), std::string::npos);
+  doc = vrm0Document();
+  doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][4]["materialValues"][0]["materialName"] = "iris";
+  EXPECT_NE(errorOf(doc).find("materialValues/0/materialName: no material is named 'iris'"), std::string::npos);
+}
+
+TEST(VrmRigValidity, StageAndTargetCountsMustAgree) {
+  auto set = sharedSet(vrm1Document());
+  ASSERT_TRUE(set);
+  auto rig = buildVrmRigMapping(set, std::vector<std::string>{"a", "b"});
+  ASSERT_FALSE(rig);
+  EXPECT_NE(rig.error().message.find("address 5 morph targets, the model has 2"), std::string::npos);
+  EXPECT_FALSE(buildVrmRigMapping(nullptr, {}));
+}
+
+TEST(VrmRig, SharedVrm0And1AvatarsBuildRigsOverTheirShapeKey) {
+  FACIAL_REQUIRE_SHARED();
+  for (const char* file : {"modifier_shapekey_vrm0.vrm", "modifier_shapekey_vrm1.vrm"}) {
+    auto set = findVrmExpressions(testing_support::sharedDir() / "assets" / "vrm" / file);
+    ASSERT_TRUE(set) << set.error().message;
+    ASSERT_TRUE(set->has_value()) << file;
+    auto shared = std::make_shared<const VrmExpressionSet>(std::move(**set));
+    auto rig = buildVrmRigMapping(shared, std::vector<std::string>{"A"});
+    ASSERT_TRUE(rig) << rig.error().message;
+    EXPECT_EQ(rig->scheme(), RigScheme::Expressions) << file;
+    const RigMappingReport& report = rig->report();
+    // The files bind the shape key only to the open vowel (0.x 'a', 1.0 'aa'): a viseme, no emotion moves the mesh.
+    EXPECT_EQ(report.visemes.size(), 5u) << file << "\n" << report.summary();
+    EXPECT_TRUE(contains(report.notes, "expressions that bind nothing")) << report.summary();
+    EXPECT_TRUE(contains(report.emotions, std::string("happy <- '") + (shared->specVersion == 0 ? "joy'" : "happy'")))
+        << report.summary();
+  }
+  auto plain = findVrmExpressions(testing_support::sharedDir() / "assets" / "facecap.glb");
+  ASSERT_TRUE(plain) << plain.error().message;
+  EXPECT_FALSE(plain->has_value());
 }
 
 }  // namespace

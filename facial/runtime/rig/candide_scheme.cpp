@@ -24,6 +24,8 @@ void mapCandide3(RigMappingBuilder& builder) {
   }
   builder.note("CANDIDE-3 has no lip corner puller: AU12 drives 'Lip corner depressor' negatively");
   builder.note("CANDIDE-3 jaw z-push / x-push realise AU29 / AU30, which the channel vocabulary lacks");
+  builder.note("CANDIDE-3 shape units (SU_*) are identity, not expression: bake them into the mask with "
+               "--shape NAME=VALUE");
 }
 
 }  // namespace facial

@@ -25,6 +25,8 @@ constexpr std::array kEmotionAliases = {
     Aliases{Emotion::Anger, {"angry", "anger"}},
     Aliases{Emotion::Disgust, {"disgust", "disgusted"}},
 };
+// VRM 1.0 relaxed / 0.x fun: content, eyes half closed. Not one of the seven.
+constexpr std::array<std::string_view, 2> kRelaxed = {"relaxed", "fun"};
 constexpr std::array<std::string_view, 1> kBlink = {"blink"};
 constexpr std::array<std::string_view, 2> kBlinkLeft = {"blinkleft", "blink_l"};
 constexpr std::array<std::string_view, 2> kBlinkRight = {"blinkright", "blink_r"};
@@ -63,7 +65,7 @@ bool isExpressionName(const std::string& name) {
   };
   for (const Aliases& a : kEmotionAliases)
     if (in(a.names)) return true;
-  return in(kBlink) || in(kBlinkLeft) || in(kBlinkRight);
+  return in(kRelaxed) || in(kBlink) || in(kBlinkLeft) || in(kBlinkRight);
 }
 
 // An emotion the rig lacks, approximated by neighbours it has (fear reads as
@@ -94,6 +96,14 @@ void mapExpressions(RigMappingBuilder& builder) {
   const std::span<const std::string> names = builder.targetNames();
   for (const Aliases& a : kEmotionAliases)
     for (uint32_t t : findAll(names, a.names)) builder.add(emotionInput(a.emotion), t, 1.0f);
+  if (const std::vector<uint32_t> relaxed = findAll(names, kRelaxed); !relaxed.empty()) {
+    if (targetsOf(names, Emotion::Happy).empty()) {
+      for (uint32_t t : relaxed) builder.add(emotionInput(Emotion::Happy), t, 1.0f);
+      builder.note("happy: the rig has no happy / joy expression; '" + names[relaxed[0]] + "' stands in for it");
+    } else {
+      builder.note("'" + names[relaxed[0]] + "' is not one of the seven emotions; it stays free for other drivers");
+    }
+  }
 
   for (const Fallback& f : kFallbacks) {
     if (!targetsOf(names, f.missing).empty()) continue;

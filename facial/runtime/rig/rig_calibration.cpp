@@ -52,6 +52,9 @@ std::string RigCalibration::summary() const {
 
 eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const float> targetReach,
                                          const RigCalibrationOptions& options) {
+  // An expression stage's rows drive whole expressions its author tuned
+  // (VRM), not morph targets: they are left as they are.
+  if (rig.expressionStage()) return RigCalibration{rig, {}};
   if (targetReach.size() != rig.targetCount())
     return eng::makeError("rig calibration: " + std::to_string(targetReach.size()) + " target reaches for " +
                           std::to_string(rig.targetCount()) + " targets");

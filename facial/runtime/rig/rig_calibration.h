@@ -51,7 +51,8 @@ float referenceReach(std::string_view channel);
 
 // targetReach[t]: the largest displacement of target t at weight 1 divided by
 // the face size (targetReach.size() == rig.targetCount(), finite, >= 0).
-// Emotion rows (whole-expression targets) are left as they are. Errors name
+// Emotion rows (whole-expression targets) and rigs with an expression stage
+// (VRM: rows drive the author's expressions) are left as they are. Errors name
 // the sizes or the override that matches no channel.
 eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const float> targetReach,
                                          const RigCalibrationOptions& options = {});

@@ -2,10 +2,42 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/rig/rig_schemes.h"
 
 namespace facial {
+namespace {
+
+std::string formatGain(float gain) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(gain));
+  return text;
+}
+
+// The expression stage in the report: its size, its binds, expressions that cannot show.
+void describeStage(const VrmExpressionSet& vrm, RigMappingReport& report) {
+  report.stage = "VRM " + std::string(vrm.specVersion == 0 ? "0.x blend shape groups" : "1.0 expressions") + ", " +
+                 std::to_string(vrm.expressions.size()) + " expressions over " + std::to_string(vrm.targetCount()) +
+                 " morph targets (binds: " + std::to_string(vrm.binds.size()) + " morph target, " +
+                 std::to_string(vrm.materialColorBinds.size()) + " material colour, " +
+                 std::to_string(vrm.textureTransformBinds.size()) + " texture transform)";
+  std::string empty;
+  for (const VrmExpression& e : vrm.expressions)
+    if (e.bindCount == 0 && e.materialColorBindCount == 0 && e.textureTransformBindCount == 0)
+      empty += (empty.empty() ? "'" : ", '") + e.name + "'";
+  if (!empty.empty()) report.notes.push_back("expressions that bind nothing (no visible change on this model): " + empty);
+  if (const size_t n = vrm.unsupportedMaterialBinds())
+    report.notes.push_back(std::to_string(n) + " material colour bind(s) address MToon colours (shade, matcap, rim, "
+                           "outline) that a glTF PBR material does not have; not shown");
+  if (vrm.hasMaterialBinds())
+    report.notes.push_back("material colour (base colour) and texture transform binds show on single poses "
+                           "(express); animated faces (play, demo, editor) show the morph binds only");
+  for (const std::string& w : vrm.warnings) report.notes.push_back(w);
+}
+
+}  // namespace
 
 std::string_view rigSchemeName(RigScheme scheme) {
   switch (scheme) {
@@ -13,6 +45,8 @@ std::string_view rigSchemeName(RigScheme scheme) {
     case RigScheme::Candide3: return "CANDIDE-3";
     case RigScheme::Arkit52: return "ARKit 52 blend shapes";
     case RigScheme::Expressions: return "emotion expressions (VRM)";
+    case RigScheme::VRoid: return "VRoid Studio blend shapes";
+    case RigScheme::Visemes: return "visemes (lip sync)";
     case RigScheme::Custom: return "custom rig map";
   }
   return "?";
@@ -45,6 +79,11 @@ std::string RigMappingReport::summary() const {
   };
   std::string text = "scheme: " + std::string(rigSchemeName(scheme));
   if (!detail.empty()) text += " (" + detail + ")";
+  if (!stage.empty()) text += "\nexpression stage: " + stage;
+  for (const std::string& e : emotions) text += "\nemotion " + e;
+  if (!visemes.empty()) text += "\nvisemes (" + std::to_string(visemes.size()) + ", lip sync): " + list(visemes);
+  if (!stage.empty())
+    text += "\nunmapped expressions (" + std::to_string(unmappedControls.size()) + "): " + list(unmappedControls);
   text += "\nunmapped targets (" + std::to_string(unmappedTargets.size()) + "): " + list(unmappedTargets);
   text += "\nunmapped inputs (" + std::to_string(unmappedInputs.size()) + "): " + list(unmappedInputs);
   for (const std::string& n : notes) text += "\nnote: " + n;
@@ -77,10 +116,11 @@ eng::Result<void> RigMapping::validate() const {
     if (offsets_[i] > offsets_[i + 1])
       return eng::makeError("rig mapping: row offsets decrease at input " + std::to_string(i) + " (" +
                             std::string(rigInputName(static_cast<uint32_t>(i))) + ")");
+  const size_t controls = controlNames().size();
   for (size_t e = 0; e < entryTargets_.size(); ++e) {
-    if (entryTargets_[e] >= targetNames_.size())
-      return eng::makeError("rig mapping: entry " + std::to_string(e) + " drives target " +
-                            std::to_string(entryTargets_[e]) + " of " + std::to_string(targetNames_.size()));
+    if (entryTargets_[e] >= controls)
+      return eng::makeError("rig mapping: entry " + std::to_string(e) + " drives " + (stage_ ? "expression " : "target ") +
+                            std::to_string(entryTargets_[e]) + " of " + std::to_string(controls));
     if (!std::isfinite(entryGains_[e]))
       return eng::makeError("rig mapping: entry " + std::to_string(e) + " has a non-finite gain");
   }
@@ -91,7 +131,40 @@ eng::Result<void> RigMapping::validate() const {
   if (!(minWeight_ < maxWeight_))
     return eng::makeError("rig mapping: empty weight range [" + std::to_string(minWeight_) + ", " +
                           std::to_string(maxWeight_) + "]");
+  if (stage_) {
+    if (stage_->expressions.size() != controlNames_.size() || stage_->targetCount() != targetNames_.size())
+      return eng::makeError("rig mapping: the expression stage has " + std::to_string(stage_->expressions.size()) +
+                            " expressions and " + std::to_string(stage_->targetCount()) + " targets, the mapping " +
+                            std::to_string(controlNames_.size()) + " and " + std::to_string(targetNames_.size()));
+    if (auto valid = stage_->validate(); !valid) return valid;
+  }
   return {};
+}
+
+eng::Result<void> RigMapping::checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const {
+  const size_t channels = actionUnits().size();
+  if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount))
+    return eng::makeError("rig mapping: got " + std::to_string(auWeights.size()) + " AU weights, " +
+                          std::to_string(emotionWeights.size()) + " emotion weights; expected " +
+                          std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount));
+  for (size_t i = 0; i < auWeights.size(); ++i)
+    if (!std::isfinite(auWeights[i]))
+      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
+  for (size_t i = 0; i < emotionWeights.size(); ++i)
+    if (!std::isfinite(emotionWeights[i]))
+      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
+  return {};
+}
+
+void RigMapping::accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                            std::span<float> rows) const {
+  const uint32_t channels = static_cast<uint32_t>(actionUnits().size());
+  auto add = [&](uint32_t input, float weight) {
+    if (weight == 0.0f) return;
+    for (uint32_t e = offsets_[input]; e < offsets_[input + 1]; ++e) rows[entryTargets_[e]] += weight * entryGains_[e];
+  };
+  for (uint32_t i = 0; i < channels; ++i) add(i, auWeights[i]);
+  for (uint32_t i = 0; i < emotionWeights.size(); ++i) add(channels + i, emotionWeights[i]);
 }
 
 eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
@@ -104,21 +177,33 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
                           std::to_string(targetWeights.size()) + " target weights; expected " +
                           std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount) + ", " +
                           std::to_string(targetNames_.size()));
-  for (size_t i = 0; i < auWeights.size(); ++i)
-    if (!std::isfinite(auWeights[i]))
-      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
-  for (size_t i = 0; i < emotionWeights.size(); ++i)
-    if (!std::isfinite(emotionWeights[i]))
-      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
+  if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
+  if (!stage_) {
+    for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
+    accumulate(auWeights, emotionWeights, targetWeights);
+    for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
+    return {};
+  }
+  // Rows land on the expressions; the stage resolves them (it writes every
+  // target, only the driven ones are kept).
+  std::fill(controlScratch_.begin(), controlScratch_.end(), 0.0f);
+  accumulate(auWeights, emotionWeights, controlScratch_);
+  for (float& w : controlScratch_) w = std::clamp(w, 0.0f, 1.0f);
+  if (auto resolved = stage_->apply(controlScratch_, stageScratch_); !resolved) return resolved;
+  for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(stageScratch_[t], minWeight_, maxWeight_);
+  return {};
+}
 
-  for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
-  auto accumulate = [&](uint32_t input, float weight) {
-    if (weight == 0.0f) return;
-    for (uint32_t e = offsets_[input]; e < offsets_[input + 1]; ++e) targetWeights[entryTargets_[e]] += weight * entryGains_[e];
-  };
-  for (uint32_t i = 0; i < channels; ++i) accumulate(i, auWeights[i]);
-  for (uint32_t i = 0; i < emotionWeights.size(); ++i) accumulate(static_cast<uint32_t>(channels) + i, emotionWeights[i]);
-  for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
+eng::Result<void> RigMapping::expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                                std::span<float> expressionWeights) const {
+  if (!stage_) return eng::makeError("rig mapping: no expression stage (not a VRM rig)");
+  if (expressionWeights.size() != controlNames_.size())
+    return eng::makeError("rig mapping: room for " + std::to_string(expressionWeights.size()) + " expression weights, the rig has " +
+                          std::to_string(controlNames_.size()));
+  if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
+  std::fill(expressionWeights.begin(), expressionWeights.end(), 0.0f);
+  accumulate(auWeights, emotionWeights, expressionWeights);
+  for (float& w : expressionWeights) w = std::clamp(w, 0.0f, 1.0f);
   return {};
 }
 
@@ -130,6 +215,12 @@ void RigMappingBuilder::add(uint32_t input, uint32_t target, float gain) { entri
 void RigMappingBuilder::setWeightRange(float minWeight, float maxWeight) {
   minWeight_ = minWeight;
   maxWeight_ = maxWeight;
+}
+
+void RigMappingBuilder::setExpressionStage(std::shared_ptr<const VrmExpressionSet> stage,
+                                           std::vector<std::string> morphTargetNames) {
+  stage_ = std::move(stage);
+  morphTargetNames_ = std::move(morphTargetNames);
 }
 
 eng::Result<RigMapping> RigMappingBuilder::build() const {
@@ -166,17 +257,67 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
   }
   for (uint32_t i = 0; i < inputs; ++i) mapping.offsets_[i + 1] += mapping.offsets_[i];
 
-  std::vector<bool> driven(targetNames_.size(), false);
-  for (uint32_t t : mapping.entryTargets_) driven[t] = true;
+  // Rows address targetNames_ (the controls); with a stage they reach the
+  // morph targets through the driven expressions' binds.
+  // VRM's mouth presets (aa..oh, 0.x a..o) are visemes too when they are expressions.
+  auto isViseme = [&](const std::string& name) {
+    return isVisemeName(name) || (stage_ && vrmProceduralGroup(name) == VrmProceduralGroup::Mouth);
+  };
+  std::vector<bool> drivenControl(targetNames_.size(), false);
+  for (uint32_t t : mapping.entryTargets_) drivenControl[t] = true;
+  std::vector<bool> driven = drivenControl;
+  if (stage_) {
+    if (stage_->expressions.size() != targetNames_.size() || stage_->targetCount() != morphTargetNames_.size())
+      return eng::makeError("rig mapping builder: the expression stage has " +
+                            std::to_string(stage_->expressions.size()) + " expressions and " +
+                            std::to_string(stage_->targetCount()) + " morph targets; the builder was given " +
+                            std::to_string(targetNames_.size()) + " and " + std::to_string(morphTargetNames_.size()));
+    mapping.stage_ = stage_;
+    mapping.controlNames_ = targetNames_;
+    mapping.targetNames_ = morphTargetNames_;
+    mapping.controlScratch_.assign(targetNames_.size(), 0.0f);
+    mapping.stageScratch_.assign(morphTargetNames_.size(), 0.0f);
+    driven.assign(morphTargetNames_.size(), false);
+    for (uint32_t c = 0; c < stage_->expressions.size(); ++c) {
+      if (!drivenControl[c]) {
+        if (!isViseme(targetNames_[c])) mapping.report_.unmappedControls.push_back(targetNames_[c]);
+        continue;
+      }
+      const VrmExpression& e = stage_->expressions[c];
+      for (uint32_t b = e.firstBind; b < e.firstBind + e.bindCount && b < stage_->binds.size(); ++b)
+        if (stage_->binds[b].target < driven.size()) driven[stage_->binds[b].target] = true;
+    }
+  }
+  for (const std::string& name : targetNames_)
+    if (isViseme(name)) mapping.report_.visemes.push_back(name);
   for (uint32_t t = 0; t < driven.size(); ++t) {
     if (driven[t]) mapping.drivenTargets_.push_back(t);
-    else mapping.report_.unmappedTargets.push_back(targetNames_[t]);
+    else if (stage_ || !isViseme(mapping.targetNames_[t])) mapping.report_.unmappedTargets.push_back(mapping.targetNames_[t]);
   }
   for (uint32_t i = 0; i < inputs; ++i)
     if (mapping.offsets_[i] == mapping.offsets_[i + 1]) mapping.report_.unmappedInputs.emplace_back(rigInputName(i));
+  // How each emotion is realised, when the rig binds emotions at all.
+  bool bindsEmotions = false;
+  for (uint32_t e = 0; e < kEmotionCount; ++e) {
+    const uint32_t input = emotionInput(Emotion(e));
+    bindsEmotions |= mapping.offsets_[input] != mapping.offsets_[input + 1];
+  }
+  for (uint32_t e = 0; bindsEmotions && e < kEmotionCount; ++e) {
+    const uint32_t input = emotionInput(Emotion(e));
+    std::string line = std::string(emotionName(Emotion(e))) + " <- ";
+    if (mapping.offsets_[input] == mapping.offsets_[input + 1]) line += "nothing (the rig has no such expression)";
+    for (uint32_t k = mapping.offsets_[input]; k < mapping.offsets_[input + 1]; ++k) {
+      line += (k == mapping.offsets_[input] ? "'" : " + '") + targetNames_[mapping.entryTargets_[k]] + "'";
+      if (mapping.entryGains_[k] != 1.0f) line += " x" + formatGain(mapping.entryGains_[k]);
+    }
+    const uint32_t first = mapping.offsets_[input], end = mapping.offsets_[input + 1];
+    if (end - first > 1 || (end - first == 1 && mapping.entryGains_[first] != 1.0f)) line += " (composed)";
+    mapping.report_.emotions.push_back(std::move(line));
+  }
   mapping.report_.scheme = scheme_;
   mapping.report_.detail = detail_;
   mapping.report_.notes = notes_;
+  if (stage_) describeStage(*stage_, mapping.report_);
   if (eng::Result<void> valid = mapping.validate(); !valid) return valid.error();
   return mapping;
 }

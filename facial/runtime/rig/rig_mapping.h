@@ -14,14 +14,30 @@
 //   Arkit52      Apple ARKit's 52 blend shapes, "eyeBlinkLeft" or "eyeBlink_L"
 //                spelling (any prefix before '.' ignored), via a FACS table
 //   Expressions  whole-expression controls: VRM 1.0 / 0.x expressions (happy/joy,
-//                sad/sorrow, angry, surprised, neutral, blink...) or any targets
-//                named after emotions ("Angry", "Sad"); driven by the emotion
-//                channels, blink by AU45
+//                sad/sorrow, angry, surprised, relaxed/fun, neutral, blink...) or
+//                any targets named after emotions ("Angry", "Sad"); driven by the
+//                emotion channels, blink by AU45
+//   VRoid        VRoid Studio's Fcl_ALL_* / Fcl_BRW_* / Fcl_EYE_* / Fcl_MTH_*
+//                blend shapes (Fcl_ALL_Joy, Fcl_BRW_Angry, Fcl_EYE_Close_L, ...)
+//   Visemes      lip-sync shapes only (Oculus / Ready Player Me viseme_sil ..
+//                viseme_U): the jaw units drive the open vowel, no emotion
 //   Custom       a JSON rig map (rigmap_file.h), data/rigmaps/<model>.json
 // Targets no input drives and inputs that drive nothing are reported in
-// report(), never dropped silently.
+// report(), never dropped silently; viseme shapes (lip sync) are listed as
+// visemes, not as unmapped targets.
+//
+// Expression stage (VRM): a mapping built over a VRM model's expressions
+// (attachExpressionStage) has rows that address expressions, not morph
+// targets; apply() turns the expression weights into morph weights through
+// the expressions' binds with VRM's isBinary and override rules
+// (vrm_expressions.h). targetNames() are then the model's morph targets and
+// controlNames() the expressions. Code that rebuilds a mapping from its rows
+// (RigMappingBuilder over controlNames(), then setExpressionStage with the
+// shared stage, as attachExpressionStage and cli::actionUnitRig do) keeps
+// the stage; a builder over targetNames() would lose it.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,10 +46,11 @@
 
 #include "engine/core/result.h"
 #include "facial/runtime/rig/emotions.h"
+#include "facial/runtime/rig/vrm_expressions.h"
 
 namespace facial {
 
-enum class RigScheme : uint8_t { ActionUnits, Candide3, Arkit52, Expressions, Custom };
+enum class RigScheme : uint8_t { ActionUnits, Candide3, Arkit52, Expressions, VRoid, Visemes, Custom };
 std::string_view rigSchemeName(RigScheme scheme);
 
 // The input layout shared by every mapping: action-unit channels, then emotions.
@@ -49,6 +66,13 @@ struct RigMappingReport {
   std::vector<std::string> unmappedTargets;  // model targets that no input drives
   std::vector<std::string> unmappedInputs;   // AU / emotion channels that drive no target
   std::vector<std::string> notes;            // approximations and other decisions worth knowing
+  std::vector<std::string> visemes;          // lip-sync shapes / expressions, left for a speech driver
+  // How each emotion channel is realised when the rig binds emotions
+  // ("happy <- 'joy'", "fear <- 'surprised' x0.55 + 'sad' x0.45"); empty when
+  // emotions reach the face through the action units only.
+  std::vector<std::string> emotions;
+  std::string stage;                         // the expression stage, e.g. "VRM 1.0: 18 expressions -> 1 morph target"
+  std::vector<std::string> unmappedControls; // expressions no input drives (expression stage only)
   // Several lines for logs and the CLI.
   std::string summary() const;
 };
@@ -59,10 +83,15 @@ class RigMapping {
   const RigMappingReport& report() const { return report_; }
   size_t targetCount() const { return targetNames_.size(); }
   std::span<const std::string> targetNames() const { return targetNames_; }
+  // What the rows address: the expressions of the expression stage, else targetNames().
+  std::span<const std::string> controlNames() const { return stage_ ? controlNames_ : targetNames_; }
+  const VrmExpressionSet* expressionStage() const { return stage_.get(); }
+  const std::shared_ptr<const VrmExpressionSet>& sharedExpressionStage() const { return stage_; }
   // Output weights are clamped to [minWeight, maxWeight] ([0,1] except CANDIDE's signed units).
   float minWeight() const { return minWeight_; }
   float maxWeight() const { return maxWeight_; }
-  // The sparse row of one input: targets(input)[i] receives gains(input)[i] * weight.
+  // The sparse row of one input: control targets(input)[i] receives gains(input)[i] * weight
+  // (a morph target, or an expression of the expression stage).
   std::span<const uint32_t> targets(uint32_t input) const;
   std::span<const float> gains(uint32_t input) const;
   // Targets that some input drives (ascending); apply() writes only these.
@@ -76,14 +105,26 @@ class RigMapping {
   // another system). auWeights.size() == actionUnits().size(); emotionWeights
   // empty (all zero) or kEmotionCount; targetWeights.size() == targetCount();
   // weights finite. Otherwise an error naming the sizes / channel, nothing written.
+  // With an expression stage the expression weights are clamped to [0, 1],
+  // resolved by the stage and the morph weights it binds written; it uses
+  // scratch inside the mapping, so one mapping must not apply() on two
+  // threads at once (give each thread its own copy).
   eng::Result<void> apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
                           std::span<float> targetWeights) const;
   eng::Result<void> apply(std::span<const float> auWeights, std::span<float> targetWeights) const {
     return apply(auWeights, {}, targetWeights);
   }
+  // Expression stage only: the expression weights (controlNames() order,
+  // clamped to [0, 1]) that apply() hands to the stage, e.g. for the stage's
+  // material binds (VrmExpressionSet::applyMaterials). Same checks as apply().
+  eng::Result<void> expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                      std::span<float> expressionWeights) const;
 
  private:
   friend class RigMappingBuilder;
+  eng::Result<void> checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const;
+  // rows[c] = sum over inputs of weight * gain for every control c the rows reach.
+  void accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights, std::span<float> rows) const;
 
   RigMappingReport report_;
   std::vector<std::string> targetNames_;
@@ -93,6 +134,10 @@ class RigMapping {
   std::vector<uint32_t> drivenTargets_;
   float minWeight_ = 0.0f;
   float maxWeight_ = 1.0f;
+  std::shared_ptr<const VrmExpressionSet> stage_;
+  std::vector<std::string> controlNames_;  // stage expressions (stage only)
+  mutable std::vector<float> controlScratch_;
+  mutable std::vector<float> stageScratch_;
 };
 
 // Collects (input, target, gain) entries in any order, then lays them out as
@@ -107,6 +152,10 @@ class RigMappingBuilder {
   void setDetail(std::string detail) { detail_ = std::move(detail); }
   void note(std::string note) { notes_.push_back(std::move(note)); }
   void setWeightRange(float minWeight, float maxWeight);
+  // Rows address the stage's expressions (the builder's targetNames() must be
+  // their names, in order); the built mapping's targets are morphTargetNames
+  // (the stage's flat target count).
+  void setExpressionStage(std::shared_ptr<const VrmExpressionSet> stage, std::vector<std::string> morphTargetNames);
 
   // Fails when an entry is out of range, a gain is not finite, or the range is empty.
   eng::Result<RigMapping> build() const;
@@ -124,6 +173,8 @@ class RigMappingBuilder {
   std::vector<std::string> notes_;
   float minWeight_ = 0.0f;
   float maxWeight_ = 1.0f;
+  std::shared_ptr<const VrmExpressionSet> stage_;
+  std::vector<std::string> morphTargetNames_;
 };
 
 struct RigMappingOptions {
@@ -140,6 +191,21 @@ std::filesystem::path rigMapFileFor(const RigMappingOptions& options);
 // match (Candide3, ActionUnits, Arkit52, Expressions). Fails, suggesting a rig
 // map file, when no scheme recognises the names.
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, const RigMappingOptions& options = {});
+// The rig of a VRM model: the mapping detected (or read from a rig map) over
+// the expression names (VRM 1.0 preset / custom names, VRM 0.x presetName or
+// group name), then attachExpressionStage. morphTargetNames: the model's flat
+// targets (vrm->targetCount() of them). Notes list the expressions that bind
+// nothing and the binds the renderer cannot show.
+eng::Result<RigMapping> buildVrmRigMapping(std::shared_ptr<const VrmExpressionSet> vrm,
+                                           std::span<const std::string> morphTargetNames,
+                                           const RigMappingOptions& options = {});
+// `rows` (built over the stage's expression names) re-laid over the stage.
+eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::shared_ptr<const VrmExpressionSet> stage,
+                                              std::span<const std::string> morphTargetNames);
+// A lip-sync shape or expression: Oculus / Ready Player Me "viseme_*", VRM 1.0
+// aa/ih/ou/ee/oh, VRM 0.x a/i/u/e/o, VRoid Fcl_MTH_A/I/U/E/O.
+bool isVisemeName(std::string_view name);
+
 // Forces one built-in scheme (not Custom); fails when it recognises none of the names.
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme);
 

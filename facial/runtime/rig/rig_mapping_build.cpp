@@ -18,12 +18,16 @@ struct SchemeEntry {
 
 // Detection order: the most specific vocabulary first (CANDIDE names are
 // FACS-numbered too; VRM rigs may also carry ARKit custom expressions, which
-// are richer than whole emotions).
+// are richer than whole emotions; Ready Player Me avatars carry ARKit shapes
+// and visemes; VRoid exports carry Fcl_ shapes and sometimes emotion-named
+// extras). Visemes last: a face that has nothing else.
 constexpr std::array kSchemes = {
     SchemeEntry{RigScheme::Candide3, recogniseCandide3, mapCandide3, 4},
     SchemeEntry{RigScheme::ActionUnits, recogniseActionUnitNames, mapActionUnitNames, 3},
     SchemeEntry{RigScheme::Arkit52, recogniseArkit52, mapArkit52, 10},
+    SchemeEntry{RigScheme::VRoid, recogniseVRoid, mapVRoid, 3},
     SchemeEntry{RigScheme::Expressions, recogniseExpressions, mapExpressions, 1},
+    SchemeEntry{RigScheme::Visemes, recogniseVisemes, mapVisemes, 3},
 };
 
 eng::Result<RigMapping> buildWith(const SchemeEntry& entry, std::span<const std::string> targetNames,

@@ -28,6 +28,12 @@ void mapArkit52(RigMappingBuilder& builder);
 SchemeRecognition recogniseExpressions(std::span<const std::string> targetNames);
 void mapExpressions(RigMappingBuilder& builder);
 
+SchemeRecognition recogniseVRoid(std::span<const std::string> targetNames);
+void mapVRoid(RigMappingBuilder& builder);
+
+SchemeRecognition recogniseVisemes(std::span<const std::string> targetNames);
+void mapVisemes(RigMappingBuilder& builder);
+
 inline std::string asciiLower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -27,6 +27,47 @@ VrmOverride overrideOf(const VrmExpression& e, VrmProceduralGroup group) {
   return VrmOverride::None;
 }
 
+// Per procedural group: blocked by any 'block' expression with weight > 0,
+// else attenuated by the saturated sum of the 'blend' expressions' weights.
+struct Overrides {
+  static constexpr size_t kGroups = 4;
+  std::array<bool, kGroups> blocked{};
+  std::array<float, kGroups> blended{};
+
+  // An expression's weight after clamping, isBinary and the overrides of its group.
+  float effective(const VrmExpression& e, float input) const {
+    const float w = resolvedWeight(e, input);
+    if (e.group == VrmProceduralGroup::None) return w;
+    const size_t g = static_cast<size_t>(e.group);
+    const float factor = blocked[g] ? 0.0f : 1.0f - saturate(blended[g]);
+    // A binary expression must stay 0 or 1: any override suppresses it.
+    return e.isBinary ? (factor < 1.0f ? 0.0f : w) : w * factor;
+  }
+};
+
+Overrides collectOverrides(std::span<const VrmExpression> expressions, std::span<const float> weights) {
+  Overrides o;
+  for (size_t i = 0; i < expressions.size(); ++i) {
+    const VrmExpression& e = expressions[i];
+    const float w = resolvedWeight(e, weights[i]);
+    if (w <= 0.0f) continue;
+    for (VrmProceduralGroup g : {VrmProceduralGroup::Blink, VrmProceduralGroup::LookAt, VrmProceduralGroup::Mouth}) {
+      if (g == e.group) continue;  // an override on its own group is invalid per spec
+      const VrmOverride kind = overrideOf(e, g);
+      if (kind == VrmOverride::Block) o.blocked[static_cast<size_t>(g)] = true;
+      else if (kind == VrmOverride::Blend) o.blended[static_cast<size_t>(g)] += w;
+    }
+  }
+  return o;
+}
+
+eng::Result<void> checkFinite(const VrmExpressionSet& set, std::span<const float> weights) {
+  for (size_t i = 0; i < weights.size() && i < set.expressions.size(); ++i)
+    if (!std::isfinite(weights[i]))
+      return eng::makeError("VRM expressions: weight of '" + set.expressions[i].name + "' is not finite");
+  return {};
+}
+
 }  // namespace
 
 VrmProceduralGroup vrmProceduralGroup(std::string_view name) {
@@ -38,6 +79,18 @@ VrmProceduralGroup vrmProceduralGroup(std::string_view name) {
   for (std::string_view n : {"aa", "ih", "ou", "ee", "oh", "a", "i", "u", "e", "o"})
     if (k == n) return VrmProceduralGroup::Mouth;
   return VrmProceduralGroup::None;
+}
+
+std::string_view vrmMaterialColorTypeName(VrmMaterialColorType type) {
+  switch (type) {
+    case VrmMaterialColorType::Color: return "color";
+    case VrmMaterialColorType::EmissionColor: return "emissionColor";
+    case VrmMaterialColorType::ShadeColor: return "shadeColor";
+    case VrmMaterialColorType::MatcapColor: return "matcapColor";
+    case VrmMaterialColorType::RimColor: return "rimColor";
+    case VrmMaterialColorType::OutlineColor: return "outlineColor";
+  }
+  return "?";
 }
 
 std::vector<std::string> VrmExpressionSet::expressionNames() const {
@@ -58,6 +111,25 @@ eng::Result<void> VrmExpressionSet::validate() const {
     if (size_t(e.firstBind) + e.bindCount > binds.size())
       return eng::makeError("VRM expressions: '" + e.name + "' binds [" + std::to_string(e.firstBind) + ", " +
                             std::to_string(e.firstBind + e.bindCount) + ") of " + std::to_string(binds.size()));
+  for (const VrmExpression& e : expressions) {
+    if (size_t(e.firstMaterialColorBind) + e.materialColorBindCount > materialColorBinds.size() ||
+        size_t(e.firstTextureTransformBind) + e.textureTransformBindCount > textureTransformBinds.size())
+      return eng::makeError("VRM expressions: '" + e.name + "' material binds are out of range");
+  }
+  for (const VrmMaterialColorBind& b : materialColorBinds) {
+    if (b.material >= materialCount)
+      return eng::makeError("VRM expressions: a material colour bind addresses material " + std::to_string(b.material) +
+                            " of " + std::to_string(materialCount));
+    for (float v : b.targetValue)
+      if (!std::isfinite(v)) return eng::makeError("VRM expressions: a material colour bind has a non-finite value");
+  }
+  for (const VrmTextureTransformBind& b : textureTransformBinds) {
+    if (b.material >= materialCount)
+      return eng::makeError("VRM expressions: a texture transform bind addresses material " +
+                            std::to_string(b.material) + " of " + std::to_string(materialCount));
+    for (float v : {b.scale[0], b.scale[1], b.offset[0], b.offset[1]})
+      if (!std::isfinite(v)) return eng::makeError("VRM expressions: a texture transform bind has a non-finite value");
+  }
   for (size_t b = 0; b < binds.size(); ++b) {
     if (binds[b].target >= targetNames.size())
       return eng::makeError("VRM expressions: bind " + std::to_string(b) + " targets " +
@@ -68,6 +140,18 @@ eng::Result<void> VrmExpressionSet::validate() const {
   return {};
 }
 
+eng::Result<void> VrmExpressionSet::effectiveWeights(std::span<const float> expressionWeights,
+                                                     std::span<float> effective) const {
+  if (expressionWeights.size() != expressions.size() || effective.size() != expressions.size())
+    return eng::makeError("VRM expressions: got " + std::to_string(expressionWeights.size()) +
+                          " expression weights and room for " + std::to_string(effective.size()) + "; expected " +
+                          std::to_string(expressions.size()));
+  if (auto finite = checkFinite(*this, expressionWeights); !finite) return finite;
+  const Overrides overrides = collectOverrides(expressions, expressionWeights);
+  for (size_t i = 0; i < expressions.size(); ++i) effective[i] = overrides.effective(expressions[i], expressionWeights[i]);
+  return {};
+}
+
 eng::Result<void> VrmExpressionSet::apply(std::span<const float> expressionWeights,
                                           std::span<float> targetWeights) const {
   if (expressionWeights.size() != expressions.size() || targetWeights.size() != targetNames.size())
@@ -75,41 +159,58 @@ eng::Result<void> VrmExpressionSet::apply(std::span<const float> expressionWeigh
                           " expression weights and " + std::to_string(targetWeights.size()) +
                           " target weights; expected " + std::to_string(expressions.size()) + " and " +
                           std::to_string(targetNames.size()));
-  for (size_t i = 0; i < expressionWeights.size(); ++i)
-    if (!std::isfinite(expressionWeights[i]))
-      return eng::makeError("VRM expressions: weight of '" + expressions[i].name + "' is not finite");
-
-  // Per procedural group: blocked by any 'block' expression with weight > 0,
-  // else attenuated by the saturated sum of the 'blend' expressions' weights.
-  constexpr size_t kGroups = 4;
-  std::array<bool, kGroups> blocked{};
-  std::array<float, kGroups> blended{};
-  for (size_t i = 0; i < expressions.size(); ++i) {
-    const VrmExpression& e = expressions[i];
-    const float w = resolvedWeight(e, expressionWeights[i]);
-    if (w <= 0.0f) continue;
-    for (VrmProceduralGroup g : {VrmProceduralGroup::Blink, VrmProceduralGroup::LookAt, VrmProceduralGroup::Mouth}) {
-      if (g == e.group) continue;  // an override on its own group is invalid per spec
-      const VrmOverride o = overrideOf(e, g);
-      if (o == VrmOverride::Block) blocked[static_cast<size_t>(g)] = true;
-      else if (o == VrmOverride::Blend) blended[static_cast<size_t>(g)] += w;
-    }
-  }
-
+  if (auto finite = checkFinite(*this, expressionWeights); !finite) return finite;
+  const Overrides overrides = collectOverrides(expressions, expressionWeights);
   std::fill(targetWeights.begin(), targetWeights.end(), 0.0f);
   for (size_t i = 0; i < expressions.size(); ++i) {
     const VrmExpression& e = expressions[i];
-    float w = resolvedWeight(e, expressionWeights[i]);
-    if (e.group != VrmProceduralGroup::None) {
-      const size_t g = static_cast<size_t>(e.group);
-      const float factor = blocked[g] ? 0.0f : 1.0f - saturate(blended[g]);
-      // A binary expression must stay 0 or 1: any override suppresses it.
-      w = e.isBinary ? (factor < 1.0f ? 0.0f : w) : w * factor;
-    }
+    const float w = overrides.effective(e, expressionWeights[i]);
     if (w == 0.0f) continue;
     for (uint32_t b = e.firstBind; b < e.firstBind + e.bindCount; ++b) targetWeights[binds[b].target] += binds[b].weight * w;
   }
   return {};
+}
+
+eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> expressionWeights,
+                                                   std::span<VrmMaterialState> materials) const {
+  if (materials.size() != materialCount)
+    return eng::makeError("VRM expressions: " + std::to_string(materials.size()) + " material states given, the model has " +
+                          std::to_string(materialCount) + " materials");
+  std::vector<float> effective(expressions.size());
+  if (auto r = effectiveWeights(expressionWeights, effective); !r) return r;
+  // Deltas from every material's own state, so several expressions add up.
+  const std::vector<VrmMaterialState> rest(materials.begin(), materials.end());
+  for (size_t i = 0; i < expressions.size(); ++i) {
+    const VrmExpression& e = expressions[i];
+    const float w = effective[i];
+    if (w == 0.0f) continue;
+    for (uint32_t b = e.firstMaterialColorBind; b < e.firstMaterialColorBind + e.materialColorBindCount; ++b) {
+      const VrmMaterialColorBind& bind = materialColorBinds[b];
+      VrmMaterialState& m = materials[bind.material];
+      const VrmMaterialState& r = rest[bind.material];
+      if (bind.type == VrmMaterialColorType::Color)
+        for (size_t c = 0; c < 4; ++c) m.color[c] += w * (bind.targetValue[c] - r.color[c]);
+      else if (bind.type == VrmMaterialColorType::EmissionColor)
+        for (size_t c = 0; c < 3; ++c) m.emission[c] += w * (bind.targetValue[c] - r.emission[c]);
+    }
+    for (uint32_t b = e.firstTextureTransformBind; b < e.firstTextureTransformBind + e.textureTransformBindCount; ++b) {
+      const VrmTextureTransformBind& bind = textureTransformBinds[b];
+      VrmMaterialState& m = materials[bind.material];
+      const VrmMaterialState& r = rest[bind.material];
+      for (size_t c = 0; c < 2; ++c) {
+        m.uvScale[c] += w * (bind.scale[c] - r.uvScale[c]);
+        m.uvOffset[c] += w * (bind.offset[c] - r.uvOffset[c]);
+      }
+    }
+  }
+  return {};
+}
+
+size_t VrmExpressionSet::unsupportedMaterialBinds() const {
+  size_t n = 0;
+  for (const VrmMaterialColorBind& b : materialColorBinds)
+    n += b.type != VrmMaterialColorType::Color && b.type != VrmMaterialColorType::EmissionColor ? 1 : 0;
+  return n;
 }
 
 }  // namespace facial

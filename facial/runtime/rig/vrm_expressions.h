@@ -11,10 +11,15 @@
 //    weights). An override on an expression of the same group is ignored; a
 //    binary overridden expression is suppressed completely by any override;
 //  - morph weights accumulate bind.weight * expression weight (binds of VRM 0.x
-//    are stored already divided by 100).
+//    are stored already divided by 100);
+//  - material colour binds move a material's colour from its own value towards
+//    targetValue by the expression weight (deltas of several expressions add);
+//    texture transform binds move the UV scale from (1,1) and the offset from
+//    (0,0) towards theirs the same way (applyMaterials).
 // Parsing the glTF JSON lives in facial_bake (vrm_import.h); this part stays
 // pure. Targets are flat and mesh-major like eng::WeightLayout: mesh m's
 // targets start at meshTargetOffsets[m].
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -32,6 +37,32 @@ struct VrmMorphBind {
   float weight = 0.0f;  // [0,1]
 };
 
+// VRM 1.0 materialColorBinds[].type; VRM 0.x materialValues' propertyName
+// _Color, _EmissionColor, _ShadeColor, _SphereAdd (matcap), _RimColor, _OutlineColor.
+enum class VrmMaterialColorType : uint8_t { Color, EmissionColor, ShadeColor, MatcapColor, RimColor, OutlineColor };
+std::string_view vrmMaterialColorTypeName(VrmMaterialColorType type);
+
+struct VrmMaterialColorBind {
+  uint32_t material = 0;  // glTF material index
+  VrmMaterialColorType type = VrmMaterialColorType::Color;
+  std::array<float, 4> targetValue{};  // linear RGBA (RGB for emission, A ignored)
+};
+
+// KHR_texture_transform-like: uv' = uv * scale + offset.
+struct VrmTextureTransformBind {
+  uint32_t material = 0;
+  std::array<float, 2> scale{1.0f, 1.0f};
+  std::array<float, 2> offset{0.0f, 0.0f};
+};
+
+// A material's expression-driven state (applyMaterials output).
+struct VrmMaterialState {
+  std::array<float, 4> color{};            // base colour factor
+  std::array<float, 3> emission{};         // emissive factor
+  std::array<float, 2> uvScale{1.0f, 1.0f};
+  std::array<float, 2> uvOffset{0.0f, 0.0f};
+};
+
 struct VrmExpression {
   std::string name;            // VRM 1.0 preset / custom name, VRM 0.x presetName or group name
   bool isPreset = false;
@@ -42,6 +73,10 @@ struct VrmExpression {
   VrmProceduralGroup group = VrmProceduralGroup::None;  // from the name
   uint32_t firstBind = 0;  // into VrmExpressionSet::binds
   uint32_t bindCount = 0;
+  uint32_t firstMaterialColorBind = 0;  // into VrmExpressionSet::materialColorBinds
+  uint32_t materialColorBindCount = 0;
+  uint32_t firstTextureTransformBind = 0;  // into VrmExpressionSet::textureTransformBinds
+  uint32_t textureTransformBindCount = 0;
 };
 
 // The procedural group a VRM 1.0 / 0.x preset name belongs to.
@@ -51,6 +86,9 @@ struct VrmExpressionSet {
   int specVersion = 1;                      // 0 for VRM 0.x, 1 for VRMC_vrm 1.0
   std::vector<VrmExpression> expressions;
   std::vector<VrmMorphBind> binds;
+  std::vector<VrmMaterialColorBind> materialColorBinds;
+  std::vector<VrmTextureTransformBind> textureTransformBinds;
+  uint32_t materialCount = 0;               // glTF materials: the range of material binds
   std::vector<std::string> targetNames;     // flat, mesh-major ("<mesh>/<target>")
   std::vector<uint32_t> meshTargetOffsets;  // glTF mesh count + 1
   std::vector<std::string> warnings;        // e.g. material binds that are not applied
@@ -66,6 +104,19 @@ struct VrmExpressionSet {
   // targetCount(). Every target is written (0 where no expression binds it).
   // No allocation. Errors name the sizes / the non-finite expression.
   eng::Result<void> apply(std::span<const float> expressionWeights, std::span<float> targetWeights) const;
+
+  // The expression weights after clamping, isBinary and the override rules
+  // (what apply() multiplies the binds with). Same sizes as expressions.
+  eng::Result<void> effectiveWeights(std::span<const float> expressionWeights, std::span<float> effective) const;
+
+  // materials: every material's own state on input (materialCount entries),
+  // moved by the material colour and texture transform binds of the weighted
+  // expressions on output. Only Color and EmissionColor have a glTF meaning;
+  // the MToon colours are listed by unsupportedMaterialBinds().
+  eng::Result<void> applyMaterials(std::span<const float> expressionWeights, std::span<VrmMaterialState> materials) const;
+  // Material colour binds whose type has no glTF material value (MToon shade, matcap, rim, outline).
+  size_t unsupportedMaterialBinds() const;
+  bool hasMaterialBinds() const { return !materialColorBinds.empty() || !textureTransformBinds.empty(); }
 };
 
 }  // namespace facial

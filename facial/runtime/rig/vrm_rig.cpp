@@ -1,0 +1,39 @@
+// buildVrmRigMapping / attachExpressionStage: a VRM model's rig is detected
+// over its expressions, and the expressions' binds carry it to the morph targets.
+#include "facial/runtime/rig/rig_mapping.h"
+
+namespace facial {
+
+eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::shared_ptr<const VrmExpressionSet> stage,
+                                              std::span<const std::string> morphTargetNames) {
+  if (!stage) return eng::makeError("rig mapping: no expression stage given");
+  RigMappingBuilder builder(rows.scheme(), rows.controlNames());
+  builder.setDetail(rows.report().detail);
+  for (const std::string& note : rows.report().notes) builder.note(note);
+  builder.setWeightRange(rows.minWeight(), rows.maxWeight());
+  for (uint32_t input = 0; input < rigInputCount(); ++input) {
+    const auto targets = rows.targets(input);
+    const auto gains = rows.gains(input);
+    for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
+  }
+  builder.setExpressionStage(std::move(stage), std::vector<std::string>(morphTargetNames.begin(), morphTargetNames.end()));
+  return builder.build();
+}
+
+eng::Result<RigMapping> buildVrmRigMapping(std::shared_ptr<const VrmExpressionSet> vrm,
+                                           std::span<const std::string> morphTargetNames,
+                                           const RigMappingOptions& options) {
+  if (!vrm) return eng::makeError("rig mapping: no VRM expressions given");
+  if (vrm->targetCount() != morphTargetNames.size())
+    return eng::makeError("rig mapping: the VRM expressions address " + std::to_string(vrm->targetCount()) +
+                          " morph targets, the model has " + std::to_string(morphTargetNames.size()));
+  const std::vector<std::string> names = vrm->expressionNames();
+  auto rows = buildRigMapping(names, options);
+  if (!rows) return rows.error();
+  auto rig = attachExpressionStage(*rows, vrm, morphTargetNames);
+  if (!rig) return rig.error();
+
+  return rig;
+}
+
+}  // namespace facial

@@ -1,0 +1,286 @@
+// Every face format through the one loader (cli::loadFace) and the commands:
+// VRM 0.x / 1.0 avatars, the CANDIDE-3 mask (with --shape identity
+// parameters), OBJ keyframe folders; and --background for compositing
+// (transparent RGBA with a clean edge, or one colour).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "demo/face_setup.h"
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/cli_test_support.h"
+#include "tests/cli/test_face.h"
+#include "tests/common/study_obj_set.h"
+#include "tests/common/test_support.h"
+
+namespace cli_test {
+namespace {
+
+std::filesystem::path vrmPath(int version) {
+  return testing_support::sharedDir() / "assets" / "vrm" /
+         (version == 0 ? "modifier_shapekey_vrm0.vrm" : "modifier_shapekey_vrm1.vrm");
+}
+std::filesystem::path candidePath() { return testing_support::sharedDir() / "candide3" / "candide3.wfm"; }
+
+bool contains(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
+
+// Fraction of pixels whose RGB differs by more than 16 in some channel.
+double differingFraction(const eng::Image& a, const eng::Image& b) {
+  if (a.width != b.width || a.height != b.height || a.rgba8.empty()) return 1.0;
+  size_t differing = 0;
+  for (size_t p = 0; p < a.rgba8.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgba8[p + c]) - int(b.rgba8[p + c])) > 16) {
+        ++differing;
+        break;
+      }
+  return double(differing) / double(a.rgba8.size() / 4);
+}
+
+TEST(FaceFormats, RigReportsVrm0And1ExpressionsEmotionsAndVisemes) {
+  FACIAL_REQUIRE_SHARED();
+  const CommandOutput v0 = runFacial({"rig", vrmPath(0).string()});
+  ASSERT_EQ(v0.exitCode, 0) << v0.err;
+  EXPECT_TRUE(contains(v0.out, "(VRM): 1 morph weight(s)")) << v0.out;
+  EXPECT_TRUE(contains(v0.out, "expression stage: VRM 0.x blend shape groups, 13 expressions over 1 morph targets"))
+      << v0.out;
+  EXPECT_TRUE(contains(v0.out, "emotion happy <- 'joy'")) << v0.out;
+  EXPECT_TRUE(contains(v0.out, "emotion disgust <- 'angry' x0.5 + 'sorrow' x0.3 (composed)")) << v0.out;
+  EXPECT_TRUE(contains(v0.out, "visemes (5, lip sync): a, i, u, e, o")) << v0.out;
+  EXPECT_FALSE(contains(v0.err, "extension VRM ignored")) << v0.err;
+
+  const CommandOutput v1 = runFacial({"rig", vrmPath(1).string(), "--json"});
+  ASSERT_EQ(v1.exitCode, 0) << v1.err;
+  const nlohmann::json report = nlohmann::json::parse(v1.out, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << v1.out;
+  EXPECT_EQ(report["format"], "VRM");
+  EXPECT_EQ(report["scheme"], "emotion expressions (VRM)");
+  EXPECT_EQ(report["visemes"], nlohmann::json::array({"aa", "ih", "ou", "ee", "oh"}));
+  EXPECT_EQ(report["emotions"][1], "happy <- 'happy'");
+  EXPECT_TRUE(contains(report["emotions"][4].get<std::string>(), "fear <- ")) << report["emotions"];
+  EXPECT_TRUE(contains(report["emotions"][4].get<std::string>(), "(composed)")) << report["emotions"];
+}
+
+TEST(FaceFormats, VrmOpensInExpressRenderInfoAndSheet) {
+  FACIAL_REQUIRE_SHARED();
+  const std::filesystem::path dir = testing_support::freshTempDir("face_formats_vrm");
+  for (int version : {0, 1}) {
+    const std::string model = vrmPath(version).string();
+    const std::string tag = "v" + std::to_string(version);
+    EXPECT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", model, "--size", "96x96", "--out",
+                                      (dir / (tag + "_happy.png")).string()})));
+    const CommandOutput info = runFacial({"info", model});
+    EXPECT_EQ(info.exitCode, 0) << info.err;
+    // The shape key the files bind to the open vowel moves the mesh.
+    EXPECT_TRUE(ranCleanly(runFacial({"render", model, "--size", "96x96", "--out", (dir / (tag + "_rest.png")).string()})));
+    EXPECT_TRUE(ranCleanly(runFacial({"render", model, "--weight", "A=1", "--size", "96x96", "--out",
+                                      (dir / (tag + "_A.png")).string()})));
+    EXPECT_GT(differingFraction(readPngOrFail(dir / (tag + "_rest.png")), readPngOrFail(dir / (tag + "_A.png"))), 0.02);
+  }
+  EXPECT_TRUE(ranCleanly(runFacial({"sheet", "--model", vrmPath(1).string(), "--size", "64", "--out",
+                                    (dir / "sheet.png").string()})));
+}
+
+TEST(FaceFormats, CandideMaskIsDrivenByItsActionUnitsAndShapedByShapeUnits) {
+  FACIAL_REQUIRE_SHARED();
+  const std::filesystem::path dir = testing_support::freshTempDir("face_formats_candide");
+  const std::string mask = candidePath().string();
+  for (const char* expression : {"neutral", "anger"})
+    ASSERT_TRUE(ranCleanly(runFacial({"express", expression, "--model", mask, "--size", "128x128", "--out",
+                                      (dir / (std::string(expression) + ".png")).string()})));
+  const eng::Image neutral = readPngOrFail(dir / "neutral.png");
+  // The mask is small in the frame (framed with every unit at full weight): brows and lids are a few hundred pixels.
+  EXPECT_GT(differingFraction(neutral, readPngOrFail(dir / "anger.png")), 0.002);
+  // The mask is drawn (bright skin in the middle, backdrop in the corner).
+  const size_t centre = (size_t(64) * 128 + 64) * 4, corner = 0;
+  EXPECT_GT(int(neutral.rgba8[centre]), int(neutral.rgba8[corner]) + 60);
+
+  ASSERT_TRUE(ranCleanly(runFacial({"express", "neutral", "--model", mask, "--shape", "mouth width=1", "--shape",
+                                    "SU_Eyes_width=1", "--size", "128x128", "--out", (dir / "shaped.png").string()})));
+  EXPECT_GT(differingFraction(neutral, readPngOrFail(dir / "shaped.png")), 0.0015);
+
+  const CommandOutput rig = runFacial({"rig", mask});
+  ASSERT_EQ(rig.exitCode, 0) << rig.err;
+  EXPECT_TRUE(contains(rig.out, "(CANDIDE-3): 52 morph weight(s)")) << rig.out;
+  EXPECT_TRUE(contains(rig.out, "scheme: CANDIDE-3")) << rig.out;
+}
+
+TEST(FaceFormatsValidity, BadShapesBackgroundsAndUnknownFilesAreNamed) {
+  const std::filesystem::path face = writeTestFace("face_formats_bad");
+  const std::filesystem::path out = face.parent_path() / "x.png";
+  const CommandOutput shape = runFacial({"express", "happy", "--model", face.string(), "--shape", "nose=1", "--out", out.string()});
+  EXPECT_EQ(shape.exitCode, 1);
+  EXPECT_TRUE(contains(shape.err, face.string() + ": --shape: no shape unit or morph target named 'nose'; available: "))
+      << shape.err;
+  const CommandOutput value = runFacial({"render", face.string(), "--shape", "custom_shape=lots", "--out", out.string()});
+  EXPECT_EQ(value.exitCode, 1);
+  EXPECT_TRUE(contains(value.err, "--shape 'custom_shape=lots' is not NAME=VALUE")) << value.err;
+  const CommandOutput background = runFacial({"render", face.string(), "--background", "blue", "--out", out.string()});
+  EXPECT_EQ(background.exitCode, 1);
+  EXPECT_TRUE(contains(background.err, "--background 'blue' is not transparent, studio or a colour #RRGGBB"))
+      << background.err;
+  testing_support::writeFile(face.parent_path() / "notes.txt", "hello");
+  const CommandOutput unknown = runFacial({"rig", (face.parent_path() / "notes.txt").string()});
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_TRUE(contains(unknown.err, "notes.txt: not a face this program reads (glTF / GLB, VRM, a folder of OBJ"))
+      << unknown.err;
+  const CommandOutput missing = runFacial({"info", (face.parent_path() / "absent.vrm").string()});
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_TRUE(contains(missing.err, "absent.vrm: file not found")) << missing.err;
+}
+
+TEST(FaceFormats, ShapesBakeIntoTheRestMesh) {
+  eng::Model model = makeTestFace();
+  const eng::Model original = model;
+  const std::vector<std::string> shapes = {"Custom-Shape=0.5"};  // loose spelling of "custom_shape"
+  ASSERT_TRUE(cli::bakeShapes(model, shapes));
+  const eng::Primitive& before = original.meshes[0].primitives[0];
+  const eng::Primitive& after = model.meshes[0].primitives[0];
+  const auto& delta = before.targets[kCustom].positions;
+  bool moved = false;
+  for (size_t v = 0; v < before.positions.size(); ++v) {
+    EXPECT_NEAR(after.positions[v].z, before.positions[v].z + 0.5f * delta[v].z, 1e-6f);
+    moved |= delta[v] != glm::vec3(0.0f);
+  }
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(model.meshes[0].defaultWeights[kCustom], 0.0f);  // not applied twice
+}
+
+TEST(FaceFormats, ObjKeyframeFolderOpensWithoutConverting) {
+  const std::filesystem::path dir = testing_support::freshTempDir("face_formats_obj");
+  const eng::Model face = makeTestFace();
+  const size_t weights = face.meshes[0].targetNames.size();
+  int next = 0;
+  testing_support::writeStudyObjSet(
+      face, weights,
+      [&](const char* name, std::vector<float>& w) {
+        std::fill(w.begin(), w.end(), 0.0f);
+        if (std::string(name) != "neutral") w[size_t(next++ % 4)] = 1.0f;
+        return true;
+      },
+      dir / "set");
+  testing_support::writeFile(dir / "map.json", testing_support::studyRigMapJson(1.0f));
+  const CommandOutput rig = runFacial({"rig", (dir / "set").string(), "--rigmap", (dir / "map.json").string()});
+  ASSERT_EQ(rig.exitCode, 0) << rig.err;
+  EXPECT_TRUE(contains(rig.out, "(OBJ keyframe set): 6 morph weight(s), 6 driven")) << rig.out;
+  EXPECT_TRUE(contains(rig.out, "emotion happy <- 'smile'")) << rig.out;
+  EXPECT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", (dir / "set").string(), "--rigmap",
+                                    (dir / "map.json").string(), "--size", "64x64", "--out", (dir / "happy.png").string()})));
+}
+
+// The test face turned into a VRM 1.0 avatar: 'happy' binds the left smile
+// target and turns the skin red; 'sad' is not defined (fear is composed).
+std::filesystem::path writeTestVrm(const std::string& name) {
+  const std::filesystem::path glb = writeTestFace(name);
+  auto bytes = eng::readFileBytes(glb, size_t{1} << 24);
+  EXPECT_TRUE(bytes);
+  auto chunks = eng::parseGlb(*bytes);
+  EXPECT_TRUE(chunks);
+  nlohmann::json json = nlohmann::json::parse(chunks->json.begin(), chunks->json.end());
+  int faceNode = 0;
+  for (size_t n = 0; n < json["nodes"].size(); ++n)
+    if (json["nodes"][n].contains("mesh")) faceNode = int(n);
+  json["extensionsUsed"] = {"VRMC_vrm"};
+  json["extensions"]["VRMC_vrm"] = {
+      {"specVersion", "1.0"},
+      {"expressions",
+       {{"preset",
+         {{"happy",
+           {{"morphTargetBinds", {{{"node", faceNode}, {"index", kSmileLeft}, {"weight", 1.0}}}},
+            {"materialColorBinds", {{{"material", 0}, {"type", "color"}, {"targetValue", {1.0, 0.0, 0.0, 1.0}}}}}}},
+          {"surprised", {{"morphTargetBinds", {{{"node", faceNode}, {"index", kJawDrop}, {"weight", 1.0}}}}}},
+          {"neutral", nlohmann::json::object()}}}}}};
+  const std::string text = json.dump();
+  const std::vector<uint8_t> vrm = eng::buildGlb(text, chunks->bin);
+  const std::filesystem::path path = glb.parent_path() / "face.vrm";
+  EXPECT_TRUE(eng::writeFileBytes(path, vrm.data(), vrm.size()));
+  return path;
+}
+
+TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_synthetic_vrm");
+  const CommandOutput rig = runFacial({"rig", vrm.string(), "--json"});
+  ASSERT_EQ(rig.exitCode, 0) << rig.err;
+  const nlohmann::json report = nlohmann::json::parse(rig.out, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << rig.out;
+  EXPECT_EQ(report["format"], "VRM");
+  EXPECT_EQ(report["drivenTargetCount"], 2);
+  EXPECT_EQ(report["emotions"][1], "happy <- 'happy'");
+  EXPECT_EQ(report["emotions"][4], "fear <- 'surprised' x0.55 (composed)");
+  const std::filesystem::path dir = vrm.parent_path();
+  for (const char* expression : {"neutral", "happy"})
+    ASSERT_TRUE(ranCleanly(runFacial({"express", expression, "--model", vrm.string(), "--size", "64x64", "--out",
+                                      (dir / (std::string(expression) + ".png")).string()})));
+  const eng::Image neutral = readPngOrFail(dir / "neutral.png"), happy = readPngOrFail(dir / "happy.png");
+  ASSERT_FALSE(neutral.rgba8.empty());
+  ASSERT_FALSE(happy.rgba8.empty());
+  const size_t centre = (size_t(32) * 64 + 32) * 4;
+  EXPECT_GT(int(happy.rgba8[centre]) - int(happy.rgba8[centre + 1]), 100) << "the skin turns red";
+  EXPECT_LT(int(neutral.rgba8[centre]) - int(neutral.rgba8[centre + 1]), 80);
+  EXPECT_GT(differingFraction(neutral, happy), 0.2);
+}
+
+// Alpha from coverage, colour un-premultiplied: edge pixels keep the colour of
+// the surface next to them instead of fading to black.
+TEST(FaceFormats, TransparentBackgroundHasCleanAlphaEdges) {
+  const std::filesystem::path face = writeTestFace("face_formats_alpha");
+  const std::filesystem::path png = face.parent_path() / "alpha.png";
+  ASSERT_TRUE(ranCleanly(runFacial({"render", face.string(), "--background", "transparent", "--zoom", "0.6",
+                                    "--yaw", "20", "--size", "160x160", "--out", png.string()})));
+  const eng::Image image = readPngOrFail(png);
+  ASSERT_EQ(image.width, 160);
+  auto at = [&](int x, int y) { return image.rgba8.data() + (size_t(y) * 160 + x) * 4; };
+  EXPECT_EQ(at(0, 0)[3], 0);
+  EXPECT_EQ(at(159, 159)[3], 0);
+  EXPECT_EQ(at(80, 80)[3], 255);
+  size_t edge = 0, dark = 0;
+  for (int y = 1; y < 159; ++y)
+    for (int x = 1; x < 159; ++x) {
+      const uint8_t* p = at(x, y);
+      if (p[3] == 0 || p[3] == 255) continue;
+      // The brightest opaque neighbour within two pixels.
+      int neighbour = -1;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          if (x + dx < 0 || x + dx >= 160 || y + dy < 0 || y + dy >= 160) continue;
+          const uint8_t* q = at(x + dx, y + dy);
+          if (q[3] == 255) neighbour = std::max(neighbour, int(q[0]) + q[1] + q[2]);
+        }
+      if (neighbour < 0) continue;
+      ++edge;
+      if (int(p[0]) + p[1] + p[2] < neighbour * 0.6) ++dark;
+    }
+  EXPECT_GT(edge, 40u) << "the silhouette should be anti-aliased";
+  EXPECT_LT(dark, edge / 20 + 1) << dark << " of " << edge << " edge pixels are much darker than the surface";
+}
+
+TEST(FaceFormats, SolidBackgroundColourAndTransparentSheet) {
+  const std::filesystem::path face = writeTestFace("face_formats_solid");
+  const std::filesystem::path png = face.parent_path() / "solid.png";
+  ASSERT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", face.string(), "--background", "#20a0ff", "--zoom",
+                                    "0.6", "--size", "64x64", "--out", png.string()})));
+  const eng::Image image = readPngOrFail(png);
+  ASSERT_FALSE(image.rgba8.empty());
+  EXPECT_NEAR(image.rgba8[0], 0x20, 2);
+  EXPECT_NEAR(image.rgba8[1], 0xa0, 2);
+  EXPECT_NEAR(image.rgba8[2], 0xff, 2);
+  EXPECT_EQ(image.rgba8[3], 255);
+
+  const std::filesystem::path sheet = face.parent_path() / "sheet.png";
+  ASSERT_TRUE(ranCleanly(runFacial({"sheet", "--model", face.string(), "--background", "transparent", "--size", "48",
+                                    "--out", sheet.string()})));
+  const eng::Image tiles = readPngOrFail(sheet);
+  ASSERT_FALSE(tiles.rgba8.empty());
+  EXPECT_EQ(tiles.rgba8[3], 0);  // the sheet's own background
+  size_t opaque = 0;
+  for (size_t p = 3; p < tiles.rgba8.size(); p += 4) opaque += tiles.rgba8[p] == 255 ? 1 : 0;
+  EXPECT_GT(opaque, 7u * 48 * 10) << "faces and labels stay opaque";
+}
+
+}  // namespace
+}  // namespace cli_test
