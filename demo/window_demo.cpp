@@ -138,7 +138,7 @@ class WindowDemo {
   void setIntensity(float intensity);
   void setPad(glm::vec2 cursor);
   void orbit(float yawDegrees, float pitchDegrees);
-  void setFraming(eng::vk::FramingMode mode);
+  void toggleFraming();
   void updateFaces(float dt);
   void logStateChange();
   void updateTitle(float dt);
@@ -335,6 +335,7 @@ void WindowDemo::runScript(float elapsed) {
       case ScriptAction::Kind::Pad: setPad({a.a, a.b}); break;
       case ScriptAction::Kind::Graph: control_ = Control::Graph; break;
       case ScriptAction::Kind::Orbit: orbit(a.a, a.b); break;
+      case ScriptAction::Kind::Frame: toggleFraming(); break;
       case ScriptAction::Kind::Screenshot: screenshotRequested_ = true; break;
       case ScriptAction::Kind::Resize: glfwSetWindowSize(window_->handle(), int(a.a), int(a.b)); break;
       case ScriptAction::Kind::Iconify: glfwIconifyWindow(window_->handle()); break;
@@ -358,7 +359,9 @@ void WindowDemo::trigger(int emotion) {
 
 // The camera re-framed on the heads or the whole models; the orbit angles
 // and the zoom the user chose are kept.
-void WindowDemo::setFraming(eng::vk::FramingMode mode) {
+void WindowDemo::toggleFraming() {
+  const eng::vk::FramingMode mode =
+      framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face;
   framing_ = mode;
   framedBounds_ = crowdBounds_[size_t(mode)];
   const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -378,8 +381,7 @@ void WindowDemo::handleInput() {
     if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     if (io.WantTextInput) continue;
     if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kEmotions.size())) trigger(key - GLFW_KEY_1);
-    if (key == GLFW_KEY_F)
-      setFraming(framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face);
+    if (key == GLFW_KEY_F) toggleFraming();
     if (key == GLFW_KEY_ESCAPE) quitRequested_ = true;
   }
   keys_.count = 0;

@@ -18,7 +18,7 @@ constexpr Verb kVerbs[] = {
     {"pad", ScriptAction::Kind::Pad, 2},          {"graph", ScriptAction::Kind::Graph, 0},
     {"orbit", ScriptAction::Kind::Orbit, 2},      {"screenshot", ScriptAction::Kind::Screenshot, 0},
     {"resize", ScriptAction::Kind::Resize, 2},    {"iconify", ScriptAction::Kind::Iconify, 0},
-    {"restore", ScriptAction::Kind::Restore, 0},
+    {"restore", ScriptAction::Kind::Restore, 0},  {"frame", ScriptAction::Kind::Frame, 0},
 };
 
 bool parseFloat(const std::string& word, float& value) {

@@ -23,7 +23,7 @@
 namespace cli {
 
 struct ScriptAction {
-  enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Screenshot, Resize, Iconify, Restore };
+  enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Frame, Screenshot, Resize, Iconify, Restore };
   float time = 0.0f;
   Kind kind = Kind::Screenshot;
   std::string name;   // Trigger: the trigger parameter

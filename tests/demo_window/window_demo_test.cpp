@@ -323,3 +323,23 @@ TEST(WindowDemoValidity, BrokenScriptIsRefusedNamingFileAndLine) {
 }
 
 }  // namespace
+
+TEST(WindowDemo, FramingSwitchesBetweenTheHeadAndTheWholeModel) {
+  REQUIRE_VIRTUAL_DISPLAY();
+  FACIAL_REQUIRE_SHARED();
+  const fs::path model = testing_support::sharedDir() / "assets" / "RobotExpressive.glb";
+  const fs::path dir = testing_support::freshTempDir("demo_window_framing");
+  testing_support::writeFile(dir / "script.txt", "0.8 screenshot\n1.2 frame\n2.0 screenshot\n2.4 frame\n");
+  const DemoRun run =
+      runDemo(dir, model, {.seconds = 4.0f, .arguments = "--still --script '" + (dir / "script.txt").string() + "'"});
+  eng::Image last;
+  ASSERT_TRUE(ranCleanly(run, last));
+  ASSERT_EQ(run.shots.size(), 3u) << run.log;
+  EXPECT_NE(run.log.find("framing: all"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("framing: face"), std::string::npos) << "back to the head:\n" << run.log;
+  const eng::Image head = readShot(run.shots[0]), whole = readShot(run.shots[1]);
+  const double switched = meanDifference(head, whole), back = meanDifference(head, last);
+  std::printf("head vs whole robot: %.2f, head vs head again: %.2f\n", switched, back);
+  EXPECT_GT(switched, 5.0) << "the whole robot is framed differently from its head";
+  EXPECT_LT(back, 0.5 * switched) << "the head framing comes back";
+}
