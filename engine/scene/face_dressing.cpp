@@ -54,11 +54,7 @@ struct PlannedPrimitive {
 };
 
 std::vector<PlannedPrimitive> plan(const Model& model) {
-  std::vector<int> nodeOfMesh(model.meshes.size(), -1);
-  for (size_t i = 0; i < model.nodes.size(); ++i) {
-    const int mesh = model.nodes[i].mesh;
-    if (mesh >= 0 && size_t(mesh) < model.meshes.size() && nodeOfMesh[size_t(mesh)] < 0) nodeOfMesh[size_t(mesh)] = int(i);
-  }
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   // Skin only on a model that is a face: it has eyeballs, or a mesh or node
   // says head or face. A morphing sphere or cube sample stays as authored.
   bool isFace = !findUntexturedEyes(model).empty();

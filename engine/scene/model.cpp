@@ -22,6 +22,15 @@ float Animation::duration() const {
   return d;
 }
 
+std::vector<int> Model::firstNodeOfEachMesh() const {
+  std::vector<int> first(meshes.size(), -1);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const int mesh = nodes[i].mesh;
+    if (mesh >= 0 && size_t(mesh) < meshes.size() && first[size_t(mesh)] < 0) first[size_t(mesh)] = int(i);
+  }
+  return first;
+}
+
 glm::mat4 Model::worldTransform(int node) const {
   glm::mat4 m(1.0f);
   // The loader rejects cycles; the step bound keeps a hand-built bad graph finite.

@@ -170,6 +170,9 @@ struct Model {
   std::vector<ExtensionUse> extensions;  // in the file's order, used ones first
 
   glm::mat4 worldTransform(int node) const;
+  // Per mesh, the first node (in node order) that draws it; -1 for a mesh no
+  // node draws. Where one placement per mesh is enough (look-up, baking).
+  std::vector<int> firstNodeOfEachMesh() const;
   // World-space bounds of every mesh instance at rest (no morphing).
   Aabb bounds() const;
   size_t totalVertexCount() const;

@@ -140,11 +140,7 @@ Image proceduralEyeImage(int size) {
 
 std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
   // One node per mesh is enough to orient it; the first in node order.
-  std::vector<int> nodeOfMesh(model.meshes.size(), -1);
-  for (size_t i = 0; i < model.nodes.size(); ++i) {
-    const int mesh = model.nodes[i].mesh;
-    if (mesh >= 0 && size_t(mesh) < model.meshes.size() && nodeOfMesh[size_t(mesh)] < 0) nodeOfMesh[size_t(mesh)] = int(i);
-  }
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<EyePrimitive> eyes;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const int node = nodeOfMesh[m];

@@ -78,11 +78,7 @@ std::vector<std::vector<std::vector<float>>> bakeVertexOcclusion(const Model& mo
       visibility[m][p].assign(model.meshes[m].primitives[p].positions.size(), 1.0f);
   }
   // Each mesh's first drawing node places it.
-  std::vector<int> nodeOfMesh(model.meshes.size(), -1);
-  for (size_t i = 0; i < model.nodes.size(); ++i) {
-    const int mesh = model.nodes[i].mesh;
-    if (mesh >= 0 && size_t(mesh) < model.meshes.size() && nodeOfMesh[size_t(mesh)] < 0) nodeOfMesh[size_t(mesh)] = int(i);
-  }
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<glm::mat4> world(model.meshes.size(), glm::mat4(1.0f));
   Aabb bounds;
   for (size_t m = 0; m < model.meshes.size(); ++m) {

@@ -10,6 +10,7 @@
 
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
+#include "tests/scene/gltf_test_files.h"
 #include "tests/scene/skin_test_files.h"
 
 namespace {
@@ -21,15 +22,6 @@ std::filesystem::path write(const GltfFileBuilder& b, const std::string& name) {
   const auto dir = freshTempDir("skin_bad_" + name);
   b.writeGlb(dir / (name + ".glb"));
   return dir / (name + ".glb");
-}
-
-void expectLoadError(const std::filesystem::path& path, const std::string& problem) {
-  auto model = eng::loadModel(path);
-  ASSERT_FALSE(model.ok()) << path << " loaded but should fail with: " << problem;
-  const std::string& message = model.error().message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-  EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "does not start with the file name: " << message;
-  EXPECT_NE(message.find(problem), std::string::npos) << "expected '" << problem << "' in: " << message;
 }
 
 // Loads, expects a warning containing `problem`, and that the mesh node lost its skin.
