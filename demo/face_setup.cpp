@@ -290,18 +290,7 @@ eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, con
                           "cannot be decoded from the graph's action units");
   const Eigen::MatrixXd decode = solver.solve(pattern.transpose());  // kBasic x auCount
 
-  facial::RigMappingBuilder builder(rig.scheme(), rig.controlNames());
-  if (rig.expressionStage())
-    builder.setExpressionStage(rig.sharedExpressionStage(),
-                               std::vector<std::string>(rig.targetNames().begin(), rig.targetNames().end()));
-  builder.setDetail(rig.report().detail);
-  for (const std::string& note : rig.report().notes) builder.note(note);
-  builder.setWeightRange(rig.minWeight(), rig.maxWeight());
-  for (uint32_t input = 0; input < facial::rigInputCount(); ++input) {
-    const auto targets = rig.targets(input);
-    const auto gains = rig.gains(input);
-    for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
-  }
+  facial::RigMappingBuilder builder = facial::RigMappingBuilder::startingFrom(rig);
   for (uint32_t k = 0; k < kBasic; ++k) {
     const uint32_t emotion = facial::emotionInput(facial::Emotion(k + 1));
     const auto targets = rig.targets(emotion);

@@ -73,10 +73,7 @@ eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const 
   }
 
   RigCalibration result;
-  RigMappingBuilder builder(rig.scheme(), rig.targetNames());
-  builder.setDetail(rig.report().detail);
-  for (const std::string& note : rig.report().notes) builder.note(note);
-  builder.setWeightRange(rig.minWeight(), rig.maxWeight());
+  RigMappingBuilder builder = RigMappingBuilder::startingFrom(rig, /*withRows=*/false);
   for (uint32_t input = 0; input < rigInputCount(); ++input) {
     const auto targets = rig.targets(input);
     const auto gains = rig.gains(input);

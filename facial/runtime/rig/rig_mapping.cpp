@@ -210,6 +210,22 @@ eng::Result<void> RigMapping::expressionWeights(std::span<const float> auWeights
 RigMappingBuilder::RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames)
     : scheme_(scheme), targetNames_(targetNames.begin(), targetNames.end()) {}
 
+RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool withRows) {
+  RigMappingBuilder builder(rig.scheme(), rig.controlNames());
+  if (rig.expressionStage())
+    builder.setExpressionStage(rig.sharedExpressionStage(),
+                               std::vector<std::string>(rig.targetNames().begin(), rig.targetNames().end()));
+  builder.setDetail(rig.report().detail);
+  for (const std::string& note : rig.report().notes) builder.note(note);
+  builder.setWeightRange(rig.minWeight(), rig.maxWeight());
+  for (uint32_t input = 0; withRows && input < rigInputCount(); ++input) {
+    const auto targets = rig.targets(input);
+    const auto gains = rig.gains(input);
+    for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
+  }
+  return builder;
+}
+
 void RigMappingBuilder::add(uint32_t input, uint32_t target, float gain) { entries_.push_back({input, target, gain}); }
 
 void RigMappingBuilder::setWeightRange(float minWeight, float maxWeight) {

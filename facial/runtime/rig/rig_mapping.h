@@ -145,6 +145,10 @@ class RigMapping {
 class RigMappingBuilder {
  public:
   RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames);
+  // A builder that starts as `rig` does: its scheme, control names, detail,
+  // notes, weight range and expression stage, and its rows unless `withRows`
+  // is false (for code that re-derives a mapping's rows).
+  static RigMappingBuilder startingFrom(const RigMapping& rig, bool withRows = true);
 
   std::span<const std::string> targetNames() const { return targetNames_; }
   // Gains of repeated (input, target) pairs add up.

@@ -7,15 +7,7 @@ namespace facial {
 eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::shared_ptr<const VrmExpressionSet> stage,
                                               std::span<const std::string> morphTargetNames) {
   if (!stage) return eng::makeError("rig mapping: no expression stage given");
-  RigMappingBuilder builder(rows.scheme(), rows.controlNames());
-  builder.setDetail(rows.report().detail);
-  for (const std::string& note : rows.report().notes) builder.note(note);
-  builder.setWeightRange(rows.minWeight(), rows.maxWeight());
-  for (uint32_t input = 0; input < rigInputCount(); ++input) {
-    const auto targets = rows.targets(input);
-    const auto gains = rows.gains(input);
-    for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
-  }
+  RigMappingBuilder builder = RigMappingBuilder::startingFrom(rows);
   builder.setExpressionStage(std::move(stage), std::vector<std::string>(morphTargetNames.begin(), morphTargetNames.end()));
   return builder.build();
 }
