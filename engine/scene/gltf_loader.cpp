@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/json_nesting.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
 #include "engine/scene/gltf_accessor_reader.h"
@@ -643,6 +644,15 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     if (!bytes) return bytes.error();
     auto container = detectContainer(*bytes, path);
     if (!container) return makeError(file + ": " + container.error().message);
+    // The pre-pass (nlohmann) and tinygltf parse recursively: a hostile nesting depth is refused before either.
+    std::span<const uint8_t> jsonText = *bytes;
+    if (*container == Container::Glb) {
+      auto glb = parseGlb(*bytes);
+      if (!glb) return makeError(file + ": " + glb.error().message);
+      jsonText = glb->json;
+    }
+    if (auto nesting = checkJsonNesting({reinterpret_cast<const char*>(jsonText.data()), jsonText.size()}, file); !nesting)
+      return nesting.error();
     // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
     auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/glb_container.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
 #include "tests/scene/gltf_test_files.h"
@@ -76,6 +77,27 @@ TEST(GltfLoaderBadInput, MalformedJson) {
   const std::string text = "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {";
   writeBytes(dir / "broken.gltf", std::vector<uint8_t>(text.begin(), text.end()));
   expectLoadError(dir / "broken.gltf", "invalid JSON: parse error at line 1");
+}
+
+// tinygltf and nlohmann recurse while parsing: 100,000 nested arrays would overflow the stack.
+TEST(GltfLoaderBadInput, DeeplyNestedExtrasAreRefusedBeforeParsing) {
+  const auto dir = freshTempDir("bad_deep_nesting");
+  const std::string deep = R"("extras": {"note": "]]]\"[[[", "deep": )" + std::string(100000, '[') +
+                           std::string(100000, ']') + "}, ";
+  quadWithTarget().writeGltf(dir / "deep.gltf");
+  replaceInFile(dir / "deep.gltf", "\"asset\"", deep + "\"asset\"");
+  expectLoadError(dir / "deep.gltf", "JSON nests 100002 levels deep, more than the 256 accepted");
+
+  // The GLB's JSON chunk, also when it asks for a compression extension (the pre-pass parses those).
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  const std::vector<uint8_t> glb = b.glbBytes();
+  auto chunks = eng::parseGlb(glb);
+  ASSERT_TRUE(chunks.ok());
+  std::string json(chunks->json.begin(), chunks->json.end());
+  json.insert(1, deep);
+  writeBytes(dir / "deep.glb", eng::buildGlb(json, chunks->bin));
+  expectLoadError(dir / "deep.glb", "JSON nests 100002 levels deep, more than the 256 accepted");
 }
 
 TEST(GltfLoaderBadInput, AccessorOutOfRangeOfItsBufferView) {
