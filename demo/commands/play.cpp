@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "demo/headless_model_renderer.h"
 #include "demo/sequence_recorder.h"
 #include "demo/skeleton_motion.h"
+#include "engine/core/json_nesting.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -74,7 +76,9 @@ int runPlay(const PlayOptions& o) {
   if (!parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 512x512)");
   std::ifstream in(o.file);
   if (!in) return fail(o.file + ": cannot open file");
-  nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (auto nesting = eng::checkJsonNesting(text, o.file); !nesting) return fail(nesting.error().message);
+  nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded() || !document.is_object()) return fail(o.file + ": not a JSON object");
 
   auto framing = framingModeOption(o.frame);

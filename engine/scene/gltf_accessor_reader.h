@@ -43,11 +43,13 @@ class GltfAccessorReader {
   Result<std::vector<uint32_t>> readIndices(int accessor, std::string_view what);
 
   size_t decodedBytes() const { return decodedBytes_; }
+  // Charges data made from accessors (generated normals and indices, triangle
+  // lists) to the same budget; callers charge before allocating.
+  Result<void> charge(size_t bytes, std::string_view what);
 
  private:
   template <class T>
   Result<std::vector<T>> decode(int accessor, int components, bool indices, std::string_view what);
-  Result<void> charge(size_t bytes, std::string_view what);
 
   const tinygltf::Model& gltf_;
   size_t maxDecodedBytes_;

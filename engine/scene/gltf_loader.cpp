@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/json_nesting.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
 #include "engine/scene/gltf_accessor_reader.h"
@@ -271,6 +272,33 @@ class ModelBuilder {
     return values;
   }
 
+  // What a primitive of `vertices` vertices makes beyond its accessors (generated
+  // normals, the 0..n-1 order of a non-indexed primitive, the triangle list,
+  // normals for each generated-normal target) counts against the decode budget
+  // too, and is charged before anything is read: an accessor without a
+  // bufferView declares any count in a few bytes of JSON (zero-filled per the
+  // spec), and everything made from it is as large.
+  Result<void> chargeDerivedData(const tinygltf::Primitive& src, int mode, size_t vertices, const std::string& label) {
+    constexpr size_t kVec3 = sizeof(glm::vec3), kIndex = sizeof(uint32_t);
+    size_t order = vertices;
+    if (src.indices >= 0) {
+      auto count = reader_.count(src.indices, label + " indices");
+      if (!count) return fail(count.error().message);
+      order = std::min(*count, SIZE_MAX / 64);
+    }
+    const size_t triangleIndices = mode == TINYGLTF_MODE_TRIANGLES ? order / 3 * 3 : order < 3 ? 0 : 3 * (order - 2);
+    size_t bytes = triangleIndices * kIndex + (src.indices >= 0 ? 0 : vertices * kIndex);
+    if (src.attributes.count("NORMAL") == 0) {
+      const size_t morphedNormals = static_cast<size_t>(std::count_if(
+          src.targets.begin(), src.targets.end(), [](const auto& target) { return target.count("POSITION") != 0; }));
+      bytes += (1 + std::min(morphedNormals, size_t{1} << 20)) * vertices * kVec3;  // min: no overflow
+    }
+    auto ok = reader_.charge(bytes, label + " POSITION (accessor " + std::to_string(src.attributes.at("POSITION")) +
+                                        ", " + std::to_string(vertices) + " vertices): the normals and indices made for it");
+    if (!ok) return fail(ok.error().message);
+    return {};
+  }
+
   // Returns false (with a warning) for primitives we skip.
   Result<bool> loadPrimitive(int m, int p, Primitive& out, size_t& targetCount, bool& targetCountKnown) {
     const tinygltf::Primitive& src = gltf_.meshes[m].primitives[p];
@@ -285,6 +313,13 @@ class ModelBuilder {
       warn(label + " has no POSITION attribute; skipped");
       return false;
     }
+    if (auto declared = reader_.count(posIt->second, label + " POSITION"); !declared) {
+      return fail(declared.error().message);
+    } else if (*declared > UINT32_MAX) {
+      return fail(label + " has " + std::to_string(*declared) + " vertices, more than 32-bit indices address");
+    } else if (auto ok = chargeDerivedData(src, mode, *declared, label); !ok) {
+      return ok.error();
+    }
     auto positions = readAttribute<3>(posIt->second, SIZE_MAX, label + " POSITION");
     if (!positions) return positions.error();
     out.positions = std::move(*positions);
@@ -293,7 +328,6 @@ class ModelBuilder {
       warn(label + " has no vertices; skipped");
       return false;
     }
-    if (n > UINT32_MAX) return fail(label + " has " + std::to_string(n) + " vertices, more than 32-bit indices address");
 
     bool generatedNormals = false;
     if (auto it = src.attributes.find("NORMAL"); it != src.attributes.end()) {
@@ -643,6 +677,15 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     if (!bytes) return bytes.error();
     auto container = detectContainer(*bytes, path);
     if (!container) return makeError(file + ": " + container.error().message);
+    // The pre-pass (nlohmann) and tinygltf parse recursively: a hostile nesting depth is refused before either.
+    std::span<const uint8_t> jsonText = *bytes;
+    if (*container == Container::Glb) {
+      auto glb = parseGlb(*bytes);
+      if (!glb) return makeError(file + ": " + glb.error().message);
+      jsonText = glb->json;
+    }
+    if (auto nesting = checkJsonNesting({reinterpret_cast<const char*>(jsonText.data()), jsonText.size()}, file); !nesting)
+      return nesting.error();
     // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
     auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);

@@ -32,14 +32,54 @@ void appendBytes(void* context, void* data, int size) {
   out->insert(out->end(), bytes, bytes + size);
 }
 
+// stb's own header check refuses what it could not decode (60000 x 60000 PNG, JPEG) and
+// stbi_info then reports the last format it tried, "unknown image type": the dimensions are
+// read here from the PNG IHDR or the JPEG frame header so the refusal can say what it is.
+uint32_t bigEndian(const uint8_t* p, int bytes) {
+  uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v = v << 8 | p[i];
+  return v;
+}
+
+bool headerDimensions(std::span<const uint8_t> encoded, uint32_t& w, uint32_t& h) {
+  static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (encoded.size() >= 24 && std::memcmp(encoded.data(), kPng, 8) == 0 && std::memcmp(encoded.data() + 12, "IHDR", 4) == 0) {
+    w = bigEndian(encoded.data() + 16, 4);
+    h = bigEndian(encoded.data() + 20, 4);
+    return true;
+  }
+  if (encoded.size() < 4 || encoded[0] != 0xFF || encoded[1] != 0xD8) return false;
+  // JPEG: walk the marker segments to the first start-of-frame (SOF0..SOF15 but DHT, JPG, DAC).
+  for (size_t at = 2; at + 4 <= encoded.size();) {
+    if (encoded[at] != 0xFF) return false;
+    const uint8_t marker = encoded[at + 1];
+    if (marker == 0xFF) { ++at; continue; }  // fill byte
+    if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD9)) { at += 2; continue; }  // no length
+    const size_t length = bigEndian(encoded.data() + at + 2, 2);
+    const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (frame) {
+      if (at + 9 > encoded.size()) return false;
+      h = bigEndian(encoded.data() + at + 5, 2);
+      w = bigEndian(encoded.data() + at + 7, 2);
+      return true;
+    }
+    at += 2 + length;
+  }
+  return false;
+}
+
+Result<void> checkImageSize(uint64_t w, uint64_t h, const std::string& name, size_t maxPixels) {
+  if (w > 0 && h > 0 && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= maxPixels) return {};
+  return makeError(name + ": image too large: " + std::to_string(w) + "x" + std::to_string(h) + ", the limit is " +
+                   std::to_string(kMaxImageSide) + " per side and " + std::to_string(maxPixels) + " pixels");
+}
+
 // WebP (EXT_texture_webp) is not an stb format: libwebp decodes it.
 Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
   int w = 0, h = 0;
   if (!WebPGetInfo(encoded.data(), encoded.size(), &w, &h))
     return makeError(name + ": not a decodable WebP image (bad header)");
-  if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) > maxPixels)
-    return makeError(name + ": image claims " + std::to_string(w) + "x" + std::to_string(h) +
-                     " pixels, more than the limit of " + std::to_string(maxPixels));
+  if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
   Image img;
   img.name = name;
   img.width = w;
@@ -83,13 +123,13 @@ Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& n
   if (isWebp(encoded)) return decodeWebp(encoded, name, maxPixels);
   if (isKtx2(encoded))
     return makeError(name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
+  if (uint32_t headerW = 0, headerH = 0; headerDimensions(encoded, headerW, headerH))
+    if (auto size = checkImageSize(headerW, headerH, name, maxPixels); !size) return size.error();
   int w = 0, h = 0, channels = 0;
   const int len = static_cast<int>(encoded.size());
   if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))
     return makeError(name + ": not a decodable image (" + stbi_failure_reason() + ")");
-  if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) > maxPixels)
-    return makeError(name + ": image claims " + std::to_string(w) + "x" + std::to_string(h) +
-                     " pixels, more than the limit of " + std::to_string(maxPixels));
+  if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(encoded.data(), len, &w, &h, &channels, 4),
                                                     stbi_image_free);
   if (!pixels) return makeError(name + ": image decode failed (" + stbi_failure_reason() + ")");

@@ -19,6 +19,8 @@ Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rg
 // Images larger than this are refused before decoding (a forged header can
 // claim 60000 x 60000 pixels).
 inline constexpr size_t kDefaultMaxImagePixels = size_t{64} << 20;
+// Vulkan guarantees 4096 and desktop GPUs give 16384 per side for 2D images.
+inline constexpr uint32_t kMaxImageSide = 16384;
 
 // Decodes any stb-supported image (PNG, JPEG, BMP, TGA, ...) or WebP (libwebp)
 // to RGBA8; `name` is used in messages and becomes Image::name. KTX2 is

@@ -19,15 +19,25 @@ namespace {
 std::atomic<bool> gCounting{false};
 std::atomic<long> gAllocations{0};
 
-void* allocate(std::size_t size, std::align_val_t align = std::align_val_t(alignof(std::max_align_t))) {
+constexpr std::align_val_t kDefaultAlign{alignof(std::max_align_t)};
+
+// nullptr when out of memory (the nothrow forms); the throwing forms turn that into bad_alloc.
+void* tryAllocate(std::size_t size, std::align_val_t align = kDefaultAlign) noexcept {
   if (gCounting.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
   const std::size_t a = static_cast<std::size_t>(align);
-  void* p = a <= alignof(std::max_align_t) ? std::malloc(size ? size : 1)
-                                           : std::aligned_alloc(a, (size + a - 1) / a * a);
+  return a <= alignof(std::max_align_t) ? std::malloc(size ? size : 1)
+                                        : std::aligned_alloc(a, (size + a - 1) / a * a);
+}
+
+void* allocate(std::size_t size, std::align_val_t align = kDefaultAlign) {
+  void* p = tryAllocate(size, align);
   if (!p) throw std::bad_alloc();
   return p;
 }
 }  // namespace
+
+// Every replaceable form, nothrow ones included: a form left out would come
+// from the runtime (or the sanitizer's allocator) and be freed here.
 
 void* operator new(std::size_t size) { return allocate(size); }
 void* operator new[](std::size_t size) { return allocate(size); }
@@ -41,6 +51,18 @@ void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return tryAllocate(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return tryAllocate(size); }
+void* operator new(std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
+  return tryAllocate(size, align);
+}
+void* operator new[](std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
+  return tryAllocate(size, align);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace {
 

@@ -164,3 +164,27 @@ TEST(GraphJsonValidity, ErrorsNameTheFileTheJsonPointerAndTheProblem) {
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("/nonexistent/graph.json"), std::string::npos);
 }
+
+// Nodes recurse into nodes while parsing: hostile depth is refused with one line, never a stack overflow.
+TEST(GraphJsonValidity, DeepNestingIsRefusedNotACrash) {
+  // A blend whose "a" is a blend ... `levels` deep, ending in a pose.
+  const auto nested = [](size_t levels) {
+    std::string text = R"({"version": 1, "channels": ["a"], "root": )";
+    for (size_t i = 0; i < levels; ++i) text += R"({"type": "blend", "b": {"type": "pose", "weights": [0]}, "a": )";
+    text += R"({"type": "pose", "weights": [1]})";
+    text.append(levels, '}');
+    return text + "}";
+  };
+  // 8,000 levels: the JSON itself (document, 8,000 blends, a pose, its weights) is too deep to parse.
+  std::string e = loadError("deep8000", nested(8000));
+  EXPECT_NE(e.find("deep8000.json: JSON nests 8003 levels deep, more than the 256 accepted"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  // Shallow enough for the JSON parser, too deep for the graph: the node limit names where it stopped.
+  e = loadError("deep100", nested(100));
+  std::string at = "deep100.json: /root";
+  for (size_t i = 0; i < kMaxGraphNodeDepth; ++i) at += "/a";
+  EXPECT_NE(e.find(at + ": nodes nest deeper than 64 levels, the limit"), std::string::npos) << e;
+  // At the limit it loads.
+  auto graph = loadGraph(writeGraph("deep64", nested(kMaxGraphNodeDepth - 1)), kPresets);
+  EXPECT_TRUE(graph.ok()) << graph.error().message;
+}

@@ -92,6 +92,10 @@ TEST(TimelineJsonValidity, ErrorsNameFilePointerAndProblem) {
   const std::string nan = loadError("nan", R"({"version": 1, "tracks": [{"channel": "a", "keys": [[0, "x"]]}]})");
   EXPECT_NE(nan.find("/tracks/0/keys/0/1: expected a number, got string"), std::string::npos) << nan;
 
+  const std::string deep = loadError("deep", R"({"version": 1, "tracks": [{"channel": "a", "keys": )" +
+                                                 std::string(100000, '[') + std::string(100000, ']') + "}]}");
+  EXPECT_NE(deep.find("deep.json: JSON nests 100003 levels deep, more than the 256 accepted"), std::string::npos) << deep;
+
   const std::string broken = loadError("broken", R"({"version": 1, "tracks": [)");
   EXPECT_NE(broken.find("broken.json: invalid JSON"), std::string::npos) << broken;
 

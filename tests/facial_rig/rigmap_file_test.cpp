@@ -93,6 +93,13 @@ TEST(RigMapFileValidity, ErrorsNameFilePathAndProblem) {
             std::string::npos);
 }
 
+TEST(RigMapFileValidity, DeepNestingIsRefusedBeforeParsing) {
+  // Brackets inside strings (escaped quotes included) do not count; the real depth is 3 + 50,000.
+  const std::string deep = R"({"version": 1, "note": "[[[\"{{{", "map": {"anger": )" + std::string(50000, '[') +
+                           std::string(50000, ']') + "}}";
+  EXPECT_EQ(errorOf(deep), "bot.json: JSON nests 50002 levels deep, more than the 256 accepted");
+}
+
 TEST(RigMapFileValidity, MissingFileIsNamed) {
   auto mapping = loadRigMap(testing_support::freshTempDir("rigmap_file") / "gone.json", kRobotHead);
   ASSERT_FALSE(mapping);

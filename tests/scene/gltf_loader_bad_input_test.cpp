@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/glb_container.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
 #include "tests/scene/gltf_test_files.h"
@@ -76,6 +77,27 @@ TEST(GltfLoaderBadInput, MalformedJson) {
   const std::string text = "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {";
   writeBytes(dir / "broken.gltf", std::vector<uint8_t>(text.begin(), text.end()));
   expectLoadError(dir / "broken.gltf", "invalid JSON: parse error at line 1");
+}
+
+// tinygltf and nlohmann recurse while parsing: 100,000 nested arrays would overflow the stack.
+TEST(GltfLoaderBadInput, DeeplyNestedExtrasAreRefusedBeforeParsing) {
+  const auto dir = freshTempDir("bad_deep_nesting");
+  const std::string deep = R"("extras": {"note": "]]]\"[[[", "deep": )" + std::string(100000, '[') +
+                           std::string(100000, ']') + "}, ";
+  quadWithTarget().writeGltf(dir / "deep.gltf");
+  replaceInFile(dir / "deep.gltf", "\"asset\"", deep + "\"asset\"");
+  expectLoadError(dir / "deep.gltf", "JSON nests 100002 levels deep, more than the 256 accepted");
+
+  // The GLB's JSON chunk, also when it asks for a compression extension (the pre-pass parses those).
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  const std::vector<uint8_t> glb = b.glbBytes();
+  auto chunks = eng::parseGlb(glb);
+  ASSERT_TRUE(chunks.ok());
+  std::string json(chunks->json.begin(), chunks->json.end());
+  json.insert(1, deep);
+  writeBytes(dir / "deep.glb", eng::buildGlb(json, chunks->bin));
+  expectLoadError(dir / "deep.glb", "JSON nests 100002 levels deep, more than the 256 accepted");
 }
 
 TEST(GltfLoaderBadInput, AccessorOutOfRangeOfItsBufferView) {
@@ -221,6 +243,20 @@ TEST(GltfLoaderBadInput, AbsurdCountIsRefusedBeforeAllocating) {
   c.doc["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = huge;
   c.writeGlb(dir / "sparse_count.glb");
   expectLoadError(dir / "sparse_count.glb", "past the limit");
+}
+
+// A 392-byte file used to take 38 s and 11.5 GB: 89 million zero positions fit the decode
+// limit, the normals and indices generated for them did not count.
+TEST(GltfLoaderBadInput, HugeCountWithoutABufferViewIsRefusedWithWhatIsMadeFromIt) {
+  const auto dir = freshTempDir("bad_huge_zero_accessor");
+  GltfFileBuilder b;
+  const int huge = b.addAccessor(-1, kFloat, 89000000, "VEC3");
+  b.addMeshWithNode({{"primitives", Json::array({{{"attributes", {{"POSITION", huge}}}}})}});
+  b.writeGlb(dir / "zeros.glb");
+  EXPECT_LT(std::filesystem::file_size(dir / "zeros.glb"), 1000u);
+  expectLoadError(dir / "zeros.glb",
+                  "mesh 0 primitive 0 POSITION (accessor 0, 89000000 vertices): the normals and indices made for it "
+                  "would take the decoded data past the limit of 1073741824 bytes (1779999992 more requested)");
 }
 
 TEST(GltfLoaderBadInput, DecodeLimitIsConfigurable) {

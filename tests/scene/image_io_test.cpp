@@ -68,7 +68,34 @@ TEST(ImageIoBadInput, ForgedHugeDimensionsAreRefusedBeforeDecoding) {
   std::copy(big, big + 4, forged.begin() + 20);
   auto img = eng::decodeImage(forged, "forged.png");
   ASSERT_FALSE(img.ok());
-  EXPECT_NE(img.error().message.find("claims 10000x10000 pixels"), std::string::npos) << img.error().message;
+  EXPECT_EQ(img.error().message,
+            "forged.png: image too large: 10000x10000, the limit is 16384 per side and 67108864 pixels");
+}
+
+// stb refuses to even read the header of what it could not decode; the refusal must still say why.
+TEST(ImageIoBadInput, HeaderBeyondWhatStbAcceptsIsRefusedAsTooLarge) {
+  auto png = eng::encodePng(1, 1, std::vector<uint8_t>{1, 2, 3, 4});
+  ASSERT_TRUE(png.ok());
+  std::vector<uint8_t> forged = *png;
+  const uint8_t side[4] = {0x00, 0x00, 0xEA, 0x60};  // 60000
+  std::copy(side, side + 4, forged.begin() + 16);
+  std::copy(side, side + 4, forged.begin() + 20);
+  auto img = eng::decodeImage(forged, "huge.png");
+  ASSERT_FALSE(img.ok());
+  EXPECT_EQ(img.error().message, "huge.png: image too large: 60000x60000, the limit is 16384 per side and 67108864 pixels");
+  // One side past the limit, the area under it.
+  const uint8_t wide[4] = {0x00, 0x00, 0x4E, 0x20}, low[4] = {0x00, 0x00, 0x00, 0x10};  // 20000 x 16
+  std::copy(wide, wide + 4, forged.begin() + 16);
+  std::copy(low, low + 4, forged.begin() + 20);
+  img = eng::decodeImage(forged, "wide.png");
+  ASSERT_FALSE(img.ok());
+  EXPECT_NE(img.error().message.find("wide.png: image too large: 20000x16"), std::string::npos) << img.error().message;
+  // A JPEG frame header (SOI, SOF0 with height 60000, width 50000), nothing after it.
+  const std::vector<uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x04, 0x00, 0x00, 0xFF, 0xC0, 0x00, 0x11,
+                                     0x08, 0xEA, 0x60, 0xC3, 0x50, 0x03, 0x01, 0x11, 0x00};
+  img = eng::decodeImage(jpeg, "huge.jpg");
+  ASSERT_FALSE(img.ok());
+  EXPECT_NE(img.error().message.find("huge.jpg: image too large: 50000x60000"), std::string::npos) << img.error().message;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/core/json_nesting.h"
 #include "facial/bake/head/skin_painter.h"
 #include "facial/runtime/rig/action_units.h"
 
@@ -237,6 +238,7 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
   const Reader r(source);
   try {
     json root;
+    if (auto nesting = eng::checkJsonNesting(text, source); !nesting) return nesting.error();
     try {
       root = json::parse(text);
     } catch (const json::parse_error& e) {

@@ -49,6 +49,10 @@ class GraphParser {
   }
 
   NodeIndex node(const JsonNode& j) {
+    // node() and the composite nodes recurse into each other: bound the depth before going down.
+    if (depth_ == kMaxGraphNodeDepth)
+      j.fail("nodes nest deeper than " + std::to_string(kMaxGraphNodeDepth) + " levels, the limit");
+    const DepthScope scope(depth_);
     if (!j.isObject()) j.fail("expected a node object with a \"type\"");
     const std::string type = j.at("type").string();
     const std::string name = j.stringOr("name", "");
@@ -67,6 +71,12 @@ class GraphParser {
   }
 
  private:
+  struct DepthScope {
+    explicit DepthScope(size_t& depth) : depth_(depth) { ++depth_; }
+    ~DepthScope() { --depth_; }
+    size_t& depth_;
+  };
+
   NodeIndex add(NodeData data, const std::string& name, const JsonNode& j) {
     return builder_.add(std::move(data), name, j.pointer());
   }
@@ -313,6 +323,7 @@ class GraphParser {
   GraphBuilder& builder_;
   const GraphLoadOptions& options_;
   std::filesystem::path folder_;
+  size_t depth_ = 0;  // node() calls under way
 };
 
 ChannelSet channelSet(const JsonNode& j) {

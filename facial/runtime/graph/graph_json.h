@@ -43,6 +43,8 @@
 namespace facial {
 
 inline constexpr int kGraphFileVersion = 1;
+// Nodes inside nodes (blend in blend in ...); hand-written graphs use a handful.
+inline constexpr size_t kMaxGraphNodeDepth = 64;
 
 struct GraphLoadOptions {
   PresetLookup presets;  // empty: a graph that names a preset fails to load, saying so

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <system_error>
 
+#include "engine/core/json_nesting.h"
+
 namespace facial {
 
 eng::Result<Json> readJsonFile(const std::filesystem::path& path, size_t maxBytes) {
@@ -25,6 +27,7 @@ eng::Result<Json> readJsonFile(const std::filesystem::path& path, size_t maxByte
 }
 
 eng::Result<Json> parseJsonText(std::string_view text, std::string_view source) {
+  if (auto nesting = eng::checkJsonNesting(text, source); !nesting) return nesting.error();
   try {
     return Json::parse(text.begin(), text.end());
   } catch (const Json::exception& e) {
