@@ -50,6 +50,9 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
                                      r.target_.format().samples, 1);
   if (!scene) return scene.error();
   r.scene_ = std::move(scene).value();
+  auto timestamps = FrameTimestamps::create(ctx);
+  if (!timestamps) return timestamps.error();
+  r.timestamps_ = std::move(timestamps).value();
   return r;
 }
 
@@ -59,14 +62,38 @@ Result<GpuModel> OffscreenRenderer::upload(const Model& model) const {
   return GpuModel::create(*ctx_, *layouts_, model);
 }
 
+namespace {
+
+glm::vec4 clearColour(const Backdrop& backdrop) {
+  if (backdrop.kind == Backdrop::Kind::Solid) return glm::vec4(srgbToLinear(backdrop.srgb), 1.0f);
+  if (backdrop.kind == Backdrop::Kind::Transparent) return glm::vec4(0.0f);
+  return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+}
+
+}  // namespace
+
+Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& view,
+                                                            std::span<const ModelInstance> instances) {
+  const VkExtent2D extent = target_.extent();
+  const float aspect = float(extent.width) / float(extent.height);
+  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
+  const bool studio = view.backdrop.kind == Backdrop::Kind::Studio;
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) {
+                            timestamps_.recordStart(cmd);
+                            scene_.recordShadowPass(cmd, 0);
+                          },
+                          [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); },
+                          [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false},
+                         clearColour(view.backdrop)));
+  return timestamps_.readMilliseconds();
+}
+
 Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<const ModelInstance> instances) {
   const VkExtent2D extent = target_.extent();
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
   const Backdrop& backdrop = view.backdrop;
-  glm::vec4 clear(0.0f, 0.0f, 0.0f, 1.0f);
-  if (backdrop.kind == Backdrop::Kind::Solid) clear = glm::vec4(srgbToLinear(backdrop.srgb), 1.0f);
-  if (backdrop.kind == Backdrop::Kind::Transparent) clear = glm::vec4(0.0f);
+  const glm::vec4 clear = clearColour(backdrop);
   const bool studio = backdrop.kind == Backdrop::Kind::Studio;
   ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
                           [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); }, {}},

@@ -12,12 +12,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 #include "engine/vk/context.h"
+#include "engine/vk/frame_timestamps.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/offscreen_target.h"
 #include "engine/vk/scene_layouts.h"
@@ -41,6 +43,11 @@ class OffscreenRenderer {
 
   Result<GpuModel> upload(const Model& model) const;
   Result<eng::Image> render(const SceneView& view, std::span<const ModelInstance> instances);
+  // The same frame without the read-back (the image stays on the GPU), for
+  // benchmarks: returns once the GPU has finished it, with the GPU time of
+  // its command buffer in ms where the device has timestamps (nullopt otherwise).
+  Result<std::optional<double>> renderTimed(const SceneView& view, std::span<const ModelInstance> instances);
+  bool hasGpuTimestamps() const { return timestamps_.supported(); }
   // Morphed vertices the GPU computes for each (instance, mesh, primitive).
   Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
 
@@ -60,6 +67,7 @@ class OffscreenRenderer {
   std::unique_ptr<ShaderLibrary> shaders_;
   OffscreenTarget target_;
   SceneRenderer scene_;
+  FrameTimestamps timestamps_;
 };
 
 }  // namespace eng::vk

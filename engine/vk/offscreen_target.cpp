@@ -95,6 +95,10 @@ Result<void> OffscreenTarget::render(const Recorders& recorders, const glm::vec4
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     if (recorders.inPass) recorders.inPass(cmd);
     vkCmdEndRenderPass(cmd);
+    if (!recorders.readback) {
+      if (recorders.afterPass) recorders.afterPass(cmd);
+      return;
+    }
 
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};

@@ -30,9 +30,11 @@ class OffscreenTarget {
     std::function<void(VkCommandBuffer)> beforePass;  // e.g. the shadow pass
     std::function<void(VkCommandBuffer)> inPass;      // the scene
     std::function<void(VkCommandBuffer)> afterPass;   // after the readback copy, e.g. a host-read barrier
+    bool readback = true;  // false: no copy to the readback buffer (benchmarks time the frame alone)
   };
   // One submission: beforePass, the pass (cleared) with inPass, a copy of the
-  // resolved image to the readback buffer, afterPass; waits for completion.
+  // resolved image to the readback buffer (unless !readback), afterPass;
+  // waits for completion.
   // clearColor: linear RGBA the colour attachment starts from.
   Result<void> render(const Recorders& recorders, const glm::vec4& clearColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   // The last rendered image, RGBA8, top row first.

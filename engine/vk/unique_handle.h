@@ -93,5 +93,6 @@ using UniqueCommandPool = UniqueHandle<VkDevice, VkCommandPool, vkDestroyCommand
 using UniqueFence = UniqueHandle<VkDevice, VkFence, vkDestroyFence>;
 using UniqueSemaphore = UniqueHandle<VkDevice, VkSemaphore, vkDestroySemaphore>;
 using UniqueSwapchain = UniqueHandle<VkDevice, VkSwapchainKHR, vkDestroySwapchainKHR>;
+using UniqueQueryPool = UniqueHandle<VkDevice, VkQueryPool, vkDestroyQueryPool>;
 
 }  // namespace eng::vk
