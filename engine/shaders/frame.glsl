@@ -58,3 +58,4 @@ layout(push_constant) uniform DrawConstants {
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
 const uint DRAW_FLAG_TANGENT_DELTAS = 2u;
 const uint DRAW_FLAG_DOUBLE_SIDED = 4u;
+const uint DRAW_FLAG_CREASES = 8u;

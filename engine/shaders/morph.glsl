@@ -12,11 +12,15 @@
 layout(std430, set = 1, binding = 0) readonly buffer PositionDeltas { float positionDeltas[]; };
 layout(std430, set = 1, binding = 1) readonly buffer NormalDeltas { float normalDeltas[]; };
 layout(std430, set = 1, binding = 2) readonly buffer TangentDeltas { float tangentDeltas[]; };
+// How much each target darkens each vertex at full weight (folds forming:
+// engine/scene/crease_shading.h), target-major, one float per vertex.
+layout(std430, set = 1, binding = 7) readonly buffer CreaseDarkening { float creaseDarkening[]; };
 
 struct MorphedVertex {
   vec3 position;
   vec3 normal;
   vec3 tangent;
+  float crease;  // summed crease darkening, 0 = none (clamped where it is used)
 };
 
 // Loops over the instance's compact active list: cost is proportional to the
@@ -24,6 +28,8 @@ struct MorphedVertex {
 MorphedVertex morphVertex(uint vertex, InstanceData inst, vec3 position, vec3 normal, vec3 tangent) {
   bool morphNormals = (draw.flags & DRAW_FLAG_NORMAL_DELTAS) != 0u;
   bool morphTangents = (draw.flags & DRAW_FLAG_TANGENT_DELTAS) != 0u;
+  bool creases = (draw.flags & DRAW_FLAG_CREASES) != 0u;
+  float crease = 0.0;
   uint end = inst.activeOffset + inst.activeCount;
   for (uint i = inst.activeOffset; i < end; ++i) {
     ActiveWeight a = activeWeights[i];
@@ -35,9 +41,11 @@ MorphedVertex morphVertex(uint vertex, InstanceData inst, vec3 position, vec3 no
     if (morphTangents) {
       tangent += a.weight * vec3(tangentDeltas[base], tangentDeltas[base + 1u], tangentDeltas[base + 2u]);
     }
+    if (creases) crease += a.weight * creaseDarkening[a.target * draw.vertexCount + vertex];
   }
   MorphedVertex result;
   result.position = position;
+  result.crease = crease;
   // A degenerate blended normal keeps its direction undefined: fall back to
   // zero rather than NaN so one bad vertex cannot poison the whole frame.
   float n2 = dot(normal, normal);

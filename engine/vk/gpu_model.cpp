@@ -9,6 +9,7 @@
 
 #include "engine/vk/descriptor_write.h"
 #include "engine/core/log.h"
+#include "engine/scene/crease_shading.h"
 #include "engine/scene/face_dressing.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/weights.h"
@@ -86,8 +87,9 @@ VkDeviceSize appendInfluences(ByteBlob& blob, const Primitive& prim, VkDeviceSiz
 }
 
 struct DeltaRanges {
-  VkDeviceSize position = 0, normal = 0, tangent = 0;
-  VkDeviceSize size = 0;  // bytes of one attribute's range
+  VkDeviceSize position = 0, normal = 0, tangent = 0, crease = 0;
+  VkDeviceSize size = 0;         // bytes of one attribute's range
+  VkDeviceSize creaseSize = 0;   // bytes of the crease darkening
   bool hasTargets = false, hasNormals = false, hasTangents = false;
 };
 
@@ -260,6 +262,13 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
       if (ranges.hasTangents)
         ranges.tangent = appendDeltas(deltaBlob, prim, [](const MorphTarget& t) -> auto& { return t.tangents; },
                                       storageAlign);
+      if (ranges.hasTargets) {
+        const std::vector<float> darkening = bakeCreaseDarkening(prim);
+        if (hasCreases(darkening)) {
+          ranges.creaseSize = darkening.size() * sizeof(float);
+          ranges.crease = deltaBlob.append(std::span<const float>(darkening), storageAlign);
+        }
+      }
       deltaRanges[m].push_back(ranges);
       gp.constants.jointSets = static_cast<uint32_t>(prim.influenceSets());
       skinOffsets[m].push_back(gp.constants.jointSets > 0 ? appendInfluences(skinBlob, prim, storageAlign) : 0);
@@ -286,7 +295,8 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
       gp.constants.vertexCount = gp.vertexCount;
       gp.constants.flags = (ranges.hasNormals ? kDrawFlagNormalDeltas : 0u) |
                            (ranges.hasTangents ? kDrawFlagTangentDeltas : 0u) |
-                           (mat.doubleSided ? kDrawFlagDoubleSided : 0u);
+                           (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
+                           (ranges.creaseSize > 0 ? kDrawFlagCreases : 0u);
       gm.primitives.push_back(gp);
       ++primitiveCount;
     }
@@ -336,7 +346,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   // --- Descriptor sets, one per primitive ---
   if (primitiveCount == 0) return gpu;
   const uint32_t sets = static_cast<uint32_t>(primitiveCount);
-  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * sets},
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
@@ -366,6 +376,9 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
       const VkDescriptorBufferInfo positions = deltaInfo(r.hasTargets, r.position);
       const VkDescriptorBufferInfo normals = deltaInfo(r.hasNormals, r.normal);
       const VkDescriptorBufferInfo tangents = deltaInfo(r.hasTangents, r.tangent);
+      const VkDescriptorBufferInfo creases = r.creaseSize > 0
+                                                 ? VkDescriptorBufferInfo{gpu.deltas_.handle(), r.crease, r.creaseSize}
+                                                 : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
       const int materialIndex = prim.material;
       const GpuImage* base = &layouts.whiteTexture();
       const GpuImage* detail = &layouts.emptyDetailArray();
@@ -400,6 +413,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
           imageWrite(gp.descriptorSet, 4, &detailInfo),
           bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
           bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
+          bufferWrite(gp.descriptorSet, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &creases),
       };
       vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }

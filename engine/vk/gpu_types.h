@@ -65,6 +65,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,
   kDrawFlagTangentDeltas = 2u,
   kDrawFlagDoubleSided = 4u,
+  kDrawFlagCreases = 8u,  // the primitive has crease darkening (set 1 binding 7)
 };
 
 struct GpuDetailLayer {

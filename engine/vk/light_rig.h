@@ -20,15 +20,19 @@ struct LightRig {
   // Warm key from the upper left of the camera, cool soft fill from the right,
   // rim from behind-above to separate the head from the backdrop.
   DirectionalLight key{-30.0f, 45.0f, {1.0f, 0.95f, 0.88f}, 1.4f};
-  DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.35f};
+  DirectionalLight fill{50.0f, 10.0f, {0.80f, 0.88f, 1.0f}, 0.2f};
   DirectionalLight rim{150.0f, 30.0f, {1.0f, 0.97f, 0.94f}, 1.2f};
   glm::vec3 skyAmbient{0.07f, 0.075f, 0.085f};
   glm::vec3 groundAmbient{0.025f, 0.02f, 0.018f};
-  float diffuseWrap = 0.3f;                     // 0 = Lambert
+  float diffuseWrap = 0.15f;                    // 0 = Lambert
   float subsurfaceStrength = 0.55f;              // warm tint at the terminator
   glm::vec3 subsurfaceColor{1.0f, 0.32f, 0.20f};
   float specularStrength = 0.55f;
-  float exposure = 0.9f;
+  // A key-to-fill ratio near 7:1 and an exposure that keeps lit skin below
+  // the tone curve's shoulder: the portrait look where brows shade the eye
+  // sockets and furrows, lids and lip corners keep their contrast at 256 px
+  // (a flatter, brighter rig washed pale faces into a featureless oval).
+  float exposure = 0.7f;
   // The key light casts soft shadows (nose, eye sockets, the inside of an open
   // mouth); the other lights do not.
   bool keyShadow = true;

@@ -7,7 +7,8 @@
 //   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,
 //                          4 key-light shadow map, 5 joint matrices
 //   set 1 (per primitive): 0-2 position/normal/tangent deltas, 3 base colour,
-//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences
+//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
+//                          7 crease darkening per target (crease_shading.h)
 //   push constants:        DrawConstants (48 bytes), vertex + fragment
 #include "engine/core/result.h"
 #include "engine/vk/buffer.h"
