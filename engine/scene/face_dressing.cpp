@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "engine/core/uv_raster.h"
+#include "engine/scene/painted_brows.h"
 #include "engine/scene/procedural_eyes.h"
 #include "engine/scene/vertex_occlusion.h"
 
@@ -84,6 +87,64 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
   return planned;
 }
 
+// The painted texture replaces whatever the skin's UVs were made for, so the
+// UVs may be re-fitted: a face whose texture was dropped (KTX2) can keep
+// quantized UVs that only its texture transform mapped into [0, 1].
+void fitIntoUnitSquare(std::vector<glm::vec2>& uvs) {
+  glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const glm::vec2& uv : uvs) lo = glm::min(lo, uv), hi = glm::max(hi, uv);
+  if (lo.x >= 0.0f && lo.y >= 0.0f && hi.x <= 1.0f && hi.y <= 1.0f) return;
+  const glm::vec2 size = glm::max(hi - lo, glm::vec2(1e-12f));
+  for (glm::vec2& uv : uvs) uv = (uv - lo) / size;
+}
+
+// Brows on the dressed skin (painted_brows.h): into a texture through the
+// skin's UVs, one per dressed skin material, or into the vertex colours of a
+// primitive without UVs (coarser, but still a brow).
+void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, const std::vector<EyePrimitive>& eyes) {
+  constexpr int kTextureSize = 1024;
+  constexpr float kOpacity = 0.8f;
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
+  std::map<int, PaintImage> textures;  // dressed skin material -> its texture
+  for (const PlannedPrimitive& p : planned) {
+    if (p.part != Part::Skin) continue;
+    Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];
+    const std::vector<BrowFrame> frames = browFrames(model, eyes, nodeOfMesh[p.mesh]);
+    if (frames.empty()) continue;
+    const size_t n = prim.positions.size();
+    if (prim.texcoords.size() == n) {
+      fitIntoUnitSquare(prim.texcoords);
+      PaintImage& image = textures.try_emplace(prim.material, kTextureSize, kTextureSize).first->second;
+      rasterizeUv(kTextureSize, kTextureSize, prim.texcoords, prim.indices,
+                  [&](int x, int y, uint32_t triangle, const glm::vec3& b) {
+                    const uint32_t* tri = &prim.indices[size_t(triangle) * 3];
+                    const glm::vec3 at = prim.positions[tri[0]] * b.x + prim.positions[tri[1]] * b.y +
+                                         prim.positions[tri[2]] * b.z;
+                    const float c = kOpacity * browCoverage(frames, at);
+                    image.set(x, y, glm::vec4(glm::mix(kSkinColour, browColour(), c), 1.0f));
+                  });
+    } else {
+      prim.colors.resize(n, glm::vec4(1.0f));
+      for (size_t v = 0; v < n; ++v) {
+        const float c = kOpacity * browCoverage(frames, prim.positions[v]);
+        prim.colors[v] *= glm::vec4(glm::mix(glm::vec3(1.0f), browColour() / kSkinColour, c), 1.0f);
+      }
+    }
+  }
+  for (auto& [material, image] : textures) {
+    image.dilate(4);
+    Image painted;
+    painted.name = "painted brows";
+    painted.width = image.width;
+    painted.height = image.height;
+    painted.rgba8 = image.toSrgba8();
+    Material& m = model.materials[size_t(material)];
+    m.baseColorImage = int(model.images.size());
+    m.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, m.baseColorFactor.a);
+    model.images.push_back(std::move(painted));
+  }
+}
+
 }  // namespace
 
 FaceDressing planFaceDressing(const Model& model) {
@@ -131,6 +192,7 @@ FaceDressing dressUntexturedFace(Model& model) {
     prim.material = it->second;
     (p.part == Part::Skin ? d.skin : d.mouth) += 1;
   }
+  paintBrows(model, planned, eyes);
   return d;
 }
 

@@ -2,11 +2,13 @@
 // procedural_eyes.h, vertex_occlusion.h) and what the face framing frames
 // (engine/vk/framing_bounds.h), on models built here.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "engine/scene/face_dressing.h"
+#include "engine/scene/painted_brows.h"
 #include "engine/scene/procedural_eyes.h"
 #include "engine/scene/vertex_occlusion.h"
 #include "engine/vk/framing_bounds.h"
@@ -86,16 +88,50 @@ TEST(FaceDressing, PlasterHeadGetsEyesTeethSkinAndOcclusion) {
   const size_t images = model.images.size();
   const eng::FaceDressing done = eng::dressUntexturedFace(model);
   EXPECT_EQ(done.total(), plan.total());
-  EXPECT_EQ(model.images.size(), images + 1) << "one eye texture for both eyes";
+  EXPECT_EQ(model.images.size(), images + 2) << "one eye texture for both eyes, one painted skin";
   const eng::Primitive& eye = model.meshes[1].primitives[0];
   EXPECT_EQ(eye.texcoords.size(), eye.positions.size());
   EXPECT_EQ(model.materials[size_t(eye.material)].baseColorImage, int(images));
   const eng::Primitive& skin = model.meshes[0].primitives[0];
-  const glm::vec4 tone = model.materials[size_t(skin.material)].baseColorFactor;
-  EXPECT_GT(tone.r, tone.g);
-  EXPECT_GT(tone.g, tone.b);
-  EXPECT_LT(tone.r, 0.9f) << "not plaster white";
+  const eng::Material& skinMaterial = model.materials[size_t(skin.material)];
+  ASSERT_EQ(skinMaterial.baseColorImage, int(images) + 1) << "the skin tone and brows, painted through its UVs";
+  const eng::Image& painted = model.images[size_t(skinMaterial.baseColorImage)];
+  size_t toned = 0, dark = 0;
+  for (size_t i = 0; i < painted.rgba8.size(); i += 4) {
+    const uint8_t* t = &painted.rgba8[i];
+    if (t[0] > t[1] && t[1] > t[2] && t[0] < 230) ++toned;  // skin: warm, not plaster white
+    if (t[0] + t[1] + t[2] < 350) ++dark;                    // brow (skin sums ~530)
+  }
+  EXPECT_GT(toned, painted.rgba8.size() / 4 * 8 / 10) << "mostly skin";
+  EXPECT_GT(dark, 0u) << "and brows";
   EXPECT_EQ(skin.colors.size(), skin.positions.size()) << "occlusion baked into vertex colours";
+}
+
+TEST(PaintedBrows, BrowsSitOnTheBrowRidgeAboveEachEye) {
+  const eng::Model model = plasterHead();
+  const std::vector<eng::BrowFrame> frames = eng::browFrames(model, eng::findUntexturedEyes(model), 0);
+  ASSERT_EQ(frames.size(), 2u);
+  // Eyes at (+-0.35, 0.2, 0.85): 0.7 apart, so the brows run ~0.16 above them.
+  auto onHead = [](float x, float y) { return glm::vec3(x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))); };
+  for (float side : {1.0f, -1.0f}) {
+    EXPECT_GT(eng::browCoverage(frames, onHead(side * 0.37f, 0.2f + 0.19f)), 0.7f) << "above the eye";
+    EXPECT_EQ(eng::browCoverage(frames, onHead(side * 0.35f, 0.2f)), 0.0f) << "not on the eye";
+    EXPECT_EQ(eng::browCoverage(frames, onHead(side * 0.35f, 0.55f)), 0.0f) << "not on the forehead";
+  }
+  EXPECT_EQ(eng::browCoverage(frames, onHead(0.0f, 0.37f)), 0.0f) << "the glabella stays bare";
+  EXPECT_EQ(eng::browCoverage(frames, glm::vec3(0.37f, 0.39f, -0.83f)), 0.0f) << "nothing on the back of the head";
+}
+
+TEST(PaintedBrowsValidity, NoBrowsWithoutExactlyTwoEyes) {
+  const eng::Model model = plasterHead();
+  std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(model);
+  eyes.pop_back();
+  EXPECT_TRUE(eng::browFrames(model, eyes, 0).empty());
+  eyes.clear();
+  EXPECT_TRUE(eng::browFrames(model, eyes, 0).empty());
+  std::vector<eng::EyePrimitive> sameSpot = eng::findUntexturedEyes(model);
+  sameSpot[1] = sameSpot[0];  // two eyes in one place: no across axis
+  EXPECT_TRUE(eng::browFrames(model, sameSpot, 0).empty());
 }
 
 TEST(FaceDressing, NonFaceModelsAndAuthoredColoursStayAsAuthored) {

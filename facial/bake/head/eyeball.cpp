@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 #include "facial/bake/head/value_noise.h"
 
 namespace facial {
@@ -34,10 +34,10 @@ PartMesh buildEyeball(const EyeOpening& eye, const HeadProportions& p) {
 }
 
 eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
-  PaintImage img(width, height);
-  const glm::vec3 sclera = srgb(246, 244, 240), scleraShade = srgb(226, 208, 204);
-  const glm::vec3 irisInner = srgb(150, 170, 120), irisMid = srgb(62, 118, 150), irisOuter = srgb(28, 58, 88);
-  const glm::vec3 limbus = srgb(22, 30, 44), pupil = srgb(6, 6, 8);
+  eng::PaintImage img(width, height);
+  const glm::vec3 sclera = eng::srgb(246, 244, 240), scleraShade = eng::srgb(226, 208, 204);
+  const glm::vec3 irisInner = eng::srgb(150, 170, 120), irisMid = eng::srgb(62, 118, 150), irisOuter = eng::srgb(28, 58, 88);
+  const glm::vec3 limbus = eng::srgb(22, 30, 44), pupil = eng::srgb(6, 6, 8);
   const glm::vec3 highlightDir = glm::normalize(glm::vec3(-0.32f, 0.42f, 1.0f));
   const glm::vec3 secondDir = glm::normalize(glm::vec3(0.26f, -0.30f, 1.0f));
   for (int y = 0; y < height; ++y)

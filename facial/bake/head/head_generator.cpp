@@ -16,7 +16,7 @@
 #include "facial/bake/head/surface_normals.h"
 #include "facial/bake/head/teeth.h"
 #include "facial/bake/head/tongue.h"
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 #include "facial/runtime/rig/action_units.h"
 
 namespace facial {
@@ -293,11 +293,11 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
   mouthMaterial.doubleSided = true;
   eng::Material tongueMaterial;
   tongueMaterial.name = "Tongue";
-  tongueMaterial.baseColorFactor = glm::vec4(srgb(176, 84, 86), 1.0f);
+  tongueMaterial.baseColorFactor = glm::vec4(eng::srgb(176, 84, 86), 1.0f);
   tongueMaterial.roughness = 0.4f;
   eng::Material earMaterial;
   earMaterial.name = "Ear";
-  earMaterial.baseColorFactor = glm::vec4(srgb(232, 176, 150), 1.0f);
+  earMaterial.baseColorFactor = glm::vec4(eng::srgb(232, 176, 150), 1.0f);
   earMaterial.roughness = 0.55f;
   model.materials = {skinMaterial, eyeMaterial, teethMaterial, mouthMaterial, tongueMaterial, earMaterial};
   const int materialOf[5] = {0, 3, 2, 2, 4};

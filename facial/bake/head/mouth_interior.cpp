@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 
 namespace facial {
 
 eng::Image paintMouthInteriorTexture(int height) {
   const int width = 4;
-  PaintImage img(width, height);
-  const glm::vec3 innerLip = srgb(178, 86, 86), gums = srgb(140, 58, 58), back = srgb(58, 20, 22),
-                  throat = srgb(30, 10, 12);
+  eng::PaintImage img(width, height);
+  const glm::vec3 innerLip = eng::srgb(178, 86, 86), gums = eng::srgb(140, 58, 58), back = eng::srgb(58, 20, 22),
+                  throat = eng::srgb(30, 10, 12);
   for (int y = 0; y < height; ++y) {
     const float v = (y + 0.5f) / height;
     glm::vec3 c;

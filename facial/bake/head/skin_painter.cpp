@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 #include "facial/bake/head/value_noise.h"
 
 namespace facial {
@@ -84,11 +84,11 @@ const Curve2& nasolabialCurve() {
   return curve;
 }
 
-const vec3 kSkin = srgb(238, 192, 162);
-const vec3 kHair = srgb(66, 44, 32);
-const vec3 kBrow = srgb(48, 31, 23);
-const vec3 kLip = srgb(192, 104, 100);
-const vec3 kLash = srgb(34, 24, 22);
+const vec3 kSkin = eng::srgb(238, 192, 162);
+const vec3 kHair = eng::srgb(66, 44, 32);
+const vec3 kBrow = eng::srgb(48, 31, 23);
+const vec3 kLip = eng::srgb(192, 104, 100);
+const vec3 kLash = eng::srgb(34, 24, 22);
 
 vec4 over(const vec4& under, const vec3& colour, float alpha) {
   // Straight-alpha "over": keeps the strongest coverage and blends colours by it.
@@ -168,25 +168,25 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   vec3 c = kSkin * (0.965f + 0.07f * fractalNoise(p * 140.0f, 2, 1u));
 
   // Warmth: cheeks, nose tip, chin; a little cooler under the jaw.
-  c = glm::mix(c, srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * smoothstep(0.04f, 0.06f, p.z));
-  c = glm::mix(c, srgb(232, 148, 132), 0.20f * gauss(glm::length(p - vec3(0.0f, -0.022f, 0.106f)), 0.009f));
-  c = glm::mix(c, srgb(232, 158, 140), 0.10f * gauss2(vec2(p.x, p.y + 0.075f), 0.012f) * smoothstep(0.05f, 0.07f, p.z));
+  c = glm::mix(c, eng::srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * smoothstep(0.04f, 0.06f, p.z));
+  c = glm::mix(c, eng::srgb(232, 148, 132), 0.20f * gauss(glm::length(p - vec3(0.0f, -0.022f, 0.106f)), 0.009f));
+  c = glm::mix(c, eng::srgb(232, 158, 140), 0.10f * gauss2(vec2(p.x, p.y + 0.075f), 0.012f) * smoothstep(0.05f, 0.07f, p.z));
   c *= 1.0f - 0.08f * smoothstep(0.2f, 0.9f, -t.normal.y) * smoothstep(-0.06f, -0.09f, p.y);
 
   // Eyelids: a soft shadow in the upper lid crease, dark lash lines along the edges.
   if (t.eyeSide != 0.0f) {
     const float outer = smoothstep(0.0f, 0.013f, std::abs(p.x) - prop_.eyeCentre.x);
     if (t.upperLid > 0.5f) {
-      c = glm::mix(c, srgb(196, 140, 126), 0.22f * smoothstep(0.35f, 0.7f, t.lidRing) * (1.0f - smoothstep(0.88f, 0.95f, t.lidRing)));
+      c = glm::mix(c, eng::srgb(196, 140, 126), 0.22f * smoothstep(0.35f, 0.7f, t.lidRing) * (1.0f - smoothstep(0.88f, 0.95f, t.lidRing)));
       // A lash line thick enough to read at thumbnail size, winged at the outer corner.
       const float lash = smoothstep(0.80f - 0.10f * outer, 0.95f, t.lidRing);
       c = glm::mix(c, kLash, lash);
     } else {
-      c = glm::mix(c, srgb(150, 104, 92), 0.55f * smoothstep(0.95f, 0.99f, t.lidRing));
+      c = glm::mix(c, eng::srgb(150, 104, 92), 0.55f * smoothstep(0.95f, 0.99f, t.lidRing));
     }
     // Pink inner corner (caruncle).
     const float inner = smoothstep(0.010f, 0.0f, std::abs(p.x) - (prop_.eyeCentre.x - 0.0125f));
-    c = glm::mix(c, srgb(214, 128, 122), 0.5f * inner * smoothstep(0.9f, 1.0f, t.lidRing));
+    c = glm::mix(c, eng::srgb(214, 128, 122), 0.5f * inner * smoothstep(0.9f, 1.0f, t.lidRing));
   }
 
   c = glm::mix(c, kBrow, browCoverage(p));
@@ -199,7 +199,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
     const float elevation = std::atan2(d.y, std::sqrt(d.x * d.x + d.z * d.z));
     const float seamDistance = std::abs(elevation - sdf_.seamElevation()) * 0.09f;
     vec3 lipColour = glm::mix(kLip * 0.72f, kLip, smoothstep(0.0003f, 0.0022f, seamDistance));
-    lipColour = glm::mix(lipColour, srgb(236, 150, 146), 0.35f * gauss2(vec2(p.x, p.y - (prop_.mouthSeamCentre.y - 0.0045f)), 0.005f));
+    lipColour = glm::mix(lipColour, eng::srgb(236, 150, 146), 0.35f * gauss2(vec2(p.x, p.y - (prop_.mouthSeamCentre.y - 0.0045f)), 0.005f));
     c = glm::mix(c, lipColour, lip);
   }
 
@@ -207,7 +207,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   {
     const vec3 m(std::abs(p.x), p.y, p.z);
     const vec3 d = (m - vec3(0.0058f, -0.0312f, 0.0948f)) / vec3(0.0032f, 0.0022f, 0.0042f);
-    c = glm::mix(c, srgb(128, 70, 62), 0.45f * std::exp(-glm::dot(d, d)) * smoothstep(0.45f, 0.85f, -t.normal.y));
+    c = glm::mix(c, eng::srgb(128, 70, 62), 0.45f * std::exp(-glm::dot(d, d)) * smoothstep(0.45f, 0.85f, -t.normal.y));
   }
 
   // Hair: strands radiating from the crown.
@@ -228,7 +228,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
   const vec2 q(std::abs(p.x), p.y);
   const bool front = p.z > 0.03f && t.normal.z > 0.0f;
   vec4 out(kSkin, 0.0f);
-  const vec3 crease = srgb(150, 96, 80), sheen = srgb(255, 224, 200);
+  const vec3 crease = eng::srgb(150, 96, 80), sheen = eng::srgb(255, 224, 200);
   if (layer == "forehead_furrows") {
     if (!front || p.y < 0.035f) return out;
     for (int k = 0; k < 3; ++k) {
@@ -252,7 +252,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
                                (1.0f - smoothstep(0.033f, 0.038f, p.y)));
     out = over(out, crease, 0.7f * std::max(vertical, across));
     // Shadowed, bunched brow heads.
-    out = over(out, srgb(170, 112, 94), 0.3f * gauss2(q - vec2(0.012f, 0.026f), 0.006f));
+    out = over(out, eng::srgb(170, 112, 94), 0.3f * gauss2(q - vec2(0.012f, 0.026f), 0.006f));
     return out;
   }
   if (layer == "nasolabial_folds") {
@@ -279,14 +279,14 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     const float forehead = gauss2(vec2(p.x, p.y - 0.045f), 0.03f) * 0.6f;
     const float neck = smoothstep(-0.07f, -0.1f, p.y) * 0.4f;
     const float a = std::min(1.0f, cheeks + 0.8f * nose + forehead + neck);
-    return vec4(srgb(206, 70, 62), 0.55f * a * (1.0f - sdf_.hairCoverage(p)) * (1.0f - browCoverage(p)));
+    return vec4(eng::srgb(206, 70, 62), 0.55f * a * (1.0f - sdf_.hairCoverage(p)) * (1.0f - browCoverage(p)));
   }
   if (layer == "pallor") {
     if (p.z < 0.0f) return out;
     const float face = smoothstep(0.0f, 0.04f, p.z) * (1.0f - sdf_.hairCoverage(p));
     const float lip = lipCoverage(p);
     const float cheeks = gauss2(q - vec2(0.036f, -0.018f), 0.02f);
-    const vec3 colour = glm::mix(srgb(228, 224, 218), srgb(206, 184, 182), lip);
+    const vec3 colour = glm::mix(eng::srgb(228, 224, 218), eng::srgb(206, 184, 182), lip);
     return vec4(colour, face * (0.42f + 0.2f * cheeks + 0.3f * lip) * (1.0f - browCoverage(p)));
   }
   return out;
@@ -318,8 +318,8 @@ SkinImages paintSkin(const SkinSurface& s, const std::vector<glm::vec3>& normals
   };
   SkinImages out;
   {
-    PaintImage img(baseSize, baseSize);
-    rasterizeUv(baseSize, baseSize, s.uvs, skinTriangles, [&](int x, int y, uint32_t tri, const glm::vec3& b) {
+    eng::PaintImage img(baseSize, baseSize);
+    eng::rasterizeUv(baseSize, baseSize, s.uvs, skinTriangles, [&](int x, int y, uint32_t tri, const glm::vec3& b) {
       img.set(x, y, vec4(painter.baseColour(texelAt(tri, b)), 1.0f));
     });
     img.dilate(8);
@@ -328,8 +328,8 @@ SkinImages paintSkin(const SkinSurface& s, const std::vector<glm::vec3>& normals
     out.baseColour.rgba8 = img.toSrgba8();
   }
   for (const std::string& layer : skinDetailLayerNames()) {
-    PaintImage img(detailSize, detailSize);
-    rasterizeUv(detailSize, detailSize, s.uvs, skinTriangles, [&](int x, int y, uint32_t tri, const glm::vec3& b) {
+    eng::PaintImage img(detailSize, detailSize);
+    eng::rasterizeUv(detailSize, detailSize, s.uvs, skinTriangles, [&](int x, int y, uint32_t tri, const glm::vec3& b) {
       img.set(x, y, painter.detail(layer, texelAt(tri, b)));
     });
     img.dilate(4);

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 
 namespace facial {
 namespace {
@@ -116,9 +116,9 @@ PartMesh buildToothRow(const ToothRowShape& shape) {
 }
 
 eng::Image paintTeethTexture(int width, int height) {
-  PaintImage img(width, height);
-  const glm::vec3 enamel = srgb(246, 242, 230), enamelRoot = srgb(232, 222, 196);
-  const glm::vec3 gap = srgb(196, 184, 170), gum = srgb(206, 108, 110);
+  eng::PaintImage img(width, height);
+  const glm::vec3 enamel = eng::srgb(246, 242, 230), enamelRoot = eng::srgb(232, 222, 196);
+  const glm::vec3 gap = eng::srgb(196, 184, 170), gum = eng::srgb(206, 108, 110);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const float s = -1.0f + 2.0f * (x + 0.5f) / width;

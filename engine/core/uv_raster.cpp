@@ -1,10 +1,10 @@
-#include "facial/bake/head/uv_raster.h"
+#include "engine/core/uv_raster.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-namespace facial {
+namespace eng {
 
 void rasterizeUv(int width, int height, std::span<const glm::vec2> uvs, std::span<const uint32_t> indices,
                  const std::function<void(int, int, uint32_t, const glm::vec3&)>& texel) {
@@ -89,4 +89,4 @@ std::vector<uint8_t> PaintImage::toSrgba8() const {
   return out;
 }
 
-}  // namespace facial
+}  // namespace eng

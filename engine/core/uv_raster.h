@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-namespace facial {
+namespace eng {
 
 // Calls `texel(x, y, triangle, barycentric)` once per covered texel centre
 // (texture y down, uv.y = 0 at the top row, as in glTF). The first triangle
@@ -39,4 +39,4 @@ float srgbToLinear(float c);
 float linearToSrgb(float c);
 glm::vec3 srgb(int r, int g, int b);  // 8-bit sRGB triple -> linear colour
 
-}  // namespace facial
+}  // namespace eng
