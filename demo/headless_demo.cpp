@@ -12,14 +12,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "demo/face_framing.h"
-#include "demo/cli_parse.h"
+#include "app/face_framing.h"
+#include "app/cli_parse.h"
 #include "demo/demo_options.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
-#include "demo/view_options.h"
-#include "demo/sequence_recorder.h"
-#include "demo/skeleton_motion.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/view_options.h"
+#include "app/sequence_recorder.h"
+#include "app/skeleton_motion.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/scene/image_io.h"
 #include "engine/vk/context.h"

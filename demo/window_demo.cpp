@@ -23,15 +23,15 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "demo/cli_parse.h"
+#include "app/cli_parse.h"
 #include "demo/demo_options.h"
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "demo/window_idle_motion.h"
-#include "demo/skeleton_motion.h"
+#include "app/skeleton_motion.h"
 #include "engine/vk/imgui_layer.h"
-#include "demo/view_options.h"
-#include "demo/window_loop.h"
-#include "demo/window_script.h"
+#include "app/view_options.h"
+#include "app/window_loop.h"
+#include "app/window_script.h"
 #include "engine/vk/context.h"
 #include "engine/vk/framing_bounds.h"
 #include "engine/vk/window.h"

@@ -12,7 +12,7 @@
 //   idle.applyGaze(weights);
 //
 // A skinned avatar with a head joint turns only its head: the sway goes to
-// the joint (headTurn(), see demo/skeleton_motion.h) and the instance keeps
+// the joint (headTurn(), see app/skeleton_motion.h) and the instance keeps
 // just the breathing (breathing(placement)).
 #include <array>
 #include <cstdint>

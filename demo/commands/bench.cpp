@@ -22,11 +22,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "demo/cli_parse.h"
+#include "app/cli_parse.h"
 #include "demo/command.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
-#include "demo/view_options.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/view_options.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/framing_bounds.h"
 

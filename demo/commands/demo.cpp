@@ -4,9 +4,9 @@
 #include <memory>
 
 #include "demo/command.h"
-#include "demo/view_options.h"
+#include "app/view_options.h"
 #include "demo/demo_options.h"
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 
 namespace cli {
 namespace {

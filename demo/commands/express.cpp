@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "demo/command.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
-#include "demo/view_options.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/view_options.h"
 #include "engine/scene/image_io.h"
 
 namespace cli {

@@ -9,8 +9,8 @@
 
 #include "demo/command.h"
 #include "engine/scene/gltf_writer.h"
-#include "facial/bake/head/head_generator.h"
-#include "facial/bake/head/head_rig_spec.h"
+#include "bake/head/head_generator.h"
+#include "bake/head/head_rig_spec.h"
 
 namespace cli {
 namespace {

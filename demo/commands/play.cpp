@@ -11,14 +11,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "demo/face_framing.h"
-#include "demo/cli_parse.h"
+#include "app/face_framing.h"
+#include "app/cli_parse.h"
 #include "demo/command.h"
-#include "demo/view_options.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
-#include "demo/sequence_recorder.h"
-#include "demo/skeleton_motion.h"
+#include "app/view_options.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/sequence_recorder.h"
+#include "app/skeleton_motion.h"
 #include "engine/core/json_nesting.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"

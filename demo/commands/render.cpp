@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "demo/cli_parse.h"
+#include "app/cli_parse.h"
 #include "demo/command.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
-#include "demo/view_options.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/view_options.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "demo/command.h"
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "engine/scene/gltf_loader.h"
 
 namespace cli {

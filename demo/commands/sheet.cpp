@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "demo/face_framing.h"
+#include "app/face_framing.h"
 #include "demo/command.h"
-#include "demo/view_options.h"
-#include "demo/face_setup.h"
-#include "demo/headless_model_renderer.h"
+#include "app/view_options.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/image/text.h"
 #include "engine/scene/image_io.h"

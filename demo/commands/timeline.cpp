@@ -9,10 +9,10 @@
 #include <string>
 
 #include "demo/command.h"
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
-#include "facial/bake/gltf_timeline.h"
+#include "bake/gltf_timeline.h"
 #include "facial/runtime/graph/timeline_json.h"
 
 namespace cli {

@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "editor/app/face_delegate.h"
 #include "facial/runtime/character/face_driver.h"
 

@@ -12,10 +12,10 @@
 #include <optional>
 #include <vector>
 
-#include "demo/cli_parse.h"
-#include "demo/face_setup.h"
+#include "app/cli_parse.h"
+#include "app/face_setup.h"
 #include "engine/vk/imgui_layer.h"
-#include "demo/window_loop.h"
+#include "app/window_loop.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"

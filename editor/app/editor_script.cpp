@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "demo/window_script.h"
+#include "app/window_script.h"
 
 namespace editor {
 

@@ -3,7 +3,7 @@
 // handlers as the buttons, keys and mouse, so a test, a demo or a batch bake
 // can drive the whole editor. The line format (seconds, '#' comments, times in
 // ascending order, errors "FILE:LINE: problem") is the window demo's
-// (demo/window_script.h); the actions are the editor's own:
+// (app/window_script.h); the actions are the editor's own:
 //
 //   0.5 trigger happy              a state machine trigger button
 //   0.8 pad 0.7 -0.2               the control map pad's cursor ([-1, 1]^2)

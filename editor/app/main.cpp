@@ -2,7 +2,7 @@
 //               [--quit-after S] [--screenshot out.png] [--script actions.txt] [--device D]
 #include <CLI/CLI.hpp>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "editor/app/editor_app.h"
 
 int main(int argc, char** argv) {

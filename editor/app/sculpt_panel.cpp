@@ -9,7 +9,7 @@
 #include "editor/atomic_file.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/vk/framing_bounds.h"
-#include "facial/bake/head/head_rig_spec.h"
+#include "bake/head/head_rig_spec.h"
 
 namespace editor {
 

@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "editor/app/face_delegate.h"
 #include "editor/model_surface.h"
 #include "editor/sculpt_model.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "editor/app/face_delegate.h"
 #include "facial/runtime/character/face_driver.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "editor/app/face_delegate.h"
 #include "editor/timeline_document.h"
 #include "editor/timeline_pose.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
 #include "tests/cli/cli_runner.h"

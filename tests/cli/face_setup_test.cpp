@@ -1,7 +1,7 @@
 // FaceSetup: a model, its rig mapping and the project's presets turned into
 // the model's flat weights (defaults as the base, driven targets overwritten,
 // intensity clamped), and the data-folder look-up.
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 
 #include <cmath>
 #include <cstdlib>

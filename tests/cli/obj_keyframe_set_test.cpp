@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/cli/cli_test_support.h"
 #include "tests/common/study_obj_set.h"

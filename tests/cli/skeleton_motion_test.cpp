@@ -1,10 +1,10 @@
-// demo/skeleton_motion.h: skeletal clips chosen by name, index or "all", and
+// app/skeleton_motion.h: skeletal clips chosen by name, index or "all", and
 // the idle head turn going to the head joint of skinned avatars (only).
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "demo/skeleton_motion.h"
+#include "app/skeleton_motion.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "demo/face_setup.h"
+#include "app/face_setup.h"
 #include "tests/common/study_obj_set.h"
 #include "tests/common/test_support.h"
 #include "tests/editor/editor_run.h"

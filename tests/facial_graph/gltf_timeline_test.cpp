@@ -1,4 +1,4 @@
-#include "facial/bake/gltf_timeline.h"
+#include "bake/gltf_timeline.h"
 
 #include <cmath>
 #include <random>

@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "engine/scene/model.h"
-#include "facial/bake/head/head_generator.h"
-#include "facial/bake/head/head_rig_spec.h"
+#include "bake/head/head_generator.h"
+#include "bake/head/head_rig_spec.h"
 
 namespace head_testing {
 

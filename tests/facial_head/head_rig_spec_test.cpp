@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "facial/bake/head/head_rig_spec.h"
+#include "bake/head/head_rig_spec.h"
 #include "facial/runtime/rig/action_units.h"
 #include "tests/common/test_support.h"
 

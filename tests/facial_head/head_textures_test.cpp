@@ -5,7 +5,7 @@
 
 #include <set>
 
-#include "facial/bake/head/skin_painter.h"
+#include "bake/head/skin_painter.h"
 #include "tests/facial_head/built_in_head.h"
 
 namespace {

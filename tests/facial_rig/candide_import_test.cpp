@@ -1,7 +1,7 @@
 // CANDIDE-3 import: the distributed mask (../shared/candide3) becomes one
 // morphable mesh with FACS-named animation units and SU_ identity targets;
 // malformed files fail with file:line messages.
-#include "facial/bake/candide_import.h"
+#include "bake/candide_import.h"
 
 #include <algorithm>
 #include <string>

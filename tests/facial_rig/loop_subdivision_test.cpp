@@ -1,10 +1,10 @@
 // Loop subdivision of low-polygon faces (the CANDIDE-3 mask): counts, the
 // boundary and interior rules, and morph targets carried by the same weights.
-#include "facial/bake/loop_subdivision.h"
+#include "bake/loop_subdivision.h"
 
 #include <gtest/gtest.h>
 
-#include "facial/bake/candide_import.h"
+#include "bake/candide_import.h"
 #include "tests/common/test_support.h"
 
 namespace facial {

@@ -2,7 +2,7 @@
 // JSON and as a binary .vrm container) become VrmExpressionSets; emotions
 // drive them through a rig mapping; malformed extensions are refused with
 // file + JSON path + problem.
-#include "facial/bake/vrm_import.h"
+#include "bake/vrm_import.h"
 
 #include <algorithm>
 

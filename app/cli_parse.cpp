@@ -1,0 +1,25 @@
+#include "app/cli_parse.h"
+
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+namespace cli {
+
+bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return false;
+  auto parse = [](std::string_view s, uint32_t& v) {
+    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && ptr == s.data() + s.size() && v > 0 && v <= 16384;
+  };
+  return parse(std::string_view(text).substr(0, x), width) && parse(std::string_view(text).substr(x + 1), height);
+}
+
+bool parseFloat(std::string_view text, float& out) {
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, out);
+  return ec == std::errc() && ptr == end && std::isfinite(out);
+}
+
+}  // namespace cli

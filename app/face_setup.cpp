@@ -1,0 +1,414 @@
+#include "app/face_setup.h"
+
+#include "facial/runtime/rig/arkit_names.h"
+#include "facial/runtime/rig/rigmap_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Dense>
+#include <glm/gtc/constants.hpp>
+
+#include "app/cli_parse.h"
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/obj_keyframes.h"
+#include "bake/candide_import.h"
+#include "bake/loop_subdivision.h"
+#include "bake/vrm_import.h"
+#include "facial/runtime/rig/action_units.h"
+
+namespace cli {
+
+void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap) {
+  app.add_option("--model,-m", model,
+                 "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, <data>/head.glb)");
+  app.add_option("--rigmap", rigmap,
+                 "Rig map JSON naming which targets are which action unit or emotion "
+                 "(default: <data>/rigmaps/<model>.json, else detected from the target names)");
+}
+
+void addShapeOption(CLI::App& app, std::vector<std::string>& shapes) {
+  app.add_option("--shape", shapes,
+                 "Identity parameter NAME=VALUE baked into the face before drawing (repeatable): a CANDIDE-3 "
+                 "shape unit (e.g. 'mouth width=0.5', 'SU_Eyes_width=-0.3') or any morph target");
+}
+
+std::string_view faceFormatName(FaceFormat format) {
+  switch (format) {
+    case FaceFormat::Gltf: return "glTF";
+    case FaceFormat::Vrm: return "VRM";
+    case FaceFormat::ObjSet: return "OBJ keyframe set";
+    case FaceFormat::Candide3: return "CANDIDE-3";
+  }
+  return "?";
+}
+
+namespace {
+
+// Enough of the file to tell the formats apart.
+constexpr size_t kSniffBytes = 64;
+
+std::string shapeKey(std::string_view name) {
+  std::string key;
+  for (char c : name) key += (c == ' ' || c == '-') ? '_' : char(std::tolower(static_cast<unsigned char>(c)));
+  if (key.compare(0, 3, "su_") == 0) key.erase(0, 3);
+  return key;
+}
+
+eng::Result<LoadedFace> loadObjSet(const std::filesystem::path& dir) {
+  auto folder = eng::findObjKeyframeFolder(dir);
+  if (!folder) return folder.error();
+  auto imported = eng::importObjKeyframes(folder->neutral, folder->targets);
+  if (!imported) return imported.error();
+  LoadedFace face{std::move(imported->model), FaceFormat::ObjSet, nullptr};
+  face.model.sourcePath = dir.string();
+  return face;
+}
+
+// VRM 0.x avatars face -Z (Unity's convention), glTF and VRM 1.0 faces +Z:
+// the scene turns half a turn about +Y under a new root, as three-vrm's
+// rotateVRM0 does, so the camera meets the face. Skinned meshes follow
+// (their joints are under the new root).
+void faceForward(eng::Model& model) {
+  eng::Node turn;
+  turn.name = "VRM 0.x faces +Z";
+  turn.rotation = glm::angleAxis(glm::pi<float>(), glm::vec3(0.0f, 1.0f, 0.0f));
+  turn.children = model.roots;
+  const int index = int(model.nodes.size());
+  for (int root : model.roots) model.nodes[size_t(root)].parent = index;
+  model.nodes.push_back(std::move(turn));
+  model.roots = {index};
+}
+
+eng::Result<LoadedFace> loadGltfOrVrm(const std::filesystem::path& path) {
+  auto model = eng::loadModel(path);
+  if (!model) return model.error();
+  auto vrm = facial::findVrmExpressions(path);
+  if (!vrm) return vrm.error();
+  if (!*vrm) return LoadedFace{std::move(*model), FaceFormat::Gltf, nullptr};
+  // The glTF loader skips the VRM extensions it does not know; here they are read.
+  std::erase_if(model->warnings, [](const std::string& w) {
+    return w == "optional extension VRM ignored" || w == "optional extension VRMC_vrm ignored";
+  });
+  const eng::WeightLayout layout(*model);
+  const facial::VrmExpressionSet& set = **vrm;
+  bool sameLayout = set.meshTargetOffsets.size() == size_t(layout.meshCount()) + 1;
+  for (int m = 0; sameLayout && m <= layout.meshCount(); ++m) sameLayout = set.meshTargetOffsets[m] == layout.offset(m);
+  if (!sameLayout)
+    return eng::makeError(path.string() + ": the VRM expressions address " + std::to_string(set.targetCount()) +
+                          " morph targets over " + std::to_string(set.meshTargetOffsets.size() - 1) +
+                          " meshes, the loaded model has " + std::to_string(layout.total()) + " over " +
+                          std::to_string(layout.meshCount()));
+  if (set.specVersion == 0) faceForward(*model);
+  return LoadedFace{std::move(*model), FaceFormat::Vrm, std::make_shared<const facial::VrmExpressionSet>(std::move(**vrm))};
+}
+
+}  // namespace
+
+// The first bytes of a regular file.
+static eng::Result<std::string> fileHead(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return eng::makeError(path.string() + ": file not found");
+  if (!std::filesystem::is_regular_file(status)) return eng::makeError(path.string() + ": not a regular file or folder");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return eng::makeError(path.string() + ": cannot open for reading");
+  std::string head(kSniffBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<const std::string> shapes) {
+  std::error_code ec;
+  eng::Result<LoadedFace> face = eng::makeError("");
+  if (std::filesystem::is_directory(path, ec)) {
+    face = loadObjSet(path);
+  } else {
+    auto head = fileHead(path);
+    if (!head) return head.error();
+    const std::string_view text(*head);
+    const size_t first = text.find_first_not_of(" \t\r\n");
+    const std::string_view start = first == std::string_view::npos ? std::string_view() : text.substr(first);
+    if (start.starts_with("glTF") || start.starts_with("{")) {
+      face = loadGltfOrVrm(path);
+    } else if (start.starts_with("# VERTEX LIST")) {
+      auto model = facial::importCandide3(path);
+      if (!model) return model.error();
+      // 113 vertices shade and outline as facets: two Loop steps make the mask a smooth surface.
+      for (int step = 0; step < 2; ++step)
+        for (eng::Mesh& mesh : model->meshes)
+          for (eng::Primitive& prim : mesh.primitives)
+            if (auto smooth = facial::loopSubdivide(prim, path.string() + ": " + mesh.name); !smooth) return smooth.error();
+      face = LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr};
+    } else {
+      return eng::makeError(path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
+                            "keyframes or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{' nor '# VERTEX LIST'");
+    }
+  }
+  if (!face) return face.error();
+  if (auto baked = bakeShapes(face->model, shapes); !baked) return eng::makeError(path.string() + ": " + baked.error().message);
+  return face;
+}
+
+eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {
+  for (const std::string& assignment : shapes) {
+    const size_t eq = assignment.rfind('=');
+    float value = 0.0f;
+    if (eq == std::string::npos || eq == 0 || !parseFloat(std::string_view(assignment).substr(eq + 1), value))
+      return eng::makeError("--shape '" + assignment + "' is not NAME=VALUE with a finite number");
+    const std::string name = assignment.substr(0, eq);
+    // Exact names first, then the loose spelling.
+    int matched = 0;
+    for (bool loose : {false, true}) {
+      for (eng::Mesh& mesh : model.meshes)
+        for (size_t t = 0; t < mesh.targetNames.size(); ++t) {
+          if (loose ? shapeKey(mesh.targetNames[t]) != shapeKey(name) : mesh.targetNames[t] != name) continue;
+          for (eng::Primitive& prim : mesh.primitives) {
+            const eng::MorphTarget& target = prim.targets[t];
+            for (size_t v = 0; v < target.positions.size(); ++v) prim.positions[v] += value * target.positions[v];
+            for (size_t v = 0; v < target.normals.size(); ++v) {
+              const glm::vec3 n = prim.normals[v] + value * target.normals[v];
+              if (glm::length(n) > 1e-6f) prim.normals[v] = glm::normalize(n);
+            }
+          }
+          mesh.defaultWeights[t] = 0.0f;
+          ++matched;
+        }
+      if (matched > 0) break;
+    }
+    if (matched == 0) {
+      std::vector<std::string> candidates;
+      for (const eng::Mesh& mesh : model.meshes)
+        for (const std::string& t : mesh.targetNames)
+          if (t.compare(0, 3, "SU_") == 0) candidates.push_back(t);
+      if (candidates.empty())
+        for (const eng::Mesh& mesh : model.meshes) candidates.insert(candidates.end(), mesh.targetNames.begin(), mesh.targetNames.end());
+      std::string list;
+      for (size_t i = 0; i < candidates.size() && i < 12; ++i) list += (i ? ", " : "") + candidates[i];
+      if (candidates.size() > 12) list += ", ... (" + std::to_string(candidates.size()) + " in all)";
+      return eng::makeError("--shape: no shape unit or morph target named '" + name + "'" +
+                            (list.empty() ? std::string("; the model has none") : "; available: " + list));
+    }
+  }
+  return {};
+}
+
+std::filesystem::path dataDirectory() {
+  if (const char* dir = std::getenv("FACIAL_DATA_DIR"); dir && *dir) return dir;
+  return std::filesystem::path(FACIAL_SOURCE_DIR) / "data";
+}
+
+std::filesystem::path defaultModelPath() { return dataDirectory() / "head.glb"; }
+
+std::filesystem::path defaultExpressionsPath() { return dataDirectory() / "expressions.json"; }
+
+std::string modelNameOf(const std::filesystem::path& modelPath) { return modelPath.stem().string(); }
+
+std::vector<float> targetReach(const eng::Model& model) {
+  const eng::WeightLayout layout(model);
+  std::vector<float> reach(layout.total(), 0.0f);
+  const eng::Aabb face = eng::vk::morphedRegionBounds(model);
+  const float faceSize = face.valid() ? face.size().y : 0.0f;
+  if (!(faceSize > 0.0f)) return reach;
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    const int m = model.nodes[i].mesh;
+    if (m < 0 || size_t(m) >= model.meshes.size()) continue;
+    const glm::mat3 linear(model.worldTransform(int(i)));
+    const eng::Mesh& mesh = model.meshes[size_t(m)];
+    for (const eng::Primitive& prim : mesh.primitives) {
+      for (size_t t = 0; t < prim.targets.size() && t < layout.count(m); ++t) {
+        float& r = reach[layout.offset(m) + t];
+        for (const glm::vec3& d : prim.targets[t].positions) r = std::max(r, glm::length(linear * d) / faceSize);
+      }
+    }
+  }
+  return reach;
+}
+
+eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile) {
+  const std::vector<std::string> targetNames = eng::WeightLayout(model).names();
+  facial::RigMappingOptions options;
+  options.modelName = modelNameOf(model.sourcePath);
+  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  options.rigmapFile = rigmapFile;
+  auto rig = facial::buildRigMapping(targetNames, options);
+  if (!rig) return eng::makeError(model.sourcePath + ": " + rig.error().message);
+  facial::RigCalibrationOptions calibration;
+  if (const std::filesystem::path file = facial::rigMapFileFor(options); !file.empty()) {
+    auto rigmap = facial::loadRigMapFile(file, targetNames);
+    if (!rigmap) return eng::makeError(model.sourcePath + ": " + rigmap.error().message);
+    calibration.overrides = std::move(rigmap->calibration);
+  }
+  auto calibrated = facial::calibrateRig(*rig, targetReach(model), calibration);
+  if (!calibrated) return eng::makeError(model.sourcePath + ": " + calibrated.error().message);
+  return calibrated;
+}
+
+eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const std::filesystem::path& rigmapFile) {
+  if (!face.vrm) return buildModelRig(face.model, rigmapFile);
+  facial::RigMappingOptions options;
+  options.modelName = modelNameOf(face.model.sourcePath);
+  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  options.rigmapFile = rigmapFile;
+  auto rig = facial::buildVrmRigMapping(face.vrm, eng::WeightLayout(face.model).names(), options);
+  if (!rig) return eng::makeError(face.model.sourcePath + ": " + rig.error().message);
+  return facial::RigCalibration{std::move(*rig), {}};
+}
+
+eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, const facial::ExpressionLibrary& presets) {
+  const uint32_t auCount = static_cast<uint32_t>(facial::actionUnits().size());
+  const std::span<const std::string_view> emotions = facial::emotionNames();
+  bool bindsEmotions = false;
+  for (uint32_t e = 0; e < emotions.size(); ++e)
+    bindsEmotions |= !rig.targets(facial::emotionInput(facial::Emotion(e))).empty();
+  if (!bindsEmotions) return rig;
+
+  // P: one column per basic emotion (neutral excluded), its preset at intensity 1.
+  constexpr uint32_t kBasic = facial::kEmotionCount - 1;
+  Eigen::MatrixXd pattern = Eigen::MatrixXd::Zero(auCount, kBasic);
+  std::vector<float> au(auCount);
+  for (uint32_t k = 0; k < kBasic; ++k) {
+    const std::string_view name = emotions[k + 1];
+    const facial::ExpressionPreset* preset = presets.find(name);
+    if (!preset || preset->isCompound())
+      return eng::makeError("the rig binds emotions, so the graph's action units are decoded through the basic "
+                            "presets, but the presets have no basic '" + std::string(name) + "'");
+    if (auto r = facial::ExpressionLibrary::evaluate(*preset, 1.0f, au); !r) return r.error();
+    for (uint32_t a = 0; a < auCount; ++a) pattern(a, k) = au[a];
+  }
+  const Eigen::MatrixXd gram = pattern.transpose() * pattern;
+  const Eigen::LDLT<Eigen::MatrixXd> solver(gram);
+  // Relative to the largest pivot: a preset that is (nearly) a mix of the others cannot be told apart.
+  const Eigen::VectorXd pivots = solver.vectorD().cwiseAbs();
+  if (solver.info() != Eigen::Success || pivots.minCoeff() <= 1e-9 * pivots.maxCoeff())
+    return eng::makeError("the basic presets' action units are linearly dependent; emotion-level rig bindings "
+                          "cannot be decoded from the graph's action units");
+  const Eigen::MatrixXd decode = solver.solve(pattern.transpose());  // kBasic x auCount
+
+  facial::RigMappingBuilder builder = facial::RigMappingBuilder::startingFrom(rig);
+  for (uint32_t k = 0; k < kBasic; ++k) {
+    const uint32_t emotion = facial::emotionInput(facial::Emotion(k + 1));
+    const auto targets = rig.targets(emotion);
+    const auto gains = rig.gains(emotion);
+    for (uint32_t a = 0; a < auCount; ++a) {
+      const double d = decode(k, a);
+      if (std::abs(d) < 1e-6) continue;
+      for (size_t i = 0; i < targets.size(); ++i) builder.add(a, targets[i], static_cast<float>(d * gains[i]));
+    }
+  }
+  if (!rig.targets(facial::emotionInput(facial::Emotion::Neutral)).empty())
+    builder.note("neutral: a target bound to the neutral emotion is not driven by action-unit graphs "
+                 "(neutral has no action units to decode)");
+  builder.note("emotion bindings are driven from the action units through the basic presets (least squares)");
+  return builder.build();
+}
+
+eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
+  const std::filesystem::path modelPath = options.model.empty() ? defaultModelPath() : options.model;
+  auto face = loadFace(modelPath, options.shapes);
+  if (!face) return face.error();
+  auto calibration = buildFaceRig(*face, options.rigmap);
+  if (!calibration) return calibration.error();
+  auto rig = std::optional<facial::RigMapping>(std::move(calibration->rig));
+  auto expressions =
+      facial::ExpressionLibrary::load(options.expressions.empty() ? defaultExpressionsPath() : options.expressions);
+  if (!expressions) return expressions.error();
+  auto graphRig = actionUnitRig(*rig, *expressions);
+  if (!graphRig) return eng::makeError(modelPath.string() + ": " + graphRig.error().message);
+  return FaceSetup(std::move(*face), modelNameOf(modelPath), std::move(*rig), std::move(*graphRig),
+                   std::move(*expressions));
+}
+
+FaceSetup::FaceSetup(LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
+                     facial::ExpressionLibrary expressions)
+    : model_(std::move(face.model)),
+      format_(face.format),
+      vrm_(std::move(face.vrm)),
+      name_(std::move(name)),
+      layout_(model_),
+      rig_(std::move(rig)),
+      graphRig_(std::move(graphRig)),
+      expressions_(std::move(expressions)),
+      baseWeights_(layout_.defaults()),
+      actionUnitScratch_(facial::actionUnits().size(), 0.0f),
+      emotionScratch_(facial::kEmotionCount, 0.0f) {
+  // ARKit's 52 shapes are all expression (none is identity), so the neutral
+  // face has every one at 0. A file's default weights on them are a captured
+  // frame (facecap's look down, press the lips and sneer a little), not the
+  // face at rest; other targets (identity, body shapes) keep their defaults.
+  if (rig_.scheme() == facial::RigScheme::Arkit52) {
+    const std::vector<std::string> names = layout_.names();
+    for (size_t i = 0; i < names.size(); ++i)
+      if (facial::arkitIndex(names[i])) baseWeights_[i] = 0.0f;
+  }
+}
+
+eng::Result<const facial::ExpressionPreset*> FaceSetup::findExpression(std::string_view name) const {
+  if (const facial::ExpressionPreset* preset = expressions_.find(name)) return preset;
+  std::string available;
+  for (std::string_view n : expressions_.names()) available += (available.empty() ? "" : ", ") + std::string(n);
+  return eng::makeError("unknown expression '" + std::string(name) + "'; available: " + available);
+}
+
+std::vector<const facial::ExpressionPreset*> FaceSetup::presets(bool compound) const {
+  std::vector<const facial::ExpressionPreset*> picked;
+  for (const facial::ExpressionPreset& preset : expressions_.presets())
+    if (preset.isCompound() == compound) picked.push_back(&preset);
+  return picked;
+}
+
+eng::Result<void> FaceSetup::expressionWeights(const facial::ExpressionPreset& preset, float intensity,
+                                               std::span<float> weights) {
+  if (!std::isfinite(intensity))
+    return eng::makeError("expression '" + preset.name + "': intensity " + std::to_string(intensity) +
+                          " is not a finite number");
+  if (weights.size() != weightCount())
+    return eng::makeError("expression '" + preset.name + "': " + std::to_string(weights.size()) +
+                          " weights given, " + name_ + " has " + std::to_string(weightCount()));
+  const float clamped = std::clamp(intensity, 0.0f, 1.0f);
+  if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();
+  if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
+  std::copy(baseWeights_.begin(), baseWeights_.end(), weights.begin());
+  return rig_.apply(actionUnitScratch_, emotionScratch_, weights);
+}
+
+eng::Result<eng::Model> FaceSetup::modelForPose(const facial::ExpressionPreset& preset, float intensity) {
+  eng::Model posed = model_;
+  if (!vrm_ || !vrm_->hasMaterialBinds() || !rig_.expressionStage()) return posed;
+  if (!std::isfinite(intensity))
+    return eng::makeError("expression '" + preset.name + "': intensity is not a finite number");
+  const float clamped = std::clamp(intensity, 0.0f, 1.0f);
+  if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();
+  if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
+  std::vector<float> expressionWeights(vrm_->expressions.size());
+  if (auto w = rig_.expressionWeights(actionUnitScratch_, emotionScratch_, expressionWeights); !w) return w.error();
+  if (posed.materials.size() != vrm_->materialCount)
+    return eng::makeError(name_ + ": the VRM expressions address " + std::to_string(vrm_->materialCount) +
+                          " materials, the model has " + std::to_string(posed.materials.size()));
+  std::vector<facial::VrmMaterialState> states(posed.materials.size());
+  for (size_t m = 0; m < states.size(); ++m) {
+    const glm::vec4& c = posed.materials[m].baseColorFactor;
+    states[m].color = {c.r, c.g, c.b, c.a};
+  }
+  if (auto moved = vrm_->applyMaterials(expressionWeights, states); !moved) return moved.error();
+  for (size_t m = 0; m < states.size(); ++m) {
+    const auto& c = states[m].color;
+    posed.materials[m].baseColorFactor = glm::clamp(glm::vec4(c[0], c[1], c[2], c[3]), 0.0f, 1.0f);
+  }
+  for (eng::Mesh& mesh : posed.meshes)
+    for (eng::Primitive& prim : mesh.primitives) {
+      if (prim.material < 0 || size_t(prim.material) >= states.size()) continue;
+      const facial::VrmMaterialState& s = states[size_t(prim.material)];
+      const glm::vec2 scale(s.uvScale[0], s.uvScale[1]), offset(s.uvOffset[0], s.uvOffset[1]);
+      if (scale == glm::vec2(1.0f) && offset == glm::vec2(0.0f)) continue;
+      for (glm::vec2& uv : prim.texcoords) uv = uv * scale + offset;
+    }
+  return posed;
+}
+
+}  // namespace cli

@@ -1,0 +1,50 @@
+#include "app/headless_model_renderer.h"
+
+#include <cmath>
+
+#include "engine/vk/framing_bounds.h"
+
+namespace cli {
+
+eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Model& model,
+                                                                 const HeadlessRenderOptions& options) {
+  if (!(options.zoom > 0.0f) || !std::isfinite(options.zoom))
+    return eng::makeError("zoom must be a positive number");
+  if (!std::isfinite(options.yawDegrees) || !std::isfinite(options.pitchDegrees))
+    return eng::makeError("yaw and pitch must be finite numbers of degrees");
+  HeadlessModelRenderer r;
+  eng::vk::ContextOptions contextOptions;
+  contextOptions.device = options.device;
+  auto context = eng::vk::Context::create(contextOptions);
+  if (!context) return eng::makeError("Vulkan: " + context.error().message, context.error().code);
+  r.context_ = std::make_unique<eng::vk::Context>(std::move(*context));
+  auto renderer = eng::vk::OffscreenRenderer::create(*r.context_, {options.width, options.height});
+  if (!renderer) return eng::makeError("Vulkan: " + renderer.error().message, renderer.error().code);
+  r.renderer_ = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
+  auto gpuModel = r.renderer_->upload(model);
+  if (!gpuModel) return gpuModel.error();
+  r.gpuModel_ = std::move(*gpuModel);
+  r.view_.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model, options.framing),
+                                               float(options.width) / float(options.height));
+  r.view_.camera.yawDegrees = options.yawDegrees;
+  r.view_.camera.pitchDegrees = options.pitchDegrees;
+  r.view_.camera.zoom = options.zoom;
+  r.view_.backdrop = options.backdrop;
+  r.modelName_ = model.sourcePath;
+  return r;
+}
+
+eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> weights) {
+  const eng::vk::ModelInstance instance{&gpuModel_, glm::mat4(1.0f), weights};
+  auto image = renderer_->render(view_, {&instance, 1});
+  if (!image) return eng::makeError(modelName_ + ": rendering failed: " + image.error().message, image.error().code);
+  return image;
+}
+
+eng::Result<void> HeadlessModelRenderer::checkValidation() const {
+  if (auto clean = context_->checkValidation(); !clean)
+    return eng::makeError(modelName_ + ": " + clean.error().message);
+  return {};
+}
+
+}  // namespace cli

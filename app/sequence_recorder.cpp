@@ -1,0 +1,69 @@
+#include "app/sequence_recorder.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "app/progress_bar.h"
+#include "engine/image/gif_writer.h"
+#include "engine/scene/image_io.h"
+
+namespace cli {
+
+eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
+                                            const SequenceOptions& options, const FrameStep& step,
+                                            const FrameSink& sink) {
+  if (!(options.framesPerSecond > 0.0f) || !std::isfinite(options.framesPerSecond) || options.framesPerSecond > 240)
+    return eng::makeError("frame rate must be in (0, 240] fps");
+  if (!(options.seconds > 0.0f) || !std::isfinite(options.seconds) || options.seconds > 3600)
+    return eng::makeError("duration must be in (0, 3600] seconds");
+  const uint32_t frameCount = static_cast<uint32_t>(std::ceil(options.seconds * options.framesPerSecond));
+  const float dt = 1.0f / options.framesPerSecond;
+
+  if (!options.frameDir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.frameDir, ec);
+    if (ec) return eng::makeError(options.frameDir.string() + ": cannot create folder: " + ec.message());
+  }
+  std::optional<eng::GifWriter> gif;
+  if (!options.gifPath.empty()) {
+    const VkExtent2D extent = renderer.extent();
+    auto created = eng::GifWriter::create(options.gifPath, static_cast<int>(extent.width),
+                                          static_cast<int>(extent.height), options.framesPerSecond);
+    if (!created) return created.error();
+    gif.emplace(std::move(*created));
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  SequenceSummary summary;
+  ProgressBar progress(options.progressLabel, frameCount);
+  for (uint32_t i = 0; i < frameCount; ++i) {
+    const FrameContext frame{i, static_cast<float>(i) * dt, i == 0 ? 0.0f : dt};
+    auto instances = step(frame);
+    if (!instances) return instances.error();
+    const auto renderStart = std::chrono::steady_clock::now();
+    auto image = renderer.render(view, *instances);
+    if (!image) return eng::makeError("frame " + std::to_string(i) + ": " + image.error().message);
+    summary.renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
+    if (!options.frameDir.empty()) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%04u.png", i);
+      if (auto written = eng::writePng(options.frameDir / name, image->width, image->height, image->rgba8); !written)
+        return written.error();
+    }
+    if (gif) {
+      if (auto added = gif->addFrame(image->rgba8); !added) return added.error();
+    }
+    if (sink) sink(frame, *image);
+    summary.frames = i + 1;
+    progress.update(i + 1);
+  }
+  progress.finish();
+  if (gif) {
+    if (auto finished = gif->finish(); !finished) return finished.error();
+  }
+  summary.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace cli

@@ -1,0 +1,44 @@
+#pragma once
+// The camera and device options every single-image command shares
+// (`render`, `express`), declared once with one wording, and turned into
+// HeadlessRenderOptions with the checks that name the bad option.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/headless_model_renderer.h"
+#include "engine/core/result.h"
+#include "engine/vk/framing_bounds.h"
+
+namespace cli {
+
+struct ViewOptions {
+  std::string size = "512x512";
+  std::string frame = "face";
+  float yaw = 0.0f;
+  float pitch = 0.0f;
+  float zoom = 1.0f;
+  std::string device;
+  std::string background;  // --background (parseBackground)
+};
+
+// --device alone, for commands that choose their own framing.
+void addDeviceOption(CLI::App& app, std::string& device);
+// --frame face|all, for every command that shows a face (default: face).
+void addFramingOption(CLI::App& app, std::string& frame);
+// The --frame value as a mode; the error names the option and the value.
+eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame);
+// --size --yaw --pitch --zoom --frame --device.
+void addViewOptions(CLI::App& app, ViewOptions& view);
+
+// Size parsed, zoom/yaw/pitch checked; the error names the option and value.
+eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view);
+
+// --background transparent|#RRGGBB|studio: what lies behind the face. For
+// commands that do not take every view option (sheet, play).
+void addBackgroundOption(CLI::App& app, std::string& background);
+// "" / "studio": the gradient; "transparent": RGBA with alpha from coverage;
+// "#RRGGBB": that colour. The error names the option and value.
+eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text);
+
+}  // namespace cli

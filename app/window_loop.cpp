@@ -1,0 +1,48 @@
+#include "app/window_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace cli {
+
+eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer& renderer,
+                                const WindowLoopOptions& options,
+                                const std::function<eng::Result<WindowFramePlan>(const WindowTick&)>& frame,
+                                const std::function<void(const std::filesystem::path&)>& shotWritten) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
+  bool finalFrame = false;
+  while (!window.shouldClose()) {
+    window.pollEvents();
+    const Clock::time_point now = Clock::now();
+    WindowTick tick;
+    // Clamped: a stall (window dragged, breakpoint) must not jump the animation.
+    tick.dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
+    last = now;
+    tick.elapsed = std::chrono::duration<float>(now - start).count();
+    if (options.quitAfter > 0.0f && tick.elapsed >= options.quitAfter) finalFrame = true;
+    tick.finalFrame = finalFrame;
+
+    auto plan = frame(tick);
+    if (!plan) return plan.error();
+    if (plan->quit) finalFrame = true;
+    const bool endsWithShot = finalFrame && !options.finalScreenshot.empty();
+    const std::filesystem::path shot = endsWithShot ? options.finalScreenshot : plan->requestedShot;
+    plan->input.screenshot = shot;
+    auto drawn = renderer.drawFrame(plan->input);
+    if (!drawn) return eng::makeError("frame: " + drawn.error().message, drawn.error().code);
+    const bool presented = *drawn == eng::vk::FrameResult::Presented;
+    if (!shot.empty() && presented) {
+      std::printf("screenshot: %s\n", shot.c_str());
+      shotWritten(shot);
+    }
+    // The last frame must really be drawn (not skipped while minimised) to
+    // end with its screenshot; give up on that after five seconds.
+    if (finalFrame && (presented || !endsWithShot || tick.elapsed > options.quitAfter + 5.0f)) break;
+  }
+  return {};
+}
+
+}  // namespace cli

@@ -1,0 +1,214 @@
+#include "bake/gltf_timeline.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "facial/runtime/rig/json_document.h"  // formatNumber
+
+namespace facial {
+namespace {
+
+KeyInterpolation keyInterpolation(eng::Interpolation interpolation) {
+  switch (interpolation) {
+    case eng::Interpolation::Step: return KeyInterpolation::Step;
+    case eng::Interpolation::Linear: return KeyInterpolation::Linear;
+    case eng::Interpolation::CubicSpline: return KeyInterpolation::Hermite;
+  }
+  return KeyInterpolation::Linear;
+}
+
+std::string animationLabel(const eng::Model& model, size_t animation) {
+  const std::string& name = model.animations[animation].name;
+  return "animation " + std::to_string(animation) + (name.empty() ? "" : " '" + name + "'");
+}
+
+}  // namespace
+
+eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animation, std::vector<std::string>* warnings) {
+  if (animation >= model.animations.size())
+    return eng::makeError("animation " + std::to_string(animation) + " out of range (" +
+                          std::to_string(model.animations.size()) + " animations)");
+  const eng::Animation& source = model.animations[animation];
+  const std::string label = animationLabel(model, animation);
+  Timeline timeline;
+  timeline.name = source.name.empty() ? "animation" + std::to_string(animation) : source.name;
+  std::vector<Keyframe> keys;
+  for (size_t c = 0; c < source.channels.size(); ++c) {
+    const eng::WeightsChannel& channel = source.channels[c];
+    const std::string where = label + " channel " + std::to_string(c);
+    if (channel.mesh < 0 || static_cast<size_t>(channel.mesh) >= model.meshes.size())
+      return eng::makeError(where + ": mesh " + std::to_string(channel.mesh) + " out of range (" +
+                            std::to_string(model.meshes.size()) + " meshes)");
+    const eng::Mesh& mesh = model.meshes[channel.mesh];
+    if (channel.targetCount != mesh.targetNames.size())
+      return eng::makeError(where + ": " + std::to_string(channel.targetCount) + " weights per key, mesh '" +
+                            mesh.name + "' has " + std::to_string(mesh.targetNames.size()) + " targets");
+    const bool cubic = channel.interpolation == eng::Interpolation::CubicSpline;
+    const size_t perKey = channel.targetCount * (cubic ? 3 : 1);
+    if (channel.values.size() != channel.times.size() * perKey)
+      return eng::makeError(where + ": " + std::to_string(channel.values.size()) + " values for " +
+                            std::to_string(channel.times.size()) + " keys of " + std::to_string(perKey));
+    for (size_t k = 1; k < channel.times.size(); ++k)
+      if (!(channel.times[k] > channel.times[k - 1]))
+        return eng::makeError(where + ": key " + std::to_string(k) + " time " + formatNumber(channel.times[k]) +
+                              " is not after the previous one (glTF requires strictly increasing times)");
+    if (!channel.times.empty() && channel.times.front() < 0.0f)
+      return eng::makeError(where + ": negative key time " + formatNumber(channel.times.front()));
+    for (size_t t = 0; t < channel.targetCount; ++t) {
+      const std::string& target = mesh.targetNames[t];
+      if (timeline.findTrack(target)) {
+        if (warnings) warnings->push_back(where + ": target '" + target + "' is already animated by an earlier channel; kept the first");
+        continue;
+      }
+      keys.clear();
+      for (size_t k = 0; k < channel.times.size(); ++k) {
+        Keyframe key{.time = channel.times[k], .interpolation = keyInterpolation(channel.interpolation)};
+        const size_t base = k * perKey;
+        if (cubic) {
+          key.inTangent = channel.values[base + t];
+          key.value = channel.values[base + channel.targetCount + t];
+          key.outTangent = channel.values[base + 2 * channel.targetCount + t];
+        } else {
+          key.value = channel.values[base + t];
+        }
+        keys.push_back(key);
+      }
+      if (!keys.empty()) timeline.addTrack(target, keys);
+    }
+  }
+  if (timeline.tracks.empty()) return eng::makeError(label + " animates no morph weights");
+  timeline.duration = timeline.lastKeyTime();
+  if (timeline.duration <= 0.0f) return eng::makeError(label + " lasts 0 s (all keys at time 0)");
+  if (auto problem = timeline.validate()) return eng::makeError(label + ": " + *problem);
+  return timeline;
+}
+
+eng::Result<ImportedTimelines> importGltfTimelines(const eng::Model& model) {
+  ImportedTimelines out;
+  for (size_t a = 0; a < model.animations.size(); ++a) {
+    if (model.animations[a].channels.empty()) continue;
+    auto timeline = importGltfTimeline(model, a, &out.warnings);
+    if (!timeline) return timeline.error();
+    out.timelines.push_back(std::move(timeline).value());
+  }
+  return out;
+}
+
+namespace {
+
+// Slope of a track just before (left) or after (right) `time`; 0 where it holds.
+float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
+  if (keys.size() < 2) return 0.0f;
+  if (left ? time <= keys.front().time : time >= keys.back().time) return 0.0f;
+  if (left ? time > keys.back().time : time < keys.front().time) return 0.0f;
+  uint32_t segment = findSegment(keys, time);
+  if (left && segment > 0 && time == keys[segment].time) --segment;  // the segment ending here
+  return segmentDerivative(keys[segment], keys[segment + 1], time);
+}
+
+}  // namespace
+
+eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options) {
+  if (auto problem = timeline.validate()) return eng::makeError("timeline '" + timeline.name + "': " + *problem);
+  int node = options.node;
+  if (node < 0) {
+    // A face file often holds several meshes (head, eyes, teeth): pick the
+    // first node whose mesh has a target for every track, else the first mesh.
+    int firstMeshNode = -1;
+    for (size_t n = 0; n < model.nodes.size() && node < 0; ++n) {
+      const int m = model.nodes[n].mesh;
+      if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
+      if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
+      const std::vector<std::string>& names = model.meshes[m].targetNames;
+      if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const TimelineTrack& track) {
+            return std::find(names.begin(), names.end(), track.channel) != names.end();
+          }))
+        node = static_cast<int>(n);
+    }
+    if (node < 0) node = firstMeshNode;
+  }
+  if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || model.nodes[node].mesh < 0 ||
+      static_cast<size_t>(model.nodes[node].mesh) >= model.meshes.size())
+    return eng::makeError("timeline '" + timeline.name + "': node " + std::to_string(node) +
+                          " does not exist or has no mesh (" + std::to_string(model.nodes.size()) + " nodes)");
+  if (!(options.sampleRate > 0.0f) || !(options.stepRamp > 0.0f))
+    return eng::makeError("timeline export: sampleRate and stepRamp must be > 0");
+  const int meshIndex = model.nodes[node].mesh;
+  const eng::Mesh& mesh = model.meshes[meshIndex];
+  const size_t targets = mesh.targetNames.size();
+
+  // Track of each target (or none), and the segment kinds in use.
+  std::vector<int> trackOfTarget(targets, -1);
+  for (size_t i = 0; i < timeline.tracks.size(); ++i) {
+    auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), timeline.tracks[i].channel);
+    if (it == mesh.targetNames.end())
+      return eng::makeError("timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
+                            "', which is not a morph target of mesh '" + mesh.name + "' (node " + std::to_string(node) +
+                            ", " + std::to_string(targets) + " targets)");
+    trackOfTarget[static_cast<size_t>(it - mesh.targetNames.begin())] = static_cast<int>(i);
+  }
+  bool allStep = true, allLinear = true;
+  std::vector<float> times;
+  for (size_t i = 0; i < timeline.tracks.size(); ++i) {
+    const std::span<const Keyframe> keys = timeline.trackKeys(i);
+    for (size_t k = 0; k < keys.size(); ++k) {
+      times.push_back(keys[k].time);
+      if (k + 1 == keys.size()) break;  // the last key's mode shapes no segment
+      allStep = allStep && keys[k].interpolation == KeyInterpolation::Step;
+      allLinear = allLinear && keys[k].interpolation == KeyInterpolation::Linear;
+    }
+  }
+  const bool cubic = !allStep && !allLinear;
+  if (cubic) {
+    for (size_t i = 0; i < timeline.tracks.size(); ++i) {
+      const std::span<const Keyframe> keys = timeline.trackKeys(i);
+      for (size_t k = 0; k + 1 < keys.size(); ++k) {
+        const float start = keys[k].time, end = keys[k + 1].time;
+        if (keys[k].interpolation == KeyInterpolation::Cosine) {
+          const int pieces = std::max(1, static_cast<int>(std::ceil((end - start) * options.sampleRate)));
+          for (int p = 1; p < pieces; ++p) times.push_back(start + (end - start) * static_cast<float>(p) / pieces);
+        } else if (keys[k].interpolation == KeyInterpolation::Step && keys[k].value != keys[k + 1].value) {
+          times.push_back(end - std::min(options.stepRamp, 0.5f * (end - start)));
+        }
+      }
+    }
+  }
+  // glTF has no duration of its own (an animation ends at its last key): a
+  // key at 0 and one at the timeline's end keep its holds at both ends.
+  times.push_back(0.0f);
+  times.push_back(timeline.duration);
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+
+  eng::WeightsChannel channel;
+  channel.node = node;
+  channel.mesh = meshIndex;
+  channel.targetCount = targets;
+  channel.interpolation = allStep ? eng::Interpolation::Step : allLinear ? eng::Interpolation::Linear
+                                                                         : eng::Interpolation::CubicSpline;
+  channel.times = times;
+  channel.values.reserve(times.size() * targets * (cubic ? 3 : 1));
+  auto emit = [&](auto&& perTarget) {
+    for (size_t t = 0; t < targets; ++t) channel.values.push_back(perTarget(t));
+  };
+  for (float time : times) {
+    auto value = [&](size_t t) {
+      const int track = trackOfTarget[t];
+      if (track < 0) return t < mesh.defaultWeights.size() ? mesh.defaultWeights[t] : 0.0f;
+      return sampleKeys(timeline.trackKeys(static_cast<size_t>(track)), time);
+    };
+    auto slope = [&](bool left) {
+      return [&, left](size_t t) {
+        const int track = trackOfTarget[t];
+        return track < 0 ? 0.0f : trackSlope(timeline.trackKeys(static_cast<size_t>(track)), time, left);
+      };
+    };
+    if (cubic) emit(slope(true));
+    emit(value);
+    if (cubic) emit(slope(false));
+  }
+  model.animations.push_back(eng::Animation{timeline.name, {std::move(channel)}});
+  return {};
+}
+
+}  // namespace facial

@@ -1,0 +1,481 @@
+#include "bake/vrm_import.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/glb_container.h"
+#include "facial/runtime/rig/json_document.h"
+
+namespace facial {
+namespace {
+
+constexpr size_t kMaxVrmFileBytes = size_t{512} << 20;
+
+constexpr std::array<std::string_view, 18> kVrm1Presets = {
+    "happy", "angry", "sad", "relaxed", "surprised", "aa", "ih", "ou", "ee", "oh",
+    "blink", "blinkLeft", "blinkRight", "lookUp", "lookDown", "lookLeft", "lookRight", "neutral"};
+constexpr std::array<std::string_view, 18> kVrm0Presets = {
+    "unknown", "neutral", "a", "i", "u", "e", "o", "blink", "joy",
+    "angry", "sorrow", "fun", "lookup", "lookdown", "lookleft", "lookright", "blink_l", "blink_r"};
+
+template <size_t N>
+bool contains(const std::array<std::string_view, N>& list, std::string_view name) {
+  for (std::string_view s : list)
+    if (s == name) return true;
+  return false;
+}
+
+// Parsing context: source name for messages, the document, the flat target layout.
+struct Context {
+  std::string_view source;
+  const Json& gltf;
+  VrmExpressionSet& set;
+};
+
+eng::Result<size_t> readIndex(const Context& c, const Json& object, std::string_view key, const std::string& path,
+                              size_t limit, std::string_view limitWhat) {
+  const std::string keyPath = childPath(path, key);
+  if (!object.contains(key)) return jsonError(c.source, keyPath, "missing");
+  const Json& v = object[std::string(key)];
+  if (!v.is_number_integer() || v.get<int64_t>() < 0)
+    return jsonError(c.source, keyPath, "must be a non-negative integer, got " + v.dump());
+  const size_t index = static_cast<size_t>(v.get<int64_t>());
+  if (index >= limit)
+    return jsonError(c.source, keyPath,
+                     std::to_string(index) + " is out of range (" + std::to_string(limit) + " " + std::string(limitWhat) + ")");
+  return index;
+}
+
+eng::Result<float> readBindWeight(const Context& c, const Json& bind, const std::string& path, double maxWeight) {
+  const std::string keyPath = childPath(path, "weight");
+  if (!bind.contains("weight")) return jsonError(c.source, keyPath, "missing");
+  const Json& v = bind["weight"];
+  if (!v.is_number()) return jsonError(c.source, keyPath, "must be a number, got " + std::string(jsonTypeName(v)));
+  const double w = v.get<double>();
+  if (!std::isfinite(w) || w < 0.0 || w > maxWeight)
+    return jsonError(c.source, keyPath, "weight " + formatNumber(w) + " is outside [0, " + formatNumber(maxWeight) + "]");
+  return static_cast<float>(w / maxWeight);
+}
+
+eng::Result<bool> readBool(const Context& c, const Json& object, std::string_view key, const std::string& path) {
+  if (!object.contains(key)) return false;
+  const Json& v = object[std::string(key)];
+  if (!v.is_boolean()) return jsonError(c.source, childPath(path, key), "must be true or false, got " + v.dump());
+  return v.get<bool>();
+}
+
+// Flat, mesh-major target list of the document.
+eng::Result<void> readTargets(const Context& c) {
+  VrmExpressionSet& set = c.set;
+  set.meshTargetOffsets.push_back(0);
+  if (!c.gltf.contains("meshes")) return {};
+  const Json& meshes = c.gltf["meshes"];
+  if (!meshes.is_array()) return jsonError(c.source, "/meshes", "must be an array");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const std::string path = childPath("/meshes", m);
+    const Json& mesh = meshes[m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+      return jsonError(c.source, path, "a mesh must be an object with a primitives array");
+    size_t count = 0;
+    const Json& primitives = mesh["primitives"];
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      const Json& prim = primitives[p];
+      const size_t n = prim.is_object() && prim.contains("targets") && prim["targets"].is_array() ? prim["targets"].size() : 0;
+      if (p == 0) count = n;
+      else if (n != count)
+        return jsonError(c.source, childPath(childPath(childPath(path, "primitives"), p), "targets"),
+                         std::to_string(n) + " morph targets, primitive 0 has " + std::to_string(count));
+    }
+    const std::string meshName =
+        mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "mesh_" + std::to_string(m);
+    const Json* names = nullptr;
+    if (mesh.contains("extras") && mesh["extras"].is_object() && mesh["extras"].contains("targetNames") &&
+        mesh["extras"]["targetNames"].is_array() && mesh["extras"]["targetNames"].size() == count)
+      names = &mesh["extras"]["targetNames"];
+    for (size_t t = 0; t < count; ++t) {
+      const std::string targetName =
+          names && (*names)[t].is_string() ? (*names)[t].get<std::string>() : "target_" + std::to_string(t);
+      set.targetNames.push_back(meshName + "/" + targetName);
+    }
+    set.meshTargetOffsets.push_back(static_cast<uint32_t>(set.targetNames.size()));
+  }
+  return {};
+}
+
+size_t meshTargetCount(const VrmExpressionSet& set, size_t mesh) {
+  return set.meshTargetOffsets[mesh + 1] - set.meshTargetOffsets[mesh];
+}
+
+eng::Result<std::array<float, 4>> readFloats(const Context& c, const Json& object, std::string_view key,
+                                             const std::string& path, size_t count, bool required) {
+  std::array<float, 4> out{};
+  const std::string keyPath = childPath(path, key);
+  if (!object.contains(key)) {
+    if (required) return jsonError(c.source, keyPath, "missing");
+    return out;
+  }
+  const Json& v = object[std::string(key)];
+  if (!v.is_array() || v.size() < count)
+    return jsonError(c.source, keyPath, "must be an array of " + std::to_string(count) + " numbers, got " + v.dump());
+  for (size_t i = 0; i < count; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+      return jsonError(c.source, childPath(keyPath, i), "must be a finite number, got " + v[i].dump());
+    out[i] = v[i].get<float>();
+  }
+  return out;
+}
+
+size_t materialCountOf(const Json& gltf) {
+  return gltf.contains("materials") && gltf["materials"].is_array() ? gltf["materials"].size() : 0;
+}
+
+// VRM 1.0 materialColorBinds [{material, type, targetValue[4]}] and
+// textureTransformBinds [{material, scale[2], offset[2]}].
+eng::Result<void> readVrm1MaterialBinds(const Context& c, const Json& e, const std::string& path, VrmExpression& expression) {
+  const size_t materials = materialCountOf(c.gltf);
+  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
+  if (e.contains("materialColorBinds")) {
+    const std::string bindsPath = childPath(path, "materialColorBinds");
+    const Json& binds = e["materialColorBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, type, targetValue}");
+      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
+      if (!material) return material.error();
+      const std::string type = bind.contains("type") && bind["type"].is_string() ? bind["type"].get<std::string>() : "";
+      VrmMaterialColorBind out;
+      out.material = static_cast<uint32_t>(*material);
+      bool known = false;
+      for (auto t : {VrmMaterialColorType::Color, VrmMaterialColorType::EmissionColor, VrmMaterialColorType::ShadeColor,
+                     VrmMaterialColorType::MatcapColor, VrmMaterialColorType::RimColor, VrmMaterialColorType::OutlineColor})
+        if (vrmMaterialColorTypeName(t) == type) {
+          out.type = t;
+          known = true;
+        }
+      if (!known)
+        return jsonError(c.source, childPath(bindPath, "type"),
+                         "must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " +
+                             (bind.contains("type") ? bind["type"].dump() : std::string("nothing")));
+      auto value = readFloats(c, bind, "targetValue", bindPath, 4, true);
+      if (!value) return value.error();
+      out.targetValue = *value;
+      c.set.materialColorBinds.push_back(out);
+    }
+  }
+  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
+
+  expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
+  if (e.contains("textureTransformBinds")) {
+    const std::string bindsPath = childPath(path, "textureTransformBinds");
+    const Json& binds = e["textureTransformBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, scale, offset}");
+      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
+      if (!material) return material.error();
+      VrmTextureTransformBind out;
+      out.material = static_cast<uint32_t>(*material);
+      if (bind.contains("scale")) {
+        auto scale = readFloats(c, bind, "scale", bindPath, 2, true);
+        if (!scale) return scale.error();
+        out.scale = {(*scale)[0], (*scale)[1]};
+      }
+      auto offset = readFloats(c, bind, "offset", bindPath, 2, false);
+      if (!offset) return offset.error();
+      out.offset = {(*offset)[0], (*offset)[1]};
+      c.set.textureTransformBinds.push_back(out);
+    }
+  }
+  expression.textureTransformBindCount =
+      static_cast<uint32_t>(c.set.textureTransformBinds.size()) - expression.firstTextureTransformBind;
+  return {};
+}
+
+// VRM 0.x materialValues [{materialName, propertyName, targetValue[]}]:
+// _Color / _EmissionColor / _ShadeColor / _SphereAdd / _RimColor / _OutlineColor
+// are colours, _MainTex_ST is a texture transform (scale xy, offset zw).
+eng::Result<void> readVrm0MaterialValues(const Context& c, const Json& group, const std::string& path,
+                                         VrmExpression& expression) {
+  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
+  expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
+  if (group.contains("materialValues")) {
+    const std::string valuesPath = childPath(path, "materialValues");
+    const Json& values = group["materialValues"];
+    if (!values.is_array()) return jsonError(c.source, valuesPath, "must be an array");
+    const size_t materials = materialCountOf(c.gltf);
+    for (size_t b = 0; b < values.size(); ++b) {
+      const std::string valuePath = childPath(valuesPath, b);
+      const Json& value = values[b];
+      if (!value.is_object() || !value.contains("materialName") || !value["materialName"].is_string() ||
+          !value.contains("propertyName") || !value["propertyName"].is_string())
+        return jsonError(c.source, valuePath, "a material value must be an object {materialName, propertyName, targetValue}");
+      const std::string materialName = value["materialName"].get<std::string>();
+      size_t material = materials;
+      for (size_t m = 0; m < materials; ++m)
+        if (c.gltf["materials"][m].is_object() && c.gltf["materials"][m].value("name", std::string()) == materialName) {
+          material = m;
+          break;
+        }
+      if (material == materials)
+        return jsonError(c.source, childPath(valuePath, "materialName"), "no material is named '" + materialName + "'");
+      const std::string property = value["propertyName"].get<std::string>();
+      auto target = readFloats(c, value, "targetValue", valuePath, 4, true);
+      if (!target) return target.error();
+      if (property == "_MainTex_ST") {
+        c.set.textureTransformBinds.push_back(
+            {static_cast<uint32_t>(material), {(*target)[0], (*target)[1]}, {(*target)[2], (*target)[3]}});
+        continue;
+      }
+      struct Property {
+        std::string_view name;
+        VrmMaterialColorType type;
+      };
+      constexpr std::array kProperties = {Property{"_Color", VrmMaterialColorType::Color},
+                                          Property{"_EmissionColor", VrmMaterialColorType::EmissionColor},
+                                          Property{"_ShadeColor", VrmMaterialColorType::ShadeColor},
+                                          Property{"_SphereAdd", VrmMaterialColorType::MatcapColor},
+                                          Property{"_RimColor", VrmMaterialColorType::RimColor},
+                                          Property{"_OutlineColor", VrmMaterialColorType::OutlineColor}};
+      bool known = false;
+      for (const Property& p : kProperties)
+        if (p.name == property) {
+          c.set.materialColorBinds.push_back({static_cast<uint32_t>(material), p.type, *target});
+          known = true;
+        }
+      if (!known)
+        c.set.warnings.push_back(std::string(c.source) + ": " + childPath(valuePath, "propertyName") + ": '" + property +
+                                 "' is not a colour or _MainTex_ST; ignored");
+    }
+  }
+  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
+  expression.textureTransformBindCount =
+      static_cast<uint32_t>(c.set.textureTransformBinds.size()) - expression.firstTextureTransformBind;
+  return {};
+}
+
+eng::Result<VrmOverride> readOverride(const Context& c, const Json& expression, std::string_view key,
+                                      const std::string& path) {
+  if (!expression.contains(key)) return VrmOverride::None;
+  const Json& v = expression[std::string(key)];
+  const std::string text = v.is_string() ? v.get<std::string>() : std::string();
+  if (text == "none") return VrmOverride::None;
+  if (text == "block") return VrmOverride::Block;
+  if (text == "blend") return VrmOverride::Blend;
+  return jsonError(c.source, childPath(path, key), "must be \"none\", \"block\" or \"blend\", got " + v.dump());
+}
+
+eng::Result<void> readVrm1Expression(const Context& c, const std::string& name, const Json& e, const std::string& path,
+                                     bool isPreset) {
+  if (!e.is_object()) return jsonError(c.source, path, "an expression must be an object");
+  VrmExpression expression;
+  expression.name = name;
+  expression.isPreset = isPreset;
+  expression.group = isPreset ? vrmProceduralGroup(name) : VrmProceduralGroup::None;
+  auto binary = readBool(c, e, "isBinary", path);
+  if (!binary) return binary.error();
+  expression.isBinary = *binary;
+  auto blink = readOverride(c, e, "overrideBlink", path);
+  if (!blink) return blink.error();
+  auto lookAt = readOverride(c, e, "overrideLookAt", path);
+  if (!lookAt) return lookAt.error();
+  auto mouth = readOverride(c, e, "overrideMouth", path);
+  if (!mouth) return mouth.error();
+  expression.overrideBlink = *blink;
+  expression.overrideLookAt = *lookAt;
+  expression.overrideMouth = *mouth;
+  if (auto r = readVrm1MaterialBinds(c, e, path, expression); !r) return r.error();
+
+  expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
+  if (e.contains("morphTargetBinds")) {
+    const std::string bindsPath = childPath(path, "morphTargetBinds");
+    const Json& binds = e["morphTargetBinds"];
+    if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+    const Json* nodes = c.gltf.contains("nodes") && c.gltf["nodes"].is_array() ? &c.gltf["nodes"] : nullptr;
+    for (size_t b = 0; b < binds.size(); ++b) {
+      const std::string bindPath = childPath(bindsPath, b);
+      const Json& bind = binds[b];
+      if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {node, index, weight}");
+      auto node = readIndex(c, bind, "node", bindPath, nodes ? nodes->size() : 0, "nodes");
+      if (!node) return node.error();
+      const Json& nodeJson = (*nodes)[*node];
+      if (!nodeJson.is_object() || !nodeJson.contains("mesh") || !nodeJson["mesh"].is_number_integer())
+        return jsonError(c.source, childPath(bindPath, "node"), "node " + std::to_string(*node) + " has no mesh");
+      const int64_t mesh = nodeJson["mesh"].get<int64_t>();
+      if (mesh < 0 || static_cast<size_t>(mesh) + 1 >= c.set.meshTargetOffsets.size())
+        return jsonError(c.source, childPath(childPath("/nodes", *node), "mesh"),
+                         std::to_string(mesh) + " is out of range (" + std::to_string(c.set.meshTargetOffsets.size() - 1) +
+                             " meshes)");
+      auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, size_t(mesh)),
+                             "morph targets on mesh " + std::to_string(mesh));
+      if (!index) return index.error();
+      auto weight = readBindWeight(c, bind, bindPath, 1.0);
+      if (!weight) return weight.error();
+      c.set.binds.push_back({c.set.meshTargetOffsets[size_t(mesh)] + static_cast<uint32_t>(*index), *weight});
+    }
+  }
+  expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
+  c.set.expressions.push_back(std::move(expression));
+  return {};
+}
+
+eng::Result<void> readVrm1(const Context& c, const Json& vrm) {
+  c.set.specVersion = 1;
+  if (!vrm.is_object()) return jsonError(c.source, "/extensions/VRMC_vrm", "must be an object");
+  if (!vrm.contains("expressions")) return {};
+  const Json& expressions = vrm["expressions"];
+  const std::string path = "/extensions/VRMC_vrm/expressions";
+  if (!expressions.is_object()) return jsonError(c.source, path, "must be an object {preset, custom}");
+  for (const char* kind : {"preset", "custom"}) {
+    if (!expressions.contains(kind)) continue;
+    const std::string kindPath = childPath(path, kind);
+    const Json& list = expressions[kind];
+    if (!list.is_object()) return jsonError(c.source, kindPath, "must be an object of name: expression");
+    const bool presets = std::string_view(kind) == "preset";
+    for (const auto& [name, e] : list.items()) {
+      const std::string ePath = childPath(kindPath, name);
+      bool isPreset = presets;
+      if (presets && !contains(kVrm1Presets, name)) {
+        c.set.warnings.push_back(std::string(c.source) + ": " + ePath + ": not a VRM 1.0 preset name; treated as custom");
+        isPreset = false;
+      }
+      if (!presets && contains(kVrm1Presets, name))
+        return jsonError(c.source, ePath, "a custom expression must not reuse the preset name '" + name + "'");
+      if (auto r = readVrm1Expression(c, name, e, ePath, isPreset); !r) return r.error();
+    }
+  }
+  return {};
+}
+
+eng::Result<void> readVrm0(const Context& c, const Json& vrm) {
+  c.set.specVersion = 0;
+  const std::string masterPath = "/extensions/VRM/blendShapeMaster";
+  if (!vrm.is_object() || !vrm.contains("blendShapeMaster")) return {};
+  const Json& master = vrm["blendShapeMaster"];
+  if (!master.is_object()) return jsonError(c.source, masterPath, "must be an object");
+  if (!master.contains("blendShapeGroups")) return {};
+  const std::string groupsPath = childPath(masterPath, "blendShapeGroups");
+  const Json& groups = master["blendShapeGroups"];
+  if (!groups.is_array()) return jsonError(c.source, groupsPath, "must be an array");
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::string path = childPath(groupsPath, g);
+    const Json& group = groups[g];
+    if (!group.is_object()) return jsonError(c.source, path, "a blend shape group must be an object");
+    std::string preset = "unknown";
+    if (group.contains("presetName")) {
+      if (!group["presetName"].is_string())
+        return jsonError(c.source, childPath(path, "presetName"), "must be a string");
+      preset = group["presetName"].get<std::string>();
+      if (preset.empty()) preset = "unknown";
+    }
+    if (!contains(kVrm0Presets, preset))
+      return jsonError(c.source, childPath(path, "presetName"), "'" + preset + "' is not a VRM 0.x preset name");
+    std::string name = preset;
+    if (preset == "unknown")
+      name = group.contains("name") && group["name"].is_string() && !group["name"].get<std::string>().empty()
+                 ? group["name"].get<std::string>()
+                 : "group_" + std::to_string(g);
+    for (const VrmExpression& existing : c.set.expressions) {
+      if (existing.name != name) continue;
+      c.set.warnings.push_back(std::string(c.source) + ": " + path + ": a second expression named '" + name +
+                               "'; renamed '" + name + " (" + std::to_string(g) + ")'");
+      name += " (" + std::to_string(g) + ")";
+      break;
+    }
+    VrmExpression expression;
+    expression.name = name;
+    expression.isPreset = preset != "unknown";
+    expression.group = expression.isPreset ? vrmProceduralGroup(preset) : VrmProceduralGroup::None;
+    auto binary = readBool(c, group, "isBinary", path);
+    if (!binary) return binary.error();
+    expression.isBinary = *binary;
+    if (auto r = readVrm0MaterialValues(c, group, path, expression); !r) return r.error();
+    expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
+    if (group.contains("binds")) {
+      const std::string bindsPath = childPath(path, "binds");
+      const Json& binds = group["binds"];
+      if (!binds.is_array()) return jsonError(c.source, bindsPath, "must be an array");
+      for (size_t b = 0; b < binds.size(); ++b) {
+        const std::string bindPath = childPath(bindsPath, b);
+        const Json& bind = binds[b];
+        if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {mesh, index, weight}");
+        auto mesh = readIndex(c, bind, "mesh", bindPath, c.set.meshTargetOffsets.size() - 1, "meshes");
+        if (!mesh) return mesh.error();
+        auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, *mesh),
+                               "morph targets on mesh " + std::to_string(*mesh));
+        if (!index) return index.error();
+        auto weight = readBindWeight(c, bind, bindPath, 100.0);  // VRM 0.x weights run 0..100
+        if (!weight) return weight.error();
+        c.set.binds.push_back({c.set.meshTargetOffsets[*mesh] + static_cast<uint32_t>(*index), *weight});
+      }
+    }
+    expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
+    c.set.expressions.push_back(std::move(expression));
+  }
+  return {};
+}
+
+}  // namespace
+
+eng::Result<VrmExpressionSet> importVrmExpressions(const Json& gltf, std::string_view source) {
+  if (!gltf.is_object()) return jsonError(source, "", "a glTF document must be an object");
+  const Json* extensions = gltf.contains("extensions") && gltf["extensions"].is_object() ? &gltf["extensions"] : nullptr;
+  const bool hasVrm1 = extensions && extensions->contains("VRMC_vrm");
+  const bool hasVrm0 = extensions && extensions->contains("VRM");
+  if (!hasVrm1 && !hasVrm0)
+    return jsonError(source, "/extensions", "no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
+  VrmExpressionSet set;
+  set.materialCount = static_cast<uint32_t>(materialCountOf(gltf));
+  const Context c{source, gltf, set};
+  if (auto r = readTargets(c); !r) return r.error();
+  if (auto r = hasVrm1 ? readVrm1(c, (*extensions)["VRMC_vrm"]) : readVrm0(c, (*extensions)["VRM"]); !r)
+    return r.error();
+  if (hasVrm1 && hasVrm0)
+    set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");
+  if (auto valid = set.validate(); !valid) return eng::makeError(std::string(source) + ": " + valid.error().message);
+  return set;
+}
+
+bool hasVrmExtension(const Json& gltf) {
+  return gltf.is_object() && gltf.contains("extensions") && gltf["extensions"].is_object() &&
+         (gltf["extensions"].contains("VRMC_vrm") || gltf["extensions"].contains("VRM"));
+}
+
+namespace {
+
+eng::Result<Json> readGltfJson(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
+  if (!bytes) return bytes.error();
+  std::string_view text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  if (eng::hasGlbMagic(*bytes)) {
+    eng::Result<eng::GlbChunks> chunks = eng::parseGlb(*bytes);
+    if (!chunks) return eng::makeError(name + ": " + chunks.error().message);
+    text = std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
+  }
+  return parseJsonText(text, name);
+}
+
+}  // namespace
+
+eng::Result<VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file) {
+  eng::Result<Json> json = readGltfJson(file);
+  if (!json) return json.error();
+  return importVrmExpressions(*json, file.string());
+}
+
+eng::Result<std::optional<VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file) {
+  eng::Result<Json> json = readGltfJson(file);
+  if (!json) return json.error();
+  if (!hasVrmExtension(*json)) return std::optional<VrmExpressionSet>();
+  auto set = importVrmExpressions(*json, file.string());
+  if (!set) return set.error();
+  return std::optional<VrmExpressionSet>(std::move(*set));
+}
+
+}  // namespace facial
