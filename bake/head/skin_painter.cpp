@@ -87,7 +87,7 @@ const Curve2& nasolabialCurve() {
 const vec3 kSkin = eng::srgb(238, 192, 162);
 const vec3 kHair = eng::srgb(66, 44, 32);
 const vec3 kBrow = eng::srgb(48, 31, 23);
-const vec3 kLip = eng::srgb(192, 104, 100);
+const vec3 kLip = eng::srgb(172, 88, 88);
 const vec3 kLash = eng::srgb(34, 24, 22);
 
 vec4 over(const vec4& under, const vec3& colour, float alpha) {
@@ -199,7 +199,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
     const float elevation = std::atan2(d.y, std::sqrt(d.x * d.x + d.z * d.z));
     const float seamDistance = std::abs(elevation - sdf_.seamElevation()) * 0.09f;
     vec3 lipColour = glm::mix(kLip * 0.72f, kLip, smoothstep(0.0003f, 0.0022f, seamDistance));
-    lipColour = glm::mix(lipColour, eng::srgb(236, 150, 146), 0.35f * gauss2(vec2(p.x, p.y - (prop_.mouthSeamCentre.y - 0.0045f)), 0.005f));
+    lipColour = glm::mix(lipColour, eng::srgb(226, 138, 134), 0.22f * gauss2(vec2(p.x, p.y - (prop_.mouthSeamCentre.y - 0.0045f)), 0.005f));
     c = glm::mix(c, lipColour, lip);
   }
 
