@@ -7,26 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "engine/scene/crease_shading.h"
+#include "tests/common/test_meshes.h"
 
 namespace {
 
 constexpr int kSide = 11;  // vertices per side of the test sheet
 
-// A flat sheet in the XY plane facing +Z, 1 x 1, with the given targets.
-eng::Primitive sheet() {
-  eng::Primitive p;
-  for (int y = 0; y < kSide; ++y)
-    for (int x = 0; x < kSide; ++x) {
-      p.positions.push_back({float(x) / (kSide - 1) - 0.5f, float(y) / (kSide - 1) - 0.5f, 0.0f});
-      p.normals.push_back({0, 0, 1});
-    }
-  for (int y = 0; y + 1 < kSide; ++y)
-    for (int x = 0; x + 1 < kSide; ++x) {
-      const uint32_t a = uint32_t(y * kSide + x), b = a + 1, c = a + kSide, d = c + 1;
-      p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
-    }
-  return p;
-}
+eng::Primitive sheet() { return testing_support::flatSheet(kSide); }
 
 size_t centre() { return size_t((kSide / 2) * kSide + kSide / 2); }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/common/test_meshes.h"
 #include "tests/vk/image_probe.h"
 #include "tests/vk/vk_test_context.h"
 
@@ -15,18 +16,7 @@ namespace {
 // crease darkening can change its shade.
 eng::Model squeezableSheet() {
   eng::Model model;
-  eng::Primitive p;
-  constexpr int kSide = 21;
-  for (int y = 0; y < kSide; ++y)
-    for (int x = 0; x < kSide; ++x) {
-      p.positions.push_back({float(x) / (kSide - 1) - 0.5f, float(y) / (kSide - 1) - 0.5f, 0.0f});
-      p.normals.push_back({0, 0, 1});
-    }
-  for (int y = 0; y + 1 < kSide; ++y)
-    for (int x = 0; x + 1 < kSide; ++x) {
-      const uint32_t a = uint32_t(y * kSide + x), b = a + 1, c = a + kSide, d = c + 1;
-      p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
-    }
+  eng::Primitive p = testing_support::flatSheet(21);
   eng::MorphTarget squeeze;
   for (const glm::vec3& q : p.positions) squeeze.positions.push_back({-0.5f * q.x, 0, 0});
   p.targets.push_back(squeeze);
