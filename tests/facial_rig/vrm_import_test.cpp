@@ -437,13 +437,15 @@ TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
   bind["targetValue"] = Json::array({1, 0});
   EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue: must be an array of 4 numbers"),
             std::string::npos);
-  // JSON has no NaN: a non-finite colour arrives as null (what serialisers write for NaN) or an overflowing number.
+  // JSON has no NaN: serialisers write a NaN colour as null.
   bind["targetValue"] = Json::parse("[1, null, 0, 1]");
   EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
             "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/targetValue/1: must be a "
             "finite number, got null; bind ignored");
-  bind["targetValue"] = Json::parse("[1, 1e999, 0, 1]");
-  EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("targetValue/1: must be a finite number"), std::string::npos);
+  // A document built in memory (or by a lenient parser) may carry a real NaN.
+  bind["targetValue"] = Json::array({1.0, std::nan(""), 0.0, 1.0});
+  EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue/1: must be a finite number"),
+            std::string::npos);
   doc = vrm0Document();
   doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][4]["materialValues"][0]["materialName"] = "iris";
   const std::string warning = onlyWarningOf(doc, 0, 0);
