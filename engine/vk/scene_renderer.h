@@ -1,9 +1,13 @@
 #pragma once
 // Draws model instances into a render pass of any target. Per frame the CPU
 // writes only the instance records (transform + slice of the active list +
-// slice of the joint matrices), the compact active-weight list and the joint
-// matrices of skinned mesh nodes; each mesh of a model draws ALL instances of
-// that model in one instanced draw per primitive.
+// slice of the joint matrices + first material record), the compact
+// active-weight list, the joint matrices of skinned mesh nodes and one
+// material record per material per instance (48 bytes: base colour, emission,
+// UV transform; an animation's overrides or the model's own values), all into
+// persistent mapped buffers (descriptors are rewritten only when one grows);
+// each mesh of a model draws ALL instances of that model in one instanced
+// draw per primitive.
 //
 // Frame slots: the caller owns synchronisation; prepare(slot) may only be
 // called once the GPU has finished the previous commands recorded for that slot.

@@ -30,19 +30,6 @@ std::filesystem::path candidePath() { return testing_support::sharedDir() / "can
 
 bool contains(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
 
-// Fraction of pixels whose RGB differs by more than 16 in some channel.
-double differingFraction(const eng::Image& a, const eng::Image& b) {
-  if (a.width != b.width || a.height != b.height || a.rgba8.empty()) return 1.0;
-  size_t differing = 0;
-  for (size_t p = 0; p < a.rgba8.size(); p += 4)
-    for (size_t c = 0; c < 3; ++c)
-      if (std::abs(int(a.rgba8[p + c]) - int(b.rgba8[p + c])) > 16) {
-        ++differing;
-        break;
-      }
-  return double(differing) / double(a.rgba8.size() / 4);
-}
-
 TEST(FaceFormats, RigReportsVrm0And1ExpressionsEmotionsAndVisemes) {
   FACIAL_REQUIRE_SHARED();
   const CommandOutput v0 = runFacial({"rig", vrmPath(0).string()});
@@ -260,6 +247,20 @@ TEST(FaceFormats, SyntheticVrmMaterialColourFollowsTheAnimatedWeightInPlay) {
   ASSERT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", vrm.string(), "--size", "64x64", "--zoom", "1.15",
                                     "--out", (dir / "express_happy.png").string()})));
   EXPECT_NEAR(redness(readPngOrFail(dir / "express_happy.png")), redness(happy), 12);
+}
+
+// The demo's headless tour (neutral, then happy from 2.4 s, fully at 3.2 s)
+// drives the same per-instance material records.
+TEST(FaceFormats, SyntheticVrmMaterialColourFollowsTheHeadlessDemoTour) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_vrm_demo");
+  const std::filesystem::path out = vrm.parent_path() / "tour";
+  ASSERT_TRUE(ranCleanly(runFacial({"demo", "--headless", "--model", vrm.string(), "--size", "48x48", "--fps", "2",
+                                    "--seconds", "4.5", "--out", out.string()})));
+  const eng::Image neutral = readPngOrFail(out / "frames" / "frame_0000.png");
+  const eng::Image happy = readPngOrFail(out / "frames" / "frame_0008.png");  // 4 s
+  ASSERT_FALSE(neutral.rgba8.empty() || happy.rgba8.empty());
+  EXPECT_LT(redness(neutral), 80);
+  EXPECT_GT(redness(happy), 100);
 }
 
 // The contact sheet poses every preset with its material binds too.
