@@ -13,6 +13,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "app/cli_parse.h"
+#include "engine/core/log.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/obj_keyframes.h"
@@ -104,6 +105,11 @@ eng::Result<LoadedFace> loadGltfOrVrm(const std::filesystem::path& path) {
                           " meshes, the loaded model has " + std::to_string(layout.total()) + " over " +
                           std::to_string(layout.meshCount()));
   if (set.specVersion == 0) faceForward(*model);
+  // What the VRM importer left out (a bind it cannot apply, ...): one line each, here and in `facial info`.
+  for (const std::string& warning : set.warnings) {
+    eng::logWarning(warning);
+    model->warnings.push_back(warning);
+  }
   return LoadedFace{std::move(*model), FaceFormat::Vrm, std::make_shared<const facial::VrmExpressionSet>(std::move(**vrm))};
 }
 
@@ -363,52 +369,21 @@ std::vector<const facial::ExpressionPreset*> FaceSetup::presets(bool compound) c
 }
 
 eng::Result<void> FaceSetup::expressionWeights(const facial::ExpressionPreset& preset, float intensity,
-                                               std::span<float> weights) {
+                                               std::span<float> weights, std::span<float> vrmExpressions) {
   if (!std::isfinite(intensity))
     return eng::makeError("expression '" + preset.name + "': intensity " + std::to_string(intensity) +
                           " is not a finite number");
   if (weights.size() != weightCount())
     return eng::makeError("expression '" + preset.name + "': " + std::to_string(weights.size()) +
                           " weights given, " + name_ + " has " + std::to_string(weightCount()));
+  if (!vrmExpressions.empty() && vrmExpressions.size() != vrmExpressionCount())
+    return eng::makeError("expression '" + preset.name + "': room for " + std::to_string(vrmExpressions.size()) +
+                          " VRM expression weights, " + name_ + " has " + std::to_string(vrmExpressionCount()));
   const float clamped = std::clamp(intensity, 0.0f, 1.0f);
   if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();
   if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
   std::copy(baseWeights_.begin(), baseWeights_.end(), weights.begin());
-  return rig_.apply(actionUnitScratch_, emotionScratch_, weights);
-}
-
-eng::Result<eng::Model> FaceSetup::modelForPose(const facial::ExpressionPreset& preset, float intensity) {
-  eng::Model posed = model_;
-  if (!vrm_ || !vrm_->hasMaterialBinds() || !rig_.expressionStage()) return posed;
-  if (!std::isfinite(intensity))
-    return eng::makeError("expression '" + preset.name + "': intensity is not a finite number");
-  const float clamped = std::clamp(intensity, 0.0f, 1.0f);
-  if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();
-  if (auto em = facial::ExpressionLibrary::evaluateEmotions(preset, clamped, emotionScratch_); !em) return em.error();
-  std::vector<float> expressionWeights(vrm_->expressions.size());
-  if (auto w = rig_.expressionWeights(actionUnitScratch_, emotionScratch_, expressionWeights); !w) return w.error();
-  if (posed.materials.size() != vrm_->materialCount)
-    return eng::makeError(name_ + ": the VRM expressions address " + std::to_string(vrm_->materialCount) +
-                          " materials, the model has " + std::to_string(posed.materials.size()));
-  std::vector<facial::VrmMaterialState> states(posed.materials.size());
-  for (size_t m = 0; m < states.size(); ++m) {
-    const glm::vec4& c = posed.materials[m].baseColorFactor;
-    states[m].color = {c.r, c.g, c.b, c.a};
-  }
-  if (auto moved = vrm_->applyMaterials(expressionWeights, states); !moved) return moved.error();
-  for (size_t m = 0; m < states.size(); ++m) {
-    const auto& c = states[m].color;
-    posed.materials[m].baseColorFactor = glm::clamp(glm::vec4(c[0], c[1], c[2], c[3]), 0.0f, 1.0f);
-  }
-  for (eng::Mesh& mesh : posed.meshes)
-    for (eng::Primitive& prim : mesh.primitives) {
-      if (prim.material < 0 || size_t(prim.material) >= states.size()) continue;
-      const facial::VrmMaterialState& s = states[size_t(prim.material)];
-      const glm::vec2 scale(s.uvScale[0], s.uvScale[1]), offset(s.uvOffset[0], s.uvOffset[1]);
-      if (scale == glm::vec2(1.0f) && offset == glm::vec2(0.0f)) continue;
-      for (glm::vec2& uv : prim.texcoords) uv = uv * scale + offset;
-    }
-  return posed;
+  return rig_.apply(actionUnitScratch_, emotionScratch_, weights, vrmExpressions);
 }
 
 }  // namespace cli

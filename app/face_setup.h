@@ -143,17 +143,16 @@ class FaceSetup {
 
   // weights = the model's defaults, then every target the rig drives
   // overwritten with the preset's action units and emotions at `intensity`
-  // (clamped to [0, 1]). Errors (nothing written): non-finite intensity,
-  // weights.size() != weightCount().
+  // (clamped to [0, 1]). vrmExpressions, when not empty (vrmExpressionCount()
+  // long), receives the rig's expression weights for the VRM material binds
+  // (FaceMaterials::update). Errors (nothing written): non-finite intensity,
+  // wrong sizes.
   eng::Result<void> expressionWeights(const facial::ExpressionPreset& preset, float intensity,
-                                      std::span<float> weights);
-
-  // The model as one pose shows it: for a VRM face whose expressions bind
-  // materials, a copy with the preset's material colour binds applied to the
-  // base colour factors and its texture transform binds to the texture
-  // coordinates (uv * scale + offset) of the primitives using those
-  // materials; otherwise model() itself. Same errors as expressionWeights.
-  eng::Result<eng::Model> modelForPose(const facial::ExpressionPreset& preset, float intensity);
+                                      std::span<float> weights, std::span<float> vrmExpressions = {});
+  // Expressions of the rig's expression stage (a VRM face), else 0.
+  uint32_t vrmExpressionCount() const {
+    return rig_.expressionStage() ? static_cast<uint32_t>(rig_.controlNames().size()) : 0u;
+  }
 
  private:
   FaceSetup(LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,

@@ -34,8 +34,9 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   return r;
 }
 
-eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> weights) {
-  const eng::vk::ModelInstance instance{&gpuModel_, glm::mat4(1.0f), weights};
+eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> weights,
+                                                      std::span<const eng::vk::InstanceMaterial> materials) {
+  const eng::vk::ModelInstance instance{&gpuModel_, glm::mat4(1.0f), weights, {}, materials};
   auto image = renderer_->render(view_, {&instance, 1});
   if (!image) return eng::makeError(modelName_ + ": rendering failed: " + image.error().message, image.error().code);
   return image;

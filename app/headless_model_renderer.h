@@ -38,8 +38,10 @@ class HeadlessModelRenderer {
   // `model` is uploaded once; it need not outlive the renderer.
   static eng::Result<HeadlessModelRenderer> create(const eng::Model& model, const HeadlessRenderOptions& options);
 
-  // weights: the model's flat weight vector (eng::WeightLayout order).
-  eng::Result<eng::Image> render(std::span<const float> weights);
+  // weights: the model's flat weight vector (eng::WeightLayout order);
+  // materials: per-material overrides (FaceMaterials), empty = the model's own.
+  eng::Result<eng::Image> render(std::span<const float> weights,
+                                 std::span<const eng::vk::InstanceMaterial> materials = {});
 
   const std::string& deviceName() const { return context_->deviceInfo().name; }
 

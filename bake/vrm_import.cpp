@@ -127,6 +127,13 @@ eng::Result<std::array<float, 4>> readFloats(const Context& c, const Json& objec
   return out;
 }
 
+// A material bind that cannot be applied (no such material, unknown type, a
+// value that is not a finite number) is left out with one warning naming the
+// file and the bind: the rest of the avatar still works.
+void skipMaterialBind(const Context& c, const eng::Error& why) {
+  c.set.warnings.push_back(why.message + "; bind ignored");
+}
+
 size_t materialCountOf(const Json& gltf) {
   return gltf.contains("materials") && gltf["materials"].is_array() ? gltf["materials"].size() : 0;
 }
@@ -145,7 +152,10 @@ eng::Result<void> readVrm1MaterialBinds(const Context& c, const Json& e, const s
       const Json& bind = binds[b];
       if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, type, targetValue}");
       auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
-      if (!material) return material.error();
+      if (!material) {
+        skipMaterialBind(c, material.error());
+        continue;
+      }
       const std::string type = bind.contains("type") && bind["type"].is_string() ? bind["type"].get<std::string>() : "";
       VrmMaterialColorBind out;
       out.material = static_cast<uint32_t>(*material);
@@ -156,12 +166,17 @@ eng::Result<void> readVrm1MaterialBinds(const Context& c, const Json& e, const s
           out.type = t;
           known = true;
         }
-      if (!known)
-        return jsonError(c.source, childPath(bindPath, "type"),
-                         "must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " +
-                             (bind.contains("type") ? bind["type"].dump() : std::string("nothing")));
+      if (!known) {
+        skipMaterialBind(c, jsonError(c.source, childPath(bindPath, "type"),
+                                      "must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " +
+                                          (bind.contains("type") ? bind["type"].dump() : std::string("nothing"))));
+        continue;
+      }
       auto value = readFloats(c, bind, "targetValue", bindPath, 4, true);
-      if (!value) return value.error();
+      if (!value) {
+        skipMaterialBind(c, value.error());
+        continue;
+      }
       out.targetValue = *value;
       c.set.materialColorBinds.push_back(out);
     }
@@ -178,16 +193,19 @@ eng::Result<void> readVrm1MaterialBinds(const Context& c, const Json& e, const s
       const Json& bind = binds[b];
       if (!bind.is_object()) return jsonError(c.source, bindPath, "a bind must be an object {material, scale, offset}");
       auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
-      if (!material) return material.error();
+      if (!material) {
+        skipMaterialBind(c, material.error());
+        continue;
+      }
       VrmTextureTransformBind out;
       out.material = static_cast<uint32_t>(*material);
-      if (bind.contains("scale")) {
-        auto scale = readFloats(c, bind, "scale", bindPath, 2, true);
-        if (!scale) return scale.error();
-        out.scale = {(*scale)[0], (*scale)[1]};
-      }
+      auto scale = readFloats(c, bind, "scale", bindPath, 2, false);
       auto offset = readFloats(c, bind, "offset", bindPath, 2, false);
-      if (!offset) return offset.error();
+      if (!scale || !offset) {
+        skipMaterialBind(c, !scale ? scale.error() : offset.error());
+        continue;
+      }
+      if (bind.contains("scale")) out.scale = {(*scale)[0], (*scale)[1]};
       out.offset = {(*offset)[0], (*offset)[1]};
       c.set.textureTransformBinds.push_back(out);
     }
@@ -213,8 +231,11 @@ eng::Result<void> readVrm0MaterialValues(const Context& c, const Json& group, co
       const std::string valuePath = childPath(valuesPath, b);
       const Json& value = values[b];
       if (!value.is_object() || !value.contains("materialName") || !value["materialName"].is_string() ||
-          !value.contains("propertyName") || !value["propertyName"].is_string())
-        return jsonError(c.source, valuePath, "a material value must be an object {materialName, propertyName, targetValue}");
+          !value.contains("propertyName") || !value["propertyName"].is_string()) {
+        skipMaterialBind(c, jsonError(c.source, valuePath,
+                                      "a material value must be an object {materialName, propertyName, targetValue}"));
+        continue;
+      }
       const std::string materialName = value["materialName"].get<std::string>();
       size_t material = materials;
       for (size_t m = 0; m < materials; ++m)
@@ -222,11 +243,17 @@ eng::Result<void> readVrm0MaterialValues(const Context& c, const Json& group, co
           material = m;
           break;
         }
-      if (material == materials)
-        return jsonError(c.source, childPath(valuePath, "materialName"), "no material is named '" + materialName + "'");
+      if (material == materials) {
+        skipMaterialBind(c, jsonError(c.source, childPath(valuePath, "materialName"),
+                                      "no material is named '" + materialName + "'"));
+        continue;
+      }
       const std::string property = value["propertyName"].get<std::string>();
       auto target = readFloats(c, value, "targetValue", valuePath, 4, true);
-      if (!target) return target.error();
+      if (!target) {
+        skipMaterialBind(c, target.error());
+        continue;
+      }
       if (property == "_MainTex_ST") {
         c.set.textureTransformBinds.push_back(
             {static_cast<uint32_t>(material), {(*target)[0], (*target)[1]}, {(*target)[2], (*target)[3]}});

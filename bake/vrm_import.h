@@ -12,8 +12,10 @@
 // "<mesh name>/<target name>" from mesh.extras.targetNames ("target_N" without).
 // Material colour binds (1.0 materialColorBinds, 0.x materialValues _Color,
 // _EmissionColor, ...) and texture transform binds (1.0 textureTransformBinds,
-// 0.x _MainTex_ST) address glTF materials by index (0.x: by name). Errors name
-// the source, JSON path and problem.
+// 0.x _MainTex_ST) address glTF materials by index (0.x: by name); a material
+// bind that cannot be applied (no such material, unknown type, a value that is
+// not a finite number) is left out with a warning (VrmExpressionSet::warnings)
+// naming the source, JSON path and problem. Errors name the same.
 #include <filesystem>
 #include <optional>
 #include <string_view>

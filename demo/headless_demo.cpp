@@ -15,6 +15,7 @@
 #include "app/face_framing.h"
 #include "app/cli_parse.h"
 #include "demo/demo_options.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
@@ -100,6 +101,9 @@ int runHeadlessDemo(const DemoOptions& o) {
 
   const std::vector<std::string> targetNames = setup->layout().names();
   std::vector<facial::FaceDriver> faces;
+  auto materials = FaceMaterials::create(*setup);  // VRM material binds, one set per face
+  if (!materials) return fail(materials.error().message);
+  std::vector<FaceMaterials> faceMaterials(crowd, *materials);
   for (uint32_t i = 0; i < crowd; ++i) {
     auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights(), o.seed + i);
     if (!face) return fail(graphPath.string() + ": " + face.error().message);
@@ -165,6 +169,7 @@ int runHeadlessDemo(const DemoOptions& o) {
             nextTrigger[i] = frame.time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random);
           }
           faces[i].update(frame.dt);
+          if (auto moved = faceMaterials[i].update(faces[i].expressionWeights()); !moved) return moved.error();
           const float phase = 1.7f * float(i);
           const glm::mat4 place = glm::translate(glm::mat4(1.0f), offsets[i]);
           if (skeletons[i].turnsHeadJoint()) {
@@ -178,6 +183,7 @@ int runHeadlessDemo(const DemoOptions& o) {
                             place * idleMotion(frame.time, phase, swayPivot, bounds.diagonal()),
                             faces[i].targetWeights(), skeletons[i].nodeWorld()};
           }
+          instances[i].materials = faceMaterials[i].materials();
         }
         return std::span<const eng::vk::ModelInstance>(instances);
       },

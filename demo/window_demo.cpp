@@ -25,6 +25,7 @@
 
 #include "app/cli_parse.h"
 #include "demo/demo_options.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "demo/window_idle_motion.h"
 #include "app/skeleton_motion.h"
@@ -91,6 +92,7 @@ struct Face {
   float nextTrigger = 0.0f;  // crowd: when it picks a new emotion
   SkeletonMotion skeleton;   // the --clip and, on skinned avatars, the idle head turn
   float time = 0.0f;
+  FaceMaterials materials;   // VRM material binds following the drawn expression weights
 };
 
 // The state machine whose current state the title shows: "emotions", else the first one.
@@ -156,6 +158,8 @@ class WindowDemo {
   // is shown (eased in and out). The slider poses a preset directly; the pad
   // moves the cursor of its own graph's control map (padDriver_).
   std::vector<float> overrideWeights_;
+  std::vector<float> overrideExpressions_;  // the same for a VRM rig's expressions (material binds)
+  std::vector<float> expressionScratch_;    // the single face's blended expression weights
   float overrideAmount_ = 0.0f;
   Control control_ = Control::Graph;
   Control lastOverride_ = Control::Slider;  // what overrideWeights_ shows while easing out
@@ -221,6 +225,8 @@ int WindowDemo::setUp(const DemoOptions& o) {
   const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
   auto skeleton = SkeletonMotion::create(setup_->model(), o.clip);
   if (!skeleton) return fail(skeleton.error().message);
+  auto materials = FaceMaterials::create(*setup_);
+  if (!materials) return fail(materials.error().message);
   for (uint32_t i = 0; i < faceCount; ++i) {
     auto driver = facial::FaceDriver::create(graph_, &setup_->graphRig(), names, setup_->baseWeights(), o.seed + i);
     if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
@@ -230,13 +236,15 @@ int WindowDemo::setUp(const DemoOptions& o) {
     const glm::vec3 offset((float(column) - 0.5f * float(columns - 1)) * spacing.x,
                            (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
     Face face{std::move(*driver), IdleMotion::create(names, bounds, o.seed + i), glm::translate(glm::mat4(1.0f), offset),
-              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_), *skeleton};
+              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_), *skeleton, 0.0f, *materials};
     crowdBounds_[size_t(framing_)].extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
     crowdBounds_[1 - size_t(framing_)].extend(eng::Aabb{other.min + offset, other.max + offset});
     faces_.push_back(std::move(face));
   }
   weights_.assign(size_t(faceCount) * count, 0.0f);
   overrideWeights_.assign(setup_->baseWeights().begin(), setup_->baseWeights().end());
+  overrideExpressions_.assign(setup_->vrmExpressionCount(), 0.0f);
+  expressionScratch_.assign(setup_->vrmExpressionCount(), 0.0f);
   if (faceCount == 1)
     if (const int error = setUpPad(graphPath); error != 0) return error;
   if (!o.script.empty()) {
@@ -302,7 +310,7 @@ void WindowDemo::setIntensity(float intensity) {
   if (!preset) return;
   control_ = lastOverride_ = Control::Slider;
   // lerp(neutral, preset, intensity): the preset at that intensity over the model's defaults.
-  (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_);
+  (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_, overrideExpressions_);
 }
 
 void WindowDemo::setPad(glm::vec2 cursor) {
@@ -505,6 +513,8 @@ void WindowDemo::updateFaces(float dt) {
     padDriver_->update(dt);
     const std::span<const float> pad = padDriver_->targetWeights();
     std::copy(pad.begin(), pad.end(), overrideWeights_.begin());
+    const std::span<const float> padExpressions = padDriver_->expressionWeights();
+    std::copy(padExpressions.begin(), padExpressions.end(), overrideExpressions_.begin());
   }
   for (size_t i = 0; i < faces_.size(); ++i) {
     Face& face = faces_[i];
@@ -519,12 +529,19 @@ void WindowDemo::updateFaces(float dt) {
     if (!options_.still) face.idle.update(dt);
     std::span<float> out = std::span<float>(weights_).subspan(i * count, count);
     const std::span<const float> graphWeights = face.driver.targetWeights();
+    std::span<const float> expressions = face.driver.expressionWeights();
     if (!crowd && overrideAmount_ > 0.0f) {
       for (uint32_t t = 0; t < count; ++t)
         out[t] = graphWeights[t] + overrideAmount_ * (overrideWeights_[t] - graphWeights[t]);
+      for (size_t e = 0; e < expressions.size(); ++e)
+        expressionScratch_[e] = expressions[e] + overrideAmount_ * (overrideExpressions_[e] - expressions[e]);
+      expressions = expressionScratch_;
     } else {
       std::copy(graphWeights.begin(), graphWeights.end(), out.begin());
     }
+    // Sizes were fixed at set-up and the weights come clamped from the rig: cannot fail.
+    (void)face.materials.update(expressions);
+    instances_[i].materials = face.materials.materials();
     face.idle.applyGaze(out);
     face.time += dt;
     if (face.skeleton.turnsHeadJoint()) {

@@ -17,6 +17,7 @@ TimelinePose::TimelinePose(const facial::RigMapping& rig, std::span<const float>
     if (std::find(channelNames_.begin(), channelNames_.end(), name) == channelNames_.end()) channelNames_.push_back(name);
   actionUnits_.assign(actionUnitInputs(), 0.0f);
   emotions_.assign(facial::kEmotionCount, 0.0f);
+  if (rig.expressionStage()) expressionWeights_.assign(rig.controlNames().size(), 0.0f);
 }
 
 bool TimelinePose::knowsChannel(std::string_view channel) const {
@@ -42,7 +43,7 @@ eng::Result<void> TimelinePose::pose(const TimelineDocument& document, float tim
         emotions_[*input - actionUnits_.size()] = value;
     }
   }
-  if (auto applied = rig_->apply(actionUnits_, emotions_, targets); !applied) return applied;
+  if (auto applied = rig_->apply(actionUnits_, emotions_, targets, expressionWeights_); !applied) return applied;
   for (size_t t = 0; t < tracks.size(); ++t) {
     if (facial::rigInputIndex(tracks[t].channel)) continue;
     const auto it = std::find(names.begin(), names.end(), tracks[t].channel);

@@ -28,6 +28,9 @@ class TimelinePose {
   // unknownTracks(). Fails on a size mismatch (naming sizes).
   eng::Result<void> pose(const TimelineDocument& document, float time, std::span<float> targets);
   size_t unknownTracks() const { return unknownTracks_; }
+  // The rig's expression weights of the last pose() when it has an expression
+  // stage (VRM material binds, cli::FaceMaterials); empty otherwise.
+  std::span<const float> expressionWeights() const { return expressionWeights_; }
 
  private:
   const facial::RigMapping* rig_;
@@ -35,6 +38,7 @@ class TimelinePose {
   std::vector<std::string> channelNames_;
   std::vector<float> actionUnits_;
   std::vector<float> emotions_;
+  std::vector<float> expressionWeights_;
   size_t unknownTracks_ = 0;
 };
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "demo/command.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
@@ -45,15 +46,17 @@ int runExpress(const ExpressOptions& o) {
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
   if (!preset) return fail(preset.error().message);
-  std::vector<float> weights(face->weightCount());
-  if (auto posed = face->expressionWeights(**preset, o.intensity, weights); !posed) return fail(posed.error().message);
-
+  std::vector<float> weights(face->weightCount()), vrmExpressions(face->vrmExpressionCount());
+  if (auto posed = face->expressionWeights(**preset, o.intensity, weights, vrmExpressions); !posed)
+    return fail(posed.error().message);
   // VRM material binds (colour, texture transform) belong to the pose.
-  auto shown = face->modelForPose(**preset, o.intensity);
-  if (!shown) return fail(shown.error().message);
-  auto renderer = HeadlessModelRenderer::create(*shown, *renderOptions);
+  auto materials = FaceMaterials::create(*face);
+  if (!materials) return fail(materials.error().message);
+  if (auto moved = materials->update(vrmExpressions); !moved) return fail(moved.error().message);
+
+  auto renderer = HeadlessModelRenderer::create(face->model(), *renderOptions);
   if (!renderer) return fail(renderer.error().message);
-  auto image = renderer->render(weights);
+  auto image = renderer->render(weights, materials->materials());
   if (!image) return fail(image.error().message);
   if (auto written = eng::writePng(o.out, image->width, image->height, image->rgba8); !written)
     return fail(written.error().message);

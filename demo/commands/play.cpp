@@ -15,6 +15,7 @@
 #include "app/cli_parse.h"
 #include "demo/command.h"
 #include "app/view_options.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/sequence_recorder.h"
@@ -116,12 +117,16 @@ int runPlay(const PlayOptions& o) {
   sequence.frameDir = o.out;
   sequence.gifPath = o.video;
   sequence.progressLabel = "play";
+  auto materials = FaceMaterials::create(*setup);  // VRM material binds follow the animated expressions
+  if (!materials) return fail(materials.error().message);
   eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
   auto summary = recordSequence(
       renderer->offscreen(), renderer->view(), sequence,
       [&](const FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         face->update(frame.dt);
         instance.weights = face->targetWeights();
+        if (auto moved = materials->update(face->expressionWeights()); !moved) return moved.error();
+        instance.materials = materials->materials();
         skeleton->update(frame.time);
         instance.nodeWorld = skeleton->nodeWorld();
         return std::span<const eng::vk::ModelInstance>(&instance, 1);

@@ -14,6 +14,7 @@
 #include "app/face_framing.h"
 #include "demo/command.h"
 #include "app/view_options.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "engine/image/contact_sheet.h"
@@ -88,11 +89,15 @@ int runSheet(const SheetOptions& o) {
       face->model(),
       {.width = o.size, .height = o.size, .zoom = o.zoom, .framing = *framing, .device = o.device, .backdrop = *backdrop});
   if (!renderer) return fail(renderer.error().message);
-  std::vector<float> weights(face->weightCount());
+  std::vector<float> weights(face->weightCount()), vrmExpressions(face->vrmExpressionCount());
+  auto materials = FaceMaterials::create(*face);  // VRM material binds follow each tile's expression
+  if (!materials) return fail(materials.error().message);
   std::vector<eng::ContactSheetTile> tiles;
   for (const facial::ExpressionPreset* preset : presets) {
-    if (auto posed = face->expressionWeights(*preset, o.intensity, weights); !posed) return fail(posed.error().message);
-    auto image = renderer->render(weights);
+    if (auto posed = face->expressionWeights(*preset, o.intensity, weights, vrmExpressions); !posed)
+      return fail(posed.error().message);
+    if (auto moved = materials->update(vrmExpressions); !moved) return fail(moved.error().message);
+    auto image = renderer->render(weights, materials->materials());
     if (!image) return fail(image.error().message);
     eng::ContactSheetTile tile;
     tile.image.width = image->width;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/cli_parse.h"
+#include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "engine/vk/imgui_layer.h"
 #include "app/window_loop.h"
@@ -87,6 +88,8 @@ class EditorApp : public FaceDelegate {
   // World ray through a window pixel.
   void rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const;
   std::span<const float> faceWeights() const;
+  // The face source's VRM expression weights (material binds); empty unless the rig has an expression stage.
+  std::span<const float> faceExpressionWeights() const;
   eng::Result<void> uploadDisplayModel();
 
   std::optional<cli::FaceSetup> setup_;
@@ -108,6 +111,7 @@ class EditorApp : public FaceDelegate {
   eng::vk::FramingMode framing_ = eng::vk::FramingMode::Face;
   Layout layout_;
   std::vector<float> displayWeights_;
+  cli::FaceMaterials materials_;  // VRM material binds following the shown expression weights
   std::vector<glm::vec3> pointsOnFace_, pointsMoved_;  // control point markers, reused every frame
   eng::vk::ModelInstance instance_;
   bool orbiting_ = false;
@@ -144,6 +148,15 @@ std::span<const float> EditorApp::faceWeights() const {
   return machine_.targetWeights();
 }
 
+std::span<const float> EditorApp::faceExpressionWeights() const {
+  switch (source_) {
+    case FaceSource::StateMachine: return machine_.driver().expressionWeights();
+    case FaceSource::ControlMap: return controlMap_.active().expressionWeights();
+    case FaceSource::Timeline: return timeline_->expressionWeights();
+  }
+  return machine_.driver().expressionWeights();
+}
+
 int EditorApp::setUp(const EditorOptions& o) {
   uint32_t width = 1280, height = 800;
   if (!cli::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
@@ -151,6 +164,9 @@ int EditorApp::setUp(const EditorOptions& o) {
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   targetNames_ = setup_->layout().names();
+  auto materials = cli::FaceMaterials::create(*setup_);
+  if (!materials) return fail(materials.error().message);
+  materials_ = std::move(*materials);
   std::printf("facial-editor: %s, %u morph targets, rig %s\n", setup_->name().c_str(), setup_->weightCount(),
               std::string(facial::rigSchemeName(setup_->rig().scheme())).c_str());
 
@@ -436,7 +452,9 @@ int EditorApp::run(const EditorOptions& o) {
 
     if (auto uploaded = uploadDisplayModel(); !uploaded) return uploaded.error();
     sculpt_.displayWeights(faceWeights(), displayWeights_);
-    instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_};
+    // Sizes were fixed at set-up and the weights come clamped from the rig: cannot fail.
+    (void)materials_.update(faceExpressionWeights());
+    instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_, {}, materials_.materials()};
     cli::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
     plan.input.view.camera = renderCamera();
     plan.input.overlay = eng::vk::ImGuiLayer::recorder();

@@ -30,6 +30,7 @@ class TimelinePanel {
 
   // The face posed by the document at the playhead.
   std::span<const float> targetWeights() const { return weights_; }
+  std::span<const float> expressionWeights() const { return pose_.expressionWeights(); }
   TimelineDocument& document() { return document_; }
   float playhead() const { return playhead_; }
   void setPlayhead(float time);

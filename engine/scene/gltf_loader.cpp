@@ -212,12 +212,22 @@ class ModelBuilder {
       mat.roughness = static_cast<float>(pbr.roughnessFactor);
       mat.metallic = static_cast<float>(pbr.metallicFactor);
       mat.doubleSided = src.doubleSided;
+      if (src.emissiveFactor.size() == 3)
+        mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
       if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||
-          glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor))) {
+          glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
+          glm::any(glm::isnan(mat.emissiveFactor)) || glm::any(glm::isinf(mat.emissiveFactor))) {
         warn(where + " has non-finite factors; defaults used");
         mat.baseColorFactor = glm::vec4(1.0f);
+        mat.emissiveFactor = glm::vec3(0.0f);
         mat.roughness = 1.0f;
         mat.metallic = 1.0f;
+      }
+      // Emission is drawn from the factor alone: with a texture masking it,
+      // the factor would light the whole surface, so it is left out.
+      if (src.emissiveTexture.index >= 0 && mat.emissiveFactor != glm::vec3(0.0f)) {
+        warn(where + " has an emissiveTexture, which is not drawn; its emission is left out");
+        mat.emissiveFactor = glm::vec3(0.0f);
       }
       if (src.extras.IsObject() && src.extras.Has("detailLayers")) {
         const tinygltf::Value& layers = src.extras.Get("detailLayers");

@@ -209,6 +209,7 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
       if (!mat.name.empty()) m["name"] = mat.name;
       if (mat.doubleSided) m["doubleSided"] = true;
+      if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
       if (!mat.detailLayers.empty()) {
         Json layers = Json::array();
         for (const DetailLayer& d : mat.detailLayers)

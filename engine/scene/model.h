@@ -82,6 +82,7 @@ struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
   int baseColorImage = -1;  // index into Model::images, sRGB encoded
+  glm::vec3 emissiveFactor{0.0f};  // linear RGB (emissive textures are not drawn: see the glTF loader)
   float roughness = 0.6f;
   float metallic = 0.0f;
   bool doubleSided = false;

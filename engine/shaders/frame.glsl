@@ -9,6 +9,16 @@ struct InstanceData {
   uint activeCount;    // number of non-zero weights; 0 = rest pose
   uint jointOffset;    // first joint matrix of this instance's skin in jointMatrices[] (skin.glsl)
   uint jointCount;     // joints of that skin; 0 = not skinned
+  uint materialOffset; // first of this instance's records in instanceMaterials[]
+  uint reserved0, reserved1, reserved2;
+};
+
+// A material as one instance draws it this frame (expression-driven colour
+// and texture transform, e.g. VRM material binds; else the material's own).
+struct InstanceMaterial {
+  vec4 baseColorFactor;  // linear RGBA
+  vec4 emissive;         // linear RGB, w unused
+  vec4 uvTransform;      // uv * xy + zw
 };
 
 // One non-zero morph weight: target index within the drawn mesh.
@@ -41,10 +51,10 @@ layout(std140, set = 0, binding = 0) uniform FrameGlobals {
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData instances[]; };
 layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
+layout(std430, set = 0, binding = 6) readonly buffer InstanceMaterials { InstanceMaterial instanceMaterials[]; };
 
-// Per-draw constants (one primitive, its material). 48 bytes.
+// Per-draw constants (one primitive, its material). 36 bytes.
 layout(push_constant) uniform DrawConstants {
-  vec4 baseColorFactor;
   float roughness;
   float metallic;
   uint detailLayerCount;
@@ -53,6 +63,7 @@ layout(push_constant) uniform DrawConstants {
   uint firstInstance;     // firstInstance of the draw, to number captured instances from 0
   uint captureOffset;     // first captured vertex slot of this draw (capture variant only)
   uint jointSets;         // groups of four joint influences per vertex; 0 = not skinned (skin.glsl)
+  uint material;          // the primitive's material: instanceMaterials[instance's materialOffset + material]
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;

@@ -20,6 +20,7 @@ layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec4 inColor;
+layout(location = 5) flat in uint inMaterial;
 
 layout(location = 0) out vec4 outColor;
 
@@ -34,7 +35,8 @@ float activeWeight(InstanceData inst, uint target) {
 }
 
 void main() {
-  vec4 base = texture(baseColorTexture, inTexcoord) * draw.baseColorFactor * inColor;
+  InstanceMaterial material = instanceMaterials[inMaterial];
+  vec4 base = texture(baseColorTexture, inTexcoord) * material.baseColorFactor * inColor;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];
@@ -66,5 +68,5 @@ void main() {
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
-  outColor = vec4(toneMap(inside ? lit * 0.12 : lit), 1.0);
+  outColor = vec4(toneMap(inside ? lit * 0.12 : lit + material.emissive.rgb), 1.0);
 }

@@ -27,6 +27,7 @@ layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outTexcoord;
 layout(location = 3) flat out uint outInstance;
 layout(location = 4) out vec4 outColor;
+layout(location = 5) flat out uint outMaterial;  // index into instanceMaterials[]
 #endif
 
 void main() {
@@ -48,7 +49,10 @@ void main() {
   vec4 world = inst.model * vec4(m.position, 1.0);
   outWorldPosition = world.xyz;
   outWorldNormal = mat3(inst.normalMatrix) * m.normal;
-  outTexcoord = inTexcoord;
+  uint material = inst.materialOffset + draw.material;
+  vec4 uvTransform = instanceMaterials[material].uvTransform;
+  outTexcoord = inTexcoord * uvTransform.xy + uvTransform.zw;
+  outMaterial = material;
   outInstance = uint(gl_InstanceIndex);
   // A fold in the skin catches shadow: up to 60% darker where a target (or a
   // mix) creases it fully; the rest of the light keeps the furrow from going

@@ -31,6 +31,14 @@ Material defaultMaterial() {
   return m;
 }
 
+// A material's own parameters, as an instance draws it when nothing moves them.
+InstanceMaterial instanceMaterial(const Material& mat) {
+  InstanceMaterial out;
+  out.baseColorFactor = mat.baseColorFactor;
+  out.emissive = glm::vec4(mat.emissiveFactor, 0.0f);
+  return out;
+}
+
 // Appends byte ranges at aligned offsets; the result becomes one buffer.
 class ByteBlob {
  public:
@@ -203,6 +211,9 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   const WeightLayout weightLayout(model);
   gpu.weightCount_ = weightLayout.total();
 
+  gpu.materialCount_ = static_cast<uint32_t>(source.materials.size());
+  for (const Material& mat : model.materials) gpu.materials_.push_back(instanceMaterial(mat));
+  gpu.materials_.push_back(instanceMaterial(defaultMaterial()));
   gpu.meshNodes_ = sceneMeshNodes(model);
   gpu.skins_ = model.skins;
   poseWorldMatrices(model, restPose(model), gpu.restWorld_);
@@ -288,7 +299,8 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
       detailOffsets[m].push_back(layers.empty() ? 0 : detailBlob.append(std::span<const GpuDetailLayer>(layers),
                                                                         storageAlign));
 
-      gp.constants.baseColorFactor = mat.baseColorFactor;
+      gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
+                                                 : static_cast<uint32_t>(model.materials.size());
       gp.constants.roughness = mat.roughness;
       gp.constants.metallic = mat.metallic;
       gp.constants.detailLayerCount = static_cast<uint32_t>(mat.detailLayers.size());

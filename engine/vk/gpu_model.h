@@ -57,6 +57,13 @@ class GpuModel {
   const std::string& name() const { return name_; }
   std::span<const GpuMesh> meshes() const { return meshes_; }
   std::span<const MeshNode> meshNodes() const { return meshNodes_; }
+  // Materials an instance may override (ModelInstance::materials): those of
+  // the source model, by index.
+  uint32_t materialCount() const { return materialCount_; }
+  // Every material's own parameters as drawn: materialCount() records, then
+  // the ones display dressing added, then the default material of primitives
+  // without one (GpuPrimitive::constants.material indexes this list).
+  std::span<const InstanceMaterial> materials() const { return materials_; }
   // Length of the model's flat weight vector (eng::WeightLayout(model).total()).
   uint32_t weightCount() const { return weightCount_; }
   const Aabb& bounds() const { return bounds_; }
@@ -75,6 +82,8 @@ class GpuModel {
   std::vector<GpuMesh> meshes_;
   std::vector<MeshNode> meshNodes_;
   uint32_t weightCount_ = 0;
+  uint32_t materialCount_ = 0;
+  std::vector<InstanceMaterial> materials_;
   Aabb bounds_;
   Buffer vertices_;
   Buffer indices_;

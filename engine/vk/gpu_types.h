@@ -21,8 +21,21 @@ struct GpuInstance {
   uint32_t activeCount = 0;
   uint32_t jointOffset = 0;  // first joint matrix of the instance's skin (skin.glsl)
   uint32_t jointCount = 0;   // 0 = not skinned
+  uint32_t materialOffset = 0;  // first of the instance's material records (InstanceMaterial)
+  uint32_t reserved[3] = {};    // std430 rounds the struct to 16 bytes
 };
-static_assert(sizeof(GpuInstance) == 144);
+static_assert(sizeof(GpuInstance) == 160);
+
+// The material parameters an animation may move, per instance and per frame
+// (std430, 48 bytes): VRM material colour and texture transform binds. Each
+// instance draws with one record per material of its model, the model's own
+// values (GpuModel::materials()) unless the instance overrides them.
+struct InstanceMaterial {
+  glm::vec4 baseColorFactor{1.0f};                // linear RGBA, multiplies the base colour texture
+  glm::vec4 emissive{0.0f};                       // linear RGB emission added to the shaded colour, w unused
+  glm::vec4 uvTransform{1.0f, 1.0f, 0.0f, 0.0f};  // texture coordinates uv * xy + zw
+};
+static_assert(sizeof(InstanceMaterial) == 48);
 
 // std140 uniform block; every member is a mat4 or vec4.
 struct FrameGlobals {
@@ -49,7 +62,6 @@ struct FrameGlobals {
 static_assert(sizeof(FrameGlobals) == 4 * 64 + 15 * 16);
 
 struct DrawConstants {
-  glm::vec4 baseColorFactor{1.0f};
   float roughness = 0.6f;
   float metallic = 0.0f;
   uint32_t detailLayerCount = 0;
@@ -58,8 +70,9 @@ struct DrawConstants {
   uint32_t firstInstance = 0;
   uint32_t captureOffset = 0;
   uint32_t jointSets = 0;  // groups of four joint influences per vertex, 0 = not skinned
+  uint32_t material = 0;   // the primitive's record among its instance's InstanceMaterial records
 };
-static_assert(sizeof(DrawConstants) == 48);
+static_assert(sizeof(DrawConstants) == 36);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,

@@ -41,6 +41,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
       binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
+      binding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
   };
   auto frameSet = createSetLayout(ctx, frameBindings);
   if (!frameSet) return frameSet.error();

@@ -5,11 +5,11 @@
 // primitive has nothing (no texture, no detail layers, no tangent deltas).
 //
 //   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,
-//                          4 key-light shadow map, 5 joint matrices
+//                          4 key-light shadow map, 5 joint matrices, 6 instance materials
 //   set 1 (per primitive): 0-2 position/normal/tangent deltas, 3 base colour,
 //                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
 //                          7 crease darkening per target (crease_shading.h)
-//   push constants:        DrawConstants (48 bytes), vertex + fragment
+//   push constants:        DrawConstants (36 bytes), vertex + fragment
 #include "engine/core/result.h"
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -33,7 +34,7 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.pipelineGeneration_ = shaders.generation();
 
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * frameSlots},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frameSlots}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = frameSlots;
@@ -67,6 +68,10 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
                                  "joint matrices");
     if (!joints) return joints.error();
     slot.joints = std::move(joints).value();
+    auto materials = Buffer::create(ctx, 16 * sizeof(InstanceMaterial), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    MemoryUsage::Upload, "instance materials");
+    if (!materials) return materials.error();
+    slot.materials = std::move(materials).value();
     r.writeDescriptors(slot);
   }
   return r;
@@ -89,6 +94,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
   const VkDescriptorBufferInfo instances{slot.instances.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo joints{slot.joints.handle(), 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo materials{slot.materials.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
                                        0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
@@ -100,6 +106,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
       bufferWrite(slot.descriptorSet, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &capture),
       imageWrite(slot.descriptorSet, 4, &shadow),
       bufferWrite(slot.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &joints),
+      bufferWrite(slot.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
@@ -115,6 +122,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   instanceScratch_.clear();
   activeScratch_.clear();
   jointScratch_.clear();
+  materialScratch_.clear();
   modelScratch_.clear();
 
   for (size_t i = 0; i < instances.size(); ++i) {
@@ -128,6 +136,17 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): pose of " +
                        std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
                        std::to_string(inst.model->nodeCount()));
+    if (inst.materials.size() > inst.model->materialCount())
+      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
+                       std::to_string(inst.materials.size()) + " materials given, the model has " +
+                       std::to_string(inst.model->materialCount()));
+    for (size_t m = 0; m < inst.materials.size(); ++m) {
+      const InstanceMaterial& mat = inst.materials[m];
+      const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform;
+      if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
+        return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): material " +
+                         std::to_string(m) + " has a non-finite value");
+    }
     if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
       modelScratch_.push_back(inst.model);
   }
@@ -140,6 +159,17 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
     const uint32_t instanceCount = static_cast<uint32_t>(memberScratch_.size());
     const uint32_t membersOffset = static_cast<uint32_t>(slot.members.size());
     slot.members.insert(slot.members.end(), memberScratch_.begin(), memberScratch_.end());
+
+    // Every member's material records: the model's own, then the member's overrides.
+    const std::span<const InstanceMaterial> rest = model->materials();
+    materialOffsetScratch_.clear();
+    for (uint32_t member : memberScratch_) {
+      const size_t start = materialScratch_.size();
+      materialOffsetScratch_.push_back(static_cast<uint32_t>(start));
+      materialScratch_.insert(materialScratch_.end(), rest.begin(), rest.end());
+      const std::span<const InstanceMaterial> own = instances[member].materials;
+      std::copy(own.begin(), own.end(), materialScratch_.begin() + std::ptrdiff_t(start));
+    }
 
     // The active list of every (instance, mesh): the only per-frame morph data.
     const std::span<const GpuMesh> meshes = model->meshes();
@@ -172,6 +202,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         const ActiveRange range = rangeScratch_[k * meshes.size() + mesh];
         record.activeOffset = range.offset;
         record.activeCount = range.count;
+        record.materialOffset = materialOffsetScratch_[k];
         if (node && node->skin >= 0) {
           model->jointMatrices(*node, inst.nodeWorld, skinScratch_);
           record.jointOffset = static_cast<uint32_t>(jointScratch_.size());
@@ -202,17 +233,22 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "active weights"));
   ENG_TRY(ensureCapacity(slot, slot.joints, jointScratch_.size() * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          MemoryUsage::Upload, "joint matrices"));
+  ENG_TRY(ensureCapacity(slot, slot.materials, materialScratch_.size() * sizeof(InstanceMaterial),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instance materials"));
   if (mode == Mode::Capture)
     ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
   slot.stats = {static_cast<uint32_t>(slot.batches.size()), static_cast<uint32_t>(instanceScratch_.size()),
-                static_cast<uint32_t>(activeScratch_.size()), static_cast<uint32_t>(jointScratch_.size())};
+                static_cast<uint32_t>(activeScratch_.size()), static_cast<uint32_t>(jointScratch_.size()),
+                static_cast<uint32_t>(materialScratch_.size())};
   if (!instanceScratch_.empty())
     std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
   if (!activeScratch_.empty())
     std::memcpy(slot.active.mapped(), activeScratch_.data(), activeScratch_.size() * sizeof(ActiveWeight));
   if (!jointScratch_.empty())
     std::memcpy(slot.joints.mapped(), jointScratch_.data(), jointScratch_.size() * sizeof(glm::mat4));
+  if (!materialScratch_.empty())
+    std::memcpy(slot.materials.mapped(), materialScratch_.data(), materialScratch_.size() * sizeof(InstanceMaterial));
   return {};
 }
 

@@ -1,9 +1,13 @@
 #pragma once
 // Draws model instances into a render pass of any target. Per frame the CPU
 // writes only the instance records (transform + slice of the active list +
-// slice of the joint matrices), the compact active-weight list and the joint
-// matrices of skinned mesh nodes; each mesh of a model draws ALL instances of
-// that model in one instanced draw per primitive.
+// slice of the joint matrices + first material record), the compact
+// active-weight list, the joint matrices of skinned mesh nodes and one
+// material record per material per instance (48 bytes: base colour, emission,
+// UV transform; an animation's overrides or the model's own values), all into
+// persistent mapped buffers (descriptors are rewritten only when one grows);
+// each mesh of a model draws ALL instances of that model in one instanced
+// draw per primitive.
 //
 // Frame slots: the caller owns synchronisation; prepare(slot) may only be
 // called once the GPU has finished the previous commands recorded for that slot.
@@ -34,6 +38,11 @@ struct ModelInstance {
   // (eng::poseWorldMatrices), model->nodeCount() long; empty = the rest
   // (bind) pose. Moves skinned meshes through their joints and rigid mesh nodes.
   std::span<const glm::mat4> nodeWorld;
+  // The instance's material parameters, by material index, at most
+  // model->materialCount() long: what an animation moves (VRM material colour
+  // and texture transform binds). Materials past the end (or all, when empty)
+  // keep the model's own values (model->materials()).
+  std::span<const InstanceMaterial> materials;
 };
 
 // Morphed (then skinned) vertices of one primitive of one instance, in the
@@ -54,6 +63,7 @@ struct FrameStats {
   uint32_t instances = 0;      // GPU instance records
   uint32_t activeWeights = 0;  // entries of the active list uploaded this frame
   uint32_t jointMatrices = 0;  // joint matrices uploaded this frame
+  uint32_t materials = 0;      // instance material records uploaded this frame
 };
 
 class SceneRenderer {
@@ -64,7 +74,8 @@ class SceneRenderer {
                                       uint32_t frameSlots);
 
   // Writes slot's frame data. Errors (naming the instance and mesh): null
-  // model, wrong number of weights, non-finite weight, pose of the wrong size.
+  // model, wrong number of weights, non-finite weight, pose of the wrong size,
+  // more materials than the model has, a non-finite material value.
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
   FrameStats stats(uint32_t slot) const;
   // Before the scene's render pass: the key light's shadow map for the prepared draws.
@@ -103,6 +114,7 @@ class SceneRenderer {
     Buffer instances;
     Buffer active;
     Buffer joints;
+    Buffer materials;
     Buffer capture;
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
@@ -133,6 +145,8 @@ class SceneRenderer {
   std::vector<ActiveWeight> activeScratch_;
   std::vector<glm::mat4> jointScratch_;
   std::vector<glm::mat4> skinScratch_;
+  std::vector<InstanceMaterial> materialScratch_;
+  std::vector<uint32_t> materialOffsetScratch_;  // per member of the model being laid out
   std::vector<const GpuModel*> modelScratch_;
   std::vector<uint32_t> memberScratch_;
   struct ActiveRange {

@@ -1,5 +1,7 @@
 #include "tests/cli/cli_test_support.h"
 
+#include <cstdlib>
+
 #include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
 
@@ -25,5 +27,17 @@ eng::Image readPngOrFail(const std::filesystem::path& path) {
 }
 
 std::filesystem::path facecapPath() { return testing_support::sharedDir() / "assets" / "facecap.glb"; }
+
+double differingFraction(const eng::Image& a, const eng::Image& b, int threshold) {
+  if (a.width != b.width || a.height != b.height || a.rgba8.empty()) return 1.0;
+  size_t differing = 0;
+  for (size_t p = 0; p < a.rgba8.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgba8[p + c]) - int(b.rgba8[p + c])) > threshold) {
+        ++differing;
+        break;
+      }
+  return double(differing) / double(a.rgba8.size() / 4);
+}
 
 }  // namespace cli_test

@@ -19,4 +19,8 @@ eng::Image readPngOrFail(const std::filesystem::path& path);
 
 std::filesystem::path facecapPath();
 
+// Fraction of the pixels whose RGB differs by more than `threshold` in some
+// channel (1 when the sizes differ or the images are empty).
+double differingFraction(const eng::Image& a, const eng::Image& b, int threshold = 16);
+
 }  // namespace cli_test

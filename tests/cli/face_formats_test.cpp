@@ -4,6 +4,7 @@
 // (transparent RGBA with a clean edge, or one colour).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -28,19 +29,6 @@ std::filesystem::path vrmPath(int version) {
 std::filesystem::path candidePath() { return testing_support::sharedDir() / "candide3" / "candide3.wfm"; }
 
 bool contains(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
-
-// Fraction of pixels whose RGB differs by more than 16 in some channel.
-double differingFraction(const eng::Image& a, const eng::Image& b) {
-  if (a.width != b.width || a.height != b.height || a.rgba8.empty()) return 1.0;
-  size_t differing = 0;
-  for (size_t p = 0; p < a.rgba8.size(); p += 4)
-    for (size_t c = 0; c < 3; ++c)
-      if (std::abs(int(a.rgba8[p + c]) - int(b.rgba8[p + c])) > 16) {
-        ++differing;
-        break;
-      }
-  return double(differing) / double(a.rgba8.size() / 4);
-}
 
 TEST(FaceFormats, RigReportsVrm0And1ExpressionsEmotionsAndVisemes) {
   FACIAL_REQUIRE_SHARED();
@@ -175,7 +163,9 @@ TEST(FaceFormats, ObjKeyframeFolderOpensWithoutConverting) {
 
 // The test face turned into a VRM 1.0 avatar: 'happy' binds the left smile
 // target and turns the skin red; 'sad' is not defined (fear is composed).
-std::filesystem::path writeTestVrm(const std::string& name) {
+// `edit` may change the VRMC_vrm extension before it is written.
+std::filesystem::path writeTestVrm(const std::string& name,
+                                   const std::function<void(nlohmann::json&)>& edit = {}) {
   const std::filesystem::path glb = writeTestFace(name);
   auto bytes = eng::readFileBytes(glb, size_t{1} << 24);
   EXPECT_TRUE(bytes);
@@ -195,6 +185,7 @@ std::filesystem::path writeTestVrm(const std::string& name) {
             {"materialColorBinds", {{{"material", 0}, {"type", "color"}, {"targetValue", {1.0, 0.0, 0.0, 1.0}}}}}}},
           {"surprised", {{"morphTargetBinds", {{{"node", faceNode}, {"index", kJawDrop}, {"weight", 1.0}}}}}},
           {"neutral", nlohmann::json::object()}}}}}};
+  if (edit) edit(json["extensions"]["VRMC_vrm"]);
   const std::string text = json.dump();
   const std::vector<uint8_t> vrm = eng::buildGlb(text, chunks->bin);
   const std::filesystem::path path = glb.parent_path() / "face.vrm";
@@ -223,6 +214,91 @@ TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
   EXPECT_GT(int(happy.rgba8[centre]) - int(happy.rgba8[centre + 1]), 100) << "the skin turns red";
   EXPECT_LT(int(neutral.rgba8[centre]) - int(neutral.rgba8[centre + 1]), 80);
   EXPECT_GT(differingFraction(neutral, happy), 0.2);
+}
+
+// Red minus green at the image centre: how far the skin has turned red.
+int redness(const eng::Image& image) {
+  const size_t centre = (size_t(image.height / 2) * size_t(image.width) + size_t(image.width / 2)) * 4;
+  return int(image.rgba8[centre]) - int(image.rgba8[centre + 1]);
+}
+
+// The animated path: `play` drives the material colour bind frame by frame
+// with the expression weight (neutral, then a linear 1 s blend to happy).
+TEST(FaceFormats, SyntheticVrmMaterialColourFollowsTheAnimatedWeightInPlay) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_vrm_play");
+  const std::filesystem::path dir = vrm.parent_path();
+  testing_support::writeFile(dir / "to_happy.json", R"({"version": 1, "channels": "actionUnits",
+    "root": {"type": "stateMachine", "defaultState": "neutral", "states": [
+      {"name": "neutral", "node": {"type": "pose", "preset": "neutral"},
+       "transitions": [{"to": "happy", "duration": 1.0, "curve": "linear", "exitTime": 0.5}]},
+      {"name": "happy", "node": {"type": "pose", "preset": "happy"}}]}})");
+  ASSERT_TRUE(ranCleanly(runFacial({"play", (dir / "to_happy.json").string(), "--model", vrm.string(), "--fps", "4",
+                                    "--seconds", "2.25", "--size", "64x64", "--out", (dir / "frames").string()})));
+  // Frames at 0 s (neutral), 1 s (halfway) and 2 s (happy).
+  const eng::Image neutral = readPngOrFail(dir / "frames" / "frame_0000.png");
+  const eng::Image halfway = readPngOrFail(dir / "frames" / "frame_0004.png");
+  const eng::Image happy = readPngOrFail(dir / "frames" / "frame_0008.png");
+  ASSERT_FALSE(neutral.rgba8.empty() || halfway.rgba8.empty() || happy.rgba8.empty());
+  EXPECT_LT(redness(neutral), 80) << "the skin's own colour";
+  EXPECT_GT(redness(happy), 100) << "the bind's red";
+  EXPECT_GT(redness(halfway), redness(neutral) + 15) << "halfway is redder than neutral";
+  EXPECT_LT(redness(halfway), redness(happy) - 15) << "and less red than happy";
+  // The same pose through `express` draws the same colour: one path for still and animated views.
+  ASSERT_TRUE(ranCleanly(runFacial({"express", "happy", "--model", vrm.string(), "--size", "64x64", "--zoom", "1.15",
+                                    "--out", (dir / "express_happy.png").string()})));
+  EXPECT_NEAR(redness(readPngOrFail(dir / "express_happy.png")), redness(happy), 12);
+}
+
+// The demo's headless tour (neutral, then happy from 2.4 s, fully at 3.2 s)
+// drives the same per-instance material records.
+TEST(FaceFormats, SyntheticVrmMaterialColourFollowsTheHeadlessDemoTour) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_vrm_demo");
+  const std::filesystem::path out = vrm.parent_path() / "tour";
+  ASSERT_TRUE(ranCleanly(runFacial({"demo", "--headless", "--model", vrm.string(), "--size", "48x48", "--fps", "2",
+                                    "--seconds", "4.5", "--out", out.string()})));
+  const eng::Image neutral = readPngOrFail(out / "frames" / "frame_0000.png");
+  const eng::Image happy = readPngOrFail(out / "frames" / "frame_0008.png");  // 4 s
+  ASSERT_FALSE(neutral.rgba8.empty() || happy.rgba8.empty());
+  EXPECT_LT(redness(neutral), 80);
+  EXPECT_GT(redness(happy), 100);
+}
+
+// The contact sheet poses every preset with its material binds too.
+TEST(FaceFormats, SyntheticVrmSheetTilesShowTheMaterialBind) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_vrm_sheet");
+  const std::filesystem::path sheet = vrm.parent_path() / "sheet.png";
+  ASSERT_TRUE(ranCleanly(runFacial({"sheet", "--model", vrm.string(), "--size", "64", "--out", sheet.string()})));
+  const eng::Image image = readPngOrFail(sheet);
+  ASSERT_FALSE(image.rgba8.empty());
+  size_t red = 0;
+  for (size_t p = 0; p < image.rgba8.size(); p += 4) red += int(image.rgba8[p]) - int(image.rgba8[p + 1]) > 100 ? 1 : 0;
+  EXPECT_GT(red, 64u * 64u / 4) << "the happy tile is red";
+}
+
+// A material bind that cannot be applied is left out with one warning line
+// naming the file and the bind; the avatar still loads and plays its other binds.
+TEST(FaceFormatsValidity, BadVrmMaterialBindsWarnOnceAndTheFaceStillRenders) {
+  const std::filesystem::path vrm = writeTestVrm("face_formats_vrm_bad_bind", [](nlohmann::json& ext) {
+    auto& happy = ext["expressions"]["preset"]["happy"];
+    happy["materialColorBinds"].push_back({{"material", 7}, {"type", "color"}, {"targetValue", {0, 1, 0, 1}}});
+    happy["materialColorBinds"].push_back({{"material", 0}, {"type", "color"}, {"targetValue", {0, nullptr, 0, 1}}});
+  });
+  const std::filesystem::path png = vrm.parent_path() / "happy.png";
+  const CommandOutput run =
+      runFacial({"express", "happy", "--model", vrm.string(), "--size", "64x64", "--out", png.string()});
+  ASSERT_TRUE(ranCleanly(run));
+  const std::string outOfRange = vrm.string() +
+                                 ": /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/1/material: 7 is "
+                                 "out of range (1 materials); bind ignored";
+  const std::string notFinite = vrm.string() +
+                                ": /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/2/targetValue/1: "
+                                "must be a finite number, got null; bind ignored";
+  for (const std::string& line : {outOfRange, notFinite}) {
+    const size_t at = run.err.find(line);
+    EXPECT_NE(at, std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find(line, at + 1), std::string::npos) << "said once: " << run.err;
+  }
+  EXPECT_GT(redness(readPngOrFail(png)), 100) << "the good bind still turns the skin red";
 }
 
 // Alpha from coverage, colour un-premultiplied: edge pixels keep the colour of

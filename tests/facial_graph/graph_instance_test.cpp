@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bake/vrm_import.h"
+#include "facial/runtime/rig/json_document.h"
 #include "tests/facial_graph/graph_test_support.h"
 
 using namespace facial;
@@ -205,4 +207,36 @@ TEST(GraphInstanceValidity, BadTimeStepsChangeNothing) {
   EXPECT_FALSE(face.update(INFINITY));
   EXPECT_EQ(before, std::vector<float>(face.weights().begin(), face.weights().end()));
   EXPECT_FALSE(GraphInstance::create(nullptr).ok());
+}
+
+// The per-frame work of a VRM face's material binds (what cli::FaceMaterials
+// runs every frame for every instance): resolve the expression weights, move
+// the materials. Nothing allocates once sized.
+TEST(GraphInstance, VrmMaterialBindsPerFrameNeverAllocate) {
+  auto document = parseJsonText(R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],
+    "materials": [{"name": "skin"}, {"name": "eyes"}],
+    "meshes": [{"primitives": [{"attributes": {}, "targets": [{}]}]}],
+    "extensions": {"VRMC_vrm": {"specVersion": "1.0", "expressions": {"preset": {
+      "happy": {"morphTargetBinds": [{"node": 0, "index": 0, "weight": 1}],
+                "materialColorBinds": [{"material": 0, "type": "color", "targetValue": [1, 0, 0, 1]}]},
+      "blink": {"textureTransformBinds": [{"material": 1, "scale": [1, 0.5], "offset": [0, 0.5]}]},
+      "angry": {"overrideBlink": "block",
+                "materialColorBinds": [{"material": 0, "type": "emissionColor", "targetValue": [0.2, 0, 0, 1]}]}}}}}})",
+                               "alloc.vrm");
+  ASSERT_TRUE(document) << document.error().message;
+  auto set = importVrmExpressions(*document, "alloc.vrm");
+  ASSERT_TRUE(set) << set.error().message;
+  std::vector<float> weights(set->expressions.size()), effective(weights.size());
+  std::vector<VrmMaterialState> rest(set->materialCount), moved(set->materialCount);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  gAllocations = 0;
+  gCounting = true;
+  for (int f = 0; f < 5000; ++f) {
+    for (float& w : weights) w = u(rng);
+    ASSERT_TRUE(set->effectiveWeights(weights, effective));
+    ASSERT_TRUE(set->applyMaterials(effective, rest, moved));
+  }
+  gCounting = false;
+  EXPECT_EQ(gAllocations.load(), 0);
 }

@@ -5,6 +5,7 @@
 #include "bake/vrm_import.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -374,9 +375,11 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   EXPECT_EQ(set->unsupportedMaterialBinds(), 1u);
   std::vector<float> weights(set->expressions.size(), 0.0f);
   weights[expressionIndex(*set, "happy")] = 0.5f;
-  std::vector<VrmMaterialState> materials(2);
-  materials[0].color = {0.2f, 0.2f, 0.2f, 1.0f};
-  ASSERT_TRUE(set->applyMaterials(weights, materials));
+  std::vector<VrmMaterialState> rest(2), materials(2);
+  rest[0].color = {0.2f, 0.2f, 0.2f, 1.0f};
+  std::vector<float> effective(weights.size());
+  ASSERT_TRUE(set->effectiveWeights(weights, effective));
+  ASSERT_TRUE(set->applyMaterials(effective, rest, materials));
   EXPECT_FLOAT_EQ(materials[0].color[0], 0.6f);  // halfway from 0.2 to 1
   EXPECT_FLOAT_EQ(materials[0].color[1], 0.1f);
   EXPECT_FLOAT_EQ(materials[1].emission[1], 0.5f);
@@ -386,7 +389,10 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   ASSERT_TRUE(rig);
   EXPECT_TRUE(contains(rig->report().notes, "1 material colour bind(s) address MToon colours")) << rig->report().summary();
   std::vector<VrmMaterialState> wrong(1);
-  EXPECT_FALSE(set->applyMaterials(weights, wrong));
+  EXPECT_FALSE(set->applyMaterials(effective, rest, wrong));
+  EXPECT_FALSE(set->applyMaterials(effective, wrong, wrong));
+  effective[0] = std::nanf("");
+  EXPECT_FALSE(set->applyMaterials(effective, rest, materials));
 }
 
 TEST(VrmRig, Vrm0MainTexStIsATextureTransform) {
@@ -401,21 +407,52 @@ TEST(VrmRig, Vrm0MainTexStIsATextureTransform) {
   EXPECT_EQ(set->expressions[0].textureTransformBindCount, 1u);
 }
 
-TEST(VrmRigValidity, MaterialBindsAreChecked) {
+// A material bind that cannot be applied is left out with one warning naming
+// the file and the bind; the avatar (its other binds) still loads.
+std::string onlyWarningOf(const Json& document, size_t colourBinds, size_t textureBinds) {
+  auto set = importVrmExpressions(document, "bad.vrm");
+  EXPECT_TRUE(set) << set.error().message;
+  if (!set) return {};
+  EXPECT_EQ(set->materialColorBinds.size(), colourBinds);
+  EXPECT_EQ(set->textureTransformBinds.size(), textureBinds);
+  EXPECT_EQ(set->warnings.size(), 1u);
+  return set->warnings.empty() ? std::string() : set->warnings.front();
+}
+
+TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
   Json doc = vrm1Document();
+  const size_t colours = importVrmExpressions(doc, "bad.vrm")->materialColorBinds.size();
+  const size_t textures = importVrmExpressions(doc, "bad.vrm")->textureTransformBinds.size();
   Json& bind = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"]["materialColorBinds"][0];
   bind["type"] = "glow";
-  EXPECT_NE(errorOf(doc).find("happy/materialColorBinds/0/type: must be color, emissionColor"), std::string::npos)
-      << errorOf(doc);
+  EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
+            "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/type: must be color, "
+            "emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got \"glow\"; bind ignored");
   bind["type"] = "color";
   bind["material"] = 5;
-  EXPECT_NE(errorOf(doc).find("materialColorBinds/0/material: 5 is out of range (2 materials)"), std::string::npos);
+  EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
+            "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/material: 5 is out of "
+            "range (2 materials); bind ignored");
   bind["material"] = 0;
   bind["targetValue"] = Json::array({1, 0});
-  EXPECT_NE(errorOf(doc).find("materialColorBinds/0/targetValue: must be an array of 4 numbers"), std::string::npos);
+  EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue: must be an array of 4 numbers"),
+            std::string::npos);
+  // JSON has no NaN: serialisers write a NaN colour as null.
+  bind["targetValue"] = Json::parse("[1, null, 0, 1]");
+  EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
+            "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/targetValue/1: must be a "
+            "finite number, got null; bind ignored");
+  // A document built in memory (or by a lenient parser) may carry a real NaN.
+  bind["targetValue"] = Json::array({1.0, std::nan(""), 0.0, 1.0});
+  EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue/1: must be a finite number"),
+            std::string::npos);
   doc = vrm0Document();
   doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][4]["materialValues"][0]["materialName"] = "iris";
-  EXPECT_NE(errorOf(doc).find("materialValues/0/materialName: no material is named 'iris'"), std::string::npos);
+  const std::string warning = onlyWarningOf(doc, 0, 0);
+  EXPECT_NE(warning.find("bad.vrm: /extensions/VRM/blendShapeMaster/blendShapeGroups/4/materialValues/0/materialName: "
+                         "no material is named 'iris'; bind ignored"),
+            std::string::npos)
+      << warning;
 }
 
 TEST(VrmRigValidity, StageAndTargetCountsMustAgree) {

@@ -328,6 +328,31 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
 }
 
+// Emission is drawn from the factor; a factor masked by an emissive texture
+// (not drawn) would light the whole surface, so it is left out with a warning.
+TEST(GltfLoader, ReadsEmissiveFactorsAndLeavesOutTextureMaskedEmission) {
+  const auto dir = freshTempDir("loader_emissive");
+  GltfFileBuilder b = quadWithTarget();
+  const std::vector<uint8_t> pixels = {255, 255, 255, 255};
+  auto png = eng::encodePng(1, 1, pixels);
+  ASSERT_TRUE(png.ok());
+  b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}}});
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"] = Json::array({{{"name", "glow"}, {"emissiveFactor", {0.5, 0.25, 0}}},
+                                    {{"name", "masked"}, {"emissiveFactor", {1, 1, 1}},
+                                     {"emissiveTexture", {{"index", 0}}}},
+                                    {{"name", "dark"}, {"emissiveTexture", {{"index", 0}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.writeGlb(dir / "emissive.glb");
+  const eng::Model model = loadOk(dir / "emissive.glb");
+  ASSERT_EQ(model.materials.size(), 3u);
+  EXPECT_EQ(model.materials[0].emissiveFactor, glm::vec3(0.5f, 0.25f, 0.0f));
+  EXPECT_EQ(model.materials[1].emissiveFactor, glm::vec3(0.0f));
+  EXPECT_EQ(model.materials[2].emissiveFactor, glm::vec3(0.0f));
+  EXPECT_TRUE(hasWarningContaining(model, "material 1 has an emissiveTexture, which is not drawn; its emission is left out"));
+  EXPECT_FALSE(hasWarningContaining(model, "material 2")) << "no emission to leave out";
+}
+
 TEST(GltfLoader, BrokenImageIsSkippedWithAWarningAndTheMaterialLosesItsTexture) {
   const auto dir = freshTempDir("loader_broken_image");
   GltfFileBuilder b = quadWithTarget();

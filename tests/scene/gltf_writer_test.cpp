@@ -36,6 +36,7 @@ eng::Model richModel() {
   skin.roughness = 0.45f;
   skin.metallic = 0.05f;
   skin.doubleSided = true;
+  skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
   model.materials.push_back(skin);
   model.materials.push_back(eng::Material{.name = "plain"});
@@ -153,6 +154,7 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     const eng::Material& y = b.materials[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.baseColorFactor, y.baseColorFactor);
+    EXPECT_EQ(x.emissiveFactor, y.emissiveFactor);
     EXPECT_EQ(x.baseColorImage, y.baseColorImage);
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);

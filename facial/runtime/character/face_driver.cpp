@@ -36,6 +36,7 @@ eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const Ri
       return eng::makeError("face driver: rig mapping covers " + std::to_string(rig->targetCount()) +
                             " targets, the model has " + std::to_string(baseWeights.size()));
     driver.rig_ = rig;
+    if (rig->expressionStage()) driver.expressionWeights_.assign(rig->controlNames().size(), 0.0f);
     return driver;
   }
   // Raw target channels: match by name; a channel the model lacks is an error
@@ -56,7 +57,7 @@ bool FaceDriver::update(float dt) {
   const std::span<const float> weights = graph_.weights();
   if (rig_) {
     // Sizes were checked in create(), so apply() cannot fail here.
-    (void)rig_->apply(weights, targetWeights_);
+    (void)rig_->apply(weights, {}, targetWeights_, expressionWeights_);
   } else {
     for (size_t c = 0; c < channelToTarget_.size(); ++c) targetWeights_[channelToTarget_[c]] = weights[c];
   }

@@ -34,6 +34,10 @@ class FaceDriver {
   bool update(float dt);
 
   std::span<const float> targetWeights() const { return targetWeights_; }
+  // The rig's expression weights this frame (RigMapping::controlNames()
+  // order) when it has an expression stage (VRM), for the expressions'
+  // material binds; empty otherwise.
+  std::span<const float> expressionWeights() const { return expressionWeights_; }
   std::span<const float> channelWeights() const { return graph_.weights(); }
   GraphInstance& graph() { return graph_; }
   const GraphInstance& graph() const { return graph_; }
@@ -45,6 +49,7 @@ class FaceDriver {
   const RigMapping* rig_ = nullptr;           // set when the graph speaks action units
   std::vector<uint32_t> channelToTarget_;     // set when it speaks target names (UINT32_MAX: no such target)
   std::vector<float> targetWeights_;
+  std::vector<float> expressionWeights_;
 };
 
 }  // namespace facial

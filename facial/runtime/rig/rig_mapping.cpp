@@ -32,8 +32,8 @@ void describeStage(const VrmExpressionSet& vrm, RigMappingReport& report) {
     report.notes.push_back(std::to_string(n) + " material colour bind(s) address MToon colours (shade, matcap, rim, "
                            "outline) that a glTF PBR material does not have; not shown");
   if (vrm.hasMaterialBinds())
-    report.notes.push_back("material colour (base colour) and texture transform binds show on single poses "
-                           "(express); animated faces (play, demo, editor) show the morph binds only");
+    report.notes.push_back("material colour (base colour, emission) and texture transform binds follow the "
+                           "expression weights in every view (per-instance material overrides)");
   for (const std::string& w : vrm.warnings) report.notes.push_back(w);
 }
 
@@ -168,7 +168,7 @@ void RigMapping::accumulate(std::span<const float> auWeights, std::span<const fl
 }
 
 eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
-                                    std::span<float> targetWeights) const {
+                                    std::span<float> targetWeights, std::span<float> expressionWeights) const {
   const size_t channels = actionUnits().size();
   if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount) ||
       targetWeights.size() != targetNames_.size())
@@ -177,6 +177,10 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
                           std::to_string(targetWeights.size()) + " target weights; expected " +
                           std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount) + ", " +
                           std::to_string(targetNames_.size()));
+  if (!expressionWeights.empty() && (!stage_ || expressionWeights.size() != controlNames_.size()))
+    return eng::makeError("rig mapping: room for " + std::to_string(expressionWeights.size()) +
+                          " expression weights, the rig has " +
+                          (stage_ ? std::to_string(controlNames_.size()) : std::string("no expression stage")));
   if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
   if (!stage_) {
     for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
@@ -190,20 +194,8 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
   accumulate(auWeights, emotionWeights, controlScratch_);
   for (float& w : controlScratch_) w = std::clamp(w, 0.0f, 1.0f);
   if (auto resolved = stage_->apply(controlScratch_, stageScratch_); !resolved) return resolved;
+  if (!expressionWeights.empty()) std::copy(controlScratch_.begin(), controlScratch_.end(), expressionWeights.begin());
   for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(stageScratch_[t], minWeight_, maxWeight_);
-  return {};
-}
-
-eng::Result<void> RigMapping::expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
-                                                std::span<float> expressionWeights) const {
-  if (!stage_) return eng::makeError("rig mapping: no expression stage (not a VRM rig)");
-  if (expressionWeights.size() != controlNames_.size())
-    return eng::makeError("rig mapping: room for " + std::to_string(expressionWeights.size()) + " expression weights, the rig has " +
-                          std::to_string(controlNames_.size()));
-  if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
-  std::fill(expressionWeights.begin(), expressionWeights.end(), 0.0f);
-  accumulate(auWeights, emotionWeights, expressionWeights);
-  for (float& w : expressionWeights) w = std::clamp(w, 0.0f, 1.0f);
   return {};
 }
 

@@ -109,16 +109,14 @@ class RigMapping {
   // resolved by the stage and the morph weights it binds written; it uses
   // scratch inside the mapping, so one mapping must not apply() on two
   // threads at once (give each thread its own copy).
+  // expressionWeights, when not empty (expression stage only, controlNames()
+  // long), also receives the expression weights handed to the stage, for the
+  // stage's material binds (VrmExpressionSet::applyMaterials).
   eng::Result<void> apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
-                          std::span<float> targetWeights) const;
+                          std::span<float> targetWeights, std::span<float> expressionWeights = {}) const;
   eng::Result<void> apply(std::span<const float> auWeights, std::span<float> targetWeights) const {
     return apply(auWeights, {}, targetWeights);
   }
-  // Expression stage only: the expression weights (controlNames() order,
-  // clamped to [0, 1]) that apply() hands to the stage, e.g. for the stage's
-  // material binds (VrmExpressionSet::applyMaterials). Same checks as apply().
-  eng::Result<void> expressionWeights(std::span<const float> auWeights, std::span<const float> emotionWeights,
-                                      std::span<float> expressionWeights) const;
 
  private:
   friend class RigMappingBuilder;

@@ -171,15 +171,19 @@ eng::Result<void> VrmExpressionSet::apply(std::span<const float> expressionWeigh
   return {};
 }
 
-eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> expressionWeights,
+eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effective,
+                                                   std::span<const VrmMaterialState> rest,
                                                    std::span<VrmMaterialState> materials) const {
-  if (materials.size() != materialCount)
-    return eng::makeError("VRM expressions: " + std::to_string(materials.size()) + " material states given, the model has " +
-                          std::to_string(materialCount) + " materials");
-  std::vector<float> effective(expressions.size());
-  if (auto r = effectiveWeights(expressionWeights, effective); !r) return r;
+  if (rest.size() != materialCount || materials.size() != materialCount)
+    return eng::makeError("VRM expressions: " + std::to_string(rest.size()) + " material states given and room for " +
+                          std::to_string(materials.size()) + ", the model has " + std::to_string(materialCount) +
+                          " materials");
+  if (effective.size() != expressions.size())
+    return eng::makeError("VRM expressions: " + std::to_string(effective.size()) + " effective weights given, expected " +
+                          std::to_string(expressions.size()));
+  if (auto finite = checkFinite(*this, effective); !finite) return finite;
   // Deltas from every material's own state, so several expressions add up.
-  const std::vector<VrmMaterialState> rest(materials.begin(), materials.end());
+  std::copy(rest.begin(), rest.end(), materials.begin());
   for (size_t i = 0; i < expressions.size(); ++i) {
     const VrmExpression& e = expressions[i];
     const float w = effective[i];

@@ -13,9 +13,12 @@
 //  - morph weights accumulate bind.weight * expression weight (binds of VRM 0.x
 //    are stored already divided by 100);
 //  - material colour binds move a material's colour from its own value towards
-//    targetValue by the expression weight (deltas of several expressions add);
-//    texture transform binds move the UV scale from (1,1) and the offset from
-//    (0,0) towards theirs the same way (applyMaterials).
+//    targetValue by the (effective) expression weight, and the deltas of
+//    several expressions add: value = rest + sum_e w_e * (target_e - rest), as
+//    three-vrm's VRMExpressionMaterialColorBind and UniVRM's material value
+//    merger do (VRM 0.x materialValues likewise); texture transform binds move
+//    the UV scale from the material's own (1,1) and the offset from (0,0)
+//    towards theirs the same way (applyMaterials).
 // Parsing the glTF JSON lives in facial_bake (vrm_import.h); this part stays
 // pure. Targets are flat and mesh-major like eng::WeightLayout: mesh m's
 // targets start at meshTargetOffsets[m].
@@ -109,11 +112,13 @@ struct VrmExpressionSet {
   // (what apply() multiplies the binds with). Same sizes as expressions.
   eng::Result<void> effectiveWeights(std::span<const float> expressionWeights, std::span<float> effective) const;
 
-  // materials: every material's own state on input (materialCount entries),
-  // moved by the material colour and texture transform binds of the weighted
-  // expressions on output. Only Color and EmissionColor have a glTF meaning;
-  // the MToon colours are listed by unsupportedMaterialBinds().
-  eng::Result<void> applyMaterials(std::span<const float> expressionWeights, std::span<VrmMaterialState> materials) const;
+  // effective: effectiveWeights()' output; rest: every material's own state
+  // (materialCount entries); out (same size): rest moved by the material
+  // colour and texture transform binds of the weighted expressions. Only Color
+  // and EmissionColor have a glTF meaning; the MToon colours are listed by
+  // unsupportedMaterialBinds(). No allocation (per frame).
+  eng::Result<void> applyMaterials(std::span<const float> effective, std::span<const VrmMaterialState> rest,
+                                   std::span<VrmMaterialState> out) const;
   // Material colour binds whose type has no glTF material value (MToon shade, matcap, rim, outline).
   size_t unsupportedMaterialBinds() const;
   bool hasMaterialBinds() const { return !materialColorBinds.empty() || !textureTransformBinds.empty(); }
