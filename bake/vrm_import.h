@@ -13,7 +13,8 @@
 // Material colour binds (1.0 materialColorBinds, 0.x materialValues _Color,
 // _EmissionColor, ...) and texture transform binds (1.0 textureTransformBinds,
 // 0.x _MainTex_ST) address glTF materials by index (0.x: by name). Errors name
-// the source, JSON path and problem.
+// the source, JSON path and problem. The lookAt (1.0 lookAt, 0.x firstPerson):
+// its type (bone / expression) and range maps, for facial::GazeRig.
 #include <filesystem>
 #include <optional>
 #include <string_view>
