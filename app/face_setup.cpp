@@ -9,7 +9,6 @@
 #include <fstream>
 
 #include <CLI/CLI.hpp>
-#include <Eigen/Dense>
 #include <glm/gtc/constants.hpp>
 
 #include "app/cli_parse.h"
@@ -20,6 +19,7 @@
 #include "bake/candide_import.h"
 #include "bake/loop_subdivision.h"
 #include "bake/vrm_import.h"
+#include "facial/runtime/rig/action_unit_rig.h"
 #include "facial/runtime/rig/action_units.h"
 
 namespace cli {
@@ -266,54 +266,6 @@ eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const s
   return facial::RigCalibration{std::move(*rig), {}};
 }
 
-eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, const facial::ExpressionLibrary& presets) {
-  const uint32_t auCount = static_cast<uint32_t>(facial::actionUnits().size());
-  const std::span<const std::string_view> emotions = facial::emotionNames();
-  bool bindsEmotions = false;
-  for (uint32_t e = 0; e < emotions.size(); ++e)
-    bindsEmotions |= !rig.targets(facial::emotionInput(facial::Emotion(e))).empty();
-  if (!bindsEmotions) return rig;
-
-  // P: one column per basic emotion (neutral excluded), its preset at intensity 1.
-  constexpr uint32_t kBasic = facial::kEmotionCount - 1;
-  Eigen::MatrixXd pattern = Eigen::MatrixXd::Zero(auCount, kBasic);
-  std::vector<float> au(auCount);
-  for (uint32_t k = 0; k < kBasic; ++k) {
-    const std::string_view name = emotions[k + 1];
-    const facial::ExpressionPreset* preset = presets.find(name);
-    if (!preset || preset->isCompound())
-      return eng::makeError("the rig binds emotions, so the graph's action units are decoded through the basic "
-                            "presets, but the presets have no basic '" + std::string(name) + "'");
-    if (auto r = facial::ExpressionLibrary::evaluate(*preset, 1.0f, au); !r) return r.error();
-    for (uint32_t a = 0; a < auCount; ++a) pattern(a, k) = au[a];
-  }
-  const Eigen::MatrixXd gram = pattern.transpose() * pattern;
-  const Eigen::LDLT<Eigen::MatrixXd> solver(gram);
-  // Relative to the largest pivot: a preset that is (nearly) a mix of the others cannot be told apart.
-  const Eigen::VectorXd pivots = solver.vectorD().cwiseAbs();
-  if (solver.info() != Eigen::Success || pivots.minCoeff() <= 1e-9 * pivots.maxCoeff())
-    return eng::makeError("the basic presets' action units are linearly dependent; emotion-level rig bindings "
-                          "cannot be decoded from the graph's action units");
-  const Eigen::MatrixXd decode = solver.solve(pattern.transpose());  // kBasic x auCount
-
-  facial::RigMappingBuilder builder = facial::RigMappingBuilder::startingFrom(rig);
-  for (uint32_t k = 0; k < kBasic; ++k) {
-    const uint32_t emotion = facial::emotionInput(facial::Emotion(k + 1));
-    const auto targets = rig.targets(emotion);
-    const auto gains = rig.gains(emotion);
-    for (uint32_t a = 0; a < auCount; ++a) {
-      const double d = decode(k, a);
-      if (std::abs(d) < 1e-6) continue;
-      for (size_t i = 0; i < targets.size(); ++i) builder.add(a, targets[i], static_cast<float>(d * gains[i]));
-    }
-  }
-  if (!rig.targets(facial::emotionInput(facial::Emotion::Neutral)).empty())
-    builder.note("neutral: a target bound to the neutral emotion is not driven by action-unit graphs "
-                 "(neutral has no action units to decode)");
-  builder.note("emotion bindings are driven from the action units through the basic presets (least squares)");
-  return builder.build();
-}
-
 eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   const std::filesystem::path modelPath = options.model.empty() ? defaultModelPath() : options.model;
   auto face = loadFace(modelPath, options.shapes);
@@ -324,7 +276,7 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   auto expressions =
       facial::ExpressionLibrary::load(options.expressions.empty() ? defaultExpressionsPath() : options.expressions);
   if (!expressions) return expressions.error();
-  auto graphRig = actionUnitRig(*rig, *expressions);
+  auto graphRig = facial::actionUnitRig(*rig, *expressions);
   if (!graphRig) return eng::makeError(modelPath.string() + ": " + graphRig.error().message);
   return FaceSetup(std::move(*face), modelNameOf(modelPath), std::move(*rig), std::move(*graphRig),
                    std::move(*expressions));

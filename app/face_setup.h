@@ -91,22 +91,6 @@ std::vector<float> targetReach(const eng::Model& model);
 // face's as buildModelRig.
 eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const std::filesystem::path& rigmapFile = {});
 
-// A rig for graphs that speak action units. The animation graph blends
-// presets as action-unit vectors, so a target bound to an emotion ("target
-// `happy` IS the happy emotion", a rig map's emotion key or the Expressions
-// scheme) would never move in the demo. Each emotion's binding is therefore
-// also reached from the action units through the least-squares decoding of
-// the basic presets: with P the (action units x emotions) matrix of the six
-// basic presets at intensity 1, the emotion weights of an AU vector a are
-// e = (P^T P)^-1 P^T a. This is exact for any linear mix of basic presets
-// (a preset at intensity s gives s on its own emotion and 0 on the others; a
-// cosine-eased transition gives the same easing on the two targets), and
-// action units no preset uses (AU45 blink) leak into no emotion. Neutral has
-// no action units and cannot be decoded: a neutral binding stays emotion-only
-// (noted in the report). AU rows of `rig` are kept as they are. Fails when
-// a basic preset is missing or the presets are linearly dependent.
-eng::Result<facial::RigMapping> actionUnitRig(const facial::RigMapping& rig, const facial::ExpressionLibrary& presets);
-
 struct FaceSetupOptions {
   std::filesystem::path model;        // empty: defaultModelPath()
   std::filesystem::path expressions;  // empty: defaultExpressionsPath()
@@ -128,7 +112,7 @@ class FaceSetup {
   const facial::RigMapping& rig() const { return rig_; }
   // The rig as a graph that speaks action units sees it (FaceDriver): the
   // same rows, plus every emotion-level binding ("happy" -> a whole-expression
-  // target) re-expressed over action units, see actionUnitRig(). Equal to
+  // target) re-expressed over action units (facial/runtime/rig/action_unit_rig.h). Equal to
   // rig() when the rig binds no emotion.
   const facial::RigMapping& graphRig() const { return graphRig_; }
   const facial::ExpressionLibrary& expressions() const { return expressions_; }

@@ -8,6 +8,7 @@
 //   auto skeleton = SkeletonMotion::create(model, "Dance");   // or "3", "all", ""
 //   skeleton->update(time, idleHeadTurn);
 //   instance.nodeWorld = skeleton->nodeWorld();
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,14 +33,20 @@ class SkeletonMotion {
   // Whether the head turn goes to a joint (skinned model with a head joint).
   bool turnsHeadJoint() const { return headJoint_ >= 0; }
   int headJoint() const { return headJoint_; }
+  // The eye joints (left, right: the face's own sides), -1 each when the
+  // skinned model has none (named LeftEye / eye_L / J_Adj_L_FaceEye / ...).
+  const std::array<int, 2>& eyeJoints() const { return eyeJoints_; }
   // Whether there is a pose to upload (a clip or a head joint).
   bool active() const { return !clips_.empty() || headJoint_ >= 0; }
   float clipDuration() const { return duration_; }
   std::string clipLabel() const { return label_; }
 
   // The pose at `time` seconds (clips loop), with the head joint turned by
-  // `headTurn` about its own position, in model-space axes.
-  void update(float time, const glm::quat& headTurn = glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+  // `headTurn` about its own position, in model-space axes, and each eye
+  // joint by its gaze (eyeTurns: left, right; facial::CharacterLife::eyeRotation).
+  void update(float time, const glm::quat& headTurn = glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+              const std::array<glm::quat, 2>& eyeTurns = {glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+                                                          glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
   // Every node's model-space matrix after update(); empty when !active().
   std::span<const glm::mat4> nodeWorld() const { return world_; }
 
@@ -48,7 +55,11 @@ class SkeletonMotion {
   std::vector<const eng::Animation*> clips_;
   float duration_ = 0.0f;
   std::string label_;
+  // Turns `joint` by `turn` (model-space axes) about its own position; true when it moved.
+  bool turnJoint(int joint, const glm::quat& turn);
+
   int headJoint_ = -1;
+  std::array<int, 2> eyeJoints_{-1, -1};
   eng::Pose rest_;
   eng::Pose pose_;
   std::vector<glm::mat4> world_;

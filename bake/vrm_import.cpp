@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
@@ -351,9 +353,66 @@ eng::Result<void> readVrm1Expression(const Context& c, const std::string& name, 
   return {};
 }
 
+// A lookAt range map: `inputKey` (degrees, (0, 180]) and `outputKey` (finite, >= 0),
+// each defaulting to the map's own value when absent.
+eng::Result<void> readRangeMap(const Context& c, const Json& owner, std::string_view key, const std::string& path,
+                               std::string_view inputKey, std::string_view outputKey, VrmLookAtRangeMap& map) {
+  if (!owner.contains(key)) return {};
+  const std::string mapPath = childPath(path, key);
+  const Json& m = owner[std::string(key)];
+  if (!m.is_object()) return jsonError(c.source, mapPath, "must be an object");
+  for (auto [field, out, maxValue] : {std::tuple{inputKey, &map.inputMaxValue, 180.0}, std::tuple{outputKey, &map.outputScale, 1e6}}) {
+    if (!m.contains(field)) continue;
+    const Json& v = m[std::string(field)];
+    const double x = v.is_number() ? v.get<double>() : -1.0;
+    if (!v.is_number() || !std::isfinite(x) || x < 0.0 || x > maxValue || (out == &map.inputMaxValue && x == 0.0))
+      return jsonError(c.source, childPath(mapPath, field), "must be a number in " +
+                       std::string(out == &map.inputMaxValue ? "(0, 180]" : "[0, 1e6]") + ", got " + v.dump());
+    *out = static_cast<float>(x);
+  }
+  return {};
+}
+
+// VRMC_vrm.lookAt {type, rangeMapHorizontalInner/Outer, rangeMapVerticalDown/Up
+// {inputMaxValue, outputScale}}; VRM 0.x firstPerson {lookAtTypeName,
+// lookAtHorizontalInner/Outer, lookAtVerticalDown/Up {xRange, yRange, curve}}
+// (the curve is taken as linear). Absent: expression type, 90 degrees -> 1;
+// bone type outputs default to 10 degrees.
+eng::Result<void> readLookAt(const Context& c, const Json& vrm, bool vrm1) {
+  const char* ownerKey = vrm1 ? "lookAt" : "firstPerson";
+  if (!vrm.is_object() || !vrm.contains(ownerKey)) return {};
+  const std::string path = std::string(vrm1 ? "/extensions/VRMC_vrm/" : "/extensions/VRM/") + ownerKey;
+  const Json& owner = vrm[ownerKey];
+  if (!owner.is_object()) return jsonError(c.source, path, "must be an object");
+  VrmLookAt lookAt;
+  const char* typeKey = vrm1 ? "type" : "lookAtTypeName";
+  if (owner.contains(typeKey)) {
+    const Json& t = owner[typeKey];
+    const std::string type = t.is_string() ? t.get<std::string>() : "";
+    if (type == "bone" || type == "Bone") lookAt.type = VrmLookAtType::Bone;
+    else if (type == "expression" || type == "BlendShape") lookAt.type = VrmLookAtType::Expression;
+    else return jsonError(c.source, childPath(path, typeKey), vrm1 ? "must be \"bone\" or \"expression\", got " + t.dump()
+                                                                   : "must be \"Bone\" or \"BlendShape\", got " + t.dump());
+  }
+  if (lookAt.type == VrmLookAtType::Bone)
+    for (VrmLookAtRangeMap* map : {&lookAt.horizontalInner, &lookAt.horizontalOuter, &lookAt.verticalDown, &lookAt.verticalUp})
+      map->outputScale = 10.0f;
+  const std::string_view inputKey = vrm1 ? "inputMaxValue" : "xRange", outputKey = vrm1 ? "outputScale" : "yRange";
+  const std::array<std::pair<std::string_view, VrmLookAtRangeMap*>, 4> maps = {
+      std::pair{vrm1 ? "rangeMapHorizontalInner" : "lookAtHorizontalInner", &lookAt.horizontalInner},
+      std::pair{vrm1 ? "rangeMapHorizontalOuter" : "lookAtHorizontalOuter", &lookAt.horizontalOuter},
+      std::pair{vrm1 ? "rangeMapVerticalDown" : "lookAtVerticalDown", &lookAt.verticalDown},
+      std::pair{vrm1 ? "rangeMapVerticalUp" : "lookAtVerticalUp", &lookAt.verticalUp}};
+  for (const auto& [key, map] : maps)
+    if (auto r = readRangeMap(c, owner, key, path, inputKey, outputKey, *map); !r) return r;
+  c.set.lookAt = lookAt;
+  return {};
+}
+
 eng::Result<void> readVrm1(const Context& c, const Json& vrm) {
   c.set.specVersion = 1;
   if (!vrm.is_object()) return jsonError(c.source, "/extensions/VRMC_vrm", "must be an object");
+  if (auto r = readLookAt(c, vrm, true); !r) return r;
   if (!vrm.contains("expressions")) return {};
   const Json& expressions = vrm["expressions"];
   const std::string path = "/extensions/VRMC_vrm/expressions";
@@ -381,6 +440,7 @@ eng::Result<void> readVrm1(const Context& c, const Json& vrm) {
 
 eng::Result<void> readVrm0(const Context& c, const Json& vrm) {
   c.set.specVersion = 0;
+  if (auto r = readLookAt(c, vrm, false); !r) return r;
   const std::string masterPath = "/extensions/VRM/blendShapeMaster";
   if (!vrm.is_object() || !vrm.contains("blendShapeMaster")) return {};
   const Json& master = vrm["blendShapeMaster"];

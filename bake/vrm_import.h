@@ -15,7 +15,9 @@
 // 0.x _MainTex_ST) address glTF materials by index (0.x: by name); a material
 // bind that cannot be applied (no such material, unknown type, a value that is
 // not a finite number) is left out with a warning (VrmExpressionSet::warnings)
-// naming the source, JSON path and problem. Errors name the same.
+// naming the source, JSON path and problem. Errors name the same. The lookAt
+// (1.0 lookAt, 0.x firstPerson): its type (bone / expression) and range maps,
+// for facial::GazeRig.
 #include <filesystem>
 #include <optional>
 #include <string_view>

@@ -220,6 +220,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   const eng::Aabb bounds = eng::vk::framingBounds(setup_->model(), framing_);
   const eng::Aabb other = eng::vk::framingBounds(
       setup_->model(), framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face);
+  const eng::Aabb faceBounds = eng::vk::framingBounds(setup_->model(), eng::vk::FramingMode::Face);
   const std::vector<std::string> names = setup_->layout().names();
   const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(faceCount))));
   const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
@@ -235,7 +236,9 @@ int WindowDemo::setUp(const DemoOptions& o) {
     const uint32_t rows = (faceCount + columns - 1) / columns;
     const glm::vec3 offset((float(column) - 0.5f * float(columns - 1)) * spacing.x,
                            (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
-    Face face{std::move(*driver), IdleMotion::create(names, bounds, o.seed + i), glm::translate(glm::mat4(1.0f), offset),
+    auto idle = IdleMotion::create(names, setup_->vrm(), bounds, faceBounds, o.seed + i, o.still);
+    if (!idle) return fail(idle.error().message);
+    Face face{std::move(*driver), std::move(*idle), glm::translate(glm::mat4(1.0f), offset),
               std::uniform_real_distribution<float>(0.5f, 3.0f)(random_), *skeleton, 0.0f, *materials};
     crowdBounds_[size_t(framing_)].extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
     crowdBounds_[1 - size_t(framing_)].extend(eng::Aabb{other.min + offset, other.max + offset});
@@ -526,7 +529,9 @@ void WindowDemo::updateFaces(float dt) {
       }
     }
     face.driver.update(dt);
-    if (!options_.still) face.idle.update(dt);
+    // The eyes follow the viewer: the camera in this face's model space.
+    const glm::vec3 viewer = glm::vec3(glm::inverse(face.placement) * glm::vec4(view_.camera.position(), 1.0f));
+    face.idle.update(dt, viewer);
     std::span<float> out = std::span<float>(weights_).subspan(i * count, count);
     const std::span<const float> graphWeights = face.driver.targetWeights();
     std::span<const float> expressions = face.driver.expressionWeights();
@@ -546,7 +551,8 @@ void WindowDemo::updateFaces(float dt) {
     face.time += dt;
     if (face.skeleton.turnsHeadJoint()) {
       // A skinned avatar turns its head joint; the body only breathes.
-      face.skeleton.update(face.time, face.idle.headTurn());
+      face.skeleton.update(face.time, face.idle.headTurn(),
+                           {face.idle.eyeTurn(facial::Eye::Left), face.idle.eyeTurn(facial::Eye::Right)});
       instances_[i].transform = face.idle.breathing(face.placement);
     } else {
       face.skeleton.update(face.time);

@@ -1,74 +1,64 @@
 #pragma once
-// Idle life the animation graph does not give a face (the graph blinks):
-// a slow head sway and breathing, as a small rotation/translation of the
-// instance transform, and eye saccades on models with ARKit gaze targets
-// (eyeLook{In,Out,Up,Down}{Left,Right} or _L/_R; nothing on other models).
-// Each face gets its own phases and saccade stream from its seed. Sized in
-// create(); update() and applyGaze() do not allocate.
+// The window demo's idle life placed on one face. The life itself (sway,
+// breathing, saccades, gaze) is the runtime's facial::CharacterLife, and which
+// morph targets steer the eyes is facial::GazeRig (facial/runtime/character);
+// this adds where the model's head is:
+//  - the sway turns the whole face about a neck point below its framing
+//    bounds (transform()); a skinned avatar turns its head joint instead
+//    (headTurn(), see app/skeleton_motion.h) and keeps only breathing();
+//  - the breath lifts it by a fraction of its height;
+//  - the eyes look at the viewer: update() takes the camera in model space and
+//    aims from the middle of the face's framing bounds.
+// Each face gets its own phases and saccade stream from its seed. update() and
+// applyGaze() do not allocate.
 //
-//   auto idle = IdleMotion::create(setup.layout().names(), framingBounds(setup.model()), seed);
-//   idle.update(dt);
-//   instance.transform = idle.transform(placement);
-//   idle.applyGaze(weights);
-//
-// A skinned avatar with a head joint turns only its head: the sway goes to
-// the joint (headTurn(), see app/skeleton_motion.h) and the instance keeps
-// just the breathing (breathing(placement)).
-#include <array>
-#include <cstdint>
-#include <random>
+//   auto idle = IdleMotion::create(names, setup.vrm(), bounds, faceBounds, seed, still);
+//   idle->update(dt, cameraInModel);
+//   instance.transform = idle->transform(placement);
+//   idle->applyGaze(weights);
 #include <span>
 #include <string>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "engine/core/result.h"
 #include "engine/scene/model.h"
+#include "facial/runtime/character/character_life.h"
+#include "facial/runtime/character/gaze_rig.h"
 
 namespace cli {
 
-// Flat target indices of the eight ARKit gaze targets, when a model has all of them.
-struct GazeTargets {
-  enum Slot { InLeft, OutLeft, UpLeft, DownLeft, InRight, OutRight, UpRight, DownRight, kCount };
-  std::array<uint32_t, kCount> target{};
-
-  // Matches "eyeLookInLeft", "eyeLookIn_L", "blendShape1.eyeLookIn_L" (case-insensitive).
-  static bool find(std::span<const std::string> targetNames, GazeTargets& out);
-};
-
 class IdleMotion {
  public:
-  // bounds: the model's framing bounds (amplitudes scale with its size, the
-  // head turns about a neck point below its centre).
-  static IdleMotion create(std::span<const std::string> targetNames, const eng::Aabb& bounds, uint64_t seed);
+  // bounds: what the view frames (amplitudes scale with its size, the sway
+  // turns about a neck point below its centre); face: the head's framing
+  // bounds (the eyes' place). still: no sway, breathing or saccades (the
+  // eyes still follow the viewer).
+  static eng::Result<IdleMotion> create(std::span<const std::string> targetNames, const facial::VrmExpressionSet* vrm,
+                                        const eng::Aabb& bounds, const eng::Aabb& face, uint64_t seed, bool still);
 
-  void update(float dt);
+  void update(float dt, const glm::vec3& viewerInModel);
   // placement * sway about the neck * breathing lift.
   glm::mat4 transform(const glm::mat4& placement) const;
   // The sway alone (yaw, nod, roll) as a rotation in model-space axes.
-  glm::quat headTurn() const;
+  glm::quat headTurn() const { return life_.headRotation(); }
+  // Each eye's gaze as a rotation in model-space axes (for eye joints).
+  glm::quat eyeTurn(facial::Eye eye) const { return life_.eyeRotation(eye); }
   // placement * breathing lift, without the sway.
   glm::mat4 breathing(const glm::mat4& placement) const;
-  // Adds the current gaze to the gaze targets, clamped to [0,1] (no-op without them).
+  // Adds the current gaze to the targets that steer the eyes, clamped to [0,1] (no-op without them).
   void applyGaze(std::span<float> weights) const;
-  bool hasGaze() const { return hasGaze_; }
+  bool hasGaze() const { return gaze_.drivesWeights(); }
 
  private:
-  IdleMotion() = default;
-  void pickSaccade();
-  float wave(float period, int phase) const;
-  float lift() const;
+  IdleMotion(facial::CharacterLife life, facial::GazeRig gaze) : life_(std::move(life)), gaze_(std::move(gaze)) {}
 
-  bool hasGaze_ = false;
-  GazeTargets gaze_;
-  glm::vec3 pivot_{0.0f};
+  facial::CharacterLife life_;
+  facial::GazeRig gaze_;
+  glm::vec3 pivot_{0.0f};      // the neck
+  glm::vec3 eyes_{0.0f};       // head-space origin, between the eyes
   float size_ = 1.0f;
-  std::array<float, 5> phases_{};
-  float time_ = 0.0f;
-  glm::vec2 gazeNow_{0.0f};
-  glm::vec2 gazeTarget_{0.0f};
-  float nextSaccade_ = 0.0f;
-  std::mt19937 random_;
 };
 
 }  // namespace cli

@@ -13,6 +13,7 @@
 #include "demo/command.h"
 #include "app/face_setup.h"
 #include "engine/scene/gltf_loader.h"
+#include "facial/runtime/character/gaze_rig.h"
 
 namespace cli {
 namespace {
@@ -25,7 +26,7 @@ struct RigOptions {
 };
 
 nlohmann::ordered_json toJson(const std::string& modelPath, FaceFormat format,
-                              const facial::RigCalibration& calibration) {
+                              const facial::RigCalibration& calibration, const std::string& gaze) {
   const facial::RigMapping& rig = calibration.rig;
   const facial::RigMappingReport& report = rig.report();
   nlohmann::ordered_json units = nlohmann::ordered_json::array();
@@ -44,6 +45,7 @@ nlohmann::ordered_json toJson(const std::string& modelPath, FaceFormat format,
           {"unmappedTargets", report.unmappedTargets},
           {"unmappedInputs", report.unmappedInputs},
           {"notes", report.notes},
+          {"gaze", gaze},
           {"calibration", units}};
 }
 
@@ -58,13 +60,18 @@ int runRig(const RigOptions& o) {
     std::fprintf(stderr, "facial rig: error: %s\n", rig.error().message.c_str());
     return 1;
   }
+  // Which morph targets steer the eyes (the window demo's idle life and facial::Character drive them).
+  const std::vector<std::string> names = eng::WeightLayout(face->model).names();
+  std::string gaze = facial::GazeRig::create(names, face->vrm.get()).describe();
+  if (face->vrm && face->vrm->lookAt.type == facial::VrmLookAtType::Bone) gaze += " (VRM lookAt: eye bones)";
   if (o.json) {
     std::printf("%s\n",
-                toJson(o.model, face->format, *rig).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+                toJson(o.model, face->format, *rig, gaze).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   } else {
     std::printf("%s (%s): %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(),
                 std::string(faceFormatName(face->format)).c_str(), rig->rig.targetCount(),
                 rig->rig.drivenTargets().size(), rig->rig.report().summary().c_str());
+    std::printf("gaze: %s\n", gaze.c_str());
     if (!rig->units.empty())
       std::printf("action-unit strength calibration (largest vertex travel at 1 / face height):\n%s",
                   rig->summary().c_str());

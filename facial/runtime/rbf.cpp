@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <stdexcept>
 #include <string>
 
 namespace facial {
@@ -52,17 +51,18 @@ bool findCoincidentPair(std::span<const glm::vec3> points, double minSeparation,
   return false;
 }
 
-void requireSize(size_t actual, size_t expected, const char* what) {
+eng::Result<void> requireSize(size_t actual, size_t expected, const char* what) {
   if (actual != expected)
-    throw std::invalid_argument(std::string("RBF: ") + what + " has " + std::to_string(actual) + " entries, expected " +
-                                std::to_string(expected));
+    return eng::makeError(std::string("RBF: ") + what + " has " + std::to_string(actual) + " entries, expected " +
+                          std::to_string(expected));
+  return {};
 }
 
-void requireFinite(std::span<const glm::vec3> values, const char* what) {
-  const long bad = firstNonFinite(values);
-  if (bad >= 0)
-    throw std::invalid_argument(std::string("RBF: ") + what + " " + std::to_string(bad) + " is not finite " +
-                                describe(values[static_cast<size_t>(bad)]));
+eng::Result<void> requireFinite(std::span<const glm::vec3> values, const char* what) {
+  if (const long bad = firstNonFinite(values); bad >= 0)
+    return eng::makeError(std::string("RBF: ") + what + " " + std::to_string(bad) + " of " +
+                          std::to_string(values.size()) + " is not finite " + describe(values[static_cast<size_t>(bad)]));
+  return {};
 }
 
 }  // namespace
@@ -166,28 +166,30 @@ void RbfInterpolator::basisRow(const glm::dvec3& x, RowRef row) const {
   row(n + 3) = x.z;
 }
 
-Eigen::MatrixX3d RbfInterpolator::solve(std::span<const glm::vec3> displacements) const {
-  requireSize(displacements.size(), points_.size(), "displacement field");
-  requireFinite(displacements, "displacement");
+eng::Result<Eigen::MatrixX3d> RbfInterpolator::solve(std::span<const glm::vec3> displacements) const {
+  if (auto r = requireSize(displacements.size(), points_.size(), "displacement field"); !r) return r.error();
+  if (auto r = requireFinite(displacements, "displacement"); !r) return r.error();
   const Eigen::Index n = static_cast<Eigen::Index>(points_.size());
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(n + 4, 3);  // side conditions: zero rows
   for (Eigen::Index i = 0; i < n; ++i) {
     const glm::vec3& d = displacements[static_cast<size_t>(i)];
     rhs.row(i) << d.x, d.y, d.z;
   }
-  return inverseSystem_.solve(rhs);
+  return Eigen::MatrixX3d(inverseSystem_.solve(rhs));
 }
 
-glm::vec3 RbfInterpolator::evaluate(const Eigen::MatrixX3d& coefficients, const glm::vec3& x) const {
-  requireSize(static_cast<size_t>(coefficients.rows()), points_.size() + 4, "coefficient matrix");
+eng::Result<glm::vec3> RbfInterpolator::evaluate(const Eigen::MatrixX3d& coefficients, const glm::vec3& x) const {
+  if (auto r = requireSize(static_cast<size_t>(coefficients.rows()), points_.size() + 4, "coefficient matrix"); !r)
+    return r.error();
+  if (auto r = requireFinite(std::span<const glm::vec3>(&x, 1), "evaluation point"); !r) return r.error();
   Eigen::RowVectorXd row(coefficients.rows());
   basisRow(normalise(x), row);
   const Eigen::RowVector3d value = row * coefficients;
   return glm::vec3(static_cast<float>(value(0)), static_cast<float>(value(1)), static_cast<float>(value(2)));
 }
 
-Eigen::MatrixXd RbfInterpolator::influenceMatrix(std::span<const glm::vec3> points) const {
-  requireFinite(points, "point");
+eng::Result<Eigen::MatrixXd> RbfInterpolator::influenceMatrix(std::span<const glm::vec3> points) const {
+  if (auto r = requireFinite(points, "point"); !r) return r.error();
   const Eigen::Index n = static_cast<Eigen::Index>(points_.size());
   const Eigen::Index m = static_cast<Eigen::Index>(points.size());
   // Columns of the inverse system for unit displacements of each control point
@@ -197,7 +199,7 @@ Eigen::MatrixXd RbfInterpolator::influenceMatrix(std::span<const glm::vec3> poin
   const Eigen::MatrixXd coefficientsPerControl = inverseSystem_.solve(unit);
   Eigen::MatrixXd basis(m, n + 4);
   for (Eigen::Index v = 0; v < m; ++v) basisRow(normalise(points[static_cast<size_t>(v)]), basis.row(v));
-  return basis * coefficientsPerControl;
+  return Eigen::MatrixXd(basis * coefficientsPerControl);
 }
 
 eng::Result<RbfDeformer> RbfDeformer::build(std::span<const glm::vec3> controlPoints, std::span<const glm::vec3> points,
@@ -211,8 +213,10 @@ eng::Result<RbfDeformer> RbfDeformer::build(const RbfInterpolator& interpolator,
   if (const long bad = firstNonFinite(points); bad >= 0)
     return eng::makeError("RBF deformer: point " + std::to_string(bad) + " of " + std::to_string(points.size()) +
                           " is not finite " + describe(points[static_cast<size_t>(bad)]));
+  auto influence = interpolator.influenceMatrix(points);
+  if (!influence) return influence.error();
   RbfDeformer deformer;
-  deformer.influence_ = interpolator.influenceMatrix(points).cast<float>();
+  deformer.influence_ = influence->cast<float>();
   return deformer;
 }
 

@@ -54,16 +54,16 @@ class RbfInterpolator {
 
   // Coefficients for one displacement field: (n + 4) x 3 (RBF weights then affine),
   // expressed in the interpolator's normalised frame (pass them back to evaluate()).
-  // Preconditions (std::invalid_argument naming the sizes): displacements.size() == n,
-  // all finite.
-  Eigen::MatrixX3d solve(std::span<const glm::vec3> displacements) const;
-  // Precondition (std::invalid_argument): coefficients.rows() == n + 4.
-  glm::vec3 evaluate(const Eigen::MatrixX3d& coefficients, const glm::vec3& x) const;
+  // Errors (naming the sizes / the index): displacements.size() != n, a
+  // non-finite displacement.
+  eng::Result<Eigen::MatrixX3d> solve(std::span<const glm::vec3> displacements) const;
+  // Errors: coefficients.rows() != n + 4, a non-finite x.
+  eng::Result<glm::vec3> evaluate(const Eigen::MatrixX3d& coefficients, const glm::vec3& x) const;
 
   // Dense map from control displacements to displacements at `points`
   // (rows = points, cols = control points): bake once, apply per field.
-  // Precondition (std::invalid_argument naming the index): points finite.
-  Eigen::MatrixXd influenceMatrix(std::span<const glm::vec3> points) const;
+  // Errors (naming the index): a non-finite point.
+  eng::Result<Eigen::MatrixXd> influenceMatrix(std::span<const glm::vec3> points) const;
 
  private:
   // Row [phi(|x - p_0|) ... phi(|x - p_n-1|), 1, x, y, z] for a normalised x.

@@ -81,6 +81,47 @@ TEST(SkeletonMotion, HeadTurnTurnsOnlyTheHeadJointAboutItself) {
   for (int c = 0; c < 3; ++c) EXPECT_LE(glm::length(glm::mat3(turned[head])[c] - expected[c]), 1e-4f) << c;
 }
 
+// A skinned head with two eye joints (VRoid's names, under a "prefix:" as exporters write them).
+eng::Model headWithEyes() {
+  eng::Model model;
+  const char* names[] = {"Hips", "Head", "rig:J_Adj_L_FaceEye", "rig:J_Adj_R_FaceEye"};
+  const glm::vec3 at[] = {{0, 1, 0}, {0, 0.6f, 0}, {0.03f, 0.08f, 0.08f}, {-0.03f, 0.08f, 0.08f}};
+  const int parents[] = {-1, 0, 1, 1};
+  for (int n = 0; n < 4; ++n) {
+    eng::Node node;
+    node.name = names[n];
+    node.translation = at[n];
+    node.parent = parents[n];
+    if (parents[n] >= 0) model.nodes[size_t(parents[n])].children.push_back(n);
+    model.nodes.push_back(node);
+  }
+  model.roots = {0};
+  model.skins.push_back(eng::Skin{.name = "body", .joints = {0, 1, 2, 3}, .inverseBindMatrices = std::vector<glm::mat4>(4, glm::mat4(1.0f))});
+  return model;
+}
+
+TEST(SkeletonMotion, EyeJointsTakeTheGazeAboutThemselves) {
+  const eng::Model model = headWithEyes();
+  auto motion = cli::SkeletonMotion::create(model, "");
+  ASSERT_TRUE(motion) << motion.error().message;
+  EXPECT_EQ(motion->headJoint(), 1);
+  EXPECT_EQ(motion->eyeJoints()[0], 2);
+  EXPECT_EQ(motion->eyeJoints()[1], 3);
+  motion->update(0.0f);
+  const std::vector<glm::mat4> still(motion->nodeWorld().begin(), motion->nodeWorld().end());
+  const glm::quat left = glm::angleAxis(glm::radians(20.0f), glm::vec3(0, 1, 0));
+  const glm::quat right = glm::angleAxis(glm::radians(-10.0f), glm::vec3(1, 0, 0));
+  motion->update(0.0f, glm::quat(1, 0, 0, 0), {left, right});
+  const auto turned = motion->nodeWorld();
+  EXPECT_EQ(turned[1], still[1]) << "the head stays";
+  for (int eye : {2, 3}) {
+    EXPECT_LE(glm::length(position(turned[size_t(eye)]) - position(still[size_t(eye)])), 1e-6f) << "turns in place";
+    const glm::vec3 gaze = glm::mat3(turned[size_t(eye)]) * glm::vec3(0, 0, 1);
+    const glm::vec3 want = (eye == 2 ? left : right) * glm::vec3(0, 0, 1);
+    EXPECT_LE(glm::length(gaze - want), 1e-5f) << eye;
+  }
+}
+
 TEST(SkeletonMotion, UnskinnedFaceWithoutClipHasNothingToPose) {
   FACIAL_REQUIRE_SHARED();
   const eng::Model facecap = loadShared("facecap.glb");

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -65,10 +64,10 @@ TEST(RbfInterpolator, ReproducesControlDisplacementsExactly) {
     auto rbf = RbfInterpolator::build(controls, kernel);
     ASSERT_TRUE(rbf) << rbf.error().message;
     EXPECT_EQ(rbf->controlPointCount(), 40u);
-    const Eigen::MatrixX3d coefficients = rbf->solve(displacements);
+    const Eigen::MatrixX3d coefficients = *rbf->solve(displacements);
     ASSERT_EQ(coefficients.rows(), 44);
     for (size_t i = 0; i < controls.size(); ++i) {
-      const glm::vec3 value = rbf->evaluate(coefficients, controls[i]);
+      const glm::vec3 value = *rbf->evaluate(coefficients, controls[i]);
       EXPECT_NEAR(value.x, displacements[i].x, 1e-5f) << "control " << i;
       EXPECT_NEAR(value.y, displacements[i].y, 1e-5f) << "control " << i;
       EXPECT_NEAR(value.z, displacements[i].z, 1e-5f) << "control " << i;
@@ -92,14 +91,14 @@ TEST(RbfInterpolator, ReproducesAffineFieldsFarFromControlsWithEveryKernel) {
     SCOPED_TRACE(kernelName(kernel));
     auto rbf = RbfInterpolator::build(controls, kernel);
     ASSERT_TRUE(rbf) << rbf.error().message;
-    const Eigen::MatrixX3d coefficients = rbf->solve(displacements);
+    const Eigen::MatrixX3d coefficients = *rbf->solve(displacements);
     // The radial weights vanish: the side conditions leave only the affine term.
     // (Not exactly zero: the float inputs carry ~1e-7 rounding, amplified by the
     // system's conditioning; without the side conditions they would be O(1).)
     EXPECT_LT(coefficients.topRows(30).cwiseAbs().maxCoeff(), 1e-3);
     for (const glm::vec3& p : probes) {
       const glm::vec3 expected = affine(p);
-      const glm::vec3 value = rbf->evaluate(coefficients, p);
+      const glm::vec3 value = *rbf->evaluate(coefficients, p);
       EXPECT_NEAR(glm::length(value - expected), 0.0f, 1e-4f * (1.0f + glm::length(expected)));
     }
   }
@@ -116,10 +115,10 @@ TEST(RbfInterpolator, ErrorFallsAsControlPointsAreAdded) {
       for (const glm::vec3& p : controls) values.push_back(smoothField(p));
       auto rbf = RbfInterpolator::build(controls, kernel);
       ASSERT_TRUE(rbf) << rbf.error().message;
-      const Eigen::MatrixX3d coefficients = rbf->solve(values);
+      const Eigen::MatrixX3d coefficients = *rbf->solve(values);
       double worst = 0.0;
       for (const glm::vec3& p : probes)
-        worst = std::max(worst, double(glm::length(rbf->evaluate(coefficients, p) - smoothField(p))));
+        worst = std::max(worst, double(glm::length(*rbf->evaluate(coefficients, p) - smoothField(p))));
       maxErrors.push_back(worst);
     }
     for (size_t i = 1; i < maxErrors.size(); ++i)
@@ -144,10 +143,10 @@ TEST(RbfInterpolator, InterpolantIsIndependentOfTheLayoutsScaleAndPosition) {
     auto a = RbfInterpolator::build(controls, kernel);
     auto b = RbfInterpolator::build(moved, movedKernel);
     ASSERT_TRUE(a && b);
-    const Eigen::MatrixX3d ca = a->solve(displacements);
-    const Eigen::MatrixX3d cb = b->solve(displacements);
+    const Eigen::MatrixX3d ca = *a->solve(displacements);
+    const Eigen::MatrixX3d cb = *b->solve(displacements);
     for (const glm::vec3& p : randomPoints(20, -1.5f, 1.5f, 8))
-      EXPECT_NEAR(glm::length(a->evaluate(ca, p) - b->evaluate(cb, p * scale + shift)), 0.0f, 1e-4f);
+      EXPECT_NEAR(glm::length(*a->evaluate(ca, p) - *b->evaluate(cb, p * scale + shift)), 0.0f, 1e-4f);
   }
 }
 
@@ -163,9 +162,9 @@ TEST(RbfDeformer, MatchesTheInterpolatorAtFixedPoints) {
   EXPECT_EQ(deformer->controlPointCount(), 25u);
   std::vector<glm::vec3> out(points.size());
   ASSERT_TRUE(deformer->apply(displacements, out));
-  const Eigen::MatrixX3d coefficients = rbf->solve(displacements);
+  const Eigen::MatrixX3d coefficients = *rbf->solve(displacements);
   for (size_t v = 0; v < points.size(); ++v)
-    EXPECT_NEAR(glm::length(out[v] - rbf->evaluate(coefficients, points[v])), 0.0f, 1e-5f) << "point " << v;
+    EXPECT_NEAR(glm::length(out[v] - *rbf->evaluate(coefficients, points[v])), 0.0f, 1e-5f) << "point " << v;
 }
 
 TEST(RbfDeformer, ReproducesControlDisplacementsWhenBakedAtTheControls) {
@@ -257,7 +256,13 @@ TEST(RbfValidity, RejectsNonFiniteInputsNamingTheIndex) {
   ASSERT_TRUE(ok);
   std::vector<glm::vec3> displacements(5, glm::vec3(0.0f));
   displacements[2].z = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW((void)ok->solve(displacements), std::invalid_argument);
+  auto refused = ok->solve(displacements);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("displacement 2 of 5 is not finite"), std::string::npos) << refused.error().message;
+  auto nowhere = ok->evaluate(Eigen::MatrixX3d::Zero(9, 3), glm::vec3(0.0f, std::numeric_limits<float>::infinity(), 0.0f));
+  ASSERT_FALSE(nowhere);
+  EXPECT_NE(nowhere.error().message.find("evaluation point 0 of 1 is not finite"), std::string::npos)
+      << nowhere.error().message;
 }
 
 TEST(RbfValidity, RejectsInvalidKernels) {
@@ -273,13 +278,13 @@ TEST(RbfValidity, SizeMismatchesNameTheSizes) {
   auto rbf = RbfInterpolator::build(tetrahedron(), RbfKernel{});
   ASSERT_TRUE(rbf);
   const std::vector<glm::vec3> five(5);
-  try {
-    (void)rbf->solve(five);
-    FAIL() << "solve accepted 5 displacements for 4 controls";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("5 entries, expected 4"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW((void)rbf->evaluate(Eigen::MatrixX3d::Zero(7, 3), glm::vec3(0.0f)), std::invalid_argument);
+  auto solved = rbf->solve(five);
+  ASSERT_FALSE(solved) << "solve accepted 5 displacements for 4 controls";
+  EXPECT_NE(solved.error().message.find("5 entries, expected 4"), std::string::npos) << solved.error().message;
+  auto evaluated = rbf->evaluate(Eigen::MatrixX3d::Zero(7, 3), glm::vec3(0.0f));
+  ASSERT_FALSE(evaluated);
+  EXPECT_NE(evaluated.error().message.find("coefficient matrix has 7 entries, expected 8"), std::string::npos)
+      << evaluated.error().message;
 
   auto deformer = RbfDeformer::build(tetrahedron(), five, RbfKernel{});
   ASSERT_TRUE(deformer);

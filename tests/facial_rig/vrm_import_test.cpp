@@ -186,6 +186,54 @@ std::string errorOf(const Json& document) {
   return set ? std::string("(accepted)") : set.error().message;
 }
 
+TEST(VrmImport, ReadsTheLookAtTypeAndRangeMaps) {
+  auto plain = importVrmExpressions(vrm1Document(), "face.vrm");
+  ASSERT_TRUE(plain) << plain.error().message;
+  EXPECT_EQ(plain->lookAt.type, VrmLookAtType::Expression);  // the defaults without a lookAt
+  EXPECT_EQ(plain->lookAt.horizontalOuter.inputMaxValue, 90.0f);
+  EXPECT_EQ(plain->lookAt.horizontalOuter.outputScale, 1.0f);
+
+  Json doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["lookAt"] = Json::parse(R"({"type": "bone",
+      "rangeMapHorizontalOuter": {"inputMaxValue": 45, "outputScale": 12},
+      "rangeMapVerticalUp": {"inputMaxValue": 30}})");
+  auto bone = importVrmExpressions(doc, "bone.vrm");
+  ASSERT_TRUE(bone) << bone.error().message;
+  EXPECT_EQ(bone->lookAt.type, VrmLookAtType::Bone);
+  EXPECT_EQ(bone->lookAt.horizontalOuter.inputMaxValue, 45.0f);
+  EXPECT_EQ(bone->lookAt.horizontalOuter.outputScale, 12.0f);
+  EXPECT_EQ(bone->lookAt.verticalUp.inputMaxValue, 30.0f);
+  EXPECT_EQ(bone->lookAt.verticalUp.outputScale, 10.0f);  // bone outputs are degrees, 10 by default
+  EXPECT_FLOAT_EQ(bone->lookAt.horizontalOuter.map(90.0f), 12.0f);
+  EXPECT_FLOAT_EQ(bone->lookAt.horizontalOuter.map(-22.5f), 6.0f);
+
+  Json vrm0 = vrm0Document();
+  vrm0["extensions"]["VRM"]["firstPerson"] = Json::parse(R"({"lookAtTypeName": "BlendShape",
+      "lookAtHorizontalOuter": {"curve": [0, 0, 0, 1, 1, 1, 1, 0], "xRange": 20, "yRange": 0.8}})");
+  auto blendShape = importVrmExpressions(vrm0, "old.vrm");
+  ASSERT_TRUE(blendShape) << blendShape.error().message;
+  EXPECT_EQ(blendShape->lookAt.type, VrmLookAtType::Expression);
+  EXPECT_EQ(blendShape->lookAt.horizontalOuter.inputMaxValue, 20.0f);
+  EXPECT_FLOAT_EQ(blendShape->lookAt.horizontalOuter.outputScale, 0.8f);
+}
+
+TEST(VrmImportValidity, LookAtFieldsAreChecked) {
+  Json doc = vrm1Document();
+  doc["extensions"]["VRMC_vrm"]["lookAt"] = Json::parse(R"({"type": "eyes"})");
+  EXPECT_EQ(errorOf(doc), "bad.vrm: /extensions/VRMC_vrm/lookAt/type: must be \"bone\" or \"expression\", got \"eyes\"");
+  doc["extensions"]["VRMC_vrm"]["lookAt"] = Json::parse(R"({"rangeMapVerticalDown": {"inputMaxValue": 0}})");
+  EXPECT_NE(errorOf(doc).find("lookAt/rangeMapVerticalDown/inputMaxValue: must be a number in (0, 180], got 0"),
+            std::string::npos)
+      << errorOf(doc);
+  doc["extensions"]["VRMC_vrm"]["lookAt"] = Json::parse(R"({"rangeMapVerticalDown": {"outputScale": "big"}})");
+  EXPECT_NE(errorOf(doc).find("rangeMapVerticalDown/outputScale: must be a number in [0, 1e6]"), std::string::npos);
+  Json vrm0 = vrm0Document();
+  vrm0["extensions"]["VRM"]["firstPerson"] = Json::parse(R"({"lookAtTypeName": 3})");
+  EXPECT_NE(errorOf(vrm0).find("/extensions/VRM/firstPerson/lookAtTypeName: must be \"Bone\" or \"BlendShape\""),
+            std::string::npos)
+      << errorOf(vrm0);
+}
+
 TEST(VrmImportValidity, BindsAreCheckedAgainstTheDocument) {
   Json doc = vrm1Document();
   Json& happyBind = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"]["morphTargetBinds"][0];

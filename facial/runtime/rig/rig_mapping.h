@@ -33,7 +33,7 @@
 // (vrm_expressions.h). targetNames() are then the model's morph targets and
 // controlNames() the expressions. Code that rebuilds a mapping from its rows
 // (RigMappingBuilder over controlNames(), then setExpressionStage with the
-// shared stage, as attachExpressionStage and cli::actionUnitRig do) keeps
+// shared stage, as attachExpressionStage and facial::actionUnitRig do) keeps
 // the stage; a builder over targetNames() would lose it.
 #include <cstdint>
 #include <filesystem>

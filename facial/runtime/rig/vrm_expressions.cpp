@@ -70,6 +70,11 @@ eng::Result<void> checkFinite(const VrmExpressionSet& set, std::span<const float
 
 }  // namespace
 
+float VrmLookAtRangeMap::map(float degrees) const {
+  if (!(inputMaxValue > 0.0f)) return 0.0f;
+  return std::min(std::abs(degrees), inputMaxValue) / inputMaxValue * outputScale;
+}
+
 VrmProceduralGroup vrmProceduralGroup(std::string_view name) {
   const std::string k = asciiLower(name);
   for (std::string_view n : {"blink", "blinkleft", "blinkright", "blink_l", "blink_r"})

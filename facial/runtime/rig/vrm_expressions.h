@@ -82,6 +82,25 @@ struct VrmExpression {
   uint32_t textureTransformBindCount = 0;
 };
 
+// How a gaze angle becomes an eye bone angle or a lookAt expression weight
+// (VRMC_vrm 1.0 lookAt.rangeMap*, VRM 0.x firstPerson.lookAt* {xRange, yRange}):
+// |degrees| clamped to inputMaxValue, / inputMaxValue * outputScale. The 0.x
+// curve is taken as linear.
+struct VrmLookAtRangeMap {
+  float inputMaxValue = 90.0f;  // degrees
+  float outputScale = 1.0f;     // degrees (bone type) or expression weight
+  float map(float degrees) const;
+};
+
+enum class VrmLookAtType : uint8_t { Expression, Bone };
+
+// The file's lookAt: which applier drives the eyes and the range of each
+// direction. Without one in the file: expression type, 90 degrees -> weight 1.
+struct VrmLookAt {
+  VrmLookAtType type = VrmLookAtType::Expression;
+  VrmLookAtRangeMap horizontalInner, horizontalOuter, verticalDown, verticalUp;
+};
+
 // The procedural group a VRM 1.0 / 0.x preset name belongs to.
 VrmProceduralGroup vrmProceduralGroup(std::string_view expressionName);
 
@@ -95,6 +114,7 @@ struct VrmExpressionSet {
   std::vector<std::string> targetNames;     // flat, mesh-major ("<mesh>/<target>")
   std::vector<uint32_t> meshTargetOffsets;  // glTF mesh count + 1
   std::vector<std::string> warnings;        // e.g. material binds that are not applied
+  VrmLookAt lookAt;                         // how the lookLeft/Right/Up/Down expressions are reached
 
   size_t targetCount() const { return targetNames.size(); }
   // Expression names in order: the "target list" a RigMapping is built over.

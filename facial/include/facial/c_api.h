@@ -1,0 +1,73 @@
+/* The embedding API for C and for engines bound through a C FFI (C#/Unity,
+ * Godot GDExtension, Python ctypes/cffi). One opaque handle per character;
+ * every function returns a status code and never lets a C++ exception out.
+ * The message of the last failure on the calling thread is
+ * facial_last_error_message() (valid until that thread's next failing call).
+ *
+ *   facial_character* c = NULL;
+ *   if (facial_character_create("tour.json", "expressions.json", names, count, 1, &c) != FACIAL_OK)
+ *     fprintf(stderr, "%s\n", facial_last_error_message());
+ *   facial_character_trigger(c, "happy");
+ *   facial_character_update(c, 1.0f / 60.0f);
+ *   const float* w = facial_character_weights(c);   // one per target name
+ *   facial_character_destroy(c);
+ *
+ * Head space (lookAt, rotations): +X the face's left, +Y up, +Z out of the
+ * face, origin between the eyes, metres. Quaternions are {x, y, z, w}. */
+#ifndef FACIAL_C_API_H
+#define FACIAL_C_API_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum facial_status {
+  FACIAL_OK = 0,
+  FACIAL_ERROR_INVALID_ARGUMENT = 1,   /* null pointer, bad count, non-finite number, bad dt */
+  FACIAL_ERROR_LOAD = 2,               /* graph, presets or rig map file missing or broken; no rig for the names */
+  FACIAL_ERROR_UNKNOWN_PARAMETER = 3,  /* no graph parameter of that name and type */
+  FACIAL_ERROR_OUT_OF_MEMORY = 4,
+  FACIAL_ERROR_INTERNAL = 5            /* anything else; the message says what */
+} facial_status;
+
+typedef enum facial_eye { FACIAL_EYE_LEFT = 0, FACIAL_EYE_RIGHT = 1 } facial_eye;
+
+typedef struct facial_character facial_character;
+
+/* A character playing `graph_file` over the engine's morph targets
+ * `target_names[0..target_count)`. `expressions_file`: the presets the graph
+ * names (data/expressions.json), or NULL for graphs over raw target names.
+ * `seed` picks the blink / saccade streams. On success *out is the handle. */
+facial_status facial_character_create(const char* graph_file, const char* expressions_file,
+                                      const char* const* target_names, uint32_t target_count, uint64_t seed,
+                                      facial_character** out);
+/* Frees the character; NULL is allowed. */
+void facial_character_destroy(facial_character* character);
+
+facial_status facial_character_set_float(facial_character* character, const char* parameter, float value);
+facial_status facial_character_set_bool(facial_character* character, const char* parameter, int value);
+facial_status facial_character_trigger(facial_character* character, const char* parameter);
+/* The eyes aim at (x, y, z) in head space; facial_character_look_ahead() lets them rest. */
+facial_status facial_character_look_at(facial_character* character, float x, float y, float z);
+facial_status facial_character_look_ahead(facial_character* character);
+
+/* Advances by dt seconds (>= 0, finite) and refreshes the weights and rotations. */
+facial_status facial_character_update(facial_character* character, float dt);
+
+/* One weight per target name, in create()'s order; valid until the next update or destroy. NULL for NULL. */
+const float* facial_character_weights(const facial_character* character);
+uint32_t facial_character_weight_count(const facial_character* character);
+/* The head joint's idle rotation and an eye's gaze rotation, quaternions {x, y, z, w}. */
+facial_status facial_character_head_rotation(const facial_character* character, float out_xyzw[4]);
+facial_status facial_character_eye_rotation(const facial_character* character, facial_eye eye, float out_xyzw[4]);
+
+/* The last failure's message on this thread ("" when none). */
+const char* facial_last_error_message(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FACIAL_C_API_H */

@@ -1,0 +1,86 @@
+#pragma once
+// The embedding API (C++): one animated character an engine drives with its
+// own meshes. A character is an animation graph (a JSON graph file, see
+// facial/runtime/graph/graph_json.h) played over the engine's list of morph
+// target names: the rig scheme is detected from the names (ARKit 52, FACS
+// action units, CANDIDE-3, whole-expression names) or given by a rig map file,
+// and the character's idle life (sway, breathing, saccades) and gaze are added.
+// Every frame: set parameters and triggers, update(dt), read weights() (one
+// per target name, in the order given) and the head / eye rotations for a
+// skinned avatar's joints. Errors are values (eng::Result; error().message is
+// one line naming the file and the problem); no function throws. The C API
+// (facial/c_api.h) wraps this class and adds error codes.
+//
+//   auto character = facial::Character::create("tour.json", names, {.expressions = "expressions.json"});
+//   character->trigger("happy");
+//   character->update(1.0f / 60.0f);
+//   for (size_t i = 0; i < names.size(); ++i) mesh.setWeight(i, character->weights()[i]);
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "engine/core/result.h"
+#include "facial/runtime/character/character_life.h"
+
+namespace facial {
+
+struct CharacterOptions {
+  // The expression presets the graph's pose nodes name (the project's
+  // data/expressions.json); empty: none, for graphs over raw target names.
+  std::filesystem::path expressions;
+  // A rig map file naming which targets are which action unit or emotion
+  // (data/rigmaps/README.md); empty: detected from the target names.
+  std::filesystem::path rigmap;
+  uint64_t seed = 0;      // blink and saccade streams, sway phases
+  bool idleLife = true;   // head sway, breathing and saccades (the graph's blinks stay)
+};
+
+class Character {
+ public:
+  // Errors: the graph, presets or rig map cannot be read, the names match no
+  // rig scheme while the graph speaks action units, an empty or duplicate
+  // target name, a graph channel that is no target (graphs over target names).
+  static eng::Result<Character> create(const std::filesystem::path& graphFile, std::span<const std::string> targetNames,
+                                       const CharacterOptions& options = {});
+  Character(Character&&) noexcept;
+  Character& operator=(Character&&) noexcept;
+  ~Character();
+
+  // Graph parameters by name. Errors (nothing changes): no parameter of that name and type (the message lists the graph's parameters).
+  eng::Result<void> setFloat(std::string_view parameter, float value);
+  eng::Result<void> setBool(std::string_view parameter, bool value);
+  eng::Result<void> trigger(std::string_view parameter);
+
+  // Where the eyes look, in head space (+X the face's left, +Y up, +Z out of
+  // the face, origin between the eyes, metres). Errors: a non-finite coordinate.
+  eng::Result<void> lookAt(float x, float y, float z);
+  void lookAhead();
+
+  // Advances by dt seconds and refreshes every output. Errors (nothing
+  // changes): a negative or non-finite dt.
+  eng::Result<void> update(float dt);
+
+  // One weight per target name given to create(), in that order.
+  std::span<const float> weights() const;
+  uint32_t weightCount() const;
+  // Rotations as quaternions {x, y, z, w} in head-space axes: the idle sway for
+  // the head joint, and each eye's gaze (from looking along +Z) for eye joints.
+  std::array<float, 4> headRotation() const;
+  std::array<float, 4> eyeRotation(Eye eye) const;
+  // Chest lift of the breath, a fraction of the character's height.
+  float breathLift() const;
+  // The detected rig scheme ("ARKit 52", "action units", ...) and what the gaze drives.
+  std::string_view rigScheme() const;
+  std::string gazeOutputs() const;
+
+ private:
+  struct State;
+  explicit Character(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace facial

@@ -1,0 +1,161 @@
+// The C API over facial::Character. Every entry point catches everything: a
+// C caller (or another language's FFI) cannot unwind a C++ exception.
+#include "facial/c_api.h"
+
+#include <cmath>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "facial/character.h"
+
+struct facial_character {
+  facial::Character character;
+};
+
+namespace {
+
+thread_local std::string gLastError;
+
+facial_status fail(facial_status status, std::string message) {
+  gLastError = std::move(message);
+  return status;
+}
+
+// Runs `body` (returning a status), turning any exception into a status and message.
+template <class Body>
+facial_status guarded(const char* function, Body&& body) {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    return fail(FACIAL_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
+  } catch (const std::exception& e) {
+    return fail(FACIAL_ERROR_INTERNAL, std::string(function) + ": " + e.what());
+  } catch (...) {
+    return fail(FACIAL_ERROR_INTERNAL, std::string(function) + ": unknown failure");
+  }
+}
+
+facial_status check(const eng::Result<void>& result, facial_status failure) {
+  return result ? FACIAL_OK : fail(failure, result.error().message);
+}
+
+facial_status writeQuat(const std::array<float, 4>& q, float out[4]) {
+  for (int i = 0; i < 4; ++i) out[i] = q[size_t(i)];
+  return FACIAL_OK;
+}
+
+}  // namespace
+
+extern "C" {
+
+facial_status facial_character_create(const char* graph_file, const char* expressions_file,
+                                      const char* const* target_names, uint32_t target_count, uint64_t seed,
+                                      facial_character** out) {
+  return guarded("facial_character_create", [&] {
+    if (!out) return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_create: out is NULL");
+    *out = nullptr;
+    if (!graph_file) return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_create: graph_file is NULL");
+    if (target_count > 0 && !target_names)
+      return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_create: target_names is NULL");
+    std::vector<std::string> names;
+    names.reserve(target_count);
+    for (uint32_t i = 0; i < target_count; ++i) {
+      if (!target_names[i])
+        return fail(FACIAL_ERROR_INVALID_ARGUMENT,
+                    "facial_character_create: target_names[" + std::to_string(i) + "] is NULL");
+      names.emplace_back(target_names[i]);
+    }
+    facial::CharacterOptions options;
+    if (expressions_file) options.expressions = expressions_file;
+    options.seed = seed;
+    auto character = facial::Character::create(graph_file, names, options);
+    if (!character) return fail(FACIAL_ERROR_LOAD, character.error().message);
+    *out = new facial_character{std::move(*character)};
+    return FACIAL_OK;
+  });
+}
+
+void facial_character_destroy(facial_character* character) { delete character; }
+
+#define FACIAL_REQUIRE(pointer, function)                                                           \
+  if (!(pointer)) return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": " #pointer " is NULL")
+
+facial_status facial_character_set_float(facial_character* character, const char* parameter, float value) {
+  return guarded("facial_character_set_float", [&] {
+    FACIAL_REQUIRE(character, "facial_character_set_float");
+    FACIAL_REQUIRE(parameter, "facial_character_set_float");
+    if (!std::isfinite(value))
+      return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_set_float: value is not finite");
+    return check(character->character.setFloat(parameter, value), FACIAL_ERROR_UNKNOWN_PARAMETER);
+  });
+}
+
+facial_status facial_character_set_bool(facial_character* character, const char* parameter, int value) {
+  return guarded("facial_character_set_bool", [&] {
+    FACIAL_REQUIRE(character, "facial_character_set_bool");
+    FACIAL_REQUIRE(parameter, "facial_character_set_bool");
+    return check(character->character.setBool(parameter, value != 0), FACIAL_ERROR_UNKNOWN_PARAMETER);
+  });
+}
+
+facial_status facial_character_trigger(facial_character* character, const char* parameter) {
+  return guarded("facial_character_trigger", [&] {
+    FACIAL_REQUIRE(character, "facial_character_trigger");
+    FACIAL_REQUIRE(parameter, "facial_character_trigger");
+    return check(character->character.trigger(parameter), FACIAL_ERROR_UNKNOWN_PARAMETER);
+  });
+}
+
+facial_status facial_character_look_at(facial_character* character, float x, float y, float z) {
+  return guarded("facial_character_look_at", [&] {
+    FACIAL_REQUIRE(character, "facial_character_look_at");
+    return check(character->character.lookAt(x, y, z), FACIAL_ERROR_INVALID_ARGUMENT);
+  });
+}
+
+facial_status facial_character_look_ahead(facial_character* character) {
+  return guarded("facial_character_look_ahead", [&] {
+    FACIAL_REQUIRE(character, "facial_character_look_ahead");
+    character->character.lookAhead();
+    return FACIAL_OK;
+  });
+}
+
+facial_status facial_character_update(facial_character* character, float dt) {
+  return guarded("facial_character_update", [&] {
+    FACIAL_REQUIRE(character, "facial_character_update");
+    return check(character->character.update(dt), FACIAL_ERROR_INVALID_ARGUMENT);
+  });
+}
+
+const float* facial_character_weights(const facial_character* character) {
+  return character ? character->character.weights().data() : nullptr;
+}
+
+uint32_t facial_character_weight_count(const facial_character* character) {
+  return character ? character->character.weightCount() : 0;
+}
+
+facial_status facial_character_head_rotation(const facial_character* character, float out_xyzw[4]) {
+  return guarded("facial_character_head_rotation", [&] {
+    FACIAL_REQUIRE(character, "facial_character_head_rotation");
+    FACIAL_REQUIRE(out_xyzw, "facial_character_head_rotation");
+    return writeQuat(character->character.headRotation(), out_xyzw);
+  });
+}
+
+facial_status facial_character_eye_rotation(const facial_character* character, facial_eye eye, float out_xyzw[4]) {
+  return guarded("facial_character_eye_rotation", [&] {
+    FACIAL_REQUIRE(character, "facial_character_eye_rotation");
+    FACIAL_REQUIRE(out_xyzw, "facial_character_eye_rotation");
+    if (eye != FACIAL_EYE_LEFT && eye != FACIAL_EYE_RIGHT)
+      return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_eye_rotation: eye is neither left nor right");
+    return writeQuat(character->character.eyeRotation(eye == FACIAL_EYE_LEFT ? facial::Eye::Left : facial::Eye::Right),
+                     out_xyzw);
+  });
+}
+
+const char* facial_last_error_message(void) { return gLastError.c_str(); }
+
+}  // extern "C"
