@@ -41,6 +41,7 @@ struct BenchFramesOptions {
   std::string animate = "all";
   int instances = 1;
   std::string device;
+  std::string quality = "high";
 };
 
 // The peer framing: 30 degree vertical field of view, camera on +Z at 1.6x
@@ -90,6 +91,8 @@ int runBenchFrames(const BenchFramesOptions& o) {
                 std::to_string(kMaxInstances) + ")");
   if (o.animate != "all" && o.animate != "none") return fail("--animate '" + o.animate + "' is not all or none");
   const bool animate = o.animate == "all";
+  auto quality = qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
 
   auto face = loadFace(o.model);
   if (!face) return fail(face.error().message);
@@ -98,7 +101,11 @@ int runBenchFrames(const BenchFramesOptions& o) {
   if (!bounds.valid()) return fail(o.model + ": has no geometry to draw");
 
   auto renderer = HeadlessModelRenderer::create(
-      model, {.width = width, .height = height, .framing = eng::vk::FramingMode::All, .device = o.device});
+      model, {.width = width,
+              .height = height,
+              .framing = eng::vk::FramingMode::All,
+              .device = o.device,
+              .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
   // K instances side by side in a square grid, spaced by the model's size;
@@ -148,14 +155,21 @@ int runBenchFrames(const BenchFramesOptions& o) {
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
   const eng::vk::FrameStats stats = offscreen.lastFrameStats();
-  std::printf("settings: msaa=%d shadows=on backdrop=studio camera=fov%.0f@%.1fxdiagonal draws=%u "
-              "active_weights=%u timestamps=%s\n",
-              int(offscreen.samples()), double(kFovYDegrees), double(kDistanceInDiagonals), stats.draws,
+  const eng::vk::QualitySettings tier = eng::vk::qualitySettings(*quality);
+  std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
+              "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
+              "timestamps=%s\n",
+              eng::vk::qualityName(*quality), int(offscreen.samples()), tier.shadowMapSize,
+              tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
+              tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
+              double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
+              double(view.camera.distance), stats.draws,
               stats.activeWeights, offscreen.hasGpuTimestamps() ? "yes" : "no");
   const double cpuMedian = quantile(cpuMs, 0.5);
   const double cpuP95 = quantile(cpuMs, 0.95);
   std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
                      std::to_string(width) + "x" + std::to_string(height) +
+                     " quality=" + eng::vk::qualityName(*quality) +
                      " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
                      " animate=" + o.animate + " targets=" + std::to_string(layout.total()) +
                      " device=" + renderer->deviceName() + " cpu_median_ms=" + format(cpuMedian) +
@@ -180,6 +194,7 @@ CommandRegistrar reg("bench", "Measure performance (bench frames: whole headless
   frames->add_option("--animate", o->animate, "all: every target re-weighted every frame; none: all weights 0");
   frames->add_option("--instances", o->instances, "Instances drawn in one instanced draw (default 1)");
   addDeviceOption(*frames, o->device);
+  addQualityOption(*frames, o->quality);
   return [o] { return runBenchFrames(*o); };
 });
 

@@ -14,6 +14,7 @@
 
 #include "demo/cli_parse.h"
 #include "demo/face_setup.h"
+#include "demo/view_options.h"
 #include "engine/vk/imgui_layer.h"
 #include "demo/window_loop.h"
 #include "editor/app/control_map_panel.h"
@@ -191,7 +192,9 @@ int EditorApp::setUp(const EditorOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
+  auto quality = cli::qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
   renderer_ = std::move(*renderer);
   auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
