@@ -13,7 +13,7 @@ layout(set = 0, binding = 4) uniform sampler2DShadow keyShadowMap;
 // Quality tier (engine/vk/render_quality.h), fixed per pipeline: the shadow
 // filter is (2r+1)^2 taps over the same penumbra; without secondary specular
 // only the key light has a highlight.
-layout(constant_id = 0) const int SHADOW_FILTER_RADIUS = 2;
+layout(constant_id = 0) const int SHADOW_FILTER_RADIUS = 1;
 layout(constant_id = 1) const bool SECONDARY_SPECULAR = true;
 
 // Soft key-light visibility: a 5x5 grid of bilinear depth-compare taps (each

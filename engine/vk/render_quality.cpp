@@ -8,7 +8,7 @@ QualitySettings qualitySettings(RenderQuality quality) {
       return {.samples = VK_SAMPLE_COUNT_1_BIT, .shadowMapSize = 0, .shadowFilterRadius = 0,
               .secondarySpecular = false};
     case RenderQuality::Balanced:
-      return {.samples = VK_SAMPLE_COUNT_4_BIT, .shadowMapSize = 1024, .shadowFilterRadius = 1,
+      return {.samples = VK_SAMPLE_COUNT_2_BIT, .shadowMapSize = 1024, .shadowFilterRadius = 1,
               .secondarySpecular = true};
     case RenderQuality::High:
       break;
