@@ -111,4 +111,12 @@ Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<cons
   return scene_.readCapture(0);
 }
 
+Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const ModelInstance> instances) {
+  ENG_TRY(scene_.prepareCapture(0, instances));
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { timestamps_.recordStart(cmd); },
+                          [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
+                          [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false}));
+  return timestamps_.readMilliseconds();
+}
+
 }  // namespace eng::vk
