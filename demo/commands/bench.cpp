@@ -1,12 +1,13 @@
 // `facial bench frames MODEL [--size WxH] [--frames N] [--warmup N]
-//  [--animate all|none] [--instances K] [--device D]`
+//  [--animate all|none] [--instances K] [--quality fast|balanced|high] [--device D]`
 // Times whole headless frames on whatever Vulkan device is present: per frame
 // the weights are updated (--animate all: every morph target re-weighted by
 // its own smooth sine, all of them active; none: all zero), K instances are
 // drawn (one instanced draw per primitive) and the frame is finished (the
 // GPU waited for; no read-back). Prints the settings, then ONE result line
-// ending with fps=<median-based fps>:
-//   bench frames facecap.glb 512x512 msaa=4 instances=1 animate=all targets=52
+// ending with fps=<median-based fps> (before it a `memory:` line: the asset's
+// device buffers and what one more instance adds):
+//   bench frames facecap.glb 512x512 quality=high msaa=4 instances=1 animate=all targets=52
 //   device=llvmpipe cpu_median_ms=.. cpu_p95_ms=.. [gpu_median_ms=.. gpu_p95_ms=..] fps=..
 // GPU times come from timestamps at the start and end of the frame's command
 // buffer, where the device has them.
@@ -29,6 +30,7 @@
 #include "demo/view_options.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/framing_bounds.h"
+#include "engine/vk/gpu_types.h"
 
 namespace cli {
 namespace {
@@ -165,6 +167,16 @@ int runBenchFrames(const BenchFramesOptions& o) {
               double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
               double(view.camera.distance), stats.draws,
               stats.activeWeights, offscreen.hasGpuTimestamps() ? "yes" : "no");
+  // Memory: what the face asset holds on the device, and what one more
+  // instance adds (its GPU records, active list and joint matrices uploaded
+  // per frame, plus its CPU weight vector).
+  const double perInstance =
+      double(size_t(stats.instances) * sizeof(eng::vk::GpuInstance) +
+             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4)) /
+          double(count) +
+      double(layout.total() * sizeof(float));
+  std::printf("memory: asset_buffer_bytes=%llu per_instance_bytes=%.0f\n",
+              static_cast<unsigned long long>(renderer->gpuModel().bufferBytes()), perInstance);
   const double cpuMedian = quantile(cpuMs, 0.5);
   const double cpuP95 = quantile(cpuMs, 0.95);
   std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
