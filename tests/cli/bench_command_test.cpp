@@ -45,7 +45,7 @@ TEST(BenchCommand, AnimatedFramesReportFpsAndSettings) {
   ASSERT_TRUE(ranCleanly(run)) << run.err;
   const std::string line = lastLine(run.out);
   EXPECT_EQ(line.rfind("bench frames test_face.glb ", 0), 0u) << run.out;
-  EXPECT_NE(line.find(" 64x64 msaa="), std::string::npos) << line;
+  EXPECT_NE(line.find(" 64x64 quality=high msaa="), std::string::npos) << line;
   EXPECT_NE(line.find(" instances=1 animate=all "), std::string::npos) << line;
   EXPECT_NE(line.find(" cpu_median_ms="), std::string::npos) << line;
   EXPECT_GT(fpsOf(line), 0.0) << line;
