@@ -37,6 +37,7 @@
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"
 #include "engine/vk/offscreen_renderer.h"
+#include "tests/bench/bench_gpu.h"
 
 namespace {
 
@@ -121,32 +122,6 @@ std::vector<SparseTarget> compact(const eng::Primitive& p) {
   return sparse;
 }
 
-struct Vk {
-  std::unique_ptr<eng::vk::Context> context;
-  std::unique_ptr<eng::vk::OffscreenRenderer> renderer;
-  std::string error;
-};
-
-Vk& vk() {
-  static Vk v = [] {
-    Vk b;
-    auto ctx = eng::vk::Context::create({});
-    if (!ctx) {
-      b.error = ctx.error().message;
-      return b;
-    }
-    b.context = std::make_unique<eng::vk::Context>(std::move(*ctx));
-    auto renderer = eng::vk::OffscreenRenderer::create(*b.context, {.width = 64, .height = 64});
-    if (!renderer) {
-      b.error = renderer.error().message;
-      return b;
-    }
-    b.renderer = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
-    return b;
-  }();
-  return v;
-}
-
 void setCounters(benchmark::State& state, size_t vertices, int active, int instances, double deltaBytes) {
   state.counters["verts"] = double(vertices);
   state.counters["active"] = active;
@@ -158,7 +133,7 @@ void setCounters(benchmark::State& state, size_t vertices, int active, int insta
 // CPU paths: each instance morphed on the CPU, then its vertices (position +
 // normal) copied into the mapped buffer the draw would read.
 void cpuPath(benchmark::State& state, bool sparse) {
-  Vk& v = vk();
+  bench::GpuBench& v = bench::gpu();
   if (!v.context) return state.SkipWithError(("Vulkan: " + v.error).c_str());
   const int active = int(state.range(1)), instances = int(state.range(2));
   const eng::Primitive& p = cachedModel(int(state.range(0))).meshes[0].primitives[0];
@@ -205,7 +180,7 @@ void cpuPath(benchmark::State& state, bool sparse) {
 
 // The GPU path (or the static pass: active 0), timed by GPU timestamps.
 void gpuPath(benchmark::State& state, bool morph) {
-  Vk& v = vk();
+  bench::GpuBench& v = bench::gpu();
   if (!v.renderer) return state.SkipWithError(("Vulkan: " + v.error).c_str());
   if (!v.renderer->canCapture()) return state.SkipWithError("the device cannot store from vertex shaders");
   const int active = morph ? int(state.range(1)) : 0, instances = int(state.range(2));
@@ -246,7 +221,7 @@ BENCHMARK(MorphSweep_static)->Apply(sweepArgs)->Unit(benchmark::kMillisecond)->U
 // buffers of 256 MiB (read + write counted once each, as a copy's GB/s is
 // usually quoted by bytes copied: gbps = bytes / time).
 void MorphCopyBandwidth(benchmark::State& state) {
-  Vk& v = vk();
+  bench::GpuBench& v = bench::gpu();
   if (!v.context) return state.SkipWithError(("Vulkan: " + v.error).c_str());
   constexpr VkDeviceSize kBytes = VkDeviceSize(256) << 20;
   auto src = eng::vk::Buffer::create(*v.context, kBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
