@@ -26,7 +26,7 @@ eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame) {
 void addQualityOption(CLI::App& app, std::string& quality) {
   app.add_option("--quality", quality,
                  "Render quality: high (4x MSAA, soft key-light shadow, three highlights), balanced (the same with "
-                 "2x MSAA) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
+                 "2x MSAA, 1x where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
                  "balanced takes about two thirds and fast about a third of high's frame time")
       ->capture_default_str();
 }

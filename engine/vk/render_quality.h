@@ -4,7 +4,8 @@
 // pixel (the shadow map's depth fill and its filter taps, the multisampled
 // colour and depth, the fragment shader's terms), so a tier trades exactly
 // those. `high` is the reference look; `balanced` is the same look with 2x
-// instead of 4x multisampling (edges a little harder); `fast` has no
+// instead of 4x multisampling (edges a little harder; lavapipe offers 1x or
+// 4x only, so there it is 1x); `fast` has no
 // multisampling, no key shadow and one highlight: flatter, but the face, eyes
 // and mouth still read.
 #include <cstdint>
