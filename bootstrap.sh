@@ -13,7 +13,7 @@ PACKAGES=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev
-  python3-numpy python3-opencv opencv-data
+  python3-numpy python3-opencv opencv-data python3-matplotlib
 )
 
 install_missing_packages() {

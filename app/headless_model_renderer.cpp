@@ -18,7 +18,8 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   auto context = eng::vk::Context::create(contextOptions);
   if (!context) return eng::makeError("Vulkan: " + context.error().message, context.error().code);
   r.context_ = std::make_unique<eng::vk::Context>(std::move(*context));
-  auto renderer = eng::vk::OffscreenRenderer::create(*r.context_, {options.width, options.height});
+  auto renderer = eng::vk::OffscreenRenderer::create(
+      *r.context_, {.width = options.width, .height = options.height, .quality = options.quality});
   if (!renderer) return eng::makeError("Vulkan: " + renderer.error().message, renderer.error().code);
   r.renderer_ = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
   auto gpuModel = r.renderer_->upload(model);

@@ -31,6 +31,7 @@ struct HeadlessRenderOptions {
   eng::vk::FramingMode framing = eng::vk::FramingMode::Face;  // head and neck, or the whole model
   std::string device;         // eng::vk::ContextOptions::device
   eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
+  eng::vk::RenderQuality quality = eng::vk::RenderQuality::High;  // multisampling, shadows, shading terms
 };
 
 class HeadlessModelRenderer {

@@ -9,6 +9,7 @@
 #include "app/headless_model_renderer.h"
 #include "engine/core/result.h"
 #include "engine/vk/framing_bounds.h"
+#include "engine/vk/render_quality.h"
 
 namespace cli {
 
@@ -20,6 +21,7 @@ struct ViewOptions {
   float zoom = 1.0f;
   std::string device;
   std::string background;  // --background (parseBackground)
+  std::string quality = "high";  // --quality (qualityOption)
 };
 
 // --device alone, for commands that choose their own framing.
@@ -28,7 +30,11 @@ void addDeviceOption(CLI::App& app, std::string& device);
 void addFramingOption(CLI::App& app, std::string& frame);
 // The --frame value as a mode; the error names the option and the value.
 eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame);
-// --size --yaw --pitch --zoom --frame --device.
+// --quality fast|balanced|high, for every command that draws a face.
+void addQualityOption(CLI::App& app, std::string& quality);
+// The --quality value as a tier; the error names the option and the value.
+eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality);
+// --size --yaw --pitch --zoom --frame --device --background --quality.
 void addViewOptions(CLI::App& app, ViewOptions& view);
 
 // Size parsed, zoom/yaw/pitch checked; the error names the option and value.

@@ -14,6 +14,12 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   const Clock::time_point start = Clock::now();
   Clock::time_point last = start;
   bool finalFrame = false;
+  // Presented frames in the second half of a --quit-after run (after the
+  // first second without one): start-up, shader JIT and the first uploads
+  // excluded from the frame rate reported when the loop ends.
+  const float measureFrom = options.quitAfter > 0.0f ? 0.5f * options.quitAfter : 1.0f;
+  int measuredFrames = 0;
+  Clock::time_point measureStart{};
   while (!window.shouldClose()) {
     window.pollEvents();
     const Clock::time_point now = Clock::now();
@@ -34,6 +40,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     auto drawn = renderer.drawFrame(plan->input);
     if (!drawn) return eng::makeError("frame: " + drawn.error().message, drawn.error().code);
     const bool presented = *drawn == eng::vk::FrameResult::Presented;
+    if (presented && tick.elapsed >= measureFrom && measuredFrames++ == 0) measureStart = Clock::now();
     if (!shot.empty() && presented) {
       std::printf("screenshot: %s\n", shot.c_str());
       shotWritten(shot);
@@ -41,6 +48,12 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     // The last frame must really be drawn (not skipped while minimised) to
     // end with its screenshot; give up on that after five seconds.
     if (finalFrame && (presented || !endsWithShot || tick.elapsed > options.quitAfter + 5.0f)) break;
+  }
+  if (measuredFrames > 1) {
+    const double seconds = std::chrono::duration<double>(Clock::now() - measureStart).count();
+    const VkExtent2D extent = renderer.extent();
+    std::printf("window: %ux%u %d frames presented in the last %.2f s: fps=%.2f\n", extent.width, extent.height,
+                measuredFrames - 1, seconds, double(measuredFrames - 1) / seconds);
   }
   return {};
 }

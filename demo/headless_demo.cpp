@@ -114,7 +114,10 @@ int runHeadlessDemo(const DemoOptions& o) {
   std::printf("facial demo: no display, playing the tour headless into %s\n", outDir.string().c_str());
   std::fflush(stdout);
 
-  auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width, .height = height, .device = o.device});
+  auto quality = qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = HeadlessModelRenderer::create(
+      setup->model(), {.width = width, .height = height, .device = o.device, .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
   // Crowd: a square grid of faces spaced by the framed part's size (the head,

@@ -270,7 +270,9 @@ int WindowDemo::setUp(const DemoOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
+  auto quality = qualityOption(options_.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
   renderer_ = std::move(*renderer);
   auto gpuModel = renderer_->upload(setup_->model());

@@ -1,12 +1,13 @@
 // `facial bench frames MODEL [--size WxH] [--frames N] [--warmup N]
-//  [--animate all|none] [--instances K] [--device D]`
+//  [--animate all|none] [--instances K] [--quality fast|balanced|high] [--device D]`
 // Times whole headless frames on whatever Vulkan device is present: per frame
 // the weights are updated (--animate all: every morph target re-weighted by
 // its own smooth sine, all of them active; none: all zero), K instances are
 // drawn (one instanced draw per primitive) and the frame is finished (the
 // GPU waited for; no read-back). Prints the settings, then ONE result line
-// ending with fps=<median-based fps>:
-//   bench frames facecap.glb 512x512 msaa=4 instances=1 animate=all targets=52
+// ending with fps=<median-based fps> (before it a `memory:` line: the asset's
+// device buffers and what one more instance adds):
+//   bench frames facecap.glb 512x512 quality=high msaa=4 instances=1 animate=all targets=52
 //   device=llvmpipe cpu_median_ms=.. cpu_p95_ms=.. [gpu_median_ms=.. gpu_p95_ms=..] fps=..
 // GPU times come from timestamps at the start and end of the frame's command
 // buffer, where the device has them.
@@ -29,6 +30,7 @@
 #include "app/view_options.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/framing_bounds.h"
+#include "engine/vk/gpu_types.h"
 
 namespace cli {
 namespace {
@@ -41,6 +43,7 @@ struct BenchFramesOptions {
   std::string animate = "all";
   int instances = 1;
   std::string device;
+  std::string quality = "high";
 };
 
 // The peer framing: 30 degree vertical field of view, camera on +Z at 1.6x
@@ -90,6 +93,8 @@ int runBenchFrames(const BenchFramesOptions& o) {
                 std::to_string(kMaxInstances) + ")");
   if (o.animate != "all" && o.animate != "none") return fail("--animate '" + o.animate + "' is not all or none");
   const bool animate = o.animate == "all";
+  auto quality = qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
 
   auto face = loadFace(o.model);
   if (!face) return fail(face.error().message);
@@ -98,7 +103,11 @@ int runBenchFrames(const BenchFramesOptions& o) {
   if (!bounds.valid()) return fail(o.model + ": has no geometry to draw");
 
   auto renderer = HeadlessModelRenderer::create(
-      model, {.width = width, .height = height, .framing = eng::vk::FramingMode::All, .device = o.device});
+      model, {.width = width,
+              .height = height,
+              .framing = eng::vk::FramingMode::All,
+              .device = o.device,
+              .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
   // K instances side by side in a square grid, spaced by the model's size;
@@ -148,14 +157,31 @@ int runBenchFrames(const BenchFramesOptions& o) {
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
   const eng::vk::FrameStats stats = offscreen.lastFrameStats();
-  std::printf("settings: msaa=%d shadows=on backdrop=studio camera=fov%.0f@%.1fxdiagonal draws=%u "
-              "active_weights=%u timestamps=%s\n",
-              int(offscreen.samples()), double(kFovYDegrees), double(kDistanceInDiagonals), stats.draws,
+  const eng::vk::QualitySettings tier = eng::vk::qualitySettings(*quality);
+  std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
+              "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
+              "timestamps=%s\n",
+              eng::vk::qualityName(*quality), int(offscreen.samples()), tier.shadowMapSize,
+              tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
+              tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
+              double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
+              double(view.camera.distance), stats.draws,
               stats.activeWeights, offscreen.hasGpuTimestamps() ? "yes" : "no");
+  // Memory: what the face asset holds on the device, and what one more
+  // instance adds (its GPU records, active list and joint matrices uploaded
+  // per frame, plus its CPU weight vector).
+  const double perInstance =
+      double(size_t(stats.instances) * sizeof(eng::vk::GpuInstance) +
+             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4)) /
+          double(count) +
+      double(layout.total() * sizeof(float));
+  std::printf("memory: asset_buffer_bytes=%llu per_instance_bytes=%.0f\n",
+              static_cast<unsigned long long>(renderer->gpuModel().bufferBytes()), perInstance);
   const double cpuMedian = quantile(cpuMs, 0.5);
   const double cpuP95 = quantile(cpuMs, 0.95);
   std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
                      std::to_string(width) + "x" + std::to_string(height) +
+                     " quality=" + eng::vk::qualityName(*quality) +
                      " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
                      " animate=" + o.animate + " targets=" + std::to_string(layout.total()) +
                      " device=" + renderer->deviceName() + " cpu_median_ms=" + format(cpuMedian) +
@@ -180,6 +206,7 @@ CommandRegistrar reg("bench", "Measure performance (bench frames: whole headless
   frames->add_option("--animate", o->animate, "all: every target re-weighted every frame; none: all weights 0");
   frames->add_option("--instances", o->instances, "Instances drawn in one instanced draw (default 1)");
   addDeviceOption(*frames, o->device);
+  addQualityOption(*frames, o->quality);
   return [o] { return runBenchFrames(*o); };
 });
 

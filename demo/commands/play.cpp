@@ -37,6 +37,7 @@ struct PlayOptions {
   std::vector<std::string> shapes;
   std::string background;
   std::string device;
+  std::string quality = "high";
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
   std::string size = "512x512";
@@ -102,13 +103,16 @@ int runPlay(const PlayOptions& o) {
   if (!skeleton) return fail(skeleton.error().message);
   auto backdrop = parseBackground(o.background);
   if (!backdrop) return fail(backdrop.error().message);
+  auto quality = qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
 
   auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width,
                                                                  .height = height,
                                                                  .zoom = kFaceZoom,
                                                                  .framing = *framing,
                                                                  .device = o.device,
-                                                                 .backdrop = *backdrop});
+                                                                 .backdrop = *backdrop,
+                                                                 .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
   SequenceOptions sequence;
@@ -155,6 +159,7 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
   app.add_option("--video", o->video, "Also write an animated GIF here");
   addDeviceOption(app, o->device);
+  addQualityOption(app, o->quality);
   return [o] { return runPlay(*o); };
 });
 

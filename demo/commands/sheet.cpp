@@ -38,6 +38,7 @@ struct SheetOptions {
   float zoom = kSheetTileZoom;
   std::string frame = "face";
   std::string device;
+  std::string quality = "high";
   std::string out;
 };
 
@@ -85,9 +86,15 @@ int runSheet(const SheetOptions& o) {
 
   auto backdrop = parseBackground(o.background);
   if (!backdrop) return fail(backdrop.error().message);
-  auto renderer = HeadlessModelRenderer::create(
-      face->model(),
-      {.width = o.size, .height = o.size, .zoom = o.zoom, .framing = *framing, .device = o.device, .backdrop = *backdrop});
+  auto quality = qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = HeadlessModelRenderer::create(face->model(), {.width = o.size,
+                                                                .height = o.size,
+                                                                .zoom = o.zoom,
+                                                                .framing = *framing,
+                                                                .device = o.device,
+                                                                .backdrop = *backdrop,
+                                                                .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
   std::vector<float> weights(face->weightCount()), vrmExpressions(face->vrmExpressionCount());
   auto materials = FaceMaterials::create(*face);  // VRM material binds follow each tile's expression
@@ -142,6 +149,7 @@ CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expr
   app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
   addFramingOption(app, o->frame);
   addDeviceOption(app, o->device);
+  addQualityOption(app, o->quality);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
   return [o] { return runSheet(*o); };
 });

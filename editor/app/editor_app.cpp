@@ -15,6 +15,7 @@
 #include "app/cli_parse.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
+#include "app/view_options.h"
 #include "engine/vk/imgui_layer.h"
 #include "app/window_loop.h"
 #include "editor/app/control_map_panel.h"
@@ -207,7 +208,9 @@ int EditorApp::setUp(const EditorOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_);
+  auto quality = cli::qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
   renderer_ = std::move(*renderer);
   auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);

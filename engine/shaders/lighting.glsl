@@ -10,6 +10,12 @@ const float PI = 3.14159265;
 // The key light's shadow map (depth compare, bilinear: each tap is 2x2 PCF).
 layout(set = 0, binding = 4) uniform sampler2DShadow keyShadowMap;
 
+// Quality tier (engine/vk/render_quality.h), fixed per pipeline: the shadow
+// filter is (2r+1)^2 taps over the same penumbra; without secondary specular
+// only the key light has a highlight.
+layout(constant_id = 0) const int SHADOW_FILTER_RADIUS = 1;
+layout(constant_id = 1) const bool SECONDARY_SPECULAR = true;
+
 // Soft key-light visibility: a 5x5 grid of bilinear depth-compare taps (each
 // already a 2x2 PCF) spread over the penumbra radius: a smooth tent-shaped
 // falloff without the grain of rotated random taps.
@@ -32,12 +38,14 @@ float keyLightVisibility(vec3 worldPosition, vec3 normal) {
   float cosTheta = clamp(nDotL, 0.2, 1.0);
   float tanTheta = sqrt(1.0 - cosTheta * cosTheta) / cosTheta;
   float depth = ndc.z - frame.shadow.y * 0.525 * tanTheta - 0.0005;
-  float spacing = frame.shadow.y * 0.5;
+  float spacing = frame.shadow.y / float(max(SHADOW_FILTER_RADIUS, 1));
   float lit = 0.0;
-  for (int y = -2; y <= 2; ++y) {
-    for (int x = -2; x <= 2; ++x) lit += texture(keyShadowMap, vec3(uv + vec2(x, y) * spacing, depth));
+  for (int y = -SHADOW_FILTER_RADIUS; y <= SHADOW_FILTER_RADIUS; ++y) {
+    for (int x = -SHADOW_FILTER_RADIUS; x <= SHADOW_FILTER_RADIUS; ++x)
+      lit += texture(keyShadowMap, vec3(uv + vec2(x, y) * spacing, depth));
   }
-  return mix(1.0, lit / 25.0, facing);
+  const int taps = (2 * SHADOW_FILTER_RADIUS + 1) * (2 * SHADOW_FILTER_RADIUS + 1);
+  return mix(1.0, lit / float(taps), facing);
 }
 
 struct SurfacePoint {
@@ -48,7 +56,7 @@ struct SurfacePoint {
   float metallic;
 };
 
-vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor) {
+vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor, bool withSpecular) {
   float wrap = frame.skin.x;
   float nDotL = dot(s.normal, toLight);
   float lambert = max(nDotL, 0.0);
@@ -58,6 +66,7 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor) {
 
   vec3 diffuseColor = s.albedo * (1.0 - s.metallic);
   vec3 diffuse = diffuseColor * wrapped + frame.subsurfaceColor.rgb * s.albedo * terminator * frame.skin.y;
+  if (!withSpecular) return diffuse * lightColor;
 
   vec3 h = normalize(toLight + s.toViewer);
   float nDotH = max(dot(s.normal, h), 0.0);
@@ -74,9 +83,9 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor) {
 
 vec3 shadeThreePoint(SurfacePoint s, float keyVisibility) {
   vec3 keyColor = frame.keyColor.rgb * mix(frame.shadowColor.rgb, vec3(1.0), keyVisibility);
-  vec3 color = shadeLight(s, frame.keyDirection.xyz, keyColor);
-  color += shadeLight(s, frame.fillDirection.xyz, frame.fillColor.rgb);
-  color += shadeLight(s, frame.rimDirection.xyz, frame.rimColor.rgb);
+  vec3 color = shadeLight(s, frame.keyDirection.xyz, keyColor, true);
+  color += shadeLight(s, frame.fillDirection.xyz, frame.fillColor.rgb, SECONDARY_SPECULAR);
+  color += shadeLight(s, frame.rimDirection.xyz, frame.rimColor.rgb, SECONDARY_SPECULAR);
   // Hemisphere ambient: sky from above, bounce from below.
   float up = s.normal.y * 0.5 + 0.5;
   color += s.albedo * (1.0 - s.metallic) * mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, up);

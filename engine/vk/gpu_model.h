@@ -75,6 +75,11 @@ class GpuModel {
   // world matrices `world` (nodeCount() long, or empty for the rest pose).
   void jointMatrices(const MeshNode& node, std::span<const glm::mat4> world, std::vector<glm::mat4>& out) const;
   VkBuffer vertexBuffer() const { return vertices_.handle(); }
+  // Device memory held in buffers (vertices, indices, morph deltas, detail
+  // layers, skin influences); textures not included.
+  VkDeviceSize bufferBytes() const {
+    return vertices_.size() + indices_.size() + deltas_.size() + detailLayers_.size() + skinInfluences_.size();
+  }
   VkBuffer indexBuffer() const { return indices_.handle(); }
 
  private:

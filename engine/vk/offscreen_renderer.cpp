@@ -43,11 +43,11 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
   if (!layouts) return layouts.error();
   r.layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
   r.shaders_ = std::make_unique<ShaderLibrary>(options.shaderSourceDir);
-  auto target = OffscreenTarget::create(ctx, options.width, options.height, options.samples);
+  auto target = OffscreenTarget::create(ctx, options.width, options.height, qualitySettings(options.quality).samples);
   if (!target) return target.error();
   r.target_ = std::move(target).value();
   auto scene = SceneRenderer::create(ctx, *r.layouts_, *r.shaders_, r.target_.renderPass(),
-                                     r.target_.format().samples, 1);
+                                     r.target_.format().samples, 1, options.quality);
   if (!scene) return scene.error();
   r.scene_ = std::move(scene).value();
   auto timestamps = FrameTimestamps::create(ctx);
@@ -109,6 +109,14 @@ Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<cons
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
                           [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }}));
   return scene_.readCapture(0);
+}
+
+Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const ModelInstance> instances) {
+  ENG_TRY(scene_.prepareCapture(0, instances));
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { timestamps_.recordStart(cmd); },
+                          [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
+                          [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false}));
+  return timestamps_.readMilliseconds();
 }
 
 }  // namespace eng::vk

@@ -22,6 +22,7 @@
 #include "engine/vk/frame_timestamps.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/offscreen_target.h"
+#include "engine/vk/render_quality.h"
 #include "engine/vk/scene_layouts.h"
 #include "engine/vk/scene_renderer.h"
 #include "engine/vk/scene_view.h"
@@ -32,7 +33,8 @@ namespace eng::vk {
 struct OffscreenOptions {
   uint32_t width = 512;
   uint32_t height = 512;
-  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+  // Multisampling, shadow map and shading terms (render_quality.h).
+  RenderQuality quality = RenderQuality::High;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
 };
 
@@ -50,6 +52,11 @@ class OffscreenRenderer {
   bool hasGpuTimestamps() const { return timestamps_.supported(); }
   // Morphed vertices the GPU computes for each (instance, mesh, primitive).
   Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
+  // The morph pass alone, for benchmarks: every vertex of every instance
+  // morphed (and skinned) once by the vertex shader and stored, no
+  // rasterisation, nothing read back; the GPU time in ms where the device has
+  // timestamps. Needs canCapture().
+  Result<std::optional<double>> captureTimed(std::span<const ModelInstance> instances);
 
   FrameStats lastFrameStats() const { return scene_.stats(0); }
   // Recompiles the shaders if their sources changed and rebuilds the
@@ -58,6 +65,7 @@ class OffscreenRenderer {
 
   VkExtent2D extent() const { return target_.extent(); }
   VkSampleCountFlagBits samples() const { return target_.format().samples; }
+  RenderQuality quality() const { return scene_.quality(); }
   bool canCapture() const { return scene_.canCapture(); }
 
  private:

@@ -1,6 +1,7 @@
 #include "engine/vk/scene_pipelines.h"
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -137,7 +138,8 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
 
 Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLayouts& layouts,
                                               const ShaderLibrary& shaders, VkRenderPass renderPass,
-                                              VkSampleCountFlagBits samples, VkRenderPass shadowPass) {
+                                              VkSampleCountFlagBits samples, VkRenderPass shadowPass,
+                                              const QualitySettings& quality) {
   auto meshVert = createModule(ctx, shaders, "mesh_vert");
   if (!meshVert) return meshVert.error();
   auto meshFrag = createModule(ctx, shaders, "mesh_frag");
@@ -148,9 +150,18 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   if (!bgFrag) return bgFrag.error();
 
   ScenePipelines p;
+  // The tier's switches in lighting.glsl (constant_id 0 and 1).
+  struct TierConstants {
+    int32_t shadowFilterRadius;
+    VkBool32 secondarySpecular;
+  } tier{int32_t(quality.shadowFilterRadius), quality.secondarySpecular ? VK_TRUE : VK_FALSE};
+  const std::array tierEntries{VkSpecializationMapEntry{0, offsetof(TierConstants, shadowFilterRadius), sizeof(int32_t)},
+                               VkSpecializationMapEntry{1, offsetof(TierConstants, secondarySpecular), sizeof(VkBool32)}};
+  const VkSpecializationInfo tierInfo{uint32_t(tierEntries.size()), tierEntries.data(), sizeof(tier), &tier};
   PipelineShape mesh;
   mesh.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, meshVert->get()),
                  stage(VK_SHADER_STAGE_FRAGMENT_BIT, meshFrag->get())};
+  mesh.stages[1].pSpecializationInfo = &tierInfo;
   auto culled = createPipeline(ctx, layouts, renderPass, samples, mesh);
   if (!culled) return culled.error();
   p.meshCulled_ = std::move(culled).value();

@@ -9,6 +9,7 @@
 
 #include "engine/core/result.h"
 #include "engine/vk/context.h"
+#include "engine/vk/render_quality.h"
 #include "engine/vk/scene_layouts.h"
 #include "engine/vk/shader_library.h"
 #include "engine/vk/unique_handle.h"
@@ -19,7 +20,7 @@ class ScenePipelines {
  public:
   static Result<ScenePipelines> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
                                        VkRenderPass renderPass, VkSampleCountFlagBits samples,
-                                       VkRenderPass shadowPass);
+                                       VkRenderPass shadowPass, const QualitySettings& quality = {});
 
   VkPipeline mesh(bool doubleSided) const { return doubleSided ? meshDoubleSided_.get() : meshCulled_.get(); }
   VkPipeline background() const { return background_.get(); }

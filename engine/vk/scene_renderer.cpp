@@ -17,7 +17,8 @@ namespace eng::vk {
 
 Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayouts& layouts,
                                             const ShaderLibrary& shaders, VkRenderPass renderPass,
-                                            VkSampleCountFlagBits samples, uint32_t frameSlots) {
+                                            VkSampleCountFlagBits samples, uint32_t frameSlots,
+                                            RenderQuality quality) {
   if (frameSlots == 0) return makeError("scene renderer: frameSlots must be >= 1");
   SceneRenderer r;
   r.ctx_ = &ctx;
@@ -25,10 +26,15 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.shaders_ = &shaders;
   r.renderPass_ = renderPass;
   r.samples_ = samples;
-  auto shadowMap = ShadowMap::create(ctx);
+  r.quality_ = quality;
+  const QualitySettings settings = qualitySettings(quality);
+  // Without shadows a token map stays bound (the descriptor needs an image in
+  // its read layout); its pass only clears it.
+  auto shadowMap = ShadowMap::create(ctx, settings.shadowMapSize > 0 ? settings.shadowMapSize : 16);
   if (!shadowMap) return shadowMap.error();
   r.shadowMap_ = std::move(shadowMap).value();
-  auto pipelines = ScenePipelines::create(ctx, layouts, shaders, renderPass, samples, r.shadowMap_.renderPass());
+  auto pipelines =
+      ScenePipelines::create(ctx, layouts, shaders, renderPass, samples, r.shadowMap_.renderPass(), settings);
   if (!pipelines) return pipelines.error();
   r.pipelines_ = std::move(pipelines).value();
   r.pipelineGeneration_ = shaders.generation();
@@ -255,7 +261,9 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
 Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
                                     std::span<const ModelInstance> instances) {
   ENG_TRY(build(slot, instances, Mode::Draw));
-  std::memcpy(slots_[slot].globals.mapped(), &globals, sizeof(FrameGlobals));
+  FrameGlobals written = globals;
+  if (qualitySettings(quality_).shadowMapSize == 0) written.shadow.w = 0.0f;  // the tier has no shadow pass
+  std::memcpy(slots_[slot].globals.mapped(), &written, sizeof(FrameGlobals));
   return {};
 }
 
@@ -305,10 +313,12 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
 void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
   const Slot& slot = slots_[slotIndex];
   shadowMap_.begin(cmd);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
-                          &slot.descriptorSet, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.shadow());
-  drawBatches(cmd, slot, false);
+  if (qualitySettings(quality_).shadowMapSize > 0) {  // else the pass only clears the token map
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
+                            &slot.descriptorSet, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.shadow());
+    drawBatches(cmd, slot, false);
+  }
   shadowMap_.end(cmd);
 }
 
@@ -380,7 +390,8 @@ std::vector<CapturedPrimitive> SceneRenderer::readCapture(uint32_t slotIndex) co
 bool SceneRenderer::refreshPipelines() {
   if (shaders_->generation() == pipelineGeneration_) return false;
   pipelineGeneration_ = shaders_->generation();
-  auto rebuilt = ScenePipelines::create(*ctx_, *layouts_, *shaders_, renderPass_, samples_, shadowMap_.renderPass());
+  auto rebuilt = ScenePipelines::create(*ctx_, *layouts_, *shaders_, renderPass_, samples_, shadowMap_.renderPass(),
+                                        qualitySettings(quality_));
   if (!rebuilt) {
     logError("shader hot reload: pipelines not rebuilt, keeping the previous ones: " + rebuilt.error().message);
     return false;

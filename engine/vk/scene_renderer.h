@@ -22,6 +22,7 @@
 #include "engine/vk/context.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/gpu_types.h"
+#include "engine/vk/render_quality.h"
 #include "engine/vk/scene_layouts.h"
 #include "engine/vk/scene_pipelines.h"
 #include "engine/vk/shader_library.h"
@@ -71,7 +72,8 @@ class SceneRenderer {
   // `layouts` and `shaders` must outlive the renderer.
   static Result<SceneRenderer> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
                                       VkRenderPass renderPass, VkSampleCountFlagBits samples,
-                                      uint32_t frameSlots);
+                                      uint32_t frameSlots, RenderQuality quality = RenderQuality::High);
+  RenderQuality quality() const { return quality_; }
 
   // Writes slot's frame data. Errors (naming the instance and mesh): null
   // model, wrong number of weights, non-finite weight, pose of the wrong size,
@@ -135,6 +137,7 @@ class SceneRenderer {
   const ShaderLibrary* shaders_ = nullptr;
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
   VkSampleCountFlagBits samples_ = VK_SAMPLE_COUNT_1_BIT;
+  RenderQuality quality_ = RenderQuality::High;
   uint64_t pipelineGeneration_ = 0;
   ShadowMap shadowMap_;
   ScenePipelines pipelines_;

@@ -16,7 +16,7 @@ namespace eng::vk {
 
 class ShadowMap {
  public:
-  static Result<ShadowMap> create(const Context& ctx, uint32_t size = 2048);
+  static Result<ShadowMap> create(const Context& ctx, uint32_t size = 1024);
 
   VkRenderPass renderPass() const { return renderPass_.get(); }
   VkImageView view() const { return image_.view(); }

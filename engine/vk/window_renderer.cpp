@@ -38,7 +38,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   r->swapchain_ = std::move(swapchain).value();
   auto depth = chooseDepthFormat(ctx);
   if (!depth) return depth.error();
-  r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, options.samples)};
+  r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
   auto pass = createSceneRenderPass(ctx, r->format_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return pass.error();
   r->renderPass_ = std::move(pass).value();
@@ -68,7 +68,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   }
 
   auto scene = SceneRenderer::create(ctx, *r->layouts_, *r->shaders_, r->renderPass_.get(), r->format_.samples,
-                                     kFramesInFlight);
+                                     kFramesInFlight, options.quality);
   if (!scene) return scene.error();
   r->scene_ = std::move(scene).value();
 

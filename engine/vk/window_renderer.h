@@ -33,6 +33,7 @@
 #include "engine/vk/gpu_image.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/render_pass.h"
+#include "engine/vk/render_quality.h"
 #include "engine/vk/scene_layouts.h"
 #include "engine/vk/scene_renderer.h"
 #include "engine/vk/scene_view.h"
@@ -43,7 +44,8 @@
 namespace eng::vk {
 
 struct WindowRendererOptions {
-  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_4_BIT;
+  // Multisampling, shadow map and shading terms (render_quality.h).
+  RenderQuality quality = RenderQuality::High;
   bool vsync = true;
   bool hotReload = true;  // poll the shader sources twice a second
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();

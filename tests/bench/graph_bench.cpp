@@ -12,6 +12,7 @@
 
 #include "facial/runtime/graph/graph_builder.h"
 #include "facial/runtime/graph/graph_instance.h"
+#include "tests/bench/allocation_counter.h"
 
 namespace {
 
@@ -83,5 +84,35 @@ void GraphUpdateCharacters(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));  // items = character updates
 }
 BENCHMARK(GraphUpdateCharacters)->Arg(1)->Arg(100)->Arg(1000);
+
+// The sweep: 60 channels, 1 to 10,000 characters, each graph's state
+// machine mid-transition (transitions every 0.5 s last 0.4 s, and every
+// character starts at its own phase). Reports ns per character update
+// (items_per_second inverted), allocations per update (must be 0: the update
+// path reuses its buffers) and the heap bytes one character's GraphInstance holds.
+void GraphUpdate60Channels(benchmark::State& state) {
+  const SharedGraphDefinition graph = characterGraph(60);
+  const int64_t count = state.range(0);
+  const uint64_t bytesBefore = bench::allocatedBytes();
+  std::vector<GraphInstance> faces;
+  faces.reserve(size_t(count));
+  for (int64_t i = 0; i < count; ++i) faces.push_back(GraphInstance::create(graph, static_cast<uint64_t>(i)).value());
+  const double bytesPerCharacter = double(bench::allocatedBytes() - bytesBefore) / double(count);
+  for (int64_t i = 0; i < count; ++i) faces[size_t(i)].update(0.05f + 0.4f * float(i % 7) / 7.0f);  // own phase
+  const uint64_t allocationsBefore = bench::allocationCount();
+  for (auto _ : state) {
+    for (GraphInstance& face : faces) face.update(kFrame);
+    benchmark::DoNotOptimize(faces.back().weights().data());
+  }
+  const uint64_t allocations = bench::allocationCount() - allocationsBefore;
+  state.SetItemsProcessed(state.iterations() * count);
+  state.counters["characters"] = double(count);
+  state.counters["channels"] = double(graph->channelCount());
+  state.counters["ns_per_character"] =
+      benchmark::Counter(double(count) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["allocs_per_update"] = double(allocations) / double(state.iterations() * count);
+  state.counters["instance_bytes"] = bytesPerCharacter;
+}
+BENCHMARK(GraphUpdate60Channels)->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000);
 
 }  // namespace

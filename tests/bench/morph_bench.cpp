@@ -21,6 +21,7 @@
 #include "engine/vk/context.h"
 #include "engine/vk/offscreen_renderer.h"
 #include "engine/vk/framing_bounds.h"
+#include "tests/bench/bench_gpu.h"
 
 namespace {
 
@@ -104,50 +105,22 @@ void cpuMorph(benchmark::State& state, const eng::Model& model) {
   state.counters["vertices"] = double(vertices);
 }
 
-// One Vulkan context and renderer for all GPU cases (creating them is not
-// what is measured).
-struct GpuBench {
-  std::unique_ptr<eng::vk::Context> context;
-  std::unique_ptr<eng::vk::OffscreenRenderer> renderer;
-  std::string error;
-};
-
-GpuBench& gpu() {
-  static GpuBench bench = [] {
-    GpuBench b;
-    auto ctx = eng::vk::Context::create({});
-    if (!ctx) {
-      b.error = ctx.error().message;
-      return b;
-    }
-    b.context = std::make_unique<eng::vk::Context>(std::move(*ctx));
-    auto renderer = eng::vk::OffscreenRenderer::create(*b.context, {.width = 256, .height = 256});
-    if (!renderer) {
-      b.error = renderer.error().message;
-      return b;
-    }
-    b.renderer = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
-    return b;
-  }();
-  return bench;
-}
-
 void gpuMorphFrame(benchmark::State& state, const eng::Model& model) {
-  GpuBench& bench = gpu();
-  if (!bench.renderer) return state.SkipWithError(("Vulkan: " + bench.error).c_str());
+  bench::GpuBench& g = bench::gpu();
+  if (!g.renderer) return state.SkipWithError(("Vulkan: " + g.error).c_str());
   if (model.meshes.empty()) return state.SkipWithError("model did not load");
-  auto gpuModel = bench.renderer->upload(model);
+  auto gpuModel = g.renderer->upload(model);
   if (!gpuModel) return state.SkipWithError(gpuModel.error().message.c_str());
   const std::vector<float> weights = weightsWithActive(model, state.range(0));
   eng::vk::SceneView view;
   view.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model), 1.0f);
   const eng::vk::ModelInstance instance{&gpuModel.value(), glm::mat4(1.0f), weights};
   for (auto _ : state) {
-    auto image = bench.renderer->render(view, {&instance, 1});
+    auto image = g.renderer->render(view, {&instance, 1});
     if (!image) return state.SkipWithError(image.error().message.c_str());
     benchmark::DoNotOptimize(image->rgba8.data());
   }
-  state.SetLabel(bench.context->deviceInfo().name);
+  state.SetLabel(g.context->deviceInfo().name);
 }
 
 void BM_CpuMorphHead(benchmark::State& state) { cpuMorph(state, headModel()); }

@@ -45,11 +45,13 @@ TEST(BenchCommand, AnimatedFramesReportFpsAndSettings) {
   ASSERT_TRUE(ranCleanly(run)) << run.err;
   const std::string line = lastLine(run.out);
   EXPECT_EQ(line.rfind("bench frames test_face.glb ", 0), 0u) << run.out;
-  EXPECT_NE(line.find(" 64x64 msaa="), std::string::npos) << line;
+  EXPECT_NE(line.find(" 64x64 quality=high msaa="), std::string::npos) << line;
   EXPECT_NE(line.find(" instances=1 animate=all "), std::string::npos) << line;
   EXPECT_NE(line.find(" cpu_median_ms="), std::string::npos) << line;
   EXPECT_GT(fpsOf(line), 0.0) << line;
-  EXPECT_NE(run.out.find("settings: msaa="), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("settings: quality=high msaa="), std::string::npos) << run.out;
+  EXPECT_NE(line.find(" quality=high msaa="), std::string::npos) << line;
+  EXPECT_NE(run.out.find("memory: asset_buffer_bytes="), std::string::npos) << run.out;
   // Every target active: the active list holds all of them.
   const size_t targets = line.find(" targets=");
   ASSERT_NE(targets, std::string::npos) << line;
@@ -85,6 +87,16 @@ TEST(BenchCommand, InstancesShareOneInstancedDraw) {
   EXPECT_EQ(draws(one.out), draws(four.out));
 }
 
+TEST(BenchCommand, FastTierSaysWhatItRan) {
+  const std::string face = writeTestFace("bench_command_fast").string();
+  const CommandOutput run = bench({"--quality", "fast"}, face);
+  ASSERT_TRUE(ranCleanly(run)) << run.err;
+  const std::string line = lastLine(run.out);
+  EXPECT_NE(line.find(" quality=fast msaa=1 "), std::string::npos) << line;
+  EXPECT_NE(run.out.find(" shadow_map=0 "), std::string::npos) << run.out;
+  EXPECT_GT(fpsOf(line), 0.0) << line;
+}
+
 // ---- Bad input: one clear error line, non-zero exit ----
 
 void expectOneErrorLine(const CommandOutput& run, const std::string& expected) {
@@ -112,6 +124,12 @@ TEST(BenchCommandValidity, JunkSizeIsRejected) {
 TEST(BenchCommandValidity, JunkAnimateIsRejected) {
   const std::string face = writeTestFace("bench_command_bad").string();
   expectOneErrorLine(runFacial({"bench", "frames", face, "--animate", "junk"}), "--animate 'junk' is not all or none");
+}
+
+TEST(BenchCommandValidity, JunkQualityIsRejected) {
+  const std::string face = writeTestFace("bench_command_bad").string();
+  expectOneErrorLine(runFacial({"bench", "frames", face, "--quality", "ultra"}),
+                     "--quality 'ultra' is not fast, balanced or high");
 }
 
 }  // namespace
