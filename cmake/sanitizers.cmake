@@ -24,6 +24,9 @@ endif()
 
 if(FACIAL_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  # -O1 with line tables only (after the build type's -O2 -g, so they win):
+  # reports need file:line, not variables, and this compiles much faster.
+  add_compile_options(-O1 $<IF:$<CXX_COMPILER_ID:Clang>,-gline-tables-only,-g1>)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
