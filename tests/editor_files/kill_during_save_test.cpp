@@ -93,7 +93,7 @@ TEST(KillDuringSave, TimelineSaveLeavesTheOldOrTheNewFile) {
   ASSERT_NE(a, b);
   ASSERT_TRUE(first.save(path).ok());
 
-  const KillFigures f = killRepeatedly(path, a, b, 60, [&](int version) {
+  const KillFigures f = killRepeatedly(path, a, b, 30, [&](int version) {
     auto saved = (version ? second : first).save(path);
     if (!saved) _exit(3);
   });
@@ -120,7 +120,7 @@ TEST(KillDuringSave, TheHarnessCatchesAPlainWrite) {
   std::ofstream(path, std::ios::binary) << a;
 
   // Written in place, in small pieces as a stream flushes: what the editor must not do.
-  const KillFigures f = killRepeatedly(path, a, b, 30, [&](int version) {
+  const KillFigures f = killRepeatedly(path, a, b, 20, [&](int version) {
     const std::string& text = version ? b : a;
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     for (size_t at = 0; at < text.size(); at += 4096) out.write(text.data() + at, std::min<size_t>(4096, text.size() - at)).flush();

@@ -2,14 +2,17 @@
 // tour graph: a state machine of the seven emotions, talking, blinks), driven
 // the way an application drives them for hours: random triggers at random
 // moments, random parameter changes, uneven frame times with hitches, the odd
-// reset, every frame drawn headless. What must hold over any number of frames:
+// reset, and the crowd drawn headless (every frame on a GPU; on a CPU device
+// every FACIAL_SOAK_DRAW_EVERY-th frame, default 10: lavapipe draws the nine
+// heads in tens of ms, and graph updates are what runs every frame anyway).
+// What must hold over any number of frames:
 //   - resident memory flat: after warm-up it never rises more than 1 % above
 //     its level at the end of warm-up;
 //   - every channel and morph-target weight finite, every frame;
 //   - not one validation message (the context runs with the layer on).
 //
 //   build/bin/test_soak                             the short run (ctest)
-//   FACIAL_SOAK_FRAMES=100000 build/bin/test_soak   the long run
+//   FACIAL_SOAK_FRAMES=100000 FACIAL_SOAK_DRAW_EVERY=50 build/bin/test_soak   the long run
 #include <unistd.h>
 
 #include <chrono>
@@ -37,17 +40,17 @@
 
 namespace {
 
-constexpr uint32_t kShortRunFrames = 3000;
+constexpr uint32_t kShortRunFrames = 2000;
 constexpr uint32_t kCrowd = 9;
 constexpr uint32_t kImageSide = 64;
 constexpr double kAllowedGrowth = 0.01;  // resident memory after warm-up, relative
 
-uint32_t soakFrames() {
-  if (const char* text = std::getenv("FACIAL_SOAK_FRAMES")) {
-    const long frames = std::strtol(text, nullptr, 10);
-    if (frames > 0) return uint32_t(frames);
+uint32_t positiveEnv(const char* name, uint32_t fallback) {
+  if (const char* text = std::getenv(name)) {
+    const long value = std::strtol(text, nullptr, 10);
+    if (value > 0) return uint32_t(value);
   }
-  return kShortRunFrames;
+  return fallback;
 }
 
 // Resident set size from /proc/self/statm (pages -> bytes).
@@ -65,6 +68,7 @@ struct SoakFigures {
   size_t residentPeak = 0;  // after warm-up
   size_t residentFinal = 0;
   uint32_t peakFrame = 0;
+  uint32_t drawn = 0;
   uint64_t triggers = 0;
   uint64_t parameterChanges = 0;
   uint64_t resets = 0;
@@ -73,7 +77,7 @@ struct SoakFigures {
 };
 
 TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
-  const uint32_t frames = soakFrames();
+  const uint32_t frames = positiveEnv("FACIAL_SOAK_FRAMES", kShortRunFrames);
   const std::filesystem::path data = testing_support::sourceDir() / "data";
 
   auto model = eng::loadModel(data / "head.glb");
@@ -122,6 +126,8 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
     instances[i].transform = glm::translate(glm::mat4(1.0f), offset);
   }
   eng::vk::SceneView view{eng::vk::OrbitCamera::frame(crowdBounds)};
+  const bool cpuDevice = context->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  const uint32_t drawEvery = positiveEnv("FACIAL_SOAK_DRAW_EVERY", cpuDevice ? 10 : 1);
 
   const facial::GraphDefinition& definition = **graph;
   static constexpr const char* kTriggers[] = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
@@ -168,9 +174,12 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
       instances[i].weights = faces[i].targetWeights();
     }
     ASSERT_EQ(figures.nonFiniteWeights, 0u) << "frame " << frame << ": a weight is not finite";
-    auto drawn = renderer->renderTimed(view, instances);
-    ASSERT_TRUE(drawn.ok()) << "frame " << frame << ": " << drawn.error().message;
-    ASSERT_EQ(validationMessages, 0u) << "frame " << frame << ": " << firstValidationMessage;
+    if (frame % drawEvery == 0 || frame + 1 == frames) {
+      auto drawn = renderer->renderTimed(view, instances);
+      ASSERT_TRUE(drawn.ok()) << "frame " << frame << ": " << drawn.error().message;
+      ASSERT_EQ(validationMessages, 0u) << "frame " << frame << ": " << firstValidationMessage;
+      ++figures.drawn;
+    }
 
     if (frame + 1 == figures.warmupFrames) figures.residentAfterWarmup = residentBytes();
     if (frame + 1 > figures.warmupFrames && (frame % 100 == 0 || frame + 1 == frames)) {
@@ -188,11 +197,11 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
   const double growth = figures.residentPeak > figures.residentAfterWarmup
                             ? double(figures.residentPeak - figures.residentAfterWarmup) / double(figures.residentAfterWarmup)
                             : 0.0;
-  std::printf("soak: %u frames (%u warm-up) of %u faces at %ux%u in %.1f s (%.2f ms/frame); %llu triggers, "
+  std::printf("soak: %u frames (%u warm-up, %u drawn) of %u faces at %ux%u in %.1f s (%.2f ms/frame); %llu triggers, "
               "%llu parameter changes, %llu resets\n"
               "soak: resident %.1f MiB after warm-up, peak %.1f MiB (frame %u, +%.3f %%), final %.1f MiB; "
               "non-finite weights %llu; validation messages %u\n",
-              figures.frames, figures.warmupFrames, kCrowd, kImageSide, kImageSide, figures.seconds,
+              figures.frames, figures.warmupFrames, figures.drawn, kCrowd, kImageSide, kImageSide, figures.seconds,
               1000.0 * figures.seconds / figures.frames, (unsigned long long)figures.triggers,
               (unsigned long long)figures.parameterChanges, (unsigned long long)figures.resets,
               figures.residentAfterWarmup * mib, figures.residentPeak * mib, figures.peakFrame, 100.0 * growth,
