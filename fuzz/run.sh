@@ -13,7 +13,8 @@
 # fuzz/seeds/, data/ and ../shared into $FUZZ_BUILD_DIR/fuzz-seeds/; what the
 # fuzzers find grows $FUZZ_BUILD_DIR/fuzz-corpus/ (kept between local runs);
 # failing inputs land in $FUZZ_BUILD_DIR/fuzz-artifacts/. A fixed finding
-# becomes a regression test with its input under tests/fuzz_regressions/.
+# becomes a regression test in the loader's test area (tests/<area>/) with its
+# input file beside it. Replay one input: $FUZZ_BUILD_DIR/fuzz/fuzz_NAME FILE
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
