@@ -24,11 +24,6 @@ bool sameClip(const facial::Timeline& a, const facial::Timeline& b) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("clip.json", data, size);
   auto document = editor::TimelineDocument::load(path);

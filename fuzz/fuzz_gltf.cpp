@@ -44,11 +44,6 @@ void exercise(const eng::Model& model) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // The loader detects GLB by its magic, so one name serves both forms.
   const auto path = fuzz::writeInput("input.gltf", data, size);

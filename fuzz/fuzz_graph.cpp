@@ -3,7 +3,8 @@
 // varied time steps, every trigger fired, float parameters swept through
 // ordinary and extreme values. Every weight must stay finite.
 #include <cmath>
-#include <optional>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "facial/runtime/graph/graph_instance.h"
@@ -13,24 +14,24 @@
 
 namespace {
 
-std::optional<facial::ExpressionLibrary> gLibrary;
+// The project's presets, loaded once.
+const facial::ExpressionLibrary& library() {
+  static const facial::ExpressionLibrary loaded = [] {
+    auto library = facial::ExpressionLibrary::load(fuzz::sourceDir() / "data" / "expressions.json");
+    if (!library) {
+      std::fprintf(stderr, "fuzz_graph: %s\n", library.error().message.c_str());
+      std::abort();
+    }
+    return std::move(library).value();
+  }();
+  return loaded;
+}
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  auto library = facial::ExpressionLibrary::load(fuzz::sourceDir() / "data" / "expressions.json");
-  if (!library) {
-    std::fprintf(stderr, "fuzz_graph: %s\n", library.error().message.c_str());
-    std::abort();
-  }
-  gLibrary.emplace(std::move(library).value());
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("graph.json", data, size);
-  auto graph = facial::loadGraph(path, {facial::presetLookup(*gLibrary)});
+  auto graph = facial::loadGraph(path, {facial::presetLookup(library())});
   if (!graph) return 0;
   auto instance = facial::GraphInstance::create(*graph, /*seed=*/size);
   if (!instance) return 0;

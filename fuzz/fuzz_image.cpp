@@ -6,11 +6,6 @@
 #include "engine/scene/image_io.h"
 #include "fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // 4 Mpixel: a forged header must be refused, not decoded into gigabytes.
   auto image = eng::decodeImage({data, size}, "input image", size_t{4} << 20);

@@ -19,11 +19,6 @@ const std::vector<std::string> kTargets = {"Angry", "Surprised", "Sad", "jawOpen
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("rigmap.json", data, size);
   auto file = facial::loadRigMapFile(path, kTargets);

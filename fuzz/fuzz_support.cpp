@@ -65,3 +65,9 @@ void propertyFailed(const char* expression, const char* file, int line, const st
 }
 
 }  // namespace fuzz
+
+// libFuzzer calls this once before the first input (every fuzzer links it).
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  fuzz::initialise();
+  return 0;
+}

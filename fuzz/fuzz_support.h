@@ -15,7 +15,8 @@
 
 namespace fuzz {
 
-// Once per process: silences eng::log and creates the temporary folder.
+// Once per process (LLVMFuzzerInitialize, defined in fuzz_support.cpp, calls
+// it): silences eng::log and creates the temporary folder.
 void initialise();
 // The private temporary folder (removed at exit).
 const std::filesystem::path& scratchDir();

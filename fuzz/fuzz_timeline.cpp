@@ -8,11 +8,6 @@
 #include "facial/runtime/graph/timeline_json.h"
 #include "fuzz/fuzz_support.h"
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("timeline.json", data, size);
   auto timeline = facial::loadTimeline(path);

@@ -15,11 +15,6 @@ constexpr eng::GltfLoadLimits kLimits{.maxFileBytes = size_t{8} << 20,
 
 }  // namespace
 
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  fuzz::initialise();
-  return 0;
-}
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("input.vrm", data, size);
   auto vrm = facial::findVrmExpressions(path);

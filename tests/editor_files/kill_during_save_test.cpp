@@ -83,15 +83,29 @@ KillFigures killRepeatedly(const fs::path& path, const std::string& a, const std
   return figures;
 }
 
+// Two versions of one clip, each also saved alone to know its exact bytes;
+// `path` starts with version a.
+struct TwoVersions {
+  explicit TwoVersions(const std::string& name)
+      : dir(testing_support::freshTempDir(name)), path(dir / "clip.json"),
+        first(bigClip("clip", 0.3f)), second(bigClip("clip", 0.7f)) {
+    EXPECT_TRUE(first.save(dir / "a.json").ok());
+    EXPECT_TRUE(second.save(dir / "b.json").ok());
+    a = readAll(dir / "a.json");
+    b = readAll(dir / "b.json");
+    EXPECT_NE(a, b);
+    std::ofstream(path, std::ios::binary) << a;
+  }
+  fs::path dir, path;
+  TimelineDocument first, second;
+  std::string a, b;
+};
+
 TEST(KillDuringSave, TimelineSaveLeavesTheOldOrTheNewFile) {
-  const fs::path dir = testing_support::freshTempDir("kill_during_save");
-  const fs::path path = dir / "clip.json";
-  TimelineDocument first = bigClip("clip", 0.3f), second = bigClip("clip", 0.7f);
-  ASSERT_TRUE(first.save(dir / "a.json").ok());
-  ASSERT_TRUE(second.save(dir / "b.json").ok());
-  const std::string a = readAll(dir / "a.json"), b = readAll(dir / "b.json");
-  ASSERT_NE(a, b);
-  ASSERT_TRUE(first.save(path).ok());
+  TwoVersions v("kill_during_save");
+  const fs::path& path = v.path;
+  TimelineDocument &first = v.first, &second = v.second;
+  const std::string &a = v.a, &b = v.b;
 
   const KillFigures f = killRepeatedly(path, a, b, 30, [&](int version) {
     auto saved = (version ? second : first).save(path);
@@ -111,13 +125,9 @@ TEST(KillDuringSave, TimelineSaveLeavesTheOldOrTheNewFile) {
 }
 
 TEST(KillDuringSave, TheHarnessCatchesAPlainWrite) {
-  const fs::path dir = testing_support::freshTempDir("kill_during_plain_write");
-  const fs::path path = dir / "clip.json";
-  TimelineDocument first = bigClip("clip", 0.3f), second = bigClip("clip", 0.7f);
-  ASSERT_TRUE(first.save(dir / "a.json").ok());
-  ASSERT_TRUE(second.save(dir / "b.json").ok());
-  const std::string a = readAll(dir / "a.json"), b = readAll(dir / "b.json");
-  std::ofstream(path, std::ios::binary) << a;
+  TwoVersions v("kill_during_plain_write");
+  const fs::path& path = v.path;
+  const std::string &a = v.a, &b = v.b;
 
   // Written in place, in small pieces as a stream flushes: what the editor must not do.
   const KillFigures f = killRepeatedly(path, a, b, 20, [&](int version) {
