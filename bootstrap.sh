@@ -2,7 +2,11 @@
 # One-command set-up: installs missing Debian packages, configures (CMake +
 # Ninja) into build/, builds, then runs what was asked:
 #   ./bootstrap.sh demo [facial demo options...]   the main job
-#   ./bootstrap.sh test [ctest options...]         the whole test suite
+#   ./bootstrap.sh test [ctest options...]         the whole test suite, then the
+#                                                  reliability checks (issue 12): the
+#                                                  sanitizer suite and the fuzzers
+# FACIAL_FUZZ_SECONDS (default 15) is each fuzzer's time in `test`;
+# FACIAL_RELIABILITY=0 runs the plain suite only.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -13,6 +17,7 @@ PACKAGES=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev
+  clang libclang-rt-14-dev llvm
   python3-numpy python3-opencv opencv-data python3-matplotlib
 )
 
@@ -48,8 +53,16 @@ case "$mode" in
     install_missing_packages
     build
     # Validation layer on: any validation message fails the test that caused it.
+    # The short soak (test_soak) is one of the ctest entries.
     export FACIAL_VALIDATION=1
-    exec ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
+    ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
+    if [ "${FACIAL_RELIABILITY:-1}" != 0 ]; then
+      # ASan + UBSan + leak checking over the Vulkan-free libraries and their
+      # tests (clang, build-sanitize/), then every fuzzer for a bounded time on
+      # the same build. Any report, crash, leak, timeout or OOM fails.
+      tools/sanitizers/run.sh
+      fuzz/run.sh "${FACIAL_FUZZ_SECONDS:-15}"
+    fi
     ;;
   *)
     echo "usage: $0 demo [options] | $0 test [ctest options]" >&2

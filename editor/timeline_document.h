@@ -122,6 +122,8 @@ class TimelineDocument {
 
   // Unsaved changes since load / the last save (undoing back to it is clean again).
   bool dirty() const { return state_.serial != savedSerial_; }
+  // Marks the content as not saved to its file (edits recovered from an autosave).
+  void markUnsaved() { savedSerial_ = 0; ++revision_; }
   // Changes with every edit, undo and redo (players re-sample on change).
   uint64_t revision() const { return revision_; }
 

@@ -30,13 +30,27 @@ bool textCaseInsensitiveContains(const std::string& text, const char* filter) {
 TimelinePanel::TimelinePanel(const cli::FaceSetup& face)
     : document_("untitled", 2.0f), pose_(face.rig(), face.baseWeights()), weights_(face.baseWeights().begin(), face.baseWeights().end()) {}
 
+TimelinePanel::~TimelinePanel() {
+  if (!document_.dirty()) {
+    autosave_.discard();
+  } else if (auto kept = autosave_.flush(document_); !kept) {
+    std::fprintf(stderr, "facial-editor: error: %s\n", kept.error().message.c_str());
+  }
+}
+
 bool TimelinePanel::open(const std::string& path) {
-  auto loaded = TimelineDocument::load(path);
+  auto recovered = recoverAutosave(path);
+  if (!recovered) message_.report(recovered.error().message, true);  // the file itself still opens
+  std::optional<RecoveredTimeline> recovery = recovered ? std::move(*recovered) : std::nullopt;
+  auto loaded = recovery ? eng::Result<TimelineDocument>(std::move(recovery->document)) : TimelineDocument::load(path);
   if (!loaded) {
     message_.report(loaded.error().message, true);
     return false;
   }
+  if (document_.dirty()) (void)autosave_.flush(document_);  // the edits being replaced stay recoverable
   document_ = std::move(*loaded);
+  autosave_ = TimelineAutosave(autosavePathFor(path));
+  autosaveError_.clear();
   std::snprintf(path_, sizeof path_, "%s", path.c_str());
   playTime_ = playhead_ = 0.0f;
   currentTrack_ = document_.tracks().empty() ? -1 : 0;
@@ -46,6 +60,7 @@ bool TimelinePanel::open(const std::string& path) {
   message_.report("opened " + path + " (" + std::to_string(document_.tracks().size()) + " tracks" +
                       (unknown ? ", " + std::to_string(unknown) + " on channels this face does not have" : std::string()) + ")",
                   false);
+  if (recovery) message_.report(recovery->message, false);
   posedRevision_ = UINT64_MAX;
   return true;
 }
@@ -55,8 +70,20 @@ bool TimelinePanel::save(const std::string& path) {
     message_.report(saved.error().message, true);
     return false;
   }
+  // Saved: the autosave of the old and of the new path hold nothing more.
+  autosave_.discard();
+  autosave_ = TimelineAutosave(autosavePathFor(path));
+  autosave_.discard();
+  autosaveError_.clear();
   message_.report("saved " + path, false);
   return true;
+}
+
+void TimelinePanel::autosave() {
+  auto written = autosave_.update(document_, TimelineAutosave::Clock::now());
+  if (written || written.error().message == autosaveError_) return;
+  autosaveError_ = written.error().message;
+  message_.report(autosaveError_, true);
 }
 
 void TimelinePanel::setPlayhead(float time) {
@@ -77,6 +104,7 @@ void TimelinePanel::update(float dt) {
     if (mode == facial::LoopMode::Once && playTime_ >= document_.duration()) playing_ = false;
     playhead_ = facial::clipTime(mode, document_.duration(), playTime_);
   }
+  autosave();
   refreshPose();
 }
 

@@ -11,6 +11,7 @@
 
 #include "app/face_setup.h"
 #include "editor/app/face_delegate.h"
+#include "editor/autosave.h"
 #include "editor/timeline_document.h"
 #include "editor/timeline_pose.h"
 
@@ -19,7 +20,12 @@ namespace editor {
 class TimelinePanel {
  public:
   TimelinePanel(const cli::FaceSetup& face);
+  // Unsaved edits stay in the autosave (the next open recovers them); a clean document removes it.
+  ~TimelinePanel();
+  TimelinePanel(const TimelinePanel&) = delete;
+  TimelinePanel& operator=(const TimelinePanel&) = delete;
   // Opens a timeline file (errors shown in the panel and logged; the current document stays).
+  // Unsaved edits an earlier editor autosaved for it are recovered instead, saying so.
   bool open(const std::string& path);
   bool save(const std::string& path);
 
@@ -59,6 +65,7 @@ class TimelinePanel {
   void drawTracks(FaceDelegate& face);
   bool addKeys(FaceDelegate& face, bool allTracks);
   void refreshPose();
+  void autosave();
 
   TimelineDocument document_;
   TimelinePose pose_;
@@ -78,6 +85,9 @@ class TimelinePanel {
   bool scrubbing_ = false;
   float dragStartX_ = 0.0f, dragStartY_ = 0.0f;
   PanelMessage message_;
+  // Beside the document's path (editor/autosave.h); follows open and save.
+  TimelineAutosave autosave_{autosavePathFor("timeline.json")};
+  std::string autosaveError_;  // the last autosave failure reported (reported once)
 };
 
 }  // namespace editor

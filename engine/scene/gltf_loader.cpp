@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 
@@ -48,6 +49,26 @@ std::string oneLine(std::string text) {
     }
   }
   return out;
+}
+
+// glTF versions are "<major>.<minor>": a 2.x asset loads (minor versions stay
+// compatible) unless its minVersion asks for more than 2.0; another major
+// version is a different format. Both are refused by name, never misread.
+std::optional<std::string> assetVersionProblem(const tinygltf::Asset& asset) {
+  const auto parse = [](const std::string& text, int& major, int& minor) {
+    return std::sscanf(text.c_str(), "%d.%d", &major, &minor) == 2;
+  };
+  int major = 0, minor = 0;
+  if (!parse(asset.version, major, minor))
+    return "asset.version '" + asset.version + "' is not a glTF version (expected 2.0)";
+  if (major != 2) return "glTF version " + asset.version + " is not supported (this loader reads glTF 2.x)";
+  if (!asset.minVersion.empty()) {
+    if (!parse(asset.minVersion, major, minor))
+      return "asset.minVersion '" + asset.minVersion + "' is not a glTF version";
+    if (major != 2 || minor > 0)
+      return "the file needs glTF " + asset.minVersion + " (asset.minVersion), newer than the 2.0 this loader reads";
+  }
+  return std::nullopt;
 }
 
 std::vector<std::string> splitLines(const std::string& text) {
@@ -727,6 +748,7 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
       if (!files.problems().empty()) return makeError(file + ": " + files.problems().front());
       return makeError(file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
     }
+    if (auto problem = assetVersionProblem(gltf.asset)) return makeError(file + ": " + *problem);
     ExtensionOutcomes outcomes;
     if (auto ok = decodeCompressedGeometry(gltf, *placeholders, limits, outcomes); !ok)
       return makeError(file + ": " + ok.error().message);

@@ -1,5 +1,6 @@
 #include "engine/scene/normals.h"
 
+#include <cmath>
 #include <cstring>
 #include <unordered_map>
 
@@ -41,21 +42,25 @@ std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions
   for (size_t v = 0; v < n; ++v)
     group[v] = groups.try_emplace(keyOf(positions[v]), static_cast<uint32_t>(groups.size())).first->second;
 
-  std::vector<glm::vec3> sums(groups.size(), glm::vec3(0.0f));
+  // In double: with coordinates near float's range (1e30 is a valid float)
+  // the float cross product and its squared length overflow to inf and the
+  // normal to NaN; in double any finite float input gives a finite normal.
+  std::vector<glm::dvec3> sums(groups.size(), glm::dvec3(0.0));
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     const uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
     if (a >= n || b >= n || c >= n) continue;
     // The cross product's length is twice the area: larger faces weigh more.
-    const glm::vec3 faceNormal = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+    const glm::dvec3 pa(positions[a]);
+    const glm::dvec3 faceNormal = glm::cross(glm::dvec3(positions[b]) - pa, glm::dvec3(positions[c]) - pa);
     sums[group[a]] += faceNormal;
     sums[group[b]] += faceNormal;
     sums[group[c]] += faceNormal;
   }
   std::vector<glm::vec3> normals(n);
   for (size_t v = 0; v < n; ++v) {
-    const glm::vec3 s = sums[group[v]];
-    const float len2 = glm::dot(s, s);
-    normals[v] = len2 > 1e-30f ? s / std::sqrt(len2) : glm::vec3(0.0f, 0.0f, 1.0f);
+    const glm::dvec3 s = sums[group[v]];
+    const double len = glm::length(s);
+    normals[v] = std::isfinite(len) && len > 1e-15 ? glm::vec3(s / len) : glm::vec3(0.0f, 0.0f, 1.0f);
   }
   return normals;
 }

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "engine/scene/image_io.h"
+#include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
 #include "engine/scene/obj_correspondence.h"
 #include "engine/scene/obj_mesh.h"
@@ -36,8 +37,9 @@ struct PrimitiveBuild {
 };
 
 void normalizeOr(glm::vec3& n, bool& ok) {
-  const float len = glm::length(n);
-  if (len > 1e-12f) n /= len;
+  // In double: the float length of a huge (still finite) vn overflows.
+  const double len = glm::length(glm::dvec3(n));
+  if (std::isfinite(len) && len > 1e-12) n = glm::vec3(glm::dvec3(n) / len);
   else ok = false;
 }
 
@@ -222,6 +224,11 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
   node.mesh = 0;
   model.nodes.push_back(std::move(node));
   model.roots = {0};
+  // Finite OBJ coordinates can still give non-finite morph deltas (a target
+  // vertex 3e38 away from its neutral one): refused here, by file, rather
+  // than handed on to the renderer.
+  if (auto consistent = checkModel(model); !consistent)
+    return makeError(neutralPath.string() + ": " + consistent.error().message);
   return result;
 }
 

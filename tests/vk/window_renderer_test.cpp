@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -189,6 +190,58 @@ TEST(WindowRenderer, HotReloadsEditedShadersWhileRunning) {
   const eng::Image shot = screenshotOf(rig, scene.frame(), "hot_reload");
   EXPECT_EQ(vk_test::pixel(shot, 2, 2), glm::ivec4(255, 0, 255, 255)) << "the edited backdrop shader is live";
   EXPECT_EQ(rig.renderer->shaders().generation(), 1u);
+}
+
+}  // namespace
+
+namespace {
+
+// Window faults: a storm of resizes (drawn with and without the events
+// processed first, so the swapchain is often out of date or suboptimal when a
+// frame starts, down to 1x1), the window hidden and shown again (unmapped and
+// mapped, as a window manager minimises and restores on X11) while frames
+// keep being asked for. Every frame must be presented or skipped cleanly, no
+// validation message may appear, and the renderer must end at the window's size.
+TEST(WindowRenderer, SurvivesResizeStormsAndHideShow) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> side(1, 700);
+  size_t presented = 0, skipped = 0;
+  for (int i = 0; i < 120; ++i) {
+    if (i % 40 == 20) {
+      glfwHideWindow(rig.window->handle());
+      for (int hidden = 0; hidden < 5; ++hidden) {
+        rig.window->pollEvents();
+        auto frame = rig.renderer->drawFrame(scene.frame());
+        ASSERT_TRUE(frame) << "frame while hidden: " << frame.error().message;
+        (*frame == eng::vk::FrameResult::Presented ? presented : skipped) += 1;
+      }
+      glfwShowWindow(rig.window->handle());
+    }
+    const int width = i % 15 == 7 ? 1 : side(random), height = i % 15 == 7 ? 1 : side(random);
+    glfwSetWindowSize(rig.window->handle(), width, height);
+    if (i % 3 != 0) rig.window->pollEvents();  // else draw before the resize is even seen
+    auto frame = rig.renderer->drawFrame(scene.frame());
+    ASSERT_TRUE(frame) << "frame " << i << " after a resize to " << width << "x" << height << ": " << frame.error().message;
+    (*frame == eng::vk::FrameResult::Presented ? presented : skipped) += 1;
+  }
+  EXPECT_GT(presented, 60u) << "most frames of the storm are drawn (skipped " << skipped << ")";
+
+  glfwSetWindowSize(rig.window->handle(), 400, 300);
+  for (int i = 0; i < 200 && (rig.window->framebufferExtent().width != 400 || rig.window->framebufferExtent().height != 300); ++i) {
+    rig.window->pollEvents();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(rig.window->framebufferExtent().width, 400u) << "the X server applied the last size";
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "after_storm");
+  EXPECT_EQ(rig.renderer->extent().width, 400u);
+  EXPECT_EQ(rig.renderer->extent().height, 300u);
+  EXPECT_EQ(shot.width, 400);
+  EXPECT_EQ(shot.height, 300);
+  EXPECT_EQ(rig.ctx->validationMessageCount(), 0u);
 }
 
 }  // namespace

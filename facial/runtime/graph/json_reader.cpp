@@ -79,8 +79,7 @@ std::string JsonNode::stringOr(std::string_view key, std::string fallback) const
 void requireVersion(const JsonNode& document, int version) {
   if (!document.isObject()) document.fail("expected a JSON object at the top level");
   const JsonNode v = document.at("version");
-  if (!v.raw().is_number_integer() || v.raw().get<int64_t>() != version)
-    v.fail("unsupported version " + v.raw().dump() + " (this build reads version " + std::to_string(version) + ")");
+  if (auto problem = formatVersionProblem(v.raw(), version)) v.fail(*problem);
 }
 
 double jsonNumber(float value) {

@@ -25,8 +25,7 @@ eng::Result<RigMapFile> fromJson(const Json& root, std::string_view source, std:
   RigMapFile file;
   if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
   if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
-  if (!root["version"].is_number_integer() || root["version"].get<int64_t>() != 1)
-    return jsonError(source, "/version", "unsupported version " + root["version"].dump() + " (this build reads version 1)");
+  if (auto problem = formatVersionProblem(root["version"], 1)) return jsonError(source, "/version", *problem);
 
   RigMappingBuilder builder(RigScheme::Custom, targetNames);
   builder.setDetail("rig map " + std::string(source));

@@ -1,0 +1,68 @@
+#pragma once
+// Autosave of the timeline being edited, so that a crash, a kill or a power
+// cut loses at most the last few seconds of work:
+//
+//   TimelineAutosave autosave(autosavePathFor(documentPath));
+//   autosave.update(document, now);   // every frame: writes when there are new unsaved edits
+//   autosave.discard();               // after a successful save (or a clean close)
+//
+// The autosave is a timeline file of its own beside the document,
+// ".<file name>.autosave" (hidden, and never mistaken for the document), written
+// through replaceFileAtomically like every save. The next editor that opens the
+// document calls recoverAutosave(): when an autosave newer than the document is
+// there, the edits come back as an unsaved document, with a message saying
+// where they came from; saving then writes them to the document and removes
+// the autosave.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "editor/timeline_document.h"
+#include "engine/core/result.h"
+
+namespace editor {
+
+// "<dir>/.<name>.autosave" for "<dir>/<name>".
+std::filesystem::path autosavePathFor(const std::filesystem::path& document);
+
+class TimelineAutosave {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::milliseconds kDefaultInterval{3000};
+
+  explicit TimelineAutosave(std::filesystem::path file, std::chrono::milliseconds interval = kDefaultInterval);
+
+  const std::filesystem::path& file() const { return file_; }
+  // Writes the document's clip when it has unsaved edits the autosave does not
+  // hold yet and `interval` has passed since the last write (the first edit is
+  // written at once). true when it wrote; an error names the autosave file.
+  eng::Result<bool> update(const TimelineDocument& document, Clock::time_point now);
+  // Writes now whatever the interval (unsaved edits only).
+  eng::Result<bool> flush(const TimelineDocument& document);
+  // Removes the autosave file (the document is saved, or closed on purpose).
+  void discard();
+
+ private:
+  eng::Result<bool> write(const TimelineDocument& document);
+
+  std::filesystem::path file_;
+  std::chrono::milliseconds interval_;
+  std::optional<Clock::time_point> lastWrite_;
+  uint64_t writtenRevision_ = UINT64_MAX;  // document revision the autosave holds
+};
+
+struct RecoveredTimeline {
+  TimelineDocument document;  // unsaved (dirty): saving writes it to the document's path
+  std::string message;        // one line: what was recovered from where
+};
+
+// The edits an earlier editor autosaved for `document` and never saved: the
+// autosave when it exists and is newer than the document (or the document is
+// gone). nullopt when there is nothing to recover (an autosave older than the
+// document is stale and removed). An autosave that does not load is an error
+// naming it; it is left in place for the user to look at.
+eng::Result<std::optional<RecoveredTimeline>> recoverAutosave(const std::filesystem::path& document);
+
+}  // namespace editor

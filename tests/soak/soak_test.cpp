@@ -1,0 +1,215 @@
+// The soak: a crowd of faces, each with its own graph instance (the demo's
+// tour graph: a state machine of the seven emotions, talking, blinks), driven
+// the way an application drives them for hours: random triggers at random
+// moments, random parameter changes, uneven frame times with hitches, the odd
+// reset, and the crowd drawn headless (every frame on a GPU; on a CPU device
+// every FACIAL_SOAK_DRAW_EVERY-th frame, default 20: lavapipe with validation draws the nine
+// heads in about 0.4 s of CPU, and graph updates are what runs every frame anyway).
+// What must hold over any number of frames:
+//   - resident memory flat: after warm-up it never rises more than 1 % above
+//     its level at the end of warm-up;
+//   - every channel and morph-target weight finite, every frame;
+//   - not one validation message (the context runs with the layer on).
+//
+//   build/bin/test_soak                             the short run (ctest)
+//   FACIAL_SOAK_FRAMES=100000 FACIAL_SOAK_DRAW_EVERY=50 build/bin/test_soak   the long run
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/weights.h"
+#include "engine/vk/context.h"
+#include "engine/vk/offscreen_renderer.h"
+#include "facial/runtime/character/face_driver.h"
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/rig/expression_library.h"
+#include "facial/runtime/rig/rig_mapping.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+constexpr uint32_t kShortRunFrames = 1200;
+constexpr uint32_t kCrowd = 9;
+constexpr uint32_t kImageSide = 64;
+constexpr double kAllowedGrowth = 0.01;  // resident memory after warm-up, relative
+
+uint32_t positiveEnv(const char* name, uint32_t fallback) {
+  if (const char* text = std::getenv(name)) {
+    const long value = std::strtol(text, nullptr, 10);
+    if (value > 0) return uint32_t(value);
+  }
+  return fallback;
+}
+
+// Resident set size from /proc/self/statm (pages -> bytes).
+size_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t sizePages = 0, residentPages = 0;
+  statm >> sizePages >> residentPages;
+  return residentPages * size_t(sysconf(_SC_PAGESIZE));
+}
+
+struct SoakFigures {
+  uint32_t frames = 0;
+  uint32_t warmupFrames = 0;
+  size_t residentAfterWarmup = 0;
+  size_t residentPeak = 0;  // after warm-up
+  size_t residentFinal = 0;
+  uint32_t peakFrame = 0;
+  uint32_t drawn = 0;
+  uint64_t triggers = 0;
+  uint64_t parameterChanges = 0;
+  uint64_t resets = 0;
+  uint64_t nonFiniteWeights = 0;
+  double seconds = 0;
+};
+
+TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
+  const uint32_t frames = positiveEnv("FACIAL_SOAK_FRAMES", kShortRunFrames);
+  const std::filesystem::path data = testing_support::sourceDir() / "data";
+
+  auto model = eng::loadModel(data / "head.glb");
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  const eng::WeightLayout layout(*model);
+  const std::vector<std::string> targetNames = layout.names();
+  auto rig = facial::buildRigMapping(targetNames);
+  ASSERT_TRUE(rig.ok()) << rig.error().message;
+  auto library = facial::ExpressionLibrary::load(data / "expressions.json");
+  ASSERT_TRUE(library.ok()) << library.error().message;
+  auto graph = facial::loadGraph(data / "graphs" / "tour.json", {facial::presetLookup(*library)});
+  ASSERT_TRUE(graph.ok()) << graph.error().message;
+
+  std::vector<facial::FaceDriver> faces;
+  for (uint32_t i = 0; i < kCrowd; ++i) {
+    auto face = facial::FaceDriver::create(*graph, &*rig, targetNames, layout.defaults(), /*seed=*/i);
+    ASSERT_TRUE(face.ok()) << face.error().message;
+    faces.push_back(std::move(*face));
+  }
+
+  eng::vk::ContextOptions contextOptions;
+  contextOptions.applicationName = "test_soak";
+  contextOptions.validation = true;
+  uint32_t validationMessages = 0;
+  std::string firstValidationMessage;
+  contextOptions.onValidationMessage = [&](eng::LogLevel, std::string_view message) {
+    if (validationMessages++ == 0) firstValidationMessage = message;
+  };
+  auto context = eng::vk::Context::create(contextOptions);
+  ASSERT_TRUE(context.ok()) << context.error().message;
+  auto renderer = eng::vk::OffscreenRenderer::create(*context, {.width = kImageSide, .height = kImageSide});
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  auto gpuModel = renderer->upload(*model);
+  ASSERT_TRUE(gpuModel.ok()) << gpuModel.error().message;
+
+  // A 3x3 grid of heads, framed together.
+  const eng::Aabb bounds = model->bounds();
+  const float spacing = std::max(bounds.size().x, bounds.size().y) * 1.15f;
+  eng::Aabb crowdBounds;
+  std::vector<eng::vk::ModelInstance> instances(kCrowd);
+  for (uint32_t i = 0; i < kCrowd; ++i) {
+    const glm::vec3 offset((float(i % 3) - 1.0f) * spacing, (float(i / 3) - 1.0f) * spacing, 0.0f);
+    crowdBounds.extend(bounds.min + offset);
+    crowdBounds.extend(bounds.max + offset);
+    instances[i].model = &*gpuModel;
+    instances[i].transform = glm::translate(glm::mat4(1.0f), offset);
+  }
+  eng::vk::SceneView view{eng::vk::OrbitCamera::frame(crowdBounds)};
+  const bool cpuDevice = context->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  const uint32_t drawEvery = positiveEnv("FACIAL_SOAK_DRAW_EVERY", cpuDevice ? 20 : 1);
+
+  const facial::GraphDefinition& definition = **graph;
+  static constexpr const char* kTriggers[] = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
+  std::vector<facial::ParameterIndex> triggers;
+  for (const char* name : kTriggers) triggers.push_back(*definition.findParameter(name));
+  const facial::ParameterIndex talk = *definition.findParameter("talk");
+  const facial::ParameterIndex autoplay = *definition.findParameter("autoplay");
+
+  std::mt19937 random(12);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> nextEvent(kCrowd, 0.0f);
+  float time = 0.0f;
+
+  SoakFigures figures;
+  figures.frames = frames;
+  figures.warmupFrames = std::max<uint32_t>(300, frames / 10);
+  const auto started = std::chrono::steady_clock::now();
+  for (uint32_t frame = 0; frame < frames; ++frame) {
+    // Uneven frame times: 30-240 Hz, with a hitch now and then.
+    float dt = 1.0f / (30.0f + 210.0f * unit(random));
+    if (unit(random) < 0.002f) dt = 0.25f + unit(random);
+    time += dt;
+    for (uint32_t i = 0; i < kCrowd; ++i) {
+      facial::GraphInstance& g = faces[i].graph();
+      if (time >= nextEvent[i]) {
+        const float pick = unit(random);
+        if (pick < 0.7f) {
+          g.setTrigger(triggers[std::uniform_int_distribution<size_t>(0, triggers.size() - 1)(random)]);
+          ++figures.triggers;
+        } else if (pick < 0.98f) {
+          g.setFloat(talk, unit(random) < 0.5f ? 0.0f : unit(random));
+          g.setBool(autoplay, unit(random) < 0.2f);
+          figures.parameterChanges += 2;
+        } else {
+          g.reset();
+          ++figures.resets;
+        }
+        // Mostly mid-transition: the next event often interrupts the blend.
+        nextEvent[i] = time + 0.05f + 2.0f * unit(random);
+      }
+      ASSERT_TRUE(faces[i].update(dt));
+      for (float w : faces[i].channelWeights()) figures.nonFiniteWeights += !std::isfinite(w);
+      for (float w : faces[i].targetWeights()) figures.nonFiniteWeights += !std::isfinite(w);
+      instances[i].weights = faces[i].targetWeights();
+    }
+    ASSERT_EQ(figures.nonFiniteWeights, 0u) << "frame " << frame << ": a weight is not finite";
+    if (frame % drawEvery == 0 || frame + 1 == frames) {
+      auto drawn = renderer->renderTimed(view, instances);
+      ASSERT_TRUE(drawn.ok()) << "frame " << frame << ": " << drawn.error().message;
+      ASSERT_EQ(validationMessages, 0u) << "frame " << frame << ": " << firstValidationMessage;
+      ++figures.drawn;
+    }
+
+    if (frame + 1 == figures.warmupFrames) figures.residentAfterWarmup = residentBytes();
+    if (frame + 1 > figures.warmupFrames && (frame % 100 == 0 || frame + 1 == frames)) {
+      const size_t resident = residentBytes();
+      if (resident > figures.residentPeak) {
+        figures.residentPeak = resident;
+        figures.peakFrame = frame;
+      }
+    }
+  }
+  figures.residentFinal = residentBytes();
+  figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  const double mib = 1.0 / (1 << 20);
+  const double growth = figures.residentPeak > figures.residentAfterWarmup
+                            ? double(figures.residentPeak - figures.residentAfterWarmup) / double(figures.residentAfterWarmup)
+                            : 0.0;
+  std::printf("soak: %u frames (%u warm-up, %u drawn) of %u faces at %ux%u in %.1f s (%.2f ms/frame); %llu triggers, "
+              "%llu parameter changes, %llu resets\n"
+              "soak: resident %.1f MiB after warm-up, peak %.1f MiB (frame %u, +%.3f %%), final %.1f MiB; "
+              "non-finite weights %llu; validation messages %u\n",
+              figures.frames, figures.warmupFrames, figures.drawn, kCrowd, kImageSide, kImageSide, figures.seconds,
+              1000.0 * figures.seconds / figures.frames, (unsigned long long)figures.triggers,
+              (unsigned long long)figures.parameterChanges, (unsigned long long)figures.resets,
+              figures.residentAfterWarmup * mib, figures.residentPeak * mib, figures.peakFrame, 100.0 * growth,
+              figures.residentFinal * mib, (unsigned long long)figures.nonFiniteWeights, validationMessages);
+  EXPECT_LE(growth, kAllowedGrowth) << "resident memory grew from " << figures.residentAfterWarmup << " to "
+                                    << figures.residentPeak << " bytes after warm-up";
+  auto clean = context->checkValidation();
+  EXPECT_TRUE(clean.ok()) << clean.error().message;
+}
+
+}  // namespace
