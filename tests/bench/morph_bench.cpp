@@ -22,6 +22,7 @@
 #include "engine/vk/offscreen_renderer.h"
 #include "engine/vk/framing_bounds.h"
 #include "tests/bench/bench_gpu.h"
+#include "tests/common/test_meshes.h"
 
 namespace {
 
@@ -42,17 +43,7 @@ const eng::Model& headModel() {
 const eng::Model& gridModel() {
   static const eng::Model model = [] {
     constexpr int kSide = 101, kTargets = 256;
-    eng::Primitive p;
-    for (int y = 0; y < kSide; ++y)
-      for (int x = 0; x < kSide; ++x) {
-        p.positions.emplace_back(x / float(kSide - 1) - 0.5f, y / float(kSide - 1) - 0.5f, 0.0f);
-        p.normals.emplace_back(0.0f, 0.0f, 1.0f);
-      }
-    for (int y = 0; y + 1 < kSide; ++y)
-      for (int x = 0; x + 1 < kSide; ++x) {
-        const uint32_t i = uint32_t(y * kSide + x);
-        p.indices.insert(p.indices.end(), {i, i + 1, i + kSide, i + 1, i + kSide + 1, i + kSide});
-      }
+    eng::Primitive p = testing_support::flatSheet(kSide);
     eng::Mesh mesh;
     for (int t = 0; t < kTargets; ++t) {
       eng::MorphTarget target;

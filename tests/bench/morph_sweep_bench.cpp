@@ -38,6 +38,7 @@
 #include "engine/vk/context.h"
 #include "engine/vk/offscreen_renderer.h"
 #include "tests/bench/bench_gpu.h"
+#include "tests/common/test_meshes.h"
 
 namespace {
 
@@ -47,17 +48,7 @@ constexpr int kBands = 5;  // a target moves one band: a fifth of the vertices
 // A square grid of about `vertices` vertices with kTargets local targets.
 eng::Model sweepModel(int vertices) {
   const int side = std::max(2, int(std::lround(std::sqrt(double(vertices)))));
-  eng::Primitive p;
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) {
-      p.positions.emplace_back(x / float(side - 1) - 0.5f, y / float(side - 1) - 0.5f, 0.0f);
-      p.normals.emplace_back(0.0f, 0.0f, 1.0f);
-    }
-  for (int y = 0; y + 1 < side; ++y)
-    for (int x = 0; x + 1 < side; ++x) {
-      const uint32_t i = uint32_t(y * side + x);
-      p.indices.insert(p.indices.end(), {i, i + 1, i + uint32_t(side), i + 1, i + uint32_t(side) + 1, i + uint32_t(side)});
-    }
+  eng::Primitive p = testing_support::flatSheet(side);
   eng::Mesh mesh;
   const size_t n = p.positions.size();
   for (int t = 0; t < kTargets; ++t) {
