@@ -12,7 +12,7 @@
 
 #include "facial/runtime/graph/graph_builder.h"
 #include "facial/runtime/graph/graph_instance.h"
-#include "tests/bench/allocation_counter.h"
+#include "tests/common/allocation_counter.h"
 
 namespace {
 
@@ -93,18 +93,18 @@ BENCHMARK(GraphUpdateCharacters)->Arg(1)->Arg(100)->Arg(1000);
 void GraphUpdate60Channels(benchmark::State& state) {
   const SharedGraphDefinition graph = characterGraph(60);
   const int64_t count = state.range(0);
-  const uint64_t bytesBefore = bench::allocatedBytes();
+  const uint64_t bytesBefore = testing_support::allocatedBytes();
   std::vector<GraphInstance> faces;
   faces.reserve(size_t(count));
   for (int64_t i = 0; i < count; ++i) faces.push_back(GraphInstance::create(graph, static_cast<uint64_t>(i)).value());
-  const double bytesPerCharacter = double(bench::allocatedBytes() - bytesBefore) / double(count);
+  const double bytesPerCharacter = double(testing_support::allocatedBytes() - bytesBefore) / double(count);
   for (int64_t i = 0; i < count; ++i) faces[size_t(i)].update(0.05f + 0.4f * float(i % 7) / 7.0f);  // own phase
-  const uint64_t allocationsBefore = bench::allocationCount();
+  const uint64_t allocationsBefore = testing_support::allocationCount();
   for (auto _ : state) {
     for (GraphInstance& face : faces) face.update(kFrame);
     benchmark::DoNotOptimize(faces.back().weights().data());
   }
-  const uint64_t allocations = bench::allocationCount() - allocationsBefore;
+  const uint64_t allocations = testing_support::allocationCount() - allocationsBefore;
   state.SetItemsProcessed(state.iterations() * count);
   state.counters["characters"] = double(count);
   state.counters["channels"] = double(graph->channelCount());

@@ -10,61 +10,11 @@
 
 #include "bake/vrm_import.h"
 #include "facial/runtime/rig/json_document.h"
+#include "tests/common/allocation_counter.h"
 #include "tests/facial_graph/graph_test_support.h"
 
 using namespace facial;
 using namespace graph_test;
-
-// Counting global allocation hook: every operator new in this test binary
-// goes through here; tests switch counting on around the code under watch.
-namespace {
-std::atomic<bool> gCounting{false};
-std::atomic<long> gAllocations{0};
-
-constexpr std::align_val_t kDefaultAlign{alignof(std::max_align_t)};
-
-// nullptr when out of memory (the nothrow forms); the throwing forms turn that into bad_alloc.
-void* tryAllocate(std::size_t size, std::align_val_t align = kDefaultAlign) noexcept {
-  if (gCounting.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  const std::size_t a = static_cast<std::size_t>(align);
-  return a <= alignof(std::max_align_t) ? std::malloc(size ? size : 1)
-                                        : std::aligned_alloc(a, (size + a - 1) / a * a);
-}
-
-void* allocate(std::size_t size, std::align_val_t align = kDefaultAlign) {
-  void* p = tryAllocate(size, align);
-  if (!p) throw std::bad_alloc();
-  return p;
-}
-}  // namespace
-
-// Every replaceable form, nothrow ones included: a form left out would come
-// from the runtime (or the sanitizer's allocator) and be freed here.
-
-void* operator new(std::size_t size) { return allocate(size); }
-void* operator new[](std::size_t size) { return allocate(size); }
-void* operator new(std::size_t size, std::align_val_t align) { return allocate(size, align); }
-void* operator new[](std::size_t size, std::align_val_t align) { return allocate(size, align); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return tryAllocate(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return tryAllocate(size); }
-void* operator new(std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return tryAllocate(size, align);
-}
-void* operator new[](std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return tryAllocate(size, align);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace {
 
@@ -144,8 +94,7 @@ TEST(GraphInstance, UpdateNeverAllocates) {
   GraphInstance face = instantiate(rig.graph, 3);
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  gAllocations = 0;
-  gCounting = true;
+  const uint64_t before = testing_support::allocationCount();
   for (int f = 0; f < 20000; ++f) {
     if (u(rng) < 0.05f) face.setTrigger(rig.go);
     if (u(rng) < 0.01f) face.setTrigger(rig.back);
@@ -153,13 +102,11 @@ TEST(GraphInstance, UpdateNeverAllocates) {
     face.setFloat(rig.expression, std::floor(3 * u(rng) * (u(rng) < 0.02f)));
     face.update(0.001f + 0.04f * u(rng));
   }
-  gCounting = false;
-  EXPECT_EQ(gAllocations.load(), 0);
+  EXPECT_EQ(testing_support::allocationCount() - before, 0u);
   // The hook does count: creating an instance allocates.
-  gCounting = true;
+  const uint64_t beforeCreate = testing_support::allocationCount();
   GraphInstance other = instantiate(rig.graph);
-  gCounting = false;
-  EXPECT_GT(gAllocations.load(), 0);
+  EXPECT_GT(testing_support::allocationCount() - beforeCreate, 0u);
 }
 
 TEST(GraphInstance, SameInputsAndStepsGiveTheSameWeightsBitForBit) {
@@ -230,13 +177,11 @@ TEST(GraphInstance, VrmMaterialBindsPerFrameNeverAllocate) {
   std::vector<VrmMaterialState> rest(set->materialCount), moved(set->materialCount);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  gAllocations = 0;
-  gCounting = true;
+  const uint64_t before = testing_support::allocationCount();
   for (int f = 0; f < 5000; ++f) {
     for (float& w : weights) w = u(rng);
     ASSERT_TRUE(set->effectiveWeights(weights, effective));
     ASSERT_TRUE(set->applyMaterials(effective, rest, moved));
   }
-  gCounting = false;
-  EXPECT_EQ(gAllocations.load(), 0);
+  EXPECT_EQ(testing_support::allocationCount() - before, 0u);
 }
