@@ -133,6 +133,10 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
   }
   for (auto& [material, image] : textures) {
     image.dilate(4);
+    // Texels no triangle covers are plain skin: a primitive of the same
+    // material without UVs samples texel (0, 0), and it must not turn black.
+    for (size_t i = 0; i < image.texels.size(); ++i)
+      if (!image.covered[i]) image.texels[i] = glm::vec4(kSkinColour, 1.0f);
     Image painted;
     painted.name = "painted brows";
     painted.width = image.width;
