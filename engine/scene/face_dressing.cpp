@@ -106,6 +106,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
   constexpr float kOpacity = 0.8f;
   const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::map<int, PaintImage> textures;  // dressed skin material -> its texture
+  std::vector<Primitive*> withoutUvs;   // painted through their vertex colours
   for (const PlannedPrimitive& p : planned) {
     if (p.part != Part::Skin) continue;
     Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];
@@ -124,6 +125,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
                     image.set(x, y, glm::vec4(glm::mix(kSkinColour, browColour(), c), 1.0f));
                   });
     } else {
+      withoutUvs.push_back(&prim);
       prim.colors.resize(n, glm::vec4(1.0f));
       for (size_t v = 0; v < n; ++v) {
         const float c = kOpacity * browCoverage(frames, prim.positions[v]);
@@ -133,10 +135,6 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
   }
   for (auto& [material, image] : textures) {
     image.dilate(4);
-    // Texels no triangle covers are plain skin: a primitive of the same
-    // material without UVs samples texel (0, 0), and it must not turn black.
-    for (size_t i = 0; i < image.texels.size(); ++i)
-      if (!image.covered[i]) image.texels[i] = glm::vec4(kSkinColour, 1.0f);
     Image painted;
     painted.name = "painted brows";
     painted.width = image.width;
@@ -146,6 +144,20 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     m.baseColorImage = int(model.images.size());
     m.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, m.baseColorFactor.a);
     model.images.push_back(std::move(painted));
+  }
+  // A primitive without UVs would sample one texel of a texture made for its
+  // neighbours' UVs: it keeps a copy of the material with the plain skin tone.
+  std::map<int, int> untextured;  // textured skin material -> its untextured copy
+  for (Primitive* prim : withoutUvs) {
+    if (!textures.contains(prim->material)) continue;
+    auto [it, added] = untextured.try_emplace(prim->material, int(model.materials.size()));
+    if (added) {
+      Material plain = model.materials[size_t(prim->material)];
+      plain.baseColorImage = -1;
+      plain.baseColorFactor = glm::vec4(kSkinColour, plain.baseColorFactor.a);
+      model.materials.push_back(std::move(plain));
+    }
+    prim->material = it->second;
   }
 }
 

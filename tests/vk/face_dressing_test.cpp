@@ -107,6 +107,24 @@ TEST(FaceDressing, PlasterHeadGetsEyesTeethSkinAndOcclusion) {
   EXPECT_EQ(skin.colors.size(), skin.positions.size()) << "occlusion baked into vertex colours";
 }
 
+TEST(FaceDressing, SkinWithoutUvsKeepsAPlainSkinMaterialBesideAPaintedOne) {
+  eng::Model model = plasterHead();
+  eng::Primitive noUvs = model.meshes[0].primitives[0];  // same material, no texture coordinates
+  noUvs.texcoords.clear();
+  model.meshes[0].primitives.push_back(noUvs);
+  eng::dressUntexturedFace(model);
+  const eng::Material& painted = model.materials[size_t(model.meshes[0].primitives[0].material)];
+  const eng::Primitive& plain = model.meshes[0].primitives[1];
+  const eng::Material& plainMaterial = model.materials[size_t(plain.material)];
+  EXPECT_GE(painted.baseColorImage, 0) << "the primitive with UVs samples the painted texture";
+  EXPECT_EQ(plainMaterial.baseColorImage, -1) << "the one without samples nothing";
+  EXPECT_GT(plainMaterial.baseColorFactor.r, plainMaterial.baseColorFactor.b) << "skin tone";
+  EXPECT_LT(plainMaterial.baseColorFactor.r, 0.9f);
+  const bool hasBrow = std::any_of(plain.colors.begin(), plain.colors.end(),
+                                   [](const glm::vec4& c) { return c.r < 0.5f; });
+  EXPECT_TRUE(hasBrow) << "its brows are in the vertex colours";
+}
+
 TEST(PaintedBrows, BrowsSitOnTheBrowRidgeAboveEachEye) {
   const eng::Model model = plasterHead();
   const std::vector<eng::BrowFrame> frames = eng::browFrames(model, eng::findUntexturedEyes(model), 0);
