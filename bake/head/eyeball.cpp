@@ -35,9 +35,14 @@ PartMesh buildEyeball(const EyeOpening& eye, const HeadProportions& p) {
 
 eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
   eng::PaintImage img(width, height);
-  const glm::vec3 sclera = eng::srgb(246, 244, 240), scleraShade = eng::srgb(226, 208, 204);
-  const glm::vec3 irisInner = eng::srgb(150, 170, 120), irisMid = eng::srgb(62, 118, 150), irisOuter = eng::srgb(28, 58, 88);
-  const glm::vec3 limbus = eng::srgb(22, 30, 44), pupil = eng::srgb(6, 6, 8);
+  // Sclera a little off-white: a pure white ball glared out of the face and
+  // made every open eye look startled.
+  const glm::vec3 sclera = eng::srgb(236, 231, 224), scleraShade = eng::srgb(214, 196, 190);
+  // Hazel-brown: the commonest iris, and dark enough that the eyes keep
+  // their weight at 256 px and in grey (a light blue iris read as skin-grey
+  // there, and the face lost the two dark spots people look for first).
+  const glm::vec3 irisInner = eng::srgb(150, 112, 58), irisMid = eng::srgb(104, 68, 36), irisOuter = eng::srgb(58, 36, 20);
+  const glm::vec3 limbus = eng::srgb(24, 16, 12), pupil = eng::srgb(6, 6, 8);
   const glm::vec3 highlightDir = glm::normalize(glm::vec3(-0.32f, 0.42f, 1.0f));
   const glm::vec3 secondDir = glm::normalize(glm::vec3(0.26f, -0.30f, 1.0f));
   for (int y = 0; y < height; ++y)
@@ -59,6 +64,11 @@ eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
       // The hidden back of the ball matches the pupil: a repeating sampler
       // blends the first and last rows at the poles.
       c = glm::mix(c, pupil, smoothstep(150.0f, 165.0f, angle));
+      // The upper lid and lashes shade the top of the ball (the eye does not
+      // turn, so the shade can live in the texture): the opening reads as a
+      // recess under the brow instead of a white almond pasted on the skin.
+      const float elevation = std::asin(std::clamp(d.y, -1.0f, 1.0f)) * 180.0f / kPi;
+      c *= 1.0f - 0.38f * smoothstep(-4.0f, p.upperLidHeight - 2.0f, elevation);
       // Corneal highlights (fixed: the eyes do not turn).
       const float h1 = std::acos(std::clamp(glm::dot(d, highlightDir), -1.0f, 1.0f)) * 180.0f / kPi;
       const float h2 = std::acos(std::clamp(glm::dot(d, secondDir), -1.0f, 1.0f)) * 180.0f / kPi;

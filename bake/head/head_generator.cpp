@@ -293,7 +293,9 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
   mouthMaterial.doubleSided = true;
   eng::Material tongueMaterial;
   tongueMaterial.name = "Tongue";
-  tongueMaterial.baseColorFactor = glm::vec4(eng::srgb(176, 84, 86), 1.0f);
+  // Darker than the lips: the tongue sits in the mouth's shade, and a bright
+  // tongue made an open mouth read as a pink blob rather than an opening.
+  tongueMaterial.baseColorFactor = glm::vec4(eng::srgb(128, 54, 58), 1.0f);
   tongueMaterial.roughness = 0.4f;
   eng::Material earMaterial;
   earMaterial.name = "Ear";

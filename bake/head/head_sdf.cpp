@@ -92,7 +92,7 @@ float HeadSdf::face(const vec3& p) const {
   // the chin (a stylised V jaw). One shape rather than a mid-face and a
   // mandible blended together: their junction left a groove across the cheek.
   {
-    const float narrow = 1.0f - 0.30f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
+    const float narrow = 1.0f - 0.22f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
     vec3 f = p - vec3(0.0f, -0.030f, 0.024f);
     f.x /= narrow;
     d = smin(d, ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow, 0.03f);
@@ -105,7 +105,7 @@ float HeadSdf::face(const vec3& p) const {
   // Cheekbones and cheek apples (mirrored), blended wide so they shape the
   // face without reading as separate lumps.
   const vec3 m(std::abs(p.x), p.y, p.z);
-  d = smin(d, ellipsoid(m - vec3(0.050f, -0.004f, 0.036f), vec3(0.019f, 0.014f, 0.032f)), 0.026f);
+  d = smin(d, ellipsoid(m - vec3(0.048f, -0.004f, 0.036f), vec3(0.016f, 0.014f, 0.030f)), 0.034f);
   d = smin(d, ellipsoid(m - vec3(0.035f, -0.015f, 0.060f), vec3(0.019f, 0.016f, 0.017f)), 0.028f);
   // Neck: elliptic cylinder merged under the skull, cut flat at the bottom.
   {

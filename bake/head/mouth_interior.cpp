@@ -9,8 +9,8 @@ namespace facial {
 eng::Image paintMouthInteriorTexture(int height) {
   const int width = 4;
   eng::PaintImage img(width, height);
-  const glm::vec3 innerLip = eng::srgb(178, 86, 86), gums = eng::srgb(140, 58, 58), back = eng::srgb(58, 20, 22),
-                  throat = eng::srgb(30, 10, 12);
+  const glm::vec3 innerLip = eng::srgb(178, 86, 86), gums = eng::srgb(118, 46, 48), back = eng::srgb(40, 13, 15),
+                  throat = eng::srgb(16, 5, 6);
   for (int y = 0; y < height; ++y) {
     const float v = (y + 0.5f) / height;
     glm::vec3 c;

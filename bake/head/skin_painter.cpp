@@ -87,7 +87,7 @@ const Curve2& nasolabialCurve() {
 const vec3 kSkin = eng::srgb(238, 192, 162);
 const vec3 kHair = eng::srgb(66, 44, 32);
 const vec3 kBrow = eng::srgb(48, 31, 23);
-const vec3 kLip = eng::srgb(172, 88, 88);
+const vec3 kLip = eng::srgb(166, 92, 88);
 const vec3 kLash = eng::srgb(34, 24, 22);
 
 vec4 over(const vec4& under, const vec3& colour, float alpha) {
@@ -159,7 +159,9 @@ float SkinPainter::browCoverage(const vec3& p) const {
 
 float SkinPainter::lipCoverage(const vec3& p) const {
   if (p.z < 0.07f || std::abs(p.y - prop_.mouthSeamCentre.y) > 0.016f) return 0.0f;
-  return 1.0f - smoothstep(-0.00025f, 0.00015f, sdf_.lipDistance(p));
+  // A soft vermilion border (about a millimetre): a hard edge made the lips
+  // read as a sticker laid on the face.
+  return 1.0f - smoothstep(-0.0009f, 0.0004f, sdf_.lipDistance(p));
 }
 
 vec3 SkinPainter::baseColour(const SkinTexel& t) const {
@@ -286,8 +288,9 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     const float face = smoothstep(0.0f, 0.04f, p.z) * (1.0f - sdf_.hairCoverage(p));
     const float lip = lipCoverage(p);
     const float cheeks = gauss2(q - vec2(0.036f, -0.018f), 0.02f);
-    const vec3 colour = glm::mix(eng::srgb(228, 224, 218), eng::srgb(206, 184, 182), lip);
-    return vec4(colour, face * (0.42f + 0.2f * cheeks + 0.3f * lip) * (1.0f - browCoverage(p)));
+    // Pale lips keep a lip's hue: whitened lips read as a plastic insert.
+    const vec3 colour = glm::mix(eng::srgb(228, 224, 218), eng::srgb(176, 128, 124), lip);
+    return vec4(colour, face * (0.42f + 0.2f * cheeks) * (1.0f - browCoverage(p)));
   }
   return out;
 }

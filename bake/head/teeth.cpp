@@ -117,8 +117,10 @@ PartMesh buildToothRow(const ToothRowShape& shape) {
 
 eng::Image paintTeethTexture(int width, int height) {
   eng::PaintImage img(width, height);
-  const glm::vec3 enamel = eng::srgb(246, 242, 230), enamelRoot = eng::srgb(232, 222, 196);
-  const glm::vec3 gap = eng::srgb(196, 184, 170), gum = eng::srgb(206, 108, 110);
+  // Ivory rather than paper white: bright teeth outshone the eyes at 256 px
+  // and turned every open mouth into a white bar instead of an opening.
+  const glm::vec3 enamel = eng::srgb(228, 220, 202), enamelRoot = eng::srgb(206, 192, 166);
+  const glm::vec3 gap = eng::srgb(150, 138, 126), gum = eng::srgb(176, 88, 92);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const float s = -1.0f + 2.0f * (x + 0.5f) / width;
@@ -131,7 +133,7 @@ eng::Image paintTeethTexture(int width, int height) {
       const float gumLine = 0.55f - 0.18f * (1.0f - smoothstep(0.0f, 0.05f, borderDistance(s)));
       c = glm::mix(c, gum, smoothstep(gumLine - 0.04f, gumLine + 0.04f, toward));
       c *= 0.55f + 0.45f * smoothstep(-0.8f, 0.2f, front);  // the inner face sits in shadow
-      c *= 1.0f - 0.35f * smoothstep(0.6f, 1.0f, std::abs(s));  // back teeth in the dark
+      c *= 1.0f - 0.6f * smoothstep(0.45f, 1.0f, std::abs(s));  // back teeth in the dark
       img.set(x, y, glm::vec4(c, 1.0f));
     }
   eng::Image out;
