@@ -41,7 +41,7 @@ eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
   // Hazel-brown: the commonest iris, and dark enough that the eyes keep
   // their weight at 256 px and in grey (a light blue iris read as skin-grey
   // there, and the face lost the two dark spots people look for first).
-  const glm::vec3 irisInner = eng::srgb(150, 112, 58), irisMid = eng::srgb(104, 68, 36), irisOuter = eng::srgb(58, 36, 20);
+  const glm::vec3 irisInner = eng::srgb(128, 92, 48), irisMid = eng::srgb(86, 56, 30), irisOuter = eng::srgb(46, 30, 17);
   const glm::vec3 limbus = eng::srgb(24, 16, 12), pupil = eng::srgb(6, 6, 8);
   const glm::vec3 highlightDir = glm::normalize(glm::vec3(-0.32f, 0.42f, 1.0f));
   const glm::vec3 secondDir = glm::normalize(glm::vec3(0.26f, -0.30f, 1.0f));

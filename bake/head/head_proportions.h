@@ -11,7 +11,7 @@ struct HeadProportions {
   // nose base so the nose underside still faces away from it).
   glm::vec3 gridCentre{0.0f, -0.018f, 0.0f};
 
-  glm::vec3 eyeCentre{0.0335f, 0.0090f, 0.0652f};  // left eyeball centre
+  glm::vec3 eyeCentre{0.0335f, 0.0090f, 0.0632f};  // left eyeball centre
   float eyeRadius = 0.0150f;
   float upperLidThickness = 0.0013f;  // lid skin above the eyeball surface
   float lowerLidThickness = 0.0008f;
@@ -21,8 +21,8 @@ struct HeadProportions {
   float outerCornerA = 57.0f, outerCornerB = 4.0f;
   float upperLidHeight = 20.0f;  // degrees above the corner line at the peak
   float lowerLidDepth = 17.5f;   // degrees below the corner line at the lowest point
-  float irisAngle = 25.0f;       // iris radius, degrees from the gaze axis
-  float pupilAngle = 10.0f;
+  float irisAngle = 29.0f;       // iris radius, degrees from the gaze axis
+  float pupilAngle = 12.0f;
 
   // Mouth: the lip seam is the cone of rays from gridCentre through this point.
   glm::vec3 mouthSeamCentre{0.0f, -0.0505f, 0.0985f};  // on the closed lips

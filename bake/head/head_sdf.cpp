@@ -95,7 +95,14 @@ float HeadSdf::face(const vec3& p) const {
     const float narrow = 1.0f - 0.22f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
     vec3 f = p - vec3(0.0f, -0.030f, 0.024f);
     f.x /= narrow;
-    d = smin(d, ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow, 0.03f);
+    float lower = ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow;
+    // The jaw's underside: a plane rising from under the chin to the jaw
+    // angles. Without it the ellipsoid's round bottom hung below the jaw like
+    // a balloon and the jaw line never formed.
+    const vec3 underChin(0.0f, -0.080f, 0.060f);
+    const vec3 down = glm::normalize(vec3(0.0f, -0.89f, -0.45f));
+    lower = smax(lower, glm::dot(p - underChin, down), 0.012f);
+    d = smin(d, lower, 0.03f);
   }
   // Chin and the muzzle over the teeth.
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.0750f, 0.0715f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
