@@ -72,8 +72,10 @@ class Curve2 {
 
 // Left brow, front projection (x, y); the right brow mirrors it.
 const Curve2& browCurve() {
-  static const Curve2 curve(std::array<vec2, 6>{vec2(0.0105f, 0.0268f), vec2(0.0190f, 0.0308f), vec2(0.0310f, 0.0346f),
-                                                 vec2(0.0440f, 0.0342f), vec2(0.0530f, 0.0305f), vec2(0.0585f, 0.0262f)});
+  // On the orbital rim, a flat arch: brows set high above the lids made the
+  // face look permanently surprised, and every brow-raising state read as surprise.
+  static const Curve2 curve(std::array<vec2, 6>{vec2(0.0105f, 0.0238f), vec2(0.0190f, 0.0274f), vec2(0.0310f, 0.0306f),
+                                                 vec2(0.0440f, 0.0304f), vec2(0.0530f, 0.0272f), vec2(0.0585f, 0.0232f)});
   return curve;
 }
 // Nasolabial fold from beside the nose wing to past the mouth corner.
