@@ -76,53 +76,49 @@ std::string describeXy(const glm::vec2& xy) {
   return "(" + std::to_string(xy.x) + ", " + std::to_string(xy.y) + ")";
 }
 
-}  // namespace
+// The deformable "Head" mesh under construction (skin, mouth pocket, teeth,
+// tongue, in HeadPrimitive order) and the point set the action units deform.
+struct HeadAssembly {
+  std::vector<HeadPrimitiveData> prims;
+  std::vector<int> skinLocal;  // SkinSurface vertex -> index in its primitive
+  DeformableHead head;
+};
 
-eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptions& options) {
-  const HeadProportions prop;
-  const HeadSdf sdf(prop);
-  eng::Result<SkinSurface> built = buildSkinSurface(prop, sdf);
-  if (!built) return built.error();
-  SkinSurface& skin = *built;
-  const std::vector<vec3> skinNormals = weldedNormals(skin.positions, skin.indices, skin.weldIds);
+// Skin vertices go to the skin primitive, the rest of the surface (the mouth
+// pocket) to the mouth primitive.
+int primitiveOfSkinVertex(const SkinSurface& skin, size_t v) { return skin.parts[v] == SkinPart::Skin ? 0 : 1; }
 
-  const EyeOpening eyeL(prop, 1.0f), eyeR(prop, -1.0f);
-  const vec3 seam = skin.features.at("mouth.seam_centre");
-  const ToothRowShape upperRow = upperToothRow(seam), lowerRow = lowerToothRow(seam);
-  const PartMesh teethUpper = buildToothRow(upperRow), teethLower = buildToothRow(lowerRow);
-  const PartMesh tongue = buildTongue(seam);
-  std::map<std::string, vec3> features = skin.features;
-  features["teeth.upper_incisor"] = vec3(0.0f, upperRow.edgeY, upperRow.frontZ);
-  features["teeth.lower_incisor"] = vec3(0.0f, lowerRow.edgeY, lowerRow.frontZ);
-  features["tongue.tip"] = vec3(0.0f, seam.y - 0.0075f, seam.z - 0.0136f);
-
-  // --- the deformable "Head" mesh: skin, mouth pocket, teeth, tongue ---------
-  std::vector<HeadPrimitiveData> prims(5);
-  std::vector<int> skinLocal(skin.vertexCount(), -1);  // SkinSurface vertex -> index in its primitive
+HeadAssembly assembleHead(const SkinSurface& skin, const std::vector<vec3>& skinNormals, const EyeOpening& eyeL,
+                          const EyeOpening& eyeR, const PartMesh& teethUpper, const PartMesh& teethLower,
+                          const PartMesh& tongue) {
+  HeadAssembly a;
+  std::vector<HeadPrimitiveData>& prims = a.prims;
+  prims.resize(5);
+  a.skinLocal.assign(skin.vertexCount(), -1);
   for (size_t v = 0; v < skin.vertexCount(); ++v) {
-    HeadPrimitiveData& p = prims[skin.parts[v] == SkinPart::Skin ? 0 : 1];
-    skinLocal[v] = static_cast<int>(p.positions.size());
+    HeadPrimitiveData& p = prims[primitiveOfSkinVertex(skin, v)];
+    a.skinLocal[v] = static_cast<int>(p.positions.size());
     p.positions.push_back(skin.positions[v]);
     p.normals.push_back(skinNormals[v]);
     p.uvs.push_back(skin.uvs[v]);
   }
   for (size_t v = 0; v < skin.vertexCount(); ++v)
-    prims[skin.parts[v] == SkinPart::Skin ? 0 : 1].weldIds.push_back(0);  // unused for these two
+    prims[primitiveOfSkinVertex(skin, v)].weldIds.push_back(0);  // unused for these two
   for (size_t t = 0; t < skin.indices.size(); ++t)
-    prims[skin.parts[skin.indices[t - t % 3]] == SkinPart::Skin ? 0 : 1].indices.push_back(
-        static_cast<uint32_t>(skinLocal[skin.indices[t]]));
+    prims[primitiveOfSkinVertex(skin, skin.indices[t - t % 3])].indices.push_back(
+        static_cast<uint32_t>(a.skinLocal[skin.indices[t]]));
   prims[2] = fromPart(teethUpper);
   prims[3] = fromPart(teethLower);
   prims[4] = fromPart(tongue);
 
-  DeformableHead head;
+  DeformableHead& head = a.head;
   head.eyes = {{eyeL.centre(), eyeL.radius()}, {eyeR.centre(), eyeR.radius()}};
   const HeadPart partOf[5] = {HeadPart::Skin, HeadPart::Mouth, HeadPart::TeethUpper, HeadPart::TeethLower,
                               HeadPart::Tongue};
   std::vector<std::vector<float>> jawOf(5);
   jawOf[0].resize(prims[0].positions.size());
   jawOf[1].resize(prims[1].positions.size());
-  for (size_t v = 0; v < skin.vertexCount(); ++v) jawOf[skin.parts[v] == SkinPart::Skin ? 0 : 1][skinLocal[v]] = skin.jawSide[v];
+  for (size_t v = 0; v < skin.vertexCount(); ++v) jawOf[primitiveOfSkinVertex(skin, v)][a.skinLocal[v]] = skin.jawSide[v];
   jawOf[2].assign(prims[2].positions.size(), 0.0f);
   jawOf[3].assign(prims[3].positions.size(), 1.0f);
   jawOf[4].assign(prims[4].positions.size(), 1.0f);
@@ -133,6 +129,7 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
       head.positions.push_back(pos);
       head.parts.push_back(partOf[p]);
       head.jawSide.push_back(jawOf[p][v]);
+      // Skin near an eyeball slides over it when a lid moves.
       int8_t eye = -1;
       float slide = 0.0f;
       if (p == 0) {
@@ -149,10 +146,13 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
       head.lidSlide.push_back(slide);
     }
   }
+  return a;
+}
 
-  // --- landmarks ------------------------------------------------------------------
-  GeneratedHead out;
-  LandmarkPoints& lm = out.landmarks;
+// Each landmark of the spec resolved to a point on (or in) the generated head.
+eng::Result<LandmarkPoints> resolveLandmarks(const HeadRigSpec& spec, const SkinSurface& skin,
+                                             const std::map<std::string, vec3>& features, const DeformableHead& head) {
+  LandmarkPoints lm;
   for (const LandmarkDef& d : spec.landmarks) {
     vec3 p(0.0f);
     switch (d.kind) {
@@ -199,8 +199,35 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
       if (glm::length(lm.positions[a] - lm.positions[b]) < 5e-4f)
         return eng::makeError(spec.source + ": landmarks \"" + lm.names[a] + "\" and \"" + lm.names[b] +
                               "\" resolve to points closer than 0.5 mm");
+  return lm;
+}
 
-  // --- action units -> morph targets ------------------------------------------------
+// Normals of each primitive deformed by one action unit's deltas, each over
+// its own topology (the skin and mouth pocket share one welded surface).
+std::vector<std::vector<vec3>> deformedNormals(const SkinSurface& skin, const HeadAssembly& a,
+                                               const std::vector<vec3>& deltas) {
+  const std::vector<HeadPrimitiveData>& prims = a.prims;
+  std::vector<vec3> skinMoved(skin.vertexCount());
+  for (size_t v = 0; v < skin.vertexCount(); ++v)
+    skinMoved[v] = skin.positions[v] + deltas[prims[primitiveOfSkinVertex(skin, v)].offset + a.skinLocal[v]];
+  const std::vector<vec3> skinMovedNormals = weldedNormals(skinMoved, skin.indices, skin.weldIds);
+  std::vector<std::vector<vec3>> movedNormals(5);
+  movedNormals[0].resize(prims[0].positions.size());
+  movedNormals[1].resize(prims[1].positions.size());
+  for (size_t v = 0; v < skin.vertexCount(); ++v)
+    movedNormals[primitiveOfSkinVertex(skin, v)][a.skinLocal[v]] = skinMovedNormals[v];
+  for (int p = 2; p < 5; ++p) {
+    std::vector<vec3> moved(prims[p].positions.size());
+    for (size_t v = 0; v < moved.size(); ++v) moved[v] = prims[p].positions[v] + deltas[prims[p].offset + v];
+    movedNormals[p] = weldedNormals(moved, prims[p].indices, prims[p].weldIds);
+  }
+  return movedNormals;
+}
+
+// Mesh "Head" with one morph target per action unit, in canonical order.
+eng::Result<eng::Mesh> bakeHeadMesh(const HeadRigSpec& spec, const LandmarkPoints& lm, const SkinSurface& skin,
+                                    const HeadAssembly& a) {
+  const std::vector<HeadPrimitiveData>& prims = a.prims;
   eng::Mesh headMesh;
   headMesh.name = "Head";
   for (int p = 0; p < 5; ++p) {
@@ -216,28 +243,11 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
     for (const ActionUnitDef& d : spec.actionUnits)
       if (d.name == info.name) def = &d;
     if (!def) return eng::makeError(spec.source + ": action unit \"" + std::string(info.name) + "\" is missing");
-    eng::Result<std::vector<vec3>> deltas = bakeActionUnit(*def, spec, lm, head);
+    eng::Result<std::vector<vec3>> deltas = bakeActionUnit(*def, spec, lm, a.head);
     if (!deltas) return deltas.error();
     headMesh.targetNames.emplace_back(info.name);
     headMesh.defaultWeights.push_back(0.0f);
-
-    // Normals of the deformed surfaces, over each surface's own topology.
-    std::vector<vec3> skinMoved(skin.vertexCount());
-    for (size_t v = 0; v < skin.vertexCount(); ++v) {
-      const int p = skin.parts[v] == SkinPart::Skin ? 0 : 1;
-      skinMoved[v] = skin.positions[v] + (*deltas)[prims[p].offset + skinLocal[v]];
-    }
-    const std::vector<vec3> skinMovedNormals = weldedNormals(skinMoved, skin.indices, skin.weldIds);
-    std::vector<std::vector<vec3>> movedNormals(5);
-    movedNormals[0].resize(prims[0].positions.size());
-    movedNormals[1].resize(prims[1].positions.size());
-    for (size_t v = 0; v < skin.vertexCount(); ++v)
-      movedNormals[skin.parts[v] == SkinPart::Skin ? 0 : 1][skinLocal[v]] = skinMovedNormals[v];
-    for (int p = 2; p < 5; ++p) {
-      std::vector<vec3> moved(prims[p].positions.size());
-      for (size_t v = 0; v < moved.size(); ++v) moved[v] = prims[p].positions[v] + (*deltas)[prims[p].offset + v];
-      movedNormals[p] = weldedNormals(moved, prims[p].indices, prims[p].weldIds);
-    }
+    const std::vector<std::vector<vec3>> movedNormals = deformedNormals(skin, a, *deltas);
     for (int p = 0; p < 5; ++p) {
       eng::MorphTarget target;
       const size_t count = prims[p].positions.size();
@@ -252,9 +262,13 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
       headMesh.primitives[p].targets.push_back(std::move(target));
     }
   }
+  return headMesh;
+}
 
-  // --- textures and materials -------------------------------------------------
-  eng::Model& model = out.model;
+// Painted images and the materials that use them, in the order the meshes
+// index them: skin, eye, teeth, mouth interior, tongue, ear.
+void paintMaterials(eng::Model& model, const HeadRigSpec& spec, const HeadProportions& prop, const HeadSdf& sdf,
+                    const SkinSurface& skin, const std::vector<vec3>& skinNormals, const HeadOptions& options) {
   std::vector<float> occlusion(skin.vertexCount(), 1.0f);
   for (size_t v = 0; v < skin.vertexCount(); ++v) occlusion[v] = sdf.occlusion(skin.positions[v], skinNormals[v]);
   const SkinPainter painter(prop, sdf);
@@ -302,19 +316,24 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
   earMaterial.baseColorFactor = glm::vec4(eng::srgb(232, 176, 150), 1.0f);
   earMaterial.roughness = 0.55f;
   model.materials = {skinMaterial, eyeMaterial, teethMaterial, mouthMaterial, tongueMaterial, earMaterial};
+}
+
+eng::Primitive primitiveOf(const PartMesh& m, int material) {
+  eng::Primitive prim;
+  prim.positions = m.positions;
+  prim.normals = m.normals;
+  prim.texcoords = m.uvs;
+  prim.indices = m.indices;
+  prim.material = material;
+  return prim;
+}
+
+// Meshes Head, Eyes (no targets) and Ears (no targets), each on its own node
+// under the root node "BuiltInHead".
+void addMeshesAndNodes(eng::Model& model, eng::Mesh headMesh, const EyeOpening& eyeL, const EyeOpening& eyeR,
+                       const HeadProportions& prop) {
   const int materialOf[5] = {0, 3, 2, 2, 4};
   for (int p = 0; p < 5; ++p) headMesh.primitives[p].material = materialOf[p];
-
-  // --- static meshes: eyes, ears ------------------------------------------------
-  auto primitiveOf = [](const PartMesh& m, int material) {
-    eng::Primitive prim;
-    prim.positions = m.positions;
-    prim.normals = m.normals;
-    prim.texcoords = m.uvs;
-    prim.indices = m.indices;
-    prim.material = material;
-    return prim;
-  };
   eng::Mesh eyes;
   eyes.name = "Eyes";
   eyes.primitives.push_back(primitiveOf(buildEyeball(eyeL, prop), 1));
@@ -340,7 +359,37 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
     model.nodes.push_back(n);
   }
   model.roots = {0};
-  model.sourcePath = "generated:built-in-head";
+}
+
+}  // namespace
+
+eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptions& options) {
+  const HeadProportions prop;
+  const HeadSdf sdf(prop);
+  eng::Result<SkinSurface> built = buildSkinSurface(prop, sdf);
+  if (!built) return built.error();
+  const SkinSurface& skin = *built;
+  const std::vector<vec3> skinNormals = weldedNormals(skin.positions, skin.indices, skin.weldIds);
+
+  const EyeOpening eyeL(prop, 1.0f), eyeR(prop, -1.0f);
+  const vec3 seam = skin.features.at("mouth.seam_centre");
+  const ToothRowShape upperRow = upperToothRow(seam), lowerRow = lowerToothRow(seam);
+  std::map<std::string, vec3> features = skin.features;
+  features["teeth.upper_incisor"] = vec3(0.0f, upperRow.edgeY, upperRow.frontZ);
+  features["teeth.lower_incisor"] = vec3(0.0f, lowerRow.edgeY, lowerRow.frontZ);
+  features["tongue.tip"] = vec3(0.0f, seam.y - 0.0075f, seam.z - 0.0136f);
+  const HeadAssembly assembly = assembleHead(skin, skinNormals, eyeL, eyeR, buildToothRow(upperRow),
+                                             buildToothRow(lowerRow), buildTongue(seam));
+
+  GeneratedHead out;
+  eng::Result<LandmarkPoints> landmarks = resolveLandmarks(spec, skin, features, assembly.head);
+  if (!landmarks) return landmarks.error();
+  out.landmarks = std::move(*landmarks);
+  eng::Result<eng::Mesh> headMesh = bakeHeadMesh(spec, out.landmarks, skin, assembly);
+  if (!headMesh) return headMesh.error();
+  paintMaterials(out.model, spec, prop, sdf, skin, skinNormals, options);
+  addMeshesAndNodes(out.model, std::move(*headMesh), eyeL, eyeR, prop);
+  out.model.sourcePath = "generated:built-in-head";
   return out;
 }
 
