@@ -5,9 +5,20 @@
 //  - a moving face (play, the headless demo) keeps room for the head's sway
 //    and a dropped jaw;
 //  - a still contact-sheet tile can fill its square from brows to chin.
+// Both zooms stop short of cutting off the face's features (faceViewZoom).
+#include "engine/scene/model.h"
+#include "engine/vk/framing_bounds.h"
+
 namespace cli {
 
 inline constexpr float kFaceZoom = 1.15f;
 inline constexpr float kSheetTileZoom = 1.4f;
+
+// `wanted` for a face view of `model`, reduced (never below 1) as far as the
+// face's features need to stay in the image; other framings keep `wanted`.
+inline float faceViewZoom(const eng::Model& model, eng::vk::FramingMode mode, float wanted, float aspect) {
+  if (mode != eng::vk::FramingMode::Face) return wanted;
+  return eng::vk::zoomShowing(eng::vk::framingBounds(model, mode), eng::vk::faceFeatureBounds(model), wanted, aspect);
+}
 
 }  // namespace cli

@@ -135,7 +135,8 @@ int runHeadlessDemo(const DemoOptions& o) {
   }
   eng::vk::SceneView& view = renderer->view();
   view.camera = eng::vk::OrbitCamera::frame(crowdBounds, float(width) / float(height));
-  if (crowd == 1) view.camera.zoom = kFaceZoom;  // a crowd is framed as a whole
+  // A crowd is framed as a whole.
+  if (crowd == 1) view.camera.zoom = faceViewZoom(setup->model(), *framing, kFaceZoom, float(width) / float(height));
 
   // The head sways about the neck: the bottom of the framed head, not its centre.
   const glm::vec3 swayPivot{bounds.center().x, bounds.min.y, bounds.center().z};

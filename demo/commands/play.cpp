@@ -108,7 +108,8 @@ int runPlay(const PlayOptions& o) {
 
   auto renderer = HeadlessModelRenderer::create(setup->model(), {.width = width,
                                                                  .height = height,
-                                                                 .zoom = kFaceZoom,
+                                                                 .zoom = faceViewZoom(setup->model(), *framing, kFaceZoom,
+                                                                                      float(width) / float(height)),
                                                                  .framing = *framing,
                                                                  .device = o.device,
                                                                  .backdrop = *backdrop,

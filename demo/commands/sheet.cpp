@@ -36,6 +36,7 @@ struct SheetOptions {
   // Why closer than `render`: the camera frames the model with every target
   // at full weight (neck and hair included); expressions read in the face.
   float zoom = kSheetTileZoom;
+  bool zoomGiven = false;  // an explicit --zoom is taken as it is
   std::string frame = "face";
   std::string device;
   std::string quality = "high";
@@ -90,7 +91,9 @@ int runSheet(const SheetOptions& o) {
   if (!quality) return fail(quality.error().message);
   auto renderer = HeadlessModelRenderer::create(face->model(), {.width = o.size,
                                                                 .height = o.size,
-                                                                .zoom = o.zoom,
+                                                                .zoom = o.zoomGiven ? o.zoom
+                                                                                    : faceViewZoom(face->model(), *framing,
+                                                                                                   o.zoom, 1.0f),
                                                                 .framing = *framing,
                                                                 .device = o.device,
                                                                 .backdrop = *backdrop,
@@ -146,12 +149,18 @@ CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expr
   app.add_option("--intensity,-i", o->intensity, "Strength of every preset, clamped to [0, 1]")
       ->check(CLI::Number)
       ->capture_default_str();
-  app.add_option("--zoom", o->zoom, "Zoom factor (> 1 = closer)")->capture_default_str();
+  CLI::Option* zoom = app.add_option("--zoom", o->zoom,
+                                     "Zoom factor (> 1 = closer; by default as close as keeps the face's features "
+                                     "in the tile)")
+                          ->capture_default_str();
   addFramingOption(app, o->frame);
   addDeviceOption(app, o->device);
   addQualityOption(app, o->quality);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();
-  return [o] { return runSheet(*o); };
+  return [o, zoom] {
+    o->zoomGiven = zoom->count() > 0;
+    return runSheet(*o);
+  };
 });
 
 }  // namespace

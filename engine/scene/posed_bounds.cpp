@@ -4,6 +4,7 @@
 #include <cctype>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/scene/skinning.h"
@@ -86,6 +87,38 @@ Aabb posedJointRegionBounds(const Model& model, const Pose& pose, int joint, flo
         if (slot < slotInRegion[skin].size() && slotInRegion[skin][slot]) w += prim.jointWeights[v * sets + s][i];
       }
     if (w >= minWeight) box.extend(p);
+  });
+  return box;
+}
+
+Aabb posedMorphedBounds(const Model& model, const Pose& pose) {
+  // Which vertices of each primitive some target moves, found once per primitive.
+  std::unordered_map<const Primitive*, std::vector<bool>> moved;
+  auto movedOf = [&](const Primitive& prim) -> const std::vector<bool>& {
+    auto [it, fresh] = moved.try_emplace(&prim);
+    if (!fresh) return it->second;
+    const size_t n = prim.positions.size();
+    it->second.assign(n, false);
+    Aabb local;
+    for (const glm::vec3& p : prim.positions) local.extend(p);
+    const float noise = std::max(local.diagonal() * 1e-3f, 1e-12f);
+    for (const MorphTarget& target : prim.targets) {
+      if (target.positions.size() != n) continue;
+      // What a target carries, not the skin it drags along with it: a brow
+      // raise also nudges the scalp, a jaw drop the neck.
+      float largest = 0.0f;
+      for (const glm::vec3& d : target.positions) largest = std::max(largest, glm::length(d));
+      const float threshold = std::max(noise, 0.1f * largest);
+      for (size_t v = 0; v < n; ++v)
+        if (glm::length(target.positions[v]) > threshold) it->second[v] = true;
+    }
+    return it->second;
+  };
+  Aabb box;
+  forEachPosedVertex(model, pose, {}, [&](const glm::vec3& p, const Primitive& prim, size_t v, int, int) {
+    if (prim.targets.empty()) return;
+    const std::vector<bool>& m = movedOf(prim);
+    if (v < m.size() && m[v]) box.extend(p);
   });
   return box;
 }

@@ -30,6 +30,13 @@ Aabb posedBounds(const Model& model, const Pose& pose, std::span<const float> we
 Aabb posedJointRegionBounds(const Model& model, const Pose& pose, int joint, float minWeight = 0.5f,
                             std::span<const float> weights = {});
 
+// World-space bounds of the posed vertices that some morph target moves by a
+// tenth or more of that target's largest displacement (and by more than a
+// thousandth of the primitive's size: quantised exports move everything a
+// little): the features a face's targets carry, in `pose`. Invalid when no
+// target moves anything.
+Aabb posedMorphedBounds(const Model& model, const Pose& pose);
+
 // The node index of the head joint of a skinned model, -1 when it has no
 // skin. In order: the VRM humanoid `head` bone (Model::humanoidHead); a skin
 // joint named like a head, case-insensitively and after any "prefix:" or

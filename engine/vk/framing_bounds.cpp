@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/scene/posed_bounds.h"
+#include "engine/vk/camera.h"
 #include "engine/vk/scene_mesh_nodes.h"
 
 namespace eng::vk {
@@ -80,6 +81,24 @@ std::optional<FramingMode> parseFramingMode(std::string_view text) {
 std::string_view framingModeName(FramingMode mode) { return mode == FramingMode::Face ? "face" : "all"; }
 
 Aabb morphedRegionBounds(const Model& model) { return morphedBounds(sceneMeshNodes(model), model); }
+
+Aabb faceFeatureBounds(const Model& model) { return posedMorphedBounds(model, restPose(model)); }
+
+float zoomShowing(const Aabb& framed, const Aabb& shown, float wanted, float aspect, float fovYDegrees) {
+  if (!framed.valid() || !shown.valid() || !(wanted > 1.0f)) return wanted;
+  const OrbitCamera camera = OrbitCamera::frame(framed, aspect, fovYDegrees);
+  const glm::vec3 c = camera.target;
+  // Half extents of `shown` around the camera's target, the width in units
+  // of height; the nearest point sits closer to the camera and looks larger.
+  const float halfY = std::max(shown.max.y - c.y, c.y - shown.min.y);
+  const float halfX = std::max(shown.max.x - c.x, c.x - shown.min.x) / std::max(aspect, 1e-3f);
+  const float nearer = std::max(0.0f, shown.max.z - c.z);
+  const float tanHalf = std::tan(glm::radians(fovYDegrees) * 0.5f);
+  const float margin = 1.05f;
+  const float needed = std::max(halfY, halfX) * margin / tanHalf + nearer;
+  if (!(needed > 0.0f)) return wanted;
+  return std::clamp(camera.distance / needed, 1.0f, wanted);
+}
 
 Aabb framingBounds(const Model& model, FramingMode mode) {
   const std::vector<MeshNode> nodes = sceneMeshNodes(model);

@@ -32,4 +32,15 @@ Aabb framingBounds(const Model& model, FramingMode mode = FramingMode::All);
 // fully morphed positions); invalid when no target moves anything.
 Aabb morphedRegionBounds(const Model& model);
 
+// The face's features, for keeping them in view: where the morph targets move
+// vertices (a skinned model posed at rest). Invalid when nothing morphs.
+Aabb faceFeatureBounds(const Model& model);
+
+// The largest zoom, at most `wanted` and at least 1, at which a camera framed
+// on `framed` (OrbitCamera::frame with this aspect and field of view) still
+// shows all of `shown` from the front. A face view zooms past the head's
+// bounds to fill the image with the face; on a head whose features fill it
+// (a robot's eyes reaching its sides) that zoom would cut them off.
+float zoomShowing(const Aabb& framed, const Aabb& shown, float wanted, float aspect, float fovYDegrees = 30.0f);
+
 }  // namespace eng::vk

@@ -11,6 +11,7 @@
 #include "engine/scene/painted_brows.h"
 #include "engine/scene/procedural_eyes.h"
 #include "engine/scene/vertex_occlusion.h"
+#include "engine/vk/camera.h"
 #include "engine/vk/framing_bounds.h"
 #include "tests/vk/test_models.h"
 
@@ -200,6 +201,72 @@ TEST(FaceFraming, ModelWithoutTargetsFallsBackToTheWholeModel) {
   EXPECT_EQ(eng::vk::parseFramingMode("face"), eng::vk::FramingMode::Face);
   EXPECT_EQ(eng::vk::parseFramingMode("all"), eng::vk::FramingMode::All);
   EXPECT_FALSE(eng::vk::parseFramingMode("body"));
+}
+
+TEST(FaceFraming, FeatureBoundsKeepWhatTargetsCarryNotTheSkinTheyDrag) {
+  // One target lifts two vertices by 1 (the feature) and nudges two others
+  // by 0.05 (skin dragged along): the features are the first two.
+  eng::Model model;
+  eng::Mesh mesh;
+  eng::Primitive prim;
+  prim.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 3, 0}};
+  prim.indices = {0, 1, 2, 0, 2, 3, 3, 2, 4};
+  eng::MorphTarget lift;
+  lift.positions = {{0, 0, 0}, {0, 0, 0}, {0, 0.05f, 0}, {0, 0.05f, 0}, {0, 0, 0}};
+  lift.positions[0] = {0, 1, 0};
+  lift.positions[1] = {0, 1, 0};
+  prim.targets.push_back(lift);
+  mesh.primitives.push_back(prim);
+  mesh.targetNames = {"lift"};
+  mesh.defaultWeights = {0.0f};
+  model.meshes.push_back(mesh);
+  eng::Node node;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  model.roots = {0};
+  const eng::Aabb features = eng::vk::faceFeatureBounds(model);
+  ASSERT_TRUE(features.valid());
+  EXPECT_FLOAT_EQ(features.min.y, -1.0f);
+  EXPECT_FLOAT_EQ(features.max.y, -1.0f) << "the dragged vertices at y = 1 are not features";
+  EXPECT_FLOAT_EQ(features.min.x, -1.0f);
+  EXPECT_FLOAT_EQ(features.max.x, 1.0f);
+  model.meshes[0].primitives[0].targets.clear();
+  model.meshes[0].targetNames.clear();
+  model.meshes[0].defaultWeights.clear();
+  EXPECT_FALSE(eng::vk::faceFeatureBounds(model).valid()) << "nothing morphs";
+}
+
+// Whether every corner of `box` projects inside the image of `camera`.
+bool inView(const eng::vk::OrbitCamera& camera, const eng::Aabb& box) {
+  const glm::mat4 viewProj = camera.projection(1.0f) * camera.view();
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z);
+    const glm::vec4 clip = viewProj * glm::vec4(corner, 1.0f);
+    if (std::abs(clip.x / clip.w) > 1.0f || std::abs(clip.y / clip.w) > 1.0f) return false;
+  }
+  return true;
+}
+
+TEST(FaceFraming, ZoomStopsWhereTheFeaturesWouldLeaveTheImage) {
+  const eng::Aabb head{{-1, -1, -1}, {1, 1, 1}};
+  // Small features at the centre: the wanted zoom stands.
+  EXPECT_FLOAT_EQ(eng::vk::zoomShowing(head, {{-0.2f, -0.2f, 0}, {0.2f, 0.2f, 0.5f}}, 1.4f, 1.0f), 1.4f);
+  // Features filling the head: no zoom past the head's own framing.
+  EXPECT_FLOAT_EQ(eng::vk::zoomShowing(head, head, 1.4f, 1.0f), 1.0f);
+  // Features reaching the top and the sides (a robot's eyes and brows): zoom
+  // in only as far as keeps them whole; a little further would cut them.
+  const eng::Aabb features{{-0.85f, -0.2f, 0.0f}, {0.85f, 0.9f, 0.9f}};
+  const float zoom = eng::vk::zoomShowing(head, features, 1.4f, 1.0f);
+  EXPECT_GT(zoom, 1.0f);
+  EXPECT_LT(zoom, 1.4f);
+  eng::vk::OrbitCamera camera = eng::vk::OrbitCamera::frame(head, 1.0f);
+  camera.zoom = zoom;
+  EXPECT_TRUE(inView(camera, features));
+  camera.zoom = zoom * 1.1f;
+  EXPECT_FALSE(inView(camera, features));
+  // Nothing to keep in view, or no zoom asked: as asked.
+  EXPECT_FLOAT_EQ(eng::vk::zoomShowing(head, eng::Aabb{}, 1.4f, 1.0f), 1.4f);
+  EXPECT_FLOAT_EQ(eng::vk::zoomShowing(head, features, 0.8f, 1.0f), 0.8f);
 }
 
 }  // namespace
