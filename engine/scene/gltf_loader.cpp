@@ -54,19 +54,21 @@ std::string oneLine(std::string text) {
 // glTF versions are "<major>.<minor>": a 2.x asset loads (minor versions stay
 // compatible) unless its minVersion asks for more than 2.0; another major
 // version is a different format. Both are refused by name, never misread.
-std::optional<std::string> assetVersionProblem(const tinygltf::Asset& asset) {
+std::optional<Error> assetVersionProblem(const tinygltf::Asset& asset) {
   const auto parse = [](const std::string& text, int& major, int& minor) {
     return std::sscanf(text.c_str(), "%d.%d", &major, &minor) == 2;
   };
   int major = 0, minor = 0;
   if (!parse(asset.version, major, minor))
-    return "asset.version '" + asset.version + "' is not a glTF version (expected 2.0)";
-  if (major != 2) return "glTF version " + asset.version + " is not supported (this loader reads glTF 2.x)";
+    return makeError(ErrorKind::Malformed, "asset.version '" + asset.version + "' is not a glTF version (expected 2.0)");
+  if (major != 2)
+    return makeError(ErrorKind::Unsupported, "glTF version " + asset.version + " is not supported (this loader reads glTF 2.x)");
   if (!asset.minVersion.empty()) {
     if (!parse(asset.minVersion, major, minor))
-      return "asset.minVersion '" + asset.minVersion + "' is not a glTF version";
+      return makeError(ErrorKind::Malformed, "asset.minVersion '" + asset.minVersion + "' is not a glTF version");
     if (major != 2 || minor > 0)
-      return "the file needs glTF " + asset.minVersion + " (asset.minVersion), newer than the 2.0 this loader reads";
+      return makeError(ErrorKind::Unsupported, "the file needs glTF " + asset.minVersion +
+                                                   " (asset.minVersion), newer than the 2.0 this loader reads");
   }
   return std::nullopt;
 }
@@ -125,13 +127,17 @@ class ModelBuilder {
     for (size_t m = 0; m < gltf_.meshes.size(); ++m)
       if (auto ok = loadMesh(static_cast<int>(m)); !ok) return ok.error();
     if (auto ok = loadNodes(); !ok) return ok.error();
-    if (auto ok = readSkins(reader_, gltf_, model_); !ok) return fail(ok.error().message);
+    if (auto ok = readSkins(reader_, gltf_, model_); !ok) return fail(ok.error());
     if (auto ok = loadAnimations(); !ok) return ok.error();
     return std::move(model_);
   }
 
  private:
-  Error fail(const std::string& message) const { return makeError(file_ + ": " + message); }
+  Error fail(const std::string& message, ErrorKind kind = ErrorKind::Malformed) const {
+    return makeError(kind, file_ + ": " + message);
+  }
+  // A failure of a reader that does not know the file name: same kind, with the file in front.
+  Error fail(const Error& inner) const { return inner.prefixed(file_ + ": "); }
   void warn(std::string message) { model_.warnings.push_back(std::move(message)); }
 
   std::string meshLabel(int m) const {
@@ -142,7 +148,7 @@ class ModelBuilder {
   Result<void> checkExtensions() {
     for (const std::string& ext : gltf_.extensionsRequired)
       if (!isHandledExtension(ext))
-        return fail("requires glTF extension " + ext + ", which this loader does not support");
+        return fail("requires glTF extension " + ext + ", which this loader does not support", ErrorKind::Unsupported);
     for (const std::string& ext : gltf_.extensionsUsed) {
       const bool required =
           std::find(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end(), ext) != gltf_.extensionsRequired.end();
@@ -296,7 +302,7 @@ class ModelBuilder {
   template <int N>
   Result<std::vector<glm::vec<N, float>>> readAttribute(int accessor, size_t expectedCount, const std::string& what) {
     auto values = reader_.readVec<N>(accessor, what);
-    if (!values) return fail(values.error().message);
+    if (!values) return fail(values.error());
     if (expectedCount != SIZE_MAX && values->size() != expectedCount)
       return fail(what + " has " + std::to_string(values->size()) + " elements, its primitive has " +
                   std::to_string(expectedCount) + " vertices");
@@ -314,7 +320,7 @@ class ModelBuilder {
     size_t order = vertices;
     if (src.indices >= 0) {
       auto count = reader_.count(src.indices, label + " indices");
-      if (!count) return fail(count.error().message);
+      if (!count) return fail(count.error());
       order = std::min(*count, SIZE_MAX / 64);
     }
     const size_t triangleIndices = mode == TINYGLTF_MODE_TRIANGLES ? order / 3 * 3 : order < 3 ? 0 : 3 * (order - 2);
@@ -326,7 +332,7 @@ class ModelBuilder {
     }
     auto ok = reader_.charge(bytes, label + " POSITION (accessor " + std::to_string(src.attributes.at("POSITION")) +
                                         ", " + std::to_string(vertices) + " vertices): the normals and indices made for it");
-    if (!ok) return fail(ok.error().message);
+    if (!ok) return fail(ok.error());
     return {};
   }
 
@@ -345,9 +351,9 @@ class ModelBuilder {
       return false;
     }
     if (auto declared = reader_.count(posIt->second, label + " POSITION"); !declared) {
-      return fail(declared.error().message);
+      return fail(declared.error());
     } else if (*declared > UINT32_MAX) {
-      return fail(label + " has " + std::to_string(*declared) + " vertices, more than 32-bit indices address");
+      return fail(label + " has " + std::to_string(*declared) + " vertices, more than 32-bit indices address", ErrorKind::TooLarge);
     } else if (auto ok = chargeDerivedData(src, mode, *declared, label); !ok) {
       return ok.error();
     }
@@ -379,12 +385,12 @@ class ModelBuilder {
       out.tangents = std::move(*tangents);
     }
     if (auto ok = readSkinAttributes(reader_, gltf_, src, label, out, model_.warnings); !ok)
-      return fail(ok.error().message);
+      return fail(ok.error());
 
     std::vector<uint32_t> order;
     if (src.indices >= 0) {
       auto indices = reader_.readIndices(src.indices, label + " indices");
-      if (!indices) return fail(indices.error().message);
+      if (!indices) return fail(indices.error());
       for (size_t i = 0; i < indices->size(); ++i)
         if ((*indices)[i] >= n)
           return fail(label + ": index " + std::to_string((*indices)[i]) + " at position " + std::to_string(i) +
@@ -587,7 +593,7 @@ class ModelBuilder {
         const std::string label = "animation '" + anim.name + "' channel " + std::to_string(c);
         if (ch.target_path != "weights") {
           ++anim.otherChannelCount;
-          if (auto ok = readNodeChannel(reader_, src, c, label, model_, anim); !ok) return fail(ok.error().message);
+          if (auto ok = readNodeChannel(reader_, src, c, label, model_, anim); !ok) return fail(ok.error());
           continue;
         }
         if (ch.target_node < 0 || static_cast<size_t>(ch.target_node) >= model_.nodes.size() ||
@@ -612,9 +618,9 @@ class ModelBuilder {
           warn(label + " has unknown interpolation '" + sampler.interpolation + "'; LINEAR used");
         }
         auto times = reader_.readScalars(sampler.input, label + " input");
-        if (!times) return fail(times.error().message);
+        if (!times) return fail(times.error());
         auto values = reader_.readScalars(sampler.output, label + " output");
-        if (!values) return fail(values.error().message);
+        if (!values) return fail(values.error());
         const size_t perKey = out.targetCount * (out.interpolation == Interpolation::CubicSpline ? 3 : 1);
         if (values->size() != times->size() * perKey) {
           warn(label + ": output has " + std::to_string(values->size()) + " values, expected " +
@@ -693,8 +699,8 @@ Result<Container> detectContainer(std::span<const uint8_t> bytes, const std::fil
   if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF) i = 3;  // UTF-8 BOM
   while (i < bytes.size() && std::isspace(bytes[i])) ++i;
   if (i < bytes.size() && bytes[i] == '{') return Container::Json;
-  if (bytes.empty()) return makeError("file is empty");
-  return makeError("neither glTF JSON nor a GLB (no '{' and no 'glTF' magic at the start)");
+  if (bytes.empty()) return makeError(ErrorKind::Malformed, "file is empty");
+  return makeError(ErrorKind::Malformed, "neither glTF JSON nor a GLB (no '{' and no 'glTF' magic at the start)");
 }
 
 }  // namespace
@@ -707,12 +713,12 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     auto bytes = readFileBytes(path, limits.maxFileBytes);
     if (!bytes) return bytes.error();
     auto container = detectContainer(*bytes, path);
-    if (!container) return makeError(file + ": " + container.error().message);
+    if (!container) return container.error().prefixed(file + ": ");
     // The pre-pass (nlohmann) and tinygltf parse recursively: a hostile nesting depth is refused before either.
     std::span<const uint8_t> jsonText = *bytes;
     if (*container == Container::Glb) {
       auto glb = parseGlb(*bytes);
-      if (!glb) return makeError(file + ": " + glb.error().message);
+      if (!glb) return glb.error().prefixed(file + ": ");
       jsonText = glb->json;
     }
     if (auto nesting = checkJsonNesting({reinterpret_cast<const char*>(jsonText.data()), jsonText.size()}, file); !nesting)
@@ -720,7 +726,7 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
     auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);
-    if (!placeholders) return makeError(file + ": " + placeholders.error().message);
+    if (!placeholders) return placeholders.error().prefixed(file + ": ");
     if (!stubbed.empty()) *bytes = std::move(stubbed);
 
     std::error_code ec;
@@ -736,7 +742,7 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     bool parsed = false;
     if (*container == Container::Glb) {
       auto glb = parseGlb(*bytes);
-      if (!glb) return makeError(file + ": " + glb.error().message);
+      if (!glb) return glb.error().prefixed(file + ": ");
       parsed = parser.LoadBinaryFromMemory(&gltf, &err, &warn, bytes->data(), static_cast<unsigned>(bytes->size()),
                                            files.baseDirString());
     } else {
@@ -745,13 +751,13 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     }
     if (!parsed) {
       // What our file access refused or could not find says more than tinygltf's summary.
-      if (!files.problems().empty()) return makeError(file + ": " + files.problems().front());
-      return makeError(file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
+      if (!files.problems().empty()) return makeError(ErrorKind::Malformed, file + ": " + files.problems().front());
+      return makeError(ErrorKind::Malformed, file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
     }
-    if (auto problem = assetVersionProblem(gltf.asset)) return makeError(file + ": " + *problem);
+    if (auto problem = assetVersionProblem(gltf.asset)) return problem->prefixed(file + ": ");
     ExtensionOutcomes outcomes;
     if (auto ok = decodeCompressedGeometry(gltf, *placeholders, limits, outcomes); !ok)
-      return makeError(file + ": " + ok.error().message);
+      return ok.error().prefixed(file + ": ");
     ModelBuilder builder(file, gltf, limits, files, outcomes);
     auto model = builder.build();
     if (!model) return model;
@@ -761,9 +767,9 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
         model->warnings.push_back("tinygltf: " + line);
     return model;
   } catch (const std::bad_alloc&) {
-    return makeError(file + ": out of memory while loading");
+    return makeError(ErrorKind::TooLarge, file + ": out of memory while loading");
   } catch (const std::exception& e) {
-    return makeError(file + ": " + e.what());
+    return makeError(ErrorKind::Malformed, file + ": " + e.what());
   }
 }
 
