@@ -7,6 +7,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/scene/gltf_skin_reader.h"
 #include "engine/scene/normals.h"
 
 namespace eng {
