@@ -190,7 +190,7 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     }
     if (!parsed) {
       // What our file access refused or could not find says more than tinygltf's summary.
-      if (!files.problems().empty()) return makeError(ErrorKind::Malformed, file + ": " + files.problems().front());
+      if (!files.problems().empty()) return files.firstProblem().prefixed(file + ": ");
       return makeError(ErrorKind::Malformed, file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
     }
     if (auto problem = assetVersionProblem(gltf.asset)) return problem->prefixed(file + ": ");

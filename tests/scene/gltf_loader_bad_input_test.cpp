@@ -369,6 +369,13 @@ TEST(GltfLoaderErrorKinds, MissingFileIsNotFound) {
   EXPECT_EQ(loadErrorKind(dir / "nothing.glb"), eng::ErrorKind::NotFound);
 }
 
+TEST(GltfLoaderErrorKinds, MissingBufferBesideTheModelIsNotFound) {
+  const auto dir = freshTempDir("kind_missing_buffer");
+  quadWithTarget().writeGltf(dir / "model.gltf", "model.bin");
+  std::filesystem::remove(dir / "model.bin");
+  EXPECT_EQ(loadErrorKind(dir / "model.gltf"), eng::ErrorKind::NotFound);
+}
+
 TEST(GltfLoaderErrorKinds, BrokenFilesAreMalformed) {
   const auto dir = freshTempDir("kind_malformed");
   writeBytes(dir / "empty.gltf", {});

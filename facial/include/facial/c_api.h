@@ -2,7 +2,8 @@
  * Godot GDExtension, Python ctypes/cffi). One opaque handle per character;
  * every function returns a status code and never lets a C++ exception out.
  * The message of the last failure on the calling thread is
- * facial_last_error_message() (valid until that thread's next failing call).
+ * facial_last_error_message() (valid until that thread's next failing call),
+ * its kind (missing file, broken file, misuse...) facial_last_error_kind().
  *
  *   facial_character* c = NULL;
  *   if (facial_character_create("tour.json", "expressions.json", names, count, 1, &c) != FACIAL_OK)
