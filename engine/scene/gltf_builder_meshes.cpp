@@ -90,19 +90,34 @@ Result<bool> GltfModelBuilder::loadPrimitive(int m, int p, Primitive& out, size_
   auto positions = readAttribute<3>(posIt->second, SIZE_MAX, label + " POSITION");
   if (!positions) return positions.error();
   out.positions = std::move(*positions);
-  const size_t n = out.positions.size();
-  if (n == 0) {
+  if (out.positions.empty()) {
     warn(label + " has no vertices; skipped");
     return false;
   }
+  if (auto ok = readVertexAttributes(src, label, out); !ok) return ok.error();
+  const bool generatedNormals = out.normals.empty();
+  if (auto ok = readTriangles(src, mode, label, out); !ok) return ok.error();
+  if (generatedNormals) out.normals = computeSmoothNormals(out.positions, out.indices);
+  assignMaterial(src, label, out);
 
-  bool generatedNormals = false;
+  if (!targetCountKnown) {
+    targetCount = src.targets.size();
+    targetCountKnown = true;
+  } else if (src.targets.size() != targetCount) {
+    return fail(label + " has " + std::to_string(src.targets.size()) + " morph targets, the mesh's other primitives have " +
+                std::to_string(targetCount));
+  }
+  if (auto ok = readMorphTargets(src, label, generatedNormals, out); !ok) return ok.error();
+  return true;
+}
+
+Result<void> GltfModelBuilder::readVertexAttributes(const tinygltf::Primitive& src, const std::string& label,
+                                                    Primitive& out) {
+  const size_t n = out.positions.size();
   if (auto it = src.attributes.find("NORMAL"); it != src.attributes.end()) {
     auto normals = readAttribute<3>(it->second, n, label + " NORMAL");
     if (!normals) return normals.error();
     out.normals = std::move(*normals);
-  } else {
-    generatedNormals = true;
   }
   if (auto it = src.attributes.find("TEXCOORD_0"); it != src.attributes.end()) {
     auto uvs = readAttribute<2>(it->second, n, label + " TEXCOORD_0");
@@ -114,9 +129,13 @@ Result<bool> GltfModelBuilder::loadPrimitive(int m, int p, Primitive& out, size_
     if (!tangents) return tangents.error();
     out.tangents = std::move(*tangents);
   }
-  if (auto ok = readSkinAttributes(reader_, gltf_, src, label, out, model_.warnings); !ok)
-    return fail(ok.error());
+  if (auto ok = readSkinAttributes(reader_, gltf_, src, label, out, model_.warnings); !ok) return fail(ok.error());
+  return {};
+}
 
+Result<void> GltfModelBuilder::readTriangles(const tinygltf::Primitive& src, int mode, const std::string& label,
+                                             Primitive& out) {
+  const size_t n = out.positions.size();
   std::vector<uint32_t> order;
   if (src.indices >= 0) {
     auto indices = reader_.readIndices(src.indices, label + " indices");
@@ -134,8 +153,10 @@ Result<bool> GltfModelBuilder::loadPrimitive(int m, int p, Primitive& out, size_
     warn(label + " has " + std::to_string(order.size()) + " indices, not a multiple of 3; the last " +
          std::to_string(order.size() % 3) + " ignored");
   out.indices = triangulate(order, mode);
-  if (generatedNormals) out.normals = computeSmoothNormals(out.positions, out.indices);
+  return {};
+}
 
+void GltfModelBuilder::assignMaterial(const tinygltf::Primitive& src, const std::string& label, Primitive& out) {
   if (src.material >= 0 && static_cast<size_t>(src.material) >= model_.materials.size()) {
     warn(label + " refers to material " + std::to_string(src.material) + ", the file has " +
          std::to_string(model_.materials.size()) + "; default material used");
@@ -146,14 +167,11 @@ Result<bool> GltfModelBuilder::loadPrimitive(int m, int p, Primitive& out, size_
   // KHR_texture_transform baked into this primitive's own copy of TEXCOORD_0.
   if (out.material >= 0 && uvTransforms_[out.material])
     for (glm::vec2& uv : out.texcoords) uv = applyUvTransform(*uvTransforms_[out.material], uv);
+}
 
-  if (!targetCountKnown) {
-    targetCount = src.targets.size();
-    targetCountKnown = true;
-  } else if (src.targets.size() != targetCount) {
-    return fail(label + " has " + std::to_string(src.targets.size()) + " morph targets, the mesh's other primitives have " +
-                std::to_string(targetCount));
-  }
+Result<void> GltfModelBuilder::readMorphTargets(const tinygltf::Primitive& src, const std::string& label,
+                                                bool generatedNormals, Primitive& out) {
+  const size_t n = out.positions.size();
   out.targets.resize(src.targets.size());
   bool warnedOther = false;
   for (size_t t = 0; t < src.targets.size(); ++t) {
@@ -179,7 +197,7 @@ Result<bool> GltfModelBuilder::loadPrimitive(int m, int p, Primitive& out, size_
       for (size_t v = 0; v < n; ++v) target.normals[v] -= out.normals[v];
     }
   }
-  return true;
+  return {};
 }
 
 Result<void> GltfModelBuilder::loadMesh(int m) {

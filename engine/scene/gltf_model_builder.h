@@ -74,6 +74,17 @@ class GltfModelBuilder {
 
   // Returns false (with a warning) for primitives we skip.
   Result<bool> loadPrimitive(int m, int p, Primitive& out, size_t& targetCount, bool& targetCountKnown);
+  // The steps of loadPrimitive once out.positions is read. NORMAL (left empty
+  // when the file has none: generated after the triangles), TEXCOORD_0,
+  // TANGENT, JOINTS_n / WEIGHTS_n:
+  Result<void> readVertexAttributes(const tinygltf::Primitive& src, const std::string& label, Primitive& out);
+  // The triangle list from the indices (or 0..n-1) and the mode:
+  Result<void> readTriangles(const tinygltf::Primitive& src, int mode, const std::string& label, Primitive& out);
+  // The material (default when out of range) and its baked KHR_texture_transform:
+  void assignMaterial(const tinygltf::Primitive& src, const std::string& label, Primitive& out);
+  // POSITION / NORMAL / TANGENT deltas; generated normals get deltas of their own:
+  Result<void> readMorphTargets(const tinygltf::Primitive& src, const std::string& label, bool generatedNormals,
+                                Primitive& out);
 
   Result<void> loadMesh(int m);
 
