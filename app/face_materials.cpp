@@ -13,7 +13,7 @@ eng::Result<FaceMaterials> FaceMaterials::create(const FaceSetup& face) {
   if (!vrm || !vrm->hasMaterialBinds()) return out;
   const eng::Model& model = face.model();
   if (model.materials.size() != vrm->materialCount)
-    return eng::makeError(model.sourcePath + ": the VRM expressions address " + std::to_string(vrm->materialCount) +
+    return eng::makeError(eng::ErrorKind::Malformed, model.sourcePath + ": the VRM expressions address " + std::to_string(vrm->materialCount) +
                           " materials, the model has " + std::to_string(model.materials.size()));
   out.vrm_ = face.rig().sharedExpressionStage();
   out.rest_.resize(model.materials.size());

@@ -100,7 +100,7 @@ eng::Result<LoadedFace> loadGltfOrVrm(const std::filesystem::path& path) {
   bool sameLayout = set.meshTargetOffsets.size() == size_t(layout.meshCount()) + 1;
   for (int m = 0; sameLayout && m <= layout.meshCount(); ++m) sameLayout = set.meshTargetOffsets[m] == layout.offset(m);
   if (!sameLayout)
-    return eng::makeError(path.string() + ": the VRM expressions address " + std::to_string(set.targetCount()) +
+    return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": the VRM expressions address " + std::to_string(set.targetCount()) +
                           " morph targets over " + std::to_string(set.meshTargetOffsets.size() - 1) +
                           " meshes, the loaded model has " + std::to_string(layout.total()) + " over " +
                           std::to_string(layout.meshCount()));
@@ -119,10 +119,10 @@ eng::Result<LoadedFace> loadGltfOrVrm(const std::filesystem::path& path) {
 static eng::Result<std::string> fileHead(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) return eng::makeError(path.string() + ": file not found");
-  if (!std::filesystem::is_regular_file(status)) return eng::makeError(path.string() + ": not a regular file or folder");
+  if (ec || !std::filesystem::exists(status)) return eng::makeError(eng::ErrorKind::NotFound, path.string() + ": file not found");
+  if (!std::filesystem::is_regular_file(status)) return eng::makeError(eng::ErrorKind::Io, path.string() + ": not a regular file or folder");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return eng::makeError(path.string() + ": cannot open for reading");
+  if (!in) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot open for reading");
   std::string head(kSniffBytes, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
@@ -131,7 +131,7 @@ static eng::Result<std::string> fileHead(const std::filesystem::path& path) {
 
 eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<const std::string> shapes) {
   std::error_code ec;
-  eng::Result<LoadedFace> face = eng::makeError("");
+  eng::Result<LoadedFace> face = eng::makeError(eng::ErrorKind::Malformed, "");
   if (std::filesystem::is_directory(path, ec)) {
     face = loadObjSet(path);
   } else {
@@ -152,12 +152,12 @@ eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<co
             if (auto smooth = facial::loopSubdivide(prim, path.string() + ": " + mesh.name); !smooth) return smooth.error();
       face = LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr};
     } else {
-      return eng::makeError(path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
+      return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
                             "keyframes or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{' nor '# VERTEX LIST'");
     }
   }
   if (!face) return face.error();
-  if (auto baked = bakeShapes(face->model, shapes); !baked) return eng::makeError(path.string() + ": " + baked.error().message);
+  if (auto baked = bakeShapes(face->model, shapes); !baked) return baked.error().prefixed(path.string() + ": ");
   return face;
 }
 
@@ -166,7 +166,7 @@ eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> sha
     const size_t eq = assignment.rfind('=');
     float value = 0.0f;
     if (eq == std::string::npos || eq == 0 || !parseFloat(std::string_view(assignment).substr(eq + 1), value))
-      return eng::makeError("--shape '" + assignment + "' is not NAME=VALUE with a finite number");
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "--shape '" + assignment + "' is not NAME=VALUE with a finite number");
     const std::string name = assignment.substr(0, eq);
     // Exact names first, then the loose spelling.
     int matched = 0;
@@ -197,7 +197,7 @@ eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> sha
       std::string list;
       for (size_t i = 0; i < candidates.size() && i < 12; ++i) list += (i ? ", " : "") + candidates[i];
       if (candidates.size() > 12) list += ", ... (" + std::to_string(candidates.size()) + " in all)";
-      return eng::makeError("--shape: no shape unit or morph target named '" + name + "'" +
+      return eng::makeError(eng::ErrorKind::NotFound, "--shape: no shape unit or morph target named '" + name + "'" +
                             (list.empty() ? std::string("; the model has none") : "; available: " + list));
     }
   }
@@ -243,15 +243,15 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
   options.rigmapDirectory = dataDirectory() / "rigmaps";
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildRigMapping(targetNames, options);
-  if (!rig) return eng::makeError(model.sourcePath + ": " + rig.error().message);
+  if (!rig) return rig.error().prefixed(model.sourcePath + ": ");
   facial::RigCalibrationOptions calibration;
   if (const std::filesystem::path file = facial::rigMapFileFor(options); !file.empty()) {
     auto rigmap = facial::loadRigMapFile(file, targetNames);
-    if (!rigmap) return eng::makeError(model.sourcePath + ": " + rigmap.error().message);
+    if (!rigmap) return rigmap.error().prefixed(model.sourcePath + ": ");
     calibration.overrides = std::move(rigmap->calibration);
   }
   auto calibrated = facial::calibrateRig(*rig, targetReach(model), calibration);
-  if (!calibrated) return eng::makeError(model.sourcePath + ": " + calibrated.error().message);
+  if (!calibrated) return calibrated.error().prefixed(model.sourcePath + ": ");
   return calibrated;
 }
 
@@ -262,7 +262,7 @@ eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const s
   options.rigmapDirectory = dataDirectory() / "rigmaps";
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildVrmRigMapping(face.vrm, eng::WeightLayout(face.model).names(), options);
-  if (!rig) return eng::makeError(face.model.sourcePath + ": " + rig.error().message);
+  if (!rig) return rig.error().prefixed(face.model.sourcePath + ": ");
   return facial::RigCalibration{std::move(*rig), {}};
 }
 
@@ -277,7 +277,7 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
       facial::ExpressionLibrary::load(options.expressions.empty() ? defaultExpressionsPath() : options.expressions);
   if (!expressions) return expressions.error();
   auto graphRig = facial::actionUnitRig(*rig, *expressions);
-  if (!graphRig) return eng::makeError(modelPath.string() + ": " + graphRig.error().message);
+  if (!graphRig) return graphRig.error().prefixed(modelPath.string() + ": ");
   return FaceSetup(std::move(*face), modelNameOf(modelPath), std::move(*rig), std::move(*graphRig),
                    std::move(*expressions));
 }
@@ -310,7 +310,7 @@ eng::Result<const facial::ExpressionPreset*> FaceSetup::findExpression(std::stri
   if (const facial::ExpressionPreset* preset = expressions_.find(name)) return preset;
   std::string available;
   for (std::string_view n : expressions_.names()) available += (available.empty() ? "" : ", ") + std::string(n);
-  return eng::makeError("unknown expression '" + std::string(name) + "'; available: " + available);
+  return eng::makeError(eng::ErrorKind::NotFound, "unknown expression '" + std::string(name) + "'; available: " + available);
 }
 
 std::vector<const facial::ExpressionPreset*> FaceSetup::presets(bool compound) const {
@@ -323,13 +323,13 @@ std::vector<const facial::ExpressionPreset*> FaceSetup::presets(bool compound) c
 eng::Result<void> FaceSetup::expressionWeights(const facial::ExpressionPreset& preset, float intensity,
                                                std::span<float> weights, std::span<float> vrmExpressions) {
   if (!std::isfinite(intensity))
-    return eng::makeError("expression '" + preset.name + "': intensity " + std::to_string(intensity) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': intensity " + std::to_string(intensity) +
                           " is not a finite number");
   if (weights.size() != weightCount())
-    return eng::makeError("expression '" + preset.name + "': " + std::to_string(weights.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': " + std::to_string(weights.size()) +
                           " weights given, " + name_ + " has " + std::to_string(weightCount()));
   if (!vrmExpressions.empty() && vrmExpressions.size() != vrmExpressionCount())
-    return eng::makeError("expression '" + preset.name + "': room for " + std::to_string(vrmExpressions.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': room for " + std::to_string(vrmExpressions.size()) +
                           " VRM expression weights, " + name_ + " has " + std::to_string(vrmExpressionCount()));
   const float clamped = std::clamp(intensity, 0.0f, 1.0f);
   if (auto au = facial::ExpressionLibrary::evaluate(preset, clamped, actionUnitScratch_); !au) return au.error();

@@ -9,18 +9,18 @@ namespace cli {
 eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Model& model,
                                                                  const HeadlessRenderOptions& options) {
   if (!(options.zoom > 0.0f) || !std::isfinite(options.zoom))
-    return eng::makeError("zoom must be a positive number");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "zoom must be a positive number");
   if (!std::isfinite(options.yawDegrees) || !std::isfinite(options.pitchDegrees))
-    return eng::makeError("yaw and pitch must be finite numbers of degrees");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "yaw and pitch must be finite numbers of degrees");
   HeadlessModelRenderer r;
   eng::vk::ContextOptions contextOptions;
   contextOptions.device = options.device;
   auto context = eng::vk::Context::create(contextOptions);
-  if (!context) return eng::makeError("Vulkan: " + context.error().message, context.error().code);
+  if (!context) return context.error().prefixed("Vulkan: ");
   r.context_ = std::make_unique<eng::vk::Context>(std::move(*context));
   auto renderer = eng::vk::OffscreenRenderer::create(
       *r.context_, {.width = options.width, .height = options.height, .quality = options.quality});
-  if (!renderer) return eng::makeError("Vulkan: " + renderer.error().message, renderer.error().code);
+  if (!renderer) return renderer.error().prefixed("Vulkan: ");
   r.renderer_ = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
   auto gpuModel = r.renderer_->upload(model);
   if (!gpuModel) return gpuModel.error();
@@ -39,13 +39,13 @@ eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> wei
                                                       std::span<const eng::vk::InstanceMaterial> materials) {
   const eng::vk::ModelInstance instance{&gpuModel_, glm::mat4(1.0f), weights, {}, materials};
   auto image = renderer_->render(view_, {&instance, 1});
-  if (!image) return eng::makeError(modelName_ + ": rendering failed: " + image.error().message, image.error().code);
+  if (!image) return image.error().prefixed(modelName_ + ": rendering failed: ");
   return image;
 }
 
 eng::Result<void> HeadlessModelRenderer::checkValidation() const {
   if (auto clean = context_->checkValidation(); !clean)
-    return eng::makeError(modelName_ + ": " + clean.error().message);
+    return clean.error().prefixed(modelName_ + ": ");
   return {};
 }
 

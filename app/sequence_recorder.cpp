@@ -14,16 +14,16 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
                                             const SequenceOptions& options, const FrameStep& step,
                                             const FrameSink& sink) {
   if (!(options.framesPerSecond > 0.0f) || !std::isfinite(options.framesPerSecond) || options.framesPerSecond > 240)
-    return eng::makeError("frame rate must be in (0, 240] fps");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "frame rate must be in (0, 240] fps");
   if (!(options.seconds > 0.0f) || !std::isfinite(options.seconds) || options.seconds > 3600)
-    return eng::makeError("duration must be in (0, 3600] seconds");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "duration must be in (0, 3600] seconds");
   const uint32_t frameCount = static_cast<uint32_t>(std::ceil(options.seconds * options.framesPerSecond));
   const float dt = 1.0f / options.framesPerSecond;
 
   if (!options.frameDir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(options.frameDir, ec);
-    if (ec) return eng::makeError(options.frameDir.string() + ": cannot create folder: " + ec.message());
+    if (ec) return eng::makeError(eng::ErrorKind::Io, options.frameDir.string() + ": cannot create folder: " + ec.message());
   }
   std::optional<eng::GifWriter> gif;
   if (!options.gifPath.empty()) {
@@ -43,7 +43,7 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
     if (!instances) return instances.error();
     const auto renderStart = std::chrono::steady_clock::now();
     auto image = renderer.render(view, *instances);
-    if (!image) return eng::makeError("frame " + std::to_string(i) + ": " + image.error().message);
+    if (!image) return image.error().prefixed("frame " + std::to_string(i) + ": ");
     summary.renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
     if (!options.frameDir.empty()) {
       char name[32];

@@ -58,7 +58,7 @@ eng::Result<SkeletonMotion> SkeletonMotion::create(const eng::Model& model, cons
   if (clip == "all") {
     for (const eng::Animation& a : model.animations)
       if (!a.nodeChannels.empty()) motion.clips_.push_back(&a);
-    if (motion.clips_.empty()) return eng::makeError(file + " has no skeletal clip (--clip all)");
+    if (motion.clips_.empty()) return eng::makeError(eng::ErrorKind::NotFound, file + " has no skeletal clip (--clip all)");
     motion.label_ = "all " + std::to_string(motion.clips_.size()) + " clips";
   } else if (!clip.empty()) {
     const eng::Animation* found = nullptr;
@@ -69,7 +69,7 @@ eng::Result<SkeletonMotion> SkeletonMotion::create(const eng::Model& model, cons
     for (const eng::Animation& a : model.animations)
       if (!found && a.name == clip) found = &a;
     if (!found || found->nodeChannels.empty())
-      return eng::makeError(file + ": no skeletal clip '" + clip + "'; the file has: " + skeletalClipList(model));
+      return eng::makeError(eng::ErrorKind::NotFound, file + ": no skeletal clip '" + clip + "'; the file has: " + skeletalClipList(model));
     motion.clips_.push_back(found);
     motion.label_ = found->name;
   }

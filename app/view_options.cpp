@@ -20,7 +20,7 @@ void addFramingOption(CLI::App& app, std::string& frame) {
 
 eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame) {
   if (auto mode = eng::vk::parseFramingMode(frame)) return *mode;
-  return eng::makeError("--frame '" + frame + "' is neither 'face' nor 'all'");
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--frame '" + frame + "' is neither 'face' nor 'all'");
 }
 
 void addQualityOption(CLI::App& app, std::string& quality) {
@@ -33,7 +33,7 @@ void addQualityOption(CLI::App& app, std::string& quality) {
 
 eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality) {
   if (auto tier = eng::vk::parseRenderQuality(quality)) return *tier;
-  return eng::makeError("--quality '" + quality + "' is not fast, balanced or high");
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not fast, balanced or high");
 }
 
 void addViewOptions(CLI::App& app, ViewOptions& view) {
@@ -50,10 +50,10 @@ void addViewOptions(CLI::App& app, ViewOptions& view) {
 eng::Result<HeadlessRenderOptions> headlessRenderOptions(const ViewOptions& view) {
   HeadlessRenderOptions options;
   if (!parseSize(view.size, options.width, options.height))
-    return eng::makeError("--size '" + view.size + "' is not WxH with 1..16384 pixels per side (e.g. 512x512)");
-  if (!(view.zoom > 0.0f) || !std::isfinite(view.zoom)) return eng::makeError("--zoom must be a positive number");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "--size '" + view.size + "' is not WxH with 1..16384 pixels per side (e.g. 512x512)");
+  if (!(view.zoom > 0.0f) || !std::isfinite(view.zoom)) return eng::makeError(eng::ErrorKind::InvalidArgument, "--zoom must be a positive number");
   if (!std::isfinite(view.yaw) || !std::isfinite(view.pitch))
-    return eng::makeError("--yaw and --pitch must be finite numbers of degrees");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "--yaw and --pitch must be finite numbers of degrees");
   auto framing = framingModeOption(view.frame);
   if (!framing) return framing.error();
   options.framing = *framing;
@@ -94,7 +94,7 @@ eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text) {
   bool valid = text.size() == 7 && text[0] == '#';
   for (size_t i = 1; valid && i < 7; ++i) valid = hex(text[i]) >= 0;
   if (!valid)
-    return eng::makeError("--background '" + text + "' is not transparent, studio or a colour #RRGGBB (e.g. #20a0ff)");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "--background '" + text + "' is not transparent, studio or a colour #RRGGBB (e.g. #20a0ff)");
   backdrop.kind = eng::vk::Backdrop::Kind::Solid;
   for (int c = 0; c < 3; ++c)
     backdrop.srgb[c] = float(hex(text[1 + 2 * c]) * 16 + hex(text[2 + 2 * c])) / 255.0f;

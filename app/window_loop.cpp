@@ -38,7 +38,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     const std::filesystem::path shot = endsWithShot ? options.finalScreenshot : plan->requestedShot;
     plan->input.screenshot = shot;
     auto drawn = renderer.drawFrame(plan->input);
-    if (!drawn) return eng::makeError("frame: " + drawn.error().message, drawn.error().code);
+    if (!drawn) return drawn.error().prefixed("frame: ");
     const bool presented = *drawn == eng::vk::FrameResult::Presented;
     if (presented && tick.elapsed >= measureFrom && measuredFrames++ == 0) measureStart = Clock::now();
     if (!shot.empty() && presented) {

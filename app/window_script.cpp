@@ -37,7 +37,7 @@ eng::Result<std::vector<TimedScriptLine>> splitTimedScript(std::string_view text
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     auto fail = [&](const std::string& problem) {
-      return eng::makeError(std::string(source) + ":" + std::to_string(number) + ": " + problem);
+      return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ":" + std::to_string(number) + ": " + problem);
     };
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::istringstream wordsIn(line);
@@ -60,7 +60,7 @@ eng::Result<std::vector<TimedScriptLine>> splitTimedScript(std::string_view text
 
 eng::Result<std::string> readScriptFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return eng::makeError(path.string() + ": cannot open the script");
+  if (!in) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot open the script");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
@@ -72,7 +72,7 @@ eng::Result<std::vector<ScriptAction>> parseWindowScript(std::string_view text, 
   std::vector<ScriptAction> actions;
   for (const TimedScriptLine& timed : *lines) {
     auto fail = [&](const std::string& problem) {
-      return eng::makeError(std::string(source) + ":" + std::to_string(timed.line) + ": " + problem);
+      return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ":" + std::to_string(timed.line) + ": " + problem);
     };
     const std::vector<std::string>& words = timed.words;  // the action, then its arguments
     ScriptAction action;

@@ -71,10 +71,10 @@ class LineReader {
     return found;
   }
   eng::Error error(const std::string& problem) const {
-    return eng::makeError(std::string(source_) + ":" + std::to_string(lineNumber_) + ": " + problem);
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": " + problem);
   }
   eng::Error endError(const std::string& what) const {
-    return eng::makeError(std::string(source_) + ":" + std::to_string(lineNumber_) + ": file ends before " + what);
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": file ends before " + what);
   }
 
  private:

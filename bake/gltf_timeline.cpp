@@ -26,7 +26,7 @@ std::string animationLabel(const eng::Model& model, size_t animation) {
 
 eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animation, std::vector<std::string>* warnings) {
   if (animation >= model.animations.size())
-    return eng::makeError("animation " + std::to_string(animation) + " out of range (" +
+    return eng::makeError(eng::ErrorKind::NotFound, "animation " + std::to_string(animation) + " out of range (" +
                           std::to_string(model.animations.size()) + " animations)");
   const eng::Animation& source = model.animations[animation];
   const std::string label = animationLabel(model, animation);
@@ -37,23 +37,23 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
     const eng::WeightsChannel& channel = source.channels[c];
     const std::string where = label + " channel " + std::to_string(c);
     if (channel.mesh < 0 || static_cast<size_t>(channel.mesh) >= model.meshes.size())
-      return eng::makeError(where + ": mesh " + std::to_string(channel.mesh) + " out of range (" +
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": mesh " + std::to_string(channel.mesh) + " out of range (" +
                             std::to_string(model.meshes.size()) + " meshes)");
     const eng::Mesh& mesh = model.meshes[channel.mesh];
     if (channel.targetCount != mesh.targetNames.size())
-      return eng::makeError(where + ": " + std::to_string(channel.targetCount) + " weights per key, mesh '" +
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": " + std::to_string(channel.targetCount) + " weights per key, mesh '" +
                             mesh.name + "' has " + std::to_string(mesh.targetNames.size()) + " targets");
     const bool cubic = channel.interpolation == eng::Interpolation::CubicSpline;
     const size_t perKey = channel.targetCount * (cubic ? 3 : 1);
     if (channel.values.size() != channel.times.size() * perKey)
-      return eng::makeError(where + ": " + std::to_string(channel.values.size()) + " values for " +
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": " + std::to_string(channel.values.size()) + " values for " +
                             std::to_string(channel.times.size()) + " keys of " + std::to_string(perKey));
     for (size_t k = 1; k < channel.times.size(); ++k)
       if (!(channel.times[k] > channel.times[k - 1]))
-        return eng::makeError(where + ": key " + std::to_string(k) + " time " + formatNumber(channel.times[k]) +
+        return eng::makeError(eng::ErrorKind::Malformed, where + ": key " + std::to_string(k) + " time " + formatNumber(channel.times[k]) +
                               " is not after the previous one (glTF requires strictly increasing times)");
     if (!channel.times.empty() && channel.times.front() < 0.0f)
-      return eng::makeError(where + ": negative key time " + formatNumber(channel.times.front()));
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": negative key time " + formatNumber(channel.times.front()));
     for (size_t t = 0; t < channel.targetCount; ++t) {
       const std::string& target = mesh.targetNames[t];
       if (timeline.findTrack(target)) {
@@ -76,10 +76,10 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
       if (!keys.empty()) timeline.addTrack(target, keys);
     }
   }
-  if (timeline.tracks.empty()) return eng::makeError(label + " animates no morph weights");
+  if (timeline.tracks.empty()) return eng::makeError(eng::ErrorKind::Malformed, label + " animates no morph weights");
   timeline.duration = timeline.lastKeyTime();
-  if (timeline.duration <= 0.0f) return eng::makeError(label + " lasts 0 s (all keys at time 0)");
-  if (auto problem = timeline.validate()) return eng::makeError(label + ": " + *problem);
+  if (timeline.duration <= 0.0f) return eng::makeError(eng::ErrorKind::Malformed, label + " lasts 0 s (all keys at time 0)");
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, label + ": " + *problem);
   return timeline;
 }
 
@@ -109,7 +109,7 @@ float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
 }  // namespace
 
 eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options) {
-  if (auto problem = timeline.validate()) return eng::makeError("timeline '" + timeline.name + "': " + *problem);
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + timeline.name + "': " + *problem);
   int node = options.node;
   if (node < 0) {
     // A face file often holds several meshes (head, eyes, teeth): pick the
@@ -129,10 +129,10 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
   }
   if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || model.nodes[node].mesh < 0 ||
       static_cast<size_t>(model.nodes[node].mesh) >= model.meshes.size())
-    return eng::makeError("timeline '" + timeline.name + "': node " + std::to_string(node) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline '" + timeline.name + "': node " + std::to_string(node) +
                           " does not exist or has no mesh (" + std::to_string(model.nodes.size()) + " nodes)");
   if (!(options.sampleRate > 0.0f) || !(options.stepRamp > 0.0f))
-    return eng::makeError("timeline export: sampleRate and stepRamp must be > 0");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline export: sampleRate and stepRamp must be > 0");
   const int meshIndex = model.nodes[node].mesh;
   const eng::Mesh& mesh = model.meshes[meshIndex];
   const size_t targets = mesh.targetNames.size();
@@ -142,7 +142,7 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
     auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), timeline.tracks[i].channel);
     if (it == mesh.targetNames.end())
-      return eng::makeError("timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
+      return eng::makeError(eng::ErrorKind::NotFound, "timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
                             "', which is not a morph target of mesh '" + mesh.name + "' (node " + std::to_string(node) +
                             ", " + std::to_string(targets) + " targets)");
     trackOfTarget[static_cast<size_t>(it - mesh.targetNames.begin())] = static_cast<int>(i);

@@ -45,9 +45,9 @@ struct Operator {
 eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
   const uint32_t n = static_cast<uint32_t>(prim.positions.size());
   if (prim.indices.size() % 3 != 0)
-    return eng::makeError(std::string(what) + ": " + std::to_string(prim.indices.size()) + " indices is not a triangle list");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, std::string(what) + ": " + std::to_string(prim.indices.size()) + " indices is not a triangle list");
   for (uint32_t i : prim.indices)
-    if (i >= n) return eng::makeError(std::string(what) + ": index " + std::to_string(i) + " of " + std::to_string(n) + " vertices");
+    if (i >= n) return eng::makeError(eng::ErrorKind::InvalidArgument, std::string(what) + ": index " + std::to_string(i) + " of " + std::to_string(n) + " vertices");
 
   std::unordered_map<uint64_t, Edge> edges;
   std::vector<uint64_t> edgeOrder;  // first-seen order: deterministic vertex numbering

@@ -524,7 +524,7 @@ eng::Result<VrmExpressionSet> importVrmExpressions(const Json& gltf, std::string
     return r.error();
   if (hasVrm1 && hasVrm0)
     set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");
-  if (auto valid = set.validate(); !valid) return eng::makeError(std::string(source) + ": " + valid.error().message);
+  if (auto valid = set.validate(); !valid) return valid.error().prefixed(std::string(source) + ": ");
   return set;
 }
 
@@ -542,7 +542,7 @@ eng::Result<Json> readGltfJson(const std::filesystem::path& file) {
   std::string_view text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
   if (eng::hasGlbMagic(*bytes)) {
     eng::Result<eng::GlbChunks> chunks = eng::parseGlb(*bytes);
-    if (!chunks) return eng::makeError(name + ": " + chunks.error().message);
+    if (!chunks) return chunks.error().prefixed(name + ": ");
     text = std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
   }
   return parseJsonText(text, name);

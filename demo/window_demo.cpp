@@ -67,19 +67,6 @@ constexpr const char* kPadGraph = R"({
     "up": {"type": "pose", "preset": "surprise"}, "down": {"type": "pose", "preset": "anger"},
     "x": "padX", "y": "padY"}}})";
 
-// Key presses queued by a GLFW callback: a fast press+release (xdotool, a
-// slow frame) lands between two ImGui frames and would be missed by polling.
-struct KeyQueue {
-  std::array<int, 32> keys{};
-  uint32_t count = 0;
-};
-KeyQueue* gKeyQueue = nullptr;
-
-void onKey(GLFWwindow*, int key, int, int action, int) {
-  if (action == GLFW_PRESS && gKeyQueue && gKeyQueue->count < gKeyQueue->keys.size())
-    gKeyQueue->keys[gKeyQueue->count++] = key;
-}
-
 // Who decides the weights of the (single) face.
 enum class Control { Graph, Slider, Pad };
 
@@ -182,7 +169,6 @@ class WindowDemo {
   std::array<eng::Aabb, 2> crowdBounds_;     // by eng::vk::FramingMode: the heads, the whole models
   eng::vk::FramingMode framing_ = eng::vk::FramingMode::Face;
   float panelLeft_ = 0.0f, panelRight_ = 0.0f, panelBottom_ = 0.0f;  // the panel this frame (ImGui pixels)
-  KeyQueue keys_;
   bool orbiting_ = false;
   bool screenshotRequested_ = false;
   bool quitRequested_ = false;
@@ -279,9 +265,6 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!gpuModel) return fail(gpuModel.error().message);
   gpuModel_.emplace(std::move(*gpuModel));
 
-  // Before ImGui, which chains to it.
-  gKeyQueue = &keys_;
-  glfwSetKeyCallback(window_->handle(), onKey);
   auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
@@ -389,15 +372,13 @@ void WindowDemo::toggleFraming() {
 
 void WindowDemo::handleInput() {
   const ImGuiIO& io = ImGui::GetIO();
-  for (uint32_t k = 0; k < keys_.count; ++k) {
-    const int key = keys_.keys[k];
+  for (const int key : window_->takeKeyPresses()) {
     if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     if (io.WantTextInput) continue;
     if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kEmotions.size())) trigger(key - GLFW_KEY_1);
     if (key == GLFW_KEY_F) toggleFraming();
     if (key == GLFW_KEY_ESCAPE) quitRequested_ = true;
   }
-  keys_.count = 0;
 
   // Orbit only with drags that start on the scene, not on the panel.
   // The press frame's delta is not part of the drag: it holds the pointer's
@@ -618,7 +599,6 @@ int WindowDemo::run(const DemoOptions& o) {
               setup_->name().c_str(), faces_.size(), stateName(faces_[0].driver.graph(), machine_), frameMs_,
               view_.camera.yawDegrees, view_.camera.pitchDegrees, width, height);
   ui_.reset();
-  gKeyQueue = nullptr;
   if (auto clean = ctx_->checkValidation(); !clean) return fail(clean.error().message);
   return exitCode;
 }

@@ -33,8 +33,8 @@ fs::path temporarySibling(const fs::path& path) {
 
 eng::Result<void> replaceFileAtomically(const fs::path& path,
                                         const std::function<eng::Result<void>(const fs::path&)>& write) {
-  if (path.empty()) return eng::makeError("no file name given");
-  if (fs::is_directory(path)) return eng::makeError(path.string() + ": is a folder, not a file");
+  if (path.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no file name given");
+  if (fs::is_directory(path)) return eng::makeError(eng::ErrorKind::InvalidArgument, path.string() + ": is a folder, not a file");
   const fs::path temp = temporarySibling(path);
   std::error_code ignored;
   auto written = write(temp);
@@ -44,13 +44,13 @@ eng::Result<void> replaceFileAtomically(const fs::path& path,
   }
   if (!syncToDisk(temp)) {
     fs::remove(temp, ignored);
-    return eng::makeError(path.string() + ": cannot flush " + temp.string() + " to the disk; the file was left as it was");
+    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot flush " + temp.string() + " to the disk; the file was left as it was");
   }
   std::error_code error;
   fs::rename(temp, path, error);
   if (error) {
     fs::remove(temp, ignored);
-    return eng::makeError(path.string() + ": cannot replace the file (" + error.message() + ")");
+    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot replace the file (" + error.message() + ")");
   }
   // The new content is in place; a folder that cannot be synced only weakens
   // the guarantee after a power cut, so it is not an error.

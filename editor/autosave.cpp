@@ -36,13 +36,13 @@ eng::Result<bool> TimelineAutosave::flush(const TimelineDocument& document) {
 eng::Result<bool> TimelineAutosave::write(const TimelineDocument& document) {
   // Tracks without keys are left out (toTimeline): the clip as it would play.
   const facial::Timeline timeline = document.toTimeline();
-  if (auto problem = timeline.validate()) return eng::makeError(file_.string() + ": not autosaved: " + *problem);
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, file_.string() + ": not autosaved: " + *problem);
   auto written = replaceFileAtomically(file_, [&](const fs::path& temp) -> eng::Result<void> {
     std::ofstream out(temp, std::ios::binary);
-    if (!out) return eng::makeError(file_.string() + ": cannot write the autosave (" + temp.string() + ")");
+    if (!out) return eng::makeError(eng::ErrorKind::Io, file_.string() + ": cannot write the autosave (" + temp.string() + ")");
     out << facial::timelineToJson(timeline).dump(1) << '\n';
     out.close();
-    if (!out) return eng::makeError(file_.string() + ": autosave write failed (disk full?)");
+    if (!out) return eng::makeError(eng::ErrorKind::Io, file_.string() + ": autosave write failed (disk full?)");
     return {};
   });
   if (!written) return written.error();
@@ -83,7 +83,7 @@ eng::Result<std::optional<RecoveredTimeline>> recoverAutosave(const fs::path& do
     return std::optional<RecoveredTimeline>();
   }
   auto loaded = TimelineDocument::load(file);
-  if (!loaded) return eng::makeError("cannot recover the autosaved edits: " + loaded.error().message);
+  if (!loaded) return loaded.error().prefixed("cannot recover the autosaved edits: ");
   loaded->markUnsaved();
   std::string message = "recovered unsaved edits of " + document.string() + " from " + file.string() +
                         " (autosaved " + clockTime(autosaved) + (documentExists ? ", after the file was last saved" : "") +

@@ -28,7 +28,7 @@ eng::Result<ModelSurface> ModelSurface::create(const eng::Model& model) {
     }
   }
   if (surface.primitives_.empty())
-    return eng::makeError(model.sourcePath + ": no node places a mesh with triangles, nothing to pick or sculpt");
+    return eng::makeError(eng::ErrorKind::Malformed, model.sourcePath + ": no node places a mesh with triangles, nothing to pick or sculpt");
   surface.posed_ = surface.rest_;
   return surface;
 }
@@ -36,12 +36,12 @@ eng::Result<ModelSurface> ModelSurface::create(const eng::Model& model) {
 eng::Result<void> ModelSurface::pose(const eng::Model& model, std::span<const float> weights) {
   const eng::WeightLayout layout(model);
   if (weights.size() != layout.total())
-    return eng::makeError("surface pose: " + std::to_string(weights.size()) + " weights given, the model has " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "surface pose: " + std::to_string(weights.size()) + " weights given, the model has " +
                           std::to_string(layout.total()));
   for (const SurfacePrimitive& sp : primitives_) {
     const eng::Primitive& primitive = model.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)];
     scratch_.resize(primitive.vertexCount());
-    eng::morphPrimitiveCpu(primitive, layout.meshWeights(weights, sp.mesh), scratch_, {});
+    eng::morphPrimitiveCpu(primitive, *layout.meshWeights(weights, sp.mesh), scratch_, {});
     for (size_t v = 0; v < scratch_.size(); ++v) posed_[sp.firstVertex + v] = glm::vec3(sp.world * glm::vec4(scratch_[v], 1.0f));
   }
   return {};

@@ -33,10 +33,10 @@ SculptModel::SculptModel(std::span<const glm::vec3> vertices, const eng::Aabb& b
 }
 
 eng::Result<size_t> SculptModel::addPoint(std::string name, const glm::vec3& rest) {
-  if (!finite(rest)) return eng::makeError("control point '" + name + "' has a non-finite position " + describe(rest));
+  if (!finite(rest)) return eng::makeError(eng::ErrorKind::InvalidArgument, "control point '" + name + "' has a non-finite position " + describe(rest));
   for (const SculptPoint& p : points_)
     if (glm::distance(p.rest, rest) < minSeparation_)
-      return eng::makeError("control point '" + name + "' is on top of '" + p.name + "' (closer than " +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "control point '" + name + "' is on top of '" + p.name + "' (closer than " +
                             std::to_string(minSeparation_) + ")");
   if (name.empty()) name = "point " + std::to_string(points_.size() + 1);
   points_.push_back({std::move(name), rest, glm::vec3(0.0f)});
@@ -46,7 +46,7 @@ eng::Result<size_t> SculptModel::addPoint(std::string name, const glm::vec3& res
 
 eng::Result<void> SculptModel::removePoint(size_t index) {
   if (index >= points_.size())
-    return eng::makeError("no control point " + std::to_string(index) + " (" + std::to_string(points_.size()) + " points)");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "no control point " + std::to_string(index) + " (" + std::to_string(points_.size()) + " points)");
   points_.erase(points_.begin() + std::ptrdiff_t(index));
   ++layoutRevision_;
   return {};
@@ -54,9 +54,9 @@ eng::Result<void> SculptModel::removePoint(size_t index) {
 
 eng::Result<void> SculptModel::setDisplacement(size_t index, const glm::vec3& displacement) {
   if (index >= points_.size())
-    return eng::makeError("no control point " + std::to_string(index) + " (" + std::to_string(points_.size()) + " points)");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "no control point " + std::to_string(index) + " (" + std::to_string(points_.size()) + " points)");
   if (!finite(displacement))
-    return eng::makeError("control point '" + points_[index].name + "': displacement " + describe(displacement) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "control point '" + points_[index].name + "': displacement " + describe(displacement) +
                           " is not finite");
   points_[index].displacement = displacement;
   return {};
@@ -74,9 +74,9 @@ void SculptModel::clearPoints() {
 
 eng::Result<void> SculptModel::setKernel(const facial::RbfKernel& kernel) {
   if (kernel.type == facial::RbfKernelType::Polyharmonic && kernel.k < 1)
-    return eng::makeError("polyharmonic kernel: k must be at least 1 (r^(2k+1)), got " + std::to_string(kernel.k));
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "polyharmonic kernel: k must be at least 1 (r^(2k+1)), got " + std::to_string(kernel.k));
   if (kernel.type == facial::RbfKernelType::Multiquadric && !(kernel.c > 0.0f && std::isfinite(kernel.c)))
-    return eng::makeError("multiquadric kernel: c must be a positive number, got " + std::to_string(kernel.c));
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "multiquadric kernel: c must be a positive number, got " + std::to_string(kernel.c));
   if (kernel.type == kernel_.type && kernel.k == kernel_.k && kernel.c == kernel_.c) return {};
   kernel_ = kernel;
   ++layoutRevision_;
@@ -85,7 +85,7 @@ eng::Result<void> SculptModel::setKernel(const facial::RbfKernel& kernel) {
 
 eng::Result<void> SculptModel::setFalloffRadius(float radius) {
   if (!std::isfinite(radius) || radius < 0.0f)
-    return eng::makeError("falloff radius must be a finite number >= 0 (got " + std::to_string(radius) + ")");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "falloff radius must be a finite number >= 0 (got " + std::to_string(radius) + ")");
   if (radius == falloffRadius_) return {};
   falloffRadius_ = radius;
   ++layoutRevision_;
@@ -100,14 +100,14 @@ void SculptModel::setPinsEnabled(bool enabled) {
 
 eng::Result<void> SculptModel::prepare() {
   if (prepared()) return {};
-  if (points_.empty()) return eng::makeError("no control points: pick points on the face first");
+  if (points_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no control points: pick points on the face first");
   std::vector<glm::vec3> controls;
   for (const SculptPoint& p : points_) controls.push_back(p.rest);
   if (pinsEnabled_) controls.insert(controls.end(), pins_.begin(), pins_.end());
   auto deformer = facial::RbfDeformer::build(controls, vertices_, kernel_);
   if (!deformer) {
     deformer_.reset();
-    return eng::makeError("RBF solve: " + deformer.error().message +
+    return eng::makeError(deformer.error().kind, "RBF solve: " + deformer.error().message +
                           (pinsEnabled_ ? "" : " (turning the pins on adds eight fixed points)"));
   }
   deformer_.emplace(std::move(*deformer));
@@ -129,9 +129,9 @@ eng::Result<void> SculptModel::prepare() {
 }
 
 eng::Result<void> SculptModel::vertexDisplacements(std::span<glm::vec3> out) {
-  if (!prepared()) return eng::makeError("sculpt: the RBF solve is out of date (call prepare first)");
+  if (!prepared()) return eng::makeError(eng::ErrorKind::InvalidArgument, "sculpt: the RBF solve is out of date (call prepare first)");
   if (out.size() != vertices_.size())
-    return eng::makeError("sculpt: room for " + std::to_string(out.size()) + " displacements, the surface has " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "sculpt: room for " + std::to_string(out.size()) + " displacements, the surface has " +
                           std::to_string(vertices_.size()) + " vertices");
   for (size_t i = 0; i < points_.size(); ++i) solverDisplacements_[i] = points_[i].displacement;
   return deformer_->apply(solverDisplacements_, out, falloff_);
@@ -155,7 +155,7 @@ eng::Result<void> checkSurfaceMatches(const eng::Model& model, const ModelSurfac
     if (sp.mesh < 0 || size_t(sp.mesh) >= model.meshes.size() ||
         size_t(sp.primitive) >= model.meshes[size_t(sp.mesh)].primitives.size() ||
         model.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)].vertexCount() != sp.vertexCount)
-      return eng::makeError(model.sourcePath + ": the sculpt surface was made from another model (mesh " +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, model.sourcePath + ": the sculpt surface was made from another model (mesh " +
                             std::to_string(sp.mesh) + " primitive " + std::to_string(sp.primitive) + " differs)");
   }
   return {};
@@ -183,15 +183,15 @@ void growWeightAnimations(eng::Model& model, int mesh, size_t added) {
 }  // namespace
 
 eng::Result<void> bakeSculptTarget(eng::Model& model, const ModelSurface& surface, SculptModel& sculpt, std::string_view name) {
-  if (name.empty()) return eng::makeError("bake: the new morph target needs a name");
+  if (name.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "bake: the new morph target needs a name");
   for (const eng::Mesh& mesh : model.meshes)
     if (std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name) != mesh.targetNames.end())
-      return eng::makeError("bake: mesh '" + mesh.name + "' already has a morph target named '" + std::string(name) + "'");
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "bake: mesh '" + mesh.name + "' already has a morph target named '" + std::string(name) + "'");
   if (auto ok = checkSurfaceMatches(model, surface); !ok) return ok;
-  if (auto ok = sculpt.prepare(); !ok) return eng::makeError("bake: " + ok.error().message);
-  if (!sculpt.hasDisplacement()) return eng::makeError("bake: every control point is at rest, nothing to bake");
+  if (auto ok = sculpt.prepare(); !ok) return ok.error().prefixed("bake: ");
+  if (!sculpt.hasDisplacement()) return eng::makeError(eng::ErrorKind::InvalidArgument, "bake: every control point is at rest, nothing to bake");
   std::vector<glm::vec3> world(surface.vertexCount());
-  if (auto ok = sculpt.vertexDisplacements(world); !ok) return eng::makeError("bake: " + ok.error().message);
+  if (auto ok = sculpt.vertexDisplacements(world); !ok) return ok.error().prefixed("bake: ");
 
   // Compute every target first so a failure leaves the model untouched.
   std::vector<std::vector<eng::MorphTarget>> targets(model.meshes.size());
@@ -232,7 +232,7 @@ eng::Result<void> bakeSculptTarget(eng::Model& model, const ModelSurface& surfac
 
 eng::Result<SculptPreview> SculptPreview::build(const eng::Model& model, const ModelSurface& surface,
                                                 const SculptModel& sculpt) {
-  if (!sculpt.prepared()) return eng::makeError("sculpt preview: the RBF solve is out of date");
+  if (!sculpt.prepared()) return eng::makeError(eng::ErrorKind::InvalidArgument, "sculpt preview: the RBF solve is out of date");
   if (auto ok = checkSurfaceMatches(model, surface); !ok) return ok.error();
   SculptPreview preview;
   preview.model_ = model;
@@ -280,7 +280,7 @@ eng::Result<SculptPreview> SculptPreview::build(const eng::Model& model, const M
 eng::Result<void> SculptPreview::weights(std::span<const float> faceWeights, std::span<const SculptPoint> points,
                                          std::span<float> out) const {
   if (faceWeights.size() != faceOffsets_.back() || out.size() != previewTotal_ || points.size() != pointCount_)
-    return eng::makeError("sculpt preview weights: " + std::to_string(faceWeights.size()) + " face weights (expected " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "sculpt preview weights: " + std::to_string(faceWeights.size()) + " face weights (expected " +
                           std::to_string(faceOffsets_.back()) + "), room for " + std::to_string(out.size()) + " (expected " +
                           std::to_string(previewTotal_) + "), " + std::to_string(points.size()) + " points (expected " +
                           std::to_string(pointCount_) + ")");

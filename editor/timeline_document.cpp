@@ -35,7 +35,7 @@ TimelineDocument::TimelineDocument(std::string name, float duration) {
 }
 
 eng::Result<TimelineDocument> TimelineDocument::fromTimeline(const facial::Timeline& timeline) {
-  if (auto problem = timeline.validate()) return eng::makeError("timeline '" + timeline.name + "': " + *problem);
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + timeline.name + "': " + *problem);
   TimelineDocument doc(timeline.name, timeline.duration);
   doc.state_.loop = timeline.loop;
   for (size_t t = 0; t < timeline.tracks.size(); ++t) {
@@ -50,7 +50,7 @@ eng::Result<TimelineDocument> TimelineDocument::load(const std::filesystem::path
   auto timeline = facial::loadTimeline(path);
   if (!timeline) return timeline.error();
   auto doc = fromTimeline(*timeline);
-  if (!doc) return eng::makeError(path.string() + ": " + doc.error().message);
+  if (!doc) return doc.error().prefixed(path.string() + ": ");
   return doc;
 }
 
@@ -72,16 +72,16 @@ facial::Timeline TimelineDocument::toTimeline() const {
 eng::Result<void> TimelineDocument::save(const std::filesystem::path& path) {
   for (const DocumentTrack& track : state_.tracks)
     if (track.keys.empty())
-      return eng::makeError(path.string() + ": not saved: track '" + track.channel +
+      return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": not saved: track '" + track.channel +
                             "' has no keys (add a key or remove the track)");
   const facial::Timeline timeline = toTimeline();
-  if (auto problem = timeline.validate()) return eng::makeError(path.string() + ": not saved: " + *problem);
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": not saved: " + *problem);
   auto saved = replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
     std::ofstream out(temp, std::ios::binary);
-    if (!out) return eng::makeError(path.string() + ": cannot write (" + temp.string() + " cannot be created)");
+    if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write (" + temp.string() + " cannot be created)");
     out << facial::timelineToJson(timeline).dump(1) << '\n';
     out.close();
-    if (!out) return eng::makeError(path.string() + ": write failed (disk full?)");
+    if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": write failed (disk full?)");
     return {};
   });
   if (!saved) return saved;
@@ -192,8 +192,8 @@ void TimelineDocument::commit(std::string label, State before) {
 }
 
 eng::Result<size_t> TimelineDocument::addTrack(std::string channel) {
-  if (channel.empty()) return eng::makeError("a track needs a channel name");
-  if (findTrack(channel)) return eng::makeError("there is already a track for '" + channel + "'");
+  if (channel.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "a track needs a channel name");
+  if (findTrack(channel)) return eng::makeError(eng::ErrorKind::InvalidArgument, "there is already a track for '" + channel + "'");
   State before = state_;
   state_.tracks.push_back({std::move(channel), {}});
   commit("add track", std::move(before));
@@ -202,7 +202,7 @@ eng::Result<size_t> TimelineDocument::addTrack(std::string channel) {
 
 eng::Result<void> TimelineDocument::removeTrack(size_t track) {
   if (track >= state_.tracks.size())
-    return eng::makeError("no track " + std::to_string(track) + " (" + std::to_string(state_.tracks.size()) + " tracks)");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "no track " + std::to_string(track) + " (" + std::to_string(state_.tracks.size()) + " tracks)");
   State before = state_;
   state_.tracks.erase(state_.tracks.begin() + std::ptrdiff_t(track));
   commit("remove track", std::move(before));
@@ -211,8 +211,8 @@ eng::Result<void> TimelineDocument::removeTrack(size_t track) {
 
 eng::Result<KeyId> TimelineDocument::setKey(size_t track, float time, float value, facial::KeyInterpolation interpolation) {
   if (track >= state_.tracks.size())
-    return eng::makeError("no track " + std::to_string(track) + " (" + std::to_string(state_.tracks.size()) + " tracks)");
-  if (!std::isfinite(time) || !std::isfinite(value)) return eng::makeError("key time and value must be finite numbers");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "no track " + std::to_string(track) + " (" + std::to_string(state_.tracks.size()) + " tracks)");
+  if (!std::isfinite(time) || !std::isfinite(value)) return eng::makeError(eng::ErrorKind::InvalidArgument, "key time and value must be finite numbers");
   State before = state_;
   time = std::clamp(time, 0.0f, state_.duration);
   auto& keys = state_.tracks[track].keys;
@@ -241,7 +241,7 @@ eng::Result<KeyId> TimelineDocument::setKey(size_t track, float time, float valu
 }
 
 eng::Result<void> TimelineDocument::deleteSelected() {
-  if (selection_.empty()) return eng::makeError("no keys selected");
+  if (selection_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no keys selected");
   State before = state_;
   for (DocumentTrack& track : state_.tracks) {
     std::erase_if(track.keys, [&](const DocumentKey& k) { return isSelected(k.id); });
@@ -253,7 +253,7 @@ eng::Result<void> TimelineDocument::deleteSelected() {
 }
 
 eng::Result<void> TimelineDocument::setSelectedInterpolation(facial::KeyInterpolation interpolation) {
-  if (selection_.empty()) return eng::makeError("no keys selected");
+  if (selection_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no keys selected");
   State before = state_;
   for (DocumentTrack& track : state_.tracks) {
     for (DocumentKey& k : track.keys) {
@@ -269,12 +269,12 @@ eng::Result<void> TimelineDocument::setSelectedInterpolation(facial::KeyInterpol
 
 eng::Result<void> TimelineDocument::setDuration(float duration) {
   if (!std::isfinite(duration) || duration < kMinDuration)
-    return eng::makeError("duration must be a number of at least " + seconds(kMinDuration));
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "duration must be a number of at least " + seconds(kMinDuration));
   float last = 0.0f;
   for (const DocumentTrack& track : state_.tracks)
     if (!track.keys.empty()) last = std::max(last, track.keys.back().key.time);
   if (last > duration)
-    return eng::makeError("keys lie up to " + seconds(last) + ", after the new end " + seconds(duration) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "keys lie up to " + seconds(last) + ", after the new end " + seconds(duration) +
                           " (move or delete them first)");
   State before = state_;
   state_.duration = duration;
@@ -346,8 +346,8 @@ void TimelineDocument::cancelMove() {
 }
 
 eng::Result<void> TimelineDocument::moveSelectedBy(float dt, float dv) {
-  if (selection_.empty()) return eng::makeError("no keys selected");
-  if (!std::isfinite(dt) || !std::isfinite(dv)) return eng::makeError("move by non-finite amounts");
+  if (selection_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no keys selected");
+  if (!std::isfinite(dt) || !std::isfinite(dv)) return eng::makeError(eng::ErrorKind::InvalidArgument, "move by non-finite amounts");
   beginMove();
   moveSelected(dt, dv);
   endMove();

@@ -26,7 +26,7 @@ bool TimelinePose::knowsChannel(std::string_view channel) const {
 
 eng::Result<void> TimelinePose::pose(const TimelineDocument& document, float time, std::span<float> targets) {
   if (targets.size() != base_.size())
-    return eng::makeError("timeline pose: room for " + std::to_string(targets.size()) + " weights, the model has " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline pose: room for " + std::to_string(targets.size()) + " weights, the model has " +
                           std::to_string(base_.size()));
   std::copy(base_.begin(), base_.end(), targets.begin());
   std::fill(actionUnits_.begin(), actionUnits_.end(), 0.0f);

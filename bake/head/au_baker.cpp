@@ -68,11 +68,11 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
     std::vector<bool> isMoved(landmarks.names.size(), false);
     for (const DisplacementDef& d : part.moves) {
       const int i = landmarks.find(d.landmark);
-      if (i < 0) return eng::makeError(where + ": landmark \"" + d.landmark + "\" was not resolved");
+      if (i < 0) return eng::makeError(eng::ErrorKind::Malformed, where + ": landmark \"" + d.landmark + "\" was not resolved");
       glm::vec3 by = d.by;
       if (!d.to.empty()) {
         const int j = landmarks.find(d.to);
-        if (j < 0) return eng::makeError(where + ": landmark \"" + d.to + "\" was not resolved");
+        if (j < 0) return eng::makeError(eng::ErrorKind::Malformed, where + ": landmark \"" + d.to + "\" was not resolved");
         by += landmarks.positions[j] - landmarks.positions[i];
       }
       isMoved[i] = true;
@@ -104,7 +104,7 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
     for (size_t a = 0; a < controls.size(); ++a)
       for (size_t b = a + 1; b < controls.size(); ++b)
         if (glm::length(controls[a] - controls[b]) < 5e-4f)
-          return eng::makeError(where + ": control points \"" + controlNames[a] + "\" and \"" + controlNames[b] +
+          return eng::makeError(eng::ErrorKind::Malformed, where + ": control points \"" + controlNames[a] + "\" and \"" + controlNames[b] +
                                 "\" are closer than 0.5 mm");
 
     // Vertices under the mask.
@@ -123,9 +123,9 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
     }
     if (covered.empty()) continue;
     eng::Result<RbfDeformer> deformer = RbfDeformer::build(controls, points, spec.kernel);
-    if (!deformer) return eng::makeError(where + ": " + deformer.error().message);
+    if (!deformer) return deformer.error().prefixed(where + ": ");
     std::vector<glm::vec3> out(points.size());
-    if (auto r = deformer->apply(displacements, out, weights); !r) return eng::makeError(where + ": " + r.error().message);
+    if (auto r = deformer->apply(displacements, out, weights); !r) return r.error().prefixed(where + ": ");
     for (size_t k = 0; k < covered.size(); ++k) total[covered[k]] += out[k];
   }
 

@@ -159,7 +159,7 @@ eng::Result<LandmarkPoints> resolveLandmarks(const HeadRigSpec& spec, const Skin
       case LandmarkDef::Kind::Surface: {
         const std::optional<vec3> hit = snapToSkin(d.xy, skin);
         if (!hit)
-          return eng::makeError(spec.source + ": landmark \"" + d.name + "\" at xy " + describeXy(d.xy) +
+          return eng::makeError(eng::ErrorKind::Malformed, spec.source + ": landmark \"" + d.name + "\" at xy " + describeXy(d.xy) +
                                 ": no skin under this point");
         p = *hit;
         break;
@@ -169,7 +169,7 @@ eng::Result<LandmarkPoints> resolveLandmarks(const HeadRigSpec& spec, const Skin
         if (it == features.end()) {
           std::string known;
           for (const auto& [name, unused] : features) known += (known.empty() ? "" : ", ") + name;
-          return eng::makeError(spec.source + ": landmark \"" + d.name + "\": unknown feature \"" + d.feature +
+          return eng::makeError(eng::ErrorKind::Malformed, spec.source + ": landmark \"" + d.name + "\": unknown feature \"" + d.feature +
                                 "\" (known: " + known + ")");
         }
         p = it->second;
@@ -197,7 +197,7 @@ eng::Result<LandmarkPoints> resolveLandmarks(const HeadRigSpec& spec, const Skin
   for (size_t a = 0; a < lm.names.size(); ++a)
     for (size_t b = a + 1; b < lm.names.size(); ++b)
       if (glm::length(lm.positions[a] - lm.positions[b]) < 5e-4f)
-        return eng::makeError(spec.source + ": landmarks \"" + lm.names[a] + "\" and \"" + lm.names[b] +
+        return eng::makeError(eng::ErrorKind::Malformed, spec.source + ": landmarks \"" + lm.names[a] + "\" and \"" + lm.names[b] +
                               "\" resolve to points closer than 0.5 mm");
   return lm;
 }
@@ -242,7 +242,7 @@ eng::Result<eng::Mesh> bakeHeadMesh(const HeadRigSpec& spec, const LandmarkPoint
     const ActionUnitDef* def = nullptr;
     for (const ActionUnitDef& d : spec.actionUnits)
       if (d.name == info.name) def = &d;
-    if (!def) return eng::makeError(spec.source + ": action unit \"" + std::string(info.name) + "\" is missing");
+    if (!def) return eng::makeError(eng::ErrorKind::Malformed, spec.source + ": action unit \"" + std::string(info.name) + "\" is missing");
     eng::Result<std::vector<vec3>> deltas = bakeActionUnit(*def, spec, lm, a.head);
     if (!deltas) return deltas.error();
     headMesh.targetNames.emplace_back(info.name);

@@ -352,13 +352,13 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
     }
     return spec;
   } catch (const SpecError& e) {
-    return eng::makeError(e.message);
+    return eng::makeError(eng::ErrorKind::Malformed, e.message);
   }
 }
 
 eng::Result<HeadRigSpec> loadHeadRigSpec(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return eng::makeError(path.string() + ": cannot open the landmark file");
+  if (!in) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot open the landmark file");
   std::ostringstream text;
   text << in.rdbuf();
   return parseHeadRigSpec(text.str(), path.string());

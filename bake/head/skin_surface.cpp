@@ -193,7 +193,7 @@ class SkinBuilder {
     auto cast = [&](double az, double el) -> std::optional<vec3> { return sdf_.castOut(c, gridDirection(az, el)); };
 
     const std::optional<vec3> bottom = cast(0.0, -kPi / 2), top = cast(0.0, kPi / 2);
-    if (!bottom || !top) return eng::makeError("head skin: rays from the grid centre miss the crown or the neck");
+    if (!bottom || !top) return eng::makeError(eng::ErrorKind::Malformed, "head skin: rays from the grid centre miss the crown or the neck");
     // One pole vertex per column (welded for normals): each pole triangle
     // then covers only its own column of texture, which keeps the sampler's
     // mip selection sane at the crown instead of averaging the whole image.
@@ -211,7 +211,7 @@ class SkinBuilder {
         if (insideEyeRect(i, j)) continue;
         const std::optional<vec3> hit = cast(azimuths_[i], elevations_[j]);
         if (!hit)
-          return eng::makeError("head skin: grid ray (column " + std::to_string(i) + ", row " + std::to_string(j) +
+          return eng::makeError(eng::ErrorKind::Malformed, "head skin: grid ray (column " + std::to_string(i) + ", row " + std::to_string(j) +
                                 ") found no surface");
         const vec2 uv(float(i) / nc, rowV(double(j) / nr));
         const uint32_t v = addVertex(*hit, uv, SkinPart::Skin);

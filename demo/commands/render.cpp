@@ -72,7 +72,9 @@ int runRender(const RenderOptions& o) {
     if (eq == std::string::npos || eq == 0 || !parseFloat(std::string_view(assignment).substr(eq + 1), value))
       return fail("--weight '" + assignment + "' is not NAME=VALUE with a finite number");
     const std::string name = assignment.substr(0, eq);
-    if (layout.setByName(weights, name, value) == 0) {
+    const eng::Result<int> matched = layout.setByName(weights, name, value);
+    if (!matched) return fail(matched.error().message);
+    if (*matched == 0) {
       const std::vector<std::string> names = layout.names();
       if (names.empty()) return fail(o.model + ": has no morph targets, cannot set weight '" + name + "'");
       return fail(o.model + ": no morph target named '" + name + "'; available: " + suggestNames(names, name));

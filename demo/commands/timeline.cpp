@@ -40,8 +40,8 @@ eng::Result<size_t> pickAnimation(const eng::Model& model, const std::string& wh
     if (which.empty() || which == model.animations[i].name || which == std::to_string(i)) return i;
     available += (available.empty() ? "" : ", ") + std::to_string(i) + " '" + model.animations[i].name + "'";
   }
-  if (available.empty()) return eng::makeError(model.sourcePath + ": has no animation of morph target weights");
-  return eng::makeError(model.sourcePath + ": no weights animation '" + which + "' (it has: " + available + ")");
+  if (available.empty()) return eng::makeError(eng::ErrorKind::NotFound, model.sourcePath + ": has no animation of morph target weights");
+  return eng::makeError(eng::ErrorKind::NotFound, model.sourcePath + ": no weights animation '" + which + "' (it has: " + available + ")");
 }
 
 int runImport(const TimelineOptions& o) {

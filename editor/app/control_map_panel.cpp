@@ -56,7 +56,7 @@ eng::Result<void> ControlMapPanel::create(const cli::FaceSetup& face) {
     auto graph = facial::parseGraph(mapGraph(layout), source, {.presets = facial::presetLookup(face.expressions())});
     if (!graph) return graph.error();
     auto driver = facial::FaceDriver::create(*graph, &face.graphRig(), names, face.baseWeights(), 7);
-    if (!driver) return eng::makeError(std::string(source) + ": " + driver.error().message);
+    if (!driver) return driver.error().prefixed(std::string(source) + ": ");
     x_[i] = *(*graph)->findParameter("x");
     y_[i] = *(*graph)->findParameter("y");
     driver->update(0.0f);

@@ -61,7 +61,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
   std::vector<EditorScriptAction> actions;
   for (const cli::TimedScriptLine& timed : *lines) {
     const std::string where = std::string(source) + ":" + std::to_string(timed.line) + ": ";
-    auto fail = [&](const std::string& problem) { return eng::makeError(where + problem); };
+    auto fail = [&](const std::string& problem) { return eng::makeError(eng::ErrorKind::Malformed, where + problem); };
     const std::vector<std::string>& words = timed.words;
     const Verb* verb = nullptr;
     for (const Verb& v : kVerbs)

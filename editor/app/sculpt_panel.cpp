@@ -53,7 +53,7 @@ void SculptPanel::workingWeights(std::span<const float> faceWeights, std::span<f
   std::fill(out.begin(), out.end(), 0.0f);
   for (int m = 0; m < faceLayout.meshCount(); ++m)
     std::copy_n(faceWeights.begin() + faceLayout.offset(m), faceLayout.count(m), out.begin() + workingLayout_->offset(m));
-  for (const auto& [name, weight] : baked_) workingLayout_->setByName(out, name, weight);
+  for (const auto& [name, weight] : baked_) (void)workingLayout_->setByName(out, name, weight);  // out is total() long
 }
 
 const eng::Model& SculptPanel::displayModel() const { return showingPreview_ && preview_ ? preview_->model() : working_; }
@@ -152,7 +152,7 @@ void SculptPanel::pointsOnFace(std::span<const float> faceWeights, std::vector<g
       const SurfaceAnchor& a = *anchors_[i];
       const SurfacePrimitive& sp = surface_->primitives()[a.primitive];
       const eng::Primitive& primitive = working_.meshes[size_t(sp.mesh)].primitives[size_t(sp.primitive)];
-      const std::span<const float> weights = workingLayout_->meshWeights(workingScratch_, sp.mesh);
+      const std::span<const float> weights = *workingLayout_->meshWeights(workingScratch_, sp.mesh);  // total() long
       glm::vec3 local{0.0f};
       for (int k = 0; k < 3; ++k) {
         glm::vec3 corner = primitive.positions[a.corner[k]];
@@ -233,14 +233,14 @@ bool SculptPanel::pressSave(const std::string& path) {
 
 eng::Result<size_t> SculptPanel::addLandmark(const std::string& name) {
   const auto it = std::find_if(landmarks_.begin(), landmarks_.end(), [&](const Landmark& l) { return l.name == name; });
-  if (it == landmarks_.end()) return eng::makeError("no landmark named '" + name + "'");
+  if (it == landmarks_.end()) return eng::makeError(eng::ErrorKind::NotFound, "no landmark named '" + name + "'");
   glm::vec3 point = it->rayOrigin;
   std::optional<SurfaceHit> hit;
   if (it->onSurface) {
     std::fill(workingScratch_.begin(), workingScratch_.end(), 0.0f);
     if (auto posed = surface_->pose(working_, workingScratch_); !posed) return posed.error();  // the rest pose
     hit = surface_->raycast(working_, it->rayOrigin, {0.0f, 0.0f, -1.0f});
-    if (!hit) return eng::makeError("landmark '" + name + "' does not project onto this model's surface");
+    if (!hit) return eng::makeError(eng::ErrorKind::InvalidArgument, "landmark '" + name + "' does not project onto this model's surface");
     point = hit->restPoint;
   }
   return addPoint(name, point, hit);
@@ -272,7 +272,7 @@ eng::Result<void> SculptPanel::bake(const std::string& name) {
 
 eng::Result<void> SculptPanel::saveModel(const std::string& path) {
   return replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
-    if (auto saved = eng::saveModel(working_, temp); !saved) return eng::makeError(path + ": " + saved.error().message);
+    if (auto saved = eng::saveModel(working_, temp); !saved) return saved.error().prefixed(path + ": ");
     return {};
   });
 }

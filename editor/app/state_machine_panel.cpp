@@ -28,7 +28,7 @@ eng::Result<void> StateMachinePanel::load(const cli::FaceSetup& face, const std:
   if (!graph) return graph.error();
   const std::vector<std::string> names = face.layout().names();
   auto driver = facial::FaceDriver::create(*graph, &face.graphRig(), names, face.baseWeights(), 1);
-  if (!driver) return eng::makeError(graphPath + ": " + driver.error().message);
+  if (!driver) return driver.error().prefixed(graphPath + ": ");
   // The editor drives the machine by hand: a graph's autoplay switch starts off.
   if (const auto autoplay = (*graph)->findParameter("autoplay");
       autoplay && (*graph)->parameters()[*autoplay].type == facial::ParameterType::Bool)

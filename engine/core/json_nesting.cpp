@@ -29,7 +29,7 @@ size_t jsonNestingDepth(std::string_view text) {
 Result<void> checkJsonNesting(std::string_view text, std::string_view source, size_t limit) {
   const size_t depth = jsonNestingDepth(text);
   if (depth <= limit) return {};
-  return makeError(std::string(source) + ": JSON nests " + std::to_string(depth) + " levels deep, more than the " +
+  return makeError(ErrorKind::TooLarge, std::string(source) + ": JSON nests " + std::to_string(depth) + " levels deep, more than the " +
                    std::to_string(limit) + " accepted");
 }
 

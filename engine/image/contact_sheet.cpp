@@ -7,12 +7,12 @@
 namespace eng {
 
 Result<Canvas> composeContactSheet(const std::vector<ContactSheetTile>& tiles, const ContactSheetOptions& options) {
-  if (tiles.empty()) return makeError("contact sheet: no tiles");
-  if (options.columns < 1) return makeError("contact sheet: columns must be >= 1");
+  if (tiles.empty()) return makeError(ErrorKind::InvalidArgument, "contact sheet: no tiles");
+  if (options.columns < 1) return makeError(ErrorKind::InvalidArgument, "contact sheet: columns must be >= 1");
   const int tileW = tiles.front().image.width, tileH = tiles.front().image.height;
   for (size_t i = 1; i < tiles.size(); ++i)
     if (tiles[i].image.width != tileW || tiles[i].image.height != tileH)
-      return makeError("contact sheet: tile " + std::to_string(i) + " is " + std::to_string(tiles[i].image.width) +
+      return makeError(ErrorKind::InvalidArgument, "contact sheet: tile " + std::to_string(i) + " is " + std::to_string(tiles[i].image.width) +
                        "x" + std::to_string(tiles[i].image.height) + ", expected " + std::to_string(tileW) + "x" +
                        std::to_string(tileH));
   Result<TextRenderer> text = TextRenderer::create();

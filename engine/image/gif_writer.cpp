@@ -34,9 +34,9 @@ GifWriter::~GifWriter() = default;
 
 Result<GifWriter> GifWriter::create(const std::filesystem::path& path, int width, int height, float fps) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
-    return makeError(path.string() + ": GIF size " + std::to_string(width) + "x" + std::to_string(height) +
+    return makeError(ErrorKind::InvalidArgument, path.string() + ": GIF size " + std::to_string(width) + "x" + std::to_string(height) +
                      " is out of range");
-  if (!(fps > 0.0f) || !std::isfinite(fps)) return makeError(path.string() + ": GIF frame rate must be positive");
+  if (!(fps > 0.0f) || !std::isfinite(fps)) return makeError(ErrorKind::InvalidArgument, path.string() + ": GIF frame rate must be positive");
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->pathString = path.string();
@@ -46,7 +46,7 @@ Result<GifWriter> GifWriter::create(const std::filesystem::path& path, int width
   impl->indices.resize(static_cast<size_t>(width) * height);
   impl->palette.resize(256 * 3);
   impl->attr = liq_attr_create();
-  if (!impl->attr) return makeError(path.string() + ": cannot create the colour quantiser");
+  if (!impl->attr) return makeError(ErrorKind::Io, path.string() + ": cannot create the colour quantiser");
   liq_set_speed(impl->attr, 8);  // why: headless tours encode hundreds of frames; 8 is fast and still smooth on skin
 
   // cgif needs a global palette even when every frame brings its own.
@@ -61,22 +61,22 @@ Result<GifWriter> GifWriter::create(const std::filesystem::path& path, int width
   config.height = static_cast<uint16_t>(height);
   config.numLoops = CGIF_INFINITE_LOOP;
   impl->gif = cgif_newgif(&config);
-  if (!impl->gif) return makeError(path.string() + ": cannot create GIF file");
+  if (!impl->gif) return makeError(ErrorKind::Io, path.string() + ": cannot create GIF file");
   return GifWriter(std::move(impl));
 }
 
 Result<void> GifWriter::addFrame(std::span<const uint8_t> rgba8) {
   Impl& s = *impl_;
-  if (!s.gif) return makeError(s.pathString + ": GIF already finished");
+  if (!s.gif) return makeError(ErrorKind::InvalidArgument, s.pathString + ": GIF already finished");
   const size_t expected = static_cast<size_t>(s.width) * s.height * 4;
   if (rgba8.size() != expected)
-    return makeError(s.pathString + ": GIF frame has " + std::to_string(rgba8.size()) + " bytes, expected " +
+    return makeError(ErrorKind::InvalidArgument, s.pathString + ": GIF frame has " + std::to_string(rgba8.size()) + " bytes, expected " +
                      std::to_string(expected));
   liq_image* image = liq_image_create_rgba(s.attr, rgba8.data(), s.width, s.height, 0);
   liq_result* quantised = nullptr;
   if (!image || liq_image_quantize(image, s.attr, &quantised) != LIQ_OK) {
     if (image) liq_image_destroy(image);
-    return makeError(s.pathString + ": colour quantisation failed");
+    return makeError(ErrorKind::Io, s.pathString + ": colour quantisation failed");
   }
   liq_set_dithering_level(quantised, 0.8f);
   liq_write_remapped_image(quantised, image, s.indices.data(), s.indices.size());
@@ -100,7 +100,7 @@ Result<void> GifWriter::addFrame(std::span<const uint8_t> rgba8) {
   const int rc = cgif_addframe(s.gif, &frame);
   liq_result_destroy(quantised);
   liq_image_destroy(image);
-  if (rc != CGIF_OK) return makeError(s.pathString + ": writing GIF frame failed (cgif error " + std::to_string(rc) + ")");
+  if (rc != CGIF_OK) return makeError(ErrorKind::Io, s.pathString + ": writing GIF frame failed (cgif error " + std::to_string(rc) + ")");
   return {};
 }
 
@@ -109,7 +109,7 @@ Result<void> GifWriter::finish() {
   if (!s.gif) return {};
   const int rc = cgif_close(s.gif);
   s.gif = nullptr;
-  if (rc != CGIF_OK) return makeError(s.pathString + ": closing GIF failed (cgif error " + std::to_string(rc) + ")");
+  if (rc != CGIF_OK) return makeError(ErrorKind::Io, s.pathString + ": closing GIF failed (cgif error " + std::to_string(rc) + ")");
   return {};
 }
 

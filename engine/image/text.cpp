@@ -32,12 +32,12 @@ std::filesystem::path TextRenderer::defaultFontPath() {
 Result<TextRenderer> TextRenderer::create(const std::filesystem::path& fontFile) {
   const std::filesystem::path path = fontFile.empty() ? defaultFontPath() : fontFile;
   std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(path.string() + ": cannot open font file (install fonts-dejavu-core)");
+  if (!in) return makeError(ErrorKind::Io, path.string() + ": cannot open font file (install fonts-dejavu-core)");
   auto impl = std::make_unique<Impl>();
   impl->fontData.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   const int offset = stbtt_GetFontOffsetForIndex(impl->fontData.data(), 0);
   if (offset < 0 || !stbtt_InitFont(&impl->font, impl->fontData.data(), offset))
-    return makeError(path.string() + ": not a TrueType font");
+    return makeError(ErrorKind::Malformed, path.string() + ": not a TrueType font");
   return TextRenderer(std::move(impl));
 }
 

@@ -1,35 +1,48 @@
 #include "engine/scene/cpu_morph.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
+#include <cmath>
 
 namespace eng {
 
-void morphPrimitiveCpu(const Primitive& primitive, std::span<const float> meshWeights,
-                       std::span<glm::vec3> outPositions, std::span<glm::vec3> outNormals) {
-  const size_t n = primitive.vertexCount();
-  if (meshWeights.size() != primitive.targets.size())
-    throw std::invalid_argument("morphPrimitiveCpu: " + std::to_string(meshWeights.size()) + " weights for " +
-                                std::to_string(primitive.targets.size()) + " targets");
+std::optional<std::string> MorphPrimitiveJob::Validate() const {
+  if (!primitive) return std::string("MorphPrimitiveJob: no primitive");
+  const size_t n = primitive->vertexCount();
+  if (weights.size() != primitive->targets.size())
+    return "MorphPrimitiveJob: " + std::to_string(weights.size()) + " weights for " +
+           std::to_string(primitive->targets.size()) + " targets";
   if (outPositions.size() != n)
-    throw std::invalid_argument("morphPrimitiveCpu: outPositions has " + std::to_string(outPositions.size()) +
-                                " entries, primitive has " + std::to_string(n) + " vertices");
+    return "MorphPrimitiveJob: outPositions has " + std::to_string(outPositions.size()) + " entries, primitive has " +
+           std::to_string(n) + " vertices";
   if (!outNormals.empty() && outNormals.size() != n)
-    throw std::invalid_argument("morphPrimitiveCpu: outNormals has " + std::to_string(outNormals.size()) +
-                                " entries, primitive has " + std::to_string(n) + " vertices");
+    return "MorphPrimitiveJob: outNormals has " + std::to_string(outNormals.size()) + " entries, primitive has " +
+           std::to_string(n) + " vertices";
+  if (!outNormals.empty() && primitive->normals.size() != n)
+    return "MorphPrimitiveJob: primitive has " + std::to_string(primitive->normals.size()) + " normals for " +
+           std::to_string(n) + " vertices";
+  for (size_t t = 0; t < weights.size(); ++t) {
+    if (!std::isfinite(weights[t])) return "MorphPrimitiveJob: weight " + std::to_string(t) + " is not finite";
+    const MorphTarget& target = primitive->targets[t];
+    if ((!target.positions.empty() && target.positions.size() != n) ||
+        (!target.normals.empty() && target.normals.size() != n))
+      return "MorphPrimitiveJob: target " + std::to_string(t) + " has deltas for another vertex count than " +
+             std::to_string(n);
+  }
+  return std::nullopt;
+}
+
+bool MorphPrimitiveJob::Run() const {
+  if (Validate()) return false;  // allocates only to describe a failure
+  const Primitive& p = *primitive;
+  const size_t n = p.vertexCount();
   const bool doNormals = !outNormals.empty();
-  if (doNormals && primitive.normals.size() != n)
-    throw std::invalid_argument("morphPrimitiveCpu: primitive has " + std::to_string(primitive.normals.size()) +
-                                " normals for " + std::to_string(n) + " vertices");
+  std::copy(p.positions.begin(), p.positions.end(), outPositions.begin());
+  if (doNormals) std::copy(p.normals.begin(), p.normals.end(), outNormals.begin());
 
-  std::copy(primitive.positions.begin(), primitive.positions.end(), outPositions.begin());
-  if (doNormals) std::copy(primitive.normals.begin(), primitive.normals.end(), outNormals.begin());
-
-  for (size_t t = 0; t < primitive.targets.size(); ++t) {
-    const float w = meshWeights[t];
+  for (size_t t = 0; t < p.targets.size(); ++t) {
+    const float w = weights[t];
     if (w == 0.0f) continue;
-    const MorphTarget& target = primitive.targets[t];
+    const MorphTarget& target = p.targets[t];
     if (!target.positions.empty())
       for (size_t v = 0; v < n; ++v) outPositions[v] += w * target.positions[v];
     if (doNormals && !target.normals.empty())
@@ -42,6 +55,12 @@ void morphPrimitiveCpu(const Primitive& primitive, std::span<const float> meshWe
       if (len2 > 1e-20f) nrm *= 1.0f / std::sqrt(len2);
     }
   }
+  return true;
+}
+
+bool morphPrimitiveCpu(const Primitive& primitive, std::span<const float> meshWeights,
+                       std::span<glm::vec3> outPositions, std::span<glm::vec3> outNormals) {
+  return MorphPrimitiveJob{&primitive, meshWeights, outPositions, outNormals}.Run();
 }
 
 }  // namespace eng

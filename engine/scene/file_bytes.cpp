@@ -7,27 +7,27 @@ namespace eng {
 Result<std::vector<uint8_t>> readFileBytes(const std::filesystem::path& path, size_t maxBytes) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) return makeError(path.string() + ": file not found");
-  if (!std::filesystem::is_regular_file(status)) return makeError(path.string() + ": not a regular file");
+  if (ec || !std::filesystem::exists(status)) return makeError(ErrorKind::NotFound, path.string() + ": file not found");
+  if (!std::filesystem::is_regular_file(status)) return makeError(ErrorKind::Io, path.string() + ": not a regular file");
   const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return makeError(path.string() + ": cannot get file size (" + ec.message() + ")");
+  if (ec) return makeError(ErrorKind::Io, path.string() + ": cannot get file size (" + ec.message() + ")");
   if (size > maxBytes)
-    return makeError(path.string() + ": file of " + std::to_string(size) + " bytes exceeds the limit of " +
+    return makeError(ErrorKind::TooLarge, path.string() + ": file of " + std::to_string(size) + " bytes exceeds the limit of " +
                      std::to_string(maxBytes) + " bytes");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(path.string() + ": cannot open for reading");
+  if (!in) return makeError(ErrorKind::Io, path.string() + ": cannot open for reading");
   std::vector<uint8_t> bytes(static_cast<size_t>(size));
   if (size > 0) in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
-  if (!in) return makeError(path.string() + ": read failed");
+  if (!in) return makeError(ErrorKind::Io, path.string() + ": read failed");
   return bytes;
 }
 
 Result<void> writeFileBytes(const std::filesystem::path& path, const void* data, size_t size) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return makeError(path.string() + ": cannot open for writing");
+  if (!out) return makeError(ErrorKind::Io, path.string() + ": cannot open for writing");
   out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
   out.close();
-  if (!out) return makeError(path.string() + ": write failed");
+  if (!out) return makeError(ErrorKind::Io, path.string() + ": write failed");
   return {};
 }
 

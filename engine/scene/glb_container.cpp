@@ -34,43 +34,43 @@ bool hasGlbMagic(std::span<const uint8_t> bytes) { return bytes.size() >= 4 && r
 
 Result<GlbChunks> parseGlb(std::span<const uint8_t> bytes) {
   const size_t size = bytes.size();
-  if (size < 4) return makeError("truncated GLB: " + std::to_string(size) + " bytes, not even a magic number");
+  if (size < 4) return makeError(ErrorKind::Malformed, "truncated GLB: " + std::to_string(size) + " bytes, not even a magic number");
   if (!hasGlbMagic(bytes))
-    return makeError("wrong magic '" + printableTag(bytes.data()) + "' (a .glb starts with 'glTF')");
-  if (size < 12) return makeError("truncated GLB: " + std::to_string(size) + " bytes, the header needs 12");
+    return makeError(ErrorKind::Malformed, "wrong magic '" + printableTag(bytes.data()) + "' (a .glb starts with 'glTF')");
+  if (size < 12) return makeError(ErrorKind::Malformed, "truncated GLB: " + std::to_string(size) + " bytes, the header needs 12");
   const uint32_t version = readU32(bytes.data() + 4);
-  if (version != 2) return makeError("GLB container version " + std::to_string(version) + " is not supported (need 2)");
+  if (version != 2) return makeError(ErrorKind::Unsupported, "GLB container version " + std::to_string(version) + " is not supported (need 2)");
   const uint32_t length = readU32(bytes.data() + 8);
   if (length > size)
-    return makeError("truncated GLB: header declares " + std::to_string(length) + " bytes, file has " +
+    return makeError(ErrorKind::Malformed, "truncated GLB: header declares " + std::to_string(length) + " bytes, file has " +
                      std::to_string(size));
-  if (length < 20) return makeError("corrupt GLB: declared length " + std::to_string(length) + " leaves no room for a JSON chunk");
+  if (length < 20) return makeError(ErrorKind::Malformed, "corrupt GLB: declared length " + std::to_string(length) + " leaves no room for a JSON chunk");
 
   GlbChunks chunks;
   size_t offset = 12;
   int index = 0;
   while (offset < length) {
     if (length - offset < 8)
-      return makeError("truncated GLB: chunk " + std::to_string(index) + " header at byte " + std::to_string(offset) +
+      return makeError(ErrorKind::Malformed, "truncated GLB: chunk " + std::to_string(index) + " header at byte " + std::to_string(offset) +
                        " runs past the declared length " + std::to_string(length));
     const uint32_t chunkLength = readU32(bytes.data() + offset);
     const uint32_t chunkType = readU32(bytes.data() + offset + 4);
     const size_t dataBegin = offset + 8;
     if (chunkLength > length - dataBegin)
-      return makeError("truncated GLB: chunk " + std::to_string(index) + " ('" + printableTag(bytes.data() + offset + 4) +
+      return makeError(ErrorKind::Malformed, "truncated GLB: chunk " + std::to_string(index) + " ('" + printableTag(bytes.data() + offset + 4) +
                        "') of " + std::to_string(chunkLength) + " bytes at byte " + std::to_string(dataBegin) +
                        " runs past the declared length " + std::to_string(length));
     const std::span<const uint8_t> data = bytes.subspan(dataBegin, chunkLength);
     if (index == 0) {
       if (chunkType != kChunkJson)
-        return makeError("corrupt GLB: first chunk is '" + printableTag(bytes.data() + offset + 4) + "', expected 'JSON'");
-      if (chunkLength == 0) return makeError("corrupt GLB: JSON chunk is empty");
+        return makeError(ErrorKind::Malformed, "corrupt GLB: first chunk is '" + printableTag(bytes.data() + offset + 4) + "', expected 'JSON'");
+      if (chunkLength == 0) return makeError(ErrorKind::Malformed, "corrupt GLB: JSON chunk is empty");
       chunks.json = data;
     } else if (index == 1 && chunkType == kChunkBin) {
       chunks.bin = data;
       chunks.hasBin = true;
     } else if (chunkType == kChunkJson || chunkType == kChunkBin) {
-      return makeError("corrupt GLB: chunk " + std::to_string(index) + " is a second '" +
+      return makeError(ErrorKind::Malformed, "corrupt GLB: chunk " + std::to_string(index) + " is a second '" +
                        printableTag(bytes.data() + offset + 4) + "' chunk");
     }
     // Unknown chunk types are skipped, as the spec requires.

@@ -82,15 +82,15 @@ struct ViewRange {
 
 Result<ViewRange> viewRange(const tinygltf::Model& gltf, int view, const std::string& where) {
   if (view < 0 || static_cast<size_t>(view) >= gltf.bufferViews.size())
-    return makeError(where + " refers to bufferView " + std::to_string(view) + ", the file has " +
+    return makeError(ErrorKind::Malformed, where + " refers to bufferView " + std::to_string(view) + ", the file has " +
                      std::to_string(gltf.bufferViews.size()));
   const tinygltf::BufferView& bv = gltf.bufferViews[view];
   if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= gltf.buffers.size())
-    return makeError(where + ": bufferView " + std::to_string(view) + " refers to buffer " + std::to_string(bv.buffer) +
+    return makeError(ErrorKind::Malformed, where + ": bufferView " + std::to_string(view) + " refers to buffer " + std::to_string(bv.buffer) +
                      ", the file has " + std::to_string(gltf.buffers.size()));
   const std::vector<unsigned char>& buffer = gltf.buffers[bv.buffer].data;
   if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
-    return makeError(where + ": bufferView " + std::to_string(view) + " (bytes " + std::to_string(bv.byteOffset) + ".." +
+    return makeError(ErrorKind::Malformed, where + ": bufferView " + std::to_string(view) + " (bytes " + std::to_string(bv.byteOffset) + ".." +
                      std::to_string(bv.byteOffset + bv.byteLength) + ") is out of range of buffer " +
                      std::to_string(bv.buffer) + " (" + std::to_string(buffer.size()) + " bytes)");
   return ViewRange{buffer.data() + bv.byteOffset, bv.byteLength, bv.byteStride};
@@ -137,14 +137,14 @@ GltfAccessorReader::GltfAccessorReader(const tinygltf::Model& gltf, size_t maxDe
 
 Result<size_t> GltfAccessorReader::count(int accessor, std::string_view what) const {
   if (accessor < 0 || static_cast<size_t>(accessor) >= gltf_.accessors.size())
-    return makeError(prefix(accessor, what) + " does not exist; the file has " + std::to_string(gltf_.accessors.size()) +
+    return makeError(ErrorKind::Malformed, prefix(accessor, what) + " does not exist; the file has " + std::to_string(gltf_.accessors.size()) +
                      " accessors");
   return gltf_.accessors[accessor].count;
 }
 
 Result<void> GltfAccessorReader::charge(size_t bytes, std::string_view what) {
   if (bytes > maxDecodedBytes_ - decodedBytes_)
-    return makeError(std::string(what) + " would take the decoded data past the limit of " +
+    return makeError(ErrorKind::TooLarge, std::string(what) + " would take the decoded data past the limit of " +
                      std::to_string(maxDecodedBytes_) + " bytes (" + std::to_string(bytes) + " more requested)");
   decodedBytes_ += bytes;
   return {};
@@ -166,17 +166,17 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   const std::string where = prefix(index, what);
   const int accComponents = gltfComponentCount(acc.type);
   if (accComponents != components)
-    return makeError(where + " has type " + typeName(acc.type) + ", expected " +
+    return makeError(ErrorKind::Malformed, where + " has type " + typeName(acc.type) + ", expected " +
                      (components == 1    ? std::string("SCALAR")
                       : components == 16 ? std::string("MAT4")
                                          : "VEC" + std::to_string(components)));
   const size_t compSize = gltfComponentSize(acc.componentType);
   if (compSize == 0)
-    return makeError(where + " has unknown componentType " + std::to_string(acc.componentType));
+    return makeError(ErrorKind::Malformed, where + " has unknown componentType " + std::to_string(acc.componentType));
   if (indices && acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
       acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-    return makeError(where + " must hold unsigned integers, has componentType " + std::to_string(acc.componentType));
+    return makeError(ErrorKind::Malformed, where + " must hold unsigned integers, has componentType " + std::to_string(acc.componentType));
   const size_t elementSize = compSize * static_cast<size_t>(components);
   const size_t count = *n;
 
@@ -189,12 +189,12 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
     base = *range;
     if (base.stride != 0) {
       if (base.stride < elementSize)
-        return makeError(where + ": byteStride " + std::to_string(base.stride) + " is smaller than the element size " +
+        return makeError(ErrorKind::Malformed, where + ": byteStride " + std::to_string(base.stride) + " is smaller than the element size " +
                          std::to_string(elementSize));
       stride = base.stride;
     }
     if (!fits(acc.byteOffset, count, stride, elementSize, base.size))
-      return makeError(where + ": " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
+      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
                        " bytes (stride " + std::to_string(stride) + ") from byte " + std::to_string(acc.byteOffset) +
                        " run past the end of bufferView " + std::to_string(acc.bufferView) + " (" +
                        std::to_string(base.size) + " bytes)");
@@ -206,13 +206,13 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   size_t sparseIndexSize = 0;
   if (acc.sparse.isSparse) {
     if (acc.sparse.count < 0 || sparseCount > count)
-      return makeError(where + ": sparse count " + std::to_string(acc.sparse.count) + " is outside 0.." +
+      return makeError(ErrorKind::Malformed, where + ": sparse count " + std::to_string(acc.sparse.count) + " is outside 0.." +
                        std::to_string(count));
     const int ict = acc.sparse.indices.componentType;
     sparseIndexSize = gltfComponentSize(ict);
     if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      return makeError(where + ": sparse indices have componentType " + std::to_string(ict) +
+      return makeError(ErrorKind::Malformed, where + ": sparse indices have componentType " + std::to_string(ict) +
                        ", expected an unsigned integer type");
     auto ir = viewRange(gltf_, acc.sparse.indices.bufferView, where + " sparse indices");
     if (!ir) return ir.error();
@@ -221,16 +221,16 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
     sparseIndices = *ir;
     sparseValues = *vr;
     if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
-      return makeError(where + ": negative sparse byteOffset");
+      return makeError(ErrorKind::Malformed, where + ": negative sparse byteOffset");
     if (!fits(static_cast<size_t>(acc.sparse.indices.byteOffset), sparseCount, sparseIndexSize, sparseIndexSize,
               sparseIndices.size))
-      return makeError(where + ": " + std::to_string(sparseCount) + " sparse indices from byte " +
+      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse indices from byte " +
                        std::to_string(acc.sparse.indices.byteOffset) + " run past the end of bufferView " +
                        std::to_string(acc.sparse.indices.bufferView) + " (" + std::to_string(sparseIndices.size) +
                        " bytes)");
     if (!fits(static_cast<size_t>(acc.sparse.values.byteOffset), sparseCount, elementSize, elementSize,
               sparseValues.size))
-      return makeError(where + ": " + std::to_string(sparseCount) + " sparse values of " + std::to_string(elementSize) +
+      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse values of " + std::to_string(elementSize) +
                        " bytes from byte " + std::to_string(acc.sparse.values.byteOffset) +
                        " run past the end of bufferView " + std::to_string(acc.sparse.values.bufferView) + " (" +
                        std::to_string(sparseValues.size) + " bytes)");
@@ -238,7 +238,7 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
 
   const size_t valueCount = count * static_cast<size_t>(components);
   if (count > std::numeric_limits<size_t>::max() / (sizeof(T) * components))
-    return makeError(where + ": count " + std::to_string(count) + " is absurd");
+    return makeError(ErrorKind::TooLarge, where + ": count " + std::to_string(count) + " is absurd");
   if (auto ok = charge(valueCount * sizeof(T), where); !ok) return ok.error();
 
   std::vector<T> out(valueCount, T{});
@@ -261,7 +261,7 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
     for (size_t s = 0; s < sparseCount; ++s) {
       const uint32_t target = componentAsIndex(idx + s * sparseIndexSize, acc.sparse.indices.componentType);
       if (target >= count)
-        return makeError(where + ": sparse index " + std::to_string(target) + " (entry " + std::to_string(s) +
+        return makeError(ErrorKind::Malformed, where + ": sparse index " + std::to_string(target) + " (entry " + std::to_string(s) +
                          ") is out of range of " + std::to_string(count) + " elements");
       readElement(val + s * elementSize, out.data() + static_cast<size_t>(target) * components);
     }
@@ -269,7 +269,7 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   if constexpr (std::is_same_v<T, float>) {
     for (size_t i = 0; i < out.size(); ++i)
       if (!std::isfinite(out[i]))
-        return makeError(where + ": element " + std::to_string(i / components) + " is " +
+        return makeError(ErrorKind::Malformed, where + ": element " + std::to_string(i / components) + " is " +
                          (std::isnan(out[i]) ? "NaN" : "infinite"));
   }
   return out;

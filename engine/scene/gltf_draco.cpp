@@ -64,23 +64,23 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
   const tinygltf::Value& ext = prim.extensions.at(kKhrDraco);
   if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber() || !ext.Has("attributes") ||
       !ext.Get("attributes").IsObject())
-    return makeError(where + ": " + kKhrDraco + " needs an integer 'bufferView' and an 'attributes' object");
+    return makeError(ErrorKind::Malformed, where + ": " + kKhrDraco + " needs an integer 'bufferView' and an 'attributes' object");
   const int viewIndex = ext.Get("bufferView").GetNumberAsInt();
   if (viewIndex < 0 || static_cast<size_t>(viewIndex) >= gltf.bufferViews.size())
-    return makeError(where + ": Draco bufferView " + std::to_string(viewIndex) + " does not exist");
+    return makeError(ErrorKind::Malformed, where + ": Draco bufferView " + std::to_string(viewIndex) + " does not exist");
   const tinygltf::BufferView& view = gltf.bufferViews[static_cast<size_t>(viewIndex)];
   if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= gltf.buffers.size())
-    return makeError(where + ": Draco bufferView " + std::to_string(viewIndex) + " has no valid buffer");
+    return makeError(ErrorKind::Malformed, where + ": Draco bufferView " + std::to_string(viewIndex) + " has no valid buffer");
   const std::vector<unsigned char>& src = gltf.buffers[static_cast<size_t>(view.buffer)].data;
   if (view.byteOffset > src.size() || view.byteLength > src.size() - view.byteOffset)
-    return makeError(where + ": Draco bufferView " + std::to_string(viewIndex) + " is out of range of its buffer");
+    return makeError(ErrorKind::Malformed, where + ": Draco bufferView " + std::to_string(viewIndex) + " is out of range of its buffer");
 
   draco::DecoderBuffer input;
   input.Init(reinterpret_cast<const char*>(src.data() + view.byteOffset), view.byteLength);
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&input);
   if (!decoded.ok())
-    return makeError(where + ": the Draco stream (" + std::to_string(view.byteLength) + " bytes) is corrupt or truncated (" +
+    return makeError(ErrorKind::Malformed, where + ": the Draco stream (" + std::to_string(view.byteLength) + " bytes) is corrupt or truncated (" +
                      decoded.status().error_msg_string() + ")");
   const std::unique_ptr<draco::Mesh>& mesh = decoded.value();
   // The decoded point count is used as is: Draco may split seam vertices
@@ -99,22 +99,22 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
 
   if (prim.indices >= 0) {
     if (static_cast<size_t>(prim.indices) >= gltf.accessors.size())
-      return makeError(where + ": indices accessor " + std::to_string(prim.indices) + " does not exist");
+      return makeError(ErrorKind::Malformed, where + ": indices accessor " + std::to_string(prim.indices) + " does not exist");
     const int type = gltf.accessors[static_cast<size_t>(prim.indices)].componentType;
     const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
                         : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
                         : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
                                                                          : 0;
-    if (size == 0) return makeError(where + ": Draco indices accessor has componentType " + std::to_string(type));
+    if (size == 0) return makeError(ErrorKind::Malformed, where + ": Draco indices accessor has componentType " + std::to_string(type));
     const size_t count = static_cast<size_t>(faces) * 3;
-    if (count * size > budget) return makeError(where + ": decoded Draco indices pass the decode limit");
+    if (count * size > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco indices pass the decode limit");
     const size_t offset = data.size();
     data.resize(offset + count * size);
     for (uint32_t f = 0; f < faces; ++f)
       for (int c = 0; c < 3; ++c) {
         const uint32_t index = mesh->face(draco::FaceIndex(f))[c].value();
         if (size < 4 && index >> (8 * size) != 0)
-          return makeError(where + ": Draco index " + std::to_string(index) + " does not fit the indices accessor's type");
+          return makeError(ErrorKind::Malformed, where + ": Draco index " + std::to_string(index) + " does not fit the indices accessor's type");
         std::memcpy(data.data() + offset + (static_cast<size_t>(f) * 3 + c) * size, &index, size);  // little-endian
       }
     pending.push_back({prim.indices, offset, count * size, count});
@@ -127,30 +127,30 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
     auto accessorIt = prim.attributes.find(semantic);
     if (accessorIt == prim.attributes.end()) continue;  // nothing reads it
     if (!id.IsNumber() || id.GetNumberAsInt() < 0)
-      return makeError(where + ": Draco attribute id of " + semantic + " is not a non-negative integer");
+      return makeError(ErrorKind::Malformed, where + ": Draco attribute id of " + semantic + " is not a non-negative integer");
     const draco::PointAttribute* attr = mesh->GetAttributeByUniqueId(static_cast<uint32_t>(id.GetNumberAsInt()));
     if (!attr)
-      return makeError(where + ": the Draco stream has no attribute " + std::to_string(id.GetNumberAsInt()) + " (" +
+      return makeError(ErrorKind::Malformed, where + ": the Draco stream has no attribute " + std::to_string(id.GetNumberAsInt()) + " (" +
                        semantic + ")");
     const int accessor = accessorIt->second;
     if (accessor < 0 || static_cast<size_t>(accessor) >= gltf.accessors.size())
-      return makeError(where + ": " + semantic + " accessor " + std::to_string(accessor) + " does not exist");
+      return makeError(ErrorKind::Malformed, where + ": " + semantic + " accessor " + std::to_string(accessor) + " does not exist");
     const tinygltf::Accessor& acc = gltf.accessors[static_cast<size_t>(accessor)];
     const int components = gltfComponentCount(acc.type);
     const size_t compSize = gltfComponentSize(acc.componentType);
     if (components == 0 || compSize == 0)
-      return makeError(where + ": " + semantic + " accessor " + std::to_string(accessor) +
+      return makeError(ErrorKind::Malformed, where + ": " + semantic + " accessor " + std::to_string(accessor) +
                        " has a type Draco data cannot be written as");
     const size_t length = static_cast<size_t>(points) * components * compSize;
     if (length > budget - std::min(budget, data.size()))
-      return makeError(where + ": decoded Draco " + semantic + " passes the decode limit");
+      return makeError(ErrorKind::TooLarge, where + ": decoded Draco " + semantic + " passes the decode limit");
     const size_t offset = data.size();
     if (!appendAttribute(*attr, points, components, acc.componentType, data))
-      return makeError(where + ": Draco attribute " + semantic + " could not be converted to the accessor's type");
+      return makeError(ErrorKind::Malformed, where + ": Draco attribute " + semantic + " could not be converted to the accessor's type");
     pending.push_back({accessor, offset, length, points});
     alignTo4(data);
   }
-  if (data.size() > budget) return makeError(where + ": decoded Draco data passes the decode limit");
+  if (data.size() > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco data passes the decode limit");
   budget -= data.size();
 
   tinygltf::Buffer buffer;

@@ -48,8 +48,9 @@ std::string GltfFileAccess::problemFor(const std::string& uri) const {
   return {};
 }
 
-void GltfFileAccess::record(const std::string& uri, const std::string& why) {
+void GltfFileAccess::record(const std::string& uri, const std::string& why, ErrorKind kind) {
   if (!problemFor(uri).empty()) return;
+  if (problems_.empty()) firstProblemKind_ = kind;
   uriProblems_.emplace_back(uri, why);
   problems_.push_back(why);
 }
@@ -92,7 +93,7 @@ bool GltfFileAccess::fileExists(const std::string& path, void* self) {
   std::error_code ec;
   if (std::filesystem::is_regular_file(resolved, ec)) return true;
   const std::string uri = access->uriOf(path);
-  access->record(uri, "file '" + uri + "' (uri of a buffer or image) not found beside the model");
+  access->record(uri, "file '" + uri + "' (uri of a buffer or image) not found beside the model", ErrorKind::NotFound);
   return false;
 }
 
@@ -111,7 +112,7 @@ bool GltfFileAccess::readWholeFile(std::vector<unsigned char>* out, std::string*
   }
   auto bytes = readFileBytes(resolved, access->maxFileBytes_);
   if (!bytes) {
-    access->record(access->uriOf(path), bytes.error().message);
+    access->record(access->uriOf(path), bytes.error().message, bytes.error().kind);
     if (err) *err += bytes.error().message;
     return false;
   }

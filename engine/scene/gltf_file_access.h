@@ -10,6 +10,8 @@
 
 #include <tiny_gltf.h>
 
+#include "engine/core/result.h"
+
 namespace eng {
 
 class GltfFileAccess {
@@ -27,6 +29,10 @@ class GltfFileAccess {
 
   // One line per refused or unreadable uri ("uri '../x' leaves the model's folder"), in request order.
   const std::vector<std::string>& problems() const { return problems_; }
+  // The first problem as an error: NotFound for a missing file, the read's
+  // kind for an unreadable one (TooLarge, Io), Malformed for a refused uri.
+  // Only when problems() is not empty.
+  Error firstProblem() const { return makeError(firstProblemKind_, problems_.front()); }
   // The problem recorded for a uri, or empty.
   std::string problemFor(const std::string& uri) const;
 
@@ -34,7 +40,7 @@ class GltfFileAccess {
   // Maps a tinygltf path back to the uri and the confined absolute path;
   // false (recording why) when the path is refused.
   bool resolve(const std::string& requested, std::filesystem::path* out, bool record);
-  void record(const std::string& uri, const std::string& why);
+  void record(const std::string& uri, const std::string& why, ErrorKind kind = ErrorKind::Malformed);
   std::string uriOf(const std::string& requested) const;
 
   static bool fileExists(const std::string& path, void* self);
@@ -49,6 +55,7 @@ class GltfFileAccess {
   size_t maxFileBytes_;
   std::vector<std::pair<std::string, std::string>> uriProblems_;
   std::vector<std::string> problems_;
+  ErrorKind firstProblemKind_ = ErrorKind::Malformed;
 };
 
 }  // namespace eng

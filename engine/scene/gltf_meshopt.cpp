@@ -54,13 +54,13 @@ Result<CompressedView> parseCompressedView(const tinygltf::Value& ext, const std
   CompressedView cv;
   size_t buffer = 0;
   if (!sizeProperty(ext, "buffer", buffer) || buffer > static_cast<size_t>(INT32_MAX))
-    return makeError(where + " has no valid 'buffer'");
+    return makeError(ErrorKind::Malformed, where + " has no valid 'buffer'");
   cv.source = static_cast<int>(buffer);
   if (ext.Has("byteOffset") && !sizeProperty(ext, "byteOffset", cv.byteOffset))
-    return makeError(where + " has an invalid 'byteOffset'");
-  if (!sizeProperty(ext, "byteLength", cv.byteLength)) return makeError(where + " has no valid 'byteLength'");
-  if (!sizeProperty(ext, "byteStride", cv.byteStride)) return makeError(where + " has no valid 'byteStride'");
-  if (!sizeProperty(ext, "count", cv.count)) return makeError(where + " has no valid 'count'");
+    return makeError(ErrorKind::Malformed, where + " has an invalid 'byteOffset'");
+  if (!sizeProperty(ext, "byteLength", cv.byteLength)) return makeError(ErrorKind::Malformed, where + " has no valid 'byteLength'");
+  if (!sizeProperty(ext, "byteStride", cv.byteStride)) return makeError(ErrorKind::Malformed, where + " has no valid 'byteStride'");
+  if (!sizeProperty(ext, "count", cv.count)) return makeError(ErrorKind::Malformed, where + " has no valid 'count'");
   cv.mode = stringProperty(ext, "mode", "");
   cv.filter = stringProperty(ext, "filter", "NONE");
   return cv;
@@ -71,25 +71,25 @@ Result<CompressedView> parseCompressedView(const tinygltf::Value& ext, const std
 Result<void> checkLayout(const CompressedView& cv, const std::string& where) {
   if (cv.mode == "ATTRIBUTES") {
     if (cv.byteStride < 4 || cv.byteStride > 256 || cv.byteStride % 4 != 0)
-      return makeError(where + ": ATTRIBUTES byteStride " + std::to_string(cv.byteStride) +
+      return makeError(ErrorKind::Malformed, where + ": ATTRIBUTES byteStride " + std::to_string(cv.byteStride) +
                        " must be a multiple of 4 in 4..256");
     if (cv.filter == "OCTAHEDRAL" && cv.byteStride != 4 && cv.byteStride != 8)
-      return makeError(where + ": OCTAHEDRAL filter needs byteStride 4 or 8, has " + std::to_string(cv.byteStride));
+      return makeError(ErrorKind::Malformed, where + ": OCTAHEDRAL filter needs byteStride 4 or 8, has " + std::to_string(cv.byteStride));
     if (cv.filter == "QUATERNION" && cv.byteStride != 8)
-      return makeError(where + ": QUATERNION filter needs byteStride 8, has " + std::to_string(cv.byteStride));
+      return makeError(ErrorKind::Malformed, where + ": QUATERNION filter needs byteStride 8, has " + std::to_string(cv.byteStride));
     if (cv.filter == "COLOR")
-      return makeError(where + ": filter COLOR (KHR_meshopt_compression) needs a newer meshoptimizer than this build's " +
+      return makeError(ErrorKind::Unsupported, where + ": filter COLOR (KHR_meshopt_compression) needs a newer meshoptimizer than this build's " +
                        meshoptVersion());
     if (cv.filter != "NONE" && cv.filter != "OCTAHEDRAL" && cv.filter != "QUATERNION" && cv.filter != "EXPONENTIAL")
-      return makeError(where + ": unknown filter '" + cv.filter + "'");
+      return makeError(ErrorKind::Malformed, where + ": unknown filter '" + cv.filter + "'");
   } else if (cv.mode == "TRIANGLES" || cv.mode == "INDICES") {
     if (cv.byteStride != 2 && cv.byteStride != 4)
-      return makeError(where + ": " + cv.mode + " byteStride must be 2 or 4, has " + std::to_string(cv.byteStride));
+      return makeError(ErrorKind::Malformed, where + ": " + cv.mode + " byteStride must be 2 or 4, has " + std::to_string(cv.byteStride));
     if (cv.mode == "TRIANGLES" && cv.count % 3 != 0)
-      return makeError(where + ": TRIANGLES count " + std::to_string(cv.count) + " is not a multiple of 3");
-    if (cv.filter != "NONE") return makeError(where + ": " + cv.mode + " takes no filter, has '" + cv.filter + "'");
+      return makeError(ErrorKind::Malformed, where + ": TRIANGLES count " + std::to_string(cv.count) + " is not a multiple of 3");
+    if (cv.filter != "NONE") return makeError(ErrorKind::Malformed, where + ": " + cv.mode + " takes no filter, has '" + cv.filter + "'");
   } else {
-    return makeError(where + ": unknown mode '" + cv.mode + "' (expected ATTRIBUTES, TRIANGLES or INDICES)");
+    return makeError(ErrorKind::Malformed, where + ": unknown mode '" + cv.mode + "' (expected ATTRIBUTES, TRIANGLES or INDICES)");
   }
   return {};
 }
@@ -99,7 +99,7 @@ Result<void> decodeInto(uint8_t* dst, const CompressedView& cv, const uint8_t* s
   if (cv.mode == "ATTRIBUTES") {
     // 0xa0 | version: meshoptimizer 0.18 decodes version 0 only.
     if (cv.byteLength > 0 && (src[0] & 0xf0) == 0xa0 && (src[0] & 0x0f) > 0)
-      return makeError(where + ": attribute stream version " + std::to_string(src[0] & 0x0f) +
+      return makeError(ErrorKind::Unsupported, where + ": attribute stream version " + std::to_string(src[0] & 0x0f) +
                        " (KHR_meshopt_compression) needs a newer meshoptimizer than this build's " + meshoptVersion() +
                        ", which decodes version 0");
     rc = meshopt_decodeVertexBuffer(dst, cv.count, cv.byteStride, src, cv.byteLength);
@@ -109,7 +109,7 @@ Result<void> decodeInto(uint8_t* dst, const CompressedView& cv, const uint8_t* s
     rc = meshopt_decodeIndexSequence(dst, cv.count, cv.byteStride, src, cv.byteLength);
   }
   if (rc != 0)
-    return makeError(where + ": the " + cv.mode + " stream (" + std::to_string(cv.byteLength) +
+    return makeError(ErrorKind::Malformed, where + ": the " + cv.mode + " stream (" + std::to_string(cv.byteLength) +
                      " bytes) is corrupt or truncated (meshopt error " + std::to_string(rc) + ")");
   if (cv.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(dst, cv.count, cv.byteStride);
   else if (cv.filter == "QUATERNION") meshopt_decodeFilterQuat(dst, cv.count, cv.byteStride);
@@ -129,7 +129,7 @@ Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(nlohmann::json& 
     if (i == 0 && glbHasBin) continue;  // the BIN chunk holds real data
     auto length = buffer.find("byteLength");
     if (length == buffer.end() || !length->is_number_unsigned())
-      return makeError("meshopt fallback buffer " + std::to_string(i) + " has no valid byteLength");
+      return makeError(ErrorKind::Malformed, "meshopt fallback buffer " + std::to_string(i) + " has no valid byteLength");
     placeholders.push_back({static_cast<int>(i), length->get<size_t>()});
     buffer["uri"] = kStandInUri;
     buffer["byteLength"] = kStandInBytes;
@@ -142,7 +142,7 @@ Result<MeshoptDecodeStats> decodeMeshoptViews(tinygltf::Model& gltf, const std::
   size_t allocated = 0;
   for (const MeshoptPlaceholder& p : placeholders) {
     if (p.byteLength > maxDecodedBytes - allocated)
-      return makeError("meshopt fallback buffer " + std::to_string(p.buffer) + " claims " + std::to_string(p.byteLength) +
+      return makeError(ErrorKind::TooLarge, "meshopt fallback buffer " + std::to_string(p.buffer) + " claims " + std::to_string(p.byteLength) +
                        " bytes, past the decode limit of " + std::to_string(maxDecodedBytes));
     allocated += p.byteLength;
     tinygltf::Buffer& buffer = gltf.buffers[static_cast<size_t>(p.buffer)];
@@ -163,22 +163,22 @@ Result<MeshoptDecodeStats> decodeMeshoptViews(tinygltf::Model& gltf, const std::
     if (!cv) return cv.error();
     if (auto ok = checkLayout(*cv, where); !ok) return ok.error();
     if (cv->source < 0 || static_cast<size_t>(cv->source) >= gltf.buffers.size())
-      return makeError(where + " refers to buffer " + std::to_string(cv->source) + ", the file has " +
+      return makeError(ErrorKind::Malformed, where + " refers to buffer " + std::to_string(cv->source) + ", the file has " +
                        std::to_string(gltf.buffers.size()));
     const std::vector<unsigned char>& source = gltf.buffers[static_cast<size_t>(cv->source)].data;
     if (cv->byteOffset > source.size() || cv->byteLength > source.size() - cv->byteOffset)
-      return makeError(where + ": compressed bytes " + std::to_string(cv->byteOffset) + ".." +
+      return makeError(ErrorKind::Malformed, where + ": compressed bytes " + std::to_string(cv->byteOffset) + ".." +
                        std::to_string(cv->byteOffset + cv->byteLength) + " are out of range of buffer " +
                        std::to_string(cv->source) + " (" + std::to_string(source.size()) + " bytes)");
     if (cv->count > SIZE_MAX / cv->byteStride || cv->count * cv->byteStride != view.byteLength)
-      return makeError(where + ": count " + std::to_string(cv->count) + " x byteStride " +
+      return makeError(ErrorKind::Malformed, where + ": count " + std::to_string(cv->count) + " x byteStride " +
                        std::to_string(cv->byteStride) + " does not match the view's byteLength " +
                        std::to_string(view.byteLength));
     if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= gltf.buffers.size())
-      return makeError(where + ": the view's buffer " + std::to_string(view.buffer) + " does not exist");
+      return makeError(ErrorKind::Malformed, where + ": the view's buffer " + std::to_string(view.buffer) + " does not exist");
     std::vector<unsigned char>& target = gltf.buffers[static_cast<size_t>(view.buffer)].data;
     if (view.byteOffset > target.size() || view.byteLength > target.size() - view.byteOffset)
-      return makeError(where + ": decoded bytes " + std::to_string(view.byteOffset) + ".." +
+      return makeError(ErrorKind::Malformed, where + ": decoded bytes " + std::to_string(view.byteOffset) + ".." +
                        std::to_string(view.byteOffset + view.byteLength) + " are out of range of buffer " +
                        std::to_string(view.buffer) + " (" + std::to_string(target.size()) + " bytes)");
     // Decoded apart, then copied: the source and the target may be the same buffer.

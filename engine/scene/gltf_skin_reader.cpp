@@ -79,14 +79,14 @@ Result<void> readSkinAttributes(GltfAccessorReader& reader, const tinygltf::Mode
     const tinygltf::Accessor& wa = gltf.accessors[w->second];
     if (ja.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         ja.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
-      return makeError(jointsWhat + " has componentType " + std::to_string(ja.componentType) +
+      return makeError(ErrorKind::Malformed, jointsWhat + " has componentType " + std::to_string(ja.componentType) +
                        ", glTF allows UNSIGNED_BYTE (5121) or UNSIGNED_SHORT (5123)");
     const bool floatWeights = wa.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
     const bool unormWeights = (wa.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                wa.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) &&
                               wa.normalized;
     if (!floatWeights && !unormWeights)
-      return makeError(weightsWhat + " has componentType " + std::to_string(wa.componentType) +
+      return makeError(ErrorKind::Malformed, weightsWhat + " has componentType " + std::to_string(wa.componentType) +
                        (wa.normalized ? "" : " (not normalized)") +
                        ", glTF allows FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT");
     auto jv = reader.readVec<4>(j->second, jointsWhat);
@@ -94,7 +94,7 @@ Result<void> readSkinAttributes(GltfAccessorReader& reader, const tinygltf::Mode
     auto wv = reader.readVec<4>(w->second, weightsWhat);
     if (!wv) return wv.error();
     if (jv->size() != n || wv->size() != n)
-      return makeError(label + " JOINTS" + suffix + " / WEIGHTS" + suffix + " have " + std::to_string(jv->size()) +
+      return makeError(ErrorKind::Malformed, label + " JOINTS" + suffix + " / WEIGHTS" + suffix + " have " + std::to_string(jv->size()) +
                        " / " + std::to_string(wv->size()) + " elements, its primitive has " + std::to_string(n) +
                        " vertices");
     joints.push_back(std::move(*jv));

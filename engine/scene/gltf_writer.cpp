@@ -188,7 +188,7 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
     for (size_t i = 0; i < model.images.size(); ++i) {
       const Image& img = model.images[i];
       auto png = encodePng(img.width, img.height, img.rgba8);
-      if (!png) return makeError("image " + std::to_string(i) + ": " + png.error().message);
+      if (!png) return png.error().prefixed("image " + std::to_string(i) + ": ");
       Json image = {{"bufferView", buffers.addView(png->data(), png->size(), 0)}, {"mimeType", "image/png"}};
       if (!img.name.empty()) image["name"] = img.name;
       images.push_back(std::move(image));
@@ -334,15 +334,15 @@ Result<void> saveModel(const Model& model, const std::filesystem::path& path) {
   const std::string file = path.string();
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".glb" && ext != ".gltf") return makeError(file + ": unknown extension '" + ext + "' (use .glb or .gltf)");
-  if (auto ok = checkModel(model); !ok) return makeError(file + ": cannot save: " + ok.error().message);
+  if (ext != ".glb" && ext != ".gltf") return makeError(ErrorKind::Unsupported, file + ": unknown extension '" + ext + "' (use .glb or .gltf)");
+  if (auto ok = checkModel(model); !ok) return ok.error().prefixed(file + ": cannot save: ");
 
   try {
     BufferBuilder buffers;
     auto doc = buildDocument(model, buffers);
-    if (!doc) return makeError(file + ": " + doc.error().message);
+    if (!doc) return doc.error().prefixed(file + ": ");
     if (buffers.bin().size() > UINT32_MAX - 1024)
-      return makeError(file + ": " + std::to_string(buffers.bin().size()) + " bytes of data exceed glTF's 4 GiB limit");
+      return makeError(ErrorKind::TooLarge, file + ": " + std::to_string(buffers.bin().size()) + " bytes of data exceed glTF's 4 GiB limit");
     Json& json = *doc;
     if (!buffers.bin().empty()) {
       json["bufferViews"] = std::move(buffers.views());
@@ -364,7 +364,7 @@ Result<void> saveModel(const Model& model, const std::filesystem::path& path) {
     const std::string text = json.dump(1, ' ', false, Json::error_handler_t::replace);
     return writeFileBytes(path, text.data(), text.size());
   } catch (const std::exception& e) {
-    return makeError(file + ": " + e.what());
+    return makeError(ErrorKind::Io, file + ": " + e.what());
   }
 }
 

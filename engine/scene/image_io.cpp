@@ -18,11 +18,11 @@ constexpr size_t kMaxImageFileBytes = size_t{512} << 20;
 
 Result<void> checkRgbaSize(int w, int h, size_t bytes, const std::string& what) {
   if (w <= 0 || h <= 0 || static_cast<uint64_t>(w) * static_cast<uint64_t>(h) * 4 != bytes)
-    return makeError(what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
+    return makeError(ErrorKind::InvalidArgument, what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
                      std::to_string(static_cast<uint64_t>(std::max(w, 0)) * std::max(h, 0) * 4) +
                      " RGBA8 bytes, got " + std::to_string(bytes));
   if (static_cast<uint64_t>(w) * 4 > INT_MAX || static_cast<uint64_t>(w) * h * 4 > INT_MAX)
-    return makeError(what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " is too large for PNG");
+    return makeError(ErrorKind::TooLarge, what + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " is too large for PNG");
   return {};
 }
 
@@ -70,7 +70,7 @@ bool headerDimensions(std::span<const uint8_t> encoded, uint32_t& w, uint32_t& h
 
 Result<void> checkImageSize(uint64_t w, uint64_t h, const std::string& name, size_t maxPixels) {
   if (w > 0 && h > 0 && w <= kMaxImageSide && h <= kMaxImageSide && w * h <= maxPixels) return {};
-  return makeError(name + ": image too large: " + std::to_string(w) + "x" + std::to_string(h) + ", the limit is " +
+  return makeError(ErrorKind::TooLarge, name + ": image too large: " + std::to_string(w) + "x" + std::to_string(h) + ", the limit is " +
                    std::to_string(kMaxImageSide) + " per side and " + std::to_string(maxPixels) + " pixels");
 }
 
@@ -78,7 +78,7 @@ Result<void> checkImageSize(uint64_t w, uint64_t h, const std::string& name, siz
 Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
   int w = 0, h = 0;
   if (!WebPGetInfo(encoded.data(), encoded.size(), &w, &h))
-    return makeError(name + ": not a decodable WebP image (bad header)");
+    return makeError(ErrorKind::Malformed, name + ": not a decodable WebP image (bad header)");
   if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
   Image img;
   img.name = name;
@@ -86,7 +86,7 @@ Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& na
   img.height = h;
   img.rgba8.resize(static_cast<size_t>(w) * h * 4);
   if (!WebPDecodeRGBAInto(encoded.data(), encoded.size(), img.rgba8.data(), img.rgba8.size(), w * 4))
-    return makeError(name + ": WebP decode failed (corrupt or truncated data)");
+    return makeError(ErrorKind::Malformed, name + ": WebP decode failed (corrupt or truncated data)");
   return img;
 }
 
@@ -106,7 +106,7 @@ Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rg
   if (auto ok = checkRgbaSize(w, h, rgba8.size(), "encodePng"); !ok) return ok.error();
   std::vector<uint8_t> png;
   if (!stbi_write_png_to_func(appendBytes, &png, w, h, 4, rgba8.data(), w * 4))
-    return makeError("encodePng: stb failed to encode a " + std::to_string(w) + "x" + std::to_string(h) + " image");
+    return makeError(ErrorKind::Io, "encodePng: stb failed to encode a " + std::to_string(w) + "x" + std::to_string(h) + " image");
   return png;
 }
 
@@ -118,21 +118,21 @@ Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span
 }
 
 Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
-  if (encoded.empty()) return makeError(name + ": image data is empty");
-  if (encoded.size() > static_cast<size_t>(INT_MAX)) return makeError(name + ": image data is larger than 2 GiB");
+  if (encoded.empty()) return makeError(ErrorKind::Malformed, name + ": image data is empty");
+  if (encoded.size() > static_cast<size_t>(INT_MAX)) return makeError(ErrorKind::TooLarge, name + ": image data is larger than 2 GiB");
   if (isWebp(encoded)) return decodeWebp(encoded, name, maxPixels);
   if (isKtx2(encoded))
-    return makeError(name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
+    return makeError(ErrorKind::Unsupported, name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
   if (uint32_t headerW = 0, headerH = 0; headerDimensions(encoded, headerW, headerH))
     if (auto size = checkImageSize(headerW, headerH, name, maxPixels); !size) return size.error();
   int w = 0, h = 0, channels = 0;
   const int len = static_cast<int>(encoded.size());
   if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))
-    return makeError(name + ": not a decodable image (" + stbi_failure_reason() + ")");
+    return makeError(ErrorKind::Malformed, name + ": not a decodable image (" + stbi_failure_reason() + ")");
   if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(encoded.data(), len, &w, &h, &channels, 4),
                                                     stbi_image_free);
-  if (!pixels) return makeError(name + ": image decode failed (" + stbi_failure_reason() + ")");
+  if (!pixels) return makeError(ErrorKind::Malformed, name + ": image decode failed (" + stbi_failure_reason() + ")");
   Image img;
   img.name = name;
   img.width = w;

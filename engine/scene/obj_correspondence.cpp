@@ -34,7 +34,7 @@ Result<ObjCornerMap> matchObjByTopology(const ObjPolygonMesh& neutral, const Obj
   if (nv != tv || nf != tf || !firstDifference.empty()) {
     if (firstDifference.empty())
       firstDifference = "the first " + std::to_string(std::min(nf, tf)) + " faces agree";
-    return makeError(targetName + ": topology differs from " + neutralName + " (" + std::to_string(tv) + " vertices vs " +
+    return makeError(ErrorKind::Malformed, targetName + ": topology differs from " + neutralName + " (" + std::to_string(tv) + " vertices vs " +
                      std::to_string(nv) + ", " + std::to_string(tf) + " faces vs " + std::to_string(nf) + "); " +
                      firstDifference + "; vertex and face order must match the neutral (or use --match-by-position)");
   }

@@ -152,8 +152,8 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
                                              const ObjKeyframeOptions& options) {
   std::set<std::string> names;
   for (const ObjTargetFile& t : targets) {
-    if (t.name.empty()) return makeError(t.path.string() + ": target name is empty");
-    if (!names.insert(t.name).second) return makeError(t.path.string() + ": target name '" + t.name + "' is used twice");
+    if (t.name.empty()) return makeError(ErrorKind::Malformed, t.path.string() + ": target name is empty");
+    if (!names.insert(t.name).second) return makeError(ErrorKind::Malformed, t.path.string() + ": target name '" + t.name + "' is used twice");
   }
   auto neutral = readObjPolygonMesh(neutralPath);
   if (!neutral) return neutral.error();
@@ -228,21 +228,21 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
   // vertex 3e38 away from its neutral one): refused here, by file, rather
   // than handed on to the renderer.
   if (auto consistent = checkModel(model); !consistent)
-    return makeError(neutralPath.string() + ": " + consistent.error().message);
+    return consistent.error().prefixed(neutralPath.string() + ": ");
   return result;
 }
 
 Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir) {
   std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) return makeError(dir.string() + ": not a folder");
+  if (!std::filesystem::is_directory(dir, ec)) return makeError(ErrorKind::Io, dir.string() + ": not a folder");
   ObjKeyframeFolder folder;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     if (!entry.is_regular_file(ec) || lowerExtension(entry.path()) != ".obj") continue;
     if (entry.path().stem() == "neutral") folder.neutral = entry.path();
     else folder.targets.push_back({entry.path().stem().string(), entry.path()});
   }
-  if (ec) return makeError(dir.string() + ": cannot list (" + ec.message() + ")");
-  if (folder.neutral.empty()) return makeError(dir.string() + ": no neutral.obj in the folder");
+  if (ec) return makeError(ErrorKind::Io, dir.string() + ": cannot list (" + ec.message() + ")");
+  if (folder.neutral.empty()) return makeError(ErrorKind::NotFound, dir.string() + ": no neutral.obj in the folder");
   std::sort(folder.targets.begin(), folder.targets.end(),
             [](const ObjTargetFile& a, const ObjTargetFile& b) { return a.name < b.name; });
   return folder;

@@ -67,7 +67,7 @@ Result<void> copyFinite(const std::vector<tinyobj::real_t>& src, std::vector<Vec
     for (int c = 0; c < n; ++c) {
       const float v = src[i * n + c];
       if (!std::isfinite(v))
-        return makeError(std::string(what) + " " + std::to_string(i + 1) + " is " + (std::isnan(v) ? "NaN" : "infinite"));
+        return makeError(ErrorKind::Malformed, std::string(what) + " " + std::to_string(i + 1) + " is " + (std::isnan(v) ? "NaN" : "infinite"));
       out[i][c] = v;
     }
   return {};
@@ -105,15 +105,15 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
     while (!message.empty() && message.back() == '\n') message.pop_back();
     for (char& c : message)
       if (c == '\n') c = ' ';
-    return makeError(file + ": " + message);
+    return makeError(ErrorKind::Malformed, file + ": " + message);
   }
 
   ObjPolygonMesh mesh;
-  if (auto r = copyFinite(attrib.vertices, mesh.positions, "vertex"); !r) return makeError(file + ": " + r.error().message);
+  if (auto r = copyFinite(attrib.vertices, mesh.positions, "vertex"); !r) return r.error().prefixed(file + ": ");
   if (auto r = copyFinite(attrib.texcoords, mesh.texcoords, "texcoord"); !r)
-    return makeError(file + ": " + r.error().message);
-  if (auto r = copyFinite(attrib.normals, mesh.normals, "normal"); !r) return makeError(file + ": " + r.error().message);
-  if (mesh.positions.empty()) return makeError(file + ": no vertices ('v' lines)");
+    return r.error().prefixed(file + ": ");
+  if (auto r = copyFinite(attrib.normals, mesh.normals, "normal"); !r) return r.error().prefixed(file + ": ");
+  if (mesh.positions.empty()) return makeError(ErrorKind::Malformed, file + ": no vertices ('v' lines)");
 
   const int nv = static_cast<int>(mesh.positions.size());
   const int nt = static_cast<int>(mesh.texcoords.size());
@@ -124,18 +124,18 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const size_t count = shape.mesh.num_face_vertices[f];
       if (offset + count > shape.mesh.indices.size())
-        return makeError(file + ": face " + std::to_string(mesh.faceCount() + 1) + " has missing corners");
+        return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(mesh.faceCount() + 1) + " has missing corners");
       for (size_t k = 0; k < count; ++k) {
         const tinyobj::index_t& idx = shape.mesh.indices[offset + k];
         const size_t face = mesh.faceCount() + 1;
         if (idx.vertex_index < 0 || idx.vertex_index >= nv)
-          return makeError(file + ": face " + std::to_string(face) + " uses vertex " + std::to_string(idx.vertex_index + 1) +
+          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses vertex " + std::to_string(idx.vertex_index + 1) +
                            ", the file has " + std::to_string(nv));
         if (idx.texcoord_index >= nt || idx.texcoord_index < -1)
-          return makeError(file + ": face " + std::to_string(face) + " uses texcoord " +
+          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses texcoord " +
                            std::to_string(idx.texcoord_index + 1) + ", the file has " + std::to_string(nt));
         if (idx.normal_index >= nn || idx.normal_index < -1)
-          return makeError(file + ": face " + std::to_string(face) + " uses normal " + std::to_string(idx.normal_index + 1) +
+          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses normal " + std::to_string(idx.normal_index + 1) +
                            ", the file has " + std::to_string(nn));
         mesh.corners.push_back({idx.vertex_index, idx.texcoord_index, idx.normal_index});
       }
@@ -145,7 +145,7 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
       mesh.faceMaterial.push_back(material >= 0 && material < static_cast<int>(materials.size()) ? material : -1);
     }
   }
-  if (mesh.faceCount() == 0) return makeError(file + ": no faces ('f' lines)");
+  if (mesh.faceCount() == 0) return makeError(ErrorKind::Malformed, file + ": no faces ('f' lines)");
 
   for (const tinyobj::material_t& m : materials) {
     ObjMaterial out;

@@ -27,7 +27,7 @@ void forEachPosedVertex(const Model& model, const Pose& pose, std::span<const fl
     const Node& node = model.nodes[n];
     const int skin = node.skin >= 0 && static_cast<size_t>(node.skin) < model.skins.size() ? node.skin : -1;
     zeros.assign(layout.count(node.mesh), 0.0f);
-    const std::span<const float> meshWeights = morph ? layout.meshWeights(weights, node.mesh) : std::span<const float>(zeros);
+    const std::span<const float> meshWeights = morph ? *layout.meshWeights(weights, node.mesh) : std::span<const float>(zeros);
     for (const Primitive& prim : model.meshes[node.mesh].primitives) {
       positions.resize(prim.vertexCount());
       posePrimitiveCpu(model, n, prim, meshWeights, world, positions, {});

@@ -1,7 +1,6 @@
 #include "engine/scene/skinning.h"
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,18 +25,28 @@ glm::mat4 vertexSkinMatrix(const Primitive& primitive, size_t vertex, std::span<
   return total > 0.0f ? sum : glm::mat4(1.0f);
 }
 
-void skinPrimitiveCpu(const Primitive& primitive, std::span<const glm::mat4> jointMatrices,
-                      std::span<glm::vec3> positions, std::span<glm::vec3> normals) {
-  const size_t n = primitive.vertexCount();
+std::optional<std::string> SkinPrimitiveJob::Validate() const {
+  if (!primitive) return std::string("SkinPrimitiveJob: no primitive");
+  const size_t n = primitive->vertexCount();
   if (positions.size() != n)
-    throw std::invalid_argument("skinPrimitiveCpu: positions has " + std::to_string(positions.size()) +
-                                " entries, primitive has " + std::to_string(n) + " vertices");
+    return "SkinPrimitiveJob: positions has " + std::to_string(positions.size()) + " entries, primitive has " +
+           std::to_string(n) + " vertices";
   if (!normals.empty() && normals.size() != n)
-    throw std::invalid_argument("skinPrimitiveCpu: normals has " + std::to_string(normals.size()) +
-                                " entries, primitive has " + std::to_string(n) + " vertices");
-  if (primitive.influenceSets() == 0) return;
+    return "SkinPrimitiveJob: normals has " + std::to_string(normals.size()) + " entries, primitive has " +
+           std::to_string(n) + " vertices";
+  const size_t sets = primitive->influenceSets();
+  if (primitive->joints.size() != n * sets || primitive->jointWeights.size() != n * sets)
+    return "SkinPrimitiveJob: primitive has " + std::to_string(primitive->joints.size()) + " joint groups and " +
+           std::to_string(primitive->jointWeights.size()) + " weight groups for " + std::to_string(n) + " vertices";
+  return std::nullopt;
+}
+
+bool SkinPrimitiveJob::Run() const {
+  if (Validate()) return false;  // allocates only to describe a failure
+  const size_t n = primitive->vertexCount();
+  if (primitive->influenceSets() == 0) return true;
   for (size_t v = 0; v < n; ++v) {
-    const glm::mat4 skin = vertexSkinMatrix(primitive, v, jointMatrices);
+    const glm::mat4 skin = vertexSkinMatrix(*primitive, v, jointMatrices);
     positions[v] = glm::vec3(skin * glm::vec4(positions[v], 1.0f));
     if (normals.empty()) continue;
     const glm::vec3 nrm = glm::mat3(skin) * normals[v];
@@ -45,16 +54,25 @@ void skinPrimitiveCpu(const Primitive& primitive, std::span<const glm::mat4> joi
     // Same guard as the morph reference: no direction rather than NaN.
     normals[v] = len2 > 1e-20f ? nrm * (1.0f / std::sqrt(len2)) : nrm;
   }
+  return true;
 }
 
-void posePrimitiveCpu(const Model& model, int meshNode, const Primitive& primitive, std::span<const float> meshWeights,
+bool skinPrimitiveCpu(const Primitive& primitive, std::span<const glm::mat4> jointMatrices,
+                      std::span<glm::vec3> positions, std::span<glm::vec3> normals) {
+  return SkinPrimitiveJob{&primitive, jointMatrices, positions, normals}.Run();
+}
+
+bool posePrimitiveCpu(const Model& model, int meshNode, const Primitive& primitive, std::span<const float> meshWeights,
                       std::span<const glm::mat4> world, std::span<glm::vec3> positions, std::span<glm::vec3> normals) {
-  morphPrimitiveCpu(primitive, meshWeights, positions, normals);
+  // Both jobs validate before the morph writes, so a failure leaves the outputs as they were.
+  const SkinPrimitiveJob skinCheck{&primitive, {}, positions, normals};
+  if (skinCheck.Validate()) return false;
+  if (!morphPrimitiveCpu(primitive, meshWeights, positions, normals)) return false;
   const int skin = meshNode >= 0 && static_cast<size_t>(meshNode) < model.nodes.size() ? model.nodes[meshNode].skin : -1;
-  if (skin < 0 || static_cast<size_t>(skin) >= model.skins.size() || primitive.influenceSets() == 0) return;
+  if (skin < 0 || static_cast<size_t>(skin) >= model.skins.size() || primitive.influenceSets() == 0) return true;
   std::vector<glm::mat4> joints;
   skinJointMatrices(model.skins[skin], world, meshNode, joints);
-  skinPrimitiveCpu(primitive, joints, positions, normals);
+  return skinPrimitiveCpu(primitive, joints, positions, normals);
 }
 
 }  // namespace eng

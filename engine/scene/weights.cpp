@@ -1,6 +1,6 @@
 #include "engine/scene/weights.h"
 
-#include <stdexcept>
+#include <string>
 
 namespace eng {
 
@@ -18,13 +18,14 @@ WeightLayout::WeightLayout(const Model& model) {
 }
 
 uint32_t WeightLayout::offset(int mesh) const {
-  if (mesh < 0 || mesh >= static_cast<int>(offsets_.size()))
-    throw std::out_of_range("WeightLayout::offset: mesh " + std::to_string(mesh) + " outside 0.." +
-                            std::to_string(offsets_.size() - 1));
+  if (mesh < 0 || mesh >= static_cast<int>(offsets_.size())) return total();
   return offsets_[mesh];
 }
 
-uint32_t WeightLayout::count(int mesh) const { return offset(mesh + 1) - offset(mesh); }
+uint32_t WeightLayout::count(int mesh) const {
+  if (mesh < 0 || mesh >= meshCount()) return 0;
+  return offsets_[mesh + 1] - offsets_[mesh];
+}
 
 uint32_t WeightLayout::total() const { return offsets_.back(); }
 
@@ -37,10 +38,17 @@ int WeightLayout::find(int mesh, std::string_view name) const {
   return -1;
 }
 
-int WeightLayout::setByName(std::span<float> weights, std::string_view name, float value) const {
-  if (weights.size() != total())
-    throw std::invalid_argument("WeightLayout::setByName: weights has " + std::to_string(weights.size()) +
-                                " entries, layout total is " + std::to_string(total()));
+namespace {
+
+Error wrongSize(const char* function, size_t size, uint32_t total) {
+  return makeError(ErrorKind::InvalidArgument, std::string(function) + ": weights has " + std::to_string(size) +
+                                                   " entries, layout total is " + std::to_string(total));
+}
+
+}  // namespace
+
+Result<int> WeightLayout::setByName(std::span<float> weights, std::string_view name, float value) const {
+  if (weights.size() != total()) return wrongSize("WeightLayout::setByName", weights.size(), total());
   int matched = 0;
   for (int m = 0; m < meshCount(); ++m) {
     const int i = find(m, name);
@@ -54,11 +62,12 @@ int WeightLayout::setByName(std::span<float> weights, std::string_view name, flo
 
 std::vector<float> WeightLayout::defaults() const { return defaults_; }
 
-std::span<const float> WeightLayout::meshWeights(std::span<const float> weights, int mesh) const {
-  if (weights.size() != total())
-    throw std::invalid_argument("WeightLayout::meshWeights: weights has " + std::to_string(weights.size()) +
-                                " entries, layout total is " + std::to_string(total()));
-  return weights.subspan(offset(mesh), count(mesh));
+Result<std::span<const float>> WeightLayout::meshWeights(std::span<const float> weights, int mesh) const {
+  if (weights.size() != total()) return wrongSize("WeightLayout::meshWeights", weights.size(), total());
+  if (mesh < 0 || mesh >= meshCount())
+    return makeError(ErrorKind::InvalidArgument, "WeightLayout::meshWeights: mesh " + std::to_string(mesh) +
+                                                     " outside 0.." + std::to_string(meshCount() - 1));
+  return weights.subspan(offsets_[mesh], count(mesh));
 }
 
 }  // namespace eng

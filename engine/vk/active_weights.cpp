@@ -7,11 +7,11 @@ namespace eng::vk {
 
 Result<void> ActiveWeightsJob::Validate() const {
   if (output.size() < weights.size())
-    return makeError("active weights: output has room for " + std::to_string(output.size()) + " entries, " +
+    return makeError(ErrorKind::InvalidArgument, "active weights: output has room for " + std::to_string(output.size()) + " entries, " +
                      std::to_string(weights.size()) + " weights given");
   for (size_t i = 0; i < weights.size(); ++i) {
     if (!std::isfinite(weights[i]))
-      return makeError("active weights: weight " + std::to_string(i) + " of " + std::to_string(weights.size()) +
+      return makeError(ErrorKind::InvalidArgument, "active weights: weight " + std::to_string(i) + " of " + std::to_string(weights.size()) +
                        " is not finite (" + std::to_string(weights[i]) + ")");
   }
   return {};

@@ -9,7 +9,7 @@ namespace eng::vk {
 
 Result<Buffer> Buffer::create(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
                               const char* debugName) {
-  if (size == 0) return makeError(std::string("buffer '") + debugName + "': size must be > 0");
+  if (size == 0) return makeError(ErrorKind::InvalidArgument, std::string("buffer '") + debugName + "': size must be > 0");
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   info.usage = usage;
@@ -24,7 +24,7 @@ Result<Buffer> Buffer::create(const Context& ctx, VkDeviceSize size, VkBufferUsa
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device(), raw, &req);
   auto mem = ctx.allocate(req, memory);
-  if (!mem) return Error{std::string("buffer '") + debugName + "': " + mem.error().message, mem.error().code};
+  if (!mem) return mem.error().prefixed(std::string("buffer '") + debugName + "': ");
   b.memory_ = std::move(mem->memory);
   b.memoryFlags_ = mem->flags;
   ENG_VK_TRY(vkBindBufferMemory(ctx.device(), raw, b.memory_.get(), 0));

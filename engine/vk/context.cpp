@@ -87,7 +87,7 @@ Result<Context> Context::create(const ContextOptions& options) {
   ctx.validation_ = std::make_unique<ValidationMonitor>(options.onValidationMessage);
   ctx.validationEnabled_ = options.validation.value_or(envFlag("FACIAL_VALIDATION"));
   if (ctx.validationEnabled_ && !hasLayer(kValidationLayer))
-    return makeError(std::string("Vulkan validation was requested but ") + kValidationLayer +
+    return makeError(ErrorKind::Unsupported, std::string("Vulkan validation was requested but ") + kValidationLayer +
                          " is not installed (Debian package vulkan-validationlayers)",
                      VK_ERROR_LAYER_NOT_PRESENT);
 
@@ -146,7 +146,7 @@ Result<Context> Context::create(const ContextOptions& options) {
     if (const char* env = std::getenv("FACIAL_DEVICE")) preferenceText = env;
   }
   auto chosen = selectDevice(candidates, DevicePreference::parse(preferenceText));
-  if (!chosen) return makeError(chosen.error().message, VK_ERROR_INITIALIZATION_FAILED);
+  if (!chosen) return makeError(chosen.error().kind, chosen.error().message, VK_ERROR_INITIALIZATION_FAILED);
   VkPhysicalDevice physical = devices[chosen.value()];
   ctx.physicalDevice_ = physical;
 
@@ -204,7 +204,7 @@ Result<uint32_t> Context::memoryTypeFor(const VkMemoryRequirements& requirements
   MemoryFlags flags = memoryFlagsFor(usage);
   auto type = chooseMemoryType(info_.memory, requirements.memoryTypeBits, flags.required, flags.preferred);
   if (!type)
-    return makeError("no Vulkan memory type with flags 0x" + std::to_string(flags.required) + " among allowed types 0x" +
+    return makeError(ErrorKind::Device, "no Vulkan memory type with flags 0x" + std::to_string(flags.required) + " among allowed types 0x" +
                          std::to_string(requirements.memoryTypeBits),
                      VK_ERROR_OUT_OF_DEVICE_MEMORY);
   return *type;

@@ -71,7 +71,7 @@ class Context {
   // came), ok when there were none: how a program ends a validation run.
   Result<void> checkValidation() const {
     if (const uint32_t messages = validationMessageCount(); messages > 0)
-      return makeError(std::to_string(messages) + " Vulkan validation message(s) (logged above)");
+      return makeError(ErrorKind::Device, std::to_string(messages) + " Vulkan validation message(s) (logged above)");
     return {};
   }
 

@@ -22,7 +22,7 @@ Result<DebugMessenger> DebugMessenger::create(VkInstance instance, ValidationMon
   auto destroyFn = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
       vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
   if (!createFn || !destroyFn)
-    return makeError("vkCreateDebugUtilsMessengerEXT failed: VK_ERROR_EXTENSION_NOT_PRESENT",
+    return makeError(ErrorKind::Device, "vkCreateDebugUtilsMessengerEXT failed: VK_ERROR_EXTENSION_NOT_PRESENT",
                      VK_ERROR_EXTENSION_NOT_PRESENT);
   VkDebugUtilsMessengerCreateInfoEXT info = debugMessengerInfo(monitor);
   DebugMessenger m;

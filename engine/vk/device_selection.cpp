@@ -87,7 +87,7 @@ Result<size_t> selectDevice(std::span<const DeviceCandidate> candidates, const D
     if (!c.unsuitableReason.empty()) available += " unsuitable: " + c.unsuitableReason;
   }
   if (available.empty()) available = "none";
-  return makeError("no suitable Vulkan device for preference " + preference.describe() +
+  return makeError(ErrorKind::Device, "no suitable Vulkan device for preference " + preference.describe() +
                    " (devices: " + available + ")");
 }
 

@@ -8,7 +8,7 @@ namespace eng::vk {
 
 Result<GpuImage> GpuImage::create(const Context& ctx, const ImageDesc& desc) {
   if (desc.extent.width == 0 || desc.extent.height == 0 || desc.mipLevels == 0 || desc.arrayLayers == 0)
-    return makeError(std::string("image '") + desc.debugName + "': empty extent " + std::to_string(desc.extent.width) +
+    return makeError(ErrorKind::InvalidArgument, std::string("image '") + desc.debugName + "': empty extent " + std::to_string(desc.extent.width) +
                      "x" + std::to_string(desc.extent.height) + ", " + std::to_string(desc.mipLevels) + " mips, " +
                      std::to_string(desc.arrayLayers) + " layers");
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -32,7 +32,7 @@ Result<GpuImage> GpuImage::create(const Context& ctx, const ImageDesc& desc) {
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device(), raw, &req);
   auto mem = ctx.allocate(req, MemoryUsage::GpuOnly);
-  if (!mem) return Error{std::string("image '") + desc.debugName + "': " + mem.error().message, mem.error().code};
+  if (!mem) return mem.error().prefixed(std::string("image '") + desc.debugName + "': ");
   img.memory_ = std::move(mem->memory);
   ENG_VK_TRY(vkBindImageMemory(ctx.device(), raw, img.memory_.get(), 0));
 

@@ -110,7 +110,7 @@ Result<void> validateModelForGpu(const Model& model) {
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
       const size_t n = prim.vertexCount();
-      auto fail = [&](const std::string& what) { return makeError(where(model, m, p) + ": " + what); };
+      auto fail = [&](const std::string& what) { return makeError(ErrorKind::Malformed, where(model, m, p) + ": " + what); };
       if (n == 0) return fail("has no vertices");
       if (n > UINT32_MAX / 4) return fail("has " + std::to_string(n) + " vertices, too many");
       if (prim.normals.size() != n)
@@ -147,46 +147,46 @@ Result<void> validateModelForGpu(const Model& model) {
     const Material& mat = model.materials[i];
     auto badImage = [&](int image) { return image < -1 || image >= static_cast<int>(model.images.size()); };
     if (badImage(mat.baseColorImage))
-      return makeError(file + ": material " + std::to_string(i) + " base colour image " +
+      return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " base colour image " +
                        std::to_string(mat.baseColorImage) + " out of range (" + std::to_string(model.images.size()) +
                        " images)");
     for (const DetailLayer& layer : mat.detailLayers) {
       if (layer.image < 0 || badImage(layer.image))
-        return makeError(file + ": material " + std::to_string(i) + " detail layer '" + layer.target + "' image " +
+        return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " detail layer '" + layer.target + "' image " +
                          std::to_string(layer.image) + " out of range (" + std::to_string(model.images.size()) +
                          " images)");
     }
   }
   for (const eng::Image& img : model.images) {
     if (!img.rgba8.empty() && img.rgba8.size() != size_t(img.width) * size_t(img.height) * 4)
-      return makeError(file + ": image '" + img.name + "' has " + std::to_string(img.rgba8.size()) + " bytes for " +
+      return makeError(ErrorKind::Malformed, file + ": image '" + img.name + "' has " + std::to_string(img.rgba8.size()) + " bytes for " +
                        std::to_string(img.width) + "x" + std::to_string(img.height) + " RGBA8");
   }
   for (size_t i = 0; i < model.nodes.size(); ++i) {
     const Node& node = model.nodes[i];
     if (node.mesh < -1 || node.mesh >= static_cast<int>(model.meshes.size()))
-      return makeError(file + ": node " + std::to_string(i) + " mesh " + std::to_string(node.mesh) +
+      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " mesh " + std::to_string(node.mesh) +
                        " out of range (" + std::to_string(model.meshes.size()) + " meshes)");
     if (node.skin < -1 || node.skin >= static_cast<int>(model.skins.size()))
-      return makeError(file + ": node " + std::to_string(i) + " skin " + std::to_string(node.skin) +
+      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " skin " + std::to_string(node.skin) +
                        " out of range (" + std::to_string(model.skins.size()) + " skins)");
     for (int child : node.children) {
       if (child < 0 || child >= static_cast<int>(model.nodes.size()))
-        return makeError(file + ": node " + std::to_string(i) + " child " + std::to_string(child) + " out of range");
+        return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " child " + std::to_string(child) + " out of range");
     }
   }
   for (size_t s = 0; s < model.skins.size(); ++s) {
     const Skin& skin = model.skins[s];
     if (skin.inverseBindMatrices.size() != skin.joints.size())
-      return makeError(file + ": skin " + std::to_string(s) + " has " + std::to_string(skin.inverseBindMatrices.size()) +
+      return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " has " + std::to_string(skin.inverseBindMatrices.size()) +
                        " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
     for (int joint : skin.joints)
       if (joint < 0 || joint >= static_cast<int>(model.nodes.size()))
-        return makeError(file + ": skin " + std::to_string(s) + " joint " + std::to_string(joint) + " out of range");
+        return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " joint " + std::to_string(joint) + " out of range");
   }
   for (int root : model.roots) {
     if (root < 0 || root >= static_cast<int>(model.nodes.size()))
-      return makeError(file + ": scene root " + std::to_string(root) + " out of range");
+      return makeError(ErrorKind::Malformed, file + ": scene root " + std::to_string(root) + " out of range");
   }
   return {};
 }
@@ -260,7 +260,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
         ranges.hasTangents |= !t.tangents.empty();
       }
       if (ranges.hasTargets && ranges.size > limits.maxStorageBufferRange)
-        return makeError(where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
+        return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
                          std::to_string(n) + " vertices need " + std::to_string(ranges.size) +
                          " bytes of deltas per attribute, the device allows " +
                          std::to_string(limits.maxStorageBufferRange));
@@ -318,7 +318,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
     if (blob.empty()) return {};
     const std::string name = file + " " + what;
     auto buffer = Buffer::createWithData(ctx, blob.bytes(), usage, name.c_str());
-    if (!buffer) return Error{file + ": uploading " + what + ": " + buffer.error().message, buffer.error().code};
+    if (!buffer) return buffer.error().prefixed(file + ": uploading " + what + ": ");
     out = std::move(buffer).value();
     return {};
   };
@@ -339,7 +339,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
     const std::string name = file + " image '" + img.name + "'";
     auto texture = createTexture(ctx, {static_cast<uint32_t>(img.width), static_cast<uint32_t>(img.height), layer,
                                        VK_IMAGE_VIEW_TYPE_2D, name.c_str()});
-    if (!texture) return Error{file + ": " + texture.error().message, texture.error().code};
+    if (!texture) return texture.error().prefixed(file + ": ");
     tex = std::move(texture).value();
   }
   gpu.detailArrays_.resize(model.materials.size());
@@ -351,7 +351,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
                         });
     if (!usable) continue;
     auto array = createDetailArray(ctx, model, mat);
-    if (!array) return Error{file + ": " + array.error().message, array.error().code};
+    if (!array) return array.error().prefixed(file + ": ");
     gpu.detailArrays_[i] = std::move(array).value();
   }
 

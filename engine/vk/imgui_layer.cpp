@@ -15,7 +15,7 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const Context& ctx,
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
   ImGui::StyleColorsDark();
   // true: ImGui chains to callbacks installed before it (the demo's key queue).
-  if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return Error{"ImGui: GLFW backend failed to start"};
+  if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return makeError(ErrorKind::Device, "ImGui: GLFW backend failed to start");
   layer->glfwReady_ = true;
   const ImGuiVulkanInfo info = renderer.imguiInfo();
   ImGui_ImplVulkan_InitInfo init{};
@@ -29,13 +29,13 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const Context& ctx,
   init.MinImageCount = info.minImageCount;
   init.ImageCount = info.imageCount;
   init.MSAASamples = info.msaaSamples;
-  if (!ImGui_ImplVulkan_Init(&init, info.renderPass)) return Error{"ImGui: Vulkan backend failed to start"};
+  if (!ImGui_ImplVulkan_Init(&init, info.renderPass)) return makeError(ErrorKind::Device, "ImGui: Vulkan backend failed to start");
   layer->vulkanReady_ = true;
   bool fontsOk = false;
   auto fonts = ctx.submitOneShot([&](VkCommandBuffer cmd) { fontsOk = ImGui_ImplVulkan_CreateFontsTexture(cmd); });
-  if (!fonts) return Error{"ImGui fonts: " + fonts.error().message};
+  if (!fonts) return fonts.error().prefixed("ImGui fonts: ");
   ImGui_ImplVulkan_DestroyFontUploadObjects();
-  if (!fontsOk) return Error{"ImGui: font texture upload failed"};
+  if (!fontsOk) return makeError(ErrorKind::Device, "ImGui: font texture upload failed");
   return layer;
 }
 

@@ -13,7 +13,7 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
                                                 VkSampleCountFlagBits samples) {
   const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
   if (width == 0 || height == 0 || width > limits.maxFramebufferWidth || height > limits.maxFramebufferHeight)
-    return makeError("offscreen target: size " + std::to_string(width) + "x" + std::to_string(height) +
+    return makeError(ErrorKind::InvalidArgument, "offscreen target: size " + std::to_string(width) + "x" + std::to_string(height) +
                      " outside 1x1.." + std::to_string(limits.maxFramebufferWidth) + "x" +
                      std::to_string(limits.maxFramebufferHeight));
   OffscreenTarget t;

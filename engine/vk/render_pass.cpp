@@ -14,7 +14,7 @@ Result<VkFormat> chooseDepthFormat(const Context& ctx) {
     vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), f, &props);
     if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) return f;
   }
-  return makeError("no depth attachment format supported by " + ctx.deviceInfo().name,
+  return makeError(ErrorKind::Device, "no depth attachment format supported by " + ctx.deviceInfo().name,
                    VK_ERROR_FORMAT_NOT_SUPPORTED);
 }
 

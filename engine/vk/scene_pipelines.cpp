@@ -14,7 +14,7 @@ namespace {
 
 Result<UniqueShaderModule> createModule(const Context& ctx, const ShaderLibrary& shaders, const char* name) {
   std::span<const uint32_t> code = shaders.spirv(name);
-  if (code.empty()) return makeError(std::string("shader program '") + name + "' is not in the shader library");
+  if (code.empty()) return makeError(ErrorKind::NotFound, std::string("shader program '") + name + "' is not in the shader library");
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = code.size_bytes();
   info.pCode = code.data();

@@ -19,7 +19,7 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
                                             const ShaderLibrary& shaders, VkRenderPass renderPass,
                                             VkSampleCountFlagBits samples, uint32_t frameSlots,
                                             RenderQuality quality) {
-  if (frameSlots == 0) return makeError("scene renderer: frameSlots must be >= 1");
+  if (frameSlots == 0) return makeError(ErrorKind::InvalidArgument, "scene renderer: frameSlots must be >= 1");
   SceneRenderer r;
   r.ctx_ = &ctx;
   r.layouts_ = &layouts;
@@ -119,7 +119,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
 
 Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInstance> instances, Mode mode) {
   if (slotIndex >= slots_.size())
-    return makeError("scene renderer: frame slot " + std::to_string(slotIndex) + " of " +
+    return makeError(ErrorKind::InvalidArgument, "scene renderer: frame slot " + std::to_string(slotIndex) + " of " +
                      std::to_string(slots_.size()));
   Slot& slot = slots_[slotIndex];
   slot.batches.clear();
@@ -133,24 +133,24 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
 
   for (size_t i = 0; i < instances.size(); ++i) {
     const ModelInstance& inst = instances[i];
-    if (!inst.model) return makeError("instance " + std::to_string(i) + ": no model");
+    if (!inst.model) return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + ": no model");
     if (inst.weights.size() != inst.model->weightCount())
-      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
+      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
                        std::to_string(inst.weights.size()) + " weights given, the model has " +
                        std::to_string(inst.model->weightCount()));
     if (!inst.nodeWorld.empty() && inst.nodeWorld.size() != inst.model->nodeCount())
-      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): pose of " +
+      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): pose of " +
                        std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
                        std::to_string(inst.model->nodeCount()));
     if (inst.materials.size() > inst.model->materialCount())
-      return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
+      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
                        std::to_string(inst.materials.size()) + " materials given, the model has " +
                        std::to_string(inst.model->materialCount()));
     for (size_t m = 0; m < inst.materials.size(); ++m) {
       const InstanceMaterial& mat = inst.materials[m];
       const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform;
       if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
-        return makeError("instance " + std::to_string(i) + " (" + inst.model->name() + "): material " +
+        return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): material " +
                          std::to_string(m) + " has a non-finite value");
     }
     if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
@@ -188,8 +188,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         ActiveWeightsJob job{inst.weights.subspan(meshes[m].weightOffset, meshes[m].targetCount),
                              std::span(activeScratch_).subspan(start)};
         if (auto valid = job.Validate(); !valid)
-          return makeError("instance " + std::to_string(memberScratch_[k]) + " (" + model->name() + ") mesh " +
-                           std::to_string(m) + ": " + valid.error().message);
+          return valid.error().prefixed("instance " + std::to_string(memberScratch_[k]) + " (" + model->name() + ") mesh " +
+                           std::to_string(m) + ": ");
         const uint32_t count = job.Run();
         activeScratch_.resize(start + count);
         rangeScratch_[k * meshes.size() + m] = {static_cast<uint32_t>(start), count};
@@ -269,7 +269,7 @@ Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
 
 Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelInstance> instances) {
   if (!canCapture())
-    return makeError("morph capture needs vertexPipelineStoresAndAtomics, which " + ctx_->deviceInfo().name +
+    return makeError(ErrorKind::Device, "morph capture needs vertexPipelineStoresAndAtomics, which " + ctx_->deviceInfo().name +
                      " does not support");
   return build(slot, instances, Mode::Capture);
 }

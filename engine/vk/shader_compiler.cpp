@@ -76,7 +76,7 @@ Result<ShaderStage> shaderStageFromPath(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   if (ext == ".vert") return ShaderStage::Vertex;
   if (ext == ".frag") return ShaderStage::Fragment;
-  return makeError(file.string() + ": unknown shader stage (expected .vert or .frag)");
+  return makeError(ErrorKind::Unsupported, file.string() + ": unknown shader stage (expected .vert or .frag)");
 }
 
 Result<std::vector<uint32_t>> compileGlsl(std::string_view source, std::string_view displayName, ShaderStage stage,
@@ -97,17 +97,17 @@ Result<std::vector<uint32_t>> compileGlsl(std::string_view source, std::string_v
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
   DirectoryIncluder includer(includeDir);
   if (!shader.parse(GetDefaultResources(), 100, false, messages, includer))
-    return makeError(name + ": compile failed:\n" + shader.getInfoLog());
+    return makeError(ErrorKind::Malformed, name + ": compile failed:\n" + shader.getInfoLog());
 
   glslang::TProgram program;
   program.addShader(&shader);
-  if (!program.link(messages)) return makeError(name + ": link failed:\n" + program.getInfoLog());
+  if (!program.link(messages)) return makeError(ErrorKind::Malformed, name + ": link failed:\n" + program.getInfoLog());
 
   std::vector<uint32_t> spirv;
   spv::SpvBuildLogger logger;
   glslang::SpvOptions options;
   glslang::GlslangToSpv(*program.getIntermediate(language), spirv, &logger, &options);
-  if (spirv.empty()) return makeError(name + ": SPIR-V generation failed: " + logger.getAllMessages());
+  if (spirv.empty()) return makeError(ErrorKind::Malformed, name + ": SPIR-V generation failed: " + logger.getAllMessages());
   return spirv;
 }
 
@@ -115,7 +115,7 @@ Result<std::vector<uint32_t>> compileGlslFile(const std::filesystem::path& file,
   auto stage = shaderStageFromPath(file);
   if (!stage) return stage.error();
   auto text = readText(file);
-  if (!text) return makeError(file.string() + ": cannot read shader source");
+  if (!text) return makeError(ErrorKind::Io, file.string() + ": cannot read shader source");
   return compileGlsl(*text, file.string(), stage.value(), defines, file.parent_path());
 }
 

@@ -22,7 +22,7 @@ Result<ShadowMap> ShadowMap::create(const Context& ctx, uint32_t size) {
     }
   }
   if (format == VK_FORMAT_UNDEFINED)
-    return makeError("shadow map: no depth format that " + ctx.deviceInfo().name + " can both render and sample",
+    return makeError(ErrorKind::Device, "shadow map: no depth format that " + ctx.deviceInfo().name + " can both render and sample",
                      VK_ERROR_FORMAT_NOT_SUPPORTED);
 
   ShadowMap s;

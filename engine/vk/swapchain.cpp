@@ -22,14 +22,14 @@ Result<Swapchain> Swapchain::create(const Context& ctx, VkExtent2D framebufferEx
                                     Swapchain* previous) {
   const VkPhysicalDevice gpu = ctx.physicalDevice();
   const VkSurfaceKHR surface = ctx.surface();
-  if (surface == VK_NULL_HANDLE) return makeError("swapchain: the context was created without a window surface");
+  if (surface == VK_NULL_HANDLE) return makeError(ErrorKind::InvalidArgument, "swapchain: the context was created without a window surface");
   VkSurfaceCapabilitiesKHR caps;
   ENG_VK_TRY(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps));
   uint32_t formatCount = 0;
   ENG_VK_TRY(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &formatCount, nullptr));
   std::vector<VkSurfaceFormatKHR> formats(formatCount);
   ENG_VK_TRY(vkGetPhysicalDeviceSurfaceFormatsKHR(gpu, surface, &formatCount, formats.data()));
-  if (formats.empty()) return makeError("swapchain: the surface reports no formats");
+  if (formats.empty()) return makeError(ErrorKind::Device, "swapchain: the surface reports no formats");
   uint32_t modeCount = 0;
   ENG_VK_TRY(vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &modeCount, nullptr));
   std::vector<VkPresentModeKHR> modes(modeCount);
@@ -44,7 +44,7 @@ Result<Swapchain> Swapchain::create(const Context& ctx, VkExtent2D framebufferEx
     extent.width = std::clamp(framebufferExtent.width, caps.minImageExtent.width, caps.maxImageExtent.width);
     extent.height = std::clamp(framebufferExtent.height, caps.minImageExtent.height, caps.maxImageExtent.height);
   }
-  if (extent.width == 0 || extent.height == 0) return makeError("swapchain: window has no area (minimised)");
+  if (extent.width == 0 || extent.height == 0) return makeError(ErrorKind::Device, "swapchain: window has no area (minimised)");
   uint32_t imageCount = caps.minImageCount + 1;
   if (caps.maxImageCount > 0) imageCount = std::min(imageCount, caps.maxImageCount);
 

@@ -24,11 +24,11 @@ bool canBlitLinear(const Context& ctx) {
 Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source) {
   const size_t layerBytes = size_t{source.width} * source.height * 4;
   if (source.width == 0 || source.height == 0 || source.layers.empty())
-    return makeError(std::string("texture '") + source.debugName + "': empty (" + std::to_string(source.width) + "x" +
+    return makeError(ErrorKind::InvalidArgument, std::string("texture '") + source.debugName + "': empty (" + std::to_string(source.width) + "x" +
                      std::to_string(source.height) + ", " + std::to_string(source.layers.size()) + " layers)");
   for (size_t i = 0; i < source.layers.size(); ++i) {
     if (source.layers[i].size() != layerBytes)
-      return makeError(std::string("texture '") + source.debugName + "': layer " + std::to_string(i) + " has " +
+      return makeError(ErrorKind::InvalidArgument, std::string("texture '") + source.debugName + "': layer " + std::to_string(i) + " has " +
                        std::to_string(source.layers[i].size()) + " bytes, expected " + std::to_string(layerBytes) +
                        " for " + std::to_string(source.width) + "x" + std::to_string(source.height) + " RGBA8");
   }

@@ -52,7 +52,7 @@ std::string_view resultName(VkResult result) {
 Error vulkanError(std::string_view call, VkResult result) {
   std::string_view function = call.substr(0, call.find('('));
   while (!function.empty() && function.back() == ' ') function.remove_suffix(1);
-  return makeError(std::string(function) + " failed: " + std::string(resultName(result)),
+  return makeError(ErrorKind::Device, std::string(function) + " failed: " + std::string(resultName(result)),
                    static_cast<int32_t>(result));
 }
 

@@ -32,22 +32,27 @@ std::string glfwErrorText() {
 
 Result<std::unique_ptr<Window>> Window::create(const WindowOptions& options) {
   if (options.width <= 0 || options.height <= 0)
-    return makeError("window size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+    return makeError(ErrorKind::InvalidArgument, "window size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                      " must be positive");
   {
     std::lock_guard lock(glfwMutex());
-    if (glfwUsers() == 0 && !glfwInit()) return makeError("cannot open a window: " + glfwErrorText());
+    if (glfwUsers() == 0 && !glfwInit()) return makeError(ErrorKind::Device, "cannot open a window: " + glfwErrorText());
     ++glfwUsers();
   }
   std::unique_ptr<Window> w(new Window());
-  if (!glfwVulkanSupported()) return makeError("GLFW found no Vulkan loader with window-system support");
+  if (!glfwVulkanSupported()) return makeError(ErrorKind::Device, "GLFW found no Vulkan loader with window-system support");
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, options.resizable ? GLFW_TRUE : GLFW_FALSE);
   w->window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
-  if (!w->window_) return makeError("cannot create a window: " + glfwErrorText());
+  if (!w->window_) return makeError(ErrorKind::Device, "cannot create a window: " + glfwErrorText());
   glfwSetWindowUserPointer(w->window_, w.get());
   glfwSetFramebufferSizeCallback(w->window_, [](GLFWwindow* handle, int, int) {
     static_cast<Window*>(glfwGetWindowUserPointer(handle))->resized_ = true;
+  });
+  glfwSetKeyCallback(w->window_, [](GLFWwindow* handle, int key, int, int action, int) {
+    Window* self = static_cast<Window*>(glfwGetWindowUserPointer(handle));
+    if (action == GLFW_PRESS && self->keyPressCount_ < self->keyPresses_.size())
+      self->keyPresses_[self->keyPressCount_++] = key;
   });
   return w;
 }
@@ -69,6 +74,11 @@ VkExtent2D Window::framebufferExtent() const {
 }
 
 bool Window::takeResized() { return std::exchange(resized_, false); }
+
+std::span<const int> Window::takeKeyPresses() {
+  std::copy_n(keyPresses_.begin(), keyPressCount_, takenKeys_.begin());
+  return {takenKeys_.data(), std::exchange(keyPressCount_, 0u)};
+}
 
 void Window::configureContext(ContextOptions& options) const {
   uint32_t count = 0;

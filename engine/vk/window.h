@@ -6,7 +6,10 @@
 //   eng::vk::ContextOptions options;
 //   (*window)->configureContext(options);
 //   auto ctx = eng::vk::Context::create(options);
+#include <array>
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -41,6 +44,12 @@ class Window {
   VkExtent2D framebufferExtent() const;
   // True once after each framebuffer resize.
   bool takeResized();
+  // The keys pressed (GLFW_KEY_*) since the last call, oldest first; presses
+  // past 32 a frame are dropped. Queued by a callback, because a fast
+  // press+release (xdotool, a slow frame) between two polls would be missed by
+  // glfwGetKey. Valid until the next pollEvents / waitEvents. ImGui, created
+  // after the window, chains to the callback.
+  std::span<const int> takeKeyPresses();
 
   // Adds the window system's instance extensions and a surface factory.
   void configureContext(ContextOptions& options) const;
@@ -49,6 +58,9 @@ class Window {
   Window() = default;
   GLFWwindow* window_ = nullptr;
   bool resized_ = false;
+  std::array<int, 32> keyPresses_{};
+  uint32_t keyPressCount_ = 0;
+  std::array<int, 32> takenKeys_{};
 };
 
 }  // namespace eng::vk

@@ -23,7 +23,7 @@ WindowRenderer::~WindowRenderer() {
 Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ctx, Window& window,
                                                                const WindowRendererOptions& options) {
   if (ctx.surface() == VK_NULL_HANDLE)
-    return makeError("window renderer: the context has no surface (create it with Window::configureContext)");
+    return makeError(ErrorKind::InvalidArgument, "window renderer: the context has no surface (create it with Window::configureContext)");
   std::unique_ptr<WindowRenderer> r(new WindowRenderer());
   r->ctx_ = &ctx;
   r->window_ = &window;
@@ -94,7 +94,7 @@ Result<void> WindowRenderer::recreateSwapchain() {
   auto swapchain = Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
   if (!swapchain) return swapchain.error();
   if (swapchain->format() != format_.color)
-    return makeError("swapchain format changed from " + std::to_string(format_.color) + " to " +
+    return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
   swapchain_ = std::move(swapchain).value();
   return createSwapchainResources();
@@ -193,7 +193,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
       break;
   }
   if (!frame.screenshot.empty() && !swapchain_.canCopyFrom())
-    return makeError("screenshot " + frame.screenshot.string() + ": this surface's images cannot be copied from");
+    return makeError(ErrorKind::Device, "screenshot " + frame.screenshot.string() + ": this surface's images cannot be copied from");
 
   const VkDevice device = ctx_->device();
   const uint32_t slot = frameIndex_ % kFramesInFlight;
@@ -307,7 +307,7 @@ Result<void> WindowRenderer::saveScreenshot(const std::filesystem::path& path) {
   if (f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_B8G8R8A8_UNORM) {
     for (size_t i = 0; i < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
   } else if (f != VK_FORMAT_R8G8B8A8_SRGB && f != VK_FORMAT_R8G8B8A8_UNORM) {
-    return makeError("screenshot " + path.string() + ": swapchain format " + std::to_string(f) +
+    return makeError(ErrorKind::Device, "screenshot " + path.string() + ": swapchain format " + std::to_string(f) +
                      " is not 8-bit RGBA/BGRA");
   }
   for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;  // the window is opaque

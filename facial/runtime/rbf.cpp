@@ -53,14 +53,14 @@ bool findCoincidentPair(std::span<const glm::vec3> points, double minSeparation,
 
 eng::Result<void> requireSize(size_t actual, size_t expected, const char* what) {
   if (actual != expected)
-    return eng::makeError(std::string("RBF: ") + what + " has " + std::to_string(actual) + " entries, expected " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, std::string("RBF: ") + what + " has " + std::to_string(actual) + " entries, expected " +
                           std::to_string(expected));
   return {};
 }
 
 eng::Result<void> requireFinite(std::span<const glm::vec3> values, const char* what) {
   if (const long bad = firstNonFinite(values); bad >= 0)
-    return eng::makeError(std::string("RBF: ") + what + " " + std::to_string(bad) + " of " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, std::string("RBF: ") + what + " " + std::to_string(bad) + " of " +
                           std::to_string(values.size()) + " is not finite " + describe(values[static_cast<size_t>(bad)]));
   return {};
 }
@@ -87,21 +87,21 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
                                                      float minSeparation) {
   const size_t n = controlPoints.size();
   if (n < 4)
-    return eng::makeError("RBF: " + std::to_string(n) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(n) +
                           " control points given, at least 4 are needed (the affine term has 4 unknowns)");
   if (const long bad = firstNonFinite(controlPoints); bad >= 0)
-    return eng::makeError("RBF: control point " + std::to_string(bad) + " of " + std::to_string(n) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control point " + std::to_string(bad) + " of " + std::to_string(n) +
                           " is not finite " + describe(controlPoints[static_cast<size_t>(bad)]));
   if (kernel.type == RbfKernelType::Polyharmonic && kernel.k < 1)
-    return eng::makeError("RBF: polyharmonic kernel needs k >= 1 (exponent 2k+1), got k = " + std::to_string(kernel.k));
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: polyharmonic kernel needs k >= 1 (exponent 2k+1), got k = " + std::to_string(kernel.k));
   if (kernel.type == RbfKernelType::Multiquadric && !(std::isfinite(kernel.c) && kernel.c > 0.0f))
-    return eng::makeError("RBF: multiquadric kernel needs a finite shape parameter c > 0, got c = " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: multiquadric kernel needs a finite shape parameter c > 0, got c = " +
                           std::to_string(kernel.c));
   if (!(std::isfinite(minSeparation) && minSeparation >= 0.0f))
-    return eng::makeError("RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
 
   if (size_t a = 0, b = 0; findCoincidentPair(controlPoints, minSeparation, a, b))
-    return eng::makeError("RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
                           std::to_string(n) + " coincide " + describe(controlPoints[a]) + " (closer than minSeparation " +
                           std::to_string(minSeparation) + ")");
 
@@ -135,10 +135,10 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
   }
   const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixX3d>(centred).singularValues();
   if (spread(1) <= kMinRelativeSpread * spread(0))
-    return eng::makeError("RBF: the " + std::to_string(n) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
                           " control points are collinear; the affine term needs a layout that spans 3D");
   if (spread(2) <= kMinRelativeSpread * spread(0))
-    return eng::makeError("RBF: the " + std::to_string(n) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
                           " control points are coplanar; the affine term needs a layout that spans 3D");
 
   // [Phi P; P^T 0]: symmetric but indefinite, hence LU rather than Cholesky.
@@ -151,7 +151,7 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
   rbf.inverseSystem_.compute(system);
   const double rcond = rbf.inverseSystem_.rcond();
   if (!(rcond > kMinReciprocalCondition))
-    return eng::makeError("RBF: the system for " + std::to_string(n) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the system for " + std::to_string(n) +
                           " control points is numerically singular (reciprocal condition " + std::to_string(rcond) +
                           "); spread the points out or use another kernel");
   return rbf;
@@ -211,7 +211,7 @@ eng::Result<RbfDeformer> RbfDeformer::build(std::span<const glm::vec3> controlPo
 
 eng::Result<RbfDeformer> RbfDeformer::build(const RbfInterpolator& interpolator, std::span<const glm::vec3> points) {
   if (const long bad = firstNonFinite(points); bad >= 0)
-    return eng::makeError("RBF deformer: point " + std::to_string(bad) + " of " + std::to_string(points.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF deformer: point " + std::to_string(bad) + " of " + std::to_string(points.size()) +
                           " is not finite " + describe(points[static_cast<size_t>(bad)]));
   auto influence = interpolator.influenceMatrix(points);
   if (!influence) return influence.error();
@@ -225,7 +225,7 @@ eng::Result<void> RbfDeformer::apply(std::span<const glm::vec3> displacements, s
   const size_t n = controlPointCount();
   const size_t m = pointCount();
   if (displacements.size() != n || out.size() != m || (!mask.empty() && mask.size() != m))
-    return eng::makeError("RBF deformer: apply got " + std::to_string(displacements.size()) + " displacements, " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF deformer: apply got " + std::to_string(displacements.size()) + " displacements, " +
                           std::to_string(out.size()) + " outputs, mask of " + std::to_string(mask.size()) +
                           "; expected " + std::to_string(n) + " displacements, " + std::to_string(m) +
                           " outputs, mask empty or " + std::to_string(m));

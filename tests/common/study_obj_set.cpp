@@ -21,7 +21,7 @@ void writePosedObj(const eng::Model& model, std::span<const float> weights, cons
     const glm::mat4 world = model.worldTransform(n);
     for (const eng::Primitive& p : model.meshes[m].primitives) {
       std::vector<glm::vec3> positions(p.vertexCount()), normals;
-      eng::morphPrimitiveCpu(p, layout.meshWeights(weights, m), positions, normals);
+      eng::morphPrimitiveCpu(p, *layout.meshWeights(weights, m), positions, normals);
       for (const glm::vec3& v : positions) {
         const glm::vec3 w = glm::vec3(world * glm::vec4(v, 1.0f));
         std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", w.x, w.y, w.z);

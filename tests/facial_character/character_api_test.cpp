@@ -1,5 +1,6 @@
 // The embedding API: facial::Character (C++) and its C wrapper over a graph
 // file and a list of target names, as an engine without our loader uses them.
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -145,4 +146,34 @@ TEST(CApiValidity, ErrorsAreCodesWithAMessage) {
   float q[4];
   EXPECT_EQ(facial_character_eye_rotation(c, facial_eye(7), q), FACIAL_ERROR_INVALID_ARGUMENT);
   facial_character_destroy(c);
+}
+
+TEST(CApiValidity, TheLastErrorKindTellsMissingFromBrokenFromMisuse) {
+  facial_character* c = nullptr;
+  const char* names[] = {"jawOpen"};
+  EXPECT_EQ(facial_character_create("/nonexistent/graph.json", nullptr, names, 1, 0, &c), FACIAL_ERROR_LOAD);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_NOT_FOUND);
+
+  const auto dir = testing_support::freshTempDir("c_api_error_kinds");
+  const std::string broken = (dir / "broken.json").string();
+  { std::ofstream(broken) << "{ \"nodes\": [ 1, "; }
+  EXPECT_EQ(facial_character_create(broken.c_str(), nullptr, names, 1, 0, &c), FACIAL_ERROR_LOAD);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_MALFORMED) << facial_last_error_message();
+
+  EXPECT_EQ(facial_character_update(nullptr, 0.1f), FACIAL_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_INVALID_ARGUMENT);
+
+  std::vector<const char*> arkit;
+  for (const std::string& n : kArkitFace) arkit.push_back(n.c_str());
+  const std::string graph = (data() / "graphs" / "tour.json").string(), presets = (data() / "expressions.json").string();
+  ASSERT_EQ(facial_character_create(graph.c_str(), presets.c_str(), arkit.data(), uint32_t(arkit.size()), 0, &c), FACIAL_OK);
+  EXPECT_EQ(facial_character_trigger(c, "ecstatic"), FACIAL_ERROR_UNKNOWN_PARAMETER);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_NOT_FOUND);
+  EXPECT_EQ(facial_character_update(c, -0.5f), FACIAL_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_INVALID_ARGUMENT);
+  facial_character_destroy(c);
+
+  const char* repeated[] = {"jawOpen", "jawOpen"};
+  EXPECT_EQ(facial_character_create(graph.c_str(), presets.c_str(), repeated, 2, 0, &c), FACIAL_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(facial_last_error_kind(), FACIAL_KIND_INVALID_ARGUMENT);
 }

@@ -51,7 +51,7 @@ inline facial::PresetLookup tablePresets(std::map<std::string, std::map<std::str
   return [table = std::move(table)](std::string_view name, float intensity,
                                     std::span<float> au) -> eng::Result<void> {
     auto it = table.find(std::string(name));
-    if (it == table.end()) return eng::makeError("unknown preset '" + std::string(name) + "'");
+    if (it == table.end()) return eng::makeError(eng::ErrorKind::NotFound, "unknown preset '" + std::string(name) + "'");
     std::fill(au.begin(), au.end(), 0.0f);
     for (const auto& [channel, weight] : it->second) au[*facial::actionUnitIndex(channel)] = weight * intensity;
     return {};

@@ -1,5 +1,9 @@
 // The CPU reference morph: base + sum(w_i * delta_i), normals renormalised.
-#include <stdexcept>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -70,29 +74,61 @@ TEST(CpuMorph, NormalBlendedToZeroStaysFinite) {
   EXPECT_TRUE(std::isfinite(nrm[1].x) && std::isfinite(nrm[1].y) && std::isfinite(nrm[1].z));
 }
 
-TEST(CpuMorphPreconditions, WeightCountMustMatchTargetCount) {
-  const eng::Primitive p = triangleWithTwoTargets();
-  std::vector<glm::vec3> pos(3), nrm(3);
-  const float one[] = {1.0f};
-  try {
-    eng::morphPrimitiveCpu(p, one, pos, nrm);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "morphPrimitiveCpu: 1 weights for 2 targets");
-  }
+// An invalid job names the problem and leaves its outputs as they were.
+void expectRefused(const eng::MorphPrimitiveJob& job, const std::string& problem) {
+  const std::vector<glm::vec3> before(job.outPositions.begin(), job.outPositions.end());
+  const auto found = job.Validate();
+  ASSERT_TRUE(found.has_value()) << "expected: " << problem;
+  EXPECT_EQ(*found, problem);
+  EXPECT_FALSE(job.Run());
+  EXPECT_TRUE(std::equal(before.begin(), before.end(), job.outPositions.begin())) << "outputs untouched";
 }
 
-TEST(CpuMorphPreconditions, OutputSizesMustMatchVertexCount) {
+TEST(CpuMorphValidity, WeightCountMustMatchTargetCount) {
   const eng::Primitive p = triangleWithTwoTargets();
-  std::vector<glm::vec3> shortPos(2), pos(3), shortNrm(1);
+  std::vector<glm::vec3> pos(3, glm::vec3(7.0f)), nrm(3);
+  const float one[] = {1.0f};
+  expectRefused({&p, one, pos, nrm}, "MorphPrimitiveJob: 1 weights for 2 targets");
+  EXPECT_FALSE(eng::morphPrimitiveCpu(p, one, pos, nrm));
+}
+
+TEST(CpuMorphValidity, OutputSizesMustMatchVertexCount) {
+  const eng::Primitive p = triangleWithTwoTargets();
+  std::vector<glm::vec3> shortPos(2, glm::vec3(7.0f)), pos(3, glm::vec3(7.0f)), shortNrm(1);
   const float weights[] = {0.0f, 0.0f};
-  EXPECT_THROW(eng::morphPrimitiveCpu(p, weights, shortPos, {}), std::invalid_argument);
-  try {
-    eng::morphPrimitiveCpu(p, weights, pos, shortNrm);
-    FAIL() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "morphPrimitiveCpu: outNormals has 1 entries, primitive has 3 vertices");
-  }
+  expectRefused({&p, weights, shortPos, {}}, "MorphPrimitiveJob: outPositions has 2 entries, primitive has 3 vertices");
+  expectRefused({&p, weights, pos, shortNrm}, "MorphPrimitiveJob: outNormals has 1 entries, primitive has 3 vertices");
+}
+
+TEST(CpuMorphValidity, NonFiniteWeightsAndMissingPrimitiveAreRefused) {
+  const eng::Primitive p = triangleWithTwoTargets();
+  std::vector<glm::vec3> pos(3, glm::vec3(7.0f));
+  const float nan[] = {0.5f, std::numeric_limits<float>::quiet_NaN()};
+  expectRefused({&p, nan, pos, {}}, "MorphPrimitiveJob: weight 1 is not finite");
+  const float inf[] = {std::numeric_limits<float>::infinity(), 0.0f};
+  expectRefused({&p, inf, pos, {}}, "MorphPrimitiveJob: weight 0 is not finite");
+  expectRefused({nullptr, {}, pos, {}}, "MorphPrimitiveJob: no primitive");
+}
+
+TEST(CpuMorphValidity, NormalsNeedAPrimitiveWithNormalsAndTargetsOfItsVertexCount) {
+  eng::Primitive p = triangleWithTwoTargets();
+  std::vector<glm::vec3> pos(3, glm::vec3(7.0f)), nrm(3);
+  const float weights[] = {0.0f, 0.0f};
+  p.normals.clear();
+  expectRefused({&p, weights, pos, nrm}, "MorphPrimitiveJob: primitive has 0 normals for 3 vertices");
+  p = triangleWithTwoTargets();
+  p.targets[1].positions.pop_back();
+  expectRefused({&p, weights, pos, {}}, "MorphPrimitiveJob: target 1 has deltas for another vertex count than 3");
+}
+
+TEST(CpuMorphValidity, AValidJobRuns) {
+  const eng::Primitive p = triangleWithTwoTargets();
+  std::vector<glm::vec3> pos(3), nrm(3);
+  const float weights[] = {1.0f, 0.0f};
+  const eng::MorphPrimitiveJob job{&p, weights, pos, nrm};
+  EXPECT_FALSE(job.Validate().has_value());
+  ASSERT_TRUE(job.Run());
+  expectVec(pos[2], {0, 1, 2});
 }
 
 }  // namespace

@@ -353,3 +353,63 @@ TEST(GltfLoaderBadInput, NodeHierarchyCycleAndTwoParents) {
 }
 
 }  // namespace
+
+// The error kind is what a caller branches on: ask for another path, report a
+// broken asset, or raise a limit.
+namespace {
+
+eng::ErrorKind loadErrorKind(const std::filesystem::path& path, const eng::GltfLoadLimits& limits = {}) {
+  auto model = eng::loadModel(path, limits);
+  EXPECT_FALSE(model.ok()) << path << " loaded but should fail";
+  return model.ok() ? eng::ErrorKind::InvalidArgument : model.error().kind;
+}
+
+TEST(GltfLoaderErrorKinds, MissingFileIsNotFound) {
+  const auto dir = freshTempDir("kind_missing");
+  EXPECT_EQ(loadErrorKind(dir / "nothing.glb"), eng::ErrorKind::NotFound);
+}
+
+TEST(GltfLoaderErrorKinds, MissingBufferBesideTheModelIsNotFound) {
+  const auto dir = freshTempDir("kind_missing_buffer");
+  quadWithTarget().writeGltf(dir / "model.gltf", "model.bin");
+  std::filesystem::remove(dir / "model.bin");
+  EXPECT_EQ(loadErrorKind(dir / "model.gltf"), eng::ErrorKind::NotFound);
+}
+
+TEST(GltfLoaderErrorKinds, BrokenFilesAreMalformed) {
+  const auto dir = freshTempDir("kind_malformed");
+  writeBytes(dir / "empty.gltf", {});
+  EXPECT_EQ(loadErrorKind(dir / "empty.gltf"), eng::ErrorKind::Malformed);
+  std::vector<uint8_t> glb = quadWithTarget().glbBytes();
+  glb.resize(glb.size() / 2);
+  writeBytes(dir / "cut.glb", glb);
+  EXPECT_EQ(loadErrorKind(dir / "cut.glb"), eng::ErrorKind::Malformed);
+}
+
+TEST(GltfLoaderErrorKinds, FileOverTheLimitIsTooLarge) {
+  const auto dir = freshTempDir("kind_too_large");
+  quadWithTarget().writeGlb(dir / "quad.glb");
+  eng::GltfLoadLimits limits;
+  limits.maxFileBytes = 64;
+  EXPECT_EQ(loadErrorKind(dir / "quad.glb", limits), eng::ErrorKind::TooLarge);
+  EXPECT_TRUE(eng::loadModel(dir / "quad.glb").ok()) << "the same file loads under the default limits";
+}
+
+TEST(GltfLoaderErrorKinds, NewerGltfIsUnsupported) {
+  const auto dir = freshTempDir("kind_unsupported");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["asset"]["version"] = "3.0";
+  b.writeGlb(dir / "future.glb");
+  EXPECT_EQ(loadErrorKind(dir / "future.glb"), eng::ErrorKind::Unsupported);
+}
+
+TEST(ErrorKinds, PrefixedKeepsKindAndCode) {
+  const eng::Error inner = eng::makeError(eng::ErrorKind::Device, "vkQueueSubmit failed", -4);
+  const eng::Error outer = inner.prefixed("frame: ");
+  EXPECT_EQ(outer.kind, eng::ErrorKind::Device);
+  EXPECT_EQ(outer.code, -4);
+  EXPECT_EQ(outer.message, "frame: vkQueueSubmit failed");
+  EXPECT_EQ(eng::errorKindName(eng::ErrorKind::TooLarge), "too large");
+}
+
+}  // namespace

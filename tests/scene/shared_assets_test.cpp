@@ -98,7 +98,7 @@ TEST(SharedAssets, RobotExpressiveHeadSharesThreeTargetsAcrossThreePrimitives) {
   EXPECT_NE(findAnimation(model, "Dance"), nullptr);
   const eng::WeightLayout layout(model);
   std::vector<float> weights = layout.defaults();
-  EXPECT_EQ(layout.setByName(weights, "Surprised", 1.0f), 1);
+  EXPECT_EQ(*layout.setByName(weights, "Surprised", 1.0f), 1);
 }
 
 TEST(SharedAssets, AnimatedMorphCubeMorphsPositionNormalAndTangent) {

@@ -45,6 +45,63 @@ void expectNear(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f)
                                            << b.y << ", " << b.z << ")";
 }
 
+// Two vertices, one influence group each, both fully on joint 0.
+eng::Primitive twoSkinnedVertices() {
+  eng::Primitive p;
+  p.positions = {{0, 0, 0}, {1, 0, 0}};
+  p.normals = {{0, 0, 1}, {0, 0, 1}};
+  p.joints = {glm::u16vec4(0), glm::u16vec4(0)};
+  p.jointWeights = {glm::vec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0)};
+  return p;
+}
+
+TEST(SkinningValidity, MismatchedSpansAreRefusedAndTouchNothing) {
+  const eng::Primitive p = twoSkinnedVertices();
+  const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0));
+  std::vector<glm::vec3> shortPositions(1, glm::vec3(7.0f)), positions(2, glm::vec3(7.0f)), shortNormals(1);
+  const eng::SkinPrimitiveJob tooShort{&p, {&lift, 1}, shortPositions, {}};
+  ASSERT_TRUE(tooShort.Validate().has_value());
+  EXPECT_EQ(*tooShort.Validate(), "SkinPrimitiveJob: positions has 1 entries, primitive has 2 vertices");
+  EXPECT_FALSE(tooShort.Run());
+  EXPECT_EQ(shortPositions[0], glm::vec3(7.0f));
+  const eng::SkinPrimitiveJob badNormals{&p, {&lift, 1}, positions, shortNormals};
+  EXPECT_EQ(badNormals.Validate().value_or(""), "SkinPrimitiveJob: normals has 1 entries, primitive has 2 vertices");
+  EXPECT_FALSE(eng::skinPrimitiveCpu(p, {&lift, 1}, positions, shortNormals));
+  EXPECT_EQ(positions[1], glm::vec3(7.0f));
+  EXPECT_EQ(eng::SkinPrimitiveJob{}.Validate().value_or(""), "SkinPrimitiveJob: no primitive");
+}
+
+TEST(SkinningValidity, InfluenceGroupsMustCoverEveryVertex) {
+  eng::Primitive p = twoSkinnedVertices();
+  p.jointWeights.pop_back();
+  std::vector<glm::vec3> positions(2);
+  const eng::SkinPrimitiveJob job{&p, {}, positions, {}};
+  EXPECT_EQ(job.Validate().value_or(""), "SkinPrimitiveJob: primitive has 2 joint groups and 1 weight groups for 2 vertices");
+}
+
+TEST(SkinningValidity, AValidJobSkins) {
+  const eng::Primitive p = twoSkinnedVertices();
+  const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0));
+  std::vector<glm::vec3> positions = p.positions;
+  const eng::SkinPrimitiveJob job{&p, {&lift, 1}, positions, {}};
+  EXPECT_FALSE(job.Validate().has_value());
+  ASSERT_TRUE(job.Run());
+  expectNear(positions[1], {1, 1, 0});
+}
+
+TEST(SkinningValidity, PosingRefusesWrongWeightsBeforeWriting) {
+  eng::Model model;
+  model.nodes.resize(1);
+  const eng::Primitive p = twoSkinnedVertices();
+  const std::vector<glm::mat4> world(1, glm::mat4(1.0f));
+  std::vector<glm::vec3> positions(2, glm::vec3(7.0f));
+  const float oneWeightTooMany[] = {1.0f};
+  EXPECT_FALSE(eng::posePrimitiveCpu(model, 0, p, oneWeightTooMany, world, positions, {}));
+  EXPECT_EQ(positions[0], glm::vec3(7.0f));
+  EXPECT_TRUE(eng::posePrimitiveCpu(model, 0, p, {}, world, positions, {}));
+  expectNear(positions[1], {1, 0, 0});
+}
+
 TEST(Skinning, LoadsJointsWeightsSkinAndChannels) {
   const eng::Model model = loadStrip({}, "basic");
   ASSERT_EQ(model.skins.size(), 1u);

@@ -70,7 +70,7 @@ TEST(Context, FailingSurfaceFactoryFailsCreation) {
   eng::vk::ContextOptions options;
   options.validation = false;
   options.createSurface = [](VkInstance) -> eng::Result<VkSurfaceKHR> {
-    return eng::makeError("window system unavailable", VK_ERROR_INITIALIZATION_FAILED);
+    return eng::makeError(eng::ErrorKind::Device, "window system unavailable", VK_ERROR_INITIALIZATION_FAILED);
   };
   auto ctx = eng::vk::Context::create(options);
   ASSERT_FALSE(ctx);

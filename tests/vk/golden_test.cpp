@@ -50,7 +50,7 @@ TEST_P(GoldenAsset, MatchesGolden) {
   ASSERT_TRUE(model) << model.error().message;
   const eng::WeightLayout layout(*model);
   std::vector<float> weights = layout.defaults();
-  for (const auto& [name, value] : c.weights) ASSERT_GT(layout.setByName(weights, name, value), 0) << name;
+  for (const auto& [name, value] : c.weights) ASSERT_GT(*layout.setByName(weights, name, value), 0) << name;
   auto gpu = vk_test::renderer().upload(*model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   eng::Pose pose = eng::restPose(*model);

@@ -63,7 +63,7 @@ Agreement compareWithCpu(const eng::Model& model, const eng::vk::GpuModel& gpu,
   Agreement a;
   for (const eng::vk::CapturedPrimitive& c : *captured) {
     const eng::Primitive& prim = model.meshes[size_t(c.mesh)].primitives[size_t(c.primitive)];
-    const std::span<const float> meshWeights = layout.meshWeights(instanceWeights[c.instance], c.mesh);
+    const std::span<const float> meshWeights = *layout.meshWeights(instanceWeights[c.instance], c.mesh);
     std::vector<glm::vec3> positions(prim.vertexCount()), normals(prim.vertexCount());
     // The capture skins with the first scene node drawing the mesh.
     const auto nodes = gpu.meshNodes();

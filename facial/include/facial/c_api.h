@@ -2,7 +2,8 @@
  * Godot GDExtension, Python ctypes/cffi). One opaque handle per character;
  * every function returns a status code and never lets a C++ exception out.
  * The message of the last failure on the calling thread is
- * facial_last_error_message() (valid until that thread's next failing call).
+ * facial_last_error_message() (valid until that thread's next failing call),
+ * its kind (missing file, broken file, misuse...) facial_last_error_kind().
  *
  *   facial_character* c = NULL;
  *   if (facial_character_create("tour.json", "expressions.json", names, count, 1, &c) != FACIAL_OK)
@@ -25,12 +26,28 @@ extern "C" {
 
 typedef enum facial_status {
   FACIAL_OK = 0,
-  FACIAL_ERROR_INVALID_ARGUMENT = 1,   /* null pointer, bad count, non-finite number, bad dt */
+  FACIAL_ERROR_INVALID_ARGUMENT = 1,   /* null pointer, bad count, non-finite number, bad dt, empty or repeated target name */
   FACIAL_ERROR_LOAD = 2,               /* graph, presets or rig map file missing or broken; no rig for the names */
   FACIAL_ERROR_UNKNOWN_PARAMETER = 3,  /* no graph parameter of that name and type */
   FACIAL_ERROR_OUT_OF_MEMORY = 4,
   FACIAL_ERROR_INTERNAL = 5            /* anything else; the message says what */
 } facial_status;
+
+/* What kind of failure the last failing call on this thread met (its status
+ * says which step failed; the kind says why, e.g. a missing file versus a
+ * broken one). Mirrors eng::ErrorKind (engine/core/result.h). */
+typedef enum facial_error_kind {
+  FACIAL_KIND_NONE = 0,              /* no failure yet on this thread */
+  FACIAL_KIND_NOT_FOUND = 1,         /* a file, or a parameter / target / preset name, does not exist */
+  FACIAL_KIND_IO = 2,                /* the file exists but cannot be read */
+  FACIAL_KIND_MALFORMED = 3,         /* the file's content breaks its format */
+  FACIAL_KIND_UNSUPPORTED = 4,       /* well-formed, but a feature, version or rig this build does not handle */
+  FACIAL_KIND_TOO_LARGE = 5,         /* over a size, count or nesting limit */
+  FACIAL_KIND_INVALID_ARGUMENT = 6,  /* the caller broke a precondition */
+  FACIAL_KIND_DEVICE = 7,            /* GPU / driver failure (not produced by the runtime itself) */
+  FACIAL_KIND_OUT_OF_MEMORY = 8,
+  FACIAL_KIND_INTERNAL = 9           /* an unexpected failure; the message says what */
+} facial_error_kind;
 
 typedef enum facial_eye { FACIAL_EYE_LEFT = 0, FACIAL_EYE_RIGHT = 1 } facial_eye;
 
@@ -65,6 +82,8 @@ facial_status facial_character_eye_rotation(const facial_character* character, f
 
 /* The last failure's message on this thread ("" when none). */
 const char* facial_last_error_message(void);
+/* The last failure's kind on this thread (FACIAL_KIND_NONE when none). */
+facial_error_kind facial_last_error_kind(void);
 
 #ifdef __cplusplus
 }

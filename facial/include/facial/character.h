@@ -7,8 +7,10 @@
 // and the character's idle life (sway, breathing, saccades) and gaze are added.
 // Every frame: set parameters and triggers, update(dt), read weights() (one
 // per target name, in the order given) and the head / eye rotations for a
-// skinned avatar's joints. Errors are values (eng::Result; error().message is
-// one line naming the file and the problem); no function throws. The C API
+// skinned avatar's joints. Errors are values (eng::Result; error().kind says
+// what went wrong, e.g. NotFound for a missing file or an unknown parameter,
+// InvalidArgument for a broken precondition; error().message is one line
+// naming the file and the problem); no function throws. The C API
 // (facial/c_api.h) wraps this class and adds error codes.
 //
 //   auto character = facial::Character::create("tour.json", names, {.expressions = "expressions.json"});

@@ -49,9 +49,9 @@ EyeGaze clampGaze(EyeGaze gaze, const EyeLimits& limits, Eye eye) {
 
 eng::Result<CharacterLife> CharacterLife::create(const CharacterLifeOptions& options) {
   if (!validLimits(options.left) || !validLimits(options.right))
-    return eng::makeError("character life: eye limits must be finite degrees in [0, 90]");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "character life: eye limits must be finite degrees in [0, 90]");
   if (!finite(options.leftEye) || !finite(options.rightEye))
-    return eng::makeError("character life: eye centres must be finite");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "character life: eye centres must be finite");
   CharacterLife life;
   life.options_ = options;
   life.random_.seed(uint32_t(options.seed * 0x9E3779B97F4A7C15ull >> 32));
@@ -63,7 +63,7 @@ eng::Result<CharacterLife> CharacterLife::create(const CharacterLifeOptions& opt
 
 eng::Result<void> CharacterLife::lookAt(const glm::vec3& target) {
   if (!finite(target))
-    return eng::makeError("lookAt: target (" + std::to_string(target.x) + ", " + std::to_string(target.y) + ", " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "lookAt: target (" + std::to_string(target.x) + ", " + std::to_string(target.y) + ", " +
                           std::to_string(target.z) + ") is not finite");
   target_ = target;
   return {};

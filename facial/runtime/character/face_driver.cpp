@@ -20,9 +20,9 @@ bool speaksActionUnits(const ChannelSet& channels) {
 eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const RigMapping* rig,
                                            std::span<const std::string> targetNames,
                                            std::span<const float> baseWeights, uint64_t seed) {
-  if (!graph) return eng::makeError("face driver: no graph");
+  if (!graph) return eng::makeError(eng::ErrorKind::InvalidArgument, "face driver: no graph");
   if (targetNames.size() != baseWeights.size())
-    return eng::makeError("face driver: " + std::to_string(targetNames.size()) + " target names but " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "face driver: " + std::to_string(targetNames.size()) + " target names but " +
                           std::to_string(baseWeights.size()) + " base weights");
   const ChannelSet& channels = graph->channels();
   auto instance = GraphInstance::create(graph, seed);
@@ -31,9 +31,9 @@ eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const Ri
   driver.targetWeights_.assign(baseWeights.begin(), baseWeights.end());
 
   if (speaksActionUnits(channels)) {
-    if (!rig) return eng::makeError("face driver: the graph drives action units but the model has no rig mapping");
+    if (!rig) return eng::makeError(eng::ErrorKind::Unsupported, "face driver: the graph drives action units but the model has no rig mapping");
     if (rig->targetCount() != baseWeights.size())
-      return eng::makeError("face driver: rig mapping covers " + std::to_string(rig->targetCount()) +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "face driver: rig mapping covers " + std::to_string(rig->targetCount()) +
                             " targets, the model has " + std::to_string(baseWeights.size()));
     driver.rig_ = rig;
     if (rig->expressionStage()) driver.expressionWeights_.assign(rig->controlNames().size(), 0.0f);
@@ -47,7 +47,7 @@ eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const Ri
     for (uint32_t t = 0; t < targetNames.size(); ++t)
       if (targetNames[t] == name) { driver.channelToTarget_[c] = t; break; }
     if (driver.channelToTarget_[c] == std::numeric_limits<uint32_t>::max())
-      return eng::makeError("face driver: graph channel '" + name + "' is no morph target of the model");
+      return eng::makeError(eng::ErrorKind::NotFound, "face driver: graph channel '" + name + "' is no morph target of the model");
   }
   return driver;
 }

@@ -96,10 +96,10 @@ std::string GazeRig::describe() const {
 
 eng::Result<void> GazeRig::apply(EyeGaze left, EyeGaze right, std::span<float> weights) const {
   if (weights.size() != targetCount_)
-    return eng::makeError("gaze: " + std::to_string(weights.size()) + " weights given, the rig was made for " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "gaze: " + std::to_string(weights.size()) + " weights given, the rig was made for " +
                           std::to_string(targetCount_) + " targets");
   for (float a : {left.yaw, left.pitch, right.yaw, right.pitch})
-    if (!std::isfinite(a)) return eng::makeError("gaze: an eye angle is not finite");
+    if (!std::isfinite(a)) return eng::makeError(eng::ErrorKind::InvalidArgument, "gaze: an eye angle is not finite");
 
   if (hasArkit_) {
     // +yaw (toward the face's left, +X): the left eye looks out, the right eye in.

@@ -16,10 +16,40 @@ struct facial_character {
 namespace {
 
 thread_local std::string gLastError;
+thread_local facial_error_kind gLastKind = FACIAL_KIND_NONE;
 
-facial_status fail(facial_status status, std::string message) {
+facial_error_kind toKind(eng::ErrorKind kind) {
+  switch (kind) {
+    case eng::ErrorKind::NotFound: return FACIAL_KIND_NOT_FOUND;
+    case eng::ErrorKind::Io: return FACIAL_KIND_IO;
+    case eng::ErrorKind::Malformed: return FACIAL_KIND_MALFORMED;
+    case eng::ErrorKind::Unsupported: return FACIAL_KIND_UNSUPPORTED;
+    case eng::ErrorKind::TooLarge: return FACIAL_KIND_TOO_LARGE;
+    case eng::ErrorKind::InvalidArgument: return FACIAL_KIND_INVALID_ARGUMENT;
+    case eng::ErrorKind::Device: return FACIAL_KIND_DEVICE;
+  }
+  return FACIAL_KIND_INTERNAL;
+}
+
+facial_status fail(facial_status status, std::string message, facial_error_kind kind) {
   gLastError = std::move(message);
+  gLastKind = kind;
   return status;
+}
+
+// A failure the C layer finds itself: the status says the kind.
+facial_status fail(facial_status status, std::string message) {
+  const facial_error_kind kind = status == FACIAL_ERROR_INVALID_ARGUMENT ? FACIAL_KIND_INVALID_ARGUMENT
+                                 : status == FACIAL_ERROR_OUT_OF_MEMORY  ? FACIAL_KIND_OUT_OF_MEMORY
+                                                                         : FACIAL_KIND_INTERNAL;
+  return fail(status, std::move(message), kind);
+}
+
+// A failure of the C++ API: a precondition the caller broke is
+// FACIAL_ERROR_INVALID_ARGUMENT whatever the step; anything else is `failure`.
+facial_status fail(facial_status failure, const eng::Error& error) {
+  const facial_status status = error.kind == eng::ErrorKind::InvalidArgument ? FACIAL_ERROR_INVALID_ARGUMENT : failure;
+  return fail(status, error.message, toKind(error.kind));
 }
 
 // Runs `body` (returning a status), turning any exception into a status and message.
@@ -37,7 +67,7 @@ facial_status guarded(const char* function, Body&& body) {
 }
 
 facial_status check(const eng::Result<void>& result, facial_status failure) {
-  return result ? FACIAL_OK : fail(failure, result.error().message);
+  return result ? FACIAL_OK : fail(failure, result.error());
 }
 
 facial_status writeQuat(const std::array<float, 4>& q, float out[4]) {
@@ -70,7 +100,7 @@ facial_status facial_character_create(const char* graph_file, const char* expres
     if (expressions_file) options.expressions = expressions_file;
     options.seed = seed;
     auto character = facial::Character::create(graph_file, names, options);
-    if (!character) return fail(FACIAL_ERROR_LOAD, character.error().message);
+    if (!character) return fail(FACIAL_ERROR_LOAD, character.error());
     *out = new facial_character{std::move(*character)};
     return FACIAL_OK;
   });
@@ -157,5 +187,7 @@ facial_status facial_character_eye_rotation(const facial_character* character, f
 }
 
 const char* facial_last_error_message(void) { return gLastError.c_str(); }
+
+facial_error_kind facial_last_error_kind(void) { return gLastKind; }
 
 }  // extern "C"

@@ -37,7 +37,7 @@ eng::Result<ParameterIndex> findParameter(const GraphDefinition& graph, std::str
   std::string list;
   for (const ParameterDecl& p : graph.parameters())
     list += (list.empty() ? "" : ", ") + p.name + " (" + std::string(toString(p.type)) + ")";
-  return eng::makeError("no " + std::string(toString(type)) + " parameter '" + std::string(name) +
+  return eng::makeError(eng::ErrorKind::NotFound, "no " + std::string(toString(type)) + " parameter '" + std::string(name) +
                         "' in the graph; it has: " + (list.empty() ? std::string("none") : list));
 }
 
@@ -55,7 +55,7 @@ eng::Result<Character> Character::create(const std::filesystem::path& graphFile,
   std::set<std::string_view> seen;
   for (const std::string& name : state->targetNames)
     if (name.empty() || !seen.insert(name).second)
-      return eng::makeError("character: target name '" + name + "' is " + (name.empty() ? "empty" : "given twice"));
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "character: target name '" + name + "' is " + (name.empty() ? "empty" : "given twice"));
 
   GraphLoadOptions load;
   if (!options.expressions.empty()) {
@@ -74,7 +74,7 @@ eng::Result<Character> Character::create(const std::filesystem::path& graphFile,
     state->rig.emplace(std::move(*rig));
     if (state->expressions) {
       auto graphRig = actionUnitRig(*state->rig, *state->expressions);
-      if (!graphRig) return eng::makeError(graphFile.string() + ": " + graphRig.error().message);
+      if (!graphRig) return graphRig.error().prefixed(graphFile.string() + ": ");
       state->graphRig.emplace(std::move(*graphRig));
     } else {
       state->graphRig = state->rig;
@@ -85,7 +85,7 @@ eng::Result<Character> Character::create(const std::filesystem::path& graphFile,
   const std::vector<float> rest(targetNames.size(), 0.0f);
   auto driver = FaceDriver::create(*graph, state->graphRig ? &*state->graphRig : nullptr, state->targetNames, rest,
                                    options.seed);
-  if (!driver) return rigError && !state->graphRig ? *rigError : eng::makeError(graphFile.string() + ": " + driver.error().message);
+  if (!driver) return rigError && !state->graphRig ? *rigError : driver.error().prefixed(graphFile.string() + ": ");
   state->driver.emplace(std::move(*driver));
 
   auto life = CharacterLife::create({.seed = options.seed, .sway = options.idleLife, .saccades = options.idleLife});
@@ -99,7 +99,7 @@ eng::Result<Character> Character::create(const std::filesystem::path& graphFile,
 eng::Result<void> Character::setFloat(std::string_view parameter, float value) {
   auto index = findParameter(state_->driver->graph().definition(), parameter, ParameterType::Float);
   if (!index) return index.error();
-  if (!std::isfinite(value)) return eng::makeError("parameter '" + std::string(parameter) + "': value is not finite");
+  if (!std::isfinite(value)) return eng::makeError(eng::ErrorKind::InvalidArgument, "parameter '" + std::string(parameter) + "': value is not finite");
   state_->driver->graph().setFloat(*index, value);
   return {};
 }
@@ -124,7 +124,7 @@ void Character::lookAhead() { state_->life->lookAhead(); }
 
 eng::Result<void> Character::update(float dt) {
   if (!(dt >= 0.0f) || !std::isfinite(dt))
-    return eng::makeError("update: dt " + std::to_string(dt) + " is not a finite number of seconds >= 0");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "update: dt " + std::to_string(dt) + " is not a finite number of seconds >= 0");
   state_->driver->update(dt);
   state_->life->update(dt);
   const std::span<const float> driven = state_->driver->targetWeights();

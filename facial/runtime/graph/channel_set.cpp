@@ -27,8 +27,8 @@ eng::Result<ChannelSet> ChannelSet::fromNames(std::span<const std::string> names
   set.channels_.reserve(names.size());
   for (size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
-    if (name.empty()) return eng::makeError("channel " + std::to_string(i) + " has an empty name");
-    if (set.find(name)) return eng::makeError("channel name '" + name + "' appears twice");
+    if (name.empty()) return eng::makeError(eng::ErrorKind::Malformed, "channel " + std::to_string(i) + " has an empty name");
+    if (set.find(name)) return eng::makeError(eng::ErrorKind::Malformed, "channel name '" + name + "' appears twice");
     if (auto au = actionUnitIndex(name)) {
       const ActionUnitInfo& info = facial::actionUnits()[*au];
       set.channels_.push_back({name, info.region, info.side});

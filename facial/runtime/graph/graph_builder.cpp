@@ -62,27 +62,27 @@ uint32_t scratchNeed(const GraphDefinition& graph, NodeIndex node) {
 
 eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
   auto graph = std::make_shared<GraphDefinition>(definition_);
-  if (graph->channels_.empty()) return eng::makeError("graph has no channels");
+  if (graph->channels_.empty()) return eng::makeError(eng::ErrorKind::Malformed, "graph has no channels");
 
   const std::vector<ParameterDecl>& params = graph->parameters_;
   for (size_t i = 0; i < params.size(); ++i) {
     const std::string where = "/parameters/" + std::to_string(i);
-    if (params[i].name.empty()) return eng::makeError(where + ": empty parameter name");
+    if (params[i].name.empty()) return eng::makeError(eng::ErrorKind::Malformed, where + ": empty parameter name");
     if (graph->findParameter(params[i].name) != i)
-      return eng::makeError(where + ": parameter '" + params[i].name + "' is declared twice");
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": parameter '" + params[i].name + "' is declared twice");
     if (!std::isfinite(params[i].defaultValue))
-      return eng::makeError(where + ": default of '" + params[i].name + "' is not finite");
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": default of '" + params[i].name + "' is not finite");
     if (params[i].type == ParameterType::Bool && params[i].defaultValue != 0.0f && params[i].defaultValue != 1.0f)
-      return eng::makeError(where + ": bool '" + params[i].name + "' default must be 0 or 1");
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": bool '" + params[i].name + "' default must be 0 or 1");
   }
   for (size_t i = 0; i < graph->timelines_.size(); ++i)
     if (auto problem = graph->timelines_[i].validate())
-      return eng::makeError("timeline '" + graph->timelines_[i].name + "': " + *problem);
+      return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + graph->timelines_[i].name + "': " + *problem);
 
   // Wiring: a tree rooted at root_, every node used exactly once.
   const uint32_t count = static_cast<uint32_t>(graph->nodes_.size());
   if (graph->root_ >= count)
-    return eng::makeError(count == 0 ? std::string("graph has no nodes")
+    return eng::makeError(eng::ErrorKind::Malformed, count == 0 ? std::string("graph has no nodes")
                                      : "root node " + std::to_string(graph->root_) + " out of range (" +
                                            std::to_string(count) + " nodes)");
   graph->inputs_.clear();
@@ -95,12 +95,12 @@ eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
     std::visit([&](const auto& data) { data.inputs(inputs); }, node.data);
     for (NodeIndex child : inputs) {
       if (child >= count)
-        return eng::makeError(node.origin + ": input " +
+        return eng::makeError(eng::ErrorKind::Malformed, node.origin + ": input " +
                               (child == kNoNode ? std::string("not set") : "node " + std::to_string(child)) +
                               " (the graph has " + std::to_string(count) + " nodes)");
-      if (child == graph->root_) return eng::makeError(node.origin + ": uses the root node as an input");
+      if (child == graph->root_) return eng::makeError(eng::ErrorKind::Malformed, node.origin + ": uses the root node as an input");
       if (parent[child] != kNoNode)
-        return eng::makeError(node.origin + ": uses " + graph->nodes_[child].origin + ", which " +
+        return eng::makeError(eng::ErrorKind::Malformed, node.origin + ": uses " + graph->nodes_[child].origin + ", which " +
                               graph->nodes_[parent[child]].origin +
                               " already uses (nodes form a tree; add a second node for a second use)");
       parent[child] = n;
@@ -114,18 +114,18 @@ eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
     NodeIndex at = n;
     for (uint32_t steps = 0; at != graph->root_ && at != kNoNode && steps <= count; ++steps) at = parent[at];
     if (at != graph->root_)
-      return eng::makeError(graph->nodes_[n].origin + ": not reachable from the root (unused node or a cycle)");
+      return eng::makeError(eng::ErrorKind::Malformed, graph->nodes_[n].origin + ": not reachable from the root (unused node or a cycle)");
   }
 
   for (NodeIndex n = 0; n < count; ++n) {
     NodeDef& node = graph->nodes_[n];
     const BuildContext ctx{graph->channels_, graph->parameters_, graph->timelines_, node.origin};
     auto problem = std::visit([&](auto& data) { return data.prepare(ctx); }, node.data);
-    if (problem) return eng::makeError(*problem);
+    if (problem) return eng::makeError(eng::ErrorKind::Malformed, *problem);
   }
   for (NodeIndex n = 0; n < count; ++n)
     if (!graph->nodes_[n].name.empty() && graph->findNode(graph->nodes_[n].name) != n)
-      return eng::makeError(graph->nodes_[n].origin + ": node name '" + graph->nodes_[n].name + "' is used twice");
+      return eng::makeError(eng::ErrorKind::Malformed, graph->nodes_[n].origin + ": node name '" + graph->nodes_[n].name + "' is used twice");
 
   graph->scratchPoseCount_ = scratchNeed(*graph, graph->root_);
   return SharedGraphDefinition(std::move(graph));

@@ -4,7 +4,7 @@
 
 namespace facial {
 eng::Result<GraphInstance> GraphInstance::create(SharedGraphDefinition definition, uint64_t seed) {
-  if (!definition) return eng::makeError("GraphInstance::create: no graph definition");
+  if (!definition) return eng::makeError(eng::ErrorKind::InvalidArgument, "GraphInstance::create: no graph definition");
   GraphInstance instance;
   instance.definition_ = std::move(definition);
   instance.seed_ = seed;

@@ -352,7 +352,7 @@ eng::Result<SharedGraphDefinition> parseGraph(const Json& document, const std::f
     if (auto t = root.find("timelines")) parser.timelines(*t);
     builder.setRoot(parser.node(root.at("root")));
     auto graph = builder.build();
-    if (!graph) return eng::makeError(source.string() + ": " + graph.error().message);
+    if (!graph) return graph.error().prefixed(source.string() + ": ");
     return graph;
   } catch (const JsonProblem& p) {
     return jsonError(source.string(), p.pointer, p.problem);

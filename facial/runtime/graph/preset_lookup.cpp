@@ -11,7 +11,7 @@ PresetLookup presetLookup(const ExpressionLibrary& library) {
     if (!preset) {
       std::string known;
       for (std::string_view n : library.names()) known += (known.empty() ? "" : ", ") + std::string(n);
-      return eng::makeError("unknown expression preset '" + std::string(name) + "' (known: " + known + ")");
+      return eng::makeError(eng::ErrorKind::NotFound, "unknown expression preset '" + std::string(name) + "' (known: " + known + ")");
     }
     return ExpressionLibrary::evaluate(*preset, intensity, auWeights);
   };
@@ -19,7 +19,7 @@ PresetLookup presetLookup(const ExpressionLibrary& library) {
 
 eng::Result<std::vector<float>> presetPose(const PresetLookup& lookup, std::string_view name, float intensity,
                                            const ChannelSet& channels) {
-  if (!lookup) return eng::makeError("preset '" + std::string(name) + "' requested but no expression library was given");
+  if (!lookup) return eng::makeError(eng::ErrorKind::InvalidArgument, "preset '" + std::string(name) + "' requested but no expression library was given");
   std::vector<float> au(actionUnits().size(), 0.0f);
   if (auto r = lookup(name, intensity, au); !r) return r.error();
   std::vector<float> pose(channels.size(), 0.0f);

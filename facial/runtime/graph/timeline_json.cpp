@@ -71,11 +71,11 @@ Json timelineToJson(const Timeline& timeline) {
 }
 
 eng::Result<void> saveTimeline(const Timeline& timeline, const std::filesystem::path& path) {
-  if (auto problem = timeline.validate()) return eng::makeError(path.string() + ": timeline not saved: " + *problem);
+  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": timeline not saved: " + *problem);
   std::ofstream out(path, std::ios::binary);
-  if (!out) return eng::makeError(path.string() + ": cannot write timeline file");
+  if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write timeline file");
   out << timelineToJson(timeline).dump(1) << '\n';
-  if (!out) return eng::makeError(path.string() + ": write failed");
+  if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": write failed");
   return {};
 }
 

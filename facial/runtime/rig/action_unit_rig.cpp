@@ -25,7 +25,7 @@ eng::Result<RigMapping> actionUnitRig(const RigMapping& rig, const ExpressionLib
     const std::string_view name = emotions[k + 1];
     const ExpressionPreset* preset = presets.find(name);
     if (!preset || preset->isCompound())
-      return eng::makeError("the rig binds emotions, so the graph's action units are decoded through the basic "
+      return eng::makeError(eng::ErrorKind::Malformed, "the rig binds emotions, so the graph's action units are decoded through the basic "
                             "presets, but the presets have no basic '" + std::string(name) + "'");
     if (auto r = ExpressionLibrary::evaluate(*preset, 1.0f, au); !r) return r.error();
     for (uint32_t a = 0; a < auCount; ++a) pattern(a, k) = au[a];
@@ -35,7 +35,7 @@ eng::Result<RigMapping> actionUnitRig(const RigMapping& rig, const ExpressionLib
   // Relative to the largest pivot: a preset that is (nearly) a mix of the others cannot be told apart.
   const Eigen::VectorXd pivots = solver.vectorD().cwiseAbs();
   if (solver.info() != Eigen::Success || pivots.minCoeff() <= 1e-9 * pivots.maxCoeff())
-    return eng::makeError("the basic presets' action units are linearly dependent; emotion-level rig bindings "
+    return eng::makeError(eng::ErrorKind::Malformed, "the basic presets' action units are linearly dependent; emotion-level rig bindings "
                           "cannot be decoded from the graph's action units");
   const Eigen::MatrixXd decode = solver.solve(pattern.transpose());  // kBasic x auCount
 

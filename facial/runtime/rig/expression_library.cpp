@@ -180,10 +180,10 @@ eng::Result<void> ExpressionLibrary::evaluate(const ExpressionPreset& preset, fl
                                               std::span<float> auWeights) {
   const size_t channels = actionUnits().size();
   if (auWeights.size() != channels)
-    return eng::makeError("expression '" + preset.name + "': auWeights has " + std::to_string(auWeights.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': auWeights has " + std::to_string(auWeights.size()) +
                           " entries, expected " + std::to_string(channels) + " (one per action unit channel)");
   if (!std::isfinite(intensity))
-    return eng::makeError("expression '" + preset.name + "': intensity is not finite");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': intensity is not finite");
   std::fill(auWeights.begin(), auWeights.end(), 0.0f);
   for (const ActionUnitWeight& au : preset.actionUnits) auWeights[au.channel] = clamp01(au.weight * intensity);
   return {};
@@ -192,11 +192,11 @@ eng::Result<void> ExpressionLibrary::evaluate(const ExpressionPreset& preset, fl
 eng::Result<void> ExpressionLibrary::evaluateEmotions(const ExpressionPreset& preset, float intensity,
                                                       std::span<float> emotionWeights) {
   if (emotionWeights.size() != kEmotionCount)
-    return eng::makeError("expression '" + preset.name + "': emotionWeights has " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': emotionWeights has " +
                           std::to_string(emotionWeights.size()) + " entries, expected " +
                           std::to_string(kEmotionCount) + " (one per emotion channel)");
   if (!std::isfinite(intensity))
-    return eng::makeError("expression '" + preset.name + "': intensity is not finite");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "expression '" + preset.name + "': intensity is not finite");
   for (size_t i = 0; i < kEmotionCount; ++i) emotionWeights[i] = clamp01(preset.emotions[i] * intensity);
   return {};
 }

@@ -12,17 +12,17 @@ eng::Result<Json> readJsonFile(const std::filesystem::path& path, size_t maxByte
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    return eng::makeError(name + ": " + (std::filesystem::exists(path, ec) ? "not a regular file" : "file not found"));
+    return eng::makeError(eng::ErrorKind::NotFound, name + ": " + (std::filesystem::exists(path, ec) ? "not a regular file" : "file not found"));
   const uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return eng::makeError(name + ": cannot read the file size (" + ec.message() + ")");
+  if (ec) return eng::makeError(eng::ErrorKind::Io, name + ": cannot read the file size (" + ec.message() + ")");
   if (size > maxBytes)
-    return eng::makeError(name + ": file is " + std::to_string(size) + " bytes, more than the " +
+    return eng::makeError(eng::ErrorKind::TooLarge, name + ": file is " + std::to_string(size) + " bytes, more than the " +
                           std::to_string(maxBytes) + " accepted for a JSON document");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return eng::makeError(name + ": cannot open the file for reading");
+  if (!in) return eng::makeError(eng::ErrorKind::Io, name + ": cannot open the file for reading");
   std::string text(static_cast<size_t>(size), '\0');
   in.read(text.data(), static_cast<std::streamsize>(size));
-  if (static_cast<uintmax_t>(in.gcount()) != size) return eng::makeError(name + ": short read");
+  if (static_cast<uintmax_t>(in.gcount()) != size) return eng::makeError(eng::ErrorKind::Io, name + ": short read");
   return parseJsonText(text, name);
 }
 
@@ -35,12 +35,12 @@ eng::Result<Json> parseJsonText(std::string_view text, std::string_view source) 
     // (out_of_range.406 for numbers like 1e999 that overflow a double)
     std::string detail = e.what();
     if (const size_t at = detail.find("] "); at != std::string::npos) detail = detail.substr(at + 2);
-    return eng::makeError(std::string(source) + ": invalid JSON: " + detail);
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ": invalid JSON: " + detail);
   }
 }
 
 eng::Error jsonError(std::string_view source, std::string_view path, std::string_view problem) {
-  return eng::makeError(std::string(source) + ": " + std::string(path.empty() ? "/" : path) + ": " +
+  return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ": " + std::string(path.empty() ? "/" : path) + ": " +
                         std::string(problem));
 }
 

@@ -56,19 +56,19 @@ eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const 
   // (VRM), not morph targets: they are left as they are.
   if (rig.expressionStage()) return RigCalibration{rig, {}};
   if (targetReach.size() != rig.targetCount())
-    return eng::makeError("rig calibration: " + std::to_string(targetReach.size()) + " target reaches for " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "rig calibration: " + std::to_string(targetReach.size()) + " target reaches for " +
                           std::to_string(rig.targetCount()) + " targets");
   for (float r : targetReach)
-    if (!std::isfinite(r) || r < 0.0f) return eng::makeError("rig calibration: a target reach is not a finite number >= 0");
+    if (!std::isfinite(r) || r < 0.0f) return eng::makeError(eng::ErrorKind::Malformed, "rig calibration: a target reach is not a finite number >= 0");
   if (!(options.minScale > 0.0f) || !(options.maxScale >= options.minScale) || !std::isfinite(options.maxScale))
-    return eng::makeError("rig calibration: the scale bounds must satisfy 0 < min <= max");
+    return eng::makeError(eng::ErrorKind::Malformed, "rig calibration: the scale bounds must satisfy 0 < min <= max");
   const auto units = actionUnits();
   std::vector<float> overrideScale(units.size(), 1.0f);
   for (const auto& [channel, scale] : options.overrides) {
     const auto index = actionUnitIndex(channel);
-    if (!index) return eng::makeError("rig calibration: '" + channel + "' is no action unit channel");
+    if (!index) return eng::makeError(eng::ErrorKind::Malformed, "rig calibration: '" + channel + "' is no action unit channel");
     if (!std::isfinite(scale) || scale < 0.0f)
-      return eng::makeError("rig calibration: the scale of '" + channel + "' must be a finite number >= 0");
+      return eng::makeError(eng::ErrorKind::Malformed, "rig calibration: the scale of '" + channel + "' must be a finite number >= 0");
     overrideScale[*index] *= scale;
   }
 

@@ -103,37 +103,37 @@ std::span<const float> RigMapping::gains(uint32_t input) const {
 eng::Result<void> RigMapping::validate() const {
   const size_t inputs = rigInputCount();
   if (offsets_.size() != inputs + 1)
-    return eng::makeError("rig mapping: " + std::to_string(offsets_.size()) + " row offsets, expected " +
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: " + std::to_string(offsets_.size()) + " row offsets, expected " +
                           std::to_string(inputs + 1));
   if (entryTargets_.size() != entryGains_.size())
-    return eng::makeError("rig mapping: " + std::to_string(entryTargets_.size()) + " entry targets but " +
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: " + std::to_string(entryTargets_.size()) + " entry targets but " +
                           std::to_string(entryGains_.size()) + " gains");
   if (offsets_.front() != 0 || offsets_.back() != entryTargets_.size())
-    return eng::makeError("rig mapping: row offsets span [" + std::to_string(offsets_.front()) + ", " +
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: row offsets span [" + std::to_string(offsets_.front()) + ", " +
                           std::to_string(offsets_.back()) + "), expected [0, " +
                           std::to_string(entryTargets_.size()) + ")");
   for (size_t i = 0; i < inputs; ++i)
     if (offsets_[i] > offsets_[i + 1])
-      return eng::makeError("rig mapping: row offsets decrease at input " + std::to_string(i) + " (" +
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: row offsets decrease at input " + std::to_string(i) + " (" +
                             std::string(rigInputName(static_cast<uint32_t>(i))) + ")");
   const size_t controls = controlNames().size();
   for (size_t e = 0; e < entryTargets_.size(); ++e) {
     if (entryTargets_[e] >= controls)
-      return eng::makeError("rig mapping: entry " + std::to_string(e) + " drives " + (stage_ ? "expression " : "target ") +
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: entry " + std::to_string(e) + " drives " + (stage_ ? "expression " : "target ") +
                             std::to_string(entryTargets_[e]) + " of " + std::to_string(controls));
     if (!std::isfinite(entryGains_[e]))
-      return eng::makeError("rig mapping: entry " + std::to_string(e) + " has a non-finite gain");
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: entry " + std::to_string(e) + " has a non-finite gain");
   }
   for (uint32_t t : drivenTargets_)
     if (t >= targetNames_.size())
-      return eng::makeError("rig mapping: driven target " + std::to_string(t) + " of " +
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: driven target " + std::to_string(t) + " of " +
                             std::to_string(targetNames_.size()));
   if (!(minWeight_ < maxWeight_))
-    return eng::makeError("rig mapping: empty weight range [" + std::to_string(minWeight_) + ", " +
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: empty weight range [" + std::to_string(minWeight_) + ", " +
                           std::to_string(maxWeight_) + "]");
   if (stage_) {
     if (stage_->expressions.size() != controlNames_.size() || stage_->targetCount() != targetNames_.size())
-      return eng::makeError("rig mapping: the expression stage has " + std::to_string(stage_->expressions.size()) +
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: the expression stage has " + std::to_string(stage_->expressions.size()) +
                             " expressions and " + std::to_string(stage_->targetCount()) + " targets, the mapping " +
                             std::to_string(controlNames_.size()) + " and " + std::to_string(targetNames_.size()));
     if (auto valid = stage_->validate(); !valid) return valid;
@@ -144,15 +144,15 @@ eng::Result<void> RigMapping::validate() const {
 eng::Result<void> RigMapping::checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const {
   const size_t channels = actionUnits().size();
   if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount))
-    return eng::makeError("rig mapping: got " + std::to_string(auWeights.size()) + " AU weights, " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: got " + std::to_string(auWeights.size()) + " AU weights, " +
                           std::to_string(emotionWeights.size()) + " emotion weights; expected " +
                           std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount));
   for (size_t i = 0; i < auWeights.size(); ++i)
     if (!std::isfinite(auWeights[i]))
-      return eng::makeError("rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: AU weight " + std::string(actionUnits()[i].name) + " is not finite");
   for (size_t i = 0; i < emotionWeights.size(); ++i)
     if (!std::isfinite(emotionWeights[i]))
-      return eng::makeError("rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: emotion weight " + std::string(emotionNames()[i]) + " is not finite");
   return {};
 }
 
@@ -172,13 +172,13 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
   const size_t channels = actionUnits().size();
   if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount) ||
       targetWeights.size() != targetNames_.size())
-    return eng::makeError("rig mapping: apply got " + std::to_string(auWeights.size()) + " AU weights, " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: apply got " + std::to_string(auWeights.size()) + " AU weights, " +
                           std::to_string(emotionWeights.size()) + " emotion weights, " +
                           std::to_string(targetWeights.size()) + " target weights; expected " +
                           std::to_string(channels) + ", 0 or " + std::to_string(kEmotionCount) + ", " +
                           std::to_string(targetNames_.size()));
   if (!expressionWeights.empty() && (!stage_ || expressionWeights.size() != controlNames_.size()))
-    return eng::makeError("rig mapping: room for " + std::to_string(expressionWeights.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: room for " + std::to_string(expressionWeights.size()) +
                           " expression weights, the rig has " +
                           (stage_ ? std::to_string(controlNames_.size()) : std::string("no expression stage")));
   if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
@@ -235,12 +235,12 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
   const uint32_t inputs = rigInputCount();
   for (const Entry& e : entries_) {
     if (e.input >= inputs)
-      return eng::makeError("rig mapping builder: input " + std::to_string(e.input) + " of " + std::to_string(inputs));
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: input " + std::to_string(e.input) + " of " + std::to_string(inputs));
     if (e.target >= targetNames_.size())
-      return eng::makeError("rig mapping builder: target " + std::to_string(e.target) + " of " +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: target " + std::to_string(e.target) + " of " +
                             std::to_string(targetNames_.size()) + " for input " + std::string(rigInputName(e.input)));
     if (!std::isfinite(e.gain))
-      return eng::makeError("rig mapping builder: non-finite gain for " + std::string(rigInputName(e.input)) + " -> " +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: non-finite gain for " + std::string(rigInputName(e.input)) + " -> " +
                             targetNames_[e.target]);
   }
   // Sort by (input, target) and merge repeats so every row is ascending and unique.
@@ -276,7 +276,7 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
   std::vector<bool> driven = drivenControl;
   if (stage_) {
     if (stage_->expressions.size() != targetNames_.size() || stage_->targetCount() != morphTargetNames_.size())
-      return eng::makeError("rig mapping builder: the expression stage has " +
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: the expression stage has " +
                             std::to_string(stage_->expressions.size()) + " expressions and " +
                             std::to_string(stage_->targetCount()) + " morph targets; the builder was given " +
                             std::to_string(targetNames_.size()) + " and " + std::to_string(morphTargetNames_.size()));

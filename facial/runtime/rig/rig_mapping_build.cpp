@@ -68,7 +68,7 @@ eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames
   }
   std::string sample;
   for (size_t i = 0; i < targetNames.size() && i < 4; ++i) sample += (i ? ", " : "") + targetNames[i];
-  return eng::makeError("rig mapping: no scheme recognises the " + std::to_string(targetNames.size()) +
+  return eng::makeError(eng::ErrorKind::Unsupported, "rig mapping: no scheme recognises the " + std::to_string(targetNames.size()) +
                         " target names of " + model + (sample.empty() ? "" : " (" + sample + ", ...)") +
                         "; write a rig map " + (rigmap.empty() ? std::string("data/rigmaps/<model>.json") : rigmap.string()));
 }
@@ -78,11 +78,11 @@ eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames
     if (entry.scheme != scheme) continue;
     const SchemeRecognition recognition = entry.recognise(targetNames);
     if (recognition.recognised == 0)
-      return eng::makeError("rig mapping: the " + std::string(rigSchemeName(scheme)) + " scheme recognises none of the " +
+      return eng::makeError(eng::ErrorKind::Unsupported, "rig mapping: the " + std::string(rigSchemeName(scheme)) + " scheme recognises none of the " +
                             std::to_string(targetNames.size()) + " target names");
     return buildWith(entry, targetNames, recognition);
   }
-  return eng::makeError("rig mapping: " + std::string(rigSchemeName(scheme)) +
+  return eng::makeError(eng::ErrorKind::Unsupported, "rig mapping: " + std::string(rigSchemeName(scheme)) +
                         " is not a built-in scheme (load a rig map file instead)");
 }
 

@@ -108,7 +108,7 @@ eng::Result<RigMapFile> fromJson(const Json& root, std::string_view source, std:
     return file;  // calibration only: the detected scheme drives the model
   }
   eng::Result<RigMapping> mapping = builder.build();
-  if (!mapping) return eng::makeError(std::string(source) + ": " + mapping.error().message);
+  if (!mapping) return mapping.error().prefixed(std::string(source) + ": ");
   file.mapping = std::move(*mapping);
   return file;
 }

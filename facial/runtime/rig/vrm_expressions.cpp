@@ -64,7 +64,7 @@ Overrides collectOverrides(std::span<const VrmExpression> expressions, std::span
 eng::Result<void> checkFinite(const VrmExpressionSet& set, std::span<const float> weights) {
   for (size_t i = 0; i < weights.size() && i < set.expressions.size(); ++i)
     if (!std::isfinite(weights[i]))
-      return eng::makeError("VRM expressions: weight of '" + set.expressions[i].name + "' is not finite");
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "VRM expressions: weight of '" + set.expressions[i].name + "' is not finite");
   return {};
 }
 
@@ -107,40 +107,40 @@ std::vector<std::string> VrmExpressionSet::expressionNames() const {
 
 eng::Result<void> VrmExpressionSet::validate() const {
   if (meshTargetOffsets.empty() || meshTargetOffsets.front() != 0 || meshTargetOffsets.back() != targetNames.size())
-    return eng::makeError("VRM expressions: mesh target offsets must run from 0 to the " +
+    return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: mesh target offsets must run from 0 to the " +
                           std::to_string(targetNames.size()) + " targets");
   for (size_t m = 0; m + 1 < meshTargetOffsets.size(); ++m)
     if (meshTargetOffsets[m] > meshTargetOffsets[m + 1])
-      return eng::makeError("VRM expressions: mesh target offsets decrease at mesh " + std::to_string(m));
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: mesh target offsets decrease at mesh " + std::to_string(m));
   for (const VrmExpression& e : expressions)
     if (size_t(e.firstBind) + e.bindCount > binds.size())
-      return eng::makeError("VRM expressions: '" + e.name + "' binds [" + std::to_string(e.firstBind) + ", " +
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: '" + e.name + "' binds [" + std::to_string(e.firstBind) + ", " +
                             std::to_string(e.firstBind + e.bindCount) + ") of " + std::to_string(binds.size()));
   for (const VrmExpression& e : expressions) {
     if (size_t(e.firstMaterialColorBind) + e.materialColorBindCount > materialColorBinds.size() ||
         size_t(e.firstTextureTransformBind) + e.textureTransformBindCount > textureTransformBinds.size())
-      return eng::makeError("VRM expressions: '" + e.name + "' material binds are out of range");
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: '" + e.name + "' material binds are out of range");
   }
   for (const VrmMaterialColorBind& b : materialColorBinds) {
     if (b.material >= materialCount)
-      return eng::makeError("VRM expressions: a material colour bind addresses material " + std::to_string(b.material) +
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: a material colour bind addresses material " + std::to_string(b.material) +
                             " of " + std::to_string(materialCount));
     for (float v : b.targetValue)
-      if (!std::isfinite(v)) return eng::makeError("VRM expressions: a material colour bind has a non-finite value");
+      if (!std::isfinite(v)) return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: a material colour bind has a non-finite value");
   }
   for (const VrmTextureTransformBind& b : textureTransformBinds) {
     if (b.material >= materialCount)
-      return eng::makeError("VRM expressions: a texture transform bind addresses material " +
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: a texture transform bind addresses material " +
                             std::to_string(b.material) + " of " + std::to_string(materialCount));
     for (float v : {b.scale[0], b.scale[1], b.offset[0], b.offset[1]})
-      if (!std::isfinite(v)) return eng::makeError("VRM expressions: a texture transform bind has a non-finite value");
+      if (!std::isfinite(v)) return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: a texture transform bind has a non-finite value");
   }
   for (size_t b = 0; b < binds.size(); ++b) {
     if (binds[b].target >= targetNames.size())
-      return eng::makeError("VRM expressions: bind " + std::to_string(b) + " targets " +
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: bind " + std::to_string(b) + " targets " +
                             std::to_string(binds[b].target) + " of " + std::to_string(targetNames.size()));
     if (!std::isfinite(binds[b].weight))
-      return eng::makeError("VRM expressions: bind " + std::to_string(b) + " has a non-finite weight");
+      return eng::makeError(eng::ErrorKind::Malformed, "VRM expressions: bind " + std::to_string(b) + " has a non-finite weight");
   }
   return {};
 }
@@ -148,7 +148,7 @@ eng::Result<void> VrmExpressionSet::validate() const {
 eng::Result<void> VrmExpressionSet::effectiveWeights(std::span<const float> expressionWeights,
                                                      std::span<float> effective) const {
   if (expressionWeights.size() != expressions.size() || effective.size() != expressions.size())
-    return eng::makeError("VRM expressions: got " + std::to_string(expressionWeights.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "VRM expressions: got " + std::to_string(expressionWeights.size()) +
                           " expression weights and room for " + std::to_string(effective.size()) + "; expected " +
                           std::to_string(expressions.size()));
   if (auto finite = checkFinite(*this, expressionWeights); !finite) return finite;
@@ -160,7 +160,7 @@ eng::Result<void> VrmExpressionSet::effectiveWeights(std::span<const float> expr
 eng::Result<void> VrmExpressionSet::apply(std::span<const float> expressionWeights,
                                           std::span<float> targetWeights) const {
   if (expressionWeights.size() != expressions.size() || targetWeights.size() != targetNames.size())
-    return eng::makeError("VRM expressions: apply got " + std::to_string(expressionWeights.size()) +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "VRM expressions: apply got " + std::to_string(expressionWeights.size()) +
                           " expression weights and " + std::to_string(targetWeights.size()) +
                           " target weights; expected " + std::to_string(expressions.size()) + " and " +
                           std::to_string(targetNames.size()));
@@ -180,11 +180,11 @@ eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effect
                                                    std::span<const VrmMaterialState> rest,
                                                    std::span<VrmMaterialState> materials) const {
   if (rest.size() != materialCount || materials.size() != materialCount)
-    return eng::makeError("VRM expressions: " + std::to_string(rest.size()) + " material states given and room for " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "VRM expressions: " + std::to_string(rest.size()) + " material states given and room for " +
                           std::to_string(materials.size()) + ", the model has " + std::to_string(materialCount) +
                           " materials");
   if (effective.size() != expressions.size())
-    return eng::makeError("VRM expressions: " + std::to_string(effective.size()) + " effective weights given, expected " +
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "VRM expressions: " + std::to_string(effective.size()) + " effective weights given, expected " +
                           std::to_string(expressions.size()));
   if (auto finite = checkFinite(*this, effective); !finite) return finite;
   // Deltas from every material's own state, so several expressions add up.

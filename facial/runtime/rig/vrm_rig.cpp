@@ -6,7 +6,7 @@ namespace facial {
 
 eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::shared_ptr<const VrmExpressionSet> stage,
                                               std::span<const std::string> morphTargetNames) {
-  if (!stage) return eng::makeError("rig mapping: no expression stage given");
+  if (!stage) return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: no expression stage given");
   RigMappingBuilder builder = RigMappingBuilder::startingFrom(rows);
   builder.setExpressionStage(std::move(stage), std::vector<std::string>(morphTargetNames.begin(), morphTargetNames.end()));
   return builder.build();
@@ -15,9 +15,9 @@ eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::share
 eng::Result<RigMapping> buildVrmRigMapping(std::shared_ptr<const VrmExpressionSet> vrm,
                                            std::span<const std::string> morphTargetNames,
                                            const RigMappingOptions& options) {
-  if (!vrm) return eng::makeError("rig mapping: no VRM expressions given");
+  if (!vrm) return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: no VRM expressions given");
   if (vrm->targetCount() != morphTargetNames.size())
-    return eng::makeError("rig mapping: the VRM expressions address " + std::to_string(vrm->targetCount()) +
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: the VRM expressions address " + std::to_string(vrm->targetCount()) +
                           " morph targets, the model has " + std::to_string(morphTargetNames.size()));
   const std::vector<std::string> names = vrm->expressionNames();
   auto rows = buildRigMapping(names, options);

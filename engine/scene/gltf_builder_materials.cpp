@@ -1,0 +1,159 @@
+// glTF images, textures and materials into Model::images / Model::materials.
+#include "engine/scene/gltf_model_builder.h"
+
+#include <cmath>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/scene/image_io.h"
+
+namespace eng {
+namespace {
+
+bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+}  // namespace
+
+Result<void> GltfModelBuilder::loadImages() {
+  imageRemap_.assign(gltf_.images.size(), -1);
+  for (size_t i = 0; i < gltf_.images.size(); ++i) {
+    const tinygltf::Image& src = gltf_.images[i];
+    const std::string label = src.uri.empty() || isDataUri(src.uri) ? (src.name.empty() ? "embedded" : src.name) : src.uri;
+    if (src.image.empty()) {
+      if (!src.uri.empty() && !isDataUri(src.uri)) {
+        // tinygltf only warns about an unreadable image file; a face without
+        // its texture is a broken asset, so this is fatal.
+        std::string why = files_.problemFor(src.uri);
+        if (why.empty() && !files_.problems().empty()) why = files_.problems().back();
+        if (why.empty()) why = "image file '" + src.uri + "' could not be read";
+        return fail("image " + std::to_string(i) + ": " + why);
+      }
+      warn("image " + std::to_string(i) + " ('" + label + "') has no data; skipped");
+      continue;
+    }
+    if (isKtx2(src.image) || src.mimeType == "image/ktx2") {
+      warn("image " + std::to_string(i) + " ('" + label + "') is KTX2 (" + kKhrTextureBasisu +
+           "), which this build cannot transcode; skipped, its materials keep their factors");
+      outcomes_[kKhrTextureBasisu] = "skipped: " + std::to_string(++ktx2Skipped_) +
+                                     " KTX2 image(s), no Basis Universal transcoder in Debian; factors kept";
+      continue;
+    }
+    auto decoded = decodeImage(src.image, label, limits_.maxImagePixels);
+    if (decoded && isWebp(src.image))
+      outcomes_[kExtTextureWebp] = "decoded: " + std::to_string(++webpDecoded_) + " WebP image(s) (libwebp)";
+    if (!decoded) {
+      warn("image " + std::to_string(i) + " skipped: " + decoded.error().message);
+      continue;
+    }
+    imageRemap_[i] = static_cast<int>(model_.images.size());
+    model_.images.push_back(std::move(*decoded));
+  }
+  return {};
+}
+
+int GltfModelBuilder::imageOfTexture(int texture, const std::string& where) {
+  if (texture < 0) return -1;
+  if (static_cast<size_t>(texture) >= gltf_.textures.size()) {
+    warn(where + " refers to texture " + std::to_string(texture) + ", the file has " +
+         std::to_string(gltf_.textures.size()) + "; ignored");
+    return -1;
+  }
+  bool basisuOnly = false;
+  const int source = textureImageSource(gltf_.textures[texture], basisuOnly);
+  if (basisuOnly)
+    warn(where + ": texture " + std::to_string(texture) + " has only a " + kKhrTextureBasisu +
+         " (KTX2) source, which this build cannot decode; the material keeps its factors");
+  if (source < 0) return -1;
+  if (static_cast<size_t>(source) >= imageRemap_.size()) {
+    warn(where + ": texture " + std::to_string(texture) + " refers to image " + std::to_string(source) +
+         ", the file has " + std::to_string(imageRemap_.size()) + "; ignored");
+    return -1;
+  }
+  return imageRemap_[source];
+}
+
+int GltfModelBuilder::modelImage(int gltfImage, const std::string& where) {
+  if (gltfImage < 0 || static_cast<size_t>(gltfImage) >= imageRemap_.size()) {
+    warn(where + " refers to image " + std::to_string(gltfImage) + ", the file has " +
+         std::to_string(imageRemap_.size()) + "; ignored");
+    return -1;
+  }
+  return imageRemap_[gltfImage];
+}
+
+void GltfModelBuilder::loadMaterials() {
+  for (size_t i = 0; i < gltf_.materials.size(); ++i) {
+    const tinygltf::Material& src = gltf_.materials[i];
+    const std::string where = "material " + std::to_string(i);
+    Material mat;
+    mat.name = src.name;
+    const auto& pbr = src.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+      mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                      pbr.baseColorFactor[3]);
+    mat.baseColorImage = imageOfTexture(pbr.baseColorTexture.index, where);
+    uvTransforms_.push_back(baseColorUvTransform(pbr.baseColorTexture, mat.baseColorImage, where));
+    mat.roughness = static_cast<float>(pbr.roughnessFactor);
+    mat.metallic = static_cast<float>(pbr.metallicFactor);
+    mat.doubleSided = src.doubleSided;
+    if (src.emissiveFactor.size() == 3)
+      mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+    if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||
+        glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
+        glm::any(glm::isnan(mat.emissiveFactor)) || glm::any(glm::isinf(mat.emissiveFactor))) {
+      warn(where + " has non-finite factors; defaults used");
+      mat.baseColorFactor = glm::vec4(1.0f);
+      mat.emissiveFactor = glm::vec3(0.0f);
+      mat.roughness = 1.0f;
+      mat.metallic = 1.0f;
+    }
+    // Emission is drawn from the factor alone: with a texture masking it,
+    // the factor would light the whole surface, so it is left out.
+    if (src.emissiveTexture.index >= 0 && mat.emissiveFactor != glm::vec3(0.0f)) {
+      warn(where + " has an emissiveTexture, which is not drawn; its emission is left out");
+      mat.emissiveFactor = glm::vec3(0.0f);
+    }
+    if (src.extras.IsObject() && src.extras.Has("detailLayers")) {
+      const tinygltf::Value& layers = src.extras.Get("detailLayers");
+      for (size_t l = 0; layers.IsArray() && l < layers.ArrayLen(); ++l) {
+        const tinygltf::Value& layer = layers.Get(static_cast<int>(l));
+        const std::string lw = where + " detail layer " + std::to_string(l);
+        if (!layer.IsObject() || !layer.Has("image") || !layer.Get("image").IsNumber() || !layer.Has("target") ||
+            !layer.Get("target").IsString()) {
+          warn(lw + " needs an integer 'image' and a string 'target'; ignored");
+          continue;
+        }
+        DetailLayer d;
+        d.image = modelImage(layer.Get("image").GetNumberAsInt(), lw);
+        d.target = layer.Get("target").Get<std::string>();
+        if (layer.Has("strength") && layer.Get("strength").IsNumber())
+          d.strength = static_cast<float>(layer.Get("strength").GetNumberAsDouble());
+        if (d.image < 0 || !std::isfinite(d.strength)) {
+          warn(lw + " has no usable image or strength; ignored");
+          continue;
+        }
+        mat.detailLayers.push_back(std::move(d));
+      }
+    }
+    model_.materials.push_back(std::move(mat));
+  }
+}
+
+// KHR_texture_transform of a base colour texture, when it can be baked into
+// TEXCOORD_0 (the engine samples every texture of a material through it).
+std::optional<UvTransform> GltfModelBuilder::baseColorUvTransform(const tinygltf::TextureInfo& info, int image, const std::string& where) {
+  std::string problem;
+  auto t = parseTextureTransform(info, problem);
+  if (!problem.empty()) warn(where + ": " + kKhrTextureTransform + " " + problem + "; ignored");
+  if (!t || image < 0) return std::nullopt;
+  const int set = t->texCoord >= 0 ? t->texCoord : info.texCoord;
+  if (set != 0) {
+    warn(where + ": " + kKhrTextureTransform + " on TEXCOORD_" + std::to_string(set) + ", only TEXCOORD_0 is read; ignored");
+    return std::nullopt;
+  }
+  outcomes_[kKhrTextureTransform] = "applied: baked into TEXCOORD_0 for " + std::to_string(++uvTransformed_) +
+                                    " material(s)' base colour";
+  return t;
+}
+
+}  // namespace eng

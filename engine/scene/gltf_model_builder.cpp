@@ -1,0 +1,35 @@
+// The order of the glTF model builder's steps, and the extensions a file may require.
+#include "engine/scene/gltf_model_builder.h"
+
+#include <algorithm>
+
+#include "engine/scene/gltf_skin_reader.h"
+
+namespace eng {
+
+Result<Model> GltfModelBuilder::build() {
+  model_.sourcePath = file_;
+  if (auto ok = checkExtensions(); !ok) return ok.error();
+  if (auto ok = loadImages(); !ok) return ok.error();
+  loadMaterials();
+  for (size_t m = 0; m < gltf_.meshes.size(); ++m)
+    if (auto ok = loadMesh(static_cast<int>(m)); !ok) return ok.error();
+  if (auto ok = loadNodes(); !ok) return ok.error();
+  if (auto ok = readSkins(reader_, gltf_, model_); !ok) return fail(ok.error());
+  if (auto ok = loadAnimations(); !ok) return ok.error();
+  return std::move(model_);
+}
+
+Result<void> GltfModelBuilder::checkExtensions() {
+  for (const std::string& ext : gltf_.extensionsRequired)
+    if (!isHandledExtension(ext))
+      return fail("requires glTF extension " + ext + ", which this loader does not support", ErrorKind::Unsupported);
+  for (const std::string& ext : gltf_.extensionsUsed) {
+    const bool required =
+        std::find(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end(), ext) != gltf_.extensionsRequired.end();
+    if (!required && !isHandledExtension(ext)) warn("optional extension " + ext + " ignored");
+  }
+  return {};
+}
+
+}  // namespace eng
