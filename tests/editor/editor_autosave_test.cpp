@@ -15,15 +15,25 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A fresh folder with a copy of data/timelines/talk.json and edit.txt, a script
+// that opens it and keys every track at 0.5 s (each action at its own time).
+struct EditFolder {
+  fs::path dir;
+  std::string original;  // talk.json as copied
+};
+
+EditFolder folderEditingTalk(const std::string& name, const char* open, const char* seek, const char* key) {
+  EditFolder folder{testing_support::freshTempDir(name), {}};
+  fs::copy_file(testing_support::sourceDir() / "data" / "timelines" / "talk.json", folder.dir / "talk.json");
+  folder.original = editor_test::readText(folder.dir / "talk.json");
+  testing_support::writeFile(folder.dir / "edit.txt", std::string(open) + " timeline-open talk.json\n" + seek +
+                                                          " timeline-seek 0.5\n" + key + " timeline-key-all\n");
+  return folder;
+}
+
 TEST(EditorAutosave, TheNextEditorRecoversUnsavedTimelineEdits) {
   REQUIRE_XVFB();
-  const fs::path dir = testing_support::freshTempDir("editor_autosave");
-  fs::copy_file(testing_support::sourceDir() / "data" / "timelines" / "talk.json", dir / "talk.json");
-  const std::string original = editor_test::readText(dir / "talk.json");
-  testing_support::writeFile(dir / "edit.txt",
-                             "0.2 timeline-open talk.json\n"
-                             "0.4 timeline-seek 0.5\n"
-                             "0.5 timeline-key-all\n");
+  const auto [dir, original] = folderEditingTalk("editor_autosave", "0.2", "0.4", "0.5");
   const editor_test::EditorRun first = editor_test::runEditor(dir, "--script edit.txt", 2.0f);
   ASSERT_EQ(first.exitCode, 0) << first.log;
   EXPECT_TRUE(fs::exists(dir / editor::autosavePathFor("talk.json"))) << "the unsaved edits are kept:\n" << first.log;
@@ -43,13 +53,7 @@ TEST(EditorAutosave, TheNextEditorRecoversUnsavedTimelineEdits) {
 // the file itself is untouched and the autosave holds the edits for the next start.
 TEST(EditorAutosave, LostDeviceKeepsTheUnsavedEditsAndSaysWhere) {
   REQUIRE_XVFB();
-  const fs::path dir = testing_support::freshTempDir("editor_device_lost");
-  fs::copy_file(testing_support::sourceDir() / "data" / "timelines" / "talk.json", dir / "talk.json");
-  const std::string original = editor_test::readText(dir / "talk.json");
-  testing_support::writeFile(dir / "edit.txt",
-                             "0 timeline-open talk.json\n"
-                             "0 timeline-seek 0.5\n"
-                             "0 timeline-key-all\n");
+  const auto [dir, original] = folderEditingTalk("editor_device_lost", "0", "0", "0");
   // The script's actions all run in the first frame, so the loss at the third comes after them.
   ASSERT_EQ(::setenv("FACIAL_VK_FAULTS", "device-lost@3", 1), 0);
   const auto start = std::chrono::steady_clock::now();

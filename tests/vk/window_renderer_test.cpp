@@ -253,11 +253,15 @@ namespace {
 // date skips its frame and the next one rebuilds the swapchain and draws; a
 // lost device is an error carrying VK_ERROR_DEVICE_LOST, and the renderer still
 // tears down without a validation message.
+eng::vk::WindowRendererOptions injecting(const char* faults) {
+  eng::vk::WindowRendererOptions options;
+  options.faults = faults;
+  return options;
+}
+
 TEST(WindowRenderer, InjectedOutOfDateSwapchainIsRebuiltAndDrawingGoesOn) {
   FACIAL_REQUIRE_DISPLAY();
-  eng::vk::WindowRendererOptions options;
-  options.faults = "out-of-date@2,out-of-date@3,out-of-date@5";
-  WindowRig rig(options);
+  WindowRig rig(injecting("out-of-date@2,out-of-date@3,out-of-date@5"));
   ASSERT_TRUE(rig.ok());
   SphereScene scene(*rig.renderer);
   std::vector<eng::vk::FrameResult> results;
@@ -281,9 +285,7 @@ TEST(WindowRenderer, InjectedOutOfDateSwapchainIsRebuiltAndDrawingGoesOn) {
 
 TEST(WindowRenderer, InjectedDeviceLossIsReportedAndTearsDownCleanly) {
   FACIAL_REQUIRE_DISPLAY();
-  eng::vk::WindowRendererOptions options;
-  options.faults = "device-lost@3";
-  WindowRig rig(options);
+  WindowRig rig(injecting("device-lost@3"));
   ASSERT_TRUE(rig.ok());
   SphereScene scene(*rig.renderer);
   for (int i = 0; i < 2; ++i) ASSERT_TRUE(rig.renderer->drawFrame(scene.frame()));
