@@ -5,7 +5,7 @@
 #   ./bootstrap.sh test [ctest options...]         the whole test suite, then the
 #                                                  reliability checks (issue 12): the
 #                                                  sanitizer suite, the fuzzers and
-#                                                  the headless demo's leak check
+#                                                  the programs' leak check
 # FACIAL_FUZZ_SECONDS (default 15) is each fuzzer's time in `test`;
 # FACIAL_RELIABILITY=0 runs the plain suite only.
 set -euo pipefail
@@ -58,7 +58,8 @@ case "$mode" in
     export FACIAL_VALIDATION=1
     ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
     if [ "${FACIAL_RELIABILITY:-1}" != 0 ]; then
-      # The headless demo of build/ (Vulkan and all) under LeakSanitizer, then
+      # The demo (headless, and in a window) and the editor of build/, Vulkan
+      # and all, under LeakSanitizer, then
       # ASan + UBSan + leak checking over the Vulkan-free libraries and their
       # tests (clang, build-sanitize/), then every fuzzer for a bounded time on
       # the same build. Any report, crash, leak, timeout or OOM fails.
