@@ -4,7 +4,8 @@
 #   ./bootstrap.sh demo [facial demo options...]   the main job
 #   ./bootstrap.sh test [ctest options...]         the whole test suite, then the
 #                                                  reliability checks (issue 12): the
-#                                                  sanitizer suite and the fuzzers
+#                                                  sanitizer suite, the fuzzers and
+#                                                  the programs' leak check
 # FACIAL_FUZZ_SECONDS (default 15) is each fuzzer's time in `test`;
 # FACIAL_RELIABILITY=0 runs the plain suite only.
 set -euo pipefail
@@ -17,7 +18,7 @@ PACKAGES=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev
-  clang libclang-rt-14-dev llvm
+  clang libclang-rt-14-dev llvm liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
 )
 
@@ -57,9 +58,12 @@ case "$mode" in
     export FACIAL_VALIDATION=1
     ctest --test-dir build --output-on-failure -j"$(nproc)" "$@"
     if [ "${FACIAL_RELIABILITY:-1}" != 0 ]; then
+      # The demo (headless, and in a window) and the editor of build/, Vulkan
+      # and all, under LeakSanitizer, then
       # ASan + UBSan + leak checking over the Vulkan-free libraries and their
       # tests (clang, build-sanitize/), then every fuzzer for a bounded time on
       # the same build. Any report, crash, leak, timeout or OOM fails.
+      tools/sanitizers/demo_leaks.sh
       tools/sanitizers/run.sh
       fuzz/run.sh "${FACIAL_FUZZ_SECONDS:-15}"
     fi

@@ -2,9 +2,27 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <string>
 
 namespace cli {
+namespace {
+
+// One line for a frame that failed. A lost device (driver reset or crash, GPU
+// removed or hung) ends the run: nothing drawn on that device can go on, and
+// saying so plainly beats the bare result name.
+eng::Error frameError(uint64_t frame, const eng::Error& error) {
+  const std::string where = "frame " + std::to_string(frame) + ": ";
+  if (error.code == VK_ERROR_DEVICE_LOST)
+    return eng::makeError(eng::ErrorKind::Device,
+                          where + "the Vulkan device was lost (" + error.message +
+                              "): its driver reset or failed, or the GPU was removed; nothing more can be drawn",
+                          error.code);
+  return error.prefixed(where);
+}
+
+}  // namespace
 
 eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer& renderer,
                                 const WindowLoopOptions& options,
@@ -20,6 +38,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   const float measureFrom = options.quitAfter > 0.0f ? 0.5f * options.quitAfter : 1.0f;
   int measuredFrames = 0;
   Clock::time_point measureStart{};
+  uint64_t frameNumber = 0;
   while (!window.shouldClose()) {
     window.pollEvents();
     const Clock::time_point now = Clock::now();
@@ -38,7 +57,8 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     const std::filesystem::path shot = endsWithShot ? options.finalScreenshot : plan->requestedShot;
     plan->input.screenshot = shot;
     auto drawn = renderer.drawFrame(plan->input);
-    if (!drawn) return drawn.error().prefixed("frame: ");
+    ++frameNumber;
+    if (!drawn) return frameError(frameNumber, drawn.error());
     const bool presented = *drawn == eng::vk::FrameResult::Presented;
     if (presented && tick.elapsed >= measureFrom && measuredFrames++ == 0) measureStart = Clock::now();
     if (!shot.empty() && presented) {

@@ -468,8 +468,13 @@ int EditorApp::run(const EditorOptions& o) {
   };
   if (auto ran = cli::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
                                     frame, shotWritten);
-      !ran)
-    exitCode = fail(ran.error().message);
+      !ran) {
+    // The window cannot draw any more (a lost device, say): the user's edits
+    // go to the autosave before anything else can fail, and the one error
+    // line says where they are.
+    const std::string kept = timeline_->keepUnsavedEdits();
+    exitCode = fail(ran.error().message + (kept.empty() ? "" : "; " + kept));
+  }
   std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);

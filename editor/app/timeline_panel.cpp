@@ -79,6 +79,12 @@ bool TimelinePanel::save(const std::string& path) {
   return true;
 }
 
+std::string TimelinePanel::keepUnsavedEdits() {
+  if (!document_.dirty()) return {};
+  if (auto kept = autosave_.flush(document_); !kept) return "unsaved timeline edits NOT kept: " + kept.error().message;
+  return "unsaved timeline edits are in " + autosave_.file().string() + " (the next start recovers them)";
+}
+
 void TimelinePanel::autosave() {
   auto written = autosave_.update(document_, TimelineAutosave::Clock::now());
   if (written || written.error().message == autosaveError_) return;

@@ -28,6 +28,10 @@ class TimelinePanel {
   // Unsaved edits an earlier editor autosaved for it are recovered instead, saying so.
   bool open(const std::string& path);
   bool save(const std::string& path);
+  // Writes unsaved edits to the autosave now (the window is going away on an
+  // error) and says where they are, or why they could not be kept; empty when
+  // there is nothing unsaved.
+  std::string keepUnsavedEdits();
 
   void update(float dt);
   void draw(FaceDelegate& face);

@@ -1,5 +1,6 @@
 #include "engine/vk/window_renderer.h"
 
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -28,6 +29,13 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   r->ctx_ = &ctx;
   r->window_ = &window;
   r->options_ = options;
+  const char* faultsFromEnvironment = std::getenv(kFaultsEnvironmentVariable);
+  auto faults = options.faults.empty()
+                    ? FaultInjector::parse(faultsFromEnvironment ? faultsFromEnvironment : "", kFaultsEnvironmentVariable)
+                    : FaultInjector::parse(options.faults, "WindowRendererOptions::faults");
+  if (!faults) return faults.error();
+  r->faults_ = std::move(faults).value();
+  if (r->faults_.active()) logWarning("window renderer: injecting faults for a test: " + r->faults_.describe());
   auto layouts = SceneLayouts::create(ctx);
   if (!layouts) return layouts.error();
   r->layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
@@ -206,8 +214,10 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances));
 
   uint32_t image = 0;
-  const VkResult acquired =
-      vkAcquireNextImageKHR(device, swapchain_.handle(), UINT64_MAX, f.imageAvailable.get(), VK_NULL_HANDLE, &image);
+  VkResult acquired = faults_.beforeAcquire();
+  if (acquired == VK_SUCCESS)
+    acquired = vkAcquireNextImageKHR(device, swapchain_.handle(), UINT64_MAX, f.imageAvailable.get(), VK_NULL_HANDLE,
+                                     &image);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
     swapchainStale_ = true;
     return FrameResult::Skipped;
@@ -277,7 +287,9 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   submit.pCommandBuffers = &cmd;
   submit.signalSemaphoreCount = 1;
   submit.pSignalSemaphores = &signalSemaphore;
-  ENG_VK_TRY(vkQueueSubmit(ctx_->queue(), 1, &submit, fence));
+  if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, fence));
+      submitted != VK_SUCCESS)
+    return vulkanError("vkQueueSubmit", submitted);
 
   const VkSwapchainKHR swapchain = swapchain_.handle();
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};

@@ -30,6 +30,7 @@
 #include "engine/core/result.h"
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"
+#include "engine/vk/fault_injection.h"
 #include "engine/vk/gpu_image.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/render_pass.h"
@@ -49,6 +50,8 @@ struct WindowRendererOptions {
   bool vsync = true;
   bool hotReload = true;  // poll the shader sources twice a second
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
+  // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
+  std::string faults;
 };
 
 // Everything ImGui_ImplVulkan_Init needs (copy into ImGui_ImplVulkan_InitInfo;
@@ -130,6 +133,7 @@ class WindowRenderer {
   std::vector<UniqueSemaphore> renderFinished_;      // per swapchain image
   std::array<FrameSync, kFramesInFlight> frames_;
   SceneRenderer scene_;
+  FaultInjector faults_;
   UniqueDescriptorPool imguiPool_;
   Buffer screenshotBuffer_;
   uint32_t frameIndex_ = 0;

@@ -8,10 +8,12 @@
 // window instead, which is what a window manager does to a minimised X11
 // window. The 0x0-framebuffer path of other platforms is covered by
 // tests/vk/frame_pacing_test.cpp.
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -77,21 +79,32 @@ DemoRun runDemo(const fs::path& dir, const fs::path& model, const DemoSession& s
   std::ostringstream script;
   script << "FACIAL_VALIDATION=1 '" << program.string() << "' demo --model '" << model.string() << "' --quit-after "
          << session.seconds << " --screenshot '" << run.screenshot.string() << "' " << session.arguments << " >'"
-         << log.string() << "' 2>&1 & pid=$!; ";
+         << log.string() << "' 2>&1 & pid=\\$!; ";
   if (!session.xdotool.empty())
     // The title gains the frame time once the loop runs ("facial demo - head - neutral - 70.1 ms"):
     // waiting for it keeps input from piling up while the model and Vulkan still load.
     script << "timeout 30 xdotool search --sync --name 'facial demo.* ms$' windowfocus --sync " << session.xdotool
            << " >/dev/null 2>&1; ";
-  script << "wait $pid";
+  // The demo's own exit status goes to a file: xvfb-run's would replace it
+  // with 5 when its clean-up of the temporary X authority fails. (\\$ keeps
+  // the outer shell of std::system from expanding what the inner one needs.)
+  const fs::path status = dir / "demo.status";
+  script << "wait \\$pid; echo \\$? >'" << status.string() << "'";
   const std::string command =
-      "xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"" + script.str() + "\"";
-  const int status = std::system(command.c_str());
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      "xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"" + script.str() + "\" >'" +
+      (dir / "xvfb-run.log").string() + "' 2>&1";
+  fs::remove(status);
+  (void)std::system(command.c_str());
+  std::ifstream statusFile(status);
+  if (!(statusFile >> run.exitCode)) run.exitCode = -1;
   std::ifstream in(log);
   std::stringstream text;
   text << in.rdbuf();
   run.log = text.str();
+  if (run.exitCode == -1) {
+    std::ifstream xvfb(dir / "xvfb-run.log");
+    run.log += "\n(no exit status; xvfb-run said:)\n" + std::string(std::istreambuf_iterator<char>(xvfb), {});
+  }
   std::istringstream lines(run.log);
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("screenshot: ", 0) == 0) run.shots.emplace_back(line.substr(12));
@@ -307,6 +320,51 @@ TEST(WindowDemo, SliderScrubsIntensityAndThePadDrivesTheControlMap) {
   EXPECT_LT(halfway, 0.85 * scrub) << "intensity 0.5 is not the full smile";
   EXPECT_GT(pad, 0.5) << "the pad's anger pole differs from neutral";
   EXPECT_GT(padVsSmile, 0.5) << "the pad's anger pole differs from the smile";
+}
+
+// Lines of the log containing `text`.
+size_t linesWith(const std::string& log, const std::string& text) {
+  size_t count = 0;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(text) != std::string::npos) ++count;
+  return count;
+}
+
+// A device lost mid-run (injected: lavapipe never loses one, see
+// engine/vk/fault_injection.h), after two acquisitions that found the
+// swapchain out of date: the demo survives those, then stops at the loss with
+// one error line saying what happened, exits 1 (no crash, no hang: long before
+// --quit-after) and tears down without a validation message.
+TEST(WindowDemo, LostDeviceIsReportedInOneLineAndTheDemoExits) {
+  REQUIRE_VIRTUAL_DISPLAY();
+  const fs::path model = builtInHead();
+  ASSERT_FALSE(model.empty());
+  ASSERT_EQ(::setenv("FACIAL_VK_FAULTS", "out-of-date@2,out-of-date@3,device-lost@5", 1), 0);
+  const auto start = std::chrono::steady_clock::now();
+  const DemoRun run = runDemo(testing_support::freshTempDir("demo_window_device_lost"), model,
+                              {.seconds = 60.0f, .arguments = "--size 480x300"});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ::unsetenv("FACIAL_VK_FAULTS");
+  EXPECT_EQ(run.exitCode, 1) << run.log;
+  EXPECT_LT(seconds, 45.0) << "the demo ended at the lost device, not at --quit-after:\n" << run.log;
+  EXPECT_NE(run.log.find("injecting faults for a test: FACIAL_VK_FAULTS=out-of-date@2,out-of-date@3,device-lost@5"),
+            std::string::npos)
+      << run.log;
+  EXPECT_EQ(linesWith(run.log, "error:"), 1u) << run.log;
+  const std::string prefix = "facial demo: error: frame ";
+  const size_t error = run.log.find(prefix);
+  ASSERT_NE(error, std::string::npos) << run.log;
+  // Submission 5 is frame 7 or later: the two out-of-date frames submitted nothing.
+  EXPECT_GE(std::atoi(run.log.c_str() + error + prefix.size()), 7) << run.log;
+  EXPECT_NE(run.log.find(": the Vulkan device was lost (vkQueueSubmit failed: VK_ERROR_DEVICE_LOST): its driver "
+                         "reset or failed, or the GPU was removed; nothing more can be drawn\n",
+                         error),
+            std::string::npos)
+      << run.log;
+  EXPECT_NE(run.log.find("validation on"), std::string::npos) << run.log;
+  EXPECT_EQ(run.log.find("vulkan validation:"), std::string::npos) << run.log;
+  EXPECT_TRUE(run.shots.empty()) << "no frame after the loss, so no final screenshot:\n" << run.log;
 }
 
 TEST(WindowDemoValidity, BrokenScriptIsRefusedNamingFileAndLine) {

@@ -245,3 +245,56 @@ TEST(WindowRenderer, SurvivesResizeStormsAndHideShow) {
 }
 
 }  // namespace
+
+namespace {
+
+// Window faults lavapipe does not produce on demand, injected at chosen frames
+// (engine/vk/fault_injection.h): an acquisition that finds the swapchain out of
+// date skips its frame and the next one rebuilds the swapchain and draws; a
+// lost device is an error carrying VK_ERROR_DEVICE_LOST, and the renderer still
+// tears down without a validation message.
+eng::vk::WindowRendererOptions injecting(const char* faults) {
+  eng::vk::WindowRendererOptions options;
+  options.faults = faults;
+  return options;
+}
+
+TEST(WindowRenderer, InjectedOutOfDateSwapchainIsRebuiltAndDrawingGoesOn) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig(injecting("out-of-date@2,out-of-date@3,out-of-date@5"));
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  std::vector<eng::vk::FrameResult> results;
+  for (int i = 0; i < 7; ++i) {
+    rig.window->pollEvents();
+    auto frame = rig.renderer->drawFrame(scene.frame());
+    ASSERT_TRUE(frame) << "frame " << i + 1 << ": " << frame.error().message;
+    results.push_back(*frame);
+  }
+  using eng::vk::FrameResult;
+  EXPECT_EQ(results, (std::vector<FrameResult>{FrameResult::Presented, FrameResult::Skipped, FrameResult::Skipped,
+                                               FrameResult::Presented, FrameResult::Skipped, FrameResult::Presented,
+                                               FrameResult::Presented}))
+      << "each out-of-date acquisition skips one frame, the rebuilt swapchain draws the next";
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "after_out_of_date");
+  EXPECT_EQ(shot.width, int(rig.renderer->extent().width));
+  const glm::ivec4 centre = vk_test::pixel(shot, shot.width / 2, shot.height / 2);
+  EXPECT_GT(centre.r, vk_test::pixel(shot, 2, 2).r + 40) << "the sphere is drawn after the rebuilds";
+  EXPECT_EQ(rig.ctx->validationMessageCount(), 0u);
+}
+
+TEST(WindowRenderer, InjectedDeviceLossIsReportedAndTearsDownCleanly) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig(injecting("device-lost@3"));
+  ASSERT_TRUE(rig.ok());
+  SphereScene scene(*rig.renderer);
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(rig.renderer->drawFrame(scene.frame()));
+  auto lost = rig.renderer->drawFrame(scene.frame());
+  ASSERT_FALSE(lost) << "the third submission reports the device lost";
+  EXPECT_EQ(lost.error().code, VK_ERROR_DEVICE_LOST);
+  EXPECT_EQ(lost.error().message, "vkQueueSubmit failed: VK_ERROR_DEVICE_LOST");
+  rig.renderer.reset();  // waits for the device and destroys everything it made
+  EXPECT_EQ(rig.ctx->validationMessageCount(), 0u);
+}
+
+}  // namespace
