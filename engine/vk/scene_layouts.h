@@ -5,11 +5,13 @@
 // primitive has nothing (no texture, no detail layers, no tangent deltas).
 //
 //   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,
-//                          4 key-light shadow map, 5 joint matrices, 6 instance materials
-//   set 1 (per primitive): 0-2 position/normal/tangent deltas, 3 base colour,
-//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
-//                          7 crease darkening per target (crease_shading.h)
-//   push constants:        DrawConstants (36 bytes), vertex + fragment
+//                          4 key-light shadow map, 5 joint matrices, 6 instance materials,
+//                          7 morphed vertices (written by the morph pre-pass), 8 target weights
+//   set 1 (per primitive): 0-1 sparse deltas (per-vertex offsets, entries with crease
+//                          darkening: morph.glsl), 2 rest vertices (the vertex buffer), 3 base colour,
+//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences
+//   push constants:        DrawConstants (52 bytes), vertex + fragment; the morph pre-pass has its
+//                          own pipeline layout (same sets, push constants for the compute stage)
 #include "engine/core/result.h"
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"
@@ -25,6 +27,7 @@ class SceneLayouts {
   VkDescriptorSetLayout frameSetLayout() const { return frameSet_.get(); }
   VkDescriptorSetLayout primitiveSetLayout() const { return primitiveSet_.get(); }
   VkPipelineLayout pipelineLayout() const { return pipelineLayout_.get(); }
+  VkPipelineLayout morphPipelineLayout() const { return morphPipelineLayout_.get(); }
   VkSampler sampler() const { return sampler_.get(); }
 
   // 1x1 white sRGB texture: base colour when a material has none.
@@ -38,6 +41,7 @@ class SceneLayouts {
   UniqueDescriptorSetLayout frameSet_;
   UniqueDescriptorSetLayout primitiveSet_;
   UniquePipelineLayout pipelineLayout_;
+  UniquePipelineLayout morphPipelineLayout_;
   UniqueSampler sampler_;
   GpuImage white_;
   GpuImage emptyDetail_;
