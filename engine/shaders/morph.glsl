@@ -54,14 +54,18 @@ uint morphedSlot(uint vertex, uint instanceInDraw) {
 }
 
 #if defined(MORPH_WRITE)
-layout(std430, set = 0, binding = 8) readonly buffer TargetWeights { float targetWeights[]; };
-layout(std430, set = 1, binding = 0) readonly buffer MorphOffsets { uint morphOffsets[]; };
-layout(std430, set = 1, binding = 1) readonly buffer MorphEntries { vec4 morphEntries[]; };
-layout(std430, set = 1, binding = 2) readonly buffer RestVertices { float rest[]; };
+// Texel buffers rather than storage buffers: a CPU device (lavapipe) fetches
+// texels for all SIMD lanes at once but loads storage lane by lane.
+layout(set = 0, binding = 8) uniform samplerBuffer targetWeights;
+layout(set = 1, binding = 0) uniform usamplerBuffer morphOffsets;
+layout(set = 1, binding = 1) uniform samplerBuffer morphEntries;
+layout(set = 1, binding = 2) uniform samplerBuffer rest;
+
+float restFloat(uint i) { return texelFetch(rest, int(i)).x; }
 
 vec3 restVec3(uint base, uint vertex) {
   uint i = base + vertex * 3u;
-  return vec3(rest[i], rest[i + 1u], rest[i + 2u]);
+  return vec3(restFloat(i), restFloat(i + 1u), restFloat(i + 2u));
 }
 
 // The morphed (not yet skinned) vertex of one instance.
@@ -69,20 +73,20 @@ MorphedVertex morphVertex(uint vertex, InstanceData inst) {
   vec3 position = restVec3(draw.restPosition, vertex);
   vec3 normal = restVec3(draw.restNormal, vertex);
   uint t4 = draw.restTangent + vertex * 4u;
-  vec3 tangent = vec3(rest[t4], rest[t4 + 1u], rest[t4 + 2u]);
+  vec3 tangent = vec3(restFloat(t4), restFloat(t4 + 1u), restFloat(t4 + 2u));
   float crease = 0.0;
   bool tangents = (draw.flags & DRAW_FLAG_TANGENT_DELTAS) != 0u;
   uint stride = tangents ? 3u : 2u;
-  uint end = morphOffsets[vertex + 1u];
-  for (uint e = morphOffsets[vertex]; e < end; ++e) {
-    vec4 p = morphEntries[e * stride];
-    float w = targetWeights[inst.weightOffset + floatBitsToUint(p.w)];
+  uint end = texelFetch(morphOffsets, int(vertex + 1u)).x;
+  for (uint e = texelFetch(morphOffsets, int(vertex)).x; e < end; ++e) {
+    vec4 p = texelFetch(morphEntries, int(e * stride));
+    float w = texelFetch(targetWeights, int(inst.weightOffset + floatBitsToUint(p.w))).x;
     if (w == 0.0) continue;  // not in the active list
-    vec4 n = morphEntries[e * stride + 1u];
+    vec4 n = texelFetch(morphEntries, int(e * stride + 1u));
     position += w * p.xyz;
     normal += w * n.xyz;
     crease += w * n.w;
-    if (tangents) tangent += w * morphEntries[e * stride + 2u].xyz;
+    if (tangents) tangent += w * texelFetch(morphEntries, int(e * stride + 2u)).xyz;
   }
   return finishedVertex(position, normal, tangent, crease);
 }

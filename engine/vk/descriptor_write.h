@@ -1,5 +1,5 @@
 #pragma once
-// One VkWriteDescriptorSet for a single buffer or image binding: the shape
+// One VkWriteDescriptorSet for a single buffer, texel buffer or image binding: the shape
 // every descriptor-set update in the renderer repeats.
 #include <vulkan/vulkan.h>
 
@@ -23,6 +23,16 @@ inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, uint32_t binding, co
   w.descriptorCount = 1;
   w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   w.pImageInfo = image;
+  return w;
+}
+
+inline VkWriteDescriptorSet texelBufferWrite(VkDescriptorSet set, uint32_t binding, const VkBufferView* view) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+  w.pTexelBufferView = view;
   return w;
 }
 

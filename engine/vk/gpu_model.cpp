@@ -319,7 +319,8 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
 // joint influences out in the staging blobs, and fills meshes_.
 Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Staging& staging) {
   const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
-  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(limits.minStorageBufferOffsetAlignment, 16);
+  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(
+      {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
   const WeightLayout weightLayout(model);
   const Material fallback = defaultMaterial();
   meshes_.resize(model.meshes.size());
@@ -337,10 +338,12 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
 
       const SparseDeltas sparse = compactDeltas(prim);
       const VkDeviceSize entryBytes = sparse.entries.size() * sizeof(glm::vec4);
-      if (entryBytes > limits.maxStorageBufferRange)
+      const size_t texels = std::max(sparse.entries.size(), size_t(ranges.restSize / sizeof(float)));
+      if (!sparse.entries.empty() && texels > limits.maxTexelBufferElements)
         return makeError(where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
-                         std::to_string(prim.vertexCount()) + " vertices need " + std::to_string(entryBytes) +
-                         " bytes of sparse deltas, the device allows " + std::to_string(limits.maxStorageBufferRange));
+                         std::to_string(prim.vertexCount()) + " vertices need texel buffers of " +
+                         std::to_string(texels) + " elements for morphing, the device allows " +
+                         std::to_string(limits.maxTexelBufferElements));
       if (!sparse.entries.empty()) {
         ranges.morphOffsetsSize = sparse.offsets.size() * sizeof(uint32_t);
         ranges.morphOffsets = staging.deltas.append(std::span<const uint32_t>(sparse.offsets), storageAlign);
@@ -381,10 +384,10 @@ Result<void> GpuModel::uploadBuffers(const Context& ctx, const Staging& staging)
     return {};
   };
   // Vertices are also storage: the morph pre-pass reads the rest attributes.
-  ENG_TRY(upload(staging.vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vertices",
-                 vertices_));
+  ENG_TRY(upload(staging.vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                 "vertices", vertices_));
   ENG_TRY(upload(staging.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", indices_));
-  ENG_TRY(upload(staging.deltas, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "morph deltas", deltas_));
+  ENG_TRY(upload(staging.deltas, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "morph deltas", deltas_));
   ENG_TRY(upload(staging.detail, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "detail layers", detailLayers_));
   ENG_TRY(upload(staging.skin, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint influences", skinInfluences_));
   return {};
@@ -426,7 +429,8 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   uint32_t sets = 0;
   for (const GpuMesh& mesh : meshes_) sets += static_cast<uint32_t>(mesh.primitives.size());
   if (sets == 0) return {};
-  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * sets},
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
@@ -445,14 +449,33 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
       alloc.descriptorSetCount = 1;
       alloc.pSetLayouts = &setLayout;
       ENG_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &alloc, &gp.descriptorSet));
-      writePrimitiveSet(ctx, layouts, model, model.meshes[m].primitives[p], staging.ranges[m][p], gp);
+      const PrimitiveRanges& ranges = staging.ranges[m][p];
+      auto texelView = [&](VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkFormat format,
+                           VkBufferView placeholder) -> Result<VkBufferView> {
+        if (size == 0) return placeholder;
+        auto view = createTexelView(ctx, buffer, offset, size, format);
+        if (!view) return Error{name_ + ": " + view.error().message, view.error().code};
+        return texelViews_.emplace_back(std::move(view).value()).get();
+      };
+      const bool morphs = ranges.morphEntriesSize > 0;
+      auto offsets = texelView(deltas_.handle(), ranges.morphOffsets, ranges.morphOffsetsSize, VK_FORMAT_R32_UINT,
+                               layouts.placeholderUintTexels());
+      if (!offsets) return offsets.error();
+      auto entries = texelView(deltas_.handle(), ranges.morphEntries, ranges.morphEntriesSize,
+                               VK_FORMAT_R32G32B32A32_SFLOAT, layouts.placeholderVec4Texels());
+      if (!entries) return entries.error();
+      auto rest = texelView(vertices_.handle(), ranges.rest, morphs ? ranges.restSize : 0, VK_FORMAT_R32_SFLOAT,
+                            layouts.placeholderFloatTexels());
+      if (!rest) return rest.error();
+      writePrimitiveSet(ctx, layouts, model, model.meshes[m].primitives[p], ranges, {*offsets, *entries, *rest}, gp);
     }
   }
   return {};
 }
 
 void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model,
-                                 const Primitive& prim, const PrimitiveRanges& r, GpuPrimitive& gp) const {
+                                 const Primitive& prim, const PrimitiveRanges& r, const MorphInputViews& morph,
+                                 GpuPrimitive& gp) const {
   const GpuImage* base = &layouts.whiteTexture();
   const GpuImage* detail = &layouts.emptyDetailArray();
   if (prim.material >= 0) {
@@ -465,9 +488,6 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       gp.constants.detailLayerCount = 0;  // layers without decodable images stay off
   }
   const VkBuffer placeholder = layouts.placeholderBuffer().handle();
-  const VkDescriptorBufferInfo offsets = rangeOr(deltas_.handle(), r.morphOffsets, r.morphOffsetsSize, placeholder);
-  const VkDescriptorBufferInfo entries = rangeOr(deltas_.handle(), r.morphEntries, r.morphEntriesSize, placeholder);
-  const VkDescriptorBufferInfo rest = rangeOr(vertices_.handle(), r.rest, r.restSize, placeholder);
   const VkDescriptorImageInfo baseInfo{layouts.sampler(), base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo detailParams = rangeOr(
@@ -476,9 +496,9 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       rangeOr(skinInfluences_.handle(), r.skin,
               gp.constants.jointSets > 0 ? prim.joints.size() * 2 * sizeof(glm::uvec4) : 0, placeholder);
   const std::array writes{
-      bufferWrite(gp.descriptorSet, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &offsets),
-      bufferWrite(gp.descriptorSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &entries),
-      bufferWrite(gp.descriptorSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &rest),
+      texelBufferWrite(gp.descriptorSet, 0, &morph.offsets),
+      texelBufferWrite(gp.descriptorSet, 1, &morph.entries),
+      texelBufferWrite(gp.descriptorSet, 2, &morph.rest),
       imageWrite(gp.descriptorSet, 3, &baseInfo),
       imageWrite(gp.descriptorSet, 4, &detailInfo),
       bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),

@@ -85,6 +85,10 @@ class GpuModel {
 
  private:
   struct Staging;
+  // The morph pre-pass's texel buffers of one primitive (set 1 bindings 0-2).
+  struct MorphInputViews {
+    VkBufferView offsets, entries, rest;
+  };
   // The steps of create(), in order.
   Result<void> stageMeshes(const Context& ctx, const Model& model, Staging& staging);
   Result<void> uploadBuffers(const Context& ctx, const Staging& staging);
@@ -92,7 +96,7 @@ class GpuModel {
   Result<void> createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
                                     const Staging& staging);
   void writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model, const Primitive& prim,
-                         const PrimitiveRanges& ranges, GpuPrimitive& gp) const;
+                         const PrimitiveRanges& ranges, const MorphInputViews& morph, GpuPrimitive& gp) const;
 
   std::string name_;
   std::vector<GpuMesh> meshes_;
@@ -110,6 +114,7 @@ class GpuModel {
   std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
+  std::vector<UniqueBufferView> texelViews_;  // the morph pre-pass's inputs of the primitives with deltas
   UniqueDescriptorPool descriptorPool_;
 };
 

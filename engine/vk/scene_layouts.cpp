@@ -59,16 +59,16 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
       binding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
       binding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs | kCs),
-      binding(8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCs),
+      binding(8, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs),
   };
   auto frameSet = createSetLayout(ctx, frameBindings);
   if (!frameSet) return frameSet.error();
   s.frameSet_ = std::move(frameSet).value();
 
   const std::array primitiveBindings{
-      binding(0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCs),
-      binding(1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCs),
-      binding(2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kCs),
+      binding(0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs),
+      binding(1, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs),
+      binding(2, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs),
       binding(3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFs),
@@ -116,9 +116,17 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
   s.emptyDetail_ = std::move(empty).value();
 
   const std::vector<std::byte> zeros(256);
-  auto placeholder = Buffer::createWithData(ctx, zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "placeholder storage");
+  auto placeholder = Buffer::createWithData(
+      ctx, zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "placeholder storage");
   if (!placeholder) return placeholder.error();
   s.placeholder_ = std::move(placeholder).value();
+  for (auto [format, view] : {std::pair{VK_FORMAT_R32G32B32A32_SFLOAT, &s.placeholderVec4_},
+                              std::pair{VK_FORMAT_R32_SFLOAT, &s.placeholderFloat_},
+                              std::pair{VK_FORMAT_R32_UINT, &s.placeholderUint_}}) {
+    auto texels = createTexelView(ctx, s.placeholder_.handle(), 0, zeros.size(), format);
+    if (!texels) return texels.error();
+    *view = std::move(texels).value();
+  }
   return s;
 }
 

@@ -7,8 +7,10 @@
 //   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,
 //                          4 key-light shadow map, 5 joint matrices, 6 instance materials,
 //                          7 morphed vertices (written by the morph pre-pass), 8 target weights
+//                          (texel buffer)
 //   set 1 (per primitive): 0-1 sparse deltas (per-vertex offsets, entries with crease
-//                          darkening: morph.glsl), 2 rest vertices (the vertex buffer), 3 base colour,
+//                          darkening: morph.glsl), 2 rest vertices (the vertex buffer), all
+//                          three texel buffers, 3 base colour,
 //                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences
 //   push constants:        DrawConstants (52 bytes), vertex + fragment; the morph pre-pass has its
 //                          own pipeline layout (same sets, push constants for the compute stage)
@@ -36,6 +38,10 @@ class SceneLayouts {
   const GpuImage& emptyDetailArray() const { return emptyDetail_; }
   // 256 zero bytes: storage-buffer bindings that a draw never reads.
   const Buffer& placeholderBuffer() const { return placeholder_; }
+  // The same bytes as texel buffers (the morph pre-pass's inputs where a primitive has no deltas).
+  VkBufferView placeholderVec4Texels() const { return placeholderVec4_.get(); }
+  VkBufferView placeholderFloatTexels() const { return placeholderFloat_.get(); }
+  VkBufferView placeholderUintTexels() const { return placeholderUint_.get(); }
 
  private:
   UniqueDescriptorSetLayout frameSet_;
@@ -46,6 +52,9 @@ class SceneLayouts {
   GpuImage white_;
   GpuImage emptyDetail_;
   Buffer placeholder_;
+  UniqueBufferView placeholderVec4_;
+  UniqueBufferView placeholderFloat_;
+  UniqueBufferView placeholderUint_;
 };
 
 }  // namespace eng::vk

@@ -40,7 +40,8 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.pipelineGeneration_ = shaders.generation();
 
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, frameSlots},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frameSlots}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = frameSlots;
@@ -78,15 +79,15 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
                                     MemoryUsage::Upload, "instance materials");
     if (!materials) return materials.error();
     slot.materials = std::move(materials).value();
-    auto weights = Buffer::create(ctx, 256 * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload,
-                                  "target weights");
+    auto weights = Buffer::create(ctx, 256 * sizeof(float), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                  MemoryUsage::Upload, "target weights");
     if (!weights) return weights.error();
     slot.weights = std::move(weights).value();
     auto morphed = Buffer::create(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
                                   "morphed vertices");
     if (!morphed) return morphed.error();
     slot.morphed = std::move(morphed).value();
-    r.writeDescriptors(slot);
+    ENG_TRY(r.writeDescriptors(slot));
   }
   return r;
 }
@@ -99,11 +100,14 @@ Result<void> SceneRenderer::ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceS
   auto grown = Buffer::create(*ctx_, std::max<VkDeviceSize>(size, 256), usage, memory, name);
   if (!grown) return grown.error();
   buffer = std::move(grown).value();
-  writeDescriptors(slot);
-  return {};
+  return writeDescriptors(slot);
 }
 
-void SceneRenderer::writeDescriptors(Slot& slot) const {
+Result<void> SceneRenderer::writeDescriptors(Slot& slot) const {
+  auto weightTexels = createTexelView(*ctx_, slot.weights.handle(), 0, VK_WHOLE_SIZE, VK_FORMAT_R32_SFLOAT);
+  if (!weightTexels) return weightTexels.error();
+  slot.weightTexels = std::move(weightTexels).value();
+  const VkBufferView weights = slot.weightTexels.get();
   const VkDescriptorBufferInfo globals{slot.globals.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo instances{slot.instances.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
@@ -111,7 +115,6 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
   const VkDescriptorBufferInfo materials{slot.materials.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
                                        0, VK_WHOLE_SIZE};
-  const VkDescriptorBufferInfo weights{slot.weights.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo morphed{slot.morphed.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
                                      VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
@@ -124,9 +127,10 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
       bufferWrite(slot.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &joints),
       bufferWrite(slot.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials),
       bufferWrite(slot.descriptorSet, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &morphed),
-      bufferWrite(slot.descriptorSet, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &weights),
+      texelBufferWrite(slot.descriptorSet, 8, &weights),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  return {};
 }
 
 Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInstance> instances, Mode mode) {
@@ -271,8 +275,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                          MemoryUsage::Upload, "joint matrices"));
   ENG_TRY(ensureCapacity(slot, slot.materials, materialScratch_.size() * sizeof(InstanceMaterial),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instance materials"));
-  ENG_TRY(ensureCapacity(slot, slot.weights, weightScratch_.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                         MemoryUsage::Upload, "target weights"));
+  ENG_TRY(ensureCapacity(slot, slot.weights, weightScratch_.size() * sizeof(float),
+                         VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, MemoryUsage::Upload, "target weights"));
   ENG_TRY(ensureCapacity(slot, slot.morphed, VkDeviceSize{slot.morphedVertices} * sizeof(GpuMorphedVertex),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "morphed vertices"));
   if (mode == Mode::Capture)

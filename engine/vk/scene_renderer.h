@@ -130,6 +130,7 @@ class SceneRenderer {
     Buffer materials;
     Buffer capture;
     Buffer weights;  // every instance's target weights, zero where inactive (morph.glsl)
+    UniqueBufferView weightTexels;  // `weights` as the morph pre-pass reads it
     Buffer morphed;  // GpuMorphedVertex per (morphed batch, instance, vertex)
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
@@ -142,7 +143,8 @@ class SceneRenderer {
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
   Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
                               MemoryUsage memory, const char* name);
-  void writeDescriptors(Slot& slot) const;
+  // (Re)creates the weights' texel view and writes every binding of set 0.
+  Result<void> writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
   void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const;
 
