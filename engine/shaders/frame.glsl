@@ -65,7 +65,7 @@ layout(push_constant) uniform DrawConstants {
   uint captureOffset;     // first captured vertex slot of this draw (capture variant only)
   uint jointSets;         // groups of four joint influences per vertex; 0 = not skinned (skin.glsl)
   uint material;          // the primitive's material: instanceMaterials[instance's materialOffset + material]
-  uint morphOffset;       // first morphed-vertex slot of the draw (morph.glsl)
+  uint morphOffset;       // first vec4 of the draw's morphed vertices (morph.glsl)
   uint restPosition;      // float offsets of the rest attributes in the vertex buffer (morph.comp)
   uint restNormal;
   uint restTangent;

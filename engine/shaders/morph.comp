@@ -22,6 +22,6 @@ void main() {
     uint slot = morphedSlot(vertex, instanceInDraw);
     morphed[slot] = vec4(m.position, m.crease);
     morphed[slot + 1u] = vec4(m.normal, 0.0);
-    morphed[slot + 2u] = vec4(m.tangent, 0.0);
+    if (morphedStride() == 3u) morphed[slot + 2u] = vec4(m.tangent, 0.0);
   }
 }

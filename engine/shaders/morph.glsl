@@ -26,7 +26,9 @@ struct MorphedVertex {
   float crease;  // summed crease darkening, 0 = none (clamped where it is used)
 };
 
-// Three vec4 per morphed vertex: position + crease, normal, tangent.
+// Per morphed vertex: position + crease, normal, and the tangent only where
+// the primitive has tangent deltas (without them the morphed tangent is the
+// rest tangent, which mesh.vert reads from its attribute).
 #if defined(MORPH_WRITE)
 layout(std430, set = 0, binding = 7) writeonly buffer MorphedVertices { vec4 morphed[]; };
 #else
@@ -49,8 +51,11 @@ MorphedVertex finishedVertex(vec3 position, vec3 normal, vec3 tangent, float cre
   return result;
 }
 
+uint morphedStride() { return (draw.flags & DRAW_FLAG_TANGENT_DELTAS) != 0u ? 3u : 2u; }
+
+// The vertex's first vec4 (draw.morphOffset counts vec4).
 uint morphedSlot(uint vertex, uint instanceInDraw) {
-  return (draw.morphOffset + instanceInDraw * draw.vertexCount + vertex) * 3u;
+  return draw.morphOffset + (instanceInDraw * draw.vertexCount + vertex) * morphedStride();
 }
 
 #if defined(MORPH_WRITE)
@@ -103,7 +108,7 @@ MorphedVertex morphedVertex(uint vertex, uint instanceInDraw, InstanceData inst,
   result.position = p.xyz;
   result.crease = p.w;
   result.normal = morphed[slot + 1u].xyz;
-  result.tangent = morphed[slot + 2u].xyz;
+  result.tangent = morphedStride() == 3u ? morphed[slot + 2u].xyz : safeNormalize(tangent);
   return result;
 }
 #endif

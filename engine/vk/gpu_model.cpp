@@ -76,7 +76,9 @@ std::string where(const Model& model, size_t mesh, size_t primitive) {
 // a crease, in target order.
 struct SparseDeltas {
   std::vector<uint32_t> offsets;
-  std::vector<glm::vec4> entries;  // GpuMorphEntry (2 vec4), + the tangent delta with tangents
+  // Per entry (morph.glsl): position delta + target bits, normal delta +
+  // crease darkening, then the tangent delta where the primitive has tangent deltas.
+  std::vector<glm::vec4> entries;
   bool hasNormals = false, hasTangents = false, hasCreases = false;
 };
 

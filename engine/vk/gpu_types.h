@@ -72,7 +72,7 @@ struct DrawConstants {
   uint32_t captureOffset = 0;
   uint32_t jointSets = 0;  // groups of four joint influences per vertex, 0 = not skinned
   uint32_t material = 0;   // the primitive's record among its instance's InstanceMaterial records
-  uint32_t morphOffset = 0;  // first morphed-vertex slot of the draw (morph.glsl)
+  uint32_t morphOffset = 0;  // first vec4 of the draw's morphed vertices (morph.glsl)
   // Float offsets of the rest position, normal and tangent arrays in the
   // model's vertex buffer (the morph pre-pass reads them as storage).
   uint32_t restPosition = 0;
@@ -94,24 +94,6 @@ struct GpuDetailLayer {
   float strength = 1.0f;
 };
 static_assert(sizeof(GpuDetailLayer) == 8);
-
-// One morphed vertex as the morph pre-pass writes it (morph.glsl).
-struct GpuMorphedVertex {
-  glm::vec4 positionCrease;  // xyz position, w summed crease darkening
-  glm::vec4 normal;
-  glm::vec4 tangent;
-};
-static_assert(sizeof(GpuMorphedVertex) == 48);
-
-// One sparse delta entry without tangents (morph.glsl); with tangent deltas
-// a third vec4 follows.
-struct GpuMorphEntry {
-  glm::vec3 position{0.0f};
-  uint32_t target = 0;
-  glm::vec3 normal{0.0f};
-  float crease = 0.0f;
-};
-static_assert(sizeof(GpuMorphEntry) == 32);
 
 // One captured vertex (three vec4 in the capture buffer).
 struct GpuCapturedVertex {

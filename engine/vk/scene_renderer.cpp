@@ -14,6 +14,15 @@
 #include "engine/vk/vk_result.h"
 
 namespace eng::vk {
+namespace {
+
+// The morph pre-pass's output per vertex (morph.glsl): position + crease,
+// normal, and the tangent where the primitive has tangent deltas.
+uint32_t morphedVec4sPerVertex(const GpuPrimitive& prim) {
+  return (prim.constants.flags & kDrawFlagTangentDeltas) != 0 ? 3 : 2;
+}
+
+}  // namespace
 
 Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayouts& layouts,
                                             const ShaderLibrary& shaders, VkRenderPass renderPass,
@@ -141,7 +150,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   slot.batches.clear();
   slot.members.clear();
   slot.capturedVertices = 0;
-  slot.morphedVertices = 0;
+  slot.morphedVec4s = 0;
   instanceScratch_.clear();
   activeScratch_.clear();
   weightScratch_.clear();
@@ -251,9 +260,9 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         const GpuPrimitive& prim = meshes[mesh].primitives[p];
         const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
         slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
-                                slot.morphedVertices, morphs, membersOffset});
+                                slot.morphedVec4s, morphs, membersOffset});
         if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
-        if (morphs) slot.morphedVertices += prim.vertexCount * instanceCount;
+        if (morphs) slot.morphedVec4s += prim.vertexCount * instanceCount * morphedVec4sPerVertex(prim);
       }
     };
     if (mode == Mode::Draw) {
@@ -277,7 +286,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instance materials"));
   ENG_TRY(ensureCapacity(slot, slot.weights, weightScratch_.size() * sizeof(float),
                          VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, MemoryUsage::Upload, "target weights"));
-  ENG_TRY(ensureCapacity(slot, slot.morphed, VkDeviceSize{slot.morphedVertices} * sizeof(GpuMorphedVertex),
+  ENG_TRY(ensureCapacity(slot, slot.morphed, VkDeviceSize{slot.morphedVec4s} * sizeof(glm::vec4),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "morphed vertices"));
   if (mode == Mode::Capture)
     ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
@@ -354,7 +363,7 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
 
 void SceneRenderer::recordMorphPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
   const Slot& slot = slots_[slotIndex];
-  if (slot.morphedVertices == 0) return;
+  if (slot.morphedVec4s == 0) return;
   const VkPipelineLayout layout = layouts_->morphPipelineLayout();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.morph());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &slot.descriptorSet, 0, nullptr);

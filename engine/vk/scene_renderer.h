@@ -118,7 +118,7 @@ class SceneRenderer {
     uint32_t firstInstance = 0;
     uint32_t instanceCount = 0;
     uint32_t captureOffset = 0;  // first captured vertex slot (capture mode)
-    uint32_t morphOffset = 0;    // first morphed vertex slot
+    uint32_t morphOffset = 0;    // first vec4 of the batch's morphed vertices
     bool morphs = false;         // the primitive has deltas and some instance has active weights
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
   };
@@ -131,12 +131,12 @@ class SceneRenderer {
     Buffer capture;
     Buffer weights;  // every instance's target weights, zero where inactive (morph.glsl)
     UniqueBufferView weightTexels;  // `weights` as the morph pre-pass reads it
-    Buffer morphed;  // GpuMorphedVertex per (morphed batch, instance, vertex)
+    Buffer morphed;  // per (morphed batch, instance, vertex) two or three vec4 (morph.glsl)
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
     std::vector<uint32_t> members;
     uint32_t capturedVertices = 0;
-    uint32_t morphedVertices = 0;
+    uint32_t morphedVec4s = 0;
     FrameStats stats;
   };
 
