@@ -9,7 +9,7 @@
 // non-zero). Cost follows the (vertex, target) pairs that move something,
 // not vertices x targets: face targets are local (a brow target leaves the
 // mouth alone). An entry is two vec4, position delta + the target index
-// (float bits) and normal delta + crease darkening (how much the target
+// (as a float value) and normal delta + crease darkening (how much the target
 // darkens v at full weight: engine/scene/crease_shading.h), then a third,
 // the tangent delta, where the primitive has tangent deltas.
 //
@@ -77,15 +77,16 @@ vec3 restVec3(uint base, uint vertex) {
 MorphedVertex morphVertex(uint vertex, InstanceData inst) {
   vec3 position = restVec3(draw.restPosition, vertex);
   vec3 normal = restVec3(draw.restNormal, vertex);
-  uint t4 = draw.restTangent + vertex * 4u;
-  vec3 tangent = vec3(restFloat(t4), restFloat(t4 + 1u), restFloat(t4 + 2u));
-  float crease = 0.0;
   bool tangents = (draw.flags & DRAW_FLAG_TANGENT_DELTAS) != 0u;
+  // Without tangent deltas the tangent is not written (mesh.vert reads its attribute).
+  uint t4 = draw.restTangent + vertex * 4u;
+  vec3 tangent = tangents ? vec3(restFloat(t4), restFloat(t4 + 1u), restFloat(t4 + 2u)) : vec3(0.0);
+  float crease = 0.0;
   uint stride = tangents ? 3u : 2u;
   uint end = texelFetch(morphOffsets, int(vertex + 1u)).x;
   for (uint e = texelFetch(morphOffsets, int(vertex)).x; e < end; ++e) {
     vec4 p = texelFetch(morphEntries, int(e * stride));
-    float w = texelFetch(targetWeights, int(inst.weightOffset + floatBitsToUint(p.w))).x;
+    float w = texelFetch(targetWeights, int(inst.weightOffset + uint(p.w))).x;
     if (w == 0.0) continue;  // not in the active list
     vec4 n = texelFetch(morphEntries, int(e * stride + 1u));
     position += w * p.xyz;

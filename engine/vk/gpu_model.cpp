@@ -70,13 +70,16 @@ std::string where(const Model& model, size_t mesh, size_t primitive) {
   return file + ": mesh " + std::to_string(mesh) + " primitive " + std::to_string(primitive);
 }
 
+// Target indices travel as float values, exact up to 2^24.
+constexpr size_t kMaxSparseTargets = size_t{1} << 24;
+
 // The sparse, vertex-major deltas of one primitive (morph.glsl): per vertex
 // the first of its entries (vertexCount + 1 offsets), and one entry per
 // (vertex, target) pair that moves a position, normal or tangent or darkens
 // a crease, in target order.
 struct SparseDeltas {
   std::vector<uint32_t> offsets;
-  // Per entry (morph.glsl): position delta + target bits, normal delta +
+  // Per entry (morph.glsl): position delta + target index (as a float), normal delta +
   // crease darkening, then the tangent delta where the primitive has tangent deltas.
   std::vector<glm::vec4> entries;
   bool hasNormals = false, hasTangents = false, hasCreases = false;
@@ -102,10 +105,9 @@ SparseDeltas compactDeltas(const Primitive& prim) {
       const float crease = out.hasCreases ? darkening[t * n + v] : 0.0f;
       if (position == glm::vec3(0.0f) && normal == glm::vec3(0.0f) && tangent == glm::vec3(0.0f) && crease == 0.0f)
         continue;  // adds exactly nothing
-      uint32_t index = static_cast<uint32_t>(t);
-      float indexBits;
-      std::memcpy(&indexBits, &index, sizeof(float));
-      out.entries.emplace_back(position, indexBits);
+      // The index as a float value, not its bits (small integers' bits are
+      // denormals, which a GPU's texel fetch may flush); exact below 2^24.
+      out.entries.emplace_back(position, static_cast<float>(t));
       out.entries.emplace_back(normal, crease);
       if (out.hasTangents) out.entries.emplace_back(tangent, 0.0f);
     }
@@ -338,6 +340,10 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       PrimitiveRanges& ranges = staging.ranges[m].emplace_back();
       GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, storageAlign, ranges);
 
+      if (prim.targets.size() > kMaxSparseTargets)
+        return makeError(where(model, m, p) + ": " + std::to_string(prim.targets.size()) +
+                         " morph targets, more than the " + std::to_string(kMaxSparseTargets) +
+                         " a sparse delta entry can name");
       const SparseDeltas sparse = compactDeltas(prim);
       const VkDeviceSize entryBytes = sparse.entries.size() * sizeof(glm::vec4);
       const size_t texels = std::max(sparse.entries.size(), size_t(ranges.restSize / sizeof(float)));
