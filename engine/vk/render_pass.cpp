@@ -1,6 +1,7 @@
 #include "engine/vk/render_pass.h"
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "engine/vk/vk_result.h"
@@ -27,6 +28,25 @@ VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBit
   }
   return best;
 }
+
+namespace {
+
+Result<UniqueRenderPass> createOneSubpassPass(const Context& ctx, std::span<const VkAttachmentDescription> attachments,
+                                              const VkSubpassDescription& subpass,
+                                              std::span<const VkSubpassDependency> dependencies) {
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = static_cast<uint32_t>(attachments.size());
+  info.pAttachments = attachments.data();
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
+  info.pDependencies = dependencies.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
+  return UniqueRenderPass(ctx.device(), pass);
+}
+
+}  // namespace
 
 Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
                                                VkImageLayout finalLayout) {
@@ -95,16 +115,7 @@ Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetF
                           VK_ACCESS_TRANSFER_READ_BIT, 0},
   };
 
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = static_cast<uint32_t>(attachments.size());
-  info.pAttachments = attachments.data();
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
-  info.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
-  return UniqueRenderPass(ctx.device(), pass);
+  return createOneSubpassPass(ctx, attachments, subpass, dependencies);
 }
 
 Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout) {
@@ -132,16 +143,7 @@ Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat co
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                           VK_ACCESS_TRANSFER_READ_BIT, 0},
   };
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = 1;
-  info.pAttachments = &attachment;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
-  info.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
-  return UniqueRenderPass(ctx.device(), pass);
+  return createOneSubpassPass(ctx, {&attachment, 1}, subpass, dependencies);
 }
 
 }  // namespace eng::vk
