@@ -262,7 +262,10 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
                                 slot.morphedVec4s, morphs, membersOffset});
         if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
-        if (morphs) slot.morphedVec4s += prim.vertexCount * instanceCount * morphedVec4sPerVertex(prim);
+        // Room for every primitive with deltas, active or not: the buffer's
+        // size then stays the same from frame to frame for the same instances.
+        if ((prim.constants.flags & kDrawFlagMorphed) != 0)
+          slot.morphedVec4s += prim.vertexCount * instanceCount * morphedVec4sPerVertex(prim);
       }
     };
     if (mode == Mode::Draw) {
@@ -363,7 +366,7 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
 
 void SceneRenderer::recordMorphPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
   const Slot& slot = slots_[slotIndex];
-  if (slot.morphedVec4s == 0) return;
+  if (std::none_of(slot.batches.begin(), slot.batches.end(), [](const Batch& b) { return b.morphs; })) return;
   const VkPipelineLayout layout = layouts_->morphPipelineLayout();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.morph());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &slot.descriptorSet, 0, nullptr);
