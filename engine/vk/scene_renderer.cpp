@@ -296,7 +296,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
   slot.stats = {static_cast<uint32_t>(slot.batches.size()), static_cast<uint32_t>(instanceScratch_.size()),
                 static_cast<uint32_t>(activeScratch_.size()), static_cast<uint32_t>(jointScratch_.size()),
-                static_cast<uint32_t>(materialScratch_.size())};
+                static_cast<uint32_t>(materialScratch_.size()), static_cast<uint32_t>(weightScratch_.size()),
+                uint64_t{slot.morphedVec4s} * sizeof(glm::vec4)};
   if (!instanceScratch_.empty())
     std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
   if (!activeScratch_.empty())

@@ -68,6 +68,8 @@ struct FrameStats {
   uint32_t activeWeights = 0;  // entries of the active list uploaded this frame
   uint32_t jointMatrices = 0;  // joint matrices uploaded this frame
   uint32_t materials = 0;      // instance material records uploaded this frame
+  uint32_t targetWeights = 0;  // weights uploaded for the morph pre-pass (every target of every instance)
+  uint64_t morphedBytes = 0;   // the morph pre-pass's output buffer: room for every morphed instance vertex
 };
 
 class SceneRenderer {
