@@ -168,11 +168,12 @@ int runBenchFrames(const BenchFramesOptions& o) {
               double(view.camera.distance), stats.draws,
               stats.activeWeights, offscreen.hasGpuTimestamps() ? "yes" : "no");
   // Memory: what the face asset holds on the device, and what one more
-  // instance adds (its GPU records, active list and joint matrices uploaded
-  // per frame, plus its CPU weight vector).
+  // instance adds (its GPU records, active list, target weights and joint
+  // matrices uploaded per frame, its morphed vertices, plus its CPU weight vector).
   const double perInstance =
       double(size_t(stats.instances) * sizeof(eng::vk::GpuInstance) +
-             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4)) /
+             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4) +
+             size_t(stats.targetWeights) * sizeof(float) + stats.morphedBytes) /
           double(count) +
       double(layout.total() * sizeof(float));
   std::printf("memory: asset_buffer_bytes=%llu per_instance_bytes=%.0f\n",

@@ -10,7 +10,8 @@ struct InstanceData {
   uint jointOffset;    // first joint matrix of this instance's skin in jointMatrices[] (skin.glsl)
   uint jointCount;     // joints of that skin; 0 = not skinned
   uint materialOffset; // first of this instance's records in instanceMaterials[]
-  uint reserved0, reserved1, reserved2;
+  uint weightOffset;   // first of this instance's weights for the drawn mesh in targetWeights[] (morph.glsl)
+  uint reserved1, reserved2;
 };
 
 // A material as one instance draws it this frame (expression-driven colour
@@ -53,7 +54,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData in
 layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
 layout(std430, set = 0, binding = 6) readonly buffer InstanceMaterials { InstanceMaterial instanceMaterials[]; };
 
-// Per-draw constants (one primitive, its material). 36 bytes.
+// Per-draw constants (one primitive, its material). 52 bytes.
 layout(push_constant) uniform DrawConstants {
   float roughness;
   float metallic;
@@ -64,9 +65,14 @@ layout(push_constant) uniform DrawConstants {
   uint captureOffset;     // first captured vertex slot of this draw (capture variant only)
   uint jointSets;         // groups of four joint influences per vertex; 0 = not skinned (skin.glsl)
   uint material;          // the primitive's material: instanceMaterials[instance's materialOffset + material]
+  uint morphOffset;       // first vec4 of the draw's morphed vertices (morph.glsl)
+  uint restPosition;      // float offsets of the rest attributes in the vertex buffer (morph.comp)
+  uint restNormal;
+  uint restTangent;
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
 const uint DRAW_FLAG_TANGENT_DELTAS = 2u;
 const uint DRAW_FLAG_DOUBLE_SIDED = 4u;
 const uint DRAW_FLAG_CREASES = 8u;
+const uint DRAW_FLAG_MORPHED = 16u;  // the primitive has sparse deltas: morph.comp writes its vertices

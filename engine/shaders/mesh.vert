@@ -1,5 +1,5 @@
 #version 450
-// Morphs one vertex of one instance, skins it (skinned primitives), and
+// Reads one vertex of one instance as morph.comp morphed it, skins it (skinned primitives), and
 // transforms it to clip space.
 // Built three times (see engine/vk/CMakeLists.txt): the render variant; with
 // SHADOW_PASS the key light's shadow-map variant (position only); with
@@ -33,11 +33,12 @@ layout(location = 5) flat out uint outMaterial;  // index into instanceMaterials
 void main() {
   uint vertex = uint(gl_VertexIndex);
   InstanceData inst = instances[gl_InstanceIndex];
-  MorphedVertex m = morphVertex(vertex, inst, inPosition, inNormal, inTangent.xyz);
+  uint instanceInDraw = uint(gl_InstanceIndex) - draw.firstInstance;
+  MorphedVertex m = morphedVertex(vertex, instanceInDraw, inst, inPosition, inNormal, inTangent.xyz);
   skinVertex(vertex, inst, m);
 
 #if defined(MORPH_CAPTURE)
-  uint slot = draw.captureOffset + (uint(gl_InstanceIndex) - draw.firstInstance) * draw.vertexCount + vertex;
+  uint slot = draw.captureOffset + instanceInDraw * draw.vertexCount + vertex;
   captured[slot * 3u + 0u] = vec4(m.position, 1.0);
   captured[slot * 3u + 1u] = vec4(m.normal, 0.0);
   captured[slot * 3u + 2u] = vec4(m.tangent, inTangent.w);

@@ -65,4 +65,16 @@ Result<Buffer> Buffer::createWithData(const Context& ctx, std::span<const std::b
   return buffer;
 }
 
+Result<UniqueBufferView> createTexelView(const Context& ctx, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size,
+                                         VkFormat format) {
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer;
+  info.format = format;
+  info.offset = offset;
+  info.range = size;
+  VkBufferView view = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateBufferView(ctx.device(), &info, nullptr, &view));
+  return UniqueBufferView(ctx.device(), view);
+}
+
 }  // namespace eng::vk

@@ -13,6 +13,10 @@
 
 namespace eng::vk {
 
+// A view of `size` bytes from `offset` as texels of `format`.
+Result<UniqueBufferView> createTexelView(const Context& ctx, VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size,
+                                         VkFormat format);
+
 class Buffer {
  public:
   Buffer() = default;

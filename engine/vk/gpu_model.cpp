@@ -70,17 +70,94 @@ std::string where(const Model& model, size_t mesh, size_t primitive) {
   return file + ": mesh " + std::to_string(mesh) + " primitive " + std::to_string(primitive);
 }
 
-// Target-major, vertex-minor float-tight deltas of one attribute (see morph.glsl).
-template <class Select>
-VkDeviceSize appendDeltas(ByteBlob& blob, const Primitive& prim, Select select, VkDeviceSize alignment) {
-  const size_t vertexCount = prim.vertexCount();
-  const size_t targetBytes = vertexCount * sizeof(glm::vec3);
-  const VkDeviceSize offset = blob.append(nullptr, targetBytes * prim.targets.size(), alignment);
-  for (size_t t = 0; t < prim.targets.size(); ++t) {
-    const std::vector<glm::vec3>& deltas = select(prim.targets[t]);
-    if (!deltas.empty()) std::memcpy(blob.range(offset + t * targetBytes, targetBytes).data(), deltas.data(), targetBytes);
+// Target indices travel as float values, exact up to 2^24.
+constexpr size_t kMaxSparseTargets = size_t{1} << 24;
+
+// The sparse, vertex-major deltas of one primitive (morph.glsl): per vertex
+// the first of its entries (vertexCount + 1 offsets), and one entry per
+// (vertex, target) pair that moves a position, normal or tangent or darkens
+// a crease, in target order.
+struct SparseDeltas {
+  std::vector<uint32_t> offsets;
+  // Per entry (morph.glsl): position delta + target index (as a float), normal delta +
+  // crease darkening, then the tangent delta where the primitive has tangent deltas.
+  std::vector<glm::vec4> entries;
+  bool hasNormals = false, hasTangents = false, hasCreases = false;
+};
+
+SparseDeltas compactDeltas(const Primitive& prim) {
+  SparseDeltas out;
+  for (const MorphTarget& t : prim.targets) {
+    out.hasNormals |= !t.normals.empty();
+    out.hasTangents |= !t.tangents.empty();
   }
-  return offset;
+  const std::vector<float> darkening = bakeCreaseDarkening(prim);
+  out.hasCreases = hasCreases(darkening);
+  const size_t n = prim.vertexCount();
+  auto at = [](const std::vector<glm::vec3>& deltas, size_t v) { return deltas.empty() ? glm::vec3(0.0f) : deltas[v]; };
+  out.offsets.reserve(n + 1);
+  for (size_t v = 0; v < n; ++v) {
+    out.offsets.push_back(static_cast<uint32_t>(out.entries.size() / (out.hasTangents ? 3 : 2)));
+    for (size_t t = 0; t < prim.targets.size(); ++t) {
+      const MorphTarget& target = prim.targets[t];
+      const glm::vec3 position = at(target.positions, v), normal = at(target.normals, v);
+      const glm::vec3 tangent = at(target.tangents, v);
+      const float crease = out.hasCreases ? darkening[t * n + v] : 0.0f;
+      if (position == glm::vec3(0.0f) && normal == glm::vec3(0.0f) && tangent == glm::vec3(0.0f) && crease == 0.0f)
+        continue;  // adds exactly nothing
+      // The index as a float value, not its bits (small integers' bits are
+      // denormals, which a GPU's texel fetch may flush); exact below 2^24.
+      out.entries.emplace_back(position, static_cast<float>(t));
+      out.entries.emplace_back(normal, crease);
+      if (out.hasTangents) out.entries.emplace_back(tangent, 0.0f);
+    }
+  }
+  out.offsets.push_back(static_cast<uint32_t>(out.entries.size() / (out.hasTangents ? 3 : 2)));
+  return out;
+}
+
+}  // namespace
+
+// Byte ranges of one primitive's data in the staging blobs (declared in gpu_model.h).
+struct PrimitiveRanges {
+  VkDeviceSize morphOffsets = 0, morphOffsetsSize = 0;  // size 0: no deltas
+  VkDeviceSize morphEntries = 0, morphEntriesSize = 0;
+  VkDeviceSize rest = 0, restSize = 0;  // rest position .. tangent arrays in the vertex buffer
+  VkDeviceSize detail = 0;
+  VkDeviceSize skin = 0;
+};
+
+namespace {
+
+
+// Vertex and index arrays of one primitive. The position array starts at a
+// storage-buffer offset: the morph pre-pass reads position .. tangent as one
+// storage range (DrawConstants::rest* are float offsets into it).
+GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, VkDeviceSize storageAlign,
+                            PrimitiveRanges& ranges) {
+  const size_t n = prim.vertexCount();
+  GpuPrimitive gp;
+  gp.vertexCount = static_cast<uint32_t>(n);
+  gp.indexCount = static_cast<uint32_t>(prim.indices.size());
+  gp.positionOffset = vertices.append(std::span(prim.positions), storageAlign);
+  gp.normalOffset = vertices.append(std::span(prim.normals), 16);
+  gp.texcoordOffset = prim.texcoords.empty() ? vertices.append(nullptr, n * sizeof(glm::vec2), 16)
+                                             : vertices.append(std::span(prim.texcoords), 16);
+  gp.tangentOffset = prim.tangents.empty() ? vertices.append(nullptr, n * sizeof(glm::vec4), 16)
+                                           : vertices.append(std::span(prim.tangents), 16);
+  ranges.rest = gp.positionOffset;
+  ranges.restSize = gp.tangentOffset + n * sizeof(glm::vec4) - gp.positionOffset;
+  gp.constants.restPosition = 0;
+  gp.constants.restNormal = static_cast<uint32_t>((gp.normalOffset - gp.positionOffset) / sizeof(float));
+  gp.constants.restTangent = static_cast<uint32_t>((gp.tangentOffset - gp.positionOffset) / sizeof(float));
+  if (prim.colors.size() == n) {
+    gp.colorOffset = vertices.append(std::span(prim.colors), 16);
+  } else {
+    const std::vector<glm::vec4> white(n, glm::vec4(1.0f));
+    gp.colorOffset = vertices.append(std::span(white), 16);
+  }
+  gp.indexOffset = indices.append(std::span(prim.indices), 16);
+  return gp;
 }
 
 // Joint influences as skin.glsl reads them: per vertex and group of four,
@@ -94,12 +171,27 @@ VkDeviceSize appendInfluences(ByteBlob& blob, const Primitive& prim, VkDeviceSiz
   return blob.append(std::span<const glm::uvec4>(packed), alignment);
 }
 
-struct DeltaRanges {
-  VkDeviceSize position = 0, normal = 0, tangent = 0, crease = 0;
-  VkDeviceSize size = 0;         // bytes of one attribute's range
-  VkDeviceSize creaseSize = 0;   // bytes of the crease darkening
-  bool hasTargets = false, hasNormals = false, hasTangents = false;
-};
+// The detail layers of a primitive's material, by target index among the
+// mesh's targets (UINT32_MAX never matches an active target, so a missing
+// target reads as weight 0).
+std::vector<GpuDetailLayer> detailLayers(const Model& model, size_t m, size_t p, const Material& mat) {
+  const Mesh& mesh = model.meshes[m];
+  std::vector<GpuDetailLayer> layers;
+  for (const DetailLayer& layer : mat.detailLayers) {
+    auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), layer.target);
+    if (it == mesh.targetNames.end())
+      logWarning(where(model, m, p) + ": detail layer target '" + layer.target +
+                 "' is not a morph target of this mesh; the layer stays hidden");
+    layers.push_back({it == mesh.targetNames.end() ? UINT32_MAX
+                                                   : static_cast<uint32_t>(it - mesh.targetNames.begin()),
+                      layer.strength});
+  }
+  return layers;
+}
+
+VkDescriptorBufferInfo rangeOr(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkBuffer placeholder) {
+  return size > 0 ? VkDescriptorBufferInfo{buffer, offset, size} : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
+}
 
 }  // namespace
 
@@ -191,6 +283,12 @@ Result<void> validateModelForGpu(const Model& model) {
   return {};
 }
 
+// What create() stages before anything reaches the device.
+struct GpuModel::Staging {
+  ByteBlob vertices, indices, deltas, detail, skin;
+  std::vector<std::vector<PrimitiveRanges>> ranges;  // by mesh, then primitive
+};
+
 Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& source) {
   ENG_TRY(validateModelForGpu(source));
   // An untextured face is dressed for display only: the CPU model (what
@@ -201,16 +299,11 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
     dressUntexturedFace(*dressed);
   }
   const Model& model = dressed ? *dressed : source;
-  const std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
-  const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
-  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(limits.minStorageBufferOffsetAlignment, 16);
 
   GpuModel gpu;
-  gpu.name_ = file;
+  gpu.name_ = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
   gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
-  const WeightLayout weightLayout(model);
-  gpu.weightCount_ = weightLayout.total();
-
+  gpu.weightCount_ = WeightLayout(model).total();
   gpu.materialCount_ = static_cast<uint32_t>(source.materials.size());
   for (const Material& mat : model.materials) gpu.materials_.push_back(instanceMaterial(mat));
   gpu.materials_.push_back(instanceMaterial(defaultMaterial()));
@@ -218,86 +311,59 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   gpu.skins_ = model.skins;
   poseWorldMatrices(model, restPose(model), gpu.restWorld_);
 
-  // --- Geometry, deltas and detail-layer parameters, laid out in three blobs ---
+  Staging staging;
+  ENG_TRY(gpu.stageMeshes(ctx, model, staging));
+  ENG_TRY(gpu.uploadBuffers(ctx, staging));
+  ENG_TRY(gpu.uploadTextures(ctx, model));
+  ENG_TRY(gpu.createDescriptorSets(ctx, layouts, model, staging));
+  return gpu;
+}
+
+// Lays every primitive's geometry, sparse deltas, detail-layer parameters and
+// joint influences out in the staging blobs, and fills meshes_.
+Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Staging& staging) {
+  const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
+  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(
+      {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
+  const WeightLayout weightLayout(model);
   const Material fallback = defaultMaterial();
-  ByteBlob vertexBlob, indexBlob, deltaBlob, detailBlob, skinBlob;
-  std::vector<std::vector<VkDeviceSize>> skinOffsets(model.meshes.size());
-  std::vector<std::vector<DeltaRanges>> deltaRanges(model.meshes.size());
-  std::vector<std::vector<VkDeviceSize>> detailOffsets(model.meshes.size());
-  gpu.meshes_.resize(model.meshes.size());
-  size_t primitiveCount = 0;
+  meshes_.resize(model.meshes.size());
+  staging.ranges.resize(model.meshes.size());
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const Mesh& mesh = model.meshes[m];
-    GpuMesh& gm = gpu.meshes_[m];
+    GpuMesh& gm = meshes_[m];
     gm.name = mesh.name;
     gm.targetCount = static_cast<uint32_t>(mesh.targetNames.size());
     gm.weightOffset = weightLayout.offset(static_cast<int>(m));
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
-      const size_t n = prim.vertexCount();
-      GpuPrimitive gp;
-      gp.vertexCount = static_cast<uint32_t>(n);
-      gp.indexCount = static_cast<uint32_t>(prim.indices.size());
-      gp.positionOffset = vertexBlob.append(std::span(prim.positions), 16);
-      gp.normalOffset = vertexBlob.append(std::span(prim.normals), 16);
-      gp.texcoordOffset = prim.texcoords.empty() ? vertexBlob.append(nullptr, n * sizeof(glm::vec2), 16)
-                                                 : vertexBlob.append(std::span(prim.texcoords), 16);
-      gp.tangentOffset = prim.tangents.empty() ? vertexBlob.append(nullptr, n * sizeof(glm::vec4), 16)
-                                               : vertexBlob.append(std::span(prim.tangents), 16);
-      if (prim.colors.size() == n) {
-        gp.colorOffset = vertexBlob.append(std::span(prim.colors), 16);
-      } else {
-        const std::vector<glm::vec4> white(n, glm::vec4(1.0f));
-        gp.colorOffset = vertexBlob.append(std::span(white), 16);
-      }
-      gp.indexOffset = indexBlob.append(std::span(prim.indices), 16);
+      PrimitiveRanges& ranges = staging.ranges[m].emplace_back();
+      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, storageAlign, ranges);
 
-      DeltaRanges ranges;
-      ranges.hasTargets = !prim.targets.empty();
-      ranges.size = prim.targets.size() * n * sizeof(glm::vec3);
-      for (const MorphTarget& t : prim.targets) {
-        ranges.hasNormals |= !t.normals.empty();
-        ranges.hasTangents |= !t.tangents.empty();
-      }
-      if (ranges.hasTargets && ranges.size > limits.maxStorageBufferRange)
+      if (prim.targets.size() > kMaxSparseTargets)
+        return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) +
+                         " morph targets, more than the " + std::to_string(kMaxSparseTargets) +
+                         " a sparse delta entry can name");
+      const SparseDeltas sparse = compactDeltas(prim);
+      const VkDeviceSize entryBytes = sparse.entries.size() * sizeof(glm::vec4);
+      const size_t texels = std::max(sparse.entries.size(), size_t(ranges.restSize / sizeof(float)));
+      if (!sparse.entries.empty() && texels > limits.maxTexelBufferElements)
         return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
-                         std::to_string(n) + " vertices need " + std::to_string(ranges.size) +
-                         " bytes of deltas per attribute, the device allows " +
-                         std::to_string(limits.maxStorageBufferRange));
-      if (ranges.hasTargets)
-        ranges.position = appendDeltas(deltaBlob, prim, [](const MorphTarget& t) -> auto& { return t.positions; },
-                                       storageAlign);
-      if (ranges.hasNormals)
-        ranges.normal = appendDeltas(deltaBlob, prim, [](const MorphTarget& t) -> auto& { return t.normals; },
-                                     storageAlign);
-      if (ranges.hasTangents)
-        ranges.tangent = appendDeltas(deltaBlob, prim, [](const MorphTarget& t) -> auto& { return t.tangents; },
-                                      storageAlign);
-      if (ranges.hasTargets) {
-        const std::vector<float> darkening = bakeCreaseDarkening(prim);
-        if (hasCreases(darkening)) {
-          ranges.creaseSize = darkening.size() * sizeof(float);
-          ranges.crease = deltaBlob.append(std::span<const float>(darkening), storageAlign);
-        }
+                         std::to_string(prim.vertexCount()) + " vertices need texel buffers of " +
+                         std::to_string(texels) + " elements for morphing, the device allows " +
+                         std::to_string(limits.maxTexelBufferElements));
+      if (!sparse.entries.empty()) {
+        ranges.morphOffsetsSize = sparse.offsets.size() * sizeof(uint32_t);
+        ranges.morphOffsets = staging.deltas.append(std::span<const uint32_t>(sparse.offsets), storageAlign);
+        ranges.morphEntriesSize = entryBytes;
+        ranges.morphEntries = staging.deltas.append(std::span<const glm::vec4>(sparse.entries), storageAlign);
       }
-      deltaRanges[m].push_back(ranges);
       gp.constants.jointSets = static_cast<uint32_t>(prim.influenceSets());
-      skinOffsets[m].push_back(gp.constants.jointSets > 0 ? appendInfluences(skinBlob, prim, storageAlign) : 0);
+      if (gp.constants.jointSets > 0) ranges.skin = appendInfluences(staging.skin, prim, storageAlign);
 
       const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
-      std::vector<GpuDetailLayer> layers;
-      for (const DetailLayer& layer : mat.detailLayers) {
-        auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), layer.target);
-        if (it == mesh.targetNames.end())
-          logWarning(where(model, m, p) + ": detail layer target '" + layer.target +
-                     "' is not a morph target of this mesh; the layer stays hidden");
-        // UINT32_MAX never matches an active target, so a missing target reads as weight 0.
-        layers.push_back({it == mesh.targetNames.end() ? UINT32_MAX
-                                                       : static_cast<uint32_t>(it - mesh.targetNames.begin()),
-                          layer.strength});
-      }
-      detailOffsets[m].push_back(layers.empty() ? 0 : detailBlob.append(std::span<const GpuDetailLayer>(layers),
-                                                                        storageAlign));
+      const std::vector<GpuDetailLayer> layers = detailLayers(model, m, p, mat);
+      if (!layers.empty()) ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(layers), storageAlign);
 
       gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
                                                  : static_cast<uint32_t>(model.materials.size());
@@ -305,44 +371,52 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
       gp.constants.metallic = mat.metallic;
       gp.constants.detailLayerCount = static_cast<uint32_t>(mat.detailLayers.size());
       gp.constants.vertexCount = gp.vertexCount;
-      gp.constants.flags = (ranges.hasNormals ? kDrawFlagNormalDeltas : 0u) |
-                           (ranges.hasTangents ? kDrawFlagTangentDeltas : 0u) |
+      gp.constants.flags = (sparse.hasNormals ? kDrawFlagNormalDeltas : 0u) |
+                           (sparse.hasTangents ? kDrawFlagTangentDeltas : 0u) |
                            (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
-                           (ranges.creaseSize > 0 ? kDrawFlagCreases : 0u);
+                           (sparse.hasCreases ? kDrawFlagCreases : 0u) |
+                           (sparse.entries.empty() ? 0u : kDrawFlagMorphed);
       gm.primitives.push_back(gp);
-      ++primitiveCount;
     }
   }
+  return {};
+}
 
+Result<void> GpuModel::uploadBuffers(const Context& ctx, const Staging& staging) {
   auto upload = [&](const ByteBlob& blob, VkBufferUsageFlags usage, const char* what, Buffer& out) -> Result<void> {
     if (blob.empty()) return {};
-    const std::string name = file + " " + what;
-    auto buffer = Buffer::createWithData(ctx, blob.bytes(), usage, name.c_str());
-    if (!buffer) return buffer.error().prefixed(file + ": uploading " + what + ": ");
+    const std::string label = name_ + " " + what;
+    auto buffer = Buffer::createWithData(ctx, blob.bytes(), usage, label.c_str());
+    if (!buffer) return buffer.error().prefixed(name_ + ": uploading " + what + ": ");
     out = std::move(buffer).value();
     return {};
   };
-  ENG_TRY(upload(vertexBlob, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices", gpu.vertices_));
-  ENG_TRY(upload(indexBlob, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", gpu.indices_));
-  ENG_TRY(upload(deltaBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "morph deltas", gpu.deltas_));
-  ENG_TRY(upload(detailBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "detail layers", gpu.detailLayers_));
-  ENG_TRY(upload(skinBlob, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint influences", gpu.skinInfluences_));
+  // Vertices are also storage: the morph pre-pass reads the rest attributes.
+  ENG_TRY(upload(staging.vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                 "vertices", vertices_));
+  ENG_TRY(upload(staging.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", indices_));
+  ENG_TRY(upload(staging.deltas, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "morph deltas", deltas_));
+  ENG_TRY(upload(staging.detail, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "detail layers", detailLayers_));
+  ENG_TRY(upload(staging.skin, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint influences", skinInfluences_));
+  return {};
+}
 
-  // --- Textures: base colour images once each, one detail array per material ---
-  gpu.textures_.resize(model.images.size());
+// Base colour images once each, one detail array per material.
+Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
+  textures_.resize(model.images.size());
   for (const Material& mat : model.materials) {
     if (mat.baseColorImage < 0) continue;
     const eng::Image& img = model.images[static_cast<size_t>(mat.baseColorImage)];
-    GpuImage& tex = gpu.textures_[static_cast<size_t>(mat.baseColorImage)];
+    GpuImage& tex = textures_[static_cast<size_t>(mat.baseColorImage)];
     if (tex || img.rgba8.empty()) continue;  // already uploaded, or undecodable (loader warned): white
     const std::array<std::span<const uint8_t>, 1> layer{img.rgba8};
-    const std::string name = file + " image '" + img.name + "'";
+    const std::string label = name_ + " image '" + img.name + "'";
     auto texture = createTexture(ctx, {static_cast<uint32_t>(img.width), static_cast<uint32_t>(img.height), layer,
-                                       VK_IMAGE_VIEW_TYPE_2D, name.c_str()});
-    if (!texture) return texture.error().prefixed(file + ": ");
+                                       VK_IMAGE_VIEW_TYPE_2D, label.c_str()});
+    if (!texture) return texture.error().prefixed(name_ + ": ");
     tex = std::move(texture).value();
   }
-  gpu.detailArrays_.resize(model.materials.size());
+  detailArrays_.resize(model.materials.size());
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const Material& mat = model.materials[i];
     const bool usable = !mat.detailLayers.empty() &&
@@ -351,14 +425,20 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
                         });
     if (!usable) continue;
     auto array = createDetailArray(ctx, model, mat);
-    if (!array) return array.error().prefixed(file + ": ");
-    gpu.detailArrays_[i] = std::move(array).value();
+    if (!array) return array.error().prefixed(name_ + ": ");
+    detailArrays_[i] = std::move(array).value();
   }
+  return {};
+}
 
-  // --- Descriptor sets, one per primitive ---
-  if (primitiveCount == 0) return gpu;
-  const uint32_t sets = static_cast<uint32_t>(primitiveCount);
-  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * sets},
+// One descriptor set per primitive (set 1, scene_layouts.h).
+Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                           const Staging& staging) {
+  uint32_t sets = 0;
+  for (const GpuMesh& mesh : meshes_) sets += static_cast<uint32_t>(mesh.primitives.size());
+  if (sets == 0) return {};
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
@@ -366,71 +446,73 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   poolInfo.pPoolSizes = poolSizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
-  gpu.descriptorPool_ = UniqueDescriptorPool(ctx.device(), pool);
+  descriptorPool_ = UniqueDescriptorPool(ctx.device(), pool);
 
-  const VkBuffer placeholder = layouts.placeholderBuffer().handle();
-  for (size_t m = 0; m < gpu.meshes_.size(); ++m) {
-    for (size_t p = 0; p < gpu.meshes_[m].primitives.size(); ++p) {
-      GpuPrimitive& gp = gpu.meshes_[m].primitives[p];
-      const Primitive& prim = model.meshes[m].primitives[p];
-      const DeltaRanges& r = deltaRanges[m][p];
-      const VkDescriptorSetLayout setLayout = layouts.primitiveSetLayout();
+  const VkDescriptorSetLayout setLayout = layouts.primitiveSetLayout();
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    for (size_t p = 0; p < meshes_[m].primitives.size(); ++p) {
+      GpuPrimitive& gp = meshes_[m].primitives[p];
       VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
       alloc.descriptorPool = pool;
       alloc.descriptorSetCount = 1;
       alloc.pSetLayouts = &setLayout;
       ENG_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &alloc, &gp.descriptorSet));
-
-      auto deltaInfo = [&](bool present, VkDeviceSize offset) {
-        return present ? VkDescriptorBufferInfo{gpu.deltas_.handle(), offset, r.size}
-                       : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
+      const PrimitiveRanges& ranges = staging.ranges[m][p];
+      auto texelView = [&](VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkFormat format,
+                           VkBufferView placeholder) -> Result<VkBufferView> {
+        if (size == 0) return placeholder;
+        auto view = createTexelView(ctx, buffer, offset, size, format);
+        if (!view) return view.error().prefixed(name_ + ": ");
+        return texelViews_.emplace_back(std::move(view).value()).get();
       };
-      const VkDescriptorBufferInfo positions = deltaInfo(r.hasTargets, r.position);
-      const VkDescriptorBufferInfo normals = deltaInfo(r.hasNormals, r.normal);
-      const VkDescriptorBufferInfo tangents = deltaInfo(r.hasTangents, r.tangent);
-      const VkDescriptorBufferInfo creases = r.creaseSize > 0
-                                                 ? VkDescriptorBufferInfo{gpu.deltas_.handle(), r.crease, r.creaseSize}
-                                                 : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
-      const int materialIndex = prim.material;
-      const GpuImage* base = &layouts.whiteTexture();
-      const GpuImage* detail = &layouts.emptyDetailArray();
-      if (materialIndex >= 0) {
-        const Material& mat = model.materials[static_cast<size_t>(materialIndex)];
-        if (mat.baseColorImage >= 0 && gpu.textures_[static_cast<size_t>(mat.baseColorImage)])
-          base = &gpu.textures_[static_cast<size_t>(mat.baseColorImage)];
-        if (gpu.detailArrays_[static_cast<size_t>(materialIndex)])
-          detail = &gpu.detailArrays_[static_cast<size_t>(materialIndex)];
-        else
-          gp.constants.detailLayerCount = 0;  // layers without decodable images stay off
-      }
-      const VkDescriptorImageInfo baseInfo{layouts.sampler(), base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-      const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(),
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-      const VkDescriptorBufferInfo detailParams =
-          gp.constants.detailLayerCount > 0
-              ? VkDescriptorBufferInfo{gpu.detailLayers_.handle(), detailOffsets[m][p],
-                                       gp.constants.detailLayerCount * sizeof(GpuDetailLayer)}
-              : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
-      const VkDescriptorBufferInfo influences =
-          gp.constants.jointSets > 0
-              ? VkDescriptorBufferInfo{gpu.skinInfluences_.handle(), skinOffsets[m][p],
-                                       prim.joints.size() * 2 * sizeof(glm::uvec4)}
-              : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
-
-      const std::array writes{
-          bufferWrite(gp.descriptorSet, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &positions),
-          bufferWrite(gp.descriptorSet, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &normals),
-          bufferWrite(gp.descriptorSet, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &tangents),
-          imageWrite(gp.descriptorSet, 3, &baseInfo),
-          imageWrite(gp.descriptorSet, 4, &detailInfo),
-          bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
-          bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
-          bufferWrite(gp.descriptorSet, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &creases),
-      };
-      vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+      const bool morphs = ranges.morphEntriesSize > 0;
+      auto offsets = texelView(deltas_.handle(), ranges.morphOffsets, ranges.morphOffsetsSize, VK_FORMAT_R32_UINT,
+                               layouts.placeholderUintTexels());
+      if (!offsets) return offsets.error();
+      auto entries = texelView(deltas_.handle(), ranges.morphEntries, ranges.morphEntriesSize,
+                               VK_FORMAT_R32G32B32A32_SFLOAT, layouts.placeholderVec4Texels());
+      if (!entries) return entries.error();
+      auto rest = texelView(vertices_.handle(), ranges.rest, morphs ? ranges.restSize : 0, VK_FORMAT_R32_SFLOAT,
+                            layouts.placeholderFloatTexels());
+      if (!rest) return rest.error();
+      writePrimitiveSet(ctx, layouts, model, model.meshes[m].primitives[p], ranges, {*offsets, *entries, *rest}, gp);
     }
   }
-  return gpu;
+  return {};
+}
+
+void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                 const Primitive& prim, const PrimitiveRanges& r, const MorphInputViews& morph,
+                                 GpuPrimitive& gp) const {
+  const GpuImage* base = &layouts.whiteTexture();
+  const GpuImage* detail = &layouts.emptyDetailArray();
+  if (prim.material >= 0) {
+    const size_t material = static_cast<size_t>(prim.material);
+    const int image = model.materials[material].baseColorImage;
+    if (image >= 0 && textures_[static_cast<size_t>(image)]) base = &textures_[static_cast<size_t>(image)];
+    if (detailArrays_[material])
+      detail = &detailArrays_[material];
+    else
+      gp.constants.detailLayerCount = 0;  // layers without decodable images stay off
+  }
+  const VkBuffer placeholder = layouts.placeholderBuffer().handle();
+  const VkDescriptorImageInfo baseInfo{layouts.sampler(), base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorBufferInfo detailParams = rangeOr(
+      detailLayers_.handle(), r.detail, gp.constants.detailLayerCount * sizeof(GpuDetailLayer), placeholder);
+  const VkDescriptorBufferInfo influences =
+      rangeOr(skinInfluences_.handle(), r.skin,
+              gp.constants.jointSets > 0 ? prim.joints.size() * 2 * sizeof(glm::uvec4) : 0, placeholder);
+  const std::array writes{
+      texelBufferWrite(gp.descriptorSet, 0, &morph.offsets),
+      texelBufferWrite(gp.descriptorSet, 1, &morph.entries),
+      texelBufferWrite(gp.descriptorSet, 2, &morph.rest),
+      imageWrite(gp.descriptorSet, 3, &baseInfo),
+      imageWrite(gp.descriptorSet, 4, &detailInfo),
+      bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
+      bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
+  };
+  vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
 void GpuModel::jointMatrices(const MeshNode& node, std::span<const glm::mat4> world, std::vector<glm::mat4>& out) const {

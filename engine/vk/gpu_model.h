@@ -1,6 +1,6 @@
 #pragma once
 // A Model uploaded for drawing: one vertex buffer, one index buffer, one
-// storage buffer of morph deltas (layout in engine/shaders/morph.glsl), one
+// storage buffer of sparse morph deltas (layout in engine/shaders/morph.glsl), one
 // of joint influences (skin.glsl), textures, and one descriptor set per
 // primitive; the skins and the node hierarchy's rest pose stay on the CPU to
 // make each frame's joint matrices. Immutable once created;
@@ -47,6 +47,7 @@ struct GpuMesh {
   std::vector<GpuPrimitive> primitives;
 };
 
+struct PrimitiveRanges;  // gpu_model.cpp: where create() staged one primitive's data
 
 class GpuModel {
  public:
@@ -83,6 +84,20 @@ class GpuModel {
   VkBuffer indexBuffer() const { return indices_.handle(); }
 
  private:
+  struct Staging;
+  // The morph pre-pass's texel buffers of one primitive (set 1 bindings 0-2).
+  struct MorphInputViews {
+    VkBufferView offsets, entries, rest;
+  };
+  // The steps of create(), in order.
+  Result<void> stageMeshes(const Context& ctx, const Model& model, Staging& staging);
+  Result<void> uploadBuffers(const Context& ctx, const Staging& staging);
+  Result<void> uploadTextures(const Context& ctx, const Model& model);
+  Result<void> createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                    const Staging& staging);
+  void writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model, const Primitive& prim,
+                         const PrimitiveRanges& ranges, const MorphInputViews& morph, GpuPrimitive& gp) const;
+
   std::string name_;
   std::vector<GpuMesh> meshes_;
   std::vector<MeshNode> meshNodes_;
@@ -99,6 +114,7 @@ class GpuModel {
   std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
+  std::vector<UniqueBufferView> texelViews_;  // the morph pre-pass's inputs of the primitives with deltas
   UniqueDescriptorPool descriptorPool_;
 };
 

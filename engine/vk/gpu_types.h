@@ -22,7 +22,8 @@ struct GpuInstance {
   uint32_t jointOffset = 0;  // first joint matrix of the instance's skin (skin.glsl)
   uint32_t jointCount = 0;   // 0 = not skinned
   uint32_t materialOffset = 0;  // first of the instance's material records (InstanceMaterial)
-  uint32_t reserved[3] = {};    // std430 rounds the struct to 16 bytes
+  uint32_t weightOffset = 0;    // first weight of the drawn mesh's targets in the slot's target weights (morph.glsl)
+  uint32_t reserved[2] = {};    // std430 rounds the struct to 16 bytes
 };
 static_assert(sizeof(GpuInstance) == 160);
 
@@ -71,14 +72,21 @@ struct DrawConstants {
   uint32_t captureOffset = 0;
   uint32_t jointSets = 0;  // groups of four joint influences per vertex, 0 = not skinned
   uint32_t material = 0;   // the primitive's record among its instance's InstanceMaterial records
+  uint32_t morphOffset = 0;  // first vec4 of the draw's morphed vertices (morph.glsl)
+  // Float offsets of the rest position, normal and tangent arrays in the
+  // model's vertex buffer (the morph pre-pass reads them as storage).
+  uint32_t restPosition = 0;
+  uint32_t restNormal = 0;
+  uint32_t restTangent = 0;
 };
-static_assert(sizeof(DrawConstants) == 36);
+static_assert(sizeof(DrawConstants) == 52);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,
   kDrawFlagTangentDeltas = 2u,
   kDrawFlagDoubleSided = 4u,
-  kDrawFlagCreases = 8u,  // the primitive has crease darkening (set 1 binding 7)
+  kDrawFlagCreases = 8u,  // the primitive has crease darkening (in its sparse delta entries)
+  kDrawFlagMorphed = 16u, // the primitive has sparse deltas: the morph pre-pass writes its vertices
 };
 
 struct GpuDetailLayer {

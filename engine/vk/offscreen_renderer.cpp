@@ -105,7 +105,7 @@ Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<co
 
 Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(target_.render({{},
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordMorphPass(cmd, 0); },
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
                           [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }}));
   return scene_.readCapture(0);
@@ -113,9 +113,22 @@ Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<cons
 
 Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { timestamps_.recordStart(cmd); },
+  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) {
+                            timestamps_.recordStart(cmd);
+                            scene_.recordMorphPass(cmd, 0);
+                          },
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
                           [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false}));
+  return timestamps_.readMilliseconds();
+}
+
+Result<std::optional<double>> OffscreenRenderer::morphTimed(std::span<const ModelInstance> instances) {
+  ENG_TRY(scene_.prepare(0, FrameGlobals{}, instances));
+  ENG_TRY(ctx_->submitOneShot([&](VkCommandBuffer cmd) {
+    timestamps_.recordStart(cmd);
+    scene_.recordMorphPass(cmd, 0);
+    timestamps_.recordEnd(cmd);
+  }));
   return timestamps_.readMilliseconds();
 }
 

@@ -52,11 +52,14 @@ class OffscreenRenderer {
   bool hasGpuTimestamps() const { return timestamps_.supported(); }
   // Morphed vertices the GPU computes for each (instance, mesh, primitive).
   Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
-  // The morph pass alone, for benchmarks: every vertex of every instance
-  // morphed (and skinned) once by the vertex shader and stored, no
-  // rasterisation, nothing read back; the GPU time in ms where the device has
-  // timestamps. Needs canCapture().
+  // The morph and capture passes, for benchmarks: every vertex of every
+  // instance morphed once by the compute pre-pass, then read (and skinned)
+  // by the vertex shader and stored, no rasterisation, nothing read back; the
+  // GPU time in ms where the device has timestamps. Needs canCapture().
   Result<std::optional<double>> captureTimed(std::span<const ModelInstance> instances);
+  // The morph pre-pass alone, as every frame runs it once (benchmarks); the
+  // GPU time in ms where the device has timestamps.
+  Result<std::optional<double>> morphTimed(std::span<const ModelInstance> instances);
 
   FrameStats lastFrameStats() const { return scene_.stats(0); }
   // Recompiles the shaders if their sources changed and rebuilds the

@@ -1,6 +1,7 @@
 #include "engine/vk/render_pass.h"
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "engine/vk/vk_result.h"
@@ -27,6 +28,25 @@ VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBit
   }
   return best;
 }
+
+namespace {
+
+Result<UniqueRenderPass> createOneSubpassPass(const Context& ctx, std::span<const VkAttachmentDescription> attachments,
+                                              const VkSubpassDescription& subpass,
+                                              std::span<const VkSubpassDependency> dependencies) {
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = static_cast<uint32_t>(attachments.size());
+  info.pAttachments = attachments.data();
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
+  info.pDependencies = dependencies.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
+  return UniqueRenderPass(ctx.device(), pass);
+}
+
+}  // namespace
 
 Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
                                                VkImageLayout finalLayout) {
@@ -95,16 +115,35 @@ Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetF
                           VK_ACCESS_TRANSFER_READ_BIT, 0},
   };
 
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = static_cast<uint32_t>(attachments.size());
-  info.pAttachments = attachments.data();
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = static_cast<uint32_t>(dependencies.size());
-  info.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &info, nullptr, &pass));
-  return UniqueRenderPass(ctx.device(), pass);
+  return createOneSubpassPass(ctx, attachments, subpass, dependencies);
+}
+
+Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout) {
+  VkAttachmentDescription attachment{};
+  attachment.format = color;
+  attachment.samples = VK_SAMPLE_COUNT_1_BIT;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  attachment.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  attachment.finalLayout = finalLayout;
+  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &colorRef;
+  constexpr VkAccessFlags kColorAccess = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  const std::array dependencies{
+      // The blit that filled the image, before the overlay loads and draws over it.
+      VkSubpassDependency{VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, kColorAccess, 0},
+      // Screenshots copy the image after the pass.
+      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                          VK_ACCESS_TRANSFER_READ_BIT, 0},
+  };
+  return createOneSubpassPass(ctx, {&attachment, 1}, subpass, dependencies);
 }
 
 }  // namespace eng::vk

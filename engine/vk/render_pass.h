@@ -27,4 +27,9 @@ VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBit
 Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
                                                VkImageLayout finalLayout);
 
+// One single-sample colour attachment drawn over what a transfer (a blit of
+// the 3D view) left in it: starts in TRANSFER_DST_OPTIMAL, loads, ends in
+// `finalLayout`, and may be copied from right after the pass.
+Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout);
+
 }  // namespace eng::vk

@@ -134,6 +134,15 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
   return UniquePipeline(ctx.device(), pipeline);
 }
 
+Result<UniquePipeline> createMorphPipeline(const Context& ctx, const SceneLayouts& layouts, VkShaderModule module) {
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = stage(VK_SHADER_STAGE_COMPUTE_BIT, module);
+  info.layout = layouts.morphPipelineLayout();
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  return UniquePipeline(ctx.device(), pipeline);
+}
+
 }  // namespace
 
 Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLayouts& layouts,
@@ -190,6 +199,12 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   auto shadowPipeline = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
   if (!shadowPipeline) return shadowPipeline.error();
   p.shadow_ = std::move(shadowPipeline).value();
+
+  auto morphComp = createModule(ctx, shaders, "morph_comp");
+  if (!morphComp) return morphComp.error();
+  auto morph = createMorphPipeline(ctx, layouts, morphComp->get());
+  if (!morph) return morph.error();
+  p.morph_ = std::move(morph).value();
 
   if (ctx.deviceInfo().vertexPipelineStores) {
     auto captureVert = createModule(ctx, shaders, "capture_vert");

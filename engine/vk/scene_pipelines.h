@@ -2,7 +2,7 @@
 // The graphics pipelines of the scene, built from the shader library's
 // current SPIR-V for one render pass: mesh (back-face culled and double
 // sided), background gradient, the key light's shadow-map pass (depth only,
-// its own render pass), and the morph-capture variant (vertex stage only,
+// its own render pass), the morph pre-pass (compute), and the morph-capture variant (vertex stage only,
 // rasteriser discard; absent when the device cannot store from vertex
 // shaders).
 #include <vulkan/vulkan.h>
@@ -26,6 +26,7 @@ class ScenePipelines {
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
   VkPipeline shadow() const { return shadow_.get(); }    // depth only, for the shadow pass
+  VkPipeline morph() const { return morph_.get(); }      // compute: the morph pre-pass (morph.comp)
 
  private:
   UniquePipeline meshCulled_;
@@ -33,6 +34,7 @@ class ScenePipelines {
   UniquePipeline background_;
   UniquePipeline capture_;
   UniquePipeline shadow_;
+  UniquePipeline morph_;
 };
 
 }  // namespace eng::vk

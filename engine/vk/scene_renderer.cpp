@@ -14,6 +14,15 @@
 #include "engine/vk/vk_result.h"
 
 namespace eng::vk {
+namespace {
+
+// The morph pre-pass's output per vertex (morph.glsl): position + crease,
+// normal, and the tangent where the primitive has tangent deltas.
+uint32_t morphedVec4sPerVertex(const GpuPrimitive& prim) {
+  return (prim.constants.flags & kDrawFlagTangentDeltas) != 0 ? 3 : 2;
+}
+
+}  // namespace
 
 Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayouts& layouts,
                                             const ShaderLibrary& shaders, VkRenderPass renderPass,
@@ -40,7 +49,8 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
   r.pipelineGeneration_ = shaders.generation();
 
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameSlots},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * frameSlots},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, frameSlots},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, frameSlots}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = frameSlots;
@@ -78,7 +88,15 @@ Result<SceneRenderer> SceneRenderer::create(const Context& ctx, const SceneLayou
                                     MemoryUsage::Upload, "instance materials");
     if (!materials) return materials.error();
     slot.materials = std::move(materials).value();
-    r.writeDescriptors(slot);
+    auto weights = Buffer::create(ctx, 256 * sizeof(float), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                  MemoryUsage::Upload, "target weights");
+    if (!weights) return weights.error();
+    slot.weights = std::move(weights).value();
+    auto morphed = Buffer::create(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly,
+                                  "morphed vertices");
+    if (!morphed) return morphed.error();
+    slot.morphed = std::move(morphed).value();
+    ENG_TRY(r.writeDescriptors(slot));
   }
   return r;
 }
@@ -91,11 +109,14 @@ Result<void> SceneRenderer::ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceS
   auto grown = Buffer::create(*ctx_, std::max<VkDeviceSize>(size, 256), usage, memory, name);
   if (!grown) return grown.error();
   buffer = std::move(grown).value();
-  writeDescriptors(slot);
-  return {};
+  return writeDescriptors(slot);
 }
 
-void SceneRenderer::writeDescriptors(Slot& slot) const {
+Result<void> SceneRenderer::writeDescriptors(Slot& slot) const {
+  auto weightTexels = createTexelView(*ctx_, slot.weights.handle(), 0, VK_WHOLE_SIZE, VK_FORMAT_R32_SFLOAT);
+  if (!weightTexels) return weightTexels.error();
+  slot.weightTexels = std::move(weightTexels).value();
+  const VkBufferView weights = slot.weightTexels.get();
   const VkDescriptorBufferInfo globals{slot.globals.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo instances{slot.instances.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo active{slot.active.handle(), 0, VK_WHOLE_SIZE};
@@ -103,6 +124,7 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
   const VkDescriptorBufferInfo materials{slot.materials.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo capture{slot.capture ? slot.capture.handle() : layouts_->placeholderBuffer().handle(),
                                        0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo morphed{slot.morphed.handle(), 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo shadow{shadowMap_.sampler(), shadowMap_.view(),
                                      VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
   const std::array writes{
@@ -113,8 +135,11 @@ void SceneRenderer::writeDescriptors(Slot& slot) const {
       imageWrite(slot.descriptorSet, 4, &shadow),
       bufferWrite(slot.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &joints),
       bufferWrite(slot.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials),
+      bufferWrite(slot.descriptorSet, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &morphed),
+      texelBufferWrite(slot.descriptorSet, 8, &weights),
   };
   vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  return {};
 }
 
 Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInstance> instances, Mode mode) {
@@ -125,8 +150,10 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   slot.batches.clear();
   slot.members.clear();
   slot.capturedVertices = 0;
+  slot.morphedVec4s = 0;
   instanceScratch_.clear();
   activeScratch_.clear();
+  weightScratch_.clear();
   jointScratch_.clear();
   materialScratch_.clear();
   modelScratch_.clear();
@@ -177,7 +204,16 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       std::copy(own.begin(), own.end(), materialScratch_.begin() + std::ptrdiff_t(start));
     }
 
-    // The active list of every (instance, mesh): the only per-frame morph data.
+    // Every member's weights as the morph pre-pass reads them: zero where the
+    // active list below has no entry, so both sum the same terms.
+    weightOffsetScratch_.clear();
+    for (uint32_t member : memberScratch_) {
+      weightOffsetScratch_.push_back(static_cast<uint32_t>(weightScratch_.size()));
+      for (float w : instances[member].weights)
+        weightScratch_.push_back(std::abs(w) >= kActiveWeightThreshold ? w : 0.0f);
+    }
+
+    // The active list of every (instance, mesh).
     const std::span<const GpuMesh> meshes = model->meshes();
     rangeScratch_.assign(memberScratch_.size() * meshes.size(), {});
     for (size_t k = 0; k < memberScratch_.size(); ++k) {
@@ -209,6 +245,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         record.activeOffset = range.offset;
         record.activeCount = range.count;
         record.materialOffset = materialOffsetScratch_[k];
+        record.weightOffset = weightOffsetScratch_[k] + meshes[mesh].weightOffset;
         if (node && node->skin >= 0) {
           model->jointMatrices(*node, inst.nodeWorld, skinScratch_);
           record.jointOffset = static_cast<uint32_t>(jointScratch_.size());
@@ -217,9 +254,18 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         }
         instanceScratch_.push_back(record);
       }
+      bool anyActive = false;
+      for (size_t k = 0; k < memberScratch_.size(); ++k) anyActive |= rangeScratch_[k * meshes.size() + mesh].count > 0;
       for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
-        slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices, membersOffset});
-        if (mode == Mode::Capture) slot.capturedVertices += meshes[mesh].primitives[p].vertexCount * instanceCount;
+        const GpuPrimitive& prim = meshes[mesh].primitives[p];
+        const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
+        slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
+                                slot.morphedVec4s, morphs, membersOffset});
+        if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
+        // Room for every primitive with deltas, active or not: the buffer's
+        // size then stays the same from frame to frame for the same instances.
+        if ((prim.constants.flags & kDrawFlagMorphed) != 0)
+          slot.morphedVec4s += prim.vertexCount * instanceCount * morphedVec4sPerVertex(prim);
       }
     };
     if (mode == Mode::Draw) {
@@ -241,18 +287,25 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                          MemoryUsage::Upload, "joint matrices"));
   ENG_TRY(ensureCapacity(slot, slot.materials, materialScratch_.size() * sizeof(InstanceMaterial),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instance materials"));
+  ENG_TRY(ensureCapacity(slot, slot.weights, weightScratch_.size() * sizeof(float),
+                         VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, MemoryUsage::Upload, "target weights"));
+  ENG_TRY(ensureCapacity(slot, slot.morphed, VkDeviceSize{slot.morphedVec4s} * sizeof(glm::vec4),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly, "morphed vertices"));
   if (mode == Mode::Capture)
     ENG_TRY(ensureCapacity(slot, slot.capture, VkDeviceSize{slot.capturedVertices} * sizeof(GpuCapturedVertex),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Readback, "morph capture"));
   slot.stats = {static_cast<uint32_t>(slot.batches.size()), static_cast<uint32_t>(instanceScratch_.size()),
                 static_cast<uint32_t>(activeScratch_.size()), static_cast<uint32_t>(jointScratch_.size()),
-                static_cast<uint32_t>(materialScratch_.size())};
+                static_cast<uint32_t>(materialScratch_.size()), static_cast<uint32_t>(weightScratch_.size()),
+                uint64_t{slot.morphedVec4s} * sizeof(glm::vec4)};
   if (!instanceScratch_.empty())
     std::memcpy(slot.instances.mapped(), instanceScratch_.data(), instanceScratch_.size() * sizeof(GpuInstance));
   if (!activeScratch_.empty())
     std::memcpy(slot.active.mapped(), activeScratch_.data(), activeScratch_.size() * sizeof(ActiveWeight));
   if (!jointScratch_.empty())
     std::memcpy(slot.joints.mapped(), jointScratch_.data(), jointScratch_.size() * sizeof(glm::mat4));
+  if (!weightScratch_.empty())
+    std::memcpy(slot.weights.mapped(), weightScratch_.data(), weightScratch_.size() * sizeof(float));
   if (!materialScratch_.empty())
     std::memcpy(slot.materials.mapped(), materialScratch_.data(), materialScratch_.size() * sizeof(InstanceMaterial));
   return {};
@@ -288,6 +341,8 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   constants = prim.constants;
   constants.firstInstance = batch.firstInstance;
   constants.captureOffset = batch.captureOffset;
+  constants.morphOffset = batch.morphOffset;
+  if (!batch.morphs) constants.flags &= ~kDrawFlagMorphed;  // every instance in the rest pose: nothing written
 }
 
 void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const {
@@ -310,8 +365,35 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
   }
 }
 
+void SceneRenderer::recordMorphPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
+  const Slot& slot = slots_[slotIndex];
+  if (std::none_of(slot.batches.begin(), slot.batches.end(), [](const Batch& b) { return b.morphs; })) return;
+  const VkPipelineLayout layout = layouts_->morphPipelineLayout();
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.morph());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &slot.descriptorSet, 0, nullptr);
+  const uint32_t maxGroups = ctx_->deviceInfo().properties.limits.maxComputeWorkGroupCount[0];
+  for (const Batch& batch : slot.batches) {
+    if (!batch.morphs) continue;
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 1, 1, &prim.descriptorSet, 0, nullptr);
+    DrawConstants constants = prim.constants;
+    constants.firstInstance = batch.firstInstance;
+    constants.morphOffset = batch.morphOffset;
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DrawConstants), &constants);
+    // 64 invocations per group (morph.comp); a huge primitive loops in the shader.
+    const uint32_t groups = std::min((prim.vertexCount + 63) / 64, maxGroups);
+    vkCmdDispatch(cmd, groups, batch.instanceCount, 1);
+  }
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0, 1, &barrier,
+                       0, nullptr, 0, nullptr);
+}
+
 void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) const {
   const Slot& slot = slots_[slotIndex];
+  recordMorphPass(cmd, slotIndex);
   shadowMap_.begin(cmd);
   if (qualitySettings(quality_).shadowMapSize > 0) {  // else the pass only clears the token map
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,

@@ -2,12 +2,15 @@
 // Draws model instances into a render pass of any target. Per frame the CPU
 // writes only the instance records (transform + slice of the active list +
 // slice of the joint matrices + first material record), the compact
-// active-weight list, the joint matrices of skinned mesh nodes and one
+// active-weight list, every instance's target weights, the joint matrices of skinned mesh nodes and one
 // material record per material per instance (48 bytes: base colour, emission,
 // UV transform; an animation's overrides or the model's own values), all into
 // persistent mapped buffers (descriptors are rewritten only when one grows);
 // each mesh of a model draws ALL instances of that model in one instanced
-// draw per primitive.
+// draw per primitive. Morphing runs once per frame, before the shadow pass:
+// a compute pre-pass (engine/shaders/morph.comp) writes every morphed
+// primitive's vertices for every instance into the slot's morphed-vertex
+// buffer, which the shadow, main and capture passes read.
 //
 // Frame slots: the caller owns synchronisation; prepare(slot) may only be
 // called once the GPU has finished the previous commands recorded for that slot.
@@ -65,6 +68,8 @@ struct FrameStats {
   uint32_t activeWeights = 0;  // entries of the active list uploaded this frame
   uint32_t jointMatrices = 0;  // joint matrices uploaded this frame
   uint32_t materials = 0;      // instance material records uploaded this frame
+  uint32_t targetWeights = 0;  // weights uploaded for the morph pre-pass (every target of every instance)
+  uint64_t morphedBytes = 0;   // the morph pre-pass's output buffer: room for every morphed instance vertex
 };
 
 class SceneRenderer {
@@ -80,13 +85,19 @@ class SceneRenderer {
   // more materials than the model has, a non-finite material value.
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
   FrameStats stats(uint32_t slot) const;
-  // Before the scene's render pass: the key light's shadow map for the prepared draws.
+  // Before the scene's render pass: the morph pre-pass (recordMorphPass),
+  // then the key light's shadow map for the prepared draws.
   void recordShadowPass(VkCommandBuffer cmd, uint32_t slot) const;
+  // Outside any render pass: morphs every prepared (instance, primitive) with
+  // active weights once, then a barrier makes the result visible to the
+  // vertex shaders. recordShadowPass calls it; call it directly only before
+  // recordCapture, or to time the morph alone.
+  void recordMorphPass(VkCommandBuffer cmd, uint32_t slot) const;
   // Inside the render pass: background, then every prepared draw.
   // drawBackdrop: false leaves the cleared colour (a solid or transparent backdrop).
   void record(VkCommandBuffer cmd, uint32_t slot, VkExtent2D extent, bool drawBackdrop = true) const;
 
-  // Morph capture (tests, tools): prepare, record inside the render pass,
+  // Morph capture (tests, tools): prepare, recordMorphPass before the render pass, record inside it,
   // then the barrier after it, submit, wait, and read.
   bool canCapture() const { return pipelines_.capture() != VK_NULL_HANDLE; }
   Result<void> prepareCapture(uint32_t slot, std::span<const ModelInstance> instances);
@@ -109,6 +120,8 @@ class SceneRenderer {
     uint32_t firstInstance = 0;
     uint32_t instanceCount = 0;
     uint32_t captureOffset = 0;  // first captured vertex slot (capture mode)
+    uint32_t morphOffset = 0;    // first vec4 of the batch's morphed vertices
+    bool morphs = false;         // the primitive has deltas and some instance has active weights
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
   };
   struct Slot {
@@ -118,17 +131,22 @@ class SceneRenderer {
     Buffer joints;
     Buffer materials;
     Buffer capture;
+    Buffer weights;  // every instance's target weights, zero where inactive (morph.glsl)
+    UniqueBufferView weightTexels;  // `weights` as the morph pre-pass reads it
+    Buffer morphed;  // per (morphed batch, instance, vertex) two or three vec4 (morph.glsl)
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
     std::vector<uint32_t> members;
     uint32_t capturedVertices = 0;
+    uint32_t morphedVec4s = 0;
     FrameStats stats;
   };
 
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
   Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
                               MemoryUsage memory, const char* name);
-  void writeDescriptors(Slot& slot) const;
+  // (Re)creates the weights' texel view and writes every binding of set 0.
+  Result<void> writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
   void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const;
 
@@ -146,6 +164,8 @@ class SceneRenderer {
   // Scratch reused every frame (capacity persists: no allocation in steady state).
   std::vector<GpuInstance> instanceScratch_;
   std::vector<ActiveWeight> activeScratch_;
+  std::vector<float> weightScratch_;
+  std::vector<uint32_t> weightOffsetScratch_;  // per member of the model being laid out
   std::vector<glm::mat4> jointScratch_;
   std::vector<glm::mat4> skinScratch_;
   std::vector<InstanceMaterial> materialScratch_;

@@ -76,13 +76,16 @@ Result<ShaderStage> shaderStageFromPath(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   if (ext == ".vert") return ShaderStage::Vertex;
   if (ext == ".frag") return ShaderStage::Fragment;
-  return makeError(ErrorKind::Unsupported, file.string() + ": unknown shader stage (expected .vert or .frag)");
+  if (ext == ".comp") return ShaderStage::Compute;
+  return makeError(ErrorKind::Unsupported, file.string() + ": unknown shader stage (expected .vert, .frag or .comp)");
 }
 
 Result<std::vector<uint32_t>> compileGlsl(std::string_view source, std::string_view displayName, ShaderStage stage,
                                           std::string_view defines, const std::filesystem::path& includeDir) {
   initialiseGlslangOnce();
-  const EShLanguage language = stage == ShaderStage::Vertex ? EShLangVertex : EShLangFragment;
+  const EShLanguage language = stage == ShaderStage::Vertex     ? EShLangVertex
+                               : stage == ShaderStage::Fragment ? EShLangFragment
+                                                                : EShLangCompute;
   glslang::TShader shader(language);
   const char* text = source.data();
   const int length = static_cast<int>(source.size());

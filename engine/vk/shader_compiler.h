@@ -11,7 +11,7 @@
 
 namespace eng::vk {
 
-enum class ShaderStage { Vertex, Fragment };
+enum class ShaderStage { Vertex, Fragment, Compute };
 
 // Stage from the extension: .vert / .frag.
 Result<ShaderStage> shaderStageFromPath(const std::filesystem::path& file);

@@ -33,7 +33,7 @@ ShaderLibrary::Snapshot ShaderLibrary::snapshotSources() const {
   for (std::filesystem::directory_iterator it(sourceDir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::filesystem::path& p = it->path();
     std::string ext = p.extension().string();
-    if (ext != ".vert" && ext != ".frag" && ext != ".glsl") continue;
+    if (ext != ".vert" && ext != ".frag" && ext != ".comp" && ext != ".glsl") continue;
     std::error_code timeError;
     auto time = std::filesystem::last_write_time(p, timeError);
     if (!timeError) snapshot[p] = time;

@@ -40,7 +40,7 @@ class ShaderLibrary {
   uint64_t generation() const { return generation_; }
   const std::filesystem::path& sourceDir() const { return sourceDir_; }
 
-  // Polls the sources (*.vert, *.frag, *.glsl) in sourceDir; when any changed
+  // Polls the sources (*.vert, *.frag, *.comp, *.glsl) in sourceDir; when any changed
   // since the last poll, recompiles every program. Returns true when new
   // SPIR-V was installed. A compile error is logged with glslang's text and
   // the previous SPIR-V stays (returns false). No source dir: returns false.

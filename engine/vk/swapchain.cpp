@@ -53,6 +53,7 @@ Result<Swapchain> Swapchain::create(const Context& ctx, VkExtent2D framebufferEx
   s.extent_ = extent;
   s.minImageCount_ = std::max(caps.minImageCount, 2u);
   s.transferSource_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
+  s.transferDestination_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) != 0;
 
   VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   info.surface = surface;
@@ -61,7 +62,8 @@ Result<Swapchain> Swapchain::create(const Context& ctx, VkExtent2D framebufferEx
   info.imageColorSpace = format.colorSpace;
   info.imageExtent = extent;
   info.imageArrayLayers = 1;
-  info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (s.transferSource_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0);
+  info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (s.transferSource_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0) |
+                    (s.transferDestination_ ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0);
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.preTransform = caps.currentTransform;
   info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)

@@ -26,6 +26,7 @@ class Swapchain {
   VkImage image(uint32_t i) const { return images_[i]; }
   VkImageView view(uint32_t i) const { return views_[i].get(); }
   bool canCopyFrom() const { return transferSource_; }
+  bool canBlitTo() const { return transferDestination_; }  // a scaled 3D view is blitted in
 
  private:
   UniqueSwapchain swapchain_;
@@ -33,6 +34,7 @@ class Swapchain {
   VkExtent2D extent_{0, 0};
   uint32_t minImageCount_ = 2;
   bool transferSource_ = false;
+  bool transferDestination_ = false;
   std::vector<VkImage> images_;  // owned by the swapchain
   std::vector<UniqueImageView> views_;
 };

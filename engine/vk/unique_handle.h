@@ -81,6 +81,7 @@ using UniqueBuffer = UniqueHandle<VkDevice, VkBuffer, vkDestroyBuffer>;
 using UniqueMemory = UniqueHandle<VkDevice, VkDeviceMemory, vkFreeMemory>;
 using UniqueImage = UniqueHandle<VkDevice, VkImage, vkDestroyImage>;
 using UniqueImageView = UniqueHandle<VkDevice, VkImageView, vkDestroyImageView>;
+using UniqueBufferView = UniqueHandle<VkDevice, VkBufferView, vkDestroyBufferView>;
 using UniqueSampler = UniqueHandle<VkDevice, VkSampler, vkDestroySampler>;
 using UniqueShaderModule = UniqueHandle<VkDevice, VkShaderModule, vkDestroyShaderModule>;
 using UniqueDescriptorSetLayout = UniqueHandle<VkDevice, VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;

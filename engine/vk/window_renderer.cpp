@@ -1,7 +1,9 @@
 #include "engine/vk/window_renderer.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <span>
 #include <string>
 
 #include "engine/core/log.h"
@@ -14,6 +16,26 @@ namespace eng::vk {
 namespace {
 
 constexpr auto kShaderPollInterval = std::chrono::milliseconds(500);
+
+// The options' scale, or the automatic one; 1 where a scaled view could not be
+// blitted into the swapchain (no transfer usage, no linear blit of its format).
+float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options, const Swapchain& swapchain) {
+  float scale = options.renderScale;
+  if (const char* env = std::getenv("FACIAL_RENDER_SCALE"); scale <= 0.0f && env) {
+    char* end = nullptr;
+    const float parsed = std::strtof(env, &end);
+    if (end != env && *end == '\0' && parsed > 0.0f && parsed <= 1.0f) scale = parsed;
+    else logWarning(std::string("FACIAL_RENDER_SCALE='") + env + "' is not a number in (0, 1]; ignored");
+  }
+  if (scale <= 0.0f) scale = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kCpuRenderScale : 1.0f;
+  scale = std::min(scale, 1.0f);
+  VkFormatProperties props{};
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), swapchain.format(), &props);
+  constexpr VkFormatFeatureFlags kBlit = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if (!swapchain.canBlitTo() || (props.optimalTilingFeatures & kBlit) != kBlit) return 1.0f;
+  return scale;
+}
 
 }  // namespace
 
@@ -47,9 +69,16 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   auto depth = chooseDepthFormat(ctx);
   if (!depth) return depth.error();
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
-  auto pass = createSceneRenderPass(ctx, r->format_, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
+  auto pass = createSceneRenderPass(ctx, r->format_,
+                                    r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return pass.error();
   r->renderPass_ = std::move(pass).value();
+  if (r->scaled()) {
+    auto overlay = createOverlayRenderPass(ctx, r->format_.color, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    if (!overlay) return overlay.error();
+    r->overlayPass_ = std::move(overlay).value();
+  }
   ENG_TRY(r->createSwapchainResources());
 
   for (FrameSync& f : r->frames_) {
@@ -98,6 +127,7 @@ Result<void> WindowRenderer::recreateSwapchain() {
   vkDeviceWaitIdle(ctx_->device());
   swapchainStale_ = true;  // until everything below succeeded
   framebuffers_.clear();
+  sceneFramebuffer_ = {};
   renderFinished_.clear();
   auto swapchain = Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
   if (!swapchain) return swapchain.error();
@@ -108,8 +138,15 @@ Result<void> WindowRenderer::recreateSwapchain() {
   return createSwapchainResources();
 }
 
+VkExtent2D WindowRenderer::sceneExtent() const {
+  const VkExtent2D window = swapchain_.extent();
+  if (!scaled()) return window;
+  return {std::max(1u, uint32_t(float(window.width) * renderScale_ + 0.5f)),
+          std::max(1u, uint32_t(float(window.height) * renderScale_ + 0.5f))};
+}
+
 Result<void> WindowRenderer::createSwapchainResources() {
-  const VkExtent2D extent = swapchain_.extent();
+  const VkExtent2D extent = sceneExtent();
   const bool msaa = format_.samples != VK_SAMPLE_COUNT_1_BIT;
   if (msaa) {
     ImageDesc color;
@@ -133,21 +170,47 @@ Result<void> WindowRenderer::createSwapchainResources() {
   if (!depthImage) return depthImage.error();
   depth_ = std::move(depthImage).value();
 
-  for (uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
-    std::vector<VkImageView> views;
-    views.push_back(msaa ? msaaColor_.view() : swapchain_.view(i));
-    views.push_back(depth_.view());
-    if (msaa) views.push_back(swapchain_.view(i));
+  auto framebuffer = [&](VkRenderPass pass, std::span<const VkImageView> views,
+                         VkExtent2D size) -> Result<UniqueFramebuffer> {
     VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fbInfo.renderPass = renderPass_.get();
+    fbInfo.renderPass = pass;
     fbInfo.attachmentCount = static_cast<uint32_t>(views.size());
     fbInfo.pAttachments = views.data();
-    fbInfo.width = extent.width;
-    fbInfo.height = extent.height;
+    fbInfo.width = size.width;
+    fbInfo.height = size.height;
     fbInfo.layers = 1;
     VkFramebuffer fb = VK_NULL_HANDLE;
     ENG_VK_TRY(vkCreateFramebuffer(ctx_->device(), &fbInfo, nullptr, &fb));
-    framebuffers_.emplace_back(ctx_->device(), fb);
+    return UniqueFramebuffer(ctx_->device(), fb);
+  };
+  if (scaled()) {
+    ImageDesc color;
+    color.extent = extent;
+    color.format = format_.color;
+    color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    color.debugName = "window 3D view";
+    auto image = GpuImage::create(*ctx_, color);
+    if (!image) return image.error();
+    sceneColor_ = std::move(image).value();
+    std::vector<VkImageView> views{msaa ? msaaColor_.view() : sceneColor_.view(), depth_.view()};
+    if (msaa) views.push_back(sceneColor_.view());
+    auto fb = framebuffer(renderPass_.get(), views, extent);
+    if (!fb) return fb.error();
+    sceneFramebuffer_ = std::move(fb).value();
+  }
+
+  for (uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
+    std::vector<VkImageView> views;
+    if (scaled()) {
+      views.push_back(swapchain_.view(i));
+    } else {
+      views.push_back(msaa ? msaaColor_.view() : swapchain_.view(i));
+      views.push_back(depth_.view());
+      if (msaa) views.push_back(swapchain_.view(i));
+    }
+    auto fb = framebuffer(scaled() ? overlayPass_.get() : renderPass_.get(), views, swapchain_.extent());
+    if (!fb) return fb.error();
+    framebuffers_.push_back(std::move(fb).value());
     VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore sem = VK_NULL_HANDLE;
     ENG_VK_TRY(vkCreateSemaphore(ctx_->device(), &semInfo, nullptr, &sem));
@@ -167,11 +230,11 @@ ImGuiVulkanInfo WindowRenderer::imguiInfo() const {
   info.queueFamily = ctx_->queueFamily();
   info.queue = ctx_->queue();
   info.descriptorPool = imguiPool_.get();
-  info.renderPass = renderPass_.get();
+  info.renderPass = scaled() ? overlayPass_.get() : renderPass_.get();
   info.subpass = 0;
   info.minImageCount = swapchain_.minImageCount();
   info.imageCount = swapchain_.imageCount();
-  info.msaaSamples = format_.samples;
+  info.msaaSamples = scaled() ? VK_SAMPLE_COUNT_1_BIT : format_.samples;
   return info;
 }
 
@@ -246,16 +309,18 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
   clears[1].depthStencil = {1.0f, 0};
   clears[2].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  const VkExtent2D viewExtent = sceneExtent();
   VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   pass.renderPass = renderPass_.get();
-  pass.framebuffer = framebuffers_[image].get();
-  pass.renderArea = {{0, 0}, extent};
+  pass.framebuffer = scaled() ? sceneFramebuffer_.get() : framebuffers_[image].get();
+  pass.renderArea = {{0, 0}, viewExtent};
   pass.clearValueCount = format_.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
   pass.pClearValues = clears.data();
   vkCmdBeginRenderPass(cmd, &pass, VK_SUBPASS_CONTENTS_INLINE);
-  scene_.record(cmd, slot, extent);
-  if (frame.overlay) frame.overlay(cmd);
+  scene_.record(cmd, slot, viewExtent);
+  if (!scaled() && frame.overlay) frame.overlay(cmd);
   vkCmdEndRenderPass(cmd);
+  if (scaled()) recordUpscaleAndOverlay(cmd, image, frame.overlay);
   if (!frame.screenshot.empty()) {
     const VkImage swapImage = swapchain_.image(image);
     recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
@@ -309,6 +374,36 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
     ENG_TRY(saveScreenshot(frame.screenshot));
   }
   return FrameResult::Presented;
+}
+
+void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const {
+  const VkImage target = swapchain_.image(image);
+  // Chained to the acquire semaphore's wait (colour-attachment-output stage).
+  recordImageBarrier(cmd, {target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
+  const VkExtent2D from = sceneExtent(), to = swapchain_.extent();
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(from.width), int32_t(from.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
+  // The scene pass left the view in TRANSFER_SRC_OPTIMAL, its writes ordered before transfers.
+  vkCmdBlitImage(cmd, sceneColor_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  pass.renderPass = overlayPass_.get();
+  pass.framebuffer = framebuffers_[image].get();
+  pass.renderArea = {{0, 0}, to};
+  vkCmdBeginRenderPass(cmd, &pass, VK_SUBPASS_CONTENTS_INLINE);
+  if (overlay) {
+    const VkViewport viewport{0.0f, 0.0f, float(to.width), float(to.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, to};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    overlay(cmd);
+  }
+  vkCmdEndRenderPass(cmd);
 }
 
 Result<void> WindowRenderer::saveScreenshot(const std::filesystem::path& path) {

@@ -1,8 +1,10 @@
 #pragma once
 // Renders model instances into a window: swapchain (recreated on resize,
 // idle while minimised), 4x MSAA, two frames in flight, an overlay hook that
-// records into the same render pass after the scene (ImGui), screenshots of
-// a presented frame, and shader hot reload from engine/shaders.
+// records after the scene (ImGui), screenshots of a presented frame, and
+// shader hot reload from engine/shaders. The 3D view may render at a lower
+// resolution than the window and be blitted up (renderScale: a CPU
+// rasteriser's cost is per pixel); the overlay stays at full resolution.
 //
 //   auto window = eng::vk::Window::create({});
 //   eng::vk::ContextOptions options;
@@ -49,6 +51,11 @@ struct WindowRendererOptions {
   RenderQuality quality = RenderQuality::High;
   bool vsync = true;
   bool hotReload = true;  // poll the shader sources twice a second
+  // The 3D view's resolution relative to the window's, in (0, 1]; 0 picks one:
+  // FACIAL_RENDER_SCALE if set, else 1 on a GPU and kCpuRenderScale on a CPU
+  // device (lavapipe). Falls back to 1
+  // where the swapchain cannot be blitted to.
+  float renderScale = 0.0f;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
   // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
@@ -69,6 +76,10 @@ struct ImGuiVulkanInfo {
   uint32_t imageCount = 2;
   VkSampleCountFlagBits msaaSamples = VK_SAMPLE_COUNT_1_BIT;
 };
+
+// The automatic renderScale on a CPU device: a 1280x800 window's 3D view at
+// 832x520, about 30 frames/s of the built-in head on lavapipe (2 cores).
+inline constexpr float kCpuRenderScale = 0.65f;
 
 using OverlayRecorder = std::function<void(VkCommandBuffer)>;
 
@@ -98,6 +109,9 @@ class WindowRenderer {
   Result<FrameResult> drawFrame(const FrameInput& frame);
 
   VkExtent2D extent() const { return swapchain_.extent(); }
+  // What the 3D view renders at (extent() scaled by renderScale()).
+  VkExtent2D sceneExtent() const;
+  float renderScale() const { return renderScale_; }
   FrameStats lastFrameStats() const { return scene_.stats(lastSlot_); }
   const ShaderLibrary& shaders() const { return *shaders_; }
   // Polls the shader sources now and rebuilds pipelines if they changed and compile.
@@ -116,6 +130,9 @@ class WindowRenderer {
   Result<void> recreateSwapchain();
   // MSAA colour, depth, framebuffers and semaphores for the current swapchain.
   Result<void> createSwapchainResources();
+  bool scaled() const { return renderScale_ < 1.0f; }
+  // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
+  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const;
   Result<void> saveScreenshot(const std::filesystem::path& path);
 
   const Context* ctx_ = nullptr;
@@ -124,12 +141,16 @@ class WindowRenderer {
   std::unique_ptr<SceneLayouts> layouts_;
   std::unique_ptr<ShaderLibrary> shaders_;
   TargetFormat format_;
-  UniqueRenderPass renderPass_;
+  UniqueRenderPass renderPass_;   // the 3D view (+ the overlay when not scaled)
+  UniqueRenderPass overlayPass_;  // scaled: the overlay over the blitted view
+  float renderScale_ = 1.0f;
   Swapchain swapchain_;
   bool swapchainStale_ = false;
   GpuImage msaaColor_;
   GpuImage depth_;
-  std::vector<UniqueFramebuffer> framebuffers_;      // per swapchain image
+  GpuImage sceneColor_;                              // scaled: the 3D view before the blit
+  UniqueFramebuffer sceneFramebuffer_;               // scaled: the 3D view's
+  std::vector<UniqueFramebuffer> framebuffers_;      // per swapchain image (the overlay pass's when scaled)
   std::vector<UniqueSemaphore> renderFinished_;      // per swapchain image
   std::array<FrameSync, kFramesInFlight> frames_;
   SceneRenderer scene_;

@@ -60,7 +60,7 @@ TEST(ShaderCompilerValidity, ErrorsCarryGlslangTextAndTheFileName) {
   ASSERT_FALSE(spirv);
   EXPECT_NE(spirv.error().message.find("broken.frag"), std::string::npos) << spirv.error().message;
   EXPECT_NE(spirv.error().message.find("undefinedThing"), std::string::npos) << spirv.error().message;
-  auto stage = eng::vk::shaderStageFromPath("shader.comp");
+  auto stage = eng::vk::shaderStageFromPath("shader.geom");
   ASSERT_FALSE(stage);
   auto missing = eng::vk::compileGlslFile("/nonexistent/dir/x.vert", "");
   ASSERT_FALSE(missing);

@@ -137,6 +137,37 @@ TEST(WindowRenderer, FollowsAResize) {
   EXPECT_EQ(shot.height, 300);
 }
 
+// A scaled 3D view is rendered small and blitted up: the screenshot keeps the
+// window's size, and the picture matches the full-resolution one (same sphere,
+// same place) apart from softer edges.
+TEST(WindowRenderer, ScaledViewIsBlittedUpToTheWindow) {
+  FACIAL_REQUIRE_DISPLAY();
+  eng::Image shots[2];
+  for (int i = 0; i < 2; ++i) {
+    WindowRig rig({.renderScale = i == 0 ? 1.0f : 0.5f});
+    ASSERT_TRUE(rig.ok());
+    SphereScene scene(*rig.renderer);
+    const VkExtent2D window = rig.renderer->extent(), view = rig.renderer->sceneExtent();
+    if (i == 1) {
+      ASSERT_EQ(rig.renderer->renderScale(), 0.5f) << "lavapipe's swapchain can be blitted to";
+      EXPECT_EQ(view.width, (window.width + 1) / 2);
+      EXPECT_EQ(view.height, (window.height + 1) / 2);
+    } else {
+      EXPECT_EQ(view.width, window.width);
+    }
+    shots[i] = screenshotOf(rig, scene.frame(), i == 0 ? "full" : "half");
+    ASSERT_EQ(shots[i].width, int(window.width));
+    ASSERT_EQ(shots[i].height, int(window.height));
+  }
+  for (auto [x, y] : {std::pair{0.5, 0.5}, std::pair{0.02, 0.02}, std::pair{0.4, 0.6}}) {
+    const glm::ivec4 full = vk_test::pixel(shots[0], int(x * shots[0].width), int(y * shots[0].height));
+    const glm::ivec4 half = vk_test::pixel(shots[1], int(x * shots[1].width), int(y * shots[1].height));
+    EXPECT_NEAR(full.r, half.r, 12) << x << "," << y;
+    EXPECT_NEAR(full.g, half.g, 12) << x << "," << y;
+    EXPECT_NEAR(full.b, half.b, 12) << x << "," << y;
+  }
+}
+
 TEST(WindowRenderer, ImGuiOverlayDrawsIntoTheScenePass) {
   FACIAL_REQUIRE_DISPLAY();
   WindowRig rig;
