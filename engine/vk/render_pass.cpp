@@ -19,6 +19,21 @@ Result<VkFormat> chooseDepthFormat(const Context& ctx) {
                    VK_ERROR_FORMAT_NOT_SUPPORTED);
 }
 
+VkAttachmentDescription attachmentDescription(VkFormat format, VkSampleCountFlagBits samples, VkAttachmentLoadOp load,
+                                              VkAttachmentStoreOp store, VkImageLayout initialLayout,
+                                              VkImageLayout finalLayout) {
+  VkAttachmentDescription a{};
+  a.format = format;
+  a.samples = samples;
+  a.loadOp = load;
+  a.storeOp = store;
+  a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  a.initialLayout = initialLayout;
+  a.finalLayout = finalLayout;
+  return a;
+}
+
 VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBits requested) {
   VkSampleCountFlagBits best = VK_SAMPLE_COUNT_1_BIT;
   const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
@@ -28,8 +43,6 @@ VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBit
   }
   return best;
 }
-
-namespace {
 
 Result<UniqueRenderPass> createOneSubpassPass(const Context& ctx, std::span<const VkAttachmentDescription> attachments,
                                               const VkSubpassDescription& subpass,
@@ -46,47 +59,22 @@ Result<UniqueRenderPass> createOneSubpassPass(const Context& ctx, std::span<cons
   return UniqueRenderPass(ctx.device(), pass);
 }
 
-}  // namespace
 
 Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
                                                VkImageLayout finalLayout) {
   const bool msaa = format.samples != VK_SAMPLE_COUNT_1_BIT;
   std::vector<VkAttachmentDescription> attachments;
 
-  VkAttachmentDescription color{};
-  color.format = format.color;
-  color.samples = format.samples;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : finalLayout;
-  attachments.push_back(color);
-
-  VkAttachmentDescription depth{};
-  depth.format = format.depth;
-  depth.samples = format.samples;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  attachments.push_back(depth);
-
-  if (msaa) {
-    VkAttachmentDescription resolve{};
-    resolve.format = format.color;
-    resolve.samples = VK_SAMPLE_COUNT_1_BIT;
-    resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    resolve.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    resolve.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    resolve.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    resolve.finalLayout = finalLayout;
-    attachments.push_back(resolve);
-  }
+  attachments.push_back(attachmentDescription(format.color, format.samples, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                              msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE,
+                                              VK_IMAGE_LAYOUT_UNDEFINED,
+                                              msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : finalLayout));
+  attachments.push_back(attachmentDescription(format.depth, format.samples, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                              VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+                                              VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
+  if (msaa)
+    attachments.push_back(attachmentDescription(format.color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                                VK_ATTACHMENT_STORE_OP_STORE, VK_IMAGE_LAYOUT_UNDEFINED, finalLayout));
 
   const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   const VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
@@ -119,15 +107,9 @@ Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetF
 }
 
 Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout) {
-  VkAttachmentDescription attachment{};
-  attachment.format = color;
-  attachment.samples = VK_SAMPLE_COUNT_1_BIT;
-  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachment.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  attachment.finalLayout = finalLayout;
+  const VkAttachmentDescription attachment =
+      attachmentDescription(color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE,
+                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
   const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;

@@ -2,6 +2,8 @@
 // The one render-pass shape every target uses: multisampled colour + depth,
 // resolved into a single-sample image (an offscreen image or a swapchain
 // image). With 1 sample the colour attachment is that image directly.
+#include <span>
+
 #include <vulkan/vulkan.h>
 
 #include "engine/core/result.h"
@@ -18,6 +20,17 @@ struct TargetFormat {
 
 // The first depth format the device can render to (D32, D32S8, D24S8, D16).
 Result<VkFormat> chooseDepthFormat(const Context& ctx);
+
+// One attachment of a render pass without a stencil aspect (stencil ops are
+// DONT_CARE): the few fields that differ between passes, in one line.
+// A render pass of one subpass over `attachments`.
+Result<UniqueRenderPass> createOneSubpassPass(const Context& ctx, std::span<const VkAttachmentDescription> attachments,
+                                              const VkSubpassDescription& subpass,
+                                              std::span<const VkSubpassDependency> dependencies);
+
+VkAttachmentDescription attachmentDescription(VkFormat format, VkSampleCountFlagBits samples, VkAttachmentLoadOp load,
+                                              VkAttachmentStoreOp store, VkImageLayout initialLayout,
+                                              VkImageLayout finalLayout);
 
 // `requested` clamped to what the device supports for colour and depth together.
 VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBits requested);

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "engine/vk/render_pass.h"
 #include "engine/vk/vk_result.h"
 
 namespace eng::vk {
@@ -27,15 +28,9 @@ Result<ShadowMap> ShadowMap::create(const Context& ctx, uint32_t size) {
 
   ShadowMap s;
   s.size_ = size;
-  VkAttachmentDescription depth{};
-  depth.format = format;
-  depth.samples = VK_SAMPLE_COUNT_1_BIT;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  const VkAttachmentDescription depth =
+      attachmentDescription(format, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
+                            VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
   const VkAttachmentReference depthRef{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -51,16 +46,9 @@ Result<ShadowMap> ShadowMap::create(const Context& ctx, uint32_t size) {
       VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, kDepthStages, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                           VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, 0},
   };
-  VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  passInfo.attachmentCount = 1;
-  passInfo.pAttachments = &depth;
-  passInfo.subpassCount = 1;
-  passInfo.pSubpasses = &subpass;
-  passInfo.dependencyCount = static_cast<uint32_t>(dependencies.size());
-  passInfo.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateRenderPass(ctx.device(), &passInfo, nullptr, &pass));
-  s.renderPass_ = UniqueRenderPass(ctx.device(), pass);
+  auto pass = createOneSubpassPass(ctx, std::span(&depth, 1), subpass, dependencies);
+  if (!pass) return pass.error().prefixed("shadow map: ");
+  s.renderPass_ = std::move(pass).value();
 
   ImageDesc desc;
   desc.extent = {size, size};
@@ -74,7 +62,7 @@ Result<ShadowMap> ShadowMap::create(const Context& ctx, uint32_t size) {
 
   const VkImageView view = s.image_.view();
   VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fbInfo.renderPass = pass;
+  fbInfo.renderPass = s.renderPass_.get();
   fbInfo.attachmentCount = 1;
   fbInfo.pAttachments = &view;
   fbInfo.width = size;
