@@ -24,14 +24,14 @@ layout(location = 5) flat in uint inMaterial;
 
 layout(location = 0) out vec4 outColor;
 
-// The weight of `target` for this instance, read from the same compact active
-// list that morphed the geometry (absent = zero weight).
+// Every instance's weights for the drawn mesh, as the morph pre-pass read
+// them (zero below the active threshold, morph.glsl).
+layout(set = 0, binding = 8) uniform samplerBuffer targetWeights;
+
+// The weight of `target` for this instance: one fetch, where searching the
+// active list cost every fragment of a face a loop per detail layer.
 float activeWeight(InstanceData inst, uint target) {
-  uint end = inst.activeOffset + inst.activeCount;
-  for (uint i = inst.activeOffset; i < end; ++i) {
-    if (activeWeights[i].target == target) return activeWeights[i].weight;
-  }
-  return 0.0;
+  return texelFetch(targetWeights, int(inst.weightOffset + target)).x;
 }
 
 void main() {

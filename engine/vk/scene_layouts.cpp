@@ -59,7 +59,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
       binding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBoth),
       binding(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs | kCs),
-      binding(8, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs),
+      binding(8, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, kCs | kFs),
   };
   auto frameSet = createSetLayout(ctx, frameBindings);
   if (!frameSet) return frameSet.error();
