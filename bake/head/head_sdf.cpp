@@ -205,22 +205,25 @@ float HeadSdf::eyeRegion(float d, const vec3& p) const {
   return d;
 }
 
-float HeadSdf::hairCoverage(const vec3& p) const {
-  // Hairline height around the head: forehead, temples, sideburns, nape.
+namespace {
+
+// Hairline height around the head: forehead, temples, sideburns, nape.
+float hairlineHeight(const vec3& p) {
   static constexpr std::array<vec2, 7> kHairline = {vec2(0.00f, 0.070f), vec2(0.35f, 0.071f), vec2(0.62f, 0.062f),
                                                     vec2(1.10f, 0.042f), vec2(1.45f, 0.022f), vec2(2.20f, -0.015f),
                                                     vec2(3.15f, -0.045f)};
-  const float around = std::abs(std::atan2(p.x, p.z));
-  const float h = smoothKeys(kHairline, around);
+  return smoothKeys(kHairline, std::abs(std::atan2(p.x, p.z)));
+}
+
+}  // namespace
+
+float HeadSdf::hairCoverage(const vec3& p) const {
+  const float h = hairlineHeight(p);
   return smoothstep(h - 0.0025f, h + 0.0025f, p.y);
 }
 
 float HeadSdf::hairVolume(const vec3& p) const {
-  static constexpr std::array<vec2, 7> kHairline = {vec2(0.00f, 0.070f), vec2(0.35f, 0.071f), vec2(0.62f, 0.062f),
-                                                    vec2(1.10f, 0.042f), vec2(1.45f, 0.022f), vec2(2.20f, -0.015f),
-                                                    vec2(3.15f, -0.045f)};
-  const float around = std::abs(std::atan2(p.x, p.z));
-  const float h = smoothKeys(kHairline, around);
+  const float h = hairlineHeight(p);
   return smoothstep(h - 0.002f, h + 0.009f, p.y);
 }
 
