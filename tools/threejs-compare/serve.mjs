@@ -12,7 +12,8 @@ export const here = path.dirname(fileURLToPath(import.meta.url));
 const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.glb': 'model/gltf-binary',
                 '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream', '.png': 'image/png', '.jpg': 'image/jpeg' };
 
-// Serves /node_modules/ from this folder (npm install here), /files/ from
+// Serves /node_modules/ from this folder (npm install here), /shared/ from
+// this folder too (the pages' common module, lit_scene.js), /files/ from
 // filesDir (the model's folder) and everything else from pageDir. A POST to
 // /result calls onResult with the request body (the page's report).
 export async function startServer({ pageDir, filesDir, onResult = () => {} }) {
@@ -25,7 +26,8 @@ export async function startServer({ pageDir, filesDir, onResult = () => {} }) {
       return;
     }
     const file = url.startsWith('/files/') ? path.join(filesDir, url.slice(7))
-        : url.startsWith('/node_modules/') ? path.join(here, url) : path.join(pageDir, url);
+        : url.startsWith('/node_modules/') ? path.join(here, url)
+        : url.startsWith('/shared/') ? path.join(here, url.slice(8)) : path.join(pageDir, url);
     if (!existsSync(file) || !statSync(file).isFile()) { res.writeHead(404); res.end(); return; }
     res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
     createReadStream(file).pipe(res);
