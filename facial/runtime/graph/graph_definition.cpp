@@ -3,10 +3,7 @@
 namespace facial {
 
 std::string_view nodeTypeName(const NodeData& data) {
-  static constexpr std::string_view kNames[] = {"pose",        "blend",    "bilinear",     "controlMap", "freeformMap",
-                                                "additive",    "timeline", "stateMachine", "blink"};
-  static_assert(std::size(kNames) == std::variant_size_v<NodeData>);
-  return kNames[data.index()];
+  return std::visit([](const auto& node) { return std::decay_t<decltype(node)>::kType; }, data);
 }
 
 std::optional<ParameterIndex> GraphDefinition::findParameter(std::string_view name) const {

@@ -16,21 +16,10 @@
 //        {"name": "happy", "node": {"type": "pose", "preset": "happy", "intensity": 0.9}}],
 //      "anyState": [{"to": "neutral", "duration": 0.5, "exitTime": 10}]}}}
 //
-// Node types and their keys (inputs are nested node objects; "float inputs"
-// take a number or a float parameter's name):
-//   pose         preset + intensity | weights ({"channel": w} or [w, ...]); scale; overrideBlink none|block|blend
-//   blend        a, b, factor, curve
-//   bilinear     shapes [[Q11, Q12, ...], [Q21, Q22, ...]], shape, expression (float parameter), duration, curve
-//   controlMap   neutral, up (+y, E1), down (-y, E2), right (+x, E3), left (-x, E4), x, y
-//   freeformMap  neutral, poles [{"at": [x, y], "node": {...}}], x, y
-//   additive     base, layer, weight, mask {"region": any|upper|lower, "side": any|left|right|both}
-//   timeline     timeline (name), loop once|clamp|loop|pingpong, speed
-//   stateMachine states [{name, node, transitions}], anyState [transitions], defaultState
-//     transition to, duration, curve, exitTime, priority, interruptible, canTransitionToSelf,
-//                conditions [{"parameter": p, "op": ">"|">="|"<"|"<="|"=="|"!=", "value": v}
-//                            | {"parameter": bool, "value": true} | {"parameter": trigger}]
-//   blink        input, channels, wideChannels, amount, minInterval, maxInterval, closeDuration,
-//                closedDuration, openDuration, doubleBlinkChance, doubleBlinkGap, wideStart, wideFull
+// Node types and their keys: each node type's header says (nodes/<type>_node.h,
+// "JSON:"); inputs are nested node objects, "float inputs" take a number or a
+// float parameter's name. The types: pose, blend, bilinear, controlMap,
+// freeformMap, additive, timeline, stateMachine, blink (NodeData in node.h).
 // Every node may carry a "name" (GraphDefinition::findNode). Curves: see curve_json.h.
 // Errors read "file: /root/input/states/2/transitions/0/duration: problem".
 #include <filesystem>

@@ -3,6 +3,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -24,6 +25,25 @@ void AdditiveNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) c
   ctx.evaluate(layer, added.pose());
   AdditivePoseJob{.base = out, .layer = added.pose(), .mask = maskWeights, .weight = ctx.read(weight), .out = out}
       .Run();
+}
+
+AdditiveNode AdditiveNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "base", "layer", "weight", "mask"});
+  AdditiveNode a{.base = r.node(j.at("base")), .layer = r.node(j.at("layer"))};
+  a.weight = r.floatInput(j, "weight", 1.0f);
+  if (auto mask = j.find("mask")) {
+    mask->allowOnly({"region", "side"});
+    const std::string region = mask->stringOr("region", "any");
+    if (region == "upper") a.mask.region = FaceRegion::Upper;
+    else if (region == "lower") a.mask.region = FaceRegion::Lower;
+    else if (region != "any") mask->at("region").fail("unknown region (expected any, upper or lower)");
+    const std::string side = mask->stringOr("side", "any");
+    if (side == "left") a.mask.side = FaceSide::Left;
+    else if (side == "right") a.mask.side = FaceSide::Right;
+    else if (side == "both") a.mask.side = FaceSide::Both;
+    else if (side != "any") mask->at("side").fail("unknown side (expected any, left, right or both)");
+  }
+  return a;
 }
 
 }  // namespace facial

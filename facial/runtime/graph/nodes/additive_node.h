@@ -7,9 +7,12 @@
 // the side (any / left / right / both = bilateral channels only). Channels of
 // unknown region (raw target names) pass only a region of "any". Lanes come
 // from the base: the layer does not change what the emotion asks of blinking.
+//
+// JSON (graph_json.h): "additive": base, layer, weight, mask {"region": any|upper|lower, "side": any|left|right|both}
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/graph/channel_set.h"
@@ -17,6 +20,9 @@
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
+
+class JsonNode;
+class NodeReader;
 
 struct RegionMask {
   std::optional<FaceRegion> region;  // nullopt: any region
@@ -27,6 +33,9 @@ struct RegionMask {
 };
 
 struct AdditiveNode {
+  static constexpr std::string_view kType = "additive";  // JSON "type"
+  static AdditiveNode read(const JsonNode& j, NodeReader& r);
+
   NodeIndex base = kNoNode;
   NodeIndex layer = kNoNode;
   FloatInput weight = FloatInput::fixed(1.0f);

@@ -8,6 +8,7 @@
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -69,6 +70,22 @@ void BilinearNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> o
                   .t2 = curve(state.progress),
                   .out = out}
       .Run();
+}
+
+BilinearNode BilinearNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "shapes", "shape", "expression", "duration", "curve"});
+  BilinearNode b;
+  const JsonNode shapes = j.at("shapes");
+  if (shapes.size() != 2) shapes.fail("expected two rows (face shapes), got " + std::to_string(shapes.size()));
+  for (size_t s = 0; s < 2; ++s) {
+    std::vector<NodeIndex>& row = s == 0 ? b.shape1 : b.shape2;
+    for (size_t e = 0; e < shapes[s].size(); ++e) row.push_back(r.node(shapes[s][e]));
+  }
+  b.shape = r.floatInput(j, "shape", 0.0f);
+  b.expression = r.parameter(j.at("expression"));
+  b.duration = j.numberOr("duration", b.duration);
+  b.curve = r.curve(j);
+  return b;
 }
 
 }  // namespace facial

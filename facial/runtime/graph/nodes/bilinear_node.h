@@ -6,9 +6,12 @@
 // Selecting a new expression mid-way re-bases as the study does: the pair on
 // screen becomes the new "from" (Q13 = t1 Q11 + t2 Q12, Q23 = t1 Q21 + t2 Q22)
 // and progress restarts toward the new column, so the face does not jump.
+//
+// JSON (graph_json.h): "bilinear": shapes [[Q11, Q12, ...], [Q21, Q22, ...]], shape, expression (float parameter), duration, curve
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/curves/easing_curve.h"
@@ -17,7 +20,13 @@
 
 namespace facial {
 
+class JsonNode;
+class NodeReader;
+
 struct BilinearNode {
+  static constexpr std::string_view kType = "bilinear";  // JSON "type"
+  static BilinearNode read(const JsonNode& j, NodeReader& r);
+
   std::vector<NodeIndex> shape1;            // Q11, Q12, ..., Q1K
   std::vector<NodeIndex> shape2;            // Q21, Q22, ..., Q2K
   FloatInput shape;                         // s2: 0 = face shape 1, 1 = face shape 2 (clamped)

@@ -5,6 +5,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -16,6 +17,14 @@ void BlendNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) cons
   ctx.evaluate(b, p1.pose());
   const float t = curve(std::clamp(ctx.read(factor), 0.0f, 1.0f));
   LerpPoseJob{.a = out, .b = p1.pose(), .t = t, .out = out}.Run();
+}
+
+BlendNode BlendNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "a", "b", "factor", "curve"});
+  BlendNode b{.a = r.node(j.at("a")), .b = r.node(j.at("b"))};
+  b.factor = r.floatInput(j, "factor", 0.0f);
+  b.curve = r.curve(j);
+  return b;
 }
 
 }  // namespace facial

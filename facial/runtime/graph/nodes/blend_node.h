@@ -2,9 +2,12 @@
 // Blend of two inputs with an easing curve on the factor:
 //   P = (1 - c(t)) P0 + c(t) P1,  t = factor clamped to [0,1].
 // With the linear curve this is the plain linear blend P(t) = (1-t) P0 + t P1.
+//
+// JSON (graph_json.h): "blend": a, b, factor, curve
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/curves/easing_curve.h"
@@ -13,7 +16,13 @@
 
 namespace facial {
 
+class JsonNode;
+class NodeReader;
+
 struct BlendNode {
+  static constexpr std::string_view kType = "blend";  // JSON "type"
+  static BlendNode read(const JsonNode& j, NodeReader& r);
+
   NodeIndex a = kNoNode;  // P0
   NodeIndex b = kNoNode;  // P1
   FloatInput factor;      // t

@@ -8,6 +8,7 @@
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 namespace {
@@ -152,6 +153,33 @@ void BlinkNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out)
   advance(state, ctx.dt, /*mayStart=*/block <= 0.0f && amplitude > 0.05f);
   const float b = curve(state.phase, state.phaseTime) * amplitude;
   for (uint32_t c : channelIndices) out[c] = out[c] + (1.0f - out[c]) * b;
+}
+
+BlinkNode BlinkNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "input", "channels", "wideChannels", "amount", "minInterval", "maxInterval",
+               "closeDuration", "closedDuration", "openDuration", "doubleBlinkChance", "doubleBlinkGap",
+               "wideStart", "wideFull"});
+  BlinkNode b;
+  b.input = r.node(j.at("input"));
+  auto names = [&](std::string_view key) {
+    std::vector<std::string> out;
+    if (auto list = j.find(key))
+      for (size_t i = 0; i < list->size(); ++i) out.push_back((*list)[i].string());
+    return out;
+  };
+  b.channels = names("channels");
+  b.wideChannels = names("wideChannels");
+  b.amount = r.floatInput(j, "amount", 1.0f);
+  b.minInterval = j.numberOr("minInterval", b.minInterval);
+  b.maxInterval = j.numberOr("maxInterval", b.maxInterval);
+  b.closeDuration = j.numberOr("closeDuration", b.closeDuration);
+  b.closedDuration = j.numberOr("closedDuration", b.closedDuration);
+  b.openDuration = j.numberOr("openDuration", b.openDuration);
+  b.doubleBlinkChance = j.numberOr("doubleBlinkChance", b.doubleBlinkChance);
+  b.doubleBlinkGap = j.numberOr("doubleBlinkGap", b.doubleBlinkGap);
+  b.wideStart = j.numberOr("wideStart", b.wideStart);
+  b.wideFull = j.numberOr("wideFull", b.wideFull);
+  return b;
 }
 
 }  // namespace facial

@@ -19,10 +19,14 @@
 // "blend" scales blinking by 1 - weight; "block" does the same and also keeps
 // new blinks from starting while any of it shows. Fading instead of cutting
 // the blink keeps even an expression change mid-blink free of pops.
+//
+// JSON (graph_json.h): "blink": input, channels, wideChannels, amount, minInterval, maxInterval, closeDuration,
+//            closedDuration, openDuration, doubleBlinkChance, doubleBlinkGap, wideStart, wideFull
 #include <optional>
 #include <random>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/graph/node_types.h"
@@ -30,7 +34,13 @@
 
 namespace facial {
 
+class JsonNode;
+class NodeReader;
+
 struct BlinkNode {
+  static constexpr std::string_view kType = "blink";  // JSON "type"
+  static BlinkNode read(const JsonNode& j, NodeReader& r);
+
   NodeIndex input = kNoNode;
   std::vector<std::string> channels;      // blink channels; empty: the AU45 channels of the graph
   std::vector<std::string> wideChannels;  // eye widening; empty: AU5 when the graph has it

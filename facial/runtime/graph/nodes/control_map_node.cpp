@@ -5,6 +5,7 @@
 
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -37,6 +38,18 @@ void ControlMapNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out)
   const std::array<NodeIndex, 5> nodes = {neutral, e1, e2, e3, e4};
   const std::array<float, 5> weights = {w.neutral, w.e1, w.e2, w.e3, w.e4};
   ctx.evaluateWeightedSum(nodes, weights, out);
+}
+
+ControlMapNode ControlMapNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "neutral", "up", "down", "right", "left", "x", "y"});
+  ControlMapNode m{.neutral = r.node(j.at("neutral")),
+                   .e1 = r.node(j.at("up")),
+                   .e2 = r.node(j.at("down")),
+                   .e3 = r.node(j.at("right")),
+                   .e4 = r.node(j.at("left"))};
+  m.x = r.floatInput(j, "x", 0.0f);
+  m.y = r.floatInput(j, "y", 0.0f);
+  return m;
 }
 
 }  // namespace facial

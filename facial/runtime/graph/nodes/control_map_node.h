@@ -9,16 +9,22 @@
 // diamond's edge (x, y) / (|x| + |y|). On the diamond the weights are a convex
 // combination (all >= 0, sum 1): a corner of the square would otherwise ask
 // for wNeutral = -1, a face pushed past two full emotions at once.
+//
+// JSON (graph_json.h): "controlMap": neutral, up (+y, E1), down (-y, E2), right (+x, E3), left (-x, E4), x, y
 #include <array>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
+
+class JsonNode;
+class NodeReader;
 
 struct ControlMapWeights {
   float x = 0, y = 0;  // the cursor after clamping
@@ -31,6 +37,9 @@ struct ControlMapWeights {
 ControlMapWeights controlMapWeights(float x, float y);
 
 struct ControlMapNode {
+  static constexpr std::string_view kType = "controlMap";  // JSON "type"
+  static ControlMapNode read(const JsonNode& j, NodeReader& r);
+
   NodeIndex neutral = kNoNode;
   NodeIndex e1 = kNoNode;  // +y ("up")
   NodeIndex e2 = kNoNode;  // -y ("down")

@@ -8,6 +8,7 @@
 
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -75,6 +76,23 @@ void FreeformMapNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out
   const std::span<float> weights(storage.data(), points.size());
   weightsAt({ctx.read(x), ctx.read(y)}, weights);
   ctx.evaluateWeightedSum(nodes, weights, out);
+}
+
+FreeformMapNode FreeformMapNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "neutral", "poles", "x", "y"});
+  FreeformMapNode m;
+  m.neutral = r.node(j.at("neutral"));
+  const JsonNode poles = j.at("poles");
+  for (size_t i = 0; i < poles.size(); ++i) {
+    const JsonNode p = poles[i];
+    p.allowOnly({"at", "node"});
+    const JsonNode at = p.at("at");
+    if (at.size() != 2) at.fail("expected [x, y]");
+    m.poles.push_back({{at[0].number(), at[1].number()}, r.node(p.at("node"))});
+  }
+  m.x = r.floatInput(j, "x", 0.0f);
+  m.y = r.floatInput(j, "y", 0.0f);
+  return m;
 }
 
 }  // namespace facial

@@ -10,9 +10,12 @@
 // constant set by the closest pair of poles), stay in [0,1] and sum to 1, and
 // a pole only mixes with its neighbours. The cursor is clamped to the disc
 // through the farthest pole.
+//
+// JSON (graph_json.h): "freeformMap": neutral, poles [{"at": [x, y], "node": {...}}], x, y
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -21,6 +24,9 @@
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
+
+class JsonNode;
+class NodeReader;
 
 inline constexpr size_t kMaxFreeformPoles = 32;
 
@@ -33,6 +39,9 @@ struct FreeformPole {
 };
 
 struct FreeformMapNode {
+  static constexpr std::string_view kType = "freeformMap";  // JSON "type"
+  static FreeformMapNode read(const JsonNode& j, NodeReader& r);
+
   NodeIndex neutral = kNoNode;      // at the origin
   std::vector<FreeformPole> poles;  // 1..kMaxFreeformPoles, distinct, away from the origin
   FloatInput x, y;

@@ -2,6 +2,8 @@
 // Pose node: a constant weight vector, typically an expression preset at an
 // intensity (resolved when the graph is built, see preset_lookup.h) or
 // explicit weights, optionally scaled at run time by a parameter.
+//
+// JSON (graph_json.h): "pose": preset + intensity | weights ({"channel": w} or [w, ...]); scale; overrideBlink none|block|blend
 #include <optional>
 #include <span>
 #include <string>
@@ -14,11 +16,17 @@
 
 namespace facial {
 
+class JsonNode;
+class NodeReader;
+
 // JSON names of VRM overrides: "none", "block", "blend".
 std::string_view toString(VrmOverride mode);
 std::optional<VrmOverride> vrmOverrideFromString(std::string_view name);
 
 struct PoseNode {
+  static constexpr std::string_view kType = "pose";  // JSON "type"
+  static PoseNode read(const JsonNode& j, NodeReader& r);
+
   std::vector<float> weights;                  // one per channel, each in [0,1]
   FloatInput scale = FloatInput::fixed(1.0f);  // multiplies weights and the override lane
   // VRM 1.0 overrideBlink: what this expression does to procedural blinking

@@ -8,6 +8,7 @@
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -237,6 +238,77 @@ void StateMachineNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<floa
   }
   std::copy(out.begin(), out.end(), state.lastOutput.begin());
   state.hasOutput = true;
+}
+
+namespace {
+
+TransitionCondition readCondition(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"parameter", "op", "value"});
+  TransitionCondition c;
+  c.parameter = r.parameter(j.at("parameter"));
+  switch (r.parameterType(c.parameter)) {
+    case ParameterType::Trigger:
+      if (j.has("op") || j.has("value")) j.fail("a trigger condition takes only \"parameter\"");
+      c.op = ConditionOp::Triggered;
+      break;
+    case ParameterType::Bool:
+      if (j.has("op")) j.at("op").fail("a bool condition takes \"value\": true or false");
+      c.op = j.booleanOr("value", true) ? ConditionOp::IsTrue : ConditionOp::IsFalse;
+      break;
+    case ParameterType::Float: {
+      const JsonNode op = j.at("op");
+      auto parsed = conditionOpFromString(op.string());
+      if (!parsed || *parsed == ConditionOp::IsTrue || *parsed == ConditionOp::IsFalse ||
+          *parsed == ConditionOp::Triggered)
+        op.fail("unknown comparison '" + op.string() + "' (expected >, >=, <, <=, == or !=)");
+      c.op = *parsed;
+      c.threshold = j.at("value").number();
+      break;
+    }
+  }
+  return c;
+}
+
+std::vector<Transition> readTransitions(const JsonNode& list, NodeReader& r) {
+  std::vector<Transition> out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const JsonNode j = list[i];
+    j.allowOnly({"to", "duration", "curve", "exitTime", "priority", "interruptible", "canTransitionToSelf",
+                 "conditions"});
+    Transition t;
+    t.to = j.at("to").string();
+    t.duration = j.numberOr("duration", t.duration);
+    t.curve = r.curve(j);
+    if (auto e = j.find("exitTime")) t.exitTime = e->number();
+    if (auto p = j.find("priority")) {
+      if (!p->raw().is_number_integer()) p->fail("expected an integer, got " + p->raw().dump());
+      t.priority = p->raw().get<int>();
+    }
+    t.interruptible = j.booleanOr("interruptible", true);
+    t.canTransitionToSelf = j.booleanOr("canTransitionToSelf", false);
+    if (auto conditions = j.find("conditions"))
+      for (size_t c = 0; c < conditions->size(); ++c) t.conditions.push_back(readCondition((*conditions)[c], r));
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+}  // namespace
+
+StateMachineNode StateMachineNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "states", "anyState", "defaultState"});
+  StateMachineNode m;
+  const JsonNode states = j.at("states");
+  for (size_t i = 0; i < states.size(); ++i) {
+    const JsonNode s = states[i];
+    s.allowOnly({"name", "node", "transitions"});
+    MachineState state{.name = s.at("name").string(), .node = r.node(s.at("node"))};
+    if (auto t = s.find("transitions")) state.transitions = readTransitions(*t, r);
+    m.states.push_back(std::move(state));
+  }
+  if (auto any = j.find("anyState")) m.anyState = readTransitions(*any, r);
+  m.defaultState = j.stringOr("defaultState", "");
+  return m;
 }
 
 }  // namespace facial

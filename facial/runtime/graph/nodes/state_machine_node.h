@@ -12,6 +12,11 @@
 // never jumps: per frame it moves at most maxSlope(c) * dt / duration times
 // the distance between source and destination, plus what the destination's
 // own animation moves.
+//
+// JSON (graph_json.h): "stateMachine": states [{name, node, transitions}], anyState [transitions], defaultState
+//     transition: to, duration, curve, exitTime, priority, interruptible, canTransitionToSelf,
+//                 conditions [{"parameter": p, "op": ">"|">="|"<"|"<="|"=="|"!=", "value": v}
+//                             | {"parameter": bool, "value": true} | {"parameter": trigger}]
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +28,9 @@
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
+
+class JsonNode;
+class NodeReader;
 
 enum class ConditionOp : uint8_t { Greater, GreaterEqual, Less, LessEqual, Equal, NotEqual, IsTrue, IsFalse, Triggered };
 std::string_view toString(ConditionOp op);
@@ -65,6 +73,9 @@ struct StateMachineStatus {
 };
 
 struct StateMachineNode {
+  static constexpr std::string_view kType = "stateMachine";  // JSON "type"
+  static StateMachineNode read(const JsonNode& j, NodeReader& r);
+
   std::vector<MachineState> states;
   std::vector<Transition> anyState;
   std::string defaultState;  // empty: the first state

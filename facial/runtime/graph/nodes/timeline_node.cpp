@@ -6,6 +6,7 @@
 #include "facial/runtime/graph/graph_definition.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
+#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
@@ -54,6 +55,19 @@ void TimelineNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> o
                     .cursors = state.cursors,
                     .out = out}
       .Run();
+}
+
+TimelineNode TimelineNode::read(const JsonNode& j, NodeReader& r) {
+  j.allowOnly({"type", "name", "timeline", "loop", "speed"});
+  TimelineNode t;
+  t.timeline = r.timeline(j.at("timeline"));
+  if (auto loop = j.find("loop")) {
+    auto mode = loopModeFromString(loop->string());
+    if (!mode) loop->fail("unknown loop mode (expected once, clamp, loop or pingpong)");
+    t.loop = *mode;
+  }
+  t.speed = r.floatInput(j, "speed", 1.0f);
+  return t;
 }
 
 }  // namespace facial

@@ -3,9 +3,12 @@
 // its tracks name (other channels read 0). Playback time advances by
 // speed * dt (negative plays backward) and maps into the clip by the loop
 // mode; each track keeps a cursor so forward playback is O(1) amortised.
+//
+// JSON (graph_json.h): "timeline": timeline (name), loop once|clamp|loop|pingpong, speed
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "facial/runtime/graph/node_types.h"
@@ -14,7 +17,13 @@
 
 namespace facial {
 
+class JsonNode;
+class NodeReader;
+
 struct TimelineNode {
+  static constexpr std::string_view kType = "timeline";  // JSON "type"
+  static TimelineNode read(const JsonNode& j, NodeReader& r);
+
   uint32_t timeline = 0;          // index into the graph's timelines
   std::optional<LoopMode> loop;   // overrides the timeline's own loop mode
   FloatInput speed = FloatInput::fixed(1.0f);
