@@ -415,7 +415,10 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
     if (major) {
       char label[16];
       std::snprintf(label, sizeof label, "%.1f", double(t));
-      draw->AddText({x + 2.0f, origin.y + 1.0f}, IM_COL32(190, 190, 200, 255), label);
+      // Right of its tick, except where that would run past the canvas (the clip's end).
+      const float width = ImGui::CalcTextSize(label).x;
+      const float labelX = x + 2.0f + width > right ? x - 2.0f - width : x + 2.0f;
+      draw->AddText({labelX, origin.y + 1.0f}, IM_COL32(190, 190, 200, 255), label);
       draw->AddLine({x, rowsTop}, {x, rowsTop + rowHeight * float(tracks.size())}, IM_COL32(55, 60, 72, 255));
     }
   }
