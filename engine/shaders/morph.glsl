@@ -4,14 +4,18 @@
 // result in mesh.vert instead of morphing again.
 //
 // Deltas are sparse and vertex-major (set 1, one primitive): vertex v's
-// entries are morphEntries[morphOffsets[v] .. morphOffsets[v + 1]), in target
-// order, one per target that moves v (position, normal, tangent or crease
-// non-zero). Cost follows the (vertex, target) pairs that move something,
-// not vertices x targets: face targets are local (a brow target leaves the
-// mouth alone). An entry is two vec4, position delta + the target index
-// (as a float value) and normal delta + crease darkening (how much the target
-// darkens v at full weight: engine/scene/crease_shading.h), then a third,
-// the tangent delta, where the primitive has tangent deltas.
+// entries, in target order, one per target that moves v (position, normal,
+// tangent or crease non-zero). Cost follows the (vertex, target) pairs that
+// move something, not vertices x targets: face targets are local (a brow
+// target leaves the mouth alone). An entry is two vec4, position delta + the
+// target index (as a float value) and normal delta + crease darkening (how
+// much the target darkens v at full weight: engine/scene/crease_shading.h),
+// then a third, the tangent delta, where the primitive has tangent deltas.
+// Sliced (engine/vk/gpu_model.cpp, compactDeltas): MORPH_SLICE_LANES
+// consecutive vertices form a slice whose rows morphOffsets[s] ..
+// morphOffsets[s + 1] hold the k-th entry of every vertex of the slice side
+// by side, plane by plane, so neighbouring invocations fetch neighbouring
+// texels; shorter lists are padded with entries that add nothing.
 //
 // Rest attributes come from the model's vertex buffer (set 1 binding 2) at
 // the float offsets draw.restPosition / restNormal / restTangent.
@@ -59,6 +63,8 @@ uint morphedSlot(uint vertex, uint instanceInDraw) {
 }
 
 #if defined(MORPH_WRITE)
+const uint MORPH_SLICE_LANES = 8u;  // gpu_model.cpp's kMorphSliceLanes
+
 // Texel buffers rather than storage buffers: a CPU device (lavapipe) fetches
 // texels for all SIMD lanes at once but loads storage lane by lane.
 layout(set = 0, binding = 8) uniform samplerBuffer targetWeights;
@@ -82,17 +88,19 @@ MorphedVertex morphVertex(uint vertex, InstanceData inst) {
   uint t4 = draw.restTangent + vertex * 4u;
   vec3 tangent = tangents ? vec3(restFloat(t4), restFloat(t4 + 1u), restFloat(t4 + 2u)) : vec3(0.0);
   float crease = 0.0;
-  uint stride = tangents ? 3u : 2u;
-  uint end = texelFetch(morphOffsets, int(vertex + 1u)).x;
-  for (uint e = texelFetch(morphOffsets, int(vertex)).x; e < end; ++e) {
-    vec4 p = texelFetch(morphEntries, int(e * stride));
+  uint planes = tangents ? 3u : 2u;
+  uint slice = vertex / MORPH_SLICE_LANES, lane = vertex % MORPH_SLICE_LANES;
+  uint end = texelFetch(morphOffsets, int(slice + 1u)).x;
+  for (uint row = texelFetch(morphOffsets, int(slice)).x; row < end; ++row) {
+    uint e = row * planes * MORPH_SLICE_LANES + lane;
+    vec4 p = texelFetch(morphEntries, int(e));
     float w = texelFetch(targetWeights, int(inst.weightOffset + uint(p.w))).x;
-    if (w == 0.0) continue;  // not in the active list
-    vec4 n = texelFetch(morphEntries, int(e * stride + 1u));
+    if (w == 0.0) continue;  // not in the active list, or padding
+    vec4 n = texelFetch(morphEntries, int(e + MORPH_SLICE_LANES));
     position += w * p.xyz;
     normal += w * n.xyz;
     crease += w * n.w;
-    if (tangents) tangent += w * texelFetch(morphEntries, int(e * stride + 2u)).xyz;
+    if (tangents) tangent += w * texelFetch(morphEntries, int(e + 2u * MORPH_SLICE_LANES)).xyz;
   }
   return finishedVertex(position, normal, tangent, crease);
 }
