@@ -12,7 +12,7 @@ float RegionMask::weight(const ChannelInfo& channel) const {
   return 1.0f;
 }
 
-std::optional<std::string> AdditiveNode::prepare(const BuildContext& ctx) {
+eng::Result<void> AdditiveNode::prepare(const BuildContext& ctx) {
   maskWeights.resize(ctx.channels.size());
   for (uint32_t c = 0; c < ctx.channels.size(); ++c) maskWeights[c] = mask.weight(ctx.channels[c]);
   return ctx.checkInput(weight, "weight");

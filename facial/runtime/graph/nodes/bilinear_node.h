@@ -34,7 +34,7 @@ struct BilinearNode {
 
   static constexpr uint32_t kScratchPoses = 2;
   void inputs(std::vector<NodeIndex>& out) const;
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

@@ -8,7 +8,7 @@
 
 namespace facial {
 
-std::optional<std::string> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
+eng::Result<void> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
 
 void BlendNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const {
   ctx.evaluate(a, out);

@@ -21,7 +21,7 @@ struct BlendNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {a, b}); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

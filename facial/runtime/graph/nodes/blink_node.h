@@ -62,7 +62,7 @@ struct BlinkNode {
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>& out) const { out.push_back(input); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

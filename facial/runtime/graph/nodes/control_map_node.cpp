@@ -27,8 +27,8 @@ ControlMapWeights controlMapWeights(float x, float y) {
   return w;
 }
 
-std::optional<std::string> ControlMapNode::prepare(const BuildContext& ctx) {
-  if (auto p = ctx.checkInput(x, "x")) return p;
+eng::Result<void> ControlMapNode::prepare(const BuildContext& ctx) {
+  if (auto p = ctx.checkInput(x, "x"); !p) return p;
   return ctx.checkInput(y, "y");
 }
 

@@ -40,7 +40,7 @@ struct ControlMapNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {neutral, e1, e2, e3, e4}); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

@@ -47,7 +47,7 @@ void FreeformMapNode::inputs(std::vector<NodeIndex>& out) const {
   for (const FreeformPole& pole : poles) out.push_back(pole.node);
 }
 
-std::optional<std::string> FreeformMapNode::prepare(const BuildContext& ctx) {
+eng::Result<void> FreeformMapNode::prepare(const BuildContext& ctx) {
   if (poles.empty() || poles.size() > kMaxFreeformPoles)
     return ctx.problem("poles", "needs 1 to " + std::to_string(kMaxFreeformPoles) + " poles, got " +
                                     std::to_string(poles.size()));
@@ -66,7 +66,7 @@ std::optional<std::string> FreeformMapNode::prepare(const BuildContext& ctx) {
     nodes.push_back(poles[i].node);
     radius = std::max(radius, glm::length(at));
   }
-  if (auto p = ctx.checkInput(x, "x")) return p;
+  if (auto p = ctx.checkInput(x, "x"); !p) return p;
   return ctx.checkInput(y, "y");
 }
 

@@ -47,7 +47,7 @@ struct FreeformMapNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const;
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

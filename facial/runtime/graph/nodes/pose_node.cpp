@@ -23,7 +23,7 @@ std::optional<VrmOverride> vrmOverrideFromString(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<std::string> PoseNode::prepare(const BuildContext& ctx) {
+eng::Result<void> PoseNode::prepare(const BuildContext& ctx) {
   if (weights.size() != ctx.channels.size())
     return ctx.problem("weights", "has " + std::to_string(weights.size()) + " entries, the graph has " +
                                       std::to_string(ctx.channels.size()) + " channels");

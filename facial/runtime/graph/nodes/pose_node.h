@@ -27,7 +27,7 @@ struct PoseNode {
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>&) const {}
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

@@ -91,7 +91,7 @@ struct StateMachineNode {
   void inputs(std::vector<NodeIndex>& out) const;
   // Validates, resolves names, and orders each transition list by priority
   // (stable: equal priorities keep declaration order).
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

@@ -9,12 +9,13 @@
 
 namespace facial {
 
-std::optional<std::string> TimelineNode::prepare(const BuildContext& ctx) {
+eng::Result<void> TimelineNode::prepare(const BuildContext& ctx) {
   if (timeline >= ctx.timelines.size())
     return ctx.problem("timeline", "timeline index " + std::to_string(timeline) + " out of range (" +
                                        std::to_string(ctx.timelines.size()) + " timelines)");
   const Timeline& clip = ctx.timelines[timeline];
-  if (auto problem = clip.validate()) return ctx.problem("timeline", "timeline '" + clip.name + "': " + *problem);
+  if (auto valid = clip.validate(); !valid)
+    return ctx.problem("timeline", "timeline '" + clip.name + "': " + valid.error().message);
   trackChannels.clear();
   for (const TimelineTrack& track : clip.tracks) {
     auto channel = ctx.channels.find(track.channel);
