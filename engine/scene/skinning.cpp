@@ -29,15 +29,17 @@ Result<void> SkinPrimitiveJob::Validate() const {
   if (!primitive) return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: no primitive");
   const size_t n = primitive->vertexCount();
   if (positions.size() != n)
-    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: positions has " + std::to_string(positions.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices");
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: positions has " + std::to_string(positions.size()) +
+                                                     " entries, primitive has " + std::to_string(n) + " vertices");
   if (!normals.empty() && normals.size() != n)
-    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: normals has " + std::to_string(normals.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices");
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: normals has " + std::to_string(normals.size()) +
+                                                     " entries, primitive has " + std::to_string(n) + " vertices");
   const size_t sets = primitive->influenceSets();
   if (primitive->joints.size() != n * sets || primitive->jointWeights.size() != n * sets)
-    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: primitive has " + std::to_string(primitive->joints.size()) + " joint groups and " +
-           std::to_string(primitive->jointWeights.size()) + " weight groups for " + std::to_string(n) + " vertices");
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: primitive has " +
+                                                     std::to_string(primitive->joints.size()) + " joint groups and " +
+                                                     std::to_string(primitive->jointWeights.size()) +
+                                                     " weight groups for " + std::to_string(n) + " vertices");
   return {};
 }
 

@@ -33,8 +33,10 @@ eng::Result<void> validateKeys(std::span<const Keyframe> keys) {
         !std::isfinite(k.outTangent))
       return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " has a non-finite number");
     if (i > 0 && !(k.time > keys[i - 1].time))
-      return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " time " + formatNumber(k.time) + " is not after key " +
-             std::to_string(i - 1) + " time " + formatNumber(keys[i - 1].time) + " (keys must be sorted, no duplicates)");
+      return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " time " + formatNumber(k.time) +
+                                                           " is not after key " + std::to_string(i - 1) + " time " +
+                                                           formatNumber(keys[i - 1].time) +
+                                                           " (keys must be sorted, no duplicates)");
   }
   return {};
 }

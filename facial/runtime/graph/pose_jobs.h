@@ -1,8 +1,9 @@
 #pragma once
 // The arithmetic of poses: small jobs over spans of weights (ozz style).
 // Validate() names the sizes that do not fit (InvalidArgument: the caller's
-// spans, not a file); Run() validates, then works in place without allocating. All spans of one job have the same length (a
-// pose: the channels, then the graph's lanes), except where noted.
+// spans, not a file); Run() validates, then works in place without
+// allocating. All spans of one job have the same length (a pose: the
+// channels, then the graph's lanes), except where noted.
 #include <span>
 
 #include "engine/core/result.h"

@@ -12,7 +12,9 @@ eng::Error jsonProblemError(const JsonProblem& problem, std::string_view source)
   return eng::makeError(problem.kind, message + ": " + problem.problem);
 }
 
-void JsonNode::fail(const std::string& problem, eng::ErrorKind kind) const { throw JsonProblem{pointer_, problem, kind}; }
+void JsonNode::fail(const std::string& problem, eng::ErrorKind kind) const {
+  throw JsonProblem{pointer_, problem, kind};
+}
 
 bool JsonNode::has(std::string_view key) const { return value_->is_object() && value_->contains(key); }
 

@@ -56,7 +56,9 @@ eng::Result<void> BlinkNode::prepare(const BuildContext& ctx) {
     indices.clear();
     for (size_t i = 0; i < names.size(); ++i) {
       auto c = ctx.channels.find(names[i]);
-      if (!c) return ctx.problem(std::string(field) + "/" + std::to_string(i), "'" + names[i] + "' is not a channel of this graph");
+      if (!c)
+        return ctx.problem(std::string(field) + "/" + std::to_string(i),
+                           "'" + names[i] + "' is not a channel of this graph");
       indices.push_back(*c);
     }
     return {};

@@ -22,7 +22,7 @@ eng::Result<void> BuildContext::checkInput(const FloatInput& input, std::string_
 }
 
 eng::Result<void> BuildContext::checkParameter(ParameterIndex parameter, ParameterType type,
-                                                        std::string_view field) const {
+                                               std::string_view field) const {
   if (parameter >= parameters.size())
     return problem(field, "parameter index " + std::to_string(parameter) + " out of range (" +
                               std::to_string(parameters.size()) + " parameters)");
