@@ -79,7 +79,7 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
   if (timeline.tracks.empty()) return eng::makeError(eng::ErrorKind::Malformed, label + " animates no morph weights");
   timeline.duration = timeline.lastKeyTime();
   if (timeline.duration <= 0.0f) return eng::makeError(eng::ErrorKind::Malformed, label + " lasts 0 s (all keys at time 0)");
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, label + ": " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed(label + ": ");
   return timeline;
 }
 
@@ -109,7 +109,7 @@ float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
 }  // namespace
 
 eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options) {
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + timeline.name + "': " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed("timeline '" + timeline.name + "': ");
   int node = options.node;
   if (node < 0) {
     // A face file often holds several meshes (head, eyes, teeth): pick the

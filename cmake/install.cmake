@@ -27,11 +27,14 @@ install(TARGETS eng_scene eng_image eng_vk facial_engine EXPORT facialEngine
 install(EXPORT facialEngine NAMESPACE facial:: FILE facialEngineTargets.cmake DESTINATION ${FACIAL_INSTALL_CMAKEDIR})
 
 # Headers keep their source paths (#include "facial/runtime/..." / "engine/...");
-# the public API is include/facial/*.h.
+# the public API is include/facial/*.h. detail/ folders hold implementation
+# headers (the graph JSON readers, which throw internally) and stay out.
 install(DIRECTORY facial/include/facial DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY facial/runtime DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facial FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY facial/runtime DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facial FILES_MATCHING PATTERN "*.h"
+        PATTERN detail EXCLUDE)
 foreach(part core scene image vk)
-  install(DIRECTORY engine/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/engine FILES_MATCHING PATTERN "*.h")
+  install(DIRECTORY engine/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/engine FILES_MATCHING PATTERN "*.h"
+          PATTERN detail EXCLUDE)
 endforeach()
 
 install(DIRECTORY data/graphs data/timelines data/rigmaps DESTINATION ${FACIAL_INSTALL_DATADIR})

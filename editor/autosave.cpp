@@ -36,7 +36,7 @@ eng::Result<bool> TimelineAutosave::flush(const TimelineDocument& document) {
 eng::Result<bool> TimelineAutosave::write(const TimelineDocument& document) {
   // Tracks without keys are left out (toTimeline): the clip as it would play.
   const facial::Timeline timeline = document.toTimeline();
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, file_.string() + ": not autosaved: " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed(file_.string() + ": not autosaved: ");
   auto written = replaceFileAtomically(file_, [&](const fs::path& temp) -> eng::Result<void> {
     std::ofstream out(temp, std::ios::binary);
     if (!out) return eng::makeError(eng::ErrorKind::Io, file_.string() + ": cannot write the autosave (" + temp.string() + ")");

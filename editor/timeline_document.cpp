@@ -35,7 +35,7 @@ TimelineDocument::TimelineDocument(std::string name, float duration) {
 }
 
 eng::Result<TimelineDocument> TimelineDocument::fromTimeline(const facial::Timeline& timeline) {
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + timeline.name + "': " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed("timeline '" + timeline.name + "': ");
   TimelineDocument doc(timeline.name, timeline.duration);
   doc.state_.loop = timeline.loop;
   for (size_t t = 0; t < timeline.tracks.size(); ++t) {
@@ -75,7 +75,7 @@ eng::Result<void> TimelineDocument::save(const std::filesystem::path& path) {
       return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": not saved: track '" + track.channel +
                             "' has no keys (add a key or remove the track)");
   const facial::Timeline timeline = toTimeline();
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": not saved: " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed(path.string() + ": not saved: ");
   auto saved = replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
     std::ofstream out(temp, std::ios::binary);
     if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write (" + temp.string() + " cannot be created)");

@@ -27,6 +27,18 @@ foreach(file include/facial/character.h include/facial/c_api.h lib/cmake/facial/
     message(FATAL_ERROR "the install has no ${file}")
   endif()
 endforeach()
+# Implementation headers (detail/: the graph JSON readers, which throw inside the
+# library) stay out of the install, and no installed header may need one.
+file(GLOB_RECURSE installed_headers ${prefix}/include/*.h)
+foreach(header ${installed_headers})
+  if(header MATCHES "/detail/")
+    message(FATAL_ERROR "the install has an implementation header: ${header}")
+  endif()
+  file(STRINGS ${header} detail_includes REGEX "#[ \t]*include[ \t]*[\"<][^\">]*/detail/")
+  if(detail_includes)
+    message(FATAL_ERROR "${header} includes a header that is not installed: ${detail_includes}")
+  endif()
+endforeach()
 
 foreach(example embed embed_c)
   set(build ${WORK_DIR}/${example})

@@ -5,34 +5,40 @@
 
 namespace eng {
 
-std::optional<std::string> MorphPrimitiveJob::Validate() const {
-  if (!primitive) return std::string("MorphPrimitiveJob: no primitive");
+Result<void> MorphPrimitiveJob::Validate() const {
+  if (!primitive) return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: no primitive");
   const size_t n = primitive->vertexCount();
   if (weights.size() != primitive->targets.size())
-    return "MorphPrimitiveJob: " + std::to_string(weights.size()) + " weights for " +
-           std::to_string(primitive->targets.size()) + " targets";
+    return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: " + std::to_string(weights.size()) +
+                                                     " weights for " + std::to_string(primitive->targets.size()) +
+                                                     " targets");
   if (outPositions.size() != n)
-    return "MorphPrimitiveJob: outPositions has " + std::to_string(outPositions.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices";
+    return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: outPositions has " +
+                                                     std::to_string(outPositions.size()) + " entries, primitive has " +
+                                                     std::to_string(n) + " vertices");
   if (!outNormals.empty() && outNormals.size() != n)
-    return "MorphPrimitiveJob: outNormals has " + std::to_string(outNormals.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices";
+    return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: outNormals has " +
+                                                     std::to_string(outNormals.size()) + " entries, primitive has " +
+                                                     std::to_string(n) + " vertices");
   if (!outNormals.empty() && primitive->normals.size() != n)
-    return "MorphPrimitiveJob: primitive has " + std::to_string(primitive->normals.size()) + " normals for " +
-           std::to_string(n) + " vertices";
+    return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: primitive has " +
+                                                     std::to_string(primitive->normals.size()) + " normals for " +
+                                                     std::to_string(n) + " vertices");
   for (size_t t = 0; t < weights.size(); ++t) {
-    if (!std::isfinite(weights[t])) return "MorphPrimitiveJob: weight " + std::to_string(t) + " is not finite";
+    if (!std::isfinite(weights[t]))
+      return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: weight " + std::to_string(t) + " is not finite");
     const MorphTarget& target = primitive->targets[t];
     if ((!target.positions.empty() && target.positions.size() != n) ||
         (!target.normals.empty() && target.normals.size() != n))
-      return "MorphPrimitiveJob: target " + std::to_string(t) + " has deltas for another vertex count than " +
-             std::to_string(n);
+      return makeError(ErrorKind::InvalidArgument, "MorphPrimitiveJob: target " + std::to_string(t) +
+                                                       " has deltas for another vertex count than " +
+                                                       std::to_string(n));
   }
-  return std::nullopt;
+  return {};
 }
 
 bool MorphPrimitiveJob::Run() const {
-  if (Validate()) return false;  // allocates only to describe a failure
+  if (!Validate().ok()) return false;  // allocates only to describe a failure
   const Primitive& p = *primitive;
   const size_t n = p.vertexCount();
   const bool doNormals = !outNormals.empty();

@@ -2,12 +2,12 @@
 // Reference CPU morphing: the classic per-vertex lerp that rewrites the whole
 // vertex buffer, p = base + sum_i w_i * delta_i. Tests check the GPU path
 // against it and benchmarks use it as the baseline.
-#include <optional>
 #include <span>
 #include <string>
 
 #include <glm/glm.hpp>
 
+#include "engine/core/result.h"
 #include "engine/scene/model.h"
 
 namespace eng {
@@ -23,7 +23,7 @@ struct MorphPrimitiveJob {
   // empty (positions only); otherwise the primitive needs one normal a vertex.
   std::span<glm::vec3> outPositions;
   std::span<glm::vec3> outNormals;
-  std::optional<std::string> Validate() const;
+  Result<void> Validate() const;
   bool Run() const;
 };
 

@@ -25,24 +25,26 @@ glm::mat4 vertexSkinMatrix(const Primitive& primitive, size_t vertex, std::span<
   return total > 0.0f ? sum : glm::mat4(1.0f);
 }
 
-std::optional<std::string> SkinPrimitiveJob::Validate() const {
-  if (!primitive) return std::string("SkinPrimitiveJob: no primitive");
+Result<void> SkinPrimitiveJob::Validate() const {
+  if (!primitive) return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: no primitive");
   const size_t n = primitive->vertexCount();
   if (positions.size() != n)
-    return "SkinPrimitiveJob: positions has " + std::to_string(positions.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices";
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: positions has " + std::to_string(positions.size()) +
+                                                     " entries, primitive has " + std::to_string(n) + " vertices");
   if (!normals.empty() && normals.size() != n)
-    return "SkinPrimitiveJob: normals has " + std::to_string(normals.size()) + " entries, primitive has " +
-           std::to_string(n) + " vertices";
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: normals has " + std::to_string(normals.size()) +
+                                                     " entries, primitive has " + std::to_string(n) + " vertices");
   const size_t sets = primitive->influenceSets();
   if (primitive->joints.size() != n * sets || primitive->jointWeights.size() != n * sets)
-    return "SkinPrimitiveJob: primitive has " + std::to_string(primitive->joints.size()) + " joint groups and " +
-           std::to_string(primitive->jointWeights.size()) + " weight groups for " + std::to_string(n) + " vertices";
-  return std::nullopt;
+    return makeError(ErrorKind::InvalidArgument, "SkinPrimitiveJob: primitive has " +
+                                                     std::to_string(primitive->joints.size()) + " joint groups and " +
+                                                     std::to_string(primitive->jointWeights.size()) +
+                                                     " weight groups for " + std::to_string(n) + " vertices");
+  return {};
 }
 
 bool SkinPrimitiveJob::Run() const {
-  if (Validate()) return false;  // allocates only to describe a failure
+  if (!Validate().ok()) return false;  // allocates only to describe a failure
   const size_t n = primitive->vertexCount();
   if (primitive->influenceSets() == 0) return true;
   for (size_t v = 0; v < n; ++v) {
@@ -66,7 +68,7 @@ bool posePrimitiveCpu(const Model& model, int meshNode, const Primitive& primiti
                       std::span<const glm::mat4> world, std::span<glm::vec3> positions, std::span<glm::vec3> normals) {
   // Both jobs validate before the morph writes, so a failure leaves the outputs as they were.
   const SkinPrimitiveJob skinCheck{&primitive, {}, positions, normals};
-  if (skinCheck.Validate()) return false;
+  if (!skinCheck.Validate().ok()) return false;
   if (!morphPrimitiveCpu(primitive, meshWeights, positions, normals)) return false;
   const int skin = meshNode >= 0 && static_cast<size_t>(meshNode) < model.nodes.size() ? model.nodes[meshNode].skin : -1;
   if (skin < 0 || static_cast<size_t>(skin) >= model.skins.size() || primitive.influenceSets() == 0) return true;

@@ -4,12 +4,12 @@
 // its joints' matrices, p' = (sum_i w_i * J[j_i]) p, and its normal by the
 // upper 3x3 of the same sum, renormalised. Tests check the GPU path against
 // it; posed bounds and picking use it.
-#include <optional>
 #include <span>
 #include <string>
 
 #include <glm/glm.hpp>
 
+#include "engine/core/result.h"
 #include "engine/scene/model.h"
 
 namespace eng {
@@ -28,7 +28,7 @@ struct SkinPrimitiveJob {
   std::span<const glm::mat4> jointMatrices;
   std::span<glm::vec3> positions;  // vertexCount long
   std::span<glm::vec3> normals;    // empty, or vertexCount long
-  std::optional<std::string> Validate() const;
+  Result<void> Validate() const;
   bool Run() const;
 };
 

@@ -188,3 +188,44 @@ TEST(GraphJsonValidity, DeepNestingIsRefusedNotACrash) {
   auto graph = loadGraph(writeGraph("deep64", nested(kMaxGraphNodeDepth - 1)), kPresets);
   EXPECT_TRUE(graph.ok()) << graph.error().message;
 }
+
+// A node the builder refuses (after the JSON reads fine) is reported through the same
+// Result as a syntax problem: one line with the file, the node's JSON pointer and the problem.
+TEST(GraphJsonValidity, ABadNodeNamesFileNodeAndProblemInOneLine) {
+  const auto path = writeGraph("badNode", R"({"version": 1, "channels": "actionUnits",
+    "root": {"type": "stateMachine", "states": [
+      {"name": "a", "node": {"type": "blink", "minInterval": 2, "maxInterval": 1,
+                             "input": {"type": "pose", "preset": "calm"}}}]}})");
+  auto graph = loadGraph(path, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_EQ(graph.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_EQ(graph.error().message,
+            path.string() + ": /root/states/0/node/maxInterval: is shorter than minInterval (1 < 2)");
+
+  // A parameter of the wrong type, found by BuildContext::checkParameter, likewise.
+  const auto wrongType = writeGraph("wrongType", R"({"version": 1, "channels": "actionUnits",
+    "parameters": [{"name": "go", "type": "trigger"}],
+    "root": {"type": "bilinear", "expression": "go", "shapes": [
+      [{"type": "pose", "preset": "calm"}, {"type": "pose", "preset": "happy"}],
+      [{"type": "pose", "preset": "calm"}, {"type": "pose", "preset": "happy"}]]}})");
+  graph = loadGraph(wrongType, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_EQ(graph.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_EQ(graph.error().message, wrongType.string() + ": /root/expression: parameter 'go' is a trigger, expected a float");
+}
+
+// Kinds survive the reader's internal conversion: a missing timeline file stays NotFound, a
+// newer format version is Unsupported, and the message still names both files.
+TEST(GraphJsonValidity, NestedErrorsKeepTheirKind) {
+  const auto path = writeGraph("missingTimeline", R"({"version": 1, "channels": "actionUnits",
+    "timelines": {"t": "gone.json"}, "root": {"type": "timeline", "timeline": "t"}})");
+  auto graph = loadGraph(path, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_EQ(graph.error().kind, eng::ErrorKind::NotFound) << graph.error().message;
+  EXPECT_EQ(graph.error().message.rfind(path.string() + ": /timelines/t: ", 0), 0u) << graph.error().message;
+  EXPECT_NE(graph.error().message.find("gone.json"), std::string::npos) << graph.error().message;
+
+  graph = loadGraph(writeGraph("newer", R"({"version": 2, "channels": "actionUnits", "root": {}})"), kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_EQ(graph.error().kind, eng::ErrorKind::Unsupported) << graph.error().message;
+}

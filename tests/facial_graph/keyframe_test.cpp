@@ -90,13 +90,14 @@ TEST(Keyframe, ForwardPlaybackMovesTheCursorOneSegmentAtATime) {
 }
 
 TEST(KeyframeValidity, RejectsUnsortedDuplicateNonFiniteAndEmpty) {
-  EXPECT_TRUE(facial::validateKeys(std::vector<Keyframe>{}).has_value());
+  EXPECT_FALSE(facial::validateKeys(std::vector<Keyframe>{}));
   auto unsorted = facial::validateKeys(std::vector<Keyframe>{key(1, 0), key(0.5f, 1)});
-  ASSERT_TRUE(unsorted.has_value());
-  EXPECT_NE(unsorted->find("key 1"), std::string::npos) << *unsorted;
-  EXPECT_TRUE(facial::validateKeys(std::vector<Keyframe>{key(1, 0), key(1, 1)}).has_value());
-  EXPECT_TRUE(facial::validateKeys(std::vector<Keyframe>{key(0, NAN)}).has_value());
-  EXPECT_FALSE(facial::validateKeys(std::vector<Keyframe>{key(0, 0), key(1, 1)}).has_value());
+  ASSERT_FALSE(unsorted);
+  EXPECT_EQ(unsorted.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_NE(unsorted.error().message.find("key 1"), std::string::npos) << unsorted.error().message;
+  EXPECT_FALSE(facial::validateKeys(std::vector<Keyframe>{key(1, 0), key(1, 1)}));
+  EXPECT_FALSE(facial::validateKeys(std::vector<Keyframe>{key(0, NAN)}));
+  EXPECT_TRUE(facial::validateKeys(std::vector<Keyframe>{key(0, 0), key(1, 1)}));
 }
 
 TEST(KeyframeValidity, InterpolationNamesRoundTrip) {

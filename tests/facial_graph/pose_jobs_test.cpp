@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "facial/runtime/graph/timeline.h"
+#include "tests/common/allocation_counter.h"
+
 using namespace facial;
 
 TEST(PoseJobs, LerpIsOneMinusTTimesP0PlusTTimesP1) {
@@ -53,15 +56,43 @@ TEST(PoseJobsValidity, MismatchedSizesAreNamedAndNothingIsWritten) {
   std::vector<float> out(3, 0.25f);
   const LerpPoseJob lerp{.a = a, .b = b, .t = 0.5f, .out = out};
   auto problem = lerp.Validate();
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_NE(problem->find("b has 4 entries, out has 3"), std::string::npos) << *problem;
+  ASSERT_FALSE(problem);
+  EXPECT_EQ(problem.error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_EQ(problem.error().message, "LerpPoseJob: b has 4 entries, out has 3");
   EXPECT_FALSE(lerp.Run());
   EXPECT_EQ(out, std::vector<float>(3, 0.25f));
-  EXPECT_TRUE((LerpPoseJob{.a = a, .b = a, .t = NAN, .out = out}.Validate().has_value()));
+  EXPECT_FALSE((LerpPoseJob{.a = a, .b = a, .t = NAN, .out = out}.Validate()));
   const std::vector<float> longMask(5, 1.0f);
   auto mask = AdditivePoseJob{.base = a, .layer = a, .mask = longMask, .out = out}.Validate();
-  ASSERT_TRUE(mask.has_value());
-  EXPECT_NE(mask->find("mask has 5 entries"), std::string::npos) << *mask;
-  EXPECT_TRUE((BilinearPoseJob{.q11 = a, .q12 = a, .q21 = b, .q22 = a, .out = out}.Validate().has_value()));
-  EXPECT_TRUE((AccumulatePoseJob{.input = b, .weight = 1.0f, .out = out}.Validate().has_value()));
+  ASSERT_FALSE(mask);
+  EXPECT_EQ(mask.error().message, "AdditivePoseJob: mask has 5 entries, more than out's 3");
+  EXPECT_FALSE((BilinearPoseJob{.q11 = a, .q12 = a, .q21 = b, .q22 = a, .out = out}.Validate()));
+  EXPECT_FALSE((AccumulatePoseJob{.input = b, .weight = 1.0f, .out = out}.Validate()));
+}
+
+// The jobs run every frame: a passing Validate() (an eng::Result<void> holding an empty
+// error) must not touch the heap; only describing a failure may.
+TEST(PoseJobs, ValidateAllocatesNothingOnSuccess) {
+  const std::vector<float> a(64, 0.5f), mask(60, 1.0f);
+  std::vector<float> out(64);
+  Timeline clip;
+  clip.name = "a clip name longer than any small-string buffer";
+  clip.duration = 1.0f;
+  clip.addTrack("jaw", std::vector<Keyframe>{{0.0f, 0.0f}, {1.0f, 1.0f}});
+  const std::vector<uint32_t> channels = {3};
+  std::vector<uint32_t> cursors(1, 0);
+  const uint64_t before = testing_support::allocationCount();
+  bool allValid = LerpPoseJob{.a = a, .b = a, .t = 0.5f, .out = out}.Validate().ok();
+  allValid &= AccumulatePoseJob{.input = a, .weight = 1.0f, .out = out}.Validate().ok();
+  allValid &= BilinearPoseJob{.q11 = a, .q12 = a, .q21 = a, .q22 = a, .s2 = 0.5f, .t2 = 0.5f, .out = out}.Validate().ok();
+  allValid &= AdditivePoseJob{.base = a, .layer = a, .mask = mask, .out = out}.Validate().ok();
+  allValid &= TimelineSampleJob{.timeline = &clip, .trackChannels = channels, .time = 0.5f, .cursors = cursors, .out = out}
+                  .Validate()
+                  .ok();
+  EXPECT_EQ(testing_support::allocationCount() - before, 0u);
+  EXPECT_TRUE(allValid);
+  // The counter does count: a failure's message allocates.
+  const uint64_t beforeFailure = testing_support::allocationCount();
+  EXPECT_FALSE((LerpPoseJob{.a = a, .b = mask, .t = 0.5f, .out = out}.Validate()));
+  EXPECT_GT(testing_support::allocationCount() - beforeFailure, 0u);
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "facial/runtime/graph/curve_json.h"
 #include "tests/common/test_support.h"
 
 using namespace facial;
@@ -102,4 +103,33 @@ TEST(TimelineJsonValidity, ErrorsNameFilePointerAndProblem) {
   auto missing = loadTimeline("/nonexistent/dir/none.json");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("none.json"), std::string::npos);
+}
+
+// The JSON forms without a file: the public readers return errors as values (the
+// reader's internal exception never leaves them), the pointer relative to the value given.
+TEST(TimelineJsonValidity, InMemoryReadersReturnErrorsNotExceptions) {
+  const Json badKey = Json::parse(R"({"tracks": [{"channel": "a", "keys": [[0, 0], [1, "high"]]}]})");
+  eng::Result<Timeline> timeline = eng::makeError(eng::ErrorKind::Io, "not read");
+  EXPECT_NO_THROW(timeline = timelineFromJson(badKey, "inline"));
+  ASSERT_FALSE(timeline.ok());
+  EXPECT_EQ(timeline.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_EQ(timeline.error().message, "/tracks/0/keys/1/1: expected a number, got string");
+
+  auto good = timelineFromJson(Json::parse(R"({"tracks": [{"channel": "a", "keys": [[0, 0], [1, 1]]}]})"), "inline");
+  ASSERT_TRUE(good.ok()) << good.error().message;
+  EXPECT_EQ(good->name, "inline");
+  EXPECT_EQ(good->duration, 1.0f);
+
+  auto keys = keyframesFromJson(Json::parse("[[0, 0], [0, 1]]"), KeyInterpolation::Linear);
+  ASSERT_FALSE(keys.ok());
+  EXPECT_EQ(keys.error().message.rfind("/1: key time 0 is not after", 0), 0u) << keys.error().message;
+
+  auto curve = easingCurveFromJson(Json::parse(R"({"type": "bezier", "handles": [1.5, 0, 0.5, 1]})"));
+  ASSERT_FALSE(curve.ok());
+  EXPECT_EQ(curve.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_EQ(curve.error().message.rfind("/handles: bezier handle x must lie in [0,1]", 0), 0u) << curve.error().message;
+  EXPECT_FALSE(easingCurveFromJson(Json("bouncy")).ok());
+  auto cosine = easingCurveFromJson(Json("cosine"));
+  ASSERT_TRUE(cosine.ok());
+  EXPECT_EQ(cosine->type(), EasingType::Cosine);
 }

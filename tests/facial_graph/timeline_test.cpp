@@ -55,20 +55,23 @@ TEST(Timeline, SampleJobWritesEachTrackIntoItsChannel) {
 
 TEST(TimelineValidity, ProblemsNameTheTrack) {
   Timeline t = twoTracks();
-  EXPECT_FALSE(t.validate().has_value());
+  EXPECT_TRUE(t.validate());
   t.duration = 1.0f;
   auto late = t.validate();
-  ASSERT_TRUE(late.has_value());
-  EXPECT_NE(late->find("track 0 ('jaw')"), std::string::npos) << *late;
+  ASSERT_FALSE(late);
+  EXPECT_EQ(late.error().kind, eng::ErrorKind::Malformed);
+  EXPECT_NE(late.error().message.find("track 0 ('jaw')"), std::string::npos) << late.error().message;
   t = twoTracks();
   t.addTrack("jaw", std::vector<Keyframe>{{0.0f, 0.0f}});
-  EXPECT_NE(t.validate()->find("same channel as track 0"), std::string::npos);
+  ASSERT_FALSE(t.validate());
+  EXPECT_NE(t.validate().error().message.find("same channel as track 0"), std::string::npos);
   t = twoTracks();
   t.duration = NAN;
-  EXPECT_TRUE(t.validate().has_value());
+  EXPECT_FALSE(t.validate());
   t = twoTracks();
   t.tracks[1].keyCount = 9;
-  EXPECT_NE(t.validate()->find("run past"), std::string::npos);
+  ASSERT_FALSE(t.validate());
+  EXPECT_NE(t.validate().error().message.find("run past"), std::string::npos);
 }
 
 TEST(TimelineValidity, SampleJobNamesMismatchedCounts) {
@@ -77,8 +80,10 @@ TEST(TimelineValidity, SampleJobNamesMismatchedCounts) {
   std::vector<uint32_t> cursors(2, 0);
   std::vector<float> pose(4);
   auto problem = TimelineSampleJob{.timeline = &t, .trackChannels = channels, .cursors = cursors, .out = pose}.Validate();
-  ASSERT_TRUE(problem.has_value());
-  EXPECT_NE(problem->find("2 tracks, 1 channel indices and 2 cursors"), std::string::npos) << *problem;
+  ASSERT_FALSE(problem);
+  EXPECT_EQ(problem.error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_NE(problem.error().message.find("2 tracks, 1 channel indices and 2 cursors"), std::string::npos)
+      << problem.error().message;
   const std::vector<uint32_t> outside = {0, 9};
-  EXPECT_TRUE((TimelineSampleJob{.timeline = &t, .trackChannels = outside, .cursors = cursors, .out = pose}.Validate().has_value()));
+  EXPECT_FALSE((TimelineSampleJob{.timeline = &t, .trackChannels = outside, .cursors = cursors, .out = pose}.Validate()));
 }

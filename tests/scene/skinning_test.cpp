@@ -60,15 +60,18 @@ TEST(SkinningValidity, MismatchedSpansAreRefusedAndTouchNothing) {
   const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0));
   std::vector<glm::vec3> shortPositions(1, glm::vec3(7.0f)), positions(2, glm::vec3(7.0f)), shortNormals(1);
   const eng::SkinPrimitiveJob tooShort{&p, {&lift, 1}, shortPositions, {}};
-  ASSERT_TRUE(tooShort.Validate().has_value());
-  EXPECT_EQ(*tooShort.Validate(), "SkinPrimitiveJob: positions has 1 entries, primitive has 2 vertices");
+  ASSERT_FALSE(tooShort.Validate());
+  EXPECT_EQ(tooShort.Validate().error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_EQ(tooShort.Validate().error().message, "SkinPrimitiveJob: positions has 1 entries, primitive has 2 vertices");
   EXPECT_FALSE(tooShort.Run());
   EXPECT_EQ(shortPositions[0], glm::vec3(7.0f));
   const eng::SkinPrimitiveJob badNormals{&p, {&lift, 1}, positions, shortNormals};
-  EXPECT_EQ(badNormals.Validate().value_or(""), "SkinPrimitiveJob: normals has 1 entries, primitive has 2 vertices");
+  ASSERT_FALSE(badNormals.Validate());
+  EXPECT_EQ(badNormals.Validate().error().message, "SkinPrimitiveJob: normals has 1 entries, primitive has 2 vertices");
   EXPECT_FALSE(eng::skinPrimitiveCpu(p, {&lift, 1}, positions, shortNormals));
   EXPECT_EQ(positions[1], glm::vec3(7.0f));
-  EXPECT_EQ(eng::SkinPrimitiveJob{}.Validate().value_or(""), "SkinPrimitiveJob: no primitive");
+  ASSERT_FALSE(eng::SkinPrimitiveJob{}.Validate());
+  EXPECT_EQ(eng::SkinPrimitiveJob{}.Validate().error().message, "SkinPrimitiveJob: no primitive");
 }
 
 TEST(SkinningValidity, InfluenceGroupsMustCoverEveryVertex) {
@@ -76,7 +79,8 @@ TEST(SkinningValidity, InfluenceGroupsMustCoverEveryVertex) {
   p.jointWeights.pop_back();
   std::vector<glm::vec3> positions(2);
   const eng::SkinPrimitiveJob job{&p, {}, positions, {}};
-  EXPECT_EQ(job.Validate().value_or(""), "SkinPrimitiveJob: primitive has 2 joint groups and 1 weight groups for 2 vertices");
+  ASSERT_FALSE(job.Validate());
+  EXPECT_EQ(job.Validate().error().message, "SkinPrimitiveJob: primitive has 2 joint groups and 1 weight groups for 2 vertices");
 }
 
 TEST(SkinningValidity, AValidJobSkins) {
@@ -84,7 +88,7 @@ TEST(SkinningValidity, AValidJobSkins) {
   const glm::mat4 lift = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0));
   std::vector<glm::vec3> positions = p.positions;
   const eng::SkinPrimitiveJob job{&p, {&lift, 1}, positions, {}};
-  EXPECT_FALSE(job.Validate().has_value());
+  EXPECT_TRUE(job.Validate());
   ASSERT_TRUE(job.Run());
   expectNear(positions[1], {1, 1, 0});
 }

@@ -22,12 +22,13 @@ double bezierDerivative(double p1, double p2, double s) {
 
 }  // namespace
 
-std::optional<std::string> CubicBezier::validate() const {
+eng::Result<void> CubicBezier::validate() const {
   for (float v : {x1, y1, x2, y2})
-    if (!std::isfinite(v)) return std::string("bezier handle is not a finite number");
+    if (!std::isfinite(v)) return eng::makeError(eng::ErrorKind::Malformed, "bezier handle is not a finite number");
   if (x1 < 0 || x1 > 1 || x2 < 0 || x2 > 1)
-    return "bezier handle x must lie in [0,1] (got x1=" + formatNumber(x1) + ", x2=" + formatNumber(x2) + ")";
-  return std::nullopt;
+    return eng::makeError(eng::ErrorKind::Malformed, "bezier handle x must lie in [0,1] (got x1=" + formatNumber(x1) +
+                                                         ", x2=" + formatNumber(x2) + ")");
+  return {};
 }
 
 double CubicBezier::solveParameter(double x) const {

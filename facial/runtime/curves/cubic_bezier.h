@@ -3,16 +3,15 @@
 // editable handles (x1,y1) and (x2,y2). y is a function of x when both x
 // handles lie in [0,1] (x(s) is then monotone), so evaluating means solving
 // x(s) = x for s (Newton, with bisection when Newton stalls) and returning y(s).
-#include <optional>
-#include <string>
+#include "engine/core/result.h"
 
 namespace facial {
 
 struct CubicBezier {
   float x1 = 0.25f, y1 = 0.1f, x2 = 0.25f, y2 = 1.0f;  // CSS "ease"
 
-  // Problem with the handles (x outside [0,1], non-finite), or nullopt.
-  std::optional<std::string> validate() const;
+  // Malformed when a handle is outside [0,1] in x or not finite.
+  eng::Result<void> validate() const;
 
   // Curve parameter s in [0,1] whose x(s) equals x (x clamped to [0,1]).
   double solveParameter(double x) const;

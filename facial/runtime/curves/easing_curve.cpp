@@ -37,7 +37,7 @@ EasingCurve::EasingCurve(EasingType type) : type_(type) {
 }
 
 eng::Result<EasingCurve> EasingCurve::bezier(const CubicBezier& handles) {
-  if (auto problem = handles.validate()) return eng::makeError(eng::ErrorKind::Malformed, *problem);
+  if (auto valid = handles.validate(); !valid) return valid.error();
   EasingCurve curve(EasingType::CubicBezier);
   curve.bezier_ = handles;
   curve.maxSlope_ = handles.maxSlope();
@@ -45,7 +45,7 @@ eng::Result<EasingCurve> EasingCurve::bezier(const CubicBezier& handles) {
 }
 
 eng::Result<EasingCurve> EasingCurve::keyed(std::vector<Keyframe> keys) {
-  if (auto problem = validateKeys(keys)) return eng::makeError(eng::ErrorKind::Malformed, "keyed curve: " + *problem);
+  if (auto valid = validateKeys(keys); !valid) return valid.error().prefixed("keyed curve: ");
   if (keys.size() < 2 || keys.front().time != 0.0f || keys.front().value != 0.0f || keys.back().time != 1.0f ||
       keys.back().value != 1.0f)
     return eng::makeError(eng::ErrorKind::Malformed, "keyed curve must start at (0,0) and end at (1,1) (got " + std::to_string(keys.size()) +

@@ -25,18 +25,20 @@ std::optional<KeyInterpolation> keyInterpolationFromString(std::string_view name
   return std::nullopt;
 }
 
-std::optional<std::string> validateKeys(std::span<const Keyframe> keys) {
-  if (keys.empty()) return "no keys";
+eng::Result<void> validateKeys(std::span<const Keyframe> keys) {
+  if (keys.empty()) return eng::makeError(eng::ErrorKind::Malformed, "no keys");
   for (size_t i = 0; i < keys.size(); ++i) {
     const Keyframe& k = keys[i];
     if (!std::isfinite(k.time) || !std::isfinite(k.value) || !std::isfinite(k.inTangent) ||
         !std::isfinite(k.outTangent))
-      return "key " + std::to_string(i) + " has a non-finite number";
+      return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " has a non-finite number");
     if (i > 0 && !(k.time > keys[i - 1].time))
-      return "key " + std::to_string(i) + " time " + formatNumber(k.time) + " is not after key " +
-             std::to_string(i - 1) + " time " + formatNumber(keys[i - 1].time) + " (keys must be sorted, no duplicates)";
+      return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " time " + formatNumber(k.time) +
+                                                           " is not after key " + std::to_string(i - 1) + " time " +
+                                                           formatNumber(keys[i - 1].time) +
+                                                           " (keys must be sorted, no duplicates)");
   }
-  return std::nullopt;
+  return {};
 }
 
 namespace {

@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "engine/core/result.h"
+
 namespace facial {
 
 // How the segment [key k, key k+1] is filled; key k's mode decides.
@@ -29,9 +31,9 @@ struct Keyframe {
 std::string_view toString(KeyInterpolation interpolation);
 std::optional<KeyInterpolation> keyInterpolationFromString(std::string_view name);
 
-// Problem with a key array (unsorted or duplicate times, non-finite numbers,
-// empty), or nullopt when it is usable. Messages name the key index.
-std::optional<std::string> validateKeys(std::span<const Keyframe> keys);
+// Malformed when a key array is unusable (unsorted or duplicate times,
+// non-finite numbers, empty). Messages name the key index.
+eng::Result<void> validateKeys(std::span<const Keyframe> keys);
 
 // Value of the segment that starts at k0 and ends at k1, at `time` in [k0.time, k1.time].
 float interpolateSegment(const Keyframe& k0, const Keyframe& k1, float time);

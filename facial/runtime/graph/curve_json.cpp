@@ -1,6 +1,9 @@
 #include "facial/runtime/graph/curve_json.h"
 
+#include "facial/runtime/graph/detail/json_reader.h"
+
 namespace facial {
+namespace detail {
 
 KeyInterpolation parseKeyInterpolation(const JsonNode& name) {
   auto k = keyInterpolationFromString(name.string());
@@ -50,7 +53,7 @@ EasingCurve parseEasingCurve(const JsonNode& curve) {
     const JsonNode h = curve.at("handles");
     if (h.size() != 4) h.fail("expected 4 numbers [x1, y1, x2, y2], got " + std::to_string(h.size()));
     auto c = EasingCurve::bezier({h[0].number(), h[1].number(), h[2].number(), h[3].number()});
-    if (!c) h.fail(c.error().message);
+    if (!c) h.fail(c.error());
     return std::move(c).value();
   }
   if (type == "keyed") {
@@ -58,7 +61,7 @@ EasingCurve parseEasingCurve(const JsonNode& curve) {
     if (auto i = curve.find("interpolation")) interp = parseKeyInterpolation(*i);
     const JsonNode keys = curve.at("keys");
     auto c = EasingCurve::keyed(parseKeyframes(keys, interp));
-    if (!c) keys.fail(c.error().message);
+    if (!c) keys.fail(c.error());
     return std::move(c).value();
   }
   auto simple = easingTypeFromString(type);
@@ -67,6 +70,26 @@ EasingCurve parseEasingCurve(const JsonNode& curve) {
   if (simple == EasingType::Smoothstep) return EasingCurve::smoothstep();
   curve.at("type").fail("unknown curve type '" + type + "'");
 }
+
+}  // namespace detail
+
+eng::Result<std::vector<Keyframe>> keyframesFromJson(const Json& keys, KeyInterpolation defaultInterpolation) {
+  try {
+    return detail::parseKeyframes(detail::JsonNode(keys, ""), defaultInterpolation);
+  } catch (const detail::JsonProblem& p) {
+    return detail::jsonProblemError(p, "");
+  }
+}
+
+eng::Result<EasingCurve> easingCurveFromJson(const Json& curve) {
+  try {
+    return detail::parseEasingCurve(detail::JsonNode(curve, ""));
+  } catch (const detail::JsonProblem& p) {
+    return detail::jsonProblemError(p, "");
+  }
+}
+
+using detail::jsonNumber;
 
 Json keyframesToJson(std::span<const Keyframe> keys, KeyInterpolation defaultInterpolation) {
   Json out = Json::array();

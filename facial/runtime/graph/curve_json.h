@@ -5,19 +5,20 @@
 //   curve: "linear" | "cosine" | "smoothstep"
 //          {"type": "bezier", "handles": [x1, y1, x2, y2]}
 //          {"type": "keyed", "keys": [[0,0], [0.3,0.7], [1,1]], "interpolation": "linear"}
+#include <span>
 #include <vector>
 
-
+#include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/curves/keyframe.h"
-#include "facial/runtime/graph/json_reader.h"
+#include "facial/runtime/rig/json_document.h"
 
 namespace facial {
 
-// Throws JsonProblem naming the key's pointer.
-std::vector<Keyframe> parseKeyframes(const JsonNode& keys, KeyInterpolation defaultInterpolation);
-KeyInterpolation parseKeyInterpolation(const JsonNode& name);
-EasingCurve parseEasingCurve(const JsonNode& curve);
+// Errors are Malformed and read "<pointer>: <problem>", the pointer relative
+// to the value given ("/3/t: expected a number, got string").
+eng::Result<std::vector<Keyframe>> keyframesFromJson(const Json& keys, KeyInterpolation defaultInterpolation);
+eng::Result<EasingCurve> easingCurveFromJson(const Json& curve);
 
 Json keyframesToJson(std::span<const Keyframe> keys, KeyInterpolation defaultInterpolation);
 Json easingCurveToJson(const EasingCurve& curve);

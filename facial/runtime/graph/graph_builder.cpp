@@ -76,8 +76,8 @@ eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
       return eng::makeError(eng::ErrorKind::Malformed, where + ": bool '" + params[i].name + "' default must be 0 or 1");
   }
   for (size_t i = 0; i < graph->timelines_.size(); ++i)
-    if (auto problem = graph->timelines_[i].validate())
-      return eng::makeError(eng::ErrorKind::Malformed, "timeline '" + graph->timelines_[i].name + "': " + *problem);
+    if (auto valid = graph->timelines_[i].validate(); !valid)
+      return valid.error().prefixed("timeline '" + graph->timelines_[i].name + "': ");
 
   // Wiring: a tree rooted at root_, every node used exactly once.
   const uint32_t count = static_cast<uint32_t>(graph->nodes_.size());
@@ -120,8 +120,8 @@ eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
   for (NodeIndex n = 0; n < count; ++n) {
     NodeDef& node = graph->nodes_[n];
     const BuildContext ctx{graph->channels_, graph->parameters_, graph->timelines_, node.origin};
-    auto problem = std::visit([&](auto& data) { return data.prepare(ctx); }, node.data);
-    if (problem) return eng::makeError(eng::ErrorKind::Malformed, *problem);
+    if (auto prepared = std::visit([&](auto& data) { return data.prepare(ctx); }, node.data); !prepared)
+      return prepared.error();
   }
   for (NodeIndex n = 0; n < count; ++n)
     if (!graph->nodes_[n].name.empty() && graph->findNode(graph->nodes_[n].name) != n)

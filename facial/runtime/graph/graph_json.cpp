@@ -1,11 +1,14 @@
 #include "facial/runtime/graph/graph_json.h"
 
+#include "facial/runtime/graph/detail/json_reader.h"
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/graph_builder.h"
-#include "facial/runtime/graph/json_reader.h"
-#include "facial/runtime/graph/node_reader.h"
 #include "facial/runtime/graph/timeline_json.h"
 
 namespace facial {
+// The throwing readers; parseGraph turns their JsonProblem into an eng::Error.
+using namespace detail;
+
 namespace {
 
 // Reads the graph's parameters and timelines into the builder; the nodes
@@ -39,7 +42,7 @@ class GraphParser {
       if (entry.isString()) {
         const std::filesystem::path file = folder_ / entry.string();
         auto timeline = loadTimeline(file);
-        if (!timeline) entry.fail(timeline.error().message);
+        if (!timeline) entry.fail(timeline.error());
         timeline->name = it.key();
         builder_.addTimeline(std::move(timeline).value());
       } else {
@@ -83,7 +86,7 @@ eng::Result<SharedGraphDefinition> parseGraph(const Json& document, const std::f
     if (!graph) return graph.error().prefixed(source.string() + ": ");
     return graph;
   } catch (const JsonProblem& p) {
-    return jsonError(source.string(), p.pointer, p.problem);
+    return jsonProblemError(p, source.string());
   }
 }
 

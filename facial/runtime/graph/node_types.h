@@ -7,13 +7,15 @@
 // Every node type is a struct holding its immutable definition, with
 //   void inputs(std::vector<NodeIndex>&) const;        children it pulls from
 //   static constexpr uint32_t kScratchPoses;           temporaries it holds while children evaluate
-//   std::optional<std::string> prepare(const BuildContext&);  validation + derived data, at build
+//   eng::Result<void> prepare(const BuildContext&);       validation + derived data, at build
 //   void evaluate(EvalContext&, NodeIndex self, std::span<float> out) const;  per frame
 // and, when it keeps per-character state, a nested `State` with
 //   State makeState(const GraphDefinition&, NodeIndex self, uint64_t seed) const;
 //   void reset(State&) const;                            on (re-)entering its state
 #include <cstdint>
 #include <limits>
+
+#include "engine/core/result.h"  // prepare()'s result
 
 namespace facial {
 

@@ -1,11 +1,12 @@
 #pragma once
 // The arithmetic of poses: small jobs over spans of weights (ozz style).
-// Validate() names the sizes that do not fit; Run() validates, then works in
-// place without allocating. All spans of one job have the same length (a
-// pose: the channels, then the graph's lanes), except where noted.
-#include <optional>
+// Validate() names the sizes that do not fit (InvalidArgument: the caller's
+// spans, not a file); Run() validates, then works in place without
+// allocating. All spans of one job have the same length (a pose: the
+// channels, then the graph's lanes), except where noted.
 #include <span>
-#include <string>
+
+#include "engine/core/result.h"
 
 namespace facial {
 
@@ -14,7 +15,7 @@ struct LerpPoseJob {
   std::span<const float> a, b;
   float t = 0;
   std::span<float> out;
-  std::optional<std::string> Validate() const;
+  eng::Result<void> Validate() const;
   bool Run() const;
 };
 
@@ -23,7 +24,7 @@ struct AccumulatePoseJob {
   std::span<const float> input;
   float weight = 0;
   std::span<float> out;
-  std::optional<std::string> Validate() const;
+  eng::Result<void> Validate() const;
   bool Run() const;
 };
 
@@ -35,7 +36,7 @@ struct BilinearPoseJob {
   float s2 = 0;  // shape axis: 0 = shape 1, 1 = shape 2
   float t2 = 0;  // expression axis: 0 = expression 1, 1 = expression 2
   std::span<float> out;
-  std::optional<std::string> Validate() const;
+  eng::Result<void> Validate() const;
   bool Run() const;
 };
 
@@ -46,7 +47,7 @@ struct AdditivePoseJob {
   std::span<const float> base, layer, mask;
   float weight = 1;
   std::span<float> out;
-  std::optional<std::string> Validate() const;
+  eng::Result<void> Validate() const;
   bool Run() const;
 };
 

@@ -63,45 +63,52 @@ float Timeline::lastKeyTime() const {
   return last;
 }
 
-std::optional<std::string> Timeline::validate() const {
+eng::Result<void> Timeline::validate() const {
   if (!std::isfinite(duration) || duration <= 0.0f)
-    return "duration must be a finite number > 0 (got " + formatNumber(duration) + ")";
+    return eng::makeError(eng::ErrorKind::Malformed,
+                          "duration must be a finite number > 0 (got " + formatNumber(duration) + ")");
   for (size_t i = 0; i < tracks.size(); ++i) {
     const TimelineTrack& t = tracks[i];
     const std::string where = "track " + std::to_string(i) + " ('" + t.channel + "')";
-    if (t.channel.empty()) return "track " + std::to_string(i) + " has an empty channel name";
+    if (t.channel.empty())
+      return eng::makeError(eng::ErrorKind::Malformed, "track " + std::to_string(i) + " has an empty channel name");
     for (size_t j = 0; j < i; ++j)
       if (tracks[j].channel == t.channel)
-        return where + " animates the same channel as track " + std::to_string(j);
+        return eng::makeError(eng::ErrorKind::Malformed,
+                              where + " animates the same channel as track " + std::to_string(j));
     if (size_t{t.firstKey} + t.keyCount > keys.size())
-      return where + " keys [" + std::to_string(t.firstKey) + ", " + std::to_string(t.firstKey + t.keyCount) +
-             ") run past the " + std::to_string(keys.size()) + " keys";
+      return eng::makeError(eng::ErrorKind::Malformed, where + " keys [" + std::to_string(t.firstKey) + ", " +
+                                                           std::to_string(t.firstKey + t.keyCount) + ") run past the " +
+                                                           std::to_string(keys.size()) + " keys");
     const std::span<const Keyframe> k = trackKeys(i);
-    if (auto problem = validateKeys(k)) return where + ": " + *problem;
+    if (auto keysValid = validateKeys(k); !keysValid) return keysValid.error().prefixed(where + ": ");
     if (k.front().time < 0.0f || k.back().time > duration)
-      return where + ": key times [" + formatNumber(k.front().time) + ", " + formatNumber(k.back().time) +
-             "] leave the clip [0, " + formatNumber(duration) + "]";
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": key times [" + formatNumber(k.front().time) + ", " +
+                                                           formatNumber(k.back().time) + "] leave the clip [0, " +
+                                                           formatNumber(duration) + "]");
   }
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> TimelineSampleJob::Validate() const {
-  if (!timeline) return std::string("TimelineSampleJob: no timeline");
+eng::Result<void> TimelineSampleJob::Validate() const {
+  if (!timeline) return eng::makeError(eng::ErrorKind::InvalidArgument, "TimelineSampleJob: no timeline");
   const size_t tracks = timeline->tracks.size();
   if (trackChannels.size() != tracks || cursors.size() != tracks)
-    return "TimelineSampleJob: timeline '" + timeline->name + "' has " + std::to_string(tracks) + " tracks, " +
-           std::to_string(trackChannels.size()) + " channel indices and " + std::to_string(cursors.size()) +
-           " cursors given";
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          "TimelineSampleJob: timeline '" + timeline->name + "' has " + std::to_string(tracks) +
+                              " tracks, " + std::to_string(trackChannels.size()) + " channel indices and " +
+                              std::to_string(cursors.size()) + " cursors given");
   for (uint32_t c : trackChannels)
     if (c >= out.size())
-      return "TimelineSampleJob: channel index " + std::to_string(c) + " outside the pose of " +
-             std::to_string(out.size());
-  if (!std::isfinite(time)) return std::string("TimelineSampleJob: time is not finite");
-  return std::nullopt;
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "TimelineSampleJob: channel index " + std::to_string(c) +
+                                                                 " outside the pose of " + std::to_string(out.size()));
+  if (!std::isfinite(time))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "TimelineSampleJob: time is not finite");
+  return {};
 }
 
 bool TimelineSampleJob::Run() const {
-  if (Validate()) return false;
+  if (!Validate().ok()) return false;
   for (size_t i = 0; i < trackChannels.size(); ++i)
     out[trackChannels[i]] = sampleKeys(timeline->trackKeys(i), time, cursors[i]);
   return true;

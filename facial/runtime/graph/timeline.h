@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/result.h"
 #include "facial/runtime/curves/keyframe.h"
 
 namespace facial {
@@ -45,10 +46,10 @@ struct Timeline {
   // Latest key time over all tracks (0 when empty).
   float lastKeyTime() const;
 
-  // Problem (naming the track and key) or nullopt: duration finite and > 0,
+  // Malformed (naming the track and key) unless: duration finite and > 0,
   // key ranges inside `keys`, each track's keys valid and within [0, duration],
   // channel names non-empty and unique.
-  std::optional<std::string> validate() const;
+  eng::Result<void> validate() const;
 };
 
 // Samples the tracks at clip time `time` into out[trackChannels[i]]; other
@@ -60,7 +61,7 @@ struct TimelineSampleJob {
   float time = 0;
   std::span<uint32_t> cursors;
   std::span<float> out;
-  std::optional<std::string> Validate() const;
+  eng::Result<void> Validate() const;
   bool Run() const;
 };
 

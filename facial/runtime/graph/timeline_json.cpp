@@ -3,10 +3,11 @@
 #include <fstream>
 
 #include "facial/runtime/graph/curve_json.h"
+#include "facial/runtime/graph/detail/json_reader.h"
 
 namespace facial {
 
-Timeline parseTimeline(const JsonNode& node, std::string defaultName) {
+Timeline detail::parseTimeline(const JsonNode& node, std::string defaultName) {
   node.allowOnly({"version", "name", "duration", "loop", "tracks"});
   Timeline timeline;
   timeline.name = node.stringOr("name", std::move(defaultName));
@@ -38,7 +39,7 @@ Timeline parseTimeline(const JsonNode& node, std::string defaultName) {
     timeline.duration = timeline.lastKeyTime();
     if (timeline.duration <= 0.0f) node.fail("no \"duration\" and every key is at time 0");
   }
-  if (auto problem = timeline.validate()) node.fail(*problem);
+  if (auto valid = timeline.validate(); !valid) node.fail(valid.error());
   return timeline;
 }
 
@@ -46,11 +47,19 @@ eng::Result<Timeline> loadTimeline(const std::filesystem::path& path) {
   auto document = readJsonFile(path);
   if (!document) return document.error();
   try {
-    const JsonNode root(*document, "");
-    requireVersion(root, kTimelineFileVersion);
-    return parseTimeline(root, path.stem().string());
-  } catch (const JsonProblem& p) {
-    return jsonError(path.string(), p.pointer, p.problem);
+    const detail::JsonNode root(*document, "");
+    detail::requireVersion(root, kTimelineFileVersion);
+    return detail::parseTimeline(root, path.stem().string());
+  } catch (const detail::JsonProblem& p) {
+    return detail::jsonProblemError(p, path.string());
+  }
+}
+
+eng::Result<Timeline> timelineFromJson(const Json& timeline, std::string defaultName) {
+  try {
+    return detail::parseTimeline(detail::JsonNode(timeline, ""), std::move(defaultName));
+  } catch (const detail::JsonProblem& p) {
+    return detail::jsonProblemError(p, "");
   }
 }
 
@@ -65,13 +74,13 @@ Json timelineToJson(const Timeline& timeline) {
   }
   return {{"version", kTimelineFileVersion},
           {"name", timeline.name},
-          {"duration", jsonNumber(timeline.duration)},
+          {"duration", detail::jsonNumber(timeline.duration)},
           {"loop", toString(timeline.loop)},
           {"tracks", std::move(tracks)}};
 }
 
 eng::Result<void> saveTimeline(const Timeline& timeline, const std::filesystem::path& path) {
-  if (auto problem = timeline.validate()) return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": timeline not saved: " + *problem);
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed(path.string() + ": timeline not saved: ");
   std::ofstream out(path, std::ios::binary);
   if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write timeline file");
   out << timelineToJson(timeline).dump(1) << '\n';

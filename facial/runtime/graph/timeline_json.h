@@ -6,11 +6,11 @@
 // "duration" defaults to the last key time, "loop" (once|clamp, loop, pingpong)
 // to once, "interpolation" (a track's default per key) to linear.
 #include <filesystem>
-
+#include <string>
 
 #include "engine/core/result.h"
-#include "facial/runtime/graph/json_reader.h"
 #include "facial/runtime/graph/timeline.h"
+#include "facial/runtime/rig/json_document.h"
 
 namespace facial {
 
@@ -18,8 +18,9 @@ inline constexpr int kTimelineFileVersion = 1;
 
 // Errors read "file: /tracks/2/keys/3: problem".
 eng::Result<Timeline> loadTimeline(const std::filesystem::path& path);
-// A timeline object (without "version" when inline in a graph); throws JsonProblem.
-Timeline parseTimeline(const JsonNode& node, std::string defaultName);
+// A timeline object (without "version" when inline in a graph); a missing
+// "name" becomes defaultName. Errors read "/tracks/2/keys/3: problem".
+eng::Result<Timeline> timelineFromJson(const Json& timeline, std::string defaultName);
 
 Json timelineToJson(const Timeline& timeline);
 eng::Result<void> saveTimeline(const Timeline& timeline, const std::filesystem::path& path);

@@ -138,7 +138,8 @@ eng::Result<ExpressionLibrary> ExpressionLibrary::fromJson(const Json& root, std
   if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
   if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
   const Json& version = root["version"];
-  if (auto problem = formatVersionProblem(version, kFormatVersion)) return jsonError(source, "/version", *problem);
+  if (auto supported = checkFormatVersion(version, kFormatVersion); !supported)
+    return supported.error().prefixed(std::string(source) + ": /version: ");
   for (const auto& [key, value] : root.items())
     if (key != "version" && key != "expressions")
       return jsonError(source, childPath("", key), "unknown key (expected version, expressions)");

@@ -57,12 +57,13 @@ std::string childPath(std::string_view parent, std::string_view key) {
 
 std::string childPath(std::string_view parent, size_t index) { return std::string(parent) + "/" + std::to_string(index); }
 
-std::optional<std::string> formatVersionProblem(const Json& version, int supported) {
-  if (version.is_number_integer() && version.get<int64_t>() == supported) return std::nullopt;
+eng::Result<void> checkFormatVersion(const Json& version, int supported) {
+  if (version.is_number_integer() && version.get<int64_t>() == supported) return {};
   const std::string reads = "(this build reads version " + std::to_string(supported) + ")";
   if (version.is_number_integer() && version.get<int64_t>() > supported)
-    return "unsupported version " + version.dump() + ": written by a newer release of facial " + reads;
-  return "unsupported version " + version.dump() + " " + reads;
+    return eng::makeError(eng::ErrorKind::Unsupported,
+                          "unsupported version " + version.dump() + ": written by a newer release of facial " + reads);
+  return eng::makeError(eng::ErrorKind::Unsupported, "unsupported version " + version.dump() + " " + reads);
 }
 
 std::string formatNumber(double value) {

@@ -36,11 +36,11 @@ std::string childPath(std::string_view parent, size_t index);
 // A number as people write it in messages: 1, 0.5, 100, 1e+20.
 std::string formatNumber(double value);
 
-// What is wrong with a file's "version" value, or nullopt when it is
-// `supported`. A larger integer says the file comes from a newer release:
+// Fails (Unsupported) unless a file's "version" value is `supported`. A larger
+// integer says the file comes from a newer release:
 // "unsupported version 2: written by a newer release of facial (this build reads version 1)",
 // so a newer file is refused with its version and ours, never misread.
-std::optional<std::string> formatVersionProblem(const Json& version, int supported);
+eng::Result<void> checkFormatVersion(const Json& version, int supported);
 
 // The JSON type as a word for messages ("string", "array", ...).
 std::string_view jsonTypeName(const Json& value);

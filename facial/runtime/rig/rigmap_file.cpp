@@ -25,7 +25,8 @@ eng::Result<RigMapFile> fromJson(const Json& root, std::string_view source, std:
   RigMapFile file;
   if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
   if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
-  if (auto problem = formatVersionProblem(root["version"], 1)) return jsonError(source, "/version", *problem);
+  if (auto supported = checkFormatVersion(root["version"], 1); !supported)
+    return supported.error().prefixed(std::string(source) + ": /version: ");
 
   RigMappingBuilder builder(RigScheme::Custom, targetNames);
   builder.setDetail("rig map " + std::string(source));

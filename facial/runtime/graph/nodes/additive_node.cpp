@@ -1,11 +1,14 @@
 #include "facial/runtime/graph/nodes/additive_node.h"
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 float RegionMask::weight(const ChannelInfo& channel) const {
   if (region && channel.region != region) return 0.0f;
@@ -13,7 +16,7 @@ float RegionMask::weight(const ChannelInfo& channel) const {
   return 1.0f;
 }
 
-std::optional<std::string> AdditiveNode::prepare(const BuildContext& ctx) {
+eng::Result<void> AdditiveNode::prepare(const BuildContext& ctx) {
   maskWeights.resize(ctx.channels.size());
   for (uint32_t c = 0; c < ctx.channels.size(); ++c) maskWeights[c] = mask.weight(ctx.channels[c]);
   return ctx.checkInput(weight, "weight");

@@ -21,8 +21,10 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct RegionMask {
   std::optional<FaceRegion> region;  // nullopt: any region
@@ -34,7 +36,8 @@ struct RegionMask {
 
 struct AdditiveNode {
   static constexpr std::string_view kType = "additive";  // JSON "type"
-  static AdditiveNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static AdditiveNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   NodeIndex base = kNoNode;
   NodeIndex layer = kNoNode;
@@ -45,7 +48,7 @@ struct AdditiveNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {base, layer}); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

@@ -4,26 +4,29 @@
 #include <cmath>
 
 #include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 void BilinearNode::inputs(std::vector<NodeIndex>& out) const {
   out.insert(out.end(), shape1.begin(), shape1.end());
   out.insert(out.end(), shape2.begin(), shape2.end());
 }
 
-std::optional<std::string> BilinearNode::prepare(const BuildContext& ctx) {
+eng::Result<void> BilinearNode::prepare(const BuildContext& ctx) {
   if (shape1.size() < 2 || shape1.size() != shape2.size())
     return ctx.problem("shapes", "needs two rows (face shapes) of the same length >= 2 (expressions), got " +
                                      std::to_string(shape1.size()) + " and " + std::to_string(shape2.size()));
   if (!std::isfinite(duration) || duration <= 0.0f)
     return ctx.problem("duration", "must be a finite number > 0 (got " + formatNumber(duration) + ")");
-  if (auto p = ctx.checkInput(shape, "shape")) return p;
+  if (auto p = ctx.checkInput(shape, "shape"); !p) return p;
   return ctx.checkParameter(expression, ParameterType::Float, "expression");
 }
 

@@ -20,12 +20,15 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct BilinearNode {
   static constexpr std::string_view kType = "bilinear";  // JSON "type"
-  static BilinearNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static BilinearNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   std::vector<NodeIndex> shape1;            // Q11, Q12, ..., Q1K
   std::vector<NodeIndex> shape2;            // Q21, Q22, ..., Q2K
@@ -43,7 +46,7 @@ struct BilinearNode {
 
   static constexpr uint32_t kScratchPoses = 2;
   void inputs(std::vector<NodeIndex>& out) const;
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

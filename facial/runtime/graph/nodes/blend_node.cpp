@@ -2,14 +2,17 @@
 
 #include <algorithm>
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
-std::optional<std::string> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
+using detail::JsonNode;
+using detail::NodeReader;
+
+eng::Result<void> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
 
 void BlendNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const {
   ctx.evaluate(a, out);

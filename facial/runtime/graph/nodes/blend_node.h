@@ -16,12 +16,15 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct BlendNode {
   static constexpr std::string_view kType = "blend";  // JSON "type"
-  static BlendNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static BlendNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   NodeIndex a = kNoNode;  // P0
   NodeIndex b = kNoNode;  // P1
@@ -30,7 +33,7 @@ struct BlendNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {a, b}); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

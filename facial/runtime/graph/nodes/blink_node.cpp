@@ -4,13 +4,16 @@
 #include <cmath>
 #include <numbers>
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 namespace {
 
 float cosineEase(float s) { return 0.5f * (1.0f - std::cos(std::numbers::pi_v<float> * std::clamp(s, 0.0f, 1.0f))); }
@@ -51,19 +54,21 @@ float BlinkNode::maxRate() const {
   return std::numbers::pi_v<float> / 2.0f / std::min(closeDuration, openDuration);
 }
 
-std::optional<std::string> BlinkNode::prepare(const BuildContext& ctx) {
+eng::Result<void> BlinkNode::prepare(const BuildContext& ctx) {
   auto resolve = [&](const std::vector<std::string>& names, std::vector<uint32_t>& indices,
-                     const char* field) -> std::optional<std::string> {
+                     const char* field) -> eng::Result<void> {
     indices.clear();
     for (size_t i = 0; i < names.size(); ++i) {
       auto c = ctx.channels.find(names[i]);
-      if (!c) return ctx.problem(std::string(field) + "/" + std::to_string(i), "'" + names[i] + "' is not a channel of this graph");
+      if (!c)
+        return ctx.problem(std::string(field) + "/" + std::to_string(i),
+                           "'" + names[i] + "' is not a channel of this graph");
       indices.push_back(*c);
     }
-    return std::nullopt;
+    return {};
   };
-  if (auto p = resolve(channels, channelIndices, "channels")) return p;
-  if (auto p = resolve(wideChannels, wideIndices, "wideChannels")) return p;
+  if (auto p = resolve(channels, channelIndices, "channels"); !p) return p;
+  if (auto p = resolve(wideChannels, wideIndices, "wideChannels"); !p) return p;
   if (channels.empty())
     for (uint32_t c = 0; c < ctx.channels.size(); ++c)
       if (auto au = actionUnitIndex(ctx.channels[c].name); au && actionUnits()[*au].facsNumber == 45)

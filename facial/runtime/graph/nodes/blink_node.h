@@ -34,12 +34,15 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct BlinkNode {
   static constexpr std::string_view kType = "blink";  // JSON "type"
-  static BlinkNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static BlinkNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   NodeIndex input = kNoNode;
   std::vector<std::string> channels;      // blink channels; empty: the AU45 channels of the graph
@@ -72,7 +75,7 @@ struct BlinkNode {
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>& out) const { out.push_back(input); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

@@ -4,25 +4,25 @@
 
 namespace facial {
 
-std::string BuildContext::problem(std::string_view subpath, std::string_view problem) const {
+eng::Error BuildContext::problem(std::string_view subpath, std::string_view problem) const {
   std::string out = origin;
   if (!subpath.empty()) out += "/" + std::string(subpath);
-  return out + ": " + std::string(problem);
+  return eng::makeError(eng::ErrorKind::Malformed, out + ": " + std::string(problem));
 }
 
-std::optional<std::string> BuildContext::checkInput(const FloatInput& input, std::string_view field) const {
+eng::Result<void> BuildContext::checkInput(const FloatInput& input, std::string_view field) const {
   if (input.parameter == kNoParameter) {
     if (!std::isfinite(input.constant)) return problem(field, "constant is not finite");
-    return std::nullopt;
+    return {};
   }
   if (input.parameter >= parameters.size())
     return problem(field, "parameter index " + std::to_string(input.parameter) + " out of range (" +
                               std::to_string(parameters.size()) + " parameters)");
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> BuildContext::checkParameter(ParameterIndex parameter, ParameterType type,
-                                                        std::string_view field) const {
+eng::Result<void> BuildContext::checkParameter(ParameterIndex parameter, ParameterType type,
+                                               std::string_view field) const {
   if (parameter >= parameters.size())
     return problem(field, "parameter index " + std::to_string(parameter) + " out of range (" +
                               std::to_string(parameters.size()) + " parameters)");
@@ -30,7 +30,7 @@ std::optional<std::string> BuildContext::checkParameter(ParameterIndex parameter
     return problem(field, "parameter '" + parameters[parameter].name + "' is a " +
                               std::string(toString(parameters[parameter].type)) + ", expected a " +
                               std::string(toString(type)));
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace facial

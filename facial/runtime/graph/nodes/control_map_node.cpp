@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 ControlMapWeights controlMapWeights(float x, float y) {
   ControlMapWeights w;
@@ -28,8 +31,8 @@ ControlMapWeights controlMapWeights(float x, float y) {
   return w;
 }
 
-std::optional<std::string> ControlMapNode::prepare(const BuildContext& ctx) {
-  if (auto p = ctx.checkInput(x, "x")) return p;
+eng::Result<void> ControlMapNode::prepare(const BuildContext& ctx) {
+  if (auto p = ctx.checkInput(x, "x"); !p) return p;
   return ctx.checkInput(y, "y");
 }
 

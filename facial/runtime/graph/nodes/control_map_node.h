@@ -23,8 +23,10 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct ControlMapWeights {
   float x = 0, y = 0;  // the cursor after clamping
@@ -38,7 +40,8 @@ ControlMapWeights controlMapWeights(float x, float y);
 
 struct ControlMapNode {
   static constexpr std::string_view kType = "controlMap";  // JSON "type"
-  static ControlMapNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static ControlMapNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   NodeIndex neutral = kNoNode;
   NodeIndex e1 = kNoNode;  // +y ("up")
@@ -49,7 +52,7 @@ struct ControlMapNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const { out.insert(out.end(), {neutral, e1, e2, e3, e4}); }
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

@@ -6,11 +6,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 void gradientBandWeights(std::span<const glm::vec2> points, glm::vec2 p, std::span<float> weights) {
   float sum = 0.0f;
@@ -48,7 +51,7 @@ void FreeformMapNode::inputs(std::vector<NodeIndex>& out) const {
   for (const FreeformPole& pole : poles) out.push_back(pole.node);
 }
 
-std::optional<std::string> FreeformMapNode::prepare(const BuildContext& ctx) {
+eng::Result<void> FreeformMapNode::prepare(const BuildContext& ctx) {
   if (poles.empty() || poles.size() > kMaxFreeformPoles)
     return ctx.problem("poles", "needs 1 to " + std::to_string(kMaxFreeformPoles) + " poles, got " +
                                     std::to_string(poles.size()));
@@ -67,7 +70,7 @@ std::optional<std::string> FreeformMapNode::prepare(const BuildContext& ctx) {
     nodes.push_back(poles[i].node);
     radius = std::max(radius, glm::length(at));
   }
-  if (auto p = ctx.checkInput(x, "x")) return p;
+  if (auto p = ctx.checkInput(x, "x"); !p) return p;
   return ctx.checkInput(y, "y");
 }
 

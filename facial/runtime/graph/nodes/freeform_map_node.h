@@ -25,8 +25,10 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 inline constexpr size_t kMaxFreeformPoles = 32;
 
@@ -40,7 +42,8 @@ struct FreeformPole {
 
 struct FreeformMapNode {
   static constexpr std::string_view kType = "freeformMap";  // JSON "type"
-  static FreeformMapNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static FreeformMapNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   NodeIndex neutral = kNoNode;      // at the origin
   std::vector<FreeformPole> poles;  // 1..kMaxFreeformPoles, distinct, away from the origin
@@ -56,7 +59,7 @@ struct FreeformMapNode {
 
   static constexpr uint32_t kScratchPoses = 1;
   void inputs(std::vector<NodeIndex>& out) const;
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

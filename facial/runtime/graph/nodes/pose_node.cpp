@@ -2,12 +2,15 @@
 
 #include <cmath>
 
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 std::string_view toString(VrmOverride mode) {
   switch (mode) {
@@ -24,7 +27,7 @@ std::optional<VrmOverride> vrmOverrideFromString(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<std::string> PoseNode::prepare(const BuildContext& ctx) {
+eng::Result<void> PoseNode::prepare(const BuildContext& ctx) {
   if (weights.size() != ctx.channels.size())
     return ctx.problem("weights", "has " + std::to_string(weights.size()) + " entries, the graph has " +
                                       std::to_string(ctx.channels.size()) + " channels");

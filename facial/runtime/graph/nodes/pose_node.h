@@ -16,8 +16,10 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 // JSON names of VRM overrides: "none", "block", "blend".
 std::string_view toString(VrmOverride mode);
@@ -25,7 +27,8 @@ std::optional<VrmOverride> vrmOverrideFromString(std::string_view name);
 
 struct PoseNode {
   static constexpr std::string_view kType = "pose";  // JSON "type"
-  static PoseNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static PoseNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   std::vector<float> weights;                  // one per channel, each in [0,1]
   FloatInput scale = FloatInput::fixed(1.0f);  // multiplies weights and the override lane
@@ -35,7 +38,7 @@ struct PoseNode {
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>&) const {}
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;
 };
 

@@ -4,13 +4,16 @@
 #include <cmath>
 
 #include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
 #include "facial/runtime/rig/json_document.h"  // formatNumber
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
+
+using detail::JsonNode;
+using detail::NodeReader;
 
 std::string_view toString(ConditionOp op) {
   switch (op) {
@@ -74,9 +77,8 @@ void StateMachineNode::inputs(std::vector<NodeIndex>& out) const {
 
 namespace {
 
-std::optional<std::string> prepareTransitions(const BuildContext& ctx, const StateMachineNode& machine,
-                                              std::vector<Transition>& transitions, const std::string& path,
-                                              bool anyState) {
+eng::Result<void> prepareTransitions(const BuildContext& ctx, const StateMachineNode& machine,
+                                     std::vector<Transition>& transitions, const std::string& path, bool anyState) {
   for (size_t i = 0; i < transitions.size(); ++i) {
     Transition& t = transitions[i];
     const std::string where = path + "/" + std::to_string(i);
@@ -102,19 +104,19 @@ std::optional<std::string> prepareTransitions(const BuildContext& ctx, const Sta
                                    : (cond.op == ConditionOp::IsTrue || cond.op == ConditionOp::IsFalse)
                                        ? ParameterType::Bool
                                        : ParameterType::Float;
-      if (auto p = ctx.checkParameter(cond.parameter, needed, field)) return p;
+      if (auto p = ctx.checkParameter(cond.parameter, needed, field); !p) return p;
       if (!std::isfinite(cond.threshold))
         return ctx.problem(where + "/conditions/" + std::to_string(c) + "/value", "is not finite");
     }
   }
   std::stable_sort(transitions.begin(), transitions.end(),
                    [](const Transition& a, const Transition& b) { return a.priority > b.priority; });
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
 
-std::optional<std::string> StateMachineNode::prepare(const BuildContext& ctx) {
+eng::Result<void> StateMachineNode::prepare(const BuildContext& ctx) {
   if (states.empty()) return ctx.problem("states", "a state machine needs at least one state");
   for (size_t i = 0; i < states.size(); ++i) {
     if (states[i].name.empty()) return ctx.problem("states/" + std::to_string(i) + "/name", "empty state name");
@@ -130,7 +132,8 @@ std::optional<std::string> StateMachineNode::prepare(const BuildContext& ctx) {
   }
   for (size_t i = 0; i < states.size(); ++i)
     if (auto p = prepareTransitions(ctx, *this, states[i].transitions, "states/" + std::to_string(i) + "/transitions",
-                                    false))
+                                    false);
+        !p)
       return p;
   return prepareTransitions(ctx, *this, anyState, "anyState", true);
 }

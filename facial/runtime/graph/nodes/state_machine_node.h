@@ -29,8 +29,10 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 enum class ConditionOp : uint8_t { Greater, GreaterEqual, Less, LessEqual, Equal, NotEqual, IsTrue, IsFalse, Triggered };
 std::string_view toString(ConditionOp op);
@@ -74,7 +76,8 @@ struct StateMachineStatus {
 
 struct StateMachineNode {
   static constexpr std::string_view kType = "stateMachine";  // JSON "type"
-  static StateMachineNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static StateMachineNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   std::vector<MachineState> states;
   std::vector<Transition> anyState;
@@ -102,7 +105,7 @@ struct StateMachineNode {
   void inputs(std::vector<NodeIndex>& out) const;
   // Validates, resolves names, and orders each transition list by priority
   // (stable: equal priorities keep declaration order).
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

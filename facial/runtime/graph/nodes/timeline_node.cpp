@@ -4,18 +4,22 @@
 #include <cmath>
 
 #include "facial/runtime/graph/graph_definition.h"
+#include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
-#include "facial/runtime/graph/node_reader.h"
 
 namespace facial {
 
-std::optional<std::string> TimelineNode::prepare(const BuildContext& ctx) {
+using detail::JsonNode;
+using detail::NodeReader;
+
+eng::Result<void> TimelineNode::prepare(const BuildContext& ctx) {
   if (timeline >= ctx.timelines.size())
     return ctx.problem("timeline", "timeline index " + std::to_string(timeline) + " out of range (" +
                                        std::to_string(ctx.timelines.size()) + " timelines)");
   const Timeline& clip = ctx.timelines[timeline];
-  if (auto problem = clip.validate()) return ctx.problem("timeline", "timeline '" + clip.name + "': " + *problem);
+  if (auto valid = clip.validate(); !valid)
+    return ctx.problem("timeline", "timeline '" + clip.name + "': " + valid.error().message);
   trackChannels.clear();
   for (const TimelineTrack& track : clip.tracks) {
     auto channel = ctx.channels.find(track.channel);

@@ -17,12 +17,15 @@
 
 namespace facial {
 
+namespace detail {
 class JsonNode;
 class NodeReader;
+}  // namespace detail
 
 struct TimelineNode {
   static constexpr std::string_view kType = "timeline";  // JSON "type"
-  static TimelineNode read(const JsonNode& j, NodeReader& r);
+  // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
+  static TimelineNode read(const detail::JsonNode& j, detail::NodeReader& r);
 
   uint32_t timeline = 0;          // index into the graph's timelines
   std::optional<LoopMode> loop;   // overrides the timeline's own loop mode
@@ -40,7 +43,7 @@ struct TimelineNode {
 
   static constexpr uint32_t kScratchPoses = 0;
   void inputs(std::vector<NodeIndex>&) const {}
-  std::optional<std::string> prepare(const BuildContext& ctx);
+  eng::Result<void> prepare(const BuildContext& ctx);
   State makeState(const GraphDefinition& definition, NodeIndex self, uint64_t seed) const;
   void reset(State& state) const;
   void evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out) const;

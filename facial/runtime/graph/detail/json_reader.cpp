@@ -1,12 +1,20 @@
-#include "facial/runtime/graph/json_reader.h"
+#include "facial/runtime/graph/detail/json_reader.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 
-namespace facial {
+namespace facial::detail {
 
-void JsonNode::fail(const std::string& problem) const { throw JsonProblem{pointer_, problem}; }
+eng::Error jsonProblemError(const JsonProblem& problem, std::string_view source) {
+  std::string message = source.empty() ? std::string() : std::string(source) + ": ";
+  message += problem.pointer.empty() ? std::string_view("/") : std::string_view(problem.pointer);
+  return eng::makeError(problem.kind, message + ": " + problem.problem);
+}
+
+void JsonNode::fail(const std::string& problem, eng::ErrorKind kind) const {
+  throw JsonProblem{pointer_, problem, kind};
+}
 
 bool JsonNode::has(std::string_view key) const { return value_->is_object() && value_->contains(key); }
 
@@ -79,7 +87,7 @@ std::string JsonNode::stringOr(std::string_view key, std::string fallback) const
 void requireVersion(const JsonNode& document, int version) {
   if (!document.isObject()) document.fail("expected a JSON object at the top level");
   const JsonNode v = document.at("version");
-  if (auto problem = formatVersionProblem(v.raw(), version)) v.fail(*problem);
+  if (auto supported = checkFormatVersion(v.raw(), version); !supported) v.fail(supported.error());
 }
 
 double jsonNumber(float value) {
@@ -89,4 +97,4 @@ double jsonNumber(float value) {
   return std::strtod(text, nullptr);
 }
 
-}  // namespace facial
+}  // namespace facial::detail

@@ -4,18 +4,20 @@
 //
 //   struct BlendNode {
 //     static constexpr std::string_view kType = "blend";   // the JSON "type"
-//     static BlendNode read(const JsonNode& j, NodeReader& r);
+//     static BlendNode read(const detail::JsonNode& j, detail::NodeReader& r);
 //     ...
 //   };
 //
 // and is listed once, in NodeData (node.h); the parser dispatches on kType.
-// A reader reports problems with JsonNode::fail (at the value's JSON pointer);
-// semantic checks that need the whole graph stay in the node's prepare().
+// A reader reports problems with JsonNode::fail (at the value's JSON pointer),
+// which throws JsonProblem: like the rest of detail/ this is not installed, and
+// parseGraph turns the problem into an eng::Error, so no exception leaves the
+// library. Semantic checks that need the whole graph stay in the node's prepare().
 #include <cstdint>
 #include <string_view>
 
 #include "facial/runtime/curves/easing_curve.h"
-#include "facial/runtime/graph/json_reader.h"
+#include "facial/runtime/graph/detail/json_reader.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -24,6 +26,8 @@ namespace facial {
 
 class ChannelSet;
 class GraphBuilder;
+
+namespace detail {
 
 class NodeReader {
  public:
@@ -51,4 +55,5 @@ class NodeReader {
   size_t depth_ = 0;  // node() calls under way
 };
 
+}  // namespace detail
 }  // namespace facial

@@ -1,15 +1,14 @@
-#include "facial/runtime/graph/node_reader.h"
+#include "facial/runtime/graph/detail/node_reader.h"
 
 #include <string>
 #include <utility>
 #include <variant>
 
-#include "facial/runtime/graph/curve_json.h"
 #include "facial/runtime/graph/graph_builder.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/node.h"
 
-namespace facial {
+namespace facial::detail {
 namespace {
 
 // "pose, blend, ... or blink": the JSON names of NodeData's alternatives.
@@ -86,4 +85,4 @@ uint32_t NodeReader::timeline(const JsonNode& j) const {
 
 const ChannelSet& NodeReader::channels() const { return builder_.channels(); }
 
-}  // namespace facial
+}  // namespace facial::detail
