@@ -49,7 +49,7 @@ namespace {
 constexpr uint32_t kShortRunFrames = 1200;
 constexpr uint32_t kCrowd = 9;
 constexpr uint32_t kImageSide = 64;
-constexpr double kAllowedGrowth = 0.01;  // resident memory after warm-up, relative
+[[maybe_unused]] constexpr double kAllowedGrowth = 0.01;  // resident memory after warm-up, relative
 
 uint32_t positiveEnv(const char* name, uint32_t fallback) {
   if (const char* text = std::getenv(name)) {
