@@ -6,20 +6,14 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/vk/vk_result.h"
+
 namespace cli {
 namespace {
 
-// One line for a frame that failed. A lost device (driver reset or crash, GPU
-// removed or hung) ends the run: nothing drawn on that device can go on, and
-// saying so plainly beats the bare result name.
+// One line for a frame that failed; a lost device ends the run, said plainly.
 eng::Error frameError(uint64_t frame, const eng::Error& error) {
-  const std::string where = "frame " + std::to_string(frame) + ": ";
-  if (error.code == VK_ERROR_DEVICE_LOST)
-    return eng::makeError(eng::ErrorKind::Device,
-                          where + "the Vulkan device was lost (" + error.message +
-                              "): its driver reset or failed, or the GPU was removed; nothing more can be drawn",
-                          error.code);
-  return error.prefixed(where);
+  return eng::vk::explainDeviceLost(error).prefixed("frame " + std::to_string(frame) + ": ");
 }
 
 }  // namespace

@@ -11,6 +11,7 @@ namespace eng {
 
 struct GifWriter::Impl {
   std::filesystem::path path;
+  std::filesystem::path partialPath;  // written first, renamed to `path` by finish()
   std::string pathString;
   int width = 0, height = 0;
   uint16_t delayCentiseconds = 4;
@@ -22,7 +23,11 @@ struct GifWriter::Impl {
   std::vector<uint8_t> palette;
 
   ~Impl() {
-    if (gif) cgif_close(gif);
+    if (gif) {
+      cgif_close(gif);
+      std::error_code ignored;
+      std::filesystem::remove(partialPath, ignored);
+    }
     if (attr) liq_attr_destroy(attr);
   }
 };
@@ -40,6 +45,7 @@ Result<GifWriter> GifWriter::create(const std::filesystem::path& path, int width
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->pathString = path.string();
+  impl->partialPath = impl->pathString + ".partial";
   impl->width = width;
   impl->height = height;
   impl->exactDelay = 100.0f / fps;
@@ -55,7 +61,8 @@ Result<GifWriter> GifWriter::create(const std::filesystem::path& path, int width
   CGIF_Config config{};
   config.pGlobalPalette = grey.data();
   config.numGlobalPaletteEntries = 256;
-  config.path = impl->pathString.c_str();
+  const std::string partial = impl->partialPath.string();
+  config.path = partial.c_str();
   config.attrFlags = CGIF_ATTR_IS_ANIMATED;
   config.width = static_cast<uint16_t>(width);
   config.height = static_cast<uint16_t>(height);
@@ -109,7 +116,17 @@ Result<void> GifWriter::finish() {
   if (!s.gif) return {};
   const int rc = cgif_close(s.gif);
   s.gif = nullptr;
-  if (rc != CGIF_OK) return makeError(ErrorKind::Io, s.pathString + ": closing GIF failed (cgif error " + std::to_string(rc) + ")");
+  std::error_code ec;
+  if (rc != CGIF_OK) {
+    std::filesystem::remove(s.partialPath, ec);
+    return makeError(ErrorKind::Io, s.pathString + ": closing GIF failed (cgif error " + std::to_string(rc) + ")");
+  }
+  std::filesystem::rename(s.partialPath, s.path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(s.partialPath, ignored);
+    return makeError(ErrorKind::Io, s.pathString + ": cannot move the finished GIF into place: " + ec.message());
+  }
   return {};
 }
 

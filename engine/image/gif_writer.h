@@ -1,6 +1,8 @@
 #pragma once
 // Animated GIF output for headless runs: frames are quantised to a 256-colour
-// palette each (libimagequant, with dithering) and encoded with cgif.
+// palette each (libimagequant, with dithering) and encoded with cgif. The
+// frames go to "<path>.partial" first, renamed to `path` by finish(): a run
+// that stops early (an error, a lost device) leaves no half-written GIF.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -15,10 +17,11 @@ class GifWriter {
   static Result<GifWriter> create(const std::filesystem::path& path, int width, int height, float framesPerSecond);
   GifWriter(GifWriter&&) noexcept;
   GifWriter& operator=(GifWriter&&) noexcept;
-  ~GifWriter();  // closes the file if finish() was not called
+  ~GifWriter();  // without finish(): closes and removes the partial file
 
   // rgba8: width * height * 4 bytes, row 0 at the top.
   Result<void> addFrame(std::span<const uint8_t> rgba8);
+  // Closes the GIF and moves it to the path given to create().
   Result<void> finish();
 
  private:

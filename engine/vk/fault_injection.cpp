@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
+
+#include "engine/core/log.h"
 
 namespace eng::vk {
 namespace {
@@ -34,6 +37,16 @@ Result<FaultInjector> FaultInjector::parse(std::string_view list, std::string_vi
     }
   }
   if (faults.active()) faults.description_ = std::string(origin) + "=" + whole;
+  return faults;
+}
+
+Result<FaultInjector> FaultInjector::fromOptionOrEnvironment(std::string_view optionFaults,
+                                                             std::string_view optionName, std::string_view user) {
+  const char* fromEnvironment = std::getenv(kFaultsEnvironmentVariable);
+  auto faults = optionFaults.empty() ? parse(fromEnvironment ? fromEnvironment : "", kFaultsEnvironmentVariable)
+                                     : parse(optionFaults, optionName);
+  if (faults && faults->active())
+    logWarning(std::string(user) + ": injecting faults for a test: " + faults->describe());
   return faults;
 }
 

@@ -39,6 +39,9 @@ void unpremultiplySrgb(eng::Image& image) {
 Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const OffscreenOptions& options) {
   OffscreenRenderer r;
   r.ctx_ = &ctx;
+  auto faults = FaultInjector::fromOptionOrEnvironment(options.faults, "OffscreenOptions::faults", "offscreen renderer");
+  if (!faults) return faults.error();
+  r.faults_ = std::move(faults).value();
   auto layouts = SceneLayouts::create(ctx);
   if (!layouts) return layouts.error();
   r.layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
@@ -57,6 +60,15 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
 }
 
 bool OffscreenRenderer::reloadChangedShaders() { return shaders_->reloadIfChanged() && scene_.refreshPipelines(); }
+
+Result<void> OffscreenRenderer::frameSubmitted(Result<void> submitted) {
+  if (submitted) {
+    if (const VkResult injected = faults_.afterSubmit(VK_SUCCESS); injected != VK_SUCCESS)
+      submitted = vulkanError("vkQueueSubmit", injected);
+  }
+  if (!submitted) return explainDeviceLost(submitted.error());
+  return {};
+}
 
 Result<GpuModel> OffscreenRenderer::upload(const Model& model) const {
   return GpuModel::create(*ctx_, *layouts_, model);
@@ -78,13 +90,13 @@ Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& vi
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
   const bool studio = view.backdrop.kind == Backdrop::Kind::Studio;
-  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) {
+  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) {
                             timestamps_.recordStart(cmd);
                             scene_.recordShadowPass(cmd, 0);
                           },
                           [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); },
                           [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false},
-                         clearColour(view.backdrop)));
+                         clearColour(view.backdrop))));
   return timestamps_.readMilliseconds();
 }
 
@@ -95,9 +107,9 @@ Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<co
   const Backdrop& backdrop = view.backdrop;
   const glm::vec4 clear = clearColour(backdrop);
   const bool studio = backdrop.kind == Backdrop::Kind::Studio;
-  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
+  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
                           [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); }, {}},
-                         clear));
+                         clear)));
   eng::Image image = target_.readPixels();
   if (backdrop.kind == Backdrop::Kind::Transparent) unpremultiplySrgb(image);
   return image;
@@ -105,30 +117,30 @@ Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<co
 
 Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) { scene_.recordMorphPass(cmd, 0); },
+  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) { scene_.recordMorphPass(cmd, 0); },
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
-                          [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }}));
+                          [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }})));
   return scene_.readCapture(0);
 }
 
 Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(target_.render({[&](VkCommandBuffer cmd) {
+  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) {
                             timestamps_.recordStart(cmd);
                             scene_.recordMorphPass(cmd, 0);
                           },
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
-                          [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false}));
+                          [&](VkCommandBuffer cmd) { timestamps_.recordEnd(cmd); }, /*readback=*/false})));
   return timestamps_.readMilliseconds();
 }
 
 Result<std::optional<double>> OffscreenRenderer::morphTimed(std::span<const ModelInstance> instances) {
   ENG_TRY(scene_.prepare(0, FrameGlobals{}, instances));
-  ENG_TRY(ctx_->submitOneShot([&](VkCommandBuffer cmd) {
+  ENG_TRY(frameSubmitted(ctx_->submitOneShot([&](VkCommandBuffer cmd) {
     timestamps_.recordStart(cmd);
     scene_.recordMorphPass(cmd, 0);
     timestamps_.recordEnd(cmd);
-  }));
+  })));
   return timestamps_.readMilliseconds();
 }
 

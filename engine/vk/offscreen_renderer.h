@@ -19,6 +19,7 @@
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 #include "engine/vk/context.h"
+#include "engine/vk/fault_injection.h"
 #include "engine/vk/frame_timestamps.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/offscreen_target.h"
@@ -36,6 +37,9 @@ struct OffscreenOptions {
   // Multisampling, shadow map and shading terms (render_quality.h).
   RenderQuality quality = RenderQuality::High;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
+  // Injected faults for tests (fault_injection.h: device-lost@N counts this
+  // renderer's frame submissions); empty: FACIAL_VK_FAULTS, if set.
+  std::string faults;
 };
 
 class OffscreenRenderer {
@@ -72,6 +76,10 @@ class OffscreenRenderer {
   bool canCapture() const { return scene_.canCapture(); }
 
  private:
+  // A frame's submission result, then the fault a test injects; a lost
+  // device, real or injected, said plainly (explainDeviceLost).
+  Result<void> frameSubmitted(Result<void> submitted);
+
   const Context* ctx_ = nullptr;
   // Heap-held: the scene renderer and uploaded models point at them.
   std::unique_ptr<SceneLayouts> layouts_;
@@ -79,6 +87,7 @@ class OffscreenRenderer {
   OffscreenTarget target_;
   SceneRenderer scene_;
   FrameTimestamps timestamps_;
+  FaultInjector faults_;
 };
 
 }  // namespace eng::vk

@@ -56,4 +56,12 @@ Error vulkanError(std::string_view call, VkResult result) {
                    static_cast<int32_t>(result));
 }
 
+Error explainDeviceLost(const Error& error) {
+  if (error.code != VK_ERROR_DEVICE_LOST) return error;
+  return makeError(ErrorKind::Device,
+                   "the Vulkan device was lost (" + error.message +
+                       "): its driver reset or failed, or the GPU was removed; nothing more can be drawn",
+                   error.code);
+}
+
 }  // namespace eng::vk

@@ -15,6 +15,11 @@ std::string_view resultName(VkResult result);
 // `call` may be the whole call expression; only the function name is kept.
 Error vulkanError(std::string_view call, VkResult result);
 
+// A lost device said plainly -- "the Vulkan device was lost (vkQueueSubmit
+// failed: VK_ERROR_DEVICE_LOST): its driver reset or failed, ..." -- since
+// nothing drawn on that device can go on; other errors unchanged.
+Error explainDeviceLost(const Error& error);
+
 }  // namespace eng::vk
 
 // Returns the Error from the enclosing function when the call fails.

@@ -51,13 +51,9 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   r->ctx_ = &ctx;
   r->window_ = &window;
   r->options_ = options;
-  const char* faultsFromEnvironment = std::getenv(kFaultsEnvironmentVariable);
-  auto faults = options.faults.empty()
-                    ? FaultInjector::parse(faultsFromEnvironment ? faultsFromEnvironment : "", kFaultsEnvironmentVariable)
-                    : FaultInjector::parse(options.faults, "WindowRendererOptions::faults");
+  auto faults = FaultInjector::fromOptionOrEnvironment(options.faults, "WindowRendererOptions::faults", "window renderer");
   if (!faults) return faults.error();
   r->faults_ = std::move(faults).value();
-  if (r->faults_.active()) logWarning("window renderer: injecting faults for a test: " + r->faults_.describe());
   auto layouts = SceneLayouts::create(ctx);
   if (!layouts) return layouts.error();
   r->layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());

@@ -1,5 +1,6 @@
 #include "engine/image/gif_writer.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -34,6 +35,20 @@ TEST(GifWriterValidity, UnwritablePathIsAnError) {
   EXPECT_NE(gif.error().message.find("/nonexistent-dir/x/a.gif"), std::string::npos);
 }
 
+// A run that stops before finish() (an error, a lost device) leaves neither
+// the GIF nor its partial file; until finish() only the partial file exists.
+TEST(GifWriterValidity, UnfinishedGifLeavesNoFile) {
+  auto dir = testing_support::freshTempDir("gif_unfinished");
+  {
+    auto gif = eng::GifWriter::create(dir / "a.gif", 4, 4, 10);
+    ASSERT_TRUE(gif.ok()) << gif.error().message;
+    ASSERT_TRUE(gif->addFrame(std::vector<uint8_t>(4 * 4 * 4, 128)).ok());
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.gif")) << "the GIF appears only when finished";
+    EXPECT_TRUE(std::filesystem::exists(dir / "a.gif.partial"));
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir)) << "the partial file is removed";
+}
+
 TEST(GifWriterTest, WritesAnimationThatDecodesBack) {
   auto dir = testing_support::freshTempDir("gif_roundtrip");
   const int w = 32, h = 16, frames = 3;
@@ -47,6 +62,7 @@ TEST(GifWriterTest, WritesAnimationThatDecodesBack) {
     }
     ASSERT_TRUE(gif->finish().ok());
   }
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.gif.partial"));
   std::ifstream in(dir / "a.gif", std::ios::binary);
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   int* delays = nullptr;

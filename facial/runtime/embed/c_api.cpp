@@ -3,8 +3,10 @@
 #include "facial/c_api.h"
 
 #include <cmath>
+#include <cstring>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "facial/character.h"
@@ -179,10 +181,15 @@ facial_status facial_character_eye_rotation(const facial_character* character, f
   return guarded("facial_character_eye_rotation", [&] {
     FACIAL_REQUIRE(character, "facial_character_eye_rotation");
     FACIAL_REQUIRE(out_xyzw, "facial_character_eye_rotation");
-    if (eye != FACIAL_EYE_LEFT && eye != FACIAL_EYE_RIGHT)
+    // A C caller may pass any integer; in C++ reading it as a facial_eye
+    // outside the enum's values is undefined (UBSan: invalid enum load), so
+    // it is checked as the integer it is.
+    std::underlying_type_t<facial_eye> value = 0;
+    std::memcpy(&value, &eye, sizeof value);
+    if (value != FACIAL_EYE_LEFT && value != FACIAL_EYE_RIGHT)
       return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_eye_rotation: eye is neither left nor right");
-    return writeQuat(character->character.eyeRotation(eye == FACIAL_EYE_LEFT ? facial::Eye::Left : facial::Eye::Right),
-                     out_xyzw);
+    return writeQuat(
+        character->character.eyeRotation(value == FACIAL_EYE_LEFT ? facial::Eye::Left : facial::Eye::Right), out_xyzw);
   });
 }
 
