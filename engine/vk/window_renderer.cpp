@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <cstdio>
 #include <span>
 #include <string>
 
@@ -35,6 +36,17 @@ float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options
                                          VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   if (!swapchain.canBlitTo() || (props.optimalTilingFeatures & kBlit) != kBlit) return 1.0f;
   return scale;
+}
+
+// The options' level-of-detail error, or FACIAL_LOD_PIXEL_ERROR where set (0 draws every triangle).
+float chooseLodPixelError(const WindowRendererOptions& options) {
+  const char* env = std::getenv("FACIAL_LOD_PIXEL_ERROR");
+  if (!env) return options.lodPixelError;
+  char* end = nullptr;
+  const float parsed = std::strtof(env, &end);
+  if (end != env && *end == '\0' && parsed >= 0.0f && parsed <= 64.0f) return parsed;
+  logWarning(std::string("FACIAL_LOD_PIXEL_ERROR='") + env + "' is not a number in [0, 64]; ignored");
+  return options.lodPixelError;
 }
 
 }  // namespace
@@ -70,6 +82,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   if (!depth) return depth.error();
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
   r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
+  r->options_.lodPixelError = chooseLodPixelError(options);
   auto pass = createSceneRenderPass(ctx, r->format_,
                                     r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return pass.error();
@@ -274,7 +287,9 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
 
   const VkExtent2D extent = swapchain_.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances));
+  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
+                         {options_.lodPixelError, sceneExtent().height}));
+  if (std::getenv("XDBG") && frameIndex_ % 60 == 0) { auto st = scene_.stats(slot); std::fprintf(stderr, "XDBG tris=%llu coarser=%u\n", (unsigned long long)st.triangles, st.coarserDraws); }
 
   uint32_t image = 0;
   VkResult acquired = faults_.beforeAcquire();

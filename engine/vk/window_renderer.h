@@ -46,6 +46,11 @@
 
 namespace eng::vk {
 
+// A level of detail may stray this far (pixels of the 3D view) from the
+// full mesh: below what a moving, shaded face shows, and it lets the built-in
+// head's skin drop from 50k to about 6k triangles at the window's size.
+inline constexpr float kWindowLodPixelError = 1.0f;
+
 struct WindowRendererOptions {
   // Multisampling, shadow map and shading terms (render_quality.h).
   RenderQuality quality = RenderQuality::High;
@@ -56,6 +61,10 @@ struct WindowRendererOptions {
   // device (lavapipe). Falls back to 1
   // where the swapchain cannot be blitted to.
   float renderScale = 0.0f;
+  // Level of detail (SceneRenderer's LodPolicy): each draw uses the coarsest
+  // level of its primitive that strays at most this many pixels of the 3D
+  // view from the full mesh; 0 draws every triangle.
+  float lodPixelError = kWindowLodPixelError;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
   // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
