@@ -4,8 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -342,7 +340,6 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
         }
         pixelsPerUnit = std::max(pixelsPerUnit, drawnScale * pixelsAtUnitDepth / depth);
       }
-      if (std::getenv("XDBG")) { std::fprintf(stderr, "XDBG prim lods=%zu ppu=%g", prim.lods.size(), pixelsPerUnit); for (auto& l : prim.lods) std::fprintf(stderr, " [%u %g]", l.indexCount/3, l.error); std::fprintf(stderr, "\n"); }
       for (size_t level = 0; level < prim.lods.size(); ++level) {
         if (prim.lods[level].error * pixelsPerUnit > lod.maxPixelError) break;
         batch.lod = static_cast<uint32_t>(level + 1);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
-#include <cstdio>
 #include <span>
 #include <string>
 
@@ -83,6 +82,12 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
   r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
   r->options_.lodPixelError = chooseLodPixelError(options);
+  const bool automaticScale = options.renderScale <= 0.0f && !std::getenv("FACIAL_RENDER_SCALE") &&
+                              ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && r->scaled();
+  if (options.adaptiveScale && automaticScale) {
+    r->adaptive_.emplace(r->renderScale_, AdaptiveRenderScale::Limits{});
+    r->renderScale_ = r->adaptive_->scale();
+  }
   auto pass = createSceneRenderPass(ctx, r->format_,
                                     r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return pass.error();
@@ -263,6 +268,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   if (window_->takeResized()) swapchainStale_ = true;
   switch (decideFrameAction(window_->framebufferExtent(), swapchain_.extent(), swapchainStale_)) {
     case FrameAction::Skip:
+      lastPresented_ = {};
       window_->waitEvents(0.05);
       return FrameResult::Skipped;
     case FrameAction::RecreateSwapchain:
@@ -289,7 +295,6 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
                          {options_.lodPixelError, sceneExtent().height}));
-  if (std::getenv("XDBG") && frameIndex_ % 60 == 0) { auto st = scene_.stats(slot); std::fprintf(stderr, "XDBG tris=%llu coarser=%u\n", (unsigned long long)st.triangles, st.coarserDraws); }
 
   uint32_t image = 0;
   VkResult acquired = faults_.beforeAcquire();
@@ -384,11 +389,24 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
 
   lastSlot_ = slot;
   ++frameIndex_;
+  if (adaptive_) adaptRenderScale();
   if (!frame.screenshot.empty()) {
     ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
     ENG_TRY(saveScreenshot(frame.screenshot));
   }
   return FrameResult::Presented;
+}
+
+void WindowRenderer::adaptRenderScale() {
+  const auto now = std::chrono::steady_clock::now();
+  const auto previous = lastPresented_;
+  lastPresented_ = now;
+  if (previous == std::chrono::steady_clock::time_point{}) return;
+  if (!adaptive_->addFrame(std::chrono::duration<double>(now - previous).count())) return;
+  renderScale_ = adaptive_->scale();
+  swapchainStale_ = true;   // the next frame rebuilds the view's images at the new size
+  lastPresented_ = {};      // and is not timed: the rebuild is not the frame's cost
+  adaptive_->restart();
 }
 
 void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const {
