@@ -294,7 +294,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   const VkExtent2D extent = swapchain_.extent();
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
-                         {options_.lodPixelError, sceneExtent().height}));
+                         {options_.lodPixelError * renderScale_, sceneExtent().height}));
 
   uint32_t image = 0;
   VkResult acquired = faults_.beforeAcquire();
