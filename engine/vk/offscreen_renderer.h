@@ -35,6 +35,9 @@ struct OffscreenOptions {
   uint32_t height = 512;
   // Multisampling, shadow map and shading terms (render_quality.h).
   RenderQuality quality = RenderQuality::High;
+  // Level of detail (SceneRenderer's LodPolicy) in pixels of the image; 0
+  // (renders, goldens) draws every triangle, `facial bench frames --lod-error` sets it.
+  float lodPixelError = 0.0f;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
 };
 
@@ -79,6 +82,7 @@ class OffscreenRenderer {
   OffscreenTarget target_;
   SceneRenderer scene_;
   FrameTimestamps timestamps_;
+  float lodPixelError_ = 0.0f;
 };
 
 }  // namespace eng::vk
