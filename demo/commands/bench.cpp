@@ -94,8 +94,11 @@ int runBenchFrames(const BenchFramesOptions& o) {
                 std::to_string(kMaxInstances) + ")");
   if (o.animate != "all" && o.animate != "none") return fail("--animate '" + o.animate + "' is not all or none");
   const bool animate = o.animate == "all";
-  if (!(o.lodError >= 0.0f && o.lodError <= 64.0f))
-    return fail("--lod-error " + std::to_string(o.lodError) + " is out of range (0..64 pixels)");
+  if (!(o.lodError >= 0.0f && o.lodError <= 64.0f)) {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%g", double(o.lodError));
+    return fail(std::string("--lod-error ") + value + " is out of range (0..64 pixels)");
+  }
   auto quality = qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 

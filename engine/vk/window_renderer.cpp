@@ -153,6 +153,7 @@ Result<void> WindowRenderer::recreateSwapchain() {
     return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
   swapchain_ = std::move(swapchain).value();
+  if (adaptive_) renderScale_ = adaptive_->scale();  // sceneExtent() follows the images, not ahead of them
   return createSwapchainResources();
 }
 
@@ -403,8 +404,7 @@ void WindowRenderer::adaptRenderScale() {
   lastPresented_ = now;
   if (previous == std::chrono::steady_clock::time_point{}) return;
   if (!adaptive_->addFrame(std::chrono::duration<double>(now - previous).count())) return;
-  renderScale_ = adaptive_->scale();
-  swapchainStale_ = true;   // the next frame rebuilds the view's images at the new size
+  swapchainStale_ = true;   // the next frame rebuilds the view's images at the new scale (recreateSwapchain)
   lastPresented_ = {};      // and is not timed: the rebuild is not the frame's cost
   adaptive_->restart();
 }
