@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -17,16 +18,26 @@ namespace {
 
 constexpr auto kShaderPollInterval = std::chrono::milliseconds(500);
 
+// The number in environment variable `name` when it is set and a number for
+// which `accept` holds; nullopt (with a warning naming the range when set) otherwise.
+template <class Accept>
+std::optional<float> environmentNumber(const char* name, const char* range, Accept accept) {
+  const char* env = std::getenv(name);
+  if (!env) return std::nullopt;
+  char* end = nullptr;
+  const float parsed = std::strtof(env, &end);
+  if (end != env && *end == '\0' && accept(parsed)) return parsed;
+  logWarning(std::string(name) + "='" + env + "' is not a number in " + range + "; ignored");
+  return std::nullopt;
+}
+
 // The options' scale, or the automatic one; 1 where a scaled view could not be
 // blitted into the swapchain (no transfer usage, no linear blit of its format).
 float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options, const Swapchain& swapchain) {
   float scale = options.renderScale;
-  if (const char* env = std::getenv("FACIAL_RENDER_SCALE"); scale <= 0.0f && env) {
-    char* end = nullptr;
-    const float parsed = std::strtof(env, &end);
-    if (end != env && *end == '\0' && parsed > 0.0f && parsed <= 1.0f) scale = parsed;
-    else logWarning(std::string("FACIAL_RENDER_SCALE='") + env + "' is not a number in (0, 1]; ignored");
-  }
+  if (scale <= 0.0f)
+    scale = environmentNumber("FACIAL_RENDER_SCALE", "(0, 1]", [](float v) { return v > 0.0f && v <= 1.0f; })
+                .value_or(0.0f);
   if (scale <= 0.0f) scale = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kCpuRenderScale : 1.0f;
   scale = std::min(scale, 1.0f);
   VkFormatProperties props{};
@@ -39,13 +50,8 @@ float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options
 
 // The options' level-of-detail error, or FACIAL_LOD_PIXEL_ERROR where set (0 draws every triangle).
 float chooseLodPixelError(const WindowRendererOptions& options) {
-  const char* env = std::getenv("FACIAL_LOD_PIXEL_ERROR");
-  if (!env) return options.lodPixelError;
-  char* end = nullptr;
-  const float parsed = std::strtof(env, &end);
-  if (end != env && *end == '\0' && parsed >= 0.0f && parsed <= 64.0f) return parsed;
-  logWarning(std::string("FACIAL_LOD_PIXEL_ERROR='") + env + "' is not a number in [0, 64]; ignored");
-  return options.lodPixelError;
+  return environmentNumber("FACIAL_LOD_PIXEL_ERROR", "[0, 64]", [](float v) { return v >= 0.0f && v <= 64.0f; })
+      .value_or(options.lodPixelError);
 }
 
 }  // namespace
