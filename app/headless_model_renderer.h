@@ -32,6 +32,7 @@ struct HeadlessRenderOptions {
   std::string device;         // eng::vk::ContextOptions::device
   eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
   eng::vk::RenderQuality quality = eng::vk::RenderQuality::High;  // multisampling, shadows, shading terms
+  float lodPixelError = 0.0f;  // eng::vk::OffscreenOptions::lodPixelError (0: every triangle)
 };
 
 class HeadlessModelRenderer {

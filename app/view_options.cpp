@@ -23,17 +23,35 @@ eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame) {
   return eng::makeError(eng::ErrorKind::InvalidArgument, "--frame '" + frame + "' is neither 'face' nor 'all'");
 }
 
+namespace {
+
+constexpr const char* kQualityHelp =
+    "Render quality: high (4x MSAA, soft key-light shadow, three highlights), balanced (the same with "
+    "2x MSAA, 1x where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
+    "balanced takes about two thirds and fast about a third of high's frame time";
+
+}  // namespace
+
 void addQualityOption(CLI::App& app, std::string& quality) {
-  app.add_option("--quality", quality,
-                 "Render quality: high (4x MSAA, soft key-light shadow, three highlights), balanced (the same with "
-                 "2x MSAA, 1x where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
-                 "balanced takes about two thirds and fast about a third of high's frame time")
-      ->capture_default_str();
+  app.add_option("--quality", quality, kQualityHelp)->capture_default_str();
 }
 
 eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality) {
   if (auto tier = eng::vk::parseRenderQuality(quality)) return *tier;
   return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not fast, balanced or high");
+}
+
+void addWindowQualityOption(CLI::App& app, std::string& quality) {
+  app.add_option("--quality", quality,
+                 std::string(kQualityHelp) + "; auto: balanced on a CPU rasteriser, high on a GPU")
+      ->capture_default_str();
+}
+
+eng::Result<eng::vk::RenderQuality> windowQualityOption(const std::string& quality, VkPhysicalDeviceType device) {
+  if (quality == kWindowQualityAuto)
+    return device == VK_PHYSICAL_DEVICE_TYPE_CPU ? eng::vk::RenderQuality::Balanced : eng::vk::RenderQuality::High;
+  if (auto tier = eng::vk::parseRenderQuality(quality)) return *tier;
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not auto, fast, balanced or high");
 }
 
 void addViewOptions(CLI::App& app, ViewOptions& view) {

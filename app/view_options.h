@@ -34,6 +34,12 @@ eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame);
 void addQualityOption(CLI::App& app, std::string& quality);
 // The --quality value as a tier; the error names the option and the value.
 eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality);
+// --quality of the windows (demo, editor): the tiers, or "auto" (their
+// default): balanced on a CPU rasteriser, where high's 4x multisampling alone
+// costs more than the rest of the frame, high on a GPU.
+inline constexpr const char* kWindowQualityAuto = "auto";
+void addWindowQualityOption(CLI::App& app, std::string& quality);
+eng::Result<eng::vk::RenderQuality> windowQualityOption(const std::string& quality, VkPhysicalDeviceType device);
 // --size --yaw --pitch --zoom --frame --device --background --quality.
 void addViewOptions(CLI::App& app, ViewOptions& view);
 

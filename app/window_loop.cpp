@@ -66,8 +66,9 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   if (measuredFrames > 1) {
     const double seconds = std::chrono::duration<double>(Clock::now() - measureStart).count();
     const VkExtent2D extent = renderer.extent();
-    std::printf("window: %ux%u %d frames presented in the last %.2f s: fps=%.2f\n", extent.width, extent.height,
-                measuredFrames - 1, seconds, double(measuredFrames - 1) / seconds);
+    std::printf("window: %ux%u %d frames presented in the last %.2f s (3D view at %.2f%s): fps=%.2f\n",
+                extent.width, extent.height, measuredFrames - 1, seconds, double(renderer.renderScale()),
+                renderer.adaptiveScale() ? ", adaptive" : "", double(measuredFrames - 1) / seconds);
   }
   return {};
 }

@@ -114,7 +114,8 @@ int runHeadlessDemo(const DemoOptions& o) {
   std::printf("facial demo: no display, playing the tour headless into %s\n", outDir.string().c_str());
   std::fflush(stdout);
 
-  auto quality = qualityOption(o.quality);
+  // The tour's frames are written, not watched: auto draws them at high.
+  auto quality = qualityOption(o.quality == kWindowQualityAuto ? "high" : o.quality);
   if (!quality) return fail(quality.error().message);
   auto renderer = HeadlessModelRenderer::create(
       setup->model(), {.width = width, .height = height, .device = o.device, .quality = *quality});

@@ -256,7 +256,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto quality = qualityOption(options_.quality);
+  auto quality = windowQualityOption(options_.quality, ctx_->deviceInfo().type);
   if (!quality) return fail(quality.error().message);
   auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);

@@ -1,5 +1,5 @@
 // `facial bench frames MODEL [--size WxH] [--frames N] [--warmup N]
-//  [--animate all|none] [--instances K] [--quality fast|balanced|high] [--device D]`
+//  [--animate all|none] [--instances K] [--quality fast|balanced|high] [--lod-error PX] [--device D]`
 // Times whole headless frames on whatever Vulkan device is present: per frame
 // the weights are updated (--animate all: every morph target re-weighted by
 // its own smooth sine, all of them active; none: all zero), K instances are
@@ -7,7 +7,7 @@
 // GPU waited for; no read-back). Prints the settings, then ONE result line
 // ending with fps=<median-based fps> (before it a `memory:` line: the asset's
 // device buffers and what one more instance adds):
-//   bench frames facecap.glb 512x512 quality=high msaa=4 instances=1 animate=all targets=52
+//   bench frames facecap.glb 512x512 quality=high msaa=4 instances=1 animate=all targets=52 triangles=..
 //   device=llvmpipe cpu_median_ms=.. cpu_p95_ms=.. [gpu_median_ms=.. gpu_p95_ms=..] fps=..
 // GPU times come from timestamps at the start and end of the frame's command
 // buffer, where the device has them.
@@ -44,6 +44,7 @@ struct BenchFramesOptions {
   int instances = 1;
   std::string device;
   std::string quality = "high";
+  float lodError = 0.0f;
 };
 
 // The peer framing: 30 degree vertical field of view, camera on +Z at 1.6x
@@ -93,6 +94,11 @@ int runBenchFrames(const BenchFramesOptions& o) {
                 std::to_string(kMaxInstances) + ")");
   if (o.animate != "all" && o.animate != "none") return fail("--animate '" + o.animate + "' is not all or none");
   const bool animate = o.animate == "all";
+  if (!(o.lodError >= 0.0f && o.lodError <= 64.0f)) {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%g", double(o.lodError));
+    return fail(std::string("--lod-error ") + value + " is out of range (0..64 pixels)");
+  }
   auto quality = qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 
@@ -107,7 +113,8 @@ int runBenchFrames(const BenchFramesOptions& o) {
               .height = height,
               .framing = eng::vk::FramingMode::All,
               .device = o.device,
-              .quality = *quality});
+              .quality = *quality,
+              .lodPixelError = o.lodError});
   if (!renderer) return fail(renderer.error().message);
 
   // K instances side by side in a square grid, spaced by the model's size;
@@ -160,13 +167,14 @@ int runBenchFrames(const BenchFramesOptions& o) {
   const eng::vk::QualitySettings tier = eng::vk::qualitySettings(*quality);
   std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
               "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
-              "timestamps=%s\n",
+              "lod_error=%g triangles=%llu coarser_draws=%u timestamps=%s\n",
               eng::vk::qualityName(*quality), int(offscreen.samples()), tier.shadowMapSize,
               tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
               tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
               double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
               double(view.camera.distance), stats.draws,
-              stats.activeWeights, offscreen.hasGpuTimestamps() ? "yes" : "no");
+              stats.activeWeights, double(o.lodError), static_cast<unsigned long long>(stats.triangles),
+              stats.coarserDraws, offscreen.hasGpuTimestamps() ? "yes" : "no");
   // Memory: what the face asset holds on the device, and what one more
   // instance adds (its GPU records, active list, target weights and joint
   // matrices uploaded per frame, its morphed vertices, plus its CPU weight vector).
@@ -185,6 +193,7 @@ int runBenchFrames(const BenchFramesOptions& o) {
                      " quality=" + eng::vk::qualityName(*quality) +
                      " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
                      " animate=" + o.animate + " targets=" + std::to_string(layout.total()) +
+                     " triangles=" + std::to_string(stats.triangles) +
                      " device=" + renderer->deviceName() + " cpu_median_ms=" + format(cpuMedian) +
                      " cpu_p95_ms=" + format(cpuP95);
   if (gpuMs.size() == cpuMs.size()) {
@@ -208,6 +217,9 @@ CommandRegistrar reg("bench", "Measure performance (bench frames: whole headless
   frames->add_option("--instances", o->instances, "Instances drawn in one instanced draw (default 1)");
   addDeviceOption(*frames, o->device);
   addQualityOption(*frames, o->quality);
+  frames->add_option("--lod-error", o->lodError,
+                     "Level of detail: each draw at the coarsest level within this many pixels of the full mesh "
+                     "(default 0: every triangle; the windows use 0.5 of theirs)");
   return [o] { return runBenchFrames(*o); };
 });
 

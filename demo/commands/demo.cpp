@@ -33,7 +33,7 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
                  "Skeletal animation of the model to play under the face: its name, its index, or 'all' (loops)");
   app.add_option("--crowd", o->crowd, "N faces in a grid, each with its own state machine and random triggers");
   addDeviceOption(app, o->device);
-  addQualityOption(app, o->quality);
+  addWindowQualityOption(app, o->quality);
   app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();
   app.add_option("--quit-after", o->quitAfter, "Window: close after this many seconds (for tests)");
   app.add_option("--screenshot", o->screenshot,

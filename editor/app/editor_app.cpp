@@ -208,7 +208,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto quality = cli::qualityOption(o.quality);
+  auto quality = cli::windowQualityOption(o.quality, ctx_->deviceInfo().type);
   if (!quality) return fail(quality.error().message);
   auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   app.add_option("--timeline", o.timeline, "Timeline JSON to open in the timeline panel");
   app.add_option("--device", o.device, "Vulkan device: discrete, integrated, cpu or a name substring");
   app.add_option("--size", o.size, "Window size WxH")->capture_default_str();
-  cli::addQualityOption(app, o.quality);
+  cli::addWindowQualityOption(app, o.quality);
   app.add_option("--trigger", o.trigger, "Fire this state machine trigger at start (e.g. happy)");
   app.add_option("--quit-after", o.quitAfter, "Close after this many seconds (tests)");
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");

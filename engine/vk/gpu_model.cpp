@@ -11,6 +11,7 @@
 #include "engine/core/log.h"
 #include "engine/scene/crease_shading.h"
 #include "engine/scene/face_dressing.h"
+#include "engine/scene/mesh_lod.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/detail_array.h"
@@ -192,6 +193,9 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
     gp.colorOffset = vertices.append(std::span(white), 16);
   }
   gp.indexOffset = indices.append(std::span(prim.indices), 16);
+  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices))
+    gp.lods.push_back({indices.append(std::span(level.indices), 16), static_cast<uint32_t>(level.indices.size()),
+                       level.error});
   return gp;
 }
 

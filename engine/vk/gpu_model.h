@@ -26,6 +26,14 @@
 
 namespace eng::vk {
 
+// A coarser level of detail of a primitive (eng::buildLodChain): a range of
+// GpuModel::indexBuffer() over the same vertices.
+struct GpuLod {
+  VkDeviceSize indexOffset = 0;
+  uint32_t indexCount = 0;
+  float error = 0.0f;  // how far it may stray from the full mesh, model units
+};
+
 struct GpuPrimitive {
   uint32_t vertexCount = 0;
   uint32_t indexCount = 0;
@@ -36,6 +44,7 @@ struct GpuPrimitive {
   VkDeviceSize tangentOffset = 0;    // zeros when the primitive has no tangents
   VkDeviceSize colorOffset = 0;      // ones (white) when the primitive has no vertex colours
   VkDeviceSize indexOffset = 0;      // in GpuModel::indexBuffer(), uint32 indices
+  std::vector<GpuLod> lods;          // coarser levels, finest first (empty: small or unsimplifiable)
   DrawConstants constants;           // material, flags and vertexCount; instance fields left 0
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1
 };

@@ -56,6 +56,7 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
   auto timestamps = FrameTimestamps::create(ctx);
   if (!timestamps) return timestamps.error();
   r.timestamps_ = std::move(timestamps).value();
+  r.lodPixelError_ = options.lodPixelError;
   return r;
 }
 
@@ -88,7 +89,8 @@ Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& vi
                                                             std::span<const ModelInstance> instances) {
   const VkExtent2D extent = target_.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
+  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances,
+                         {lodPixelError_, extent.height}));
   const bool studio = view.backdrop.kind == Backdrop::Kind::Studio;
   ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) {
                             timestamps_.recordStart(cmd);
@@ -103,7 +105,8 @@ Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& vi
 Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<const ModelInstance> instances) {
   const VkExtent2D extent = target_.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances));
+  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances,
+                         {lodPixelError_, extent.height}));
   const Backdrop& backdrop = view.backdrop;
   const glm::vec4 clear = clearColour(backdrop);
   const bool studio = backdrop.kind == Backdrop::Kind::Studio;

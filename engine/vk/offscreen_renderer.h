@@ -36,6 +36,9 @@ struct OffscreenOptions {
   uint32_t height = 512;
   // Multisampling, shadow map and shading terms (render_quality.h).
   RenderQuality quality = RenderQuality::High;
+  // Level of detail (SceneRenderer's LodPolicy) in pixels of the image; 0
+  // (renders, goldens) draws every triangle, `facial bench frames --lod-error` sets it.
+  float lodPixelError = 0.0f;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
   // Injected faults for tests (fault_injection.h: device-lost@N counts this
   // renderer's frame submissions); empty: FACIAL_VK_FAULTS, if set.
@@ -88,6 +91,7 @@ class OffscreenRenderer {
   SceneRenderer scene_;
   FrameTimestamps timestamps_;
   FaultInjector faults_;
+  float lodPixelError_ = 0.0f;
 };
 
 }  // namespace eng::vk

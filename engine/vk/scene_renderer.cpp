@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -311,9 +312,49 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   return {};
 }
 
+void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
+                                       std::span<const ModelInstance> instances, const LodPolicy& lod) const {
+  // Pixels per unit of view-space size at depth 1.
+  const float pixelsAtUnitDepth = std::abs(globals.proj[1][1]) * 0.5f * float(lod.viewHeight);  // Vulkan flips y
+  for (Batch& batch : slot.batches) {
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    batch.lod = 0;
+    if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
+      // The nearest instance decides: its model's bounding sphere's nearest
+      // depth, and the largest scale of its primitive's transform.
+      const Aabb& bounds = batch.model->bounds();
+      float pixelsPerUnit = 0.0f;
+      for (uint32_t k = 0; k < batch.instanceCount; ++k) {
+        const glm::mat4& placed = instances[slot.members[batch.membersOffset + k]].transform;
+        const glm::mat4& drawn = instanceScratch_[batch.firstInstance + k].model;
+        const float placedScale = std::max({glm::length(glm::vec3(placed[0])), glm::length(glm::vec3(placed[1])),
+                                            glm::length(glm::vec3(placed[2]))});
+        const float drawnScale = std::max({glm::length(glm::vec3(drawn[0])), glm::length(glm::vec3(drawn[1])),
+                                           glm::length(glm::vec3(drawn[2]))});
+        const glm::vec3 centre = glm::vec3(placed * glm::vec4(bounds.center(), 1.0f));
+        const float depth = -(globals.view * glm::vec4(centre, 1.0f)).z - 0.5f * bounds.diagonal() * placedScale;
+        // Closer than a hundredth of the model (or around the camera): full detail.
+        if (depth <= 0.01f * bounds.diagonal() * placedScale) {
+          pixelsPerUnit = std::numeric_limits<float>::infinity();
+          break;
+        }
+        pixelsPerUnit = std::max(pixelsPerUnit, drawnScale * pixelsAtUnitDepth / depth);
+      }
+      for (size_t level = 0; level < prim.lods.size(); ++level) {
+        if (prim.lods[level].error * pixelsPerUnit > lod.maxPixelError) break;
+        batch.lod = static_cast<uint32_t>(level + 1);
+      }
+    }
+    const uint32_t indexCount = batch.lod == 0 ? prim.indexCount : prim.lods[batch.lod - 1].indexCount;
+    slot.stats.triangles += uint64_t{indexCount / 3} * batch.instanceCount;
+    slot.stats.coarserDraws += batch.lod > 0 ? 1u : 0u;
+  }
+}
+
 Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
-                                    std::span<const ModelInstance> instances) {
+                                    std::span<const ModelInstance> instances, const LodPolicy& lod) {
   ENG_TRY(build(slot, instances, Mode::Draw));
+  pickLevelsOfDetail(slots_[slot], globals, instances, lod);
   FrameGlobals written = globals;
   if (qualitySettings(quality_).shadowMapSize == 0) written.shadow.w = 0.0f;  // the tier has no shadow pass
   std::memcpy(slots_[slot].globals.mapped(), &written, sizeof(FrameGlobals));
@@ -360,8 +401,11 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
     bindPrimitive(cmd, batch, constants);
     vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(DrawConstants), &constants);
-    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), prim.indexOffset, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, prim.indexCount, batch.instanceCount, 0, 0, batch.firstInstance);
+    const bool full = batch.lod == 0;
+    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[batch.lod - 1].indexOffset,
+                         VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[batch.lod - 1].indexCount, batch.instanceCount, 0, 0,
+                     batch.firstInstance);
   }
 }
 

@@ -70,6 +70,17 @@ struct FrameStats {
   uint32_t materials = 0;      // instance material records uploaded this frame
   uint32_t targetWeights = 0;  // weights uploaded for the morph pre-pass (every target of every instance)
   uint64_t morphedBytes = 0;   // the morph pre-pass's output buffer: room for every morphed instance vertex
+  uint64_t triangles = 0;      // triangles drawn (every instance, at the levels of detail picked)
+  uint32_t coarserDraws = 0;   // draws at a coarser level of detail than the full mesh
+};
+
+// Which level of detail (GpuPrimitive::lods) a frame draws: per draw, the
+// coarsest level whose error, projected at its nearest instance, stays within
+// maxPixelError pixels of a view viewHeight pixels tall. The default draws
+// every triangle (headless renders, goldens, captures).
+struct LodPolicy {
+  float maxPixelError = 0.0f;  // 0: always the full mesh
+  uint32_t viewHeight = 0;     // pixels
 };
 
 class SceneRenderer {
@@ -83,7 +94,8 @@ class SceneRenderer {
   // Writes slot's frame data. Errors (naming the instance and mesh): null
   // model, wrong number of weights, non-finite weight, pose of the wrong size,
   // more materials than the model has, a non-finite material value.
-  Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances);
+  Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances,
+                       const LodPolicy& lod = {});
   FrameStats stats(uint32_t slot) const;
   // Before the scene's render pass: the morph pre-pass (recordMorphPass),
   // then the key light's shadow map for the prepared draws.
@@ -123,6 +135,7 @@ class SceneRenderer {
     uint32_t morphOffset = 0;    // first vec4 of the batch's morphed vertices
     bool morphs = false;         // the primitive has deltas and some instance has active weights
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
+    uint32_t lod = 0;            // 0: the full mesh; k: GpuPrimitive::lods[k - 1]
   };
   struct Slot {
     Buffer globals;
@@ -143,6 +156,9 @@ class SceneRenderer {
   };
 
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
+  // Sets every batch's level of detail (Batch::lod) and the triangle counts of the slot's stats.
+  void pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals, std::span<const ModelInstance> instances,
+                          const LodPolicy& lod) const;
   Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
                               MemoryUsage memory, const char* name);
   // (Re)creates the weights' texel view and writes every binding of set 0.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -17,16 +18,26 @@ namespace {
 
 constexpr auto kShaderPollInterval = std::chrono::milliseconds(500);
 
+// The number in environment variable `name` when it is set and a number for
+// which `accept` holds; nullopt (with a warning naming the range when set) otherwise.
+template <class Accept>
+std::optional<float> environmentNumber(const char* name, const char* range, Accept accept) {
+  const char* env = std::getenv(name);
+  if (!env) return std::nullopt;
+  char* end = nullptr;
+  const float parsed = std::strtof(env, &end);
+  if (end != env && *end == '\0' && accept(parsed)) return parsed;
+  logWarning(std::string(name) + "='" + env + "' is not a number in " + range + "; ignored");
+  return std::nullopt;
+}
+
 // The options' scale, or the automatic one; 1 where a scaled view could not be
 // blitted into the swapchain (no transfer usage, no linear blit of its format).
 float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options, const Swapchain& swapchain) {
   float scale = options.renderScale;
-  if (const char* env = std::getenv("FACIAL_RENDER_SCALE"); scale <= 0.0f && env) {
-    char* end = nullptr;
-    const float parsed = std::strtof(env, &end);
-    if (end != env && *end == '\0' && parsed > 0.0f && parsed <= 1.0f) scale = parsed;
-    else logWarning(std::string("FACIAL_RENDER_SCALE='") + env + "' is not a number in (0, 1]; ignored");
-  }
+  if (scale <= 0.0f)
+    scale = environmentNumber("FACIAL_RENDER_SCALE", "(0, 1]", [](float v) { return v > 0.0f && v <= 1.0f; })
+                .value_or(0.0f);
   if (scale <= 0.0f) scale = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kCpuRenderScale : 1.0f;
   scale = std::min(scale, 1.0f);
   VkFormatProperties props{};
@@ -35,6 +46,12 @@ float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options
                                          VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   if (!swapchain.canBlitTo() || (props.optimalTilingFeatures & kBlit) != kBlit) return 1.0f;
   return scale;
+}
+
+// The options' level-of-detail error, or FACIAL_LOD_PIXEL_ERROR where set (0 draws every triangle).
+float chooseLodPixelError(const WindowRendererOptions& options) {
+  return environmentNumber("FACIAL_LOD_PIXEL_ERROR", "[0, 64]", [](float v) { return v >= 0.0f && v <= 64.0f; })
+      .value_or(options.lodPixelError);
 }
 
 }  // namespace
@@ -66,6 +83,13 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   if (!depth) return depth.error();
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
   r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
+  r->options_.lodPixelError = chooseLodPixelError(options);
+  const bool automaticScale = options.renderScale <= 0.0f && !std::getenv("FACIAL_RENDER_SCALE") &&
+                              ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && r->scaled();
+  if (options.adaptiveScale && automaticScale) {
+    r->adaptive_.emplace(r->renderScale_, AdaptiveRenderScale::Limits{});
+    r->renderScale_ = r->adaptive_->scale();
+  }
   auto pass = createSceneRenderPass(ctx, r->format_,
                                     r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   if (!pass) return pass.error();
@@ -131,6 +155,7 @@ Result<void> WindowRenderer::recreateSwapchain() {
     return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
   swapchain_ = std::move(swapchain).value();
+  if (adaptive_) renderScale_ = adaptive_->scale();  // sceneExtent() follows the images, not ahead of them
   return createSwapchainResources();
 }
 
@@ -246,6 +271,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   if (window_->takeResized()) swapchainStale_ = true;
   switch (decideFrameAction(window_->framebufferExtent(), swapchain_.extent(), swapchainStale_)) {
     case FrameAction::Skip:
+      lastPresented_ = {};
       window_->waitEvents(0.05);
       return FrameResult::Skipped;
     case FrameAction::RecreateSwapchain:
@@ -270,7 +296,8 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
 
   const VkExtent2D extent = swapchain_.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances));
+  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
+                         {options_.lodPixelError * renderScale_, sceneExtent().height}));
 
   uint32_t image = 0;
   VkResult acquired = faults_.beforeAcquire();
@@ -365,11 +392,23 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
 
   lastSlot_ = slot;
   ++frameIndex_;
+  if (adaptive_) adaptRenderScale();
   if (!frame.screenshot.empty()) {
     ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
     ENG_TRY(saveScreenshot(frame.screenshot));
   }
   return FrameResult::Presented;
+}
+
+void WindowRenderer::adaptRenderScale() {
+  const auto now = std::chrono::steady_clock::now();
+  const auto previous = lastPresented_;
+  lastPresented_ = now;
+  if (previous == std::chrono::steady_clock::time_point{}) return;
+  if (!adaptive_->addFrame(std::chrono::duration<double>(now - previous).count())) return;
+  swapchainStale_ = true;   // the next frame rebuilds the view's images at the new scale (recreateSwapchain)
+  lastPresented_ = {};      // and is not timed: the rebuild is not the frame's cost
+  adaptive_->restart();
 }
 
 void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const {

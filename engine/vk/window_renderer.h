@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "engine/vk/buffer.h"
 #include "engine/vk/context.h"
 #include "engine/vk/fault_injection.h"
+#include "engine/vk/frame_pacing.h"
 #include "engine/vk/gpu_image.h"
 #include "engine/vk/gpu_model.h"
 #include "engine/vk/render_pass.h"
@@ -46,6 +48,14 @@
 
 namespace eng::vk {
 
+// A level of detail may stray this far (pixels of the window, whatever the
+// 3D view's scale: the level stays put while the dynamic resolution moves)
+// from the full mesh. Half a pixel drops the built-in head's skin from
+// 50k to 12k triangles in a 1280x800 window; at a whole pixel of its 832x520
+// view (6k) the simplifier, blind to texture coordinates and vertex colours,
+// smears the painted eyelid lines and the baked shadow at the mouth corners.
+inline constexpr float kWindowLodPixelError = 0.5f;
+
 struct WindowRendererOptions {
   // Multisampling, shadow map and shading terms (render_quality.h).
   RenderQuality quality = RenderQuality::High;
@@ -56,6 +66,14 @@ struct WindowRendererOptions {
   // device (lavapipe). Falls back to 1
   // where the swapchain cannot be blitted to.
   float renderScale = 0.0f;
+  // Level of detail (SceneRenderer's LodPolicy): each draw uses the coarsest
+  // level of its primitive that strays at most this many window pixels from
+  // the full mesh; 0 draws every triangle.
+  float lodPixelError = kWindowLodPixelError;
+  // With the automatic scale on a CPU device: follow the measured frame time
+  // between AdaptiveRenderScale's floor and ceiling (frame_pacing.h), aiming
+  // at 30 frames/s; false keeps kCpuRenderScale.
+  bool adaptiveScale = true;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
   // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
@@ -112,6 +130,7 @@ class WindowRenderer {
   // What the 3D view renders at (extent() scaled by renderScale()).
   VkExtent2D sceneExtent() const;
   float renderScale() const { return renderScale_; }
+  bool adaptiveScale() const { return adaptive_.has_value(); }
   FrameStats lastFrameStats() const { return scene_.stats(lastSlot_); }
   const ShaderLibrary& shaders() const { return *shaders_; }
   // Polls the shader sources now and rebuilds pipelines if they changed and compile.
@@ -134,6 +153,8 @@ class WindowRenderer {
   // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
   void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const;
   Result<void> saveScreenshot(const std::filesystem::path& path);
+  // After a presented frame: times it, and on a new scale marks the view for rebuilding.
+  void adaptRenderScale();
 
   const Context* ctx_ = nullptr;
   Window* window_ = nullptr;
@@ -144,6 +165,8 @@ class WindowRenderer {
   UniqueRenderPass renderPass_;   // the 3D view (+ the overlay when not scaled)
   UniqueRenderPass overlayPass_;  // scaled: the overlay over the blitted view
   float renderScale_ = 1.0f;
+  std::optional<AdaptiveRenderScale> adaptive_;             // dynamic resolution, when on
+  std::chrono::steady_clock::time_point lastPresented_{};  // of the previous presented frame; {}: none to time from
   Swapchain swapchain_;
   bool swapchainStale_ = false;
   GpuImage msaaColor_;

@@ -97,6 +97,29 @@ TEST(BenchCommand, FastTierSaysWhatItRan) {
   EXPECT_GT(fpsOf(line), 0.0) << line;
 }
 
+// The number after " key=" in `text`; -1 when absent.
+long long valueOf(const std::string& text, const std::string& key) {
+  const size_t at = text.find(" " + key + "=");
+  if (at == std::string::npos) return -1;
+  return std::atoll(text.c_str() + at + key.size() + 2);
+}
+
+TEST(BenchCommand, LevelOfDetailDrawsFewerTrianglesAndSaysSo) {
+  const std::string head = std::string(FACIAL_SOURCE_DIR) + "/data/head.glb";
+  const CommandOutput full = bench({"--animate", "none"}, head);
+  const CommandOutput lod = bench({"--animate", "none", "--lod-error", "1"}, head);
+  ASSERT_TRUE(ranCleanly(full)) << full.err;
+  ASSERT_TRUE(ranCleanly(lod)) << lod.err;
+  EXPECT_NE(full.out.find(" lod_error=0 "), std::string::npos) << full.out;
+  EXPECT_NE(full.out.find(" coarser_draws=0 "), std::string::npos) << full.out;
+  EXPECT_NE(lod.out.find(" lod_error=1 "), std::string::npos) << lod.out;
+  const long long all = valueOf(lastLine(full.out), "triangles"), fewer = valueOf(lastLine(lod.out), "triangles");
+  EXPECT_GT(all, 60000) << full.out;  // the built-in head, every triangle
+  EXPECT_GT(fewer, 0) << lod.out;
+  EXPECT_LT(fewer, all / 2) << "64x64 pixels cannot show the head's 71k triangles";
+  EXPECT_GT(valueOf(lod.out, "coarser_draws"), 0) << lod.out;
+}
+
 // ---- Bad input: one clear error line, non-zero exit ----
 
 void expectOneErrorLine(const CommandOutput& run, const std::string& expected) {
@@ -109,6 +132,11 @@ void expectOneErrorLine(const CommandOutput& run, const std::string& expected) {
 TEST(BenchCommandValidity, MissingFileIsNamed) {
   const std::string missing = "/nonexistent/bench_missing.glb";
   expectOneErrorLine(bench({}, missing), missing);
+}
+
+TEST(BenchCommandValidity, LodErrorOutOfRangeIsRejected) {
+  const std::string face = writeTestFace("bench_command_bad").string();
+  expectOneErrorLine(runFacial({"bench", "frames", face, "--lod-error", "100"}), "--lod-error 100");
 }
 
 TEST(BenchCommandValidity, ZeroFramesIsRejected) {

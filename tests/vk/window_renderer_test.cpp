@@ -168,6 +168,40 @@ TEST(WindowRenderer, ScaledViewIsBlittedUpToTheWindow) {
   }
 }
 
+// On a CPU device the automatic scale follows the frame time: whatever it
+// settles on, every frame is drawn into a view of that scale's size and
+// blitted to the whole window; a fixed scale (or adaptiveScale = false) stays put.
+TEST(WindowRenderer, AdaptiveScaleKeepsTheViewWithinItsLimits) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  if (rig.ctx->deviceInfo().type != VK_PHYSICAL_DEVICE_TYPE_CPU) GTEST_SKIP() << "adaptive only on a CPU device";
+  if (std::getenv("FACIAL_RENDER_SCALE")) GTEST_SKIP() << "FACIAL_RENDER_SCALE fixes the scale";
+  ASSERT_TRUE(rig.renderer->adaptiveScale());
+  SphereScene scene(*rig.renderer);
+  const eng::vk::AdaptiveRenderScale::Limits limits;
+  for (int i = 0; i < 3 * int(eng::vk::AdaptiveRenderScale::kWindow) + 2; ++i) {
+    auto drawn = rig.renderer->drawFrame(scene.frame());
+    ASSERT_TRUE(drawn) << drawn.error().message;
+    rig.window->pollEvents();
+  }
+  const float scale = rig.renderer->renderScale();
+  EXPECT_GE(scale, limits.minScale - 1e-4f);
+  EXPECT_LE(scale, limits.maxScale + 1e-4f);
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "adaptive");
+  EXPECT_EQ(shot.width, int(rig.renderer->extent().width));
+  const VkExtent2D view = rig.renderer->sceneExtent();
+  EXPECT_EQ(view.width, uint32_t(float(rig.renderer->extent().width) * rig.renderer->renderScale() + 0.5f));
+
+  WindowRig fixed({.adaptiveScale = false});
+  ASSERT_TRUE(fixed.ok());
+  EXPECT_FALSE(fixed.renderer->adaptiveScale());
+  EXPECT_EQ(fixed.renderer->renderScale(), eng::vk::kCpuRenderScale);
+  WindowRig chosen({.renderScale = 0.5f});
+  ASSERT_TRUE(chosen.ok());
+  EXPECT_FALSE(chosen.renderer->adaptiveScale());
+}
+
 TEST(WindowRenderer, ImGuiOverlayDrawsIntoTheScenePass) {
   FACIAL_REQUIRE_DISPLAY();
   WindowRig rig;

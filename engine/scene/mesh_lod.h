@@ -1,0 +1,50 @@
+#pragma once
+// Levels of detail of one triangle list: coarser index lists over the SAME
+// vertices (meshopt_simplify collapses edges and keeps the vertex buffer), so
+// morph targets, skin influences and every other per-vertex array stay valid
+// for every level. Borders are locked: the openings of a face (eyes, mouth,
+// nostrils), the neck's cut and the rims of separate parts keep their exact
+// outline at every level; UV seams (vertices split at the same position) are
+// kept by meshoptimizer itself.
+//
+// A CPU rasteriser (lavapipe) pays per triangle for set-up and binning and,
+// worse, shades whole 4x4 blocks per triangle: a 71k-triangle head drawn at
+// 832x520 covers a few pixels per triangle, so most of its fragment work is
+// wasted on blocks the triangle hardly touches. A renderer picks the coarsest
+// level whose error projects below a pixel (SceneRenderer's LodPolicy).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace eng {
+
+struct LodLevel {
+  std::vector<uint32_t> indices;  // triangle list over the source vertices
+  // How far the level may stray from the full mesh, in model units (the
+  // simplifier's error, summed over the cascade that made it).
+  float error = 0.0f;
+};
+
+struct LodChainOptions {
+  // Lists with fewer triangles get no coarser level.
+  uint32_t minTriangles = 4096;
+  // Each level aims at this fraction of the previous one's triangles...
+  float ratio = 0.5f;
+  // ...and is kept only if it has at most `keepBelow` of them (else
+  // simplification stalled: locked borders, seams, a tiny part).
+  float keepBelow = 0.8f;
+  // Relative to the mesh's extent: no level strays further than this.
+  float maxRelativeError = 0.02f;
+  uint32_t maxLevels = 6;  // coarser levels, besides the full list
+};
+
+// The coarser levels of `indices` (a triangle list over `positions`, every
+// index < positions.size()), finest first, each with fewer triangles and a
+// larger error than the one before; empty when the list is too small or
+// does not simplify. Positions are the rest pose.
+std::vector<LodLevel> buildLodChain(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                                    const LodChainOptions& options = {});
+
+}  // namespace eng
