@@ -17,6 +17,9 @@
 namespace eng::vk {
 namespace {
 
+// morph.comp's local_size_x (256 measured no faster on lavapipe).
+constexpr uint32_t kMorphGroupSize = 64;
+
 // The morph pre-pass's output per vertex (morph.glsl): position + crease,
 // normal, and the tangent where the primitive has tangent deltas.
 uint32_t morphedVec4sPerVertex(const GpuPrimitive& prim) {
@@ -424,8 +427,8 @@ void SceneRenderer::recordMorphPass(VkCommandBuffer cmd, uint32_t slotIndex) con
     constants.firstInstance = batch.firstInstance;
     constants.morphOffset = batch.morphOffset;
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DrawConstants), &constants);
-    // 64 invocations per group (morph.comp); a huge primitive loops in the shader.
-    const uint32_t groups = std::min((prim.vertexCount + 63) / 64, maxGroups);
+    // kMorphGroupSize invocations per group; a huge primitive loops in the shader.
+    const uint32_t groups = std::min((prim.vertexCount + kMorphGroupSize - 1) / kMorphGroupSize, maxGroups);
     vkCmdDispatch(cmd, groups, batch.instanceCount, 1);
   }
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
