@@ -20,7 +20,12 @@ Result<GpuImage> createDetailArray(const Context& ctx, const Model& model, const
   int width = 0;
   int height = 0;
   for (const DetailLayer& layer : material.detailLayers) {
-    const eng::Image& img = model.images.at(static_cast<size_t>(layer.image));
+    // checkModel refuses such a model at load; a model built in code gets the same line, not an exception.
+    if (layer.image < 0 || static_cast<size_t>(layer.image) >= model.images.size())
+      return makeError(ErrorKind::InvalidArgument, "material '" + material.name + "': detail layer image " +
+                                                       std::to_string(layer.image) + " of " +
+                                                       std::to_string(model.images.size()));
+    const eng::Image& img = model.images[static_cast<size_t>(layer.image)];
     width = std::max(width, img.width);
     height = std::max(height, img.height);
   }
@@ -28,7 +33,7 @@ Result<GpuImage> createDetailArray(const Context& ctx, const Model& model, const
   resized.reserve(material.detailLayers.size());
   std::vector<std::span<const uint8_t>> layers;
   for (const DetailLayer& layer : material.detailLayers) {
-    const eng::Image& img = model.images.at(static_cast<size_t>(layer.image));
+    const eng::Image& img = model.images[static_cast<size_t>(layer.image)];
     if (img.width == width && img.height == height) {
       layers.emplace_back(img.rgba8);
       continue;
