@@ -33,6 +33,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   int measuredFrames = 0;
   Clock::time_point measureStart{};
   uint64_t frameNumber = 0;
+  float animationTime = 0.0f;
   while (!window.shouldClose()) {
     window.pollEvents();
     const Clock::time_point now = Clock::now();
@@ -41,6 +42,8 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     tick.dt = std::min(std::chrono::duration<float>(now - last).count(), 0.1f);
     last = now;
     tick.elapsed = std::chrono::duration<float>(now - start).count();
+    animationTime += tick.dt;
+    tick.animationTime = animationTime;
     if (options.quitAfter > 0.0f && tick.elapsed >= options.quitAfter) finalFrame = true;
     tick.finalFrame = finalFrame;
 

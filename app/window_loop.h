@@ -19,7 +19,11 @@ struct WindowLoopOptions {
 
 struct WindowTick {
   float dt = 0.0f;       // seconds since the last frame, at most 0.1
-  float elapsed = 0.0f;  // seconds since the loop started
+  float elapsed = 0.0f;  // wall-clock seconds since the loop started
+  // The sum of every dt so far: the clock the animation sees. It falls
+  // behind `elapsed` when frames take longer than 0.1 s, so scripted actions
+  // timed on it land at the same point of a transition on a loaded machine.
+  float animationTime = 0.0f;
   bool finalFrame = false;
 };
 

@@ -2,7 +2,10 @@
 // `facial demo --script FILE`: timed actions for the window demo, so a
 // presentation, a recording or a test can drive the same code paths as the
 // keys, the panel and the mouse. One action per line, "SECONDS ACTION ARGS",
-// seconds since the window opened, in ascending order; '#' starts a comment:
+// seconds of animation since the window opened (WindowTick::animationTime:
+// wall time, except that a frame slower than 0.1 s counts as 0.1 s, so an
+// action lands at the same point of a transition however loaded the
+// machine), in ascending order; '#' starts a comment:
 //
 //   1.0  trigger happy      the state machine's trigger, as key 2 or the panel button
 //   1.5  intensity 0.4      the slider: neutral -> the chosen expression at 0.4

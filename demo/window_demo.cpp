@@ -574,7 +574,7 @@ int WindowDemo::run(const DemoOptions& o) {
   auto frame = [&](const WindowTick& tick) -> eng::Result<WindowFramePlan> {
     ui_->beginFrame();
     handleInput();
-    runScript(tick.elapsed);
+    runScript(tick.animationTime);
     drawPanel();
     ui_->endFrame();
     updateFaces(tick.dt);

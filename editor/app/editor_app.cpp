@@ -445,7 +445,7 @@ int EditorApp::run(const EditorOptions& o) {
     layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
     ui_->beginFrame();
     handleViewportInput();
-    runScript(tick.elapsed);
+    runScript(tick.animationTime);
     machine_.update(tick.dt);
     controlMap_.update(tick.dt);
     timeline_->update(tick.dt);
