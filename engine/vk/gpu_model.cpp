@@ -94,7 +94,6 @@ struct SparseDeltas {
   std::vector<uint32_t> offsets;
   std::vector<glm::vec4> entries;
   bool hasNormals = false, hasTangents = false, hasCreases = false;
-  size_t pairs = 0;  // (vertex, target) pairs that move something, padding not counted
 };
 
 SparseDeltas compactDeltas(const Primitive& prim) {
@@ -134,7 +133,6 @@ SparseDeltas compactDeltas(const Primitive& prim) {
         list.emplace_back(normal, crease);
         if (out.hasTangents) list.emplace_back(tangent, 0.0f);
       }
-      out.pairs += list.size() / planes;
       sliceRows = std::max(sliceRows, list.size() / planes);
     }
     // Padding: zero deltas naming target 0, which add nothing whatever its weight.
@@ -147,8 +145,7 @@ SparseDeltas compactDeltas(const Primitive& prim) {
       }
     rows += static_cast<uint32_t>(sliceRows);
   }
-  out.offsets.push_back(rows);
-  if (rows == 0) out.entries.clear();  // no target moves anything
+  out.offsets.push_back(rows);  // no row at all: no target moves anything, entries stay empty
   return out;
 }
 
