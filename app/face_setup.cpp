@@ -145,11 +145,12 @@ eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<co
     } else if (start.starts_with("# VERTEX LIST")) {
       auto model = facial::importCandide3(path);
       if (!model) return model.error();
-      // 113 vertices shade and outline as facets: two Loop steps make the mask a smooth surface.
+      // 113 vertices shade and outline as facets: two Loop steps make the mask
+      // (the first primitive; the others are its eyeballs) a smooth surface.
+      eng::Mesh& mesh = model->meshes.front();
       for (int step = 0; step < 2; ++step)
-        for (eng::Mesh& mesh : model->meshes)
-          for (eng::Primitive& prim : mesh.primitives)
-            if (auto smooth = facial::loopSubdivide(prim, path.string() + ": " + mesh.name); !smooth) return smooth.error();
+        if (auto smooth = facial::loopSubdivide(mesh.primitives.front(), path.string() + ": " + mesh.name); !smooth)
+          return smooth.error();
       face = LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr};
     } else {
       return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "

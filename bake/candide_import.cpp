@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/candide_eyes.h"
 #include "engine/scene/file_bytes.h"
 #include "facial/runtime/rig/candide_units.h"
 
@@ -294,8 +295,20 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   }
   if (facing < 0.0f)
     for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) std::swap(primitive.indices[i + 1], primitive.indices[i + 2]);
-  primitive.normals = vertexNormals(primitive.positions, primitive.indices);
   primitive.texcoords = std::move(texcoords);
+
+  // The eyes: the skin between the lids is cut out (candide_eyes.h). The
+  // vertices only that skin used stay, unused, so the file's vertex numbers
+  // (which trackers and papers refer to) keep naming the same points.
+  std::vector<EyeOpening> eyes;
+  for (const Unit& unit : *animationUnits)
+    if (const CandideAnimationUnit* known = findCandideUnit(unit.name); known && known->facsNumber == 45)
+      eyes = cutEyeOpenings(primitive.positions, primitive.indices, unit.deltas);
+  if (eyes.size() < 2)
+    model.warnings.push_back(std::string(source) + ": " + std::to_string(eyes.size()) +
+                             " of 2 eye openings found (a loop of lid margins moved by 'Eyes closed' and two corners); "
+                             "the rest stay skin, with no eyeball");
+  primitive.normals = vertexNormals(primitive.positions, primitive.indices);
 
   eng::Mesh mesh;
   mesh.name = "candide3 face";  // "face": shown dressed like other untextured faces (skin tone, occlusion)
@@ -321,6 +334,34 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   node.mesh = 0;
   model.nodes.push_back(node);
   model.roots.push_back(0);
+
+  // The eyeballs are primitives of the mask's mesh, so they share its
+  // targets: an expression leaves them still (the lids move over them), an
+  // identity shape carries each with its rim, so a mask reshaped by --shape
+  // keeps its eyes in their openings. Their material's name marks them as
+  // eyeballs for the dressing (engine/scene/procedural_eyes.h).
+  eng::Mesh& face = model.meshes[0];
+  if (!eyes.empty()) {
+    eng::Material eyeMaterial;
+    eyeMaterial.name = "eye";
+    model.materials.push_back(eyeMaterial);
+  }
+  for (const EyeOpening& eye : eyes) {
+    eng::Primitive ball = eyeballBehind(face.primitives[0].positions, eye);
+    ball.material = int(model.materials.size()) - 1;
+    for (size_t u = 0; u < animationUnits->size() + shapeUnits->size(); ++u) {
+      glm::vec3 shift(0.0f);
+      if (u >= animationUnits->size()) {
+        for (uint32_t v : eye.rim) shift += (*shapeUnits)[u - animationUnits->size()].deltas[v];
+        shift /= float(eye.rim.size());
+      }
+      eng::MorphTarget target;
+      target.positions.assign(ball.positions.size(), shift);
+      target.normals.assign(ball.positions.size(), glm::vec3(0.0f));
+      ball.targets.push_back(std::move(target));
+    }
+    face.primitives.push_back(std::move(ball));
+  }
   return model;
 }
 

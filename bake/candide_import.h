@@ -1,7 +1,8 @@
 #pragma once
-// CANDIDE-3 (Ahlberg 2001, .wfm text format) -> eng::Model: one node, one mesh,
-// one primitive (positions, generated normals, texture coordinates, triangles
-// wound counter-clockwise seen from the front, +z). Animation units become
+// CANDIDE-3 (Ahlberg 2001, .wfm text format) -> eng::Model: one node, one mesh:
+// the mask (positions, generated normals, texture coordinates, triangles
+// wound counter-clockwise seen from the front, +z), less the skin inside its
+// eye openings, and an eyeball behind each opening (candide_eyes.h). Animation units become
 // morph targets named after the FACS unit they realise plus the file's name
 // ("AU9 Nose wrinkler", see candide_units.h); shape units become identity
 // targets "SU_<name>" ("SU_Head height"). Morph targets carry position and

@@ -43,6 +43,12 @@ bool anyContains(const std::vector<std::string_view>& names, std::string_view ne
   return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return contains(n, needle); });
 }
 
+// An eyeball that is a primitive of the face's mesh is known by its material
+// (procedural_eyes.h): it is dressed as an eye, never as skin.
+bool materialNamesAnEyeball(const Model& model, int material) {
+  return material >= 0 && size_t(material) < model.materials.size() && namesAnEyeball(model.materials[size_t(material)].name);
+}
+
 // An untextured material left at white: the author gave it no colour.
 bool unauthoredWhite(const Model& model, int material) {
   if (material < 0) return true;
@@ -79,7 +85,7 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
         part = Part::Teeth;
       else if (anyContains(names, "tongue"))
         part = Part::Tongue;
-      else if (isFace && !eyeNamed && !mesh.targetNames.empty())
+      else if (isFace && !eyeNamed && !materialNamesAnEyeball(model, prim.material) && !mesh.targetNames.empty())
         part = Part::Skin;
       if (part != Part::None) planned.push_back({m, p, part});
     }

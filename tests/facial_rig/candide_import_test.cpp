@@ -4,10 +4,12 @@
 #include "bake/candide_import.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/procedural_eyes.h"
 #include "facial/runtime/rig/candide_units.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "facial/runtime/rig/action_units.h"
@@ -33,10 +35,10 @@ TEST(Candide3Import, LoadsTheDistributedMaskWithItsCounts) {
   EXPECT_EQ(model->nodes[0].mesh, 0);
   EXPECT_EQ(model->roots, std::vector<int>{0});
   const eng::Mesh& mesh = model->meshes[0];
-  ASSERT_EQ(mesh.primitives.size(), 1u);
+  ASSERT_EQ(mesh.primitives.size(), 3u);  // the mask and its two eyeballs
   const eng::Primitive& prim = mesh.primitives[0];
   EXPECT_EQ(prim.vertexCount(), 113u);
-  EXPECT_EQ(prim.indices.size(), 184u * 3u);
+  EXPECT_EQ(prim.indices.size(), (184u - 28u) * 3u);  // 14 triangles of skin inside each eye opening are cut
   EXPECT_EQ(prim.normals.size(), 113u);
   EXPECT_EQ(prim.texcoords.size(), 113u);
   EXPECT_EQ(mesh.targetNames.size(), 14u + 38u);
@@ -77,6 +79,56 @@ TEST(Candide3Import, MorphDeltasMatchTheFile) {
   EXPECT_NEAR(brow.positions[3].y, 0.04f, 1e-6f);
   // Vertex 0 at the file's coordinates.
   EXPECT_EQ(prim.positions[0], glm::vec3(0.0f, 1.061f, -0.371f));
+}
+
+// The ball's surface depth at (x, y), or -inf outside its outline.
+float ballFront(const glm::vec3& centre, float radius, glm::vec2 xy) {
+  const float d2 = glm::dot(xy - glm::vec2(centre), xy - glm::vec2(centre));
+  return d2 < radius * radius ? centre.z + std::sqrt(radius * radius - d2) : -INFINITY;
+}
+
+TEST(Candide3Import, EyeOpeningsAreCutAndEyeballsSitBehindTheLids) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = importCandide3(candideFile());
+  ASSERT_TRUE(model) << model.error().message;
+  const eng::Mesh& mesh = model->meshes[0];
+  ASSERT_EQ(mesh.primitives.size(), 3u);
+  const eng::Primitive& mask = mesh.primitives[0];
+  // The skin between the lids (the file's vertices 67-74) is no longer drawn; the vertices stay, unused,
+  // so the file's vertex numbers still name the same points.
+  for (uint32_t i : mask.indices) EXPECT_TRUE(i < 67 || i > 74) << i;
+  EXPECT_EQ(mask.positions[67], glm::vec3(0.348f, 0.2f, -0.03f));
+
+  // The dressing finds both balls as eyeballs (by their material), and dresses no eyeball as skin.
+  const std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(*model);
+  ASSERT_EQ(eyes.size(), 2u);
+  const eng::MorphTarget& eyesClosed = mask.targets[size_t(targetIndex(mesh, "AU45 Eyes closed"))];
+  const eng::MorphTarget& eyesLower = mask.targets[size_t(targetIndex(mesh, "SU_Eyes vertical position"))];
+  // Each eye's lid margins (the file's rims) and corners, from its inner corner round.
+  const std::vector<uint32_t> rims[2] = {{23, 105, 21, 97, 20, 99, 22, 107}, {56, 106, 54, 98, 53, 100, 55, 108}};
+  for (const eng::EyePrimitive& eye : eyes) {
+    EXPECT_EQ(eye.mesh, 0);
+    EXPECT_NEAR(eye.gazeAxis.z, 1.0f, 1e-6f);
+    const std::vector<uint32_t>& rim = rims[eye.centre.x > 0.0f ? 0 : 1];
+    const eng::Primitive& ball = mesh.primitives[size_t(eye.primitive)];
+    for (uint32_t v : rim) {
+      // Every margin lies over the ball (it fills the opening seen from the front) and in front of it,
+      // open and with the lids closed.
+      const glm::vec3 open = mask.positions[v], closed = open + eyesClosed.positions[v];
+      EXPECT_GT(ballFront(eye.centre, eye.radius, open), -INFINITY) << v;
+      EXPECT_GE(open.z, ballFront(eye.centre, eye.radius, open)) << v;
+      EXPECT_GE(closed.z, ballFront(eye.centre, eye.radius, closed)) << v;
+    }
+    // An expression leaves the ball still; an identity shape carries it with its rim.
+    const eng::MorphTarget& ballClosed = ball.targets[size_t(targetIndex(mesh, "AU45 Eyes closed"))];
+    for (const glm::vec3& d : ballClosed.positions) EXPECT_EQ(d, glm::vec3(0.0f));
+    glm::vec3 rimShift(0.0f);
+    for (uint32_t v : rim) rimShift += eyesLower.positions[v] / float(rim.size());
+    const eng::MorphTarget& ballLower = ball.targets[size_t(targetIndex(mesh, "SU_Eyes vertical position"))];
+    EXPECT_NE(rimShift, glm::vec3(0.0f));
+    for (const glm::vec3& d : ballLower.positions) EXPECT_EQ(d, rimShift);
+  }
+  EXPECT_LT(eyes[0].centre.x * eyes[1].centre.x, 0.0f);  // one each side
 }
 
 TEST(Candide3Import, TrianglesFaceTheViewerAndNormalsAreUnit) {
@@ -168,6 +220,11 @@ const char* kTinyMask = R"(# VERTEX LIST:
 TEST(Candide3ImportValidity, AMinimalFileParses) {
   auto model = parseCandide3(kTinyMask, "tiny.wfm");
   ASSERT_TRUE(model) << model.error().message;
+  // No 'Eyes closed' unit, so no lid margins: said once, and the mask stays whole, with no eyeball.
+  ASSERT_EQ(model->warnings.size(), 1u);
+  EXPECT_EQ(model->warnings[0].rfind("tiny.wfm: 0 of 2 eye openings found", 0), 0u) << model->warnings[0];
+  EXPECT_EQ(model->meshes[0].primitives.size(), 1u);
+  EXPECT_EQ(model->meshes[0].primitives[0].indices.size(), 6u);
   const eng::Mesh& mesh = model->meshes[0];
   EXPECT_EQ(mesh.targetNames, (std::vector<std::string>{"AU26 Jaw drop", "SU_Head height"}));
   EXPECT_EQ(mesh.defaultWeights, (std::vector<float>{0.5f, 0.0f}));
