@@ -126,6 +126,33 @@ TEST(FaceDressing, SkinWithoutUvsKeepsAPlainSkinMaterialBesideAPaintedOne) {
   EXPECT_TRUE(hasBrow) << "its brows are in the vertex colours";
 }
 
+TEST(FaceDressing, EyeballPrimitivesOfTheFaceMeshAreKnownByTheirMaterial) {
+  // One mesh (skin plus two balls, as CANDIDE-3 is imported): the skin's targets are the mesh's, so only
+  // the material's name tells a ball from the skin.
+  eng::Model model = plasterHead();
+  for (int side : {1, 2}) {
+    eng::Primitive ball = model.meshes[size_t(side)].primitives[0];
+    for (glm::vec3& p : ball.positions) p = model.nodes[size_t(side)].translation + p * model.nodes[size_t(side)].scale;
+    ball.targets = model.meshes[0].primitives[0].targets;
+    for (eng::MorphTarget& t : ball.targets) t.positions.assign(ball.positions.size(), glm::vec3(0.0f));
+    for (eng::MorphTarget& t : ball.targets) t.normals.assign(ball.positions.size(), glm::vec3(0.0f));
+    ball.material = int(model.materials.size());
+    eng::Material white;
+    white.name = side == 1 ? "Eye_L" : "eye.R";
+    model.materials.push_back(white);
+    model.meshes[0].primitives.push_back(ball);
+  }
+  model.nodes[1].mesh = model.nodes[2].mesh = -1;  // the separate eyeballs are gone
+  const eng::FaceDressing plan = eng::planFaceDressing(model);
+  EXPECT_EQ(plan.eyes, 2u);
+  EXPECT_EQ(plan.skin, 1u) << "the balls are not skin";
+  eng::dressUntexturedFace(model);
+  const int eyeImage = model.materials[size_t(model.meshes[0].primitives[1].material)].baseColorImage;
+  EXPECT_GE(eyeImage, 0);
+  EXPECT_EQ(model.materials[size_t(model.meshes[0].primitives[2].material)].baseColorImage, eyeImage);
+  EXPECT_NE(model.materials[size_t(model.meshes[0].primitives[0].material)].baseColorImage, eyeImage);
+}
+
 TEST(PaintedBrows, BrowsSitOnTheBrowRidgeAboveEachEye) {
   const eng::Model model = plasterHead();
   const std::vector<eng::BrowFrame> frames = eng::browFrames(model, eng::findUntexturedEyes(model), 0);
