@@ -32,24 +32,29 @@ Topology topologyOf(size_t vertexCount, std::span<const uint32_t> indices) {
   return t;
 }
 
-bool adjacentToAny(const Topology& t, uint32_t v, const std::vector<uint32_t>& set) {
-  return std::any_of(t.neighbours[v].begin(), t.neighbours[v].end(),
-                     [&](uint32_t w) { return std::find(set.begin(), set.end(), w) != set.end(); });
-}
+enum class Margin : uint8_t { None, Upper, Lower };
+
+// A lid margin is a handful of vertices (CANDIDE-3: three per lid); more means
+// the unit is not a blink, and the search below would grow with its square.
+constexpr size_t kMaxMarginVertices = 64;
 
 // The lid margins of one eye as a closed loop of mesh edges, or empty: the
 // corners are the vertices (not on a margin) next to both margins, innermost
 // and outermost; each margin runs from the inner corner outward.
-std::vector<uint32_t> lidLoop(std::span<const glm::vec3> positions, const Topology& topology, std::vector<uint32_t> upper,
-                              std::vector<uint32_t> lower, bool left) {
-  if (upper.empty() || lower.empty()) return {};
+std::vector<uint32_t> lidLoop(std::span<const glm::vec3> positions, const Topology& topology,
+                              std::span<const Margin> margin, std::vector<uint32_t> upper, std::vector<uint32_t> lower,
+                              bool left) {
+  if (upper.empty() || lower.empty() || upper.size() + lower.size() > kMaxMarginVertices) return {};
   auto fromMidline = [&](uint32_t v) { return std::abs(positions[v].x); };
   std::vector<uint32_t> corners;
   for (uint32_t v = 0; v < positions.size(); ++v) {
-    if ((positions[v].x > 0.0f) != left) continue;
-    if (std::find(upper.begin(), upper.end(), v) != upper.end() || std::find(lower.begin(), lower.end(), v) != lower.end())
-      continue;
-    if (adjacentToAny(topology, v, upper) && adjacentToAny(topology, v, lower)) corners.push_back(v);
+    if ((positions[v].x > 0.0f) != left || margin[v] != Margin::None) continue;
+    bool nextToUpper = false, nextToLower = false;
+    for (uint32_t w : topology.neighbours[v]) {
+      nextToUpper = nextToUpper || margin[w] == Margin::Upper;
+      nextToLower = nextToLower || margin[w] == Margin::Lower;
+    }
+    if (nextToUpper && nextToLower) corners.push_back(v);
   }
   if (corners.size() < 2) return {};
   auto byMidline = [&](uint32_t a, uint32_t b) { return fromMidline(a) < fromMidline(b); };
@@ -131,13 +136,16 @@ std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std
   const Topology topology = topologyOf(positions.size(), indices);
   std::vector<EyeOpening> openings;
   std::vector<bool> cut(indices.size() / 3, false);
+  std::vector<Margin> margin(positions.size(), Margin::None);
+  for (size_t v = 0; v < positions.size(); ++v)
+    if (eyesClosed[v].y != 0.0f) margin[v] = eyesClosed[v].y < 0.0f ? Margin::Upper : Margin::Lower;
   for (bool left : {true, false}) {
     std::vector<uint32_t> upper, lower;
     for (uint32_t v = 0; v < positions.size(); ++v) {
       if ((positions[v].x > 0.0f) != left || eyesClosed[v].y == 0.0f) continue;
       (eyesClosed[v].y < 0.0f ? upper : lower).push_back(v);
     }
-    EyeOpening opening{left, lidLoop(positions, topology, upper, lower, left)};
+    EyeOpening opening{left, lidLoop(positions, topology, margin, upper, lower, left)};
     if (opening.rim.empty()) continue;
     const std::vector<uint32_t> inside = enclosedTriangles(positions, indices, topology, opening.rim);
     if (inside.empty()) continue;
