@@ -171,6 +171,13 @@ TEST(Candide3Import, ImportedNamesAreDetectedAsTheCandideScheme) {
   EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU15 Lip corner depressor"))], -1.0f);
   EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU26 Jaw drop"))], 0.0f);
   EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "SU_Head height"))], 0.25f);  // untouched
+
+  // A lip stretcher also draws the corners down: the stretcher and half the depressor.
+  std::fill(au.begin(), au.end(), 0.0f);
+  au[*actionUnitIndex("AU20_LipStretcher")] = 0.5f;
+  ASSERT_TRUE(mapping->apply(au, weights));
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU20 Lip stretcher"))], 0.5f);
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU15 Lip corner depressor"))], 0.25f);
 }
 
 // ---- malformed files ----

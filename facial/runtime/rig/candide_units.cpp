@@ -9,13 +9,19 @@ namespace {
 
 // Gains: CANDIDE units span the full motion at parameter 1. The mask has no lip
 // corner puller, but its lip corner depressor run backwards lifts the corners,
-// so AU12 drives it negatively (half per side: the unit is bilateral).
+// so AU12 drives it negatively (half per side: the unit is bilateral). The
+// mask's lip stretcher only pulls the corners sideways and back, which on its
+// curved mouth reads as a grin; a lip stretcher (risorius, with the platysma)
+// also draws the corners down, so AU20 adds half the depressor: the stretched
+// mouth then reads tense, as in fear.
 constexpr CandideChannelGain kNoseWrinkler[] = {{"AU9_NoseWrinkler", 1.0f}};
 constexpr CandideChannelGain kJawDrop[] = {{"AU26_JawDrop", 0.7f}, {"AU25_LipsPart", 0.15f}};
 constexpr CandideChannelGain kUpperLipRaiser[] = {{"AU10_UpperLipRaiser", 1.0f}};
 constexpr CandideChannelGain kLipStretcher[] = {{"AU20_LipStretcher", 1.0f}};
-constexpr CandideChannelGain kLipCornerDepressor[] = {
-    {"AU15_LipCornerDepressor", 1.0f}, {"AU12_LipCornerPuller_L", -0.5f}, {"AU12_LipCornerPuller_R", -0.5f}};
+constexpr CandideChannelGain kLipCornerDepressor[] = {{"AU15_LipCornerDepressor", 1.0f},
+                                                      {"AU12_LipCornerPuller_L", -0.5f},
+                                                      {"AU12_LipCornerPuller_R", -0.5f},
+                                                      {"AU20_LipStretcher", 0.5f}};
 constexpr CandideChannelGain kLipPresser[] = {{"AU24_LipPressor", 1.0f}, {"AU23_LipTightener", 0.5f}};
 constexpr CandideChannelGain kOuterBrowRaiser[] = {{"AU2_OuterBrowRaiser_L", 0.5f}, {"AU2_OuterBrowRaiser_R", 0.5f}};
 constexpr CandideChannelGain kInnerBrowsRaiser[] = {{"AU1_InnerBrowRaiser", 1.0f}};
