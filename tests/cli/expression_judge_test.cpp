@@ -1,5 +1,5 @@
 // The judge in the loop: the seven basic states rendered by `facial express`
-// at 256 px on the built-in head and on facecap, named by an independent
+// at 256 px on the built-in head, on facecap and on the CANDIDE-3 mask, named by an independent
 // expression classifier (../shared/judge/fer_judge.py, FER-2013
 // mini-Xception; needs Debian's python3-opencv and opencv-data, which
 // ./bootstrap.sh installs). Skipped, saying so, without ../shared.
@@ -80,6 +80,15 @@ TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
   ASSERT_EQ(r.total, 7) << r.report;
   std::printf("%s", r.report.c_str());
   constexpr int kFloor = 6;
+  EXPECT_GE(r.recognised, kFloor) << r.report;
+}
+
+TEST_F(ExpressionJudge, CandideMaskStatesAreNamed) {
+  // A crude mask (113 vertices, no textures): its eyes are cut open and given eyeballs by the import.
+  const JudgeResult r = judgeFace("candide3", (testing_support::sharedDir() / "candide3" / "candide3.wfm").string());
+  ASSERT_EQ(r.total, 7) << r.report;
+  std::printf("%s", r.report.c_str());
+  constexpr int kFloor = 5;
   EXPECT_GE(r.recognised, kFloor) << r.report;
 }
 
