@@ -34,6 +34,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   Clock::time_point measureStart{};
   uint64_t frameNumber = 0;
   float animationTime = 0.0f;
+  Clock::time_point finalSince{};
   while (!window.shouldClose()) {
     window.pollEvents();
     const Clock::time_point now = Clock::now();
@@ -44,12 +45,18 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     tick.elapsed = std::chrono::duration<float>(now - start).count();
     animationTime += tick.dt;
     tick.animationTime = animationTime;
-    if (options.quitAfter > 0.0f && tick.elapsed >= options.quitAfter) finalFrame = true;
+    if (options.quitAfter > 0.0f && tick.animationTime >= options.quitAfter && !finalFrame) {
+      finalFrame = true;
+      finalSince = now;
+    }
     tick.finalFrame = finalFrame;
 
     auto plan = frame(tick);
     if (!plan) return plan.error();
-    if (plan->quit) finalFrame = true;
+    if (plan->quit && !finalFrame) {
+      finalFrame = true;
+      finalSince = now;
+    }
     const bool endsWithShot = finalFrame && !options.finalScreenshot.empty();
     const std::filesystem::path shot = endsWithShot ? options.finalScreenshot : plan->requestedShot;
     plan->input.screenshot = shot;
@@ -64,7 +71,8 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     }
     // The last frame must really be drawn (not skipped while minimised) to
     // end with its screenshot; give up on that after five seconds.
-    if (finalFrame && (presented || !endsWithShot || tick.elapsed > options.quitAfter + 5.0f)) break;
+    if (finalFrame && (presented || !endsWithShot || std::chrono::duration<float>(Clock::now() - finalSince).count() > 5.0f))
+      break;
   }
   if (measuredFrames > 1) {
     const double seconds = std::chrono::duration<double>(Clock::now() - measureStart).count();

@@ -13,7 +13,10 @@
 namespace cli {
 
 struct WindowLoopOptions {
-  float quitAfter = 0.0f;                 // seconds; 0 = run until the window closes
+  // Seconds on the animation clock (WindowTick::animationTime), the one a
+  // script's actions are timed on, so a scripted run on a loaded machine
+  // still reaches its last action before it ends; 0 = run until the window closes.
+  float quitAfter = 0.0f;
   std::filesystem::path finalScreenshot;  // written by the last frame when quitAfter ends the run
 };
 

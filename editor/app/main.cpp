@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "Window size WxH")->capture_default_str();
   cli::addWindowQualityOption(app, o.quality);
   app.add_option("--trigger", o.trigger, "Fire this state machine trigger at start (e.g. happy)");
-  app.add_option("--quit-after", o.quitAfter, "Close after this many seconds (tests)");
+  app.add_option("--quit-after", o.quitAfter, "Close after this many seconds of animation (tests; a script's clock, which lags wall time only below 10 frames/s)");
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");
   app.add_option("--script", o.script,
                  "Timed actions through the panels' own handlers, one a line: SECONDS ACTION ARGS "
