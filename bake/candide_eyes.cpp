@@ -141,10 +141,9 @@ std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std
     if (eyesClosed[v].y != 0.0f) margin[v] = eyesClosed[v].y < 0.0f ? Margin::Upper : Margin::Lower;
   for (bool left : {true, false}) {
     std::vector<uint32_t> upper, lower;
-    for (uint32_t v = 0; v < positions.size(); ++v) {
-      if ((positions[v].x > 0.0f) != left || eyesClosed[v].y == 0.0f) continue;
-      (eyesClosed[v].y < 0.0f ? upper : lower).push_back(v);
-    }
+    for (uint32_t v = 0; v < positions.size(); ++v)
+      if ((positions[v].x > 0.0f) == left && margin[v] != Margin::None)
+        (margin[v] == Margin::Upper ? upper : lower).push_back(v);
     EyeOpening opening{left, lidLoop(positions, topology, margin, upper, lower, left)};
     if (opening.rim.empty()) continue;
     const std::vector<uint32_t> inside = enclosedTriangles(positions, indices, topology, opening.rim);
