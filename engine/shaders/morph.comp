@@ -14,8 +14,11 @@ void main() {
   uint instanceInDraw = gl_WorkGroupID.y;
   InstanceData inst = instances[draw.firstInstance + instanceInDraw];
   if (inst.activeCount == 0u) return;  // rest pose: mesh.vert reads the vertex buffer
-  // Strided: a primitive with more vertices than the device's group count
-  // times 64 is still covered.
+  // Strided: the renderer may dispatch fewer invocations than vertices (two
+  // vertices each on a CPU device, and a primitive with more vertices than
+  // the device's group count times 64). The stride is a multiple of the
+  // delta slices' 8 lanes, so neighbouring invocations stay on neighbouring
+  // vertices.
   uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
   for (uint vertex = gl_GlobalInvocationID.x; vertex < draw.vertexCount; vertex += stride) {
     MorphedVertex m = morphVertex(vertex, inst);
