@@ -398,8 +398,9 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       if (gp.constants.jointSets > 0) ranges.skin = appendInfluences(staging.skin, prim, storageAlign);
 
       const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
-      const std::vector<GpuDetailLayer> layers = detailLayers(model, m, p, mat);
-      if (!layers.empty()) ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(layers), storageAlign);
+      gp.detailLayers = detailLayers(model, m, p, mat);
+      if (!gp.detailLayers.empty())
+        ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(gp.detailLayers), storageAlign);
 
       gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
                                                  : static_cast<uint32_t>(model.materials.size());

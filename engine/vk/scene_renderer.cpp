@@ -265,6 +265,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
         slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
                                 slot.morphedVec4s, morphs, membersOffset});
+        slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance, instanceCount);
         if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
         // Room for every primitive with deltas, active or not: the buffer's
         // size then stays the same from frame to frame for the same instances.
@@ -371,6 +372,28 @@ Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelI
   return build(slot, instances, Mode::Capture);
 }
 
+uint32_t SceneRenderer::visibleDetailLayers(const GpuPrimitive& prim, uint32_t firstInstance,
+                                            uint32_t instanceCount) const {
+  // mesh.frag blends layer l where clamp(weight * strength, 0, 1) > 0, with the
+  // weight as written to the weights buffer (zero below the active
+  // threshold): a layer whose weight or strength is zero for every member
+  // cannot show. Any other may (the shader still tests each instance's).
+  const size_t layers = std::min<size_t>({prim.constants.detailLayerCount, prim.detailLayers.size(), 32});
+  uint32_t mask = 0;
+  for (size_t l = 0; l < layers; ++l) {
+    const GpuDetailLayer& layer = prim.detailLayers[l];
+    if (layer.strength == 0.0f || layer.target == UINT32_MAX) continue;
+    for (uint32_t k = 0; k < instanceCount; ++k) {
+      const size_t weight = size_t{instanceScratch_[firstInstance + k].weightOffset} + layer.target;
+      if (weight < weightScratch_.size() && weightScratch_[weight] != 0.0f) {
+        mask |= 1u << l;
+        break;
+      }
+    }
+  }
+  return mask;
+}
+
 FrameStats SceneRenderer::stats(uint32_t slot) const { return slot < slots_.size() ? slots_[slot].stats : FrameStats{}; }
 
 void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const {
@@ -386,6 +409,7 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   constants.firstInstance = batch.firstInstance;
   constants.captureOffset = batch.captureOffset;
   constants.morphOffset = batch.morphOffset;
+  constants.detailLayerMask = batch.detailLayerMask;
   if (!batch.morphs) constants.flags &= ~kDrawFlagMorphed;  // every instance in the rest pose: nothing written
 }
 
