@@ -323,11 +323,13 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
   for (Batch& batch : slot.batches) {
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     batch.lod = 0;
+    batch.shadowLod = 0;
     if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
       // The nearest instance decides: its model's bounding sphere's nearest
       // depth, and the largest scale of its primitive's transform.
       const Aabb& bounds = batch.model->bounds();
       float pixelsPerUnit = 0.0f;
+      float largestScale = 0.0f;
       for (uint32_t k = 0; k < batch.instanceCount; ++k) {
         const glm::mat4& placed = instances[slot.members[batch.membersOffset + k]].transform;
         const glm::mat4& drawn = instanceScratch_[batch.firstInstance + k].model;
@@ -335,18 +337,30 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
                                             glm::length(glm::vec3(placed[2]))});
         const float drawnScale = std::max({glm::length(glm::vec3(drawn[0])), glm::length(glm::vec3(drawn[1])),
                                            glm::length(glm::vec3(drawn[2]))});
+        largestScale = std::max(largestScale, drawnScale);
         const glm::vec3 centre = glm::vec3(placed * glm::vec4(bounds.center(), 1.0f));
         const float depth = -(globals.view * glm::vec4(centre, 1.0f)).z - 0.5f * bounds.diagonal() * placedScale;
         // Closer than a hundredth of the model (or around the camera): full detail.
         if (depth <= 0.01f * bounds.diagonal() * placedScale) {
           pixelsPerUnit = std::numeric_limits<float>::infinity();
-          break;
+          continue;  // (still for largestScale)
         }
         pixelsPerUnit = std::max(pixelsPerUnit, drawnScale * pixelsAtUnitDepth / depth);
       }
       for (size_t level = 0; level < prim.lods.size(); ++level) {
         if (prim.lods[level].error * pixelsPerUnit > lod.maxPixelError) break;
         batch.lod = static_cast<uint32_t>(level + 1);
+      }
+      // The shadow map's casters: the coarsest level that strays no further
+      // than the receiver's push along its normal (lighting.glsl), so a
+      // coarser surface cannot shadow the fine one it stands for, and the
+      // shadow's outline moves by less than that -- well inside the
+      // filtered penumbra. Never finer than the view's level.
+      batch.shadowLod = batch.lod;
+      const float receiverOffset = globals.shadow.z;
+      for (size_t level = batch.lod; level < prim.lods.size(); ++level) {
+        if (!(prim.lods[level].error * largestScale <= receiverOffset)) break;
+        batch.shadowLod = static_cast<uint32_t>(level + 1);
       }
     }
     const uint32_t indexCount = batch.lod == 0 ? prim.indexCount : prim.lods[batch.lod - 1].indexCount;
@@ -428,10 +442,12 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
     bindPrimitive(cmd, batch, constants);
     vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(DrawConstants), &constants);
-    const bool full = batch.lod == 0;
-    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[batch.lod - 1].indexOffset,
+    // Without material pipelines this is the shadow pass, with its own level.
+    const uint32_t level = bindMaterialPipelines ? batch.lod : batch.shadowLod;
+    const bool full = level == 0;
+    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[level - 1].indexOffset,
                          VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[batch.lod - 1].indexCount, batch.instanceCount, 0, 0,
+    vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[level - 1].indexCount, batch.instanceCount, 0, 0,
                      batch.firstInstance);
   }
 }

@@ -136,6 +136,7 @@ class SceneRenderer {
     bool morphs = false;         // the primitive has deltas and some instance has active weights
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
     uint32_t lod = 0;            // 0: the full mesh; k: GpuPrimitive::lods[k - 1]
+    uint32_t shadowLod = 0;      // the same for the shadow pass (as coarse as lod or coarser)
     uint32_t detailLayerMask = 0;  // DrawConstants::detailLayerMask: layers some member's weights show
   };
   struct Slot {
