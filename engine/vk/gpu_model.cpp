@@ -363,6 +363,7 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
   const WeightLayout weightLayout(model);
   const Material fallback = defaultMaterial();
+  const std::vector<std::vector<bool>> insideTheHead = partsInsideTheHead(model);
   meshes_.resize(model.meshes.size());
   staging.ranges.resize(model.meshes.size());
   for (size_t m = 0; m < model.meshes.size(); ++m) {
@@ -399,6 +400,7 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
 
       const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
       gp.detailLayers = detailLayers(model, m, p, mat);
+      gp.insideTheHead = insideTheHead[m][p];
       if (!gp.detailLayers.empty())
         ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(gp.detailLayers), storageAlign);
 

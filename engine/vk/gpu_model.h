@@ -50,6 +50,9 @@ struct GpuPrimitive {
   // as the fragment shader reads them: the scene renderer picks the ones an
   // instance's weights can show. Only the first constants.detailLayerCount are drawn.
   std::vector<GpuDetailLayer> detailLayers;
+  // Inside the head (face_dressing.h: eyeball, teeth, tongue, mouth interior):
+  // a window's shadow pass leaves it out.
+  bool insideTheHead = false;
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1
 };
 

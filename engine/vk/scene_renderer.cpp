@@ -324,6 +324,11 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     batch.lod = 0;
     batch.shadowLod = 0;
+    // With levels of detail (a window) the parts inside the head cast no
+    // shadow: theirs falls into the eye sockets and the mouth, already dark
+    // (the head's shadow, the baked occlusion), and the eyes and teeth are
+    // 14k of the built-in head's triangles. Headless renders keep them.
+    batch.castsShadow = !(lod.maxPixelError > 0.0f && prim.insideTheHead);
     if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
       // The nearest instance decides: its model's bounding sphere's nearest
       // depth, and the largest scale of its primitive's transform.
@@ -438,6 +443,7 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
         bound = pipeline;
       }
     }
+    if (!bindMaterialPipelines && !batch.castsShadow) continue;
     DrawConstants constants;
     bindPrimitive(cmd, batch, constants);
     vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,

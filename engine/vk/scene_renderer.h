@@ -137,6 +137,7 @@ class SceneRenderer {
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
     uint32_t lod = 0;            // 0: the full mesh; k: GpuPrimitive::lods[k - 1]
     uint32_t shadowLod = 0;      // the same for the shadow pass (as coarse as lod or coarser)
+    bool castsShadow = true;     // false: left out of the shadow pass (a part inside the head, in a window)
     uint32_t detailLayerMask = 0;  // DrawConstants::detailLayerMask: layers some member's weights show
   };
   struct Slot {
