@@ -167,15 +167,20 @@ std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
   struct Box {
     glm::vec3 lo{std::numeric_limits<float>::max()}, hi{std::numeric_limits<float>::lowest()};
   };
+  // World-space rest bounds, each mesh placed by the first node drawing it.
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<std::vector<Box>> boxes(model.meshes.size());
-  for (size_t m = 0; m < model.meshes.size(); ++m)
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const glm::mat4 world = nodeOfMesh[m] >= 0 ? model.worldTransform(nodeOfMesh[m]) : glm::mat4(1.0f);
     for (const Primitive& prim : model.meshes[m].primitives) {
       Box& box = boxes[m].emplace_back();
       for (const glm::vec3& p : prim.positions) {
-        box.lo = glm::min(box.lo, p);
-        box.hi = glm::max(box.hi, p);
+        const glm::vec3 placed = glm::vec3(world * glm::vec4(p, 1.0f));
+        box.lo = glm::min(box.lo, placed);
+        box.hi = glm::max(box.hi, placed);
       }
     }
+  }
   auto enclosed = [&](const Box& inner, size_t mesh, size_t primitive) {
     for (size_t m = 0; m < boxes.size(); ++m)
       for (size_t p = 0; p < boxes[m].size(); ++p) {
@@ -186,7 +191,6 @@ std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
       }
     return false;
   };
-  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<std::vector<bool>> inside(model.meshes.size());
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const Mesh& mesh = model.meshes[m];
