@@ -169,6 +169,53 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
 
 }  // namespace
 
+std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
+  struct Box {
+    glm::vec3 lo{std::numeric_limits<float>::max()}, hi{std::numeric_limits<float>::lowest()};
+  };
+  // World-space rest bounds, each mesh placed by the first node drawing it.
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
+  std::vector<std::vector<Box>> boxes(model.meshes.size());
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const glm::mat4 world = nodeOfMesh[m] >= 0 ? model.worldTransform(nodeOfMesh[m]) : glm::mat4(1.0f);
+    for (const Primitive& prim : model.meshes[m].primitives) {
+      Box& box = boxes[m].emplace_back();
+      for (const glm::vec3& p : prim.positions) {
+        const glm::vec3 placed = glm::vec3(world * glm::vec4(p, 1.0f));
+        box.lo = glm::min(box.lo, placed);
+        box.hi = glm::max(box.hi, placed);
+      }
+    }
+  }
+  auto enclosed = [&](const Box& inner, size_t mesh, size_t primitive) {
+    for (size_t m = 0; m < boxes.size(); ++m)
+      for (size_t p = 0; p < boxes[m].size(); ++p) {
+        const Box& outer = boxes[m][p];
+        if ((m != mesh || p != primitive) && glm::all(glm::lessThan(outer.lo, inner.lo)) &&
+            glm::all(glm::lessThan(inner.hi, outer.hi)))
+          return true;
+      }
+    return false;
+  };
+  std::vector<std::vector<bool>> inside(model.meshes.size());
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const Mesh& mesh = model.meshes[m];
+    const std::vector<std::string_view> meshNames = namesOf(model, m, nodeOfMesh[m]);
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      std::vector<std::string_view> names = meshNames;
+      const int material = mesh.primitives[p].material;
+      if (material >= 0 && size_t(material) < model.materials.size()) names.push_back(model.materials[size_t(material)].name);
+      const bool named = std::any_of(names.begin(), names.end(),
+                                     [](std::string_view n) { return namesAnEyeball(std::string(n)); }) ||
+                         anyContains(names, "teeth") || anyContains(names, "tooth") || anyContains(names, "tongue") ||
+                         (anyContains(names, "mouth") && (anyContains(names, "interior") || anyContains(names, "inside") ||
+                                                          anyContains(names, "bag") || anyContains(names, "cavity")));
+      inside[m].push_back(named && !mesh.primitives[p].positions.empty() && enclosed(boxes[m][p], m, p));
+    }
+  }
+  return inside;
+}
+
 FaceDressing planFaceDressing(const Model& model) {
   FaceDressing d;
   d.eyes = findUntexturedEyes(model).size();

@@ -15,6 +15,7 @@
 //    the lids read as deep.
 // Anything textured or given a colour by its author is left as it is.
 #include <cstddef>
+#include <vector>
 
 #include "engine/scene/model.h"
 
@@ -26,6 +27,15 @@ struct FaceDressing {
   size_t skin = 0;   // primitives given the skin tone
   size_t total() const { return eyes + mouth + skin; }
 };
+
+// Parts of a face that sit inside the head: eyeballs, teeth, tongue and the
+// mouth's inside, found by the names of the primitive's material, mesh or
+// nodes, and only where the primitive's rest bounds lie within another
+// primitive's (the head around it). The shadows they cast fall into the eye
+// sockets and the mouth, which the head's own shadow and its occlusion
+// already darken: a renderer may leave them out of its shadow map.
+// One flag per primitive, mesh-major.
+std::vector<std::vector<bool>> partsInsideTheHead(const Model& model);
 
 // What dressUntexturedFace would change, without changing anything.
 FaceDressing planFaceDressing(const Model& model);

@@ -54,7 +54,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData in
 layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
 layout(std430, set = 0, binding = 6) readonly buffer InstanceMaterials { InstanceMaterial instanceMaterials[]; };
 
-// Per-draw constants (one primitive, its material). 52 bytes.
+// Per-draw constants (one primitive, its material). 56 bytes.
 layout(push_constant) uniform DrawConstants {
   float roughness;
   float metallic;
@@ -69,6 +69,7 @@ layout(push_constant) uniform DrawConstants {
   uint restPosition;      // float offsets of the rest attributes in the vertex buffer (morph.comp)
   uint restNormal;
   uint restTangent;
+  uint detailLayerMask;   // bit l: detail layer l may show (some instance's weight for its target is not 0)
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;

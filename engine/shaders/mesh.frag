@@ -34,19 +34,29 @@ float activeWeight(InstanceData inst, uint target) {
   return texelFetch(targetWeights, int(inst.weightOffset + target)).x;
 }
 
+// Layer l of the material over `base`, by its target's weight.
+vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
+  float w = clamp(activeWeight(inst, detailLayers[l].target) * detailLayers[l].strength, 0.0, 1.0);
+  if (w > 0.0) {
+    vec4 layer = texture(detailTextures, vec3(inTexcoord, float(l)));
+    base = mix(base, layer.rgb, layer.a * w);
+  }
+  return base;
+}
+
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
   vec4 base = texture(baseColorTexture, inTexcoord) * material.baseColorFactor * inColor;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];
-    for (uint l = 0u; l < draw.detailLayerCount; ++l) {
-      float w = clamp(activeWeight(inst, detailLayers[l].target) * detailLayers[l].strength, 0.0, 1.0);
-      if (w > 0.0) {
-        vec4 layer = texture(detailTextures, vec3(inTexcoord, float(l)));
-        base.rgb = mix(base.rgb, layer.rgb, layer.a * w);
-      }
-    }
+    // Only the layers some instance of the draw can show, in layer order: a
+    // CPU rasteriser runs both sides of the `w > 0` branch below, sampling
+    // every layer it loops over for every pixel. Layers past 32 (no mask bit)
+    // are all visited.
+    for (uint bits = draw.detailLayerMask; bits != 0u; bits &= bits - 1u)
+      base.rgb = blendDetailLayer(base.rgb, inst, uint(findLSB(bits)));
+    for (uint l = 32u; l < draw.detailLayerCount; ++l) base.rgb = blendDetailLayer(base.rgb, inst, l);
   }
 
   SurfacePoint s;

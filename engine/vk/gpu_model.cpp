@@ -363,6 +363,7 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
   const WeightLayout weightLayout(model);
   const Material fallback = defaultMaterial();
+  const std::vector<std::vector<bool>> insideTheHead = partsInsideTheHead(model);
   meshes_.resize(model.meshes.size());
   staging.ranges.resize(model.meshes.size());
   for (size_t m = 0; m < model.meshes.size(); ++m) {
@@ -398,8 +399,10 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       if (gp.constants.jointSets > 0) ranges.skin = appendInfluences(staging.skin, prim, storageAlign);
 
       const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
-      const std::vector<GpuDetailLayer> layers = detailLayers(model, m, p, mat);
-      if (!layers.empty()) ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(layers), storageAlign);
+      gp.detailLayers = detailLayers(model, m, p, mat);
+      gp.insideTheHead = insideTheHead[m][p];
+      if (!gp.detailLayers.empty())
+        ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(gp.detailLayers), storageAlign);
 
       gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
                                                  : static_cast<uint32_t>(model.materials.size());

@@ -46,6 +46,13 @@ struct GpuPrimitive {
   VkDeviceSize indexOffset = 0;      // in GpuModel::indexBuffer(), uint32 indices
   std::vector<GpuLod> lods;          // coarser levels, finest first (empty: small or unsimplifiable)
   DrawConstants constants;           // material, flags and vertexCount; instance fields left 0
+  // The material's detail layers (target among the mesh's targets, strength),
+  // as the fragment shader reads them: the scene renderer picks the ones an
+  // instance's weights can show. Only the first constants.detailLayerCount are drawn.
+  std::vector<GpuDetailLayer> detailLayers;
+  // Inside the head (face_dressing.h: eyeball, teeth, tongue, mouth interior):
+  // a window's shadow pass leaves it out.
+  bool insideTheHead = false;
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1
 };
 

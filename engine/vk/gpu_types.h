@@ -78,8 +78,13 @@ struct DrawConstants {
   uint32_t restPosition = 0;
   uint32_t restNormal = 0;
   uint32_t restTangent = 0;
+  // Bit l set: detail layer l may show in this draw (some instance's weight
+  // for its target is not zero). Filled per frame by the scene renderer, so
+  // a fragment samples only the layers that can show: on a CPU rasteriser
+  // every layer sampled costs every pixel of the skin, whatever its weight.
+  uint32_t detailLayerMask = 0;
 };
-static_assert(sizeof(DrawConstants) == 52);
+static_assert(sizeof(DrawConstants) == 56);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,

@@ -265,6 +265,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
         slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
                                 slot.morphedVec4s, morphs, membersOffset});
+        slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance, instanceCount);
         if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
         // Room for every primitive with deltas, active or not: the buffer's
         // size then stays the same from frame to frame for the same instances.
@@ -322,11 +323,18 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
   for (Batch& batch : slot.batches) {
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     batch.lod = 0;
+    batch.shadowLod = 0;
+    // With levels of detail (a window) the parts inside the head cast no
+    // shadow: theirs falls into the eye sockets and the mouth, already dark
+    // (the head's shadow, the baked occlusion), and the eyes and teeth are
+    // 14k of the built-in head's triangles. Headless renders keep them.
+    batch.castsShadow = !(lod.maxPixelError > 0.0f && prim.insideTheHead);
     if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
       // The nearest instance decides: its model's bounding sphere's nearest
       // depth, and the largest scale of its primitive's transform.
       const Aabb& bounds = batch.model->bounds();
       float pixelsPerUnit = 0.0f;
+      float largestScale = 0.0f;
       for (uint32_t k = 0; k < batch.instanceCount; ++k) {
         const glm::mat4& placed = instances[slot.members[batch.membersOffset + k]].transform;
         const glm::mat4& drawn = instanceScratch_[batch.firstInstance + k].model;
@@ -334,18 +342,30 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
                                             glm::length(glm::vec3(placed[2]))});
         const float drawnScale = std::max({glm::length(glm::vec3(drawn[0])), glm::length(glm::vec3(drawn[1])),
                                            glm::length(glm::vec3(drawn[2]))});
+        largestScale = std::max(largestScale, drawnScale);
         const glm::vec3 centre = glm::vec3(placed * glm::vec4(bounds.center(), 1.0f));
         const float depth = -(globals.view * glm::vec4(centre, 1.0f)).z - 0.5f * bounds.diagonal() * placedScale;
         // Closer than a hundredth of the model (or around the camera): full detail.
         if (depth <= 0.01f * bounds.diagonal() * placedScale) {
           pixelsPerUnit = std::numeric_limits<float>::infinity();
-          break;
+          continue;  // (still for largestScale)
         }
         pixelsPerUnit = std::max(pixelsPerUnit, drawnScale * pixelsAtUnitDepth / depth);
       }
       for (size_t level = 0; level < prim.lods.size(); ++level) {
         if (prim.lods[level].error * pixelsPerUnit > lod.maxPixelError) break;
         batch.lod = static_cast<uint32_t>(level + 1);
+      }
+      // The shadow map's casters: the coarsest level that strays no further
+      // than the receiver's push along its normal (lighting.glsl), so a
+      // coarser surface cannot shadow the fine one it stands for, and the
+      // shadow's outline moves by less than that -- well inside the
+      // filtered penumbra. Never finer than the view's level.
+      batch.shadowLod = batch.lod;
+      const float receiverOffset = globals.shadow.z;
+      for (size_t level = batch.lod; level < prim.lods.size(); ++level) {
+        if (!(prim.lods[level].error * largestScale <= receiverOffset)) break;
+        batch.shadowLod = static_cast<uint32_t>(level + 1);
       }
     }
     const uint32_t indexCount = batch.lod == 0 ? prim.indexCount : prim.lods[batch.lod - 1].indexCount;
@@ -371,6 +391,28 @@ Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelI
   return build(slot, instances, Mode::Capture);
 }
 
+uint32_t SceneRenderer::visibleDetailLayers(const GpuPrimitive& prim, uint32_t firstInstance,
+                                            uint32_t instanceCount) const {
+  // mesh.frag blends layer l where clamp(weight * strength, 0, 1) > 0, with the
+  // weight as written to the weights buffer (zero below the active
+  // threshold): a layer whose weight or strength is zero for every member
+  // cannot show. Any other may (the shader still tests each instance's).
+  const size_t layers = std::min<size_t>({prim.constants.detailLayerCount, prim.detailLayers.size(), 32});
+  uint32_t mask = 0;
+  for (size_t l = 0; l < layers; ++l) {
+    const GpuDetailLayer& layer = prim.detailLayers[l];
+    if (layer.strength == 0.0f || layer.target == UINT32_MAX) continue;
+    for (uint32_t k = 0; k < instanceCount; ++k) {
+      const size_t weight = size_t{instanceScratch_[firstInstance + k].weightOffset} + layer.target;
+      if (weight < weightScratch_.size() && weightScratch_[weight] != 0.0f) {
+        mask |= 1u << l;
+        break;
+      }
+    }
+  }
+  return mask;
+}
+
 FrameStats SceneRenderer::stats(uint32_t slot) const { return slot < slots_.size() ? slots_[slot].stats : FrameStats{}; }
 
 void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const {
@@ -386,6 +428,7 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   constants.firstInstance = batch.firstInstance;
   constants.captureOffset = batch.captureOffset;
   constants.morphOffset = batch.morphOffset;
+  constants.detailLayerMask = batch.detailLayerMask;
   if (!batch.morphs) constants.flags &= ~kDrawFlagMorphed;  // every instance in the rest pose: nothing written
 }
 
@@ -400,14 +443,17 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
         bound = pipeline;
       }
     }
+    if (!bindMaterialPipelines && !batch.castsShadow) continue;
     DrawConstants constants;
     bindPrimitive(cmd, batch, constants);
     vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(DrawConstants), &constants);
-    const bool full = batch.lod == 0;
-    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[batch.lod - 1].indexOffset,
+    // Without material pipelines this is the shadow pass, with its own level.
+    const uint32_t level = bindMaterialPipelines ? batch.lod : batch.shadowLod;
+    const bool full = level == 0;
+    vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[level - 1].indexOffset,
                          VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[batch.lod - 1].indexCount, batch.instanceCount, 0, 0,
+    vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[level - 1].indexCount, batch.instanceCount, 0, 0,
                      batch.firstInstance);
   }
 }

@@ -136,6 +136,9 @@ class SceneRenderer {
     bool morphs = false;         // the primitive has deltas and some instance has active weights
     uint32_t membersOffset = 0;  // into Slot::members: the caller's instance indices
     uint32_t lod = 0;            // 0: the full mesh; k: GpuPrimitive::lods[k - 1]
+    uint32_t shadowLod = 0;      // the same for the shadow pass (as coarse as lod or coarser)
+    bool castsShadow = true;     // false: left out of the shadow pass (a part inside the head, in a window)
+    uint32_t detailLayerMask = 0;  // DrawConstants::detailLayerMask: layers some member's weights show
   };
   struct Slot {
     Buffer globals;
@@ -157,6 +160,9 @@ class SceneRenderer {
 
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
   // Sets every batch's level of detail (Batch::lod) and the triangle counts of the slot's stats.
+  // DrawConstants::detailLayerMask of a batch of `prim` whose instance records
+  // (already in instanceScratch_, weights in weightScratch_) start at firstInstance.
+  uint32_t visibleDetailLayers(const GpuPrimitive& prim, uint32_t firstInstance, uint32_t instanceCount) const;
   void pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals, std::span<const ModelInstance> instances,
                           const LodPolicy& lod) const;
   Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,

@@ -108,6 +108,22 @@ TEST(FaceDressing, PlasterHeadGetsEyesTeethSkinAndOcclusion) {
   EXPECT_EQ(skin.colors.size(), skin.positions.size()) << "occlusion baked into vertex colours";
 }
 
+TEST(FaceDressing, EyesAndTeethInsideTheHeadAreFoundByNameAndBounds) {
+  eng::Model model = plasterHead();
+  // An ear named like nothing inside, and "teeth" hanging outside the head.
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "ear", {0.9f, 0, 0}, glm::vec3(0.05f));
+  addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "teeth necklace", {0, -1.5f, 0}, glm::vec3(0.2f));
+  const std::vector<std::vector<bool>> inside = eng::partsInsideTheHead(model);
+  ASSERT_EQ(inside.size(), model.meshes.size());
+  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const std::string& name = model.nodes[size_t(nodeOfMesh[m])].name;
+    const bool expected = name == "eyeLeft" || name == "eyeRight" || name == "teeth";
+    ASSERT_EQ(inside[m].size(), model.meshes[m].primitives.size());
+    for (bool flag : inside[m]) EXPECT_EQ(flag, expected) << name;
+  }
+}
+
 TEST(FaceDressing, SkinWithoutUvsKeepsAPlainSkinMaterialBesideAPaintedOne) {
   eng::Model model = plasterHead();
   eng::Primitive noUvs = model.meshes[0].primitives[0];  // same material, no texture coordinates
