@@ -190,4 +190,27 @@ eng::Primitive eyeballBehind(std::span<const glm::vec3> positions, const EyeOpen
   return ball;
 }
 
+eng::MorphTarget eyeballFollowing(std::span<const glm::vec3> positions, const EyeOpening& opening,
+                                  const eng::Primitive& ball, std::span<const glm::vec3> deltas) {
+  std::vector<glm::vec3> moved(positions.begin(), positions.end());
+  glm::vec3 shift(0.0f);
+  for (uint32_t v : opening.rim) {
+    moved[v] += deltas[v];
+    shift += deltas[v] / float(opening.rim.size());
+  }
+  auto growth = [](float before, float after) { return before > 0.0f ? after / before - 1.0f : 0.0f; };
+  // The ball's size follows the opening's widest span, as eyeballBehind sized it.
+  const float s = growth(rimWidth(positions, opening.rim), rimWidth(moved, opening.rim));
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : ball.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = 0.5f * (hi.x - lo.x);
+  eng::MorphTarget target;
+  target.positions.reserve(ball.positions.size());
+  // Scaled by 1 + s about the front pole (centre + radius along +z).
+  for (const glm::vec3& p : ball.positions) target.positions.push_back(shift + s * (p - centre - glm::vec3(0.0f, 0.0f, radius)));
+  target.normals.assign(ball.positions.size(), glm::vec3(0.0f));
+  return target;
+}
+
 }  // namespace facial

@@ -36,4 +36,11 @@ std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std
 // front of it.
 eng::Primitive eyeballBehind(std::span<const glm::vec3> positions, const EyeOpening& opening);
 
+// How `ball` (eyeballBehind's) follows an identity shape that moves the mask
+// by `deltas` (one per mask vertex) at weight 1: it moves with the rim and
+// grows as the opening's widest span does, about its front pole, so it still
+// fills the opening from behind it.
+eng::MorphTarget eyeballFollowing(std::span<const glm::vec3> positions, const EyeOpening& opening,
+                                  const eng::Primitive& ball, std::span<const glm::vec3> deltas);
+
 }  // namespace facial

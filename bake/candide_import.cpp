@@ -337,8 +337,8 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
 
   // The eyeballs are primitives of the mask's mesh, so they share its
   // targets: an expression leaves them still (the lids move over them), an
-  // identity shape carries each with its rim, so a mask reshaped by --shape
-  // keeps its eyes in their openings. Their material's name marks them as
+  // identity shape carries each with its rim and grows it with its opening,
+  // so a mask reshaped by --shape keeps its eyes filling their openings. Their material's name marks them as
   // eyeballs for the dressing (engine/scene/procedural_eyes.h).
   eng::Mesh& face = model.meshes[0];
   if (!eyes.empty()) {
@@ -349,17 +349,12 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   for (const EyeOpening& eye : eyes) {
     eng::Primitive ball = eyeballBehind(face.primitives[0].positions, eye);
     ball.material = int(model.materials.size()) - 1;
-    for (size_t u = 0; u < animationUnits->size() + shapeUnits->size(); ++u) {
-      glm::vec3 shift(0.0f);
-      if (u >= animationUnits->size()) {
-        for (uint32_t v : eye.rim) shift += (*shapeUnits)[u - animationUnits->size()].deltas[v];
-        shift /= float(eye.rim.size());
-      }
-      eng::MorphTarget target;
-      target.positions.assign(ball.positions.size(), shift);
-      target.normals.assign(ball.positions.size(), glm::vec3(0.0f));
-      ball.targets.push_back(std::move(target));
-    }
+    eng::MorphTarget still;
+    still.positions.assign(ball.positions.size(), glm::vec3(0.0f));
+    still.normals = still.positions;
+    ball.targets.assign(animationUnits->size(), still);
+    for (const Unit& unit : *shapeUnits)
+      ball.targets.push_back(eyeballFollowing(face.primitives[0].positions, eye, ball, unit.deltas));
     face.primitives.push_back(std::move(ball));
   }
   return model;

@@ -127,6 +127,22 @@ TEST(Candide3Import, EyeOpeningsAreCutAndEyeballsSitBehindTheLids) {
     const eng::MorphTarget& ballLower = ball.targets[size_t(targetIndex(mesh, "SU_Eyes vertical position"))];
     EXPECT_NE(rimShift, glm::vec3(0.0f));
     for (const glm::vec3& d : ballLower.positions) EXPECT_EQ(d, rimShift);
+    // A shape that widens the opening (its corners 0.1 out each, from 0.34) grows the ball with it: the
+    // widened rim still lies over the ball and in front of it.
+    const int widen = targetIndex(mesh, "SU_Eyes width");
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t k = 0; k < ball.positions.size(); ++k) {
+      const glm::vec3 p = ball.positions[k] + ball.targets[size_t(widen)].positions[k];
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    const glm::vec3 wideCentre = 0.5f * (lo + hi);
+    const float wideRadius = 0.5f * (hi.x - lo.x);
+    EXPECT_GT(wideRadius, eye.radius * 1.3f);
+    for (uint32_t v : rim) {
+      const glm::vec3 wide = mask.positions[v] + mask.targets[size_t(widen)].positions[v];
+      EXPECT_GT(ballFront(wideCentre, wideRadius, wide), -INFINITY) << v;
+      EXPECT_GE(wide.z, ballFront(wideCentre, wideRadius, wide)) << v;
+    }
   }
   EXPECT_LT(eyes[0].centre.x * eyes[1].centre.x, 0.0f);  // one each side
 }
