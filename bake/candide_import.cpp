@@ -338,8 +338,9 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   // The eyeballs are primitives of the mask's mesh, so they share its
   // targets: an expression leaves them still (the lids move over them), an
   // identity shape carries each with its rim and grows it with its opening,
-  // so a mask reshaped by --shape keeps its eyes filling their openings. Their material's name marks them as
-  // eyeballs for the dressing (engine/scene/procedural_eyes.h).
+  // so a mask reshaped by --shape keeps its eyes filling their openings.
+  // Their material's name marks them as eyeballs for the dressing
+  // (engine/scene/procedural_eyes.h).
   eng::Mesh& face = model.meshes[0];
   if (!eyes.empty()) {
     eng::Material eyeMaterial;

@@ -205,8 +205,9 @@ std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
       std::vector<std::string_view> names = meshNames;
       const int material = mesh.primitives[p].material;
       if (material >= 0 && size_t(material) < model.materials.size()) names.push_back(model.materials[size_t(material)].name);
-      const bool named = std::any_of(names.begin(), names.end(),
+      const bool named = std::any_of(meshNames.begin(), meshNames.end(),
                                      [](std::string_view n) { return namesAnEyeball(std::string(n)); }) ||
+                         materialNamesAnEyeball(model, material) ||
                          anyContains(names, "teeth") || anyContains(names, "tooth") || anyContains(names, "tongue") ||
                          (anyContains(names, "mouth") && (anyContains(names, "interior") || anyContains(names, "inside") ||
                                                           anyContains(names, "bag") || anyContains(names, "cavity")));

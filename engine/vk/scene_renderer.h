@@ -159,10 +159,11 @@ class SceneRenderer {
   };
 
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
-  // Sets every batch's level of detail (Batch::lod) and the triangle counts of the slot's stats.
   // DrawConstants::detailLayerMask of a batch of `prim` whose instance records
   // (already in instanceScratch_, weights in weightScratch_) start at firstInstance.
   uint32_t visibleDetailLayers(const GpuPrimitive& prim, uint32_t firstInstance, uint32_t instanceCount) const;
+  // Sets every batch's levels of detail (Batch::lod, shadowLod), whether it
+  // casts a shadow, and the triangle counts of the slot's stats.
   void pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals, std::span<const ModelInstance> instances,
                           const LodPolicy& lod) const;
   Result<void> ensureCapacity(Slot& slot, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
