@@ -8,6 +8,8 @@
 #include <cstdio>
 
 #include "engine/scene/posed_bounds.h"
+#include "engine/scene/weights.h"
+#include "facial/runtime/character/gaze_rig.h"
 
 namespace cli {
 
@@ -25,7 +27,7 @@ std::string skeletalClipList(const eng::Model& model) {
 
 namespace {
 
-// The eye joints by name, left then right: LeftEye, eye_L, Eye.L, L_Eye,
+// The eye joints (or, on an unskinned face, eye nodes) by name, left then right: LeftEye, eye_L, Eye.L, L_Eye,
 // mixamorig:LeftEye, J_Adj_L_FaceEye (VRoid), CC_Base_L_Eye; -1 where none.
 std::array<int, 2> findEyeJoints(const eng::Model& model) {
   static constexpr std::string_view kNames[2][6] = {
@@ -53,6 +55,11 @@ eng::Result<SkeletonMotion> SkeletonMotion::create(const eng::Model& model, cons
   if (!model.skins.empty()) {
     motion.headJoint_ = eng::findHeadJoint(model);
     motion.eyeJoints_ = findEyeJoints(model);
+  } else {
+    // An unskinned face turns its eye nodes only when no morph target steers
+    // the eyes (facecap has both: its eyeLook shapes already turn the balls).
+    const std::vector<std::string> targets = eng::WeightLayout(model).names();
+    if (!facial::GazeRig::create(targets).drivesWeights()) motion.eyeJoints_ = findEyeJoints(model);
   }
   const std::string file = model.sourcePath.empty() ? std::string("the model") : model.sourcePath;
   if (clip == "all") {

@@ -2,8 +2,9 @@
 // The skeleton of a face in `facial play` and the demo: an optional skeletal
 // clip of the file, looping, plus an idle turn of the head joint (sway, nods)
 // for skinned avatars, where turning the whole model would swing the body
-// too. Faces without a skin and without a clip have nothing to pose:
-// nodeWorld() stays empty and the renderer draws the rest pose.
+// too, and the gaze of the eye joints. Faces without a skin, a clip or eye
+// nodes to turn have nothing to pose: nodeWorld() stays empty and the
+// renderer draws the rest pose.
 //
 //   auto skeleton = SkeletonMotion::create(model, "Dance");   // or "3", "all", ""
 //   skeleton->update(time, idleHeadTurn);
@@ -33,11 +34,13 @@ class SkeletonMotion {
   // Whether the head turn goes to a joint (skinned model with a head joint).
   bool turnsHeadJoint() const { return headJoint_ >= 0; }
   int headJoint() const { return headJoint_; }
-  // The eye joints (left, right: the face's own sides), -1 each when the
-  // skinned model has none (named LeftEye / eye_L / J_Adj_L_FaceEye / ...).
+  // The eye joints (left, right: the face's own sides), -1 each where there is
+  // none (named LeftEye / EyeLeft / eye_L / J_Adj_L_FaceEye / ...). On an
+  // unskinned face these are the nodes that carry the eyeballs (the built-in
+  // head's EyeLeft / EyeRight), unless its morph targets steer the eyes.
   const std::array<int, 2>& eyeJoints() const { return eyeJoints_; }
-  // Whether there is a pose to upload (a clip or a head joint).
-  bool active() const { return !clips_.empty() || headJoint_ >= 0; }
+  // Whether there is a pose to upload (a clip, a head joint or an eye joint).
+  bool active() const { return !clips_.empty() || headJoint_ >= 0 || eyeJoints_[0] >= 0 || eyeJoints_[1] >= 0; }
   float clipDuration() const { return duration_; }
   std::string clipLabel() const { return label_; }
 

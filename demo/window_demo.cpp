@@ -532,13 +532,13 @@ void WindowDemo::updateFaces(float dt) {
     instances_[i].materials = face.materials.materials();
     face.idle.applyGaze(out);
     face.time += dt;
+    const std::array<glm::quat, 2> eyeTurns{face.idle.eyeTurn(facial::Eye::Left), face.idle.eyeTurn(facial::Eye::Right)};
     if (face.skeleton.turnsHeadJoint()) {
       // A skinned avatar turns its head joint; the body only breathes.
-      face.skeleton.update(face.time, face.idle.headTurn(),
-                           {face.idle.eyeTurn(facial::Eye::Left), face.idle.eyeTurn(facial::Eye::Right)});
+      face.skeleton.update(face.time, face.idle.headTurn(), eyeTurns);
       instances_[i].transform = face.idle.breathing(face.placement);
     } else {
-      face.skeleton.update(face.time);
+      face.skeleton.update(face.time, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), eyeTurns);
       instances_[i].transform = face.idle.transform(face.placement);
     }
     instances_[i].nodeWorld = face.skeleton.nodeWorld();

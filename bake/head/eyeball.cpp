@@ -64,12 +64,15 @@ eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
       // The hidden back of the ball matches the pupil: a repeating sampler
       // blends the first and last rows at the poles.
       c = glm::mix(c, pupil, smoothstep(150.0f, 165.0f, angle));
-      // The upper lid and lashes shade the top of the ball (the eye does not
-      // turn, so the shade can live in the texture): the opening reads as a
-      // recess under the brow instead of a white almond pasted on the skin.
+      // The upper lid and lashes shade the top of the ball: the opening reads
+      // as a recess under the brow instead of a white almond pasted on the
+      // skin. Painted, the shade turns with the ball when the eye looks
+      // around; a gaze is a few degrees most of the time (saccades, the viewer)
+      // and the lids follow a real eye's vertical turns much the same way.
       const float elevation = std::asin(std::clamp(d.y, -1.0f, 1.0f)) * 180.0f / kPi;
       c *= 1.0f - 0.38f * smoothstep(-4.0f, p.upperLidHeight - 2.0f, elevation);
-      // Corneal highlights (fixed: the eyes do not turn).
+      // Corneal catch-lights, painted so that they read at 256 px on every
+      // quality tier (they turn with the eye, like the shade above).
       const float h1 = std::acos(std::clamp(glm::dot(d, highlightDir), -1.0f, 1.0f)) * 180.0f / kPi;
       const float h2 = std::acos(std::clamp(glm::dot(d, secondDir), -1.0f, 1.0f)) * 180.0f / kPi;
       c = glm::mix(c, glm::vec3(1.0f), 1.0f - smoothstep(4.0f, 5.5f, h1));

@@ -328,34 +328,42 @@ eng::Primitive primitiveOf(const PartMesh& m, int material) {
   return prim;
 }
 
-// Meshes Head, Eyes (no targets) and Ears (no targets), each on its own node
-// under the root node "BuiltInHead".
+// Meshes Head, EyeLeft, EyeRight (no targets) and Ears (no targets), each on
+// its own node under the root node "BuiltInHead". Each eyeball's node sits at
+// the ball's centre with the mesh around its origin: the node is the eye's
+// joint, so a gaze turns the ball in its socket (app/skeleton_motion.h finds
+// it by name), as eye joints do on the avatars users bring.
 void addMeshesAndNodes(eng::Model& model, eng::Mesh headMesh, const EyeOpening& eyeL, const EyeOpening& eyeR,
                        const HeadProportions& prop) {
   const int materialOf[5] = {0, 3, 2, 2, 4};
   for (int p = 0; p < 5; ++p) headMesh.primitives[p].material = materialOf[p];
-  eng::Mesh eyes;
-  eyes.name = "Eyes";
-  eyes.primitives.push_back(primitiveOf(buildEyeball(eyeL, prop), 1));
-  eyes.primitives.push_back(primitiveOf(buildEyeball(eyeR, prop), 1));
+  auto eyeMesh = [&](const EyeOpening& eye, const char* name) {
+    eng::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(primitiveOf(buildEyeball(eye, prop), 1));
+    for (vec3& p : mesh.primitives[0].positions) p -= eye.centre();
+    return mesh;
+  };
   eng::Mesh ears;
   ears.name = "Ears";
   ears.primitives.push_back(primitiveOf(buildEar(1.0f), 5));
   ears.primitives.push_back(primitiveOf(buildEar(-1.0f), 5));
   // Ears have no texture coordinates worth keeping (flat colour material).
   for (eng::Primitive& prim : ears.primitives) prim.texcoords.clear();
-  model.meshes = {std::move(headMesh), std::move(eyes), std::move(ears)};
+  model.meshes = {std::move(headMesh), eyeMesh(eyeL, "EyeLeft"), eyeMesh(eyeR, "EyeRight"), std::move(ears)};
 
   eng::Node root;
   root.name = "BuiltInHead";
-  root.children = {1, 2, 3};
+  root.children = {1, 2, 3, 4};
   model.nodes.push_back(root);
-  const char* nodeNames[3] = {"Head", "Eyes", "Ears"};
-  for (int m = 0; m < 3; ++m) {
+  const char* nodeNames[4] = {"Head", "EyeLeft", "EyeRight", "Ears"};
+  const vec3 nodeAt[4] = {vec3(0.0f), eyeL.centre(), eyeR.centre(), vec3(0.0f)};
+  for (int m = 0; m < 4; ++m) {
     eng::Node n;
     n.name = nodeNames[m];
     n.parent = 0;
     n.mesh = m;
+    n.translation = nodeAt[m];
     model.nodes.push_back(n);
   }
   model.roots = {0};

@@ -6,8 +6,10 @@
 // deformation of the landmarks in data/head_landmarks.json.
 //
 // Model layout: mesh "Head" (primitives skin, mouth interior, upper teeth,
-// lower teeth, tongue; all carry every action-unit target), mesh "Eyes" and
-// mesh "Ears" (no targets), each on its own node under root node "BuiltInHead".
+// lower teeth, tongue; all carry every action-unit target), meshes "EyeLeft" and
+// "EyeRight" (no targets; each on a node at its eyeball's centre, the eye's
+// joint) and mesh "Ears" (no targets), each on its own node under root node
+// "BuiltInHead".
 // Deterministic: the same spec gives the same model, bit for bit.
 #include "engine/core/result.h"
 #include "engine/scene/model.h"

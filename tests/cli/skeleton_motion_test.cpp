@@ -1,5 +1,7 @@
-// app/skeleton_motion.h: skeletal clips chosen by name, index or "all", and
-// the idle head turn going to the head joint of skinned avatars (only).
+// app/skeleton_motion.h: skeletal clips chosen by name, index or "all", the
+// idle head turn going to the head joint of skinned avatars (only), and the
+// gaze to eye joints, or to the eye nodes of an unskinned face whose morph
+// targets do not steer its eyes.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -122,7 +124,37 @@ TEST(SkeletonMotion, EyeJointsTakeTheGazeAboutThemselves) {
   }
 }
 
-TEST(SkeletonMotion, UnskinnedFaceWithoutClipHasNothingToPose) {
+TEST(SkeletonMotion, BuiltInHeadTurnsItsEyeballsInTheirSockets) {
+  auto loaded = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  const eng::Model& head = *loaded;
+  auto motion = cli::SkeletonMotion::create(head, "");
+  ASSERT_TRUE(motion) << motion.error().message;
+  EXPECT_FALSE(motion->turnsHeadJoint()) << "no skin: the demo turns the whole head";
+  ASSERT_TRUE(motion->active());
+  const std::array<int, 2> eyes = motion->eyeJoints();
+  ASSERT_GE(eyes[0], 0);
+  ASSERT_GE(eyes[1], 0);
+  EXPECT_EQ(head.nodes[size_t(eyes[0])].name, "EyeLeft");
+  EXPECT_EQ(head.nodes[size_t(eyes[1])].name, "EyeRight");
+  motion->update(0.0f);
+  const std::vector<glm::mat4> still(motion->nodeWorld().begin(), motion->nodeWorld().end());
+  const glm::quat lookLeft = glm::angleAxis(glm::radians(12.0f), glm::vec3(0, 1, 0));
+  motion->update(0.0f, glm::quat(1, 0, 0, 0), {lookLeft, lookLeft});
+  const auto turned = motion->nodeWorld();
+  for (int eye : eyes) {
+    EXPECT_LE(glm::length(position(turned[size_t(eye)]) - position(still[size_t(eye)])), 1e-6f) << "turns in place";
+    EXPECT_LE(glm::length(glm::mat3(turned[size_t(eye)]) * glm::vec3(0, 0, 1) - lookLeft * glm::vec3(0, 0, 1)), 1e-5f);
+  }
+  for (size_t n = 0; n < head.nodes.size(); ++n) {
+    if (int(n) == eyes[0] || int(n) == eyes[1]) continue;
+    EXPECT_EQ(turned[n], still[n]) << head.nodes[n].name;
+  }
+}
+
+TEST(SkeletonMotion, UnskinnedFaceWhoseMorphsSteerTheEyesHasNothingToPose) {
+  // facecap has eye nodes too, but its eyeLook shapes already turn the balls:
+  // turning the nodes as well would double the gaze.
   FACIAL_REQUIRE_SHARED();
   const eng::Model facecap = loadShared("facecap.glb");
   auto motion = cli::SkeletonMotion::create(facecap, "");

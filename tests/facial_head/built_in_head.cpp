@@ -70,18 +70,26 @@ size_t nearestVertex(const std::vector<glm::vec3>& positions, const glm::vec3& p
   return best;
 }
 
-Eyeball eyeball(const eng::Model& model, int index) {
-  for (const eng::Mesh& m : model.meshes) {
-    if (m.name != "Eyes") continue;
-    glm::vec3 lo(1e9f), hi(-1e9f);
-    for (const glm::vec3& p : m.primitives.at(static_cast<size_t>(index)).positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    const float radius = (hi.x - lo.x) * 0.5f;
-    return {glm::vec3((lo.x + hi.x) * 0.5f, (lo.y + hi.y) * 0.5f, lo.z + radius), radius};
+eng::Primitive eyeballInHeadSpace(const eng::Model& model, int index) {
+  const std::string name = index == 0 ? "EyeLeft" : "EyeRight";
+  for (const eng::Node& node : model.nodes) {
+    if (node.mesh < 0 || model.meshes[size_t(node.mesh)].name != name) continue;
+    eng::Primitive prim = model.meshes[size_t(node.mesh)].primitives.at(0);
+    const glm::mat4 world = model.worldTransform(int(&node - model.nodes.data()));
+    for (glm::vec3& p : prim.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
+    return prim;
   }
-  throw std::runtime_error("model has no mesh named Eyes");
+  throw std::runtime_error("model has no node drawing a mesh named " + name);
+}
+
+Eyeball eyeball(const eng::Model& model, int index) {
+  glm::vec3 lo(1e9f), hi(-1e9f);
+  for (const glm::vec3& p : eyeballInHeadSpace(model, index).positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const float radius = (hi.x - lo.x) * 0.5f;
+  return {glm::vec3((lo.x + hi.x) * 0.5f, (lo.y + hi.y) * 0.5f, lo.z + radius), radius};
 }
 
 std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices, float x,

@@ -29,7 +29,11 @@ struct Eyeball {
   glm::vec3 centre;
   float radius;
 };
-// Centre and radius of eyeball 0 (left) or 1 (right) of mesh "Eyes", from its
+// Eyeball 0 (left) or 1 (right): the primitive of mesh "EyeLeft" / "EyeRight"
+// with its positions placed in head space by the node that draws it (each
+// eye's node sits at the ball's centre, its joint).
+eng::Primitive eyeballInHeadSpace(const eng::Model& model, int index);
+// Centre and radius of eyeball 0 (left) or 1 (right) in head space, from its
 // vertices (the cornea bulges forward, so the centre comes from x and y).
 Eyeball eyeball(const eng::Model& model, int index);
 

@@ -78,13 +78,9 @@ TEST(HeadActionUnits, ClosedLidsHideTheWholeEyeball) {
   // lid skin once AU45 is fully on.
   const facial::GeneratedHead& head = builtInHead();
   const eng::Primitive& skin = headPrimitive(head.model, HeadPrimitive::Skin);
-  const eng::Mesh* eyes = nullptr;
-  for (const eng::Mesh& m : head.model.meshes)
-    if (m.name == "Eyes") eyes = &m;
-  ASSERT_NE(eyes, nullptr);
   for (int e = 0; e < 2; ++e) {
     const std::string side = e == 0 ? "L" : "R";
-    const eng::Primitive& eye = eyes->primitives[e];
+    const eng::Primitive eye = head_testing::eyeballInHeadSpace(head.model, e);
     const std::vector<glm::vec3> closed = morphed(skin, target("AU45_Blink_" + side), 1.0f);
     const glm::vec3 inner = landmark(head, "eye_inner_corner_" + side), outer = landmark(head, "eye_outer_corner_" + side);
     const glm::vec3 upper = landmark(head, "lid_upper_" + side), lower = landmark(head, "lid_lower_" + side);

@@ -185,9 +185,9 @@ TEST(HeadGeometry, PartsAreClosedSeparateMeshes) {
     EXPECT_GT(r.signedVolume, 0.0) << "head primitive " << int(p);
   }
   for (const eng::Mesh& mesh : model.meshes) {
-    if (mesh.name != "Eyes" && mesh.name != "Ears") continue;
+    if (mesh.name != "EyeLeft" && mesh.name != "EyeRight" && mesh.name != "Ears") continue;
     EXPECT_TRUE(mesh.targetNames.empty()) << mesh.name;
-    ASSERT_EQ(mesh.primitives.size(), 2u) << mesh.name;
+    ASSERT_EQ(mesh.primitives.size(), mesh.name == "Ears" ? 2u : 1u) << mesh.name;
     for (const eng::Primitive& prim : mesh.primitives) {
       const EdgeReport r = checkClosed({{&prim.positions, &prim.indices}});
       EXPECT_EQ(r.unmatched, 0u) << mesh.name;
@@ -203,11 +203,7 @@ TEST(HeadGeometry, EyesSitInTheSocketsBehindTheLidEdges) {
     const glm::vec3 lower = head_testing::landmark(head, std::string("lid_lower_") + side);
     EXPECT_GT(upper.y - lower.y, 0.008f) << side << ": the eye is open at rest";
     // At rest the eyeball is what a ray through the middle of the opening meets.
-    const eng::Mesh* eyes = nullptr;
-    for (const eng::Mesh& m : head.model.meshes)
-      if (m.name == "Eyes") eyes = &m;
-    ASSERT_NE(eyes, nullptr);
-    const eng::Primitive& eye = eyes->primitives[side[0] == 'L' ? 0 : 1];
+    const eng::Primitive eye = head_testing::eyeballInHeadSpace(head.model, side[0] == 'L' ? 0 : 1);
     const glm::vec2 mid((upper.x + lower.x) * 0.5f, (upper.y + lower.y) * 0.5f);
     const auto eyeZ = head_testing::frontHitZ(eye.positions, eye.indices, mid.x, mid.y);
     const eng::Primitive& skin = headPrimitive(head.model, HeadPrimitive::Skin);
@@ -215,6 +211,20 @@ TEST(HeadGeometry, EyesSitInTheSocketsBehindTheLidEdges) {
     ASSERT_TRUE(eyeZ.has_value());
     ASSERT_TRUE(skinZ.has_value());
     EXPECT_GT(*eyeZ, *skinZ) << side;
+  }
+}
+
+TEST(HeadGeometry, EachEyeballHangsOnANodeAtItsCentre) {
+  // The node is the eye's joint: a gaze turns it, and the ball must turn in
+  // place rather than swing out of its socket.
+  const eng::Model& model = builtInHead().model;
+  for (int e = 0; e < 2; ++e) {
+    const std::string name = e == 0 ? "EyeLeft" : "EyeRight";
+    const auto node = std::find_if(model.nodes.begin(), model.nodes.end(), [&](const eng::Node& n) { return n.name == name; });
+    ASSERT_NE(node, model.nodes.end()) << name;
+    const head_testing::Eyeball ball = head_testing::eyeball(model, e);
+    EXPECT_LT(glm::length(node->translation - ball.centre), 2e-5f) << name;
+    EXPECT_GT(node->translation.x * (e == 0 ? 1.0f : -1.0f), 0.0f) << name << " is on the face's own side";
   }
 }
 
