@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "facial/runtime/rbf.h"
 
@@ -44,6 +45,36 @@ float falloff(const MaskDef& mask, const glm::vec3& p, const std::vector<glm::ve
   float nearest = std::numeric_limits<float>::max();
   for (const glm::vec3& m : moved) nearest = std::min(nearest, glm::length(p - m));
   return 1.0f - smoothstep(mask.radius, mask.radius + mask.feather, nearest);
+}
+
+// Still points on the skin where the mask's weight reaches zero (radius +
+// feather from the nearest moved landmark), a few millimetres apart. Without
+// them the displacement is still large where the weight fades it out, and
+// the skin bunches into a ring-shaped fold around the moved landmarks; with
+// them the interpolation itself has come down to nothing there.
+void addRingPins(const MaskDef& mask, const DeformableHead& head, const std::vector<glm::vec3>& moved,
+                 std::vector<glm::vec3>& controls, std::vector<glm::vec3>& displacements,
+                 std::vector<std::string>& names) {
+  if (!mask.includes(HeadPart::Skin)) return;
+  const float ring = mask.radius + mask.feather;
+  constexpr float spacing = 0.004f, band = 0.0008f;
+  std::vector<glm::vec3> chosen;
+  for (size_t v = 0; v < head.positions.size(); ++v) {
+    if (head.parts[v] != HeadPart::Skin) continue;
+    const glm::vec3& p = head.positions[v];
+    if (jawFactor(mask.jaw, head.jawSide[v]) * sideFactor(mask.side, p.x) < 0.5f) continue;
+    float nearest = std::numeric_limits<float>::max();
+    for (const glm::vec3& m : moved) nearest = std::min(nearest, glm::length(p - m));
+    if (std::abs(nearest - ring) > band) continue;
+    bool crowded = false;
+    for (const glm::vec3& c : chosen) crowded |= glm::length(c - p) < spacing;
+    for (const glm::vec3& c : controls) crowded |= glm::length(c - p) < 0.5f * spacing;
+    if (crowded) continue;
+    chosen.push_back(p);
+    controls.push_back(p);
+    displacements.push_back(glm::vec3(0.0f));
+    names.push_back("ring " + std::to_string(chosen.size()));
+  }
 }
 
 }  // namespace
@@ -101,6 +132,7 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
       displacements.push_back(glm::vec3(0.0f));
       controlNames.push_back(a.name);
     }
+    addRingPins(part.mask, head, moved, controls, displacements, controlNames);
     for (size_t a = 0; a < controls.size(); ++a)
       for (size_t b = a + 1; b < controls.size(); ++b)
         if (glm::length(controls[a] - controls[b]) < 5e-4f)
