@@ -89,7 +89,9 @@ const Curve2& nasolabialCurve() {
 const vec3 kSkin = eng::srgb(238, 192, 162);
 const vec3 kHair = eng::srgb(66, 44, 32);
 const vec3 kBrow = eng::srgb(48, 31, 23);
-const vec3 kLip = eng::srgb(166, 92, 88);
+// A muted rose, half way from a saturated lip red to the skin: a darker, redder
+// mouth framed every open mouth in a thick ring that read as a smile.
+const vec3 kLip = eng::srgb(191, 125, 110);
 const vec3 kLash = eng::srgb(34, 24, 22);
 
 vec4 over(const vec4& under, const vec3& colour, float alpha) {
