@@ -27,8 +27,9 @@ std::string skeletalClipList(const eng::Model& model) {
 
 namespace {
 
-// The eye joints (or, on an unskinned face, eye nodes) by name, left then right: LeftEye, eye_L, Eye.L, L_Eye,
-// mixamorig:LeftEye, J_Adj_L_FaceEye (VRoid), CC_Base_L_Eye; -1 where none.
+// The eye joints (or, on an unskinned face, eye nodes) by name, left then
+// right: LeftEye, EyeLeft, eye_L, Eye.L, L_Eye, mixamorig:LeftEye,
+// J_Adj_L_FaceEye (VRoid), CC_Base_L_Eye; -1 where none.
 std::array<int, 2> findEyeJoints(const eng::Model& model) {
   static constexpr std::string_view kNames[2][6] = {
       {"lefteye", "eyeleft", "eyel", "leye", "jadjlfaceeye", "ccbaseleye"},

@@ -2,9 +2,10 @@
 // Bakes one action unit of the built-in head: each part of its definition
 // moves some landmarks, pins the others it covers, and the RBF deformation of
 // those control points (plus fixed far anchors, and still points ringing the
-// mask where its weight reaches zero) moves the vertices its mask covers. The summed displacement then lets the eyelids slide over the
-// eyeballs (vertices near an eyeball keep their distance to its centre), so a
-// lid closes around the eye instead of cutting into it.
+// mask where its weight reaches zero) moves the vertices its mask covers. The
+// summed displacement then lets the eyelids slide over the eyeballs (vertices
+// near an eyeball keep their distance to its centre), so a lid closes around
+// the eye instead of cutting into it.
 #include <string>
 #include <vector>
 
