@@ -89,9 +89,11 @@ void expectRecognised(const std::string& name, const std::string& model, std::in
   }
 }
 
-// The built-in head reads neutral and happy at every size; its other states
-// are the open part of the issue (README, "Expressions, judged").
-TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", "", {{256, 2}, {384, 2}}); }
+// The built-in head reads neutral, happy and surprise at every size and anger
+// at most (4 straight on at both sizes, at least 3 over the README's 12
+// views); sad and fear are the open part of the issue (README, "Expressions,
+// judged").
+TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", "", {{256, 3}, {384, 3}}); }
 
 TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
   expectRecognised("facecap", (testing_support::sharedDir() / "assets" / "facecap.glb").string(), {{256, 6}, {384, 4}});
