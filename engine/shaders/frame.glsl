@@ -77,3 +77,4 @@ const uint DRAW_FLAG_TANGENT_DELTAS = 2u;
 const uint DRAW_FLAG_DOUBLE_SIDED = 4u;
 const uint DRAW_FLAG_CREASES = 8u;
 const uint DRAW_FLAG_MORPHED = 16u;  // the primitive has sparse deltas: morph.comp writes its vertices
+const uint DRAW_FLAG_MIRRORED = 32u;  // negative-determinant transform: the pipeline's front faces wind clockwise

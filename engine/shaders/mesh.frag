@@ -70,7 +70,10 @@ void main() {
   // of the head (an open mouth without a mouth bag, nostrils, eye holes): a
   // cavity that the lights cannot reach. Lit like the outside, it fills an
   // open mouth with skin; darkened, the mouth reads as open.
-  const bool inside = (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !gl_FrontFacing;
+  // A mirrored transform (glTF: negative determinant) turns the winding, so
+  // the rasteriser's front is the primitive's back.
+  const bool frontFacing = gl_FrontFacing != ((draw.flags & DRAW_FLAG_MIRRORED) != 0u);
+  const bool inside = (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !frontFacing;
   if (inside) n = -n;
   s.normal = n;
   s.roughness = clamp(draw.roughness, 0.05, 1.0);

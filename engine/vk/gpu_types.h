@@ -92,6 +92,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagDoubleSided = 4u,
   kDrawFlagCreases = 8u,  // the primitive has crease darkening (in its sparse delta entries)
   kDrawFlagMorphed = 16u, // the primitive has sparse deltas: the morph pre-pass writes its vertices
+  kDrawFlagMirrored = 32u, // the instances' transform has a negative determinant: front faces wind clockwise
 };
 
 struct GpuDetailLayer {

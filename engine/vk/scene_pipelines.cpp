@@ -37,6 +37,7 @@ struct PipelineShape {
   bool meshVertices = true;  // the four per-vertex attribute streams
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
+  VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // glTF winding; the projection flips y, not the winding
   bool depth = true;
   bool rasterizerDiscard = false;
   bool colorOutput = true;   // false: depth-only pass (no colour attachment)
@@ -92,7 +93,7 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
   raster.rasterizerDiscardEnable = shape.rasterizerDiscard ? VK_TRUE : VK_FALSE;
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = shape.cull;
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;  // glTF winding; the projection flips y, not the winding
+  raster.frontFace = shape.frontFace;
   raster.lineWidth = 1.0f;
   if (shape.depthBias) {
     raster.depthBiasEnable = VK_TRUE;
@@ -174,6 +175,11 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   auto culled = createPipeline(ctx, layouts, renderPass, samples, mesh);
   if (!culled) return culled.error();
   p.meshCulled_ = std::move(culled).value();
+  mesh.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  auto culledMirrored = createPipeline(ctx, layouts, renderPass, samples, mesh);
+  if (!culledMirrored) return culledMirrored.error();
+  p.meshCulledMirrored_ = std::move(culledMirrored).value();
+  mesh.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   mesh.cull = VK_CULL_MODE_NONE;
   auto doubleSided = createPipeline(ctx, layouts, renderPass, samples, mesh);
   if (!doubleSided) return doubleSided.error();

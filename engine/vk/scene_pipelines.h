@@ -1,7 +1,7 @@
 #pragma once
 // The graphics pipelines of the scene, built from the shader library's
-// current SPIR-V for one render pass: mesh (back-face culled and double
-// sided), background gradient, the key light's shadow-map pass (depth only,
+// current SPIR-V for one render pass: mesh (back-face culled, for either
+// winding, and double sided), background gradient, the key light's shadow-map pass (depth only,
 // its own render pass), the morph pre-pass (compute), and the morph-capture variant (vertex stage only,
 // rasteriser discard; absent when the device cannot store from vertex
 // shaders).
@@ -22,7 +22,12 @@ class ScenePipelines {
                                        VkRenderPass renderPass, VkSampleCountFlagBits samples,
                                        VkRenderPass shadowPass, const QualitySettings& quality = {});
 
-  VkPipeline mesh(bool doubleSided) const { return doubleSided ? meshDoubleSided_.get() : meshCulled_.get(); }
+  // mirrored: the draw's transform has a negative determinant, which glTF
+  // says turns counter-clockwise front faces clockwise (culled pipelines only;
+  // a double-sided draw tells its sides apart in the shader, DRAW_FLAG_MIRRORED).
+  VkPipeline mesh(bool doubleSided, bool mirrored) const {
+    return doubleSided ? meshDoubleSided_.get() : mirrored ? meshCulledMirrored_.get() : meshCulled_.get();
+  }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
   VkPipeline shadow() const { return shadow_.get(); }    // depth only, for the shadow pass
@@ -30,6 +35,7 @@ class ScenePipelines {
 
  private:
   UniquePipeline meshCulled_;
+  UniquePipeline meshCulledMirrored_;
   UniquePipeline meshDoubleSided_;
   UniquePipeline background_;
   UniquePipeline capture_;

@@ -20,6 +20,10 @@ namespace {
 // morph.comp's local_size_x (256 measured no faster on lavapipe).
 constexpr uint32_t kMorphGroupSize = 64;
 
+// glTF: a node transform with a negative determinant turns the winding of
+// its triangles (a mesh mirrored with scale -1, common in exported rigs).
+bool isMirrored(const glm::mat4& transform) { return glm::determinant(glm::mat3(transform)) < 0.0f; }
+
 // The morph pre-pass's output per vertex (morph.glsl): position + crease,
 // normal, and the tangent where the primitive has tangent deltas.
 uint32_t morphedVec4sPerVertex(const GpuPrimitive& prim) {
@@ -156,6 +160,7 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   slot.capturedVertices = 0;
   slot.morphedVec4s = 0;
   instanceScratch_.clear();
+  mirroredScratch_.clear();
   activeScratch_.clear();
   weightScratch_.clear();
   jointScratch_.clear();
@@ -193,6 +198,10 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
     for (size_t i = 0; i < instances.size(); ++i) {
       if (instances[i].model == model) memberScratch_.push_back(static_cast<uint32_t>(i));
     }
+    // Mirrored placements after the others: a draw covers a run of instances
+    // that wind the same way (addBatches), so they make one run, not many.
+    std::stable_partition(memberScratch_.begin(), memberScratch_.end(),
+                          [&](uint32_t i) { return !isMirrored(instances[i].transform); });
     const uint32_t instanceCount = static_cast<uint32_t>(memberScratch_.size());
     const uint32_t membersOffset = static_cast<uint32_t>(slot.members.size());
     slot.members.insert(slot.members.end(), memberScratch_.begin(), memberScratch_.end());
@@ -256,6 +265,10 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
           record.jointCount = static_cast<uint32_t>(skinScratch_.size());
           jointScratch_.insert(jointScratch_.end(), skinScratch_.begin(), skinScratch_.end());
         }
+        // The transform the vertices finally see: a skin's joint matrices
+        // undo the mesh node's own (skinJointMatrices).
+        const glm::mat4 placed = skinScratch_.empty() || !node || node->skin < 0 ? record.model : record.model * skinScratch_[0];
+        mirroredScratch_.push_back(mode == Mode::Draw && isMirrored(placed));
         instanceScratch_.push_back(record);
       }
       bool anyActive = false;
@@ -263,14 +276,24 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
       for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
         const GpuPrimitive& prim = meshes[mesh].primitives[p];
         const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
-        slot.batches.push_back({model, mesh, p, firstInstance, instanceCount, slot.capturedVertices,
-                                slot.morphedVec4s, morphs, membersOffset});
-        slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance, instanceCount);
-        if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * instanceCount;
-        // Room for every primitive with deltas, active or not: the buffer's
-        // size then stays the same from frame to frame for the same instances.
-        if ((prim.constants.flags & kDrawFlagMorphed) != 0)
-          slot.morphedVec4s += prim.vertexCount * instanceCount * morphedVec4sPerVertex(prim);
+        // One draw per run of instances that wind the same way: the winding
+        // is pipeline state.
+        for (uint32_t runStart = 0; runStart < instanceCount;) {
+          const bool mirrored = mirroredScratch_[firstInstance + runStart];
+          uint32_t runEnd = runStart + 1;
+          while (runEnd < instanceCount && mirroredScratch_[firstInstance + runEnd] == mirrored) ++runEnd;
+          const uint32_t count = runEnd - runStart;
+          slot.batches.push_back({model, mesh, p, firstInstance + runStart, count, slot.capturedVertices,
+                                  slot.morphedVec4s, morphs, membersOffset + runStart});
+          slot.batches.back().mirrored = mirrored;
+          slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance + runStart, count);
+          if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * count;
+          // Room for every primitive with deltas, active or not: the buffer's
+          // size then stays the same from frame to frame for the same instances.
+          if ((prim.constants.flags & kDrawFlagMorphed) != 0)
+            slot.morphedVec4s += prim.vertexCount * count * morphedVec4sPerVertex(prim);
+          runStart = runEnd;
+        }
       }
     };
     if (mode == Mode::Draw) {
@@ -430,6 +453,7 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   constants.morphOffset = batch.morphOffset;
   constants.detailLayerMask = batch.detailLayerMask;
   if (!batch.morphs) constants.flags &= ~kDrawFlagMorphed;  // every instance in the rest pose: nothing written
+  if (batch.mirrored) constants.flags |= kDrawFlagMirrored;
 }
 
 void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const {
@@ -437,7 +461,7 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bind
   for (const Batch& batch : slot.batches) {
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     if (bindMaterialPipelines) {
-      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0);
+      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0, batch.mirrored);
       if (pipeline != bound) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         bound = pipeline;

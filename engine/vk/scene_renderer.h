@@ -139,6 +139,7 @@ class SceneRenderer {
     uint32_t shadowLod = 0;      // the same for the shadow pass (as coarse as lod or coarser)
     bool castsShadow = true;     // false: left out of the shadow pass (a part inside the head, in a window)
     uint32_t detailLayerMask = 0;  // DrawConstants::detailLayerMask: layers some member's weights show
+    bool mirrored = false;       // every instance's transform has a negative determinant (kDrawFlagMirrored)
   };
   struct Slot {
     Buffer globals;
@@ -186,6 +187,7 @@ class SceneRenderer {
   std::vector<Slot> slots_;
   // Scratch reused every frame (capacity persists: no allocation in steady state).
   std::vector<GpuInstance> instanceScratch_;
+  std::vector<uint8_t> mirroredScratch_;  // per instanceScratch_ entry: its transform mirrors (winds clockwise)
   std::vector<ActiveWeight> activeScratch_;
   std::vector<float> weightScratch_;
   std::vector<uint32_t> weightOffsetScratch_;  // per member of the model being laid out

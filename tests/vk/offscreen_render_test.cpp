@@ -124,6 +124,59 @@ TEST(OffscreenRender, BackFacesCulledUnlessDoubleSided) {
   }
 }
 
+// Mean absolute difference of the colour channels, in 8-bit levels.
+double meanDifference(const eng::Image& a, const eng::Image& b) {
+  if (a.width != b.width || a.height != b.height) return std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const glm::ivec4 d = glm::abs(pixel(a, x, y) - pixel(b, x, y));
+      sum += d.r + d.g + d.b;
+    }
+  return sum / (3.0 * a.width * a.height);
+}
+
+TEST(OffscreenRender, MirroredTransformStillShowsTheOutside) {
+  // glTF: a negative determinant turns the winding, so front faces wind
+  // clockwise. A sphere is its own mirror image: scaled by -1 in x it must
+  // look the same, not show its inside (the far half's back faces).
+  for (bool doubleSided : {false, true}) {
+    vk_test::SphereSpec spec;
+    spec.targets = 0;
+    spec.doubleSided = doubleSided;
+    const eng::Model model = vk_test::makeSphereModel(spec);
+    auto gpu = vk_test::renderer().upload(model);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::SceneView view = viewOf(model.bounds());
+    const eng::vk::ModelInstance plain{&*gpu, glm::mat4(1.0f), {}};
+    const eng::vk::ModelInstance mirrored{&*gpu, glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)), {}};
+    const eng::Image expected = renderOrFail(view, {&plain, 1});
+    const eng::Image image = renderOrFail(view, {&mirrored, 1});
+    EXPECT_LT(meanDifference(image, expected), 1.0) << (doubleSided ? "double-sided" : "single-sided")
+                                                    << ": the mirrored sphere is lit like the plain one";
+    EXPECT_NEAR(pixel(image, 128, 128).g, pixel(expected, 128, 128).g, 4) << "centre of the sphere";
+  }
+}
+
+TEST(OffscreenRender, MirroredAndPlainInstancesDrawnTogether) {
+  // Two instances of one model, one mirrored: two draws that wind
+  // differently, each showing its outside.
+  vk_test::SphereSpec spec;
+  spec.targets = 0;
+  const eng::Model model = vk_test::makeSphereModel(spec);
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-3, -1, -1}, {3, 1, 1}});
+  const glm::mat4 left = glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, 0.0f, 0.0f));
+  const glm::mat4 right = glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 0.0f, 0.0f));
+  const glm::mat4 flip = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  const std::vector<eng::vk::ModelInstance> plain{{&*gpu, left, {}}, {&*gpu, right, {}}};
+  const std::vector<eng::vk::ModelInstance> mixed{{&*gpu, left * flip, {}}, {&*gpu, right, {}}};
+  const eng::Image expected = renderOrFail(view, plain);
+  const eng::Image image = renderOrFail(view, mixed);
+  EXPECT_LT(meanDifference(image, expected), 1.0);
+}
+
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   vk_test::SphereSpec spec;
   spec.withMaterial = false;
