@@ -62,6 +62,8 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"roughness", mat.roughness},
                          {"metallic", mat.metallic},
                          {"doubleSided", mat.doubleSided},
+                         {"alphaMode", eng::alphaModeName(mat.alphaMode)},
+                         {"alphaCutoff", mat.alphaCutoff},
                          {"detailLayers", std::move(layers)}});
   }
   j["materials"] = std::move(materials);
@@ -121,6 +123,8 @@ void printText(const eng::Model& model) {
                 i, mat.name.c_str(), mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b,
                 mat.baseColorFactor.a, mat.baseColorImage, mat.roughness, mat.metallic,
                 mat.doubleSided ? ", double-sided" : "");
+    if (mat.alphaMode != eng::AlphaMode::Opaque) std::printf(", alpha %s", eng::alphaModeName(mat.alphaMode));
+    if (mat.alphaMode == eng::AlphaMode::Mask) std::printf(" below %.3g", mat.alphaCutoff);
     for (const eng::DetailLayer& d : mat.detailLayers)
       std::printf(", detail layer image %d driven by '%s' x%.3g", d.image, d.target.c_str(), d.strength);
     std::printf("\n");

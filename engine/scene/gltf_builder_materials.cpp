@@ -96,6 +96,18 @@ void GltfModelBuilder::loadMaterials() {
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     mat.doubleSided = src.doubleSided;
+    if (src.alphaMode == "MASK") {
+      mat.alphaMode = AlphaMode::Mask;
+      mat.alphaCutoff = static_cast<float>(src.alphaCutoff);
+      if (!std::isfinite(mat.alphaCutoff) || mat.alphaCutoff < 0.0f) {
+        warn(where + " has alphaCutoff " + std::to_string(src.alphaCutoff) + ", not a number >= 0; 0.5 used");
+        mat.alphaCutoff = 0.5f;
+      }
+    } else if (src.alphaMode == "BLEND") {
+      mat.alphaMode = AlphaMode::Blend;
+    } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+      warn(where + " has alphaMode '" + src.alphaMode + "' (glTF knows OPAQUE, MASK, BLEND); drawn opaque");
+    }
     if (src.emissiveFactor.size() == 3)
       mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
     if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||

@@ -209,6 +209,8 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
       if (!mat.name.empty()) m["name"] = mat.name;
       if (mat.doubleSided) m["doubleSided"] = true;
+      if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);
+      if (mat.alphaMode == AlphaMode::Mask) m["alphaCutoff"] = mat.alphaCutoff;
       if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
       if (!mat.detailLayers.empty()) {
         Json layers = Json::array();

@@ -78,6 +78,18 @@ struct DetailLayer {
   float strength = 1;  // scales the weight
 };
 
+// glTF material.alphaMode: how the base colour's alpha is used.
+enum class AlphaMode {
+  Opaque,  // alpha ignored
+  Mask,    // drawn where alpha >= alphaCutoff, nothing elsewhere (lashes, hair cards)
+  Blend,   // blended over what is behind it (eye highlights, tear lines, glass)
+};
+
+// The glTF spelling: "OPAQUE", "MASK", "BLEND".
+constexpr const char* alphaModeName(AlphaMode mode) {
+  return mode == AlphaMode::Mask ? "MASK" : mode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
+}
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
@@ -86,6 +98,8 @@ struct Material {
   float roughness = 0.6f;
   float metallic = 0.0f;
   bool doubleSided = false;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // AlphaMode::Mask only
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
 

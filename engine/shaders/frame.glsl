@@ -54,7 +54,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData in
 layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
 layout(std430, set = 0, binding = 6) readonly buffer InstanceMaterials { InstanceMaterial instanceMaterials[]; };
 
-// Per-draw constants (one primitive, its material). 56 bytes.
+// Per-draw constants (one primitive, its material). 60 bytes.
 layout(push_constant) uniform DrawConstants {
   float roughness;
   float metallic;
@@ -70,6 +70,7 @@ layout(push_constant) uniform DrawConstants {
   uint restNormal;
   uint restTangent;
   uint detailLayerMask;   // bit l: detail layer l may show (some instance's weight for its target is not 0)
+  float alphaCutoff;      // DRAW_FLAG_ALPHA_MASK: fragments with less base-colour alpha are discarded
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
@@ -78,3 +79,5 @@ const uint DRAW_FLAG_DOUBLE_SIDED = 4u;
 const uint DRAW_FLAG_CREASES = 8u;
 const uint DRAW_FLAG_MORPHED = 16u;  // the primitive has sparse deltas: morph.comp writes its vertices
 const uint DRAW_FLAG_MIRRORED = 32u;  // negative-determinant transform: the pipeline's front faces wind clockwise
+const uint DRAW_FLAG_ALPHA_MASK = 64u;   // glTF alphaMode MASK
+const uint DRAW_FLAG_ALPHA_BLEND = 128u; // glTF alphaMode BLEND (a blending pipeline; alpha is written out)

@@ -47,6 +47,8 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
   vec4 base = texture(baseColorTexture, inTexcoord) * material.baseColorFactor * inColor;
+  // glTF alphaMode MASK: lashes, brows and hair cards cut out of their quads.
+  if ((draw.flags & DRAW_FLAG_ALPHA_MASK) != 0u && base.a < draw.alphaCutoff) discard;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];
@@ -81,5 +83,7 @@ void main() {
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
-  outColor = vec4(toneMap(inside ? lit * 0.12 : lit + material.emissive.rgb), 1.0);
+  // BLEND draws go through a blending pipeline; every other mode is opaque.
+  const float alpha = (draw.flags & DRAW_FLAG_ALPHA_BLEND) != 0u ? clamp(base.a, 0.0, 1.0) : 1.0;
+  outColor = vec4(toneMap(inside ? lit * 0.12 : lit + material.emissive.rgb), alpha);
 }

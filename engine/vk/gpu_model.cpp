@@ -172,6 +172,9 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
   GpuPrimitive gp;
   gp.vertexCount = static_cast<uint32_t>(n);
   gp.indexCount = static_cast<uint32_t>(prim.indices.size());
+  Aabb box;
+  for (const glm::vec3& p : prim.positions) box.extend(p);
+  gp.centre = box.valid() ? box.center() : glm::vec3(0.0f);
   gp.positionOffset = vertices.append(std::span(prim.positions), storageAlign);
   gp.normalOffset = vertices.append(std::span(prim.normals), 16);
   gp.texcoordOffset = prim.texcoords.empty() ? vertices.append(nullptr, n * sizeof(glm::vec2), 16)
@@ -414,7 +417,10 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
                            (sparse.hasTangents ? kDrawFlagTangentDeltas : 0u) |
                            (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
                            (sparse.hasCreases ? kDrawFlagCreases : 0u) |
-                           (sparse.entries.empty() ? 0u : kDrawFlagMorphed);
+                           (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
+                           (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
+                           (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u);
+      gp.constants.alphaCutoff = mat.alphaCutoff;
       gm.primitives.push_back(gp);
     }
   }

@@ -53,6 +53,7 @@ struct GpuPrimitive {
   // Inside the head (face_dressing.h: eyeball, teeth, tongue, mouth interior):
   // a window's shadow pass leaves it out.
   bool insideTheHead = false;
+  glm::vec3 centre{0.0f};  // of the rest positions' bounds, in mesh space: blended draws are sorted by its depth
   VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 1
 };
 

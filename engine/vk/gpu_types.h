@@ -83,8 +83,9 @@ struct DrawConstants {
   // a fragment samples only the layers that can show: on a CPU rasteriser
   // every layer sampled costs every pixel of the skin, whatever its weight.
   uint32_t detailLayerMask = 0;
+  float alphaCutoff = 0.5f;  // kDrawFlagAlphaMask: fragments with less base-colour alpha are discarded
 };
-static_assert(sizeof(DrawConstants) == 56);
+static_assert(sizeof(DrawConstants) == 60);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,
@@ -93,6 +94,8 @@ enum DrawFlags : uint32_t {
   kDrawFlagCreases = 8u,  // the primitive has crease darkening (in its sparse delta entries)
   kDrawFlagMorphed = 16u, // the primitive has sparse deltas: the morph pre-pass writes its vertices
   kDrawFlagMirrored = 32u, // the instances' transform has a negative determinant: front faces wind clockwise
+  kDrawFlagAlphaMask = 64u,   // glTF alphaMode MASK: cut out below alphaCutoff
+  kDrawFlagAlphaBlend = 128u, // glTF alphaMode BLEND: drawn after the opaque draws, back to front, blended
 };
 
 struct GpuDetailLayer {

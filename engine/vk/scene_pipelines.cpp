@@ -42,6 +42,7 @@ struct PipelineShape {
   bool rasterizerDiscard = false;
   bool colorOutput = true;   // false: depth-only pass (no colour attachment)
   bool depthBias = false;    // slope-scaled bias against shadow acne
+  bool blend = false;        // alpha blending over what is drawn (tests depth, writes none)
 };
 
 Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& layouts, VkRenderPass renderPass,
@@ -106,12 +107,23 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
 
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = shape.depth ? VK_TRUE : VK_FALSE;
-  depth.depthWriteEnable = shape.depth ? VK_TRUE : VK_FALSE;
+  depth.depthWriteEnable = shape.depth && !shape.blend ? VK_TRUE : VK_FALSE;
   depth.depthCompareOp = VK_COMPARE_OP_LESS;
 
   VkPipelineColorBlendAttachmentState blendAttachment{};
   blendAttachment.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  if (shape.blend) {
+    // "over": colour by the source's alpha; the target's alpha (coverage, for
+    // transparent backgrounds) accumulates the same way.
+    blendAttachment.blendEnable = VK_TRUE;
+    blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
+    blendAttachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = shape.colorOutput ? 1 : 0;
   blend.pAttachments = &blendAttachment;
@@ -172,18 +184,15 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   mesh.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, meshVert->get()),
                  stage(VK_SHADER_STAGE_FRAGMENT_BIT, meshFrag->get())};
   mesh.stages[1].pSpecializationInfo = &tierInfo;
-  auto culled = createPipeline(ctx, layouts, renderPass, samples, mesh);
-  if (!culled) return culled.error();
-  p.meshCulled_ = std::move(culled).value();
-  mesh.frontFace = VK_FRONT_FACE_CLOCKWISE;
-  auto culledMirrored = createPipeline(ctx, layouts, renderPass, samples, mesh);
-  if (!culledMirrored) return culledMirrored.error();
-  p.meshCulledMirrored_ = std::move(culledMirrored).value();
-  mesh.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  mesh.cull = VK_CULL_MODE_NONE;
-  auto doubleSided = createPipeline(ctx, layouts, renderPass, samples, mesh);
-  if (!doubleSided) return doubleSided.error();
-  p.meshDoubleSided_ = std::move(doubleSided).value();
+  for (size_t sides = 0; sides < kMeshSides; ++sides)
+    for (size_t blend = 0; blend < 2; ++blend) {
+      mesh.cull = sides == kDoubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+      mesh.frontFace = sides == kCulledClockwise ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+      mesh.blend = blend != 0;
+      auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
+      if (!pipeline) return pipeline.error();
+      p.mesh_[sides][blend] = std::move(pipeline).value();
+    }
 
   PipelineShape background;
   background.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, bgVert->get()),

@@ -1,7 +1,7 @@
 #pragma once
 // The graphics pipelines of the scene, built from the shader library's
 // current SPIR-V for one render pass: mesh (back-face culled, for either
-// winding, and double sided), background gradient, the key light's shadow-map pass (depth only,
+// winding, and double sided; opaque and alpha-blended), background gradient, the key light's shadow-map pass (depth only,
 // its own render pass), the morph pre-pass (compute), and the morph-capture variant (vertex stage only,
 // rasteriser discard; absent when the device cannot store from vertex
 // shaders).
@@ -25,8 +25,10 @@ class ScenePipelines {
   // mirrored: the draw's transform has a negative determinant, which glTF
   // says turns counter-clockwise front faces clockwise (culled pipelines only;
   // a double-sided draw tells its sides apart in the shader, DRAW_FLAG_MIRRORED).
-  VkPipeline mesh(bool doubleSided, bool mirrored) const {
-    return doubleSided ? meshDoubleSided_.get() : mirrored ? meshCulledMirrored_.get() : meshCulled_.get();
+  // blend: glTF alphaMode BLEND (blends, tests depth but does not write it).
+  VkPipeline mesh(bool doubleSided, bool mirrored, bool blend) const {
+    const size_t sides = doubleSided ? kDoubleSided : mirrored ? kCulledClockwise : kCulled;
+    return mesh_[sides][blend ? 1 : 0].get();
   }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
@@ -34,9 +36,9 @@ class ScenePipelines {
   VkPipeline morph() const { return morph_.get(); }      // compute: the morph pre-pass (morph.comp)
 
  private:
-  UniquePipeline meshCulled_;
-  UniquePipeline meshCulledMirrored_;
-  UniquePipeline meshDoubleSided_;
+  // Mesh pipelines by sidedness and blending.
+  static constexpr size_t kCulled = 0, kCulledClockwise = 1, kDoubleSided = 2, kMeshSides = 3;
+  UniquePipeline mesh_[kMeshSides][2];
   UniquePipeline background_;
   UniquePipeline capture_;
   UniquePipeline shadow_;

@@ -351,7 +351,9 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
     // shadow: theirs falls into the eye sockets and the mouth, already dark
     // (the head's shadow, the baked occlusion), and the eyes and teeth are
     // 14k of the built-in head's triangles. Headless renders keep them.
-    batch.castsShadow = !(lod.maxPixelError > 0.0f && prim.insideTheHead);
+    // A blended surface (an eye highlight, a tear line) lets the light through.
+    batch.castsShadow = !(lod.maxPixelError > 0.0f && prim.insideTheHead) &&
+                        (prim.constants.flags & kDrawFlagAlphaBlend) == 0;
     if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
       // The nearest instance decides: its model's bounding sphere's nearest
       // depth, and the largest scale of its primitive's transform.
@@ -397,10 +399,33 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
   }
 }
 
+void SceneRenderer::orderDraws(Slot& slot, const FrameGlobals& globals) {
+  slot.drawOrder.clear();
+  blendScratch_.clear();
+  for (uint32_t b = 0; b < slot.batches.size(); ++b) {
+    const Batch& batch = slot.batches[b];
+    const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
+    if ((prim.constants.flags & kDrawFlagAlphaBlend) == 0) {
+      slot.drawOrder.push_back(b);
+      continue;
+    }
+    // Blended draws after every opaque one, farthest first, so each blends
+    // over what is behind it; the depth of the batch's first instance (a
+    // draw's instances share one order).
+    const glm::mat4& placed = instanceScratch_[batch.firstInstance].model;
+    const float depth = -(globals.view * placed * glm::vec4(prim.centre, 1.0f)).z;
+    blendScratch_.push_back({depth, b});
+  }
+  std::stable_sort(blendScratch_.begin(), blendScratch_.end(),
+                   [](const BlendDraw& a, const BlendDraw& b) { return a.depth > b.depth; });
+  for (const BlendDraw& d : blendScratch_) slot.drawOrder.push_back(d.batch);
+}
+
 Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
                                     std::span<const ModelInstance> instances, const LodPolicy& lod) {
   ENG_TRY(build(slot, instances, Mode::Draw));
   pickLevelsOfDetail(slots_[slot], globals, instances, lod);
+  orderDraws(slots_[slot], globals);
   FrameGlobals written = globals;
   if (qualitySettings(quality_).shadowMapSize == 0) written.shadow.w = 0.0f;  // the tier has no shadow pass
   std::memcpy(slots_[slot].globals.mapped(), &written, sizeof(FrameGlobals));
@@ -458,10 +483,12 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
 
 void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const {
   VkPipeline bound = VK_NULL_HANDLE;
-  for (const Batch& batch : slot.batches) {
+  for (const uint32_t b : slot.drawOrder) {
+    const Batch& batch = slot.batches[b];
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     if (bindMaterialPipelines) {
-      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0, batch.mirrored);
+      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0, batch.mirrored,
+                                                  (prim.constants.flags & kDrawFlagAlphaBlend) != 0);
       if (pipeline != bound) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         bound = pipeline;

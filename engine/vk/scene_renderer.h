@@ -153,6 +153,7 @@ class SceneRenderer {
     Buffer morphed;  // per (morphed batch, instance, vertex) two or three vec4 (morph.glsl)
     VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
     std::vector<Batch> batches;
+    std::vector<uint32_t> drawOrder;  // into batches: opaque and masked in order, then blended far to near
     std::vector<uint32_t> members;
     uint32_t capturedVertices = 0;
     uint32_t morphedVec4s = 0;
@@ -173,6 +174,8 @@ class SceneRenderer {
   Result<void> writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
   void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const;
+  // Fills slot.drawOrder (after build: reads instanceScratch_).
+  void orderDraws(Slot& slot, const FrameGlobals& globals);
 
   const Context* ctx_ = nullptr;
   const SceneLayouts* layouts_ = nullptr;
@@ -187,6 +190,11 @@ class SceneRenderer {
   std::vector<Slot> slots_;
   // Scratch reused every frame (capacity persists: no allocation in steady state).
   std::vector<GpuInstance> instanceScratch_;
+  struct BlendDraw {
+    float depth;
+    uint32_t batch;
+  };
+  std::vector<BlendDraw> blendScratch_;
   std::vector<uint8_t> mirroredScratch_;  // per instanceScratch_ entry: its transform mirrors (winds clockwise)
   std::vector<ActiveWeight> activeScratch_;
   std::vector<float> weightScratch_;

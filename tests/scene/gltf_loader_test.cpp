@@ -289,6 +289,27 @@ TEST(GltfLoader, WeightsChannelWithWrongValueCountIsSkippedWithAWarning) {
   EXPECT_TRUE(hasWarningContaining(model, "expected 2"));
 }
 
+TEST(GltfLoader, ReadsAlphaModes) {
+  const auto dir = freshTempDir("loader_alpha");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["materials"] = Json::array({{{"name", "skin"}},
+                                    {{"name", "lashes"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.25}},
+                                    {{"name", "hair"}, {"alphaMode", "MASK"}},
+                                    {{"name", "highlight"}, {"alphaMode", "BLEND"}},
+                                    {{"name", "odd"}, {"alphaMode", "ADDITIVE"}}});
+  b.writeGlb(dir / "alpha.glb");
+  const eng::Model model = loadOk(dir / "alpha.glb");
+  ASSERT_EQ(model.materials.size(), 5u);
+  EXPECT_EQ(model.materials[0].alphaMode, eng::AlphaMode::Opaque);
+  EXPECT_EQ(model.materials[1].alphaMode, eng::AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(model.materials[1].alphaCutoff, 0.25f);
+  EXPECT_EQ(model.materials[2].alphaMode, eng::AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(model.materials[2].alphaCutoff, 0.5f) << "glTF's default cutoff";
+  EXPECT_EQ(model.materials[3].alphaMode, eng::AlphaMode::Blend);
+  EXPECT_EQ(model.materials[4].alphaMode, eng::AlphaMode::Opaque);
+  EXPECT_TRUE(hasWarningContaining(model, "material 4 has alphaMode 'ADDITIVE'"));
+}
+
 TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   const auto dir = freshTempDir("loader_material");
   GltfFileBuilder b = quadWithTarget();

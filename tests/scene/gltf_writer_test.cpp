@@ -36,6 +36,8 @@ eng::Model richModel() {
   skin.roughness = 0.45f;
   skin.metallic = 0.05f;
   skin.doubleSided = true;
+  skin.alphaMode = eng::AlphaMode::Mask;
+  skin.alphaCutoff = 0.3f;
   skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
   model.materials.push_back(skin);
@@ -159,6 +161,8 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);
+    EXPECT_EQ(x.alphaMode, y.alphaMode);
+    EXPECT_EQ(x.alphaCutoff, y.alphaCutoff);
     ASSERT_EQ(x.detailLayers.size(), y.detailLayers.size());
     for (size_t l = 0; l < x.detailLayers.size(); ++l) {
       EXPECT_EQ(x.detailLayers[l].image, y.detailLayers[l].image);

@@ -177,6 +177,60 @@ TEST(OffscreenRender, MirroredAndPlainInstancesDrawnTogether) {
   EXPECT_LT(meanDifference(image, expected), 1.0);
 }
 
+TEST(OffscreenRender, AlphaModesFollowGltf) {
+  // A sphere whose base colour has alpha 0.3: OPAQUE ignores it, MASK with a
+  // cutoff above it cuts everything away and below it keeps everything,
+  // BLEND lets the backdrop show through.
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  const eng::Image background = renderOrFail(view, {});
+  auto render = [&](eng::AlphaMode mode, float cutoff) {
+    vk_test::SphereSpec spec;
+    spec.targets = 0;
+    spec.color = {0.9f, 0.2f, 0.1f, 0.3f};
+    spec.alphaMode = mode;
+    spec.alphaCutoff = cutoff;
+    const eng::Model model = vk_test::makeSphereModel(spec);
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const eng::Image opaque = render(eng::AlphaMode::Opaque, 0.5f);
+  EXPECT_GT(vk_test::coverageAgainst(opaque, background), 0.3);
+  EXPECT_EQ(vk_test::coverageAgainst(render(eng::AlphaMode::Mask, 0.5f), background), 0.0) << "alpha 0.3 < cutoff 0.5";
+  EXPECT_LT(meanDifference(render(eng::AlphaMode::Mask, 0.2f), opaque), 0.5) << "alpha 0.3 >= cutoff 0.2: as opaque";
+  const eng::Image blended = render(eng::AlphaMode::Blend, 0.5f);
+  const glm::ivec4 o = pixel(opaque, 128, 128), b = pixel(blended, 128, 128), g = pixel(background, 128, 128);
+  // Red: 0.3 of the way from the backdrop toward the opaque sphere (in the
+  // tone-mapped output; blending is in linear light, so only roughly).
+  EXPECT_GT(b.r, g.r + 0.1 * (o.r - g.r)) << "the sphere shows";
+  EXPECT_LT(b.r, g.r + 0.6 * (o.r - g.r)) << "the backdrop shows through";
+}
+
+TEST(OffscreenRender, BlendedDrawsComeAfterOpaqueOnes) {
+  // A half-transparent sphere in front of an opaque one, listed first: the
+  // opaque sphere must still show through it (blended draws are drawn last,
+  // and write no depth).
+  vk_test::SphereSpec front;
+  front.targets = 0;
+  front.color = {0.1f, 0.2f, 0.9f, 0.4f};
+  front.alphaMode = eng::AlphaMode::Blend;
+  vk_test::SphereSpec back;
+  back.targets = 0;
+  back.color = {0.9f, 0.8f, 0.1f, 1.0f};
+  auto frontGpu = vk_test::renderer().upload(vk_test::makeSphereModel(front));
+  auto backGpu = vk_test::renderer().upload(vk_test::makeSphereModel(back));
+  ASSERT_TRUE(frontGpu && backGpu);
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1.5f, -1.5f, -1.5f}, {1.5f, 1.5f, 1.5f}});
+  const glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 1.5f));
+  const glm::mat4 farther = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -1.5f));
+  const std::vector<eng::vk::ModelInstance> blendFirst{{&*frontGpu, nearer, {}}, {&*backGpu, farther, {}}};
+  const std::vector<eng::vk::ModelInstance> onlyFront{{&*frontGpu, nearer, {}}};
+  const glm::ivec4 both = pixel(renderOrFail(view, blendFirst), 128, 128);
+  const glm::ivec4 alone = pixel(renderOrFail(view, onlyFront), 128, 128);
+  EXPECT_GT(both.r, alone.r + 20) << "the yellow sphere behind shows through the blue one";
+}
+
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   vk_test::SphereSpec spec;
   spec.withMaterial = false;

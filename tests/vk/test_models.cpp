@@ -57,6 +57,8 @@ eng::Model makeSphereModel(const SphereSpec& spec) {
     mat.name = "sphere material";
     mat.baseColorFactor = spec.color;
     mat.doubleSided = spec.doubleSided;
+    mat.alphaMode = spec.alphaMode;
+    mat.alphaCutoff = spec.alphaCutoff;
     prim.material = 0;
   }
   eng::Node& node = model.nodes.emplace_back();

@@ -17,6 +17,8 @@ struct SphereSpec {
   float radius = 1.0f;
   glm::vec4 color{0.8f, 0.6f, 0.5f, 1.0f};
   bool doubleSided = false;
+  eng::AlphaMode alphaMode = eng::AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
   bool withMaterial = true; // false: the primitive uses the default material
 };
 
