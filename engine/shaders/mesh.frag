@@ -5,8 +5,8 @@
 
 #include "frame.glsl"
 #include "lighting.glsl"
+#include "base_colour.glsl"
 
-layout(set = 1, binding = 3) uniform sampler2D baseColorTexture;      // sRGB, white when absent
 layout(set = 1, binding = 4) uniform sampler2DArray detailTextures;   // one layer per detail layer
 
 struct DetailLayer {
@@ -46,9 +46,8 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
 
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
-  vec4 base = texture(baseColorTexture, inTexcoord) * material.baseColorFactor * inColor;
-  // glTF alphaMode MASK: lashes, brows and hair cards cut out of their quads.
-  if ((draw.flags & DRAW_FLAG_ALPHA_MASK) != 0u && base.a < draw.alphaCutoff) discard;
+  vec4 base = baseColour(inTexcoord, inMaterial, inColor);
+  if (cutOut(base.a)) discard;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];

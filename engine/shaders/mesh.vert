@@ -2,7 +2,9 @@
 // Reads one vertex of one instance as morph.comp morphed it, skins it (skinned primitives), and
 // transforms it to clip space.
 // Built three times (see engine/vk/CMakeLists.txt): the render variant; with
-// SHADOW_PASS the key light's shadow-map variant (position only); with
+// SHADOW_PASS the key light's shadow-map variant (position only; with
+// ALPHA_MASK also the texture coordinate, colour and material that
+// shadow_mask.frag tests); with
 // MORPH_CAPTURE the capture variant that writes the morphed and skinned object-space
 // vertex to a storage buffer (rasteriser discard) so tests can compare the
 // GPU result with the CPU reference.
@@ -21,6 +23,10 @@ layout(location = 4) in vec4 inColor;    // multiplies the base colour (ones whe
 #if defined(MORPH_CAPTURE)
 // Three vec4 per captured vertex: position (w = 1), normal, tangent (w = handedness).
 layout(std430, set = 0, binding = 3) writeonly buffer Captured { vec4 captured[]; };
+#elif defined(SHADOW_PASS) && defined(ALPHA_MASK)
+layout(location = 2) out vec2 outTexcoord;
+layout(location = 4) out vec4 outColor;
+layout(location = 5) flat out uint outMaterial;
 #elif !defined(SHADOW_PASS)
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
@@ -29,6 +35,13 @@ layout(location = 3) flat out uint outInstance;
 layout(location = 4) out vec4 outColor;
 layout(location = 5) flat out uint outMaterial;  // index into instanceMaterials[]
 #endif
+
+// The texture coordinate through the instance's material record's UV
+// transform (VRM texture transform binds).
+vec2 materialTexcoord(uint material) {
+  vec4 uvTransform = instanceMaterials[material].uvTransform;
+  return inTexcoord * uvTransform.xy + uvTransform.zw;
+}
 
 void main() {
   uint vertex = uint(gl_VertexIndex);
@@ -46,14 +59,17 @@ void main() {
   gl_PointSize = 1.0;
 #elif defined(SHADOW_PASS)
   gl_Position = frame.keyLightViewProj * (inst.model * vec4(m.position, 1.0));
+#if defined(ALPHA_MASK)
+  outMaterial = inst.materialOffset + draw.material;
+  outTexcoord = materialTexcoord(outMaterial);
+  outColor = inColor;
+#endif
 #else
   vec4 world = inst.model * vec4(m.position, 1.0);
   outWorldPosition = world.xyz;
   outWorldNormal = mat3(inst.normalMatrix) * m.normal;
-  uint material = inst.materialOffset + draw.material;
-  vec4 uvTransform = instanceMaterials[material].uvTransform;
-  outTexcoord = inTexcoord * uvTransform.xy + uvTransform.zw;
-  outMaterial = material;
+  outMaterial = inst.materialOffset + draw.material;
+  outTexcoord = materialTexcoord(outMaterial);
   outInstance = uint(gl_InstanceIndex);
   // A fold in the skin catches shadow: up to 60% darker where a target (or a
   // mix) creases it fully; the rest of the light keeps the furrow from going

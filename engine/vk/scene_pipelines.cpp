@@ -214,6 +214,15 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   auto shadowPipeline = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
   if (!shadowPipeline) return shadowPipeline.error();
   p.shadow_ = std::move(shadowPipeline).value();
+  auto shadowMaskVert = createModule(ctx, shaders, "shadow_mask_vert");
+  if (!shadowMaskVert) return shadowMaskVert.error();
+  auto shadowMaskFrag = createModule(ctx, shaders, "shadow_mask_frag");
+  if (!shadowMaskFrag) return shadowMaskFrag.error();
+  shadow.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, shadowMaskVert->get()),
+                   stage(VK_SHADER_STAGE_FRAGMENT_BIT, shadowMaskFrag->get())};
+  auto shadowMasked = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
+  if (!shadowMasked) return shadowMasked.error();
+  p.shadowMasked_ = std::move(shadowMasked).value();
 
   auto morphComp = createModule(ctx, shaders, "morph_comp");
   if (!morphComp) return morphComp.error();

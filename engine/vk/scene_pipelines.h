@@ -32,7 +32,8 @@ class ScenePipelines {
   }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
-  VkPipeline shadow() const { return shadow_.get(); }    // depth only, for the shadow pass
+  // Depth only, for the shadow pass; masked: glTF alphaMode MASK, cut out where the base colour is.
+  VkPipeline shadow(bool masked) const { return masked ? shadowMasked_.get() : shadow_.get(); }
   VkPipeline morph() const { return morph_.get(); }      // compute: the morph pre-pass (morph.comp)
 
  private:
@@ -42,6 +43,7 @@ class ScenePipelines {
   UniquePipeline background_;
   UniquePipeline capture_;
   UniquePipeline shadow_;
+  UniquePipeline shadowMasked_;
   UniquePipeline morph_;
 };
 

@@ -481,26 +481,27 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   if (batch.mirrored) constants.flags |= kDrawFlagMirrored;
 }
 
-void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const {
+void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool colourPass) const {
   VkPipeline bound = VK_NULL_HANDLE;
   for (const uint32_t b : slot.drawOrder) {
     const Batch& batch = slot.batches[b];
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
-    if (bindMaterialPipelines) {
-      const VkPipeline pipeline = pipelines_.mesh((prim.constants.flags & kDrawFlagDoubleSided) != 0, batch.mirrored,
-                                                  (prim.constants.flags & kDrawFlagAlphaBlend) != 0);
-      if (pipeline != bound) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        bound = pipeline;
-      }
+    if (!colourPass && !batch.castsShadow) continue;
+    const uint32_t flags = prim.constants.flags;
+    const VkPipeline pipeline =
+        colourPass
+            ? pipelines_.mesh((flags & kDrawFlagDoubleSided) != 0, batch.mirrored, (flags & kDrawFlagAlphaBlend) != 0)
+            : pipelines_.shadow((flags & kDrawFlagAlphaMask) != 0);
+    if (pipeline != bound) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+      bound = pipeline;
     }
-    if (!bindMaterialPipelines && !batch.castsShadow) continue;
     DrawConstants constants;
     bindPrimitive(cmd, batch, constants);
     vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(DrawConstants), &constants);
-    // Without material pipelines this is the shadow pass, with its own level.
-    const uint32_t level = bindMaterialPipelines ? batch.lod : batch.shadowLod;
+    // The shadow pass has its own level.
+    const uint32_t level = colourPass ? batch.lod : batch.shadowLod;
     const bool full = level == 0;
     vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[level - 1].indexOffset,
                          VK_INDEX_TYPE_UINT32);
@@ -549,7 +550,6 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) co
   if (qualitySettings(quality_).shadowMapSize > 0) {  // else the pass only clears the token map
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
                             &slot.descriptorSet, 0, nullptr);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.shadow());
     drawBatches(cmd, slot, false);
   }
   shadowMap_.end(cmd);

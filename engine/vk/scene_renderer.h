@@ -173,7 +173,8 @@ class SceneRenderer {
   // (Re)creates the weights' texel view and writes every binding of set 0.
   Result<void> writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
-  void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool bindMaterialPipelines) const;
+  // colourPass false: the key light's shadow map (casters only, depth pipelines).
+  void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool colourPass) const;
   // Fills slot.drawOrder (after build: reads instanceScratch_).
   void orderDraws(Slot& slot, const FrameGlobals& globals);
 

@@ -207,6 +207,27 @@ TEST(OffscreenRender, AlphaModesFollowGltf) {
   EXPECT_LT(b.r, g.r + 0.6 * (o.r - g.r)) << "the backdrop shows through";
 }
 
+TEST(OffscreenRender, MaskedSurfacesCastShadowsOnlyWhereTheyAreDrawn) {
+  // A sphere cut away entirely (alpha below its cutoff) between the key
+  // light and a big opaque sphere: the scene must look as if it were not
+  // there, shadow included.
+  vk_test::SphereSpec cutAway;
+  cutAway.targets = 0;
+  cutAway.color = {0.1f, 0.9f, 0.1f, 0.3f};
+  cutAway.alphaMode = eng::AlphaMode::Mask;
+  vk_test::SphereSpec wall;
+  wall.targets = 0;
+  wall.radius = 2.0f;
+  auto cutGpu = vk_test::renderer().upload(vk_test::makeSphereModel(cutAway));
+  auto wallGpu = vk_test::renderer().upload(vk_test::makeSphereModel(wall));
+  ASSERT_TRUE(cutGpu && wallGpu);
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-2, -2, -2}, {2, 2, 2}});
+  const glm::mat4 inFront = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 2.6f));
+  const std::vector<eng::vk::ModelInstance> both{{&*wallGpu, glm::mat4(1.0f), {}}, {&*cutGpu, inFront, {}}};
+  const std::vector<eng::vk::ModelInstance> wallOnly{{&*wallGpu, glm::mat4(1.0f), {}}};
+  EXPECT_LT(meanDifference(renderOrFail(view, both), renderOrFail(view, wallOnly)), 0.05);
+}
+
 TEST(OffscreenRender, BlendedDrawsComeAfterOpaqueOnes) {
   // A half-transparent sphere in front of an opaque one, listed first: the
   // opaque sphere must still show through it (blended draws are drawn last,
