@@ -124,6 +124,12 @@ TEST(OffscreenRender, BackFacesCulledUnlessDoubleSided) {
   }
 }
 
+// A sphere without targets, uploaded (the spec's targets are ignored).
+eng::Result<eng::vk::GpuModel> uploadPlainSphere(vk_test::SphereSpec spec) {
+  spec.targets = 0;
+  return vk_test::renderer().upload(vk_test::makeSphereModel(spec));
+}
+
 // Mean absolute difference of the colour channels, in 8-bit levels.
 double meanDifference(const eng::Image& a, const eng::Image& b) {
   if (a.width != b.width || a.height != b.height) return std::numeric_limits<double>::infinity();
@@ -141,13 +147,9 @@ TEST(OffscreenRender, MirroredTransformStillShowsTheOutside) {
   // clockwise. A sphere is its own mirror image: scaled by -1 in x it must
   // look the same, not show its inside (the far half's back faces).
   for (bool doubleSided : {false, true}) {
-    vk_test::SphereSpec spec;
-    spec.targets = 0;
-    spec.doubleSided = doubleSided;
-    const eng::Model model = vk_test::makeSphereModel(spec);
-    auto gpu = vk_test::renderer().upload(model);
+    auto gpu = uploadPlainSphere({.doubleSided = doubleSided});
     ASSERT_TRUE(gpu) << gpu.error().message;
-    const eng::vk::SceneView view = viewOf(model.bounds());
+    const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
     const eng::vk::ModelInstance plain{&*gpu, glm::mat4(1.0f), {}};
     const eng::vk::ModelInstance mirrored{&*gpu, glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)), {}};
     const eng::Image expected = renderOrFail(view, {&plain, 1});
@@ -161,10 +163,7 @@ TEST(OffscreenRender, MirroredTransformStillShowsTheOutside) {
 TEST(OffscreenRender, MirroredAndPlainInstancesDrawnTogether) {
   // Two instances of one model, one mirrored: two draws that wind
   // differently, each showing its outside.
-  vk_test::SphereSpec spec;
-  spec.targets = 0;
-  const eng::Model model = vk_test::makeSphereModel(spec);
-  auto gpu = vk_test::renderer().upload(model);
+  auto gpu = uploadPlainSphere({});
   ASSERT_TRUE(gpu) << gpu.error().message;
   const eng::vk::SceneView view = viewOf(eng::Aabb{{-3, -1, -1}, {3, 1, 1}});
   const glm::mat4 left = glm::translate(glm::mat4(1.0f), glm::vec3(-1.5f, 0.0f, 0.0f));
@@ -184,13 +183,7 @@ TEST(OffscreenRender, AlphaModesFollowGltf) {
   const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
   const eng::Image background = renderOrFail(view, {});
   auto render = [&](eng::AlphaMode mode, float cutoff) {
-    vk_test::SphereSpec spec;
-    spec.targets = 0;
-    spec.color = {0.9f, 0.2f, 0.1f, 0.3f};
-    spec.alphaMode = mode;
-    spec.alphaCutoff = cutoff;
-    const eng::Model model = vk_test::makeSphereModel(spec);
-    auto gpu = vk_test::renderer().upload(model);
+    auto gpu = uploadPlainSphere({.color = {0.9f, 0.2f, 0.1f, 0.3f}, .alphaMode = mode, .alphaCutoff = cutoff});
     EXPECT_TRUE(gpu) << gpu.error().message;
     const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
     return renderOrFail(view, {&instance, 1});
@@ -211,15 +204,8 @@ TEST(OffscreenRender, MaskedSurfacesCastShadowsOnlyWhereTheyAreDrawn) {
   // A sphere cut away entirely (alpha below its cutoff) between the key
   // light and a big opaque sphere: the scene must look as if it were not
   // there, shadow included.
-  vk_test::SphereSpec cutAway;
-  cutAway.targets = 0;
-  cutAway.color = {0.1f, 0.9f, 0.1f, 0.3f};
-  cutAway.alphaMode = eng::AlphaMode::Mask;
-  vk_test::SphereSpec wall;
-  wall.targets = 0;
-  wall.radius = 2.0f;
-  auto cutGpu = vk_test::renderer().upload(vk_test::makeSphereModel(cutAway));
-  auto wallGpu = vk_test::renderer().upload(vk_test::makeSphereModel(wall));
+  auto cutGpu = uploadPlainSphere({.color = {0.1f, 0.9f, 0.1f, 0.3f}, .alphaMode = eng::AlphaMode::Mask});
+  auto wallGpu = uploadPlainSphere({.radius = 2.0f});
   ASSERT_TRUE(cutGpu && wallGpu);
   const eng::vk::SceneView view = viewOf(eng::Aabb{{-2, -2, -2}, {2, 2, 2}});
   const glm::mat4 inFront = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 2.6f));
@@ -232,15 +218,8 @@ TEST(OffscreenRender, BlendedDrawsComeAfterOpaqueOnes) {
   // A half-transparent sphere in front of an opaque one, listed first: the
   // opaque sphere must still show through it (blended draws are drawn last,
   // and write no depth).
-  vk_test::SphereSpec front;
-  front.targets = 0;
-  front.color = {0.1f, 0.2f, 0.9f, 0.4f};
-  front.alphaMode = eng::AlphaMode::Blend;
-  vk_test::SphereSpec back;
-  back.targets = 0;
-  back.color = {0.9f, 0.8f, 0.1f, 1.0f};
-  auto frontGpu = vk_test::renderer().upload(vk_test::makeSphereModel(front));
-  auto backGpu = vk_test::renderer().upload(vk_test::makeSphereModel(back));
+  auto frontGpu = uploadPlainSphere({.color = {0.1f, 0.2f, 0.9f, 0.4f}, .alphaMode = eng::AlphaMode::Blend});
+  auto backGpu = uploadPlainSphere({.color = {0.9f, 0.8f, 0.1f, 1.0f}});
   ASSERT_TRUE(frontGpu && backGpu);
   const eng::vk::SceneView view = viewOf(eng::Aabb{{-1.5f, -1.5f, -1.5f}, {1.5f, 1.5f, 1.5f}});
   const glm::mat4 nearer = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 1.5f));
