@@ -9,6 +9,10 @@
 
 layout(set = 1, binding = 4) uniform sampler2DArray detailTextures;   // one layer per detail layer
 
+// True only in the MASK pipelines: a shader that can discard loses early
+// depth testing, so the others compile the test away.
+layout(constant_id = 2) const bool ALPHA_MASK_PIPELINE = false;
+
 struct DetailLayer {
   uint target;     // morph target of the drawn mesh whose weight drives the layer
   float strength;  // scales that weight
@@ -47,7 +51,7 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
   vec4 base = baseColour(inTexcoord, inMaterial, inColor);
-  if (cutOut(base.a)) discard;
+  if (ALPHA_MASK_PIPELINE && cutOut(base.a)) discard;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];

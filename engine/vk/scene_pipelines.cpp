@@ -172,26 +172,32 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   if (!bgFrag) return bgFrag.error();
 
   ScenePipelines p;
-  // The tier's switches in lighting.glsl (constant_id 0 and 1).
-  struct TierConstants {
+  // The tier's switches in lighting.glsl (constant_id 0 and 1), and whether
+  // mesh.frag may discard (constant_id 2: only the MASK pipelines, since a
+  // shader that can discard loses early depth testing for every draw).
+  struct FragmentConstants {
     int32_t shadowFilterRadius;
     VkBool32 secondarySpecular;
-  } tier{int32_t(quality.shadowFilterRadius), quality.secondarySpecular ? VK_TRUE : VK_FALSE};
-  const std::array tierEntries{VkSpecializationMapEntry{0, offsetof(TierConstants, shadowFilterRadius), sizeof(int32_t)},
-                               VkSpecializationMapEntry{1, offsetof(TierConstants, secondarySpecular), sizeof(VkBool32)}};
-  const VkSpecializationInfo tierInfo{uint32_t(tierEntries.size()), tierEntries.data(), sizeof(tier), &tier};
+    VkBool32 alphaMask;
+  } constants{int32_t(quality.shadowFilterRadius), quality.secondarySpecular ? VK_TRUE : VK_FALSE, VK_FALSE};
+  const std::array entries{
+      VkSpecializationMapEntry{0, offsetof(FragmentConstants, shadowFilterRadius), sizeof(int32_t)},
+      VkSpecializationMapEntry{1, offsetof(FragmentConstants, secondarySpecular), sizeof(VkBool32)},
+      VkSpecializationMapEntry{2, offsetof(FragmentConstants, alphaMask), sizeof(VkBool32)}};
+  const VkSpecializationInfo constantsInfo{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
   PipelineShape mesh;
   mesh.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, meshVert->get()),
                  stage(VK_SHADER_STAGE_FRAGMENT_BIT, meshFrag->get())};
-  mesh.stages[1].pSpecializationInfo = &tierInfo;
+  mesh.stages[1].pSpecializationInfo = &constantsInfo;
   for (size_t sides = 0; sides < kMeshSides; ++sides)
-    for (size_t blend = 0; blend < 2; ++blend) {
+    for (size_t alpha = 0; alpha < kAlphaPipelines; ++alpha) {
       mesh.cull = sides == kDoubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
       mesh.frontFace = sides == kCulledClockwise ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
-      mesh.blend = blend != 0;
+      mesh.blend = alpha == size_t(AlphaPipeline::Blend);
+      constants.alphaMask = alpha == size_t(AlphaPipeline::Mask) ? VK_TRUE : VK_FALSE;
       auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
       if (!pipeline) return pipeline.error();
-      p.mesh_[sides][blend] = std::move(pipeline).value();
+      p.mesh_[sides][alpha] = std::move(pipeline).value();
     }
 
   PipelineShape background;

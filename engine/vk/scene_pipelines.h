@@ -1,10 +1,11 @@
 #pragma once
 // The graphics pipelines of the scene, built from the shader library's
 // current SPIR-V for one render pass: mesh (back-face culled, for either
-// winding, and double sided; opaque and alpha-blended), background gradient, the key light's shadow-map pass (depth only,
-// its own render pass), the morph pre-pass (compute), and the morph-capture variant (vertex stage only,
-// rasteriser discard; absent when the device cannot store from vertex
-// shaders).
+// winding, and double sided; opaque and alpha-blended), background gradient,
+// the key light's shadow-map pass (depth only, its own render pass; plain and
+// alpha-masked), the morph pre-pass (compute), and the morph-capture variant
+// (vertex stage only, rasteriser discard; absent when the device cannot store
+// from vertex shaders).
 #include <vulkan/vulkan.h>
 
 #include "engine/core/result.h"
@@ -16,6 +17,9 @@
 
 namespace eng::vk {
 
+// How a mesh pipeline treats the base colour's alpha (glTF alphaMode).
+enum class AlphaPipeline { Opaque, Mask, Blend };
+
 class ScenePipelines {
  public:
   static Result<ScenePipelines> create(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
@@ -25,10 +29,10 @@ class ScenePipelines {
   // mirrored: the draw's transform has a negative determinant, which glTF
   // says turns counter-clockwise front faces clockwise (culled pipelines only;
   // a double-sided draw tells its sides apart in the shader, DRAW_FLAG_MIRRORED).
-  // blend: glTF alphaMode BLEND (blends, tests depth but does not write it).
-  VkPipeline mesh(bool doubleSided, bool mirrored, bool blend) const {
+  // alpha: Mask may discard fragments; Blend blends, tests depth but does not write it.
+  VkPipeline mesh(bool doubleSided, bool mirrored, AlphaPipeline alpha) const {
     const size_t sides = doubleSided ? kDoubleSided : mirrored ? kCulledClockwise : kCulled;
-    return mesh_[sides][blend ? 1 : 0].get();
+    return mesh_[sides][size_t(alpha)].get();
   }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
@@ -37,9 +41,10 @@ class ScenePipelines {
   VkPipeline morph() const { return morph_.get(); }      // compute: the morph pre-pass (morph.comp)
 
  private:
-  // Mesh pipelines by sidedness and blending.
+  // Mesh pipelines by sidedness and alpha mode.
   static constexpr size_t kCulled = 0, kCulledClockwise = 1, kDoubleSided = 2, kMeshSides = 3;
-  UniquePipeline mesh_[kMeshSides][2];
+  static constexpr size_t kAlphaPipelines = 3;
+  UniquePipeline mesh_[kMeshSides][kAlphaPipelines];
   UniquePipeline background_;
   UniquePipeline capture_;
   UniquePipeline shadow_;

@@ -267,7 +267,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         }
         // The transform the vertices finally see: a skin's joint matrices
         // undo the mesh node's own (skinJointMatrices).
-        const glm::mat4 placed = skinScratch_.empty() || !node || node->skin < 0 ? record.model : record.model * skinScratch_[0];
+        const bool skinned = node && node->skin >= 0 && !skinScratch_.empty();
+        const glm::mat4 placed = skinned ? record.model * skinScratch_[0] : record.model;
         mirroredScratch_.push_back(mode == Mode::Draw && isMirrored(placed));
         instanceScratch_.push_back(record);
       }
@@ -488,10 +489,11 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool colo
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
     if (!colourPass && !batch.castsShadow) continue;
     const uint32_t flags = prim.constants.flags;
-    const VkPipeline pipeline =
-        colourPass
-            ? pipelines_.mesh((flags & kDrawFlagDoubleSided) != 0, batch.mirrored, (flags & kDrawFlagAlphaBlend) != 0)
-            : pipelines_.shadow((flags & kDrawFlagAlphaMask) != 0);
+    const AlphaPipeline alpha = (flags & kDrawFlagAlphaBlend) != 0  ? AlphaPipeline::Blend
+                                : (flags & kDrawFlagAlphaMask) != 0 ? AlphaPipeline::Mask
+                                                                    : AlphaPipeline::Opaque;
+    const VkPipeline pipeline = colourPass ? pipelines_.mesh((flags & kDrawFlagDoubleSided) != 0, batch.mirrored, alpha)
+                                           : pipelines_.shadow(alpha == AlphaPipeline::Mask);
     if (pipeline != bound) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
       bound = pipeline;
