@@ -64,6 +64,7 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"doubleSided", mat.doubleSided},
                          {"alphaMode", eng::alphaModeName(mat.alphaMode)},
                          {"alphaCutoff", mat.alphaCutoff},
+                         {"baseColorSampling", eng::describeSampling(mat.baseColorSampling)},
                          {"detailLayers", std::move(layers)}});
   }
   j["materials"] = std::move(materials);
@@ -125,6 +126,8 @@ void printText(const eng::Model& model) {
                 mat.doubleSided ? ", double-sided" : "");
     if (mat.alphaMode != eng::AlphaMode::Opaque) std::printf(", alpha %s", eng::alphaModeName(mat.alphaMode));
     if (mat.alphaMode == eng::AlphaMode::Mask) std::printf(" below %.3g", mat.alphaCutoff);
+    if (mat.baseColorImage >= 0 && mat.baseColorSampling != eng::TextureSampling{})
+      std::printf(", sampled %s", eng::describeSampling(mat.baseColorSampling).c_str());
     for (const eng::DetailLayer& d : mat.detailLayers)
       std::printf(", detail layer image %d driven by '%s' x%.3g", d.image, d.target.c_str(), d.strength);
     std::printf("\n");

@@ -1,10 +1,12 @@
 // glTF images, textures and materials into Model::images / Model::materials.
 #include "engine/scene/gltf_model_builder.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/scene/gltf_sampler.h"
 #include "engine/scene/image_io.h"
 
 namespace eng {
@@ -92,7 +94,8 @@ void GltfModelBuilder::loadMaterials() {
       mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
                                       pbr.baseColorFactor[3]);
     mat.baseColorImage = imageOfTexture(pbr.baseColorTexture.index, where);
-    uvTransforms_.push_back(baseColorUvTransform(pbr.baseColorTexture, mat.baseColorImage, where));
+    baseColorUvs_.push_back(baseColorUv(pbr.baseColorTexture, mat.baseColorImage, where));
+    if (mat.baseColorImage >= 0) mat.baseColorSampling = textureSampling(pbr.baseColorTexture.index, where);
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     mat.doubleSided = src.doubleSided;
@@ -151,21 +154,35 @@ void GltfModelBuilder::loadMaterials() {
   }
 }
 
-// KHR_texture_transform of a base colour texture, when it can be baked into
-// TEXCOORD_0 (the engine samples every texture of a material through it).
-std::optional<UvTransform> GltfModelBuilder::baseColorUvTransform(const tinygltf::TextureInfo& info, int image, const std::string& where) {
+GltfModelBuilder::BaseColorUv GltfModelBuilder::baseColorUv(const tinygltf::TextureInfo& info, int image,
+                                                            const std::string& where) {
+  BaseColorUv uv;
   std::string problem;
-  auto t = parseTextureTransform(info, problem);
+  uv.transform = parseTextureTransform(info, problem);
   if (!problem.empty()) warn(where + ": " + kKhrTextureTransform + " " + problem + "; ignored");
-  if (!t || image < 0) return std::nullopt;
-  const int set = t->texCoord >= 0 ? t->texCoord : info.texCoord;
-  if (set != 0) {
-    warn(where + ": " + kKhrTextureTransform + " on TEXCOORD_" + std::to_string(set) + ", only TEXCOORD_0 is read; ignored");
-    return std::nullopt;
+  if (image < 0) return {};
+  uv.set = uv.transform && uv.transform->texCoord >= 0 ? uv.transform->texCoord : std::max(info.texCoord, 0);
+  if (uv.transform)
+    outcomes_[kKhrTextureTransform] = "applied: baked into the UV set of " + std::to_string(++uvTransformed_) +
+                                      " material(s)' base colour";
+  return uv;
+}
+
+TextureSampling GltfModelBuilder::textureSampling(int texture, const std::string& where) {
+  const int sampler = gltf_.textures[static_cast<size_t>(texture)].sampler;
+  if (sampler < 0) return {};
+  if (static_cast<size_t>(sampler) >= gltf_.samplers.size()) {
+    warn(where + ": texture " + std::to_string(texture) + " refers to sampler " + std::to_string(sampler) +
+         ", the file has " + std::to_string(gltf_.samplers.size()) + "; the default sampling used");
+    return {};
   }
-  outcomes_[kKhrTextureTransform] = "applied: baked into TEXCOORD_0 for " + std::to_string(++uvTransformed_) +
-                                    " material(s)' base colour";
-  return t;
+  const tinygltf::Sampler& src = gltf_.samplers[static_cast<size_t>(sampler)];
+  std::string problem;
+  TextureSampling sampling = samplingFromGltf({src.magFilter, src.minFilter, src.wrapS, src.wrapT}, problem);
+  if (!problem.empty())
+    warn(where + ": sampler " + std::to_string(sampler) + " has " + problem +
+         ", which glTF does not define; the default used there");
+  return sampling;
 }
 
 }  // namespace eng

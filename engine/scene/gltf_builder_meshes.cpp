@@ -119,10 +119,22 @@ Result<void> GltfModelBuilder::readVertexAttributes(const tinygltf::Primitive& s
     if (!normals) return normals.error();
     out.normals = std::move(*normals);
   }
-  if (auto it = src.attributes.find("TEXCOORD_0"); it != src.attributes.end()) {
-    auto uvs = readAttribute<2>(it->second, n, label + " TEXCOORD_0");
-    if (!uvs) return uvs.error();
-    out.texcoords = std::move(*uvs);
+  {
+    // The set the material's base colour reads (a lightmapped or
+    // atlas-packed avatar may put it on TEXCOORD_1).
+    const bool knownMaterial = src.material >= 0 && static_cast<size_t>(src.material) < baseColorUvs_.size();
+    std::string set = "TEXCOORD_" + std::to_string(knownMaterial ? baseColorUvs_[src.material].set : 0);
+    auto it = src.attributes.find(set);
+    if (it == src.attributes.end() && set != "TEXCOORD_0") {
+      warn(label + ": its material's base colour reads " + set + ", which the primitive lacks; TEXCOORD_0 used");
+      set = "TEXCOORD_0";
+      it = src.attributes.find(set);
+    }
+    if (it != src.attributes.end()) {
+      auto uvs = readAttribute<2>(it->second, n, label + " " + set);
+      if (!uvs) return uvs.error();
+      out.texcoords = std::move(*uvs);
+    }
   }
   if (auto it = src.attributes.find("TANGENT"); it != src.attributes.end()) {
     auto tangents = readAttribute<4>(it->second, n, label + " TANGENT");
@@ -164,9 +176,9 @@ void GltfModelBuilder::assignMaterial(const tinygltf::Primitive& src, const std:
   } else {
     out.material = src.material;
   }
-  // KHR_texture_transform baked into this primitive's own copy of TEXCOORD_0.
-  if (out.material >= 0 && uvTransforms_[out.material])
-    for (glm::vec2& uv : out.texcoords) uv = applyUvTransform(*uvTransforms_[out.material], uv);
+  // KHR_texture_transform baked into this primitive's own copy of its UV set.
+  if (out.material >= 0 && baseColorUvs_[out.material].transform)
+    for (glm::vec2& uv : out.texcoords) uv = applyUvTransform(*baseColorUvs_[out.material].transform, uv);
 }
 
 Result<void> GltfModelBuilder::readMorphTargets(const tinygltf::Primitive& src, const std::string& label,

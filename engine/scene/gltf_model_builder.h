@@ -94,9 +94,15 @@ class GltfModelBuilder {
   Result<void> loadAnimations();
 
   // gltf_builder_materials.cpp
-  // KHR_texture_transform of a base colour texture, when it can be baked into
-  // TEXCOORD_0 (the engine samples every texture of a material through it).
-  std::optional<UvTransform> baseColorUvTransform(const tinygltf::TextureInfo& info, int image, const std::string& where);
+  // The engine samples every texture of a material through one UV set,
+  // Primitive::texcoords: the set its base colour names, with the texture's
+  // KHR_texture_transform baked in.
+  struct BaseColorUv {
+    int set = 0;  // TEXCOORD_<set>
+    std::optional<UvTransform> transform;
+  };
+  BaseColorUv baseColorUv(const tinygltf::TextureInfo& info, int image, const std::string& where);
+  TextureSampling textureSampling(int texture, const std::string& where);
 
   std::string file_;
   const tinygltf::Model& gltf_;
@@ -106,7 +112,7 @@ class GltfModelBuilder {
   GltfAccessorReader reader_;
   Model model_;
   std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
-  std::vector<std::optional<UvTransform>> uvTransforms_;  // per material
+  std::vector<BaseColorUv> baseColorUvs_;  // per material
   int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0;
 };
 

@@ -7,6 +7,7 @@
 
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
+#include "engine/scene/gltf_sampler.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 
@@ -192,20 +193,43 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       Json image = {{"bufferView", buffers.addView(png->data(), png->size(), 0)}, {"mimeType", "image/png"}};
       if (!img.name.empty()) image["name"] = img.name;
       images.push_back(std::move(image));
-      textures.push_back({{"sampler", 0}, {"source", i}});
     }
     doc["images"] = std::move(images);
-    doc["samplers"] = Json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+  }
+  // One texture per (image, sampling) a base colour uses, one sampler per sampling.
+  std::vector<TextureSampling> samplings;
+  std::vector<std::pair<int, size_t>> textureKeys;  // (image, sampling index)
+  std::vector<int> baseColorTexture(model.materials.size(), -1);
+  for (size_t m = 0; m < model.materials.size(); ++m) {
+    const Material& mat = model.materials[m];
+    if (mat.baseColorImage < 0) continue;
+    const size_t sampling = static_cast<size_t>(
+        std::find(samplings.begin(), samplings.end(), mat.baseColorSampling) - samplings.begin());
+    if (sampling == samplings.size()) samplings.push_back(mat.baseColorSampling);
+    const std::pair<int, size_t> key{mat.baseColorImage, sampling};
+    const auto found = std::find(textureKeys.begin(), textureKeys.end(), key);
+    baseColorTexture[m] = static_cast<int>(found - textureKeys.begin());
+    if (found == textureKeys.end()) textureKeys.push_back(key);
+  }
+  if (!textureKeys.empty()) {
+    Json samplers = Json::array(), textures = Json::array();
+    for (const TextureSampling& sampling : samplings) {
+      const GltfSamplerCodes c = gltfCodesOf(sampling);
+      samplers.push_back({{"magFilter", c.magFilter}, {"minFilter", c.minFilter}, {"wrapS", c.wrapS}, {"wrapT", c.wrapT}});
+    }
+    for (const auto& [image, sampling] : textureKeys) textures.push_back({{"sampler", sampling}, {"source", image}});
+    doc["samplers"] = std::move(samplers);
     doc["textures"] = std::move(textures);
   }
 
   if (!model.materials.empty()) {
     Json materials = Json::array();
-    for (const Material& mat : model.materials) {
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+      const Material& mat = model.materials[i];
       Json pbr = {{"baseColorFactor", vec(&mat.baseColorFactor.x, 4)},
                   {"metallicFactor", mat.metallic},
                   {"roughnessFactor", mat.roughness}};
-      if (mat.baseColorImage >= 0) pbr["baseColorTexture"] = {{"index", mat.baseColorImage}};
+      if (baseColorTexture[i] >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture[i]}};
       Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
       if (!mat.name.empty()) m["name"] = mat.name;
       if (mat.doubleSided) m["doubleSided"] = true;

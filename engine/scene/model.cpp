@@ -6,6 +6,18 @@
 
 namespace eng {
 
+const char* textureWrapName(TextureWrap wrap) {
+  return wrap == TextureWrap::ClampToEdge ? "clamp-to-edge" : wrap == TextureWrap::MirroredRepeat ? "mirrored-repeat" : "repeat";
+}
+
+std::string describeSampling(const TextureSampling& s) {
+  auto filter = [](TextureFilter f) { return f == TextureFilter::Nearest ? "nearest" : "linear"; };
+  std::string out = std::string(textureWrapName(s.wrapS)) + " x " + textureWrapName(s.wrapT) + ", magnified " +
+                    filter(s.magFilter) + ", minified " + filter(s.minFilter);
+  out += s.mipmaps ? std::string(", ") + filter(s.mipFilter) + " between mipmaps" : ", no mipmaps";
+  return out;
+}
+
 glm::mat4 Node::localTransform() const {
   if (hasMatrix) return matrix;
   glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);

@@ -36,7 +36,9 @@ struct MorphTarget {
 struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // always filled by the loader (generated when absent)
-  std::vector<glm::vec2> texcoords;  // empty when the primitive has none
+  // The UV set its material's base colour names (TEXCOORD_0 unless the
+  // texture says otherwise); empty when the primitive has none.
+  std::vector<glm::vec2> texcoords;
   std::vector<glm::vec4> tangents;   // empty when the primitive has none
   // Linear RGBA multiplied into the base colour (glTF COLOR_0; baked
   // ambient occlusion of a dressed face); empty = white.
@@ -90,10 +92,31 @@ constexpr const char* alphaModeName(AlphaMode mode) {
   return mode == AlphaMode::Mask ? "MASK" : mode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
 }
 
+// How a texture is read between and beyond its texels (glTF sampler). The
+// defaults are what a texture without a sampler gets: repeat, linear within
+// and between mip levels.
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+enum class TextureFilter { Linear, Nearest };
+struct TextureSampling {
+  TextureWrap wrapS = TextureWrap::Repeat;  // along u
+  TextureWrap wrapT = TextureWrap::Repeat;  // along v
+  TextureFilter magFilter = TextureFilter::Linear;
+  TextureFilter minFilter = TextureFilter::Linear;  // within a mip level
+  bool mipmaps = true;                               // false: the full-size level only
+  TextureFilter mipFilter = TextureFilter::Linear;  // between mip levels
+  bool operator==(const TextureSampling&) const = default;
+};
+
+// "repeat", "clamp-to-edge", "mirrored-repeat".
+const char* textureWrapName(TextureWrap wrap);
+// One line for listings, e.g. "clamp-to-edge x repeat, nearest, no mipmaps".
+std::string describeSampling(const TextureSampling& sampling);
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
   int baseColorImage = -1;  // index into Model::images, sRGB encoded
+  TextureSampling baseColorSampling;  // read through Primitive::texcoords
   glm::vec3 emissiveFactor{0.0f};  // linear RGB (emissive textures are not drawn: see the glTF loader)
   float roughness = 0.6f;
   float metallic = 0.0f;

@@ -461,6 +461,15 @@ Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
     if (!texture) return texture.error().prefixed(name_ + ": ");
     tex = std::move(texture).value();
   }
+  for (const Material& mat : model.materials) {
+    const TextureSampling& sampling = mat.baseColorSampling;
+    if (mat.baseColorImage < 0 || sampling == TextureSampling{} ||
+        std::any_of(samplers_.begin(), samplers_.end(), [&](const auto& s) { return s.first == sampling; }))
+      continue;
+    auto sampler = createSampler(ctx, sampling);
+    if (!sampler) return sampler.error().prefixed(name_ + ": " + describeSampling(sampling) + ": ");
+    samplers_.emplace_back(sampling, std::move(sampler).value());
+  }
   detailArrays_.resize(model.materials.size());
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const Material& mat = model.materials[i];
@@ -531,17 +540,20 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
                                  GpuPrimitive& gp) const {
   const GpuImage* base = &layouts.whiteTexture();
   const GpuImage* detail = &layouts.emptyDetailArray();
+  VkSampler baseSampler = layouts.sampler();
   if (prim.material >= 0) {
     const size_t material = static_cast<size_t>(prim.material);
     const int image = model.materials[material].baseColorImage;
     if (image >= 0 && textures_[static_cast<size_t>(image)]) base = &textures_[static_cast<size_t>(image)];
+    for (const auto& [sampling, sampler] : samplers_)
+      if (sampling == model.materials[material].baseColorSampling) baseSampler = sampler.get();
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
       gp.constants.detailLayerCount = 0;  // layers without decodable images stay off
   }
   const VkBuffer placeholder = layouts.placeholderBuffer().handle();
-  const VkDescriptorImageInfo baseInfo{layouts.sampler(), base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo baseInfo{baseSampler, base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo detailParams = rangeOr(
       detailLayers_.handle(), r.detail, gp.constants.detailLayerCount * sizeof(GpuDetailLayer), placeholder);

@@ -131,6 +131,8 @@ class GpuModel {
   std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
+  // The samplings base colours ask for other than the default (SceneLayouts::sampler()).
+  std::vector<std::pair<TextureSampling, UniqueSampler>> samplers_;
   std::vector<UniqueBufferView> texelViews_;  // the morph pre-pass's inputs of the primitives with deltas
   UniqueDescriptorPool descriptorPool_;
 };

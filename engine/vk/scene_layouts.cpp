@@ -86,22 +86,9 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
   if (!morphLayout) return morphLayout.error();
   s.morphPipelineLayout_ = std::move(morphLayout).value();
 
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = VK_FILTER_LINEAR;
-  samplerInfo.minFilter = VK_FILTER_LINEAR;
-  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  // Anisotropic filtering is nearly free on GPUs but llvmpipe emulates it at
-  // a cost of seconds per frame; faces are seen head-on, so CPU devices skip it.
-  const bool cpuDevice = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
-  samplerInfo.anisotropyEnable = ctx.deviceInfo().samplerAnisotropy && !cpuDevice ? VK_TRUE : VK_FALSE;
-  samplerInfo.maxAnisotropy = std::min(8.0f, ctx.deviceInfo().properties.limits.maxSamplerAnisotropy);
-  samplerInfo.maxLod = VK_LOD_CLAMP_NONE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateSampler(ctx.device(), &samplerInfo, nullptr, &sampler));
-  s.sampler_ = UniqueSampler(ctx.device(), sampler);
+  auto sampler = createSampler(ctx, TextureSampling{});
+  if (!sampler) return sampler.error();
+  s.sampler_ = std::move(sampler).value();
 
   const std::array<uint8_t, 4> whitePixel{255, 255, 255, 255};
   const std::array<std::span<const uint8_t>, 1> whiteLayers{whitePixel};

@@ -1,7 +1,8 @@
 #pragma once
 // The resource interface every scene pipeline shares (see engine/shaders/
 // frame.glsl, morph.glsl, mesh.frag): descriptor set layouts, the pipeline
-// layout, the texture sampler, and the placeholder resources bound where a
+// layout, the default texture sampler (repeat, trilinear; a model's own
+// samplings live in its GpuModel), and the placeholder resources bound where a
 // primitive has nothing (no texture, no detail layers, no tangent deltas).
 //
 //   set 0 (per frame):     0 FrameGlobals UBO, 1 instances, 2 active weights, 3 capture output,

@@ -95,4 +95,31 @@ Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source) 
   return image;
 }
 
+Result<UniqueSampler> createSampler(const Context& ctx, const TextureSampling& sampling) {
+  const auto address = [](TextureWrap wrap) {
+    return wrap == TextureWrap::ClampToEdge      ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+           : wrap == TextureWrap::MirroredRepeat ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
+                                                 : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  };
+  const auto filter = [](TextureFilter f) { return f == TextureFilter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = filter(sampling.magFilter);
+  info.minFilter = filter(sampling.minFilter);
+  info.mipmapMode =
+      sampling.mipFilter == TextureFilter::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.addressModeU = address(sampling.wrapS);
+  info.addressModeV = address(sampling.wrapT);
+  info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  // Anisotropic filtering is nearly free on GPUs but llvmpipe emulates it at
+  // a cost of seconds per frame; faces are seen head-on, so CPU devices skip
+  // it. Without mipmaps (glTF's NEAREST / LINEAR minFilter) only level 0 is read.
+  const bool cpuDevice = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  info.anisotropyEnable = ctx.deviceInfo().samplerAnisotropy && !cpuDevice && sampling.mipmaps ? VK_TRUE : VK_FALSE;
+  info.maxAnisotropy = std::min(8.0f, ctx.deviceInfo().properties.limits.maxSamplerAnisotropy);
+  info.maxLod = sampling.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
+  VkSampler sampler = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+  return UniqueSampler(ctx.device(), sampler);
+}
+
 }  // namespace eng::vk

@@ -1,11 +1,14 @@
 #pragma once
-// sRGB RGBA8 textures with a full mip chain (generated on the GPU by blits).
+// sRGB RGBA8 textures with a full mip chain (generated on the GPU by blits),
+// and the samplers that read them.
 #include <cstdint>
 #include <span>
 
 #include "engine/core/result.h"
+#include "engine/scene/model.h"
 #include "engine/vk/context.h"
 #include "engine/vk/gpu_image.h"
+#include "engine/vk/unique_handle.h"
 
 namespace eng::vk {
 
@@ -20,5 +23,9 @@ struct TextureSource {
 
 // Ends in SHADER_READ_ONLY_OPTIMAL. Sizes are checked against the layer data.
 Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source);
+
+// A sampler that reads such a texture as a glTF sampler asks (wrap modes,
+// filters, whether mip levels are used).
+Result<UniqueSampler> createSampler(const Context& ctx, const TextureSampling& sampling);
 
 }  // namespace eng::vk

@@ -467,15 +467,41 @@ TEST(GltfCompressed, TextureTransformIsBakedIntoTexcoords) {
   }
   const eng::ExtensionUse* record = extensionRecord(model, "KHR_texture_transform");
   ASSERT_NE(record, nullptr);
-  EXPECT_EQ(record->outcome.rfind("applied: baked into TEXCOORD_0 for 1 material", 0), 0u) << record->outcome;
+  EXPECT_EQ(record->outcome.rfind("applied: baked into the UV set of 1 material", 0), 0u) << record->outcome;
   EXPECT_FALSE(record->required);
 
-  // A transform that selects another UV set is not applied (only TEXCOORD_0 is read), and says so.
+  // A transform that selects another UV set applies to that set, which the
+  // primitive then reads instead of TEXCOORD_0.
   info["extensions"]["KHR_texture_transform"]["texCoord"] = 1;
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = b.addVec2({{0, 0}, {0, 1}, {0, 1}, {0, 0}});
   b.writeGlb(dir / "transform_uv1.glb");
   const eng::Model other = loadOk(dir / "transform_uv1.glb");
-  EXPECT_EQ(other.meshes.at(0).primitives.at(0).texcoords[1], glm::vec2(1, 0));
-  EXPECT_TRUE(hasWarningContaining(other, "KHR_texture_transform on TEXCOORD_1"));
+  // (0, 1) -> (1.5, 0.25).
+  EXPECT_LT(glm::distance(other.meshes.at(0).primitives.at(0).texcoords.at(1), glm::vec2(1.5f, 0.25f)), 1e-6f);
+  EXPECT_TRUE(other.warnings.empty()) << other.warnings[0];
+
+  // Without that set the primitive falls back to TEXCOORD_0, and says so.
+  b.doc["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+  b.writeGlb(dir / "transform_uv1_missing.glb");
+  const eng::Model missing = loadOk(dir / "transform_uv1_missing.glb");
+  EXPECT_LT(glm::distance(missing.meshes.at(0).primitives.at(0).texcoords.at(1), glm::vec2(0.5f, -1.75f)), 1e-6f);
+  EXPECT_TRUE(hasWarningContaining(missing, "base colour reads TEXCOORD_1, which the primitive lacks"));
+}
+
+TEST(GltfCompressed, BaseColorReadsTheUvSetItsTextureNames) {
+  const auto dir = freshTempDir("texcoord_set");
+  auto png = eng::encodePng(2, 2, std::vector<uint8_t>(16, 255));
+  ASSERT_TRUE(png.ok());
+  GltfFileBuilder b = texturedQuad();
+  b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}}});
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+  const std::vector<glm::vec2> second = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.75f, 0.75f}, {0.25f, 0.75f}};
+  b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = b.addVec2(second);
+  b.writeGlb(dir / "uv1.glb");
+  const eng::Model model = loadOk(dir / "uv1.glb");
+  EXPECT_EQ(model.meshes.at(0).primitives.at(0).texcoords, second);
+  EXPECT_TRUE(model.warnings.empty()) << model.warnings[0];
 }
 
 }  // namespace

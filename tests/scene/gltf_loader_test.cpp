@@ -310,6 +310,46 @@ TEST(GltfLoader, ReadsAlphaModes) {
   EXPECT_TRUE(hasWarningContaining(model, "material 4 has alphaMode 'ADDITIVE'"));
 }
 
+TEST(GltfLoader, ReadsTextureSamplers) {
+  const auto dir = freshTempDir("loader_samplers");
+  GltfFileBuilder b = quadWithTarget();
+  auto png = eng::encodePng(1, 1, std::vector<uint8_t>(4, 255));
+  ASSERT_TRUE(png.ok());
+  b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}}});
+  b.doc["samplers"] = Json::array({{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9728}},
+                                   {{"minFilter", 9985}},
+                                   {{"wrapS", 12345}, {"minFilter", 1}}});
+  b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}},
+                                   {{"source", 0}, {"sampler", 1}},
+                                   {{"source", 0}},
+                                   {{"source", 0}, {"sampler", 2}},
+                                   {{"source", 0}, {"sampler", 7}}});
+  Json materials = Json::array();
+  for (int t = 0; t < 5; ++t) materials.push_back({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", t}}}}}});
+  b.doc["materials"] = materials;
+  b.writeGlb(dir / "samplers.glb");
+  const eng::Model model = loadOk(dir / "samplers.glb");
+  ASSERT_EQ(model.materials.size(), 5u);
+  using eng::TextureFilter, eng::TextureWrap;
+  const eng::TextureSampling& pixelArt = model.materials[0].baseColorSampling;
+  EXPECT_EQ(pixelArt.wrapS, TextureWrap::ClampToEdge);
+  EXPECT_EQ(pixelArt.wrapT, TextureWrap::MirroredRepeat);
+  EXPECT_EQ(pixelArt.magFilter, TextureFilter::Nearest);
+  EXPECT_EQ(pixelArt.minFilter, TextureFilter::Nearest);
+  EXPECT_FALSE(pixelArt.mipmaps);
+  const eng::TextureSampling& mipNearest = model.materials[1].baseColorSampling;  // LINEAR_MIPMAP_NEAREST
+  EXPECT_EQ(mipNearest.wrapS, TextureWrap::Repeat) << "glTF's default wrap";
+  EXPECT_EQ(mipNearest.minFilter, TextureFilter::Linear);
+  EXPECT_TRUE(mipNearest.mipmaps);
+  EXPECT_EQ(mipNearest.mipFilter, TextureFilter::Nearest);
+  EXPECT_EQ(model.materials[2].baseColorSampling, eng::TextureSampling{}) << "no sampler: repeat, trilinear";
+  // Undefined codes keep their defaults and are named; a missing sampler is reported.
+  EXPECT_EQ(model.materials[3].baseColorSampling, eng::TextureSampling{});
+  EXPECT_TRUE(hasWarningContaining(model, "sampler 2 has wrapS 12345, minFilter 1"));
+  EXPECT_EQ(model.materials[4].baseColorSampling, eng::TextureSampling{});
+  EXPECT_TRUE(hasWarningContaining(model, "texture 4 refers to sampler 7, the file has 3"));
+}
+
 TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   const auto dir = freshTempDir("loader_material");
   GltfFileBuilder b = quadWithTarget();

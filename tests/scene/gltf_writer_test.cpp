@@ -40,8 +40,14 @@ eng::Model richModel() {
   skin.alphaCutoff = 0.3f;
   skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
+  skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
+                            eng::TextureFilter::Nearest, false, eng::TextureFilter::Linear};
   model.materials.push_back(skin);
   model.materials.push_back(eng::Material{.name = "plain"});
+  // The same image through another sampling: a second texture of one image.
+  eng::Material decal{.name = "decal", .baseColorImage = 0};
+  decal.baseColorSampling.mipFilter = eng::TextureFilter::Nearest;
+  model.materials.push_back(decal);
 
   eng::Mesh face;
   face.name = "Face";
@@ -163,6 +169,7 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.doubleSided, y.doubleSided);
     EXPECT_EQ(x.alphaMode, y.alphaMode);
     EXPECT_EQ(x.alphaCutoff, y.alphaCutoff);
+    EXPECT_EQ(x.baseColorSampling, y.baseColorSampling) << x.name << ": " << eng::describeSampling(y.baseColorSampling);
     ASSERT_EQ(x.detailLayers.size(), y.detailLayers.size());
     for (size_t l = 0; l < x.detailLayers.size(); ++l) {
       EXPECT_EQ(x.detailLayers[l].image, y.detailLayers[l].image);

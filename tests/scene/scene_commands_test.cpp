@@ -57,6 +57,25 @@ TEST(FacialInfoCommand, DescribesAModelAndItsTargets) {
   EXPECT_EQ(doc["meshes"][0]["primitives"][0]["vertices"], 4);
 }
 
+TEST(FacialInfoCommand, ListsASamplerThatIsNotTheDefault) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_info_sampler");
+  scene_test::GltfFileBuilder b = scene_test::quadWithTarget();
+  // A 1x1 PNG, as data: the sampler is what is listed.
+  b.doc["images"] = nlohmann::json::array(
+      {{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg=="}}});
+  b.doc["samplers"] = nlohmann::json::array({{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9728}}});
+  b.doc["textures"] = nlohmann::json::array({{{"source", 0}, {"sampler", 0}}});
+  b.doc["materials"] = nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.writeGlb(dir / "sampled.glb");
+  const CommandRun text = facial("info " + quoted(dir / "sampled.glb"));
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_NE(text.output.find("sampled clamp-to-edge x mirrored-repeat, magnified nearest, minified nearest, no mipmaps"),
+            std::string::npos)
+      << text.output;
+}
+
 TEST(FacialInfoCommand, BadFilesExitNonZeroWithOneLineNamingTheFile) {
   REQUIRE_FACIAL_PROGRAM();
   const auto dir = freshTempDir("cmd_info_bad");

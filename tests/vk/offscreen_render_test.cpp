@@ -231,6 +231,57 @@ TEST(OffscreenRender, BlendedDrawsComeAfterOpaqueOnes) {
   EXPECT_GT(both.r, alone.r + 20) << "the yellow sphere behind shows through the blue one";
 }
 
+// A square facing the camera whose u runs from -1 to 2 across it, textured
+// with two texels: red on the left half of the texture, green on the right.
+eng::Model twoTexelSquare(const eng::TextureSampling& sampling) {
+  eng::Model model;
+  model.sourcePath = "<two-texel square>";
+  eng::Primitive& prim = model.meshes.emplace_back().primitives.emplace_back();
+  prim.positions = {{-1.5f, -0.5f, 0.0f}, {1.5f, -0.5f, 0.0f}, {1.5f, 0.5f, 0.0f}, {-1.5f, 0.5f, 0.0f}};
+  prim.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+  prim.texcoords = {{-1.0f, 0.5f}, {2.0f, 0.5f}, {2.0f, 0.5f}, {-1.0f, 0.5f}};
+  prim.indices = {0, 1, 2, 0, 2, 3};
+  prim.material = 0;
+  model.images.push_back({"red|green", 2, 1, {255, 0, 0, 255, 0, 255, 0, 255}});
+  eng::Material& mat = model.materials.emplace_back();
+  mat.baseColorImage = 0;
+  mat.baseColorSampling = sampling;
+  model.nodes.emplace_back().mesh = 0;
+  model.roots.push_back(0);
+  return model;
+}
+
+TEST(OffscreenRender, BaseColourFollowsTheSamplersWrapModes) {
+  // Six columns across the square, at u = -0.75, -0.25, ..., 1.75.
+  auto columns = [](eng::TextureWrap wrap) {
+    eng::TextureSampling sampling{wrap, wrap, eng::TextureFilter::Nearest, eng::TextureFilter::Nearest, false};
+    const eng::Model model = twoTexelSquare(sampling);
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    if (!gpu) return std::string();
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    const eng::Image image = renderOrFail(viewOf(model.bounds()), {&instance, 1});
+    const eng::Image background = renderOrFail(viewOf(model.bounds()), {});
+    // The square's columns, found from where it covers the backdrop on the middle row.
+    int left = image.width, right = -1;
+    for (int x = 0; x < image.width; ++x)
+      if (glm::any(glm::greaterThan(glm::abs(pixel(image, x, image.height / 2) - pixel(background, x, image.height / 2)),
+                                    glm::ivec4(12)))) {
+        left = std::min(left, x);
+        right = std::max(right, x);
+      }
+    std::string out;
+    for (int c = 0; c < 6; ++c) {
+      const glm::ivec4 p = pixel(image, left + (right - left) * (2 * c + 1) / 12, image.height / 2);
+      out += p.r > p.g + 30 ? 'R' : p.g > p.r + 30 ? 'G' : '?';
+    }
+    return out;
+  };
+  EXPECT_EQ(columns(eng::TextureWrap::Repeat), "RGRGRG");
+  EXPECT_EQ(columns(eng::TextureWrap::ClampToEdge), "RRRGGG");
+  EXPECT_EQ(columns(eng::TextureWrap::MirroredRepeat), "GRRGGR");
+}
+
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   vk_test::SphereSpec spec;
   spec.withMaterial = false;
