@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -102,6 +103,30 @@ TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
 TEST_F(ExpressionJudge, CandideMaskStatesAreNamed) {
   // A crude mask (113 vertices, no textures): its eyes are cut open and given eyeballs by the import.
   expectRecognised("candide3", (testing_support::sharedDir() / "candide3" / "candide3.wfm").string(), {{256, 5}, {384, 4}});
+}
+
+TEST_F(ExpressionJudge, RegionSwapToolReportsEachRegionBothWays) {
+  // tools/judge_regions.py, the README's way to find which part of a face
+  // keeps a state from being named: both crops found, aligned by the eyes,
+  // and one verdict per region each way.
+  const CommandOutput run = runProgram(
+      "/usr/bin/python3", {(testing_support::sourceDir() / "tools" / "judge_regions.py").string(), "fear",
+                           "--reference", (testing_support::sharedDir() / "assets" / "facecap.glb").string(),
+                           "--facial", facialProgram().string(), "--judge",
+                           (testing_support::sharedDir() / "judge" / "fer_judge.py").string()});
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("reference (aligned by the eyes)"), std::string::npos) << run.out;
+  int model = 0, reference = 0;
+  std::istringstream lines(run.out);
+  for (std::string line; std::getline(lines, line);) {
+    model += line.find("model with the reference ") != std::string::npos;
+    reference += line.find("reference with the model ") != std::string::npos;
+    if (line.find(" with the ") != std::string::npos)
+      EXPECT_TRUE(std::regex_search(line, std::regex(R"(fear [01]\.\d\d  \(says \w+ [01]\.\d\d\))")))
+          << "each line gives p of the state and the verdict: " << line;
+  }
+  EXPECT_EQ(model, 12);
+  EXPECT_EQ(reference, 12);
 }
 
 }  // namespace
