@@ -65,6 +65,7 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"alphaMode", eng::alphaModeName(mat.alphaMode)},
                          {"alphaCutoff", mat.alphaCutoff},
                          {"baseColorSampling", eng::describeSampling(mat.baseColorSampling)},
+                         {"unlit", mat.unlit},
                          {"detailLayers", std::move(layers)}});
   }
   j["materials"] = std::move(materials);
@@ -124,6 +125,7 @@ void printText(const eng::Model& model) {
                 i, mat.name.c_str(), mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b,
                 mat.baseColorFactor.a, mat.baseColorImage, mat.roughness, mat.metallic,
                 mat.doubleSided ? ", double-sided" : "");
+    if (mat.unlit) std::printf(", unlit");
     if (mat.alphaMode != eng::AlphaMode::Opaque) std::printf(", alpha %s", eng::alphaModeName(mat.alphaMode));
     if (mat.alphaMode == eng::AlphaMode::Mask) std::printf(" below %.3g", mat.alphaCutoff);
     if (mat.baseColorImage >= 0 && mat.baseColorSampling != eng::TextureSampling{})

@@ -99,6 +99,10 @@ void GltfModelBuilder::loadMaterials() {
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     mat.doubleSided = src.doubleSided;
+    if (src.extensions.count(kKhrMaterialsUnlit)) {
+      mat.unlit = true;
+      outcomes_[kKhrMaterialsUnlit] = "applied: " + std::to_string(++unlitMaterials_) + " material(s) drawn unlit";
+    }
     if (src.alphaMode == "MASK") {
       mat.alphaMode = AlphaMode::Mask;
       mat.alphaCutoff = static_cast<float>(src.alphaCutoff);

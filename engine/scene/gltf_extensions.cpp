@@ -37,7 +37,8 @@ bool numberArray(const tinygltf::Value& object, const char* name, float* out, in
 
 bool isHandledExtension(const std::string& name) {
   return name == kKhrMeshQuantization || name == kExtMeshopt || name == kKhrMeshopt || name == kKhrDraco ||
-         name == kExtTextureWebp || name == kKhrTextureBasisu || name == kKhrTextureTransform;
+         name == kExtTextureWebp || name == kKhrTextureBasisu || name == kKhrTextureTransform ||
+         name == kKhrMaterialsUnlit;
 }
 
 std::vector<ExtensionUse> describeExtensions(const tinygltf::Model& gltf, const ExtensionOutcomes& outcomes) {

@@ -20,6 +20,7 @@ inline constexpr const char* kKhrMeshQuantization = "KHR_mesh_quantization";
 inline constexpr const char* kExtTextureWebp = "EXT_texture_webp";
 inline constexpr const char* kKhrTextureBasisu = "KHR_texture_basisu";
 inline constexpr const char* kKhrTextureTransform = "KHR_texture_transform";
+inline constexpr const char* kKhrMaterialsUnlit = "KHR_materials_unlit";
 
 // Extensions a file may require and still load: decoded, applied, or (KTX2
 // textures) skipped with a warning while the model itself stays correct.

@@ -113,7 +113,7 @@ class GltfModelBuilder {
   Model model_;
   std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
   std::vector<BaseColorUv> baseColorUvs_;  // per material
-  int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0;
+  int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0, unlitMaterials_ = 0;
 };
 
 }  // namespace eng

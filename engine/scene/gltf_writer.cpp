@@ -235,6 +235,10 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       if (mat.doubleSided) m["doubleSided"] = true;
       if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);
       if (mat.alphaMode == AlphaMode::Mask) m["alphaCutoff"] = mat.alphaCutoff;
+      if (mat.unlit) {
+        m["extensions"]["KHR_materials_unlit"] = Json::object();
+        doc["extensionsUsed"] = Json::array({"KHR_materials_unlit"});
+      }
       if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
       if (!mat.detailLayers.empty()) {
         Json layers = Json::array();

@@ -123,6 +123,9 @@ struct Material {
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // AlphaMode::Mask only
+  // KHR_materials_unlit: the base colour is shown as it is, with no lights
+  // (toon and anime avatars, VRoid's MToon fallback, baked scans).
+  bool unlit = false;
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
 

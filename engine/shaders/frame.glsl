@@ -81,3 +81,4 @@ const uint DRAW_FLAG_MORPHED = 16u;  // the primitive has sparse deltas: morph.c
 const uint DRAW_FLAG_MIRRORED = 32u;  // negative-determinant transform: the pipeline's front faces wind clockwise
 const uint DRAW_FLAG_ALPHA_MASK = 64u;   // glTF alphaMode MASK
 const uint DRAW_FLAG_ALPHA_BLEND = 128u; // glTF alphaMode BLEND (a blending pipeline; alpha is written out)
+const uint DRAW_FLAG_UNLIT = 256u;       // KHR_materials_unlit

@@ -64,6 +64,15 @@ void main() {
     for (uint l = 32u; l < draw.detailLayerCount; ++l) base.rgb = blendDetailLayer(base.rgb, inst, l);
   }
 
+  // BLEND draws go through a blending pipeline; every other mode is opaque.
+  const float alpha = (draw.flags & DRAW_FLAG_ALPHA_BLEND) != 0u ? clamp(base.a, 0.0, 1.0) : 1.0;
+  // Unlit (KHR_materials_unlit): the colour the artist painted, untouched by
+  // the lights and the exposure and tone curve that are there for them.
+  if ((draw.flags & DRAW_FLAG_UNLIT) != 0u) {
+    outColor = vec4(clamp(base.rgb + material.emissive.rgb, 0.0, 1.0), alpha);
+    return;
+  }
+
   SurfacePoint s;
   s.albedo = base.rgb;
   s.toViewer = normalize(frame.cameraPosition.xyz - inWorldPosition);
@@ -86,7 +95,5 @@ void main() {
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
-  // BLEND draws go through a blending pipeline; every other mode is opaque.
-  const float alpha = (draw.flags & DRAW_FLAG_ALPHA_BLEND) != 0u ? clamp(base.a, 0.0, 1.0) : 1.0;
   outColor = vec4(toneMap(inside ? lit * 0.12 : lit + material.emissive.rgb), alpha);
 }

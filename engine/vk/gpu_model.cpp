@@ -419,7 +419,8 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
                            (sparse.hasCreases ? kDrawFlagCreases : 0u) |
                            (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
                            (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
-                           (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u);
+                           (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u) |
+                           (mat.unlit ? kDrawFlagUnlit : 0u);
       gp.constants.alphaCutoff = mat.alphaCutoff;
       gm.primitives.push_back(gp);
     }

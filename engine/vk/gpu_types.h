@@ -96,6 +96,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagMirrored = 32u, // the instances' transform has a negative determinant: front faces wind clockwise
   kDrawFlagAlphaMask = 64u,   // glTF alphaMode MASK: cut out below alphaCutoff
   kDrawFlagAlphaBlend = 128u, // glTF alphaMode BLEND: drawn after the opaque draws, back to front, blended
+  kDrawFlagUnlit = 256u,      // KHR_materials_unlit: the base colour as it is, no lights
 };
 
 struct GpuDetailLayer {

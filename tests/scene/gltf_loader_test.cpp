@@ -310,6 +310,24 @@ TEST(GltfLoader, ReadsAlphaModes) {
   EXPECT_TRUE(hasWarningContaining(model, "material 4 has alphaMode 'ADDITIVE'"));
 }
 
+TEST(GltfLoader, ReadsUnlitMaterials) {
+  const auto dir = freshTempDir("loader_unlit");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["extensionsUsed"] = {"KHR_materials_unlit"};
+  b.doc["extensionsRequired"] = {"KHR_materials_unlit"};
+  b.doc["materials"] = Json::array({{{"name", "toon skin"}, {"extensions", {{"KHR_materials_unlit", Json::object()}}}},
+                                    {{"name", "lit"}}});
+  b.writeGlb(dir / "unlit.glb");
+  const eng::Model model = loadOk(dir / "unlit.glb");
+  ASSERT_EQ(model.materials.size(), 2u);
+  EXPECT_TRUE(model.materials[0].unlit);
+  EXPECT_FALSE(model.materials[1].unlit);
+  EXPECT_TRUE(model.warnings.empty()) << model.warnings[0];
+  const eng::ExtensionUse* record = extensionRecord(model, "KHR_materials_unlit");
+  ASSERT_NE(record, nullptr);
+  EXPECT_EQ(record->outcome, "applied: 1 material(s) drawn unlit");
+}
+
 TEST(GltfLoader, ReadsTextureSamplers) {
   const auto dir = freshTempDir("loader_samplers");
   GltfFileBuilder b = quadWithTarget();

@@ -38,6 +38,7 @@ eng::Model richModel() {
   skin.doubleSided = true;
   skin.alphaMode = eng::AlphaMode::Mask;
   skin.alphaCutoff = 0.3f;
+  skin.unlit = true;
   skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
   skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
@@ -169,6 +170,7 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.doubleSided, y.doubleSided);
     EXPECT_EQ(x.alphaMode, y.alphaMode);
     EXPECT_EQ(x.alphaCutoff, y.alphaCutoff);
+    EXPECT_EQ(x.unlit, y.unlit);
     EXPECT_EQ(x.baseColorSampling, y.baseColorSampling) << x.name << ": " << eng::describeSampling(y.baseColorSampling);
     ASSERT_EQ(x.detailLayers.size(), y.detailLayers.size());
     for (size_t l = 0; l < x.detailLayers.size(); ++l) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtx/component_wise.hpp>
 #include <gtest/gtest.h>
 
 #include "engine/scene/weights.h"
@@ -280,6 +281,29 @@ TEST(OffscreenRender, BaseColourFollowsTheSamplersWrapModes) {
   EXPECT_EQ(columns(eng::TextureWrap::Repeat), "RGRGRG");
   EXPECT_EQ(columns(eng::TextureWrap::ClampToEdge), "RRRGGG");
   EXPECT_EQ(columns(eng::TextureWrap::MirroredRepeat), "GRRGGR");
+}
+
+TEST(OffscreenRender, UnlitMaterialShowsItsBaseColourEverywhere) {
+  // KHR_materials_unlit: no light, shadow, exposure or tone curve. The lit
+  // sphere is brighter toward the key and darker away from it; the unlit one
+  // is its base colour (sRGB-encoded by the target) wherever it covers.
+  const glm::vec4 colour{0.8f, 0.6f, 0.5f, 1.0f};
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](bool unlit) {
+    auto gpu = uploadPlainSphere({.color = colour, .unlit = unlit});
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const eng::Image lit = render(false), unlit = render(true);
+  const glm::ivec4 expected(231, 203, 188, 255);  // 0.8, 0.6, 0.5 linear in sRGB
+  for (const glm::ivec2 p : {glm::ivec2(128, 128), glm::ivec2(90, 90), glm::ivec2(166, 166)}) {
+    const glm::ivec4 got = pixel(unlit, p.x, p.y);
+    EXPECT_LE(glm::compMax(glm::abs(got - expected)), 2) << "unlit at " << p.x << "," << p.y << ": " << got.r << " "
+                                                         << got.g << " " << got.b;
+  }
+  const glm::ivec4 keySide = pixel(lit, 90, 90), farSide = pixel(lit, 166, 166);
+  EXPECT_GT(keySide.r + keySide.g + keySide.b, farSide.r + farSide.g + farSide.b + 30) << "the lit sphere is shaded";
 }
 
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {

@@ -59,6 +59,7 @@ eng::Model makeSphereModel(const SphereSpec& spec) {
     mat.doubleSided = spec.doubleSided;
     mat.alphaMode = spec.alphaMode;
     mat.alphaCutoff = spec.alphaCutoff;
+    mat.unlit = spec.unlit;
     prim.material = 0;
   }
   eng::Node& node = model.nodes.emplace_back();

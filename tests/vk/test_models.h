@@ -19,6 +19,7 @@ struct SphereSpec {
   bool doubleSided = false;
   eng::AlphaMode alphaMode = eng::AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
+  bool unlit = false;       // KHR_materials_unlit
   bool withMaterial = true; // false: the primitive uses the default material
 };
 
