@@ -10,12 +10,12 @@ constexpr int kClampToEdge = 33071, kMirroredRepeat = 33648, kRepeat = 10497;
 
 void note(std::string& problem, const std::string& what) { problem += (problem.empty() ? "" : ", ") + what; }
 
-bool wrapFromGltf(int code, const char* field, TextureWrap& out, std::string& problem) {
+void wrapFromGltf(int code, const char* field, TextureWrap& out, std::string& problem) {
   switch (code) {
-    case kRepeat: out = TextureWrap::Repeat; return true;
-    case kClampToEdge: out = TextureWrap::ClampToEdge; return true;
-    case kMirroredRepeat: out = TextureWrap::MirroredRepeat; return true;
-    default: note(problem, std::string(field) + " " + std::to_string(code)); return false;
+    case kRepeat: out = TextureWrap::Repeat; break;
+    case kClampToEdge: out = TextureWrap::ClampToEdge; break;
+    case kMirroredRepeat: out = TextureWrap::MirroredRepeat; break;
+    default: note(problem, std::string(field) + " " + std::to_string(code));
   }
 }
 
