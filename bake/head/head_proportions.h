@@ -29,8 +29,7 @@ struct HeadProportions {
   float mouthHalfWidth = 0.0232f;  // x of the lip corners
 
   float crownY = 0.121f;
-  float chinY = -0.085f;
-  float neckBottomY = -0.118f;
+  float neckBottomY = -0.160f;
 };
 
 }  // namespace facial

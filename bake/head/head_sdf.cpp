@@ -91,34 +91,45 @@ float HeadSdf::face(const vec3& p) const {
   // Lower face: one volume from the cheekbones to the jaw, narrowing toward
   // the chin (a stylised V jaw). One shape rather than a mid-face and a
   // mandible blended together: their junction left a groove across the cheek.
+  // Adult proportions: pupils to chin about 0.8 of the cheek width (a shorter
+  // lower face read as a child's, a wider one as a mask), and a gentle taper:
+  // a sharper V turned the cheeks below the eyes sideways, away from the key
+  // light, so the far cheek fell into a hard-edged dark band.
   {
-    const float narrow = 1.0f - 0.22f * smoothstep(-0.015f, -0.085f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
-    vec3 f = p - vec3(0.0f, -0.030f, 0.024f);
+    const float narrow = 1.0f - 0.14f * smoothstep(-0.020f, -0.093f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
+    vec3 f = p - vec3(0.0f, -0.036f, 0.028f);
     f.x /= narrow;
-    float lower = ellipsoid(f, vec3(0.066f, 0.058f, 0.064f)) * narrow;
+    float lower = ellipsoid(f, vec3(0.061f, 0.064f, 0.061f)) * narrow;
     // The jaw's underside: a plane rising from under the chin to the jaw
     // angles. Without it the ellipsoid's round bottom hung below the jaw like
     // a balloon and the jaw line never formed.
-    const vec3 underChin(0.0f, -0.080f, 0.060f);
+    const vec3 underChin(0.0f, -0.089f, 0.066f);
     const vec3 down = glm::normalize(vec3(0.0f, -0.89f, -0.45f));
     lower = smax(lower, glm::dot(p - underChin, down), 0.012f);
     d = smin(d, lower, 0.03f);
   }
-  // Chin and the muzzle over the teeth.
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.0750f, 0.0715f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
-  d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.063f), vec3(0.030f, 0.024f, 0.026f)), 0.022f);
+  // Chin, forward under the lower lip (a chin set back behind the lips gave a
+  // receding, doll-like profile), and the muzzle over the teeth, wide and
+  // blended wide so the cheeks flow into it: a narrow muzzle left a groove
+  // from the nose wing down to the jaw, a hard dark band under the key light
+  // and a smile's fold on a face at rest.
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.083f, 0.0735f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
+  d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.060f), vec3(0.038f, 0.024f, 0.026f)), 0.032f);
   // Brow ridge.
   d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.068f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
   // Cheekbones and cheek apples (mirrored), blended wide so they shape the
   // face without reading as separate lumps.
   const vec3 m(std::abs(p.x), p.y, p.z);
-  d = smin(d, ellipsoid(m - vec3(0.048f, -0.004f, 0.036f), vec3(0.016f, 0.014f, 0.030f)), 0.034f);
-  d = smin(d, ellipsoid(m - vec3(0.035f, -0.015f, 0.060f), vec3(0.019f, 0.016f, 0.017f)), 0.028f);
-  // Neck: elliptic cylinder merged under the skull, cut flat at the bottom.
+  d = smin(d, ellipsoid(m - vec3(0.046f, -0.004f, 0.036f), vec3(0.016f, 0.014f, 0.030f)), 0.034f);
+  d = smin(d, ellipsoid(m - vec3(0.035f, -0.015f, 0.060f), vec3(0.019f, 0.016f, 0.017f) * 0.85f), 0.028f);
+  // Neck: a cylinder merged under the skull, cut flat at the bottom. An
+  // adult's, about as wide as the jaw and long enough to leave the portrait
+  // framing: a thin stub cut off just under the chin read as a child's neck
+  // on a plinth.
   {
     // A tighter blend under the jaw than around the skull: a readable jaw line.
-    const vec2 q(p.x / 0.038f, (p.z + 0.026f) / 0.042f);
-    const float neck = std::max((glm::length(q) - 1.0f) * 0.038f, p.y);
+    const vec2 q(p.x / 0.046f, (p.z + 0.024f) / 0.046f);
+    const float neck = std::max((glm::length(q) - 1.0f) * 0.046f, p.y);
     d = smin(d, neck, 0.02f + 0.01f * smoothstep(0.0f, -0.04f, p.z));
     d = smax(d, prop_.neckBottomY - p.y, 0.012f);
   }
