@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/face_setup.h"
+#include "engine/vk/gpu_model.h"
 
 namespace cli {
 
@@ -21,10 +22,18 @@ eng::Result<FaceMaterials> FaceMaterials::create(const FaceSetup& face) {
     const eng::Material& mat = model.materials[m];
     out.rest_[m].color = {mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b, mat.baseColorFactor.a};
     out.rest_[m].emission = {mat.emissiveFactor.r, mat.emissiveFactor.g, mat.emissiveFactor.b};
+    if (const std::optional<eng::ToonShading>& t = mat.toon) {
+      out.rest_[m].shade = {t->shadeColor.r, t->shadeColor.g, t->shadeColor.b};
+      out.rest_[m].rim = {t->rimColor.r, t->rimColor.g, t->rimColor.b};
+      out.rest_[m].outline = {t->outlineColor.r, t->outlineColor.g, t->outlineColor.b};
+    }
   }
   out.moved_ = out.rest_;
   out.effective_.assign(vrm->expressions.size(), 0.0f);
-  out.materials_.resize(model.materials.size());
+  // Each record starts as the material draws itself (its MToon values kept);
+  // update() moves the bound colours and texture transforms.
+  out.materials_.clear();
+  for (const eng::Material& mat : model.materials) out.materials_.push_back(eng::vk::instanceMaterial(mat));
   if (auto rest = out.update(out.effective_); !rest) return rest.error();
   return out;
 }
@@ -40,6 +49,11 @@ eng::Result<void> FaceMaterials::update(std::span<const float> expressionWeights
     out.baseColorFactor = glm::clamp(glm::vec4(s.color[0], s.color[1], s.color[2], s.color[3]), 0.0f, 1.0f);
     out.emissive = glm::vec4(glm::max(glm::vec3(s.emission[0], s.emission[1], s.emission[2]), 0.0f), 0.0f);
     out.uvTransform = glm::vec4(s.uvScale[0], s.uvScale[1], s.uvOffset[0], s.uvOffset[1]);
+    // MToon colours (drawn by toon materials only; w keeps the record's own value).
+    auto rgb = [](const std::array<float, 3>& c) { return glm::max(glm::vec3(c[0], c[1], c[2]), 0.0f); };
+    out.toonShade = glm::vec4(rgb(s.shade), out.toonShade.w);
+    out.toonRim = glm::vec4(rgb(s.rim), out.toonRim.w);
+    out.toonOutline = glm::vec4(rgb(s.outline), out.toonOutline.w);
   }
   return {};
 }

@@ -23,6 +23,26 @@ const char* interpolationName(eng::Interpolation i) {
   }
 }
 
+// A material's MToon values, or null.
+nlohmann::ordered_json toonJson(const std::optional<eng::ToonShading>& toon) {
+  if (!toon) return nullptr;
+  return {{"shadeColor", {toon->shadeColor.r, toon->shadeColor.g, toon->shadeColor.b}},
+          {"shadeFromBaseTexture", toon->shadeFromBaseTexture},
+          {"shadingShift", toon->shadingShift},
+          {"shadingToony", toon->shadingToony},
+          {"giEqualization", toon->giEqualization},
+          {"rimColor", {toon->rimColor.r, toon->rimColor.g, toon->rimColor.b}},
+          {"rimFresnelPower", toon->rimFresnelPower},
+          {"rimLift", toon->rimLift},
+          {"rimLightingMix", toon->rimLightingMix},
+          {"outlineWidthMode", toon->outlineMode == eng::ToonShading::OutlineWidth::World    ? "world"
+                               : toon->outlineMode == eng::ToonShading::OutlineWidth::Screen ? "screen"
+                                                                                            : "none"},
+          {"outlineWidth", toon->outlineWidth},
+          {"outlineColor", {toon->outlineColor.r, toon->outlineColor.g, toon->outlineColor.b}},
+          {"outlineLightingMix", toon->outlineLightingMix}};
+}
+
 nlohmann::ordered_json toJson(const eng::Model& model) {
   using Json = nlohmann::ordered_json;
   Json j;
@@ -66,6 +86,7 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"alphaCutoff", mat.alphaCutoff},
                          {"baseColorSampling", eng::describeSampling(mat.baseColorSampling)},
                          {"unlit", mat.unlit},
+                         {"toon", toonJson(mat.toon)},
                          {"detailLayers", std::move(layers)}});
   }
   j["materials"] = std::move(materials);
@@ -126,6 +147,13 @@ void printText(const eng::Model& model) {
                 mat.baseColorFactor.a, mat.baseColorImage, mat.roughness, mat.metallic,
                 mat.doubleSided ? ", double-sided" : "");
     if (mat.unlit) std::printf(", unlit");
+    if (const std::optional<eng::ToonShading>& t = mat.toon)
+      std::printf(", toon (MToon): shade (%.3g, %.3g, %.3g)%s, shift %.3g, toony %.3g, rim (%.3g, %.3g, %.3g)",
+                  t->shadeColor.r, t->shadeColor.g, t->shadeColor.b, t->shadeFromBaseTexture ? " x texture" : "",
+                  t->shadingShift, t->shadingToony, t->rimColor.r, t->rimColor.g, t->rimColor.b);
+    if (const std::optional<eng::ToonShading>& t = mat.toon; t && t->outlineMode != eng::ToonShading::OutlineWidth::None)
+      std::printf(", outline %.3g %s", t->outlineWidth,
+                  t->outlineMode == eng::ToonShading::OutlineWidth::World ? "m" : "of the image height");
     if (mat.alphaMode != eng::AlphaMode::Opaque) std::printf(", alpha %s", eng::alphaModeName(mat.alphaMode));
     if (mat.alphaMode == eng::AlphaMode::Mask) std::printf(" below %.3g", mat.alphaCutoff);
     if (mat.baseColorImage >= 0 && mat.baseColorSampling != eng::TextureSampling{})

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/scene/gltf_mtoon.h"
 #include "engine/scene/gltf_sampler.h"
 #include "engine/scene/image_io.h"
 
@@ -83,6 +84,31 @@ int GltfModelBuilder::modelImage(int gltfImage, const std::string& where) {
   return imageRemap_[gltfImage];
 }
 
+void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::string& where) {
+  MtoonRead mtoon = readMtoon(gltf_, index);
+  for (std::string& problem : mtoon.problems) warn(std::move(problem));
+  if (!mtoon.toon) return;
+  mat.toon = mtoon.toon;
+  const int baseTexture = gltf_.materials[index].pbrMetallicRoughness.baseColorTexture.index;
+  if (mat.toon->shadeFromBaseTexture) {
+    // The shade is drawn through the base colour's texture: exact when both
+    // name the same image (VRoid's exports), an approximation otherwise.
+    auto sourceOf = [&](int texture) {
+      return texture >= 0 && size_t(texture) < gltf_.textures.size() ? gltf_.textures[size_t(texture)].source : -1;
+    };
+    if (mat.baseColorImage < 0) {
+      warn(where + ": its MToon shade texture is not drawn (the material has no base colour texture to draw it with)");
+      mat.toon->shadeFromBaseTexture = false;
+    } else if (sourceOf(mtoon.shadeTexture) != sourceOf(baseTexture)) {
+      warn(where + ": its MToon shade texture (texture " + std::to_string(mtoon.shadeTexture) +
+           ") is drawn with the base colour's texture (texture " + std::to_string(baseTexture) + ")");
+    }
+  }
+  outcomes_[kVrmcMaterialsMtoon] = "applied: " + std::to_string(++toonMaterials_) +
+                                   " material(s) toon-shaded (shade colour, shading shift and toony, GI "
+                                   "equalization, parametric rim; no outline or matcap)";
+}
+
 void GltfModelBuilder::loadMaterials() {
   for (size_t i = 0; i < gltf_.materials.size(); ++i) {
     const tinygltf::Material& src = gltf_.materials[i];
@@ -103,6 +129,7 @@ void GltfModelBuilder::loadMaterials() {
       mat.unlit = true;
       outcomes_[kKhrMaterialsUnlit] = "applied: " + std::to_string(++unlitMaterials_) + " material(s) drawn unlit";
     }
+    readToonShading(i, mat, where);
     if (src.alphaMode == "MASK") {
       mat.alphaMode = AlphaMode::Mask;
       mat.alphaCutoff = static_cast<float>(src.alphaCutoff);

@@ -5,6 +5,7 @@
 
 #include "engine/scene/gltf_draco.h"
 #include "engine/scene/gltf_meshopt.h"
+#include "engine/scene/gltf_mtoon.h"
 
 namespace eng {
 namespace {
@@ -38,7 +39,7 @@ bool numberArray(const tinygltf::Value& object, const char* name, float* out, in
 bool isHandledExtension(const std::string& name) {
   return name == kKhrMeshQuantization || name == kExtMeshopt || name == kKhrMeshopt || name == kKhrDraco ||
          name == kExtTextureWebp || name == kKhrTextureBasisu || name == kKhrTextureTransform ||
-         name == kKhrMaterialsUnlit;
+         name == kKhrMaterialsUnlit || name == kVrmcMaterialsMtoon;
 }
 
 std::vector<ExtensionUse> describeExtensions(const tinygltf::Model& gltf, const ExtensionOutcomes& outcomes) {

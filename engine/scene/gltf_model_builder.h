@@ -55,6 +55,8 @@ class GltfModelBuilder {
   int imageOfTexture(int texture, const std::string& where);
   int modelImage(int gltfImage, const std::string& where);
   void loadMaterials();
+  // MToon (VRM 1.0 extension or VRM 0.x materialProperties) of material `index`.
+  void readToonShading(size_t index, Material& mat, const std::string& where);
 
   // gltf_builder_meshes.cpp: primitives (attributes, indices, morph targets,
   // generated normals) and meshes.
@@ -113,7 +115,7 @@ class GltfModelBuilder {
   Model model_;
   std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
   std::vector<BaseColorUv> baseColorUvs_;  // per material
-  int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0, unlitMaterials_ = 0;
+  int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0, unlitMaterials_ = 0, toonMaterials_ = 0;
 };
 
 }  // namespace eng

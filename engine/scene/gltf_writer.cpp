@@ -7,6 +7,8 @@
 
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
+#include "engine/scene/gltf_extensions.h"
+#include "engine/scene/gltf_mtoon.h"
 #include "engine/scene/gltf_sampler.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
@@ -157,6 +159,35 @@ Json vec(const float* v, int n) {
   return a;
 }
 
+// Lists `name` in the document's extensionsUsed once.
+void useExtension(Json& doc, const char* name) {
+  Json& used = doc["extensionsUsed"];
+  if (!used.is_array()) used = Json::array();
+  if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
+}
+
+// VRMC_materials_mtoon 1.0 for `toon`; shadeMultiplyTexture is `shadeTexture`
+// (a texture index, -1: none).
+Json mtoonJson(const ToonShading& toon, int shadeTexture) {
+  Json j = {{"specVersion", "1.0"},
+            {"shadeColorFactor", vec(&toon.shadeColor.x, 3)},
+            {"shadingShiftFactor", toon.shadingShift},
+            {"shadingToonyFactor", toon.shadingToony},
+            {"giEqualizationFactor", toon.giEqualization},
+            {"parametricRimColorFactor", vec(&toon.rimColor.x, 3)},
+            {"parametricRimFresnelPowerFactor", toon.rimFresnelPower},
+            {"parametricRimLiftFactor", toon.rimLift},
+            {"rimLightingMixFactor", toon.rimLightingMix}};
+  if (shadeTexture >= 0) j["shadeMultiplyTexture"] = {{"index", shadeTexture}};
+  if (toon.outlineMode != ToonShading::OutlineWidth::None) {
+    j["outlineWidthMode"] = toon.outlineMode == ToonShading::OutlineWidth::World ? "worldCoordinates" : "screenCoordinates";
+    j["outlineWidthFactor"] = toon.outlineWidth;
+    j["outlineColorFactor"] = vec(&toon.outlineColor.x, 3);
+    j["outlineLightingMixFactor"] = toon.outlineLightingMix;
+  }
+  return j;
+}
+
 const char* interpolationName(Interpolation i) {
   switch (i) {
     case Interpolation::Step: return "STEP";
@@ -236,8 +267,12 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
       if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);
       if (mat.alphaMode == AlphaMode::Mask) m["alphaCutoff"] = mat.alphaCutoff;
       if (mat.unlit) {
-        m["extensions"]["KHR_materials_unlit"] = Json::object();
-        doc["extensionsUsed"] = Json::array({"KHR_materials_unlit"});
+        m["extensions"][kKhrMaterialsUnlit] = Json::object();
+        useExtension(doc, kKhrMaterialsUnlit);
+      }
+      if (mat.toon) {
+        m["extensions"][kVrmcMaterialsMtoon] = mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture[i] : -1);
+        useExtension(doc, kVrmcMaterialsMtoon);
       }
       if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
       if (!mat.detailLayers.empty()) {

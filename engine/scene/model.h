@@ -4,6 +4,7 @@
 // the Vulkan layer uploads it as is.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -112,6 +113,34 @@ const char* textureWrapName(TextureWrap wrap);
 // One line for listings, e.g. "clamp-to-edge x repeat, nearest, no mipmaps".
 std::string describeSampling(const TextureSampling& sampling);
 
+// MToon's toon shading (VRMC_materials_mtoon 1.0; VRM 0.x values converted
+// as UniVRM migrates them). Per light, dot(N, L) + shadingShift is mapped
+// through linearstep(-1 + toony, 1 - toony) and mixes the shade colour into
+// the lit (base) colour; ambient light is evened out over directions by
+// giEqualization; a view-dependent parametric rim is added. Colours linear.
+struct ToonShading {
+  glm::vec3 shadeColor{0.0f};
+  // shadeMultiplyTexture: the shade colour is multiplied by a texture. Drawn
+  // with the base colour's texture, which is what VRoid exports (the same
+  // image); a different image is approximated by it (the loader says so).
+  bool shadeFromBaseTexture = false;
+  float shadingShift = 0.0f;      // [-1, 1]: moves the light/shade boundary
+  float shadingToony = 0.9f;      // [0, 1]: 1 = a hard boundary, 0 = Lambert-like
+  float giEqualization = 0.9f;    // [0, 1]: 1 = the same ambient from every direction
+  glm::vec3 rimColor{0.0f};       // parametric rim, added
+  float rimFresnelPower = 5.0f;   // pow(saturate(1 - N.V + lift), power)
+  float rimLift = 0.0f;
+  float rimLightingMix = 1.0f;    // 0 = the rim glows on its own, 1 = lit by the lights
+  // The outline: the surface drawn again, pushed out along its normals, its
+  // back faces only (an inverted hull), in outlineColor.
+  enum class OutlineWidth { None, World, Screen };
+  OutlineWidth outlineMode = OutlineWidth::None;
+  float outlineWidth = 0.0f;      // metres (World) or a fraction of the image height (Screen)
+  glm::vec3 outlineColor{0.0f};
+  float outlineLightingMix = 1.0f;  // 0 = outlineColor as it is, 1 = times the shaded surface colour
+  bool operator==(const ToonShading&) const = default;
+};
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};
@@ -126,6 +155,9 @@ struct Material {
   // KHR_materials_unlit: the base colour is shown as it is, with no lights
   // (toon and anime avatars, VRoid's MToon fallback, baked scans).
   bool unlit = false;
+  // VRM's MToon (VRMC_materials_mtoon, or VRM 0.x materialProperties):
+  // toon shading instead of the skin shading; takes precedence over unlit.
+  std::optional<ToonShading> toon;
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
 

@@ -20,6 +20,11 @@ struct InstanceMaterial {
   vec4 baseColorFactor;  // linear RGBA
   vec4 emissive;         // linear RGB, w unused
   vec4 uvTransform;      // uv * xy + zw
+  vec4 toonShade;        // MToon: linear RGB shade colour, w rim lift
+  vec4 toonShading;      // MToon: shading shift, toony, GI equalization, rim lighting mix
+  vec4 toonRim;          // MToon: linear RGB rim colour, w fresnel power
+  vec4 toonOutline;      // MToon: linear RGB outline colour, w width (metres, or image heights)
+  vec4 toonOutlineStyle; // MToon: x 1 = world width, 2 = screen width; y outline lighting mix
 };
 
 // One non-zero morph weight: target index within the drawn mesh.
@@ -82,3 +87,10 @@ const uint DRAW_FLAG_MIRRORED = 32u;  // negative-determinant transform: the pip
 const uint DRAW_FLAG_ALPHA_MASK = 64u;   // glTF alphaMode MASK
 const uint DRAW_FLAG_ALPHA_BLEND = 128u; // glTF alphaMode BLEND (a blending pipeline; alpha is written out)
 const uint DRAW_FLAG_UNLIT = 256u;       // KHR_materials_unlit
+const uint DRAW_FLAG_TOON = 512u;        // MToon toon shading (InstanceMaterial.toon*)
+const uint DRAW_FLAG_TOON_SHADE_TEXTURE = 1024u;  // MToon: shade colour x the base colour's texture
+const uint DRAW_FLAG_TOON_OUTLINE = 2048u;        // MToon: also drawn as an outline
+
+// The outline pipelines (ScenePipelines::outline): the mesh pushed out along
+// its normals, back faces only, in the outline colour.
+layout(constant_id = 3) const bool OUTLINE_PIPELINE = false;

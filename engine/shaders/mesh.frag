@@ -48,6 +48,29 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
   return base;
 }
 
+float linearstep(float a, float b, float t) { return clamp((t - a) / max(b - a, 1e-5), 0.0, 1.0); }
+
+// MToon (VRMC_materials_mtoon 1.0): for each light, dot(N, L) + shading shift
+// through linearstep(-1 + toony, 1 - toony) mixes the shade colour into the
+// lit (base) colour, the key light's shadow darkening toward the shade; the
+// ambient light is evened out over directions by GI equalization; the
+// parametric rim is added on top. The portrait rig's back light is left out:
+// MToon's own rim takes its place.
+vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float keyVisibility) {
+  vec3 shade = material.toonShade.rgb;
+  if ((draw.flags & DRAW_FLAG_TOON_SHADE_TEXTURE) != 0u) shade *= texture(baseColorTexture, inTexcoord).rgb;
+  float shift = material.toonShading.x, toony = material.toonShading.y;
+  float key = linearstep(-1.0 + toony, 1.0 - toony, dot(n, frame.keyDirection.xyz) + shift) * keyVisibility;
+  float fill = linearstep(-1.0 + toony, 1.0 - toony, dot(n, frame.fillDirection.xyz) + shift);
+  vec3 color = mix(shade, lit, key) * frame.keyColor.rgb + mix(shade, lit, fill) * frame.fillColor.rgb;
+  vec3 rawGi = mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, n.y * 0.5 + 0.5);
+  vec3 gi = mix(rawGi, 0.5 * (frame.groundAmbient.rgb + frame.skyAmbient.rgb), material.toonShading.z);
+  color += gi * lit;
+  float rim = pow(clamp(1.0 - dot(n, toViewer) + material.toonShade.w, 0.0, 1.0), max(material.toonRim.w, 1e-5));
+  vec3 lighting = frame.keyColor.rgb * keyVisibility + frame.fillColor.rgb + gi;
+  return color + rim * material.toonRim.rgb * mix(vec3(1.0), lighting, material.toonShading.w);
+}
+
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
   vec4 base = baseColour(inTexcoord, inMaterial, inColor);
@@ -87,9 +110,21 @@ void main() {
   // A mirrored transform (glTF: negative determinant) turns the winding, so
   // the rasteriser's front is the primitive's back.
   const bool frontFacing = gl_FrontFacing != ((draw.flags & DRAW_FLAG_MIRRORED) != 0u);
-  const bool inside = (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !frontFacing;
+  const bool inside = !OUTLINE_PIPELINE && (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !frontFacing;
   if (inside) n = -n;
   s.normal = n;
+  if (OUTLINE_PIPELINE) {
+    // The hull's back faces: the outline colour, toward it times the shaded
+    // surface as much as the lighting mix says.
+    vec3 toon = shadeToon(material, base.rgb, n, s.toViewer, keyLightVisibility(inWorldPosition, n)) + material.emissive.rgb;
+    outColor = vec4(toneMap(material.toonOutline.rgb * mix(vec3(1.0), toon, material.toonOutlineStyle.y)), 1.0);
+    return;
+  }
+  if ((draw.flags & DRAW_FLAG_TOON) != 0u) {
+    vec3 toon = shadeToon(material, base.rgb, n, s.toViewer, inside ? 0.0 : keyLightVisibility(inWorldPosition, n));
+    outColor = vec4(toneMap(inside ? toon * 0.12 : toon + material.emissive.rgb), alpha);
+    return;
+  }
   s.roughness = clamp(draw.roughness, 0.05, 1.0);
   s.metallic = clamp(draw.metallic, 0.0, 1.0);
 

@@ -69,6 +69,14 @@ void main() {
   outWorldPosition = world.xyz;
   outWorldNormal = mat3(inst.normalMatrix) * m.normal;
   outMaterial = inst.materialOffset + draw.material;
+  // MToon outline, world width: the hull pushed out along the normal, in metres.
+  vec3 outlineNormal = vec3(0.0);
+  if (OUTLINE_PIPELINE) {
+    float n2 = dot(outWorldNormal, outWorldNormal);
+    outlineNormal = n2 > 1e-24 ? outWorldNormal * inversesqrt(n2) : vec3(0.0);
+    InstanceMaterial material = instanceMaterials[outMaterial];
+    if (material.toonOutlineStyle.x == 1.0) world.xyz += outlineNormal * material.toonOutline.w;
+  }
   outTexcoord = materialTexcoord(outMaterial);
   outInstance = uint(gl_InstanceIndex);
   // A fold in the skin catches shadow: up to 60% darker where a target (or a
@@ -76,5 +84,15 @@ void main() {
   // black on a dark skin or in the key's shadow.
   outColor = vec4(inColor.rgb * (1.0 - 0.6 * clamp(m.crease, 0.0, 1.0)), inColor.a);
   gl_Position = frame.viewProj * world;
+  // Screen width: a fraction of the image height whatever the distance,
+  // along the normal as the image shows it.
+  if (OUTLINE_PIPELINE && instanceMaterials[outMaterial].toonOutlineStyle.x == 2.0) {
+    vec2 scale = abs(vec2(frame.proj[0][0], frame.proj[1][1]));
+    vec2 onImage = (frame.proj * (frame.view * vec4(outlineNormal, 0.0))).xy / max(scale, vec2(1e-6));
+    float length2 = dot(onImage, onImage);
+    if (length2 > 1e-12)
+      gl_Position.xy += onImage * inversesqrt(length2) * vec2(scale.x / scale.y, 1.0) *
+                        (2.0 * instanceMaterials[outMaterial].toonOutline.w * gl_Position.w);
+  }
 #endif
 }

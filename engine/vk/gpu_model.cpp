@@ -33,12 +33,6 @@ Material defaultMaterial() {
 }
 
 // A material's own parameters, as an instance draws it when nothing moves them.
-InstanceMaterial instanceMaterial(const Material& mat) {
-  InstanceMaterial out;
-  out.baseColorFactor = mat.baseColorFactor;
-  out.emissive = glm::vec4(mat.emissiveFactor, 0.0f);
-  return out;
-}
 
 // Appends byte ranges at aligned offsets; the result becomes one buffer.
 class ByteBlob {
@@ -150,6 +144,34 @@ SparseDeltas compactDeltas(const Primitive& prim) {
 }
 
 }  // namespace
+
+namespace {
+
+// Whether the material's primitives are also drawn as an MToon outline (a
+// blended surface has no depth to hide the hull's inside behind).
+bool hasOutline(const Material& mat) {
+  return mat.toon && mat.toon->outlineMode != ToonShading::OutlineWidth::None && mat.toon->outlineWidth > 0.0f &&
+         mat.alphaMode != AlphaMode::Blend;
+}
+
+}  // namespace
+
+InstanceMaterial instanceMaterial(const Material& mat) {
+  InstanceMaterial out;
+  out.baseColorFactor = mat.baseColorFactor;
+  out.emissive = glm::vec4(mat.emissiveFactor, 0.0f);
+  if (const std::optional<ToonShading>& t = mat.toon) {
+    out.toonShade = glm::vec4(t->shadeColor, t->rimLift);
+    out.toonShading = glm::vec4(t->shadingShift, t->shadingToony, t->giEqualization, t->rimLightingMix);
+    out.toonRim = glm::vec4(t->rimColor, t->rimFresnelPower);
+    out.toonOutline = glm::vec4(t->outlineColor, t->outlineWidth);
+    const float mode = t->outlineMode == ToonShading::OutlineWidth::World    ? 1.0f
+                       : t->outlineMode == ToonShading::OutlineWidth::Screen ? 2.0f
+                                                                             : 0.0f;
+    out.toonOutlineStyle = glm::vec4(mode, t->outlineLightingMix, 0.0f, 0.0f);
+  }
+  return out;
+}
 
 // Byte ranges of one primitive's data in the staging blobs (declared in gpu_model.h).
 struct PrimitiveRanges {
@@ -420,7 +442,10 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
                            (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
                            (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
                            (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u) |
-                           (mat.unlit ? kDrawFlagUnlit : 0u);
+                           (mat.unlit && !mat.toon ? kDrawFlagUnlit : 0u) |
+                           (mat.toon ? kDrawFlagToon : 0u) |
+                           (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
+                           (hasOutline(mat) ? kDrawFlagToonOutline : 0u);
       gp.constants.alphaCutoff = mat.alphaCutoff;
       gm.primitives.push_back(gp);
     }

@@ -140,4 +140,8 @@ class GpuModel {
 // The consistency checks GpuModel::create runs (exposed for tools and tests).
 Result<void> validateModelForGpu(const Model& model);
 
+// A material's own parameters, as an instance draws it when nothing moves
+// them (a per-instance record, e.g. VRM material binds, starts from this).
+InstanceMaterial instanceMaterial(const Material& mat);
+
 }  // namespace eng::vk

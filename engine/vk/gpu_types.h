@@ -35,8 +35,14 @@ struct InstanceMaterial {
   glm::vec4 baseColorFactor{1.0f};                // linear RGBA, multiplies the base colour texture
   glm::vec4 emissive{0.0f};                       // linear RGB emission added to the shaded colour, w unused
   glm::vec4 uvTransform{1.0f, 1.0f, 0.0f, 0.0f};  // texture coordinates uv * xy + zw
+  // MToon (kDrawFlagToon draws only), eng::ToonShading:
+  glm::vec4 toonShade{0.0f};    // linear RGB shade colour, w rim lift
+  glm::vec4 toonShading{0.0f, 0.9f, 0.9f, 1.0f};  // shading shift, toony, GI equalization, rim lighting mix
+  glm::vec4 toonRim{0.0f, 0.0f, 0.0f, 5.0f};      // linear RGB rim colour, w fresnel power
+  glm::vec4 toonOutline{0.0f};                    // linear RGB outline colour, w width (metres or image heights)
+  glm::vec4 toonOutlineStyle{0.0f, 1.0f, 0.0f, 0.0f};  // x: 1 world width, 2 screen width; y: lighting mix
 };
-static_assert(sizeof(InstanceMaterial) == 48);
+static_assert(sizeof(InstanceMaterial) == 128);
 
 // std140 uniform block; every member is a mat4 or vec4.
 struct FrameGlobals {
@@ -97,6 +103,9 @@ enum DrawFlags : uint32_t {
   kDrawFlagAlphaMask = 64u,   // glTF alphaMode MASK: cut out below alphaCutoff
   kDrawFlagAlphaBlend = 128u, // glTF alphaMode BLEND: drawn after the opaque draws, back to front, blended
   kDrawFlagUnlit = 256u,      // KHR_materials_unlit: the base colour as it is, no lights
+  kDrawFlagToon = 512u,       // MToon: toon shading from InstanceMaterial's toon* values
+  kDrawFlagToonShadeTexture = 1024u,  // MToon: the shade colour is multiplied by the base colour's texture
+  kDrawFlagToonOutline = 2048u,       // MToon: drawn again as an outline (ScenePipelines::outline)
 };
 
 struct GpuDetailLayer {

@@ -175,19 +175,26 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   // The tier's switches in lighting.glsl (constant_id 0 and 1), and whether
   // mesh.frag may discard (constant_id 2: only the MASK pipelines, since a
   // shader that can discard loses early depth testing for every draw).
+  // constant_id 3 (both stages, frame.glsl): the MToon outline pipelines.
   struct FragmentConstants {
     int32_t shadowFilterRadius;
     VkBool32 secondarySpecular;
     VkBool32 alphaMask;
-  } constants{int32_t(quality.shadowFilterRadius), quality.secondarySpecular ? VK_TRUE : VK_FALSE, VK_FALSE};
+    VkBool32 outline;
+  } constants{int32_t(quality.shadowFilterRadius), quality.secondarySpecular ? VK_TRUE : VK_FALSE, VK_FALSE, VK_FALSE};
   const std::array entries{
       VkSpecializationMapEntry{0, offsetof(FragmentConstants, shadowFilterRadius), sizeof(int32_t)},
       VkSpecializationMapEntry{1, offsetof(FragmentConstants, secondarySpecular), sizeof(VkBool32)},
-      VkSpecializationMapEntry{2, offsetof(FragmentConstants, alphaMask), sizeof(VkBool32)}};
+      VkSpecializationMapEntry{2, offsetof(FragmentConstants, alphaMask), sizeof(VkBool32)},
+      VkSpecializationMapEntry{3, offsetof(FragmentConstants, outline), sizeof(VkBool32)}};
   const VkSpecializationInfo constantsInfo{uint32_t(entries.size()), entries.data(), sizeof(constants), &constants};
+  VkBool32 vertexOutline = VK_FALSE;
+  const VkSpecializationMapEntry vertexEntry{3, 0, sizeof(VkBool32)};
+  const VkSpecializationInfo vertexInfo{1, &vertexEntry, sizeof(VkBool32), &vertexOutline};
   PipelineShape mesh;
   mesh.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, meshVert->get()),
                  stage(VK_SHADER_STAGE_FRAGMENT_BIT, meshFrag->get())};
+  mesh.stages[0].pSpecializationInfo = &vertexInfo;
   mesh.stages[1].pSpecializationInfo = &constantsInfo;
   for (size_t sides = 0; sides < kMeshSides; ++sides)
     for (size_t alpha = 0; alpha < kAlphaPipelines; ++alpha) {
@@ -198,6 +205,19 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
       auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
       if (!pipeline) return pipeline.error();
       p.mesh_[sides][alpha] = std::move(pipeline).value();
+    }
+  // Outlines: the hull's back faces (front faces culled), opaque or cut out.
+  vertexOutline = VK_TRUE;
+  constants.outline = VK_TRUE;
+  mesh.blend = false;
+  mesh.cull = VK_CULL_MODE_FRONT_BIT;
+  for (size_t winding = 0; winding < 2; ++winding)
+    for (size_t masked = 0; masked < 2; ++masked) {
+      mesh.frontFace = winding == 1 ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+      constants.alphaMask = masked == 1 ? VK_TRUE : VK_FALSE;
+      auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
+      if (!pipeline) return pipeline.error();
+      p.outline_[winding][masked] = std::move(pipeline).value();
     }
 
   PipelineShape background;

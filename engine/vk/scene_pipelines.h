@@ -1,7 +1,8 @@
 #pragma once
 // The graphics pipelines of the scene, built from the shader library's
 // current SPIR-V for one render pass: mesh (back-face culled, for either
-// winding, and double sided; opaque and alpha-blended), background gradient,
+// winding, and double sided; opaque and alpha-blended), MToon outlines
+// (front-face culled), background gradient,
 // the key light's shadow-map pass (depth only, its own render pass; plain and
 // alpha-masked), the morph pre-pass (compute), and the morph-capture variant
 // (vertex stage only, rasteriser discard; absent when the device cannot store
@@ -34,6 +35,9 @@ class ScenePipelines {
     const size_t sides = doubleSided ? kDoubleSided : mirrored ? kCulledClockwise : kCulled;
     return mesh_[sides][size_t(alpha)].get();
   }
+  // MToon outlines (kDrawFlagToonOutline): the mesh pushed out along its
+  // normals with its front faces culled, drawn after the opaque draws.
+  VkPipeline outline(bool mirrored, bool masked) const { return outline_[mirrored ? 1 : 0][masked ? 1 : 0].get(); }
   VkPipeline background() const { return background_.get(); }
   VkPipeline capture() const { return capture_.get(); }  // VK_NULL_HANDLE when unsupported
   // Depth only, for the shadow pass; masked: glTF alphaMode MASK, cut out where the base colour is.
@@ -45,6 +49,7 @@ class ScenePipelines {
   static constexpr size_t kCulled = 0, kCulledClockwise = 1, kDoubleSided = 2, kMeshSides = 3;
   static constexpr size_t kAlphaPipelines = 3;
   UniquePipeline mesh_[kMeshSides][kAlphaPipelines];
+  UniquePipeline outline_[2][2];  // [counter-clockwise, clockwise front faces][opaque, masked]
   UniquePipeline background_;
   UniquePipeline capture_;
   UniquePipeline shadow_;

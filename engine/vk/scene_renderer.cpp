@@ -184,7 +184,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
                        std::to_string(inst.model->materialCount()));
     for (size_t m = 0; m < inst.materials.size(); ++m) {
       const InstanceMaterial& mat = inst.materials[m];
-      const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform;
+      const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform + mat.toonShade + mat.toonShading +
+                            mat.toonRim + mat.toonOutline + mat.toonOutlineStyle;
       if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
         return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): material " +
                          std::to_string(m) + " has a non-finite value");
@@ -482,18 +483,26 @@ void SceneRenderer::bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawC
   if (batch.mirrored) constants.flags |= kDrawFlagMirrored;
 }
 
-void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, bool colourPass) const {
+void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, DrawPass pass) const {
+  const bool colourPass = pass != DrawPass::Shadow;
   VkPipeline bound = VK_NULL_HANDLE;
   for (const uint32_t b : slot.drawOrder) {
     const Batch& batch = slot.batches[b];
     const GpuPrimitive& prim = batch.model->meshes()[batch.mesh].primitives[batch.primitive];
-    if (!colourPass && !batch.castsShadow) continue;
     const uint32_t flags = prim.constants.flags;
-    const AlphaPipeline alpha = (flags & kDrawFlagAlphaBlend) != 0  ? AlphaPipeline::Blend
+    const bool blended = (flags & kDrawFlagAlphaBlend) != 0;
+    const bool drawn = pass == DrawPass::Shadow   ? batch.castsShadow
+                       : pass == DrawPass::Opaque  ? !blended
+                       : pass == DrawPass::Blended ? blended
+                                                   : !blended && (flags & kDrawFlagToonOutline) != 0;
+    if (!drawn) continue;
+    const AlphaPipeline alpha = blended                             ? AlphaPipeline::Blend
                                 : (flags & kDrawFlagAlphaMask) != 0 ? AlphaPipeline::Mask
                                                                     : AlphaPipeline::Opaque;
-    const VkPipeline pipeline = colourPass ? pipelines_.mesh((flags & kDrawFlagDoubleSided) != 0, batch.mirrored, alpha)
-                                           : pipelines_.shadow(alpha == AlphaPipeline::Mask);
+    const VkPipeline pipeline =
+        pass == DrawPass::Shadow     ? pipelines_.shadow(alpha == AlphaPipeline::Mask)
+        : pass == DrawPass::Outlines ? pipelines_.outline(batch.mirrored, alpha == AlphaPipeline::Mask)
+                                     : pipelines_.mesh((flags & kDrawFlagDoubleSided) != 0, batch.mirrored, alpha);
     if (pipeline != bound) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
       bound = pipeline;
@@ -552,7 +561,7 @@ void SceneRenderer::recordShadowPass(VkCommandBuffer cmd, uint32_t slotIndex) co
   if (qualitySettings(quality_).shadowMapSize > 0) {  // else the pass only clears the token map
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
                             &slot.descriptorSet, 0, nullptr);
-    drawBatches(cmd, slot, false);
+    drawBatches(cmd, slot, DrawPass::Shadow);
   }
   shadowMap_.end(cmd);
 }
@@ -569,7 +578,11 @@ void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D e
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
     vkCmdDraw(cmd, 3, 1, 0, 0);
   }
-  drawBatches(cmd, slot, true);
+  // Outlines after the opaque draws they surround and before the blended
+  // ones, which do not write depth and would otherwise be drawn over.
+  drawBatches(cmd, slot, DrawPass::Opaque);
+  drawBatches(cmd, slot, DrawPass::Outlines);
+  drawBatches(cmd, slot, DrawPass::Blended);
 }
 
 void SceneRenderer::recordCapture(VkCommandBuffer cmd, uint32_t slotIndex) const {

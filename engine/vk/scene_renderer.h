@@ -173,8 +173,14 @@ class SceneRenderer {
   // (Re)creates the weights' texel view and writes every binding of set 0.
   Result<void> writeDescriptors(Slot& slot) const;
   void bindPrimitive(VkCommandBuffer cmd, const Batch& batch, DrawConstants& constants) const;
-  // colourPass false: the key light's shadow map (casters only, depth pipelines).
-  void drawBatches(VkCommandBuffer cmd, const Slot& slot, bool colourPass) const;
+  // Which of the slot's draws a drawBatches call records, and how.
+  enum class DrawPass {
+    Shadow,    // the shadow casters, depth only
+    Opaque,    // every draw that is not blended (opaque and masked)
+    Outlines,  // the MToon outlines of the opaque and masked toon draws
+    Blended,   // the blended draws, far to near
+  };
+  void drawBatches(VkCommandBuffer cmd, const Slot& slot, DrawPass pass) const;
   // Fills slot.drawOrder (after build: reads instanceScratch_).
   void orderDraws(Slot& slot, const FrameGlobals& globals);
 

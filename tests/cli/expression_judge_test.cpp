@@ -121,9 +121,10 @@ TEST_F(ExpressionJudge, RegionSwapToolReportsEachRegionBothWays) {
   for (std::string line; std::getline(lines, line);) {
     model += line.find("model with the reference ") != std::string::npos;
     reference += line.find("reference with the model ") != std::string::npos;
-    if (line.find(" with the ") != std::string::npos)
+    if (line.find(" with the ") != std::string::npos) {
       EXPECT_TRUE(std::regex_search(line, std::regex(R"(fear [01]\.\d\d  \(says \w+ [01]\.\d\d\))")))
           << "each line gives p of the state and the verdict: " << line;
+    }
   }
   EXPECT_EQ(model, 12);
   EXPECT_EQ(reference, 12);

@@ -165,7 +165,8 @@ TEST(FaceFormats, ObjKeyframeFolderOpensWithoutConverting) {
 // target and turns the skin red; 'sad' is not defined (fear is composed).
 // `edit` may change the VRMC_vrm extension before it is written.
 std::filesystem::path writeTestVrm(const std::string& name,
-                                   const std::function<void(nlohmann::json&)>& edit = {}) {
+                                   const std::function<void(nlohmann::json&)>& edit = {},
+                                   const std::function<void(nlohmann::json&)>& editDocument = {}) {
   const std::filesystem::path glb = writeTestFace(name);
   auto bytes = eng::readFileBytes(glb, size_t{1} << 24);
   EXPECT_TRUE(bytes);
@@ -186,11 +187,22 @@ std::filesystem::path writeTestVrm(const std::string& name,
           {"surprised", {{"morphTargetBinds", {{{"node", faceNode}, {"index", kJawDrop}, {"weight", 1.0}}}}}},
           {"neutral", nlohmann::json::object()}}}}}};
   if (edit) edit(json["extensions"]["VRMC_vrm"]);
+  if (editDocument) editDocument(json);
   const std::string text = json.dump();
   const std::vector<uint8_t> vrm = eng::buildGlb(text, chunks->bin);
   const std::filesystem::path path = glb.parent_path() / "face.vrm";
   EXPECT_TRUE(eng::writeFileBytes(path, vrm.data(), vrm.size()));
   return path;
+}
+
+// `facial express` neutral and happy on `vrm` at 64x64 (empty images where it fails).
+void expressNeutralAndHappy(const std::filesystem::path& vrm, eng::Image& neutral, eng::Image& happy) {
+  const std::filesystem::path dir = vrm.parent_path();
+  for (const char* expression : {"neutral", "happy"})
+    ASSERT_TRUE(ranCleanly(runFacial({"express", expression, "--model", vrm.string(), "--size", "64x64", "--out",
+                                      (dir / (std::string(expression) + ".png")).string()})));
+  neutral = readPngOrFail(dir / "neutral.png");
+  happy = readPngOrFail(dir / "happy.png");
 }
 
 TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
@@ -203,17 +215,37 @@ TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
   EXPECT_EQ(report["drivenTargetCount"], 2);
   EXPECT_EQ(report["emotions"][1], "happy <- 'happy'");
   EXPECT_EQ(report["emotions"][4], "fear <- 'surprised' x0.55 (composed)");
-  const std::filesystem::path dir = vrm.parent_path();
-  for (const char* expression : {"neutral", "happy"})
-    ASSERT_TRUE(ranCleanly(runFacial({"express", expression, "--model", vrm.string(), "--size", "64x64", "--out",
-                                      (dir / (std::string(expression) + ".png")).string()})));
-  const eng::Image neutral = readPngOrFail(dir / "neutral.png"), happy = readPngOrFail(dir / "happy.png");
+  eng::Image neutral, happy;
+  expressNeutralAndHappy(vrm, neutral, happy);
   ASSERT_FALSE(neutral.rgba8.empty());
   ASSERT_FALSE(happy.rgba8.empty());
   const size_t centre = (size_t(32) * 64 + 32) * 4;
   EXPECT_GT(int(happy.rgba8[centre]) - int(happy.rgba8[centre + 1]), 100) << "the skin turns red";
   EXPECT_LT(int(neutral.rgba8[centre]) - int(neutral.rgba8[centre + 1]), 80);
   EXPECT_GT(differingFraction(neutral, happy), 0.2);
+}
+
+TEST(FaceFormats, VrmShadeColourBindRecoloursAToonSkin) {
+  // The skin is MToon, shifted all into shade (grey); 'happy' binds the shade
+  // colour to blue: the happy face is blue where the neutral one is grey.
+  const std::filesystem::path vrm = writeTestVrm(
+      "face_formats_vrm_toon",
+      [](nlohmann::json& ext) {
+        ext["expressions"]["preset"]["happy"]["materialColorBinds"] =
+            nlohmann::json::array({{{"material", 0}, {"type", "shadeColor"}, {"targetValue", {0.0, 0.0, 1.0, 1.0}}}});
+      },
+      [](nlohmann::json& doc) {
+        doc["materials"][0]["extensions"]["VRMC_materials_mtoon"] = {
+            {"specVersion", "1.0"}, {"shadeColorFactor", {0.5, 0.5, 0.5}}, {"shadingShiftFactor", -1.0}};
+        doc["extensionsUsed"].push_back("VRMC_materials_mtoon");
+      });
+  eng::Image neutral, happy;
+  expressNeutralAndHappy(vrm, neutral, happy);
+  ASSERT_FALSE(neutral.rgba8.empty());
+  ASSERT_FALSE(happy.rgba8.empty());
+  const size_t centre = (size_t(32) * 64 + 32) * 4;
+  EXPECT_LT(std::abs(int(neutral.rgba8[centre + 2]) - int(neutral.rgba8[centre])), 40) << "grey shade";
+  EXPECT_GT(int(happy.rgba8[centre + 2]) - int(happy.rgba8[centre]), 60) << "blue shade";
 }
 
 // Red minus green at the image centre: how far the skin has turned red.

@@ -417,6 +417,9 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   Json& happy = doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["happy"];
   happy["materialColorBinds"].push_back(Json::parse(R"({"material": 1, "type": "emissionColor", "targetValue": [0, 1, 0, 1]})"));
   happy["materialColorBinds"].push_back(Json::parse(R"({"material": 1, "type": "rimColor", "targetValue": [1, 1, 1, 1]})"));
+  happy["materialColorBinds"].push_back(Json::parse(R"({"material": 1, "type": "shadeColor", "targetValue": [0, 0, 1, 1]})"));
+  happy["materialColorBinds"].push_back(Json::parse(R"({"material": 0, "type": "outlineColor", "targetValue": [1, 0, 0, 1]})"));
+  happy["materialColorBinds"].push_back(Json::parse(R"({"material": 0, "type": "matcapColor", "targetValue": [1, 1, 1, 1]})"));
   happy["textureTransformBinds"] = Json::parse(R"([{"material": 1, "scale": [0.5, 0.5], "offset": [0.5, 0]}])");
   auto set = sharedSet(doc);
   ASSERT_TRUE(set);
@@ -433,9 +436,13 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   EXPECT_FLOAT_EQ(materials[1].emission[1], 0.5f);
   EXPECT_FLOAT_EQ(materials[1].uvScale[0], 0.75f);
   EXPECT_FLOAT_EQ(materials[1].uvOffset[0], 0.25f);
+  // MToon's colours move the same way (drawn by toon materials); the matcap's is not drawn.
+  EXPECT_FLOAT_EQ(materials[1].rim[0], 0.5f);
+  EXPECT_FLOAT_EQ(materials[1].shade[2], 0.5f);
+  EXPECT_FLOAT_EQ(materials[0].outline[0], 0.5f);
   auto rig = buildVrmRigMapping(set, morphNames(*set));
   ASSERT_TRUE(rig);
-  EXPECT_TRUE(contains(rig->report().notes, "1 material colour bind(s) address MToon colours")) << rig->report().summary();
+  EXPECT_TRUE(contains(rig->report().notes, "1 material colour bind(s) address MToon's matcap colour")) << rig->report().summary();
   std::vector<VrmMaterialState> wrong(1);
   EXPECT_FALSE(set->applyMaterials(effective, rest, wrong));
   EXPECT_FALSE(set->applyMaterials(effective, wrong, wrong));

@@ -328,12 +328,118 @@ TEST(GltfLoader, ReadsUnlitMaterials) {
   EXPECT_EQ(record->outcome, "applied: 1 material(s) drawn unlit");
 }
 
-TEST(GltfLoader, ReadsTextureSamplers) {
-  const auto dir = freshTempDir("loader_samplers");
-  GltfFileBuilder b = quadWithTarget();
+
+// One 1x1 white PNG as the file's only image (what the material tests' textures show).
+void addWhiteImage(GltfFileBuilder& b) {
   auto png = eng::encodePng(1, 1, std::vector<uint8_t>(4, 255));
   ASSERT_TRUE(png.ok());
   b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}}});
+}
+
+TEST(GltfLoader, ReadsMtoonMaterials) {
+  // VRM 1.0's extension on material 0 (its shade texture is the base colour's
+  // image through another texture: exact); material 1 with MToon and unlit
+  // (MToon wins); material 2 plain.
+  const auto dir = freshTempDir("loader_mtoon");
+  GltfFileBuilder b = quadWithTarget();
+  addWhiteImage(b);
+  b.doc["textures"] = Json::array({{{"source", 0}}, {{"source", 0}}});
+  b.doc["extensionsUsed"] = {"VRMC_materials_mtoon", "KHR_materials_unlit"};
+  b.doc["extensionsRequired"] = {"VRMC_materials_mtoon"};
+  const Json mtoon = {{"specVersion", "1.0"},
+                      {"shadeColorFactor", {0.3, 0.2, 0.25}},
+                      {"shadeMultiplyTexture", {{"index", 1}}},
+                      {"shadingShiftFactor", -0.2},
+                      {"shadingToonyFactor", 0.95},
+                      {"giEqualizationFactor", 0.5},
+                      {"parametricRimColorFactor", {0.1, 0.1, 0.2}},
+                      {"parametricRimFresnelPowerFactor", 3.0},
+                      {"parametricRimLiftFactor", 0.1},
+                      {"rimLightingMixFactor", 0.25},
+                      {"outlineWidthMode", "screenCoordinates"},
+                      {"outlineWidthFactor", 0.005},
+                      {"outlineColorFactor", {0.1, 0.0, 0.0}},
+                      {"outlineLightingMixFactor", 0.5}};
+  b.doc["materials"] = Json::array(
+      {{{"name", "face"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+        {"extensions", {{"VRMC_materials_mtoon", mtoon}}}},
+       {{"name", "hair"},
+        {"extensions", {{"VRMC_materials_mtoon", {{"specVersion", "1.0"}, {"shadingToonyFactor", 7}}},
+                        {"KHR_materials_unlit", Json::object()}}}},
+       {{"name", "plain"}}});
+  b.writeGlb(dir / "mtoon.glb");
+  const eng::Model model = loadOk(dir / "mtoon.glb");
+  ASSERT_EQ(model.materials.size(), 3u);
+  ASSERT_TRUE(model.materials[0].toon.has_value());
+  const eng::ToonShading& face = *model.materials[0].toon;
+  EXPECT_EQ(face.shadeColor, glm::vec3(0.3f, 0.2f, 0.25f));
+  EXPECT_TRUE(face.shadeFromBaseTexture);
+  EXPECT_FLOAT_EQ(face.shadingShift, -0.2f);
+  EXPECT_FLOAT_EQ(face.shadingToony, 0.95f);
+  EXPECT_FLOAT_EQ(face.giEqualization, 0.5f);
+  EXPECT_EQ(face.rimColor, glm::vec3(0.1f, 0.1f, 0.2f));
+  EXPECT_FLOAT_EQ(face.rimFresnelPower, 3.0f);
+  EXPECT_FLOAT_EQ(face.rimLift, 0.1f);
+  EXPECT_FLOAT_EQ(face.rimLightingMix, 0.25f);
+  EXPECT_EQ(face.outlineMode, eng::ToonShading::OutlineWidth::Screen);
+  EXPECT_FLOAT_EQ(face.outlineWidth, 0.005f);
+  EXPECT_EQ(face.outlineColor, glm::vec3(0.1f, 0.0f, 0.0f));
+  EXPECT_FLOAT_EQ(face.outlineLightingMix, 0.5f);
+  EXPECT_EQ(model.materials[1].toon->outlineMode, eng::ToonShading::OutlineWidth::None) << "no outline by default";
+  ASSERT_TRUE(model.materials[1].toon.has_value());
+  EXPECT_FLOAT_EQ(model.materials[1].toon->shadingToony, 0.9f) << "out of range: the default";
+  EXPECT_EQ(model.materials[1].toon->shadeColor, glm::vec3(0.0f));
+  EXPECT_FALSE(model.materials[2].toon.has_value());
+  ASSERT_EQ(model.warnings.size(), 1u);
+  EXPECT_EQ(model.warnings[0], "material 1 VRMC_materials_mtoon: shadingToonyFactor is not a number in [0, 1]; 0.9 used");
+  const eng::ExtensionUse* record = extensionRecord(model, "VRMC_materials_mtoon");
+  ASSERT_NE(record, nullptr);
+  EXPECT_EQ(record->outcome.rfind("applied: 2 material(s) toon-shaded", 0), 0u) << record->outcome;
+}
+
+TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
+  // VRM 0.x: materialProperties by material index; _ShadeShift -0.2 and
+  // _ShadeToony 0.8 span the 0.x range [-0.2, 0.04], so 1.0's toony is
+  // (2 - 0.24) / 2 = 0.88 and its shift -(0.04 - 0.2) / 2 = 0.08. Colours
+  // are sRGB-encoded; without a _ShadeTexture the shade takes _MainTex; the
+  // outline width is in centimetres.
+  const auto dir = freshTempDir("loader_mtoon0");
+  GltfFileBuilder b = quadWithTarget();
+  addWhiteImage(b);
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"] = Json::array({{{"name", "face"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+                                    {{"name", "eyes"}}});
+  b.doc["extensionsUsed"] = {"VRM"};
+  b.doc["extensions"]["VRM"]["materialProperties"] = Json::array(
+      {{{"name", "face"},
+        {"shader", "VRM/MToon"},
+        {"floatProperties",
+         {{"_ShadeShift", -0.2}, {"_ShadeToony", 0.8}, {"_IndirectLightIntensity", 0.3}, {"_RimFresnelPower", 2},
+          {"_OutlineWidthMode", 1}, {"_OutlineWidth", 0.2}, {"_OutlineColorMode", 0}, {"_OutlineLightingMix", 1}}},
+        {"vectorProperties", {{"_ShadeColor", {0.5, 0.5, 0.5, 1}}, {"_RimColor", {0, 0, 0, 1}}}},
+        {"textureProperties", {{"_MainTex", 0}}}},
+       {{"name", "eyes"}, {"shader", "VRM/UnlitTexture"}}});
+  b.writeGlb(dir / "mtoon0.glb");
+  const eng::Model model = loadOk(dir / "mtoon0.glb");
+  ASSERT_EQ(model.materials.size(), 2u);
+  ASSERT_TRUE(model.materials[0].toon.has_value());
+  const eng::ToonShading& face = *model.materials[0].toon;
+  EXPECT_NEAR(face.shadingToony, 0.88f, 1e-5f);
+  EXPECT_NEAR(face.shadingShift, 0.08f, 1e-5f);
+  EXPECT_NEAR(face.giEqualization, 0.7f, 1e-5f);
+  EXPECT_NEAR(face.shadeColor.r, 0.2140f, 1e-3f) << "sRGB 0.5 is linear 0.214";
+  EXPECT_FLOAT_EQ(face.rimFresnelPower, 2.0f);
+  EXPECT_TRUE(face.shadeFromBaseTexture);
+  EXPECT_EQ(face.outlineMode, eng::ToonShading::OutlineWidth::World);
+  EXPECT_NEAR(face.outlineWidth, 0.002f, 1e-7f) << "0.2 cm";
+  EXPECT_FLOAT_EQ(face.outlineLightingMix, 0.0f) << "fixed colour mode";
+  EXPECT_FALSE(model.materials[1].toon.has_value()) << "not an MToon shader";
+}
+
+TEST(GltfLoader, ReadsTextureSamplers) {
+  const auto dir = freshTempDir("loader_samplers");
+  GltfFileBuilder b = quadWithTarget();
+  addWhiteImage(b);
   b.doc["samplers"] = Json::array({{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9728}},
                                    {{"minFilter", 9985}},
                                    {{"wrapS", 12345}, {"minFilter", 1}}});

@@ -48,6 +48,11 @@ eng::Model richModel() {
   // The same image through another sampling: a second texture of one image.
   eng::Material decal{.name = "decal", .baseColorImage = 0};
   decal.baseColorSampling.mipFilter = eng::TextureFilter::Nearest;
+  decal.toon = eng::ToonShading{.shadeColor = {0.5f, 0.25f, 0.125f}, .shadeFromBaseTexture = true, .shadingShift = -0.25f,
+                                .shadingToony = 0.75f, .giEqualization = 0.5f, .rimColor = {0.0f, 0.5f, 1.0f},
+                                .rimFresnelPower = 3.0f, .rimLift = 0.125f, .rimLightingMix = 0.5f,
+                                .outlineMode = eng::ToonShading::OutlineWidth::Screen, .outlineWidth = 0.0078125f,
+                                .outlineColor = {0.25f, 0.0f, 0.5f}, .outlineLightingMix = 0.25f};
   model.materials.push_back(decal);
 
   eng::Mesh face;
@@ -171,6 +176,10 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.alphaMode, y.alphaMode);
     EXPECT_EQ(x.alphaCutoff, y.alphaCutoff);
     EXPECT_EQ(x.unlit, y.unlit);
+    EXPECT_EQ(x.toon.has_value(), y.toon.has_value()) << x.name;
+    if (x.toon && y.toon) {
+      EXPECT_TRUE(*x.toon == *y.toon) << x.name << ": MToon values differ after the round trip";
+    }
     EXPECT_EQ(x.baseColorSampling, y.baseColorSampling) << x.name << ": " << eng::describeSampling(y.baseColorSampling);
     ASSERT_EQ(x.detailLayers.size(), y.detailLayers.size());
     for (size_t l = 0; l < x.detailLayers.size(); ++l) {

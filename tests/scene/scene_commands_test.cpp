@@ -76,6 +76,26 @@ TEST(FacialInfoCommand, ListsASamplerThatIsNotTheDefault) {
       << text.output;
 }
 
+TEST(FacialInfoCommand, ListsAToonMaterialAndTheMtoonExtension) {
+  REQUIRE_FACIAL_PROGRAM();
+  const auto dir = freshTempDir("cmd_info_toon");
+  scene_test::GltfFileBuilder b = scene_test::quadWithTarget();
+  b.doc["extensionsUsed"] = {"VRMC_materials_mtoon"};
+  b.doc["materials"] = nlohmann::json::array(
+      {{{"extensions", {{"VRMC_materials_mtoon", {{"specVersion", "1.0"}, {"shadeColorFactor", {0.5, 0.25, 0.25}}}}}}}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.writeGlb(dir / "toon.glb");
+  const CommandRun text = facial("info " + quoted(dir / "toon.glb"));
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_NE(text.output.find("toon (MToon): shade (0.5, 0.25, 0.25), shift 0, toony 0.9"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("VRMC_materials_mtoon"), std::string::npos) << text.output;
+  const CommandRun json = facial("info --json " + quoted(dir / "toon.glb"));
+  EXPECT_EQ(json.exitCode, 0) << json.output;
+  const nlohmann::json j = nlohmann::json::parse(json.output, nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << json.output;
+  EXPECT_FLOAT_EQ(j["materials"][0]["toon"]["shadingToony"].get<float>(), 0.9f);
+}
+
 TEST(FacialInfoCommand, BadFilesExitNonZeroWithOneLineNamingTheFile) {
   REQUIRE_FACIAL_PROGRAM();
   const auto dir = freshTempDir("cmd_info_bad");

@@ -306,6 +306,79 @@ TEST(OffscreenRender, UnlitMaterialShowsItsBaseColourEverywhere) {
   EXPECT_GT(keySide.r + keySide.g + keySide.b, farSide.r + farSide.g + farSide.b + 30) << "the lit sphere is shaded";
 }
 
+TEST(OffscreenRender, ToonMaterialShadesInTwoTonesWithItsShadeColour) {
+  // MToon: toward the key the sphere is its base colour, away from it its
+  // shade colour (a blue here, which no light of the rig gives a peach
+  // surface), with a boundary as hard as the toony factor asks and nothing
+  // of the skin shading's gradual fall-off either side of it.
+  const glm::vec4 colour{0.8f, 0.6f, 0.5f, 1.0f};
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](std::optional<eng::ToonShading> toon) {
+    auto gpu = uploadPlainSphere({.color = colour, .toon = toon});
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  eng::ToonShading toon;
+  toon.shadeColor = {0.05f, 0.1f, 0.5f};
+  toon.shadingToony = 0.95f;
+  const eng::Image toonImage = render(toon), skin = render(std::nullopt);
+  // The key comes from the upper left: the shade is the band along the lower right rim.
+  const glm::ivec4 keySide = pixel(toonImage, 90, 90), farSide = pixel(toonImage, 186, 186);
+  EXPECT_GT(keySide.r, keySide.b + 40) << "lit: the base colour";
+  EXPECT_GT(farSide.b, farSide.r + 40) << "shade: the shade colour";
+  // Across the lit part (the diagonal through the centre): the skin shading
+  // falls off with the angle to the key, the toon shading stays one tone.
+  auto spread = [](const eng::Image& image) {
+    int lo = 255 * 3, hi = 0;
+    for (int i = 60; i <= 170; ++i) {
+      const glm::ivec4 p = pixel(image, i, i);
+      lo = std::min(lo, p.r + p.g + p.b);
+      hi = std::max(hi, p.r + p.g + p.b);
+    }
+    return hi - lo;
+  };
+  EXPECT_LE(spread(toonImage), 9) << "one flat tone";
+  EXPECT_GE(spread(skin), 60) << "the skin shading falls off gradually";
+}
+
+TEST(OffscreenRender, ToonOutlineRingsTheSilhouetteAtTheWidthItAsksFor) {
+  // A red outline with no lighting mix around a toon sphere: outside the
+  // silhouette a red ring as wide as asked (world: 0.06 of the radius 1 at
+  // about 98 px per unit; screen: 0.03 of the 256 px image height), inside
+  // it nothing changes, the hull being behind the surface.
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](eng::ToonShading::OutlineWidth mode, float width) {
+    eng::ToonShading toon;
+    toon.shadeColor = {0.3f, 0.2f, 0.2f};
+    toon.outlineMode = mode;
+    toon.outlineWidth = width;
+    toon.outlineColor = {1.0f, 0.0f, 0.0f};
+    toon.outlineLightingMix = 0.0f;
+    auto gpu = uploadPlainSphere({.toon = toon});
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  using Mode = eng::ToonShading::OutlineWidth;
+  const eng::Image plain = render(Mode::None, 0.0f), world = render(Mode::World, 0.06f), screen = render(Mode::Screen, 0.03f);
+  auto isRed = [](glm::ivec4 p) { return p.r > 150 && p.g < 60 && p.b < 60; };
+  // The plain sphere's right edge on the middle row, then the ring beyond it.
+  int edge = 128;
+  while (edge < 255 && glm::compMax(glm::abs(pixel(plain, edge + 1, 128) - pixel(plain, 250, 128))) > 6) ++edge;
+  ASSERT_GT(edge, 180) << "the sphere fills most of the image";
+  auto ring = [&](const eng::Image& image) {
+    int width = 0;
+    while (edge + 1 + width < 256 && isRed(pixel(image, edge + 1 + width, 128))) ++width;
+    return width;
+  };
+  EXPECT_EQ(ring(plain), 0);
+  EXPECT_NEAR(ring(world), 6, 2) << "0.06 units";
+  EXPECT_NEAR(ring(screen), 8, 2) << "0.03 x 256 px";
+  for (const glm::ivec2 p : {glm::ivec2(128, 128), glm::ivec2(90, 90), glm::ivec2(166, 166)})
+    EXPECT_LE(glm::compMax(glm::abs(pixel(world, p.x, p.y) - pixel(plain, p.x, p.y))), 2) << "inside at " << p.x << "," << p.y;
+}
+
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   vk_test::SphereSpec spec;
   spec.withMaterial = false;

@@ -60,6 +60,7 @@ eng::Model makeSphereModel(const SphereSpec& spec) {
     mat.alphaMode = spec.alphaMode;
     mat.alphaCutoff = spec.alphaCutoff;
     mat.unlit = spec.unlit;
+    mat.toon = spec.toon;
     prim.material = 0;
   }
   eng::Node& node = model.nodes.emplace_back();

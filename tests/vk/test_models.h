@@ -1,5 +1,6 @@
 #pragma once
 // Procedural models for the renderer tests (no files needed).
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -20,6 +21,7 @@ struct SphereSpec {
   eng::AlphaMode alphaMode = eng::AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool unlit = false;       // KHR_materials_unlit
+  std::optional<eng::ToonShading> toon;  // MToon
   bool withMaterial = true; // false: the primitive uses the default material
 };
 

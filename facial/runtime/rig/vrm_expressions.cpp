@@ -197,10 +197,19 @@ eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effect
       const VrmMaterialColorBind& bind = materialColorBinds[b];
       VrmMaterialState& m = materials[bind.material];
       const VrmMaterialState& r = rest[bind.material];
-      if (bind.type == VrmMaterialColorType::Color)
-        for (size_t c = 0; c < 4; ++c) m.color[c] += w * (bind.targetValue[c] - r.color[c]);
-      else if (bind.type == VrmMaterialColorType::EmissionColor)
-        for (size_t c = 0; c < 3; ++c) m.emission[c] += w * (bind.targetValue[c] - r.emission[c]);
+      auto moveRgb = [&](std::array<float, 3>& moved, const std::array<float, 3>& own) {
+        for (size_t c = 0; c < 3; ++c) moved[c] += w * (bind.targetValue[c] - own[c]);
+      };
+      switch (bind.type) {
+        case VrmMaterialColorType::Color:
+          for (size_t c = 0; c < 4; ++c) m.color[c] += w * (bind.targetValue[c] - r.color[c]);
+          break;
+        case VrmMaterialColorType::EmissionColor: moveRgb(m.emission, r.emission); break;
+        case VrmMaterialColorType::ShadeColor: moveRgb(m.shade, r.shade); break;
+        case VrmMaterialColorType::RimColor: moveRgb(m.rim, r.rim); break;
+        case VrmMaterialColorType::OutlineColor: moveRgb(m.outline, r.outline); break;
+        case VrmMaterialColorType::MatcapColor: break;  // matcap is not drawn
+      }
     }
     for (uint32_t b = e.firstTextureTransformBind; b < e.firstTextureTransformBind + e.textureTransformBindCount; ++b) {
       const VrmTextureTransformBind& bind = textureTransformBinds[b];
@@ -218,7 +227,7 @@ eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effect
 size_t VrmExpressionSet::unsupportedMaterialBinds() const {
   size_t n = 0;
   for (const VrmMaterialColorBind& b : materialColorBinds)
-    n += b.type != VrmMaterialColorType::Color && b.type != VrmMaterialColorType::EmissionColor ? 1 : 0;
+    n += b.type == VrmMaterialColorType::MatcapColor ? 1 : 0;
   return n;
 }
 

@@ -62,6 +62,9 @@ struct VrmTextureTransformBind {
 struct VrmMaterialState {
   std::array<float, 4> color{};            // base colour factor
   std::array<float, 3> emission{};         // emissive factor
+  std::array<float, 3> shade{};            // MToon shade colour (linear RGB)
+  std::array<float, 3> rim{};              // MToon parametric rim colour
+  std::array<float, 3> outline{};          // MToon outline colour
   std::array<float, 2> uvScale{1.0f, 1.0f};
   std::array<float, 2> uvOffset{0.0f, 0.0f};
 };
@@ -134,12 +137,13 @@ struct VrmExpressionSet {
 
   // effective: effectiveWeights()' output; rest: every material's own state
   // (materialCount entries); out (same size): rest moved by the material
-  // colour and texture transform binds of the weighted expressions. Only Color
-  // and EmissionColor have a glTF meaning; the MToon colours are listed by
-  // unsupportedMaterialBinds(). No allocation (per frame).
+  // colour and texture transform binds of the weighted expressions: base
+  // colour, emission and MToon's shade, rim and outline colours (drawn on MToon
+  // materials); the matcap colour is listed by unsupportedMaterialBinds(). No
+  // allocation (per frame).
   eng::Result<void> applyMaterials(std::span<const float> effective, std::span<const VrmMaterialState> rest,
                                    std::span<VrmMaterialState> out) const;
-  // Material colour binds whose type has no glTF material value (MToon shade, matcap, rim, outline).
+  // Material colour binds that are not drawn (MToon's matcap colour).
   size_t unsupportedMaterialBinds() const;
   bool hasMaterialBinds() const { return !materialColorBinds.empty() || !textureTransformBinds.empty(); }
 };

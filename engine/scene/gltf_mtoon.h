@@ -1,0 +1,35 @@
+#pragma once
+// MToon, the toon material of VRM avatars (VRoid Studio), read into
+// eng::ToonShading: VRM 1.0's VRMC_materials_mtoon on a material, or VRM
+// 0.x's materialProperties entry (shader "VRM/MToon") for the material of the
+// same index, converted the way UniVRM migrates 0.x files to 1.0. Drawn: the
+// shade colour (and a shade texture, by the base colour's texture), the
+// shading shift and toony width, GI equalization, the parametric rim, the
+// outline. Not drawn: matcap, the shift/rim/outline mask textures, UV animation.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "engine/scene/model.h"
+
+namespace eng {
+
+inline constexpr const char* kVrmcMaterialsMtoon = "VRMC_materials_mtoon";
+
+struct MtoonRead {
+  std::optional<ToonShading> toon;
+  // The glTF texture the shade colour is multiplied by (-1: none), so the
+  // caller can say when the base colour's texture stands in for it.
+  int shadeTexture = -1;
+  // One line each for values out of range or of the wrong type (kept at
+  // their defaults) and for the parts of MToon that are not drawn.
+  std::vector<std::string> problems;
+};
+
+// The MToon parameters of material `index` of `gltf`, if it has any. VRM
+// 1.0's extension wins over a 0.x entry for the same material.
+MtoonRead readMtoon(const tinygltf::Model& gltf, size_t index);
+
+}  // namespace eng
