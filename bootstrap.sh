@@ -17,7 +17,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
-  libmeshoptimizer-dev libdraco-dev libwebp-dev
+  libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev
   clang libclang-rt-14-dev llvm liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
 )

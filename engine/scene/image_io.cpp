@@ -8,6 +8,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <webp/decode.h>
+#include <zlib.h>
 
 #include "engine/scene/file_bytes.h"
 
@@ -74,6 +75,69 @@ Result<void> checkImageSize(uint64_t w, uint64_t h, const std::string& name, siz
                    std::to_string(kMaxImageSide) + " per side and " + std::to_string(maxPixels) + " pixels");
 }
 
+// Bytes of filtered scanlines a PNG of this header inflates to (Adam7: the seven passes').
+uint64_t pngRawBytes(uint64_t w, uint64_t h, uint8_t depth, uint8_t colourType, bool interlaced) {
+  const uint64_t channels = colourType == 2 ? 3 : colourType == 4 ? 2 : colourType == 6 ? 4 : 1;
+  const uint64_t bitsPerPixel = channels * std::max<uint8_t>(depth, 1);
+  const auto passBytes = [&](uint64_t pw, uint64_t ph) { return pw && ph ? ph * ((pw * bitsPerPixel + 7) / 8 + 1) : 0; };
+  if (!interlaced) return passBytes(w, h);
+  static constexpr uint64_t x0[7] = {0, 4, 0, 2, 0, 1, 0}, y0[7] = {0, 0, 4, 0, 2, 0, 1};
+  static constexpr uint64_t dx[7] = {8, 8, 4, 4, 2, 2, 1}, dy[7] = {8, 8, 8, 4, 4, 2, 2};
+  uint64_t bytes = 0;
+  for (int p = 0; p < 7; ++p)
+    bytes += passBytes(w > x0[p] ? (w - x0[p] + dx[p] - 1) / dx[p] : 0, h > y0[p] ? (h - y0[p] + dy[p] - 1) / dy[p] : 0);
+  return bytes;
+}
+
+// stb (Debian's 2022 snapshot) trusts a PNG's chunk lengths and its zlib stream: an IDAT
+// chunk that declares a gigabyte the file does not hold makes it allocate 2 GiB before it
+// reads a byte, and a small deflate stream may inflate into gigabytes before it checks the
+// size against the header. Both are refused here, before stb sees the file: every chunk
+// must fit in the data, and the image data must not inflate past what the header needs.
+Result<void> checkPngStream(std::span<const uint8_t> encoded, const std::string& name) {
+  static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (encoded.size() < 8 || std::memcmp(encoded.data(), kPng, 8) != 0) return {};
+  uint64_t rawBytes = 0;
+  z_stream inflater{};
+  if (inflateInit(&inflater) != Z_OK) return makeError(ErrorKind::Io, name + ": zlib could not start");
+  const std::unique_ptr<z_stream, int (*)(z_stream*)> closeInflater(&inflater, inflateEnd);
+  bool inflating = true;
+  uint64_t inflated = 0;
+  uint8_t scratch[16384];
+  for (size_t at = 8; at + 12 <= encoded.size();) {
+    const uint32_t length = bigEndian(encoded.data() + at, 4);
+    const std::string type(reinterpret_cast<const char*>(encoded.data() + at + 4), 4);
+    const size_t followingHeader = encoded.size() - at - 8;  // its data and CRC
+    if (length > 0x7FFFFFFFu || size_t{length} + 4 > followingHeader)
+      return makeError(ErrorKind::Malformed, name + ": PNG chunk '" + type + "' at byte " + std::to_string(at) + " declares " +
+                       std::to_string(length) + " bytes, only " + std::to_string(followingHeader) +
+                       " follow its header (truncated or corrupt file)");
+    const uint8_t* data = encoded.data() + at + 8;
+    if (type == "IHDR" && length >= 13)
+      rawBytes = pngRawBytes(bigEndian(data, 4), bigEndian(data + 4, 4), data[8], data[9], data[12] != 0);
+    if (type == "IDAT" && inflating) {
+      // A stream zlib cannot read is left to stb, which names what is corrupt.
+      const uint64_t limit = 2 * rawBytes + 4096;
+      inflater.next_in = const_cast<Bytef*>(data);
+      inflater.avail_in = length;
+      while (inflating && inflater.avail_in > 0) {
+        inflater.next_out = scratch;
+        inflater.avail_out = sizeof(scratch);
+        const int status = inflate(&inflater, Z_NO_FLUSH);
+        inflated += sizeof(scratch) - inflater.avail_out;
+        if (inflated > limit)
+          return makeError(ErrorKind::Malformed, name + ": PNG image data inflates past " + std::to_string(limit) + " bytes, " +
+                           (rawBytes ? "its header needs " + std::to_string(rawBytes) : std::string("and no header precedes it")) +
+                           " (a decompression bomb or corrupt data)");
+        if (status != Z_OK) inflating = false;
+      }
+    }
+    if (type == "IEND") break;
+    at += size_t{12} + length;
+  }
+  return {};
+}
+
 // WebP (EXT_texture_webp) is not an stb format: libwebp decodes it.
 Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
   int w = 0, h = 0;
@@ -125,6 +189,7 @@ Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& n
     return makeError(ErrorKind::Unsupported, name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
   if (uint32_t headerW = 0, headerH = 0; headerDimensions(encoded, headerW, headerH))
     if (auto size = checkImageSize(headerW, headerH, name, maxPixels); !size) return size.error();
+  if (auto stream = checkPngStream(encoded, name); !stream) return stream.error();
   int w = 0, h = 0, channels = 0;
   const int len = static_cast<int>(encoded.size());
   if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))

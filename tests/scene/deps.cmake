@@ -1,5 +1,6 @@
 # The compressed-glTF tests encode their own files with the libraries the
-# loader decodes with (meshoptimizer, libwebp).
+# loader decodes with (meshoptimizer, libwebp, zlib for hand-made PNG streams).
 find_package(meshoptimizer REQUIRED)
+find_package(ZLIB REQUIRED)
 pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
-set(TEST_DEPS eng_scene nlohmann_json::nlohmann_json meshoptimizer::meshoptimizer PkgConfig::WEBP)
+set(TEST_DEPS eng_scene nlohmann_json::nlohmann_json meshoptimizer::meshoptimizer PkgConfig::WEBP ZLIB::ZLIB)

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
 #include "engine/scene/obj_keyframes.h"
@@ -54,6 +55,19 @@ TEST(FuzzRegression, SmoothNormalsOfHugeTrianglesAreFinite) {
     EXPECT_FLOAT_EQ(n.z, 1.0f);
     EXPECT_FLOAT_EQ(n.x, 0.0f);
   }
+}
+
+// fuzz_image found it (out of memory, malloc(2147483648)): after an IDAT chunk of 4096
+// bytes, a second one declaring 2^30 + 1 bytes that the file does not hold. stb doubled its
+// buffer to 2 GiB before reading. The chunk is now refused by what it declares.
+TEST(FuzzRegressionValidity, PngChunkDeclaringMoreThanTheFileHoldsIsRefused) {
+  const std::string bytes = fuzzInput("image_idat_past_end.png");
+  ASSERT_EQ(bytes.size(), 4157u);
+  const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+  auto image = eng::decodeImage({data, bytes.size()}, "input image", size_t{4} << 20);  // as fuzz_image reads it
+  ASSERT_FALSE(image.ok());
+  EXPECT_EQ(image.error().message,
+            "input image: PNG chunk 'IDAT' at byte 4141 declares 1073741825 bytes, only 8 follow its header (truncated or corrupt file)");
 }
 
 // Validity: a target 3e38 away from its neutral vertex makes a delta no float

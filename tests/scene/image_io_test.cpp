@@ -1,5 +1,8 @@
 // PNG writing and image reading through stb.
+#include <string>
+
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
@@ -8,6 +11,33 @@
 namespace {
 
 using testing_support::freshTempDir;
+
+void appendChunk(std::vector<uint8_t>& png, const char* type, const std::vector<uint8_t>& data) {
+  const auto be32 = [&](uint32_t v) { for (int s = 24; s >= 0; s -= 8) png.push_back(static_cast<uint8_t>(v >> s)); };
+  be32(static_cast<uint32_t>(data.size()));
+  const size_t typeAt = png.size();
+  png.insert(png.end(), type, type + 4);
+  png.insert(png.end(), data.begin(), data.end());
+  be32(static_cast<uint32_t>(crc32(0, png.data() + typeAt, static_cast<uInt>(png.size() - typeAt))));
+}
+
+// A PNG whose image data is `raw` (filtered scanlines) deflated as it stands, whatever the
+// header says it should hold.
+std::vector<uint8_t> handMadePng(uint32_t w, uint32_t h, uint8_t colourType, bool interlaced, const std::vector<uint8_t>& raw) {
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::vector<uint8_t> header;
+  for (uint32_t v : {w, h})
+    for (int s = 24; s >= 0; s -= 8) header.push_back(static_cast<uint8_t>(v >> s));
+  header.insert(header.end(), {8, colourType, 0, 0, static_cast<uint8_t>(interlaced ? 1 : 0)});
+  appendChunk(png, "IHDR", header);
+  std::vector<uint8_t> deflated(compressBound(static_cast<uLong>(raw.size())));
+  uLongf deflatedSize = static_cast<uLongf>(deflated.size());
+  EXPECT_EQ(compress2(deflated.data(), &deflatedSize, raw.data(), static_cast<uLong>(raw.size()), 9), Z_OK);
+  deflated.resize(deflatedSize);
+  appendChunk(png, "IDAT", deflated);
+  appendChunk(png, "IEND", {});
+  return png;
+}
 
 std::vector<uint8_t> gradient(int w, int h) {
   std::vector<uint8_t> rgba;
@@ -96,6 +126,48 @@ TEST(ImageIoBadInput, HeaderBeyondWhatStbAcceptsIsRefusedAsTooLarge) {
   img = eng::decodeImage(jpeg, "huge.jpg");
   ASSERT_FALSE(img.ok());
   EXPECT_NE(img.error().message.find("huge.jpg: image too large: 50000x60000"), std::string::npos) << img.error().message;
+}
+
+}  // namespace
+
+namespace {
+
+// Validity: stb trusts a chunk's declared length and reallocates for it before reading;
+// an IDAT that claims a gigabyte the file does not hold is refused by name first.
+TEST(ImageIoBadInput, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
+  std::vector<uint8_t> png = handMadePng(1, 1, 6, false, {0, 1, 2, 3, 4});
+  png.resize(png.size() - 12);  // IEND off
+  const size_t at = png.size();
+  png.insert(png.end(), {0x40, 0x00, 0x00, 0x01, 'I', 'D', 'A', 'T', 0, 0, 0, 0, 0, 0, 0, 0});
+  auto img = eng::decodeImage(png, "long.png");
+  ASSERT_FALSE(img.ok());
+  EXPECT_EQ(img.error().message, "long.png: PNG chunk 'IDAT' at byte " + std::to_string(at) +
+                                     " declares 1073741825 bytes, only 8 follow its header (truncated or corrupt file)");
+}
+
+// Validity: 64 MiB of zeros deflate to 64 kB; stb inflates all of it for a 1x1 image and
+// decodes the first pixel. Refused before it inflates past twice what the header needs.
+TEST(ImageIoBadInput, PngDataInflatingFarPastItsHeaderIsRefused) {
+  auto img = eng::decodeImage(handMadePng(1, 1, 6, false, std::vector<uint8_t>(size_t{64} << 20)), "bomb.png");
+  ASSERT_FALSE(img.ok());
+  EXPECT_EQ(img.error().message,
+            "bomb.png: PNG image data inflates past 4106 bytes, its header needs 5 (a decompression bomb or corrupt data)");
+}
+
+// Result: image data of exactly the size the header asks for decodes, interlaced (the seven
+// Adam7 passes of a 5x3 grey image hold 2, 2, 0, 2, 4, 2x3 and 6 bytes, filter bytes included) or not.
+TEST(ImageIo, HandMadePngStreamsOfTheExactSizeDecode) {
+  const std::vector<uint8_t> interlaced = {0, 10, 0, 11, 0, 12, 0, 20, 21, 22, 0, 30, 31, 0, 32, 33, 0, 40, 41, 42, 43, 44};
+  auto img = eng::decodeImage(handMadePng(5, 3, 0, true, interlaced), "adam7.png");
+  ASSERT_TRUE(img.ok()) << img.error().message;
+  EXPECT_EQ(img->width, 5);
+  EXPECT_EQ(img->height, 3);
+  EXPECT_EQ(img->rgba8[0], 10);
+  std::vector<uint8_t> rows;
+  for (int y = 0; y < 3; ++y) rows.insert(rows.end(), {0, 1, 2, 3, 4, 5});
+  img = eng::decodeImage(handMadePng(5, 3, 0, false, rows), "rows.png");
+  ASSERT_TRUE(img.ok()) << img.error().message;
+  EXPECT_EQ(img->rgba8[4 * 4], 5);
 }
 
 }  // namespace
