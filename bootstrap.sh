@@ -38,7 +38,11 @@ install_missing_packages() {
 build() {
   local jobs
   jobs=$(nproc)
-  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  # -O2 with line tables only (-g1): backtraces and sanitizer reports keep
+  # file:line, and the build takes about a third less time than with full -g
+  # on two cores. Configure build/ yourself for full debug info.
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" >/dev/null
   cmake --build build -j"$jobs"
 }
 
