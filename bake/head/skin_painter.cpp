@@ -74,7 +74,10 @@ class Curve2 {
 const Curve2& browCurve() {
   // On the orbital rim, a flat arch: brows set high above the lids made the
   // face look permanently surprised, and every brow-raising state read as surprise.
-  static const Curve2 curve(std::array<vec2, 6>{vec2(0.0105f, 0.0238f), vec2(0.0190f, 0.0274f), vec2(0.0310f, 0.0306f),
+  // The heads start a few millimetres inside the inner eye corners (x 21.7 mm),
+  // as on an adult: started 11 mm inside them, the two brows nearly met over the
+  // nose, so the brows drawn together (anger, sad's AU4) fused into one bar.
+  static const Curve2 curve(std::array<vec2, 6>{vec2(0.0170f, 0.0246f), vec2(0.0235f, 0.0280f), vec2(0.0320f, 0.0306f),
                                                  vec2(0.0440f, 0.0304f), vec2(0.0530f, 0.0272f), vec2(0.0585f, 0.0232f)});
   return curve;
 }
