@@ -3,9 +3,14 @@
 // refused with file + JSON path + problem.
 #include "facial/runtime/rig/expression_library.h"
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <regex>
+#include <set>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -108,6 +113,38 @@ TEST_F(ProjectPresets, BilateralUnitsAreSetOnBothSides) {
                                std::pair{"AU45_Blink_L", "AU45_Blink_R"}})
       EXPECT_EQ(preset.actionUnitWeight(channel(left)), preset.actionUnitWeight(channel(right))) << preset.name;
   }
+}
+
+// The README's preset tables are what a user reads to know what a state does:
+// each row ("| happily surprised | 1+2+12+25 [5, 26] | AU1 .8, AU2 L/R .8, ... |")
+// must list the weights the file ships (three rows had kept older weights
+// after the presets were tuned).
+TEST_F(ProjectPresets, ReadmeTablesListTheWeightsTheFileShips) {
+  std::ifstream readme(testing_support::sourceDir() / "README.md");
+  ASSERT_TRUE(readme) << "README.md not found";
+  const std::regex row(R"(^\| ([a-z ]+) \| [^|]+ \| ([^|]+) \|$)");
+  const std::regex entry(R"(AU(\d+)( L/R)? (\d*\.?\d+))");
+  std::set<std::string> documented;
+  for (std::string line; std::getline(readme, line);) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    std::string name = m[1].str();
+    std::replace(name.begin(), name.end(), ' ', '_');
+    const ExpressionPreset* preset = library_.find(name);
+    if (!preset) continue;
+    documented.insert(name);
+    const std::string weights = m[2].str();
+    std::set<int> listed;
+    for (auto it = std::sregex_iterator(weights.begin(), weights.end(), entry); it != std::sregex_iterator(); ++it) {
+      const int number = std::stoi((*it)[1].str());
+      listed.insert(number);
+      EXPECT_NEAR(facsWeight(*preset, number), std::stof((*it)[3].str()), 1e-4f) << name << ": AU" << number << " in README.md";
+    }
+    std::set<int> shipped;
+    for (const ActionUnitWeight& au : preset->actionUnits) shipped.insert(actionUnits()[au.channel].facsNumber);
+    EXPECT_EQ(listed, shipped) << name << ": the README lists other action units than data/expressions.json";
+  }
+  for (std::string_view name : library_.names()) EXPECT_TRUE(documented.count(std::string(name))) << name << " has no row in README.md";
 }
 
 TEST_F(ProjectPresets, EvaluateScalesByIntensityAndClampsToUnitRange) {
