@@ -6,10 +6,11 @@
 // every FACIAL_SOAK_DRAW_EVERY-th frame, default 20: lavapipe with validation draws the nine
 // heads in about 0.4 s of CPU, and graph updates are what runs every frame anyway).
 // What must hold over any number of frames:
-//   - resident memory flat: after warm-up it grows by at most 1 % of its level
-//     at the end of warm-up, not counting its one largest rise (see
-//     flatGrowth: the driver makes one late ~28 MiB allocation whose moment
-//     depends on the machine's load, not on the frames);
+//   - resident memory flat: after warm-up its steady growth is at most 1 % of
+//     its level at the end of warm-up (see steadyGrowth: the driver takes
+//     one-time steps, a late ~28 MiB allocation whose moment depends on the
+//     machine's load and smaller ones as its caches fill, which a leak does not
+//     look like);
 //   - the heap in use (mallinfo2) flat in the same way: a small leak can fill
 //     freed pages glibc keeps resident and not move the resident size at all;
 //   - every channel and morph-target weight finite, every frame;
@@ -17,6 +18,8 @@
 //
 //   build/bin/test_soak                             the short run (ctest)
 //   FACIAL_SOAK_FRAMES=100000 FACIAL_SOAK_DRAW_EVERY=50 build/bin/test_soak   the long run
+//   FACIAL_SOAK_LEAK_BYTES=8192 build/bin/test_soak  leaks that many bytes a frame on purpose: the
+//                                                  check must fail (it is a test that can fail)
 #include <malloc.h>
 #include <unistd.h>
 
@@ -26,6 +29,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <random>
 #include <string>
@@ -71,27 +75,35 @@ size_t residentBytes() {
 // each keeping its peak resident size.
 constexpr uint32_t kWindows = 8;
 
-// Resident growth after warm-up, relative to `afterWarmup`: the rises from
-// one window's peak to the next, summed, less the largest single rise. Why
-// not simply the peak over the level at warm-up: lavapipe makes one anonymous
+// Steady growth after warm-up, relative to `afterWarmup`: the median of the
+// rises from one window's peak to the next, times the number of windows, i.e.
+// what growth at that pace would add over the run. A leak grows the memory in
+// every window, so the median rise is its pace. A one-time step rises in one
+// window and leaves the median at zero: lavapipe makes one anonymous
 // allocation of about 28 MiB once, at a moment set by wall-clock time and
 // thread scheduling rather than by the frames (measured with the same frames
 // under load: at 18, 24 and 50 s into runs of 95 s, frame 220 to 630; then
-// flat for 100,000 frames), so a loaded machine moved it past the warm-up and
-// failed a run that leaks nothing. A leak grows the memory in every window;
-// leaving out one rise forgives one step and still counts (kWindows - 1) /
-// kWindows of a steady leak's growth.
-double flatGrowth(size_t afterWarmup, const std::vector<size_t>& windowPeaks, size_t& largestRise) {
-  size_t previous = afterWarmup, rises = 0;
+// flat for 100,000 frames), and its retained scene and shader memory takes
+// smaller steps as new content arrives (a clean-clone CI run on a loaded
+// machine: heap window peaks 192 213 214 221 221 221 221 221 MiB, two steps
+// then flat). Forgiving only the largest rise failed that run; the median
+// forgives any steps in fewer than half of the windows.
+double steadyGrowth(size_t afterWarmup, const std::vector<size_t>& windowPeaks, size_t& largestRise) {
+  size_t previous = afterWarmup;
   largestRise = 0;
+  std::vector<size_t> rises;
   for (size_t peak : windowPeaks) {
     if (peak == 0) continue;  // a window without a sample (very short runs)
     const size_t rise = peak > previous ? peak - previous : 0;
-    rises += rise;
+    rises.push_back(rise);
     largestRise = std::max(largestRise, rise);
     previous = std::max(previous, peak);
   }
-  return double(rises - largestRise) / double(afterWarmup);
+  if (rises.empty() || afterWarmup == 0) return 0.0;
+  std::sort(rises.begin(), rises.end());
+  const size_t n = rises.size();
+  const double median = n % 2 ? double(rises[n / 2]) : 0.5 * double(rises[n / 2 - 1] + rises[n / 2]);
+  return median * double(n) / double(afterWarmup);
 }
 
 // Bytes malloc has handed out and not had back (every arena, mmapped blocks
@@ -200,8 +212,15 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
   SoakFigures figures;
   figures.frames = frames;
   figures.warmupFrames = std::max<uint32_t>(300, frames / 10);
+  // A deliberate leak (bytes a frame, 0 by default): shows the checks below can fail.
+  const size_t leakBytesPerFrame = std::getenv("FACIAL_SOAK_LEAK_BYTES") ? positiveEnv("FACIAL_SOAK_LEAK_BYTES", 0) : 0;
+  std::vector<std::unique_ptr<char[]>> leaked;
   const auto started = std::chrono::steady_clock::now();
   for (uint32_t frame = 0; frame < frames; ++frame) {
+    if (leakBytesPerFrame) {
+      leaked.push_back(std::make_unique<char[]>(leakBytesPerFrame));
+      std::fill_n(leaked.back().get(), leakBytesPerFrame, char(frame));  // touched, so resident too
+    }
     // Uneven frame times: 30-240 Hz, with a hitch now and then.
     float dt = 1.0f / (30.0f + 210.0f * unit(random));
     if (unit(random) < 0.002f) dt = 0.25f + unit(random);
@@ -265,9 +284,9 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
 
   const double mib = 1.0 / (1 << 20);
   size_t largestRise = 0;
-  const double growth = flatGrowth(figures.residentAfterWarmup, figures.windowPeaks, largestRise);
+  const double growth = steadyGrowth(figures.residentAfterWarmup, figures.windowPeaks, largestRise);
   size_t largestHeapRise = 0;
-  const double heapGrowth = flatGrowth(figures.heapAfterWarmup, figures.heapWindowPeaks, largestHeapRise);
+  const double heapGrowth = steadyGrowth(figures.heapAfterWarmup, figures.heapWindowPeaks, largestHeapRise);
   std::string windows, heapWindows;
   for (size_t peak : figures.windowPeaks) windows += (windows.empty() ? "" : " ") + std::to_string(peak >> 20);
   for (size_t peak : figures.heapWindowPeaks)
@@ -275,9 +294,9 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
   std::printf("soak: %u frames (%u warm-up, %u drawn) of %u faces at %ux%u in %.1f s (%.2f ms/frame); %llu triggers, "
               "%llu parameter changes, %llu resets\n"
               "soak: resident %.1f MiB after warm-up, peak %.1f MiB (frame %u), final %.1f MiB; window peaks (MiB) %s; "
-              "growth without the largest rise (%.1f MiB) +%.3f %%\n"
-              "soak: heap in use %.1f MiB after warm-up; window peaks (MiB) %s; growth without the largest rise "
-              "(%.1f MiB) +%.3f %%; non-finite weights %llu; validation messages %u\n",
+              "largest rise %.1f MiB, steady growth +%.3f %%\n"
+              "soak: heap in use %.1f MiB after warm-up; window peaks (MiB) %s; largest rise "
+              "%.1f MiB, steady growth +%.3f %%; non-finite weights %llu; validation messages %u\n",
               figures.frames, figures.warmupFrames, figures.drawn, kCrowd, kImageSide, kImageSide, figures.seconds,
               1000.0 * figures.seconds / figures.frames, (unsigned long long)figures.triggers,
               (unsigned long long)figures.parameterChanges, (unsigned long long)figures.resets,
@@ -290,11 +309,11 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
               "LeakSanitizer checks for leaks at exit\n");
 #else
   EXPECT_LE(heapGrowth, kAllowedGrowth) << "heap in use kept growing after warm-up: from " << figures.heapAfterWarmup
-                                        << " bytes, window peaks (MiB) " << heapWindows << ", one rise of "
-                                        << largestHeapRise << " bytes forgiven";
+                                        << " bytes, window peaks (MiB) " << heapWindows << " (steady growth: the median rise between "
+                                        << "windows, times their number)";
   EXPECT_LE(growth, kAllowedGrowth) << "resident memory kept growing after warm-up: from " << figures.residentAfterWarmup
-                                    << " bytes, window peaks (MiB) " << windows << ", one rise of " << largestRise
-                                    << " bytes forgiven";
+                                    << " bytes, window peaks (MiB) " << windows << " (steady growth: the median rise between "
+                                    << "windows, times their number)";
 #endif
   auto clean = context->checkValidation();
   EXPECT_TRUE(clean.ok()) << clean.error().message;
