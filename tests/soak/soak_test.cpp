@@ -213,7 +213,7 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
   figures.frames = frames;
   figures.warmupFrames = std::max<uint32_t>(300, frames / 10);
   // A deliberate leak (bytes a frame, 0 by default): shows the checks below can fail.
-  const size_t leakBytesPerFrame = std::getenv("FACIAL_SOAK_LEAK_BYTES") ? positiveEnv("FACIAL_SOAK_LEAK_BYTES", 0) : 0;
+  const size_t leakBytesPerFrame = positiveEnv("FACIAL_SOAK_LEAK_BYTES", 0);
   std::vector<std::unique_ptr<char[]>> leaked;
   const auto started = std::chrono::steady_clock::now();
   for (uint32_t frame = 0; frame < frames; ++frame) {
