@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "tests/common/test_support.h"
@@ -92,19 +93,62 @@ Eyeball eyeball(const eng::Model& model, int index) {
   return {glm::vec3((lo.x + hi.x) * 0.5f, (lo.y + hi.y) * 0.5f, lo.z + radius), radius};
 }
 
+namespace {
+
+// Depth at (x, y) of the triangle a b c seen along -Z, if (x, y) lies in it.
+std::optional<float> triangleHitZ(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, float x, float y) {
+  const float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  if (std::abs(area) < 1e-14f) return std::nullopt;
+  const float w0 = ((b.x - x) * (c.y - y) - (c.x - x) * (b.y - y)) / area;
+  const float w1 = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) / area;
+  const float w2 = 1.0f - w0 - w1;
+  if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) return std::nullopt;
+  return a.z * w0 + b.z * w1 + c.z * w2;
+}
+
+}  // namespace
+
 std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices, float x,
                                float y) {
   std::optional<float> best;
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const std::optional<float> z =
+        triangleHitZ(positions[indices[t]], positions[indices[t + 1]], positions[indices[t + 2]], x, y);
+    if (z && (!best || *z > *best)) best = z;
+  }
+  return best;
+}
+
+FrontView::FrontView(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices)
+    : positions_(positions), indices_(indices), buckets_(size_t(kCells * kCells)) {
+  glm::vec2 hi(-std::numeric_limits<float>::max());
+  lo_ = glm::vec2(std::numeric_limits<float>::max());
+  for (uint32_t i : indices) {
+    lo_ = glm::min(lo_, glm::vec2(positions[i]));
+    hi = glm::max(hi, glm::vec2(positions[i]));
+  }
+  cellSize_ = glm::max((hi - lo_) / float(kCells), glm::vec2(1e-9f));
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     const glm::vec3 &a = positions[indices[t]], &b = positions[indices[t + 1]], &c = positions[indices[t + 2]];
-    const float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-    if (std::abs(area) < 1e-14f) continue;
-    const float w0 = ((b.x - x) * (c.y - y) - (c.x - x) * (b.y - y)) / area;
-    const float w1 = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) / area;
-    const float w2 = 1.0f - w0 - w1;
-    if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
-    const float z = a.z * w0 + b.z * w1 + c.z * w2;
-    if (!best || z > *best) best = z;
+    const int x0 = cellOf(std::min({a.x, b.x, c.x}), lo_.x, cellSize_.x), x1 = cellOf(std::max({a.x, b.x, c.x}), lo_.x, cellSize_.x);
+    const int y0 = cellOf(std::min({a.y, b.y, c.y}), lo_.y, cellSize_.y), y1 = cellOf(std::max({a.y, b.y, c.y}), lo_.y, cellSize_.y);
+    for (int cy = y0; cy <= y1; ++cy)
+      for (int cx = x0; cx <= x1; ++cx) buckets_[size_t(cy * kCells + cx)].push_back(uint32_t(t));
+  }
+}
+
+int FrontView::cellOf(float v, float lo, float size) const {
+  return std::clamp(int(std::floor((v - lo) / size)), 0, kCells - 1);
+}
+
+std::optional<float> FrontView::hitZ(float x, float y) const {
+  std::optional<float> best;
+  const std::vector<uint32_t>& bucket =
+      buckets_[size_t(cellOf(y, lo_.y, cellSize_.y) * kCells + cellOf(x, lo_.x, cellSize_.x))];
+  for (uint32_t t : bucket) {
+    const std::optional<float> z =
+        triangleHitZ(positions_[indices_[t]], positions_[indices_[t + 1]], positions_[indices_[t + 2]], x, y);
+    if (z && (!best || *z > *best)) best = z;
   }
   return best;
 }

@@ -41,4 +41,21 @@ Eyeball eyeball(const eng::Model& model, int index);
 std::optional<float> frontHitZ(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
                                float x, float y);
 
+// frontHitZ for many rays against one triangle list: the triangles are
+// bucketed by their x-y bounds once, and each ray tests only its bucket's
+// (the teeth-behind-lips test casts thousands of rays at every pose).
+class FrontView {
+ public:
+  FrontView(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices);
+  std::optional<float> hitZ(float x, float y) const;
+
+ private:
+  static constexpr int kCells = 48;
+  int cellOf(float v, float lo, float size) const;
+  const std::vector<glm::vec3>& positions_;
+  const std::vector<uint32_t>& indices_;
+  glm::vec2 lo_{0.0f}, cellSize_{1.0f};
+  std::vector<std::vector<uint32_t>> buckets_;  // first index of each triangle, per cell
+};
+
 }  // namespace head_testing

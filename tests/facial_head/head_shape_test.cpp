@@ -108,12 +108,13 @@ TEST(HeadShape, TeethAndTongueStayBehindTheLipsInEveryPose) {
       if (std::max({a.z, b.z, c.z}) > 0.05f && std::max({a.y, b.y, c.y}) > -0.10f && std::min({a.y, b.y, c.y}) < -0.03f)
         nearMouth.insert(nearMouth.end(), {skin.indices[t], skin.indices[t + 1], skin.indices[t + 2]});
     }
+    const head_testing::FrontView front(skinPosed, nearMouth);
     for (HeadPrimitive part : {HeadPrimitive::TeethUpper, HeadPrimitive::TeethLower, HeadPrimitive::Tongue}) {
       const std::vector<glm::vec3> p = posed(headPrimitive(model, part), pose);
       size_t through = 0;
       glm::vec3 example(0.0f);
       for (size_t v = 0; v < p.size(); v += 2) {
-        const std::optional<float> z = head_testing::frontHitZ(skinPosed, nearMouth, p[v].x, p[v].y);
+        const std::optional<float> z = front.hitZ(p[v].x, p[v].y);
         if (z && *z < p[v].z && *z > p[v].z - 0.005f) {
           if (through++ == 0) example = p[v];
         }

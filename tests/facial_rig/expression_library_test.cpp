@@ -8,8 +8,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -35,6 +35,18 @@ float facsWeight(const ExpressionPreset& preset, int number) {
   for (const ActionUnitWeight& au : preset.actionUnits)
     if (actionUnits()[au.channel].facsNumber == number) w = std::max(w, au.weight);
   return w;
+}
+
+// The trimmed cells of a Markdown table row "| a | b |", or none for another line.
+std::vector<std::string> tableCells(const std::string& line) {
+  std::vector<std::string> cells;
+  if (line.size() < 2 || line.front() != '|' || line.back() != '|') return cells;
+  std::istringstream row(line.substr(1, line.size() - 2));
+  for (std::string cell; std::getline(row, cell, '|');) {
+    const size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+    cells.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
+  }
+  return cells;
 }
 
 class ProjectPresets : public ::testing::Test {
@@ -122,23 +134,30 @@ TEST_F(ProjectPresets, BilateralUnitsAreSetOnBothSides) {
 TEST_F(ProjectPresets, ReadmeTablesListTheWeightsTheFileShips) {
   std::ifstream readme(testing_support::sourceDir() / "README.md");
   ASSERT_TRUE(readme) << "README.md not found";
-  const std::regex row(R"(^\| ([a-z ]+) \| [^|]+ \| ([^|]+) \|$)");
-  const std::regex entry(R"(AU(\d+)( L/R)? (\d*\.?\d+))");
   std::set<std::string> documented;
   for (std::string line; std::getline(readme, line);) {
-    std::smatch m;
-    if (!std::regex_match(line, m, row)) continue;
-    std::string name = m[1].str();
+    // A preset row has three cells: name (lower case words), FACS, weights.
+    const std::vector<std::string> cells = tableCells(line);
+    if (cells.size() != 3 || cells[0].empty() ||
+        cells[0].find_first_not_of("abcdefghijklmnopqrstuvwxyz ") != std::string::npos)
+      continue;
+    std::string name = cells[0];
     std::replace(name.begin(), name.end(), ' ', '_');
     const ExpressionPreset* preset = library_.find(name);
     if (!preset) continue;
     documented.insert(name);
-    const std::string weights = m[2].str();
     std::set<int> listed;
-    for (auto it = std::sregex_iterator(weights.begin(), weights.end(), entry); it != std::sregex_iterator(); ++it) {
-      const int number = std::stoi((*it)[1].str());
+    // Entries "AU<n> <weight>" or "AU<n> L/R <weight>", comma separated.
+    std::istringstream entries(cells[2]);
+    for (std::string entry; std::getline(entries, entry, ',');) {
+      std::istringstream words(entry);
+      std::string unit, weight;
+      words >> unit;
+      for (std::string word; words >> word;) weight = word;
+      if (unit.rfind("AU", 0) != 0 || weight.empty()) continue;
+      const int number = std::stoi(unit.substr(2));
       listed.insert(number);
-      EXPECT_NEAR(facsWeight(*preset, number), std::stof((*it)[3].str()), 1e-4f) << name << ": AU" << number << " in README.md";
+      EXPECT_NEAR(facsWeight(*preset, number), std::stof(weight), 1e-4f) << name << ": AU" << number << " in README.md";
     }
     std::set<int> shipped;
     for (const ActionUnitWeight& au : preset->actionUnits) shipped.insert(actionUnits()[au.channel].facsNumber);
