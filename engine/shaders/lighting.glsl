@@ -71,10 +71,15 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor, bool withSpecular
   vec3 h = normalize(toLight + s.toViewer);
   float nDotH = max(dot(s.normal, h), 0.0);
   float alpha = max(s.roughness * s.roughness, 0.02);
-  float shininess = 2.0 / (alpha * alpha) - 2.0;
+  // pow(x, y) is undefined for x < 0, and for x = 0 with y <= 0: at roughness 1
+  // (glTF's default) the exponent is 0, and where nDotH is 0 (every surface
+  // turned from the light) an NVIDIA driver returns NaN, which the tone curve
+  // turns black: half of facecap's face rendered black on an H200, while
+  // lavapipe returned 1. Hence an exponent kept above 0 and a base kept >= 0.
+  float shininess = max(2.0 / (alpha * alpha) - 2.0, 1e-3);
   float normalisation = (shininess + 8.0) / (8.0 * PI);
   vec3 f0 = mix(vec3(0.028), s.albedo, s.metallic);  // 0.028: skin's reflectance at normal incidence
-  float vDotH = max(dot(s.toViewer, h), 0.0);
+  float vDotH = clamp(dot(s.toViewer, h), 0.0, 1.0);
   vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - vDotH, 5.0);
   vec3 specular = fresnel * normalisation * pow(nDotH, shininess) * lambert * frame.skin.z;
 
