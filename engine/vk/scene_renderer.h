@@ -208,6 +208,14 @@ class SceneRenderer {
   std::vector<uint32_t> weightOffsetScratch_;  // per member of the model being laid out
   std::vector<glm::mat4> jointScratch_;
   std::vector<glm::mat4> skinScratch_;
+  // Per member of the model being built: the skin and mesh-node world its
+  // joint matrices were last made for, and where they lie in jointScratch_.
+  struct JointSet {
+    int skin = -1;
+    glm::mat4 meshWorld{0.0f};
+    uint32_t offset = 0, count = 0;
+  };
+  std::vector<JointSet> jointSetScratch_;
   std::vector<InstanceMaterial> materialScratch_;
   std::vector<uint32_t> materialOffsetScratch_;  // per member of the model being laid out
   std::vector<const GpuModel*> modelScratch_;

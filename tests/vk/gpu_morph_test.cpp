@@ -5,6 +5,7 @@
 // independent weights and poses) and on every shared asset (skinned ones in
 // the rest pose and in an animation pose).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -304,6 +305,35 @@ TEST(GpuSkin, BentPoseActuallyMovesVertices) {
   // Mesh node space: the rest pose puts vertex 0 at (0,0,0) - (5,-2,1) (the node's offset undone).
   EXPECT_NEAR(glm::length((*captured)[0].positions[0] - glm::vec3(-5.0f, 2.0f, -1.0f)), 0.0f, 1e-4f);
   EXPECT_GT(glm::length((*captured)[0].positions.back() - (prim.positions.back() - glm::vec3(5.0f, -2.0f, 1.0f))), 0.5f);
+}
+
+// A character split into parts: mesh nodes that share one skin and one
+// place (Ready Player Me's body, head, teeth, eyes, hair and outfit) get one
+// set of joint matrices per instance, not one per part; a part placed
+// elsewhere needs its own (the matrices undo the part's transform).
+TEST(GpuSkin, PartsSharingASkinAndAPlaceShareTheirJointMatrices) {
+  eng::Model model = makeSkinnedStrip();
+  model.nodes.push_back(model.nodes[0]);  // node 4: a second part, same skin, same place
+  model.roots.push_back(4);
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> weights{0.0f};
+  const std::vector<glm::mat4> world = bentPose(model, 30.0f);
+  const std::array<eng::vk::ModelInstance, 2> instances{eng::vk::ModelInstance{&*gpu, glm::mat4(1.0f), weights, world},
+                                                        eng::vk::ModelInstance{&*gpu, glm::mat4(1.0f), weights, world}};
+  auto image = vk_test::renderer().render({eng::vk::OrbitCamera::frame(model.bounds()), {}}, instances);
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_EQ(vk_test::renderer().lastFrameStats().draws, 2u) << "one draw per part";
+  EXPECT_EQ(vk_test::renderer().lastFrameStats().jointMatrices, 6u) << "three joints per instance, shared by both parts";
+
+  model.nodes[4].translation += glm::vec3(0.0f, 1.0f, 0.0f);
+  auto moved = vk_test::renderer().upload(model);
+  ASSERT_TRUE(moved) << moved.error().message;
+  const std::vector<glm::mat4> movedWorld = bentPose(model, 30.0f);
+  const eng::vk::ModelInstance apart{&*moved, glm::mat4(1.0f), weights, movedWorld};
+  auto second = vk_test::renderer().render({eng::vk::OrbitCamera::frame(model.bounds()), {}}, {&apart, 1});
+  ASSERT_TRUE(second) << second.error().message;
+  EXPECT_EQ(vk_test::renderer().lastFrameStats().jointMatrices, 6u) << "a part placed elsewhere has its own three";
 }
 
 TEST(GpuSkin, PoseOfTheWrongSizeIsRefused) {
