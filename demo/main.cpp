@@ -1,4 +1,5 @@
 // `facial`: the runtime's command-line front end (info, render, demo, ...).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -17,7 +18,11 @@ int main(int argc, char** argv) {
   CLI::App app{"facial: real-time facial expression runtime"};
   app.require_subcommand(1);
   std::map<CLI::App*, std::function<int()>> runners;
-  for (const cli::CommandInfo& info : cli::commandRegistry()) {
+  // Listed by name: the commands register from static initialisers, whose
+  // order across (unity-built) files the language leaves open.
+  std::vector<cli::CommandInfo>& commands = cli::commandRegistry();
+  std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  for (const cli::CommandInfo& info : commands) {
     CLI::App* sub = app.add_subcommand(info.name, info.description);
     runners[sub] = info.setup(*sub);
   }

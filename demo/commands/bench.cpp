@@ -32,7 +32,9 @@
 #include "engine/vk/framing_bounds.h"
 #include "engine/vk/gpu_types.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::bench_command {
 namespace {
 
 struct BenchFramesOptions {
@@ -224,4 +226,4 @@ CommandRegistrar reg("bench", "Measure performance (bench frames: whole headless
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::bench_command

@@ -14,7 +14,9 @@
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/obj_keyframes.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::convert_command {
 namespace {
 
 struct ConvertArgs {
@@ -109,4 +111,4 @@ CommandRegistrar reg("convert", "Convert an OBJ keyframe set (or a glTF) to a gl
                      });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::convert_command

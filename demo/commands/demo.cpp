@@ -8,7 +8,9 @@
 #include "demo/demo_options.h"
 #include "app/face_setup.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::demo_command {
 namespace {
 
 bool hasDisplay() {
@@ -46,4 +48,4 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::demo_command

@@ -16,7 +16,9 @@
 #include "app/view_options.h"
 #include "engine/scene/image_io.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::express_command {
 namespace {
 
 struct ExpressOptions {
@@ -81,4 +83,4 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::express_command

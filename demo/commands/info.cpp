@@ -12,7 +12,9 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::info_command {
 namespace {
 
 const char* interpolationName(eng::Interpolation i) {
@@ -206,4 +208,4 @@ CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, mate
                      });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::info_command

@@ -12,7 +12,9 @@
 #include "bake/head/head_generator.h"
 #include "bake/head/head_rig_spec.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::make_head_command {
 namespace {
 
 struct MakeHeadOptions {
@@ -63,4 +65,4 @@ CommandRegistrar reg("make-head", "Regenerate the built-in head (data/head.glb) 
                      });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::make_head_command

@@ -26,7 +26,9 @@
 #include "facial/runtime/graph/preset_lookup.h"
 #include "facial/runtime/rig/action_units.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::play_command {
 namespace {
 
 struct PlayOptions {
@@ -165,4 +167,4 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::play_command

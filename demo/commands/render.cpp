@@ -20,7 +20,9 @@
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::render_command {
 namespace {
 
 struct RenderOptions {
@@ -104,4 +106,4 @@ CommandRegistrar reg("render", "Render a model to a PNG, headless", [](CLI::App&
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::render_command

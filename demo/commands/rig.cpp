@@ -15,7 +15,9 @@
 #include "engine/scene/gltf_loader.h"
 #include "facial/runtime/character/gaze_rig.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::rig_command {
 namespace {
 
 struct RigOptions {
@@ -89,4 +91,4 @@ CommandRegistrar reg("rig", "Show how the expression runtime drives a model (rig
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::rig_command

@@ -22,7 +22,9 @@
 #include "engine/scene/image_io.h"
 #include "facial/runtime/rig/emotions.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::sheet_command {
 namespace {
 
 struct SheetOptions {
@@ -164,4 +166,4 @@ CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expr
 });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::sheet_command

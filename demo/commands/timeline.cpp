@@ -15,7 +15,9 @@
 #include "bake/gltf_timeline.h"
 #include "facial/runtime/graph/timeline_json.h"
 
-namespace cli {
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::timeline_command {
 namespace {
 
 struct TimelineOptions {
@@ -98,4 +100,4 @@ CommandRegistrar reg(
     });
 
 }  // namespace
-}  // namespace cli
+}  // namespace cli::timeline_command
