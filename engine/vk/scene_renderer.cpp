@@ -264,8 +264,8 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
         record.weightOffset = weightOffsetScratch_[k] + meshes[mesh].weightOffset;
         if (node && node->skin >= 0) {
           // A character split into parts (mesh nodes) under one node gives
-          // every part the same joint matrices: made once per member, not
-          // once per part (64 RobotExpressives spent 5 ms a frame remaking them).
+          // every part the same joint matrices: made and uploaded once per
+          // member, not once per part (a Ready Player Me avatar has six or more).
           const glm::mat4& meshWorld = inst.nodeWorld.empty() ? node->world : inst.nodeWorld[node->node];
           JointSet& set = jointSetScratch_[k];
           if (set.skin != node->skin || set.meshWorld != meshWorld) {
