@@ -130,5 +130,46 @@ TEST_F(ExpressionJudge, RegionSwapToolReportsEachRegionBothWays) {
   EXPECT_EQ(reference, 12);
 }
 
+// tools/judge_reach.py: the judge's p of a state for the preset and for mixes
+// around it, and whether any was named (the preset, or the face?).
+CommandOutput runJudgeReach(const std::vector<std::string>& toolArgs) {
+  std::vector<std::string> args{(testing_support::sourceDir() / "tools" / "judge_reach.py").string()};
+  args.insert(args.end(), toolArgs.begin(), toolArgs.end());
+  args.insert(args.end(), {"--facial", facialProgram().string(), "--judge",
+                           (testing_support::sharedDir() / "judge" / "fer_judge.py").string()});
+  return runProgram("/usr/bin/python3", args);
+}
+
+TEST_F(ExpressionJudge, ReachToolRejectsAnUnknownState) {
+  const CommandOutput run = runJudgeReach({"sorrow", "--samples", "1"});
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_NE(run.err.find("expressions.json: no preset named \"sorrow\""), std::string::npos) << run.err;
+}
+
+TEST_F(ExpressionJudge, ReachToolJudgesThePresetAndTheBestMixes) {
+  // facecap's sad is named at 256 px (FacecapStatesAreNamed), so its verdict says a mix carries it.
+  const CommandOutput run = runJudgeReach(
+      {"sad", "--model", (testing_support::sharedDir() / "assets" / "facecap.glb").string(), "--samples", "2", "--best", "2"});
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  int preset = 0, best = 0;
+  std::istringstream lines(run.out);
+  for (std::string line; std::getline(lines, line);) {
+    float p = -1.0f;
+    char said[32] = {};
+    const bool isPreset = std::sscanf(line.c_str(), " preset sad %f (says %31[a-z])", &p, said) == 2;
+    int rank = 0;
+    const bool isBest = std::sscanf(line.c_str(), " best %d sad %f (says %31[a-z])", &rank, &p, said) == 3;
+    if (!isPreset && !isBest) continue;
+    preset += isPreset;
+    best += isBest;
+    EXPECT_GE(p, 0.0f) << line;
+    EXPECT_LE(p, 1.0f) << line;
+    EXPECT_NE(line.find("AU15_LipCornerDepressor"), std::string::npos) << "each mix lists its weights: " << line;
+  }
+  EXPECT_EQ(preset, 1) << run.out;
+  EXPECT_EQ(best, 2) << run.out;
+  EXPECT_NE(run.out.find("mixes named sad"), std::string::npos) << run.out;
+}
+
 }  // namespace
 }  // namespace cli_test
