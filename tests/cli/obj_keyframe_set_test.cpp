@@ -124,7 +124,7 @@ TEST_F(ObjKeyframeSet, HeadlessDemoPlaysTheSevenEmotionTransitions) {
   constexpr double kFps = 2.5;
   auto runDemo = [&](const fs::path& map, const fs::path& out) {
     const auto demo = runFacial({"demo", "--headless", "--model", glb().string(), "--rigmap", map.string(), "--size",
-                                 "128x128", "--fps", "2.5", "--out", out.string()});
+                                 "128x128", "--fps", std::to_string(kFps), "--out", out.string()});
     EXPECT_TRUE(cli_test::ranCleanly(demo)) << demo.out;
     EXPECT_NE(demo.out.find("(7 states)"), std::string::npos) << demo.out;
     EXPECT_TRUE(fs::exists(out / "tour.gif"));
