@@ -97,8 +97,8 @@ def main():
 
     rng = random.Random(a.seed)
     extra = channel_groups(a.extra)
-    mixes = [dict(preset.get("actionUnits", {}))] + [sample_mix(rng, preset.get("actionUnits", {}), extra)
-                                                      for _ in range(a.samples)]
+    units = preset.get("actionUnits", {})
+    mixes = [dict(units)] + [sample_mix(rng, units, extra) for _ in range(a.samples)]
     with tempfile.TemporaryDirectory() as tmp:
         # A data folder like a.data whose expressions.json also holds each mix, as reach_N.
         data = os.path.join(tmp, "data")
