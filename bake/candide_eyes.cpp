@@ -130,11 +130,11 @@ std::vector<uint32_t> enclosedTriangles(std::span<const glm::vec3> positions, st
 
 }  // namespace
 
-std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std::vector<uint32_t>& indices,
+std::vector<MaskEyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std::vector<uint32_t>& indices,
                                        std::span<const glm::vec3> eyesClosed) {
   if (eyesClosed.size() != positions.size()) return {};
   const Topology topology = topologyOf(positions.size(), indices);
-  std::vector<EyeOpening> openings;
+  std::vector<MaskEyeOpening> openings;
   std::vector<bool> cut(indices.size() / 3, false);
   std::vector<Margin> margin(positions.size(), Margin::None);
   for (size_t v = 0; v < positions.size(); ++v)
@@ -144,7 +144,7 @@ std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std
     for (uint32_t v = 0; v < positions.size(); ++v)
       if ((positions[v].x > 0.0f) == left && margin[v] != Margin::None)
         (margin[v] == Margin::Upper ? upper : lower).push_back(v);
-    EyeOpening opening{left, lidLoop(positions, topology, margin, upper, lower, left)};
+    MaskEyeOpening opening{left, lidLoop(positions, topology, margin, upper, lower, left)};
     if (opening.rim.empty()) continue;
     const std::vector<uint32_t> inside = enclosedTriangles(positions, indices, topology, opening.rim);
     if (inside.empty()) continue;
@@ -159,7 +159,7 @@ std::vector<EyeOpening> cutEyeOpenings(std::span<const glm::vec3> positions, std
   return openings;
 }
 
-eng::Primitive eyeballBehind(std::span<const glm::vec3> positions, const EyeOpening& opening) {
+eng::Primitive eyeballBehind(std::span<const glm::vec3> positions, const MaskEyeOpening& opening) {
   const glm::vec2 centre = rimCentre(positions, opening.rim);
   // A real eyeball is about as wide as the opening; a little wider here so
   // its disc covers the corners, which CANDIDE sets well behind the lids.
@@ -190,7 +190,7 @@ eng::Primitive eyeballBehind(std::span<const glm::vec3> positions, const EyeOpen
   return ball;
 }
 
-eng::MorphTarget eyeballFollowing(std::span<const glm::vec3> positions, const EyeOpening& opening,
+eng::MorphTarget eyeballFollowing(std::span<const glm::vec3> positions, const MaskEyeOpening& opening,
                                   const eng::Primitive& ball, std::span<const glm::vec3> deltas) {
   std::vector<glm::vec3> moved(positions.begin(), positions.end());
   glm::vec3 shift(0.0f);

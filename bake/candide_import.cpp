@@ -300,7 +300,7 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   // The eyes: the skin between the lids is cut out (candide_eyes.h). The
   // vertices only that skin used stay, unused, so the file's vertex numbers
   // (which trackers and papers refer to) keep naming the same points.
-  std::vector<EyeOpening> eyes;
+  std::vector<MaskEyeOpening> eyes;
   for (const Unit& unit : *animationUnits)
     if (const CandideAnimationUnit* known = findCandideUnit(unit.name); known && known->facsNumber == 45)
       eyes = cutEyeOpenings(primitive.positions, primitive.indices, unit.deltas);
@@ -347,7 +347,7 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
     eyeMaterial.name = "eye";
     model.materials.push_back(eyeMaterial);
   }
-  for (const EyeOpening& eye : eyes) {
+  for (const MaskEyeOpening& eye : eyes) {
     eng::Primitive ball = eyeballBehind(face.primitives[0].positions, eye);
     ball.material = int(model.materials.size()) - 1;
     eng::MorphTarget still;

@@ -5,15 +5,12 @@
 #include <limits>
 #include <string>
 
+#include <glm/common.hpp>
+
 #include "facial/runtime/rbf.h"
 
 namespace facial {
 namespace {
-
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 
 // Deltas shorter than this (30 microns, far below a pixel) are treated as no
 // motion, so targets stay sparse where the masks fade out.
@@ -34,8 +31,8 @@ float jawFactor(MaskDef::Jaw jaw, float jawSide) {
 float sideFactor(MaskDef::Side side, float x) {
   // A 12 mm blend across the midline keeps one-sided units smooth there.
   switch (side) {
-    case MaskDef::Side::Left: return smoothstep(-0.006f, 0.006f, x);
-    case MaskDef::Side::Right: return smoothstep(0.006f, -0.006f, x);
+    case MaskDef::Side::Left: return glm::smoothstep(-0.006f, 0.006f, x);
+    case MaskDef::Side::Right: return glm::smoothstep(0.006f, -0.006f, x);
     case MaskDef::Side::Both: return 1.0f;
   }
   return 1.0f;
@@ -44,7 +41,7 @@ float sideFactor(MaskDef::Side side, float x) {
 float falloff(const MaskDef& mask, const glm::vec3& p, const std::vector<glm::vec3>& moved) {
   float nearest = std::numeric_limits<float>::max();
   for (const glm::vec3& m : moved) nearest = std::min(nearest, glm::length(p - m));
-  return 1.0f - smoothstep(mask.radius, mask.radius + mask.feather, nearest);
+  return 1.0f - glm::smoothstep(mask.radius, mask.radius + mask.feather, nearest);
 }
 
 // Still points on the skin where the mask's weight reaches zero (radius +

@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace facial {
 namespace {
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 float bump(float x, float centre, float width) {
   const float u = (x - centre) / width;
   return std::exp(-u * u);
@@ -39,8 +37,8 @@ PartMesh buildEar(float side) {
       // a softer ridge (antihelix) between them, a fleshy lobe below.
       const float rim = bump(rho, 0.86f, 0.12f);
       const float bowl = std::exp(-((u + 0.12f) * (u + 0.12f) + (v - 0.18f) * (v - 0.18f)) / 0.10f);
-      const float ridge = bump(rho, 0.58f, 0.10f) * smoothstep(-0.3f, 0.2f, u);
-      const float lobe = smoothstep(-0.55f, -0.95f, u) * 0.6f;
+      const float ridge = bump(rho, 0.58f, 0.10f) * glm::smoothstep(-0.3f, 0.2f, u);
+      const float lobe = glm::smoothstep(-0.55f, -0.95f, u) * 0.6f;
       lift = thickness * (0.35f * std::pow(edge, 0.5f) + 0.75f * rim + 0.35f * ridge + lobe - 0.55f * bowl);
       lift = std::max(lift, 0.0006f * std::pow(edge, 0.5f));
     } else {

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace facial {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr int kArcSamples = 720;
 
-float radians(float degrees) { return degrees * kPi / 180.0f; }
-float degrees(float radians) { return radians * 180.0f / kPi; }
+float radians(float degrees) { return degrees * std::numbers::pi_v<float> / 180.0f; }
+float degrees(float radians) { return radians * 180.0f / std::numbers::pi_v<float>; }
 
 }  // namespace
 
@@ -43,13 +43,13 @@ EyeOpening::EyeOpening(const HeadProportions& p, float side)
 
 glm::vec2 EyeOpening::upperLid(float t) const {
   // Peak a little toward the nose, as on a real upper lid.
-  const float bump = std::pow(std::max(0.0f, std::sin(kPi * std::pow(t, 0.82f))), 0.85f);
+  const float bump = std::pow(std::max(0.0f, std::sin(std::numbers::pi_v<float> * std::pow(t, 0.82f))), 0.85f);
   return glm::mix(inner_, outer_, t) + glm::vec2(0.0f, upperHeight_ * bump);
 }
 
 glm::vec2 EyeOpening::lowerLid(float t) const {
   // Lowest point a little toward the outer corner.
-  const float bump = std::pow(std::max(0.0f, std::sin(kPi * std::pow(t, 1.25f))), 0.9f);
+  const float bump = std::pow(std::max(0.0f, std::sin(std::numbers::pi_v<float> * std::pow(t, 1.25f))), 0.9f);
   return glm::mix(inner_, outer_, t) - glm::vec2(0.0f, lowerDepth_ * bump);
 }
 
@@ -75,8 +75,8 @@ glm::vec2 EyeOpening::marginAt(float psi, bool* upper) const {
   const size_t n = loop_.size();
   auto wrapDiff = [](float a, float b) {  // a - b in (-pi, pi]
     float d = a - b;
-    while (d > kPi) d -= 2 * kPi;
-    while (d <= -kPi) d += 2 * kPi;
+    while (d > std::numbers::pi_v<float>) d -= 2 * std::numbers::pi_v<float>;
+    while (d <= -std::numbers::pi_v<float>) d += 2 * std::numbers::pi_v<float>;
     return d;
   };
   for (size_t i = 0; i < n; ++i) {
@@ -85,7 +85,7 @@ glm::vec2 EyeOpening::marginAt(float psi, bool* upper) const {
     const float dj = wrapDiff(psi, loopPsi_[j]);
     if ((di <= 0.0f && dj >= 0.0f) || (di >= 0.0f && dj <= 0.0f)) {
       const float span = di - dj;
-      if (std::abs(span) > kPi) continue;  // the wrap-around, not a bracket
+      if (std::abs(span) > std::numbers::pi_v<float>) continue;  // the wrap-around, not a bracket
       const float t = std::abs(span) > 1e-12f ? di / span : 0.0f;
       if (upper) *upper = loopUpper_[i] && loopUpper_[j] ? true : (!loopUpper_[i] && !loopUpper_[j] ? false : t < 0.5f ? loopUpper_[i] : loopUpper_[j]);
       return glm::mix(loop_[i], loop_[j], t);

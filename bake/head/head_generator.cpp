@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include <glm/common.hpp>
+
 #include "bake/head/ear.h"
 #include "bake/head/eye_opening.h"
 #include "bake/head/eyeball.h"
@@ -23,11 +25,6 @@ namespace facial {
 namespace {
 
 using glm::vec3;
-
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 
 // Normal deltas below this are dropped (keeps targets sparse; invisible).
 constexpr float kNegligibleNormal = 8e-3f;
@@ -135,7 +132,7 @@ HeadAssembly assembleHead(const SkinSurface& skin, const std::vector<vec3>& skin
       if (p == 0) {
         for (int e = 0; e < 2; ++e) {
           const float rho = glm::length(pos - head.eyes[e].centre);
-          const float w = 1.0f - smoothstep(head.eyes[e].radius + 0.0018f, head.eyes[e].radius + 0.0045f, rho);
+          const float w = 1.0f - glm::smoothstep(head.eyes[e].radius + 0.0018f, head.eyes[e].radius + 0.0045f, rho);
           if (w > slide) {
             slide = w;
             eye = static_cast<int8_t>(e);

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace facial {
 namespace {
 
@@ -23,11 +25,6 @@ float smin(float a, float b, float k) {
   return std::min(a, b) - h * h * k * 0.25f;
 }
 float smax(float a, float b, float k) { return -smin(-a, -b, k); }
-
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 
 float dot2(const vec3& v) { return glm::dot(v, v); }
 
@@ -56,7 +53,7 @@ float smoothKeys(const std::array<vec2, N>& keys, float x) {
   if (x <= keys.front().x) return keys.front().y;
   for (size_t i = 1; i < N; ++i)
     if (x <= keys[i].x) {
-      const float t = smoothstep(keys[i - 1].x, keys[i].x, x);
+      const float t = glm::smoothstep(keys[i - 1].x, keys[i].x, x);
       return keys[i - 1].y + (keys[i].y - keys[i - 1].y) * t;
     }
   return keys.back().y;
@@ -96,7 +93,7 @@ float HeadSdf::face(const vec3& p) const {
   // a sharper V turned the cheeks below the eyes sideways, away from the key
   // light, so the far cheek fell into a hard-edged dark band.
   {
-    const float narrow = 1.0f - 0.14f * smoothstep(-0.020f, -0.093f, p.y) * smoothstep(-0.03f, 0.07f, p.z);
+    const float narrow = 1.0f - 0.14f * glm::smoothstep(-0.020f, -0.093f, p.y) * glm::smoothstep(-0.03f, 0.07f, p.z);
     vec3 f = p - vec3(0.0f, -0.036f, 0.028f);
     f.x /= narrow;
     float lower = ellipsoid(f, vec3(0.061f, 0.064f, 0.061f)) * narrow;
@@ -130,7 +127,7 @@ float HeadSdf::face(const vec3& p) const {
     // A tighter blend under the jaw than around the skull: a readable jaw line.
     const vec2 q(p.x / 0.046f, (p.z + 0.024f) / 0.046f);
     const float neck = std::max((glm::length(q) - 1.0f) * 0.046f, p.y);
-    d = smin(d, neck, 0.02f + 0.01f * smoothstep(0.0f, -0.04f, p.z));
+    d = smin(d, neck, 0.02f + 0.01f * glm::smoothstep(0.0f, -0.04f, p.z));
     d = smax(d, prop_.neckBottomY - p.y, 0.012f);
   }
   return d;
@@ -181,11 +178,11 @@ float HeadSdf::lipRaise(const vec3& p) const {
   if (dy >= 0.0f) {
     if (b.upperHeight <= 0.0f) return 0.0f;
     const float u = dy / b.upperHeight;
-    return (b.seamRaise + (b.upperRaise - b.seamRaise) * smoothstep(0.0f, 0.55f, u)) * (1.0f - smoothstep(0.80f, 1.0f, u));
+    return (b.seamRaise + (b.upperRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.55f, u)) * (1.0f - glm::smoothstep(0.80f, 1.0f, u));
   }
   if (b.lowerHeight <= 0.0f) return 0.0f;
   const float u = -dy / b.lowerHeight;
-  return (b.seamRaise + (b.lowerRaise - b.seamRaise) * smoothstep(0.0f, 0.5f, u)) * (1.0f - smoothstep(0.72f, 1.05f, u));
+  return (b.seamRaise + (b.lowerRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.5f, u)) * (1.0f - glm::smoothstep(0.72f, 1.05f, u));
 }
 
 float HeadSdf::lipDistance(const vec3& p) const {
@@ -210,7 +207,7 @@ float HeadSdf::eyeRegion(float d, const vec3& p) const {
     // leaves a thin ridge there with a dark crease along each side).
     d = smax(d, -ellipsoid(p - (e + vec3(0.18f * side, 0.1f, 1.5f) * r), vec3(1.42f, 1.25f, 0.95f) * r), 0.016f);
     const float thickness = prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) *
-                                                         smoothstep(-0.004f, 0.004f, p.y - e.y);
+                                                         glm::smoothstep(-0.004f, 0.004f, p.y - e.y);
     d = smin(d, glm::length(p - e) - (prop_.eyeRadius + thickness), 0.0075f);
   }
   return d;
@@ -230,12 +227,12 @@ float hairlineHeight(const vec3& p) {
 
 float HeadSdf::hairCoverage(const vec3& p) const {
   const float h = hairlineHeight(p);
-  return smoothstep(h - 0.0025f, h + 0.0025f, p.y);
+  return glm::smoothstep(h - 0.0025f, h + 0.0025f, p.y);
 }
 
 float HeadSdf::hairVolume(const vec3& p) const {
   const float h = hairlineHeight(p);
-  return smoothstep(h - 0.002f, h + 0.009f, p.y);
+  return glm::smoothstep(h - 0.002f, h + 0.009f, p.y);
 }
 
 float HeadSdf::distance(const vec3& p) const {
@@ -251,13 +248,13 @@ float HeadSdf::distance(const vec3& p) const {
     const vec3 c = prop_.gridCentre;
     const float elevation = elevationFrom(c, p);
     const float around = std::atan2(p.x - c.x, p.z - c.z);
-    const float span = 1.0f - smoothstep(cornerAzimuth_ - 0.035f, cornerAzimuth_ + 0.006f, std::abs(around));
+    const float span = 1.0f - glm::smoothstep(cornerAzimuth_ - 0.035f, cornerAzimuth_ + 0.006f, std::abs(around));
     const float u = (elevation - seamElevation_) / 0.0075f;
     d += 0.0012f * std::exp(-u * u) * span;
   }
   // Hair volume over the scalp, fuller on top.
   const float hair = p.y > -0.06f ? hairVolume(p) : 0.0f;
-  if (hair > 0.0f) d -= hair * (0.003f + 0.004f * smoothstep(0.03f, 0.11f, p.y));
+  if (hair > 0.0f) d -= hair * (0.003f + 0.004f * glm::smoothstep(0.03f, 0.11f, p.y));
   return d;
 }
 

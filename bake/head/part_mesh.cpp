@@ -1,6 +1,7 @@
 #include "bake/head/part_mesh.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "bake/head/surface_normals.h"
 
@@ -26,15 +27,14 @@ void PartMesh::append(const PartMesh& other) {
 }
 
 PartMesh sphereGrid(int rings, int segments, const std::function<glm::vec3(const glm::vec3&)>& shape) {
-  constexpr float kPi = 3.14159265358979f;
   PartMesh m;
   const uint32_t front = m.addVertex(shape(glm::vec3(0, 0, 1)), glm::vec2(0.5f, 0.0f), UINT32_MAX);
   std::vector<uint32_t> grid;
   for (int j = 1; j < rings; ++j) {
-    const float theta = kPi * j / rings;
+    const float theta = std::numbers::pi_v<float> * j / rings;
     uint32_t first = 0;
     for (int i = 0; i <= segments; ++i) {
-      const float phi = 2.0f * kPi * (i % segments) / segments;
+      const float phi = 2.0f * std::numbers::pi_v<float> * (i % segments) / segments;
       const glm::vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
       const uint32_t v =
           m.addVertex(shape(d), glm::vec2(float(i) / segments, float(j) / rings), i == segments ? first : UINT32_MAX);

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 #include "engine/core/uv_raster.h"
 #include "bake/head/value_noise.h"
 
@@ -14,10 +16,6 @@ using glm::vec2;
 using glm::vec3;
 using glm::vec4;
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 float gauss(float d, float width) { return std::exp(-(d * d) / (width * width)); }
 float gauss2(const vec2& d, float width) { return std::exp(-glm::dot(d, d) / (width * width)); }
 
@@ -131,7 +129,7 @@ SkinPainter::SkinPainter(const HeadProportions& proportions, const HeadSdf& sdf)
     BrowHair h;
     h.root = onCurve + normal * across - tangent * 0.0012f;
     const float along = std::atan2(tangent.y, tangent.x);
-    const float angle = along + (1.05f - 0.95f * smoothstep(0.04f, 0.3f, t)) + (latticeHash(i, 3, 0, 21u) - 0.5f) * 0.35f -
+    const float angle = along + (1.05f - 0.95f * glm::smoothstep(0.04f, 0.3f, t)) + (latticeHash(i, 3, 0, 21u) - 0.5f) * 0.35f -
                         0.25f * across / browHalfWidth(t);
     const float length = 0.0030f + 0.0022f * latticeHash(i, 4, 0, 21u);
     h.tip = h.root + vec2(std::cos(angle), std::sin(angle)) * length;
@@ -150,8 +148,8 @@ float SkinPainter::browCoverage(const vec3& p) const {
   if (!browCurve().nearest(q, 0.008f, t, across)) return 0.0f;
   // Soft body of the brow: thick, rounded head; thin, pointed tail.
   const float half = browHalfWidth(t);
-  const float body = (1.0f - smoothstep(half * 0.6f, half * (across > 0.0f ? 1.15f : 1.0f), std::abs(across))) *
-                     smoothstep(0.0f, 0.08f, t) * (1.0f - smoothstep(0.92f, 1.0f, t));
+  const float body = (1.0f - glm::smoothstep(half * 0.6f, half * (across > 0.0f ? 1.15f : 1.0f), std::abs(across))) *
+                     glm::smoothstep(0.0f, 0.08f, t) * (1.0f - glm::smoothstep(0.92f, 1.0f, t));
   // Individual hairs on top of it.
   float hairs = 0.0f;
   for (const BrowHair& h : browHairs_) {
@@ -160,7 +158,7 @@ float SkinPainter::browCoverage(const vec3& p) const {
     const float f = std::clamp(glm::dot(q - h.root, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
     const float d = glm::length(q - (h.root + ab * f));
     const float width = h.width * (1.0f - 0.6f * f);  // hairs taper to the tip
-    hairs = std::max(hairs, h.darkness * (1.0f - smoothstep(width * 0.5f, width, d)));
+    hairs = std::max(hairs, h.darkness * (1.0f - glm::smoothstep(width * 0.5f, width, d)));
   }
   return std::max(0.7f * body, hairs);
 }
@@ -169,7 +167,7 @@ float SkinPainter::lipCoverage(const vec3& p) const {
   if (p.z < 0.07f || std::abs(p.y - prop_.mouthSeamCentre.y) > 0.016f) return 0.0f;
   // A soft vermilion border (about a millimetre): a hard edge made the lips
   // read as a sticker laid on the face.
-  return 1.0f - smoothstep(-0.0009f, 0.0004f, sdf_.lipDistance(p));
+  return 1.0f - glm::smoothstep(-0.0009f, 0.0004f, sdf_.lipDistance(p));
 }
 
 vec3 SkinPainter::baseColour(const SkinTexel& t) const {
@@ -178,25 +176,25 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   vec3 c = kSkin * (0.965f + 0.07f * fractalNoise(p * 140.0f, 2, 1u));
 
   // Warmth: cheeks, nose tip, chin; a little cooler under the jaw.
-  c = glm::mix(c, eng::srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * smoothstep(0.04f, 0.06f, p.z));
+  c = glm::mix(c, eng::srgb(236, 142, 128), 0.24f * gauss2(q - vec2(0.037f, -0.021f), 0.015f) * glm::smoothstep(0.04f, 0.06f, p.z));
   c = glm::mix(c, eng::srgb(232, 148, 132), 0.20f * gauss(glm::length(p - vec3(0.0f, -0.022f, 0.106f)), 0.009f));
-  c = glm::mix(c, eng::srgb(232, 158, 140), 0.10f * gauss2(vec2(p.x, p.y + 0.075f), 0.012f) * smoothstep(0.05f, 0.07f, p.z));
-  c *= 1.0f - 0.08f * smoothstep(0.2f, 0.9f, -t.normal.y) * smoothstep(-0.06f, -0.09f, p.y);
+  c = glm::mix(c, eng::srgb(232, 158, 140), 0.10f * gauss2(vec2(p.x, p.y + 0.075f), 0.012f) * glm::smoothstep(0.05f, 0.07f, p.z));
+  c *= 1.0f - 0.08f * glm::smoothstep(0.2f, 0.9f, -t.normal.y) * glm::smoothstep(-0.06f, -0.09f, p.y);
 
   // Eyelids: a soft shadow in the upper lid crease, dark lash lines along the edges.
   if (t.eyeSide != 0.0f) {
-    const float outer = smoothstep(0.0f, 0.013f, std::abs(p.x) - prop_.eyeCentre.x);
+    const float outer = glm::smoothstep(0.0f, 0.013f, std::abs(p.x) - prop_.eyeCentre.x);
     if (t.upperLid > 0.5f) {
-      c = glm::mix(c, eng::srgb(196, 140, 126), 0.22f * smoothstep(0.35f, 0.7f, t.lidRing) * (1.0f - smoothstep(0.88f, 0.95f, t.lidRing)));
+      c = glm::mix(c, eng::srgb(196, 140, 126), 0.22f * glm::smoothstep(0.35f, 0.7f, t.lidRing) * (1.0f - glm::smoothstep(0.88f, 0.95f, t.lidRing)));
       // A lash line thick enough to read at thumbnail size, winged at the outer corner.
-      const float lash = smoothstep(0.80f - 0.10f * outer, 0.95f, t.lidRing);
+      const float lash = glm::smoothstep(0.80f - 0.10f * outer, 0.95f, t.lidRing);
       c = glm::mix(c, kLash, lash);
     } else {
-      c = glm::mix(c, eng::srgb(150, 104, 92), 0.55f * smoothstep(0.95f, 0.99f, t.lidRing));
+      c = glm::mix(c, eng::srgb(150, 104, 92), 0.55f * glm::smoothstep(0.95f, 0.99f, t.lidRing));
     }
     // Pink inner corner (caruncle).
-    const float inner = smoothstep(0.010f, 0.0f, std::abs(p.x) - (prop_.eyeCentre.x - 0.0125f));
-    c = glm::mix(c, eng::srgb(214, 128, 122), 0.5f * inner * smoothstep(0.9f, 1.0f, t.lidRing));
+    const float inner = glm::smoothstep(0.010f, 0.0f, std::abs(p.x) - (prop_.eyeCentre.x - 0.0125f));
+    c = glm::mix(c, eng::srgb(214, 128, 122), 0.5f * inner * glm::smoothstep(0.9f, 1.0f, t.lidRing));
   }
 
   // Brows half over the skin, so they read as hair rather than ink: opaque,
@@ -212,7 +210,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
     const vec3 d = p - centre;
     const float elevation = std::atan2(d.y, std::sqrt(d.x * d.x + d.z * d.z));
     const float seamDistance = std::abs(elevation - sdf_.seamElevation()) * 0.09f;
-    vec3 lipColour = glm::mix(kLip * 0.72f, kLip, smoothstep(0.0003f, 0.0022f, seamDistance));
+    vec3 lipColour = glm::mix(kLip * 0.72f, kLip, glm::smoothstep(0.0003f, 0.0022f, seamDistance));
     lipColour = glm::mix(lipColour, eng::srgb(226, 138, 134), 0.22f * gauss2(vec2(p.x, p.y - (prop_.mouthSeamCentre.y - 0.0045f)), 0.005f));
     c = glm::mix(c, lipColour, lip);
   }
@@ -221,7 +219,7 @@ vec3 SkinPainter::baseColour(const SkinTexel& t) const {
   {
     const vec3 m(std::abs(p.x), p.y, p.z);
     const vec3 d = (m - vec3(0.0058f, -0.0312f, 0.0948f)) / vec3(0.0032f, 0.0022f, 0.0042f);
-    c = glm::mix(c, eng::srgb(128, 70, 62), 0.45f * std::exp(-glm::dot(d, d)) * smoothstep(0.45f, 0.85f, -t.normal.y));
+    c = glm::mix(c, eng::srgb(128, 70, 62), 0.45f * std::exp(-glm::dot(d, d)) * glm::smoothstep(0.45f, 0.85f, -t.normal.y));
   }
 
   // Hair: strands radiating from the crown.
@@ -248,7 +246,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     for (int k = 0; k < 3; ++k) {
       const float y = 0.0445f + 0.0068f * k + 0.0010f * std::sin(q.x * 150.0f + 1.3f * k) - 0.06f * q.x * q.x;
       const float reach = 0.038f - 0.005f * k;
-      const float fade = 1.0f - smoothstep(reach * 0.6f, reach, q.x);
+      const float fade = 1.0f - glm::smoothstep(reach * 0.6f, reach, q.x);
       const float d = p.y - y;
       out = over(out, sheen, 0.30f * fade * gauss(d - 0.0012f, 0.0008f));
       out = over(out, crease, 0.62f * fade * gauss(d, 0.00055f));
@@ -260,10 +258,10 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     if (!front) return out;
     // Two vertical creases between the brows and one across the nose root.
     const float x = q.x - 0.0048f - 0.04f * (p.y - 0.022f) * (p.y - 0.022f) * 30.0f;
-    const float vertical = gauss(x, 0.00065f) * smoothstep(0.018f, 0.023f, p.y) * (1.0f - smoothstep(0.033f, 0.038f, p.y));
-    const float across = gauss(p.y - 0.0195f, 0.0006f) * (1.0f - smoothstep(0.004f, 0.008f, q.x));
-    out = over(out, sheen, 0.25f * gauss(x - 0.0014f, 0.0009f) * smoothstep(0.018f, 0.023f, p.y) *
-                               (1.0f - smoothstep(0.033f, 0.038f, p.y)));
+    const float vertical = gauss(x, 0.00065f) * glm::smoothstep(0.018f, 0.023f, p.y) * (1.0f - glm::smoothstep(0.033f, 0.038f, p.y));
+    const float across = gauss(p.y - 0.0195f, 0.0006f) * (1.0f - glm::smoothstep(0.004f, 0.008f, q.x));
+    out = over(out, sheen, 0.25f * gauss(x - 0.0014f, 0.0009f) * glm::smoothstep(0.018f, 0.023f, p.y) *
+                               (1.0f - glm::smoothstep(0.033f, 0.038f, p.y)));
     out = over(out, crease, 0.7f * std::max(vertical, across));
     // Shadowed, bunched brow heads.
     out = over(out, eng::srgb(170, 112, 94), 0.3f * gauss2(q - vec2(0.012f, 0.026f), 0.006f));
@@ -273,7 +271,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     if (!front) return out;
     float t0 = 0.0f, across = 0.0f;
     if (nasolabialCurve().nearest(q, 0.004f, t0, across)) {
-      const float ends = smoothstep(0.0f, 0.12f, t0) * (1.0f - smoothstep(0.75f, 1.0f, t0));
+      const float ends = glm::smoothstep(0.0f, 0.12f, t0) * (1.0f - glm::smoothstep(0.75f, 1.0f, t0));
       // Crease, with the bulging cheek highlighted on its outer side.
       out = over(out, sheen, 0.30f * ends * gauss(across + 0.0016f, 0.0011f));
       out = over(out, crease, 0.72f * ends * gauss(across, 0.0007f));
@@ -281,7 +279,7 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     // Wrinkles across the nose bridge (nose wrinkler).
     for (int k = 0; k < 3; ++k) {
       const float y = 0.0055f + 0.0032f * k - 0.25f * (q.x - 0.006f);
-      const float band = gauss(p.y - y, 0.00045f) * smoothstep(0.0015f, 0.004f, q.x) * (1.0f - smoothstep(0.008f, 0.011f, q.x));
+      const float band = gauss(p.y - y, 0.00045f) * glm::smoothstep(0.0015f, 0.004f, q.x) * (1.0f - glm::smoothstep(0.008f, 0.011f, q.x));
       out = over(out, crease, 0.6f * band);
     }
     return out;
@@ -291,13 +289,13 @@ vec4 SkinPainter::detail(const std::string& layer, const SkinTexel& t) const {
     const float cheeks = gauss2(q - vec2(0.036f, -0.015f), 0.017f);
     const float nose = gauss(glm::length(p - vec3(0.0f, -0.018f, 0.105f)), 0.012f);
     const float forehead = gauss2(vec2(p.x, p.y - 0.045f), 0.03f) * 0.6f;
-    const float neck = smoothstep(-0.07f, -0.1f, p.y) * 0.4f;
+    const float neck = glm::smoothstep(-0.07f, -0.1f, p.y) * 0.4f;
     const float a = std::min(1.0f, cheeks + 0.8f * nose + forehead + neck);
     return vec4(eng::srgb(206, 70, 62), 0.55f * a * (1.0f - sdf_.hairCoverage(p)) * (1.0f - browCoverage(p)));
   }
   if (layer == "pallor") {
     if (p.z < 0.0f) return out;
-    const float face = smoothstep(0.0f, 0.04f, p.z) * (1.0f - sdf_.hairCoverage(p));
+    const float face = glm::smoothstep(0.0f, 0.04f, p.z) * (1.0f - sdf_.hairCoverage(p));
     const float lip = lipCoverage(p);
     const float cheeks = gauss2(q - vec2(0.036f, -0.018f), 0.02f);
     // Pale lips keep a lip's hue: whitened lips read as a plastic insert.

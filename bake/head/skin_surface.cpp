@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <functional>
 #include <optional>
 
@@ -13,8 +14,7 @@ namespace {
 using glm::vec2;
 using glm::vec3;
 
-constexpr double kPi = 3.14159265358979323846;
-double rad(double degrees) { return degrees * kPi / 180.0; }
+double rad(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -111,12 +111,12 @@ class SkinBuilder {
   // --- grid layout ---------------------------------------------------------
   void layoutGrid() {
     // Columns: dense over the face, sparse at the back of the head.
-    azimuths_ = distribute(-kPi, kPi, [](double a) {
+    azimuths_ = distribute(-std::numbers::pi, std::numbers::pi, [](double a) {
       return rad(1.12 + (5.0 - 1.12) * smoothstep(rad(38), rad(110), std::abs(a)));
     }, true);
     // Rows: dense from chin to brow, denser still across the lips.
     const double seam = sdf_.seamElevation();
-    elevations_ = distribute(-kPi / 2, kPi / 2, [seam](double e) {
+    elevations_ = distribute(-std::numbers::pi / 2, std::numbers::pi / 2, [seam](double e) {
       const double outward = e > 0 ? smoothstep(rad(50), rad(78), e) : smoothstep(rad(60), rad(80), -e);
       double s = 1.0 + (4.5 - 1.0) * outward;
       const double lips = 1.0 - smoothstep(rad(5.5), rad(8.5), std::abs(e - seam));
@@ -192,7 +192,7 @@ class SkinBuilder {
     const vec3 c = prop_.gridCentre;
     auto cast = [&](double az, double el) -> std::optional<vec3> { return sdf_.castOut(c, gridDirection(az, el)); };
 
-    const std::optional<vec3> bottom = cast(0.0, -kPi / 2), top = cast(0.0, kPi / 2);
+    const std::optional<vec3> bottom = cast(0.0, -std::numbers::pi / 2), top = cast(0.0, std::numbers::pi / 2);
     if (!bottom || !top) return eng::makeError(eng::ErrorKind::Malformed, "head skin: rays from the grid centre miss the crown or the neck");
     // One pole vertex per column (welded for normals): each pole triangle
     // then covers only its own column of texture, which keeps the sampler's

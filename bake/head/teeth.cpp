@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
+
+#include <glm/common.hpp>
 
 #include "engine/core/uv_raster.h"
 
 namespace facial {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr int kAlong = 84;  // columns along the arch
 constexpr int kAround = 20;  // vertices around the cross-section
 constexpr float kRoundness = 0.35f;  // superellipse exponent of the cross-section
@@ -17,10 +19,6 @@ constexpr float kRoundness = 0.35f;  // superellipse exponent of the cross-secti
 // Tooth borders as fractions of the half arch (incisors, canine, premolars, molar).
 constexpr std::array<float, 6> kBorders = {0.0f, 0.205f, 0.375f, 0.555f, 0.725f, 0.88f};
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 float signedPow(float v, float e) { return (v < 0 ? -1.0f : 1.0f) * std::pow(std::abs(v), e); }
 
 // Distance (in half-arch fractions) from |s| to the nearest tooth border.
@@ -67,7 +65,7 @@ PartMesh buildToothRow(const ToothRowShape& shape) {
     const float height = std::abs(shape.rootY - shape.edgeY) * (1.0f - 0.3f * s * s);
     const float toward = signedPow(std::sin(a), kRoundness);  // +1 root side, -1 biting edge
     const float edgeWeight = std::pow(std::max(0.0f, -toward), 3.0f);
-    const float scallop = 0.0007f * (1.0f - smoothstep(0.0f, 0.035f, borderDistance(s))) * edgeWeight;
+    const float scallop = 0.0007f * (1.0f - glm::smoothstep(0.0f, 0.035f, borderDistance(s))) * edgeWeight;
     const float h = (toward * 0.5f + 0.5f) * height + scallop;
     const float taper = 0.45f + 0.55f * (toward * 0.5f + 0.5f);  // thin biting edge
     const float depth = 0.5f * shape.thickness * taper * (1.0f - signedPow(std::cos(a), kRoundness));
@@ -79,7 +77,7 @@ PartMesh buildToothRow(const ToothRowShape& shape) {
     const float s = -1.0f + 2.0f * c / kAlong;
     uint32_t first = 0;
     for (int k = 0; k <= kAround; ++k) {
-      const float a = 2.0f * kPi * (k % kAround) / kAround;
+      const float a = 2.0f * std::numbers::pi_v<float> * (k % kAround) / kAround;
       const uint32_t v = m.addVertex(position(s, a), glm::vec2(float(c) / kAlong, float(k) / kAround),
                                      k == kAround ? first : UINT32_MAX);
       if (k == 0) first = v;
@@ -124,16 +122,16 @@ eng::Image paintTeethTexture(int width, int height) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const float s = -1.0f + 2.0f * (x + 0.5f) / width;
-      const float a = 2.0f * kPi * (y + 0.5f) / height;
+      const float a = 2.0f * std::numbers::pi_v<float> * (y + 0.5f) / height;
       const float toward = signedPow(std::sin(a), kRoundness);
       const float front = std::cos(a);  // +1 front face, -1 inner face
-      glm::vec3 c = glm::mix(enamel, enamelRoot, smoothstep(-0.2f, 0.6f, toward));
-      c = glm::mix(c, gap, 0.8f * (1.0f - smoothstep(0.002f, 0.008f, borderDistance(s))));
+      glm::vec3 c = glm::mix(enamel, enamelRoot, glm::smoothstep(-0.2f, 0.6f, toward));
+      c = glm::mix(c, gap, 0.8f * (1.0f - glm::smoothstep(0.002f, 0.008f, borderDistance(s))));
       // Gum line, higher between the teeth.
-      const float gumLine = 0.55f - 0.18f * (1.0f - smoothstep(0.0f, 0.05f, borderDistance(s)));
-      c = glm::mix(c, gum, smoothstep(gumLine - 0.04f, gumLine + 0.04f, toward));
-      c *= 0.55f + 0.45f * smoothstep(-0.8f, 0.2f, front);  // the inner face sits in shadow
-      c *= 1.0f - 0.6f * smoothstep(0.45f, 1.0f, std::abs(s));  // back teeth in the dark
+      const float gumLine = 0.55f - 0.18f * (1.0f - glm::smoothstep(0.0f, 0.05f, borderDistance(s)));
+      c = glm::mix(c, gum, glm::smoothstep(gumLine - 0.04f, gumLine + 0.04f, toward));
+      c *= 0.55f + 0.45f * glm::smoothstep(-0.8f, 0.2f, front);  // the inner face sits in shadow
+      c *= 1.0f - 0.6f * glm::smoothstep(0.45f, 1.0f, std::abs(s));  // back teeth in the dark
       img.set(x, y, glm::vec4(c, 1.0f));
     }
   eng::Image out;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace eng {
 namespace {
 
@@ -17,11 +19,6 @@ constexpr float kInnerEnd = -0.26f, kOuterEnd = 0.42f;
 constexpr float kBaseHeight = 0.235f, kArch = 0.045f, kTailDrop = 0.03f;
 constexpr float kHeadHalfThickness = 0.075f, kTailHalfThickness = 0.025f;
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 float coverage(const BrowFrame& f, const glm::vec3& p) {
   const glm::vec3 d = (p - f.eye) / f.scale;
   // Only the front of the face: the brow sits on the brow ridge, in front of
@@ -35,9 +32,9 @@ float coverage(const BrowFrame& f, const glm::vec3& p) {
   const float half = kHeadHalfThickness + (kTailHalfThickness - kHeadHalfThickness) * t;
   // Soft edges, softer above (hairs thin out upward) than below.
   const float off = v - centre;
-  const float across = 1.0f - smoothstep(0.35f * half, off > 0.0f ? 1.2f * half : half, std::abs(off));
+  const float across = 1.0f - glm::smoothstep(0.35f * half, off > 0.0f ? 1.2f * half : half, std::abs(off));
   // A blunt head, a tail that thins to nothing.
-  const float along = smoothstep(0.0f, 0.06f, t) * (1.0f - smoothstep(0.8f, 1.0f, t));
+  const float along = glm::smoothstep(0.0f, 0.06f, t) * (1.0f - glm::smoothstep(0.8f, 1.0f, t));
   return across * along;
 }
 

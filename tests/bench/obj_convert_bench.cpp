@@ -19,7 +19,7 @@
 namespace {
 
 constexpr int kSide = 316;  // 317 x 317 = 100,489 vertices, 99,856 quads
-constexpr int kTargets = 4;
+constexpr int kObjTargets = 4;
 
 void appendFloat(std::string& s, float v) {
   char buf[32];
@@ -96,7 +96,7 @@ const ObjSet& objSet() {
       return s.dir / name;
     };
     write("neutral.obj", -1, identity);
-    for (int t = 0; t < kTargets; ++t) {
+    for (int t = 0; t < kObjTargets; ++t) {
       const std::string name = "shape" + std::to_string(t);
       s.targets.push_back({name, write(name + ".obj", t, identity)});
       s.shuffledTargets.push_back({name, write(name + "_shuffled.obj", t, shuffled)});
@@ -134,7 +134,7 @@ void convert(benchmark::State& state, bool shuffledTargets) {
     benchmark::DoNotOptimize(imported);
   }
   state.counters["vertices"] = static_cast<double>(vertices);
-  state.counters["targets"] = kTargets;
+  state.counters["targets"] = kObjTargets;
 }
 
 void BM_ConvertObjSet(benchmark::State& state) { convert(state, false); }

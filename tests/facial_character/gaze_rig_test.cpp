@@ -10,7 +10,7 @@ using namespace facial;
 
 namespace {
 
-const std::vector<std::string> kArkit = {"jawOpen",          "eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",
+const std::vector<std::string> kArkitGazeAndJaw = {"jawOpen",          "eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",
                                          "eyeLookDownLeft",  "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight",
                                          "eyeLookDownRight"};
 
@@ -26,35 +26,35 @@ EyeGaze degrees(float yaw, float pitch) { return {glm::radians(yaw), glm::radian
 }  // namespace
 
 TEST(GazeRig, ArkitEachEyeLooksInOrOutByItsOwnYaw) {
-  const GazeRig rig = GazeRig::create(kArkit);
+  const GazeRig rig = GazeRig::create(kArkitGazeAndJaw);
   ASSERT_TRUE(rig.hasArkit());
   EXPECT_EQ(rig.describe(), "ARKit eyeLook*");
-  std::vector<float> w(kArkit.size(), 0.0f);
+  std::vector<float> w(kArkitGazeAndJaw.size(), 0.0f);
   // Both eyes 15 degrees toward the face's left, 6 up.
   ASSERT_TRUE(rig.apply(degrees(15, 6), degrees(15, 6), w));
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookOutLeft"), 0.5f, 1e-5f);
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookInRight"), 0.5f, 1e-5f);
-  EXPECT_EQ(weightOf(kArkit, w, "eyeLookInLeft"), 0.0f);
-  EXPECT_EQ(weightOf(kArkit, w, "eyeLookOutRight"), 0.0f);
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookUpLeft"), 0.2f, 1e-5f);
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookUpRight"), 0.2f, 1e-5f);
-  EXPECT_EQ(weightOf(kArkit, w, "jawOpen"), 0.0f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookOutLeft"), 0.5f, 1e-5f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookInRight"), 0.5f, 1e-5f);
+  EXPECT_EQ(weightOf(kArkitGazeAndJaw, w, "eyeLookInLeft"), 0.0f);
+  EXPECT_EQ(weightOf(kArkitGazeAndJaw, w, "eyeLookOutRight"), 0.0f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookUpLeft"), 0.2f, 1e-5f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookUpRight"), 0.2f, 1e-5f);
+  EXPECT_EQ(weightOf(kArkitGazeAndJaw, w, "jawOpen"), 0.0f);
 }
 
 TEST(GazeRig, ArkitConvergingEyesBothLookIn) {
-  const GazeRig rig = GazeRig::create(kArkit);
-  std::vector<float> w(kArkit.size(), 0.0f);
+  const GazeRig rig = GazeRig::create(kArkitGazeAndJaw);
+  std::vector<float> w(kArkitGazeAndJaw.size(), 0.0f);
   ASSERT_TRUE(rig.apply(degrees(-9, 0), degrees(9, 0), w));
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookInLeft"), 0.3f, 1e-5f);
-  EXPECT_NEAR(weightOf(kArkit, w, "eyeLookInRight"), 0.3f, 1e-5f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookInLeft"), 0.3f, 1e-5f);
+  EXPECT_NEAR(weightOf(kArkitGazeAndJaw, w, "eyeLookInRight"), 0.3f, 1e-5f);
 }
 
 TEST(GazeRig, AddsToTheGraphsWeightsAndClamps) {
-  const GazeRig rig = GazeRig::create(kArkit);
-  std::vector<float> w(kArkit.size(), 0.9f);
+  const GazeRig rig = GazeRig::create(kArkitGazeAndJaw);
+  std::vector<float> w(kArkitGazeAndJaw.size(), 0.9f);
   ASSERT_TRUE(rig.apply(degrees(0, -15), degrees(0, -15), w));
-  EXPECT_EQ(weightOf(kArkit, w, "eyeLookDownLeft"), 1.0f);
-  EXPECT_EQ(weightOf(kArkit, w, "eyeLookUpLeft"), 0.9f);
+  EXPECT_EQ(weightOf(kArkitGazeAndJaw, w, "eyeLookDownLeft"), 1.0f);
+  EXPECT_EQ(weightOf(kArkitGazeAndJaw, w, "eyeLookUpLeft"), 0.9f);
 }
 
 TEST(GazeRig, ArkitUnderscoreAndPrefixedSpellings) {
@@ -65,7 +65,7 @@ TEST(GazeRig, ArkitUnderscoreAndPrefixedSpellings) {
 }
 
 TEST(GazeRig, HalfAnArkitSetDrivesNothing) {
-  const std::vector<std::string> names(kArkit.begin(), kArkit.begin() + 5);  // left eye only
+  const std::vector<std::string> names(kArkitGazeAndJaw.begin(), kArkitGazeAndJaw.begin() + 5);  // left eye only
   const GazeRig rig = GazeRig::create(names);
   EXPECT_FALSE(rig.drivesWeights());
   EXPECT_EQ(rig.describe(), "none");

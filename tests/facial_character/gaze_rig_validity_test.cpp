@@ -10,13 +10,13 @@
 using namespace facial;
 
 namespace {
-const std::vector<std::string> kArkit = {"eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",  "eyeLookDownLeft",
+const std::vector<std::string> kArkitGaze = {"eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",  "eyeLookDownLeft",
                                          "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight", "eyeLookDownRight"};
 }
 
 TEST(GazeRigValidity, WrongWeightCountIsRefused) {
-  const GazeRig rig = GazeRig::create(kArkit);
-  std::vector<float> w(kArkit.size() - 1, 0.0f);
+  const GazeRig rig = GazeRig::create(kArkitGaze);
+  std::vector<float> w(kArkitGaze.size() - 1, 0.0f);
   auto r = rig.apply({0.1f, 0.0f}, {0.1f, 0.0f}, w);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().message.find("7 weights given"), std::string::npos) << r.error().message;
@@ -24,8 +24,8 @@ TEST(GazeRigValidity, WrongWeightCountIsRefused) {
 }
 
 TEST(GazeRigValidity, NonFiniteAngleIsRefused) {
-  const GazeRig rig = GazeRig::create(kArkit);
-  std::vector<float> w(kArkit.size(), 0.0f);
+  const GazeRig rig = GazeRig::create(kArkitGaze);
+  std::vector<float> w(kArkitGaze.size(), 0.0f);
   EXPECT_FALSE(rig.apply({std::numeric_limits<float>::quiet_NaN(), 0.0f}, {}, w));
   for (float x : w) EXPECT_EQ(x, 0.0f);
 }

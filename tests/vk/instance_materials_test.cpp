@@ -20,8 +20,7 @@
 namespace {
 
 using vk_test::pixel;
-
-eng::vk::SceneView viewOf(const eng::Aabb& bounds) { return {eng::vk::OrbitCamera::frame(bounds), eng::vk::LightRig{}}; }
+using vk_test::viewOf;
 
 eng::Image renderOrFail(const eng::Aabb& bounds, std::span<const eng::vk::ModelInstance> instances) {
   auto image = vk_test::renderer().render(viewOf(bounds), instances);

@@ -18,10 +18,7 @@
 namespace {
 
 using vk_test::pixel;
-
-eng::vk::SceneView viewOf(const eng::Aabb& bounds) {
-  return {eng::vk::OrbitCamera::frame(bounds), eng::vk::LightRig{}};
-}
+using vk_test::viewOf;
 
 eng::Image renderOrFail(const eng::vk::SceneView& view, std::span<const eng::vk::ModelInstance> instances) {
   auto image = vk_test::renderer().render(view, instances);

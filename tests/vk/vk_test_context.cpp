@@ -28,6 +28,10 @@ eng::vk::Context& context() {
   return ctx;
 }
 
+eng::vk::SceneView viewOf(const eng::Aabb& bounds) {
+  return {eng::vk::OrbitCamera::frame(bounds), eng::vk::LightRig{}};
+}
+
 eng::vk::OffscreenRenderer& renderer() {
   static eng::vk::OffscreenRenderer r = [] {
     auto created = eng::vk::OffscreenRenderer::create(context(), {256, 256});

@@ -11,6 +11,9 @@ eng::vk::Context& context();
 // A 256x256 MSAA offscreen renderer on context(), created once per process.
 eng::vk::OffscreenRenderer& renderer();
 
+// `bounds` framed by the orbit camera, under the default light rig.
+eng::vk::SceneView viewOf(const eng::Aabb& bounds);
+
 // Fails the current test with every validation message (also counted by the context).
 void failOnValidationMessage(eng::LogLevel level, std::string_view message);
 

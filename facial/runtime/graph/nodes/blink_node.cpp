@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <glm/common.hpp>
+
 #include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
@@ -17,11 +19,6 @@ using detail::NodeReader;
 namespace {
 
 float cosineEase(float s) { return 0.5f * (1.0f - std::cos(std::numbers::pi_v<float> * std::clamp(s, 0.0f, 1.0f))); }
-
-float smoothstep(float edge0, float edge1, float x) {
-  const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
 
 // Uniform in [0,1) from the standard-defined minstd_rand sequence (the
 // <random> distributions differ between standard libraries; this does not).
@@ -153,7 +150,7 @@ void BlinkNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out)
   const float blend = std::clamp(out[channelCount + kLaneOverrideBlinkBlend], 0.0f, 1.0f);
   float wide = 0.0f;
   for (uint32_t c : wideIndices) wide = std::max(wide, out[c]);
-  const float amplitude = std::clamp(ctx.read(amount), 0.0f, 1.0f) * (1.0f - smoothstep(wideStart, wideFull, wide)) *
+  const float amplitude = std::clamp(ctx.read(amount), 0.0f, 1.0f) * (1.0f - glm::smoothstep(wideStart, wideFull, wide)) *
                           (1.0f - block) * (1.0f - blend);
   advance(state, ctx.dt, /*mayStart=*/block <= 0.0f && amplitude > 0.05f);
   const float b = curve(state.phase, state.phaseTime) * amplitude;
