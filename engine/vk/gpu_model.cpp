@@ -32,9 +32,11 @@ Material defaultMaterial() {
   return m;
 }
 
-// A material's own parameters, as an instance draws it when nothing moves them.
+}  // namespace
 
 // Appends byte ranges at aligned offsets; the result becomes one buffer.
+// Outside the anonymous namespace: GpuModel::Staging (declared in the header)
+// holds these, and a type with linkage must not hold a file-local one.
 class ByteBlob {
  public:
   VkDeviceSize append(const void* data, size_t size, VkDeviceSize alignment) {
@@ -59,6 +61,8 @@ class ByteBlob {
   }
   std::vector<std::byte> bytes_;
 };
+
+namespace {
 
 std::string where(const Model& model, size_t mesh, size_t primitive) {
   std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
