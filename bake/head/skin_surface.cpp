@@ -117,8 +117,19 @@ class SkinBuilder {
     // Rows: dense from chin to brow, denser still across the lips.
     const double seam = sdf_.seamElevation();
     elevations_ = distribute(-std::numbers::pi / 2, std::numbers::pi / 2, [seam](double e) {
-      const double outward = e > 0 ? smoothstep(rad(50), rad(78), e) : smoothstep(rad(60), rad(80), -e);
-      double s = 1.0 + (4.5 - 1.0) * outward;
+      double s;
+      if (e > 0) {
+        s = 1.0 + (4.5 - 1.0) * smoothstep(rad(50), rad(78), e);
+      } else {
+        // Down the neck the rays meet the skin at a grazing angle: at the
+        // front of the neck (2 cm in front of the grid's centre) one degree
+        // is up to 9 mm of skin, and rows 4 degrees apart left the neck's cut
+        // edge a zigzag. Rows about 3 mm apart there, to just past the cut
+        // (82 degrees at the front); the flat underside behind it stays sparse.
+        const double c = std::cos(e);
+        s = std::clamp(7.8 * c * c, 0.3, 1.0);
+        s += (4.5 - s) * smoothstep(rad(82), rad(86), -e);
+      }
       const double lips = 1.0 - smoothstep(rad(5.5), rad(8.5), std::abs(e - seam));
       s = s + (0.55 - s) * lips;
       return rad(s);
