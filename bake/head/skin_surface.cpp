@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <functional>
+#include <numbers>
 #include <optional>
+
+#include <glm/common.hpp>
 
 #include "bake/head/eye_opening.h"
 
@@ -15,11 +17,6 @@ using glm::vec2;
 using glm::vec3;
 
 double rad(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 // Samples lo..hi so that neighbouring samples are `spacing(x)` apart (n + 1
 // samples, n rounded to even when asked so a symmetric spacing puts a sample
@@ -112,14 +109,14 @@ class SkinBuilder {
   void layoutGrid() {
     // Columns: dense over the face, sparse at the back of the head.
     azimuths_ = distribute(-std::numbers::pi, std::numbers::pi, [](double a) {
-      return rad(1.12 + (5.0 - 1.12) * smoothstep(rad(38), rad(110), std::abs(a)));
+      return rad(1.12 + (5.0 - 1.12) * glm::smoothstep(rad(38), rad(110), std::abs(a)));
     }, true);
     // Rows: dense from chin to brow, denser still across the lips.
     const double seam = sdf_.seamElevation();
     elevations_ = distribute(-std::numbers::pi / 2, std::numbers::pi / 2, [seam](double e) {
       double s;
       if (e > 0) {
-        s = 1.0 + (4.5 - 1.0) * smoothstep(rad(50), rad(78), e);
+        s = 1.0 + (4.5 - 1.0) * glm::smoothstep(rad(50), rad(78), e);
       } else {
         // Down the neck the rays meet the skin at a grazing angle: at the
         // front of the neck (2 cm in front of the grid's centre) one degree
@@ -128,9 +125,9 @@ class SkinBuilder {
         // (82 degrees at the front); the flat underside behind it stays sparse.
         const double c = std::cos(e);
         s = std::clamp(7.8 * c * c, 0.3, 1.0);
-        s += (4.5 - s) * smoothstep(rad(82), rad(86), -e);
+        s += (4.5 - s) * glm::smoothstep(rad(82), rad(86), -e);
       }
-      const double lips = 1.0 - smoothstep(rad(5.5), rad(8.5), std::abs(e - seam));
+      const double lips = 1.0 - glm::smoothstep(rad(5.5), rad(8.5), std::abs(e - seam));
       s = s + (0.55 - s) * lips;
       return rad(s);
     }, false);
@@ -231,7 +228,7 @@ class SkinBuilder {
         // blend beyond the corners.
         const double lateral = std::max(0.0, std::abs(azimuths_[i]) - corner);
         const double band = 1e-4 + 0.55 * lateral;
-        float jaw = static_cast<float>(smoothstep(seam + band, seam - band, elevations_[j]));
+        float jaw = static_cast<float>(glm::smoothstep(seam + band, seam - band, elevations_[j]));
         if (j == seamRow_ && (i == cornerL_ || i == cornerR_)) jaw = 0.5f;
         out_.jawSide[v] = jaw;
         if (onSeam(i, j)) {
@@ -336,7 +333,7 @@ class SkinBuilder {
       upper[s] = up;
     }
     auto thickness = [&](const vec2& a) {
-      const float t = static_cast<float>(smoothstep(-6.0, 6.0, a.y - eye.middle().y));
+      const float t = static_cast<float>(glm::smoothstep(-6.0, 6.0, static_cast<double>(a.y - eye.middle().y)));
       return prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) * t;
     };
     auto pushedOut = [&](const vec2& a, float degrees) {
