@@ -10,9 +10,9 @@ using namespace facial;
 
 namespace {
 
-const std::vector<std::string> kArkitGazeAndJaw = {"jawOpen",          "eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",
-                                         "eyeLookDownLeft",  "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight",
-                                         "eyeLookDownRight"};
+const std::vector<std::string> kArkitGazeAndJaw = {
+    "jawOpen",        "eyeLookInLeft",   "eyeLookOutLeft", "eyeLookUpLeft",   "eyeLookDownLeft",
+    "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight", "eyeLookDownRight"};
 
 float weightOf(const std::vector<std::string>& names, const std::vector<float>& weights, const std::string& name) {
   for (size_t i = 0; i < names.size(); ++i)

@@ -11,7 +11,7 @@ using namespace facial;
 
 namespace {
 const std::vector<std::string> kArkitGaze = {"eyeLookInLeft",  "eyeLookOutLeft",  "eyeLookUpLeft",  "eyeLookDownLeft",
-                                         "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight", "eyeLookDownRight"};
+                                             "eyeLookInRight", "eyeLookOutRight", "eyeLookUpRight", "eyeLookDownRight"};
 }
 
 TEST(GazeRigValidity, WrongWeightCountIsRefused) {
