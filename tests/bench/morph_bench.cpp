@@ -55,14 +55,7 @@ const eng::Model& gridModel() {
     }
     mesh.defaultWeights.assign(kTargets, 0.0f);
     mesh.primitives.push_back(std::move(p));
-    eng::Model m;
-    m.sourcePath = "procedural 256-target grid";
-    m.meshes.push_back(std::move(mesh));
-    eng::Node node;
-    node.mesh = 0;
-    m.nodes.push_back(node);
-    m.roots = {0};
-    return m;
+    return testing_support::singleMeshModel(std::move(mesh), "procedural 256-target grid");
   }();
   return model;
 }

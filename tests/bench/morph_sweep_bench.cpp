@@ -69,14 +69,7 @@ eng::Model sweepModel(int vertices) {
   }
   mesh.defaultWeights.assign(kTargets, 0.0f);
   mesh.primitives.push_back(std::move(p));
-  eng::Model m;
-  m.sourcePath = "sweep grid " + std::to_string(n) + " vertices";
-  m.meshes.push_back(std::move(mesh));
-  eng::Node node;
-  node.mesh = 0;
-  m.nodes.push_back(node);
-  m.roots = {0};
-  return m;
+  return testing_support::singleMeshModel(std::move(mesh), "sweep grid " + std::to_string(n) + " vertices");
 }
 
 const eng::Model& cachedModel(int vertices) {

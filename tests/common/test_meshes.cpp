@@ -1,5 +1,7 @@
 #include "tests/common/test_meshes.h"
 
+#include <utility>
+
 namespace testing_support {
 
 eng::Primitive flatSheet(int side) {
@@ -15,6 +17,17 @@ eng::Primitive flatSheet(int side) {
       p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
     }
   return p;
+}
+
+eng::Model singleMeshModel(eng::Mesh mesh, std::string sourcePath) {
+  eng::Model model;
+  model.sourcePath = std::move(sourcePath);
+  model.meshes.push_back(std::move(mesh));
+  eng::Node node;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  model.roots = {0};
+  return model;
 }
 
 }  // namespace testing_support

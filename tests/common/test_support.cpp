@@ -1,5 +1,6 @@
 #include "tests/common/test_support.h"
 
+#include <algorithm>
 #include <fstream>
 
 #include <unistd.h>
@@ -10,6 +11,21 @@ std::filesystem::path sharedDir() {
   std::filesystem::path p = FACIAL_SHARED_DIR;
   std::error_code ec;
   return std::filesystem::is_directory(p / "assets", ec) ? p : std::filesystem::path{};
+}
+
+std::vector<std::filesystem::path> sharedModelFiles() {
+  std::vector<std::filesystem::path> files;
+  if (sharedDir().empty()) return files;
+  for (const char* folder : {"assets", "compressed"}) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(sharedDir() / folder, ec)) continue;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(sharedDir() / folder)) {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 std::filesystem::path sourceDir() { return FACIAL_SOURCE_DIR; }

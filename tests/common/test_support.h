@@ -2,6 +2,7 @@
 // Shared helpers for the test executables.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,10 @@ std::filesystem::path sharedDir();
     if (::testing_support::sharedDir().empty())                                              \
       GTEST_SKIP() << "../shared is absent beside the project: third-party asset test skipped"; \
   } while (0)
+
+// Every .gltf / .glb under ../shared's assets/ and compressed/ (the meshopt and
+// Draco variants), sorted; empty when ../shared is absent.
+std::vector<std::filesystem::path> sharedModelFiles();
 
 std::filesystem::path sourceDir();
 std::filesystem::path binaryDir();

@@ -13,6 +13,7 @@
 #include "engine/scene/vertex_occlusion.h"
 #include "engine/vk/camera.h"
 #include "engine/vk/framing_bounds.h"
+#include "tests/common/test_meshes.h"
 #include "tests/vk/test_models.h"
 
 namespace {
@@ -249,7 +250,6 @@ TEST(FaceFraming, ModelWithoutTargetsFallsBackToTheWholeModel) {
 TEST(FaceFraming, FeatureBoundsKeepWhatTargetsCarryNotTheSkinTheyDrag) {
   // One target lifts two vertices by 1 (the feature) and nudges two others
   // by 0.05 (skin dragged along): the features are the first two.
-  eng::Model model;
   eng::Mesh mesh;
   eng::Primitive prim;
   prim.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 3, 0}};
@@ -262,11 +262,7 @@ TEST(FaceFraming, FeatureBoundsKeepWhatTargetsCarryNotTheSkinTheyDrag) {
   mesh.primitives.push_back(prim);
   mesh.targetNames = {"lift"};
   mesh.defaultWeights = {0.0f};
-  model.meshes.push_back(mesh);
-  eng::Node node;
-  node.mesh = 0;
-  model.nodes.push_back(node);
-  model.roots = {0};
+  eng::Model model = testing_support::singleMeshModel(std::move(mesh));
   const eng::Aabb features = eng::vk::faceFeatureBounds(model);
   ASSERT_TRUE(features.valid());
   EXPECT_FLOAT_EQ(features.min.y, -1.0f);

@@ -17,13 +17,7 @@ namespace {
 
 TEST(SharedAssetsRender, EveryFileRendersNonEmpty) {
   FACIAL_REQUIRE_SHARED();
-  std::vector<std::filesystem::path> files;
-  for (const char* folder : {"assets", "compressed"})  // compressed: meshopt / Draco variants
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(testing_support::sharedDir() / folder)) {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".gltf" || ext == ".glb") files.push_back(entry.path());
-    }
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = testing_support::sharedModelFiles();
   ASSERT_GE(files.size(), 7u);
   for (const std::filesystem::path& file : files) {
     SCOPED_TRACE(file.string());
