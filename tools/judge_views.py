@@ -5,6 +5,7 @@ names a face's seven basic states across nearby views.
 usage: tools/judge_views.py [--model MODEL] [--facial build/bin/facial]
                             [--judge ../shared/judge/fer_judge.py]
                             [--sizes 224,256,320,384] [--yaws -4,0,4]
+                            [--crop-scales 0.9,1.05,1.2]
 
 Renders every state with `facial express` at each size (px, square) and yaw
 (degrees), runs the judge once over all of them, and prints, per size, the
@@ -12,6 +13,13 @@ states named of 7 at each yaw, then each state's hits over all views and the
 mean number named per view. One view alone overstates a face: this classifier
 flips a state between renders a few pixels or degrees apart, and the README's
 "Expressions, judged" table is this tool's output.
+
+--crop-scales asks the same of other crops around the judge's face box: at
+scale k the classifier sees a square k times the detector's box (1.2 is the
+judge's own crop, the box and a tenth of it on each side). Whether a face
+reads only on a tighter or a looser crop than the judge's says that the
+expressions carry, and that what the judge misses is the face at the scale
+of its input, not the mix (see the README's "Expressions, judged").
 Needs Debian's python3-opencv and python3-numpy (./bootstrap.sh installs them).
 """
 import argparse
@@ -19,6 +27,11 @@ import os
 import subprocess
 import sys
 import tempfile
+
+import cv2
+import numpy as np
+
+from judge_regions import JUDGE_LABEL, load_judge
 
 STATES = ["neutral", "happy", "sad", "surprise", "fear", "anger", "disgust"]
 
@@ -35,12 +48,16 @@ def main():
     ap.add_argument("--judge", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
     ap.add_argument("--sizes", default="224,256,320,384")
     ap.add_argument("--yaws", default="-4,0,4")
+    ap.add_argument("--crop-scales", default="", help="also judge crops k times the detector's box (1.2 = the judge's)")
     a = ap.parse_args()
     if not os.path.exists(a.judge):
         sys.exit(f"judge_views: {a.judge}: no judge here (it lives in ../shared/judge)")
     sizes, yaws = numbers(a.sizes, int), numbers(a.yaws, float)
     if not sizes or not yaws:
         sys.exit("judge_views: --sizes and --yaws each need at least one value")
+    crop_scales = numbers(a.crop_scales, float)
+    if any(not 0.3 <= k <= 3.0 for k in crop_scales):
+        sys.exit("judge_views: each --crop-scales value must lie in [0.3, 3]")
 
     with tempfile.TemporaryDirectory() as tmp:
         views = []  # (size, yaw, state, path)
@@ -67,8 +84,34 @@ def main():
         missing = [p for _, _, _, p in views if p not in named]
         if missing:
             sys.exit(f"judge_views: {a.judge} gave no verdict for {len(missing)} image(s), e.g. {missing[0]}")
+        rescaled = judge_rescaled(load_judge(a.judge), views, crop_scales) if crop_scales else {}
 
-    print(f"{a.model or 'built-in head'}: states named of 7 (letters: the states named)")
+    report(f"{a.model or 'built-in head'}: states named of 7 (letters: the states named)", views, named, sizes, yaws)
+    for k, named_at_k in rescaled.items():
+        report(f"crop {k:g} x the detector's box:", views, named_at_k, sizes, yaws)
+
+
+def judge_rescaled(judge, views, scales):
+    """{scale: {path: named}}: the judge's network on crops `scale` times its
+    detector's face box, centred on the box (cut at the image's edges)."""
+    out = {k: {} for k in scales}
+    for _, _, state, path in views:
+        grey = cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY)
+        faces = judge.cascade.detectMultiScale(grey, 1.1, 5, minSize=(32, 32))
+        if len(faces) == 0:
+            sys.exit(f"judge_views: {path}: the judge's detector finds no face")
+        x, y, w, h = max(faces, key=lambda f: f[2] * f[3])
+        for k in scales:
+            # The judge's own arithmetic (pad = int(0.1 * w) at k = 1.2), so 1.2 gives its verdicts.
+            pad = int((k - 1.0) / 2.0 * w + 1e-6)
+            crop = grey[max(0, y - pad):y + h + pad, max(0, x - pad):x + w + pad]
+            p = judge.forward((cv2.resize(crop, (64, 64)).astype(np.float32) / 255.0 - 0.5) * 2.0)
+            out[k][path] = judge.LABELS[int(np.argmax(p))] == JUDGE_LABEL.get(state, state)
+    return out
+
+
+def report(title, views, named, sizes, yaws):
+    print(title)
     for size in sizes:
         cells = []
         for yaw in yaws:

@@ -129,6 +129,32 @@ TEST_F(ExpressionJudge, RegionSwapToolReportsEachRegionBothWays) {
   EXPECT_EQ(reference, 12);
 }
 
+// tools/judge_views.py --crop-scales: the judge's network on crops k times its
+// detector's box; at 1.2 (the judge's own crop) the counts must be the judge's.
+TEST_F(ExpressionJudge, ViewsToolCropScaleOfTheJudgesOwnCropGivesItsCounts) {
+  const CommandOutput run = runProgram(
+      "/usr/bin/python3", {(testing_support::sourceDir() / "tools" / "judge_views.py").string(), "--model",
+                           (testing_support::sharedDir() / "assets" / "facecap.glb").string(), "--sizes", "256",
+                           "--yaws", "0", "--crop-scales", "0.9,1.2", "--facial", facialProgram().string(), "--judge",
+                           (testing_support::sharedDir() / "judge" / "fer_judge.py").string()});
+  ASSERT_EQ(run.exitCode, 0) << run.out << run.err;
+  std::vector<std::string> overAll;  // the judge's, then one per crop scale
+  std::istringstream lines(run.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("over all views:") != std::string::npos) overAll.push_back(line);
+  ASSERT_EQ(overAll.size(), 3u) << run.out;
+  EXPECT_NE(run.out.find("crop 0.9 x the detector's box:"), std::string::npos) << run.out;
+  EXPECT_EQ(overAll[2], overAll[0]) << run.out;
+}
+
+TEST_F(ExpressionJudge, ViewsToolRejectsACropScaleOutOfRange) {
+  const CommandOutput run = runProgram(
+      "/usr/bin/python3", {(testing_support::sourceDir() / "tools" / "judge_views.py").string(), "--crop-scales", "5",
+                           "--judge", (testing_support::sharedDir() / "judge" / "fer_judge.py").string()});
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_NE(run.err.find("--crop-scales value must lie in [0.3, 3]"), std::string::npos) << run.err;
+}
+
 // tools/judge_reach.py: the judge's p of a state for the preset and for mixes
 // around it, and whether any was named (the preset, or the face?).
 CommandOutput runJudgeReach(const std::vector<std::string>& toolArgs) {
