@@ -54,16 +54,29 @@ def load_judge(path):
     return module
 
 
+def face_box(judge, grey):
+    """The judge's face: the largest box of its detector, with its settings (None: no face)."""
+    faces = judge.cascade.detectMultiScale(grey, 1.1, 5, minSize=(32, 32))
+    return max(faces, key=lambda f: f[2] * f[3]) if len(faces) else None
+
+
+def crop_box(grey, box, scale=1.2):
+    """The part of `grey` `scale` times `box`, about its centre, cut at the image's edges.
+    1.2 is the judge's own crop (the box and a tenth of it on each side), in its own
+    integer arithmetic, so that it gives the judge's verdicts."""
+    x, y, w, h = box
+    pad = int(round((scale - 1.0) / 2.0, 6) * w)  # at 1.2 exactly the judge's int(0.1 * w)
+    return grey[max(0, y - pad):y + h + pad, max(0, x - pad):x + w + pad]
+
+
 def judge_crop(judge, path):
     """The 64x64 grey crop the judge classifies (its own detector and padding),
     and the eye centres in it (None where two eyes are not found)."""
     grey = cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY)
-    faces = judge.cascade.detectMultiScale(grey, 1.1, 5, minSize=(32, 32))
-    if len(faces) == 0:
+    box = face_box(judge, grey)
+    if box is None:
         sys.exit(f"judge_regions: {path}: the judge's detector finds no face")
-    x, y, w, h = max(faces, key=lambda f: f[2] * f[3])
-    pad = int(0.1 * w)
-    grey = grey[max(0, y - pad):y + h + pad, max(0, x - pad):x + w + pad]
+    grey = crop_box(grey, box)
     return cv2.resize(grey, (64, 64)).astype(np.float32), eye_centres(grey)
 
 

@@ -31,7 +31,7 @@ import tempfile
 import cv2
 import numpy as np
 
-from judge_regions import JUDGE_LABEL, load_judge
+from judge_regions import JUDGE_LABEL, crop_box, face_box, load_judge
 
 STATES = ["neutral", "happy", "sad", "surprise", "fear", "anger", "disgust"]
 
@@ -97,14 +97,11 @@ def judge_rescaled(judge, views, scales):
     out = {k: {} for k in scales}
     for _, _, state, path in views:
         grey = cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY)
-        faces = judge.cascade.detectMultiScale(grey, 1.1, 5, minSize=(32, 32))
-        if len(faces) == 0:
+        box = face_box(judge, grey)
+        if box is None:
             sys.exit(f"judge_views: {path}: the judge's detector finds no face")
-        x, y, w, h = max(faces, key=lambda f: f[2] * f[3])
         for k in scales:
-            # The judge's own arithmetic (pad = int(0.1 * w) at k = 1.2), so 1.2 gives its verdicts.
-            pad = int((k - 1.0) / 2.0 * w + 1e-6)
-            crop = grey[max(0, y - pad):y + h + pad, max(0, x - pad):x + w + pad]
+            crop = crop_box(grey, box, k)
             p = judge.forward((cv2.resize(crop, (64, 64)).astype(np.float32) / 255.0 - 0.5) * 2.0)
             out[k][path] = judge.LABELS[int(np.argmax(p))] == JUDGE_LABEL.get(state, state)
     return out
