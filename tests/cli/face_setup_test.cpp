@@ -3,6 +3,7 @@
 // intensity clamped), and the data-folder look-up.
 #include "app/face_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/rigmap_file.h"
@@ -166,6 +168,28 @@ TEST(FaceSetupData, DataFolderComesFromTheEnvironmentElseTheSourceTree) {
 TEST(FaceSetupData, ModelNameIsTheFileStem) {
   EXPECT_EQ(modelNameOf("/a/b/facecap.glb"), "facecap");
   EXPECT_EQ(modelNameOf("head.gltf"), "head");
+}
+
+TEST(FaceSetupData, BuiltInHeadsRigMapRaisesItsJawOnTopOfTheMeasuredScale) {
+  // data/rigmaps/head.json: the head's jaw drop is measured like any rig's,
+  // then raised (its lips and teeth fill the gap a scanned face shows dark).
+  auto model = eng::loadModel(defaultModelPath());
+  ASSERT_TRUE(model) << model.error().message;
+  auto withMap = buildModelRig(*model);
+  ASSERT_TRUE(withMap) << withMap.error().message;
+  auto jaw = [](const facial::RigCalibration& c) {
+    for (const facial::ActionUnitCalibration& u : c.units)
+      if (u.channel == "AU26_JawDrop") return u;
+    return facial::ActionUnitCalibration{};
+  };
+  const facial::ActionUnitCalibration measured = jaw(*withMap);
+  ASSERT_GT(measured.reach, 0.0f);
+  const float measuredScale = std::clamp(measured.reference / measured.reach, 0.6f, 1.6f);
+  EXPECT_NEAR(measured.scale, measuredScale * 1.6f, 1e-4f);
+  for (const facial::ActionUnitCalibration& u : withMap->units) {
+    if (u.channel == "AU26_JawDrop" || !(u.reference > 0.0f)) continue;
+    EXPECT_NEAR(u.scale, std::clamp(u.reference / u.reach, 0.6f, 1.6f), 1e-4f) << u.channel << " is not overridden";
+  }
 }
 
 TEST(FaceSetupShared, FacecapIsDrivenThroughTheArkitScheme) {

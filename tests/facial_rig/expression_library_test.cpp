@@ -80,9 +80,8 @@ TEST_F(ProjectPresets, BasicEmotionsContainTheirEmfacsPrototypeUnits) {
       {"happy", {6, 12}},
       {"sad", {1, 4, 15}},
       {"surprise", {1, 2, 5, 26}},
-      // EMFACS fear 1+2+4+5+20 with 25/26 (the 7 of 1+2+4+5+7+20+26 is left out: on ARKit rigs eyeSquint
-      // cancels eyeWide, see data/expressions.json).
-      {"fear", {1, 2, 4, 5, 20, 25}},
+      // EMFACS fear 1+2+4+5+7+20+26, with 25 (7 at half: the tensed lower lid of fear's wide eye).
+      {"fear", {1, 2, 4, 5, 7, 20, 25}},
       {"anger", {4, 5, 7, 23}},
       {"disgust", {9, 15, 16}},
   };
