@@ -90,10 +90,10 @@ void expectRecognised(const std::string& name, const std::string& model, std::in
   }
 }
 
-// The built-in head reads neutral, happy, surprise and anger at every size
-// (4 in each of the README's 12 views); sad and fear are the open part of the
-// issue (README, "Expressions, judged").
-TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", "", {{256, 4}, {384, 4}}); }
+// The built-in head reads neutral, happy, surprise and anger in each of the
+// README's 12 views and fear in 10 of them, both sizes here among those; sad
+// is the open part of the issue (README, "Expressions, judged").
+TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", "", {{256, 5}, {384, 5}}); }
 
 TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
   expectRecognised("facecap", (testing_support::sharedDir() / "assets" / "facecap.glb").string(), {{256, 6}, {384, 5}});
