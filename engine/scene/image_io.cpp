@@ -104,7 +104,9 @@ Result<void> checkPngStream(std::span<const uint8_t> encoded, const std::string&
   bool inflating = true;
   uint64_t inflated = 0;
   uint8_t scratch[16384];
-  for (size_t at = 8; at + 12 <= encoded.size();) {
+  // Down to a bare chunk header: stb reads one from 8 bytes (length and type)
+  // and reallocates for its declared length before it finds nothing follows.
+  for (size_t at = 8; at + 8 <= encoded.size();) {
     const uint32_t length = bigEndian(encoded.data() + at, 4);
     const std::string type(reinterpret_cast<const char*>(encoded.data() + at + 4), 4);
     const size_t followingHeader = encoded.size() - at - 8;  // its data and CRC
