@@ -70,6 +70,19 @@ TEST(FuzzRegressionValidity, PngChunkDeclaringMoreThanTheFileHoldsIsRefused) {
             "input image: PNG chunk 'IDAT' at byte 4141 declares 1073741825 bytes, only 8 follow its header (truncated or corrupt file)");
 }
 
+// fuzz_image found it too (out of memory, malloc(2147483648)): 182 bytes ending in
+// "IENDIDAT", a chunk header with no data and no CRC after it, whose length field reads
+// 1229278788. The check stopped 12 bytes from the end; stb reads a header from 8.
+TEST(FuzzRegressionValidity, PngEndingInABareChunkHeaderIsRefused) {
+  const std::string bytes = fuzzInput("image_bare_chunk_header.png");
+  ASSERT_EQ(bytes.size(), 182u);
+  const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+  auto image = eng::decodeImage({data, bytes.size()}, "input image", size_t{4} << 20);  // as fuzz_image reads it
+  ASSERT_FALSE(image.ok());
+  EXPECT_EQ(image.error().message,
+            "input image: PNG chunk 'IDAT' at byte 174 declares 1229278788 bytes, only 0 follow its header (truncated or corrupt file)");
+}
+
 // Validity: a target 3e38 away from its neutral vertex makes a delta no float
 // holds: refused with one line naming the file, not handed on as inf.
 TEST(FuzzRegressionValidity, ObjTargetMovingFurtherThanAFloatIsRefused) {

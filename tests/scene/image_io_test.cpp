@@ -145,20 +145,6 @@ TEST(ImageIoBadInput, PngChunkLongerThanTheFileIsRefusedBeforeDecoding) {
                                      " declares 1073741825 bytes, only 8 follow its header (truncated or corrupt file)");
 }
 
-// Validity: the same with the file ending right after the chunk's length and type (no
-// data, no CRC): stb still reads that header and reallocates for it (a fuzzer found a
-// 2 GiB allocation from 182 bytes ending in "IENDIDAT").
-TEST(ImageIoBadInput, PngEndingInABareChunkHeaderIsRefusedBeforeDecoding) {
-  std::vector<uint8_t> png = handMadePng(1, 1, 6, false, {0, 1, 2, 3, 4});
-  png.resize(png.size() - 12);  // IEND off
-  const size_t at = png.size();
-  png.insert(png.end(), {'I', 'E', 'N', 'D', 'I', 'D', 'A', 'T'});
-  auto img = eng::decodeImage(png, "cut.png");
-  ASSERT_FALSE(img.ok());
-  EXPECT_EQ(img.error().message, "cut.png: PNG chunk 'IDAT' at byte " + std::to_string(at) +
-                                     " declares 1229278788 bytes, only 0 follow its header (truncated or corrupt file)");
-}
-
 // Validity: 64 MiB of zeros deflate to 64 kB; stb inflates all of it for a 1x1 image and
 // decodes the first pixel. Refused before it inflates past twice what the header needs.
 TEST(ImageIoBadInput, PngDataInflatingFarPastItsHeaderIsRefused) {
