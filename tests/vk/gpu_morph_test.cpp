@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include "engine/scene/cpu_morph.h"
-#include "engine/scene/gltf_loader.h"
 #include "engine/scene/skeleton_pose.h"
 #include "engine/scene/skinning.h"
 #include "engine/scene/weights.h"
@@ -177,35 +176,29 @@ TEST(GpuMorph, MeshWithoutNormalDeltasKeepsRestNormals) {
 
 TEST(GpuMorph, AgreesWithCpuOnEverySharedAsset) {
   FACIAL_REQUIRE_SHARED();
-  const std::vector<std::filesystem::path> files = testing_support::sharedModelFiles();
-  ASSERT_GE(files.size(), 7u);
-  for (const std::filesystem::path& file : files) {
-    SCOPED_TRACE(file.string());
-    auto model = eng::loadModel(file);
-    ASSERT_TRUE(model) << model.error().message;
-    auto gpu = vk_test::renderer().upload(*model);
-    ASSERT_TRUE(gpu) << gpu.error().message;
-    const size_t count = gpu->weightCount();
-    const Agreement a = compareWithCpu(*model, *gpu, {variedWeights(count, 0.0f), variedWeights(count, 1.3f)});
+  vk_test::forEachSharedModel([](const std::filesystem::path& file, const eng::Model& model,
+                                 const eng::vk::GpuModel& gpu) {
+    const size_t count = gpu.weightCount();
+    const Agreement a = compareWithCpu(model, gpu, {variedWeights(count, 0.0f), variedWeights(count, 1.3f)});
     EXPECT_GT(a.comparedPrimitives, 0u);
     EXPECT_LE(a.maxNormalError, kNormalTolerance);
     std::printf("  %s: %zu primitives x 2 instances, max position error %.2e x diagonal, normal error %.2e\n",
                 file.filename().string().c_str(), a.comparedPrimitives / 2, a.maxPositionError, a.maxNormalError);
-    if (model->animations.empty() || model->skins.empty()) continue;
+    if (model.animations.empty() || model.skins.empty()) return;
     // Skinned: every animation's pose half way through, two instances in different poses.
-    for (const eng::Animation& anim : model->animations) {
+    for (const eng::Animation& anim : model.animations) {
       if (anim.nodeChannels.empty()) continue;
       std::vector<std::vector<glm::mat4>> world(2);
       for (size_t i = 0; i < 2; ++i) {
-        eng::Pose pose = eng::restPose(*model);
+        eng::Pose pose = eng::restPose(model);
         eng::sampleAnimation(anim, anim.duration() * (0.3f + 0.4f * float(i)), pose);
-        eng::poseWorldMatrices(*model, pose, world[i]);
+        eng::poseWorldMatrices(model, pose, world[i]);
       }
-      const Agreement posed = compareWithCpu(*model, *gpu, {variedWeights(count, 0.5f), variedWeights(count, 2.0f)}, world);
+      const Agreement posed = compareWithCpu(model, gpu, {variedWeights(count, 0.5f), variedWeights(count, 2.0f)}, world);
       EXPECT_GT(posed.skinnedPrimitives, 0u);
       EXPECT_LE(posed.maxNormalError, kNormalTolerance) << anim.name;
     }
-  }
+  });
 }
 
 // A strip of 2 x 16 quads bent by a chain of three joints, two influence

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/framing_bounds.h"
 #include "tests/common/test_support.h"
@@ -17,18 +16,12 @@ namespace {
 
 TEST(SharedAssetsRender, EveryFileRendersNonEmpty) {
   FACIAL_REQUIRE_SHARED();
-  const std::vector<std::filesystem::path> files = testing_support::sharedModelFiles();
-  ASSERT_GE(files.size(), 7u);
-  for (const std::filesystem::path& file : files) {
-    SCOPED_TRACE(file.string());
-    auto model = eng::loadModel(file);
-    ASSERT_TRUE(model) << model.error().message;
-    auto gpu = vk_test::renderer().upload(*model);
-    ASSERT_TRUE(gpu) << gpu.error().message;
-    const std::vector<float> weights = eng::WeightLayout(*model).defaults();
-    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  vk_test::forEachSharedModel([](const std::filesystem::path& file, const eng::Model& model,
+                                 const eng::vk::GpuModel& gpu) {
+    const std::vector<float> weights = eng::WeightLayout(model).defaults();
+    const eng::vk::ModelInstance instance{&gpu, glm::mat4(1.0f), weights};
     // Seen from slightly above: flat samples (MorphPrimitivesTest) are planes seen edge-on from the front.
-    eng::vk::SceneView view{eng::vk::OrbitCamera::frame(eng::vk::framingBounds(*model)), {}};
+    eng::vk::SceneView view{eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model)), {}};
     view.camera.pitchDegrees = 30.0f;
     auto background = vk_test::renderer().render(view, {});
     auto image = vk_test::renderer().render(view, {&instance, 1});
@@ -37,7 +30,7 @@ TEST(SharedAssetsRender, EveryFileRendersNonEmpty) {
     const double coverage = vk_test::coverageAgainst(*image, *background);
     EXPECT_GT(coverage, 0.02) << "the model covers part of the image";
     std::printf("  %s: %.0f%% of the image\n", file.filename().string().c_str(), coverage * 100.0);
-  }
+  });
 }
 
 }  // namespace

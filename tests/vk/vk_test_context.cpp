@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/gltf_loader.h"
+#include "tests/common/test_support.h"
+
 namespace vk_test {
 
 void failOnValidationMessage(eng::LogLevel level, std::string_view message) {
@@ -42,6 +45,22 @@ eng::vk::OffscreenRenderer& renderer() {
     return std::move(created).value();
   }();
   return r;
+}
+
+void forEachSharedModel(
+    const std::function<void(const std::filesystem::path&, const eng::Model&, const eng::vk::GpuModel&)>& each) {
+  const std::vector<std::filesystem::path> files = testing_support::sharedModelFiles();
+  ASSERT_GE(files.size(), 7u);
+  for (const std::filesystem::path& file : files) {
+    SCOPED_TRACE(file.string());
+    auto model = eng::loadModel(file);
+    EXPECT_TRUE(model) << model.error().message;
+    if (!model) continue;
+    auto gpu = renderer().upload(*model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    if (!gpu) continue;
+    each(file, *model, *gpu);
+  }
 }
 
 }  // namespace vk_test

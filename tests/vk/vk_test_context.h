@@ -2,7 +2,12 @@
 // The Vulkan context shared by the tests of one process: lavapipe or a GPU
 // (FACIAL_DEVICE), validation ON, and every validation message fails the
 // test that is running when it arrives.
+#include <filesystem>
+#include <functional>
+
+#include "engine/scene/model.h"
 #include "engine/vk/context.h"
+#include "engine/vk/gpu_model.h"
 #include "engine/vk/offscreen_renderer.h"
 
 namespace vk_test {
@@ -13,6 +18,13 @@ eng::vk::OffscreenRenderer& renderer();
 
 // `bounds` framed by the orbit camera, under the default light rig.
 eng::vk::SceneView viewOf(const eng::Aabb& bounds);
+
+// Every model file in ../shared (testing_support::sharedModelFiles(); at least
+// the seven the tests were written against) loaded and uploaded to renderer(),
+// each under a SCOPED_TRACE naming the file. A file that does not load or
+// upload fails the test and is skipped. Call FACIAL_REQUIRE_SHARED() first.
+void forEachSharedModel(
+    const std::function<void(const std::filesystem::path&, const eng::Model&, const eng::vk::GpuModel&)>& each);
 
 // Fails the current test with every validation message (also counted by the context).
 void failOnValidationMessage(eng::LogLevel level, std::string_view message);
