@@ -11,6 +11,7 @@
 
 #include "engine/scene/procedural_eyes.h"
 #include "facial/runtime/rig/candide_units.h"
+#include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "facial/runtime/rig/action_units.h"
 #include "tests/common/test_support.h"
@@ -194,6 +195,18 @@ TEST(Candide3Import, ImportedNamesAreDetectedAsTheCandideScheme) {
   ASSERT_TRUE(mapping->apply(au, weights));
   EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU20 Lip stretcher"))], 0.5f);
   EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU15 Lip corner depressor"))], 0.25f);
+
+  // The units are linear offsets: a weak one is raised past 1 by the strength
+  // calibration, as far as its largest scale, instead of being clamped back to 1.
+  const float maxScale = RigCalibrationOptions{}.maxScale;
+  EXPECT_FLOAT_EQ(mapping->minWeight(), -maxScale);
+  EXPECT_FLOAT_EQ(mapping->maxWeight(), maxScale);
+  auto calibrated = calibrateRig(*mapping, std::vector<float>(names.size(), 1e-3f));
+  ASSERT_TRUE(calibrated) << calibrated.error().message;
+  std::fill(au.begin(), au.end(), 0.0f);
+  au[*actionUnitIndex("AU26_JawDrop")] = 1.0f;
+  ASSERT_TRUE(calibrated->rig.apply(au, weights));
+  EXPECT_FLOAT_EQ(weights[size_t(targetIndex(model->meshes[0], "AU26 Jaw drop"))], 0.7f * maxScale);
 }
 
 // ---- malformed files ----

@@ -1,6 +1,7 @@
 // Candide3 scheme: the mask's animation units as imported by facial_bake.
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/candide_units.h"
+#include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_schemes.h"
 
 namespace facial {
@@ -14,8 +15,13 @@ SchemeRecognition recogniseCandide3(std::span<const std::string> targetNames) {
 }
 
 void mapCandide3(RigMappingBuilder& builder) {
-  // Parameters are signed (a negative lip corner depressor is a smile).
-  builder.setWeightRange(-1.0f, 1.0f);
+  // Parameters are signed (a negative lip corner depressor is a smile). They
+  // are linear offsets, not sculpted end poses, so the range is as wide as the
+  // strength calibration may raise a unit: at 1 the mask's brows, lids and lip
+  // corners move 0.2-0.6 of the reference reach, and a [-1, 1] clamp undid the
+  // calibration's x1.6 on every state at full intensity.
+  const float reach = RigCalibrationOptions{}.maxScale;
+  builder.setWeightRange(-reach, reach);
   const std::span<const std::string> names = builder.targetNames();
   for (uint32_t t = 0; t < names.size(); ++t) {
     const CandideAnimationUnit* unit = findCandideUnit(names[t]);

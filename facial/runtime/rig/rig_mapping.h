@@ -87,7 +87,7 @@ class RigMapping {
   std::span<const std::string> controlNames() const { return stage_ ? controlNames_ : targetNames_; }
   const VrmExpressionSet* expressionStage() const { return stage_.get(); }
   const std::shared_ptr<const VrmExpressionSet>& sharedExpressionStage() const { return stage_; }
-  // Output weights are clamped to [minWeight, maxWeight] ([0,1] except CANDIDE's signed units).
+  // Output weights are clamped to [minWeight, maxWeight] ([0,1] except CANDIDE's signed, linear units).
   float minWeight() const { return minWeight_; }
   float maxWeight() const { return maxWeight_; }
   // The sparse row of one input: control targets(input)[i] receives gains(input)[i] * weight
