@@ -112,8 +112,12 @@ float HeadSdf::face(const vec3& p) const {
   // and a smile's fold on a face at rest.
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.083f, 0.0735f), vec3(0.0195f, 0.0140f, 0.0170f)), 0.018f);
   d = smin(d, ellipsoid(p - vec3(0.0f, -0.047f, 0.060f), vec3(0.038f, 0.024f, 0.026f)), 0.032f);
-  // Brow ridge.
-  d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.068f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
+  // Brow ridge, a low one. Measured against a scanned face (facecap, scaled
+  // to the same eye spacing) the head's upper lids sat 5-9 mm deeper under
+  // the brow: under the key light a dark ledge that merged with the brows
+  // into one heavy arc, and raised brows (sad's AU1) stretched it into a dark
+  // patch over the inner socket. 6 mm further back than it was.
+  d = smin(d, ellipsoid(p - vec3(0.0f, 0.029f, 0.062f), vec3(0.056f, 0.013f, 0.024f)), 0.02f);
   // Cheekbones and cheek apples (mirrored), blended wide so they shape the
   // face without reading as separate lumps.
   const vec3 m(std::abs(p.x), p.y, p.z);
@@ -145,9 +149,12 @@ float HeadSdf::nose(const vec3& p) const {
 
 // The lips are not separate shapes laid on the face: they are the muzzle's
 // own surface raised inside the vermilion outline. Within the outline the
-// raise grows from the seam (where the lips roll in) to a full lip and drops
-// off over the last fifth, which makes the vermilion border a crisp ridge;
-// toward the corners it fades to nothing, so the corners tuck into the face.
+// raise grows from the seam (where the lips roll in) to a full lip and rolls
+// off gradually toward the vermilion border, the lower lip on into the skin
+// under it: a crisp ridge there drew a dark outline round each lip at 256 px,
+// which with the seam read as a mouth held open (a sad mouth taken for a
+// fearful one). Toward the corners the raise fades to nothing, so the
+// corners tuck into the face.
 HeadSdf::LipBand HeadSdf::lipBand(float ax) const {
   const float w = prop_.mouthHalfWidth + 0.0006f;
   const float f = std::min(ax / w, 1.0f);
@@ -178,11 +185,11 @@ float HeadSdf::lipRaise(const vec3& p) const {
   if (dy >= 0.0f) {
     if (b.upperHeight <= 0.0f) return 0.0f;
     const float u = dy / b.upperHeight;
-    return (b.seamRaise + (b.upperRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.55f, u)) * (1.0f - glm::smoothstep(0.80f, 1.0f, u));
+    return (b.seamRaise + (b.upperRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.55f, u)) * (1.0f - glm::smoothstep(0.30f, 1.0f, u));
   }
   if (b.lowerHeight <= 0.0f) return 0.0f;
   const float u = -dy / b.lowerHeight;
-  return (b.seamRaise + (b.lowerRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.5f, u)) * (1.0f - glm::smoothstep(0.72f, 1.05f, u));
+  return (b.seamRaise + (b.lowerRaise - b.seamRaise) * glm::smoothstep(0.0f, 0.5f, u)) * (1.0f - glm::smoothstep(0.10f, 1.40f, u));
 }
 
 float HeadSdf::lipDistance(const vec3& p) const {
@@ -204,8 +211,11 @@ float HeadSdf::eyeRegion(float d, const vec3& p) const {
     // from behind the eyeball cross the skin once.
     const float r = prop_.eyeRadius;
     // The dish stops short of the nose bridge (a dish reaching the midline
-    // leaves a thin ridge there with a dark crease along each side).
-    d = smax(d, -ellipsoid(p - (e + vec3(0.18f * side, 0.1f, 1.5f) * r), vec3(1.42f, 1.25f, 0.95f) * r), 0.016f);
+    // leaves a thin ridge there with a dark crease along each side). It is
+    // shallow and centred a little below the eye, so the upper lid is full
+    // under the brow as on a scanned face: a deep dish under the brow ridge
+    // left deep-set eyes in a dark band under the key light.
+    d = smax(d, -ellipsoid(p - (e + vec3(0.18f * side, -0.1f, 2.0f) * r), vec3(1.42f, 1.25f, 0.95f) * r), 0.016f);
     const float thickness = prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) *
                                                          glm::smoothstep(-0.004f, 0.004f, p.y - e.y);
     d = smin(d, glm::length(p - e) - (prop_.eyeRadius + thickness), 0.0075f);
