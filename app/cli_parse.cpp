@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string_view>
 
-namespace cli {
+namespace app {
 
 bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
   const size_t x = text.find_first_of("xX");
@@ -22,4 +22,4 @@ bool parseFloat(std::string_view text, float& out) {
   return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
-}  // namespace cli
+}  // namespace app

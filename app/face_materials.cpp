@@ -4,9 +4,9 @@
 #include <string>
 
 #include "app/face_setup.h"
-#include "engine/vk/gpu_model.h"
+#include "engine/vk/draw/gpu_model.h"
 
-namespace cli {
+namespace app {
 
 eng::Result<FaceMaterials> FaceMaterials::create(const FaceSetup& face) {
   FaceMaterials out;
@@ -58,4 +58,4 @@ eng::Result<void> FaceMaterials::update(std::span<const float> expressionWeights
   return {};
 }
 
-}  // namespace cli
+}  // namespace app

@@ -10,7 +10,7 @@
 // colour follows the animated weights frame by frame without touching the
 // uploaded model. Sized at creation; update() does not allocate.
 //
-//   auto materials = cli::FaceMaterials::create(face);            // once per instance
+//   auto materials = app::FaceMaterials::create(face);            // once per instance
 //   driver.update(dt);
 //   materials->update(driver.expressionWeights());                 // every frame
 //   instance.materials = materials->materials();
@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "engine/core/result.h"
-#include "engine/vk/gpu_types.h"
+#include "engine/vk/draw/gpu_types.h"
 #include "facial/runtime/rig/vrm_expressions.h"
 
-namespace cli {
+namespace app {
 
 class FaceSetup;
 
@@ -55,4 +55,4 @@ class FaceMaterials {
   std::vector<eng::vk::InstanceMaterial> materials_;
 };
 
-}  // namespace cli
+}  // namespace app

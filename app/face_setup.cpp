@@ -16,13 +16,13 @@
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/obj_keyframes.h"
-#include "bake/candide_import.h"
-#include "bake/loop_subdivision.h"
-#include "bake/vrm_import.h"
+#include "importers/candide_import.h"
+#include "importers/loop_subdivision.h"
+#include "importers/vrm_import.h"
 #include "facial/runtime/rig/action_unit_rig.h"
 #include "facial/runtime/rig/action_units.h"
 
-namespace cli {
+namespace app {
 
 void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap) {
   app.add_option("--model,-m", model,
@@ -88,7 +88,7 @@ void faceForward(eng::Model& model) {
 eng::Result<LoadedFace> loadGltfOrVrm(const std::filesystem::path& path) {
   auto model = eng::loadModel(path);
   if (!model) return model.error();
-  auto vrm = facial::findVrmExpressions(path);
+  auto vrm = importers::findVrmExpressions(path);
   if (!vrm) return vrm.error();
   if (!*vrm) return LoadedFace{std::move(*model), FaceFormat::Gltf, nullptr};
   // The glTF loader skips the VRM extensions it does not know; here they are read.
@@ -143,13 +143,13 @@ eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<co
     if (start.starts_with("glTF") || start.starts_with("{")) {
       face = loadGltfOrVrm(path);
     } else if (start.starts_with("# VERTEX LIST")) {
-      auto model = facial::importCandide3(path);
+      auto model = importers::importCandide3(path);
       if (!model) return model.error();
       // 113 vertices shade and outline as facets: two Loop steps make the mask
       // (the first primitive; the others are its eyeballs) a smooth surface.
       eng::Mesh& mesh = model->meshes.front();
       for (int step = 0; step < 2; ++step)
-        if (auto smooth = facial::loopSubdivide(mesh.primitives.front(), path.string() + ": " + mesh.name); !smooth)
+        if (auto smooth = importers::loopSubdivide(mesh.primitives.front(), path.string() + ": " + mesh.name); !smooth)
           return smooth.error();
       face = LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr};
     } else {
@@ -219,7 +219,7 @@ std::string modelNameOf(const std::filesystem::path& modelPath) { return modelPa
 std::vector<float> targetReach(const eng::Model& model) {
   const eng::WeightLayout layout(model);
   std::vector<float> reach(layout.total(), 0.0f);
-  const eng::Aabb face = eng::vk::morphedRegionBounds(model);
+  const eng::Aabb face = eng::morphedRegionBounds(model);
   const float faceSize = face.valid() ? face.size().y : 0.0f;
   if (!(faceSize > 0.0f)) return reach;
   for (size_t i = 0; i < model.nodes.size(); ++i) {
@@ -339,4 +339,4 @@ eng::Result<void> FaceSetup::expressionWeights(const facial::ExpressionPreset& p
   return rig_.apply(actionUnitScratch_, emotionScratch_, weights, vrmExpressions);
 }
 
-}  // namespace cli
+}  // namespace app

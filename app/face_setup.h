@@ -7,7 +7,7 @@
 // It turns a preset + intensity into the model's flat weight vector
 // (eng::WeightLayout order), allocation-free after load:
 //
-//   auto face = cli::FaceSetup::load({.model = "facecap.glb"});
+//   auto face = app::FaceSetup::load({.model = "facecap.glb"});
 //   std::vector<float> weights(face->weightCount());
 //   auto happy = face->findExpression("happy");
 //   face->expressionWeights(**happy, 0.8f, weights);
@@ -22,7 +22,7 @@
 #include "engine/scene/model.h"
 #include "engine/scene/weights.h"
 #include "facial/runtime/rig/expression_library.h"
-#include "engine/vk/framing_bounds.h"
+#include "engine/view/framing_bounds.h"
 #include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
 
@@ -30,7 +30,7 @@ namespace CLI {
 class App;
 }
 
-namespace cli {
+namespace app {
 
 // Declares the options every command that poses a face shares, with one
 // wording: --model/-m (default: the built-in head) and --rigmap (a rig map
@@ -156,4 +156,4 @@ class FaceSetup {
   std::vector<float> emotionScratch_;
 };
 
-}  // namespace cli
+}  // namespace app

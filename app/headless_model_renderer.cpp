@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "engine/vk/framing_bounds.h"
+#include "engine/view/framing_bounds.h"
 
-namespace cli {
+namespace app {
 
 eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Model& model,
                                                                  const HeadlessRenderOptions& options) {
@@ -26,7 +26,7 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   auto gpuModel = r.renderer_->upload(model);
   if (!gpuModel) return gpuModel.error();
   r.gpuModel_ = std::move(*gpuModel);
-  r.view_.camera = eng::vk::OrbitCamera::frame(eng::vk::framingBounds(model, options.framing),
+  r.view_.camera = eng::OrbitCamera::frame(eng::framingBounds(model, options.framing),
                                                float(options.width) / float(options.height));
   r.view_.camera.yawDegrees = options.yawDegrees;
   r.view_.camera.pitchDegrees = options.pitchDegrees;
@@ -50,4 +50,4 @@ eng::Result<void> HeadlessModelRenderer::checkValidation() const {
   return {};
 }
 
-}  // namespace cli
+}  // namespace app

@@ -2,9 +2,9 @@
 // One model rendered headless many times with different weights from one
 // fixed camera: ONE Vulkan context, offscreen target and GPU upload shared by
 // every frame (a contact sheet of expressions re-creates nothing per tile).
-// The camera frames eng::vk::framingBounds, so it stays put across weights.
+// The camera frames eng::framingBounds, so it stays put across weights.
 //
-//   auto renderer = cli::HeadlessModelRenderer::create(model, {.width = 256, .height = 256});
+//   auto renderer = app::HeadlessModelRenderer::create(model, {.width = 256, .height = 256});
 //   auto image = renderer->render(weights);
 //   if (auto clean = renderer->checkValidation(); !clean) ...  // FACIAL_VALIDATION=1 runs
 #include <cstdint>
@@ -14,13 +14,13 @@
 
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
-#include "engine/vk/context.h"
-#include "engine/vk/framing_bounds.h"
-#include "engine/vk/gpu_model.h"
-#include "engine/vk/offscreen_renderer.h"
-#include "engine/vk/scene_view.h"
+#include "engine/vk/device/context.h"
+#include "engine/view/framing_bounds.h"
+#include "engine/vk/draw/gpu_model.h"
+#include "engine/vk/draw/offscreen_renderer.h"
+#include "engine/vk/draw/scene_view.h"
 
-namespace cli {
+namespace app {
 
 struct HeadlessRenderOptions {
   uint32_t width = 512;
@@ -28,7 +28,7 @@ struct HeadlessRenderOptions {
   float yawDegrees = 0.0f;    // + = from the face's left
   float pitchDegrees = 0.0f;  // + = from above
   float zoom = 1.0f;          // > 1 = closer
-  eng::vk::FramingMode framing = eng::vk::FramingMode::Face;  // head and neck, or the whole model
+  eng::FramingMode framing = eng::FramingMode::Face;  // head and neck, or the whole model
   std::string device;         // eng::vk::ContextOptions::device
   eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
   eng::vk::RenderQuality quality = eng::vk::RenderQuality::High;  // multisampling, shadows, shading terms
@@ -65,4 +65,4 @@ class HeadlessModelRenderer {
   std::string modelName_;
 };
 
-}  // namespace cli
+}  // namespace app

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <unistd.h>
 
-namespace cli {
+namespace app {
 
 ProgressBar::ProgressBar(std::string label, size_t total, std::FILE* out)
     : label_(std::move(label)),
@@ -40,4 +40,4 @@ void ProgressBar::finish() {
   if (interactive_) std::fprintf(out_, "\n");
 }
 
-}  // namespace cli
+}  // namespace app

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-namespace cli {
+namespace app {
 
 class ProgressBar {
  public:
@@ -23,4 +23,4 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-}  // namespace cli
+}  // namespace app

@@ -5,10 +5,10 @@
 #include <cstdio>
 
 #include "app/progress_bar.h"
-#include "engine/image/gif_writer.h"
+#include "app/gif_writer.h"
 #include "engine/scene/image_io.h"
 
-namespace cli {
+namespace app {
 
 eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
                                             const SequenceOptions& options, const FrameStep& step,
@@ -25,10 +25,10 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
     std::filesystem::create_directories(options.frameDir, ec);
     if (ec) return eng::makeError(eng::ErrorKind::Io, options.frameDir.string() + ": cannot create folder: " + ec.message());
   }
-  std::optional<eng::GifWriter> gif;
+  std::optional<app::GifWriter> gif;
   if (!options.gifPath.empty()) {
     const VkExtent2D extent = renderer.extent();
-    auto created = eng::GifWriter::create(options.gifPath, static_cast<int>(extent.width),
+    auto created = app::GifWriter::create(options.gifPath, static_cast<int>(extent.width),
                                           static_cast<int>(extent.height), options.framesPerSecond);
     if (!created) return created.error();
     gif.emplace(std::move(*created));
@@ -66,4 +66,4 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
   return summary;
 }
 
-}  // namespace cli
+}  // namespace app

@@ -13,10 +13,10 @@
 
 #include "engine/core/result.h"
 #include "engine/image/canvas.h"
-#include "engine/vk/offscreen_renderer.h"
-#include "engine/vk/scene_view.h"
+#include "engine/vk/draw/offscreen_renderer.h"
+#include "engine/vk/draw/scene_view.h"
 
-namespace cli {
+namespace app {
 
 struct SequenceOptions {
   float framesPerSecond = 24.0f;
@@ -48,4 +48,4 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
                                             const SequenceOptions& options, const FrameStep& step,
                                             const FrameSink& sink = {});
 
-}  // namespace cli
+}  // namespace app

@@ -11,7 +11,7 @@
 #include "engine/scene/weights.h"
 #include "facial/runtime/character/gaze_rig.h"
 
-namespace cli {
+namespace app {
 
 std::string skeletalClipList(const eng::Model& model) {
   std::string out;
@@ -116,4 +116,4 @@ void SkeletonMotion::update(float time, const glm::quat& headTurn, const std::ar
   if (eyesMoved) eng::poseWorldMatrices(*model_, pose_, world_);
 }
 
-}  // namespace cli
+}  // namespace app

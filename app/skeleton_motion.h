@@ -21,7 +21,7 @@
 #include "engine/scene/model.h"
 #include "engine/scene/skeleton_pose.h"
 
-namespace cli {
+namespace app {
 
 class SkeletonMotion {
  public:
@@ -71,4 +71,4 @@ class SkeletonMotion {
 // Lists the model's skeletal clips for messages: "0 'Dance' (2.1 s), 1 ...".
 std::string skeletalClipList(const eng::Model& model);
 
-}  // namespace cli
+}  // namespace app

@@ -4,7 +4,7 @@
 
 #include "app/cli_parse.h"
 
-namespace cli {
+namespace app {
 
 void addDeviceOption(CLI::App& app, std::string& device) {
   app.add_option("--device", device,
@@ -18,8 +18,8 @@ void addFramingOption(CLI::App& app, std::string& frame) {
       ->capture_default_str();
 }
 
-eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame) {
-  if (auto mode = eng::vk::parseFramingMode(frame)) return *mode;
+eng::Result<eng::FramingMode> framingModeOption(const std::string& frame) {
+  if (auto mode = eng::parseFramingMode(frame)) return *mode;
   return eng::makeError(eng::ErrorKind::InvalidArgument, "--frame '" + frame + "' is neither 'face' nor 'all'");
 }
 
@@ -119,4 +119,4 @@ eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text) {
   return backdrop;
 }
 
-}  // namespace cli
+}  // namespace app

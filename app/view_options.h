@@ -8,10 +8,10 @@
 
 #include "app/headless_model_renderer.h"
 #include "engine/core/result.h"
-#include "engine/vk/framing_bounds.h"
-#include "engine/vk/render_quality.h"
+#include "engine/view/framing_bounds.h"
+#include "engine/vk/draw/render_quality.h"
 
-namespace cli {
+namespace app {
 
 struct ViewOptions {
   std::string size = "512x512";
@@ -29,7 +29,7 @@ void addDeviceOption(CLI::App& app, std::string& device);
 // --frame face|all, for every command that shows a face (default: face).
 void addFramingOption(CLI::App& app, std::string& frame);
 // The --frame value as a mode; the error names the option and the value.
-eng::Result<eng::vk::FramingMode> framingModeOption(const std::string& frame);
+eng::Result<eng::FramingMode> framingModeOption(const std::string& frame);
 // --quality fast|balanced|high, for every command that draws a face.
 void addQualityOption(CLI::App& app, std::string& quality);
 // The --quality value as a tier; the error names the option and the value.
@@ -53,4 +53,4 @@ void addBackgroundOption(CLI::App& app, std::string& background);
 // "#RRGGBB": that colour. The error names the option and value.
 eng::Result<eng::vk::Backdrop> parseBackground(const std::string& text);
 
-}  // namespace cli
+}  // namespace app

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/vk/vk_result.h"
+#include "engine/vk/device/vk_result.h"
 
-namespace cli {
+namespace app {
 namespace {
 
 // One line for a frame that failed; a lost device ends the run, said plainly.
@@ -84,4 +84,4 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   return {};
 }
 
-}  // namespace cli
+}  // namespace app

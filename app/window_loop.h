@@ -7,10 +7,10 @@
 #include <functional>
 
 #include "engine/core/result.h"
-#include "engine/vk/window.h"
-#include "engine/vk/window_renderer.h"
+#include "engine/vk/present/window.h"
+#include "engine/vk/present/window_renderer.h"
 
-namespace cli {
+namespace app {
 
 struct WindowLoopOptions {
   // Seconds on the animation clock (WindowTick::animationTime), the one a
@@ -44,4 +44,4 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
                                 const std::function<eng::Result<WindowFramePlan>(const WindowTick&)>& frame,
                                 const std::function<void(const std::filesystem::path&)>& shotWritten);
 
-}  // namespace cli
+}  // namespace app

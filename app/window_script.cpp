@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace cli {
+namespace app {
 namespace {
 
 struct Verb {
@@ -114,4 +114,4 @@ eng::Result<std::vector<ScriptAction>> loadWindowScript(const std::filesystem::p
   return parseWindowScript(*text, path.string());
 }
 
-}  // namespace cli
+}  // namespace app

@@ -23,7 +23,7 @@
 
 #include "engine/core/result.h"
 
-namespace cli {
+namespace app {
 
 struct ScriptAction {
   enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Frame, Screenshot, Resize, Iconify, Restore };
@@ -53,4 +53,4 @@ bool parseScriptNumber(const std::string& word, float& value);
 eng::Result<std::vector<ScriptAction>> parseWindowScript(std::string_view text, std::string_view source);
 eng::Result<std::vector<ScriptAction>> loadWindowScript(const std::filesystem::path& path);
 
-}  // namespace cli
+}  // namespace app

@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
-namespace facial {
+namespace bake {
 namespace {
 
-KeyInterpolation keyInterpolation(eng::Interpolation interpolation) {
+facial::KeyInterpolation keyInterpolation(eng::Interpolation interpolation) {
   switch (interpolation) {
-    case eng::Interpolation::Step: return KeyInterpolation::Step;
-    case eng::Interpolation::Linear: return KeyInterpolation::Linear;
-    case eng::Interpolation::CubicSpline: return KeyInterpolation::Hermite;
+    case eng::Interpolation::Step: return facial::KeyInterpolation::Step;
+    case eng::Interpolation::Linear: return facial::KeyInterpolation::Linear;
+    case eng::Interpolation::CubicSpline: return facial::KeyInterpolation::Hermite;
   }
-  return KeyInterpolation::Linear;
+  return facial::KeyInterpolation::Linear;
 }
 
 std::string animationLabel(const eng::Model& model, size_t animation) {
@@ -24,15 +24,15 @@ std::string animationLabel(const eng::Model& model, size_t animation) {
 
 }  // namespace
 
-eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animation, std::vector<std::string>* warnings) {
+eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t animation, std::vector<std::string>* warnings) {
   if (animation >= model.animations.size())
     return eng::makeError(eng::ErrorKind::NotFound, "animation " + std::to_string(animation) + " out of range (" +
                           std::to_string(model.animations.size()) + " animations)");
   const eng::Animation& source = model.animations[animation];
   const std::string label = animationLabel(model, animation);
-  Timeline timeline;
+  facial::Timeline timeline;
   timeline.name = source.name.empty() ? "animation" + std::to_string(animation) : source.name;
-  std::vector<Keyframe> keys;
+  std::vector<facial::Keyframe> keys;
   for (size_t c = 0; c < source.channels.size(); ++c) {
     const eng::WeightsChannel& channel = source.channels[c];
     const std::string where = label + " channel " + std::to_string(c);
@@ -50,10 +50,10 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
                             std::to_string(channel.times.size()) + " keys of " + std::to_string(perKey));
     for (size_t k = 1; k < channel.times.size(); ++k)
       if (!(channel.times[k] > channel.times[k - 1]))
-        return eng::makeError(eng::ErrorKind::Malformed, where + ": key " + std::to_string(k) + " time " + formatNumber(channel.times[k]) +
+        return eng::makeError(eng::ErrorKind::Malformed, where + ": key " + std::to_string(k) + " time " + facial::formatNumber(channel.times[k]) +
                               " is not after the previous one (glTF requires strictly increasing times)");
     if (!channel.times.empty() && channel.times.front() < 0.0f)
-      return eng::makeError(eng::ErrorKind::Malformed, where + ": negative key time " + formatNumber(channel.times.front()));
+      return eng::makeError(eng::ErrorKind::Malformed, where + ": negative key time " + facial::formatNumber(channel.times.front()));
     for (size_t t = 0; t < channel.targetCount; ++t) {
       const std::string& target = mesh.targetNames[t];
       if (timeline.findTrack(target)) {
@@ -62,7 +62,7 @@ eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animati
       }
       keys.clear();
       for (size_t k = 0; k < channel.times.size(); ++k) {
-        Keyframe key{.time = channel.times[k], .interpolation = keyInterpolation(channel.interpolation)};
+        facial::Keyframe key{.time = channel.times[k], .interpolation = keyInterpolation(channel.interpolation)};
         const size_t base = k * perKey;
         if (cubic) {
           key.inTangent = channel.values[base + t];
@@ -97,7 +97,7 @@ eng::Result<ImportedTimelines> importGltfTimelines(const eng::Model& model) {
 namespace {
 
 // Slope of a track just before (left) or after (right) `time`; 0 where it holds.
-float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
+float trackSlope(std::span<const facial::Keyframe> keys, float time, bool left) {
   if (keys.size() < 2) return 0.0f;
   if (left ? time <= keys.front().time : time >= keys.back().time) return 0.0f;
   if (left ? time > keys.back().time : time < keys.front().time) return 0.0f;
@@ -108,7 +108,7 @@ float trackSlope(std::span<const Keyframe> keys, float time, bool left) {
 
 }  // namespace
 
-eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options) {
+eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& timeline, const GltfTimelineExport& options) {
   if (auto valid = timeline.validate(); !valid) return valid.error().prefixed("timeline '" + timeline.name + "': ");
   int node = options.node;
   if (node < 0) {
@@ -120,7 +120,7 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
       if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
       if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
       const std::vector<std::string>& names = model.meshes[m].targetNames;
-      if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const TimelineTrack& track) {
+      if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const facial::TimelineTrack& track) {
             return std::find(names.begin(), names.end(), track.channel) != names.end();
           }))
         node = static_cast<int>(n);
@@ -150,24 +150,24 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
   bool allStep = true, allLinear = true;
   std::vector<float> times;
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
-    const std::span<const Keyframe> keys = timeline.trackKeys(i);
+    const std::span<const facial::Keyframe> keys = timeline.trackKeys(i);
     for (size_t k = 0; k < keys.size(); ++k) {
       times.push_back(keys[k].time);
       if (k + 1 == keys.size()) break;  // the last key's mode shapes no segment
-      allStep = allStep && keys[k].interpolation == KeyInterpolation::Step;
-      allLinear = allLinear && keys[k].interpolation == KeyInterpolation::Linear;
+      allStep = allStep && keys[k].interpolation == facial::KeyInterpolation::Step;
+      allLinear = allLinear && keys[k].interpolation == facial::KeyInterpolation::Linear;
     }
   }
   const bool cubic = !allStep && !allLinear;
   if (cubic) {
     for (size_t i = 0; i < timeline.tracks.size(); ++i) {
-      const std::span<const Keyframe> keys = timeline.trackKeys(i);
+      const std::span<const facial::Keyframe> keys = timeline.trackKeys(i);
       for (size_t k = 0; k + 1 < keys.size(); ++k) {
         const float start = keys[k].time, end = keys[k + 1].time;
-        if (keys[k].interpolation == KeyInterpolation::Cosine) {
+        if (keys[k].interpolation == facial::KeyInterpolation::Cosine) {
           const int pieces = std::max(1, static_cast<int>(std::ceil((end - start) * options.sampleRate)));
           for (int p = 1; p < pieces; ++p) times.push_back(start + (end - start) * static_cast<float>(p) / pieces);
-        } else if (keys[k].interpolation == KeyInterpolation::Step && keys[k].value != keys[k + 1].value) {
+        } else if (keys[k].interpolation == facial::KeyInterpolation::Step && keys[k].value != keys[k + 1].value) {
           times.push_back(end - std::min(options.stepRamp, 0.5f * (end - start)));
         }
       }
@@ -195,7 +195,7 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
     auto value = [&](size_t t) {
       const int track = trackOfTarget[t];
       if (track < 0) return t < mesh.defaultWeights.size() ? mesh.defaultWeights[t] : 0.0f;
-      return sampleKeys(timeline.trackKeys(static_cast<size_t>(track)), time);
+      return facial::sampleKeys(timeline.trackKeys(static_cast<size_t>(track)), time);
     };
     auto slope = [&](bool left) {
       return [&, left](size_t t) {
@@ -211,4 +211,4 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline
   return {};
 }
 
-}  // namespace facial
+}  // namespace bake

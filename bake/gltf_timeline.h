@@ -28,17 +28,17 @@
 #include "engine/scene/model.h"
 #include "facial/runtime/graph/timeline.h"
 
-namespace facial {
+namespace bake {
 
 struct ImportedTimelines {
-  std::vector<Timeline> timelines;    // one per animation with weights channels, in file order
+  std::vector<facial::Timeline> timelines;    // one per animation with weights channels, in file order
   std::vector<std::string> warnings;  // e.g. a target name animated on two meshes (the first kept)
 };
 
 // Animation `animation` of `model` as a timeline. Fails (naming the animation
 // and channel) on inconsistent channel data, unsorted key times, or an
 // animation with no weights channel or no duration.
-eng::Result<Timeline> importGltfTimeline(const eng::Model& model, size_t animation,
+eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t animation,
                                          std::vector<std::string>* warnings = nullptr);
 // Every animation that has weights channels.
 eng::Result<ImportedTimelines> importGltfTimelines(const eng::Model& model);
@@ -51,6 +51,6 @@ struct GltfTimelineExport {
 
 // Appends `timeline` to model.animations as an animation named like it.
 // Fails when the node has no mesh or a track names no target of that mesh.
-eng::Result<void> exportGltfTimeline(eng::Model& model, const Timeline& timeline, const GltfTimelineExport& options = {});
+eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& timeline, const GltfTimelineExport& options = {});
 
-}  // namespace facial
+}  // namespace bake

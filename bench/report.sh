@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces the README's Performance section on this machine, from a clean
+# Reproduces the figures of docs/performance.md on this machine, from a clean
 # checkout (../shared beside it): builds what it needs, runs every
 # measurement, and writes bench/out/report.md (tables) and
 # bench/out/morph_cost.png (the plot). About 15 minutes on 2 cores with

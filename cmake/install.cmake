@@ -1,7 +1,7 @@
 # `cmake --install build --prefix P`: the libraries, their headers, the data the
 # examples play and a CMake package, so an engine's build says
 #   find_package(facial CONFIG REQUIRED)
-#   target_link_libraries(game PRIVATE facial::runtime)   # or facial::c, facial::engine
+#   target_link_libraries(game PRIVATE facial::runtime)   # or facial::c, facial::engine, facial::importers
 # (examples/embed and examples/embed_c; tests/embed_install.cmake builds them).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -20,8 +20,10 @@ install(EXPORT facialRuntime NAMESPACE facial:: FILE facialRuntimeTargets.cmake 
 
 set_target_properties(eng_scene PROPERTIES EXPORT_NAME scene)
 set_target_properties(eng_image PROPERTIES EXPORT_NAME image)
+set_target_properties(eng_view PROPERTIES EXPORT_NAME view)
 set_target_properties(eng_vk PROPERTIES EXPORT_NAME vk)
-install(TARGETS eng_scene eng_image eng_vk facial_engine EXPORT facialEngine
+set_target_properties(facial_importers PROPERTIES EXPORT_NAME importers)
+install(TARGETS eng_scene eng_image eng_view eng_vk facial_engine facial_importers EXPORT facialEngine
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT facialEngine NAMESPACE facial:: FILE facialEngineTargets.cmake DESTINATION ${FACIAL_INSTALL_CMAKEDIR})
@@ -30,9 +32,10 @@ install(EXPORT facialEngine NAMESPACE facial:: FILE facialEngineTargets.cmake DE
 # the public API is include/facial/*.h. detail/ folders hold implementation
 # headers (the graph JSON readers, which throw internally) and stay out.
 install(DIRECTORY facial/include/facial DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY importers/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/importers FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY facial/runtime DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facial FILES_MATCHING PATTERN "*.h"
         PATTERN detail EXCLUDE)
-foreach(part core scene image vk)
+foreach(part core scene image view vk)
   install(DIRECTORY engine/${part} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/engine FILES_MATCHING PATTERN "*.h"
           PATTERN detail EXCLUDE)
 endforeach()

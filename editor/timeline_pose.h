@@ -29,7 +29,7 @@ class TimelinePose {
   eng::Result<void> pose(const TimelineDocument& document, float time, std::span<float> targets);
   size_t unknownTracks() const { return unknownTracks_; }
   // The rig's expression weights of the last pose() when it has an expression
-  // stage (VRM material binds, cli::FaceMaterials); empty otherwise.
+  // stage (VRM material binds, app::FaceMaterials); empty otherwise.
   std::span<const float> expressionWeights() const { return expressionWeights_; }
 
  private:

@@ -38,7 +38,7 @@ void exercise(const eng::Model& model) {
   std::vector<float> full(layout.total(), 1.0f);
   (void)eng::posedBounds(model, pose, full);
   (void)eng::findHeadJoint(model);
-  (void)facial::importGltfTimelines(model);
+  (void)bake::importGltfTimelines(model);
   (void)facial::buildRigMapping(layout.names());
 }
 

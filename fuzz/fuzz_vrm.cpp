@@ -1,9 +1,9 @@
 // VRM 1.0 (VRMC_vrm) and 0.x (VRM.blendShapeMaster) expressions, read the
-// way the face loader reads them (facial/bake/vrm_import.h), and the VRM rig
+// way the face loader reads them (facial/importers/vrm_import.h), and the VRM rig
 // built over the model's morph targets when the two agree.
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
-#include "bake/vrm_import.h"
+#include "importers/vrm_import.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "fuzz/fuzz_support.h"
 
@@ -17,7 +17,7 @@ constexpr eng::GltfLoadLimits kLimits{.maxFileBytes = size_t{8} << 20,
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("input.vrm", data, size);
-  auto vrm = facial::findVrmExpressions(path);
+  auto vrm = importers::findVrmExpressions(path);
   if (!vrm || !*vrm) return 0;
   auto set = std::make_shared<const facial::VrmExpressionSet>(std::move(**vrm));
   auto model = eng::loadModel(path, kLimits);

@@ -1,10 +1,12 @@
-# The layout rules, checked on the sources (run by ctest as layout.Includes):
-#   facial/  the component: includes from engine/ only engine/core, nothing
-#            from bake/, app/, demo/, editor/, and no Vulkan, GLFW or ImGui;
-#   engine/  knows nothing of emotions: nothing from facial/, bake/, app/,
-#            demo/ or editor/;
-#   bake/    offline authoring: nothing from app/, demo/ or editor/;
-#   app/     the application layer: nothing from demo/ or editor/.
+# The layout rules, checked on the sources (run by ctest as layout.Includes).
+# Lower layers never include higher ones:
+#   engine/core < engine/{scene,image} < engine/view < engine/vk/device
+#     < engine/vk/draw < engine/vk/present      (the renderer; no emotions)
+#   facial/      the component: engine/core only, no Vulkan, GLFW or ImGui
+#   importers/   load-time importers: facial/ and engine/
+#   bake/        offline builders: facial/, importers/, engine/
+#   app/         what the program and the editor share
+#   cli/, editor/ the two programs, never each other
 # Usage: cmake -DSOURCE_DIR=<project root> -P layout_check.cmake
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "layout_check.cmake: pass -DSOURCE_DIR=<project root>")
@@ -29,12 +31,20 @@ function(check_includes dir pattern why)
   set(violations ${violations} PARENT_SCOPE)
 endfunction()
 
-check_includes(facial "include[ \t]*[\"<]engine/(scene|vk|image|shaders)/" "facial/ may use engine/core only")
-check_includes(facial "include[ \t]*[\"<](bake|app|demo|editor|tests)/" "facial/ is the component, below the applications")
+check_includes(facial "include[ \t]*[\"<]engine/(scene|vk|view|image|shaders)/" "facial/ may use engine/core only")
+check_includes(facial "include[ \t]*[\"<](importers|bake|app|cli|editor|tests)/" "facial/ is the component, below the applications")
 check_includes(facial "include[ \t]*[\"<](vulkan/|GLFW/|imgui)" "facial/ knows nothing of Vulkan or windows")
-check_includes(engine "include[ \t]*[\"<](facial|bake|app|demo|editor)/" "engine/ knows nothing of emotions")
-check_includes(bake "include[ \t]*[\"<](app|demo|editor)/" "bake/ is below the applications")
-check_includes(app "include[ \t]*[\"<](demo|editor)/" "app/ is shared by demo/ and editor/")
+check_includes(engine "include[ \t]*[\"<](facial|importers|bake|app|cli|editor)/" "engine/ knows nothing of emotions")
+check_includes(engine/core "include[ \t]*[\"<]engine/(scene|image|view|vk)/" "engine/core is the bottom layer")
+check_includes(engine/scene "include[ \t]*[\"<]engine/(image|view|vk)/" "engine/scene is CPU scene data")
+check_includes(engine/view "include[ \t]*[\"<](engine/vk/|vulkan/)" "engine/view is camera maths, no GPU")
+check_includes(engine/vk/device "include[ \t]*[\"<]engine/vk/(draw|present)/" "engine/vk/device is below drawing and presentation")
+check_includes(engine/vk/draw "include[ \t]*[\"<]engine/vk/present/" "engine/vk/draw knows nothing of windows")
+check_includes(importers "include[ \t]*[\"<](bake|app|cli|editor)/" "importers/ is below the applications")
+check_includes(bake "include[ \t]*[\"<](app|cli|editor)/" "bake/ is below the applications")
+check_includes(app "include[ \t]*[\"<](cli|editor)/" "app/ is shared by cli/ and editor/")
+check_includes(editor "include[ \t]*[\"<]cli/" "editor/ and cli/ are separate programs")
+check_includes(cli "include[ \t]*[\"<]editor/" "editor/ and cli/ are separate programs")
 
 if(violations)
   list(JOIN violations "\n  " text)

@@ -11,15 +11,15 @@ Renders every state with `facial express` at each size (px, square) and yaw
 (degrees), runs the judge once over all of them, and prints, per size, the
 states named of 7 at each yaw, then each state's hits over all views and the
 mean number named per view. One view alone overstates a face: this classifier
-flips a state between renders a few pixels or degrees apart, and the README's
-"Expressions, judged" table is this tool's output.
+flips a state between renders a few pixels or degrees apart, and the 12-view
+table in docs/expressions.md is this tool's output.
 
 --crop-scales asks the same of other crops around the judge's face box: at
 scale k the classifier sees a square k times the detector's box (1.2 is the
 judge's own crop, the box and a tenth of it on each side). Whether a face
 reads only on a tighter or a looser crop than the judge's says that the
 expressions carry, and that what the judge misses is the face at the scale
-of its input, not the mix (see the README's "Expressions, judged").
+of its input, not the mix (see docs/expressions.md, "How expressions are judged").
 Needs Debian's python3-opencv and python3-numpy (./bootstrap.sh installs them).
 """
 import argparse

@@ -9,7 +9,7 @@
 
 #include "facial/runtime/rbf.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 // Deltas shorter than this (30 microns, far below a pixel) are treated as no
@@ -151,7 +151,7 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
       weights.push_back(w);
     }
     if (covered.empty()) continue;
-    eng::Result<RbfDeformer> deformer = RbfDeformer::build(controls, points, spec.kernel);
+    eng::Result<facial::RbfDeformer> deformer = facial::RbfDeformer::build(controls, points, spec.kernel);
     if (!deformer) return deformer.error().prefixed(where + ": ");
     std::vector<glm::vec3> out(points.size());
     if (auto r = deformer->apply(displacements, out, weights); !r) return r.error().prefixed(where + ": ");
@@ -189,4 +189,4 @@ eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, co
   return total;
 }
 
-}  // namespace facial
+}  // namespace bake

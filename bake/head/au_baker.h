@@ -14,7 +14,7 @@
 #include "engine/core/result.h"
 #include "bake/head/head_rig_spec.h"
 
-namespace facial {
+namespace bake {
 
 // Every vertex an action unit may move, with what the masks need to know.
 struct DeformableHead {
@@ -44,4 +44,4 @@ struct LandmarkPoints {
 eng::Result<std::vector<glm::vec3>> bakeActionUnit(const ActionUnitDef& unit, const HeadRigSpec& spec,
                                                    const LandmarkPoints& landmarks, const DeformableHead& head);
 
-}  // namespace facial
+}  // namespace bake

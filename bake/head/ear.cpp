@@ -5,7 +5,7 @@
 
 #include <glm/common.hpp>
 
-namespace facial {
+namespace bake {
 namespace {
 
 float bump(float x, float centre, float width) {
@@ -54,4 +54,4 @@ PartMesh buildEar(float side) {
   return ear;
 }
 
-}  // namespace facial
+}  // namespace bake

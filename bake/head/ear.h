@@ -4,9 +4,9 @@
 // deform with any action unit.
 #include "bake/head/part_mesh.h"
 
-namespace facial {
+namespace bake {
 
 // side: +1 left ear (+X), -1 right ear.
 PartMesh buildEar(float side);
 
-}  // namespace facial
+}  // namespace bake

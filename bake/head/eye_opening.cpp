@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace facial {
+namespace bake {
 namespace {
 
 constexpr int kArcSamples = 720;
@@ -95,4 +95,4 @@ glm::vec2 EyeOpening::marginAt(float psi, bool* upper) const {
   return middle_;
 }
 
-}  // namespace facial
+}  // namespace bake

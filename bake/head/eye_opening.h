@@ -8,7 +8,7 @@
 
 #include "bake/head/head_proportions.h"
 
-namespace facial {
+namespace bake {
 
 class EyeOpening {
  public:
@@ -53,4 +53,4 @@ class EyeOpening {
   std::vector<float> loopPsi_;
 };
 
-}  // namespace facial
+}  // namespace bake

@@ -9,7 +9,7 @@
 #include "engine/core/uv_raster.h"
 #include "bake/head/value_noise.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 
@@ -84,4 +84,4 @@ eng::Image paintEyeTexture(const HeadProportions& p, int width, int height) {
   return out;
 }
 
-}  // namespace facial
+}  // namespace bake

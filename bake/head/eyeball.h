@@ -7,9 +7,9 @@
 #include "bake/head/head_proportions.h"
 #include "bake/head/part_mesh.h"
 
-namespace facial {
+namespace bake {
 
 PartMesh buildEyeball(const EyeOpening& eye, const HeadProportions& proportions);
 eng::Image paintEyeTexture(const HeadProportions& proportions, int width, int height);
 
-}  // namespace facial
+}  // namespace bake

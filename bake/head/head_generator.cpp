@@ -21,7 +21,7 @@
 #include "engine/core/uv_raster.h"
 #include "facial/runtime/rig/action_units.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 using glm::vec3;
@@ -235,7 +235,7 @@ eng::Result<eng::Mesh> bakeHeadMesh(const HeadRigSpec& spec, const LandmarkPoint
     prim.indices = prims[p].indices;
     headMesh.primitives.push_back(std::move(prim));
   }
-  for (const ActionUnitInfo& info : actionUnits()) {
+  for (const facial::ActionUnitInfo& info : facial::actionUnits()) {
     const ActionUnitDef* def = nullptr;
     for (const ActionUnitDef& d : spec.actionUnits)
       if (d.name == info.name) def = &d;
@@ -398,4 +398,4 @@ eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptio
   return out;
 }
 
-}  // namespace facial
+}  // namespace bake

@@ -16,7 +16,7 @@
 #include "bake/head/au_baker.h"
 #include "bake/head/head_rig_spec.h"
 
-namespace facial {
+namespace bake {
 
 struct HeadOptions {
   int skinTextureSize = 1024;
@@ -34,4 +34,4 @@ struct GeneratedHead {
 
 eng::Result<GeneratedHead> generateHead(const HeadRigSpec& spec, const HeadOptions& options = {});
 
-}  // namespace facial
+}  // namespace bake

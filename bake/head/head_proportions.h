@@ -4,7 +4,7 @@
 // Only left-side features are stored; the right side is the mirror (x -> -x).
 #include <glm/glm.hpp>
 
-namespace facial {
+namespace bake {
 
 struct HeadProportions {
   // Rays that place the skin grid start here (inside the head, above the
@@ -32,4 +32,4 @@ struct HeadProportions {
   float neckBottomY = -0.160f;
 };
 
-}  // namespace facial
+}  // namespace bake

@@ -13,7 +13,7 @@
 #include "bake/head/skin_painter.h"
 #include "facial/runtime/rig/action_units.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 using nlohmann::json;
@@ -258,9 +258,9 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
       r.object(k, "/kernel");
       r.allowOnly(k, "/kernel", {"type", "k", "c"});
       const std::string type = r.string(r.member(k, "/kernel", "type"), "/kernel/type");
-      if (type == "biharmonic") spec.kernel.type = RbfKernelType::Biharmonic;
-      else if (type == "polyharmonic") spec.kernel.type = RbfKernelType::Polyharmonic;
-      else if (type == "multiquadric") spec.kernel.type = RbfKernelType::Multiquadric;
+      if (type == "biharmonic") spec.kernel.type = facial::RbfKernelType::Biharmonic;
+      else if (type == "polyharmonic") spec.kernel.type = facial::RbfKernelType::Polyharmonic;
+      else if (type == "multiquadric") spec.kernel.type = facial::RbfKernelType::Multiquadric;
       else r.fail("/kernel/type", "expected biharmonic, polyharmonic or multiquadric, found \"" + type + "\"");
       if (k.contains("k")) spec.kernel.k = static_cast<int>(r.number(k["k"], "/kernel/k"));
       if (k.contains("c")) spec.kernel.c = r.number(k["c"], "/kernel/c");
@@ -308,7 +308,7 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
       r.allowOnly(aus[i], path, {"name", "parts", "note"});
       ActionUnitDef au;
       au.name = r.string(r.member(aus[i], path, "name"), path + "/name");
-      if (!actionUnitIndex(au.name))
+      if (!facial::actionUnitIndex(au.name))
         r.fail(path + "/name", "\"" + au.name + "\" is not a channel of facial/runtime/rig/action_units.h");
       if (!seen.insert(au.name).second) r.fail(path + "/name", "action unit \"" + au.name + "\" defined twice");
       const json& parts = r.member(aus[i], path, "parts");
@@ -327,7 +327,7 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
       }
       spec.actionUnits.push_back(std::move(au));
     }
-    for (const ActionUnitInfo& info : actionUnits())
+    for (const facial::ActionUnitInfo& info : facial::actionUnits())
       if (!seen.count(std::string(info.name)))
         r.fail("/actionUnits", "action unit \"" + std::string(info.name) + "\" is missing");
 
@@ -345,7 +345,7 @@ eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view text, const std::stri
         const auto& known = skinDetailLayerNames();
         if (std::find(known.begin(), known.end(), d.layer) == known.end())
           r.fail(path + "/layer", "unknown detail layer \"" + d.layer + "\"");
-        if (!actionUnitIndex(d.target)) r.fail(path + "/target", "\"" + d.target + "\" is not an action unit channel");
+        if (!facial::actionUnitIndex(d.target)) r.fail(path + "/target", "\"" + d.target + "\" is not an action unit channel");
         if (d.strength < 0.0f) r.fail(path + "/strength", "must be >= 0");
         spec.detailLayers.push_back(d);
       }
@@ -364,4 +364,4 @@ eng::Result<HeadRigSpec> loadHeadRigSpec(const std::filesystem::path& path) {
   return parseHeadRigSpec(text.str(), path.string());
 }
 
-}  // namespace facial
+}  // namespace bake

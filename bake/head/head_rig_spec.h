@@ -14,7 +14,7 @@
 #include "engine/core/result.h"
 #include "facial/runtime/rbf.h"
 
-namespace facial {
+namespace bake {
 
 struct LandmarkDef {
   enum class Kind { Surface, Feature, Position };
@@ -74,7 +74,7 @@ struct AnchorDef {
 
 struct HeadRigSpec {
   std::string source;  // file name, for messages
-  RbfKernel kernel;
+  facial::RbfKernel kernel;
   std::vector<LandmarkDef> landmarks;  // mirrored entries already expanded
   std::vector<AnchorDef> anchors;      // fixed in every deformation
   std::vector<ActionUnitDef> actionUnits;
@@ -87,4 +87,4 @@ struct HeadRigSpec {
 eng::Result<HeadRigSpec> parseHeadRigSpec(std::string_view json, const std::string& source);
 eng::Result<HeadRigSpec> loadHeadRigSpec(const std::filesystem::path& path);
 
-}  // namespace facial
+}  // namespace bake

@@ -6,7 +6,7 @@
 
 #include <glm/common.hpp>
 
-namespace facial {
+namespace bake {
 namespace {
 
 using glm::vec2;
@@ -312,4 +312,4 @@ std::optional<glm::vec3> HeadSdf::castOut(const vec3& origin, const vec3& dir, f
   return std::nullopt;
 }
 
-}  // namespace facial
+}  // namespace bake

@@ -9,7 +9,7 @@
 
 #include "bake/head/head_proportions.h"
 
-namespace facial {
+namespace bake {
 
 class HeadSdf {
  public:
@@ -56,4 +56,4 @@ class HeadSdf {
   bool seamGroove_ = true;  // off while the constructor locates the corners
 };
 
-}  // namespace facial
+}  // namespace bake

@@ -4,7 +4,7 @@
 
 #include "engine/core/uv_raster.h"
 
-namespace facial {
+namespace bake {
 
 eng::Image paintMouthInteriorTexture(int height) {
   const int width = 4;
@@ -30,4 +30,4 @@ eng::Image paintMouthInteriorTexture(int height) {
   return out;
 }
 
-}  // namespace facial
+}  // namespace bake

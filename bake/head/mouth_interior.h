@@ -3,8 +3,8 @@
 // at the seam (v = 0) to the dark back of the mouth (v = 1).
 #include "engine/scene/model.h"
 
-namespace facial {
+namespace bake {
 
 eng::Image paintMouthInteriorTexture(int height);
 
-}  // namespace facial
+}  // namespace bake

@@ -5,7 +5,7 @@
 
 #include "bake/head/surface_normals.h"
 
-namespace facial {
+namespace bake {
 
 uint32_t PartMesh::addVertex(const glm::vec3& p, const glm::vec2& uv, uint32_t weldId) {
   const uint32_t v = static_cast<uint32_t>(positions.size());
@@ -63,4 +63,4 @@ PartMesh sphereGrid(int rings, int segments, const std::function<glm::vec3(const
   return m;
 }
 
-}  // namespace facial
+}  // namespace bake

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-namespace facial {
+namespace bake {
 
 struct PartMesh {
   std::vector<glm::vec3> positions;
@@ -26,4 +26,4 @@ struct PartMesh {
 // position = shape(unit direction); uv = (azimuth / 2pi, polar angle / pi).
 PartMesh sphereGrid(int rings, int segments, const std::function<glm::vec3(const glm::vec3&)>& shape);
 
-}  // namespace facial
+}  // namespace bake

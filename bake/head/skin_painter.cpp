@@ -9,7 +9,7 @@
 #include "engine/core/uv_raster.h"
 #include "bake/head/value_noise.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 using glm::vec2;
@@ -355,4 +355,4 @@ SkinImages paintSkin(const SkinSurface& s, const std::vector<glm::vec3>& normals
   return out;
 }
 
-}  // namespace facial
+}  // namespace bake

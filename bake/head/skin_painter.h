@@ -13,7 +13,7 @@
 #include "bake/head/head_sdf.h"
 #include "bake/head/skin_surface.h"
 
-namespace facial {
+namespace bake {
 
 // What the painter knows about the surface under one texel.
 struct SkinTexel {
@@ -61,4 +61,4 @@ struct SkinImages {
 SkinImages paintSkin(const SkinSurface& surface, const std::vector<glm::vec3>& normals,
                      const std::vector<float>& occlusion, const SkinPainter& painter, int baseSize, int detailSize);
 
-}  // namespace facial
+}  // namespace bake

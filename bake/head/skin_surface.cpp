@@ -10,7 +10,7 @@
 
 #include "bake/head/eye_opening.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 using glm::vec2;
@@ -552,4 +552,4 @@ eng::Result<SkinSurface> buildSkinSurface(const HeadProportions& proportions, co
   return SkinBuilder(proportions, sdf).build();
 }
 
-}  // namespace facial
+}  // namespace bake

@@ -15,7 +15,7 @@
 #include "bake/head/head_proportions.h"
 #include "bake/head/head_sdf.h"
 
-namespace facial {
+namespace bake {
 
 enum class SkinPart : uint8_t { Skin = 0, MouthInterior = 1 };
 
@@ -45,4 +45,4 @@ struct SkinSurface {
 
 eng::Result<SkinSurface> buildSkinSurface(const HeadProportions& proportions, const HeadSdf& sdf);
 
-}  // namespace facial
+}  // namespace bake

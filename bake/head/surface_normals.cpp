@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace facial {
+namespace bake {
 
 std::vector<glm::vec3> weldedNormals(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                      std::span<const uint32_t> weldIds) {
@@ -24,4 +24,4 @@ std::vector<glm::vec3> weldedNormals(std::span<const glm::vec3> positions, std::
   return normals;
 }
 
-}  // namespace facial
+}  // namespace bake

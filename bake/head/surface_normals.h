@@ -9,10 +9,10 @@
 
 #include <glm/glm.hpp>
 
-namespace facial {
+namespace bake {
 
 // weldIds[v] < positions.size(); vertices on no triangle get (0, 0, 1).
 std::vector<glm::vec3> weldedNormals(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                      std::span<const uint32_t> weldIds);
 
-}  // namespace facial
+}  // namespace bake

@@ -9,7 +9,7 @@
 
 #include "engine/core/uv_raster.h"
 
-namespace facial {
+namespace bake {
 namespace {
 
 constexpr int kAlong = 84;  // columns along the arch
@@ -142,4 +142,4 @@ eng::Image paintTeethTexture(int width, int height) {
   return out;
 }
 
-}  // namespace facial
+}  // namespace bake

@@ -6,7 +6,7 @@
 #include "engine/scene/model.h"
 #include "bake/head/part_mesh.h"
 
-namespace facial {
+namespace bake {
 
 struct ToothRowShape {
   bool upper = true;
@@ -25,4 +25,4 @@ ToothRowShape lowerToothRow(const glm::vec3& seamCentre);
 PartMesh buildToothRow(const ToothRowShape& shape);
 eng::Image paintTeethTexture(int width, int height);
 
-}  // namespace facial
+}  // namespace bake

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace facial {
+namespace bake {
 
 PartMesh buildTongue(const glm::vec3& seam) {
   const glm::vec3 centre(0.0f, seam.y - 0.0088f, seam.z - 0.036f);
@@ -15,4 +15,4 @@ PartMesh buildTongue(const glm::vec3& seam) {
   });
 }
 
-}  // namespace facial
+}  // namespace bake

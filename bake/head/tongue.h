@@ -2,8 +2,8 @@
 // The tongue: a flattened ellipsoid resting inside the lower tooth arch.
 #include "bake/head/part_mesh.h"
 
-namespace facial {
+namespace bake {
 
 PartMesh buildTongue(const glm::vec3& seamCentre);
 
-}  // namespace facial
+}  // namespace bake

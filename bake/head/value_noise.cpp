@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace facial {
+namespace bake {
 
 float latticeHash(int32_t x, int32_t y, int32_t z, uint32_t seed) {
   uint32_t h = seed * 0x9E3779B1u;
@@ -46,4 +46,4 @@ float fractalNoise(const glm::vec3& p, int octaves, uint32_t seed) {
   return sum / total;
 }
 
-}  // namespace facial
+}  // namespace bake

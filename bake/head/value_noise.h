@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-namespace facial {
+namespace bake {
 
 // Hash of integer lattice coordinates to [0, 1).
 float latticeHash(int32_t x, int32_t y, int32_t z, uint32_t seed);
@@ -15,4 +15,4 @@ float valueNoise(const glm::vec3& p, uint32_t seed);
 // amplitude of the last, normalised to [0, 1).
 float fractalNoise(const glm::vec3& p, int octaves, uint32_t seed);
 
-}  // namespace facial
+}  // namespace bake

@@ -7,7 +7,7 @@
 
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace editor {
 
@@ -48,7 +48,7 @@ facial::Json mapGraph(ControlMapPanel::Layout layout) {
 
 }  // namespace
 
-eng::Result<void> ControlMapPanel::create(const cli::FaceSetup& face) {
+eng::Result<void> ControlMapPanel::create(const app::FaceSetup& face) {
   const std::vector<std::string> names = face.layout().names();
   for (size_t i = 0; i < drivers_.size(); ++i) {
     const auto layout = Layout(i);

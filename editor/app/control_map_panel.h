@@ -25,7 +25,7 @@ class ControlMapPanel {
     glm::vec2 at;
   };
 
-  eng::Result<void> create(const cli::FaceSetup& face);
+  eng::Result<void> create(const app::FaceSetup& face);
   void update(float dt);
   void draw(FaceDelegate& face);
 

@@ -16,7 +16,7 @@
 #include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/view_options.h"
-#include "engine/vk/imgui_layer.h"
+#include "engine/vk/present/imgui_layer.h"
 #include "app/window_loop.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
@@ -25,10 +25,10 @@
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
 #include "editor/app/driver_channels.h"
-#include "engine/vk/context.h"
-#include "engine/vk/framing_bounds.h"
-#include "engine/vk/window.h"
-#include "engine/vk/window_renderer.h"
+#include "engine/vk/device/context.h"
+#include "engine/view/framing_bounds.h"
+#include "engine/vk/present/window.h"
+#include "engine/vk/present/window_renderer.h"
 
 namespace editor {
 
@@ -85,7 +85,7 @@ class EditorApp : public FaceDelegate {
   bool runAction(const EditorScriptAction& action);
   void logTimeline() const;
   void drawControlPoints();
-  eng::vk::OrbitCamera renderCamera() const;
+  eng::OrbitCamera renderCamera() const;
   // World ray through a window pixel.
   void rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const;
   std::span<const float> faceWeights() const;
@@ -93,7 +93,7 @@ class EditorApp : public FaceDelegate {
   std::span<const float> faceExpressionWeights() const;
   eng::Result<void> uploadDisplayModel();
 
-  std::optional<cli::FaceSetup> setup_;
+  std::optional<app::FaceSetup> setup_;
   StateMachinePanel machine_;
   ControlMapPanel controlMap_;
   std::unique_ptr<TimelinePanel> timeline_;
@@ -109,10 +109,10 @@ class EditorApp : public FaceDelegate {
   std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;  // camera: target = face centre, user yaw / pitch / zoom
   eng::Aabb bounds_;  // what the camera frames: the head (F: the whole model)
-  eng::vk::FramingMode framing_ = eng::vk::FramingMode::Face;
+  eng::FramingMode framing_ = eng::FramingMode::Face;
   Layout layout_;
   std::vector<float> displayWeights_;
-  cli::FaceMaterials materials_;  // VRM material binds following the shown expression weights
+  app::FaceMaterials materials_;  // VRM material binds following the shown expression weights
   std::vector<glm::vec3> pointsOnFace_, pointsMoved_;  // control point markers, reused every frame
   eng::vk::ModelInstance instance_;
   bool orbiting_ = false;
@@ -160,18 +160,18 @@ std::span<const float> EditorApp::faceExpressionWeights() const {
 
 int EditorApp::setUp(const EditorOptions& o) {
   uint32_t width = 1280, height = 800;
-  if (!cli::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
-  auto setup = cli::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  if (!app::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   targetNames_ = setup_->layout().names();
-  auto materials = cli::FaceMaterials::create(*setup_);
+  auto materials = app::FaceMaterials::create(*setup_);
   if (!materials) return fail(materials.error().message);
   materials_ = std::move(*materials);
   std::printf("facial-editor: %s, %u morph targets, rig %s\n", setup_->name().c_str(), setup_->weightCount(),
               std::string(facial::rigSchemeName(setup_->rig().scheme())).c_str());
 
-  const std::string graphPath = o.graph.empty() ? (cli::dataDirectory() / "graphs" / "tour.json").string() : o.graph;
+  const std::string graphPath = o.graph.empty() ? (app::dataDirectory() / "graphs" / "tour.json").string() : o.graph;
   if (auto loaded = machine_.load(*setup_, graphPath); !loaded) return fail(loaded.error().message);
   if (!o.trigger.empty() && !machine_.fire(o.trigger))
     return fail(graphPath + ": no trigger parameter named '" + o.trigger + "'");
@@ -179,8 +179,8 @@ int EditorApp::setUp(const EditorOptions& o) {
   timeline_ = std::make_unique<TimelinePanel>(*setup_);
   if (!o.timeline.empty() && !timeline_->open(o.timeline)) return 1;  // the panel logged why
   // Landmarks are in the built-in head's space: offered for that model only.
-  const bool builtIn = o.model.empty() || fs::weakly_canonical(o.model) == fs::weakly_canonical(cli::defaultModelPath());
-  const std::string landmarks = builtIn ? (cli::dataDirectory() / "head_landmarks.json").string() : std::string();
+  const bool builtIn = o.model.empty() || fs::weakly_canonical(o.model) == fs::weakly_canonical(app::defaultModelPath());
+  const std::string landmarks = builtIn ? (app::dataDirectory() / "head_landmarks.json").string() : std::string();
   if (auto created = sculpt_.create(*setup_, landmarks); !created) return fail(created.error().message);
   defaultShot_ = o.screenshot.empty() ? fs::path("facial-editor.png") : fs::path(o.screenshot);
   if (!o.script.empty()) {
@@ -208,7 +208,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   auto ctx = eng::vk::Context::create(contextOptions);
   if (!ctx) return fail("Vulkan: " + ctx.error().message);
   ctx_.emplace(std::move(*ctx));
-  auto quality = cli::windowQualityOption(o.quality, ctx_->deviceInfo().type);
+  auto quality = app::windowQualityOption(o.quality, ctx_->deviceInfo().type);
   if (!quality) return fail(quality.error().message);
   auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
@@ -217,8 +217,8 @@ int EditorApp::setUp(const EditorOptions& o) {
   if (!ui) return fail(ui.error().message);
   ui_ = std::move(*ui);
 
-  bounds_ = eng::vk::framingBounds(setup_->model(), framing_);
-  view_.camera = eng::vk::OrbitCamera::frame(bounds_, 1.0f);
+  bounds_ = eng::framingBounds(setup_->model(), framing_);
+  view_.camera = eng::OrbitCamera::frame(bounds_, 1.0f);
   if (auto uploaded = uploadDisplayModel(); !uploaded) return fail(uploaded.error().message);
   return 0;
 }
@@ -237,16 +237,16 @@ eng::Result<void> EditorApp::uploadDisplayModel() {
 
 // The face centred in the free middle of the window (between the side panels,
 // above the timeline): a lens shift, so orbiting still turns about the face.
-eng::vk::OrbitCamera EditorApp::renderCamera() const {
-  eng::vk::OrbitCamera camera = view_.camera;
+eng::OrbitCamera EditorApp::renderCamera() const {
+  eng::OrbitCamera camera = view_.camera;
   // Framed for the window as it is now (it may have been resized), then moved into the free part.
-  camera.distance = eng::vk::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
+  camera.distance = eng::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
   camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), 0.0f}, {layout_.x1(), layout_.y1()});
   return camera;
 }
 
 void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const {
-  const eng::vk::OrbitCamera camera = renderCamera();
+  const eng::OrbitCamera camera = renderCamera();
   const glm::mat4 inverse = glm::inverse(camera.projection(layout_.width / layout_.height) * camera.view());
   const float x = 2.0f * px / layout_.width - 1.0f, y = 2.0f * py / layout_.height - 1.0f;
   glm::vec4 nearPoint = inverse * glm::vec4(x, y, 0.0f, 1.0f), farPoint = inverse * glm::vec4(x, y, 1.0f, 1.0f);
@@ -259,9 +259,9 @@ void EditorApp::handleViewportInput() {
   if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false) && pendingShot_.empty()) pendingShot_ = defaultShot_;
   if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
     // renderCamera() frames bounds_ each frame; the orbit target follows it.
-    framing_ = framing_ == eng::vk::FramingMode::Face ? eng::vk::FramingMode::All : eng::vk::FramingMode::Face;
-    bounds_ = eng::vk::framingBounds(setup_->model(), framing_);
-    view_.camera.target = eng::vk::OrbitCamera::frame(bounds_, 1.0f).target;
+    framing_ = framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face;
+    bounds_ = eng::framingBounds(setup_->model(), framing_);
+    view_.camera.target = eng::OrbitCamera::frame(bounds_, 1.0f).target;
   }
   timeline_->handleShortcuts();
   const bool overViewport = !io.WantCaptureMouse;
@@ -290,7 +290,7 @@ bool EditorApp::pickAt(float px, float py) {
 
 bool EditorApp::dragSelectedByPixels(float dx, float dy) {
   // Screen-plane drag: pixels to world units at the face's depth.
-  const eng::vk::OrbitCamera camera = renderCamera();
+  const eng::OrbitCamera camera = renderCamera();
   const float d = camera.distance / std::max(camera.zoom, 1e-3f);
   const float worldPerPixel = 2.0f * d * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / layout_.height;
   const glm::vec3 forward = glm::normalize(camera.target - camera.position());
@@ -375,7 +375,7 @@ void EditorApp::runScript(float elapsed) {
 void EditorApp::drawControlPoints() {
   if (sculpt_.points().empty()) return;
   sculpt_.pointsOnFace(faceWeights(), pointsOnFace_, pointsMoved_);
-  const eng::vk::OrbitCamera camera = renderCamera();
+  const eng::OrbitCamera camera = renderCamera();
   const glm::mat4 clip = camera.projection(layout_.width / layout_.height) * camera.view();
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const auto toScreen = [&](const glm::vec3& p, ImVec2& out) {
@@ -439,7 +439,7 @@ void EditorApp::drawPanels() {
 int EditorApp::run(const EditorOptions& o) {
   if (const int error = setUp(o); error != 0) return error;
   int exitCode = 0;
-  auto frame = [&](const cli::WindowTick& tick) -> eng::Result<cli::WindowFramePlan> {
+  auto frame = [&](const app::WindowTick& tick) -> eng::Result<app::WindowFramePlan> {
     frameMs_ = frameMs_ == 0.0f ? 1000.0f * tick.dt : 0.9f * frameMs_ + 0.1f * 1000.0f * tick.dt;
     const VkExtent2D extent = renderer_->extent();
     layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
@@ -458,7 +458,7 @@ int EditorApp::run(const EditorOptions& o) {
     // Sizes were fixed at set-up and the weights come clamped from the rig: cannot fail.
     (void)materials_.update(faceExpressionWeights());
     instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_, {}, materials_.materials()};
-    cli::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
+    app::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
     plan.input.view.camera = renderCamera();
     plan.input.overlay = eng::vk::ImGuiLayer::recorder();
     return plan;
@@ -466,7 +466,7 @@ int EditorApp::run(const EditorOptions& o) {
   auto shotWritten = [&](const fs::path& shot) {
     if (shot == pendingShot_) pendingShot_.clear();
   };
-  if (auto ran = cli::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
+  if (auto ran = app::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
                                     frame, shotWritten);
       !ran) {
     // The window cannot draw any more (a lost device, say): the user's edits

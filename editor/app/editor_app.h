@@ -15,7 +15,7 @@ struct EditorOptions {
   std::string timeline;  // opened in the timeline panel when given
   std::string device;    // Vulkan device (discrete | integrated | cpu | name); empty: FACIAL_DEVICE / automatic
   std::string size = "1280x800";
-  std::string quality = "auto";  // render quality tier: auto | fast | balanced | high (cli::windowQualityOption)
+  std::string quality = "auto";  // render quality tier: auto | fast | balanced | high (app::windowQualityOption)
   std::string trigger;   // fired on the state machine at start
   float quitAfter = 0.0f;
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12

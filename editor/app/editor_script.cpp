@@ -56,10 +56,10 @@ const char* editorScriptActionWord(Kind kind) {
 }
 
 eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view text, std::string_view source) {
-  auto lines = cli::splitTimedScript(text, source);
+  auto lines = app::splitTimedScript(text, source);
   if (!lines) return lines.error();
   std::vector<EditorScriptAction> actions;
-  for (const cli::TimedScriptLine& timed : *lines) {
+  for (const app::TimedScriptLine& timed : *lines) {
     const std::string where = std::string(source) + ":" + std::to_string(timed.line) + ": ";
     auto fail = [&](const std::string& problem) { return eng::makeError(eng::ErrorKind::Malformed, where + problem); };
     const std::vector<std::string>& words = timed.words;
@@ -94,7 +94,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       if (type == 'w') {
         action.text = word;
       } else {
-        if (!cli::parseScriptNumber(word, *numbers[nextNumber]))
+        if (!app::parseScriptNumber(word, *numbers[nextNumber]))
           return fail("'" + word + "' is not a finite number");
         ++nextNumber;
       }
@@ -130,7 +130,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
 }
 
 eng::Result<std::vector<EditorScriptAction>> loadEditorScript(const std::filesystem::path& path) {
-  auto text = cli::readScriptFile(path);
+  auto text = app::readScriptFile(path);
   if (!text) return text.error();
   return parseEditorScript(*text, path.string());
 }

@@ -12,13 +12,13 @@ int main(int argc, char** argv) {
                "and sculpt expressions with RBF control points"};
   app.add_option("--model", o.model,
                  "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, data/head.glb)");
-  cli::addShapeOption(app, o.shapes);
+  app::addShapeOption(app, o.shapes);
   app.add_option("--rigmap", o.rigmap, "Rig map JSON (default: data/rigmaps/<model>.json or the detected scheme)");
   app.add_option("--graph", o.graph, "Animation graph with a state machine (default: data/graphs/tour.json)");
   app.add_option("--timeline", o.timeline, "Timeline JSON to open in the timeline panel");
   app.add_option("--device", o.device, "Vulkan device: discrete, integrated, cpu or a name substring");
   app.add_option("--size", o.size, "Window size WxH")->capture_default_str();
-  cli::addWindowQualityOption(app, o.quality);
+  app::addWindowQualityOption(app, o.quality);
   app.add_option("--trigger", o.trigger, "Fire this state machine trigger at start (e.g. happy)");
   app.add_option("--quit-after", o.quitAfter, "Close after this many seconds of animation (tests; a script's clock, which lags wall time only below 10 frames/s)");
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");

@@ -8,7 +8,7 @@
 
 #include "editor/atomic_file.h"
 #include "engine/scene/gltf_writer.h"
-#include "engine/vk/framing_bounds.h"
+#include "engine/view/framing_bounds.h"
 #include "bake/head/head_rig_spec.h"
 
 namespace editor {
@@ -17,7 +17,7 @@ namespace {
 constexpr const char* kKernelNames[] = {"biharmonic  r", "polyharmonic  r^3", "multiquadric  sqrt(r^2+c^2)"};
 }
 
-eng::Result<void> SculptPanel::create(const cli::FaceSetup& face, const std::string& landmarksFile) {
+eng::Result<void> SculptPanel::create(const app::FaceSetup& face, const std::string& landmarksFile) {
   face_ = &face;
   working_ = face.model();
   rebuildWorkingLayout();
@@ -29,12 +29,12 @@ eng::Result<void> SculptPanel::create(const cli::FaceSetup& face, const std::str
   sculpt_.emplace(surface_->restPositions(), bounds);
   multiquadricC_ = 0.05f * size_;
   if (!landmarksFile.empty()) {
-    auto spec = facial::loadHeadRigSpec(landmarksFile);
+    auto spec = bake::loadHeadRigSpec(landmarksFile);
     if (!spec) return spec.error();
-    for (const facial::LandmarkDef& l : spec->landmarks) {
-      if (l.kind == facial::LandmarkDef::Kind::Surface)
+    for (const bake::LandmarkDef& l : spec->landmarks) {
+      if (l.kind == bake::LandmarkDef::Kind::Surface)
         landmarks_.push_back({l.name, glm::vec3(l.xy, bounds.max.z + size_) + l.offset, true});
-      else if (l.kind == facial::LandmarkDef::Kind::Position)
+      else if (l.kind == bake::LandmarkDef::Kind::Position)
         landmarks_.push_back({l.name, l.position + l.offset, false});
       // Feature landmarks are points only the head generator knows; not offered.
     }

@@ -25,7 +25,7 @@ namespace editor {
 class SculptPanel {
  public:
   // landmarksFile: the built-in head's data/head_landmarks.json, or empty for other models.
-  eng::Result<void> create(const cli::FaceSetup& face, const std::string& landmarksFile);
+  eng::Result<void> create(const app::FaceSetup& face, const std::string& landmarksFile);
   void draw();
 
   // Viewport hooks (the app turns mouse input into world rays and deltas).
@@ -78,7 +78,7 @@ class SculptPanel {
   void clearPoints();
   void rebuildWorkingLayout();
 
-  const cli::FaceSetup* face_ = nullptr;
+  const app::FaceSetup* face_ = nullptr;
   eng::Model working_;  // the face's model plus the targets baked so far
   std::optional<eng::WeightLayout> workingLayout_;
   std::optional<ModelSurface> surface_;

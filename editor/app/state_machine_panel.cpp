@@ -22,7 +22,7 @@ std::optional<facial::NodeIndex> findStateMachine(const facial::GraphDefinition&
 
 }  // namespace
 
-eng::Result<void> StateMachinePanel::load(const cli::FaceSetup& face, const std::string& graphPath) {
+eng::Result<void> StateMachinePanel::load(const app::FaceSetup& face, const std::string& graphPath) {
   face_ = &face;
   auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(face.expressions())});
   if (!graph) return graph.error();

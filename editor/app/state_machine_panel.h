@@ -16,7 +16,7 @@ namespace editor {
 class StateMachinePanel {
  public:
   // Loads `graphPath`; the error names the file.
-  eng::Result<void> load(const cli::FaceSetup& face, const std::string& graphPath);
+  eng::Result<void> load(const app::FaceSetup& face, const std::string& graphPath);
   void update(float dt);
   void draw(FaceDelegate& face);
 
@@ -31,7 +31,7 @@ class StateMachinePanel {
   bool pressTrigger(std::string_view trigger, FaceDelegate& face);
 
  private:
-  const cli::FaceSetup* face_ = nullptr;
+  const app::FaceSetup* face_ = nullptr;
   std::optional<facial::FaceDriver> driver_;
   std::optional<facial::NodeIndex> machine_;
   std::string loadedPath_;

@@ -27,7 +27,7 @@ bool textCaseInsensitiveContains(const std::string& text, const char* filter) {
 
 }  // namespace
 
-TimelinePanel::TimelinePanel(const cli::FaceSetup& face)
+TimelinePanel::TimelinePanel(const app::FaceSetup& face)
     : document_("untitled", 2.0f), pose_(face.rig(), face.baseWeights()), weights_(face.baseWeights().begin(), face.baseWeights().end()) {}
 
 TimelinePanel::~TimelinePanel() {

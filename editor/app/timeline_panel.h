@@ -19,7 +19,7 @@ namespace editor {
 
 class TimelinePanel {
  public:
-  TimelinePanel(const cli::FaceSetup& face);
+  TimelinePanel(const app::FaceSetup& face);
   // Unsaved edits stay in the autosave (the next open recovers them); a clean document removes it.
   ~TimelinePanel();
   TimelinePanel(const TimelinePanel&) = delete;

@@ -9,7 +9,7 @@
 
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
-#include "tests/cli/test_face.h"
+#include "tests/common/test_face.h"
 
 namespace cli_test {
 namespace {

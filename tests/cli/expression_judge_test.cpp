@@ -9,10 +9,10 @@
 // each size) and a floor under what CANDIDE-3 reaches today, so a change that
 // makes a state unreadable fails here. One size alone would
 // overstate a face: this classifier flips states between sizes a pixel or a
-// few degrees apart (the README's grid), so a floor held at one lucky size
+// few degrees apart (the 12-view grid in docs/expressions.md), so a floor held at one lucky size
 // is no floor. The goal is 7 of 7 (this judge names disgust on no face at its
-// own crop); the README's "Expressions, judged" table gives the
-// latest per-tile result. The judge is a signal, not the target: faces are
+// own crop); docs/expressions.md ("How expressions are judged") gives the
+// current per-tile result. The judge is a signal, not the target: faces are
 // fixed at their causes (framing, eyes, light, shape mixes), never tuned to
 // this classifier.
 #include <cstdio>
@@ -92,7 +92,7 @@ void expectRecognised(const std::string& name, const std::string& model, std::in
 }
 
 // The 6 of 7 on both faces, straight on at both sizes. The built-in
-// head reads neutral, happy, surprise and anger in each of the README's 12
+// head reads neutral, happy, surprise and anger in each of docs/expressions.md's 12
 // views and sad and fear in 10 of them; facecap all but disgust in 10-12.
 TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", "", {{256, 6}, {384, 6}}); }
 
@@ -106,7 +106,7 @@ TEST_F(ExpressionJudge, CandideMaskStatesAreNamed) {
 }
 
 TEST_F(ExpressionJudge, RegionSwapToolReportsEachRegionBothWays) {
-  // tools/judge_regions.py, the README's way to find which part of a face
+  // tools/judge_regions.py, docs/expressions.md's way to find which part of a face
   // keeps a state from being named: both crops found, aligned by the eyes,
   // and one verdict per region each way.
   const CommandOutput run = runProgram(

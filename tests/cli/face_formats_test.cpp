@@ -1,4 +1,4 @@
-// Every face format through the one loader (cli::loadFace) and the commands:
+// Every face format through the one loader (app::loadFace) and the commands:
 // VRM 0.x / 1.0 avatars, the CANDIDE-3 mask (with --shape identity
 // parameters), OBJ keyframe folders; and --background for compositing
 // (transparent RGBA with a clean edge, or one colour).
@@ -15,7 +15,7 @@
 #include "engine/scene/glb_container.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
-#include "tests/cli/test_face.h"
+#include "tests/common/test_face.h"
 #include "tests/common/study_obj_set.h"
 #include "tests/common/test_support.h"
 
@@ -126,7 +126,7 @@ TEST(FaceFormats, ShapesBakeIntoTheRestMesh) {
   eng::Model model = makeTestFace();
   const eng::Model original = model;
   const std::vector<std::string> shapes = {"Custom-Shape=0.5"};  // loose spelling of "custom_shape"
-  ASSERT_TRUE(cli::bakeShapes(model, shapes));
+  ASSERT_TRUE(app::bakeShapes(model, shapes));
   const eng::Primitive& before = original.meshes[0].primitives[0];
   const eng::Primitive& after = model.meshes[0].primitives[0];
   const auto& delta = before.targets[kCustom].positions;

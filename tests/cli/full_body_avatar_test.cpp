@@ -168,7 +168,7 @@ TEST(FullBodyAvatar, LoadsAsAnArkitRigAndEveryPresetMovesTheFaceTargets) {
   ASSERT_EQ(rig.exitCode, 0) << rig.err;
   EXPECT_NE(rig.out.find("ARKit"), std::string::npos) << rig.out;
 
-  auto face = cli::FaceSetup::load({.model = avatar});
+  auto face = app::FaceSetup::load({.model = avatar});
   ASSERT_TRUE(face) << face.error().message;
   EXPECT_EQ(face->rig().scheme(), facial::RigScheme::Arkit52);
   ASSERT_EQ(face->model().meshes[0].primitives.size(), 3u);

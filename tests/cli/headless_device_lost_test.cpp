@@ -11,7 +11,7 @@
 
 #include "engine/scene/image_io.h"
 #include "tests/cli/cli_runner.h"
-#include "tests/cli/test_face.h"
+#include "tests/common/test_face.h"
 #include "tests/common/test_support.h"
 
 namespace cli_test {

@@ -48,7 +48,7 @@ class ObjKeyframeSet : public ::testing::Test {
   // runs each test in its own process).
   void SetUp() override {
     dir_ = testing_support::freshTempDir("obj_keyframe_set");
-    auto face = cli::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
+    auto face = app::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
     ASSERT_TRUE(face) << face.error().message;
     testing_support::writeStudyObjSet(
         face->model(), face->weightCount(),

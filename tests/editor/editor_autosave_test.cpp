@@ -47,7 +47,7 @@ TEST(EditorAutosave, TheNextEditorRecoversUnsavedTimelineEdits) {
 }
 
 // A device lost in the middle of editing (injected: lavapipe never loses one,
-// see engine/vk/fault_injection.h). The editor writes the unsaved edits to the
+// see engine/vk/device/fault_injection.h). The editor writes the unsaved edits to the
 // autosave and reports the loss in one line that says where they are, exits 1
 // (no crash, no hang: long before --quit-after) without a validation message;
 // the file itself is untouched and the autosave holds the edits for the next start.

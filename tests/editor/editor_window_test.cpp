@@ -104,7 +104,7 @@ TEST(EditorWindow, ArkitFaceFromShared) {
 TEST(EditorWindow, ConvertedObjExpressionSetPlaysThroughARigMap) {
   REQUIRE_XVFB();
   const fs::path dir = testing_support::freshTempDir("editor_window_obj_set");
-  auto head = cli::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
+  auto head = app::FaceSetup::load({.model = testing_support::sourceDir() / "data" / "head.glb"});
   ASSERT_TRUE(head) << head.error().message;
   testing_support::writeStudyObjSet(
       head->model(), head->weightCount(),

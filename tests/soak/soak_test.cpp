@@ -40,8 +40,8 @@
 
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
-#include "engine/vk/context.h"
-#include "engine/vk/offscreen_renderer.h"
+#include "engine/vk/device/context.h"
+#include "engine/vk/draw/offscreen_renderer.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/rig/expression_library.h"
@@ -193,7 +193,7 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
     instances[i].model = &*gpuModel;
     instances[i].transform = glm::translate(glm::mat4(1.0f), offset);
   }
-  eng::vk::SceneView view{eng::vk::OrbitCamera::frame(crowdBounds)};
+  eng::vk::SceneView view{eng::OrbitCamera::frame(crowdBounds)};
   const bool cpuDevice = context->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
   const uint32_t drawEvery = positiveEnv("FACIAL_SOAK_DRAW_EVERY", cpuDevice ? 20 : 1);
 

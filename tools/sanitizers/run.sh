@@ -9,14 +9,14 @@
 #                                                    (FACIAL_SANITIZE_ALL=0: CI's filters)
 #
 # CI runs every Vulkan-free executable and, on lavapipe with the validation
-# layer on, test_vk (its window tests under xvfb-run), test_cli and test_demo
-# (they run the sanitized `facial` program as a child), test_soak; test_demo
+# layer on, test_engine_vk (its window tests under xvfb-run), test_cli and test_cli_demo
+# (they run the sanitized `facial` program as a child), test_soak; test_cli_demo
 # without its golden repeat of the seven transitions (StudyTransition*, the
 # headless tour's frames again, compared by pixels), test_cli without the
 # expression judge (ExpressionJudge*: the same `express` renders as the other
 # express tests, 42 more of them and the region-swap tool, then Python; 160 of
 # test_cli's 370 s sanitized). Left to
-# FACIAL_SANITIZE_ALL=1: test_demo_window and test_editor, the window demo and
+# FACIAL_SANITIZE_ALL=1: test_cli_demo_window and test_editor, the window demo and
 # the editor driven by xdotool under Xvfb (minutes each, and they also need
 # the sanitized facial-editor built); their programs' leaks are checked in CI
 # by demo_leaks.sh.
@@ -24,7 +24,7 @@
 # The driver is preloaded (LD_PRELOAD) so that it stays mapped until exit:
 # the Vulkan loader dlcloses it at vkDestroyInstance, and a leak whose frames
 # point into an unloaded library has no module name, which lsan.supp cannot
-# match (without the preload test_vk reports 240 bytes in 3 blocks of
+# match (without the preload test_engine_vk reports 240 bytes in 3 blocks of
 # "<unknown module>"; with it, nothing, and no suppression is used).
 # verify_asan_link_order=0 lets the preload come before ASan's runtime.
 #
@@ -36,16 +36,16 @@ cd "$(dirname "$0")/../.."
 
 build="${FACIAL_SANITIZE_BUILD_DIR:-build-sanitize}"
 # Each list longest first (sanitized, on 2 cores: test_cli about 190 s,
-# test_facial_head 100, test_vk 60, test_soak 50, test_demo 35, the rest
+# test_bake_head 100, test_engine_vk 60, test_soak 50, test_cli_demo 35, the rest
 # under 25), so that two at a time finish together.
-vulkan_free=(test_facial_head test_facial_graph test_scene test_editor_files test_facial_rig test_image test_facial_character)
-vulkan_ci=(test_cli test_vk test_soak test_demo)
-vulkan_windows=(test_demo_window test_editor)
+vulkan_free=(test_bake_head test_facial_graph test_engine_scene test_editor_files test_facial_rig test_engine_image test_facial_character)
+vulkan_ci=(test_cli test_engine_vk test_soak test_cli_demo)
+vulkan_windows=(test_cli_demo_window test_editor)
 # What CI leaves out of an executable (a gtest negative filter), unless FACIAL_SANITIZE_ALL=1.
 ci_excluded() {
   [ "${FACIAL_SANITIZE_ALL:-0}" = 1 ] && return
   case "$1" in
-    test_demo) echo "StudyTransition*" ;;
+    test_cli_demo) echo "StudyTransition*" ;;
     test_cli) echo "ExpressionJudge*" ;;
   esac
 }
@@ -82,9 +82,9 @@ run_one() {
   filter="$(ci_excluded "$1")"
   local cmd=("bin/$test" --gtest_brief=1)
   [ -n "$filter" ] && cmd+=("--gtest_filter=-$filter")
-  # Window tests of test_vk need a display; the demo's and the editor's
+  # Window tests of test_engine_vk need a display; the demo's and the editor's
   # start their own virtual X server.
-  [ "$test" = test_vk ] && command -v xvfb-run >/dev/null && cmd=(xvfb-run -a -s "-screen 0 1024x768x24 -noreset" "${cmd[@]}")
+  [ "$test" = test_engine_vk ] && command -v xvfb-run >/dev/null && cmd=(xvfb-run -a -s "-screen 0 1024x768x24 -noreset" "${cmd[@]}")
   local preload=""
   [[ " $FACIAL_SANITIZE_VULKAN " == *" $test "* ]] && [ -f "$FACIAL_SANITIZE_DRIVER" ] && preload="$FACIAL_SANITIZE_DRIVER"
   local start=$SECONDS

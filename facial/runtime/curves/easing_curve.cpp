@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
 

@@ -11,7 +11,7 @@
 #include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/curves/keyframe.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 

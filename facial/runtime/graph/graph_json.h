@@ -27,7 +27,7 @@
 #include "engine/core/result.h"
 #include "facial/runtime/graph/graph_definition.h"
 #include "facial/runtime/graph/preset_lookup.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 

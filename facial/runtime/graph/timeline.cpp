@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
 

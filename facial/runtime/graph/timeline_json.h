@@ -10,7 +10,7 @@
 
 #include "engine/core/result.h"
 #include "facial/runtime/graph/timeline.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 

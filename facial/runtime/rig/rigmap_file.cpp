@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "facial/runtime/rig/action_units.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 namespace {

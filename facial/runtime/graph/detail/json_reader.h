@@ -22,7 +22,7 @@
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/curves/keyframe.h"
 #include "facial/runtime/graph/timeline.h"
-#include "facial/runtime/rig/json_document.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace facial::detail {
 

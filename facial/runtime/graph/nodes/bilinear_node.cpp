@@ -8,7 +8,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/graph/pose_jobs.h"
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
 

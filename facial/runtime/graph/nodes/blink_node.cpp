@@ -10,7 +10,7 @@
 #include "facial/runtime/graph/nodes/build_context.h"
 #include "facial/runtime/graph/nodes/eval_context.h"
 #include "facial/runtime/rig/action_units.h"
-#include "facial/runtime/rig/json_document.h"  // formatNumber
+#include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
 

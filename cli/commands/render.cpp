@@ -1,0 +1,109 @@
+// `facial render MODEL [--weight NAME=VALUE]... [--size WxH] [--yaw DEG]
+//  [--pitch DEG] [--zoom F] [--device D] --out FILE.png`
+// Renders one frame headless (lavapipe or a GPU) with the model's default
+// weights, overridden by --weight, and writes a PNG.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/cli_parse.h"
+#include "cli/command.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/view_options.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/image_io.h"
+#include "engine/scene/weights.h"
+
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::render_command {
+namespace {
+
+struct RenderOptions {
+  std::string model;
+  std::vector<std::string> weights;
+  std::vector<std::string> shapes;
+  app::ViewOptions view;
+  std::string out;
+};
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial render: error: %s\n", message.c_str());
+  return 1;
+}
+
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+// A few names to suggest: those containing the unknown name first, then the first ones.
+std::string suggestNames(const std::vector<std::string>& names, const std::string& unknown) {
+  std::vector<std::string> picks;
+  for (const std::string& n : names) {
+    if (picks.size() < 8 && lower(n).find(lower(unknown)) != std::string::npos) picks.push_back(n);
+  }
+  for (const std::string& n : names) {
+    if (picks.size() >= 8) break;
+    if (std::find(picks.begin(), picks.end(), n) == picks.end()) picks.push_back(n);
+  }
+  std::string text;
+  for (const std::string& n : picks) text += (text.empty() ? "" : ", ") + n;
+  return text + (names.size() > picks.size() ? ", ... (" + std::to_string(names.size()) + " in all)" : "");
+}
+
+int runRender(const RenderOptions& o) {
+  auto renderOptions = app::headlessRenderOptions(o.view);
+  if (!renderOptions) return fail(renderOptions.error().message);
+
+  auto face = app::loadFace(o.model, o.shapes);
+  if (!face) return fail(face.error().message);
+  const eng::Model* model = &face->model;
+  const eng::WeightLayout layout(*model);
+  std::vector<float> weights = layout.defaults();
+  for (const std::string& assignment : o.weights) {
+    const size_t eq = assignment.rfind('=');
+    float value = 0.0f;
+    if (eq == std::string::npos || eq == 0 || !app::parseFloat(std::string_view(assignment).substr(eq + 1), value))
+      return fail("--weight '" + assignment + "' is not NAME=VALUE with a finite number");
+    const std::string name = assignment.substr(0, eq);
+    const eng::Result<int> matched = layout.setByName(weights, name, value);
+    if (!matched) return fail(matched.error().message);
+    if (*matched == 0) {
+      const std::vector<std::string> names = layout.names();
+      if (names.empty()) return fail(o.model + ": has no morph targets, cannot set weight '" + name + "'");
+      return fail(o.model + ": no morph target named '" + name + "'; available: " + suggestNames(names, name));
+    }
+  }
+
+  auto renderer = app::HeadlessModelRenderer::create(*model, *renderOptions);
+  if (!renderer) return fail(renderer.error().message);
+  auto image = renderer->render(weights);
+  if (!image) return fail(image.error().message);
+  if (auto written = eng::writePng(o.out, image->width, image->height, image->rgba8); !written)
+    return fail(written.error().message);
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  std::printf("wrote %s (%ux%u, %s)\n", o.out.c_str(), renderOptions->width, renderOptions->height,
+              renderer->deviceName().c_str());
+  return 0;
+}
+
+CommandRegistrar reg("render", "Render a model to a PNG, headless", [](CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
+  app.add_option("--weight,-w", o->weights, "Morph weight override NAME=VALUE (repeatable; all meshes with that target)");
+  app::addShapeOption(app, o->shapes);
+  app::addViewOptions(app, o->view);
+  app.add_option("--out,-o", o->out, "Output PNG file")->required();
+  return [o] { return runRender(*o); };
+});
+
+}  // namespace
+}  // namespace cli::render_command

@@ -1,0 +1,94 @@
+// `facial rig MODEL [--rigmap FILE] [--shape NAME=VALUE]... [--json]`: how
+// the runtime drives a face (any format loadFace reads): the rig mapping's
+// scheme, how each emotion is realised (composed ones say from what), the
+// VRM expression stage, visemes, the targets no input drives, the inputs that
+// drive nothing, and the mapping's notes.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/command.h"
+#include "app/face_setup.h"
+#include "engine/scene/gltf_loader.h"
+#include "facial/runtime/character/gaze_rig.h"
+
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::rig_command {
+namespace {
+
+struct RigOptions {
+  std::string model;
+  std::string rigmap;
+  std::vector<std::string> shapes;
+  bool json = false;
+};
+
+nlohmann::ordered_json toJson(const std::string& modelPath, app::FaceFormat format,
+                              const facial::RigCalibration& calibration, const std::string& gaze) {
+  const facial::RigMapping& rig = calibration.rig;
+  const facial::RigMappingReport& report = rig.report();
+  nlohmann::ordered_json units = nlohmann::ordered_json::array();
+  for (const facial::ActionUnitCalibration& u : calibration.units)
+    units.push_back({{"channel", u.channel}, {"reach", u.reach}, {"reference", u.reference}, {"scale", u.scale}});
+  return {{"model", modelPath},
+          {"format", std::string(app::faceFormatName(format))},
+          {"scheme", std::string(facial::rigSchemeName(report.scheme))},
+          {"detail", report.detail},
+          {"expressionStage", report.stage},
+          {"emotions", report.emotions},
+          {"visemes", report.visemes},
+          {"unmappedExpressions", report.unmappedControls},
+          {"targetCount", rig.targetCount()},
+          {"drivenTargetCount", rig.drivenTargets().size()},
+          {"unmappedTargets", report.unmappedTargets},
+          {"unmappedInputs", report.unmappedInputs},
+          {"notes", report.notes},
+          {"gaze", gaze},
+          {"calibration", units}};
+}
+
+int runRig(const RigOptions& o) {
+  auto face = app::loadFace(o.model, o.shapes);
+  if (!face) {
+    std::fprintf(stderr, "facial rig: error: %s\n", face.error().message.c_str());
+    return 1;
+  }
+  auto rig = app::buildFaceRig(*face, o.rigmap);
+  if (!rig) {
+    std::fprintf(stderr, "facial rig: error: %s\n", rig.error().message.c_str());
+    return 1;
+  }
+  // Which morph targets steer the eyes (the window demo's idle life and facial::Character drive them).
+  const std::vector<std::string> names = eng::WeightLayout(face->model).names();
+  std::string gaze = facial::GazeRig::create(names, face->vrm.get()).describe();
+  if (face->vrm && face->vrm->lookAt.type == facial::VrmLookAtType::Bone) gaze += " (VRM lookAt: eye bones)";
+  if (o.json) {
+    std::printf("%s\n",
+                toJson(o.model, face->format, *rig, gaze).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  } else {
+    std::printf("%s (%s): %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(),
+                std::string(app::faceFormatName(face->format)).c_str(), rig->rig.targetCount(),
+                rig->rig.drivenTargets().size(), rig->rig.report().summary().c_str());
+    std::printf("gaze: %s\n", gaze.c_str());
+    if (!rig->units.empty())
+      std::printf("action-unit strength calibration (largest vertex travel at 1 / face height):\n%s",
+                  rig->summary().c_str());
+  }
+  return 0;
+}
+
+CommandRegistrar reg("rig", "Show how the expression runtime drives a model (rig mapping report)", [](CLI::App& app) {
+  auto o = std::make_shared<RigOptions>();
+  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
+  app.add_option("--rigmap", o->rigmap, "Rig map JSON to use instead of <data>/rigmaps/<model>.json or detection");
+  app::addShapeOption(app, o->shapes);
+  app.add_flag("--json", o->json, "Print machine-readable JSON instead of text");
+  return [o] { return runRig(*o); };
+});
+
+}  // namespace
+}  // namespace cli::rig_command

@@ -1,0 +1,169 @@
+// `facial sheet [--model M] [--compound] [--size N] [--intensity X]
+//  [--zoom F] [--device D] --out sheet.png`
+// A labelled contact sheet of a model posed with the basic states (neutral
+// and the six basic emotions) or, with --compound, the compound presets.
+// Every tile comes from ONE headless renderer (one Vulkan context, one
+// upload) and one fixed camera, so tiles compare like for like.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/view/face_framing.h"
+#include "cli/command.h"
+#include "app/view_options.h"
+#include "app/face_materials.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "engine/image/contact_sheet.h"
+#include "engine/image/text.h"
+#include "engine/scene/image_io.h"
+#include "facial/runtime/rig/emotions.h"
+
+// Each command in a namespace of its own: the commands are compiled several
+// to a unit (demo/CMakeLists.txt), where their file-local names would clash.
+namespace cli::sheet_command {
+namespace {
+
+struct SheetOptions {
+  std::string model;
+  std::string rigmap;
+  std::vector<std::string> shapes;
+  std::string background;
+  bool compound = false;
+  uint32_t size = 256;
+  float intensity = 1.0f;
+  // Why closer than `render`: the camera frames the model with every target
+  // at full weight (neck and hair included); expressions read in the face.
+  float zoom = eng::kSheetTileZoom;
+  bool zoomGiven = false;  // an explicit --zoom is taken as it is
+  std::string frame = "face";
+  std::string device;
+  std::string quality = "high";
+  std::string out;
+};
+
+int fail(const std::string& message) {
+  std::fprintf(stderr, "facial sheet: error: %s\n", message.c_str());
+  return 1;
+}
+
+// "happily_surprised" -> "happily surprised"
+std::string labelOf(const std::string& presetName) {
+  std::string label = presetName;
+  std::replace(label.begin(), label.end(), '_', ' ');
+  return label;
+}
+
+// The largest label size (at most a tenth of the tile, 12..28 px) at which
+// every label fits its tile's width.
+float labelHeightFor(const eng::TextRenderer& text, const std::vector<eng::ContactSheetTile>& tiles, int tileWidth) {
+  float height = std::clamp(float(tileWidth) / 10.0f, 12.0f, 28.0f);
+  for (const eng::ContactSheetTile& tile : tiles)
+    while (height > 8.0f && text.measure(tile.label, height) > tileWidth - 4) height -= 1.0f;
+  return height;
+}
+
+int runSheet(const SheetOptions& o) {
+  if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
+  if (o.intensity < 0.0f || o.intensity > 1.0f)
+    std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
+  auto framing = app::framingModeOption(o.frame);
+  if (!framing) return fail(framing.error().message);
+  auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  if (!face) return fail(face.error().message);
+  // Basic: exactly the emotion channels, in their order (neutral first).
+  std::vector<const facial::ExpressionPreset*> presets;
+  if (o.compound) {
+    presets = face->presets(true);
+    if (presets.empty()) return fail("the expression presets hold no compound expressions");
+  } else {
+    for (std::string_view emotion : facial::emotionNames()) {
+      auto preset = face->findExpression(emotion);
+      if (!preset) return fail(preset.error().message);
+      presets.push_back(*preset);
+    }
+  }
+
+  auto backdrop = app::parseBackground(o.background);
+  if (!backdrop) return fail(backdrop.error().message);
+  auto quality = app::qualityOption(o.quality);
+  if (!quality) return fail(quality.error().message);
+  auto renderer = app::HeadlessModelRenderer::create(face->model(), {.width = o.size,
+                                                                .height = o.size,
+                                                                .zoom = o.zoomGiven ? o.zoom
+                                                                                    : faceViewZoom(face->model(), *framing,
+                                                                                                   o.zoom, 1.0f),
+                                                                .framing = *framing,
+                                                                .device = o.device,
+                                                                .backdrop = *backdrop,
+                                                                .quality = *quality});
+  if (!renderer) return fail(renderer.error().message);
+  std::vector<float> weights(face->weightCount()), vrmExpressions(face->vrmExpressionCount());
+  auto materials = app::FaceMaterials::create(*face);  // VRM material binds follow each tile's expression
+  if (!materials) return fail(materials.error().message);
+  std::vector<eng::ContactSheetTile> tiles;
+  for (const facial::ExpressionPreset* preset : presets) {
+    if (auto posed = face->expressionWeights(*preset, o.intensity, weights, vrmExpressions); !posed)
+      return fail(posed.error().message);
+    if (auto moved = materials->update(vrmExpressions); !moved) return fail(moved.error().message);
+    auto image = renderer->render(weights, materials->materials());
+    if (!image) return fail(image.error().message);
+    eng::ContactSheetTile tile;
+    tile.image.width = image->width;
+    tile.image.height = image->height;
+    tile.image.rgba = std::move(image->rgba8);
+    tile.label = labelOf(preset->name);
+    tiles.push_back(std::move(tile));
+  }
+
+  auto text = eng::TextRenderer::create();
+  if (!text) return fail(text.error().message);
+  eng::ContactSheetOptions sheetOptions;
+  sheetOptions.columns = std::min<int>(5, int(tiles.size() + 1) / 2);
+  sheetOptions.labelHeight = labelHeightFor(*text, tiles, int(o.size));
+  // A transparent sheet keeps only the faces and the labels.
+  if (backdrop->kind == eng::vk::Backdrop::Kind::Transparent) sheetOptions.background = {0, 0, 0, 0};
+  sheetOptions.title = face->name() + ": " + (o.compound ? "compound expressions" : "basic expressions") +
+                       ", rig: " + std::string(facial::rigSchemeName(face->rig().scheme()));
+  auto sheet = eng::composeContactSheet(tiles, sheetOptions);
+  if (!sheet) return fail(sheet.error().message);
+  if (auto written = eng::writePng(o.out, sheet->width, sheet->height, sheet->rgba); !written)
+    return fail(written.error().message);
+  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  std::printf("wrote %s (%zu %s expressions of %s, %dx%d, %s)\n", o.out.c_str(), tiles.size(),
+              o.compound ? "compound" : "basic", face->name().c_str(), sheet->width, sheet->height,
+              renderer->deviceName().c_str());
+  return 0;
+}
+
+CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expressions, headless", [](CLI::App& app) {
+  auto o = std::make_shared<SheetOptions>();
+  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addShapeOption(app, o->shapes);
+  app::addBackgroundOption(app, o->background);
+  app.add_flag("--compound", o->compound, "The compound presets instead of neutral and the six basic emotions");
+  app.add_option("--size", o->size, "Tile size in pixels (square)")
+      ->check(CLI::Range(16u, 4096u))
+      ->capture_default_str();
+  app.add_option("--intensity,-i", o->intensity, "Strength of every preset, clamped to [0, 1]")
+      ->check(CLI::Number)
+      ->capture_default_str();
+  CLI::Option* zoom = app.add_option("--zoom", o->zoom,
+                                     "Zoom factor (> 1 = closer; by default as close as keeps the face's features "
+                                     "in the tile)")
+                          ->capture_default_str();
+  app::addFramingOption(app, o->frame);
+  app::addDeviceOption(app, o->device);
+  app::addQualityOption(app, o->quality);
+  app.add_option("--out,-o", o->out, "Output PNG file")->required();
+  return [o, zoom] {
+    o->zoomGiven = zoom->count() > 0;
+    return runSheet(*o);
+  };
+});
+
+}  // namespace
+}  // namespace cli::sheet_command

@@ -1,0 +1,613 @@
+#include "engine/vk/draw/gpu_model.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "engine/vk/device/descriptor_write.h"
+#include "engine/core/log.h"
+#include "engine/scene/crease_shading.h"
+#include "engine/scene/face_dressing.h"
+#include "engine/scene/mesh_lod.h"
+#include "engine/scene/posed_bounds.h"
+#include "engine/scene/weights.h"
+#include "engine/vk/draw/detail_array.h"
+#include "engine/view/scene_mesh_nodes.h"
+#include "engine/vk/draw/texture.h"
+#include "engine/vk/device/vk_result.h"
+
+namespace eng::vk {
+namespace {
+
+// Used by primitives with material -1: a light neutral clay.
+Material defaultMaterial() {
+  Material m;
+  m.name = "default";
+  m.baseColorFactor = glm::vec4(0.80f, 0.78f, 0.76f, 1.0f);
+  m.roughness = 0.6f;
+  m.metallic = 0.0f;
+  return m;
+}
+
+}  // namespace
+
+// Appends byte ranges at aligned offsets; the result becomes one buffer.
+// Outside the anonymous namespace: GpuModel::Staging (declared in the header)
+// holds these, and a type with linkage must not hold a file-local one.
+class ByteBlob {
+ public:
+  VkDeviceSize append(const void* data, size_t size, VkDeviceSize alignment) {
+    VkDeviceSize offset = alignUp(alignment);
+    bytes_.resize(offset + size);
+    if (data) std::memcpy(bytes_.data() + offset, data, size);  // else stays zero
+    return offset;
+  }
+  template <class T>
+  VkDeviceSize append(std::span<const T> items, VkDeviceSize alignment) {
+    return append(items.data(), items.size_bytes(), alignment);
+  }
+  std::span<std::byte> range(VkDeviceSize offset, size_t size) { return {bytes_.data() + offset, size}; }
+  const std::vector<std::byte>& bytes() const { return bytes_; }
+  bool empty() const { return bytes_.empty(); }
+
+ private:
+  VkDeviceSize alignUp(VkDeviceSize alignment) {
+    VkDeviceSize offset = (bytes_.size() + alignment - 1) / alignment * alignment;
+    bytes_.resize(offset);
+    return offset;
+  }
+  std::vector<std::byte> bytes_;
+};
+
+namespace {
+
+std::string where(const Model& model, size_t mesh, size_t primitive) {
+  std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
+  return file + ": mesh " + std::to_string(mesh) + " primitive " + std::to_string(primitive);
+}
+
+// Target indices travel as float values, exact up to 2^24.
+constexpr size_t kMaxSparseTargets = size_t{1} << 24;
+
+// The sparse, vertex-major deltas of one primitive (morph.glsl), sliced:
+// vertices go in slices of kMorphSliceLanes consecutive vertices, and a
+// slice's k-th row holds the k-th entry of each of its vertices side by
+// side, so the lanes that morph neighbouring vertices read neighbouring
+// texels (a SIMD lane per vertex on a CPU device, a warp on a GPU) instead
+// of one scattered entry list each. A vertex's entries are one per
+// (vertex, target) pair that moves a position, normal or tangent or darkens
+// a crease, in target order; a slice has as many rows as its busiest vertex
+// has entries, the others padded with entries that add nothing.
+// Layout: offsets[s] is slice s's first row (slices + 1 values); row r's
+// planes follow each other, each kMorphSliceLanes texels, one per lane:
+//   entries[(r * planes + plane) * kMorphSliceLanes + lane]
+// planes: position delta + target index (as a float), normal delta + crease
+// darkening, then the tangent delta where the primitive has tangent deltas.
+constexpr uint32_t kMorphSliceLanes = 8;  // morph.glsl's MORPH_SLICE_LANES
+
+struct SparseDeltas {
+  std::vector<uint32_t> offsets;
+  std::vector<glm::vec4> entries;
+  bool hasNormals = false, hasTangents = false, hasCreases = false;
+};
+
+SparseDeltas compactDeltas(const Primitive& prim) {
+  SparseDeltas out;
+  for (const MorphTarget& t : prim.targets) {
+    out.hasNormals |= !t.normals.empty();
+    out.hasTangents |= !t.tangents.empty();
+  }
+  const std::vector<float> darkening = bakeCreaseDarkening(prim);
+  out.hasCreases = hasCreases(darkening);
+  const size_t n = prim.vertexCount();
+  const size_t planes = out.hasTangents ? 3 : 2;
+  auto at = [](const std::vector<glm::vec3>& deltas, size_t v) { return deltas.empty() ? glm::vec3(0.0f) : deltas[v]; };
+  // One vertex's entries, planes in order.
+  std::vector<glm::vec4> vertexEntries[kMorphSliceLanes];
+  const size_t slices = (n + kMorphSliceLanes - 1) / kMorphSliceLanes;
+  out.offsets.reserve(slices + 1);
+  uint32_t rows = 0;
+  for (size_t slice = 0; slice < slices; ++slice) {
+    out.offsets.push_back(rows);
+    size_t sliceRows = 0;
+    for (uint32_t lane = 0; lane < kMorphSliceLanes; ++lane) {
+      std::vector<glm::vec4>& list = vertexEntries[lane];
+      list.clear();
+      const size_t v = slice * kMorphSliceLanes + lane;
+      if (v >= n) continue;
+      for (size_t t = 0; t < prim.targets.size(); ++t) {
+        const MorphTarget& target = prim.targets[t];
+        const glm::vec3 position = at(target.positions, v), normal = at(target.normals, v);
+        const glm::vec3 tangent = at(target.tangents, v);
+        const float crease = out.hasCreases ? darkening[t * n + v] : 0.0f;
+        if (position == glm::vec3(0.0f) && normal == glm::vec3(0.0f) && tangent == glm::vec3(0.0f) && crease == 0.0f)
+          continue;  // adds exactly nothing
+        // The index as a float value, not its bits (small integers' bits are
+        // denormals, which a GPU's texel fetch may flush); exact below 2^24.
+        list.emplace_back(position, static_cast<float>(t));
+        list.emplace_back(normal, crease);
+        if (out.hasTangents) list.emplace_back(tangent, 0.0f);
+      }
+      sliceRows = std::max(sliceRows, list.size() / planes);
+    }
+    // Padding: zero deltas naming target 0, which add nothing whatever its weight.
+    const size_t first = out.entries.size();
+    out.entries.resize(first + sliceRows * planes * kMorphSliceLanes, glm::vec4(0.0f));
+    for (uint32_t lane = 0; lane < kMorphSliceLanes; ++lane)
+      for (size_t e = 0; e < vertexEntries[lane].size(); ++e) {
+        const size_t row = e / planes, plane = e % planes;
+        out.entries[first + (row * planes + plane) * kMorphSliceLanes + lane] = vertexEntries[lane][e];
+      }
+    rows += static_cast<uint32_t>(sliceRows);
+  }
+  out.offsets.push_back(rows);  // no row at all: no target moves anything, entries stay empty
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+// Whether the material's primitives are also drawn as an MToon outline (a
+// blended surface has no depth to hide the hull's inside behind).
+bool hasOutline(const Material& mat) {
+  return mat.toon && mat.toon->outlineMode != ToonShading::OutlineWidth::None && mat.toon->outlineWidth > 0.0f &&
+         mat.alphaMode != AlphaMode::Blend;
+}
+
+}  // namespace
+
+InstanceMaterial instanceMaterial(const Material& mat) {
+  InstanceMaterial out;
+  out.baseColorFactor = mat.baseColorFactor;
+  out.emissive = glm::vec4(mat.emissiveFactor, 0.0f);
+  if (const std::optional<ToonShading>& t = mat.toon) {
+    out.toonShade = glm::vec4(t->shadeColor, t->rimLift);
+    out.toonShading = glm::vec4(t->shadingShift, t->shadingToony, t->giEqualization, t->rimLightingMix);
+    out.toonRim = glm::vec4(t->rimColor, t->rimFresnelPower);
+    out.toonOutline = glm::vec4(t->outlineColor, t->outlineWidth);
+    const float mode = t->outlineMode == ToonShading::OutlineWidth::World    ? 1.0f
+                       : t->outlineMode == ToonShading::OutlineWidth::Screen ? 2.0f
+                                                                             : 0.0f;
+    out.toonOutlineStyle = glm::vec4(mode, t->outlineLightingMix, 0.0f, 0.0f);
+  }
+  return out;
+}
+
+// Byte ranges of one primitive's data in the staging blobs (declared in gpu_model.h).
+struct PrimitiveRanges {
+  VkDeviceSize morphOffsets = 0, morphOffsetsSize = 0;  // size 0: no deltas
+  VkDeviceSize morphEntries = 0, morphEntriesSize = 0;
+  VkDeviceSize rest = 0, restSize = 0;  // rest position .. tangent arrays in the vertex buffer
+  VkDeviceSize detail = 0;
+  VkDeviceSize skin = 0;
+};
+
+namespace {
+
+
+// Vertex and index arrays of one primitive. The position array starts at a
+// storage-buffer offset: the morph pre-pass reads position .. tangent as one
+// storage range (DrawConstants::rest* are float offsets into it).
+GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, VkDeviceSize storageAlign,
+                            PrimitiveRanges& ranges) {
+  const size_t n = prim.vertexCount();
+  GpuPrimitive gp;
+  gp.vertexCount = static_cast<uint32_t>(n);
+  gp.indexCount = static_cast<uint32_t>(prim.indices.size());
+  Aabb box;
+  for (const glm::vec3& p : prim.positions) box.extend(p);
+  gp.centre = box.valid() ? box.center() : glm::vec3(0.0f);
+  gp.positionOffset = vertices.append(std::span(prim.positions), storageAlign);
+  gp.normalOffset = vertices.append(std::span(prim.normals), 16);
+  gp.texcoordOffset = prim.texcoords.empty() ? vertices.append(nullptr, n * sizeof(glm::vec2), 16)
+                                             : vertices.append(std::span(prim.texcoords), 16);
+  gp.tangentOffset = prim.tangents.empty() ? vertices.append(nullptr, n * sizeof(glm::vec4), 16)
+                                           : vertices.append(std::span(prim.tangents), 16);
+  ranges.rest = gp.positionOffset;
+  ranges.restSize = gp.tangentOffset + n * sizeof(glm::vec4) - gp.positionOffset;
+  gp.constants.restPosition = 0;
+  gp.constants.restNormal = static_cast<uint32_t>((gp.normalOffset - gp.positionOffset) / sizeof(float));
+  gp.constants.restTangent = static_cast<uint32_t>((gp.tangentOffset - gp.positionOffset) / sizeof(float));
+  if (prim.colors.size() == n) {
+    gp.colorOffset = vertices.append(std::span(prim.colors), 16);
+  } else {
+    const std::vector<glm::vec4> white(n, glm::vec4(1.0f));
+    gp.colorOffset = vertices.append(std::span(white), 16);
+  }
+  gp.indexOffset = indices.append(std::span(prim.indices), 16);
+  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices))
+    gp.lods.push_back({indices.append(std::span(level.indices), 16), static_cast<uint32_t>(level.indices.size()),
+                       level.error});
+  return gp;
+}
+
+// Joint influences as skin.glsl reads them: per vertex and group of four,
+// the joint indices then the weights' float bits (two uvec4).
+VkDeviceSize appendInfluences(ByteBlob& blob, const Primitive& prim, VkDeviceSize alignment) {
+  std::vector<glm::uvec4> packed(prim.joints.size() * 2);
+  for (size_t i = 0; i < prim.joints.size(); ++i) {
+    packed[2 * i] = glm::uvec4(prim.joints[i]);
+    std::memcpy(&packed[2 * i + 1], &prim.jointWeights[i], sizeof(glm::vec4));
+  }
+  return blob.append(std::span<const glm::uvec4>(packed), alignment);
+}
+
+// The detail layers of a primitive's material, by target index among the
+// mesh's targets (UINT32_MAX never matches an active target, so a missing
+// target reads as weight 0).
+std::vector<GpuDetailLayer> detailLayers(const Model& model, size_t m, size_t p, const Material& mat) {
+  const Mesh& mesh = model.meshes[m];
+  std::vector<GpuDetailLayer> layers;
+  for (const DetailLayer& layer : mat.detailLayers) {
+    auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), layer.target);
+    if (it == mesh.targetNames.end())
+      logWarning(where(model, m, p) + ": detail layer target '" + layer.target +
+                 "' is not a morph target of this mesh; the layer stays hidden");
+    layers.push_back({it == mesh.targetNames.end() ? UINT32_MAX
+                                                   : static_cast<uint32_t>(it - mesh.targetNames.begin()),
+                      layer.strength});
+  }
+  return layers;
+}
+
+VkDescriptorBufferInfo rangeOr(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkBuffer placeholder) {
+  return size > 0 ? VkDescriptorBufferInfo{buffer, offset, size} : VkDescriptorBufferInfo{placeholder, 0, VK_WHOLE_SIZE};
+}
+
+}  // namespace
+
+Result<void> validateModelForGpu(const Model& model) {
+  const std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const Mesh& mesh = model.meshes[m];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const Primitive& prim = mesh.primitives[p];
+      const size_t n = prim.vertexCount();
+      auto fail = [&](const std::string& what) { return makeError(ErrorKind::Malformed, where(model, m, p) + ": " + what); };
+      if (n == 0) return fail("has no vertices");
+      if (n > UINT32_MAX / 4) return fail("has " + std::to_string(n) + " vertices, too many");
+      if (prim.normals.size() != n)
+        return fail(std::to_string(prim.normals.size()) + " normals for " + std::to_string(n) + " vertices");
+      if (!prim.texcoords.empty() && prim.texcoords.size() != n)
+        return fail(std::to_string(prim.texcoords.size()) + " texcoords for " + std::to_string(n) + " vertices");
+      if (!prim.tangents.empty() && prim.tangents.size() != n)
+        return fail(std::to_string(prim.tangents.size()) + " tangents for " + std::to_string(n) + " vertices");
+      if (prim.indices.empty() || prim.indices.size() % 3 != 0)
+        return fail(std::to_string(prim.indices.size()) + " indices is not a non-empty triangle list");
+      for (uint32_t index : prim.indices) {
+        if (index >= n) return fail("index " + std::to_string(index) + " >= vertex count " + std::to_string(n));
+      }
+      if (prim.targets.size() != mesh.targetNames.size())
+        return fail(std::to_string(prim.targets.size()) + " morph targets but the mesh names " +
+                    std::to_string(mesh.targetNames.size()));
+      for (size_t t = 0; t < prim.targets.size(); ++t) {
+        const MorphTarget& target = prim.targets[t];
+        for (const auto* arr : {&target.positions, &target.normals, &target.tangents}) {
+          if (!arr->empty() && arr->size() != n)
+            return fail("target " + std::to_string(t) + " has an attribute with " + std::to_string(arr->size()) +
+                        " deltas for " + std::to_string(n) + " vertices");
+        }
+      }
+      if (prim.joints.size() != prim.jointWeights.size() || prim.joints.size() % n != 0)
+        return fail(std::to_string(prim.joints.size()) + " joint groups and " + std::to_string(prim.jointWeights.size()) +
+                    " weight groups for " + std::to_string(n) + " vertices");
+      if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size()))
+        return fail("material " + std::to_string(prim.material) + " out of range (" +
+                    std::to_string(model.materials.size()) + " materials)");
+    }
+  }
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const Material& mat = model.materials[i];
+    auto badImage = [&](int image) { return image < -1 || image >= static_cast<int>(model.images.size()); };
+    if (badImage(mat.baseColorImage))
+      return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " base colour image " +
+                       std::to_string(mat.baseColorImage) + " out of range (" + std::to_string(model.images.size()) +
+                       " images)");
+    for (const DetailLayer& layer : mat.detailLayers) {
+      if (layer.image < 0 || badImage(layer.image))
+        return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " detail layer '" + layer.target + "' image " +
+                         std::to_string(layer.image) + " out of range (" + std::to_string(model.images.size()) +
+                         " images)");
+    }
+  }
+  for (const eng::Image& img : model.images) {
+    if (!img.rgba8.empty() && img.rgba8.size() != size_t(img.width) * size_t(img.height) * 4)
+      return makeError(ErrorKind::Malformed, file + ": image '" + img.name + "' has " + std::to_string(img.rgba8.size()) + " bytes for " +
+                       std::to_string(img.width) + "x" + std::to_string(img.height) + " RGBA8");
+  }
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    const Node& node = model.nodes[i];
+    if (node.mesh < -1 || node.mesh >= static_cast<int>(model.meshes.size()))
+      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " mesh " + std::to_string(node.mesh) +
+                       " out of range (" + std::to_string(model.meshes.size()) + " meshes)");
+    if (node.skin < -1 || node.skin >= static_cast<int>(model.skins.size()))
+      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " skin " + std::to_string(node.skin) +
+                       " out of range (" + std::to_string(model.skins.size()) + " skins)");
+    for (int child : node.children) {
+      if (child < 0 || child >= static_cast<int>(model.nodes.size()))
+        return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " child " + std::to_string(child) + " out of range");
+    }
+  }
+  for (size_t s = 0; s < model.skins.size(); ++s) {
+    const Skin& skin = model.skins[s];
+    if (skin.inverseBindMatrices.size() != skin.joints.size())
+      return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " has " + std::to_string(skin.inverseBindMatrices.size()) +
+                       " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
+    for (int joint : skin.joints)
+      if (joint < 0 || joint >= static_cast<int>(model.nodes.size()))
+        return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " joint " + std::to_string(joint) + " out of range");
+  }
+  for (int root : model.roots) {
+    if (root < 0 || root >= static_cast<int>(model.nodes.size()))
+      return makeError(ErrorKind::Malformed, file + ": scene root " + std::to_string(root) + " out of range");
+  }
+  return {};
+}
+
+// What create() stages before anything reaches the device.
+struct GpuModel::Staging {
+  ByteBlob vertices, indices, deltas, detail, skin;
+  std::vector<std::vector<PrimitiveRanges>> ranges;  // by mesh, then primitive
+};
+
+Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& source) {
+  ENG_TRY(validateModelForGpu(source));
+  // An untextured face is dressed for display only: the CPU model (what
+  // tools inspect and export) stays as loaded.
+  std::optional<Model> dressed;
+  if (planFaceDressing(source).total() > 0) {
+    dressed = source;
+    dressUntexturedFace(*dressed);
+  }
+  const Model& model = dressed ? *dressed : source;
+
+  GpuModel gpu;
+  gpu.name_ = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
+  gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
+  gpu.weightCount_ = WeightLayout(model).total();
+  gpu.materialCount_ = static_cast<uint32_t>(source.materials.size());
+  for (const Material& mat : model.materials) gpu.materials_.push_back(instanceMaterial(mat));
+  gpu.materials_.push_back(instanceMaterial(defaultMaterial()));
+  gpu.meshNodes_ = sceneMeshNodes(model);
+  gpu.skins_ = model.skins;
+  poseWorldMatrices(model, restPose(model), gpu.restWorld_);
+
+  Staging staging;
+  ENG_TRY(gpu.stageMeshes(ctx, model, staging));
+  ENG_TRY(gpu.uploadBuffers(ctx, staging));
+  ENG_TRY(gpu.uploadTextures(ctx, model));
+  ENG_TRY(gpu.createDescriptorSets(ctx, layouts, model, staging));
+  return gpu;
+}
+
+// Lays every primitive's geometry, sparse deltas, detail-layer parameters and
+// joint influences out in the staging blobs, and fills meshes_.
+Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Staging& staging) {
+  const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
+  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(
+      {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
+  const WeightLayout weightLayout(model);
+  const Material fallback = defaultMaterial();
+  const std::vector<std::vector<bool>> insideTheHead = partsInsideTheHead(model);
+  meshes_.resize(model.meshes.size());
+  staging.ranges.resize(model.meshes.size());
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const Mesh& mesh = model.meshes[m];
+    GpuMesh& gm = meshes_[m];
+    gm.name = mesh.name;
+    gm.targetCount = static_cast<uint32_t>(mesh.targetNames.size());
+    gm.weightOffset = weightLayout.offset(static_cast<int>(m));
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const Primitive& prim = mesh.primitives[p];
+      PrimitiveRanges& ranges = staging.ranges[m].emplace_back();
+      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, storageAlign, ranges);
+
+      if (prim.targets.size() > kMaxSparseTargets)
+        return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) +
+                         " morph targets, more than the " + std::to_string(kMaxSparseTargets) +
+                         " a sparse delta entry can name");
+      const SparseDeltas sparse = compactDeltas(prim);
+      const VkDeviceSize entryBytes = sparse.entries.size() * sizeof(glm::vec4);
+      const size_t texels = std::max(sparse.entries.size(), size_t(ranges.restSize / sizeof(float)));
+      if (!sparse.entries.empty() && texels > limits.maxTexelBufferElements)
+        return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
+                         std::to_string(prim.vertexCount()) + " vertices need texel buffers of " +
+                         std::to_string(texels) + " elements for morphing, the device allows " +
+                         std::to_string(limits.maxTexelBufferElements));
+      if (!sparse.entries.empty()) {
+        ranges.morphOffsetsSize = sparse.offsets.size() * sizeof(uint32_t);
+        ranges.morphOffsets = staging.deltas.append(std::span<const uint32_t>(sparse.offsets), storageAlign);
+        ranges.morphEntriesSize = entryBytes;
+        ranges.morphEntries = staging.deltas.append(std::span<const glm::vec4>(sparse.entries), storageAlign);
+      }
+      gp.constants.jointSets = static_cast<uint32_t>(prim.influenceSets());
+      if (gp.constants.jointSets > 0) ranges.skin = appendInfluences(staging.skin, prim, storageAlign);
+
+      const Material& mat = prim.material >= 0 ? model.materials[static_cast<size_t>(prim.material)] : fallback;
+      gp.detailLayers = detailLayers(model, m, p, mat);
+      gp.insideTheHead = insideTheHead[m][p];
+      if (!gp.detailLayers.empty())
+        ranges.detail = staging.detail.append(std::span<const GpuDetailLayer>(gp.detailLayers), storageAlign);
+
+      gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
+                                                 : static_cast<uint32_t>(model.materials.size());
+      gp.constants.roughness = mat.roughness;
+      gp.constants.metallic = mat.metallic;
+      gp.constants.detailLayerCount = static_cast<uint32_t>(mat.detailLayers.size());
+      gp.constants.vertexCount = gp.vertexCount;
+      gp.constants.flags = (sparse.hasNormals ? kDrawFlagNormalDeltas : 0u) |
+                           (sparse.hasTangents ? kDrawFlagTangentDeltas : 0u) |
+                           (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
+                           (sparse.hasCreases ? kDrawFlagCreases : 0u) |
+                           (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
+                           (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
+                           (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u) |
+                           (mat.unlit && !mat.toon ? kDrawFlagUnlit : 0u) |
+                           (mat.toon ? kDrawFlagToon : 0u) |
+                           (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
+                           (hasOutline(mat) ? kDrawFlagToonOutline : 0u);
+      gp.constants.alphaCutoff = mat.alphaCutoff;
+      gm.primitives.push_back(gp);
+    }
+  }
+  return {};
+}
+
+Result<void> GpuModel::uploadBuffers(const Context& ctx, const Staging& staging) {
+  auto upload = [&](const ByteBlob& blob, VkBufferUsageFlags usage, const char* what, Buffer& out) -> Result<void> {
+    if (blob.empty()) return {};
+    const std::string label = name_ + " " + what;
+    auto buffer = Buffer::createWithData(ctx, blob.bytes(), usage, label.c_str());
+    if (!buffer) return buffer.error().prefixed(name_ + ": uploading " + what + ": ");
+    out = std::move(buffer).value();
+    return {};
+  };
+  // Vertices are also storage: the morph pre-pass reads the rest attributes.
+  ENG_TRY(upload(staging.vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                 "vertices", vertices_));
+  ENG_TRY(upload(staging.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices", indices_));
+  ENG_TRY(upload(staging.deltas, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "morph deltas", deltas_));
+  ENG_TRY(upload(staging.detail, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "detail layers", detailLayers_));
+  ENG_TRY(upload(staging.skin, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "joint influences", skinInfluences_));
+  return {};
+}
+
+// Base colour images once each, one detail array per material.
+Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
+  textures_.resize(model.images.size());
+  for (const Material& mat : model.materials) {
+    if (mat.baseColorImage < 0) continue;
+    const eng::Image& img = model.images[static_cast<size_t>(mat.baseColorImage)];
+    GpuImage& tex = textures_[static_cast<size_t>(mat.baseColorImage)];
+    if (tex || img.rgba8.empty()) continue;  // already uploaded, or undecodable (loader warned): white
+    const std::array<std::span<const uint8_t>, 1> layer{img.rgba8};
+    const std::string label = name_ + " image '" + img.name + "'";
+    auto texture = createTexture(ctx, {static_cast<uint32_t>(img.width), static_cast<uint32_t>(img.height), layer,
+                                       VK_IMAGE_VIEW_TYPE_2D, label.c_str()});
+    if (!texture) return texture.error().prefixed(name_ + ": ");
+    tex = std::move(texture).value();
+  }
+  for (const Material& mat : model.materials) {
+    const TextureSampling& sampling = mat.baseColorSampling;
+    if (mat.baseColorImage < 0 || sampling == TextureSampling{} ||
+        std::any_of(samplers_.begin(), samplers_.end(), [&](const auto& s) { return s.first == sampling; }))
+      continue;
+    auto sampler = createSampler(ctx, sampling);
+    if (!sampler) return sampler.error().prefixed(name_ + ": " + describeSampling(sampling) + ": ");
+    samplers_.emplace_back(sampling, std::move(sampler).value());
+  }
+  detailArrays_.resize(model.materials.size());
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const Material& mat = model.materials[i];
+    const bool usable = !mat.detailLayers.empty() &&
+                        std::all_of(mat.detailLayers.begin(), mat.detailLayers.end(), [&](const DetailLayer& l) {
+                          return !model.images[static_cast<size_t>(l.image)].rgba8.empty();
+                        });
+    if (!usable) continue;
+    auto array = createDetailArray(ctx, model, mat);
+    if (!array) return array.error().prefixed(name_ + ": ");
+    detailArrays_[i] = std::move(array).value();
+  }
+  return {};
+}
+
+// One descriptor set per primitive (set 1, scene_layouts.h).
+Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                           const Staging& staging) {
+  uint32_t sets = 0;
+  for (const GpuMesh& mesh : meshes_) sets += static_cast<uint32_t>(mesh.primitives.size());
+  if (sets == 0) return {};
+  const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = sets;
+  poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
+  poolInfo.pPoolSizes = poolSizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  descriptorPool_ = UniqueDescriptorPool(ctx.device(), pool);
+
+  const VkDescriptorSetLayout setLayout = layouts.primitiveSetLayout();
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    for (size_t p = 0; p < meshes_[m].primitives.size(); ++p) {
+      GpuPrimitive& gp = meshes_[m].primitives[p];
+      VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+      alloc.descriptorPool = pool;
+      alloc.descriptorSetCount = 1;
+      alloc.pSetLayouts = &setLayout;
+      ENG_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &alloc, &gp.descriptorSet));
+      const PrimitiveRanges& ranges = staging.ranges[m][p];
+      auto texelView = [&](VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkFormat format,
+                           VkBufferView placeholder) -> Result<VkBufferView> {
+        if (size == 0) return placeholder;
+        auto view = createTexelView(ctx, buffer, offset, size, format);
+        if (!view) return view.error().prefixed(name_ + ": ");
+        return texelViews_.emplace_back(std::move(view).value()).get();
+      };
+      const bool morphs = ranges.morphEntriesSize > 0;
+      auto offsets = texelView(deltas_.handle(), ranges.morphOffsets, ranges.morphOffsetsSize, VK_FORMAT_R32_UINT,
+                               layouts.placeholderUintTexels());
+      if (!offsets) return offsets.error();
+      auto entries = texelView(deltas_.handle(), ranges.morphEntries, ranges.morphEntriesSize,
+                               VK_FORMAT_R32G32B32A32_SFLOAT, layouts.placeholderVec4Texels());
+      if (!entries) return entries.error();
+      auto rest = texelView(vertices_.handle(), ranges.rest, morphs ? ranges.restSize : 0, VK_FORMAT_R32_SFLOAT,
+                            layouts.placeholderFloatTexels());
+      if (!rest) return rest.error();
+      writePrimitiveSet(ctx, layouts, model, model.meshes[m].primitives[p], ranges, {*offsets, *entries, *rest}, gp);
+    }
+  }
+  return {};
+}
+
+void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                 const Primitive& prim, const PrimitiveRanges& r, const MorphInputViews& morph,
+                                 GpuPrimitive& gp) const {
+  const GpuImage* base = &layouts.whiteTexture();
+  const GpuImage* detail = &layouts.emptyDetailArray();
+  VkSampler baseSampler = layouts.sampler();
+  if (prim.material >= 0) {
+    const size_t material = static_cast<size_t>(prim.material);
+    const int image = model.materials[material].baseColorImage;
+    if (image >= 0 && textures_[static_cast<size_t>(image)]) base = &textures_[static_cast<size_t>(image)];
+    for (const auto& [sampling, sampler] : samplers_)
+      if (sampling == model.materials[material].baseColorSampling) baseSampler = sampler.get();
+    if (detailArrays_[material])
+      detail = &detailArrays_[material];
+    else
+      gp.constants.detailLayerCount = 0;  // layers without decodable images stay off
+  }
+  const VkBuffer placeholder = layouts.placeholderBuffer().handle();
+  const VkDescriptorImageInfo baseInfo{baseSampler, base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorBufferInfo detailParams = rangeOr(
+      detailLayers_.handle(), r.detail, gp.constants.detailLayerCount * sizeof(GpuDetailLayer), placeholder);
+  const VkDescriptorBufferInfo influences =
+      rangeOr(skinInfluences_.handle(), r.skin,
+              gp.constants.jointSets > 0 ? prim.joints.size() * 2 * sizeof(glm::uvec4) : 0, placeholder);
+  const std::array writes{
+      texelBufferWrite(gp.descriptorSet, 0, &morph.offsets),
+      texelBufferWrite(gp.descriptorSet, 1, &morph.entries),
+      texelBufferWrite(gp.descriptorSet, 2, &morph.rest),
+      imageWrite(gp.descriptorSet, 3, &baseInfo),
+      imageWrite(gp.descriptorSet, 4, &detailInfo),
+      bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
+      bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
+  };
+  vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void GpuModel::jointMatrices(const MeshNode& node, std::span<const glm::mat4> world, std::vector<glm::mat4>& out) const {
+  if (node.skin < 0 || static_cast<size_t>(node.skin) >= skins_.size()) {
+    out.clear();
+    return;
+  }
+  skinJointMatrices(skins_[node.skin], world.empty() ? std::span<const glm::mat4>(restWorld_) : world, node.node, out);
+}
+
+}  // namespace eng::vk

@@ -1,0 +1,97 @@
+#pragma once
+// Headless rendering of model instances to RGBA8 images, and GPU morph
+// capture. Everything a CLI command or a test needs besides the Context:
+//
+//   auto ctx = eng::vk::Context::create({});
+//   auto renderer = eng::vk::OffscreenRenderer::create(*ctx, {.width = 512, .height = 512});
+//   auto gpuModel = renderer->upload(model);
+//   std::vector<float> weights = eng::WeightLayout(model).defaults();
+//   eng::vk::ModelInstance instance{&*gpuModel, glm::mat4(1.0f), weights};
+//   eng::vk::SceneView view{eng::OrbitCamera::frame(model.bounds())};
+//   auto image = renderer->render(view, {&instance, 1});   // eng::Image, RGBA8
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "engine/vk/device/context.h"
+#include "engine/vk/device/fault_injection.h"
+#include "engine/vk/device/frame_timestamps.h"
+#include "engine/vk/draw/gpu_model.h"
+#include "engine/vk/draw/offscreen_target.h"
+#include "engine/vk/draw/render_quality.h"
+#include "engine/vk/draw/scene_layouts.h"
+#include "engine/vk/draw/scene_renderer.h"
+#include "engine/vk/draw/scene_view.h"
+#include "engine/vk/device/shader_library.h"
+
+namespace eng::vk {
+
+struct OffscreenOptions {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  // Multisampling, shadow map and shading terms (render_quality.h).
+  RenderQuality quality = RenderQuality::High;
+  // Level of detail (SceneRenderer's LodPolicy) in pixels of the image; 0
+  // (renders, goldens) draws every triangle, `facial bench frames --lod-error` sets it.
+  float lodPixelError = 0.0f;
+  std::filesystem::path shaderSourceDir = defaultShaderSourceDir();  // for reloadChangedShaders()
+  // Injected faults for tests (fault_injection.h: device-lost@N counts this
+  // renderer's frame submissions); empty: FACIAL_VK_FAULTS, if set.
+  std::string faults;
+};
+
+class OffscreenRenderer {
+ public:
+  // `ctx` must outlive the renderer and every model it uploads.
+  static Result<OffscreenRenderer> create(const Context& ctx, const OffscreenOptions& options = {});
+
+  Result<GpuModel> upload(const Model& model) const;
+  Result<eng::Image> render(const SceneView& view, std::span<const ModelInstance> instances);
+  // The same frame without the read-back (the image stays on the GPU), for
+  // benchmarks: returns once the GPU has finished it, with the GPU time of
+  // its command buffer in ms where the device has timestamps (nullopt otherwise).
+  Result<std::optional<double>> renderTimed(const SceneView& view, std::span<const ModelInstance> instances);
+  bool hasGpuTimestamps() const { return timestamps_.supported(); }
+  // Morphed vertices the GPU computes for each (instance, mesh, primitive).
+  Result<std::vector<CapturedPrimitive>> capture(std::span<const ModelInstance> instances);
+  // The morph and capture passes, for benchmarks: every vertex of every
+  // instance morphed once by the compute pre-pass, then read (and skinned)
+  // by the vertex shader and stored, no rasterisation, nothing read back; the
+  // GPU time in ms where the device has timestamps. Needs canCapture().
+  Result<std::optional<double>> captureTimed(std::span<const ModelInstance> instances);
+  // The morph pre-pass alone, as every frame runs it once (benchmarks); the
+  // GPU time in ms where the device has timestamps.
+  Result<std::optional<double>> morphTimed(std::span<const ModelInstance> instances);
+
+  FrameStats lastFrameStats() const { return scene_.stats(0); }
+  // Recompiles the shaders if their sources changed and rebuilds the
+  // pipelines; on a compile error logs it and keeps drawing with the old ones.
+  bool reloadChangedShaders();
+
+  VkExtent2D extent() const { return target_.extent(); }
+  VkSampleCountFlagBits samples() const { return target_.format().samples; }
+  RenderQuality quality() const { return scene_.quality(); }
+  bool canCapture() const { return scene_.canCapture(); }
+
+ private:
+  // A frame's submission result, then the fault a test injects; a lost
+  // device, real or injected, said plainly (explainDeviceLost).
+  Result<void> frameSubmitted(Result<void> submitted);
+
+  const Context* ctx_ = nullptr;
+  // Heap-held: the scene renderer and uploaded models point at them.
+  std::unique_ptr<SceneLayouts> layouts_;
+  std::unique_ptr<ShaderLibrary> shaders_;
+  OffscreenTarget target_;
+  SceneRenderer scene_;
+  FrameTimestamps timestamps_;
+  FaultInjector faults_;
+  float lodPixelError_ = 0.0f;
+};
+
+}  // namespace eng::vk

@@ -1,0 +1,459 @@
+#include "engine/vk/present/window_renderer.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "engine/core/log.h"
+#include "engine/scene/image_io.h"
+#include "engine/vk/present/frame_pacing.h"
+#include "engine/vk/draw/light_rig.h"
+#include "engine/vk/device/vk_result.h"
+
+namespace eng::vk {
+namespace {
+
+constexpr auto kShaderPollInterval = std::chrono::milliseconds(500);
+
+// The number in environment variable `name` when it is set and a number for
+// which `accept` holds; nullopt (with a warning naming the range when set) otherwise.
+template <class Accept>
+std::optional<float> environmentNumber(const char* name, const char* range, Accept accept) {
+  const char* env = std::getenv(name);
+  if (!env) return std::nullopt;
+  char* end = nullptr;
+  const float parsed = std::strtof(env, &end);
+  if (end != env && *end == '\0' && accept(parsed)) return parsed;
+  logWarning(std::string(name) + "='" + env + "' is not a number in " + range + "; ignored");
+  return std::nullopt;
+}
+
+// The options' scale, or the automatic one; 1 where a scaled view could not be
+// blitted into the swapchain (no transfer usage, no linear blit of its format).
+float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options, const Swapchain& swapchain) {
+  float scale = options.renderScale;
+  if (scale <= 0.0f)
+    scale = environmentNumber("FACIAL_RENDER_SCALE", "(0, 1]", [](float v) { return v > 0.0f && v <= 1.0f; })
+                .value_or(0.0f);
+  if (scale <= 0.0f) scale = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? kCpuRenderScale : 1.0f;
+  scale = std::min(scale, 1.0f);
+  VkFormatProperties props{};
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), swapchain.format(), &props);
+  constexpr VkFormatFeatureFlags kBlit = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                         VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if (!swapchain.canBlitTo() || (props.optimalTilingFeatures & kBlit) != kBlit) return 1.0f;
+  return scale;
+}
+
+// The options' level-of-detail error, or FACIAL_LOD_PIXEL_ERROR where set (0 draws every triangle).
+float chooseLodPixelError(const WindowRendererOptions& options) {
+  return environmentNumber("FACIAL_LOD_PIXEL_ERROR", "[0, 64]", [](float v) { return v >= 0.0f && v <= 64.0f; })
+      .value_or(options.lodPixelError);
+}
+
+}  // namespace
+
+WindowRenderer::~WindowRenderer() {
+  if (ctx_) vkDeviceWaitIdle(ctx_->device());
+}
+
+Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ctx, Window& window,
+                                                               const WindowRendererOptions& options) {
+  if (ctx.surface() == VK_NULL_HANDLE)
+    return makeError(ErrorKind::InvalidArgument, "window renderer: the context has no surface (create it with Window::configureContext)");
+  std::unique_ptr<WindowRenderer> r(new WindowRenderer());
+  r->ctx_ = &ctx;
+  r->window_ = &window;
+  r->options_ = options;
+  auto faults = FaultInjector::fromOptionOrEnvironment(options.faults, "WindowRendererOptions::faults", "window renderer");
+  if (!faults) return faults.error();
+  r->faults_ = std::move(faults).value();
+  auto layouts = SceneLayouts::create(ctx);
+  if (!layouts) return layouts.error();
+  r->layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
+  r->shaders_ = std::make_unique<ShaderLibrary>(options.shaderSourceDir);
+
+  auto swapchain = Swapchain::create(ctx, window.framebufferExtent(), options.vsync);
+  if (!swapchain) return swapchain.error();
+  r->swapchain_ = std::move(swapchain).value();
+  auto depth = chooseDepthFormat(ctx);
+  if (!depth) return depth.error();
+  r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
+  r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
+  r->options_.lodPixelError = chooseLodPixelError(options);
+  const bool automaticScale = options.renderScale <= 0.0f && !std::getenv("FACIAL_RENDER_SCALE") &&
+                              ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && r->scaled();
+  if (options.adaptiveScale && automaticScale) {
+    r->adaptive_.emplace(r->renderScale_, AdaptiveRenderScale::Limits{});
+    r->renderScale_ = r->adaptive_->scale();
+  }
+  auto pass = createSceneRenderPass(ctx, r->format_,
+                                    r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  if (!pass) return pass.error();
+  r->renderPass_ = std::move(pass).value();
+  if (r->scaled()) {
+    auto overlay = createOverlayRenderPass(ctx, r->format_.color, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    if (!overlay) return overlay.error();
+    r->overlayPass_ = std::move(overlay).value();
+  }
+  ENG_TRY(r->createSwapchainResources());
+
+  for (FrameSync& f : r->frames_) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    poolInfo.queueFamilyIndex = ctx.queueFamily();
+    VkCommandPool pool = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateCommandPool(ctx.device(), &poolInfo, nullptr, &pool));
+    f.pool = UniqueCommandPool(ctx.device(), pool);
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    ENG_VK_TRY(vkAllocateCommandBuffers(ctx.device(), &alloc, &f.cmd));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+    VkFence fence = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateFence(ctx.device(), &fenceInfo, nullptr, &fence));
+    f.inFlight = UniqueFence(ctx.device(), fence);
+    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore sem = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateSemaphore(ctx.device(), &semInfo, nullptr, &sem));
+    f.imageAvailable = UniqueSemaphore(ctx.device(), sem);
+  }
+
+  auto scene = SceneRenderer::create(ctx, *r->layouts_, *r->shaders_, r->renderPass_.get(), r->format_.samples,
+                                     kFramesInFlight, options.quality);
+  if (!scene) return scene.error();
+  r->scene_ = std::move(scene).value();
+
+  // ImGui allocates its font set (and user texture sets) from here.
+  const VkDescriptorPoolSize imguiSizes{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 64};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  poolInfo.maxSets = 64;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &imguiSizes;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  r->imguiPool_ = UniqueDescriptorPool(ctx.device(), pool);
+  r->lastShaderPoll_ = std::chrono::steady_clock::now();
+  return r;
+}
+
+Result<void> WindowRenderer::recreateSwapchain() {
+  vkDeviceWaitIdle(ctx_->device());
+  swapchainStale_ = true;  // until everything below succeeded
+  framebuffers_.clear();
+  sceneFramebuffer_ = {};
+  renderFinished_.clear();
+  auto swapchain = Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
+  if (!swapchain) return swapchain.error();
+  if (swapchain->format() != format_.color)
+    return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
+                     std::to_string(swapchain->format()) + "; restart the window");
+  swapchain_ = std::move(swapchain).value();
+  if (adaptive_) renderScale_ = adaptive_->scale();  // sceneExtent() follows the images, not ahead of them
+  return createSwapchainResources();
+}
+
+VkExtent2D WindowRenderer::sceneExtent() const {
+  const VkExtent2D window = swapchain_.extent();
+  if (!scaled()) return window;
+  return {std::max(1u, uint32_t(float(window.width) * renderScale_ + 0.5f)),
+          std::max(1u, uint32_t(float(window.height) * renderScale_ + 0.5f))};
+}
+
+Result<void> WindowRenderer::createSwapchainResources() {
+  const VkExtent2D extent = sceneExtent();
+  const bool msaa = format_.samples != VK_SAMPLE_COUNT_1_BIT;
+  if (msaa) {
+    ImageDesc color;
+    color.extent = extent;
+    color.format = format_.color;
+    color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+    color.samples = format_.samples;
+    color.debugName = "window msaa colour";
+    auto image = GpuImage::create(*ctx_, color);
+    if (!image) return image.error();
+    msaaColor_ = std::move(image).value();
+  }
+  ImageDesc depth;
+  depth.extent = extent;
+  depth.format = format_.depth;
+  depth.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+  depth.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  depth.samples = format_.samples;
+  depth.debugName = "window depth";
+  auto depthImage = GpuImage::create(*ctx_, depth);
+  if (!depthImage) return depthImage.error();
+  depth_ = std::move(depthImage).value();
+
+  auto framebuffer = [&](VkRenderPass pass, std::span<const VkImageView> views,
+                         VkExtent2D size) -> Result<UniqueFramebuffer> {
+    VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fbInfo.renderPass = pass;
+    fbInfo.attachmentCount = static_cast<uint32_t>(views.size());
+    fbInfo.pAttachments = views.data();
+    fbInfo.width = size.width;
+    fbInfo.height = size.height;
+    fbInfo.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateFramebuffer(ctx_->device(), &fbInfo, nullptr, &fb));
+    return UniqueFramebuffer(ctx_->device(), fb);
+  };
+  if (scaled()) {
+    ImageDesc color;
+    color.extent = extent;
+    color.format = format_.color;
+    color.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    color.debugName = "window 3D view";
+    auto image = GpuImage::create(*ctx_, color);
+    if (!image) return image.error();
+    sceneColor_ = std::move(image).value();
+    std::vector<VkImageView> views{msaa ? msaaColor_.view() : sceneColor_.view(), depth_.view()};
+    if (msaa) views.push_back(sceneColor_.view());
+    auto fb = framebuffer(renderPass_.get(), views, extent);
+    if (!fb) return fb.error();
+    sceneFramebuffer_ = std::move(fb).value();
+  }
+
+  for (uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
+    std::vector<VkImageView> views;
+    if (scaled()) {
+      views.push_back(swapchain_.view(i));
+    } else {
+      views.push_back(msaa ? msaaColor_.view() : swapchain_.view(i));
+      views.push_back(depth_.view());
+      if (msaa) views.push_back(swapchain_.view(i));
+    }
+    auto fb = framebuffer(scaled() ? overlayPass_.get() : renderPass_.get(), views, swapchain_.extent());
+    if (!fb) return fb.error();
+    framebuffers_.push_back(std::move(fb).value());
+    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore sem = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateSemaphore(ctx_->device(), &semInfo, nullptr, &sem));
+    renderFinished_.emplace_back(ctx_->device(), sem);
+  }
+  swapchainStale_ = false;
+  return {};
+}
+
+Result<GpuModel> WindowRenderer::upload(const Model& model) const { return GpuModel::create(*ctx_, *layouts_, model); }
+
+ImGuiVulkanInfo WindowRenderer::imguiInfo() const {
+  ImGuiVulkanInfo info;
+  info.instance = ctx_->instance();
+  info.physicalDevice = ctx_->physicalDevice();
+  info.device = ctx_->device();
+  info.queueFamily = ctx_->queueFamily();
+  info.queue = ctx_->queue();
+  info.descriptorPool = imguiPool_.get();
+  info.renderPass = scaled() ? overlayPass_.get() : renderPass_.get();
+  info.subpass = 0;
+  info.minImageCount = swapchain_.minImageCount();
+  info.imageCount = swapchain_.imageCount();
+  info.msaaSamples = scaled() ? VK_SAMPLE_COUNT_1_BIT : format_.samples;
+  return info;
+}
+
+bool WindowRenderer::reloadChangedShaders() {
+  lastShaderPoll_ = std::chrono::steady_clock::now();
+  if (!shaders_->reloadIfChanged()) return false;
+  return scene_.refreshPipelines();
+}
+
+Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
+  if (options_.hotReload && std::chrono::steady_clock::now() - lastShaderPoll_ >= kShaderPollInterval)
+    reloadChangedShaders();
+  if (window_->takeResized()) swapchainStale_ = true;
+  switch (decideFrameAction(window_->framebufferExtent(), swapchain_.extent(), swapchainStale_)) {
+    case FrameAction::Skip:
+      lastPresented_ = {};
+      window_->waitEvents(0.05);
+      return FrameResult::Skipped;
+    case FrameAction::RecreateSwapchain:
+      if (auto rebuilt = recreateSwapchain(); !rebuilt) {
+        // Minimised between the size query and the rebuild: not an error, try again later.
+        const VkExtent2D now = window_->framebufferExtent();
+        if (now.width == 0 || now.height == 0) return FrameResult::Skipped;
+        return rebuilt.error();
+      }
+      break;
+    case FrameAction::Draw:
+      break;
+  }
+  if (!frame.screenshot.empty() && !swapchain_.canCopyFrom())
+    return makeError(ErrorKind::Device, "screenshot " + frame.screenshot.string() + ": this surface's images cannot be copied from");
+
+  const VkDevice device = ctx_->device();
+  const uint32_t slot = frameIndex_ % kFramesInFlight;
+  FrameSync& f = frames_[slot];
+  VkFence fence = f.inFlight.get();
+  ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+
+  const VkExtent2D extent = swapchain_.extent();
+  const float aspect = float(extent.width) / float(extent.height);
+  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
+                         {options_.lodPixelError * renderScale_, sceneExtent().height}));
+
+  uint32_t image = 0;
+  VkResult acquired = faults_.beforeAcquire();
+  if (acquired == VK_SUCCESS)
+    acquired = vkAcquireNextImageKHR(device, swapchain_.handle(), UINT64_MAX, f.imageAvailable.get(), VK_NULL_HANDLE,
+                                     &image);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+    swapchainStale_ = true;
+    return FrameResult::Skipped;
+  }
+  if (acquired == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;  // still presentable: draw, rebuild next frame
+  else if (acquired != VK_SUCCESS) return vulkanError("vkAcquireNextImageKHR", acquired);
+  ENG_VK_TRY(vkResetFences(device, 1, &fence));
+
+  if (!frame.screenshot.empty()) {
+    const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
+    if (!screenshotBuffer_ || screenshotBuffer_.size() < bytes) {
+      auto buffer = Buffer::create(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
+                                   "screenshot readback");
+      if (!buffer) return buffer.error();
+      screenshotBuffer_ = std::move(buffer).value();
+    }
+  }
+
+  VkCommandBuffer cmd = f.cmd;
+  ENG_VK_TRY(vkResetCommandPool(device, f.pool.get(), 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  ENG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+  scene_.recordShadowPass(cmd, slot);
+  std::array<VkClearValue, 3> clears{};
+  clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  clears[1].depthStencil = {1.0f, 0};
+  clears[2].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  const VkExtent2D viewExtent = sceneExtent();
+  VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  pass.renderPass = renderPass_.get();
+  pass.framebuffer = scaled() ? sceneFramebuffer_.get() : framebuffers_[image].get();
+  pass.renderArea = {{0, 0}, viewExtent};
+  pass.clearValueCount = format_.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
+  pass.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &pass, VK_SUBPASS_CONTENTS_INLINE);
+  scene_.record(cmd, slot, viewExtent);
+  if (!scaled() && frame.overlay) frame.overlay(cmd);
+  vkCmdEndRenderPass(cmd);
+  if (scaled()) recordUpscaleAndOverlay(cmd, image, frame.overlay);
+  if (!frame.screenshot.empty()) {
+    const VkImage swapImage = swapchain_.image(image);
+    recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshotBuffer_.handle(), 1, &copy);
+    recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                             VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0});
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                         0, nullptr);
+  }
+  ENG_VK_TRY(vkEndCommandBuffer(cmd));
+
+  const VkSemaphore waitSemaphore = f.imageAvailable.get();
+  const VkSemaphore signalSemaphore = renderFinished_[image].get();
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.waitSemaphoreCount = 1;
+  submit.pWaitSemaphores = &waitSemaphore;
+  submit.pWaitDstStageMask = &waitStage;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  submit.signalSemaphoreCount = 1;
+  submit.pSignalSemaphores = &signalSemaphore;
+  if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, fence));
+      submitted != VK_SUCCESS)
+    return vulkanError("vkQueueSubmit", submitted);
+
+  const VkSwapchainKHR swapchain = swapchain_.handle();
+  VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  present.waitSemaphoreCount = 1;
+  present.pWaitSemaphores = &signalSemaphore;
+  present.swapchainCount = 1;
+  present.pSwapchains = &swapchain;
+  present.pImageIndices = &image;
+  const VkResult presented = vkQueuePresentKHR(ctx_->queue(), &present);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;
+  else if (presented != VK_SUCCESS) return vulkanError("vkQueuePresentKHR", presented);
+
+  lastSlot_ = slot;
+  ++frameIndex_;
+  if (adaptive_) adaptRenderScale();
+  if (!frame.screenshot.empty()) {
+    ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+    ENG_TRY(saveScreenshot(frame.screenshot));
+  }
+  return FrameResult::Presented;
+}
+
+void WindowRenderer::adaptRenderScale() {
+  const auto now = std::chrono::steady_clock::now();
+  const auto previous = lastPresented_;
+  lastPresented_ = now;
+  if (previous == std::chrono::steady_clock::time_point{}) return;
+  if (!adaptive_->addFrame(std::chrono::duration<double>(now - previous).count())) return;
+  swapchainStale_ = true;   // the next frame rebuilds the view's images at the new scale (recreateSwapchain)
+  lastPresented_ = {};      // and is not timed: the rebuild is not the frame's cost
+  adaptive_->restart();
+}
+
+void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const {
+  const VkImage target = swapchain_.image(image);
+  // Chained to the acquire semaphore's wait (colour-attachment-output stage).
+  recordImageBarrier(cmd, {target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
+  const VkExtent2D from = sceneExtent(), to = swapchain_.extent();
+  VkImageBlit blit{};
+  blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(from.width), int32_t(from.height), 1};
+  blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
+  // The scene pass left the view in TRANSFER_SRC_OPTIMAL, its writes ordered before transfers.
+  vkCmdBlitImage(cmd, sceneColor_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  pass.renderPass = overlayPass_.get();
+  pass.framebuffer = framebuffers_[image].get();
+  pass.renderArea = {{0, 0}, to};
+  vkCmdBeginRenderPass(cmd, &pass, VK_SUBPASS_CONTENTS_INLINE);
+  if (overlay) {
+    const VkViewport viewport{0.0f, 0.0f, float(to.width), float(to.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, to};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    overlay(cmd);
+  }
+  vkCmdEndRenderPass(cmd);
+}
+
+Result<void> WindowRenderer::saveScreenshot(const std::filesystem::path& path) {
+  const VkExtent2D extent = swapchain_.extent();
+  std::vector<uint8_t> rgba(size_t{extent.width} * extent.height * 4);
+  std::memcpy(rgba.data(), screenshotBuffer_.mapped(), rgba.size());
+  const VkFormat f = swapchain_.format();
+  if (f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_B8G8R8A8_UNORM) {
+    for (size_t i = 0; i < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
+  } else if (f != VK_FORMAT_R8G8B8A8_SRGB && f != VK_FORMAT_R8G8B8A8_UNORM) {
+    return makeError(ErrorKind::Device, "screenshot " + path.string() + ": swapchain format " + std::to_string(f) +
+                     " is not 8-bit RGBA/BGRA");
+  }
+  for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;  // the window is opaque
+  return writePng(path, static_cast<int>(extent.width), static_cast<int>(extent.height), rgba);
+}
+
+}  // namespace eng::vk

@@ -1,0 +1,188 @@
+#pragma once
+// Renders model instances into a window: swapchain (recreated on resize,
+// idle while minimised), 4x MSAA, two frames in flight, an overlay hook that
+// records after the scene (ImGui), screenshots of a presented frame, and
+// shader hot reload from engine/shaders. The 3D view may render at a lower
+// resolution than the window and be blitted up (renderScale: a CPU
+// rasteriser's cost is per pixel); the overlay stays at full resolution.
+//
+//   auto window = eng::vk::Window::create({});
+//   eng::vk::ContextOptions options;
+//   (*window)->configureContext(options);
+//   auto ctx = eng::vk::Context::create(options);
+//   auto renderer = eng::vk::WindowRenderer::create(*ctx, **window);
+//   auto gpuModel = (*renderer)->upload(model);
+//   // ImGui: ImGui_ImplGlfw_InitForVulkan(window->handle(), true); then fill
+//   // ImGui_ImplVulkan_InitInfo from (*renderer)->imguiInfo() (see ImGuiVulkanInfo).
+//   while (!(*window)->shouldClose()) {
+//     (*window)->pollEvents();
+//     eng::vk::FrameInput frame{view, {&instance, 1}};
+//     frame.overlay = [](VkCommandBuffer cmd) { ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd); };
+//     if (auto r = (*renderer)->drawFrame(frame); !r) { /* report r.error() */ }
+//   }
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/core/result.h"
+#include "engine/vk/device/buffer.h"
+#include "engine/vk/device/context.h"
+#include "engine/vk/device/fault_injection.h"
+#include "engine/vk/present/frame_pacing.h"
+#include "engine/vk/device/gpu_image.h"
+#include "engine/vk/draw/gpu_model.h"
+#include "engine/vk/device/render_pass.h"
+#include "engine/vk/draw/render_quality.h"
+#include "engine/vk/draw/scene_layouts.h"
+#include "engine/vk/draw/scene_renderer.h"
+#include "engine/vk/draw/scene_view.h"
+#include "engine/vk/device/shader_library.h"
+#include "engine/vk/present/swapchain.h"
+#include "engine/vk/present/window.h"
+
+namespace eng::vk {
+
+// A level of detail may stray this far (pixels of the window, whatever the
+// 3D view's scale: the level stays put while the dynamic resolution moves)
+// from the full mesh. Half a pixel drops the built-in head's skin from
+// 50k to 12k triangles in a 1280x800 window; at a whole pixel of its 832x520
+// view (6k) the simplifier, blind to texture coordinates and vertex colours,
+// smears the painted eyelid lines and the baked shadow at the mouth corners.
+inline constexpr float kWindowLodPixelError = 0.5f;
+
+struct WindowRendererOptions {
+  // Multisampling, shadow map and shading terms (render_quality.h).
+  RenderQuality quality = RenderQuality::High;
+  bool vsync = true;
+  bool hotReload = true;  // poll the shader sources twice a second
+  // The 3D view's resolution relative to the window's, in (0, 1]; 0 picks one:
+  // FACIAL_RENDER_SCALE if set, else 1 on a GPU and kCpuRenderScale on a CPU
+  // device (lavapipe). Falls back to 1
+  // where the swapchain cannot be blitted to.
+  float renderScale = 0.0f;
+  // Level of detail (SceneRenderer's LodPolicy): each draw uses the coarsest
+  // level of its primitive that strays at most this many window pixels from
+  // the full mesh; 0 draws every triangle.
+  float lodPixelError = kWindowLodPixelError;
+  // With the automatic scale on a CPU device: follow the measured frame time
+  // between AdaptiveRenderScale's floor and ceiling (frame_pacing.h), aiming
+  // at 30 frames/s; false keeps kCpuRenderScale.
+  bool adaptiveScale = true;
+  std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
+  // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
+  std::string faults;
+};
+
+// Everything ImGui_ImplVulkan_Init needs (copy into ImGui_ImplVulkan_InitInfo;
+// pass renderPass as its second argument).
+struct ImGuiVulkanInfo {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;  // owned by the renderer, for ImGui's own sets
+  VkRenderPass renderPass = VK_NULL_HANDLE;
+  uint32_t subpass = 0;
+  uint32_t minImageCount = 2;
+  uint32_t imageCount = 2;
+  VkSampleCountFlagBits msaaSamples = VK_SAMPLE_COUNT_1_BIT;
+};
+
+// The automatic renderScale on a CPU device: a 1280x800 window's 3D view at
+// 832x520, about 30 frames/s of the built-in head on lavapipe (2 cores).
+inline constexpr float kCpuRenderScale = 0.65f;
+
+using OverlayRecorder = std::function<void(VkCommandBuffer)>;
+
+struct FrameInput {
+  SceneView view;
+  std::span<const ModelInstance> instances;
+  OverlayRecorder overlay;            // recorded inside the render pass after the scene
+  std::filesystem::path screenshot;   // non-empty: also write this frame (overlay included) as PNG
+};
+
+enum class FrameResult { Presented, Skipped };
+
+class WindowRenderer {
+ public:
+  // `ctx` must have been created with window.configureContext(); both must outlive the renderer.
+  static Result<std::unique_ptr<WindowRenderer>> create(const Context& ctx, Window& window,
+                                                       const WindowRendererOptions& options = {});
+  ~WindowRenderer();
+  WindowRenderer(const WindowRenderer&) = delete;
+  WindowRenderer& operator=(const WindowRenderer&) = delete;
+
+  Result<GpuModel> upload(const Model& model) const;
+  ImGuiVulkanInfo imguiInfo() const;
+
+  // Draws and presents one frame. Skipped while the window is minimised (after
+  // a short wait for events, so a loop around it does not spin).
+  Result<FrameResult> drawFrame(const FrameInput& frame);
+
+  VkExtent2D extent() const { return swapchain_.extent(); }
+  // What the 3D view renders at (extent() scaled by renderScale()).
+  VkExtent2D sceneExtent() const;
+  float renderScale() const { return renderScale_; }
+  bool adaptiveScale() const { return adaptive_.has_value(); }
+  FrameStats lastFrameStats() const { return scene_.stats(lastSlot_); }
+  const ShaderLibrary& shaders() const { return *shaders_; }
+  // Polls the shader sources now and rebuilds pipelines if they changed and compile.
+  bool reloadChangedShaders();
+
+ private:
+  static constexpr uint32_t kFramesInFlight = 2;
+  struct FrameSync {
+    UniqueCommandPool pool;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    UniqueFence inFlight;
+    UniqueSemaphore imageAvailable;
+  };
+
+  WindowRenderer() = default;
+  Result<void> recreateSwapchain();
+  // MSAA colour, depth, framebuffers and semaphores for the current swapchain.
+  Result<void> createSwapchainResources();
+  bool scaled() const { return renderScale_ < 1.0f; }
+  // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
+  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const;
+  Result<void> saveScreenshot(const std::filesystem::path& path);
+  // After a presented frame: times it, and on a new scale marks the view for rebuilding.
+  void adaptRenderScale();
+
+  const Context* ctx_ = nullptr;
+  Window* window_ = nullptr;
+  WindowRendererOptions options_;
+  std::unique_ptr<SceneLayouts> layouts_;
+  std::unique_ptr<ShaderLibrary> shaders_;
+  TargetFormat format_;
+  UniqueRenderPass renderPass_;   // the 3D view (+ the overlay when not scaled)
+  UniqueRenderPass overlayPass_;  // scaled: the overlay over the blitted view
+  float renderScale_ = 1.0f;
+  std::optional<AdaptiveRenderScale> adaptive_;             // dynamic resolution, when on
+  std::chrono::steady_clock::time_point lastPresented_{};  // of the previous presented frame; {}: none to time from
+  Swapchain swapchain_;
+  bool swapchainStale_ = false;
+  GpuImage msaaColor_;
+  GpuImage depth_;
+  GpuImage sceneColor_;                              // scaled: the 3D view before the blit
+  UniqueFramebuffer sceneFramebuffer_;               // scaled: the 3D view's
+  std::vector<UniqueFramebuffer> framebuffers_;      // per swapchain image (the overlay pass's when scaled)
+  std::vector<UniqueSemaphore> renderFinished_;      // per swapchain image
+  std::array<FrameSync, kFramesInFlight> frames_;
+  SceneRenderer scene_;
+  FaultInjector faults_;
+  UniqueDescriptorPool imguiPool_;
+  Buffer screenshotBuffer_;
+  uint32_t frameIndex_ = 0;
+  uint32_t lastSlot_ = 0;
+  std::chrono::steady_clock::time_point lastShaderPoll_{};
+};
+
+}  // namespace eng::vk

@@ -1,0 +1,371 @@
+#include "importers/candide_import.h"
+
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "importers/candide_eyes.h"
+#include "engine/scene/file_bytes.h"
+#include "facial/runtime/rig/candide_units.h"
+
+namespace importers {
+namespace {
+
+constexpr size_t kMaxFileBytes = size_t{8} << 20;
+// Far above CANDIDE's 113 vertices; keeps a corrupt count from allocating gigabytes.
+constexpr size_t kMaxCount = 1'000'000;
+
+std::string_view trim(std::string_view s) {
+  const size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  const size_t e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+// Whitespace-separated tokens of one line.
+std::vector<std::string_view> tokens(std::string_view line) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    const size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+bool parseFloat(std::string_view token, float& value) {
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size() && std::isfinite(value);
+}
+
+bool parseIndex(std::string_view token, size_t& value) {
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+// Non-blank lines with their 1-based numbers, for "<source>:<line>:" messages.
+class LineReader {
+ public:
+  LineReader(std::string_view text, std::string_view source) : text_(text), source_(source) {}
+
+  // Next non-blank line, trimmed; false at the end of the text.
+  bool next(std::string_view& line) {
+    while (pos_ < text_.size()) {
+      const size_t end = std::min(text_.find('\n', pos_), text_.size());
+      line = trim(text_.substr(pos_, end - pos_));
+      pos_ = end + 1;
+      ++lineNumber_;
+      if (!line.empty()) return true;
+    }
+    line = {};
+    return false;
+  }
+  // Looks at the next non-blank line without consuming it.
+  bool peek(std::string_view& line) {
+    const size_t pos = pos_, number = lineNumber_;
+    const bool found = next(line);
+    pos_ = pos;
+    lineNumber_ = number;
+    return found;
+  }
+  eng::Error error(const std::string& problem) const {
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": " + problem);
+  }
+  eng::Error endError(const std::string& what) const {
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": file ends before " + what);
+  }
+
+ private:
+  std::string_view text_;
+  std::string_view source_;
+  size_t pos_ = 0;
+  size_t lineNumber_ = 0;
+};
+
+// "# VERTEX LIST:" -> "VERTEX LIST", "# END OF FILE" -> "END OF FILE"; empty for
+// lines that are not section headers (unit names such as "# Jaw drop" are mixed case).
+std::string_view headerName(std::string_view line) {
+  if (line.empty() || line[0] != '#') return {};
+  std::string_view name = trim(line.substr(1));
+  if (!name.empty() && name.back() == ':') name = trim(name.substr(0, name.size() - 1));
+  if (name.empty()) return {};
+  for (char c : name)
+    if (!(c == ' ' || (c >= 'A' && c <= 'Z'))) return {};
+  return name;
+}
+
+eng::Result<void> expectHeader(LineReader& in, std::string_view name) {
+  std::string_view line;
+  if (!in.next(line)) return in.endError("the '# " + std::string(name) + ":' section");
+  if (headerName(line) != name)
+    return in.error("expected '# " + std::string(name) + ":', got '" + std::string(line) + "'");
+  return {};
+}
+
+eng::Result<size_t> readCount(LineReader& in, const std::string& what) {
+  std::string_view line;
+  if (!in.next(line)) return in.endError("the " + what);
+  const std::vector<std::string_view> t = tokens(line);
+  size_t count = 0;
+  if (t.size() != 1 || !parseIndex(t[0], count))
+    return in.error("expected the " + what + " (one non-negative integer), got '" + std::string(line) + "'");
+  if (count > kMaxCount)
+    return in.error(what + " " + std::to_string(count) + " exceeds the limit of " + std::to_string(kMaxCount));
+  return count;
+}
+
+eng::Result<std::vector<glm::vec3>> readVertices(LineReader& in) {
+  auto count = readCount(in, "vertex count");
+  if (!count) return count.error();
+  std::vector<glm::vec3> positions(*count);
+  for (size_t i = 0; i < *count; ++i) {
+    std::string_view line;
+    const std::string what = "vertex " + std::to_string(i) + " of " + std::to_string(*count);
+    if (!in.next(line)) return in.endError(what);
+    const std::vector<std::string_view> t = tokens(line);
+    if (t.size() != 3 || !parseFloat(t[0], positions[i].x) || !parseFloat(t[1], positions[i].y) ||
+        !parseFloat(t[2], positions[i].z))
+      return in.error("expected three finite numbers 'x y z' for " + what + ", got '" + std::string(line) + "'");
+  }
+  return positions;
+}
+
+eng::Result<std::vector<uint32_t>> readFaces(LineReader& in, size_t vertexCount) {
+  auto count = readCount(in, "triangle count");
+  if (!count) return count.error();
+  std::vector<uint32_t> indices;
+  indices.reserve(*count * 3);
+  for (size_t f = 0; f < *count; ++f) {
+    std::string_view line;
+    const std::string what = "triangle " + std::to_string(f) + " of " + std::to_string(*count);
+    if (!in.next(line)) return in.endError(what);
+    const std::vector<std::string_view> t = tokens(line);
+    if (t.size() != 3) return in.error("expected three vertex indices for " + what + ", got '" + std::string(line) + "'");
+    for (std::string_view token : t) {
+      size_t index = 0;
+      if (!parseIndex(token, index)) return in.error("'" + std::string(token) + "' is not a vertex index (" + what + ")");
+      if (index >= vertexCount)
+        return in.error("vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
+                        " vertices) in " + what);
+      indices.push_back(static_cast<uint32_t>(index));
+    }
+  }
+  return indices;
+}
+
+struct Unit {
+  std::string name;
+  std::vector<glm::vec3> deltas;  // one per vertex
+};
+
+eng::Result<std::vector<Unit>> readUnits(LineReader& in, size_t vertexCount, const std::string& kind) {
+  auto count = readCount(in, kind + " count");
+  if (!count) return count.error();
+  std::vector<Unit> units(*count);
+  for (size_t u = 0; u < *count; ++u) {
+    std::string_view line;
+    const std::string which = kind + " " + std::to_string(u) + " of " + std::to_string(*count);
+    if (!in.next(line)) return in.endError(which);
+    if (line[0] != '#' || !headerName(line).empty() || trim(line.substr(1)).empty())
+      return in.error("expected the name line '# <name>' of " + which + ", got '" + std::string(line) + "'");
+    Unit& unit = units[u];
+    unit.name = std::string(trim(line.substr(1)));
+    unit.deltas.assign(vertexCount, glm::vec3(0.0f));
+    auto entries = readCount(in, "entry count of " + kind + " '" + unit.name + "'");
+    if (!entries) return entries.error();
+    for (size_t e = 0; e < *entries; ++e) {
+      if (!in.next(line)) return in.endError("entry " + std::to_string(e) + " of '" + unit.name + "'");
+      const std::vector<std::string_view> t = tokens(line);
+      size_t index = 0;
+      glm::vec3 d(0.0f);
+      if (t.size() != 4 || !parseIndex(t[0], index) || !parseFloat(t[1], d.x) || !parseFloat(t[2], d.y) ||
+          !parseFloat(t[3], d.z))
+        return in.error("expected 'vertex dx dy dz' in '" + unit.name + "', got '" + std::string(line) + "'");
+      if (index >= vertexCount)
+        return in.error("vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
+                        " vertices) in '" + unit.name + "'");
+      unit.deltas[index] += d;
+    }
+  }
+  return units;
+}
+
+// `count` numbers, any number per line, up to the next header.
+eng::Result<std::vector<float>> readValues(LineReader& in, size_t count, const std::string& what) {
+  std::vector<float> values;
+  values.reserve(count);
+  std::string_view line;
+  while (values.size() < count) {
+    if (!in.peek(line) || !headerName(line).empty())
+      return in.error(what + " lists " + std::to_string(values.size()) + " values, expected " + std::to_string(count));
+    in.next(line);
+    for (std::string_view token : tokens(line)) {
+      float v = 0.0f;
+      if (!parseFloat(token, v)) return in.error("'" + std::string(token) + "' is not a finite number in " + what);
+      if (values.size() == count) return in.error(what + " lists more than " + std::to_string(count) + " values");
+      values.push_back(v);
+    }
+  }
+  return values;
+}
+
+std::vector<glm::vec3> vertexNormals(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
+  std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+  for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+    const glm::vec3 &a = positions[indices[i]], &b = positions[indices[i + 1]], &c = positions[indices[i + 2]];
+    const glm::vec3 n = glm::cross(b - a, c - a);  // area-weighted
+    for (size_t k = 0; k < 3; ++k) normals[indices[i + k]] += n;
+  }
+  for (glm::vec3& n : normals) {
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  return normals;
+}
+
+eng::MorphTarget makeTarget(const eng::Primitive& base, const std::vector<glm::vec3>& deltas) {
+  eng::MorphTarget target;
+  target.positions = deltas;
+  std::vector<glm::vec3> moved = base.positions;
+  for (size_t v = 0; v < moved.size(); ++v) moved[v] += deltas[v];
+  const std::vector<glm::vec3> normals = vertexNormals(moved, base.indices);
+  target.normals.resize(normals.size());
+  for (size_t v = 0; v < normals.size(); ++v) target.normals[v] = normals[v] - base.normals[v];
+  return target;
+}
+
+}  // namespace
+
+eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
+  LineReader in(text, source);
+  if (auto r = expectHeader(in, "VERTEX LIST"); !r) return r.error();
+  auto positions = readVertices(in);
+  if (!positions) return positions.error();
+  const size_t n = positions->size();
+  if (auto r = expectHeader(in, "FACE LIST"); !r) return r.error();
+  auto indices = readFaces(in, n);
+  if (!indices) return indices.error();
+  if (auto r = expectHeader(in, "ANIMATION UNITS LIST"); !r) return r.error();
+  auto animationUnits = readUnits(in, n, "animation unit");
+  if (!animationUnits) return animationUnits.error();
+  if (auto r = expectHeader(in, "SHAPE UNITS LIST"); !r) return r.error();
+  auto shapeUnits = readUnits(in, n, "shape unit");
+  if (!shapeUnits) return shapeUnits.error();
+
+  // Optional trailing sections, in the file's order.
+  std::vector<float> animationParameters(animationUnits->size(), 0.0f);
+  std::vector<float> shapeParameters(shapeUnits->size(), 0.0f);
+  std::vector<glm::vec2> texcoords;
+  std::string_view line;
+  while (in.next(line)) {
+    const std::string_view header = headerName(line);
+    if (header == "END OF FILE") break;
+    if (header == "ANIMATION PARAMETERS" || header == "SHAPE PARAMETERS") {
+      const bool animation = header == "ANIMATION PARAMETERS";
+      auto values = readValues(in, animation ? animationParameters.size() : shapeParameters.size(),
+                               animation ? "ANIMATION PARAMETERS" : "SHAPE PARAMETERS");
+      if (!values) return values.error();
+      (animation ? animationParameters : shapeParameters) = std::move(*values);
+    } else if (header == "TEXTURE") {
+      auto values = readValues(in, 2 * n, "TEXTURE (u v per vertex)");
+      if (!values) return values.error();
+      texcoords.resize(n);
+      for (size_t v = 0; v < n; ++v) texcoords[v] = glm::vec2((*values)[2 * v], (*values)[2 * v + 1]);
+    } else {
+      return in.error("unexpected line '" + std::string(line) +
+                      "' (expected ANIMATION PARAMETERS, SHAPE PARAMETERS, TEXTURE or END OF FILE)");
+    }
+  }
+
+  eng::Model model;
+  model.sourcePath = std::string(source);
+  eng::Primitive primitive;
+  primitive.positions = std::move(*positions);
+  primitive.indices = std::move(*indices);
+  // CANDIDE does not fix a winding; glTF wants counter-clockwise front faces.
+  // The mask faces +z, so the area-weighted normals must sum towards +z.
+  float facing = 0.0f;
+  for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
+    const glm::vec3 &a = primitive.positions[primitive.indices[i]], &b = primitive.positions[primitive.indices[i + 1]],
+                    &c = primitive.positions[primitive.indices[i + 2]];
+    facing += glm::cross(b - a, c - a).z;
+  }
+  if (facing < 0.0f)
+    for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) std::swap(primitive.indices[i + 1], primitive.indices[i + 2]);
+  primitive.texcoords = std::move(texcoords);
+
+  // The eyes: the skin between the lids is cut out (candide_eyes.h). The
+  // vertices only that skin used stay, unused, so the file's vertex numbers
+  // (which trackers and papers refer to) keep naming the same points.
+  std::vector<MaskEyeOpening> eyes;
+  for (const Unit& unit : *animationUnits)
+    if (const facial::CandideAnimationUnit* known = facial::findCandideUnit(unit.name); known && known->facsNumber == 45)
+      eyes = cutEyeOpenings(primitive.positions, primitive.indices, unit.deltas);
+  if (eyes.size() < 2)
+    model.warnings.push_back(std::string(source) + ": " + std::to_string(eyes.size()) +
+                             " of 2 eye openings found (a loop of lid margins moved by 'Eyes closed' and two corners); "
+                             "the rest stay skin, with no eyeball");
+  primitive.normals = vertexNormals(primitive.positions, primitive.indices);
+
+  eng::Mesh mesh;
+  mesh.name = "candide3 face";  // "face": shown dressed like other untextured faces (skin tone, occlusion)
+  for (const Unit& unit : *animationUnits) {
+    const facial::CandideAnimationUnit* known = facial::findCandideUnit(unit.name);
+    if (!known)
+      model.warnings.push_back(std::string(source) + ": animation unit '" + unit.name +
+                               "' is not one of CANDIDE-3's 14; kept under its own name");
+    mesh.targetNames.push_back(known ? facial::candideTargetName(*known) : unit.name);
+    primitive.targets.push_back(makeTarget(primitive, unit.deltas));
+  }
+  for (const Unit& unit : *shapeUnits) {
+    mesh.targetNames.push_back("SU_" + unit.name);
+    primitive.targets.push_back(makeTarget(primitive, unit.deltas));
+  }
+  mesh.defaultWeights = animationParameters;
+  mesh.defaultWeights.insert(mesh.defaultWeights.end(), shapeParameters.begin(), shapeParameters.end());
+  mesh.primitives.push_back(std::move(primitive));
+  model.meshes.push_back(std::move(mesh));
+
+  eng::Node node;
+  node.name = "candide3";
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  model.roots.push_back(0);
+
+  // The eyeballs are primitives of the mask's mesh, so they share its
+  // targets: an expression leaves them still (the lids move over them), an
+  // identity shape carries each with its rim and grows it with its opening,
+  // so a mask reshaped by --shape keeps its eyes filling their openings.
+  // Their material's name marks them as eyeballs for the dressing
+  // (engine/scene/procedural_eyes.h).
+  eng::Mesh& face = model.meshes[0];
+  if (!eyes.empty()) {
+    eng::Material eyeMaterial;
+    eyeMaterial.name = "eye";
+    model.materials.push_back(eyeMaterial);
+  }
+  for (const MaskEyeOpening& eye : eyes) {
+    eng::Primitive ball = eyeballBehind(face.primitives[0].positions, eye);
+    ball.material = int(model.materials.size()) - 1;
+    eng::MorphTarget still;
+    still.positions.assign(ball.positions.size(), glm::vec3(0.0f));
+    still.normals = still.positions;
+    ball.targets.assign(animationUnits->size(), still);
+    for (const Unit& unit : *shapeUnits)
+      ball.targets.push_back(eyeballFollowing(face.primitives[0].positions, eye, ball, unit.deltas));
+    face.primitives.push_back(std::move(ball));
+  }
+  return model;
+}
+
+eng::Result<eng::Model> importCandide3(const std::filesystem::path& wfmFile) {
+  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(wfmFile, kMaxFileBytes);
+  if (!bytes) return bytes.error();
+  const std::string_view text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+  return parseCandide3(text, wfmFile.string());
+}
+
+}  // namespace importers

@@ -1,0 +1,37 @@
+// --quality of the windows (demo, editor): "auto" picks the tier by device.
+#include <gtest/gtest.h>
+
+#include "app/view_options.h"
+
+namespace {
+
+TEST(WindowQuality, AutoIsBalancedOnACpuRasteriserAndHighOnAGpu) {
+  auto cpu = app::windowQualityOption(app::kWindowQualityAuto, VK_PHYSICAL_DEVICE_TYPE_CPU);
+  ASSERT_TRUE(cpu) << cpu.error().message;
+  EXPECT_EQ(*cpu, eng::vk::RenderQuality::Balanced);
+  for (VkPhysicalDeviceType gpu : {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU}) {
+    auto tier = app::windowQualityOption("auto", gpu);
+    ASSERT_TRUE(tier) << tier.error().message;
+    EXPECT_EQ(*tier, eng::vk::RenderQuality::High);
+  }
+}
+
+TEST(WindowQuality, NamedTiersAreKeptOnEveryDevice) {
+  for (eng::vk::RenderQuality q :
+       {eng::vk::RenderQuality::Fast, eng::vk::RenderQuality::Balanced, eng::vk::RenderQuality::High}) {
+    auto tier = app::windowQualityOption(eng::vk::qualityName(q), VK_PHYSICAL_DEVICE_TYPE_CPU);
+    ASSERT_TRUE(tier) << tier.error().message;
+    EXPECT_EQ(*tier, q);
+  }
+}
+
+TEST(WindowQualityValidity, UnknownTierNamesTheOptionAndTheValue) {
+  auto tier = app::windowQualityOption("ultra", VK_PHYSICAL_DEVICE_TYPE_CPU);
+  ASSERT_FALSE(tier);
+  EXPECT_EQ(tier.error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_NE(tier.error().message.find("--quality 'ultra'"), std::string::npos) << tier.error().message;
+  // Headless commands know no "auto".
+  EXPECT_FALSE(app::qualityOption("auto"));
+}
+
+}  // namespace

@@ -1,0 +1,93 @@
+// Material detail layers (texture cross-blending): each layer's image is
+// blended over the base colour by (its target's current weight x strength),
+// read in the fragment shader from the same active list as the morphing.
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/log.h"
+#include "tests/engine/vk/image_probe.h"
+#include "tests/engine/vk/test_models.h"
+#include "tests/engine/vk/vk_test_context.h"
+
+namespace {
+
+eng::Image solidImage(int w, int h, glm::u8vec4 colour) {
+  eng::Image img;
+  img.name = "solid";
+  img.width = w;
+  img.height = h;
+  for (int i = 0; i < w * h; ++i) img.rgba8.insert(img.rgba8.end(), {colour.r, colour.g, colour.b, colour.a});
+  return img;
+}
+
+// A grey sphere whose material has a red layer on t1 and a blue layer (other size) on t2.
+eng::Model layeredSphere() {
+  vk_test::SphereSpec spec;
+  spec.color = {0.7f, 0.7f, 0.7f, 1.0f};
+  eng::Model model = vk_test::makeSphereModel(spec);
+  model.images.push_back(solidImage(4, 4, {255, 0, 0, 255}));
+  model.images.push_back(solidImage(2, 8, {0, 0, 255, 255}));
+  model.materials[0].detailLayers = {{0, vk_test::targetName(1), 1.0f}, {1, vk_test::targetName(2), 0.5f}};
+  return model;
+}
+
+glm::ivec4 centreWith(const eng::vk::GpuModel& gpu, const eng::Model& model, std::vector<float> weights) {
+  const eng::vk::ModelInstance instance{&gpu, glm::mat4(1.0f), weights};
+  auto image = vk_test::renderer().render({eng::OrbitCamera::frame(model.bounds()), {}}, {&instance, 1});
+  EXPECT_TRUE(image) << (image ? "" : image.error().message);
+  return image ? vk_test::pixel(*image, 128, 128) : glm::ivec4(0);
+}
+
+TEST(DetailLayers, LayerFollowsItsTargetWeight) {
+  const eng::Model model = layeredSphere();
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const glm::ivec4 off = centreWith(*gpu, model, {0, 0, 0, 0});
+  const glm::ivec4 half = centreWith(*gpu, model, {0, 0.5f, 0, 0});
+  const glm::ivec4 full = centreWith(*gpu, model, {0, 1.0f, 0, 0});
+  EXPECT_LT(std::abs(off.r - off.g), 15) << "grey base without the layer";
+  EXPECT_GT(full.r, full.g + 80) << "red layer at weight 1";
+  EXPECT_GT(half.r - half.g, 20);
+  EXPECT_LT(half.r - half.g, full.r - full.g) << "weight 0.5 blends half way";
+}
+
+TEST(DetailLayers, StrengthScalesTheWeightAndLayersOfOtherSizesWork) {
+  const eng::Model model = layeredSphere();
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const glm::ivec4 blue = centreWith(*gpu, model, {0, 0, 1.0f, 0});  // strength 0.5: half blue
+  EXPECT_GT(blue.b, blue.r + 20);
+  const glm::ivec4 bothFull = centreWith(*gpu, model, {0, 1.0f, 1.0f, 0});
+  EXPECT_GT(bothFull.b, 40) << "the blue layer (later) blends over the red one";
+  EXPECT_GT(bothFull.r, 40);
+}
+
+TEST(DetailLayers, LayerOnAMissingTargetStaysHidden) {
+  eng::Model model = layeredSphere();
+  model.materials[0].detailLayers = {{0, "noSuchTarget", 1.0f}};
+  std::vector<std::string> warnings;
+  const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {
+    if (level == eng::LogLevel::Warning) warnings.emplace_back(m);
+  });
+  auto gpu = vk_test::renderer().upload(model);
+  eng::setLogSink(previous);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("noSuchTarget"), std::string::npos) << warnings[0];
+  const glm::ivec4 c = centreWith(*gpu, model, {1, 1, 1, 1});
+  EXPECT_LT(std::abs(c.r - c.g), 15);
+}
+
+TEST(DetailLayersValidity, LayerImageOutOfRangeIsAnError) {
+  eng::Model model = layeredSphere();
+  model.sourcePath = "layers.glb";
+  model.materials[0].detailLayers[1].image = 7;
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_FALSE(gpu);
+  EXPECT_NE(gpu.error().message.find("layers.glb: material 0 detail layer 't2' image 7 out of range (2 images)"),
+            std::string::npos)
+      << gpu.error().message;
+}
+
+}  // namespace

@@ -1,0 +1,82 @@
+#include "facial/runtime/graph/nodes/blend_node.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "tests/facial/graph/graph_test_support.h"
+
+using namespace facial;
+using namespace graph_test;
+
+namespace {
+
+// P0 = (0, 1, 0.2), P1 = (1, 0, 0.6) blended by parameter "t" with `curve`.
+struct BlendRig {
+  explicit BlendRig(EasingCurve curve) {
+    GraphBuilder b(threeChannels());
+    t = b.addFloat("t");
+    const NodeIndex p0 = addPose(b, {0.0f, 1.0f, 0.2f});
+    const NodeIndex p1 = addPose(b, {1.0f, 0.0f, 0.6f});
+    b.setRoot(b.add(BlendNode{.a = p0, .b = p1, .factor = FloatInput::bound(t), .curve = std::move(curve)}));
+    face.emplace(instantiate(buildGraph(b)));
+  }
+  std::vector<float> at(float value) {
+    face->setFloat(t, value);
+    face->update(0.016f);
+    return {face->weights().begin(), face->weights().end()};
+  }
+  ParameterIndex t = 0;
+  std::optional<GraphInstance> face;
+};
+
+void expectBlend(const std::vector<float>& w, float c) {
+  EXPECT_NEAR(w[0], c, 1e-6f);
+  EXPECT_NEAR(w[1], 1.0f - c, 1e-6f);
+  EXPECT_NEAR(w[2], (1.0f - c) * 0.2f + c * 0.6f, 1e-6f);
+}
+
+}  // namespace
+
+TEST(BlendNode, LinearIsOneMinusTP0PlusTP1) {
+  BlendRig rig(EasingCurve::linear());
+  expectBlend(rig.at(0.0f), 0.0f);
+  expectBlend(rig.at(0.3f), 0.3f);
+  expectBlend(rig.at(1.0f), 1.0f);
+  expectBlend(rig.at(1.7f), 1.0f);  // factor clamped
+}
+
+TEST(BlendNode, CosineUsesOneMinusCosPiTOverTwo) {
+  BlendRig rig(EasingCurve::cosine());
+  for (float t : {0.1f, 0.25f, 0.5f, 0.8f})
+    expectBlend(rig.at(t), (1.0f - std::cos(std::numbers::pi_v<float> * t)) / 2.0f);
+}
+
+TEST(BlendNode, SmoothstepUsesThreeTSquaredMinusTwoTCubed) {
+  BlendRig rig(EasingCurve::smoothstep());
+  for (float t : {0.1f, 0.25f, 0.5f, 0.8f}) expectBlend(rig.at(t), 3 * t * t - 2 * t * t * t);
+}
+
+TEST(BlendNode, BezierHandlesShapeTheBlend) {
+  auto curve = EasingCurve::bezier({0.25f, 0.1f, 0.25f, 1.0f});
+  ASSERT_TRUE(curve.ok());
+  BlendRig rig(*curve);
+  expectBlend(rig.at(0.5f), 0.8024034f);
+}
+
+TEST(BlendNode, KeyedCurveShapesTheBlend) {
+  auto curve = EasingCurve::keyed({Keyframe{0, 0}, Keyframe{0.5f, 0.2f}, Keyframe{1, 1}});
+  ASSERT_TRUE(curve.ok());
+  BlendRig rig(*curve);
+  expectBlend(rig.at(0.25f), 0.1f);
+  expectBlend(rig.at(0.75f), 0.6f);
+}
+
+TEST(BlendNodeValidity, FactorMustNameAnExistingParameter) {
+  GraphBuilder b(threeChannels());
+  const NodeIndex p0 = addPose(b, {0, 0, 0});
+  const NodeIndex p1 = addPose(b, {1, 1, 1});
+  b.setRoot(b.add(BlendNode{.a = p0, .b = p1, .factor = FloatInput::bound(7)}));
+  EXPECT_NE(buildError(b).find("node 2 (blend)/factor: parameter index 7 out of range (0 parameters)"), std::string::npos);
+}

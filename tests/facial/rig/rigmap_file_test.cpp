@@ -1,0 +1,110 @@
+// Rig map files (data/rigmaps/*.json): the project's map for RobotExpressive
+// loads against the real model's names; malformed maps name file, path, problem.
+#include "facial/runtime/rig/rigmap_file.h"
+
+#include <algorithm>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/weights.h"
+#include "facial/runtime/rig/action_units.h"
+#include "tests/common/test_support.h"
+
+namespace facial {
+namespace {
+
+const std::vector<std::string> kRobotHead = {"Angry", "Surprised", "Sad"};
+
+std::filesystem::path robotMap() { return testing_support::sourceDir() / "data" / "rigmaps" / "RobotExpressive.json"; }
+
+TEST(RigMapFile, ProjectMapDrivesTheRobotsExpressions) {
+  auto mapping = loadRigMap(robotMap(), kRobotHead);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Custom);
+  EXPECT_NE(mapping->report().detail.find("RobotExpressive.json"), std::string::npos);
+  std::vector<float> au(actionUnits().size(), 0.0f), emotions(kEmotionCount, 0.0f), out(3, 0.0f);
+  emotions[static_cast<size_t>(Emotion::Fear)] = 1.0f;
+  ASSERT_TRUE(mapping->apply(au, emotions, out));
+  EXPECT_EQ(out, (std::vector<float>{0.0f, 0.6f, 0.5f}));
+  const std::vector<std::string>& unmapped = mapping->report().unmappedInputs;
+  for (const char* input : {"happy", "neutral", "AU45_Blink_L"})
+    EXPECT_NE(std::find(unmapped.begin(), unmapped.end(), input), unmapped.end()) << input;
+}
+
+TEST(RigMapFile, ProjectMapMatchesTheShippedModel) {
+  FACIAL_REQUIRE_SHARED();
+  auto model = eng::loadModel(testing_support::sharedDir() / "assets" / "RobotExpressive.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  const std::vector<std::string> names = eng::WeightLayout(*model).names();
+  auto mapping = buildRigMapping(names, RigMappingOptions{"RobotExpressive", testing_support::sourceDir() / "data" / "rigmaps", {}});
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Custom);
+  EXPECT_TRUE(mapping->report().unmappedTargets.empty()) << mapping->report().summary();
+}
+
+TEST(RigMapFile, SignedRangeAndSeveralTargetsOfOneName) {
+  const std::vector<std::string> names = {"Head/Frown", "Beard/Frown", "Head/Smile"};
+  auto mapping = parseRigMap(R"({"version": 1, "weightRange": [-1, 1], "map": {
+      "AU12_LipCornerPuller_L": [{"target": "Head/Smile", "weight": 0.5}],
+      "AU15_LipCornerDepressor": [{"target": "Head/Frown", "weight": -1}]}})",
+                             "signed.json", names);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->minWeight(), -1.0f);
+  std::vector<float> au(actionUnits().size(), 0.0f), out(3, 0.0f);
+  au[*actionUnitIndex("AU15_LipCornerDepressor")] = 0.5f;
+  ASSERT_TRUE(mapping->apply(au, out));
+  EXPECT_EQ(out, (std::vector<float>{-0.5f, 0.0f, 0.0f}));
+  EXPECT_EQ(mapping->report().unmappedTargets, std::vector<std::string>{"Beard/Frown"});
+}
+
+// ---- refused maps ----
+
+std::string rigMapErrorOf(std::string_view json) {
+  auto mapping = parseRigMap(json, "bot.json", kRobotHead);
+  return mapping ? std::string("(accepted)") : mapping.error().message;
+}
+
+TEST(RigMapFileValidity, ErrorsNameFilePathAndProblem) {
+  EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Furious", "weight": 1}]}})"),
+            "bot.json: /map/anger/0/target: the model has no target 'Furious' (3 targets)");
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"rage": []}})").find("bot.json: /map/rage: unknown channel"),
+            std::string::npos);
+  EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": 3}]}})"),
+            "bot.json: /map/anger/0/weight: value 3 is outside [-1, 1]");
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": "full"}]}})")
+                .find("/map/anger/0/weight: must be a number, got string"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry"}]}})").find("/map/anger/0/weight: missing"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": 1, "gain": 2}]}})")
+                .find("/map/anger/0/gain: unknown key"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": 1}, {"target": "Angry", "weight": 1}]}})")
+                .find("/map/anger/1/target: 'Angry' is listed twice"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 2, "map": {}})").find("/version: unsupported version 2"), std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1})").find("bot.json: /map: missing"), std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {}, "maps": {}})").find("/maps: unknown key"), std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "weightRange": [1, 0], "map": {}})").find("/weightRange: min must be below max"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": {"target": "Angry"}}})").find("/map/anger: must be an array"),
+            std::string::npos);
+}
+
+TEST(RigMapFileValidity, DeepNestingIsRefusedBeforeParsing) {
+  // Brackets inside strings (escaped quotes included) do not count; the real depth is 3 + 50,000.
+  const std::string deep = R"({"version": 1, "note": "[[[\"{{{", "map": {"anger": )" + std::string(50000, '[') +
+                           std::string(50000, ']') + "}}";
+  EXPECT_EQ(rigMapErrorOf(deep), "bot.json: JSON nests 50002 levels deep, more than the 256 accepted");
+}
+
+TEST(RigMapFileValidity, MissingFileIsNamed) {
+  auto mapping = loadRigMap(testing_support::freshTempDir("rigmap_file") / "gone.json", kRobotHead);
+  ASSERT_FALSE(mapping);
+  EXPECT_NE(mapping.error().message.find("gone.json: file not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace facial
