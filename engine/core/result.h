@@ -88,3 +88,21 @@ inline Error makeError(ErrorKind kind, std::string message, int32_t code = 0) {
 }
 
 }  // namespace eng
+
+// Returns the error of a failed eng::Result from the enclosing function.
+#define ENG_TRY(expr)                                      \
+  do {                                                     \
+    if (auto&& eng_try_result_ = (expr); !eng_try_result_) \
+      return eng_try_result_.error();                      \
+  } while (0)
+
+// The value of an eng::Result<T>, or its error returned from the enclosing
+// function: `float w = ENG_TRY_VALUE(node.number());`. A statement expression
+// (GCC and Clang, the compilers this project builds with) so that readers of
+// nested data stay one line per field instead of three.
+#define ENG_TRY_VALUE(expr)                                  \
+  ({                                                         \
+    auto eng_try_value_ = (expr);                            \
+    if (!eng_try_value_) return eng_try_value_.error();      \
+    std::move(eng_try_value_).value();                       \
+  })

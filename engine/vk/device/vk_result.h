@@ -29,9 +29,3 @@ Error explainDeviceLost(const Error& error);
       return ::eng::vk::vulkanError(#call, eng_vk_result_);                      \
   } while (0)
 
-// Returns the error of a failed eng::Result from the enclosing function.
-#define ENG_TRY(expr)                                    \
-  do {                                                   \
-    if (auto&& eng_try_result_ = (expr); !eng_try_result_) \
-      return eng_try_result_.error();                    \
-  } while (0)

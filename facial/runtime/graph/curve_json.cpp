@@ -5,89 +5,96 @@
 namespace facial {
 namespace detail {
 
-KeyInterpolation parseKeyInterpolation(const JsonNode& name) {
-  auto k = keyInterpolationFromString(name.string());
-  if (!k) name.fail("unknown interpolation '" + name.string() + "' (expected step, linear, cosine or hermite)");
+eng::Result<KeyInterpolation> parseKeyInterpolation(const JsonNode& name) {
+  const std::string text = ENG_TRY_VALUE(name.string());
+  auto k = keyInterpolationFromString(text);
+  if (!k) return name.error("unknown interpolation '" + text + "' (expected step, linear, cosine or hermite)");
   return *k;
 }
 
-std::vector<Keyframe> parseKeyframes(const JsonNode& keys, KeyInterpolation defaultInterpolation) {
+namespace {
+
+// One key: [time, value], or {"t", "v", "interp", "in", "out"}.
+eng::Result<Keyframe> parseKeyframe(const JsonNode& key, KeyInterpolation defaultInterpolation) {
+  Keyframe k;
+  k.interpolation = defaultInterpolation;
+  if (key.isArray()) {
+    const size_t n = ENG_TRY_VALUE(key.size());
+    if (n != 2) return key.error("expected [time, value], got " + std::to_string(n) + " numbers");
+    k.time = ENG_TRY_VALUE(key.element(0).number());
+    k.value = ENG_TRY_VALUE(key.element(1).number());
+    return k;
+  }
+  ENG_TRY(key.allowOnly({"t", "v", "interp", "in", "out"}));
+  k.time = ENG_TRY_VALUE(key.numberAt("t"));
+  k.value = ENG_TRY_VALUE(key.numberAt("v"));
+  if (auto interp = key.find("interp")) k.interpolation = ENG_TRY_VALUE(parseKeyInterpolation(*interp));
+  k.inTangent = ENG_TRY_VALUE(key.numberOr("in", 0.0f));
+  k.outTangent = ENG_TRY_VALUE(key.numberOr("out", 0.0f));
+  return k;
+}
+
+}  // namespace
+
+eng::Result<std::vector<Keyframe>> parseKeyframes(const JsonNode& keys, KeyInterpolation defaultInterpolation) {
+  const size_t count = ENG_TRY_VALUE(keys.size());
   std::vector<Keyframe> out;
-  out.reserve(keys.size());
-  for (size_t i = 0; i < keys.size(); ++i) {
-    const JsonNode key = keys[i];
-    Keyframe k;
-    k.interpolation = defaultInterpolation;
-    if (key.isArray()) {
-      if (key.size() != 2) key.fail("expected [time, value], got " + std::to_string(key.size()) + " numbers");
-      k.time = key[0].number();
-      k.value = key[1].number();
-    } else {
-      key.allowOnly({"t", "v", "interp", "in", "out"});
-      k.time = key.at("t").number();
-      k.value = key.at("v").number();
-      if (auto interp = key.find("interp")) k.interpolation = parseKeyInterpolation(*interp);
-      k.inTangent = key.numberOr("in", 0.0f);
-      k.outTangent = key.numberOr("out", 0.0f);
-    }
+  out.reserve(count);
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode key = keys.element(i);
+    const Keyframe k = ENG_TRY_VALUE(parseKeyframe(key, defaultInterpolation));
     if (i > 0 && !(k.time > out.back().time))
-      key.fail("key time " + formatNumber(k.time) + " is not after the previous key's " +
-               formatNumber(out.back().time) + " (keys must be sorted, no duplicates)");
+      return key.error("key time " + formatNumber(k.time) + " is not after the previous key's " +
+                       formatNumber(out.back().time) + " (keys must be sorted, no duplicates)");
     out.push_back(k);
   }
-  if (out.empty()) keys.fail("no keys");
+  if (out.empty()) return keys.error("no keys");
   return out;
 }
 
-EasingCurve parseEasingCurve(const JsonNode& curve) {
+eng::Result<EasingCurve> parseEasingCurve(const JsonNode& curve) {
   if (curve.isString()) {
-    const std::string name = curve.string();
+    const std::string name = ENG_TRY_VALUE(curve.string());
     if (name == "linear") return EasingCurve::linear();
     if (name == "cosine") return EasingCurve::cosine();
     if (name == "smoothstep") return EasingCurve::smoothstep();
-    curve.fail("unknown curve '" + name + "' (expected linear, cosine, smoothstep, or an object for bezier/keyed)");
+    return curve.error("unknown curve '" + name + "' (expected linear, cosine, smoothstep, or an object for bezier/keyed)");
   }
-  curve.allowOnly({"type", "handles", "keys", "interpolation"});
-  const std::string type = curve.at("type").string();
+  ENG_TRY(curve.allowOnly({"type", "handles", "keys", "interpolation"}));
+  const JsonNode typeNode = ENG_TRY_VALUE(curve.at("type"));
+  const std::string type = ENG_TRY_VALUE(typeNode.string());
   if (type == "bezier") {
-    const JsonNode h = curve.at("handles");
-    if (h.size() != 4) h.fail("expected 4 numbers [x1, y1, x2, y2], got " + std::to_string(h.size()));
-    auto c = EasingCurve::bezier({h[0].number(), h[1].number(), h[2].number(), h[3].number()});
-    if (!c) h.fail(c.error());
-    return std::move(c).value();
+    const JsonNode h = ENG_TRY_VALUE(curve.at("handles"));
+    const size_t n = ENG_TRY_VALUE(h.size());
+    if (n != 4) return h.error("expected 4 numbers [x1, y1, x2, y2], got " + std::to_string(n));
+    float handles[4];
+    for (size_t i = 0; i < 4; ++i) handles[i] = ENG_TRY_VALUE(h.element(i).number());
+    auto c = EasingCurve::bezier({handles[0], handles[1], handles[2], handles[3]});
+    if (!c) return h.error(c.error());
+    return c;
   }
   if (type == "keyed") {
     KeyInterpolation interp = KeyInterpolation::Linear;
-    if (auto i = curve.find("interpolation")) interp = parseKeyInterpolation(*i);
-    const JsonNode keys = curve.at("keys");
-    auto c = EasingCurve::keyed(parseKeyframes(keys, interp));
-    if (!c) keys.fail(c.error());
-    return std::move(c).value();
+    if (auto i = curve.find("interpolation")) interp = ENG_TRY_VALUE(parseKeyInterpolation(*i));
+    const JsonNode keys = ENG_TRY_VALUE(curve.at("keys"));
+    auto c = EasingCurve::keyed(ENG_TRY_VALUE(parseKeyframes(keys, interp)));
+    if (!c) return keys.error(c.error());
+    return c;
   }
   auto simple = easingTypeFromString(type);
   if (simple == EasingType::Linear) return EasingCurve::linear();
   if (simple == EasingType::Cosine) return EasingCurve::cosine();
   if (simple == EasingType::Smoothstep) return EasingCurve::smoothstep();
-  curve.at("type").fail("unknown curve type '" + type + "'");
+  return typeNode.error("unknown curve type '" + type + "'");
 }
 
 }  // namespace detail
 
 eng::Result<std::vector<Keyframe>> keyframesFromJson(const Json& keys, KeyInterpolation defaultInterpolation) {
-  try {
-    return detail::parseKeyframes(detail::JsonNode(keys, ""), defaultInterpolation);
-  } catch (const detail::JsonProblem& p) {
-    return detail::jsonProblemError(p, "");
-  }
+  return detail::parseKeyframes(JsonNode(keys, ""), defaultInterpolation);
 }
 
-eng::Result<EasingCurve> easingCurveFromJson(const Json& curve) {
-  try {
-    return detail::parseEasingCurve(detail::JsonNode(curve, ""));
-  } catch (const detail::JsonProblem& p) {
-    return detail::jsonProblemError(p, "");
-  }
-}
+eng::Result<EasingCurve> easingCurveFromJson(const Json& curve) { return detail::parseEasingCurve(JsonNode(curve, "")); }
 
 using detail::jsonNumber;
 

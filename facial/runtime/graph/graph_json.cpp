@@ -6,8 +6,7 @@
 #include "facial/runtime/graph/timeline_json.h"
 
 namespace facial {
-// The throwing readers; parseGraph turns their JsonProblem into an eng::Error.
-using namespace detail;
+using detail::NodeReader;
 
 namespace {
 
@@ -18,76 +17,84 @@ class GraphParser {
  public:
   GraphParser(GraphBuilder& builder, std::filesystem::path folder) : builder_(builder), folder_(std::move(folder)) {}
 
-  void parameters(const JsonNode& list) {
-    for (size_t i = 0; i < list.size(); ++i) {
-      const JsonNode p = list[i];
-      p.allowOnly({"name", "type", "default"});
-      const std::string name = p.at("name").string();
-      if (builder_.findParameter(name)) p.at("name").fail("parameter '" + name + "' is declared twice");
-      auto type = parameterTypeFromString(p.stringOr("type", "float"));
-      if (!type) p.at("type").fail("unknown parameter type (expected float, bool or trigger)");
-      float value = 0.0f;
-      if (auto d = p.find("default")) {
-        if (*type == ParameterType::Trigger) d->fail("a trigger has no default (it starts cleared)");
-        value = *type == ParameterType::Bool ? (d->boolean() ? 1.0f : 0.0f) : d->number();
-      }
-      builder_.addParameter(name, *type, value);
-    }
+  eng::Result<void> parameters(const JsonNode& list) {
+    const size_t count = ENG_TRY_VALUE(list.size());
+    for (size_t i = 0; i < count; ++i) ENG_TRY(parameter(list.element(i)));
+    return {};
   }
 
-  void timelines(const JsonNode& map) {
-    if (!map.isObject()) map.fail("expected an object {\"name\": path or timeline}");
+  eng::Result<void> timelines(const JsonNode& map) {
+    if (!map.isObject()) return map.error("expected an object {\"name\": path or timeline}");
     for (auto it = map.raw().begin(); it != map.raw().end(); ++it) {
-      const JsonNode entry = map.at(it.key());
+      const JsonNode entry = ENG_TRY_VALUE(map.at(it.key()));
       if (entry.isString()) {
-        const std::filesystem::path file = folder_ / entry.string();
+        const std::filesystem::path file = folder_ / ENG_TRY_VALUE(entry.string());
         auto timeline = loadTimeline(file);
-        if (!timeline) entry.fail(timeline.error());
+        if (!timeline) return entry.error(timeline.error());
         timeline->name = it.key();
         builder_.addTimeline(std::move(timeline).value());
       } else {
-        builder_.addTimeline(parseTimeline(entry, it.key()));
+        builder_.addTimeline(ENG_TRY_VALUE(detail::parseTimeline(entry, it.key())));
       }
     }
+    return {};
   }
 
  private:
+  eng::Result<void> parameter(const JsonNode& p) {
+    ENG_TRY(p.allowOnly({"name", "type", "default"}));
+    const JsonNode nameNode = ENG_TRY_VALUE(p.at("name"));
+    const std::string name = ENG_TRY_VALUE(nameNode.string());
+    if (builder_.findParameter(name)) return nameNode.error("parameter '" + name + "' is declared twice");
+    auto type = parameterTypeFromString(ENG_TRY_VALUE(p.stringOr("type", "float")));
+    if (!type) return ENG_TRY_VALUE(p.at("type")).error("unknown parameter type (expected float, bool or trigger)");
+    float value = 0.0f;
+    if (auto d = p.find("default")) {
+      if (*type == ParameterType::Trigger) return d->error("a trigger has no default (it starts cleared)");
+      value = *type == ParameterType::Bool ? (ENG_TRY_VALUE(d->boolean()) ? 1.0f : 0.0f) : ENG_TRY_VALUE(d->number());
+    }
+    builder_.addParameter(name, *type, value);
+    return {};
+  }
+
   GraphBuilder& builder_;
   std::filesystem::path folder_;
 };
 
-ChannelSet channelSet(const JsonNode& j) {
+eng::Result<ChannelSet> channelSet(const JsonNode& j) {
   if (j.isString()) {
-    if (j.string() != "actionUnits") j.fail("unknown channel set '" + j.string() + "' (expected \"actionUnits\" or a list of names)");
+    const std::string name = ENG_TRY_VALUE(j.string());
+    if (name != "actionUnits") return j.error("unknown channel set '" + name + "' (expected \"actionUnits\" or a list of names)");
     return ChannelSet::actionUnits();
   }
+  const size_t count = ENG_TRY_VALUE(j.size());
   std::vector<std::string> names;
-  for (size_t i = 0; i < j.size(); ++i) names.push_back(j[i].string());
+  for (size_t i = 0; i < count; ++i) names.push_back(ENG_TRY_VALUE(j.element(i).string()));
   auto set = ChannelSet::fromNames(names);
-  if (!set) j.fail(set.error().message);
-  return std::move(set).value();
+  if (!set) return j.error(set.error().message);
+  return set;
+}
+
+eng::Result<SharedGraphDefinition> readGraph(const JsonNode& root, const std::filesystem::path& source,
+                                             const GraphLoadOptions& options) {
+  ENG_TRY(requireVersion(root, kGraphFileVersion));
+  ENG_TRY(root.allowOnly({"version", "channels", "parameters", "timelines", "root"}));
+  GraphBuilder builder(ENG_TRY_VALUE(channelSet(ENG_TRY_VALUE(root.at("channels")))));
+  GraphParser parser(builder, source.parent_path());
+  if (auto p = root.find("parameters")) ENG_TRY(parser.parameters(*p));
+  if (auto t = root.find("timelines")) ENG_TRY(parser.timelines(*t));
+  NodeReader nodes(builder, options.presets);
+  builder.setRoot(ENG_TRY_VALUE(nodes.node(ENG_TRY_VALUE(root.at("root")))));
+  return builder.build();
 }
 
 }  // namespace
 
 eng::Result<SharedGraphDefinition> parseGraph(const Json& document, const std::filesystem::path& source,
                                               const GraphLoadOptions& options) {
-  try {
-    const JsonNode root(document, "");
-    requireVersion(root, kGraphFileVersion);
-    root.allowOnly({"version", "channels", "parameters", "timelines", "root"});
-    GraphBuilder builder(channelSet(root.at("channels")));
-    GraphParser parser(builder, source.parent_path());
-    if (auto p = root.find("parameters")) parser.parameters(*p);
-    if (auto t = root.find("timelines")) parser.timelines(*t);
-    NodeReader nodes(builder, options.presets);
-    builder.setRoot(nodes.node(root.at("root")));
-    auto graph = builder.build();
-    if (!graph) return graph.error().prefixed(source.string() + ": ");
-    return graph;
-  } catch (const JsonProblem& p) {
-    return jsonProblemError(p, source.string());
-  }
+  auto graph = readGraph(JsonNode(document, ""), source, options);
+  if (!graph) return graph.error().prefixed(source.string() + ": ");
+  return graph;
 }
 
 eng::Result<SharedGraphDefinition> loadGraph(const std::filesystem::path& path, const GraphLoadOptions& options) {

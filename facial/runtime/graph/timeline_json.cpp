@@ -7,60 +7,67 @@
 
 namespace facial {
 
-Timeline detail::parseTimeline(const JsonNode& node, std::string defaultName) {
-  node.allowOnly({"version", "name", "duration", "loop", "tracks"});
+namespace {
+
+// One track: {"channel", "interpolation", "keys"}, added to `timeline`.
+eng::Result<void> parseTrack(const JsonNode& track, Timeline& timeline) {
+  ENG_TRY(track.allowOnly({"channel", "interpolation", "keys"}));
+  const JsonNode channelNode = ENG_TRY_VALUE(track.at("channel"));
+  const std::string channel = ENG_TRY_VALUE(channelNode.string());
+  if (channel.empty()) return channelNode.error("empty channel name");
+  if (timeline.findTrack(channel)) return channelNode.error("channel '" + channel + "' already has a track");
+  KeyInterpolation interp = KeyInterpolation::Linear;
+  if (auto d = track.find("interpolation")) interp = ENG_TRY_VALUE(detail::parseKeyInterpolation(*d));
+  const JsonNode keysNode = ENG_TRY_VALUE(track.at("keys"));
+  const std::vector<Keyframe> keys = ENG_TRY_VALUE(detail::parseKeyframes(keysNode, interp));
+  if (keys.front().time < 0.0f) return keysNode.element(0).error("key time is negative");
+  timeline.addTrack(channel, keys);
+  return {};
+}
+
+}  // namespace
+
+eng::Result<Timeline> detail::parseTimeline(const JsonNode& node, std::string defaultName) {
+  ENG_TRY(node.allowOnly({"version", "name", "duration", "loop", "tracks"}));
   Timeline timeline;
-  timeline.name = node.stringOr("name", std::move(defaultName));
+  timeline.name = ENG_TRY_VALUE(node.stringOr("name", std::move(defaultName)));
   if (auto loop = node.find("loop")) {
-    auto mode = loopModeFromString(loop->string());
-    if (!mode) loop->fail("unknown loop mode '" + loop->string() + "' (expected once, clamp, loop or pingpong)");
+    const std::string name = ENG_TRY_VALUE(loop->string());
+    auto mode = loopModeFromString(name);
+    if (!mode) return loop->error("unknown loop mode '" + name + "' (expected once, clamp, loop or pingpong)");
     timeline.loop = *mode;
   }
-  const JsonNode tracks = node.at("tracks");
-  for (size_t i = 0; i < tracks.size(); ++i) {
-    const JsonNode track = tracks[i];
-    track.allowOnly({"channel", "interpolation", "keys"});
-    const std::string channel = track.at("channel").string();
-    if (channel.empty()) track.at("channel").fail("empty channel name");
-    if (timeline.findTrack(channel)) track.at("channel").fail("channel '" + channel + "' already has a track");
-    KeyInterpolation interp = KeyInterpolation::Linear;
-    if (auto d = track.find("interpolation")) interp = parseKeyInterpolation(*d);
-    const std::vector<Keyframe> keys = parseKeyframes(track.at("keys"), interp);
-    if (keys.front().time < 0.0f) track.at("keys")[0].fail("key time is negative");
-    timeline.addTrack(channel, keys);
-  }
+  const JsonNode tracks = ENG_TRY_VALUE(node.at("tracks"));
+  const size_t trackCount = ENG_TRY_VALUE(tracks.size());
+  for (size_t i = 0; i < trackCount; ++i) ENG_TRY(parseTrack(tracks.element(i), timeline));
   if (auto d = node.find("duration")) {
-    timeline.duration = d->number();
-    if (timeline.duration <= 0.0f) d->fail("duration must be > 0");
+    timeline.duration = ENG_TRY_VALUE(d->number());
+    if (timeline.duration <= 0.0f) return d->error("duration must be > 0");
     if (timeline.lastKeyTime() > timeline.duration)
-      d->fail("duration " + formatNumber(timeline.duration) + " ends before the last key at " +
-              formatNumber(timeline.lastKeyTime()));
+      return d->error("duration " + formatNumber(timeline.duration) + " ends before the last key at " +
+                      formatNumber(timeline.lastKeyTime()));
   } else {
     timeline.duration = timeline.lastKeyTime();
-    if (timeline.duration <= 0.0f) node.fail("no \"duration\" and every key is at time 0");
+    if (timeline.duration <= 0.0f) return node.error("no \"duration\" and every key is at time 0");
   }
-  if (auto valid = timeline.validate(); !valid) node.fail(valid.error());
+  if (auto valid = timeline.validate(); !valid) return node.error(valid.error());
   return timeline;
 }
 
 eng::Result<Timeline> loadTimeline(const std::filesystem::path& path) {
   auto document = readJsonFile(path);
   if (!document) return document.error();
-  try {
-    const detail::JsonNode root(*document, "");
-    detail::requireVersion(root, kTimelineFileVersion);
+  auto timeline = [&]() -> eng::Result<Timeline> {
+    const JsonNode root(*document, "");
+    ENG_TRY(requireVersion(root, kTimelineFileVersion));
     return detail::parseTimeline(root, path.stem().string());
-  } catch (const detail::JsonProblem& p) {
-    return detail::jsonProblemError(p, path.string());
-  }
+  }();
+  if (!timeline) return timeline.error().prefixed(path.string() + ": ");
+  return timeline;
 }
 
 eng::Result<Timeline> timelineFromJson(const Json& timeline, std::string defaultName) {
-  try {
-    return detail::parseTimeline(detail::JsonNode(timeline, ""), std::move(defaultName));
-  } catch (const detail::JsonProblem& p) {
-    return detail::jsonProblemError(p, "");
-  }
+  return detail::parseTimeline(JsonNode(timeline, ""), std::move(defaultName));
 }
 
 Json timelineToJson(const Timeline& timeline) {

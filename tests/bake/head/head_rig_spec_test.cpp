@@ -139,7 +139,7 @@ TEST(HeadRigSpecErrors, FileErrorsNameTheFile) {
 TEST(HeadRigSpecErrors, InvalidJson) {
   const std::string e = parseErrorOfText("{\"format\": ");
   EXPECT_NE(e.find("test.json"), std::string::npos) << e;
-  EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+  EXPECT_NE(e.find("invalid JSON"), std::string::npos) << e;
 }
 
 TEST(HeadRigSpecErrors, WrongFormatTag) {
@@ -163,7 +163,7 @@ TEST(HeadRigSpecErrors, VectorOfWrongLength) {
 TEST(HeadRigSpecErrors, NonNumberCoordinate) {
   json j = minimalSpec();
   j["landmarks"][0]["xy"] = {0.03, "high"};
-  EXPECT_NE(parseError(j).find("test.json: /landmarks/0/xy/1: expected a number, found string"), std::string::npos);
+  EXPECT_NE(parseError(j).find("test.json: /landmarks/0/xy/1: expected a number, got string"), std::string::npos);
 }
 
 TEST(HeadRigSpecErrors, LandmarkWithTwoDefinitions) {

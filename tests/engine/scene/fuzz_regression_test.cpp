@@ -1,4 +1,4 @@
-// Inputs the fuzzers (fuzz/) found, kept as files under tests/scene/fuzz_inputs/
+// Inputs the fuzzers (fuzz/) found, kept as files under tests/engine/scene/fuzz_inputs/
 // and replayed the way the fuzzer that found them reads them.
 #include <cmath>
 #include <fstream>
@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fuzzInput(const std::string& name) {
-  std::ifstream in(testing_support::sourceDir() / "tests" / "scene" / "fuzz_inputs" / name, std::ios::binary);
+  std::ifstream in(testing_support::sourceDir() / "tests" / "engine" / "scene" / "fuzz_inputs" / name, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

@@ -12,6 +12,7 @@
 #include <webp/encode.h>
 
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/model_check.h"
 #include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
 #include "tests/engine/scene/gltf_test_files.h"
@@ -255,7 +256,12 @@ TEST(GltfCompressedBadInput, GarbledMeshoptStreamsAreRefusedOrStayInBounds) {
     if (!model) {
       EXPECT_EQ(model.error().message.find('\n'), std::string::npos) << model.error().message;
       EXPECT_EQ(model.error().message.rfind(path.string(), 0), 0u) << model.error().message;
+      continue;
     }
+    // Decoded garbage that loads must still be a model the renderer can trust:
+    // indices in range, finite vertices, matching counts.
+    auto consistent = eng::checkModel(*model);
+    EXPECT_TRUE(consistent.ok()) << path << ": " << (consistent ? "" : consistent.error().message);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/model_check.h"
 #include "tests/common/test_support.h"
 #include "tests/engine/scene/gltf_test_files.h"
 
@@ -176,7 +177,11 @@ TEST(SharedCompressedBadInput, DamagedDracoStreamsAreRefusedInOneLine) {
   auto model = eng::loadModel(path);
   if (!model) {
     EXPECT_EQ(model.error().message.find('\n'), std::string::npos) << model.error().message;
+    return;
   }
+  // What decodes must still be in bounds: indices in range, finite vertices, matching counts.
+  auto consistent = eng::checkModel(*model);
+  EXPECT_TRUE(consistent.ok()) << (consistent ? "" : consistent.error().message);
 }
 
 }  // namespace

@@ -23,13 +23,17 @@ std::string typeList(std::index_sequence<I...>) {
 
 // Reads j as the alternative whose kType is `type`; nullopt when none is.
 template <size_t... I>
-std::optional<NodeData> readAs(std::string_view type, const JsonNode& j, NodeReader& reader,
-                               std::index_sequence<I...>) {
-  std::optional<NodeData> out;
-  ((std::variant_alternative_t<I, NodeData>::kType == type
-        ? (void)out.emplace(std::in_place_index<I>, std::variant_alternative_t<I, NodeData>::read(j, reader))
-        : (void)0),
-   ...);
+std::optional<eng::Result<NodeData>> readAs(std::string_view type, const JsonNode& j, NodeReader& reader,
+                                            std::index_sequence<I...>) {
+  std::optional<eng::Result<NodeData>> out;
+  auto readOne = [&]<size_t K>(std::integral_constant<size_t, K>) {
+    using Alternative = std::variant_alternative_t<K, NodeData>;
+    if (Alternative::kType != type) return;
+    auto data = Alternative::read(j, reader);
+    if (!data) out.emplace(data.error());
+    else out.emplace(NodeData(std::in_place_index<K>, std::move(data).value()));
+  };
+  (readOne(std::integral_constant<size_t, I>{}), ...);
   return out;
 }
 
@@ -41,45 +45,48 @@ struct DepthScope {
 
 }  // namespace
 
-NodeIndex NodeReader::node(const JsonNode& j) {
+eng::Result<NodeIndex> NodeReader::node(const JsonNode& j) {
   // node() and the composite nodes' readers recurse into each other: bound the depth before going down.
   if (depth_ == kMaxGraphNodeDepth)
-    j.fail("nodes nest deeper than " + std::to_string(kMaxGraphNodeDepth) + " levels, the limit");
+    return j.error("nodes nest deeper than " + std::to_string(kMaxGraphNodeDepth) + " levels, the limit");
   const DepthScope scope(depth_);
-  if (!j.isObject()) j.fail("expected a node object with a \"type\"");
-  const std::string type = j.at("type").string();
-  const std::string name = j.stringOr("name", "");
+  if (!j.isObject()) return j.error("expected a node object with a \"type\"");
+  const JsonNode typeNode = ENG_TRY_VALUE(j.at("type"));
+  const std::string type = ENG_TRY_VALUE(typeNode.string());
+  const std::string name = ENG_TRY_VALUE(j.stringOr("name", ""));
   constexpr auto kAlternatives = std::make_index_sequence<std::variant_size_v<NodeData>>();
-  std::optional<NodeData> data = readAs(type, j, *this, kAlternatives);
-  if (!data) j.at("type").fail("unknown node type '" + type + "' (expected " + typeList(kAlternatives) + ")");
-  return builder_.add(std::move(*data), name, j.pointer());
+  std::optional<eng::Result<NodeData>> data = readAs(type, j, *this, kAlternatives);
+  if (!data) return typeNode.error("unknown node type '" + type + "' (expected " + typeList(kAlternatives) + ")");
+  if (!*data) return data->error();
+  return builder_.add(std::move(**data), name, j.pointer());
 }
 
-ParameterIndex NodeReader::parameter(const JsonNode& j) const {
-  const std::string name = j.string();
+eng::Result<ParameterIndex> NodeReader::parameter(const JsonNode& j) const {
+  const std::string name = ENG_TRY_VALUE(j.string());
   auto p = builder_.findParameter(name);
-  if (!p) j.fail("no parameter named '" + name + "'");
+  if (!p) return j.error("no parameter named '" + name + "'");
   return *p;
 }
 
 ParameterType NodeReader::parameterType(ParameterIndex p) const { return builder_.parameter(p).type; }
 
-FloatInput NodeReader::floatInput(const JsonNode& parent, std::string_view key, float fallback) const {
+eng::Result<FloatInput> NodeReader::floatInput(const JsonNode& parent, std::string_view key, float fallback) const {
   auto j = parent.find(key);
   if (!j) return FloatInput::fixed(fallback);
-  if (j->isNumber()) return FloatInput::fixed(j->number());
-  if (!j->isString()) j->fail("expected a number or a parameter name");
-  return FloatInput::bound(parameter(*j));
+  if (j->isNumber()) return FloatInput::fixed(ENG_TRY_VALUE(j->number()));
+  if (!j->isString()) return j->error("expected a number or a parameter name");
+  return FloatInput::bound(ENG_TRY_VALUE(parameter(*j)));
 }
 
-EasingCurve NodeReader::curve(const JsonNode& parent) const {
+eng::Result<EasingCurve> NodeReader::curve(const JsonNode& parent) const {
   auto c = parent.find("curve");
-  return c ? parseEasingCurve(*c) : EasingCurve::linear();
+  return c ? parseEasingCurve(*c) : eng::Result<EasingCurve>(EasingCurve::linear());
 }
 
-uint32_t NodeReader::timeline(const JsonNode& j) const {
-  auto index = builder_.findTimeline(j.string());
-  if (!index) j.fail("no timeline named '" + j.string() + "' in \"timelines\"");
+eng::Result<uint32_t> NodeReader::timeline(const JsonNode& j) const {
+  const std::string name = ENG_TRY_VALUE(j.string());
+  auto index = builder_.findTimeline(name);
+  if (!index) return j.error("no timeline named '" + name + "' in \"timelines\"");
   return *index;
 }
 

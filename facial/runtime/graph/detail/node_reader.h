@@ -4,15 +4,15 @@
 //
 //   struct BlendNode {
 //     static constexpr std::string_view kType = "blend";   // the JSON "type"
-//     static BlendNode read(const detail::JsonNode& j, detail::NodeReader& r);
+//     static eng::Result<BlendNode> read(const JsonNode& j, detail::NodeReader& r);
 //     ...
 //   };
 //
 // and is listed once, in NodeData (node.h); the parser dispatches on kType.
-// A reader reports problems with JsonNode::fail (at the value's JSON pointer),
-// which throws JsonProblem: like the rest of detail/ this is not installed, and
-// parseGraph turns the problem into an eng::Error, so no exception leaves the
-// library. Semantic checks that need the whole graph stay in the node's prepare().
+// A reader returns its problems as values at the offending value's JSON
+// pointer (JsonNode::error, json/json_node.h); parseGraph puts the file in
+// front. Like the rest of detail/ this is not installed. Semantic checks that
+// need the whole graph stay in the node's prepare().
 #include <cstdint>
 #include <string_view>
 
@@ -35,16 +35,18 @@ class NodeReader {
 
   // A nested node object (any type), added to the graph; returns its index.
   // Bounds the nesting depth before going down (kMaxGraphNodeDepth).
-  NodeIndex node(const JsonNode& j);
+  eng::Result<NodeIndex> node(const JsonNode& j);
   // A parameter named by the string j; fails when the graph declares none.
-  ParameterIndex parameter(const JsonNode& j) const;
+  eng::Result<ParameterIndex> parameter(const JsonNode& j) const;
   ParameterType parameterType(ParameterIndex p) const;
   // parent[key]: a number, a float parameter's name, or absent (fallback).
-  FloatInput floatInput(const JsonNode& parent, std::string_view key, float fallback) const;
+  eng::Result<FloatInput> floatInput(const JsonNode& parent, std::string_view key, float fallback) const;
   // parent["curve"] (curve_json.h), linear when absent.
-  EasingCurve curve(const JsonNode& parent) const;
+  eng::Result<EasingCurve> curve(const JsonNode& parent) const;
   // A timeline named by the string j in the graph's "timelines".
-  uint32_t timeline(const JsonNode& j) const;
+  eng::Result<uint32_t> timeline(const JsonNode& j) const;
+  // parent[key]: the node object there (required).
+  eng::Result<NodeIndex> nodeAt(const JsonNode& parent, std::string_view key) { return node(ENG_TRY_VALUE(parent.at(key))); }
 
   const ChannelSet& channels() const;
   const PresetLookup& presets() const { return presets_; }

@@ -7,7 +7,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 float RegionMask::weight(const ChannelInfo& channel) const {
@@ -30,21 +29,21 @@ void AdditiveNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) c
       .Run();
 }
 
-AdditiveNode AdditiveNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "base", "layer", "weight", "mask"});
-  AdditiveNode a{.base = r.node(j.at("base")), .layer = r.node(j.at("layer"))};
-  a.weight = r.floatInput(j, "weight", 1.0f);
+eng::Result<AdditiveNode> AdditiveNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "base", "layer", "weight", "mask"}));
+  AdditiveNode a{.base = ENG_TRY_VALUE(r.nodeAt(j, "base")), .layer = ENG_TRY_VALUE(r.nodeAt(j, "layer"))};
+  a.weight = ENG_TRY_VALUE(r.floatInput(j, "weight", 1.0f));
   if (auto mask = j.find("mask")) {
-    mask->allowOnly({"region", "side"});
-    const std::string region = mask->stringOr("region", "any");
+    ENG_TRY(mask->allowOnly({"region", "side"}));
+    const std::string region = ENG_TRY_VALUE(mask->stringOr("region", "any"));
     if (region == "upper") a.mask.region = FaceRegion::Upper;
     else if (region == "lower") a.mask.region = FaceRegion::Lower;
-    else if (region != "any") mask->at("region").fail("unknown region (expected any, upper or lower)");
-    const std::string side = mask->stringOr("side", "any");
+    else if (region != "any") return ENG_TRY_VALUE(mask->at("region")).error("unknown region (expected any, upper or lower)");
+    const std::string side = ENG_TRY_VALUE(mask->stringOr("side", "any"));
     if (side == "left") a.mask.side = FaceSide::Left;
     else if (side == "right") a.mask.side = FaceSide::Right;
     else if (side == "both") a.mask.side = FaceSide::Both;
-    else if (side != "any") mask->at("side").fail("unknown side (expected any, left, right or both)");
+    else if (side != "any") return ENG_TRY_VALUE(mask->at("side")).error("unknown side (expected any, left, right or both)");
   }
   return a;
 }

@@ -18,11 +18,12 @@
 #include "facial/runtime/graph/channel_set.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
@@ -37,7 +38,7 @@ struct RegionMask {
 struct AdditiveNode {
   static constexpr std::string_view kType = "additive";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static AdditiveNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<AdditiveNode> read(const JsonNode& j, detail::NodeReader& r);
 
   NodeIndex base = kNoNode;
   NodeIndex layer = kNoNode;

@@ -12,7 +12,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 void BilinearNode::inputs(std::vector<NodeIndex>& out) const {
@@ -75,19 +74,22 @@ void BilinearNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> o
       .Run();
 }
 
-BilinearNode BilinearNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "shapes", "shape", "expression", "duration", "curve"});
+eng::Result<BilinearNode> BilinearNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "shapes", "shape", "expression", "duration", "curve"}));
   BilinearNode b;
-  const JsonNode shapes = j.at("shapes");
-  if (shapes.size() != 2) shapes.fail("expected two rows (face shapes), got " + std::to_string(shapes.size()));
+  const JsonNode shapes = ENG_TRY_VALUE(j.at("shapes"));
+  const size_t rows = ENG_TRY_VALUE(shapes.size());
+  if (rows != 2) return shapes.error("expected two rows (face shapes), got " + std::to_string(rows));
   for (size_t s = 0; s < 2; ++s) {
     std::vector<NodeIndex>& row = s == 0 ? b.shape1 : b.shape2;
-    for (size_t e = 0; e < shapes[s].size(); ++e) row.push_back(r.node(shapes[s][e]));
+    const JsonNode expressions = shapes.element(s);
+    const size_t count = ENG_TRY_VALUE(expressions.size());
+    for (size_t e = 0; e < count; ++e) row.push_back(ENG_TRY_VALUE(r.node(expressions.element(e))));
   }
-  b.shape = r.floatInput(j, "shape", 0.0f);
-  b.expression = r.parameter(j.at("expression"));
-  b.duration = j.numberOr("duration", b.duration);
-  b.curve = r.curve(j);
+  b.shape = ENG_TRY_VALUE(r.floatInput(j, "shape", 0.0f));
+  b.expression = ENG_TRY_VALUE(r.parameter(ENG_TRY_VALUE(j.at("expression"))));
+  b.duration = ENG_TRY_VALUE(j.numberOr("duration", b.duration));
+  b.curve = ENG_TRY_VALUE(r.curve(j));
   return b;
 }
 

@@ -14,21 +14,22 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
 struct BilinearNode {
   static constexpr std::string_view kType = "bilinear";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static BilinearNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<BilinearNode> read(const JsonNode& j, detail::NodeReader& r);
 
   std::vector<NodeIndex> shape1;            // Q11, Q12, ..., Q1K
   std::vector<NodeIndex> shape2;            // Q21, Q22, ..., Q2K

@@ -9,7 +9,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 eng::Result<void> BlendNode::prepare(const BuildContext& ctx) { return ctx.checkInput(factor, "factor"); }
@@ -22,11 +21,11 @@ void BlendNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) cons
   LerpPoseJob{.a = out, .b = p1.pose(), .t = t, .out = out}.Run();
 }
 
-BlendNode BlendNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "a", "b", "factor", "curve"});
-  BlendNode b{.a = r.node(j.at("a")), .b = r.node(j.at("b"))};
-  b.factor = r.floatInput(j, "factor", 0.0f);
-  b.curve = r.curve(j);
+eng::Result<BlendNode> BlendNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "a", "b", "factor", "curve"}));
+  BlendNode b{.a = ENG_TRY_VALUE(r.nodeAt(j, "a")), .b = ENG_TRY_VALUE(r.nodeAt(j, "b"))};
+  b.factor = ENG_TRY_VALUE(r.floatInput(j, "factor", 0.0f));
+  b.curve = ENG_TRY_VALUE(r.curve(j));
   return b;
 }
 

@@ -10,21 +10,22 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
 struct BlendNode {
   static constexpr std::string_view kType = "blend";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static BlendNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<BlendNode> read(const JsonNode& j, detail::NodeReader& r);
 
   NodeIndex a = kNoNode;  // P0
   NodeIndex b = kNoNode;  // P1

@@ -14,7 +14,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 namespace {
 
@@ -157,30 +156,29 @@ void BlinkNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> out)
   for (uint32_t c : channelIndices) out[c] = out[c] + (1.0f - out[c]) * b;
 }
 
-BlinkNode BlinkNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "input", "channels", "wideChannels", "amount", "minInterval", "maxInterval",
-               "closeDuration", "closedDuration", "openDuration", "doubleBlinkChance", "doubleBlinkGap",
-               "wideStart", "wideFull"});
+eng::Result<BlinkNode> BlinkNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "input", "channels", "wideChannels", "amount", "minInterval", "maxInterval",
+                       "closeDuration", "closedDuration", "openDuration", "doubleBlinkChance", "doubleBlinkGap",
+                       "wideStart", "wideFull"}));
   BlinkNode b;
-  b.input = r.node(j.at("input"));
-  auto names = [&](std::string_view key) {
+  b.input = ENG_TRY_VALUE(r.nodeAt(j, "input"));
+  auto names = [&](std::string_view key) -> eng::Result<std::vector<std::string>> {
     std::vector<std::string> out;
-    if (auto list = j.find(key))
-      for (size_t i = 0; i < list->size(); ++i) out.push_back((*list)[i].string());
+    if (auto list = j.find(key)) {
+      const size_t count = ENG_TRY_VALUE(list->size());
+      for (size_t i = 0; i < count; ++i) out.push_back(ENG_TRY_VALUE(list->element(i).string()));
+    }
     return out;
   };
-  b.channels = names("channels");
-  b.wideChannels = names("wideChannels");
-  b.amount = r.floatInput(j, "amount", 1.0f);
-  b.minInterval = j.numberOr("minInterval", b.minInterval);
-  b.maxInterval = j.numberOr("maxInterval", b.maxInterval);
-  b.closeDuration = j.numberOr("closeDuration", b.closeDuration);
-  b.closedDuration = j.numberOr("closedDuration", b.closedDuration);
-  b.openDuration = j.numberOr("openDuration", b.openDuration);
-  b.doubleBlinkChance = j.numberOr("doubleBlinkChance", b.doubleBlinkChance);
-  b.doubleBlinkGap = j.numberOr("doubleBlinkGap", b.doubleBlinkGap);
-  b.wideStart = j.numberOr("wideStart", b.wideStart);
-  b.wideFull = j.numberOr("wideFull", b.wideFull);
+  b.channels = ENG_TRY_VALUE(names("channels"));
+  b.wideChannels = ENG_TRY_VALUE(names("wideChannels"));
+  b.amount = ENG_TRY_VALUE(r.floatInput(j, "amount", 1.0f));
+  for (auto [key, value] : {std::pair{"minInterval", &b.minInterval}, {"maxInterval", &b.maxInterval},
+                            {"closeDuration", &b.closeDuration}, {"closedDuration", &b.closedDuration},
+                            {"openDuration", &b.openDuration}, {"doubleBlinkChance", &b.doubleBlinkChance},
+                            {"doubleBlinkGap", &b.doubleBlinkGap}, {"wideStart", &b.wideStart},
+                            {"wideFull", &b.wideFull}})
+    *value = ENG_TRY_VALUE(j.numberOr(key, *value));
   return b;
 }
 

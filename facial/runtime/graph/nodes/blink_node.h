@@ -31,18 +31,19 @@
 
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
 struct BlinkNode {
   static constexpr std::string_view kType = "blink";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static BlinkNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<BlinkNode> read(const JsonNode& j, detail::NodeReader& r);
 
   NodeIndex input = kNoNode;
   std::vector<std::string> channels;      // blink channels; empty: the AU45 channels of the graph

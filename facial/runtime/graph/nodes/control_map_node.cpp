@@ -9,7 +9,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 ControlMapWeights controlMapWeights(float x, float y) {
@@ -43,15 +42,15 @@ void ControlMapNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out)
   ctx.evaluateWeightedSum(nodes, weights, out);
 }
 
-ControlMapNode ControlMapNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "neutral", "up", "down", "right", "left", "x", "y"});
-  ControlMapNode m{.neutral = r.node(j.at("neutral")),
-                   .e1 = r.node(j.at("up")),
-                   .e2 = r.node(j.at("down")),
-                   .e3 = r.node(j.at("right")),
-                   .e4 = r.node(j.at("left"))};
-  m.x = r.floatInput(j, "x", 0.0f);
-  m.y = r.floatInput(j, "y", 0.0f);
+eng::Result<ControlMapNode> ControlMapNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "neutral", "up", "down", "right", "left", "x", "y"}));
+  ControlMapNode m{.neutral = ENG_TRY_VALUE(r.nodeAt(j, "neutral")),
+                   .e1 = ENG_TRY_VALUE(r.nodeAt(j, "up")),
+                   .e2 = ENG_TRY_VALUE(r.nodeAt(j, "down")),
+                   .e3 = ENG_TRY_VALUE(r.nodeAt(j, "right")),
+                   .e4 = ENG_TRY_VALUE(r.nodeAt(j, "left"))};
+  m.x = ENG_TRY_VALUE(r.floatInput(j, "x", 0.0f));
+  m.y = ENG_TRY_VALUE(r.floatInput(j, "y", 0.0f));
   return m;
 }
 

@@ -20,11 +20,12 @@
 
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
@@ -41,7 +42,7 @@ ControlMapWeights controlMapWeights(float x, float y);
 struct ControlMapNode {
   static constexpr std::string_view kType = "controlMap";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static ControlMapNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<ControlMapNode> read(const JsonNode& j, detail::NodeReader& r);
 
   NodeIndex neutral = kNoNode;
   NodeIndex e1 = kNoNode;  // +y ("up")

@@ -12,7 +12,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 void gradientBandWeights(std::span<const glm::vec2> points, glm::vec2 p, std::span<float> weights) {
@@ -81,20 +80,23 @@ void FreeformMapNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out
   ctx.evaluateWeightedSum(nodes, weights, out);
 }
 
-FreeformMapNode FreeformMapNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "neutral", "poles", "x", "y"});
+eng::Result<FreeformMapNode> FreeformMapNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "neutral", "poles", "x", "y"}));
   FreeformMapNode m;
-  m.neutral = r.node(j.at("neutral"));
-  const JsonNode poles = j.at("poles");
-  for (size_t i = 0; i < poles.size(); ++i) {
-    const JsonNode p = poles[i];
-    p.allowOnly({"at", "node"});
-    const JsonNode at = p.at("at");
-    if (at.size() != 2) at.fail("expected [x, y]");
-    m.poles.push_back({{at[0].number(), at[1].number()}, r.node(p.at("node"))});
+  m.neutral = ENG_TRY_VALUE(r.nodeAt(j, "neutral"));
+  const JsonNode poles = ENG_TRY_VALUE(j.at("poles"));
+  const size_t count = ENG_TRY_VALUE(poles.size());
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode p = poles.element(i);
+    ENG_TRY(p.allowOnly({"at", "node"}));
+    const JsonNode at = ENG_TRY_VALUE(p.at("at"));
+    if (ENG_TRY_VALUE(at.size()) != 2) return at.error("expected [x, y]");
+    const float x = ENG_TRY_VALUE(at.element(0).number());
+    const float y = ENG_TRY_VALUE(at.element(1).number());
+    m.poles.push_back({{x, y}, ENG_TRY_VALUE(r.nodeAt(p, "node"))});
   }
-  m.x = r.floatInput(j, "x", 0.0f);
-  m.y = r.floatInput(j, "y", 0.0f);
+  m.x = ENG_TRY_VALUE(r.floatInput(j, "x", 0.0f));
+  m.y = ENG_TRY_VALUE(r.floatInput(j, "y", 0.0f));
   return m;
 }
 

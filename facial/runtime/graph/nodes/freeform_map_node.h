@@ -22,11 +22,12 @@
 
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
@@ -43,7 +44,7 @@ struct FreeformPole {
 struct FreeformMapNode {
   static constexpr std::string_view kType = "freeformMap";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static FreeformMapNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<FreeformMapNode> read(const JsonNode& j, detail::NodeReader& r);
 
   NodeIndex neutral = kNoNode;      // at the origin
   std::vector<FreeformPole> poles;  // 1..kMaxFreeformPoles, distinct, away from the origin

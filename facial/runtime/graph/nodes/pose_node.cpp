@@ -9,7 +9,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 std::string_view toString(VrmOverride mode) {
@@ -46,38 +45,51 @@ void PoseNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) const
   out[channels + kLaneOverrideBlinkBlend] = overrideBlink == VrmOverride::Blend ? s : 0.0f;
 }
 
-PoseNode PoseNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "preset", "intensity", "weights", "scale", "overrideBlink"});
+namespace {
+
+// "weights": an array with one weight per channel, or {"channel": weight}.
+eng::Result<std::vector<float>> readWeights(const JsonNode& w, const ChannelSet& channels) {
+  std::vector<float> weights(channels.size(), 0.0f);
+  if (w.isArray()) {
+    const size_t count = ENG_TRY_VALUE(w.size());
+    if (count != channels.size())
+      return w.error("has " + std::to_string(count) + " weights, the graph has " + std::to_string(channels.size()) +
+                     " channels");
+    for (size_t c = 0; c < count; ++c) weights[c] = ENG_TRY_VALUE(w.element(c).number());
+    return weights;
+  }
+  if (!w.isObject()) return w.error("expected {\"channel\": weight} or an array of weights");
+  for (auto it = w.raw().begin(); it != w.raw().end(); ++it) {
+    const JsonNode value = ENG_TRY_VALUE(w.at(it.key()));
+    auto c = channels.find(it.key());
+    if (!c) return value.error("'" + it.key() + "' is not a channel of this graph");
+    weights[*c] = ENG_TRY_VALUE(value.number());
+  }
+  return weights;
+}
+
+}  // namespace
+
+eng::Result<PoseNode> PoseNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "preset", "intensity", "weights", "scale", "overrideBlink"}));
   PoseNode node;
-  const uint32_t channels = r.channels().size();
   if (auto preset = j.find("preset")) {
-    if (j.has("weights")) j.fail("give either \"preset\" or \"weights\", not both");
-    auto weights = presetPose(r.presets(), preset->string(), j.numberOr("intensity", 1.0f), r.channels());
-    if (!weights) preset->fail(weights.error().message);
+    if (j.has("weights")) return j.error("give either \"preset\" or \"weights\", not both");
+    const std::string name = ENG_TRY_VALUE(preset->string());
+    auto weights = presetPose(r.presets(), name, ENG_TRY_VALUE(j.numberOr("intensity", 1.0f)), r.channels());
+    if (!weights) return preset->error(weights.error().message);
     node.weights = std::move(weights).value();
   } else if (auto w = j.find("weights")) {
-    if (j.has("intensity")) j.at("intensity").fail("\"intensity\" applies to a preset; scale weights with \"scale\"");
-    node.weights.assign(channels, 0.0f);
-    if (w->isArray()) {
-      if (w->size() != channels)
-        w->fail("has " + std::to_string(w->size()) + " weights, the graph has " + std::to_string(channels) +
-                " channels");
-      for (size_t c = 0; c < channels; ++c) node.weights[c] = (*w)[c].number();
-    } else {
-      if (!w->isObject()) w->fail("expected {\"channel\": weight} or an array of weights");
-      for (auto it = w->raw().begin(); it != w->raw().end(); ++it) {
-        auto c = r.channels().find(it.key());
-        if (!c) w->at(it.key()).fail("'" + it.key() + "' is not a channel of this graph");
-        node.weights[*c] = w->at(it.key()).number();
-      }
-    }
+    if (j.has("intensity"))
+      return ENG_TRY_VALUE(j.at("intensity")).error("\"intensity\" applies to a preset; scale weights with \"scale\"");
+    node.weights = ENG_TRY_VALUE(readWeights(*w, r.channels()));
   } else {
-    j.fail("a pose needs \"preset\" or \"weights\"");
+    return j.error("a pose needs \"preset\" or \"weights\"");
   }
-  node.scale = r.floatInput(j, "scale", 1.0f);
+  node.scale = ENG_TRY_VALUE(r.floatInput(j, "scale", 1.0f));
   if (auto o = j.find("overrideBlink")) {
-    auto mode = vrmOverrideFromString(o->string());
-    if (!mode) o->fail("unknown overrideBlink (expected none, block or blend)");
+    auto mode = vrmOverrideFromString(ENG_TRY_VALUE(o->string()));
+    if (!mode) return o->error("unknown overrideBlink (expected none, block or blend)");
     node.overrideBlink = *mode;
   }
   return node;

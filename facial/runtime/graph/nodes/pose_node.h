@@ -13,11 +13,12 @@
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 #include "facial/runtime/rig/vrm_expressions.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
@@ -28,7 +29,7 @@ std::optional<VrmOverride> vrmOverrideFromString(std::string_view name);
 struct PoseNode {
   static constexpr std::string_view kType = "pose";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static PoseNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<PoseNode> read(const JsonNode& j, detail::NodeReader& r);
 
   std::vector<float> weights;                  // one per channel, each in [0,1]
   FloatInput scale = FloatInput::fixed(1.0f);  // multiplies weights and the override lane

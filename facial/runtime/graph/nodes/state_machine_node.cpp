@@ -12,7 +12,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 std::string_view toString(ConditionOp op) {
@@ -245,72 +244,78 @@ void StateMachineNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<floa
 
 namespace {
 
-TransitionCondition readCondition(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"parameter", "op", "value"});
+eng::Result<TransitionCondition> readCondition(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"parameter", "op", "value"}));
   TransitionCondition c;
-  c.parameter = r.parameter(j.at("parameter"));
+  c.parameter = ENG_TRY_VALUE(r.parameter(ENG_TRY_VALUE(j.at("parameter"))));
   switch (r.parameterType(c.parameter)) {
     case ParameterType::Trigger:
-      if (j.has("op") || j.has("value")) j.fail("a trigger condition takes only \"parameter\"");
+      if (j.has("op") || j.has("value")) return j.error("a trigger condition takes only \"parameter\"");
       c.op = ConditionOp::Triggered;
       break;
     case ParameterType::Bool:
-      if (j.has("op")) j.at("op").fail("a bool condition takes \"value\": true or false");
-      c.op = j.booleanOr("value", true) ? ConditionOp::IsTrue : ConditionOp::IsFalse;
+      if (j.has("op")) return ENG_TRY_VALUE(j.at("op")).error("a bool condition takes \"value\": true or false");
+      c.op = ENG_TRY_VALUE(j.booleanOr("value", true)) ? ConditionOp::IsTrue : ConditionOp::IsFalse;
       break;
     case ParameterType::Float: {
-      const JsonNode op = j.at("op");
-      auto parsed = conditionOpFromString(op.string());
+      const JsonNode op = ENG_TRY_VALUE(j.at("op"));
+      const std::string name = ENG_TRY_VALUE(op.string());
+      auto parsed = conditionOpFromString(name);
       if (!parsed || *parsed == ConditionOp::IsTrue || *parsed == ConditionOp::IsFalse ||
           *parsed == ConditionOp::Triggered)
-        op.fail("unknown comparison '" + op.string() + "' (expected >, >=, <, <=, == or !=)");
+        return op.error("unknown comparison '" + name + "' (expected >, >=, <, <=, == or !=)");
       c.op = *parsed;
-      c.threshold = j.at("value").number();
+      c.threshold = ENG_TRY_VALUE(j.numberAt("value"));
       break;
     }
   }
   return c;
 }
 
-std::vector<Transition> readTransitions(const JsonNode& list, NodeReader& r) {
-  std::vector<Transition> out;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const JsonNode j = list[i];
-    j.allowOnly({"to", "duration", "curve", "exitTime", "priority", "interruptible", "canTransitionToSelf",
-                 "conditions"});
-    Transition t;
-    t.to = j.at("to").string();
-    t.duration = j.numberOr("duration", t.duration);
-    t.curve = r.curve(j);
-    if (auto e = j.find("exitTime")) t.exitTime = e->number();
-    if (auto p = j.find("priority")) {
-      if (!p->raw().is_number_integer()) p->fail("expected an integer, got " + p->raw().dump());
-      t.priority = p->raw().get<int>();
-    }
-    t.interruptible = j.booleanOr("interruptible", true);
-    t.canTransitionToSelf = j.booleanOr("canTransitionToSelf", false);
-    if (auto conditions = j.find("conditions"))
-      for (size_t c = 0; c < conditions->size(); ++c) t.conditions.push_back(readCondition((*conditions)[c], r));
-    out.push_back(std::move(t));
+eng::Result<Transition> readTransition(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"to", "duration", "curve", "exitTime", "priority", "interruptible", "canTransitionToSelf",
+                       "conditions"}));
+  Transition t;
+  t.to = ENG_TRY_VALUE(j.stringAt("to"));
+  t.duration = ENG_TRY_VALUE(j.numberOr("duration", t.duration));
+  t.curve = ENG_TRY_VALUE(r.curve(j));
+  if (auto e = j.find("exitTime")) t.exitTime = ENG_TRY_VALUE(e->number());
+  if (auto p = j.find("priority")) {
+    if (!p->raw().is_number_integer()) return p->error("expected an integer, got " + p->raw().dump());
+    t.priority = p->raw().get<int>();
   }
+  t.interruptible = ENG_TRY_VALUE(j.booleanOr("interruptible", true));
+  t.canTransitionToSelf = ENG_TRY_VALUE(j.booleanOr("canTransitionToSelf", false));
+  if (auto conditions = j.find("conditions")) {
+    const size_t count = ENG_TRY_VALUE(conditions->size());
+    for (size_t c = 0; c < count; ++c) t.conditions.push_back(ENG_TRY_VALUE(readCondition(conditions->element(c), r)));
+  }
+  return t;
+}
+
+eng::Result<std::vector<Transition>> readTransitions(const JsonNode& list, NodeReader& r) {
+  const size_t count = ENG_TRY_VALUE(list.size());
+  std::vector<Transition> out;
+  for (size_t i = 0; i < count; ++i) out.push_back(ENG_TRY_VALUE(readTransition(list.element(i), r)));
   return out;
 }
 
 }  // namespace
 
-StateMachineNode StateMachineNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "states", "anyState", "defaultState"});
+eng::Result<StateMachineNode> StateMachineNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "states", "anyState", "defaultState"}));
   StateMachineNode m;
-  const JsonNode states = j.at("states");
-  for (size_t i = 0; i < states.size(); ++i) {
-    const JsonNode s = states[i];
-    s.allowOnly({"name", "node", "transitions"});
-    MachineState state{.name = s.at("name").string(), .node = r.node(s.at("node"))};
-    if (auto t = s.find("transitions")) state.transitions = readTransitions(*t, r);
+  const JsonNode states = ENG_TRY_VALUE(j.at("states"));
+  const size_t count = ENG_TRY_VALUE(states.size());
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode s = states.element(i);
+    ENG_TRY(s.allowOnly({"name", "node", "transitions"}));
+    MachineState state{.name = ENG_TRY_VALUE(s.stringAt("name")), .node = ENG_TRY_VALUE(r.nodeAt(s, "node"))};
+    if (auto t = s.find("transitions")) state.transitions = ENG_TRY_VALUE(readTransitions(*t, r));
     m.states.push_back(std::move(state));
   }
-  if (auto any = j.find("anyState")) m.anyState = readTransitions(*any, r);
-  m.defaultState = j.stringOr("defaultState", "");
+  if (auto any = j.find("anyState")) m.anyState = ENG_TRY_VALUE(readTransitions(*any, r));
+  m.defaultState = ENG_TRY_VALUE(j.stringOr("defaultState", ""));
   return m;
 }
 

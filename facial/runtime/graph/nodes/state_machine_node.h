@@ -23,14 +23,15 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
@@ -77,7 +78,7 @@ struct StateMachineStatus {
 struct StateMachineNode {
   static constexpr std::string_view kType = "stateMachine";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static StateMachineNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<StateMachineNode> read(const JsonNode& j, detail::NodeReader& r);
 
   std::vector<MachineState> states;
   std::vector<Transition> anyState;

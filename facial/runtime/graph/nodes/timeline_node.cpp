@@ -10,7 +10,6 @@
 
 namespace facial {
 
-using detail::JsonNode;
 using detail::NodeReader;
 
 eng::Result<void> TimelineNode::prepare(const BuildContext& ctx) {
@@ -61,16 +60,16 @@ void TimelineNode::evaluate(EvalContext& ctx, NodeIndex self, std::span<float> o
       .Run();
 }
 
-TimelineNode TimelineNode::read(const JsonNode& j, NodeReader& r) {
-  j.allowOnly({"type", "name", "timeline", "loop", "speed"});
+eng::Result<TimelineNode> TimelineNode::read(const JsonNode& j, NodeReader& r) {
+  ENG_TRY(j.allowOnly({"type", "name", "timeline", "loop", "speed"}));
   TimelineNode t;
-  t.timeline = r.timeline(j.at("timeline"));
+  t.timeline = ENG_TRY_VALUE(r.timeline(ENG_TRY_VALUE(j.at("timeline"))));
   if (auto loop = j.find("loop")) {
-    auto mode = loopModeFromString(loop->string());
-    if (!mode) loop->fail("unknown loop mode (expected once, clamp, loop or pingpong)");
+    auto mode = loopModeFromString(ENG_TRY_VALUE(loop->string()));
+    if (!mode) return loop->error("unknown loop mode (expected once, clamp, loop or pingpong)");
     t.loop = *mode;
   }
-  t.speed = r.floatInput(j, "speed", 1.0f);
+  t.speed = ENG_TRY_VALUE(r.floatInput(j, "speed", 1.0f));
   return t;
 }
 

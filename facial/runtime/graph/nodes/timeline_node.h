@@ -14,18 +14,19 @@
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 #include "facial/runtime/graph/timeline.h"
+#include "engine/core/result.h"
 
 namespace facial {
 
-namespace detail {
 class JsonNode;
+namespace detail {
 class NodeReader;
 }  // namespace detail
 
 struct TimelineNode {
   static constexpr std::string_view kType = "timeline";  // JSON "type"
   // The graph file reader's hook (detail/node_reader.h): reads this node's JSON object.
-  static TimelineNode read(const detail::JsonNode& j, detail::NodeReader& r);
+  static eng::Result<TimelineNode> read(const JsonNode& j, detail::NodeReader& r);
 
   uint32_t timeline = 0;          // index into the graph's timelines
   std::optional<LoopMode> loop;   // overrides the timeline's own loop mode
