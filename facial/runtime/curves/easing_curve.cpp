@@ -9,23 +9,9 @@
 
 namespace facial {
 
-std::string_view toString(EasingType type) {
-  switch (type) {
-    case EasingType::Linear: return "linear";
-    case EasingType::Cosine: return "cosine";
-    case EasingType::Smoothstep: return "smoothstep";
-    case EasingType::CubicBezier: return "bezier";
-    case EasingType::Keyed: return "keyed";
-  }
-  return "linear";
-}
+std::string_view easingTypeName(EasingType value) { return eng::nameOf(kEasingTypeNames, value); }
 
-std::optional<EasingType> easingTypeFromString(std::string_view name) {
-  for (EasingType t : {EasingType::Linear, EasingType::Cosine, EasingType::Smoothstep, EasingType::CubicBezier,
-                       EasingType::Keyed})
-    if (toString(t) == name) return t;
-  return std::nullopt;
-}
+std::optional<EasingType> easingTypeFromName(std::string_view name) { return eng::valueNamed(kEasingTypeNames, name); }
 
 EasingCurve::EasingCurve(EasingType type) : type_(type) {
   switch (type) {

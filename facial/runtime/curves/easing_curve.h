@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/result.h"
 #include "facial/runtime/curves/cubic_bezier.h"
 #include "facial/runtime/curves/keyframe.h"
@@ -22,8 +23,15 @@ enum class EasingType : uint8_t {
   Keyed,        // keys over [0,1], each with its own interpolation
 };
 
-std::string_view toString(EasingType type);
-std::optional<EasingType> easingTypeFromString(std::string_view name);
+inline constexpr eng::EnumName<EasingType> kEasingTypeNames[] = {
+    {EasingType::Linear, "linear"},
+    {EasingType::Cosine, "cosine"},
+    {EasingType::Smoothstep, "smoothstep"},
+    {EasingType::CubicBezier, "bezier"},
+    {EasingType::Keyed, "keyed"},
+};
+std::string_view easingTypeName(EasingType value);
+std::optional<EasingType> easingTypeFromName(std::string_view name);
 
 class EasingCurve {
  public:

@@ -8,22 +8,9 @@
 
 namespace facial {
 
-std::string_view toString(KeyInterpolation interpolation) {
-  switch (interpolation) {
-    case KeyInterpolation::Step: return "step";
-    case KeyInterpolation::Linear: return "linear";
-    case KeyInterpolation::Cosine: return "cosine";
-    case KeyInterpolation::Hermite: return "hermite";
-  }
-  return "linear";
-}
+std::string_view keyInterpolationName(KeyInterpolation value) { return eng::nameOf(kKeyInterpolationNames, value); }
 
-std::optional<KeyInterpolation> keyInterpolationFromString(std::string_view name) {
-  for (KeyInterpolation k : {KeyInterpolation::Step, KeyInterpolation::Linear, KeyInterpolation::Cosine,
-                             KeyInterpolation::Hermite})
-    if (toString(k) == name) return k;
-  return std::nullopt;
-}
+std::optional<KeyInterpolation> keyInterpolationFromName(std::string_view name) { return eng::valueNamed(kKeyInterpolationNames, name); }
 
 eng::Result<void> validateKeys(std::span<const Keyframe> keys) {
   if (keys.empty()) return eng::makeError(eng::ErrorKind::Malformed, "no keys");

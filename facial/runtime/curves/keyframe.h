@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/result.h"
 
 namespace facial {
@@ -28,8 +29,14 @@ struct Keyframe {
   KeyInterpolation interpolation = KeyInterpolation::Linear;
 };
 
-std::string_view toString(KeyInterpolation interpolation);
-std::optional<KeyInterpolation> keyInterpolationFromString(std::string_view name);
+inline constexpr eng::EnumName<KeyInterpolation> kKeyInterpolationNames[] = {
+    {KeyInterpolation::Step, "step"},
+    {KeyInterpolation::Linear, "linear"},
+    {KeyInterpolation::Cosine, "cosine"},
+    {KeyInterpolation::Hermite, "hermite"},
+};
+std::string_view keyInterpolationName(KeyInterpolation value);
+std::optional<KeyInterpolation> keyInterpolationFromName(std::string_view name);
 
 // Malformed when a key array is unusable (unsorted or duplicate times,
 // non-finite numbers, empty). Messages name the key index.

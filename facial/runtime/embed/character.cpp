@@ -36,8 +36,8 @@ eng::Result<ParameterIndex> findParameter(const GraphDefinition& graph, std::str
   if (const auto index = graph.findParameter(name); index && graph.parameters()[*index].type == type) return *index;
   std::string list;
   for (const ParameterDecl& p : graph.parameters())
-    list += (list.empty() ? "" : ", ") + p.name + " (" + std::string(toString(p.type)) + ")";
-  return eng::makeError(eng::ErrorKind::NotFound, "no " + std::string(toString(type)) + " parameter '" + std::string(name) +
+    list += (list.empty() ? "" : ", ") + p.name + " (" + std::string(parameterTypeName(p.type)) + ")";
+  return eng::makeError(eng::ErrorKind::NotFound, "no " + std::string(parameterTypeName(type)) + " parameter '" + std::string(name) +
                         "' in the graph; it has: " + (list.empty() ? std::string("none") : list));
 }
 

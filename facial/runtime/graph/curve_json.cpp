@@ -7,8 +7,8 @@ namespace detail {
 
 eng::Result<KeyInterpolation> parseKeyInterpolation(const JsonNode& name) {
   const std::string text = ENG_TRY_VALUE(name.string());
-  auto k = keyInterpolationFromString(text);
-  if (!k) return name.error("unknown interpolation '" + text + "' (expected step, linear, cosine or hermite)");
+  auto k = keyInterpolationFromName(text);
+  if (!k) return name.error("unknown interpolation '" + text + "' (expected " + eng::nameList(kKeyInterpolationNames) + ")");
   return *k;
 }
 
@@ -81,7 +81,7 @@ eng::Result<EasingCurve> parseEasingCurve(const JsonNode& curve) {
     if (!c) return keys.error(c.error());
     return c;
   }
-  auto simple = easingTypeFromString(type);
+  auto simple = easingTypeFromName(type);
   if (simple == EasingType::Linear) return EasingCurve::linear();
   if (simple == EasingType::Cosine) return EasingCurve::cosine();
   if (simple == EasingType::Smoothstep) return EasingCurve::smoothstep();
@@ -106,7 +106,7 @@ Json keyframesToJson(std::span<const Keyframe> keys, KeyInterpolation defaultInt
       continue;
     }
     Json key = {{"t", jsonNumber(k.time)}, {"v", jsonNumber(k.value)}};
-    if (k.interpolation != defaultInterpolation) key["interp"] = toString(k.interpolation);
+    if (k.interpolation != defaultInterpolation) key["interp"] = keyInterpolationName(k.interpolation);
     if (k.inTangent != 0.0f) key["in"] = jsonNumber(k.inTangent);
     if (k.outTangent != 0.0f) key["out"] = jsonNumber(k.outTangent);
     out.push_back(std::move(key));
@@ -122,7 +122,7 @@ Json easingCurveToJson(const EasingCurve& curve) {
     }
     case EasingType::Keyed:
       return {{"type", "keyed"}, {"keys", keyframesToJson(curve.keys(), KeyInterpolation::Linear)}};
-    default: return std::string(toString(curve.type()));
+    default: return std::string(easingTypeName(curve.type()));
   }
 }
 

@@ -46,8 +46,8 @@ class GraphParser {
     const JsonNode nameNode = ENG_TRY_VALUE(p.at("name"));
     const std::string name = ENG_TRY_VALUE(nameNode.string());
     if (builder_.findParameter(name)) return nameNode.error("parameter '" + name + "' is declared twice");
-    auto type = parameterTypeFromString(ENG_TRY_VALUE(p.stringOr("type", "float")));
-    if (!type) return ENG_TRY_VALUE(p.at("type")).error("unknown parameter type (expected float, bool or trigger)");
+    auto type = parameterTypeFromName(ENG_TRY_VALUE(p.stringOr("type", "float")));
+    if (!type) return ENG_TRY_VALUE(p.at("type")).error("unknown parameter type (expected " + eng::nameList(kParameterTypeNames) + ")");
     float value = 0.0f;
     if (auto d = p.find("default")) {
       if (*type == ParameterType::Trigger) return d->error("a trigger has no default (it starts cleared)");

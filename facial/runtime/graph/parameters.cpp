@@ -2,19 +2,8 @@
 
 namespace facial {
 
-std::string_view toString(ParameterType type) {
-  switch (type) {
-    case ParameterType::Float: return "float";
-    case ParameterType::Bool: return "bool";
-    case ParameterType::Trigger: return "trigger";
-  }
-  return "float";
-}
+std::string_view parameterTypeName(ParameterType value) { return eng::nameOf(kParameterTypeNames, value); }
 
-std::optional<ParameterType> parameterTypeFromString(std::string_view name) {
-  for (ParameterType t : {ParameterType::Float, ParameterType::Bool, ParameterType::Trigger})
-    if (toString(t) == name) return t;
-  return std::nullopt;
-}
+std::optional<ParameterType> parameterTypeFromName(std::string_view name) { return eng::valueNamed(kParameterTypeNames, name); }
 
 }  // namespace facial

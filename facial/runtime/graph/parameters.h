@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "engine/core/enum_names.h"
+
 namespace facial {
 
 using ParameterIndex = uint32_t;
@@ -20,8 +22,13 @@ enum class ParameterType : uint8_t {
   Trigger,  // set by the application, cleared when a transition consumes it
 };
 
-std::string_view toString(ParameterType type);
-std::optional<ParameterType> parameterTypeFromString(std::string_view name);
+inline constexpr eng::EnumName<ParameterType> kParameterTypeNames[] = {
+    {ParameterType::Float, "float"},
+    {ParameterType::Bool, "bool"},
+    {ParameterType::Trigger, "trigger"},
+};
+std::string_view parameterTypeName(ParameterType value);
+std::optional<ParameterType> parameterTypeFromName(std::string_view name);
 
 struct ParameterDecl {
   std::string name;

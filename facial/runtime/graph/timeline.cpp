@@ -7,21 +7,9 @@
 
 namespace facial {
 
-std::string_view toString(LoopMode mode) {
-  switch (mode) {
-    case LoopMode::Once: return "once";
-    case LoopMode::Loop: return "loop";
-    case LoopMode::PingPong: return "pingpong";
-  }
-  return "once";
-}
+std::string_view loopModeName(LoopMode value) { return eng::nameOf(kLoopModeNames, value); }
 
-std::optional<LoopMode> loopModeFromString(std::string_view name) {
-  if (name == "clamp") return LoopMode::Once;
-  for (LoopMode m : {LoopMode::Once, LoopMode::Loop, LoopMode::PingPong})
-    if (toString(m) == name) return m;
-  return std::nullopt;
-}
+std::optional<LoopMode> loopModeFromName(std::string_view name) { return eng::valueNamed(kLoopModeNames, name); }
 
 float clipTime(LoopMode mode, float duration, float playbackTime) {
   if (!(duration > 0.0f)) return 0.0f;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/result.h"
 #include "facial/runtime/curves/keyframe.h"
 
@@ -20,8 +21,15 @@ enum class LoopMode : uint8_t {
   PingPong,  // plays forward, then backward
 };
 
-std::string_view toString(LoopMode mode);
-std::optional<LoopMode> loopModeFromString(std::string_view name);
+// "clamp" is read as once (both hold the last pose); once is what is written.
+inline constexpr eng::EnumName<LoopMode> kLoopModeNames[] = {
+    {LoopMode::Once, "once"},
+    {LoopMode::Once, "clamp"},
+    {LoopMode::Loop, "loop"},
+    {LoopMode::PingPong, "pingpong"},
+};
+std::string_view loopModeName(LoopMode value);
+std::optional<LoopMode> loopModeFromName(std::string_view name);
 
 // Playback time -> time inside the clip [0, duration] for `mode`.
 float clipTime(LoopMode mode, float duration, float playbackTime);

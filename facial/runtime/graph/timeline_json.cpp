@@ -33,8 +33,8 @@ eng::Result<Timeline> detail::parseTimeline(const JsonNode& node, std::string de
   timeline.name = ENG_TRY_VALUE(node.stringOr("name", std::move(defaultName)));
   if (auto loop = node.find("loop")) {
     const std::string name = ENG_TRY_VALUE(loop->string());
-    auto mode = loopModeFromString(name);
-    if (!mode) return loop->error("unknown loop mode '" + name + "' (expected once, clamp, loop or pingpong)");
+    auto mode = loopModeFromName(name);
+    if (!mode) return loop->error("unknown loop mode '" + name + "' (expected " + eng::nameList(kLoopModeNames) + ")");
     timeline.loop = *mode;
   }
   const JsonNode tracks = ENG_TRY_VALUE(node.at("tracks"));
@@ -76,13 +76,13 @@ Json timelineToJson(const Timeline& timeline) {
     const std::span<const Keyframe> keys = timeline.trackKeys(i);
     const KeyInterpolation interp = keys.empty() ? KeyInterpolation::Linear : keys.front().interpolation;
     tracks.push_back({{"channel", timeline.tracks[i].channel},
-                      {"interpolation", toString(interp)},
+                      {"interpolation", keyInterpolationName(interp)},
                       {"keys", keyframesToJson(keys, interp)}});
   }
   return {{"version", kTimelineFileVersion},
           {"name", timeline.name},
           {"duration", detail::jsonNumber(timeline.duration)},
-          {"loop", toString(timeline.loop)},
+          {"loop", loopModeName(timeline.loop)},
           {"tracks", std::move(tracks)}};
 }
 

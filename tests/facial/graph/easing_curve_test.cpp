@@ -42,8 +42,8 @@ TEST(EasingCurve, MaxSlopeIsTheTrueSupremum) {
   const EasingCurve linear = EasingCurve::linear();
   for (const EasingCurve* c : std::initializer_list<const EasingCurve*>{&linear, &bezier.value(), &keyed.value()}) {
     const double measured = finiteDifferenceSlope(*c);
-    EXPECT_GE(c->maxSlope() * 1.001, measured) << facial::toString(c->type());
-    EXPECT_LE(c->maxSlope(), measured * 1.02) << facial::toString(c->type());
+    EXPECT_GE(c->maxSlope() * 1.001, measured) << facial::easingTypeName(c->type());
+    EXPECT_LE(c->maxSlope(), measured * 1.02) << facial::easingTypeName(c->type());
   }
 }
 

@@ -102,6 +102,6 @@ TEST(KeyframeValidity, RejectsUnsortedDuplicateNonFiniteAndEmpty) {
 
 TEST(KeyframeValidity, InterpolationNamesRoundTrip) {
   for (auto k : {KeyInterpolation::Step, KeyInterpolation::Linear, KeyInterpolation::Cosine, KeyInterpolation::Hermite})
-    EXPECT_EQ(facial::keyInterpolationFromString(facial::toString(k)), k);
-  EXPECT_FALSE(facial::keyInterpolationFromString("bezier").has_value());
+    EXPECT_EQ(facial::keyInterpolationFromName(facial::keyInterpolationName(k)), k);
+  EXPECT_FALSE(facial::keyInterpolationFromName("bezier").has_value());
 }

@@ -28,8 +28,8 @@ eng::Result<void> BuildContext::checkParameter(ParameterIndex parameter, Paramet
                               std::to_string(parameters.size()) + " parameters)");
   if (parameters[parameter].type != type)
     return problem(field, "parameter '" + parameters[parameter].name + "' is a " +
-                              std::string(toString(parameters[parameter].type)) + ", expected a " +
-                              std::string(toString(type)));
+                              std::string(parameterTypeName(parameters[parameter].type)) + ", expected a " +
+                              std::string(parameterTypeName(type)));
   return {};
 }
 

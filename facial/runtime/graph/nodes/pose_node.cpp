@@ -11,20 +11,9 @@ namespace facial {
 
 using detail::NodeReader;
 
-std::string_view toString(VrmOverride mode) {
-  switch (mode) {
-    case VrmOverride::None: return "none";
-    case VrmOverride::Block: return "block";
-    case VrmOverride::Blend: return "blend";
-  }
-  return "none";
-}
+std::string_view vrmOverrideName(VrmOverride value) { return eng::nameOf(kVrmOverrideNames, value); }
 
-std::optional<VrmOverride> vrmOverrideFromString(std::string_view name) {
-  for (VrmOverride m : {VrmOverride::None, VrmOverride::Block, VrmOverride::Blend})
-    if (toString(m) == name) return m;
-  return std::nullopt;
-}
+std::optional<VrmOverride> vrmOverrideFromName(std::string_view name) { return eng::valueNamed(kVrmOverrideNames, name); }
 
 eng::Result<void> PoseNode::prepare(const BuildContext& ctx) {
   if (weights.size() != ctx.channels.size())
@@ -88,8 +77,8 @@ eng::Result<PoseNode> PoseNode::read(const JsonNode& j, NodeReader& r) {
   }
   node.scale = ENG_TRY_VALUE(r.floatInput(j, "scale", 1.0f));
   if (auto o = j.find("overrideBlink")) {
-    auto mode = vrmOverrideFromString(ENG_TRY_VALUE(o->string()));
-    if (!mode) return o->error("unknown overrideBlink (expected none, block or blend)");
+    auto mode = vrmOverrideFromName(ENG_TRY_VALUE(o->string()));
+    if (!mode) return o->error("unknown overrideBlink (expected " + eng::nameList(kVrmOverrideNames) + ")");
     node.overrideBlink = *mode;
   }
   return node;

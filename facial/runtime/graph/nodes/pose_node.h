@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/enum_names.h"
 #include "facial/runtime/graph/node_types.h"
 #include "facial/runtime/graph/parameters.h"
 #include "facial/runtime/rig/vrm_expressions.h"
@@ -23,8 +24,13 @@ class NodeReader;
 }  // namespace detail
 
 // JSON names of VRM overrides: "none", "block", "blend".
-std::string_view toString(VrmOverride mode);
-std::optional<VrmOverride> vrmOverrideFromString(std::string_view name);
+inline constexpr eng::EnumName<VrmOverride> kVrmOverrideNames[] = {
+    {VrmOverride::None, "none"},
+    {VrmOverride::Block, "block"},
+    {VrmOverride::Blend, "blend"},
+};
+std::string_view vrmOverrideName(VrmOverride value);
+std::optional<VrmOverride> vrmOverrideFromName(std::string_view name);
 
 struct PoseNode {
   static constexpr std::string_view kType = "pose";  // JSON "type"

@@ -14,28 +14,9 @@ namespace facial {
 
 using detail::NodeReader;
 
-std::string_view toString(ConditionOp op) {
-  switch (op) {
-    case ConditionOp::Greater: return ">";
-    case ConditionOp::GreaterEqual: return ">=";
-    case ConditionOp::Less: return "<";
-    case ConditionOp::LessEqual: return "<=";
-    case ConditionOp::Equal: return "==";
-    case ConditionOp::NotEqual: return "!=";
-    case ConditionOp::IsTrue: return "true";
-    case ConditionOp::IsFalse: return "false";
-    case ConditionOp::Triggered: return "triggered";
-  }
-  return "triggered";
-}
+std::string_view conditionOpName(ConditionOp value) { return eng::nameOf(kConditionOpNames, value); }
 
-std::optional<ConditionOp> conditionOpFromString(std::string_view name) {
-  for (ConditionOp op : {ConditionOp::Greater, ConditionOp::GreaterEqual, ConditionOp::Less, ConditionOp::LessEqual,
-                         ConditionOp::Equal, ConditionOp::NotEqual, ConditionOp::IsTrue, ConditionOp::IsFalse,
-                         ConditionOp::Triggered})
-    if (toString(op) == name) return op;
-  return std::nullopt;
-}
+std::optional<ConditionOp> conditionOpFromName(std::string_view name) { return eng::valueNamed(kConditionOpNames, name); }
 
 bool TransitionCondition::holds(std::span<const float> parameters) const {
   const float v = parameters[parameter];
@@ -260,7 +241,7 @@ eng::Result<TransitionCondition> readCondition(const JsonNode& j, NodeReader& r)
     case ParameterType::Float: {
       const JsonNode op = ENG_TRY_VALUE(j.at("op"));
       const std::string name = ENG_TRY_VALUE(op.string());
-      auto parsed = conditionOpFromString(name);
+      auto parsed = conditionOpFromName(name);
       if (!parsed || *parsed == ConditionOp::IsTrue || *parsed == ConditionOp::IsFalse ||
           *parsed == ConditionOp::Triggered)
         return op.error("unknown comparison '" + name + "' (expected >, >=, <, <=, == or !=)");

@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/enum_names.h"
 #include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/graph/node_types.h"
@@ -36,8 +37,19 @@ class NodeReader;
 }  // namespace detail
 
 enum class ConditionOp : uint8_t { Greater, GreaterEqual, Less, LessEqual, Equal, NotEqual, IsTrue, IsFalse, Triggered };
-std::string_view toString(ConditionOp op);
-std::optional<ConditionOp> conditionOpFromString(std::string_view name);
+inline constexpr eng::EnumName<ConditionOp> kConditionOpNames[] = {
+    {ConditionOp::Greater, ">"},
+    {ConditionOp::GreaterEqual, ">="},
+    {ConditionOp::Less, "<"},
+    {ConditionOp::LessEqual, "<="},
+    {ConditionOp::Equal, "=="},
+    {ConditionOp::NotEqual, "!="},
+    {ConditionOp::IsTrue, "true"},
+    {ConditionOp::IsFalse, "false"},
+    {ConditionOp::Triggered, "triggered"},
+};
+std::string_view conditionOpName(ConditionOp value);
+std::optional<ConditionOp> conditionOpFromName(std::string_view name);
 
 struct TransitionCondition {
   ParameterIndex parameter = kNoParameter;

@@ -65,8 +65,8 @@ eng::Result<TimelineNode> TimelineNode::read(const JsonNode& j, NodeReader& r) {
   TimelineNode t;
   t.timeline = ENG_TRY_VALUE(r.timeline(ENG_TRY_VALUE(j.at("timeline"))));
   if (auto loop = j.find("loop")) {
-    auto mode = loopModeFromString(ENG_TRY_VALUE(loop->string()));
-    if (!mode) return loop->error("unknown loop mode (expected once, clamp, loop or pingpong)");
+    auto mode = loopModeFromName(ENG_TRY_VALUE(loop->string()));
+    if (!mode) return loop->error("unknown loop mode (expected " + eng::nameList(kLoopModeNames) + ")");
     t.loop = *mode;
   }
   t.speed = ENG_TRY_VALUE(r.floatInput(j, "speed", 1.0f));
