@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/program_error.h"
 #include "cli/command.h"
 
 namespace cli {
@@ -51,8 +52,8 @@ int main(int argc, char** argv) {
       try {
         return run();
       } catch (const std::exception& e) {
-        std::fprintf(stderr, "facial %s: error: %s\n", sub->get_name().c_str(), e.what());
-        return 1;
+        const std::string program = "facial " + sub->get_name();
+        return app::ErrorReporter{program}(e.what());
       }
     }
   }

@@ -28,6 +28,8 @@
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
+#include "app/crowd_layout.h"
+#include "app/program_error.h"
 #include "engine/scene/weights.h"
 #include "engine/view/framing_bounds.h"
 #include "engine/vk/draw/gpu_types.h"
@@ -56,10 +58,7 @@ constexpr float kDistanceInDiagonals = 1.6f;
 constexpr int kMaxInstances = 4096;
 constexpr int kMaxFrames = 1000000;
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial bench frames: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial bench frames"};
 
 // The q-quantile (0..1) of `samples` by nearest rank; sorts them.
 double quantile(std::vector<double>& samples, double q) {
@@ -84,8 +83,8 @@ std::string format(double ms) {
   return text;
 }
 
-int runBenchFrames(const BenchFramesOptions& o) {
-  uint32_t width = 0, height = 0;
+// The options' ranges; 0 when they hold, else the exit code after the error line.
+int checkOptions(const BenchFramesOptions& o, uint32_t& width, uint32_t& height) {
   if (!app::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH with 1..16384 pixels a side");
   if (o.frames < 1 || o.frames > kMaxFrames)
     return fail("--frames " + std::to_string(o.frames) + " is out of range (1.." + std::to_string(kMaxFrames) + ")");
@@ -95,12 +94,66 @@ int runBenchFrames(const BenchFramesOptions& o) {
     return fail("--instances " + std::to_string(o.instances) + " is out of range (1.." +
                 std::to_string(kMaxInstances) + ")");
   if (o.animate != "all" && o.animate != "none") return fail("--animate '" + o.animate + "' is not all or none");
-  const bool animate = o.animate == "all";
   if (!(o.lodError >= 0.0f && o.lodError <= 64.0f)) {
     char value[32];
     std::snprintf(value, sizeof(value), "%g", double(o.lodError));
     return fail(std::string("--lod-error ") + value + " is out of range (0..64 pixels)");
   }
+  return 0;
+}
+
+// The report: the settings and what one frame drew, the memory, and the one
+// line of timings the benchmark scripts read.
+void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, eng::vk::RenderQuality quality,
+                  app::HeadlessModelRenderer& renderer, uint32_t count, size_t targets, std::vector<double>& cpuMs,
+                  std::vector<double>& gpuMs) {
+  eng::vk::OffscreenRenderer& offscreen = renderer.offscreen();
+  const eng::vk::SceneView& view = renderer.view();
+  const eng::vk::FrameStats stats = offscreen.lastFrameStats();
+  const eng::vk::QualitySettings tier = eng::vk::qualitySettings(quality);
+  std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
+              "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
+              "lod_error=%g triangles=%llu coarser_draws=%u timestamps=%s\n",
+              eng::vk::qualityName(quality), int(offscreen.samples()), tier.shadowMapSize,
+              tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
+              tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
+              double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
+              double(view.camera.distance), stats.draws,
+              stats.activeWeights, double(o.lodError), static_cast<unsigned long long>(stats.triangles),
+              stats.coarserDraws, offscreen.hasGpuTimestamps() ? "yes" : "no");
+  // Memory: what the face asset holds on the device, and what one more
+  // instance adds (its GPU records, active list, target weights and joint
+  // matrices uploaded per frame, its morphed vertices, plus its CPU weight vector).
+  const double perInstance =
+      double(size_t(stats.instances) * sizeof(eng::vk::GpuInstance) +
+             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4) +
+             size_t(stats.targetWeights) * sizeof(float) + stats.morphedBytes) /
+          double(count) +
+      double(targets * sizeof(float));
+  std::printf("memory: asset_buffer_bytes=%llu per_instance_bytes=%.0f\n",
+              static_cast<unsigned long long>(renderer.gpuModel().bufferBytes()), perInstance);
+  const double cpuMedian = quantile(cpuMs, 0.5);
+  const double cpuP95 = quantile(cpuMs, 0.95);
+  std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
+                     std::to_string(width) + "x" + std::to_string(height) +
+                     " quality=" + eng::vk::qualityName(quality) +
+                     " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
+                     " animate=" + o.animate + " targets=" + std::to_string(targets) +
+                     " triangles=" + std::to_string(stats.triangles) +
+                     " device=" + renderer.deviceName() + " cpu_median_ms=" + format(cpuMedian) +
+                     " cpu_p95_ms=" + format(cpuP95);
+  if (gpuMs.size() == cpuMs.size()) {
+    line += " gpu_median_ms=" + format(quantile(gpuMs, 0.5)) + " gpu_p95_ms=" + format(quantile(gpuMs, 0.95));
+  }
+  char fps[32];
+  std::snprintf(fps, sizeof(fps), "%.2f", cpuMedian > 0.0 ? 1000.0 / cpuMedian : 0.0);
+  std::printf("%s fps=%s\n", line.c_str(), fps);
+}
+
+int runBenchFrames(const BenchFramesOptions& o) {
+  uint32_t width = 0, height = 0;
+  if (const int error = checkOptions(o, width, height); error != 0) return error;
+  const bool animate = o.animate == "all";
   auto quality = app::qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 
@@ -122,18 +175,10 @@ int runBenchFrames(const BenchFramesOptions& o) {
   // K instances side by side in a square grid, spaced by the model's size;
   // the camera frames the whole grid (one instance: the model's box).
   const uint32_t count = uint32_t(o.instances);
-  const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(count))));
-  const uint32_t rows = (count + columns - 1) / columns;
-  const float spacing = std::max(bounds.size().x, bounds.size().y) * 1.15f;
+  const std::vector<glm::vec3> offsets = app::crowdOffsets(count, bounds);
   std::vector<glm::mat4> placements(count);
-  eng::Aabb gridBounds;
-  for (uint32_t i = 0; i < count; ++i) {
-    const glm::vec3 offset((float(i % columns) - 0.5f * float(columns - 1)) * spacing,
-                           -(float(i / columns) - 0.5f * float(rows - 1)) * spacing, 0.0f);
-    placements[i] = glm::translate(glm::mat4(1.0f), offset);
-    gridBounds.extend(bounds.min + offset);
-    gridBounds.extend(bounds.max + offset);
-  }
+  for (uint32_t i = 0; i < count; ++i) placements[i] = glm::translate(glm::mat4(1.0f), offsets[i]);
+  const eng::Aabb gridBounds = app::crowdBounds(offsets, bounds);
   eng::vk::SceneView& view = renderer->view();
   view.camera = eng::OrbitCamera::frame(gridBounds, float(width) / float(height), kFovYDegrees);
   view.camera.target = gridBounds.center();
@@ -165,45 +210,7 @@ int runBenchFrames(const BenchFramesOptions& o) {
   }
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
-  const eng::vk::FrameStats stats = offscreen.lastFrameStats();
-  const eng::vk::QualitySettings tier = eng::vk::qualitySettings(*quality);
-  std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
-              "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
-              "lod_error=%g triangles=%llu coarser_draws=%u timestamps=%s\n",
-              eng::vk::qualityName(*quality), int(offscreen.samples()), tier.shadowMapSize,
-              tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
-              tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
-              double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
-              double(view.camera.distance), stats.draws,
-              stats.activeWeights, double(o.lodError), static_cast<unsigned long long>(stats.triangles),
-              stats.coarserDraws, offscreen.hasGpuTimestamps() ? "yes" : "no");
-  // Memory: what the face asset holds on the device, and what one more
-  // instance adds (its GPU records, active list, target weights and joint
-  // matrices uploaded per frame, its morphed vertices, plus its CPU weight vector).
-  const double perInstance =
-      double(size_t(stats.instances) * sizeof(eng::vk::GpuInstance) +
-             size_t(stats.activeWeights) * sizeof(eng::vk::ActiveWeight) + size_t(stats.jointMatrices) * sizeof(glm::mat4) +
-             size_t(stats.targetWeights) * sizeof(float) + stats.morphedBytes) /
-          double(count) +
-      double(layout.total() * sizeof(float));
-  std::printf("memory: asset_buffer_bytes=%llu per_instance_bytes=%.0f\n",
-              static_cast<unsigned long long>(renderer->gpuModel().bufferBytes()), perInstance);
-  const double cpuMedian = quantile(cpuMs, 0.5);
-  const double cpuP95 = quantile(cpuMs, 0.95);
-  std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
-                     std::to_string(width) + "x" + std::to_string(height) +
-                     " quality=" + eng::vk::qualityName(*quality) +
-                     " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
-                     " animate=" + o.animate + " targets=" + std::to_string(layout.total()) +
-                     " triangles=" + std::to_string(stats.triangles) +
-                     " device=" + renderer->deviceName() + " cpu_median_ms=" + format(cpuMedian) +
-                     " cpu_p95_ms=" + format(cpuP95);
-  if (gpuMs.size() == cpuMs.size()) {
-    line += " gpu_median_ms=" + format(quantile(gpuMs, 0.5)) + " gpu_p95_ms=" + format(quantile(gpuMs, 0.95));
-  }
-  char fps[32];
-  std::snprintf(fps, sizeof(fps), "%.2f", cpuMedian > 0.0 ? 1000.0 / cpuMedian : 0.0);
-  std::printf("%s fps=%s\n", line.c_str(), fps);
+  printResults(o, width, height, *quality, *renderer, count, layout.total(), cpuMs, gpuMs);
   return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/obj_keyframes.h"
+#include "app/program_error.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -33,10 +34,7 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial convert: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial convert"};
 
 int save(const eng::Model& model, const std::string& out) {
   auto saved = eng::saveModel(model, out);

@@ -14,6 +14,7 @@
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
+#include "app/program_error.h"
 #include "engine/scene/image_io.h"
 
 // Each command in a namespace of its own: the commands are compiled several
@@ -31,10 +32,7 @@ struct ExpressOptions {
   std::string out;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial express: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial express"};
 
 int runExpress(const ExpressOptions& o) {
   auto renderOptions = app::headlessRenderOptions(o.view);

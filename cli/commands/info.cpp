@@ -9,6 +9,7 @@
 
 #include "cli/command.h"
 #include "app/face_setup.h"
+#include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
 
@@ -16,6 +17,8 @@
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
 namespace cli::info_command {
 namespace {
+
+constexpr app::ErrorReporter fail{"facial info"};
 
 const char* interpolationName(eng::Interpolation i) {
   switch (i) {
@@ -195,10 +198,7 @@ CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, mate
                        app.add_flag("--json", *json, "Print machine-readable JSON instead of text");
                        return [path, json]() -> int {
                          auto face = app::loadFace(*path);
-                         if (!face) {
-                           std::fprintf(stderr, "facial info: error: %s\n", face.error().message.c_str());
-                           return 1;
-                         }
+                         if (!face) return fail(face.error().message);
                          const eng::Model* model = &face->model;
                          if (*json) std::printf("%s\n", toJson(*model).dump(2, ' ', false,
                                                                            nlohmann::ordered_json::error_handler_t::replace).c_str());

@@ -11,6 +11,7 @@
 #include "engine/scene/gltf_writer.h"
 #include "bake/head/head_generator.h"
 #include "bake/head/head_rig_spec.h"
+#include "app/program_error.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -22,10 +23,7 @@ struct MakeHeadOptions {
   std::string landmarks;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial make-head: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial make-head"};
 
 // The landmark file beside the sources, unless the working directory has one.
 std::filesystem::path defaultLandmarks() {

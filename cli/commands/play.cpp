@@ -20,6 +20,7 @@
 #include "app/headless_model_renderer.h"
 #include "app/sequence_recorder.h"
 #include "app/skeleton_motion.h"
+#include "app/program_error.h"
 #include "engine/core/json_nesting.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
@@ -48,10 +49,7 @@ struct PlayOptions {
   std::string video;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial play: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial play"};
 
 // A timeline file becomes a one-node graph so both kinds play the same way.
 eng::Result<facial::SharedGraphDefinition> graphForTimeline(const app::FaceSetup& face, const std::string& file,

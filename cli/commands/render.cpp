@@ -16,6 +16,7 @@
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
+#include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
@@ -33,10 +34,7 @@ struct RenderOptions {
   std::string out;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial render: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial render"};
 
 
 std::string lower(std::string s) {

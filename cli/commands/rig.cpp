@@ -12,6 +12,7 @@
 
 #include "cli/command.h"
 #include "app/face_setup.h"
+#include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "facial/runtime/character/gaze_rig.h"
 
@@ -19,6 +20,8 @@
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
 namespace cli::rig_command {
 namespace {
+
+constexpr app::ErrorReporter fail{"facial rig"};
 
 struct RigOptions {
   std::string model;
@@ -53,15 +56,9 @@ nlohmann::ordered_json toJson(const std::string& modelPath, app::FaceFormat form
 
 int runRig(const RigOptions& o) {
   auto face = app::loadFace(o.model, o.shapes);
-  if (!face) {
-    std::fprintf(stderr, "facial rig: error: %s\n", face.error().message.c_str());
-    return 1;
-  }
+  if (!face) return fail(face.error().message);
   auto rig = app::buildFaceRig(*face, o.rigmap);
-  if (!rig) {
-    std::fprintf(stderr, "facial rig: error: %s\n", rig.error().message.c_str());
-    return 1;
-  }
+  if (!rig) return fail(rig.error().message);
   // Which morph targets steer the eyes (the window demo's idle life and facial::Character drive them).
   const std::vector<std::string> names = eng::WeightLayout(face->model).names();
   std::string gaze = facial::GazeRig::create(names, face->vrm.get()).describe();

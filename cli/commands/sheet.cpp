@@ -17,6 +17,7 @@
 #include "app/face_materials.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
+#include "app/program_error.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/image/text.h"
 #include "engine/scene/image_io.h"
@@ -45,10 +46,7 @@ struct SheetOptions {
   std::string out;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial sheet: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial sheet"};
 
 // "happily_surprised" -> "happily surprised"
 std::string labelOf(const std::string& presetName) {

@@ -10,6 +10,7 @@
 
 #include "cli/command.h"
 #include "app/face_setup.h"
+#include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "bake/gltf_timeline.h"
@@ -28,10 +29,7 @@ struct TimelineOptions {
   std::string out;
 };
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial timeline: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial timeline"};
 
 // The index of the animation named or numbered `which` among those that
 // animate weights, or an error listing what the model has.

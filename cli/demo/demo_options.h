@@ -1,10 +1,14 @@
 #pragma once
 // Options of `facial demo`, shared by its windowed and headless paths.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace cli {
+
+// The seven triggers of the tour graph (data/graphs/tour.json), in the window's key order (1-7).
+inline constexpr std::array<const char*, 7> kEmotions = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
 
 struct DemoOptions {
   std::string model;               // empty: the built-in head

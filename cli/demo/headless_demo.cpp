@@ -14,6 +14,7 @@
 
 #include "engine/view/face_framing.h"
 #include "app/cli_parse.h"
+#include "app/crowd_layout.h"
 #include "cli/demo/demo_options.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
@@ -21,6 +22,7 @@
 #include "app/view_options.h"
 #include "app/sequence_recorder.h"
 #include "app/skeleton_motion.h"
+#include "app/program_error.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/scene/image_io.h"
 #include "engine/vk/device/context.h"
@@ -34,10 +36,7 @@
 namespace cli {
 namespace {
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial demo: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial demo"};
 
 std::filesystem::path defaultOutputDir() {
   const std::time_t now = std::time(nullptr);
@@ -76,6 +75,118 @@ glm::mat4 idleMotion(float t, float phase, const glm::vec3& pivot, float size) {
          glm::translate(glm::mat4(1.0f), -pivot);
 }
 
+// The tour's faces, posed frame by frame: one FaceDriver per member of the
+// crowd grid (app/crowd_layout.h), with the idle sway and breathing above, the
+// --clip under it and the VRM material binds. Members of a crowd pick their
+// own emotions at random moments.
+class HeadlessCrowd {
+ public:
+  static eng::Result<HeadlessCrowd> create(const app::FaceSetup& setup, const facial::SharedGraphDefinition& graph,
+                                           const std::filesystem::path& graphPath, const eng::Aabb& bounds,
+                                           uint32_t crowd, const DemoOptions& o) {
+    HeadlessCrowd c;
+    c.bounds_ = bounds;
+    c.offsets_ = app::crowdOffsets(crowd, bounds);
+    // Skinned avatars turn the head joint instead of the whole model; --clip plays under every face.
+    auto skeleton = app::SkeletonMotion::create(setup.model(), o.clip);
+    if (!skeleton) return skeleton.error();
+    auto materials = app::FaceMaterials::create(setup);  // VRM material binds, one set per face
+    if (!materials) return materials.error();
+    const std::vector<std::string> targetNames = setup.layout().names();
+    for (uint32_t i = 0; i < crowd; ++i) {
+      auto face = facial::FaceDriver::create(graph, &setup.graphRig(), targetNames, setup.baseWeights(), o.seed + i);
+      if (!face) return face.error().prefixed(graphPath.string() + ": ");
+      c.faces_.push_back(std::move(*face));
+    }
+    c.skeletons_.assign(crowd, *skeleton);
+    c.materials_.assign(crowd, *materials);
+    c.instances_.resize(crowd);
+    c.nextTrigger_.assign(crowd, 0.0f);
+    c.random_.seed(static_cast<uint32_t>(o.seed));
+    return c;
+  }
+
+  const facial::FaceDriver& first() const { return faces_[0]; }
+  const std::vector<glm::vec3>& offsets() const { return offsets_; }
+
+  eng::Result<std::span<const eng::vk::ModelInstance>> pose(const app::FrameContext& frame, const eng::vk::GpuModel& model) {
+    const size_t crowd = faces_.size();
+    // The head sways about the neck: the bottom of the framed head, not its centre.
+    const glm::vec3 swayPivot{bounds_.center().x, bounds_.min.y, bounds_.center().z};
+    for (size_t i = 0; i < crowd; ++i) {
+      if (crowd > 1 && frame.time >= nextTrigger_[i]) triggerRandomEmotion(i, frame.time);
+      faces_[i].update(frame.dt);
+      if (auto moved = materials_[i].update(faces_[i].expressionWeights()); !moved) return moved.error();
+      const float phase = 1.7f * float(i);
+      const glm::mat4 place = glm::translate(glm::mat4(1.0f), offsets_[i]);
+      if (skeletons_[i].turnsHeadJoint()) {
+        skeletons_[i].update(frame.time, idleHeadTurn(frame.time, phase));
+        instances_[i] = {&model, glm::translate(place, idleBreathing(frame.time, phase, bounds_.diagonal())),
+                         faces_[i].targetWeights(), skeletons_[i].nodeWorld()};
+      } else {
+        skeletons_[i].update(frame.time);
+        instances_[i] = {&model, place * idleMotion(frame.time, phase, swayPivot, bounds_.diagonal()),
+                         faces_[i].targetWeights(), skeletons_[i].nodeWorld()};
+      }
+      instances_[i].materials = materials_[i].materials();
+    }
+    return std::span<const eng::vk::ModelInstance>(instances_);
+  }
+
+ private:
+  HeadlessCrowd() = default;
+
+  void triggerRandomEmotion(size_t i, float time) {
+    auto& g = faces_[i].graph();
+    if (auto autoplay = g.definition().findParameter("autoplay")) g.setBool(*autoplay, false);
+    const char* name = kEmotions[size_t(std::uniform_int_distribution<int>(0, int(kEmotions.size()) - 1)(random_))];
+    if (auto trigger = g.definition().findParameter(name)) g.setTrigger(*trigger);
+    nextTrigger_[i] = time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random_);
+  }
+
+  eng::Aabb bounds_;
+  std::vector<glm::vec3> offsets_;
+  std::vector<facial::FaceDriver> faces_;
+  std::vector<app::SkeletonMotion> skeletons_;
+  std::vector<app::FaceMaterials> materials_;
+  std::vector<eng::vk::ModelInstance> instances_;
+  std::vector<float> nextTrigger_;
+  std::mt19937 random_;
+};
+
+// One contact-sheet tile per state visit, taken once the state has been
+// held a moment (after its blend has finished).
+struct StateTiles {
+  const facial::StateMachineNode& machine;
+  facial::NodeIndex node;
+  std::vector<eng::ContactSheetTile> tiles;
+  std::set<std::string> captured;
+
+  void capture(const facial::GraphInstance& graph, const eng::Image& image) {
+    const auto status = graph.stateMachineStatus(node);
+    if (!status || status->blending) return;
+    const std::string& name = machine.states[status->current].name;
+    if (status->stateTime >= 1.2f && captured.insert(name).second) {
+      eng::ContactSheetTile tile{eng::Canvas(image.width, image.height), name};
+      tile.image.rgba = image.rgba8;
+      tiles.push_back(std::move(tile));
+    }
+  }
+};
+
+// The contact sheet of the states' tiles, four to a row, as outDir/contact_sheet.png.
+eng::Result<std::filesystem::path> writeContactSheet(const std::vector<eng::ContactSheetTile>& tiles,
+                                                     const std::string& faceName, const std::filesystem::path& outDir) {
+  eng::ContactSheetOptions sheetOptions;
+  sheetOptions.columns = std::min<int>(4, static_cast<int>(tiles.size()));
+  sheetOptions.title = "facial demo tour: " + faceName;
+  auto sheet = eng::composeContactSheet(tiles, sheetOptions);
+  if (!sheet) return sheet.error();
+  const std::filesystem::path sheetPath = outDir / "contact_sheet.png";
+  if (auto written = eng::writePng(sheetPath, sheet->width, sheet->height, sheet->rgba); !written) return written.error();
+  return sheetPath;
+}
+
 }  // namespace
 
 int runHeadlessDemo(const DemoOptions& o) {
@@ -91,24 +202,17 @@ int runHeadlessDemo(const DemoOptions& o) {
   auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? app::dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
-  facial::GraphLoadOptions graphOptions;
-  graphOptions.presets = facial::presetLookup(setup->expressions());
-  auto graph = facial::loadGraph(graphPath, graphOptions);
+  auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(setup->expressions())});
   if (!graph) return fail(graph.error().message);
   const auto machineNode = (*graph)->findNode("emotions");
   const facial::StateMachineNode* machine = machineNode ? (*graph)->nodeAs<facial::StateMachineNode>(*machineNode) : nullptr;
   if (!machine) return fail(graphPath.string() + ": the demo needs a state machine node named \"emotions\"");
 
-  const std::vector<std::string> targetNames = setup->layout().names();
-  std::vector<facial::FaceDriver> faces;
-  auto materials = app::FaceMaterials::create(*setup);  // VRM material binds, one set per face
-  if (!materials) return fail(materials.error().message);
-  std::vector<app::FaceMaterials> faceMaterials(crowd, *materials);
-  for (uint32_t i = 0; i < crowd; ++i) {
-    auto face = facial::FaceDriver::create(*graph, &setup->graphRig(), targetNames, setup->baseWeights(), o.seed + i);
-    if (!face) return fail(graphPath.string() + ": " + face.error().message);
-    faces.push_back(std::move(*face));
-  }
+  // Crowd: a square grid of faces spaced by the framed part's size (the head,
+  // by default), framed together.
+  const eng::Aabb bounds = eng::framingBounds(setup->model(), *framing);
+  auto faces = HeadlessCrowd::create(*setup, *graph, graphPath, bounds, crowd, o);
+  if (!faces) return fail(faces.error().message);
 
   const std::filesystem::path outDir = o.out.empty() ? defaultOutputDir() : std::filesystem::path(o.out);
   std::printf("facial demo: no display, playing the tour headless into %s\n", outDir.string().c_str());
@@ -121,34 +225,10 @@ int runHeadlessDemo(const DemoOptions& o) {
       setup->model(), {.width = width, .height = height, .device = o.device, .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
-  // Crowd: a square grid of faces spaced by the framed part's size (the head,
-  // by default), framed together.
-  const eng::Aabb bounds = eng::framingBounds(setup->model(), *framing);
-  const uint32_t columns = static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<float>(crowd))));
-  const float spacing = std::max(bounds.size().x, bounds.size().y) * 1.15f;
-  std::vector<glm::vec3> offsets(crowd);
-  eng::Aabb crowdBounds;
-  for (uint32_t i = 0; i < crowd; ++i) {
-    offsets[i] = glm::vec3((float(i % columns) - 0.5f * float(columns - 1)) * spacing,
-                           -(float(i / columns) - 0.5f * float((crowd - 1) / columns)) * spacing, 0.0f);
-    crowdBounds.extend(bounds.min + offsets[i]);
-    crowdBounds.extend(bounds.max + offsets[i]);
-  }
   eng::vk::SceneView& view = renderer->view();
-  view.camera = eng::OrbitCamera::frame(crowdBounds, float(width) / float(height));
+  view.camera = eng::OrbitCamera::frame(app::crowdBounds(faces->offsets(), bounds), float(width) / float(height));
   // A crowd is framed as a whole.
   if (crowd == 1) view.camera.zoom = faceViewZoom(setup->model(), *framing, eng::kFaceZoom, float(width) / float(height));
-
-  // The head sways about the neck: the bottom of the framed head, not its centre.
-  const glm::vec3 swayPivot{bounds.center().x, bounds.min.y, bounds.center().z};
-  std::vector<eng::vk::ModelInstance> instances(crowd);
-  // Skinned avatars turn the head joint instead of the whole model; --clip plays under every face.
-  auto skeleton = app::SkeletonMotion::create(setup->model(), o.clip);
-  if (!skeleton) return fail(skeleton.error().message);
-  std::vector<app::SkeletonMotion> skeletons(crowd, *skeleton);
-  std::mt19937 random(static_cast<uint32_t>(o.seed));
-  std::vector<float> nextTrigger(crowd, 0.0f);
-  static constexpr const char* kTriggers[] = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
 
   app::SequenceOptions sequence;
   sequence.framesPerSecond = o.fps;
@@ -157,63 +237,18 @@ int runHeadlessDemo(const DemoOptions& o) {
   sequence.gifPath = outDir / "tour.gif";
   sequence.progressLabel = "tour";
 
-  // One contact-sheet tile per state visit, taken once the state has been
-  // held a moment (after its blend has finished).
-  std::vector<eng::ContactSheetTile> tiles;
-  std::set<std::string> captured;
+  StateTiles states{*machine, *machineNode};
   auto summary = app::recordSequence(
       renderer->offscreen(), view, sequence,
-      [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
-        for (uint32_t i = 0; i < crowd; ++i) {
-          if (crowd > 1 && frame.time >= nextTrigger[i]) {
-            // Crowd members pick their own emotions at random moments.
-            auto& g = faces[i].graph();
-            if (auto autoplay = g.definition().findParameter("autoplay")) g.setBool(*autoplay, false);
-            const char* name = kTriggers[std::uniform_int_distribution<int>(0, 6)(random)];
-            if (auto trigger = g.definition().findParameter(name)) g.setTrigger(*trigger);
-            nextTrigger[i] = frame.time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random);
-          }
-          faces[i].update(frame.dt);
-          if (auto moved = faceMaterials[i].update(faces[i].expressionWeights()); !moved) return moved.error();
-          const float phase = 1.7f * float(i);
-          const glm::mat4 place = glm::translate(glm::mat4(1.0f), offsets[i]);
-          if (skeletons[i].turnsHeadJoint()) {
-            skeletons[i].update(frame.time, idleHeadTurn(frame.time, phase));
-            instances[i] = {&renderer->gpuModel(),
-                            glm::translate(place, idleBreathing(frame.time, phase, bounds.diagonal())),
-                            faces[i].targetWeights(), skeletons[i].nodeWorld()};
-          } else {
-            skeletons[i].update(frame.time);
-            instances[i] = {&renderer->gpuModel(),
-                            place * idleMotion(frame.time, phase, swayPivot, bounds.diagonal()),
-                            faces[i].targetWeights(), skeletons[i].nodeWorld()};
-          }
-          instances[i].materials = faceMaterials[i].materials();
-        }
-        return std::span<const eng::vk::ModelInstance>(instances);
-      },
-      [&](const app::FrameContext&, const eng::Image& image) {
-        const auto status = faces[0].graph().stateMachineStatus(*machineNode);
-        if (!status || status->blending) return;
-        const std::string& name = machine->states[status->current].name;
-        if (status->stateTime >= 1.2f && captured.insert(name).second) {
-          eng::ContactSheetTile tile{eng::Canvas(image.width, image.height), name};
-          tile.image.rgba = image.rgba8;
-          tiles.push_back(std::move(tile));
-        }
-      });
+      [&](const app::FrameContext& frame) { return faces->pose(frame, renderer->gpuModel()); },
+      [&](const app::FrameContext&, const eng::Image& image) { states.capture(faces->first().graph(), image); });
   if (!summary) return fail(summary.error().message);
 
   std::filesystem::path sheetPath;
-  if (!tiles.empty()) {
-    eng::ContactSheetOptions sheetOptions;
-    sheetOptions.columns = std::min<int>(4, static_cast<int>(tiles.size()));
-    sheetOptions.title = "facial demo tour: " + setup->name();
-    auto sheet = eng::composeContactSheet(tiles, sheetOptions);
-    if (!sheet) return fail(sheet.error().message);
-    sheetPath = outDir / "contact_sheet.png";
-    if (auto written = eng::writePng(sheetPath, sheet->width, sheet->height, sheet->rgba); !written)
-      return fail(written.error().message);
+  if (!states.tiles.empty()) {
+    auto written = writeContactSheet(states.tiles, setup->name(), outDir);
+    if (!written) return fail(written.error().message);
+    sheetPath = *written;
   }
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
@@ -224,7 +259,7 @@ int runHeadlessDemo(const DemoOptions& o) {
               renderer->deviceName().c_str());
   std::printf("  frames:        %s\n  animation:     %s\n", sequence.frameDir.string().c_str(),
               sequence.gifPath.string().c_str());
-  if (!sheetPath.empty()) std::printf("  contact sheet: %s (%zu states)\n", sheetPath.string().c_str(), tiles.size());
+  if (!sheetPath.empty()) std::printf("  contact sheet: %s (%zu states)\n", sheetPath.string().c_str(), states.tiles.size());
   return 0;
 }
 

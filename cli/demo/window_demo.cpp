@@ -5,39 +5,34 @@
 // pad drives a control-map node of its own graph); mouse drag orbits, the
 // wheel zooms, F12 saves a screenshot, Esc quits. `--script` replays timed
 // actions through the same paths (window_script.h); state changes are logged.
-// `--crowd N`: N faces in a grid, each its own FaceDriver with random triggers.
+// `--crowd N`: N faces in a grid, each its own facial::Character with random triggers.
+//
+// The parts: the faces (demo_faces.h, one facial::Character each), the
+// panel's hold on the single face (face_override.h), the camera
+// (demo_camera.h), the window (app/window_session.h, app/window_loop.h);
+// this file is the panel, the input and the script over them.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <array>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <optional>
-#include <random>
 #include <string>
-#include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "app/cli_parse.h"
-#include "cli/demo/demo_options.h"
-#include "app/face_materials.h"
 #include "app/face_setup.h"
-#include "cli/demo/window_idle_motion.h"
-#include "app/skeleton_motion.h"
-#include "engine/vk/present/imgui_layer.h"
+#include "app/program_error.h"
 #include "app/view_options.h"
 #include "app/window_loop.h"
 #include "app/window_script.h"
-#include "engine/vk/device/context.h"
-#include "engine/view/framing_bounds.h"
-#include "engine/vk/present/window.h"
-#include "engine/vk/present/window_renderer.h"
-#include "facial/runtime/character/face_driver.h"
+#include "app/window_session.h"
+#include "cli/demo/demo_camera.h"
+#include "cli/demo/demo_faces.h"
+#include "cli/demo/demo_options.h"
+#include "cli/demo/face_override.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/nodes/control_map_node.h"
 #include "facial/runtime/graph/nodes/state_machine_node.h"
@@ -48,54 +43,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial demo: error: %s\n", message.c_str());
-  return 1;
-}
+constexpr app::ErrorReporter fail{"facial demo"};
 
-// The seven triggers of the tour graph, in key order (1-7).
-constexpr std::array<const char*, 7> kEmotions = {"neutral", "happy", "sad", "anger", "fear", "surprise", "disgust"};
-// The pad's graph: the study's 2D control map (ControlMapNode) with four
-// presets on the axes around neutral, as labelled on the pad, and blinks on
-// top so the face stays alive while it is held.
-constexpr const char* kPadGraph = R"({
-  "version": 1, "channels": "actionUnits",
-  "parameters": [{"name": "padX", "type": "float", "default": 0}, {"name": "padY", "type": "float", "default": 0}],
-  "root": {"type": "blink", "input": {"type": "controlMap", "name": "pad",
-    "neutral": {"type": "pose", "preset": "neutral"},
-    "right": {"type": "pose", "preset": "happy"}, "left": {"type": "pose", "preset": "sad"},
-    "up": {"type": "pose", "preset": "surprise"}, "down": {"type": "pose", "preset": "anger"},
-    "x": "padX", "y": "padY"}}})";
-
-// Who decides the weights of the (single) face.
-enum class Control { Graph, Slider, Pad };
-
-// One animated face: its graph driver, idle motion, place in the grid and
-// the weights it is drawn with this frame.
-struct Face {
-  facial::FaceDriver driver;
-  IdleMotion idle;
-  glm::mat4 placement{1.0f};
-  float nextTrigger = 0.0f;  // crowd: when it picks a new emotion
-  app::SkeletonMotion skeleton;   // the --clip and, on skinned avatars, the idle head turn
-  float time = 0.0f;
-  app::FaceMaterials materials;   // VRM material binds following the drawn expression weights
-};
-
-// The state machine whose current state the title shows: "emotions", else the first one.
-std::optional<facial::NodeIndex> findStateMachine(const facial::GraphDefinition& graph) {
-  if (auto node = graph.findNode("emotions"); node && graph.nodeAs<facial::StateMachineNode>(*node)) return node;
-  for (facial::NodeIndex n = 0; n < graph.nodes().size(); ++n)
-    if (graph.nodeAs<facial::StateMachineNode>(n)) return n;
-  return std::nullopt;
-}
-
-const char* stateName(const facial::GraphInstance& graph, std::optional<facial::NodeIndex> machine) {
-  if (!machine) return "graph";
-  const auto status = graph.stateMachineStatus(*machine);
-  const auto* node = graph.definition().nodeAs<facial::StateMachineNode>(*machine);
-  if (!status || !node || status->current >= node->states.size()) return "graph";
-  return node->states[status->current].name.c_str();
+// The state machine whose current state the title shows: "emotions", else the first one (an empty name).
+std::string_view shownMachine(const facial::GraphDefinition& graph) {
+  const auto node = graph.findNode("emotions");
+  return node && graph.nodeAs<facial::StateMachineNode>(*node) ? "emotions" : "";
 }
 
 // F12's file: beside the --screenshot file when one is given, else in the
@@ -117,69 +70,44 @@ class WindowDemo {
 
  private:
   int setUp(const DemoOptions& o);
-  int setUpPad(const fs::path& graphPath);
+  int loadScript(const fs::path& graphPath);
+  int openWindow(uint32_t width, uint32_t height);
+  glm::vec2 displaySize() const;
   void drawPanel();
+  void drawPad();
   void notePanelExtent();
-  eng::vk::SceneView shownView() const;
   void handleInput();
   void runScript(float elapsed);
   void trigger(int emotion);
-  void setIntensity(float intensity);
-  void setPad(glm::vec2 cursor);
-  void orbit(float yawDegrees, float pitchDegrees);
   void toggleFraming();
   void updateFaces(float dt);
+  std::string stateName() const;
   void logStateChange();
   void updateTitle(float dt);
 
   DemoOptions options_;
   std::optional<app::FaceSetup> setup_;
   facial::SharedGraphDefinition graph_;
-  std::array<std::optional<facial::ParameterIndex>, kEmotions.size()> triggers_{};
-  std::optional<facial::NodeIndex> machine_;
-  std::vector<Face> faces_;
-  std::vector<float> weights_;  // faces_.size() x weightCount, what is drawn
-  std::vector<eng::vk::ModelInstance> instances_;
-
-  // The single face's overrides: the override weights and how much of them
-  // is shown (eased in and out). The slider poses a preset directly; the pad
-  // moves the cursor of its own graph's control map (padDriver_).
-  std::vector<float> overrideWeights_;
-  std::vector<float> overrideExpressions_;  // the same for a VRM rig's expressions (material binds)
-  std::vector<float> expressionScratch_;    // the single face's blended expression weights
-  float overrideAmount_ = 0.0f;
-  Control control_ = Control::Graph;
-  Control lastOverride_ = Control::Slider;  // what overrideWeights_ shows while easing out
-  int chosen_ = 1;  // the slider's expression (happy until a trigger says otherwise)
-  float intensity_ = 1.0f;
-  glm::vec2 pad_{0.0f};
-  std::optional<facial::FaceDriver> padDriver_;
-  facial::ParameterIndex padX_ = 0, padY_ = 0;
+  std::array<bool, kEmotions.size()> hasTrigger_{};  // which of kEmotions the graph triggers
+  std::string machine_;                              // the state machine the title shows (empty: the first)
+  std::optional<DemoFaces> faces_;
+  std::optional<FaceOverride> override_;
+  std::optional<DemoCamera> camera_;
   std::vector<app::ScriptAction> script_;
   size_t nextAction_ = 0;
   std::string loggedState_;
 
-  std::unique_ptr<eng::vk::Window> window_;
-  std::optional<eng::vk::Context> ctx_;
-  std::unique_ptr<eng::vk::WindowRenderer> renderer_;
-  std::optional<eng::vk::GpuModel> gpuModel_;
-  std::unique_ptr<eng::vk::ImGuiLayer> ui_;
-  eng::vk::SceneView view_;
-  eng::Aabb framedBounds_;                   // what view_ frames: the head(s), or the whole model(s)
-  std::array<eng::Aabb, 2> crowdBounds_;     // by eng::FramingMode: the heads, the whole models
-  eng::FramingMode framing_ = eng::FramingMode::Face;
-  float panelLeft_ = 0.0f, panelRight_ = 0.0f, panelBottom_ = 0.0f;  // the panel this frame (ImGui pixels)
+  std::unique_ptr<app::WindowSession> session_;
+  std::optional<eng::vk::GpuModel> gpuModel_;  // destroyed before the session
   bool orbiting_ = false;
   bool screenshotRequested_ = false;
   bool quitRequested_ = false;
-  std::mt19937 random_;
   float frameMs_ = 0.0f;
   float titleTimer_ = 0.0f;
 };
 
 int WindowDemo::setUp(const DemoOptions& o) {
   options_ = o;
-  random_.seed(uint32_t(o.seed));
   uint32_t width = 1280, height = 800;
   if (!o.size.empty() && !app::parseSize(o.size, width, height))
     return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
@@ -193,125 +121,53 @@ int WindowDemo::setUp(const DemoOptions& o) {
   graph_ = *graph;
   for (size_t e = 0; e < kEmotions.size(); ++e) {
     const auto p = graph_->findParameter(kEmotions[e]);
-    if (p && graph_->parameters()[*p].type == facial::ParameterType::Trigger) triggers_[e] = p;
+    hasTrigger_[e] = p && graph_->parameters()[*p].type == facial::ParameterType::Trigger;
   }
-  machine_ = findStateMachine(*graph_);
-  const auto autoplay = graph_->findParameter("autoplay");
+  machine_ = shownMachine(*graph_);
 
-  const uint32_t count = setup_->weightCount();
-  const uint32_t faceCount = std::max<uint32_t>(1, o.crowd);
   auto framing = app::framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  framing_ = *framing;
-  const eng::Aabb bounds = eng::framingBounds(setup_->model(), framing_);
-  const eng::Aabb other = eng::framingBounds(
-      setup_->model(), framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face);
-  const eng::Aabb faceBounds = eng::framingBounds(setup_->model(), eng::FramingMode::Face);
-  const std::vector<std::string> names = setup_->layout().names();
-  const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(faceCount))));
-  const glm::vec3 spacing = bounds.valid() ? bounds.size() * 1.15f : glm::vec3(1.0f);
-  auto skeleton = app::SkeletonMotion::create(setup_->model(), o.clip);
-  if (!skeleton) return fail(skeleton.error().message);
-  auto materials = app::FaceMaterials::create(*setup_);
-  if (!materials) return fail(materials.error().message);
-  for (uint32_t i = 0; i < faceCount; ++i) {
-    auto driver = facial::FaceDriver::create(graph_, &setup_->graphRig(), names, setup_->baseWeights(), o.seed + i);
-    if (!driver) return fail(graphPath.string() + ": " + driver.error().message);
-    if (autoplay) driver->graph().setBool(*autoplay, false);
-    const uint32_t row = i / columns, column = i % columns;
-    const uint32_t rows = (faceCount + columns - 1) / columns;
-    const glm::vec3 offset((float(column) - 0.5f * float(columns - 1)) * spacing.x,
-                           (0.5f * float(rows - 1) - float(row)) * spacing.y, 0.0f);
-    auto idle = IdleMotion::create(names, setup_->vrm(), bounds, faceBounds, o.seed + i, o.still);
-    if (!idle) return fail(idle.error().message);
-    Face face{std::move(*driver), std::move(*idle), glm::translate(glm::mat4(1.0f), offset),
-              std::uniform_real_distribution<float>(0.5f, 3.0f)(random_), *skeleton, 0.0f, *materials};
-    crowdBounds_[size_t(framing_)].extend(eng::Aabb{bounds.min + offset, bounds.max + offset});
-    crowdBounds_[1 - size_t(framing_)].extend(eng::Aabb{other.min + offset, other.max + offset});
-    faces_.push_back(std::move(face));
-  }
-  weights_.assign(size_t(faceCount) * count, 0.0f);
-  overrideWeights_.assign(setup_->baseWeights().begin(), setup_->baseWeights().end());
-  overrideExpressions_.assign(setup_->vrmExpressionCount(), 0.0f);
-  expressionScratch_.assign(setup_->vrmExpressionCount(), 0.0f);
-  if (faceCount == 1)
-    if (const int error = setUpPad(graphPath); error != 0) return error;
-  if (!o.script.empty()) {
-    auto script = app::loadWindowScript(o.script);
-    if (!script) return fail(script.error().message);
-    for (const app::ScriptAction& action : *script)
-      if (action.kind == app::ScriptAction::Kind::Trigger && !graph_->findParameter(action.name))
-        return fail(o.script + ": '" + action.name + "' is no trigger of " + graphPath.string());
-    script_ = std::move(*script);
-  }
+  auto faces = DemoFaces::create(*setup_, graph_, graphPath, *framing, hasTrigger_, o);
+  if (!faces) return fail(faces.error().message);
+  faces_.emplace(std::move(*faces));
+  auto hold = FaceOverride::create(*setup_, graphPath, o.seed, /*withPad=*/!faces_->crowd());
+  if (!hold) return fail(hold.error().message);
+  override_.emplace(std::move(*hold));
+  if (const int error = loadScript(graphPath); error != 0) return error;
+  if (const int error = openWindow(width, height); error != 0) return error;
+  camera_.emplace(faces_->bounds(), *framing, float(width) / float(height));
+  return 0;
+}
 
+// The --script file; the triggers it names are checked before the window opens.
+int WindowDemo::loadScript(const fs::path& graphPath) {
+  if (options_.script.empty()) return 0;
+  auto script = app::loadWindowScript(options_.script);
+  if (!script) return fail(script.error().message);
+  for (const app::ScriptAction& action : *script)
+    if (action.kind == app::ScriptAction::Kind::Trigger && !graph_->findParameter(action.name))
+      return fail(options_.script + ": '" + action.name + "' is no trigger of " + graphPath.string());
+  script_ = std::move(*script);
+  return 0;
+}
+
+int WindowDemo::openWindow(uint32_t width, uint32_t height) {
   char title[256];
   std::snprintf(title, sizeof title, "facial demo - %s", setup_->name().c_str());
-  auto window = eng::vk::Window::create({.width = int(width), .height = int(height), .title = title});
-  if (!window) return fail("window: " + window.error().message);
-  window_ = std::move(*window);
-  eng::vk::ContextOptions contextOptions;
-  contextOptions.device = options_.device;
-  window_->configureContext(contextOptions);
-  auto ctx = eng::vk::Context::create(contextOptions);
-  if (!ctx) return fail("Vulkan: " + ctx.error().message);
-  ctx_.emplace(std::move(*ctx));
-  auto quality = app::windowQualityOption(options_.quality, ctx_->deviceInfo().type);
-  if (!quality) return fail(quality.error().message);
-  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
-  if (!renderer) return fail("Vulkan: " + renderer.error().message);
-  renderer_ = std::move(*renderer);
-  auto gpuModel = renderer_->upload(setup_->model());
+  auto session = app::WindowSession::open(
+      {.width = width, .height = height, .title = title, .device = options_.device, .quality = options_.quality});
+  if (!session) return fail(session.error().message);
+  session_ = std::move(*session);
+  auto gpuModel = session_->renderer().upload(setup_->model());
   if (!gpuModel) return fail(gpuModel.error().message);
   gpuModel_.emplace(std::move(*gpuModel));
-
-  auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
-  if (!ui) return fail(ui.error().message);
-  ui_ = std::move(*ui);
-
-  view_.camera = eng::OrbitCamera::frame(crowdBounds_[size_t(framing_)], float(width) / float(height));
-  framedBounds_ = crowdBounds_[size_t(framing_)];
-  instances_.resize(faceCount);
-  for (uint32_t i = 0; i < faceCount; ++i)
-    instances_[i] = {&*gpuModel_, faces_[i].placement,
-                     std::span<const float>(weights_).subspan(size_t(i) * count, count)};
+  faces_->bind(*gpuModel_);
   return 0;
 }
 
-int WindowDemo::setUpPad(const fs::path& graphPath) {
-  auto document = facial::parseJsonText(kPadGraph, "the pad's graph");
-  if (!document) return fail(document.error().message);
-  auto graph = facial::parseGraph(*document, graphPath, {.presets = facial::presetLookup(setup_->expressions())});
-  if (!graph) return fail(graph.error().message);
-  auto driver = facial::FaceDriver::create(*graph, &setup_->graphRig(), setup_->layout().names(),
-                                           setup_->baseWeights(), options_.seed);
-  if (!driver) return fail("the pad's graph: " + driver.error().message);
-  padX_ = *(*graph)->findParameter("padX");
-  padY_ = *(*graph)->findParameter("padY");
-  padDriver_.emplace(std::move(*driver));
-  return 0;
-}
-
-void WindowDemo::setIntensity(float intensity) {
-  intensity_ = std::clamp(intensity, 0.0f, 1.0f);
-  auto preset = setup_->findExpression(kEmotions[chosen_]);
-  if (!preset) return;
-  control_ = lastOverride_ = Control::Slider;
-  // lerp(neutral, preset, intensity): the preset at that intensity over the model's defaults.
-  (void)setup_->expressionWeights(**preset, intensity_, overrideWeights_, overrideExpressions_);
-}
-
-void WindowDemo::setPad(glm::vec2 cursor) {
-  if (!padDriver_) return;
-  pad_ = glm::clamp(cursor, glm::vec2(-1.0f), glm::vec2(1.0f));
-  padDriver_->graph().setFloat(padX_, pad_.x);
-  padDriver_->graph().setFloat(padY_, pad_.y);
-  control_ = lastOverride_ = Control::Pad;
-}
-
-void WindowDemo::orbit(float yawDegrees, float pitchDegrees) {
-  view_.camera.yawDegrees += yawDegrees;
-  view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + pitchDegrees, -80.0f, 80.0f);
+glm::vec2 WindowDemo::displaySize() const {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  return {display.x, display.y};
 }
 
 void WindowDemo::runScript(float elapsed) {
@@ -320,59 +176,48 @@ void WindowDemo::runScript(float elapsed) {
   for (; nextAction_ < script_.size() && script_[nextAction_].time <= elapsed && !screenshotRequested_; ++nextAction_) {
     const app::ScriptAction& a = script_[nextAction_];
     std::printf("script: %.2f s\n", a.time);
+    GLFWwindow* window = session_->window().handle();
     switch (a.kind) {
       case app::ScriptAction::Kind::Trigger: {
         const auto known = std::find(kEmotions.begin(), kEmotions.end(), a.name);
         if (known != kEmotions.end()) trigger(int(known - kEmotions.begin()));
-        else if (const auto p = graph_->findParameter(a.name)) faces_[0].driver.graph().setTrigger(*p);
+        else (void)faces_->single().trigger(a.name);  // checked at set-up: one of the graph's parameters
         break;
       }
-      case app::ScriptAction::Kind::Intensity: setIntensity(a.a); break;
-      case app::ScriptAction::Kind::Pad: setPad({a.a, a.b}); break;
-      case app::ScriptAction::Kind::Graph: control_ = Control::Graph; break;
-      case app::ScriptAction::Kind::Orbit: orbit(a.a, a.b); break;
+      case app::ScriptAction::Kind::Intensity: override_->setIntensity(a.a); break;
+      case app::ScriptAction::Kind::Pad: override_->setPad({a.a, a.b}); break;
+      case app::ScriptAction::Kind::Graph: override_->returnToGraph(); break;
+      case app::ScriptAction::Kind::Orbit: camera_->orbit(a.a, a.b); break;
       case app::ScriptAction::Kind::Frame: toggleFraming(); break;
       case app::ScriptAction::Kind::Screenshot: screenshotRequested_ = true; break;
-      case app::ScriptAction::Kind::Resize: glfwSetWindowSize(window_->handle(), int(a.a), int(a.b)); break;
-      case app::ScriptAction::Kind::Iconify: glfwIconifyWindow(window_->handle()); break;
-      case app::ScriptAction::Kind::Restore: glfwRestoreWindow(window_->handle()); break;
+      case app::ScriptAction::Kind::Resize: glfwSetWindowSize(window, int(a.a), int(a.b)); break;
+      case app::ScriptAction::Kind::Iconify: glfwIconifyWindow(window); break;
+      case app::ScriptAction::Kind::Restore: glfwRestoreWindow(window); break;
     }
   }
 }
 
 void WindowDemo::trigger(int emotion) {
-  if (!triggers_[emotion]) return;
+  if (!hasTrigger_[size_t(emotion)]) return;
   // The last press wins: triggers stay set until a transition consumes them,
   // and two presses within one frame would otherwise both be pending and
   // fire in the graph's priority order, not in the order they were pressed.
-  facial::GraphInstance& graph = faces_[0].driver.graph();
-  for (const auto& other : triggers_)
-    if (other) graph.resetTrigger(*other);
-  graph.setTrigger(*triggers_[emotion]);
-  control_ = Control::Graph;
-  if (emotion != 0) chosen_ = emotion;
+  facial::Character& face = faces_->single();
+  for (size_t e = 0; e < kEmotions.size(); ++e)
+    if (hasTrigger_[e]) (void)face.resetTrigger(kEmotions[e]);
+  (void)face.trigger(kEmotions[size_t(emotion)]);
+  override_->chooseEmotion(emotion);
 }
 
-// The camera re-framed on the heads or the whole models; the orbit angles
-// and the zoom the user chose are kept.
 void WindowDemo::toggleFraming() {
-  const eng::FramingMode mode =
-      framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face;
-  framing_ = mode;
-  framedBounds_ = crowdBounds_[size_t(mode)];
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  const float aspect = display.x > 0.0f && display.y > 0.0f ? display.x / display.y : 1.0f;
-  const eng::OrbitCamera framed = eng::OrbitCamera::frame(framedBounds_, aspect, view_.camera.fovYDegrees);
-  view_.camera.target = framed.target;
-  view_.camera.distance = framed.distance;
-  view_.camera.sceneRadius = framed.sceneRadius;
+  const eng::FramingMode mode = camera_->toggleFraming(displaySize());
   std::printf("framing: %s\n", std::string(eng::framingModeName(mode)).c_str());
   std::fflush(stdout);
 }
 
 void WindowDemo::handleInput() {
   const ImGuiIO& io = ImGui::GetIO();
-  for (const int key : window_->takeKeyPresses()) {
+  for (const int key : session_->window().takeKeyPresses()) {
     if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     if (io.WantTextInput) continue;
     if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kEmotions.size())) trigger(key - GLFW_KEY_1);
@@ -386,84 +231,63 @@ void WindowDemo::handleInput() {
   const bool wasOrbiting = orbiting_;
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse) orbiting_ = true;
   if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = false;
-  if (orbiting_ && wasOrbiting) orbit(-0.3f * io.MouseDelta.x, 0.3f * io.MouseDelta.y);
-  if (!io.WantCaptureMouse && io.MouseWheel != 0.0f)
-    view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
+  if (orbiting_ && wasOrbiting) camera_->orbit(-0.3f * io.MouseDelta.x, 0.3f * io.MouseDelta.y);
+  if (!io.WantCaptureMouse && io.MouseWheel != 0.0f) camera_->zoom(io.MouseWheel);
 }
 
-// The face is framed in the part of the window the panel leaves free (the
-// wider side of it), so a small window never hides half the face.
+// The face is framed in the part of the window the panel leaves free.
 void WindowDemo::notePanelExtent() {
-  panelLeft_ = ImGui::GetWindowPos().x;
-  panelRight_ = panelLeft_ + ImGui::GetWindowSize().x;
-  panelBottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
-}
-
-eng::vk::SceneView WindowDemo::shownView() const {
-  eng::vk::SceneView shown = view_;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  if (!(display.x > 0.0f) || !(display.y > 0.0f)) return shown;
-  // Where the framed faces land in the whole window (their box's corners).
-  const glm::mat4 viewProj = shown.camera.projection(display.x / display.y) * shown.camera.view();
-  glm::vec2 lo(display.x, display.y), hi(0.0f);
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p{corner & 1 ? framedBounds_.max.x : framedBounds_.min.x,
-                      corner & 2 ? framedBounds_.max.y : framedBounds_.min.y,
-                      corner & 4 ? framedBounds_.max.z : framedBounds_.min.z};
-    const glm::vec4 clip = viewProj * glm::vec4(p, 1.0f);
-    if (!(clip.w > 0.0f)) return shown;
-    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(display.x, display.y);
-    lo = glm::min(lo, pixel);
-    hi = glm::max(hi, pixel);
-  }
-  // Only a panel that covers them moves the faces aside (a small panel in a corner does not).
-  const bool covered = panelRight_ > lo.x && panelLeft_ < hi.x && panelBottom_ > lo.y;
-  if (!covered) return shown;
-  constexpr float kGap = 8.0f;
-  const float rightFree = display.x - panelRight_ - kGap, leftFree = panelLeft_ - kGap;
-  if (rightFree >= leftFree)
-    shown.camera.fitToRegion(framedBounds_, {display.x, display.y}, {panelRight_ + kGap, 0.0f}, {display.x, display.y});
-  else
-    shown.camera.fitToRegion(framedBounds_, {display.x, display.y}, {0.0f, 0.0f}, {leftFree, display.y});
-  return shown;
+  const float left = ImGui::GetWindowPos().x;
+  camera_->notePanel(left, left + ImGui::GetWindowSize().x, ImGui::GetWindowPos().y + ImGui::GetWindowSize().y);
 }
 
 void WindowDemo::drawPanel() {
   ImGui::SetNextWindowPos({12, 12}, ImGuiCond_FirstUseEver);
   ImGui::Begin("facial", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("%s: %.1f ms/frame (%.0f fps)", setup_->name().c_str(), frameMs_, frameMs_ > 0 ? 1000.0f / frameMs_ : 0.0f);
-  if (faces_.size() > 1) {
-    ImGui::Text("%zu faces, random triggers", faces_.size());
+  if (faces_->crowd()) {
+    ImGui::Text("%zu faces, random triggers", faces_->size());
     notePanelExtent();
     ImGui::End();
     return;
   }
-  ImGui::Text("state: %s%s", stateName(faces_[0].driver.graph(), machine_),
-              control_ == Control::Slider ? " (slider)" : control_ == Control::Pad ? " (pad)" : "");
+  const Control control = override_->control();
+  ImGui::Text("state: %s%s", stateName().c_str(),
+              control == Control::Slider ? " (slider)" : control == Control::Pad ? " (pad)" : "");
   ImGui::Separator();
   for (size_t e = 0; e < kEmotions.size(); ++e) {
     if (e % 4 != 0) ImGui::SameLine();
     char label[32];
     std::snprintf(label, sizeof label, "%zu %s", e + 1, kEmotions[e]);
-    if (!triggers_[e]) ImGui::BeginDisabled();
+    if (!hasTrigger_[e]) ImGui::BeginDisabled();
     if (ImGui::Button(label, {86, 0})) trigger(int(e));
-    if (!triggers_[e]) ImGui::EndDisabled();
+    if (!hasTrigger_[e]) ImGui::EndDisabled();
   }
 
   ImGui::Separator();
   char sliderLabel[48];
-  std::snprintf(sliderLabel, sizeof sliderLabel, "neutral -> %s", kEmotions[chosen_]);
-  float intensity = intensity_;
-  if (ImGui::SliderFloat(sliderLabel, &intensity, 0.0f, 1.0f, "%.2f") || ImGui::IsItemActive()) setIntensity(intensity);
+  std::snprintf(sliderLabel, sizeof sliderLabel, "neutral -> %s", kEmotions[size_t(override_->chosen())]);
+  float intensity = override_->intensity();
+  if (ImGui::SliderFloat(sliderLabel, &intensity, 0.0f, 1.0f, "%.2f") || ImGui::IsItemActive())
+    override_->setIntensity(intensity);
 
   ImGui::Separator();
+  drawPad();
+  if (override_->control() != Control::Graph && ImGui::Button("back to the graph")) override_->returnToGraph();
+  ImGui::TextDisabled("drag: orbit  wheel: zoom  F: face/whole model  F12: screenshot  Esc: quit");
+  notePanelExtent();
+  ImGui::End();
+}
+
+// The control map pad: drag to move its cursor; drawn with its axes' presets and its reach.
+void WindowDemo::drawPad() {
   ImGui::TextUnformatted("control map (drag): happy +x, sad -x, surprise +y, anger -y");
   const float side = 200.0f;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton("pad", {side, side});
   if (ImGui::IsItemActive()) {
     const ImVec2 m = ImGui::GetIO().MousePos;
-    setPad({(m.x - origin.x) / side * 2.0f - 1.0f, 1.0f - (m.y - origin.y) / side * 2.0f});
+    override_->setPad({(m.x - origin.x) / side * 2.0f - 1.0f, 1.0f - (m.y - origin.y) / side * 2.0f});
   }
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 end{origin.x + side, origin.y + side}, mid{origin.x + side / 2, origin.y + side / 2};
@@ -478,80 +302,31 @@ void WindowDemo::drawPanel() {
   draw->AddText({origin.x + 4, mid.y + 2}, IM_COL32(200, 200, 200, 255), "sad");
   draw->AddText({mid.x + 4, origin.y + 2}, IM_COL32(200, 200, 200, 255), "surprise");
   draw->AddText({mid.x + 4, end.y - 16}, IM_COL32(200, 200, 200, 255), "anger");
-  const facial::ControlMapWeights reached = facial::controlMapWeights(pad_.x, pad_.y);
+  const glm::vec2 pad = override_->pad();
+  const facial::ControlMapWeights reached = facial::controlMapWeights(pad.x, pad.y);
   const ImVec2 cursor{mid.x + reached.x * side / 2, mid.y - reached.y * side / 2};
-  draw->AddCircleFilled(cursor, 6.0f, control_ == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
-  if (control_ != Control::Graph && ImGui::Button("back to the graph")) control_ = Control::Graph;
-  ImGui::TextDisabled("drag: orbit  wheel: zoom  F: face/whole model  F12: screenshot  Esc: quit");
-  notePanelExtent();
-  ImGui::End();
+  draw->AddCircleFilled(cursor, 6.0f,
+                        override_->control() == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
 }
 
 void WindowDemo::updateFaces(float dt) {
-  const uint32_t count = setup_->weightCount();
-  const bool crowd = faces_.size() > 1;
-  // Overrides ease in and out over ~0.25 s so taking and releasing control never pops.
-  const float towards = control_ == Control::Graph ? 0.0f : 1.0f;
-  overrideAmount_ += std::clamp(towards - overrideAmount_, -4.0f * dt, 4.0f * dt);
-  std::uniform_int_distribution<int> anyEmotion(0, int(kEmotions.size()) - 1);
-  std::uniform_real_distribution<float> wait(2.0f, 5.0f);
-  if (padDriver_ && (control_ == Control::Pad || (lastOverride_ == Control::Pad && overrideAmount_ > 0.0f))) {
-    padDriver_->update(dt);
-    const std::span<const float> pad = padDriver_->targetWeights();
-    std::copy(pad.begin(), pad.end(), overrideWeights_.begin());
-    const std::span<const float> padExpressions = padDriver_->expressionWeights();
-    std::copy(padExpressions.begin(), padExpressions.end(), overrideExpressions_.begin());
-  }
-  for (size_t i = 0; i < faces_.size(); ++i) {
-    Face& face = faces_[i];
-    if (crowd) {
-      face.nextTrigger -= dt;
-      if (face.nextTrigger <= 0.0f) {
-        if (const auto t = triggers_[anyEmotion(random_)]) face.driver.graph().setTrigger(*t);
-        face.nextTrigger = wait(random_);
-      }
-    }
-    face.driver.update(dt);
-    // The eyes follow the viewer: the camera in this face's model space.
-    const glm::vec3 viewer = glm::vec3(glm::inverse(face.placement) * glm::vec4(view_.camera.position(), 1.0f));
-    face.idle.update(dt, viewer);
-    std::span<float> out = std::span<float>(weights_).subspan(i * count, count);
-    const std::span<const float> graphWeights = face.driver.targetWeights();
-    std::span<const float> expressions = face.driver.expressionWeights();
-    if (!crowd && overrideAmount_ > 0.0f) {
-      for (uint32_t t = 0; t < count; ++t)
-        out[t] = graphWeights[t] + overrideAmount_ * (overrideWeights_[t] - graphWeights[t]);
-      for (size_t e = 0; e < expressions.size(); ++e)
-        expressionScratch_[e] = expressions[e] + overrideAmount_ * (overrideExpressions_[e] - expressions[e]);
-      expressions = expressionScratch_;
-    } else {
-      std::copy(graphWeights.begin(), graphWeights.end(), out.begin());
-    }
-    // Sizes were fixed at set-up and the weights come clamped from the rig: cannot fail.
-    (void)face.materials.update(expressions);
-    instances_[i].materials = face.materials.materials();
-    face.idle.applyGaze(out);
-    face.time += dt;
-    const std::array<glm::quat, 2> eyeTurns{face.idle.eyeTurn(facial::Eye::Left), face.idle.eyeTurn(facial::Eye::Right)};
-    if (face.skeleton.turnsHeadJoint()) {
-      // A skinned avatar turns its head joint; the body only breathes.
-      face.skeleton.update(face.time, face.idle.headTurn(), eyeTurns);
-      instances_[i].transform = face.idle.breathing(face.placement);
-    } else {
-      face.skeleton.update(face.time, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), eyeTurns);
-      instances_[i].transform = face.idle.transform(face.placement);
-    }
-    instances_[i].nodeWorld = face.skeleton.nodeWorld();
-  }
+  override_->update(dt);
+  if (!faces_->crowd()) override_->applyTo(faces_->single());
+  faces_->update(dt, camera_->camera().position());
+}
+
+std::string WindowDemo::stateName() const {
+  const auto state = faces_->single().currentState(machine_);
+  return state ? std::string(*state) : std::string("graph");
 }
 
 // One line per state the single face enters, for logs and tests.
 void WindowDemo::logStateChange() {
-  if (faces_.size() != 1) return;
-  const char* state = stateName(faces_[0].driver.graph(), machine_);
+  if (faces_->crowd()) return;
+  const std::string state = stateName();
   if (loggedState_ == state) return;
   loggedState_ = state;
-  std::printf("state: %s\n", state);
+  std::printf("state: %s\n", state.c_str());
 }
 
 void WindowDemo::updateTitle(float dt) {
@@ -560,27 +335,27 @@ void WindowDemo::updateTitle(float dt) {
   if (titleTimer_ > 0.0f) return;
   titleTimer_ = 0.25f;
   char title[256];
-  if (faces_.size() > 1)
-    std::snprintf(title, sizeof title, "facial demo - %zu x %s - %.1f ms", faces_.size(), setup_->name().c_str(), frameMs_);
+  if (faces_->crowd())
+    std::snprintf(title, sizeof title, "facial demo - %zu x %s - %.1f ms", faces_->size(), setup_->name().c_str(), frameMs_);
   else
-    std::snprintf(title, sizeof title, "facial demo - %s - %s - %.1f ms", setup_->name().c_str(),
-                  stateName(faces_[0].driver.graph(), machine_), frameMs_);
-  glfwSetWindowTitle(window_->handle(), title);
+    std::snprintf(title, sizeof title, "facial demo - %s - %s - %.1f ms", setup_->name().c_str(), stateName().c_str(),
+                  frameMs_);
+  glfwSetWindowTitle(session_->window().handle(), title);
 }
 
 int WindowDemo::run(const DemoOptions& o) {
   if (const int error = setUp(o); error != 0) return error;
   int exitCode = 0;
   auto frame = [&](const app::WindowTick& tick) -> eng::Result<app::WindowFramePlan> {
-    ui_->beginFrame();
+    session_->ui().beginFrame();
     handleInput();
     runScript(tick.animationTime);
     drawPanel();
-    ui_->endFrame();
+    session_->ui().endFrame();
     updateFaces(tick.dt);
     logStateChange();
     updateTitle(tick.dt);
-    app::WindowFramePlan plan{.input = {shownView(), instances_}, .quit = quitRequested_};
+    app::WindowFramePlan plan{.input = {camera_->shownView(displaySize()), faces_->instances()}, .quit = quitRequested_};
     plan.input.overlay = eng::vk::ImGuiLayer::recorder();
     // Kept requested until a frame is really presented (not skipped).
     if (screenshotRequested_) plan.requestedShot = screenshotPathFor(o);
@@ -589,17 +364,16 @@ int WindowDemo::run(const DemoOptions& o) {
   auto shotWritten = [&](const fs::path& shot) {
     if (shot != fs::path(o.screenshot)) screenshotRequested_ = false;
   };
-  if (auto ran = app::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
-                               frame, shotWritten);
+  if (auto ran = app::runWindowLoop(session_->window(), session_->renderer(),
+                                    {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot}, frame, shotWritten);
       !ran)
     exitCode = fail(ran.error().message);
   int width = 0, height = 0;
-  glfwGetWindowSize(window_->handle(), &width, &height);
+  glfwGetWindowSize(session_->window().handle(), &width, &height);
   std::printf("demo: %s, %zu face(s), final state %s, %.1f ms/frame, camera yaw %.1f pitch %.1f, window %dx%d\n",
-              setup_->name().c_str(), faces_.size(), stateName(faces_[0].driver.graph(), machine_), frameMs_,
-              view_.camera.yawDegrees, view_.camera.pitchDegrees, width, height);
-  ui_.reset();
-  if (auto clean = ctx_->checkValidation(); !clean) return fail(clean.error().message);
+              setup_->name().c_str(), faces_->size(), stateName().c_str(), frameMs_, camera_->camera().yawDegrees,
+              camera_->camera().pitchDegrees, width, height);
+  if (auto clean = session_->finish(); !clean) return fail(clean.error().message);
   return exitCode;
 }
 

@@ -18,6 +18,7 @@
 #include "app/view_options.h"
 #include "engine/vk/present/imgui_layer.h"
 #include "app/window_loop.h"
+#include "app/window_session.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
@@ -25,21 +26,13 @@
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
 #include "editor/app/driver_channels.h"
-#include "engine/vk/device/context.h"
 #include "engine/view/framing_bounds.h"
-#include "engine/vk/present/window.h"
-#include "engine/vk/present/window_renderer.h"
 
 namespace editor {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-int fail(const std::string& message) {
-  std::fprintf(stderr, "facial-editor: error: %s\n", message.c_str());
-  return 1;
-}
 
 // Panel layout: fixed columns and a bottom strip, the face in the middle.
 struct Layout {
@@ -101,12 +94,9 @@ class EditorApp : public FaceDelegate {
   FaceSource source_ = FaceSource::StateMachine;
   std::vector<std::string> targetNames_;
 
-  std::unique_ptr<eng::vk::Window> window_;
-  std::optional<eng::vk::Context> ctx_;
-  std::unique_ptr<eng::vk::WindowRenderer> renderer_;
-  std::optional<eng::vk::GpuModel> gpuModel_;
+  std::unique_ptr<app::WindowSession> session_;
+  std::optional<eng::vk::GpuModel> gpuModel_;  // destroyed before the session
   uint64_t uploadedRevision_ = 0;
-  std::unique_ptr<eng::vk::ImGuiLayer> ui_;
   eng::vk::SceneView view_;  // camera: target = face centre, user yaw / pitch / zoom
   eng::Aabb bounds_;  // what the camera frames: the head (F: the whole model)
   eng::FramingMode framing_ = eng::FramingMode::Face;
@@ -198,24 +188,14 @@ int EditorApp::setUp(const EditorOptions& o) {
     script_ = std::move(*script);
   }
 
-  auto window = eng::vk::Window::create({.width = int(width), .height = int(height), .title = "facial editor - " + setup_->name()});
-  if (!window) return fail("window: " + window.error().message);
-  window_ = std::move(*window);
-  eng::vk::ContextOptions contextOptions;
-  contextOptions.applicationName = "facial-editor";
-  contextOptions.device = o.device;
-  window_->configureContext(contextOptions);
-  auto ctx = eng::vk::Context::create(contextOptions);
-  if (!ctx) return fail("Vulkan: " + ctx.error().message);
-  ctx_.emplace(std::move(*ctx));
-  auto quality = app::windowQualityOption(o.quality, ctx_->deviceInfo().type);
-  if (!quality) return fail(quality.error().message);
-  auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
-  if (!renderer) return fail("Vulkan: " + renderer.error().message);
-  renderer_ = std::move(*renderer);
-  auto ui = eng::vk::ImGuiLayer::create(*ctx_, *renderer_, *window_);
-  if (!ui) return fail(ui.error().message);
-  ui_ = std::move(*ui);
+  auto session = app::WindowSession::open({.width = width,
+                                           .height = height,
+                                           .title = "facial editor - " + setup_->name(),
+                                           .applicationName = "facial-editor",
+                                           .device = o.device,
+                                           .quality = o.quality});
+  if (!session) return fail(session.error().message);
+  session_ = std::move(*session);
 
   bounds_ = eng::framingBounds(setup_->model(), framing_);
   view_.camera = eng::OrbitCamera::frame(bounds_, 1.0f);
@@ -227,8 +207,8 @@ eng::Result<void> EditorApp::uploadDisplayModel() {
   sculpt_.refresh();
   if (gpuModel_ && uploadedRevision_ == sculpt_.displayRevision()) return {};
   // The old model may still be read by frames in flight.
-  if (gpuModel_) vkDeviceWaitIdle(ctx_->device());
-  auto gpu = renderer_->upload(sculpt_.displayModel());
+  if (gpuModel_) vkDeviceWaitIdle(session_->context().device());
+  auto gpu = session_->renderer().upload(sculpt_.displayModel());
   if (!gpu) return gpu.error();
   gpuModel_.emplace(std::move(*gpu));
   uploadedRevision_ = sculpt_.displayRevision();
@@ -360,7 +340,7 @@ void EditorApp::runScript(float elapsed) {
     std::fflush(stdout);
     if (!runAction(a)) {
       ++failedActions_;
-      std::fprintf(stderr, "facial-editor: error: %s: failed (see above)\n", a.source.c_str());
+      fail(a.source + ": failed (see above)");
     }
     const int k = int(a.kind);
     if (k >= int(EditorScriptAction::Kind::TimelineOpen) && k <= int(EditorScriptAction::Kind::TimelineSave)) logTimeline();
@@ -441,9 +421,9 @@ int EditorApp::run(const EditorOptions& o) {
   int exitCode = 0;
   auto frame = [&](const app::WindowTick& tick) -> eng::Result<app::WindowFramePlan> {
     frameMs_ = frameMs_ == 0.0f ? 1000.0f * tick.dt : 0.9f * frameMs_ + 0.1f * 1000.0f * tick.dt;
-    const VkExtent2D extent = renderer_->extent();
+    const VkExtent2D extent = session_->renderer().extent();
     layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
-    ui_->beginFrame();
+    session_->ui().beginFrame();
     handleViewportInput();
     runScript(tick.animationTime);
     machine_.update(tick.dt);
@@ -451,7 +431,7 @@ int EditorApp::run(const EditorOptions& o) {
     timeline_->update(tick.dt);
     drawPanels();
     drawControlPoints();
-    ui_->endFrame();
+    session_->ui().endFrame();
 
     if (auto uploaded = uploadDisplayModel(); !uploaded) return uploaded.error();
     sculpt_.displayWeights(faceWeights(), displayWeights_);
@@ -466,7 +446,7 @@ int EditorApp::run(const EditorOptions& o) {
   auto shotWritten = [&](const fs::path& shot) {
     if (shot == pendingShot_) pendingShot_.clear();
   };
-  if (auto ran = app::runWindowLoop(*window_, *renderer_, {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
+  if (auto ran = app::runWindowLoop(session_->window(), session_->renderer(), {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
                                     frame, shotWritten);
       !ran) {
     // The window cannot draw any more (a lost device, say): the user's edits
@@ -478,8 +458,7 @@ int EditorApp::run(const EditorOptions& o) {
   std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);
-  ui_.reset();
-  if (auto clean = ctx_->checkValidation(); !clean) return fail(clean.error().message);
+  if (auto clean = session_->finish(); !clean) return fail(clean.error().message);
   if (nextAction_ < script_.size() && exitCode == 0)
     std::printf("facial-editor: closed before %zu scripted action(s) ran\n", script_.size() - nextAction_);
   if (failedActions_ > 0 && exitCode == 0)

@@ -5,7 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "app/program_error.h"
+
 namespace editor {
+
+// How the editor reports a failure: "facial-editor: error: ..." on stderr, exit code 1.
+inline constexpr app::ErrorReporter fail{"facial-editor"};
 
 struct EditorOptions {
   std::string model;     // empty: the built-in head

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <iterator>
 
+#include "editor/app/editor_app.h"
 #include "facial/runtime/graph/timeline.h"
 
 namespace editor {
@@ -34,7 +35,7 @@ TimelinePanel::~TimelinePanel() {
   if (!document_.dirty()) {
     autosave_.discard();
   } else if (auto kept = autosave_.flush(document_); !kept) {
-    std::fprintf(stderr, "facial-editor: error: %s\n", kept.error().message.c_str());
+    fail(kept.error().message);
   }
 }
 
@@ -215,6 +216,12 @@ void TimelinePanel::handleShortcuts() {
 }
 
 void TimelinePanel::drawToolbar(FaceDelegate& face) {
+  drawFileAndTransport(face);
+  drawKeyAndTrackControls(face);
+}
+
+// The first toolbar row: open / save, play, loop mode, playhead, length, undo / redo.
+void TimelinePanel::drawFileAndTransport(FaceDelegate& face) {
   // Files.
   ImGui::SetNextItemWidth(220.0f);
   ImGui::InputText("##path", path_, sizeof path_);
@@ -263,7 +270,10 @@ void TimelinePanel::drawToolbar(FaceDelegate& face) {
   if (!document_.canRedo()) ImGui::BeginDisabled();
   if (ImGui::Button("Redo")) redo();
   if (!document_.canRedo()) ImGui::EndDisabled();
+}
 
+// The second toolbar row: keying, the selected keys' interpolation, adding and removing tracks.
+void TimelinePanel::drawKeyAndTrackControls(FaceDelegate& face) {
   // Keys.
   if (ImGui::Button("Key track")) keyTrack(face);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key the selected track at the playhead with the value on screen");
@@ -322,24 +332,23 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
   const auto tracks = document_.tracks();
   if (currentTrack_ >= int(tracks.size())) currentTrack_ = int(tracks.size()) - 1;
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const float rowHeight = std::clamp((avail.y - kRulerHeight) / float(std::max<size_t>(tracks.size(), 1)), 22.0f, 44.0f);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float canvasLeft = origin.x + kNameColumn;
-  const float canvasWidth = std::max(avail.x - kNameColumn - 8.0f, 50.0f);
-  const float pxPerSecond = canvasWidth / document_.duration();
-  const float rowsTop = origin.y + kRulerHeight;
-  const float totalHeight = kRulerHeight + rowHeight * float(tracks.size());
-  const auto timeToX = [&](float t) { return canvasLeft + t * pxPerSecond; };
-  const auto valueToY = [&](size_t row, float v) {
-    const float top = rowsTop + float(row) * rowHeight + 3.0f, bottom = rowsTop + float(row + 1) * rowHeight - 3.0f;
-    const float span = document_.maxValue() - document_.minValue();
-    return bottom - (v - document_.minValue()) / span * (bottom - top);
-  };
-  const float valuePerPixel = (document_.maxValue() - document_.minValue()) / std::max(rowHeight - 6.0f, 1.0f);
+  const TimelineView view = TimelineView::fit(
+      {.left = origin.x, .top = origin.y, .width = avail.x, .height = avail.y, .nameColumn = kNameColumn, .rulerHeight = kRulerHeight},
+      document_);
+  drawTrackNames(view, origin.x);
+  // The key canvas: one invisible button takes every click on ruler and rows.
+  ImGui::SetCursorScreenPos({view.canvasLeft(), view.top()});
+  ImGui::InvisibleButton("canvas", {view.canvasWidth(), view.canvasHeight()});
+  handleCanvasMouse(view, face);
+  drawCanvas(view);
+  ImGui::EndChild();
+}
 
-  // Track names.
+void TimelinePanel::drawTrackNames(const TimelineView& view, float left) {
+  const auto tracks = document_.tracks();
   for (size_t t = 0; t < tracks.size(); ++t) {
-    ImGui::SetCursorScreenPos({origin.x, rowsTop + float(t) * rowHeight + (rowHeight - ImGui::GetTextLineHeight()) * 0.5f});
+    ImGui::SetCursorScreenPos({left, view.rowTop(t) + (view.rowHeight() - ImGui::GetTextLineHeight()) * 0.5f});
     ImGui::PushID(int(t));
     const bool known = pose_.knowsChannel(tracks[t].channel);
     if (!known) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.4f, 1.0f));
@@ -353,32 +362,24 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
     }
     ImGui::PopID();
   }
+}
 
-  // The key canvas: one invisible button takes every click on ruler and rows.
-  ImGui::SetCursorScreenPos({canvasLeft, origin.y});
-  ImGui::InvisibleButton("canvas", {canvasWidth, std::max(totalHeight, kRulerHeight + rowHeight)});
+// The canvas button's clicks and drags: a click on a key selects it (Ctrl or
+// Shift: adds it) and starts dragging the selection; anywhere else it clears
+// the selection (unless Ctrl) and scrubs the playhead.
+void TimelinePanel::handleCanvasMouse(const TimelineView& view, FaceDelegate& face) {
   const ImGuiIO& io = ImGui::GetIO();
   const ImVec2 mouse = io.MousePos;
   if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
-    std::optional<KeyId> hitKey;
-    const int row = int(std::floor((mouse.y - rowsTop) / rowHeight));
-    if (mouse.y >= rowsTop && row >= 0 && row < int(tracks.size())) {
-      currentTrack_ = row;
-      float best = 7.0f;
-      for (const DocumentKey& k : tracks[size_t(row)].keys) {
-        const float d = std::hypot(timeToX(k.key.time) - mouse.x, valueToY(size_t(row), k.key.value) - mouse.y);
-        if (d < best) {
-          best = d;
-          hitKey = k.id;
-        }
-      }
-    }
-    if (hitKey) {
+    const auto hit = view.hitAt(document_.tracks(), {mouse.x, mouse.y});
+    if (hit) currentTrack_ = int(hit->row);
+    if (hit && hit->key) {
+      const KeyId key = *hit->key;
       if (io.KeyCtrl || io.KeyShift)
-        document_.select(*hitKey, true);
-      else if (!document_.isSelected(*hitKey))
-        document_.select(*hitKey);
-      if (document_.isSelected(*hitKey)) {
+        document_.select(key, true);
+      else if (!document_.isSelected(key))
+        document_.select(key);
+      if (document_.isSelected(key)) {
         document_.beginMove();
         draggingKeys_ = true;
         dragStartX_ = mouse.x;
@@ -391,25 +392,27 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
   }
   if (ImGui::IsItemActive()) {
     if (draggingKeys_) {
-      document_.moveSelected((mouse.x - dragStartX_) / pxPerSecond, -(mouse.y - dragStartY_) * valuePerPixel);
+      document_.moveSelected(view.secondsFor(mouse.x - dragStartX_), view.valueFor(mouse.y - dragStartY_));
       face.takeControl(FaceSource::Timeline);
     } else if (scrubbing_) {
-      seek((mouse.x - canvasLeft) / pxPerSecond, face);
+      seek(view.timeAt(mouse.x), face);
     }
   } else {
     if (draggingKeys_) document_.endMove();
     draggingKeys_ = false;
     scrubbing_ = false;
   }
+}
 
+void TimelinePanel::drawCanvas(const TimelineView& view) {
+  const auto tracks = document_.tracks();
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  const float right = canvasLeft + canvasWidth;
-  // Ruler: a tick every 0.1 s, labelled every second (every 0.5 s on short clips).
-  draw->AddRectFilled({canvasLeft, origin.y}, {right, rowsTop}, IM_COL32(40, 44, 54, 255));
-  const float labelStep = document_.duration() <= 3.0f ? 0.5f : document_.duration() <= 12.0f ? 1.0f : 5.0f;
-  const float tickStep = labelStep / 5.0f;
+  const float left = view.canvasLeft(), right = view.canvasRight(), top = view.top(), rowsTop = view.rowsTop();
+  // Ruler: five ticks per label, labels every rulerLabelStep() seconds.
+  draw->AddRectFilled({left, top}, {right, rowsTop}, IM_COL32(40, 44, 54, 255));
+  const float tickStep = TimelineView::rulerLabelStep(document_.duration()) / 5.0f;
   for (int i = 0; float(i) * tickStep <= document_.duration() + 1e-4f; ++i) {
-    const float t = float(i) * tickStep, x = timeToX(t);
+    const float t = float(i) * tickStep, x = view.xAt(t);
     const bool major = i % 5 == 0;
     draw->AddLine({x, rowsTop - (major ? 10.0f : 5.0f)}, {x, rowsTop}, IM_COL32(150, 150, 160, 255));
     if (major) {
@@ -418,24 +421,24 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
       // Right of its tick, except where that would run past the canvas (the clip's end).
       const float width = ImGui::CalcTextSize(label).x;
       const float labelX = x + 2.0f + width > right ? x - 2.0f - width : x + 2.0f;
-      draw->AddText({labelX, origin.y + 1.0f}, IM_COL32(190, 190, 200, 255), label);
-      draw->AddLine({x, rowsTop}, {x, rowsTop + rowHeight * float(tracks.size())}, IM_COL32(55, 60, 72, 255));
+      draw->AddText({labelX, top + 1.0f}, IM_COL32(190, 190, 200, 255), label);
+      draw->AddLine({x, rowsTop}, {x, view.rowsBottom()}, IM_COL32(55, 60, 72, 255));
     }
   }
   // Rows: background, the curve, the keys.
   for (size_t t = 0; t < tracks.size(); ++t) {
-    const float top = rowsTop + float(t) * rowHeight;
-    draw->AddRectFilled({canvasLeft, top}, {right, top + rowHeight - 1.0f},
+    const float rowTop = view.rowTop(t);
+    draw->AddRectFilled({left, rowTop}, {right, rowTop + view.rowHeight() - 1.0f},
                         int(t) == currentTrack_ ? IM_COL32(44, 52, 70, 255) : (t % 2 ? IM_COL32(32, 35, 42, 255) : IM_COL32(36, 39, 47, 255)));
     if (tracks[t].keys.empty()) continue;
-    ImVec2 previous{canvasLeft, valueToY(t, document_.sample(t, 0.0f))};
-    for (float x = canvasLeft + 3.0f; x <= right; x += 3.0f) {
-      const ImVec2 p{x, valueToY(t, document_.sample(t, (x - canvasLeft) / pxPerSecond))};
+    ImVec2 previous{left, view.yAt(t, document_.sample(t, 0.0f))};
+    for (float x = left + 3.0f; x <= right; x += 3.0f) {
+      const ImVec2 p{x, view.yAt(t, document_.sample(t, view.timeAt(x)))};
       draw->AddLine(previous, p, IM_COL32(110, 170, 230, 200), 1.5f);
       previous = p;
     }
     for (const DocumentKey& k : tracks[t].keys) {
-      const ImVec2 c{timeToX(k.key.time), valueToY(t, k.key.value)};
+      const ImVec2 c{view.xAt(k.key.time), view.yAt(t, k.key.value)};
       const float r = 5.0f;
       const ImU32 colour = document_.isSelected(k.id) ? IM_COL32(255, 180, 60, 255) : IM_COL32(225, 225, 235, 255);
       if (k.key.interpolation == facial::KeyInterpolation::Step)
@@ -447,14 +450,13 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
     }
   }
   // Playhead.
-  const float px = timeToX(playhead_);
-  draw->AddLine({px, origin.y}, {px, rowsTop + rowHeight * float(tracks.size())}, IM_COL32(255, 80, 80, 255), 2.0f);
-  draw->AddTriangleFilled({px - 6, origin.y}, {px + 6, origin.y}, {px, origin.y + 8}, IM_COL32(255, 80, 80, 255));
+  const float px = view.xAt(playhead_);
+  draw->AddLine({px, top}, {px, view.rowsBottom()}, IM_COL32(255, 80, 80, 255), 2.0f);
+  draw->AddTriangleFilled({px - 6, top}, {px + 6, top}, {px, top + 8}, IM_COL32(255, 80, 80, 255));
   if (tracks.empty()) {
-    draw->AddText({canvasLeft + 10.0f, rowsTop + 8.0f}, IM_COL32(160, 160, 170, 255),
+    draw->AddText({left + 10.0f, rowsTop + 8.0f}, IM_COL32(160, 160, 170, 255),
                   "No tracks: pick a channel above and press 'Add track', or open a timeline file.");
   }
-  ImGui::EndChild();
 }
 
 void TimelinePanel::draw(FaceDelegate& face) {

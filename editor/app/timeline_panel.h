@@ -14,6 +14,7 @@
 #include "editor/autosave.h"
 #include "editor/timeline_document.h"
 #include "editor/timeline_pose.h"
+#include "editor/timeline_view.h"
 
 namespace editor {
 
@@ -66,7 +67,12 @@ class TimelinePanel {
 
  private:
   void drawToolbar(FaceDelegate& face);
+  void drawFileAndTransport(FaceDelegate& face);
+  void drawKeyAndTrackControls(FaceDelegate& face);
   void drawTracks(FaceDelegate& face);
+  void drawTrackNames(const TimelineView& view, float left);
+  void handleCanvasMouse(const TimelineView& view, FaceDelegate& face);
+  void drawCanvas(const TimelineView& view);
   bool addKeys(FaceDelegate& face, bool allTracks);
   void refreshPose();
   void autosave();

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -29,6 +30,21 @@
 #include "facial/runtime/character/character_life.h"
 
 namespace facial {
+
+class GraphDefinition;  // facial/runtime/graph/graph_definition.h
+using SharedGraphDefinition = std::shared_ptr<const GraphDefinition>;
+class RigMapping;              // facial/runtime/rig/rig_mapping.h
+struct VrmExpressionSet;       // facial/runtime/rig/vrm_expressions.h
+
+// For an engine that has already loaded the graph and built the rig (our
+// programs' face loader does, VRM expressions included): create() takes
+// these instead of files. Everything is copied; nothing needs to outlive the call.
+struct CharacterParts {
+  SharedGraphDefinition graph;
+  const RigMapping* rig = nullptr;        // the rig the graph drives; null: a graph over target names
+  std::span<const float> restWeights;     // one per target name (the model's defaults); empty: all 0
+  const VrmExpressionSet* vrm = nullptr;  // a VRM model's lookAt expressions steer the eyes too
+};
 
 struct CharacterOptions {
   // The expression presets the graph's pose nodes name (the project's
@@ -39,6 +55,9 @@ struct CharacterOptions {
   std::filesystem::path rigmap;
   uint64_t seed = 0;      // blink and saccade streams, sway phases
   bool idleLife = true;   // head sway, breathing and saccades (the graph's blinks stay)
+  // Eye centres in head space (+X the face's left), where lookAt() aims from.
+  std::array<float, 3> leftEye{0.032f, 0.0f, 0.0f};
+  std::array<float, 3> rightEye{-0.032f, 0.0f, 0.0f};
 };
 
 class Character {
@@ -48,6 +67,13 @@ class Character {
   // target name, a graph channel that is no target (graphs over target names).
   static eng::Result<Character> create(const std::filesystem::path& graphFile, std::span<const std::string> targetNames,
                                        const CharacterOptions& options = {});
+  // From a loaded graph and rig (options.expressions and options.rigmap are
+  // not read). targetNames are the names the rig was built over; a name may
+  // repeat (a model's flat list has one per mesh that has the target).
+  // Errors: no graph, rest weights that are not one per target name, the
+  // graph's channels do not fit the rig or the names.
+  static eng::Result<Character> create(const CharacterParts& parts, std::span<const std::string> targetNames,
+                                       const CharacterOptions& options = {});
   Character(Character&&) noexcept;
   Character& operator=(Character&&) noexcept;
   ~Character();
@@ -56,11 +82,25 @@ class Character {
   eng::Result<void> setFloat(std::string_view parameter, float value);
   eng::Result<void> setBool(std::string_view parameter, bool value);
   eng::Result<void> trigger(std::string_view parameter);
+  // Takes back a trigger no transition has consumed yet (a UI where the last press wins).
+  eng::Result<void> resetTrigger(std::string_view parameter);
+  // The current state of a state machine node of the graph, by node name
+  // (empty: the graph's first state machine); none when there is no such node.
+  std::optional<std::string_view> currentState(std::string_view machineNode = {}) const;
 
   // Where the eyes look, in head space (+X the face's left, +Y up, +Z out of
   // the face, origin between the eyes, metres). Errors: a non-finite coordinate.
   eng::Result<void> lookAt(float x, float y, float z);
   void lookAhead();
+
+  // A pose that takes over from the graph by `amount` (0: the graph alone,
+  // 1: the pose alone; the gaze is added on top either way) from the next
+  // update() on, for a UI that poses the face while the graph runs on below.
+  // targetWeights: one per target name; expressionWeights: one per VRM
+  // expression of the rig (expressionWeights().size(), may be empty). Errors
+  // (nothing changes): other sizes, an amount outside [0, 1].
+  eng::Result<void> overridePose(std::span<const float> targetWeights, std::span<const float> expressionWeights,
+                                 float amount);
 
   // Advances by dt seconds and refreshes every output. Errors (nothing
   // changes): a negative or non-finite dt.
@@ -69,6 +109,9 @@ class Character {
   // One weight per target name given to create(), in that order.
   std::span<const float> weights() const;
   uint32_t weightCount() const;
+  // The rig's VRM expression weights (what a VRM's material binds follow), in
+  // the rig's expression order; empty unless the rig maps VRM expressions.
+  std::span<const float> expressionWeights() const;
   // Rotations as quaternions {x, y, z, w} in head-space axes: the idle sway for
   // the head joint, and each eye's gaze (from looking along +Z) for eye joints.
   std::array<float, 4> headRotation() const;
@@ -82,6 +125,8 @@ class Character {
  private:
   struct State;
   explicit Character(std::unique_ptr<State> state);
+  static eng::Result<void> start(State& state, const SharedGraphDefinition& graph, std::span<const float> rest,
+                                 const VrmExpressionSet* vrm, const CharacterOptions& options);
   std::unique_ptr<State> state_;
 };
 

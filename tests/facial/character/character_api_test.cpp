@@ -9,6 +9,11 @@
 
 #include "facial/c_api.h"
 #include "facial/character.h"
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/preset_lookup.h"
+#include "facial/runtime/rig/action_unit_rig.h"
+#include "facial/runtime/rig/expression_library.h"
+#include "facial/runtime/rig/rig_mapping.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -71,6 +76,101 @@ TEST(Character, IdleLifeTurnsTheHead) {
   EXPECT_GT(character.breathLift(), 0.0f);
 }
 
+// What a program that loads faces itself passes instead of files: the tour
+// graph with the presets and the ARKit rig as an action-unit graph sees it.
+struct LoadedTour {
+  facial::SharedGraphDefinition graph;
+  std::optional<facial::RigMapping> rig;
+};
+
+LoadedTour loadTour() {
+  LoadedTour tour;
+  auto presets = facial::ExpressionLibrary::load(data() / "expressions.json");
+  EXPECT_TRUE(presets) << presets.error().message;
+  if (!presets) return tour;
+  auto graph = facial::loadGraph(data() / "graphs" / "tour.json", {.presets = facial::presetLookup(*presets)});
+  EXPECT_TRUE(graph) << graph.error().message;
+  auto rig = facial::buildRigMapping(kArkitFace);
+  EXPECT_TRUE(rig) << rig.error().message;
+  if (!graph || !rig) return tour;
+  auto graphRig = facial::actionUnitRig(*rig, *presets);
+  EXPECT_TRUE(graphRig) << graphRig.error().message;
+  if (graphRig) tour.rig.emplace(std::move(*graphRig));
+  tour.graph = *graph;
+  return tour;
+}
+
+TEST(Character, FromLoadedPartsPlaysAsFromFiles) {
+  const LoadedTour tour = loadTour();
+  ASSERT_TRUE(tour.graph && tour.rig);
+  auto fromParts = facial::Character::create({.graph = tour.graph, .rig = &*tour.rig}, kArkitFace, {.seed = 3});
+  ASSERT_TRUE(fromParts) << fromParts.error().message;
+  facial::Character fromFiles = tourCharacter(true);
+  EXPECT_EQ(fromParts->rigScheme(), fromFiles.rigScheme());
+  for (facial::Character* c : {&*fromParts, &fromFiles}) {
+    ASSERT_TRUE(c->setBool("autoplay", false));
+    ASSERT_TRUE(c->trigger("sad"));
+  }
+  for (int frame = 0; frame < 90; ++frame) {
+    ASSERT_TRUE(fromParts->update(1.0f / 60.0f));
+    ASSERT_TRUE(fromFiles.update(1.0f / 60.0f));
+  }
+  for (size_t t = 0; t < kArkitFace.size(); ++t) EXPECT_EQ(fromParts->weights()[t], fromFiles.weights()[t]) << kArkitFace[t];
+  EXPECT_EQ(fromParts->headRotation(), fromFiles.headRotation());
+  EXPECT_TRUE(fromParts->expressionWeights().empty()) << "an ARKit rig has no VRM expressions";
+}
+
+TEST(Character, LastTriggerWinsAfterAReset) {
+  facial::Character character = tourCharacter(false);
+  ASSERT_TRUE(character.setBool("autoplay", false));
+  ASSERT_TRUE(character.trigger("sad"));
+  ASSERT_TRUE(character.resetTrigger("sad"));
+  ASSERT_TRUE(character.trigger("happy"));
+  for (int frame = 0; frame < 120; ++frame) ASSERT_TRUE(character.update(1.0f / 60.0f));
+  ASSERT_TRUE(character.currentState("emotions"));
+  EXPECT_EQ(*character.currentState("emotions"), "happy");
+  EXPECT_FALSE(character.currentState("nope").has_value());
+  EXPECT_FALSE(character.resetTrigger("autoplay")) << "a bool is no trigger";
+}
+
+TEST(Character, AnOverridePoseTakesOverByItsAmountUnderTheGaze) {
+  facial::Character plain = tourCharacter(false);
+  facial::Character posed = tourCharacter(false);
+  const std::vector<float> half(kArkitFace.size(), 0.5f);
+  ASSERT_TRUE(posed.overridePose(half, {}, 0.25f));
+  for (int frame = 0; frame < 30; ++frame) {
+    ASSERT_TRUE(plain.update(1.0f / 60.0f));
+    ASSERT_TRUE(posed.update(1.0f / 60.0f));
+  }
+  for (size_t t = 0; t < kArkitFace.size(); ++t)
+    EXPECT_FLOAT_EQ(posed.weights()[t], plain.weights()[t] + 0.25f * (0.5f - plain.weights()[t])) << kArkitFace[t];
+  // All of it, and the gaze still added on top.
+  ASSERT_TRUE(posed.overridePose(half, {}, 1.0f));
+  ASSERT_TRUE(posed.lookAt(1.0f, 0.0f, 1.0f));
+  ASSERT_TRUE(posed.update(1.0f / 60.0f));
+  EXPECT_EQ(posed.weights()[indexOf("jawOpen")], 0.5f);
+  EXPECT_EQ(posed.weights()[indexOf("eyeLookOutLeft")], 1.0f);
+  // Nothing changes on a bad call.
+  EXPECT_FALSE(posed.overridePose(std::vector<float>(3, 0.5f), {}, 1.0f));
+  EXPECT_FALSE(posed.overridePose(half, {}, 1.5f));
+  EXPECT_FALSE(posed.overridePose(half, std::vector<float>(2, 0.0f), 1.0f));
+  ASSERT_TRUE(posed.update(1.0f / 60.0f));
+  EXPECT_EQ(posed.weights()[indexOf("jawOpen")], 0.5f);
+}
+
+TEST(Character, TheEyesAimFromTheirGivenCentres) {
+  // The target straight ahead of a left eye placed 0.5 to the left: that eye looks ahead, the right one turns in.
+  auto character = facial::Character::create(data() / "graphs" / "tour.json", kArkitFace,
+                                             {.expressions = data() / "expressions.json", .idleLife = false,
+                                              .leftEye = {0.5f, 0.0f, 0.0f}, .rightEye = {-0.5f, 0.0f, 0.0f}});
+  ASSERT_TRUE(character) << character.error().message;
+  ASSERT_TRUE(character->lookAt(0.5f, 0.0f, 1.0f));
+  ASSERT_TRUE(character->update(0.0f));
+  EXPECT_EQ(character->weights()[indexOf("eyeLookOutLeft")], 0.0f);
+  EXPECT_EQ(character->weights()[indexOf("eyeLookInLeft")], 0.0f);
+  EXPECT_GT(character->weights()[indexOf("eyeLookInRight")], 0.5f);
+}
+
 TEST(CharacterValidity, UnknownParameterListsTheGraphs) {
   facial::Character character = tourCharacter(false);
   auto r = character.trigger("ecstatic");
@@ -94,6 +194,21 @@ TEST(CharacterValidity, BadGraphOrNamesAreOneLine) {
   auto duplicate = facial::Character::create(data() / "graphs" / "tour.json", twice);
   ASSERT_FALSE(duplicate);
   EXPECT_NE(duplicate.error().message.find("'jawOpen' is given twice"), std::string::npos) << duplicate.error().message;
+}
+
+TEST(CharacterValidity, PartsMustFitTheTargetNames) {
+  const LoadedTour tour = loadTour();
+  ASSERT_TRUE(tour.graph && tour.rig);
+  const std::vector<float> threeRest(3, 0.0f);
+  auto wrongRest = facial::Character::create({.graph = tour.graph, .rig = &*tour.rig, .restWeights = threeRest}, kArkitFace);
+  ASSERT_FALSE(wrongRest);
+  EXPECT_EQ(wrongRest.error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_NE(wrongRest.error().message.find("3 rest weights"), std::string::npos) << wrongRest.error().message;
+  auto noGraph = facial::Character::create(facial::CharacterParts{}, kArkitFace);
+  ASSERT_FALSE(noGraph);
+  EXPECT_EQ(noGraph.error().kind, eng::ErrorKind::InvalidArgument);
+  // An action-unit graph needs the rig.
+  EXPECT_FALSE(facial::Character::create({.graph = tour.graph}, kArkitFace));
 }
 
 TEST(CApi, DrivesACharacterLikeTheCppApi) {
