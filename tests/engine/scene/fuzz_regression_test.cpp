@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fuzzInput(const std::string& name) {
-  std::ifstream in(testing_support::sourceDir() / "tests" / "scene" / "fuzz_inputs" / name, std::ios::binary);
+  std::ifstream in(testing_support::sourceDir() / "tests" / "engine" / "scene" / "fuzz_inputs" / name, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
