@@ -201,22 +201,25 @@ Result<void> SceneRenderer::checkInstances(std::span<const ModelInstance> instan
   for (size_t i = 0; i < instances.size(); ++i) {
     const ModelInstance& inst = instances[i];
     if (!inst.model) return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + ": no model");
-    const std::string label = "instance " + std::to_string(i) + " (" + inst.model->name() + "): ";
+    // Made only for a refusal: a frame that passes allocates nothing.
+    auto refuse = [&](const std::string& what) {
+      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " + what);
+    };
     if (inst.weights.size() != inst.model->weightCount())
-      return makeError(ErrorKind::InvalidArgument, label + std::to_string(inst.weights.size()) + " weights given, the model has " +
-                       std::to_string(inst.model->weightCount()));
+      return refuse(std::to_string(inst.weights.size()) + " weights given, the model has " +
+                    std::to_string(inst.model->weightCount()));
     if (!inst.nodeWorld.empty() && inst.nodeWorld.size() != inst.model->nodeCount())
-      return makeError(ErrorKind::InvalidArgument, label + "pose of " + std::to_string(inst.nodeWorld.size()) +
-                       " nodes given, the model has " + std::to_string(inst.model->nodeCount()));
+      return refuse("pose of " + std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
+                    std::to_string(inst.model->nodeCount()));
     if (inst.materials.size() > inst.model->materialCount())
-      return makeError(ErrorKind::InvalidArgument, label + std::to_string(inst.materials.size()) +
-                       " materials given, the model has " + std::to_string(inst.model->materialCount()));
+      return refuse(std::to_string(inst.materials.size()) + " materials given, the model has " +
+                    std::to_string(inst.model->materialCount()));
     for (size_t m = 0; m < inst.materials.size(); ++m) {
       const InstanceMaterial& mat = inst.materials[m];
       const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform + mat.toonShade + mat.toonShading +
                             mat.toonRim + mat.toonOutline + mat.toonOutlineStyle;
       if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
-        return makeError(ErrorKind::InvalidArgument, label + "material " + std::to_string(m) + " has a non-finite value");
+        return refuse("material " + std::to_string(m) + " has a non-finite value");
     }
     if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
       modelScratch_.push_back(inst.model);
