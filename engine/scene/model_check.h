@@ -24,8 +24,8 @@ struct ModelCheck {
   // Every primitive is a non-empty indexed triangle list. glTF allows a
   // primitive without indices (or an empty one); the renderer draws indexed.
   bool requireIndices = false;
-  // The most vertices one primitive may have. The GPU addresses a
-  // primitive's vertices and their per-vertex vec4s with 32-bit indices.
+  // The most vertices one primitive may have. The renderer counts a
+  // primitive's vertices, and the few vec4s it keeps per vertex, in 32 bits.
   size_t maxVertices = std::numeric_limits<size_t>::max();
 
   // What GpuModel::create asks of a model before uploading it.
