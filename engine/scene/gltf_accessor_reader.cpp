@@ -106,6 +106,80 @@ bool fits(size_t offset, size_t count, size_t stride, size_t elementSize, size_t
   return (count - 1) <= (room - elementSize) / stride;
 }
 
+// The accessor's dense elements: where they start and how far apart, checked
+// to fit in their bufferView. No bufferView: the base is all zeros (the usual
+// form of a sparse morph target), data stays null.
+struct DenseRange {
+  const uint8_t* data = nullptr;
+  size_t stride = 0;
+};
+
+Result<DenseRange> denseRange(const tinygltf::Model& gltf, const tinygltf::Accessor& acc, size_t count, size_t elementSize,
+                              const std::string& where) {
+  if (acc.bufferView < 0) return DenseRange{nullptr, elementSize};
+  auto range = viewRange(gltf, acc.bufferView, where);
+  if (!range) return range.error();
+  const ViewRange base = *range;
+  size_t stride = elementSize;
+  if (base.stride != 0) {
+    if (base.stride < elementSize)
+      return makeError(ErrorKind::Malformed, where + ": byteStride " + std::to_string(base.stride) + " is smaller than the element size " +
+                       std::to_string(elementSize));
+    stride = base.stride;
+  }
+  if (!fits(acc.byteOffset, count, stride, elementSize, base.size))
+    return makeError(ErrorKind::Malformed, where + ": " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
+                     " bytes (stride " + std::to_string(stride) + ") from byte " + std::to_string(acc.byteOffset) +
+                     " run past the end of bufferView " + std::to_string(acc.bufferView) + " (" +
+                     std::to_string(base.size) + " bytes)");
+  return DenseRange{base.data + acc.byteOffset, stride};
+}
+
+// The accessor's sparse substitutions: their indices and values, checked to
+// fit in their bufferViews (count 0 when the accessor is not sparse).
+struct SparseRange {
+  size_t count = 0;
+  const uint8_t* indices = nullptr;
+  size_t indexSize = 0;
+  const uint8_t* values = nullptr;
+};
+
+Result<SparseRange> sparseRange(const tinygltf::Model& gltf, const tinygltf::Accessor& acc, size_t count, size_t elementSize,
+                                const std::string& where) {
+  if (!acc.sparse.isSparse) return SparseRange{};
+  const size_t sparseCount = static_cast<size_t>(std::max(acc.sparse.count, 0));
+  if (acc.sparse.count < 0 || sparseCount > count)
+    return makeError(ErrorKind::Malformed, where + ": sparse count " + std::to_string(acc.sparse.count) + " is outside 0.." +
+                     std::to_string(count));
+  const int ict = acc.sparse.indices.componentType;
+  const size_t sparseIndexSize = gltfComponentSize(ict);
+  if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    return makeError(ErrorKind::Malformed, where + ": sparse indices have componentType " + std::to_string(ict) +
+                     ", expected an unsigned integer type");
+  auto ir = viewRange(gltf, acc.sparse.indices.bufferView, where + " sparse indices");
+  if (!ir) return ir.error();
+  auto vr = viewRange(gltf, acc.sparse.values.bufferView, where + " sparse values");
+  if (!vr) return vr.error();
+  const ViewRange sparseIndices = *ir, sparseValues = *vr;
+  if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
+    return makeError(ErrorKind::Malformed, where + ": negative sparse byteOffset");
+  if (!fits(static_cast<size_t>(acc.sparse.indices.byteOffset), sparseCount, sparseIndexSize, sparseIndexSize,
+            sparseIndices.size))
+    return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse indices from byte " +
+                     std::to_string(acc.sparse.indices.byteOffset) + " run past the end of bufferView " +
+                     std::to_string(acc.sparse.indices.bufferView) + " (" + std::to_string(sparseIndices.size) +
+                     " bytes)");
+  if (!fits(static_cast<size_t>(acc.sparse.values.byteOffset), sparseCount, elementSize, elementSize,
+            sparseValues.size))
+    return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse values of " + std::to_string(elementSize) +
+                     " bytes from byte " + std::to_string(acc.sparse.values.byteOffset) +
+                     " run past the end of bufferView " + std::to_string(acc.sparse.values.bufferView) + " (" +
+                     std::to_string(sparseValues.size) + " bytes)");
+  return SparseRange{sparseCount, sparseIndices.data + acc.sparse.indices.byteOffset, sparseIndexSize,
+                     sparseValues.data + acc.sparse.values.byteOffset};
+}
+
 }  // namespace
 
 int gltfComponentCount(int type) {
@@ -181,60 +255,10 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   const size_t count = *n;
 
   // Nothing is allocated until the source ranges are known to hold `count` elements.
-  ViewRange base;
-  size_t stride = elementSize;
-  if (acc.bufferView >= 0) {
-    auto range = viewRange(gltf_, acc.bufferView, where);
-    if (!range) return range.error();
-    base = *range;
-    if (base.stride != 0) {
-      if (base.stride < elementSize)
-        return makeError(ErrorKind::Malformed, where + ": byteStride " + std::to_string(base.stride) + " is smaller than the element size " +
-                         std::to_string(elementSize));
-      stride = base.stride;
-    }
-    if (!fits(acc.byteOffset, count, stride, elementSize, base.size))
-      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
-                       " bytes (stride " + std::to_string(stride) + ") from byte " + std::to_string(acc.byteOffset) +
-                       " run past the end of bufferView " + std::to_string(acc.bufferView) + " (" +
-                       std::to_string(base.size) + " bytes)");
-  }
-  // No bufferView: the base is all zeros (the usual form of a sparse morph target).
-
-  const size_t sparseCount = acc.sparse.isSparse ? static_cast<size_t>(std::max(acc.sparse.count, 0)) : 0;
-  ViewRange sparseIndices, sparseValues;
-  size_t sparseIndexSize = 0;
-  if (acc.sparse.isSparse) {
-    if (acc.sparse.count < 0 || sparseCount > count)
-      return makeError(ErrorKind::Malformed, where + ": sparse count " + std::to_string(acc.sparse.count) + " is outside 0.." +
-                       std::to_string(count));
-    const int ict = acc.sparse.indices.componentType;
-    sparseIndexSize = gltfComponentSize(ict);
-    if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      return makeError(ErrorKind::Malformed, where + ": sparse indices have componentType " + std::to_string(ict) +
-                       ", expected an unsigned integer type");
-    auto ir = viewRange(gltf_, acc.sparse.indices.bufferView, where + " sparse indices");
-    if (!ir) return ir.error();
-    auto vr = viewRange(gltf_, acc.sparse.values.bufferView, where + " sparse values");
-    if (!vr) return vr.error();
-    sparseIndices = *ir;
-    sparseValues = *vr;
-    if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
-      return makeError(ErrorKind::Malformed, where + ": negative sparse byteOffset");
-    if (!fits(static_cast<size_t>(acc.sparse.indices.byteOffset), sparseCount, sparseIndexSize, sparseIndexSize,
-              sparseIndices.size))
-      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse indices from byte " +
-                       std::to_string(acc.sparse.indices.byteOffset) + " run past the end of bufferView " +
-                       std::to_string(acc.sparse.indices.bufferView) + " (" + std::to_string(sparseIndices.size) +
-                       " bytes)");
-    if (!fits(static_cast<size_t>(acc.sparse.values.byteOffset), sparseCount, elementSize, elementSize,
-              sparseValues.size))
-      return makeError(ErrorKind::Malformed, where + ": " + std::to_string(sparseCount) + " sparse values of " + std::to_string(elementSize) +
-                       " bytes from byte " + std::to_string(acc.sparse.values.byteOffset) +
-                       " run past the end of bufferView " + std::to_string(acc.sparse.values.bufferView) + " (" +
-                       std::to_string(sparseValues.size) + " bytes)");
-  }
+  auto dense = denseRange(gltf_, acc, count, elementSize, where);
+  if (!dense) return dense.error();
+  auto sparse = sparseRange(gltf_, acc, count, elementSize, where);
+  if (!sparse) return sparse.error();
 
   const size_t valueCount = count * static_cast<size_t>(components);
   if (count > std::numeric_limits<size_t>::max() / (sizeof(T) * components))
@@ -251,20 +275,14 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
         dst[c] = componentAsIndex(p, acc.componentType);
     }
   };
-  if (acc.bufferView >= 0) {
-    const uint8_t* src = base.data + acc.byteOffset;
-    for (size_t i = 0; i < count; ++i) readElement(src + i * stride, out.data() + i * components);
-  }
-  if (sparseCount > 0) {
-    const uint8_t* idx = sparseIndices.data + acc.sparse.indices.byteOffset;
-    const uint8_t* val = sparseValues.data + acc.sparse.values.byteOffset;
-    for (size_t s = 0; s < sparseCount; ++s) {
-      const uint32_t target = componentAsIndex(idx + s * sparseIndexSize, acc.sparse.indices.componentType);
-      if (target >= count)
-        return makeError(ErrorKind::Malformed, where + ": sparse index " + std::to_string(target) + " (entry " + std::to_string(s) +
-                         ") is out of range of " + std::to_string(count) + " elements");
-      readElement(val + s * elementSize, out.data() + static_cast<size_t>(target) * components);
-    }
+  if (dense->data)
+    for (size_t i = 0; i < count; ++i) readElement(dense->data + i * dense->stride, out.data() + i * components);
+  for (size_t s = 0; s < sparse->count; ++s) {
+    const uint32_t target = componentAsIndex(sparse->indices + s * sparse->indexSize, acc.sparse.indices.componentType);
+    if (target >= count)
+      return makeError(ErrorKind::Malformed, where + ": sparse index " + std::to_string(target) + " (entry " + std::to_string(s) +
+                       ") is out of range of " + std::to_string(count) + " elements");
+    readElement(sparse->values + s * elementSize, out.data() + static_cast<size_t>(target) * components);
   }
   if constexpr (std::is_same_v<T, float>) {
     for (size_t i = 0; i < out.size(); ++i)

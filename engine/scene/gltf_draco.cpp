@@ -59,9 +59,9 @@ void retarget(tinygltf::Model& gltf, int accessor, int buffer, size_t offset, si
   acc.sparse.isSparse = false;  // the decoded data is the whole accessor
 }
 
-Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, const std::string& where,
-                             size_t& budget) {
-  const tinygltf::Value& ext = prim.extensions.at(kKhrDraco);
+// The primitive's Draco stream, decoded.
+Result<std::unique_ptr<draco::Mesh>> decodeDracoMesh(const tinygltf::Model& gltf, const tinygltf::Value& ext,
+                                                     const std::string& where) {
   if (!ext.Has("bufferView") || !ext.Get("bufferView").IsNumber() || !ext.Has("attributes") ||
       !ext.Get("attributes").IsObject())
     return makeError(ErrorKind::Malformed, where + ": " + kKhrDraco + " needs an integer 'bufferView' and an 'attributes' object");
@@ -82,45 +82,56 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
   if (!decoded.ok())
     return makeError(ErrorKind::Malformed, where + ": the Draco stream (" + std::to_string(view.byteLength) + " bytes) is corrupt or truncated (" +
                      decoded.status().error_msg_string() + ")");
-  const std::unique_ptr<draco::Mesh>& mesh = decoded.value();
-  // The decoded point count is used as is: Draco may split seam vertices
-  // into more points than the accessors declare (CesiumMan: 3572 for 3273),
-  // as other Draco loaders do. Uncompressed morph targets of such a primitive
-  // no longer match and are refused by the loader's count check.
-  const uint32_t points = mesh->num_points();
-  const uint32_t faces = mesh->num_faces();
+  return std::move(decoded).value();
+}
 
-  std::vector<uint8_t> data;
+// The decoded accessors' bytes, and where each accessor's data lies in them.
+struct DecodedData {
   struct Pending {
     int accessor;
     size_t offset, length, count;
   };
+  std::vector<uint8_t> data;
   std::vector<Pending> pending;
+};
 
-  if (prim.indices >= 0) {
-    if (static_cast<size_t>(prim.indices) >= gltf.accessors.size())
-      return makeError(ErrorKind::Malformed, where + ": indices accessor " + std::to_string(prim.indices) + " does not exist");
-    const int type = gltf.accessors[static_cast<size_t>(prim.indices)].componentType;
-    const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
-                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
-                                                                         : 0;
-    if (size == 0) return makeError(ErrorKind::Malformed, where + ": Draco indices accessor has componentType " + std::to_string(type));
-    const size_t count = static_cast<size_t>(faces) * 3;
-    if (count * size > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco indices pass the decode limit");
-    const size_t offset = data.size();
-    data.resize(offset + count * size);
-    for (uint32_t f = 0; f < faces; ++f)
-      for (int c = 0; c < 3; ++c) {
-        const uint32_t index = mesh->face(draco::FaceIndex(f))[c].value();
-        if (size < 4 && index >> (8 * size) != 0)
-          return makeError(ErrorKind::Malformed, where + ": Draco index " + std::to_string(index) + " does not fit the indices accessor's type");
-        std::memcpy(data.data() + offset + (static_cast<size_t>(f) * 3 + c) * size, &index, size);  // little-endian
-      }
-    pending.push_back({prim.indices, offset, count * size, count});
-    alignTo4(data);
-  }
+// The faces as the primitive's indices accessor declares them (its component type).
+Result<void> appendIndices(const tinygltf::Model& gltf, const tinygltf::Primitive& prim, const draco::Mesh& mesh,
+                           const std::string& where, size_t budget, DecodedData& out) {
+  if (static_cast<size_t>(prim.indices) >= gltf.accessors.size())
+    return makeError(ErrorKind::Malformed, where + ": indices accessor " + std::to_string(prim.indices) + " does not exist");
+  const int type = gltf.accessors[static_cast<size_t>(prim.indices)].componentType;
+  const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                      : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                       : 0;
+  if (size == 0) return makeError(ErrorKind::Malformed, where + ": Draco indices accessor has componentType " + std::to_string(type));
+  const uint32_t faces = mesh.num_faces();
+  const size_t count = static_cast<size_t>(faces) * 3;
+  if (count * size > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco indices pass the decode limit");
+  std::vector<uint8_t>& data = out.data;
+  const size_t offset = data.size();
+  data.resize(offset + count * size);
+  for (uint32_t f = 0; f < faces; ++f)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t index = mesh.face(draco::FaceIndex(f))[c].value();
+      if (size < 4 && index >> (8 * size) != 0)
+        return makeError(ErrorKind::Malformed, where + ": Draco index " + std::to_string(index) + " does not fit the indices accessor's type");
+      std::memcpy(data.data() + offset + (static_cast<size_t>(f) * 3 + c) * size, &index, size);  // little-endian
+    }
+  out.pending.push_back({prim.indices, offset, count * size, count});
+  alignTo4(data);
+  return {};
+}
 
+// Every attribute the extension maps that the primitive reads, converted to its accessor's type.
+Result<void> appendAttributes(const tinygltf::Model& gltf, const tinygltf::Primitive& prim, const tinygltf::Value& ext,
+                              const draco::Mesh& mesh, const std::string& where, size_t budget, DecodedData& out) {
+  // The decoded point count is used as is: Draco may split seam vertices
+  // into more points than the accessors declare (CesiumMan: 3572 for 3273),
+  // as other Draco loaders do. Uncompressed morph targets of such a primitive
+  // no longer match and are refused by the loader's count check.
+  const uint32_t points = mesh.num_points();
   const tinygltf::Value& attributes = ext.Get("attributes");
   for (const std::string& semantic : attributes.Keys()) {
     const tinygltf::Value& id = attributes.Get(semantic);
@@ -128,7 +139,7 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
     if (accessorIt == prim.attributes.end()) continue;  // nothing reads it
     if (!id.IsNumber() || id.GetNumberAsInt() < 0)
       return makeError(ErrorKind::Malformed, where + ": Draco attribute id of " + semantic + " is not a non-negative integer");
-    const draco::PointAttribute* attr = mesh->GetAttributeByUniqueId(static_cast<uint32_t>(id.GetNumberAsInt()));
+    const draco::PointAttribute* attr = mesh.GetAttributeByUniqueId(static_cast<uint32_t>(id.GetNumberAsInt()));
     if (!attr)
       return makeError(ErrorKind::Malformed, where + ": the Draco stream has no attribute " + std::to_string(id.GetNumberAsInt()) + " (" +
                        semantic + ")");
@@ -142,23 +153,37 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
       return makeError(ErrorKind::Malformed, where + ": " + semantic + " accessor " + std::to_string(accessor) +
                        " has a type Draco data cannot be written as");
     const size_t length = static_cast<size_t>(points) * components * compSize;
-    if (length > budget - std::min(budget, data.size()))
+    if (length > budget - std::min(budget, out.data.size()))
       return makeError(ErrorKind::TooLarge, where + ": decoded Draco " + semantic + " passes the decode limit");
-    const size_t offset = data.size();
-    if (!appendAttribute(*attr, points, components, acc.componentType, data))
+    const size_t offset = out.data.size();
+    if (!appendAttribute(*attr, points, components, acc.componentType, out.data))
       return makeError(ErrorKind::Malformed, where + ": Draco attribute " + semantic + " could not be converted to the accessor's type");
-    pending.push_back({accessor, offset, length, points});
-    alignTo4(data);
+    out.pending.push_back({accessor, offset, length, points});
+    alignTo4(out.data);
   }
-  if (data.size() > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco data passes the decode limit");
-  budget -= data.size();
+  return {};
+}
+
+// Decodes the primitive's Draco stream into a new buffer and points its
+// accessors at it; `budget` (bytes left to decode) shrinks by what it took.
+Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, const std::string& where,
+                             size_t& budget) {
+  const tinygltf::Value& ext = prim.extensions.at(kKhrDraco);
+  auto mesh = decodeDracoMesh(gltf, ext, where);
+  if (!mesh) return mesh.error();
+  DecodedData decoded;
+  if (prim.indices >= 0)
+    if (auto ok = appendIndices(gltf, prim, **mesh, where, budget, decoded); !ok) return ok;
+  if (auto ok = appendAttributes(gltf, prim, ext, **mesh, where, budget, decoded); !ok) return ok;
+  if (decoded.data.size() > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco data passes the decode limit");
+  budget -= decoded.data.size();
 
   tinygltf::Buffer buffer;
   buffer.name = "decoded Draco data";
-  buffer.data = std::move(data);
+  buffer.data = std::move(decoded.data);
   gltf.buffers.push_back(std::move(buffer));
   const int bufferIndex = static_cast<int>(gltf.buffers.size() - 1);
-  for (const Pending& p : pending) retarget(gltf, p.accessor, bufferIndex, p.offset, p.length, p.count);
+  for (const DecodedData::Pending& p : decoded.pending) retarget(gltf, p.accessor, bufferIndex, p.offset, p.length, p.count);
   return {};
 }
 

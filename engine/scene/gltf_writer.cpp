@@ -211,23 +211,25 @@ std::string uriEncode(const std::string& name) {
   return out;
 }
 
-Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
-  Json doc;
-  doc["asset"] = {{"version", "2.0"}, {"generator", "facial eng_scene"}};
-
-  if (!model.images.empty()) {
-    Json images = Json::array(), textures = Json::array();
-    for (size_t i = 0; i < model.images.size(); ++i) {
-      const Image& img = model.images[i];
-      auto png = encodePng(img.width, img.height, img.rgba8);
-      if (!png) return png.error().prefixed("image " + std::to_string(i) + ": ");
-      Json image = {{"bufferView", buffers.addView(png->data(), png->size(), 0)}, {"mimeType", "image/png"}};
-      if (!img.name.empty()) image["name"] = img.name;
-      images.push_back(std::move(image));
-    }
-    doc["images"] = std::move(images);
+// The images, PNG-encoded into the binary buffer.
+Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) {
+  if (model.images.empty()) return {};
+  Json images = Json::array();
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    const Image& img = model.images[i];
+    auto png = encodePng(img.width, img.height, img.rgba8);
+    if (!png) return png.error().prefixed("image " + std::to_string(i) + ": ");
+    Json image = {{"bufferView", buffers.addView(png->data(), png->size(), 0)}, {"mimeType", "image/png"}};
+    if (!img.name.empty()) image["name"] = img.name;
+    images.push_back(std::move(image));
   }
-  // One texture per (image, sampling) a base colour uses, one sampler per sampling.
+  doc["images"] = std::move(images);
+  return {};
+}
+
+// One texture per (image, sampling) a base colour uses, one sampler per
+// sampling. Returns each material's base colour texture (-1: none).
+std::vector<int> writeTextures(Json& doc, const Model& model) {
   std::vector<TextureSampling> samplings;
   std::vector<std::pair<int, size_t>> textureKeys;  // (image, sampling index)
   std::vector<int> baseColorTexture(model.materials.size(), -1);
@@ -252,142 +254,162 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
     doc["samplers"] = std::move(samplers);
     doc["textures"] = std::move(textures);
   }
+  return baseColorTexture;
+}
 
+// One material; lists the extensions it uses in the document.
+Json materialJson(Json& doc, const Material& mat, int baseColorTexture) {
+  Json pbr = {{"baseColorFactor", vec(&mat.baseColorFactor.x, 4)},
+              {"metallicFactor", mat.metallic},
+              {"roughnessFactor", mat.roughness}};
+  if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
+  Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
+  if (!mat.name.empty()) m["name"] = mat.name;
+  if (mat.doubleSided) m["doubleSided"] = true;
+  if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);
+  if (mat.alphaMode == AlphaMode::Mask) m["alphaCutoff"] = mat.alphaCutoff;
+  if (mat.unlit) {
+    m["extensions"][kKhrMaterialsUnlit] = Json::object();
+    useExtension(doc, kKhrMaterialsUnlit);
+  }
+  if (mat.toon) {
+    m["extensions"][kVrmcMaterialsMtoon] = mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture : -1);
+    useExtension(doc, kVrmcMaterialsMtoon);
+  }
+  if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
+  if (!mat.detailLayers.empty()) {
+    Json layers = Json::array();
+    for (const DetailLayer& d : mat.detailLayers)
+      layers.push_back({{"image", d.image}, {"target", d.target}, {"strength", d.strength}});
+    m["extras"] = {{"detailLayers", std::move(layers)}};
+  }
+  return m;
+}
+
+// One primitive: its attributes, indices and morph targets into the buffer.
+Json primitiveJson(const Primitive& p, BufferBuilder& buffers) {
+  const size_t n = p.vertexCount();
+  Json attributes;
+  attributes["POSITION"] = buffers.addFloats(&p.positions[0].x, n, 3, kArrayBuffer, true);
+  if (!p.normals.empty()) attributes["NORMAL"] = buffers.addFloats(&p.normals[0].x, n, 3, kArrayBuffer, false);
+  if (!p.texcoords.empty()) attributes["TEXCOORD_0"] = buffers.addFloats(&p.texcoords[0].x, n, 2, kArrayBuffer, false);
+  if (!p.tangents.empty()) attributes["TANGENT"] = buffers.addFloats(&p.tangents[0].x, n, 4, kArrayBuffer, false);
+  for (size_t set = 0; set < p.influenceSets(); ++set) {
+    attributes["JOINTS_" + std::to_string(set)] = buffers.addJoints(p, set);
+    attributes["WEIGHTS_" + std::to_string(set)] = buffers.addJointWeights(p, set);
+  }
+  Json prim = {{"attributes", std::move(attributes)}, {"indices", buffers.addIndices(p.indices, n)}, {"mode", 4}};
+  if (p.material >= 0) prim["material"] = p.material;
+  if (!p.targets.empty()) {
+    Json targets = Json::array();
+    for (const MorphTarget& t : p.targets) {
+      Json target = Json::object();
+      if (!t.positions.empty()) target["POSITION"] = buffers.addDeltas(t.positions, true);
+      if (!t.normals.empty()) target["NORMAL"] = buffers.addDeltas(t.normals, false);
+      if (!t.tangents.empty()) target["TANGENT"] = buffers.addDeltas(t.tangents, false);
+      targets.push_back(std::move(target));
+    }
+    prim["targets"] = std::move(targets);
+  }
+  return prim;
+}
+
+Json meshJson(const Mesh& mesh, BufferBuilder& buffers) {
+  Json prims = Json::array();
+  for (const Primitive& p : mesh.primitives) prims.push_back(primitiveJson(p, buffers));
+  Json m = {{"primitives", std::move(prims)}};
+  if (!mesh.name.empty()) m["name"] = mesh.name;
+  if (!mesh.targetNames.empty()) {
+    m["weights"] = mesh.defaultWeights;
+    m["extras"] = {{"targetNames", mesh.targetNames}};
+  }
+  return m;
+}
+
+Json nodeJson(const Node& node) {
+  Json n = Json::object();
+  if (!node.name.empty()) n["name"] = node.name;
+  if (node.mesh >= 0) n["mesh"] = node.mesh;
+  if (node.skin >= 0) n["skin"] = node.skin;
+  if (!node.children.empty()) n["children"] = node.children;
+  if (node.hasMatrix) {
+    n["matrix"] = vec(&node.matrix[0][0], 16);
+  } else {
+    if (node.translation != glm::vec3(0.0f)) n["translation"] = vec(&node.translation.x, 3);
+    if (node.rotation != glm::quat(1.0f, 0.0f, 0.0f, 0.0f))
+      n["rotation"] = {node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w};
+    if (node.scale != glm::vec3(1.0f)) n["scale"] = vec(&node.scale.x, 3);
+  }
+  return n;
+}
+
+Json skinJson(const Skin& skin, BufferBuilder& buffers) {
+  Json sk = {{"joints", skin.joints}};
+  if (!skin.name.empty()) sk["name"] = skin.name;
+  if (skin.skeleton >= 0) sk["skeleton"] = skin.skeleton;
+  if (!skin.inverseBindMatrices.empty())
+    sk["inverseBindMatrices"] =
+        buffers.addFloats(&skin.inverseBindMatrices[0][0][0], skin.inverseBindMatrices.size(), 16, 0, false);
+  return sk;
+}
+
+// One animation with at least one channel: a sampler per channel.
+Json animationJson(const Animation& anim, BufferBuilder& buffers) {
+  Json samplers = Json::array(), channels = Json::array();
+  for (const NodeChannel& ch : anim.nodeChannels) {
+    static constexpr const char* kPaths[] = {"translation", "rotation", "scale"};
+    const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
+    const int output = buffers.addFloats(ch.values.data(), ch.values.size() / ch.components(),
+                                         static_cast<int>(ch.components()), 0, false);
+    channels.push_back(
+        {{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", kPaths[static_cast<int>(ch.path)]}}}});
+    samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
+  }
+  for (const WeightsChannel& ch : anim.channels) {
+    const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
+    const int output = buffers.addFloats(ch.values.data(), ch.values.size(), 1, 0, false);
+    channels.push_back({{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
+    samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
+  }
+  Json a = {{"channels", std::move(channels)}, {"samplers", std::move(samplers)}};
+  if (!anim.name.empty()) a["name"] = anim.name;
+  return a;
+}
+
+// The document, part by part in the order their data enters the buffer.
+Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
+  Json doc;
+  doc["asset"] = {{"version", "2.0"}, {"generator", "facial eng_scene"}};
+  if (auto images = writeImages(doc, model, buffers); !images) return images.error();
+  const std::vector<int> baseColorTexture = writeTextures(doc, model);
   if (!model.materials.empty()) {
     Json materials = Json::array();
-    for (size_t i = 0; i < model.materials.size(); ++i) {
-      const Material& mat = model.materials[i];
-      Json pbr = {{"baseColorFactor", vec(&mat.baseColorFactor.x, 4)},
-                  {"metallicFactor", mat.metallic},
-                  {"roughnessFactor", mat.roughness}};
-      if (baseColorTexture[i] >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture[i]}};
-      Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
-      if (!mat.name.empty()) m["name"] = mat.name;
-      if (mat.doubleSided) m["doubleSided"] = true;
-      if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);
-      if (mat.alphaMode == AlphaMode::Mask) m["alphaCutoff"] = mat.alphaCutoff;
-      if (mat.unlit) {
-        m["extensions"][kKhrMaterialsUnlit] = Json::object();
-        useExtension(doc, kKhrMaterialsUnlit);
-      }
-      if (mat.toon) {
-        m["extensions"][kVrmcMaterialsMtoon] = mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture[i] : -1);
-        useExtension(doc, kVrmcMaterialsMtoon);
-      }
-      if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
-      if (!mat.detailLayers.empty()) {
-        Json layers = Json::array();
-        for (const DetailLayer& d : mat.detailLayers)
-          layers.push_back({{"image", d.image}, {"target", d.target}, {"strength", d.strength}});
-        m["extras"] = {{"detailLayers", std::move(layers)}};
-      }
-      materials.push_back(std::move(m));
-    }
+    for (size_t i = 0; i < model.materials.size(); ++i)
+      materials.push_back(materialJson(doc, model.materials[i], baseColorTexture[i]));
     doc["materials"] = std::move(materials);
   }
-
   if (!model.meshes.empty()) {
     Json meshes = Json::array();
-    for (const Mesh& mesh : model.meshes) {
-      Json prims = Json::array();
-      for (const Primitive& p : mesh.primitives) {
-        const size_t n = p.vertexCount();
-        Json attributes;
-        attributes["POSITION"] = buffers.addFloats(&p.positions[0].x, n, 3, kArrayBuffer, true);
-        if (!p.normals.empty()) attributes["NORMAL"] = buffers.addFloats(&p.normals[0].x, n, 3, kArrayBuffer, false);
-        if (!p.texcoords.empty())
-          attributes["TEXCOORD_0"] = buffers.addFloats(&p.texcoords[0].x, n, 2, kArrayBuffer, false);
-        if (!p.tangents.empty()) attributes["TANGENT"] = buffers.addFloats(&p.tangents[0].x, n, 4, kArrayBuffer, false);
-        for (size_t set = 0; set < p.influenceSets(); ++set) {
-          attributes["JOINTS_" + std::to_string(set)] = buffers.addJoints(p, set);
-          attributes["WEIGHTS_" + std::to_string(set)] = buffers.addJointWeights(p, set);
-        }
-        Json prim = {{"attributes", std::move(attributes)}, {"indices", buffers.addIndices(p.indices, n)}, {"mode", 4}};
-        if (p.material >= 0) prim["material"] = p.material;
-        if (!p.targets.empty()) {
-          Json targets = Json::array();
-          for (const MorphTarget& t : p.targets) {
-            Json target = Json::object();
-            if (!t.positions.empty()) target["POSITION"] = buffers.addDeltas(t.positions, true);
-            if (!t.normals.empty()) target["NORMAL"] = buffers.addDeltas(t.normals, false);
-            if (!t.tangents.empty()) target["TANGENT"] = buffers.addDeltas(t.tangents, false);
-            targets.push_back(std::move(target));
-          }
-          prim["targets"] = std::move(targets);
-        }
-        prims.push_back(std::move(prim));
-      }
-      Json m = {{"primitives", std::move(prims)}};
-      if (!mesh.name.empty()) m["name"] = mesh.name;
-      if (!mesh.targetNames.empty()) {
-        m["weights"] = mesh.defaultWeights;
-        m["extras"] = {{"targetNames", mesh.targetNames}};
-      }
-      meshes.push_back(std::move(m));
-    }
+    for (const Mesh& mesh : model.meshes) meshes.push_back(meshJson(mesh, buffers));
     doc["meshes"] = std::move(meshes);
   }
-
   if (!model.nodes.empty()) {
     Json nodes = Json::array();
-    for (const Node& node : model.nodes) {
-      Json n = Json::object();
-      if (!node.name.empty()) n["name"] = node.name;
-      if (node.mesh >= 0) n["mesh"] = node.mesh;
-      if (node.skin >= 0) n["skin"] = node.skin;
-      if (!node.children.empty()) n["children"] = node.children;
-      if (node.hasMatrix) {
-        n["matrix"] = vec(&node.matrix[0][0], 16);
-      } else {
-        if (node.translation != glm::vec3(0.0f)) n["translation"] = vec(&node.translation.x, 3);
-        if (node.rotation != glm::quat(1.0f, 0.0f, 0.0f, 0.0f))
-          n["rotation"] = {node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w};
-        if (node.scale != glm::vec3(1.0f)) n["scale"] = vec(&node.scale.x, 3);
-      }
-      nodes.push_back(std::move(n));
-    }
+    for (const Node& node : model.nodes) nodes.push_back(nodeJson(node));
     doc["nodes"] = std::move(nodes);
     doc["scenes"] = Json::array({{{"nodes", model.roots}}});
     doc["scene"] = 0;
   }
-
   if (!model.skins.empty()) {
     Json skins = Json::array();
-    for (const Skin& skin : model.skins) {
-      Json sk = {{"joints", skin.joints}};
-      if (!skin.name.empty()) sk["name"] = skin.name;
-      if (skin.skeleton >= 0) sk["skeleton"] = skin.skeleton;
-      if (!skin.inverseBindMatrices.empty())
-        sk["inverseBindMatrices"] =
-            buffers.addFloats(&skin.inverseBindMatrices[0][0][0], skin.inverseBindMatrices.size(), 16, 0, false);
-      skins.push_back(std::move(sk));
-    }
+    for (const Skin& skin : model.skins) skins.push_back(skinJson(skin, buffers));
     doc["skins"] = std::move(skins);
   }
-
   Json animations = Json::array();
   for (const Animation& anim : model.animations) {
     // glTF requires at least one channel; an animation with none has nothing to say.
     if (anim.channels.empty() && anim.nodeChannels.empty()) continue;
-    Json samplers = Json::array(), channels = Json::array();
-    for (const NodeChannel& ch : anim.nodeChannels) {
-      static constexpr const char* kPaths[] = {"translation", "rotation", "scale"};
-      const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
-      const int output = buffers.addFloats(ch.values.data(), ch.values.size() / ch.components(),
-                                           static_cast<int>(ch.components()), 0, false);
-      channels.push_back(
-          {{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", kPaths[static_cast<int>(ch.path)]}}}});
-      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
-    }
-    for (const WeightsChannel& ch : anim.channels) {
-      const int input = buffers.addFloats(ch.times.data(), ch.times.size(), 1, 0, true);
-      const int output = buffers.addFloats(ch.values.data(), ch.values.size(), 1, 0, false);
-      channels.push_back({{"sampler", samplers.size()}, {"target", {{"node", ch.node}, {"path", "weights"}}}});
-      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolationName(ch.interpolation)}});
-    }
-    Json a = {{"channels", std::move(channels)}, {"samplers", std::move(samplers)}};
-    if (!anim.name.empty()) a["name"] = anim.name;
-    animations.push_back(std::move(a));
+    animations.push_back(animationJson(anim, buffers));
   }
   if (!animations.empty()) doc["animations"] = std::move(animations);
   return doc;

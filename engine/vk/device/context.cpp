@@ -90,13 +90,22 @@ Result<Context> Context::create(const ContextOptions& options) {
     return makeError(ErrorKind::Unsupported, std::string("Vulkan validation was requested but ") + kValidationLayer +
                          " is not installed (Debian package vulkan-validationlayers)",
                      VK_ERROR_LAYER_NOT_PRESENT);
+  if (auto made = ctx.createInstance(options); !made) return made.error();
+  if (auto chosen = ctx.choosePhysicalDevice(options); !chosen) return chosen.error();
+  if (auto made = ctx.createDevice(); !made) return made.error();
+  logInfo("vulkan: using " + ctx.info_.name + " (" + std::string(deviceTypeName(ctx.info_.type)) + ")" +
+          (ctx.validationEnabled_ ? ", validation on" : ""));
+  return ctx;
+}
 
-  // --- Instance ---
+// The instance (with the validation layer and its messenger when on) and the
+// window's surface, if the options make one.
+Result<void> Context::createInstance(const ContextOptions& options) {
   std::vector<const char*> extensions;
   for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
-  if (ctx.validationEnabled_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (validationEnabled_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   std::vector<const char*> layers;
-  if (ctx.validationEnabled_) layers.push_back(kValidationLayer);
+  if (validationEnabled_) layers.push_back(kValidationLayer);
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = options.applicationName.c_str();
@@ -109,37 +118,40 @@ Result<Context> Context::create(const ContextOptions& options) {
   instanceInfo.enabledLayerCount = static_cast<uint32_t>(layers.size());
   instanceInfo.ppEnabledLayerNames = layers.data();
   // Chained so messages from vkCreateInstance/vkDestroyInstance are caught too.
-  VkDebugUtilsMessengerCreateInfoEXT messengerInfo = debugMessengerInfo(ctx.validation_.get());
-  if (ctx.validationEnabled_) instanceInfo.pNext = &messengerInfo;
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo = debugMessengerInfo(validation_.get());
+  if (validationEnabled_) instanceInfo.pNext = &messengerInfo;
   VkInstance instance = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateInstance(&instanceInfo, nullptr, &instance));
-  ctx.instance_ = UniqueInstance(instance);
+  instance_ = UniqueInstance(instance);
 
-  if (ctx.validationEnabled_) {
-    auto messenger = DebugMessenger::create(instance, ctx.validation_.get());
+  if (validationEnabled_) {
+    auto messenger = DebugMessenger::create(instance, validation_.get());
     if (!messenger) return messenger.error();
-    ctx.messenger_ = std::move(messenger).value();
-    ctx.setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+    messenger_ = std::move(messenger).value();
+    setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
         vkGetInstanceProcAddr(instance, "vkSetDebugUtilsObjectNameEXT"));
   }
 
   if (options.createSurface) {
     auto surface = options.createSurface(instance);
     if (!surface) return surface.error();
-    ctx.surface_ = UniqueSurface(instance, surface.value());
+    surface_ = UniqueSurface(instance, surface.value());
   }
-  VkSurfaceKHR surface = ctx.surface_.get();
+  return {};
+}
 
-  // --- Physical device ---
+// The device the options or FACIAL_DEVICE prefer among the suitable ones, and
+// what it supports (info_).
+Result<void> Context::choosePhysicalDevice(const ContextOptions& options) {
   uint32_t deviceCount = 0;
-  ENG_VK_TRY(vkEnumeratePhysicalDevices(instance, &deviceCount, nullptr));
+  ENG_VK_TRY(vkEnumeratePhysicalDevices(instance_.get(), &deviceCount, nullptr));
   std::vector<VkPhysicalDevice> devices(deviceCount);
-  ENG_VK_TRY(vkEnumeratePhysicalDevices(instance, &deviceCount, devices.data()));
+  ENG_VK_TRY(vkEnumeratePhysicalDevices(instance_.get(), &deviceCount, devices.data()));
   std::vector<DeviceCandidate> candidates;
   for (VkPhysicalDevice d : devices) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(d, &props);
-    candidates.push_back({props.deviceName, props.deviceType, whyUnsuitable(d, props, surface)});
+    candidates.push_back({props.deviceName, props.deviceType, whyUnsuitable(d, props, surface_.get())});
   }
   std::string preferenceText = options.device;
   if (preferenceText.empty()) {
@@ -148,9 +160,9 @@ Result<Context> Context::create(const ContextOptions& options) {
   auto chosen = selectDevice(candidates, DevicePreference::parse(preferenceText));
   if (!chosen) return makeError(chosen.error().kind, chosen.error().message, VK_ERROR_INITIALIZATION_FAILED);
   VkPhysicalDevice physical = devices[chosen.value()];
-  ctx.physicalDevice_ = physical;
+  physicalDevice_ = physical;
 
-  DeviceInfo& info = ctx.info_;
+  DeviceInfo& info = info_;
   vkGetPhysicalDeviceProperties(physical, &info.properties);
   vkGetPhysicalDeviceMemoryProperties(physical, &info.memory);
   info.name = info.properties.deviceName;
@@ -160,19 +172,22 @@ Result<Context> Context::create(const ContextOptions& options) {
   vkGetPhysicalDeviceFeatures(physical, &supported);
   info.vertexPipelineStores = supported.vertexPipelineStoresAndAtomics == VK_TRUE;
   info.samplerAnisotropy = supported.samplerAnisotropy == VK_TRUE;
+  return {};
+}
 
-  // --- Logical device ---
-  ctx.queueFamily_ = *findQueueFamily(physical, surface);
+// The logical device with its one queue, and the one-shot command pool and fence.
+Result<void> Context::createDevice() {
+  queueFamily_ = *findQueueFamily(physicalDevice_, surface_.get());
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  queueInfo.queueFamilyIndex = ctx.queueFamily_;
+  queueInfo.queueFamilyIndex = queueFamily_;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
   VkPhysicalDeviceFeatures enabled{};
-  enabled.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
-  enabled.samplerAnisotropy = supported.samplerAnisotropy;
+  enabled.vertexPipelineStoresAndAtomics = info_.vertexPipelineStores ? VK_TRUE : VK_FALSE;
+  enabled.samplerAnisotropy = info_.samplerAnisotropy ? VK_TRUE : VK_FALSE;
   std::vector<const char*> deviceExtensions;
-  if (surface != VK_NULL_HANDLE) deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  if (surface_.get() != VK_NULL_HANDLE) deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
@@ -180,24 +195,21 @@ Result<Context> Context::create(const ContextOptions& options) {
   deviceInfo.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
   deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
   VkDevice device = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateDevice(physical, &deviceInfo, nullptr, &device));
-  ctx.device_ = UniqueDevice(device);
-  vkGetDeviceQueue(device, ctx.queueFamily_, 0, &ctx.queue_);
+  ENG_VK_TRY(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device));
+  device_ = UniqueDevice(device);
+  vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  poolInfo.queueFamilyIndex = ctx.queueFamily_;
+  poolInfo.queueFamilyIndex = queueFamily_;
   VkCommandPool pool = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
-  ctx.oneShotPool_ = UniqueCommandPool(device, pool);
+  oneShotPool_ = UniqueCommandPool(device, pool);
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VkFence fence = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateFence(device, &fenceInfo, nullptr, &fence));
-  ctx.oneShotFence_ = UniqueFence(device, fence);
-
-  logInfo("vulkan: using " + info.name + " (" + std::string(deviceTypeName(info.type)) + ")" +
-          (ctx.validationEnabled_ ? ", validation on" : ""));
-  return ctx;
+  oneShotFence_ = UniqueFence(device, fence);
+  return {};
 }
 
 Result<uint32_t> Context::memoryTypeFor(const VkMemoryRequirements& requirements, MemoryUsage usage) const {

@@ -96,6 +96,10 @@ class Context {
 
  private:
   Context();
+  // The steps of create(), in order.
+  Result<void> createInstance(const ContextOptions& options);
+  Result<void> choosePhysicalDevice(const ContextOptions& options);
+  Result<void> createDevice();
 
   std::unique_ptr<ValidationMonitor> validation_;  // stable address: the messenger's user data
   UniqueInstance instance_;

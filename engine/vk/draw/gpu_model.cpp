@@ -12,6 +12,7 @@
 #include "engine/scene/crease_shading.h"
 #include "engine/scene/face_dressing.h"
 #include "engine/scene/mesh_lod.h"
+#include "engine/scene/model_check.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/draw/detail_array.h"
@@ -260,94 +261,6 @@ VkDescriptorBufferInfo rangeOr(VkBuffer buffer, VkDeviceSize offset, VkDeviceSiz
 
 }  // namespace
 
-Result<void> validateModelForGpu(const Model& model) {
-  const std::string file = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
-  for (size_t m = 0; m < model.meshes.size(); ++m) {
-    const Mesh& mesh = model.meshes[m];
-    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const Primitive& prim = mesh.primitives[p];
-      const size_t n = prim.vertexCount();
-      auto fail = [&](const std::string& what) { return makeError(ErrorKind::Malformed, where(model, m, p) + ": " + what); };
-      if (n == 0) return fail("has no vertices");
-      if (n > UINT32_MAX / 4) return fail("has " + std::to_string(n) + " vertices, too many");
-      if (prim.normals.size() != n)
-        return fail(std::to_string(prim.normals.size()) + " normals for " + std::to_string(n) + " vertices");
-      if (!prim.texcoords.empty() && prim.texcoords.size() != n)
-        return fail(std::to_string(prim.texcoords.size()) + " texcoords for " + std::to_string(n) + " vertices");
-      if (!prim.tangents.empty() && prim.tangents.size() != n)
-        return fail(std::to_string(prim.tangents.size()) + " tangents for " + std::to_string(n) + " vertices");
-      if (prim.indices.empty() || prim.indices.size() % 3 != 0)
-        return fail(std::to_string(prim.indices.size()) + " indices is not a non-empty triangle list");
-      for (uint32_t index : prim.indices) {
-        if (index >= n) return fail("index " + std::to_string(index) + " >= vertex count " + std::to_string(n));
-      }
-      if (prim.targets.size() != mesh.targetNames.size())
-        return fail(std::to_string(prim.targets.size()) + " morph targets but the mesh names " +
-                    std::to_string(mesh.targetNames.size()));
-      for (size_t t = 0; t < prim.targets.size(); ++t) {
-        const MorphTarget& target = prim.targets[t];
-        for (const auto* arr : {&target.positions, &target.normals, &target.tangents}) {
-          if (!arr->empty() && arr->size() != n)
-            return fail("target " + std::to_string(t) + " has an attribute with " + std::to_string(arr->size()) +
-                        " deltas for " + std::to_string(n) + " vertices");
-        }
-      }
-      if (prim.joints.size() != prim.jointWeights.size() || prim.joints.size() % n != 0)
-        return fail(std::to_string(prim.joints.size()) + " joint groups and " + std::to_string(prim.jointWeights.size()) +
-                    " weight groups for " + std::to_string(n) + " vertices");
-      if (prim.material < -1 || prim.material >= static_cast<int>(model.materials.size()))
-        return fail("material " + std::to_string(prim.material) + " out of range (" +
-                    std::to_string(model.materials.size()) + " materials)");
-    }
-  }
-  for (size_t i = 0; i < model.materials.size(); ++i) {
-    const Material& mat = model.materials[i];
-    auto badImage = [&](int image) { return image < -1 || image >= static_cast<int>(model.images.size()); };
-    if (badImage(mat.baseColorImage))
-      return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " base colour image " +
-                       std::to_string(mat.baseColorImage) + " out of range (" + std::to_string(model.images.size()) +
-                       " images)");
-    for (const DetailLayer& layer : mat.detailLayers) {
-      if (layer.image < 0 || badImage(layer.image))
-        return makeError(ErrorKind::Malformed, file + ": material " + std::to_string(i) + " detail layer '" + layer.target + "' image " +
-                         std::to_string(layer.image) + " out of range (" + std::to_string(model.images.size()) +
-                         " images)");
-    }
-  }
-  for (const eng::Image& img : model.images) {
-    if (!img.rgba8.empty() && img.rgba8.size() != size_t(img.width) * size_t(img.height) * 4)
-      return makeError(ErrorKind::Malformed, file + ": image '" + img.name + "' has " + std::to_string(img.rgba8.size()) + " bytes for " +
-                       std::to_string(img.width) + "x" + std::to_string(img.height) + " RGBA8");
-  }
-  for (size_t i = 0; i < model.nodes.size(); ++i) {
-    const Node& node = model.nodes[i];
-    if (node.mesh < -1 || node.mesh >= static_cast<int>(model.meshes.size()))
-      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " mesh " + std::to_string(node.mesh) +
-                       " out of range (" + std::to_string(model.meshes.size()) + " meshes)");
-    if (node.skin < -1 || node.skin >= static_cast<int>(model.skins.size()))
-      return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " skin " + std::to_string(node.skin) +
-                       " out of range (" + std::to_string(model.skins.size()) + " skins)");
-    for (int child : node.children) {
-      if (child < 0 || child >= static_cast<int>(model.nodes.size()))
-        return makeError(ErrorKind::Malformed, file + ": node " + std::to_string(i) + " child " + std::to_string(child) + " out of range");
-    }
-  }
-  for (size_t s = 0; s < model.skins.size(); ++s) {
-    const Skin& skin = model.skins[s];
-    if (skin.inverseBindMatrices.size() != skin.joints.size())
-      return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " has " + std::to_string(skin.inverseBindMatrices.size()) +
-                       " inverse bind matrices for " + std::to_string(skin.joints.size()) + " joints");
-    for (int joint : skin.joints)
-      if (joint < 0 || joint >= static_cast<int>(model.nodes.size()))
-        return makeError(ErrorKind::Malformed, file + ": skin " + std::to_string(s) + " joint " + std::to_string(joint) + " out of range");
-  }
-  for (int root : model.roots) {
-    if (root < 0 || root >= static_cast<int>(model.nodes.size()))
-      return makeError(ErrorKind::Malformed, file + ": scene root " + std::to_string(root) + " out of range");
-  }
-  return {};
-}
-
 // What create() stages before anything reaches the device.
 struct GpuModel::Staging {
   ByteBlob vertices, indices, deltas, detail, skin;
@@ -355,7 +268,8 @@ struct GpuModel::Staging {
 };
 
 Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& source) {
-  ENG_TRY(validateModelForGpu(source));
+  if (auto valid = checkModel(source, ModelCheck::gpuUpload()); !valid)
+    return valid.error().prefixed((source.sourcePath.empty() ? std::string("<model>") : source.sourcePath) + ": ");
   // An untextured face is dressed for display only: the CPU model (what
   // tools inspect and export) stays as loaded.
   std::optional<Model> dressed;

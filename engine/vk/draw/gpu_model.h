@@ -68,8 +68,8 @@ struct PrimitiveRanges;  // gpu_model.cpp: where create() staged one primitive's
 
 class GpuModel {
  public:
-  // Checks the model's consistency first (sizes, indices, material and image
-  // indices); errors name the model file, mesh and primitive.
+  // Checks the model first (eng::checkModel with ModelCheck::gpuUpload());
+  // errors name the model file, then the mesh and primitive.
   static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model);
 
   const std::string& name() const { return name_; }
@@ -136,9 +136,6 @@ class GpuModel {
   std::vector<UniqueBufferView> texelViews_;  // the morph pre-pass's inputs of the primitives with deltas
   UniqueDescriptorPool descriptorPool_;
 };
-
-// The consistency checks GpuModel::create runs (exposed for tools and tests).
-Result<void> validateModelForGpu(const Model& model);
 
 // A material's own parameters, as an instance draws it when nothing moves
 // them (a per-instance record, e.g. VRM material binds, starts from this).

@@ -45,6 +45,8 @@ struct PipelineShape {
   bool blend = false;        // alpha blending over what is drawn (tests depth, writes none)
 };
 
+// Long: one VkGraphicsPipelineCreateInfo filled state by state, in the order
+// Vulkan lists them; split up, each piece would only move a struct around.
 Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& layouts, VkRenderPass renderPass,
                                       VkSampleCountFlagBits samples, const PipelineShape& shape) {
   // Separate streams (binding = location): position, normal, texcoord, tangent, colour.
@@ -162,16 +164,56 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
                                               const ShaderLibrary& shaders, VkRenderPass renderPass,
                                               VkSampleCountFlagBits samples, VkRenderPass shadowPass,
                                               const QualitySettings& quality) {
-  auto meshVert = createModule(ctx, shaders, "mesh_vert");
-  if (!meshVert) return meshVert.error();
-  auto meshFrag = createModule(ctx, shaders, "mesh_frag");
-  if (!meshFrag) return meshFrag.error();
+  ScenePipelines p;
+  if (auto made = p.createMeshPipelines(ctx, layouts, shaders, renderPass, samples, quality); !made) return made.error();
   auto bgVert = createModule(ctx, shaders, "background_vert");
   if (!bgVert) return bgVert.error();
   auto bgFrag = createModule(ctx, shaders, "background_frag");
   if (!bgFrag) return bgFrag.error();
 
-  ScenePipelines p;
+  PipelineShape background;
+  background.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, bgVert->get()),
+                       stage(VK_SHADER_STAGE_FRAGMENT_BIT, bgFrag->get())};
+  background.meshVertices = false;
+  background.cull = VK_CULL_MODE_NONE;
+  background.depth = false;
+  auto bg = createPipeline(ctx, layouts, renderPass, samples, background);
+  if (!bg) return bg.error();
+  p.background_ = std::move(bg).value();
+
+  if (auto made = p.createShadowPipelines(ctx, layouts, shaders, shadowPass); !made) return made.error();
+
+  auto morphComp = createModule(ctx, shaders, "morph_comp");
+  if (!morphComp) return morphComp.error();
+  auto morph = createMorphPipeline(ctx, layouts, morphComp->get());
+  if (!morph) return morph.error();
+  p.morph_ = std::move(morph).value();
+
+  if (ctx.deviceInfo().vertexPipelineStores) {
+    auto captureVert = createModule(ctx, shaders, "capture_vert");
+    if (!captureVert) return captureVert.error();
+    PipelineShape capture;
+    capture.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, captureVert->get())};
+    capture.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;  // every vertex exactly once per instance
+    capture.cull = VK_CULL_MODE_NONE;
+    capture.depth = false;
+    capture.rasterizerDiscard = true;
+    auto cap = createPipeline(ctx, layouts, renderPass, samples, capture);
+    if (!cap) return cap.error();
+    p.capture_ = std::move(cap).value();
+  }
+  return p;
+}
+
+// The mesh pipelines (by sidedness and alpha mode) and the MToon outlines,
+// one vertex and fragment shader specialised per pipeline.
+Result<void> ScenePipelines::createMeshPipelines(const Context& ctx, const SceneLayouts& layouts,
+                                                 const ShaderLibrary& shaders, VkRenderPass renderPass,
+                                                 VkSampleCountFlagBits samples, const QualitySettings& quality) {
+  auto meshVert = createModule(ctx, shaders, "mesh_vert");
+  if (!meshVert) return meshVert.error();
+  auto meshFrag = createModule(ctx, shaders, "mesh_frag");
+  if (!meshFrag) return meshFrag.error();
   // The tier's switches in lighting.glsl (constant_id 0 and 1), and whether
   // mesh.frag may discard (constant_id 2: only the MASK pipelines, since a
   // shader that can discard loses early depth testing for every draw).
@@ -204,7 +246,7 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
       constants.alphaMask = alpha == size_t(AlphaPipeline::Mask) ? VK_TRUE : VK_FALSE;
       auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
       if (!pipeline) return pipeline.error();
-      p.mesh_[sides][alpha] = std::move(pipeline).value();
+      mesh_[sides][alpha] = std::move(pipeline).value();
     }
   // Outlines: the hull's back faces (front faces culled), opaque or cut out.
   vertexOutline = VK_TRUE;
@@ -217,19 +259,15 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
       constants.alphaMask = masked == 1 ? VK_TRUE : VK_FALSE;
       auto pipeline = createPipeline(ctx, layouts, renderPass, samples, mesh);
       if (!pipeline) return pipeline.error();
-      p.outline_[winding][masked] = std::move(pipeline).value();
+      outline_[winding][masked] = std::move(pipeline).value();
     }
+  return {};
+}
 
-  PipelineShape background;
-  background.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, bgVert->get()),
-                       stage(VK_SHADER_STAGE_FRAGMENT_BIT, bgFrag->get())};
-  background.meshVertices = false;
-  background.cull = VK_CULL_MODE_NONE;
-  background.depth = false;
-  auto bg = createPipeline(ctx, layouts, renderPass, samples, background);
-  if (!bg) return bg.error();
-  p.background_ = std::move(bg).value();
-
+// The shadow map's depth-only pipelines: opaque casters, and cut-out ones
+// whose fragment shader discards where the base colour's alpha is below its cutoff.
+Result<void> ScenePipelines::createShadowPipelines(const Context& ctx, const SceneLayouts& layouts,
+                                                   const ShaderLibrary& shaders, VkRenderPass shadowPass) {
   auto shadowVert = createModule(ctx, shaders, "shadow_vert");
   if (!shadowVert) return shadowVert.error();
   PipelineShape shadow;
@@ -239,7 +277,7 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
   shadow.depthBias = true;
   auto shadowPipeline = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
   if (!shadowPipeline) return shadowPipeline.error();
-  p.shadow_ = std::move(shadowPipeline).value();
+  shadow_ = std::move(shadowPipeline).value();
   auto shadowMaskVert = createModule(ctx, shaders, "shadow_mask_vert");
   if (!shadowMaskVert) return shadowMaskVert.error();
   auto shadowMaskFrag = createModule(ctx, shaders, "shadow_mask_frag");
@@ -248,28 +286,8 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
                    stage(VK_SHADER_STAGE_FRAGMENT_BIT, shadowMaskFrag->get())};
   auto shadowMasked = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
   if (!shadowMasked) return shadowMasked.error();
-  p.shadowMasked_ = std::move(shadowMasked).value();
-
-  auto morphComp = createModule(ctx, shaders, "morph_comp");
-  if (!morphComp) return morphComp.error();
-  auto morph = createMorphPipeline(ctx, layouts, morphComp->get());
-  if (!morph) return morph.error();
-  p.morph_ = std::move(morph).value();
-
-  if (ctx.deviceInfo().vertexPipelineStores) {
-    auto captureVert = createModule(ctx, shaders, "capture_vert");
-    if (!captureVert) return captureVert.error();
-    PipelineShape capture;
-    capture.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, captureVert->get())};
-    capture.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;  // every vertex exactly once per instance
-    capture.cull = VK_CULL_MODE_NONE;
-    capture.depth = false;
-    capture.rasterizerDiscard = true;
-    auto cap = createPipeline(ctx, layouts, renderPass, samples, capture);
-    if (!cap) return cap.error();
-    p.capture_ = std::move(cap).value();
-  }
-  return p;
+  shadowMasked_ = std::move(shadowMasked).value();
+  return {};
 }
 
 }  // namespace eng::vk

@@ -45,6 +45,10 @@ class ScenePipelines {
   VkPipeline morph() const { return morph_.get(); }      // compute: the morph pre-pass (morph.comp)
 
  private:
+  Result<void> createMeshPipelines(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
+                                   VkRenderPass renderPass, VkSampleCountFlagBits samples, const QualitySettings& quality);
+  Result<void> createShadowPipelines(const Context& ctx, const SceneLayouts& layouts, const ShaderLibrary& shaders,
+                                     VkRenderPass shadowPass);
   // Mesh pipelines by sidedness and alpha mode.
   static constexpr size_t kCulled = 0, kCulledClockwise = 1, kDoubleSided = 2, kMeshSides = 3;
   static constexpr size_t kAlphaPipelines = 3;

@@ -150,11 +150,38 @@ Result<void> SceneRenderer::writeDescriptors(Slot& slot) const {
   return {};
 }
 
+// The steps of laying out one frame: each fills the scratch vectors for the
+// model being laid out (modelScratch_ order), which upload() then copies into
+// the slot's buffers.
 Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInstance> instances, Mode mode) {
   if (slotIndex >= slots_.size())
     return makeError(ErrorKind::InvalidArgument, "scene renderer: frame slot " + std::to_string(slotIndex) + " of " +
                      std::to_string(slots_.size()));
   Slot& slot = slots_[slotIndex];
+  clearLayout(slot);
+  ENG_TRY(checkInstances(instances));
+  for (const GpuModel* model : modelScratch_) {
+    const ModelLayout at{*model, instances, mode, gatherMembers(slot, *model, instances)};
+    layOutMaterials(at);
+    layOutWeights(at);
+    ENG_TRY(listActiveWeights(at));
+    jointSetScratch_.assign(memberScratch_.size(), JointSet{});
+    if (mode == Mode::Draw) {
+      for (const MeshNode& node : model->meshNodes()) addMeshBatches(slot, at, static_cast<uint32_t>(node.mesh), &node);
+    } else {
+      // Every mesh once, posed by the first scene node that draws it (if any).
+      const auto nodes = model->meshNodes();
+      for (uint32_t m = 0; m < model->meshes().size(); ++m) {
+        const auto first = std::find_if(nodes.begin(), nodes.end(), [&](const MeshNode& n) { return n.mesh == int(m); });
+        addMeshBatches(slot, at, m, first == nodes.end() ? nullptr : &*first);
+      }
+    }
+  }
+  return upload(slot, mode);
+}
+
+// A new frame in the slot: no batches, and scratch kept only for its capacity.
+void SceneRenderer::clearLayout(Slot& slot) {
   slot.batches.clear();
   slot.members.clear();
   slot.capturedVertices = 0;
@@ -166,160 +193,181 @@ Result<void> SceneRenderer::build(uint32_t slotIndex, std::span<const ModelInsta
   jointScratch_.clear();
   materialScratch_.clear();
   modelScratch_.clear();
+}
 
+// The caller's instances, refused by index and model before anything is laid
+// out; collects the distinct models in modelScratch_ (first use first).
+Result<void> SceneRenderer::checkInstances(std::span<const ModelInstance> instances) {
   for (size_t i = 0; i < instances.size(); ++i) {
     const ModelInstance& inst = instances[i];
     if (!inst.model) return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + ": no model");
+    // Made only for a refusal: a frame that passes allocates nothing.
+    auto refuse = [&](const std::string& what) {
+      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " + what);
+    };
     if (inst.weights.size() != inst.model->weightCount())
-      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
-                       std::to_string(inst.weights.size()) + " weights given, the model has " +
-                       std::to_string(inst.model->weightCount()));
+      return refuse(std::to_string(inst.weights.size()) + " weights given, the model has " +
+                    std::to_string(inst.model->weightCount()));
     if (!inst.nodeWorld.empty() && inst.nodeWorld.size() != inst.model->nodeCount())
-      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): pose of " +
-                       std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
-                       std::to_string(inst.model->nodeCount()));
+      return refuse("pose of " + std::to_string(inst.nodeWorld.size()) + " nodes given, the model has " +
+                    std::to_string(inst.model->nodeCount()));
     if (inst.materials.size() > inst.model->materialCount())
-      return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): " +
-                       std::to_string(inst.materials.size()) + " materials given, the model has " +
-                       std::to_string(inst.model->materialCount()));
+      return refuse(std::to_string(inst.materials.size()) + " materials given, the model has " +
+                    std::to_string(inst.model->materialCount()));
     for (size_t m = 0; m < inst.materials.size(); ++m) {
       const InstanceMaterial& mat = inst.materials[m];
       const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform + mat.toonShade + mat.toonShading +
                             mat.toonRim + mat.toonOutline + mat.toonOutlineStyle;
       if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
-        return makeError(ErrorKind::InvalidArgument, "instance " + std::to_string(i) + " (" + inst.model->name() + "): material " +
-                         std::to_string(m) + " has a non-finite value");
+        return refuse("material " + std::to_string(m) + " has a non-finite value");
     }
     if (std::find(modelScratch_.begin(), modelScratch_.end(), inst.model) == modelScratch_.end())
       modelScratch_.push_back(inst.model);
   }
+  return {};
+}
 
-  for (const GpuModel* model : modelScratch_) {
-    memberScratch_.clear();
-    for (size_t i = 0; i < instances.size(); ++i) {
-      if (instances[i].model == model) memberScratch_.push_back(static_cast<uint32_t>(i));
-    }
-    // Mirrored placements after the others: a draw covers a run of instances
-    // that wind the same way (addBatches), so they make one run, not many.
-    std::stable_partition(memberScratch_.begin(), memberScratch_.end(),
-                          [&](uint32_t i) { return !isMirrored(instances[i].transform); });
-    const uint32_t instanceCount = static_cast<uint32_t>(memberScratch_.size());
-    const uint32_t membersOffset = static_cast<uint32_t>(slot.members.size());
-    slot.members.insert(slot.members.end(), memberScratch_.begin(), memberScratch_.end());
+// The model's instances (memberScratch_), mirrored placements after the
+// others: a draw covers a run of instances that wind the same way
+// (addPrimitiveBatches), so they make one run, not many. Returns where they
+// start in slot.members.
+uint32_t SceneRenderer::gatherMembers(Slot& slot, const GpuModel& model, std::span<const ModelInstance> instances) {
+  memberScratch_.clear();
+  for (size_t i = 0; i < instances.size(); ++i)
+    if (instances[i].model == &model) memberScratch_.push_back(static_cast<uint32_t>(i));
+  std::stable_partition(memberScratch_.begin(), memberScratch_.end(),
+                        [&](uint32_t i) { return !isMirrored(instances[i].transform); });
+  const uint32_t membersOffset = static_cast<uint32_t>(slot.members.size());
+  slot.members.insert(slot.members.end(), memberScratch_.begin(), memberScratch_.end());
+  return membersOffset;
+}
 
-    // Every member's material records: the model's own, then the member's overrides.
-    const std::span<const InstanceMaterial> rest = model->materials();
-    materialOffsetScratch_.clear();
-    for (uint32_t member : memberScratch_) {
-      const size_t start = materialScratch_.size();
-      materialOffsetScratch_.push_back(static_cast<uint32_t>(start));
-      materialScratch_.insert(materialScratch_.end(), rest.begin(), rest.end());
-      const std::span<const InstanceMaterial> own = instances[member].materials;
-      std::copy(own.begin(), own.end(), materialScratch_.begin() + std::ptrdiff_t(start));
-    }
+// Every member's material records: the model's own, then the member's overrides.
+void SceneRenderer::layOutMaterials(const ModelLayout& at) {
+  const std::span<const InstanceMaterial> rest = at.model.materials();
+  materialOffsetScratch_.clear();
+  for (uint32_t member : memberScratch_) {
+    const size_t start = materialScratch_.size();
+    materialOffsetScratch_.push_back(static_cast<uint32_t>(start));
+    materialScratch_.insert(materialScratch_.end(), rest.begin(), rest.end());
+    const std::span<const InstanceMaterial> own = at.instances[member].materials;
+    std::copy(own.begin(), own.end(), materialScratch_.begin() + std::ptrdiff_t(start));
+  }
+}
 
-    // Every member's weights as the morph pre-pass reads them: zero where the
-    // active list below has no entry, so both sum the same terms.
-    weightOffsetScratch_.clear();
-    for (uint32_t member : memberScratch_) {
-      weightOffsetScratch_.push_back(static_cast<uint32_t>(weightScratch_.size()));
-      for (float w : instances[member].weights)
-        weightScratch_.push_back(std::abs(w) >= kActiveWeightThreshold ? w : 0.0f);
-    }
+// Every member's weights as the morph pre-pass reads them: zero where the
+// active list (listActiveWeights) has no entry, so both sum the same terms.
+void SceneRenderer::layOutWeights(const ModelLayout& at) {
+  weightOffsetScratch_.clear();
+  for (uint32_t member : memberScratch_) {
+    weightOffsetScratch_.push_back(static_cast<uint32_t>(weightScratch_.size()));
+    for (float w : at.instances[member].weights) weightScratch_.push_back(std::abs(w) >= kActiveWeightThreshold ? w : 0.0f);
+  }
+}
 
-    jointSetScratch_.assign(memberScratch_.size(), JointSet{});
-
-    // The active list of every (instance, mesh).
-    const std::span<const GpuMesh> meshes = model->meshes();
-    rangeScratch_.assign(memberScratch_.size() * meshes.size(), {});
-    for (size_t k = 0; k < memberScratch_.size(); ++k) {
-      const ModelInstance& inst = instances[memberScratch_[k]];
-      for (size_t m = 0; m < meshes.size(); ++m) {
-        const size_t start = activeScratch_.size();
-        activeScratch_.resize(start + meshes[m].targetCount);
-        ActiveWeightsJob job{inst.weights.subspan(meshes[m].weightOffset, meshes[m].targetCount),
-                             std::span(activeScratch_).subspan(start)};
-        if (auto valid = job.Validate(); !valid)
-          return valid.error().prefixed("instance " + std::to_string(memberScratch_[k]) + " (" + model->name() + ") mesh " +
-                           std::to_string(m) + ": ");
-        const uint32_t count = job.Run();
-        activeScratch_.resize(start + count);
-        rangeScratch_[k * meshes.size() + m] = {static_cast<uint32_t>(start), count};
-      }
-    }
-
-    // node: the mesh node drawn (its pose and skin), or null (capture of a mesh no scene node draws).
-    auto addBatches = [&](uint32_t mesh, const MeshNode* node) {
-      const uint32_t firstInstance = static_cast<uint32_t>(instanceScratch_.size());
-      for (size_t k = 0; k < memberScratch_.size(); ++k) {
-        const ModelInstance& inst = instances[memberScratch_[k]];
-        GpuInstance record;
-        if (mode == Mode::Draw)
-          record.model = inst.transform * (inst.nodeWorld.empty() ? node->world : inst.nodeWorld[node->node]);
-        record.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(record.model)));
-        const ActiveRange range = rangeScratch_[k * meshes.size() + mesh];
-        record.activeOffset = range.offset;
-        record.activeCount = range.count;
-        record.materialOffset = materialOffsetScratch_[k];
-        record.weightOffset = weightOffsetScratch_[k] + meshes[mesh].weightOffset;
-        if (node && node->skin >= 0) {
-          // A character split into parts (mesh nodes) under one node gives
-          // every part the same joint matrices: made and uploaded once per
-          // member, not once per part (a Ready Player Me avatar has six or more).
-          const glm::mat4& meshWorld = inst.nodeWorld.empty() ? node->world : inst.nodeWorld[node->node];
-          JointSet& set = jointSetScratch_[k];
-          if (set.skin != node->skin || set.meshWorld != meshWorld) {
-            model->jointMatrices(*node, inst.nodeWorld, skinScratch_);
-            set = {node->skin, meshWorld, static_cast<uint32_t>(jointScratch_.size()),
-                   static_cast<uint32_t>(skinScratch_.size())};
-            jointScratch_.insert(jointScratch_.end(), skinScratch_.begin(), skinScratch_.end());
-          }
-          record.jointOffset = set.offset;
-          record.jointCount = set.count;
-        }
-        // The transform the vertices finally see: a skin's joint matrices
-        // undo the mesh node's own (skinJointMatrices).
-        const bool skinned = record.jointCount > 0;
-        const glm::mat4 placed = skinned ? record.model * jointScratch_[record.jointOffset] : record.model;
-        mirroredScratch_.push_back(mode == Mode::Draw && isMirrored(placed));
-        instanceScratch_.push_back(record);
-      }
-      bool anyActive = false;
-      for (size_t k = 0; k < memberScratch_.size(); ++k) anyActive |= rangeScratch_[k * meshes.size() + mesh].count > 0;
-      for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
-        const GpuPrimitive& prim = meshes[mesh].primitives[p];
-        const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
-        // One draw per run of instances that wind the same way: the winding
-        // is pipeline state.
-        for (uint32_t runStart = 0; runStart < instanceCount;) {
-          const bool mirrored = mirroredScratch_[firstInstance + runStart];
-          uint32_t runEnd = runStart + 1;
-          while (runEnd < instanceCount && mirroredScratch_[firstInstance + runEnd] == mirrored) ++runEnd;
-          const uint32_t count = runEnd - runStart;
-          slot.batches.push_back({model, mesh, p, firstInstance + runStart, count, slot.capturedVertices,
-                                  slot.morphedVec4s, morphs, membersOffset + runStart});
-          slot.batches.back().mirrored = mirrored;
-          slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance + runStart, count);
-          if (mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * count;
-          // Room for every primitive with deltas, active or not: the buffer's
-          // size then stays the same from frame to frame for the same instances.
-          if ((prim.constants.flags & kDrawFlagMorphed) != 0)
-            slot.morphedVec4s += prim.vertexCount * count * morphedVec4sPerVertex(prim);
-          runStart = runEnd;
-        }
-      }
-    };
-    if (mode == Mode::Draw) {
-      for (const MeshNode& node : model->meshNodes()) addBatches(static_cast<uint32_t>(node.mesh), &node);
-    } else {
-      for (uint32_t m = 0; m < meshes.size(); ++m) {
-        const auto nodes = model->meshNodes();
-        const auto first = std::find_if(nodes.begin(), nodes.end(), [&](const MeshNode& n) { return n.mesh == int(m); });
-        addBatches(m, first == nodes.end() ? nullptr : &*first);
-      }
+// The active list of every (member, mesh), and its range in rangeScratch_.
+Result<void> SceneRenderer::listActiveWeights(const ModelLayout& at) {
+  const std::span<const GpuMesh> meshes = at.model.meshes();
+  rangeScratch_.assign(memberScratch_.size() * meshes.size(), {});
+  for (size_t k = 0; k < memberScratch_.size(); ++k) {
+    const ModelInstance& inst = at.instances[memberScratch_[k]];
+    for (size_t m = 0; m < meshes.size(); ++m) {
+      const size_t start = activeScratch_.size();
+      activeScratch_.resize(start + meshes[m].targetCount);
+      ActiveWeightsJob job{inst.weights.subspan(meshes[m].weightOffset, meshes[m].targetCount),
+                           std::span(activeScratch_).subspan(start)};
+      if (auto valid = job.Validate(); !valid)
+        return valid.error().prefixed("instance " + std::to_string(memberScratch_[k]) + " (" + at.model.name() + ") mesh " +
+                                      std::to_string(m) + ": ");
+      const uint32_t count = job.Run();
+      activeScratch_.resize(start + count);
+      rangeScratch_[k * meshes.size() + m] = {static_cast<uint32_t>(start), count};
     }
   }
+  return {};
+}
 
+// node: the mesh node drawn (its pose and skin), or null (capture of a mesh no scene node draws).
+void SceneRenderer::addMeshBatches(Slot& slot, const ModelLayout& at, uint32_t mesh, const MeshNode* node) {
+  const uint32_t firstInstance = static_cast<uint32_t>(instanceScratch_.size());
+  for (size_t k = 0; k < memberScratch_.size(); ++k) addInstanceRecord(at, k, mesh, node);
+  addPrimitiveBatches(slot, at, mesh, firstInstance);
+}
+
+// Member k's record for one mesh: its transform, its slices of the active
+// list, weights, materials and joint matrices; and whether it mirrors.
+void SceneRenderer::addInstanceRecord(const ModelLayout& at, size_t k, uint32_t mesh, const MeshNode* node) {
+  const ModelInstance& inst = at.instances[memberScratch_[k]];
+  const std::span<const GpuMesh> meshes = at.model.meshes();
+  GpuInstance record;
+  if (at.mode == Mode::Draw) record.model = inst.transform * (inst.nodeWorld.empty() ? node->world : inst.nodeWorld[node->node]);
+  record.normalMatrix = glm::mat4(glm::inverseTranspose(glm::mat3(record.model)));
+  const ActiveRange range = rangeScratch_[k * meshes.size() + mesh];
+  record.activeOffset = range.offset;
+  record.activeCount = range.count;
+  record.materialOffset = materialOffsetScratch_[k];
+  record.weightOffset = weightOffsetScratch_[k] + meshes[mesh].weightOffset;
+  if (node && node->skin >= 0) {
+    const JointSet& set = memberJoints(at, k, *node);
+    record.jointOffset = set.offset;
+    record.jointCount = set.count;
+  }
+  // The transform the vertices finally see: a skin's joint matrices
+  // undo the mesh node's own (skinJointMatrices).
+  const bool skinned = record.jointCount > 0;
+  const glm::mat4 placed = skinned ? record.model * jointScratch_[record.jointOffset] : record.model;
+  mirroredScratch_.push_back(at.mode == Mode::Draw && isMirrored(placed));
+  instanceScratch_.push_back(record);
+}
+
+// A character split into parts (mesh nodes) under one node gives every part
+// the same joint matrices: made and uploaded once per member, not once per
+// part (a Ready Player Me avatar has six or more).
+const SceneRenderer::JointSet& SceneRenderer::memberJoints(const ModelLayout& at, size_t k, const MeshNode& node) {
+  const ModelInstance& inst = at.instances[memberScratch_[k]];
+  const glm::mat4& meshWorld = inst.nodeWorld.empty() ? node.world : inst.nodeWorld[node.node];
+  JointSet& set = jointSetScratch_[k];
+  if (set.skin != node.skin || set.meshWorld != meshWorld) {
+    at.model.jointMatrices(node, inst.nodeWorld, skinScratch_);
+    set = {node.skin, meshWorld, static_cast<uint32_t>(jointScratch_.size()), static_cast<uint32_t>(skinScratch_.size())};
+    jointScratch_.insert(jointScratch_.end(), skinScratch_.begin(), skinScratch_.end());
+  }
+  return set;
+}
+
+// One draw per primitive of the mesh per run of members that wind the same
+// way (the winding is pipeline state), and room for their morphed and
+// captured vertices.
+void SceneRenderer::addPrimitiveBatches(Slot& slot, const ModelLayout& at, uint32_t mesh, uint32_t firstInstance) {
+  const std::span<const GpuMesh> meshes = at.model.meshes();
+  const uint32_t instanceCount = static_cast<uint32_t>(memberScratch_.size());
+  bool anyActive = false;
+  for (size_t k = 0; k < memberScratch_.size(); ++k) anyActive |= rangeScratch_[k * meshes.size() + mesh].count > 0;
+  for (uint32_t p = 0; p < meshes[mesh].primitives.size(); ++p) {
+    const GpuPrimitive& prim = meshes[mesh].primitives[p];
+    const bool morphs = anyActive && (prim.constants.flags & kDrawFlagMorphed) != 0;
+    for (uint32_t runStart = 0; runStart < instanceCount;) {
+      const bool mirrored = mirroredScratch_[firstInstance + runStart];
+      uint32_t runEnd = runStart + 1;
+      while (runEnd < instanceCount && mirroredScratch_[firstInstance + runEnd] == mirrored) ++runEnd;
+      const uint32_t count = runEnd - runStart;
+      slot.batches.push_back({&at.model, mesh, p, firstInstance + runStart, count, slot.capturedVertices, slot.morphedVec4s,
+                              morphs, at.membersOffset + runStart});
+      slot.batches.back().mirrored = mirrored;
+      slot.batches.back().detailLayerMask = visibleDetailLayers(prim, firstInstance + runStart, count);
+      if (at.mode == Mode::Capture) slot.capturedVertices += prim.vertexCount * count;
+      // Room for every primitive with deltas, active or not: the buffer's
+      // size then stays the same from frame to frame for the same instances.
+      if ((prim.constants.flags & kDrawFlagMorphed) != 0)
+        slot.morphedVec4s += prim.vertexCount * count * morphedVec4sPerVertex(prim);
+      runStart = runEnd;
+    }
+  }
+}
+
+// Copies the laid-out frame into the slot's mapped buffers (grown first
+// where it no longer fits) and records its stats.
+Result<void> SceneRenderer::upload(Slot& slot, Mode mode) {
   ENG_TRY(ensureCapacity(slot, slot.instances, instanceScratch_.size() * sizeof(GpuInstance),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload, "instances"));
   ENG_TRY(ensureCapacity(slot, slot.active, activeScratch_.size() * sizeof(ActiveWeight),

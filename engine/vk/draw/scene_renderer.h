@@ -160,7 +160,27 @@ class SceneRenderer {
     FrameStats stats;
   };
 
+  // Lays out the instances' frame data in the slot: the steps below, in order.
   Result<void> build(uint32_t slot, std::span<const ModelInstance> instances, Mode mode);
+  // The model whose instances (memberScratch_) build() is laying out.
+  struct ModelLayout {
+    const GpuModel& model;
+    std::span<const ModelInstance> instances;  // all of the caller's
+    Mode mode;
+    uint32_t membersOffset;  // where the members start in Slot::members
+  };
+  struct JointSet;
+  void clearLayout(Slot& slot);
+  Result<void> checkInstances(std::span<const ModelInstance> instances);
+  uint32_t gatherMembers(Slot& slot, const GpuModel& model, std::span<const ModelInstance> instances);
+  void layOutMaterials(const ModelLayout& at);
+  void layOutWeights(const ModelLayout& at);
+  Result<void> listActiveWeights(const ModelLayout& at);
+  void addMeshBatches(Slot& slot, const ModelLayout& at, uint32_t mesh, const MeshNode* node);
+  void addInstanceRecord(const ModelLayout& at, size_t member, uint32_t mesh, const MeshNode* node);
+  const JointSet& memberJoints(const ModelLayout& at, size_t member, const MeshNode& node);
+  void addPrimitiveBatches(Slot& slot, const ModelLayout& at, uint32_t mesh, uint32_t firstInstance);
+  Result<void> upload(Slot& slot, Mode mode);
   // DrawConstants::detailLayerMask of a batch of `prim` whose instance records
   // (already in instanceScratch_, weights in weightScratch_) start at firstInstance.
   uint32_t visibleDetailLayers(const GpuPrimitive& prim, uint32_t firstInstance, uint32_t instanceCount) const;

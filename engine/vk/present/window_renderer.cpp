@@ -60,6 +60,32 @@ WindowRenderer::~WindowRenderer() {
   if (ctx_) vkDeviceWaitIdle(ctx_->device());
 }
 
+// One frame in flight's command pool and buffer, fence (signalled: the first
+// wait passes) and image-available semaphore.
+Result<void> WindowRenderer::createFrameSync(const Context& ctx, FrameSync& f) {
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  poolInfo.queueFamilyIndex = ctx.queueFamily();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateCommandPool(ctx.device(), &poolInfo, nullptr, &pool));
+  f.pool = UniqueCommandPool(ctx.device(), pool);
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  ENG_VK_TRY(vkAllocateCommandBuffers(ctx.device(), &alloc, &f.cmd));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  VkFence fence = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateFence(ctx.device(), &fenceInfo, nullptr, &fence));
+  f.inFlight = UniqueFence(ctx.device(), fence);
+  VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VkSemaphore sem = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateSemaphore(ctx.device(), &semInfo, nullptr, &sem));
+  f.imageAvailable = UniqueSemaphore(ctx.device(), sem);
+  return {};
+}
+
 Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ctx, Window& window,
                                                                const WindowRendererOptions& options) {
   if (ctx.surface() == VK_NULL_HANDLE)
@@ -101,28 +127,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   }
   ENG_TRY(r->createSwapchainResources());
 
-  for (FrameSync& f : r->frames_) {
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    poolInfo.queueFamilyIndex = ctx.queueFamily();
-    VkCommandPool pool = VK_NULL_HANDLE;
-    ENG_VK_TRY(vkCreateCommandPool(ctx.device(), &poolInfo, nullptr, &pool));
-    f.pool = UniqueCommandPool(ctx.device(), pool);
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    ENG_VK_TRY(vkAllocateCommandBuffers(ctx.device(), &alloc, &f.cmd));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-    VkFence fence = VK_NULL_HANDLE;
-    ENG_VK_TRY(vkCreateFence(ctx.device(), &fenceInfo, nullptr, &fence));
-    f.inFlight = UniqueFence(ctx.device(), fence);
-    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore sem = VK_NULL_HANDLE;
-    ENG_VK_TRY(vkCreateSemaphore(ctx.device(), &semInfo, nullptr, &sem));
-    f.imageAvailable = UniqueSemaphore(ctx.device(), sem);
-  }
+  for (FrameSync& f : r->frames_) ENG_TRY(createFrameSync(ctx, f));
 
   auto scene = SceneRenderer::create(ctx, *r->layouts_, *r->shaders_, r->renderPass_.get(), r->format_.samples,
                                      kFramesInFlight, options.quality);
@@ -312,18 +317,32 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   else if (acquired != VK_SUCCESS) return vulkanError("vkAcquireNextImageKHR", acquired);
   ENG_VK_TRY(vkResetFences(device, 1, &fence));
 
-  if (!frame.screenshot.empty()) {
-    const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
-    if (!screenshotBuffer_ || screenshotBuffer_.size() < bytes) {
-      auto buffer = Buffer::create(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
-                                   "screenshot readback");
-      if (!buffer) return buffer.error();
-      screenshotBuffer_ = std::move(buffer).value();
-    }
-  }
+  if (!frame.screenshot.empty()) ENG_TRY(ensureScreenshotBuffer(extent));
+  ENG_TRY(recordFrame(f, slot, image, frame));
+  ENG_TRY(submitAndPresent(f, image));
 
+  lastSlot_ = slot;
+  ++frameIndex_;
+  if (adaptive_) adaptRenderScale();
+  if (!frame.screenshot.empty()) {
+    ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+    ENG_TRY(saveScreenshot(frame.screenshot));
+  }
+  return FrameResult::Presented;
+}
+
+Result<void> WindowRenderer::ensureScreenshotBuffer(VkExtent2D extent) {
+  const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
+  if (screenshotBuffer_ && screenshotBuffer_.size() >= bytes) return {};
+  auto buffer = Buffer::create(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "screenshot readback");
+  if (!buffer) return buffer.error();
+  screenshotBuffer_ = std::move(buffer).value();
+  return {};
+}
+
+Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame) {
   VkCommandBuffer cmd = f.cmd;
-  ENG_VK_TRY(vkResetCommandPool(device, f.pool.get(), 0));
+  ENG_VK_TRY(vkResetCommandPool(ctx_->device(), f.pool.get(), 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   ENG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
@@ -344,26 +363,33 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   if (!scaled() && frame.overlay) frame.overlay(cmd);
   vkCmdEndRenderPass(cmd);
   if (scaled()) recordUpscaleAndOverlay(cmd, image, frame.overlay);
-  if (!frame.screenshot.empty()) {
-    const VkImage swapImage = swapchain_.image(image);
-    recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyImageToBuffer(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshotBuffer_.handle(), 1, &copy);
-    recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                             VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0});
-    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                         0, nullptr);
-  }
+  if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
   ENG_VK_TRY(vkEndCommandBuffer(cmd));
+  return {};
+}
 
+void WindowRenderer::recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) const {
+  const VkExtent2D extent = swapchain_.extent();
+  const VkImage swapImage = swapchain_.image(image);
+  recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshotBuffer_.handle(), 1, &copy);
+  recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0});
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                       nullptr);
+}
+
+Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image) {
+  VkCommandBuffer cmd = f.cmd;
   const VkSemaphore waitSemaphore = f.imageAvailable.get();
   const VkSemaphore signalSemaphore = renderFinished_[image].get();
   const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -375,7 +401,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   submit.pCommandBuffers = &cmd;
   submit.signalSemaphoreCount = 1;
   submit.pSignalSemaphores = &signalSemaphore;
-  if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, fence));
+  if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, f.inFlight.get()));
       submitted != VK_SUCCESS)
     return vulkanError("vkQueueSubmit", submitted);
 
@@ -389,15 +415,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   const VkResult presented = vkQueuePresentKHR(ctx_->queue(), &present);
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;
   else if (presented != VK_SUCCESS) return vulkanError("vkQueuePresentKHR", presented);
-
-  lastSlot_ = slot;
-  ++frameIndex_;
-  if (adaptive_) adaptRenderScale();
-  if (!frame.screenshot.empty()) {
-    ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
-    ENG_TRY(saveScreenshot(frame.screenshot));
-  }
-  return FrameResult::Presented;
+  return {};
 }
 
 void WindowRenderer::adaptRenderScale() {

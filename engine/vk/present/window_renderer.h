@@ -146,6 +146,7 @@ class WindowRenderer {
   };
 
   WindowRenderer() = default;
+  static Result<void> createFrameSync(const Context& ctx, FrameSync& f);
   Result<void> recreateSwapchain();
   // MSAA colour, depth, framebuffers and semaphores for the current swapchain.
   Result<void> createSwapchainResources();
@@ -153,6 +154,14 @@ class WindowRenderer {
   // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
   void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const;
   Result<void> saveScreenshot(const std::filesystem::path& path);
+  // The steps of drawFrame after the swapchain image is acquired.
+  Result<void> ensureScreenshotBuffer(VkExtent2D extent);
+  // The frame's commands: shadow pass, the 3D view (and overlay), the blit when scaled, the screenshot copy.
+  Result<void> recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame);
+  // Swapchain image -> screenshotBuffer_, back to present layout, visible to the host.
+  void recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) const;
+  // Submits the frame (signalling f's fence) and presents it; a stale swapchain is marked, not an error.
+  Result<void> submitAndPresent(const FrameSync& f, uint32_t image);
   // After a presented frame: times it, and on a new scale marks the view for rebuilding.
   void adaptRenderScale();
 

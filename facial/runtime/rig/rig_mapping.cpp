@@ -231,7 +231,24 @@ void RigMappingBuilder::setExpressionStage(std::shared_ptr<const VrmExpressionSe
   morphTargetNames_ = std::move(morphTargetNames);
 }
 
+// The steps: entries checked, laid out as rows, which targets the rows
+// drive (through the stage's binds when there is one), how each emotion is
+// realised; then the mapping checks itself.
 eng::Result<RigMapping> RigMappingBuilder::build() const {
+  if (auto ok = checkEntries(); !ok) return ok.error();
+  RigMapping mapping;
+  layOutRows(mapping);
+  if (auto ok = markDrivenTargets(mapping); !ok) return ok.error();
+  describeEmotions(mapping);
+  mapping.report_.scheme = scheme_;
+  mapping.report_.detail = detail_;
+  mapping.report_.notes = notes_;
+  if (stage_) describeStage(*stage_, mapping.report_);
+  if (eng::Result<void> valid = mapping.validate(); !valid) return valid.error();
+  return mapping;
+}
+
+eng::Result<void> RigMappingBuilder::checkEntries() const {
   const uint32_t inputs = rigInputCount();
   for (const Entry& e : entries_) {
     if (e.input >= inputs)
@@ -243,12 +260,16 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
       return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: non-finite gain for " + std::string(rigInputName(e.input)) + " -> " +
                             targetNames_[e.target]);
   }
-  // Sort by (input, target) and merge repeats so every row is ascending and unique.
+  return {};
+}
+
+// Sorted by (input, target) with repeats merged, so every row is ascending and unique.
+void RigMappingBuilder::layOutRows(RigMapping& mapping) const {
+  const uint32_t inputs = rigInputCount();
   std::vector<Entry> sorted = entries_;
   std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
     return a.input != b.input ? a.input < b.input : a.target < b.target;
   });
-  RigMapping mapping;
   mapping.targetNames_ = targetNames_;
   mapping.minWeight_ = minWeight_;
   mapping.maxWeight_ = maxWeight_;
@@ -264,13 +285,17 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
     ++mapping.offsets_[e.input + 1];
   }
   for (uint32_t i = 0; i < inputs; ++i) mapping.offsets_[i + 1] += mapping.offsets_[i];
+}
 
-  // Rows address targetNames_ (the controls); with a stage they reach the
-  // morph targets through the driven expressions' binds.
-  // VRM's mouth presets (aa..oh, 0.x a..o) are visemes too when they are expressions.
-  auto isViseme = [&](const std::string& name) {
-    return isVisemeName(name) || (stage_ && vrmProceduralGroup(name) == VrmProceduralGroup::Mouth);
-  };
+// VRM's mouth presets (aa..oh, 0.x a..o) are visemes too when they are expressions.
+bool RigMappingBuilder::isViseme(const std::string& name) const {
+  return isVisemeName(name) || (stage_ && vrmProceduralGroup(name) == VrmProceduralGroup::Mouth);
+}
+
+// Rows address targetNames_ (the controls); with a stage they reach the
+// morph targets through the driven expressions' binds. Fills the driven
+// targets and the report's unmapped lists and visemes.
+eng::Result<void> RigMappingBuilder::markDrivenTargets(RigMapping& mapping) const {
   std::vector<bool> drivenControl(targetNames_.size(), false);
   for (uint32_t t : mapping.entryTargets_) drivenControl[t] = true;
   std::vector<bool> driven = drivenControl;
@@ -302,9 +327,14 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
     if (driven[t]) mapping.drivenTargets_.push_back(t);
     else if (stage_ || !isViseme(mapping.targetNames_[t])) mapping.report_.unmappedTargets.push_back(mapping.targetNames_[t]);
   }
+  const uint32_t inputs = rigInputCount();
   for (uint32_t i = 0; i < inputs; ++i)
     if (mapping.offsets_[i] == mapping.offsets_[i + 1]) mapping.report_.unmappedInputs.emplace_back(rigInputName(i));
-  // How each emotion is realised, when the rig binds emotions at all.
+  return {};
+}
+
+// How each emotion is realised ("happy <- 'smile' x0.5 (composed)"), when the rig binds emotions at all.
+void RigMappingBuilder::describeEmotions(RigMapping& mapping) const {
   bool bindsEmotions = false;
   for (uint32_t e = 0; e < kEmotionCount; ++e) {
     const uint32_t input = emotionInput(Emotion(e));
@@ -322,12 +352,6 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
     if (end - first > 1 || (end - first == 1 && mapping.entryGains_[first] != 1.0f)) line += " (composed)";
     mapping.report_.emotions.push_back(std::move(line));
   }
-  mapping.report_.scheme = scheme_;
-  mapping.report_.detail = detail_;
-  mapping.report_.notes = notes_;
-  if (stage_) describeStage(*stage_, mapping.report_);
-  if (eng::Result<void> valid = mapping.validate(); !valid) return valid.error();
-  return mapping;
 }
 
 }  // namespace facial

@@ -168,6 +168,12 @@ class RigMappingBuilder {
     uint32_t target;
     float gain;
   };
+  // The steps of build(), in order.
+  eng::Result<void> checkEntries() const;
+  void layOutRows(RigMapping& mapping) const;
+  bool isViseme(const std::string& name) const;
+  eng::Result<void> markDrivenTargets(RigMapping& mapping) const;
+  void describeEmotions(RigMapping& mapping) const;
   RigScheme scheme_;
   std::vector<std::string> targetNames_;
   std::vector<Entry> entries_;
