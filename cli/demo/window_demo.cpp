@@ -261,7 +261,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   auto renderer = eng::vk::WindowRenderer::create(*ctx_, *window_, {.quality = *quality});
   if (!renderer) return fail("Vulkan: " + renderer.error().message);
   renderer_ = std::move(*renderer);
-  auto gpuModel = renderer_->upload(setup_->model());
+  auto gpuModel = renderer_->upload(setup_->displayModel());
   if (!gpuModel) return fail(gpuModel.error().message);
   gpuModel_.emplace(std::move(*gpuModel));
 
