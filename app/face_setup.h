@@ -1,9 +1,9 @@
 #pragma once
 // Everything a command needs to pose a face with the project's expressions:
-// the face (loadFace: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3,
-// told apart by content), its rig mapping (data/rigmaps/<model>.json, a VRM's
-// expressions, or the scheme its target names follow) and the expression
-// presets (data/expressions.json).
+// the face (importers::loadFace: glTF / GLB, VRM, OBJ keyframe folder or
+// CANDIDE-3, told apart by content, dressed for display), its rig mapping
+// (data/rigmaps/<model>.json, a VRM's expressions, or the scheme its target
+// names follow) and the expression presets (data/expressions.json).
 // It turns a preset + intensity into the model's flat weight vector
 // (eng::WeightLayout order), allocation-free after load:
 //
@@ -13,6 +13,7 @@
 //   face->expressionWeights(**happy, 0.8f, weights);
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -25,6 +26,7 @@
 #include "engine/view/framing_bounds.h"
 #include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
+#include "importers/load_face.h"
 
 namespace CLI {
 class App;
@@ -39,33 +41,6 @@ void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap);
 // --shape NAME=VALUE (repeatable): identity parameters (CANDIDE-3 shape units,
 // or any morph target) baked into the rest mesh before anything is drawn.
 void addShapeOption(CLI::App& app, std::vector<std::string>& shapes);
-
-// What a face file is, told by its content (not its extension).
-enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3 };
-std::string_view faceFormatName(FaceFormat format);
-
-// A face as loaded, before any rig: the model and, for VRM, its expressions.
-struct LoadedFace {
-  eng::Model model;
-  FaceFormat format = FaceFormat::Gltf;
-  std::shared_ptr<const facial::VrmExpressionSet> vrm;  // VRM only
-};
-
-// THE loader of every command, the demo and the editor. Picks the importer
-// by content: a folder is an OBJ keyframe set (neutral.obj + one OBJ per
-// target), "glTF" magic or a JSON object is glTF / GLB, and VRM when it has a
-// VRMC_vrm (1.0) or VRM (0.x) extension, "# VERTEX LIST" is a CANDIDE-3 .wfm.
-// `shapes` ("NAME=VALUE") are then baked into the rest mesh (bakeShapes).
-// Errors name the file and the problem.
-eng::Result<LoadedFace> loadFace(const std::filesystem::path& path, std::span<const std::string> shapes = {});
-
-// positions += value * target deltas (normals likewise, renormalised) for
-// each "NAME=VALUE"; the target's default weight becomes 0 so the value is
-// not applied twice. NAME matches a morph target exactly, else ignoring case,
-// a "SU_" prefix and ' ' / '_' / '-' differences ("head_height" finds CANDIDE's
-// "SU_Head height"). Errors: malformed assignment, unknown name (listing the
-// model's shape units / targets).
-eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes);
 
 // The program's data folder: $FACIAL_DATA_DIR when set, else the source tree's data/.
 std::filesystem::path dataDirectory();
@@ -89,13 +64,16 @@ std::vector<float> targetReach(const eng::Model& model);
 // carried to the morph targets by their binds (facial::buildVrmRigMapping),
 // uncalibrated (its expressions are whole poses the author tuned); any other
 // face's as buildModelRig.
-eng::Result<facial::RigCalibration> buildFaceRig(const LoadedFace& face, const std::filesystem::path& rigmapFile = {});
+eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& face, const std::filesystem::path& rigmapFile = {});
 
 struct FaceSetupOptions {
   std::filesystem::path model;        // empty: defaultModelPath()
   std::filesystem::path expressions;  // empty: defaultExpressionsPath()
   std::filesystem::path rigmap;       // empty: look-up / detection (buildModelRig)
-  std::vector<std::string> shapes;    // "NAME=VALUE" identity parameters (bakeShapes)
+  std::vector<std::string> shapes;    // "NAME=VALUE" identity parameters (importers::bakeShapes)
+  // The programs draw faces dressed (importers/face_dressing.h); a caller
+  // that dresses what it draws itself (the editor's sculpted model) turns it off.
+  bool dressForDisplay = true;
 };
 
 class FaceSetup {
@@ -103,8 +81,13 @@ class FaceSetup {
   // Errors name the file that failed (model, rig map or presets).
   static eng::Result<FaceSetup> load(const FaceSetupOptions& options = {});
 
+  // The face as loaded (shapes baked): what the rig, the framing and CPU
+  // posing read, and what is exported.
   const eng::Model& model() const { return model_; }
-  FaceFormat format() const { return format_; }
+  // What to upload for drawing: the model dressed for display when it needed
+  // dressing (importers::LoadedFace::displayModel), else model().
+  const eng::Model& displayModel() const { return dressed_ ? *dressed_ : model_; }
+  importers::FaceFormat format() const { return format_; }
   // The VRM expressions (null unless format() is Vrm).
   const facial::VrmExpressionSet* vrm() const { return vrm_.get(); }
   const std::string& name() const { return name_; }
@@ -139,11 +122,12 @@ class FaceSetup {
   }
 
  private:
-  FaceSetup(LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
+  FaceSetup(importers::LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,
             facial::ExpressionLibrary expressions);
 
   eng::Model model_;
-  FaceFormat format_ = FaceFormat::Gltf;
+  std::optional<eng::Model> dressed_;
+  importers::FaceFormat format_ = importers::FaceFormat::Gltf;
   std::shared_ptr<const facial::VrmExpressionSet> vrm_;
   std::string name_;
   eng::WeightLayout layout_;

@@ -22,6 +22,7 @@
 #include "engine/vk/draw/offscreen_renderer.h"
 #include "engine/view/framing_bounds.h"
 #include "bench/bench_gpu.h"
+#include "importers/face_dressing.h"
 #include "tests/common/test_meshes.h"
 
 namespace {
@@ -93,7 +94,9 @@ void gpuMorphFrame(benchmark::State& state, const eng::Model& model) {
   bench::GpuBench& g = bench::gpu();
   if (!g.renderer) return state.SkipWithError(("Vulkan: " + g.error).c_str());
   if (model.meshes.empty()) return state.SkipWithError("model did not load");
-  auto gpuModel = g.renderer->upload(model);
+  // Drawn as the programs draw it: an untextured face dressed for display.
+  const std::optional<eng::Model> dressed = importers::dressedForDisplay(model);
+  auto gpuModel = g.renderer->upload(dressed ? *dressed : model);
   if (!gpuModel) return state.SkipWithError(gpuModel.error().message.c_str());
   const std::vector<float> weights = weightsWithActive(model, state.range(0));
   eng::vk::SceneView view;

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "engine/scene/gltf_writer.h"
-#include "engine/scene/obj_keyframes.h"
-#include "engine/scene/obj_mesh.h"
+#include "importers/obj_keyframes.h"
+#include "importers/obj_mesh.h"
 
 namespace {
 
@@ -77,8 +77,8 @@ std::string gridObj(int target, const std::vector<int>& order) {
 
 struct ObjSet {
   std::filesystem::path dir;
-  std::vector<eng::ObjTargetFile> targets;
-  std::vector<eng::ObjTargetFile> shuffledTargets;
+  std::vector<importers::ObjTargetFile> targets;
+  std::vector<importers::ObjTargetFile> shuffledTargets;
 };
 
 const ObjSet& objSet() {
@@ -110,7 +110,7 @@ void BM_ReadObj(benchmark::State& state) {
   const ObjSet& set = objSet();
   size_t vertices = 0;
   for (auto _ : state) {
-    auto mesh = eng::readObjPolygonMesh(set.dir / "neutral.obj");
+    auto mesh = importers::readObjPolygonMesh(set.dir / "neutral.obj");
     if (!mesh) state.SkipWithError(mesh.error().message.c_str());
     vertices = mesh ? mesh->positions.size() : 0;
     benchmark::DoNotOptimize(mesh);
@@ -122,10 +122,10 @@ BENCHMARK(BM_ReadObj)->Unit(benchmark::kMillisecond);
 
 void convert(benchmark::State& state, bool shuffledTargets) {
   const ObjSet& set = objSet();
-  const eng::ObjKeyframeOptions options{.matchByPosition = shuffledTargets};
+  const importers::ObjKeyframeOptions options{.matchByPosition = shuffledTargets};
   size_t vertices = 0;
   for (auto _ : state) {
-    auto imported = eng::importObjKeyframes(set.dir / "neutral.obj", shuffledTargets ? set.shuffledTargets : set.targets, options);
+    auto imported = importers::importObjKeyframes(set.dir / "neutral.obj", shuffledTargets ? set.shuffledTargets : set.targets, options);
     if (!imported) {
       state.SkipWithError(imported.error().message.c_str());
       break;
@@ -145,7 +145,7 @@ BENCHMARK(BM_ConvertObjSetMatchByPosition)->Unit(benchmark::kMillisecond);
 
 void BM_SaveConvertedGlb(benchmark::State& state) {
   const ObjSet& set = objSet();
-  auto imported = eng::importObjKeyframes(set.dir / "neutral.obj", set.targets);
+  auto imported = importers::importObjKeyframes(set.dir / "neutral.obj", set.targets);
   if (!imported) {
     state.SkipWithError(imported.error().message.c_str());
     return;

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "engine/scene/model_check.h"
-#include "engine/scene/obj_keyframes.h"
+#include "importers/obj_keyframes.h"
 #include "fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -17,11 +17,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view neutral = split == std::string_view::npos ? text : text.substr(0, split);
   const std::string_view target = split == std::string_view::npos ? text : text.substr(split + kSeparator.size());
 
-  eng::ObjKeyframeOptions options;
+  importers::ObjKeyframeOptions options;
   options.matchByPosition = neutral.find("#%match-by-position") != std::string_view::npos;
   const auto neutralPath = fuzz::writeInput("neutral.obj", neutral);
-  const eng::ObjTargetFile targets[] = {{"smile", fuzz::writeInput("smile.obj", target)}};
-  auto imported = eng::importObjKeyframes(neutralPath, targets, options);
+  const importers::ObjTargetFile targets[] = {{"smile", fuzz::writeInput("smile.obj", target)}};
+  auto imported = importers::importObjKeyframes(neutralPath, targets, options);
   if (imported) {
     const auto consistent = eng::checkModel(imported->model);
     FUZZ_PROPERTY(consistent.ok(), "OBJ keyframe model fails checkModel: " + consistent.error().message);

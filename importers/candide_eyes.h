@@ -6,7 +6,7 @@
 // the lid margins -- the vertices the "Eyes closed" unit moves (down: the
 // upper lid, up: the lower lid) and the two corners that join them -- and
 // puts a ball behind each opening, which the face dressing gives the
-// procedural eye (engine/scene/procedural_eyes.h). The lids stay in front of
+// procedural eye (importers/procedural_eyes.h). The lids stay in front of
 // the ball, so "Eyes closed" still closes the eye over it.
 #include <cstdint>
 #include <span>

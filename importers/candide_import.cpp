@@ -240,6 +240,9 @@ eng::MorphTarget makeTarget(const eng::Primitive& base, const std::vector<glm::v
 }  // namespace
 
 eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
+  if (text.size() > kMaxFileBytes)
+    return eng::makeError(eng::ErrorKind::TooLarge, std::string(source) + ": file of " + std::to_string(text.size()) +
+                          " bytes exceeds the limit of " + std::to_string(kMaxFileBytes) + " bytes");
   LineReader in(text, source);
   if (auto r = expectHeader(in, "VERTEX LIST"); !r) return r.error();
   auto positions = readVertices(in);
@@ -340,7 +343,7 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   // identity shape carries each with its rim and grows it with its opening,
   // so a mask reshaped by --shape keeps its eyes filling their openings.
   // Their material's name marks them as eyeballs for the dressing
-  // (engine/scene/procedural_eyes.h).
+  // (importers/procedural_eyes.h).
   eng::Mesh& face = model.meshes[0];
   if (!eyes.empty()) {
     eng::Material eyeMaterial;

@@ -535,34 +535,44 @@ bool hasVrmExtension(const facial::Json& gltf) {
 
 namespace {
 
-eng::Result<facial::Json> readGltfJson(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
-  if (!bytes) return bytes.error();
-  std::string_view text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
-  if (eng::hasGlbMagic(*bytes)) {
-    eng::Result<eng::GlbChunks> chunks = eng::parseGlb(*bytes);
-    if (!chunks) return chunks.error().prefixed(name + ": ");
-    text = std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
-  }
-  return facial::parseJsonText(text, name);
+// The JSON text of a GLB container or of a text document.
+eng::Result<std::string_view> gltfJsonText(std::span<const uint8_t> bytes, std::string_view source) {
+  if (!eng::hasGlbMagic(bytes)) return std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  eng::Result<eng::GlbChunks> chunks = eng::parseGlb(bytes);
+  if (!chunks) return chunks.error().prefixed(std::string(source) + ": ");
+  return std::string_view(reinterpret_cast<const char*>(chunks->json.data()), chunks->json.size());
 }
 
 }  // namespace
 
 eng::Result<facial::VrmExpressionSet> loadVrmExpressions(const std::filesystem::path& file) {
-  eng::Result<facial::Json> json = readGltfJson(file);
+  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
+  if (!bytes) return bytes.error();
+  eng::Result<std::string_view> text = gltfJsonText(*bytes, file.string());
+  if (!text) return text.error();
+  eng::Result<facial::Json> json = facial::parseJsonText(*text, file.string());
   if (!json) return json.error();
   return importVrmExpressions(*json, file.string());
 }
 
-eng::Result<std::optional<facial::VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file) {
-  eng::Result<facial::Json> json = readGltfJson(file);
+eng::Result<std::optional<facial::VrmExpressionSet>> findVrmExpressions(std::span<const uint8_t> bytes, std::string_view source) {
+  eng::Result<std::string_view> text = gltfJsonText(bytes, source);
+  if (!text) return text.error();
+  // Both extension names start with "VRM": a document that never spells it is
+  // a plain glTF, and its JSON is not parsed a second time here.
+  if (text->find("\"VRM") == std::string_view::npos) return std::optional<facial::VrmExpressionSet>();
+  eng::Result<facial::Json> json = facial::parseJsonText(*text, source);
   if (!json) return json.error();
   if (!hasVrmExtension(*json)) return std::optional<facial::VrmExpressionSet>();
-  auto set = importVrmExpressions(*json, file.string());
+  auto set = importVrmExpressions(*json, source);
   if (!set) return set.error();
   return std::optional<facial::VrmExpressionSet>(std::move(*set));
+}
+
+eng::Result<std::optional<facial::VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file) {
+  eng::Result<std::vector<uint8_t>> bytes = eng::readFileBytes(file, kMaxVrmFileBytes);
+  if (!bytes) return bytes.error();
+  return findVrmExpressions(*bytes, file.string());
 }
 
 }  // namespace importers

@@ -18,8 +18,10 @@
 // naming the source, JSON path and problem. Errors name the same. The lookAt
 // (1.0 lookAt, 0.x firstPerson): its type (bone / expression) and range maps,
 // for facial::GazeRig.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include <nlohmann/json_fwd.hpp>
@@ -35,6 +37,8 @@ eng::Result<facial::VrmExpressionSet> importVrmExpressions(const nlohmann::order
 // The expressions of a glTF / GLB / VRM file, or nullopt when it has no VRM
 // extension (a plain glTF). Errors: unreadable file, broken container or JSON, broken VRM data.
 eng::Result<std::optional<facial::VrmExpressionSet>> findVrmExpressions(const std::filesystem::path& file);
+// The same over the file's bytes, already read; `source` names it in messages.
+eng::Result<std::optional<facial::VrmExpressionSet>> findVrmExpressions(std::span<const uint8_t> bytes, std::string_view source);
 bool hasVrmExtension(const nlohmann::ordered_json& gltf);
 
 }  // namespace importers

@@ -33,6 +33,7 @@
 #include "engine/scene/weights.h"
 #include "engine/view/framing_bounds.h"
 #include "engine/vk/draw/gpu_types.h"
+#include "importers/load_face.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -157,9 +158,9 @@ int runBenchFrames(const BenchFramesOptions& o) {
   auto quality = app::qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 
-  auto face = app::loadFace(o.model);
+  auto face = importers::loadFace(o.model, {.dressForDisplay = true});
   if (!face) return fail(face.error().message);
-  const eng::Model& model = face->model;
+  const eng::Model& model = face->displayModel();
   const eng::Aabb bounds = eng::framingBounds(model, eng::FramingMode::All);
   if (!bounds.valid()) return fail(o.model + ": has no geometry to draw");
 

@@ -12,8 +12,8 @@
 #include "cli/command.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
-#include "engine/scene/obj_keyframes.h"
 #include "app/program_error.h"
+#include "importers/obj_keyframes.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -56,11 +56,11 @@ int run(const ConvertArgs& args) {
   }
 
   std::filesystem::path neutral;
-  std::vector<eng::ObjTargetFile> targets;
+  std::vector<importers::ObjTargetFile> targets;
   std::error_code ec;
   if (std::filesystem::is_directory(input, ec)) {
     if (!args.targets.empty()) return fail("--target cannot be combined with a folder (its *.obj files are the targets)");
-    auto folder = eng::findObjKeyframeFolder(input);
+    auto folder = importers::findObjKeyframeFolder(input);
     if (!folder) return fail(folder.error().message);
     neutral = folder->neutral;
     targets = std::move(folder->targets);
@@ -69,7 +69,7 @@ int run(const ConvertArgs& args) {
     neutral = input;
     for (const std::string& spec : args.targets) {
       const size_t eq = spec.find('=');
-      eng::ObjTargetFile t;
+      importers::ObjTargetFile t;
       t.path = eq == std::string::npos ? spec : spec.substr(eq + 1);
       t.name = eq == std::string::npos ? t.path.stem().string() : spec.substr(0, eq);
       targets.push_back(std::move(t));
@@ -77,12 +77,12 @@ int run(const ConvertArgs& args) {
   }
   if (targets.empty()) std::fprintf(stderr, "facial convert: warning: no targets; writing the neutral mesh only\n");
 
-  eng::ObjKeyframeOptions options;
+  importers::ObjKeyframeOptions options;
   options.matchByPosition = args.matchByPosition;
   options.relativeTolerance = args.tolerance;
-  auto imported = eng::importObjKeyframes(neutral, targets, options);
+  auto imported = importers::importObjKeyframes(neutral, targets, options);
   if (!imported) return fail(imported.error().message);
-  for (const eng::ObjTargetReport& r : imported->targets) {
+  for (const importers::ObjTargetReport& r : imported->targets) {
     std::printf("target %-20s %zu vertices moved", r.name.c_str(), r.movedVertices);
     if (args.matchByPosition) std::printf(", %zu unmatched", r.unmatchedVertices);
     std::printf("\n");

@@ -54,7 +54,7 @@ int runExpress(const ExpressOptions& o) {
   if (!materials) return fail(materials.error().message);
   if (auto moved = materials->update(vrmExpressions); !moved) return fail(moved.error().message);
 
-  auto renderer = app::HeadlessModelRenderer::create(face->model(), *renderOptions);
+  auto renderer = app::HeadlessModelRenderer::create(face->displayModel(), *renderOptions);
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights, materials->materials());
   if (!image) return fail(image.error().message);

@@ -12,6 +12,7 @@
 #include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
+#include "importers/load_face.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -197,7 +198,7 @@ CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, mate
                        app.add_option("model", *path, "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm")->required();
                        app.add_flag("--json", *json, "Print machine-readable JSON instead of text");
                        return [path, json]() -> int {
-                         auto face = app::loadFace(*path);
+                         auto face = importers::loadFace(*path);
                          if (!face) return fail(face.error().message);
                          const eng::Model* model = &face->model;
                          if (*json) std::printf("%s\n", toJson(*model).dump(2, ' ', false,

@@ -106,7 +106,7 @@ int runPlay(const PlayOptions& o) {
   auto quality = app::qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 
-  auto renderer = app::HeadlessModelRenderer::create(setup->model(), {.width = width,
+  auto renderer = app::HeadlessModelRenderer::create(setup->displayModel(), {.width = width,
                                                                  .height = height,
                                                                  .zoom = faceViewZoom(setup->model(), *framing, eng::kFaceZoom,
                                                                                       float(width) / float(height)),

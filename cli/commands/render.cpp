@@ -20,6 +20,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
+#include "importers/load_face.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -61,7 +62,7 @@ int runRender(const RenderOptions& o) {
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
 
-  auto face = app::loadFace(o.model, o.shapes);
+  auto face = importers::loadFace(o.model, {.shapes = o.shapes, .dressForDisplay = true});
   if (!face) return fail(face.error().message);
   const eng::Model* model = &face->model;
   const eng::WeightLayout layout(*model);
@@ -81,7 +82,7 @@ int runRender(const RenderOptions& o) {
     }
   }
 
-  auto renderer = app::HeadlessModelRenderer::create(*model, *renderOptions);
+  auto renderer = app::HeadlessModelRenderer::create(face->displayModel(), *renderOptions);
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights);
   if (!image) return fail(image.error().message);

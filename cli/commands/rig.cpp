@@ -15,6 +15,7 @@
 #include "app/program_error.h"
 #include "engine/scene/gltf_loader.h"
 #include "facial/runtime/character/gaze_rig.h"
+#include "importers/load_face.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -30,7 +31,7 @@ struct RigOptions {
   bool json = false;
 };
 
-nlohmann::ordered_json toJson(const std::string& modelPath, app::FaceFormat format,
+nlohmann::ordered_json toJson(const std::string& modelPath, importers::FaceFormat format,
                               const facial::RigCalibration& calibration, const std::string& gaze) {
   const facial::RigMapping& rig = calibration.rig;
   const facial::RigMappingReport& report = rig.report();
@@ -38,7 +39,7 @@ nlohmann::ordered_json toJson(const std::string& modelPath, app::FaceFormat form
   for (const facial::ActionUnitCalibration& u : calibration.units)
     units.push_back({{"channel", u.channel}, {"reach", u.reach}, {"reference", u.reference}, {"scale", u.scale}});
   return {{"model", modelPath},
-          {"format", std::string(app::faceFormatName(format))},
+          {"format", std::string(importers::faceFormatName(format))},
           {"scheme", std::string(facial::rigSchemeName(report.scheme))},
           {"detail", report.detail},
           {"expressionStage", report.stage},
@@ -55,7 +56,7 @@ nlohmann::ordered_json toJson(const std::string& modelPath, app::FaceFormat form
 }
 
 int runRig(const RigOptions& o) {
-  auto face = app::loadFace(o.model, o.shapes);
+  auto face = importers::loadFace(o.model, {.shapes = o.shapes});
   if (!face) return fail(face.error().message);
   auto rig = app::buildFaceRig(*face, o.rigmap);
   if (!rig) return fail(rig.error().message);
@@ -68,7 +69,7 @@ int runRig(const RigOptions& o) {
                 toJson(o.model, face->format, *rig, gaze).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   } else {
     std::printf("%s (%s): %zu morph weight(s), %zu driven\n%s\n", o.model.c_str(),
-                std::string(app::faceFormatName(face->format)).c_str(), rig->rig.targetCount(),
+                std::string(importers::faceFormatName(face->format)).c_str(), rig->rig.targetCount(),
                 rig->rig.drivenTargets().size(), rig->rig.report().summary().c_str());
     std::printf("gaze: %s\n", gaze.c_str());
     if (!rig->units.empty())

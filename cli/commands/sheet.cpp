@@ -89,7 +89,7 @@ int runSheet(const SheetOptions& o) {
   if (!backdrop) return fail(backdrop.error().message);
   auto quality = app::qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
-  auto renderer = app::HeadlessModelRenderer::create(face->model(), {.width = o.size,
+  auto renderer = app::HeadlessModelRenderer::create(face->displayModel(), {.width = o.size,
                                                                 .height = o.size,
                                                                 .zoom = o.zoomGiven ? o.zoom
                                                                                     : faceViewZoom(face->model(), *framing,

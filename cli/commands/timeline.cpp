@@ -15,6 +15,7 @@
 #include "engine/scene/gltf_writer.h"
 #include "bake/gltf_timeline.h"
 #include "facial/runtime/graph/timeline_json.h"
+#include "importers/load_face.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -45,7 +46,7 @@ eng::Result<size_t> pickAnimation(const eng::Model& model, const std::string& wh
 }
 
 int runImport(const TimelineOptions& o) {
-  auto face = app::loadFace(o.model);
+  auto face = importers::loadFace(o.model);
   if (!face) return fail(face.error().message);
   eng::Model* model = &face->model;
   auto index = pickAnimation(*model, o.animation);
@@ -63,7 +64,7 @@ int runImport(const TimelineOptions& o) {
 int runExport(const TimelineOptions& o) {
   auto timeline = facial::loadTimeline(o.timeline);
   if (!timeline) return fail(timeline.error().message);
-  auto face = app::loadFace(o.model);
+  auto face = importers::loadFace(o.model);
   if (!face) return fail(face.error().message);
   eng::Model* model = &face->model;
   if (auto exported = bake::exportGltfTimeline(*model, *timeline, {.node = o.node}); !exported)

@@ -222,7 +222,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   auto quality = app::qualityOption(o.quality == app::kWindowQualityAuto ? "high" : o.quality);
   if (!quality) return fail(quality.error().message);
   auto renderer = app::HeadlessModelRenderer::create(
-      setup->model(), {.width = width, .height = height, .device = o.device, .quality = *quality});
+      setup->displayModel(), {.width = width, .height = height, .device = o.device, .quality = *quality});
   if (!renderer) return fail(renderer.error().message);
 
   eng::vk::SceneView& view = renderer->view();

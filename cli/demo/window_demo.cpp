@@ -158,7 +158,7 @@ int WindowDemo::openWindow(uint32_t width, uint32_t height) {
       {.width = width, .height = height, .title = title, .device = options_.device, .quality = options_.quality});
   if (!session) return fail(session.error().message);
   session_ = std::move(*session);
-  auto gpuModel = session_->renderer().upload(setup_->model());
+  auto gpuModel = session_->renderer().upload(setup_->displayModel());
   if (!gpuModel) return fail(gpuModel.error().message);
   gpuModel_.emplace(std::move(*gpuModel));
   faces_->bind(*gpuModel_);

@@ -27,6 +27,7 @@
 #include "editor/app/timeline_panel.h"
 #include "editor/app/driver_channels.h"
 #include "engine/view/framing_bounds.h"
+#include "importers/face_dressing.h"
 
 namespace editor {
 
@@ -151,7 +152,7 @@ std::span<const float> EditorApp::faceExpressionWeights() const {
 int EditorApp::setUp(const EditorOptions& o) {
   uint32_t width = 1280, height = 800;
   if (!app::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .dressForDisplay = false});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   targetNames_ = setup_->layout().names();
@@ -208,7 +209,10 @@ eng::Result<void> EditorApp::uploadDisplayModel() {
   if (gpuModel_ && uploadedRevision_ == sculpt_.displayRevision()) return {};
   // The old model may still be read by frames in flight.
   if (gpuModel_) vkDeviceWaitIdle(session_->context().device());
-  auto gpu = session_->renderer().upload(sculpt_.displayModel());
+  // Drawn dressed, as every program draws a face (importers/face_dressing.h);
+  // dressed here at each upload, as sculpting moves what the occlusion is baked on.
+  const std::optional<eng::Model> dressed = importers::dressedForDisplay(sculpt_.displayModel());
+  auto gpu = session_->renderer().upload(dressed ? *dressed : sculpt_.displayModel());
   if (!gpu) return gpu.error();
   gpuModel_.emplace(std::move(*gpu));
   uploadedRevision_ = sculpt_.displayRevision();

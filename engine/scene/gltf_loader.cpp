@@ -1,6 +1,6 @@
 #include "engine/scene/gltf_loader.h"
 
-// The loader's entry: read the bytes (capped), tell GLB from JSON, refuse
+// The loader's entry: read the bytes (capped) or take them, tell GLB from JSON, refuse
 // hostile nesting, decode the compressed views, let tinygltf parse with our
 // file access, then build the Model (gltf_model_builder.h).
 #include <algorithm>
@@ -147,16 +147,29 @@ Result<Container> detectContainer(std::span<const uint8_t> bytes, const std::fil
 Result<Model> loadModel(const std::filesystem::path& path) { return loadModel(path, GltfLoadLimits{}); }
 
 Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits& limits) {
-  const std::string file = path.string();
   try {
     auto bytes = readFileBytes(path, limits.maxFileBytes);
     if (!bytes) return bytes.error();
-    auto container = detectContainer(*bytes, path);
+    return loadModelFromBytes(*bytes, path, limits);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorKind::TooLarge, path.string() + ": out of memory while loading");
+  }
+}
+
+Result<Model> loadModelFromBytes(std::span<const uint8_t> fileBytes, const std::filesystem::path& path,
+                                 const GltfLoadLimits& limits) {
+  const std::string file = path.string();
+  if (fileBytes.size() > limits.maxFileBytes)
+    return makeError(ErrorKind::TooLarge, file + ": file of " + std::to_string(fileBytes.size()) + " bytes exceeds the limit of " +
+                     std::to_string(limits.maxFileBytes) + " bytes");
+  try {
+    std::span<const uint8_t> bytes = fileBytes;
+    auto container = detectContainer(bytes, path);
     if (!container) return container.error().prefixed(file + ": ");
     // The pre-pass (nlohmann) and tinygltf parse recursively: a hostile nesting depth is refused before either.
-    std::span<const uint8_t> jsonText = *bytes;
+    std::span<const uint8_t> jsonText = bytes;
     if (*container == Container::Glb) {
-      auto glb = parseGlb(*bytes);
+      auto glb = parseGlb(bytes);
       if (!glb) return glb.error().prefixed(file + ": ");
       jsonText = glb->json;
     }
@@ -164,9 +177,9 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
       return nesting.error();
     // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
-    auto placeholders = prepareCompressedGltf(*bytes, *container == Container::Glb, stubbed);
+    auto placeholders = prepareCompressedGltf(bytes, *container == Container::Glb, stubbed);
     if (!placeholders) return placeholders.error().prefixed(file + ": ");
-    if (!stubbed.empty()) *bytes = std::move(stubbed);
+    if (!stubbed.empty()) bytes = stubbed;
 
     std::error_code ec;
     const std::filesystem::path baseDir = std::filesystem::absolute(path, ec).parent_path();
@@ -180,13 +193,13 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
     std::string err, warn;
     bool parsed = false;
     if (*container == Container::Glb) {
-      auto glb = parseGlb(*bytes);
+      auto glb = parseGlb(bytes);
       if (!glb) return glb.error().prefixed(file + ": ");
-      parsed = parser.LoadBinaryFromMemory(&gltf, &err, &warn, bytes->data(), static_cast<unsigned>(bytes->size()),
+      parsed = parser.LoadBinaryFromMemory(&gltf, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
                                            files.baseDirString());
     } else {
-      parsed = parser.LoadASCIIFromString(&gltf, &err, &warn, reinterpret_cast<const char*>(bytes->data()),
-                                          static_cast<unsigned>(bytes->size()), files.baseDirString());
+      parsed = parser.LoadASCIIFromString(&gltf, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned>(bytes.size()), files.baseDirString());
     }
     if (!parsed) {
       // What our file access refused or could not find says more than tinygltf's summary.

@@ -3,7 +3,9 @@
 // CPU scene model. Every accessor is read with bounds checks of our own;
 // external files are confined to the model's folder and never path-expanded.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <span>
 
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
@@ -23,5 +25,10 @@ struct GltfLoadLimits {
 // ones (broken image, unsupported primitive mode) land in Model::warnings.
 Result<Model> loadModel(const std::filesystem::path& path);
 Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits& limits);
+// The same over the file's bytes, already read (a caller that looked at them
+// first need not read the file again). `path` names the file in messages, and
+// its folder holds the external buffers and images of a .gltf.
+Result<Model> loadModelFromBytes(std::span<const uint8_t> bytes, const std::filesystem::path& path,
+                                 const GltfLoadLimits& limits = {});
 
 }  // namespace eng

@@ -121,6 +121,26 @@ TEST_F(TestFaceSetup, NonFiniteIntensityAndWrongSizeAreRefusedWithoutWriting) {
   EXPECT_EQ(tooShort, std::vector<float>(3, -1.0f));
 }
 
+// The programs draw a face dressed (importers/face_dressing.h): the test
+// face made plaster-white gets a dressed copy to upload, and model() -- what
+// the rig reads and the editor saves -- stays as the file has it.
+TEST(FaceSetupDisplay, ThePlasterFaceIsDrawnDressedAndKeptAsLoaded) {
+  eng::Model plaster = makeTestFace();
+  for (eng::Material& material : plaster.materials) material.baseColorFactor = glm::vec4(1.0f);
+  const std::filesystem::path path = testing_support::freshTempDir("face_setup_plaster") / "plaster.glb";
+  ASSERT_TRUE(eng::saveModel(plaster, path));
+  auto face = app::FaceSetup::load({.model = path});
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(&face->displayModel(), &face->model());
+  EXPECT_GT(face->displayModel().materials.size(), face->model().materials.size());
+  EXPECT_EQ(face->model().materials.size(), plaster.materials.size());
+  EXPECT_EQ(face->model().materials[0].baseColorFactor, glm::vec4(1.0f));
+
+  auto undressed = app::FaceSetup::load({.model = path, .dressForDisplay = false});
+  ASSERT_TRUE(undressed) << undressed.error().message;
+  EXPECT_EQ(&undressed->displayModel(), &undressed->model());
+}
+
 TEST(FaceSetupValidity, MissingModelFileIsNamed) {
   const std::filesystem::path missing = testing_support::freshTempDir("face_setup_missing") / "nowhere.glb";
   auto face = app::FaceSetup::load({.model = missing});

@@ -1,4 +1,4 @@
-// Every face format through the one loader (app::loadFace) and the commands:
+// Every face format through the one loader (importers::loadFace) and the commands:
 // VRM 0.x / 1.0 avatars, the CANDIDE-3 mask (with --shape identity
 // parameters), OBJ keyframe folders; and --background for compositing
 // (transparent RGBA with a clean edge, or one colour).
@@ -120,23 +120,6 @@ TEST(FaceFormatsValidity, BadShapesBackgroundsAndUnknownFilesAreNamed) {
   const CommandOutput missing = runFacial({"info", (face.parent_path() / "absent.vrm").string()});
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_TRUE(contains(missing.err, "absent.vrm: file not found")) << missing.err;
-}
-
-TEST(FaceFormats, ShapesBakeIntoTheRestMesh) {
-  eng::Model model = makeTestFace();
-  const eng::Model original = model;
-  const std::vector<std::string> shapes = {"Custom-Shape=0.5"};  // loose spelling of "custom_shape"
-  ASSERT_TRUE(app::bakeShapes(model, shapes));
-  const eng::Primitive& before = original.meshes[0].primitives[0];
-  const eng::Primitive& after = model.meshes[0].primitives[0];
-  const auto& delta = before.targets[kCustom].positions;
-  bool moved = false;
-  for (size_t v = 0; v < before.positions.size(); ++v) {
-    EXPECT_NEAR(after.positions[v].z, before.positions[v].z + 0.5f * delta[v].z, 1e-6f);
-    moved |= delta[v] != glm::vec3(0.0f);
-  }
-  EXPECT_TRUE(moved);
-  EXPECT_EQ(model.meshes[0].defaultWeights[kCustom], 0.0f);  // not applied twice
 }
 
 TEST(FaceFormats, ObjKeyframeFolderOpensWithoutConverting) {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/scene/procedural_eyes.h"
+#include "importers/procedural_eyes.h"
 #include "facial/runtime/rig/candide_units.h"
 #include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
@@ -101,13 +101,13 @@ TEST(Candide3Import, EyeOpeningsAreCutAndEyeballsSitBehindTheLids) {
   EXPECT_EQ(mask.positions[67], glm::vec3(0.348f, 0.2f, -0.03f));
 
   // The dressing finds both balls as eyeballs (by their material), and dresses no eyeball as skin.
-  const std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(*model);
+  const std::vector<importers::EyePrimitive> eyes = importers::findUntexturedEyes(*model);
   ASSERT_EQ(eyes.size(), 2u);
   const eng::MorphTarget& eyesClosed = mask.targets[size_t(targetIndex(mesh, "AU45 Eyes closed"))];
   const eng::MorphTarget& eyesLower = mask.targets[size_t(targetIndex(mesh, "SU_Eyes vertical position"))];
   // Each eye's lid margins (the file's rims) and corners, from its inner corner round.
   const std::vector<uint32_t> rims[2] = {{23, 105, 21, 97, 20, 99, 22, 107}, {56, 106, 54, 98, 53, 100, 55, 108}};
-  for (const eng::EyePrimitive& eye : eyes) {
+  for (const importers::EyePrimitive& eye : eyes) {
     EXPECT_EQ(eye.mesh, 0);
     EXPECT_NEAR(eye.gazeAxis.z, 1.0f, 1e-6f);
     const std::vector<uint32_t>& rim = rims[eye.centre.x > 0.0f ? 0 : 1];

@@ -46,6 +46,7 @@
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/rig/expression_library.h"
 #include "facial/runtime/rig/rig_mapping.h"
+#include "importers/face_dressing.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -178,7 +179,9 @@ TEST(Soak, CrowdWithRandomTriggersKeepsMemoryFlatAndWeightsFinite) {
   ASSERT_TRUE(context.ok()) << context.error().message;
   auto renderer = eng::vk::OffscreenRenderer::create(*context, {.width = kImageSide, .height = kImageSide});
   ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-  auto gpuModel = renderer->upload(*model);
+  // Drawn as the programs draw it: the untextured head dressed for display.
+  const std::optional<eng::Model> dressed = importers::dressedForDisplay(*model);
+  auto gpuModel = renderer->upload(dressed ? *dressed : *model);
   ASSERT_TRUE(gpuModel.ok()) << gpuModel.error().message;
 
   // A 3x3 grid of heads, framed together.

@@ -10,7 +10,7 @@
 #include "engine/vk/device/descriptor_write.h"
 #include "engine/core/log.h"
 #include "engine/scene/crease_shading.h"
-#include "engine/scene/face_dressing.h"
+#include "engine/scene/inner_face_parts.h"
 #include "engine/scene/mesh_lod.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/posed_bounds.h"
@@ -267,23 +267,15 @@ struct GpuModel::Staging {
   std::vector<std::vector<PrimitiveRanges>> ranges;  // by mesh, then primitive
 };
 
-Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& source) {
-  if (auto valid = checkModel(source, ModelCheck::gpuUpload()); !valid)
-    return valid.error().prefixed((source.sourcePath.empty() ? std::string("<model>") : source.sourcePath) + ": ");
-  // An untextured face is dressed for display only: the CPU model (what
-  // tools inspect and export) stays as loaded.
-  std::optional<Model> dressed;
-  if (planFaceDressing(source).total() > 0) {
-    dressed = source;
-    dressUntexturedFace(*dressed);
-  }
-  const Model& model = dressed ? *dressed : source;
+Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& model) {
+  if (auto valid = checkModel(model, ModelCheck::gpuUpload()); !valid)
+    return valid.error().prefixed((model.sourcePath.empty() ? std::string("<model>") : model.sourcePath) + ": ");
 
   GpuModel gpu;
   gpu.name_ = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
   gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
   gpu.weightCount_ = WeightLayout(model).total();
-  gpu.materialCount_ = static_cast<uint32_t>(source.materials.size());
+  gpu.materialCount_ = static_cast<uint32_t>(model.materials.size());
   for (const Material& mat : model.materials) gpu.materials_.push_back(instanceMaterial(mat));
   gpu.materials_.push_back(instanceMaterial(defaultMaterial()));
   gpu.meshNodes_ = sceneMeshNodes(model);

@@ -50,7 +50,7 @@ struct GpuPrimitive {
   // as the fragment shader reads them: the scene renderer picks the ones an
   // instance's weights can show. Only the first constants.detailLayerCount are drawn.
   std::vector<GpuDetailLayer> detailLayers;
-  // Inside the head (face_dressing.h: eyeball, teeth, tongue, mouth interior):
+  // Inside the head (engine/scene/inner_face_parts.h: eyeball, teeth, tongue, mouth interior):
   // a window's shadow pass leaves it out.
   bool insideTheHead = false;
   glm::vec3 centre{0.0f};  // of the rest positions' bounds, in mesh space: blended draws are sorted by its depth
@@ -69,18 +69,19 @@ struct PrimitiveRanges;  // gpu_model.cpp: where create() staged one primitive's
 class GpuModel {
  public:
   // Checks the model first (eng::checkModel with ModelCheck::gpuUpload());
-  // errors name the model file, then the mesh and primitive.
+  // errors name the model file, then the mesh and primitive. Draws the model
+  // as given: a face to be shown dressed (procedural eyes, skin tone, brows,
+  // occlusion) is dressed by its loader first (importers/face_dressing.h).
   static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model);
 
   const std::string& name() const { return name_; }
   std::span<const GpuMesh> meshes() const { return meshes_; }
   std::span<const MeshNode> meshNodes() const { return meshNodes_; }
   // Materials an instance may override (ModelInstance::materials): those of
-  // the source model, by index.
+  // the model, by index.
   uint32_t materialCount() const { return materialCount_; }
   // Every material's own parameters as drawn: materialCount() records, then
-  // the ones display dressing added, then the default material of primitives
-  // without one (GpuPrimitive::constants.material indexes this list).
+  // the default material of primitives without one (GpuPrimitive::constants.material indexes this list).
   std::span<const InstanceMaterial> materials() const { return materials_; }
   // Length of the model's flat weight vector (eng::WeightLayout(model).total()).
   uint32_t weightCount() const { return weightCount_; }

@@ -10,7 +10,7 @@
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
-#include "engine/scene/obj_keyframes.h"
+#include "importers/obj_keyframes.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -45,8 +45,8 @@ TEST(FuzzRegression, ObjSetWithHugeCoordinatesGetsFiniteNormals) {
   const fs::path dir = testing_support::freshTempDir("fuzz_obj_huge");
   testing_support::writeFile(dir / "neutral.obj", text);
   testing_support::writeFile(dir / "smile.obj", text);
-  const eng::ObjTargetFile targets[] = {{"smile", dir / "smile.obj"}};
-  auto imported = eng::importObjKeyframes(dir / "neutral.obj", targets);
+  const importers::ObjTargetFile targets[] = {{"smile", dir / "smile.obj"}};
+  auto imported = importers::importObjKeyframes(dir / "neutral.obj", targets);
   ASSERT_TRUE(imported.ok()) << imported.error().message;
   const auto consistent = eng::checkModel(imported->model);
   EXPECT_TRUE(consistent.ok()) << consistent.error().message;
@@ -89,8 +89,8 @@ TEST(FuzzRegressionValidity, ObjTargetMovingFurtherThanAFloatIsRefused) {
   const fs::path dir = testing_support::freshTempDir("fuzz_obj_delta_overflow");
   testing_support::writeFile(dir / "neutral.obj", "v -3e38 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   testing_support::writeFile(dir / "far.obj", "v 3e38 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const eng::ObjTargetFile targets[] = {{"far", dir / "far.obj"}};
-  auto imported = eng::importObjKeyframes(dir / "neutral.obj", targets);
+  const importers::ObjTargetFile targets[] = {{"far", dir / "far.obj"}};
+  auto imported = importers::importObjKeyframes(dir / "neutral.obj", targets);
   ASSERT_FALSE(imported.ok());
   EXPECT_NE(imported.error().message.find((dir / "neutral.obj").string()), std::string::npos) << imported.error().message;
   EXPECT_NE(imported.error().message.find("non-finite"), std::string::npos) << imported.error().message;

@@ -9,7 +9,7 @@
 
 #include "tests/common/test_support.h"
 #include "tests/engine/scene/gltf_test_files.h"
-#include "tests/engine/scene/obj_test_files.h"
+#include "tests/common/obj_test_files.h"
 
 namespace {
 
@@ -155,9 +155,9 @@ TEST(FacialInfoCommand, ShowsTheMeshoptRobotAsDecoded) {
 TEST(FacialConvertCommand, ConvertsAnObjFolderAndRefusesAMismatchedTarget) {
   REQUIRE_FACIAL_PROGRAM();
   const auto dir = freshTempDir("cmd_convert");
-  scene_test::GridObj lifted;
+  testing_support::GridObj lifted;
   lifted.position = [](int i, glm::vec3 r) { return i == 6 ? r + glm::vec3(0, 0, 1) : r; };
-  testing_support::writeFile(dir / "set" / "neutral.obj", scene_test::GridObj{}.text());
+  testing_support::writeFile(dir / "set" / "neutral.obj", testing_support::GridObj{}.text());
   testing_support::writeFile(dir / "set" / "smile.obj", lifted.text());
   const CommandRun ok = facial("convert " + quoted(dir / "set") + " --out " + quoted(dir / "face.glb"));
   EXPECT_EQ(ok.exitCode, 0) << ok.output;
@@ -165,7 +165,7 @@ TEST(FacialConvertCommand, ConvertsAnObjFolderAndRefusesAMismatchedTarget) {
   const CommandRun info = facial("info " + quoted(dir / "face.glb"));
   EXPECT_NE(info.output.find("smile"), std::string::npos) << info.output;
 
-  scene_test::GridObj other;
+  testing_support::GridObj other;
   other.nx = 2;
   testing_support::writeFile(dir / "other.obj", other.text());
   const CommandRun bad = facial("convert " + quoted(dir / "set" / "neutral.obj") + " --target frown=" + quoted(dir / "other.obj") +

@@ -1,4 +1,4 @@
-set(TEST_DEPS eng_vk eng_scene)
+set(TEST_DEPS eng_vk facial_importers eng_scene)
 # They need a display: ctest runs them under a virtual X server as one entry,
 # vk.WindowTestsUnderXvfb, and leaves them out of the per-test entries (run
 # by hand without a display, they skip with a message).

@@ -1,5 +1,6 @@
-// How untextured faces are shown (engine/scene/face_dressing.h,
-// procedural_eyes.h, vertex_occlusion.h) and what the face framing frames
+// How untextured faces are shown (importers/face_dressing.h,
+// procedural_eyes.h, vertex_occlusion.h), which parts sit inside the head
+// (engine/scene/inner_face_parts.h) and what the face framing frames
 // (engine/view/framing_bounds.h), on models built here.
 #include <algorithm>
 #include <cmath>
@@ -7,10 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/scene/face_dressing.h"
-#include "engine/scene/painted_brows.h"
-#include "engine/scene/procedural_eyes.h"
-#include "engine/scene/vertex_occlusion.h"
+#include "engine/scene/inner_face_parts.h"
+#include "importers/face_dressing.h"
+#include "importers/painted_brows.h"
+#include "importers/procedural_eyes.h"
+#include "importers/vertex_occlusion.h"
 #include "engine/view/camera.h"
 #include "engine/view/framing_bounds.h"
 #include "tests/common/test_meshes.h"
@@ -53,9 +55,9 @@ eng::Model plasterHead() {
 
 TEST(ProceduralEyes, UntexturedEyeballsAreFoundByNameAndShape) {
   const eng::Model model = plasterHead();
-  const std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(model);
+  const std::vector<importers::EyePrimitive> eyes = importers::findUntexturedEyes(model);
   ASSERT_EQ(eyes.size(), 2u);
-  for (const eng::EyePrimitive& eye : eyes) {
+  for (const importers::EyePrimitive& eye : eyes) {
     EXPECT_NEAR(eye.radius, 1.0f, 0.02f) << "sphere fit in mesh space";
     EXPECT_NEAR(eye.gazeAxis.z, 1.0f, 1e-4f) << "the face looks along +Z";
   }
@@ -64,13 +66,13 @@ TEST(ProceduralEyes, UntexturedEyeballsAreFoundByNameAndShape) {
 TEST(ProceduralEyes, TexturedEyesAndBrowsAreLeftAlone) {
   eng::Model model = plasterHead();
   model.nodes[1].name = "eyeBrowLeft";  // not a ball, whatever its shape
-  model.images.push_back(eng::proceduralEyeImage(8));
+  model.images.push_back(importers::proceduralEyeImage(8));
   model.materials[size_t(model.meshes[2].primitives[0].material)].baseColorImage = 0;  // textured
-  EXPECT_TRUE(eng::findUntexturedEyes(model).empty());
+  EXPECT_TRUE(importers::findUntexturedEyes(model).empty());
 }
 
 TEST(ProceduralEyes, ImageHasWhiteScleraDarkPupilAndColouredIris) {
-  const eng::Image eye = eng::proceduralEyeImage(128);
+  const eng::Image eye = importers::proceduralEyeImage(128);
   auto at = [&](int x, int y) { return &eye.rgba8[(size_t(y) * 128 + size_t(x)) * 4]; };
   const uint8_t* pupil = at(64, 64);
   const uint8_t* iris = at(64 + 22, 64);  // between the pupil (rho .18) and the limbus (.47)
@@ -83,12 +85,12 @@ TEST(ProceduralEyes, ImageHasWhiteScleraDarkPupilAndColouredIris) {
 
 TEST(FaceDressing, PlasterHeadGetsEyesTeethSkinAndOcclusion) {
   eng::Model model = plasterHead();
-  const eng::FaceDressing plan = eng::planFaceDressing(model);
+  const importers::FaceDressing plan = importers::planFaceDressing(model);
   EXPECT_EQ(plan.eyes, 2u);
   EXPECT_EQ(plan.mouth, 1u);
   EXPECT_EQ(plan.skin, 1u);
   const size_t images = model.images.size();
-  const eng::FaceDressing done = eng::dressUntexturedFace(model);
+  const importers::FaceDressing done = importers::dressUntexturedFace(model);
   EXPECT_EQ(done.total(), plan.total());
   EXPECT_EQ(model.images.size(), images + 2) << "one eye texture for both eyes, one painted skin";
   const eng::Primitive& eye = model.meshes[1].primitives[0];
@@ -130,7 +132,7 @@ TEST(FaceDressing, SkinWithoutUvsKeepsAPlainSkinMaterialBesideAPaintedOne) {
   eng::Primitive noUvs = model.meshes[0].primitives[0];  // same material, no texture coordinates
   noUvs.texcoords.clear();
   model.meshes[0].primitives.push_back(noUvs);
-  eng::dressUntexturedFace(model);
+  importers::dressUntexturedFace(model);
   const eng::Material& painted = model.materials[size_t(model.meshes[0].primitives[0].material)];
   const eng::Primitive& plain = model.meshes[0].primitives[1];
   const eng::Material& plainMaterial = model.materials[size_t(plain.material)];
@@ -160,10 +162,10 @@ TEST(FaceDressing, EyeballPrimitivesOfTheFaceMeshAreKnownByTheirMaterial) {
     model.meshes[0].primitives.push_back(ball);
   }
   model.nodes[1].mesh = model.nodes[2].mesh = -1;  // the separate eyeballs are gone
-  const eng::FaceDressing plan = eng::planFaceDressing(model);
+  const importers::FaceDressing plan = importers::planFaceDressing(model);
   EXPECT_EQ(plan.eyes, 2u);
   EXPECT_EQ(plan.skin, 1u) << "the balls are not skin";
-  eng::dressUntexturedFace(model);
+  importers::dressUntexturedFace(model);
   const int eyeImage = model.materials[size_t(model.meshes[0].primitives[1].material)].baseColorImage;
   EXPECT_GE(eyeImage, 0);
   EXPECT_EQ(model.materials[size_t(model.meshes[0].primitives[2].material)].baseColorImage, eyeImage);
@@ -172,38 +174,38 @@ TEST(FaceDressing, EyeballPrimitivesOfTheFaceMeshAreKnownByTheirMaterial) {
 
 TEST(PaintedBrows, BrowsSitOnTheBrowRidgeAboveEachEye) {
   const eng::Model model = plasterHead();
-  const std::vector<eng::BrowFrame> frames = eng::browFrames(model, eng::findUntexturedEyes(model), 0);
+  const std::vector<importers::BrowFrame> frames = importers::browFrames(model, importers::findUntexturedEyes(model), 0);
   ASSERT_EQ(frames.size(), 2u);
   // Eyes at (+-0.35, 0.2, 0.85): 0.7 apart, so the brows run ~0.16 above them.
   auto onHead = [](float x, float y) { return glm::vec3(x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))); };
   for (float side : {1.0f, -1.0f}) {
-    EXPECT_GT(eng::browCoverage(frames, onHead(side * 0.37f, 0.2f + 0.19f)), 0.7f) << "above the eye";
-    EXPECT_EQ(eng::browCoverage(frames, onHead(side * 0.35f, 0.2f)), 0.0f) << "not on the eye";
-    EXPECT_EQ(eng::browCoverage(frames, onHead(side * 0.35f, 0.55f)), 0.0f) << "not on the forehead";
+    EXPECT_GT(importers::browCoverage(frames, onHead(side * 0.37f, 0.2f + 0.19f)), 0.7f) << "above the eye";
+    EXPECT_EQ(importers::browCoverage(frames, onHead(side * 0.35f, 0.2f)), 0.0f) << "not on the eye";
+    EXPECT_EQ(importers::browCoverage(frames, onHead(side * 0.35f, 0.55f)), 0.0f) << "not on the forehead";
   }
-  EXPECT_EQ(eng::browCoverage(frames, onHead(0.0f, 0.37f)), 0.0f) << "the glabella stays bare";
-  EXPECT_EQ(eng::browCoverage(frames, glm::vec3(0.37f, 0.39f, -0.83f)), 0.0f) << "nothing on the back of the head";
+  EXPECT_EQ(importers::browCoverage(frames, onHead(0.0f, 0.37f)), 0.0f) << "the glabella stays bare";
+  EXPECT_EQ(importers::browCoverage(frames, glm::vec3(0.37f, 0.39f, -0.83f)), 0.0f) << "nothing on the back of the head";
 }
 
 TEST(PaintedBrowsValidity, NoBrowsWithoutExactlyTwoEyes) {
   const eng::Model model = plasterHead();
-  std::vector<eng::EyePrimitive> eyes = eng::findUntexturedEyes(model);
+  std::vector<importers::EyePrimitive> eyes = importers::findUntexturedEyes(model);
   eyes.pop_back();
-  EXPECT_TRUE(eng::browFrames(model, eyes, 0).empty());
+  EXPECT_TRUE(importers::browFrames(model, eyes, 0).empty());
   eyes.clear();
-  EXPECT_TRUE(eng::browFrames(model, eyes, 0).empty());
-  std::vector<eng::EyePrimitive> sameSpot = eng::findUntexturedEyes(model);
+  EXPECT_TRUE(importers::browFrames(model, eyes, 0).empty());
+  std::vector<importers::EyePrimitive> sameSpot = importers::findUntexturedEyes(model);
   sameSpot[1] = sameSpot[0];  // two eyes in one place: no across axis
-  EXPECT_TRUE(eng::browFrames(model, sameSpot, 0).empty());
+  EXPECT_TRUE(importers::browFrames(model, sameSpot, 0).empty());
 }
 
 TEST(FaceDressing, NonFaceModelsAndAuthoredColoursStayAsAuthored) {
   eng::Model sphere = vk_test::makeSphereModel(whiteSphere(2));  // a morphing sample, no eyes, not named a face
-  EXPECT_EQ(eng::planFaceDressing(sphere).total(), 0u);
+  EXPECT_EQ(importers::planFaceDressing(sphere).total(), 0u);
   eng::Model coloured = plasterHead();
   for (eng::Material& m : coloured.materials) m.baseColorFactor = glm::vec4(0.7f, 0.5f, 0.4f, 1.0f);
-  EXPECT_EQ(eng::planFaceDressing(coloured).skin, 0u);
-  EXPECT_EQ(eng::planFaceDressing(coloured).mouth, 0u);
+  EXPECT_EQ(importers::planFaceDressing(coloured).skin, 0u);
+  EXPECT_EQ(importers::planFaceDressing(coloured).mouth, 0u);
 }
 
 TEST(VertexOcclusion, InsideOfAClosedShellIsDarkOutsideIsOpen) {
@@ -211,7 +213,7 @@ TEST(VertexOcclusion, InsideOfAClosedShellIsDarkOutsideIsOpen) {
   eng::Model model;
   addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "shell", {0, 0, 0}, glm::vec3(1.0f));
   addPart(model, vk_test::makeSphereModel(whiteSphere(0)), "core", {0, 0, 0}, glm::vec3(0.3f));
-  const auto visible = eng::bakeVertexOcclusion(model, {.resolution = 64, .rays = 32, .reach = 1.0f});
+  const auto visible = importers::bakeVertexOcclusion(model, {.resolution = 64, .rays = 32, .reach = 1.0f});
   float shell = 1.0f, core = 0.0f;
   for (float v : visible[0][0]) shell = std::min(shell, v);
   for (float v : visible[1][0]) core = std::max(core, v);

@@ -15,9 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/inner_face_parts.h"  // eng::namesAnEyeball
 #include "engine/scene/model.h"
 
-namespace eng {
+namespace importers {
 
 struct EyePrimitive {
   int mesh = -1;
@@ -29,18 +30,15 @@ struct EyePrimitive {
 };
 
 // The untextured eyeballs of `model`, at rest.
-std::vector<EyePrimitive> findUntexturedEyes(const Model& model);
+std::vector<EyePrimitive> findUntexturedEyes(const eng::Model& model);
 
 // Dresses every eyeball findUntexturedEyes() finds: adds the eye texture (one
 // image shared by all eyes) and one material per distinct source material,
 // sets planar texture coordinates on the eye primitives. Returns how many
 // primitives were dressed (0: the model is unchanged).
-size_t dressUntexturedEyes(Model& model);
-
-// Whether `name` names an eyeball (not a brow, lash, lid, socket...).
-bool namesAnEyeball(const std::string& name);
+size_t dressUntexturedEyes(eng::Model& model);
 
 // The procedural eye texture (RGBA8, sRGB): for tests and tools.
-Image proceduralEyeImage(int size = 256);
+eng::Image proceduralEyeImage(int size = 256);
 
-}  // namespace eng
+}  // namespace importers

@@ -9,17 +9,17 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/image_io.h"
-#include "engine/scene/obj_keyframes.h"
+#include "importers/obj_keyframes.h"
+#include "tests/common/obj_test_files.h"
 #include "tests/common/test_support.h"
-#include "tests/engine/scene/gltf_test_files.h"
-#include "tests/engine/scene/obj_test_files.h"
 
 namespace {
 
-using scene_test::GridObj;
+using testing_support::GridObj;
 using testing_support::freshTempDir;
 using testing_support::writeFile;
 
@@ -43,11 +43,11 @@ int vertexAt(const eng::Primitive& prim, const glm::vec3& p) {
   return -1;
 }
 
-eng::ObjKeyframeImport importOk(const std::filesystem::path& neutral, const std::vector<eng::ObjTargetFile>& targets,
-                                const eng::ObjKeyframeOptions& options = {}) {
-  auto imported = eng::importObjKeyframes(neutral, targets, options);
+importers::ObjKeyframeImport importOk(const std::filesystem::path& neutral, const std::vector<importers::ObjTargetFile>& targets,
+                                const importers::ObjKeyframeOptions& options = {}) {
+  auto imported = importers::importObjKeyframes(neutral, targets, options);
   EXPECT_TRUE(imported.ok()) << (imported.ok() ? "" : imported.error().message);
-  return imported.ok() ? std::move(*imported) : eng::ObjKeyframeImport{};
+  return imported.ok() ? std::move(*imported) : importers::ObjKeyframeImport{};
 }
 
 TEST(ObjKeyframes, QuadSetBecomesOneMeshWithNamedTargets) {
@@ -195,7 +195,7 @@ TEST(ObjKeyframes, FolderFormNamesTargetsAfterTheirFiles) {
   writeFile(dir / "sad.obj", sad().text());
   writeFile(dir / "happy.OBJ", happy().text());
   writeFile(dir / "notes.txt", "not a mesh");
-  auto folder = eng::findObjKeyframeFolder(dir);
+  auto folder = importers::findObjKeyframeFolder(dir);
   ASSERT_TRUE(folder.ok()) << folder.error().message;
   EXPECT_EQ(folder->neutral, dir / "neutral.obj");
   ASSERT_EQ(folder->targets.size(), 2u);
@@ -215,7 +215,9 @@ TEST(ObjKeyframes, ConvertedSetRoundTripsThroughGlbWithSparseTargets) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
   EXPECT_EQ(loaded->meshes[0].targetNames, std::vector<std::string>{"happy"});
   EXPECT_EQ(loaded->meshes[0].primitives[0].targets[0].positions, imported.model.meshes[0].primitives[0].targets[0].positions);
-  const std::string glb = scene_test::readText(dir / "face.glb");
+  const auto bytes = eng::readFileBytes(dir / "face.glb", size_t{1} << 24);
+  ASSERT_TRUE(bytes.ok()) << bytes.error().message;
+  const std::string glb(bytes->begin(), bytes->end());
   EXPECT_NE(glb.find("\"sparse\""), std::string::npos) << "one moved vertex of 20 is stored sparse";
 }
 
@@ -265,12 +267,12 @@ TEST(ObjKeyframes, MatchByPositionRecoversAReorderedExport) {
   std::shuffle(shuffled.order.begin(), shuffled.order.end(), std::mt19937(7));
   writeFile(dir / "happy_shuffled.obj", shuffled.text());
 
-  auto strict = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"happy", dir / "happy_shuffled.obj"}});
+  auto strict = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"happy", dir / "happy_shuffled.obj"}});
   ASSERT_FALSE(strict.ok()) << "vertex order differs";
 
   const auto reference = importOk(dir / "neutral.obj", {{"happy", dir / "happy.obj"}});
   const auto matched = importOk(dir / "neutral.obj", {{"happy", dir / "happy_shuffled.obj"}},
-                                eng::ObjKeyframeOptions{.matchByPosition = true});
+                                importers::ObjKeyframeOptions{.matchByPosition = true});
   const eng::MorphTarget& want = reference.model.meshes[0].primitives[0].targets[0];
   const eng::MorphTarget& got = matched.model.meshes[0].primitives[0].targets[0];
   EXPECT_EQ(got.positions, want.positions) << "the lifted vertex is found through its edges";
@@ -286,7 +288,7 @@ TEST(ObjKeyframes, MatchByPositionReportsVerticesWithoutAPartner) {
   moved.position = [](int, glm::vec3 r) { return r + glm::vec3(0.3f, 0.0f, 0.1f); };
   writeFile(dir / "moved.obj", moved.text());
   const auto matched = importOk(dir / "neutral.obj", {{"moved", dir / "moved.obj"}},
-                                eng::ObjKeyframeOptions{.matchByPosition = true});
+                                importers::ObjKeyframeOptions{.matchByPosition = true});
   EXPECT_EQ(matched.targets[0].unmatchedVertices, 20u);
   EXPECT_EQ(matched.targets[0].movedVertices, 0u) << "unmatched vertices stay at rest";
 }
@@ -302,7 +304,7 @@ TEST(ObjKeyframesBadInput, MismatchedFaceOrderNamesFileCountsAndFirstFace) {
   ASSERT_NE(text.find(face2), std::string::npos);
   text.replace(text.find(face2), face2.size(), "f 3/3/3 8/8/8 7/7/7 2/2/2");
   writeFile(dir / "bad.obj", text);
-  auto imported = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"bad", dir / "bad.obj"}});
+  auto imported = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"bad", dir / "bad.obj"}});
   ASSERT_FALSE(imported.ok());
   const std::string& m = imported.error().message;
   EXPECT_EQ(m.rfind((dir / "bad.obj").string(), 0), 0u) << m;
@@ -317,7 +319,7 @@ TEST(ObjKeyframesBadInput, DifferentVertexAndFaceCounts) {
   GridObj smaller;
   smaller.nx = 3;
   writeFile(dir / "small.obj", smaller.text());
-  auto imported = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"small", dir / "small.obj"}});
+  auto imported = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"small", dir / "small.obj"}});
   ASSERT_FALSE(imported.ok());
   EXPECT_NE(imported.error().message.find("16 vertices vs 20, 9 faces vs 12"), std::string::npos) << imported.error().message;
 }
@@ -326,18 +328,18 @@ TEST(ObjKeyframesBadInput, DuplicateOrEmptyTargetNamesAndMissingFiles) {
   const auto dir = freshTempDir("obj_names");
   writeFile(dir / "neutral.obj", GridObj{}.text());
   writeFile(dir / "happy.obj", happy().text());
-  auto dup = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"x", dir / "happy.obj"}, {"x", dir / "happy.obj"}});
+  auto dup = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"x", dir / "happy.obj"}, {"x", dir / "happy.obj"}});
   ASSERT_FALSE(dup.ok());
   EXPECT_NE(dup.error().message.find("target name 'x' is used twice"), std::string::npos);
-  auto empty = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"", dir / "happy.obj"}});
+  auto empty = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"", dir / "happy.obj"}});
   ASSERT_FALSE(empty.ok());
-  auto missing = eng::importObjKeyframes(dir / "neutral.obj", std::vector<eng::ObjTargetFile>{{"gone", dir / "gone.obj"}});
+  auto missing = importers::importObjKeyframes(dir / "neutral.obj", std::vector<importers::ObjTargetFile>{{"gone", dir / "gone.obj"}});
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("gone.obj: file not found"), std::string::npos) << missing.error().message;
-  auto folder = eng::findObjKeyframeFolder(dir / "nowhere");
+  auto folder = importers::findObjKeyframeFolder(dir / "nowhere");
   ASSERT_FALSE(folder.ok());
   std::filesystem::remove(dir / "neutral.obj");
-  folder = eng::findObjKeyframeFolder(dir);
+  folder = importers::findObjKeyframeFolder(dir);
   ASSERT_FALSE(folder.ok());
   EXPECT_NE(folder.error().message.find("no neutral.obj"), std::string::npos);
 }

@@ -12,7 +12,7 @@
 
 #include "engine/core/result.h"
 
-namespace eng {
+namespace importers {
 
 struct ObjCorner {
   int v = -1;
@@ -49,6 +49,6 @@ struct ObjReadOptions {
 // Every index is checked against its array and every number for finiteness;
 // mtllib and map_Kd paths are confined to the OBJ's folder (a refused or
 // missing material file is a warning, as OBJ sets often carry stale paths).
-Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options = {});
+eng::Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options = {});
 
-}  // namespace eng
+}  // namespace importers

@@ -1,7 +1,7 @@
 // Reading OBJ polygons: corners, faces, materials, and refusal of broken files.
 #include <gtest/gtest.h>
 
-#include "engine/scene/obj_mesh.h"
+#include "importers/obj_mesh.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -14,7 +14,7 @@ TEST(ObjMesh, KeepsPolygonsAndSeparateIndexStreams) {
   writeFile(dir / "m.obj",
             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
             "f 1/1/1 2/2/1 3/2/1 4/1/1\nf 1//1 3//1 4//1\nf -4 -3 -2\n");
-  auto mesh = eng::readObjPolygonMesh(dir / "m.obj");
+  auto mesh = importers::readObjPolygonMesh(dir / "m.obj");
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;
   EXPECT_EQ(mesh->positions.size(), 4u);
   ASSERT_EQ(mesh->faceCount(), 3u);
@@ -30,15 +30,15 @@ TEST(ObjMesh, KeepsPolygonsAndSeparateIndexStreams) {
 
 TEST(ObjMeshBadInput, MissingEmptyAndFacelessFiles) {
   const auto dir = freshTempDir("obj_mesh_bad_files");
-  auto missing = eng::readObjPolygonMesh(dir / "none.obj");
+  auto missing = importers::readObjPolygonMesh(dir / "none.obj");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("none.obj: file not found"), std::string::npos);
   writeFile(dir / "empty.obj", "");
-  auto empty = eng::readObjPolygonMesh(dir / "empty.obj");
+  auto empty = importers::readObjPolygonMesh(dir / "empty.obj");
   ASSERT_FALSE(empty.ok());
   EXPECT_NE(empty.error().message.find("no vertices"), std::string::npos) << empty.error().message;
   writeFile(dir / "points.obj", "v 0 0 0\nv 1 0 0\n");
-  auto points = eng::readObjPolygonMesh(dir / "points.obj");
+  auto points = importers::readObjPolygonMesh(dir / "points.obj");
   ASSERT_FALSE(points.ok());
   EXPECT_NE(points.error().message.find("no faces"), std::string::npos) << points.error().message;
 }
@@ -46,12 +46,12 @@ TEST(ObjMeshBadInput, MissingEmptyAndFacelessFiles) {
 TEST(ObjMeshBadInput, IndexOutOfRangeNamesTheFace) {
   const auto dir = freshTempDir("obj_mesh_bad_index");
   writeFile(dir / "m.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 1 2 9\n");
-  auto mesh = eng::readObjPolygonMesh(dir / "m.obj");
+  auto mesh = importers::readObjPolygonMesh(dir / "m.obj");
   ASSERT_FALSE(mesh.ok());
   EXPECT_NE(mesh.error().message.find("m.obj: face 2 uses vertex 9, the file has 3"), std::string::npos)
       << mesh.error().message;
   writeFile(dir / "n.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");
-  mesh = eng::readObjPolygonMesh(dir / "n.obj");
+  mesh = importers::readObjPolygonMesh(dir / "n.obj");
   ASSERT_FALSE(mesh.ok());
   EXPECT_NE(mesh.error().message.find("face 1 uses normal 4, the file has 1"), std::string::npos) << mesh.error().message;
 }
@@ -60,11 +60,11 @@ TEST(ObjMeshBadInput, NonFiniteNumbers) {
   // tinyobjloader reads "nan"/"inf" words as 0 but overflowing literals as infinity.
   const auto dir = freshTempDir("obj_mesh_nan");
   writeFile(dir / "m.obj", "v 0 0 0\nv 1 0 0\nv 1 1 1e400\nf 1 2 3\n");
-  auto mesh = eng::readObjPolygonMesh(dir / "m.obj");
+  auto mesh = importers::readObjPolygonMesh(dir / "m.obj");
   ASSERT_FALSE(mesh.ok());
   EXPECT_NE(mesh.error().message.find("m.obj: vertex 3 is infinite"), std::string::npos) << mesh.error().message;
   writeFile(dir / "n.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 -1e999 0\nf 1//1 2//1 3//1\n");
-  mesh = eng::readObjPolygonMesh(dir / "n.obj");
+  mesh = importers::readObjPolygonMesh(dir / "n.obj");
   ASSERT_FALSE(mesh.ok());
   EXPECT_NE(mesh.error().message.find("normal 1 is infinite"), std::string::npos) << mesh.error().message;
 }
@@ -73,7 +73,7 @@ TEST(ObjMeshBadInput, MaterialLibraryOutsideTheFolderIsRefusedWithAWarning) {
   const auto dir = freshTempDir("obj_mesh_mtl_outside");
   writeFile(dir / "secret.mtl", "newmtl secret\nKd 1 0 0\n");
   writeFile(dir / "sub" / "m.obj", "mtllib ../secret.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl secret\nf 1 2 3\n");
-  auto mesh = eng::readObjPolygonMesh(dir / "sub" / "m.obj");
+  auto mesh = importers::readObjPolygonMesh(dir / "sub" / "m.obj");
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;
   EXPECT_TRUE(mesh->materials.empty());
   const bool refused = std::any_of(mesh->warnings.begin(), mesh->warnings.end(), [](const std::string& w) {

@@ -1,4 +1,4 @@
-#include "engine/scene/obj_mesh.h"
+#include "importers/obj_mesh.h"
 
 #include <cmath>
 #include <sstream>
@@ -7,7 +7,11 @@
 
 #include "engine/scene/file_bytes.h"
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 bool isInside(const std::filesystem::path& p, const std::filesystem::path& dir) {
@@ -167,4 +171,4 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
   return mesh;
 }
 
-}  // namespace eng
+}  // namespace importers

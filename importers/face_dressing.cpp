@@ -1,19 +1,25 @@
-#include "engine/scene/face_dressing.h"
+#include "importers/face_dressing.h"
 
 #include <algorithm>
 #include <cctype>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "engine/core/uv_raster.h"
-#include "engine/scene/painted_brows.h"
-#include "engine/scene/procedural_eyes.h"
-#include "engine/scene/vertex_occlusion.h"
+#include "engine/scene/inner_face_parts.h"
+#include "importers/painted_brows.h"
+#include "importers/procedural_eyes.h"
+#include "importers/vertex_occlusion.h"
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 enum class Part { None, Teeth, Tongue, Skin };
@@ -24,30 +30,6 @@ enum class Part { None, Teeth, Tongue, Skin };
 constexpr glm::vec3 kTeethColour{0.62f, 0.58f, 0.50f};
 constexpr glm::vec3 kTongueColour{0.42f, 0.13f, 0.12f};
 constexpr glm::vec3 kSkinColour{0.60f, 0.42f, 0.34f};
-
-bool contains(std::string_view haystack, std::string_view needle) {
-  std::string h(haystack);
-  for (char& c : h) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return h.find(needle) != std::string::npos;
-}
-
-// The mesh's name and the names of the node drawing it and its parents.
-std::vector<std::string_view> namesOf(const Model& model, size_t mesh, int node) {
-  std::vector<std::string_view> names{model.meshes[mesh].name};
-  for (int depth = 0; node >= 0 && depth < 4; ++depth, node = model.nodes[size_t(node)].parent)
-    names.push_back(model.nodes[size_t(node)].name);
-  return names;
-}
-
-bool anyContains(const std::vector<std::string_view>& names, std::string_view needle) {
-  return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return contains(n, needle); });
-}
-
-// An eyeball that is a primitive of the face's mesh is known by its material
-// (procedural_eyes.h): it is dressed as an eye, never as skin.
-bool materialNamesAnEyeball(const Model& model, int material) {
-  return material >= 0 && size_t(material) < model.materials.size() && namesAnEyeball(model.materials[size_t(material)].name);
-}
 
 // An untextured material left at white: the author gave it no colour.
 bool unauthoredWhite(const Model& model, int material) {
@@ -68,22 +50,22 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
   // says head or face. A morphing sphere or cube sample stays as authored.
   bool isFace = !findUntexturedEyes(model).empty();
   for (size_t m = 0; m < model.meshes.size() && !isFace; ++m) {
-    const std::vector<std::string_view> names = namesOf(model, m, nodeOfMesh[m]);
-    isFace = anyContains(names, "head") || anyContains(names, "face");
+    const std::vector<std::string_view> names = meshAndNodeNames(model, m, nodeOfMesh[m]);
+    isFace = anyNameContains(names, "head") || anyNameContains(names, "face");
   }
   std::vector<PlannedPrimitive> planned;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const Mesh& mesh = model.meshes[m];
-    const std::vector<std::string_view> names = namesOf(model, m, nodeOfMesh[m]);
+    const std::vector<std::string_view> names = meshAndNodeNames(model, m, nodeOfMesh[m]);
     const bool eyeNamed = std::any_of(names.begin(), names.end(),
                                       [](std::string_view n) { return namesAnEyeball(std::string(n)); });
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
       if (!unauthoredWhite(model, prim.material)) continue;
       Part part = Part::None;
-      if (anyContains(names, "teeth") || anyContains(names, "tooth"))
+      if (anyNameContains(names, "teeth") || anyNameContains(names, "tooth"))
         part = Part::Teeth;
-      else if (anyContains(names, "tongue"))
+      else if (anyNameContains(names, "tongue"))
         part = Part::Tongue;
       else if (isFace && !eyeNamed && !materialNamesAnEyeball(model, prim.material) && !mesh.targetNames.empty())
         part = Part::Skin;
@@ -169,59 +151,18 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
 
 }  // namespace
 
-std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
-  struct Box {
-    glm::vec3 lo{std::numeric_limits<float>::max()}, hi{std::numeric_limits<float>::lowest()};
-  };
-  // World-space rest bounds, each mesh placed by the first node drawing it.
-  const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
-  std::vector<std::vector<Box>> boxes(model.meshes.size());
-  for (size_t m = 0; m < model.meshes.size(); ++m) {
-    const glm::mat4 world = nodeOfMesh[m] >= 0 ? model.worldTransform(nodeOfMesh[m]) : glm::mat4(1.0f);
-    for (const Primitive& prim : model.meshes[m].primitives) {
-      Box& box = boxes[m].emplace_back();
-      for (const glm::vec3& p : prim.positions) {
-        const glm::vec3 placed = glm::vec3(world * glm::vec4(p, 1.0f));
-        box.lo = glm::min(box.lo, placed);
-        box.hi = glm::max(box.hi, placed);
-      }
-    }
-  }
-  auto enclosed = [&](const Box& inner, size_t mesh, size_t primitive) {
-    for (size_t m = 0; m < boxes.size(); ++m)
-      for (size_t p = 0; p < boxes[m].size(); ++p) {
-        const Box& outer = boxes[m][p];
-        if ((m != mesh || p != primitive) && glm::all(glm::lessThan(outer.lo, inner.lo)) &&
-            glm::all(glm::lessThan(inner.hi, outer.hi)))
-          return true;
-      }
-    return false;
-  };
-  std::vector<std::vector<bool>> inside(model.meshes.size());
-  for (size_t m = 0; m < model.meshes.size(); ++m) {
-    const Mesh& mesh = model.meshes[m];
-    const std::vector<std::string_view> meshNames = namesOf(model, m, nodeOfMesh[m]);
-    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-      std::vector<std::string_view> names = meshNames;
-      const int material = mesh.primitives[p].material;
-      if (material >= 0 && size_t(material) < model.materials.size()) names.push_back(model.materials[size_t(material)].name);
-      const bool named = std::any_of(meshNames.begin(), meshNames.end(),
-                                     [](std::string_view n) { return namesAnEyeball(std::string(n)); }) ||
-                         materialNamesAnEyeball(model, material) ||
-                         anyContains(names, "teeth") || anyContains(names, "tooth") || anyContains(names, "tongue") ||
-                         (anyContains(names, "mouth") && (anyContains(names, "interior") || anyContains(names, "inside") ||
-                                                          anyContains(names, "bag") || anyContains(names, "cavity")));
-      inside[m].push_back(named && !mesh.primitives[p].positions.empty() && enclosed(boxes[m][p], m, p));
-    }
-  }
-  return inside;
-}
-
 FaceDressing planFaceDressing(const Model& model) {
   FaceDressing d;
   d.eyes = findUntexturedEyes(model).size();
   for (const PlannedPrimitive& p : plan(model)) (p.part == Part::Skin ? d.skin : d.mouth) += 1;
   return d;
+}
+
+std::optional<Model> dressedForDisplay(const Model& model) {
+  if (planFaceDressing(model).total() == 0) return std::nullopt;
+  std::optional<Model> dressed = model;
+  dressUntexturedFace(*dressed);
+  return dressed;
 }
 
 FaceDressing dressUntexturedFace(Model& model) {
@@ -266,4 +207,4 @@ FaceDressing dressUntexturedFace(Model& model) {
   return d;
 }
 
-}  // namespace eng
+}  // namespace importers

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "engine/core/result.h"
-#include "engine/scene/obj_mesh.h"
+#include "importers/obj_mesh.h"
 
-namespace eng {
+namespace importers {
 
 struct ObjCornerMap {
   std::vector<int32_t> targetCorner;  // per neutral corner (flat index): target corner, -1 unknown
@@ -21,10 +21,10 @@ struct ObjCornerMap {
 
 // Same vertex count, face count and, face by face, the same 'v' indices.
 // The error names the target, the counts and the first differing face.
-Result<ObjCornerMap> matchObjByTopology(const ObjPolygonMesh& neutral, const ObjPolygonMesh& target,
+eng::Result<ObjCornerMap> matchObjByTopology(const ObjPolygonMesh& neutral, const ObjPolygonMesh& target,
                                         const std::string& neutralName, const std::string& targetName);
 
 // tolerance: largest distance (model units) at which two vertices coincide.
 ObjCornerMap matchObjByPosition(const ObjPolygonMesh& neutral, const ObjPolygonMesh& target, float tolerance);
 
-}  // namespace eng
+}  // namespace importers

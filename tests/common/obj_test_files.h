@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-namespace scene_test {
+namespace testing_support {
 
 struct GridObj {
   int nx = 4, ny = 3;  // cells; (nx+1)*(ny+1) vertices
@@ -28,4 +28,4 @@ struct GridObj {
   std::string text() const;
 };
 
-}  // namespace scene_test
+}  // namespace testing_support

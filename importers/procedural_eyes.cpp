@@ -1,4 +1,4 @@
-#include "engine/scene/procedural_eyes.h"
+#include "importers/procedural_eyes.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,11 @@
 #include <map>
 #include <string_view>
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 // The node and up to three ancestors (eye groups: "grp_eyeLeft" > "eyeLeft").
@@ -81,23 +85,7 @@ glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a + (b 
 constexpr float kIrisRadius = 0.47f;
 constexpr float kPupilRadius = 0.18f;
 
-std::string lowercase(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 }  // namespace
-
-// "eye" in a name, but not the parts around an eye that are named after it.
-bool namesAnEyeball(const std::string& name) {
-  const std::string n = lowercase(name);
-  if (n.find("eye") == std::string::npos) return false;
-  static constexpr std::array<std::string_view, 12> kNotTheBall = {
-      "brow", "lash", "lid", "socket", "shadow", "line", "highlight", "wet", "tear", "occlusion", "cornea", "spec"};
-  return std::none_of(kNotTheBall.begin(), kNotTheBall.end(),
-                      [&](std::string_view part) { return n.find(part) != std::string::npos; });
-}
 
 Image proceduralEyeImage(int size) {
   Image image;
@@ -210,4 +198,4 @@ size_t dressUntexturedEyes(Model& model) {
   return eyes.size();
 }
 
-}  // namespace eng
+}  // namespace importers

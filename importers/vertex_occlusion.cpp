@@ -1,10 +1,14 @@
-#include "engine/scene/vertex_occlusion.h"
+#include "importers/vertex_occlusion.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 class VoxelGrid {
@@ -136,4 +140,4 @@ std::vector<std::vector<std::vector<float>>> bakeVertexOcclusion(const Model& mo
   return visibility;
 }
 
-}  // namespace eng
+}  // namespace importers

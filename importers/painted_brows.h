@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 
 #include "engine/scene/model.h"
-#include "engine/scene/procedural_eyes.h"
+#include "importers/procedural_eyes.h"
 
-namespace eng {
+namespace importers {
 
 // One eye's brow placement in the space of the mesh being painted.
 struct BrowFrame {
@@ -30,7 +30,7 @@ struct BrowFrame {
 
 // The brow frames of a face with exactly two eyeballs, in the space of the
 // mesh drawn by `skinNode` (node -1: model space); empty otherwise.
-std::vector<BrowFrame> browFrames(const Model& model, const std::vector<EyePrimitive>& eyes, int skinNode);
+std::vector<BrowFrame> browFrames(const eng::Model& model, const std::vector<EyePrimitive>& eyes, int skinNode);
 
 // Brow coverage in [0, 1] at rest-pose point `p` (same space as the frames).
 float browCoverage(const std::vector<BrowFrame>& frames, const glm::vec3& p);
@@ -38,4 +38,4 @@ float browCoverage(const std::vector<BrowFrame>& frames, const glm::vec3& p);
 // The colour brows are painted with (linear).
 glm::vec3 browColour();
 
-}  // namespace eng
+}  // namespace importers

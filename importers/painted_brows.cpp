@@ -1,11 +1,15 @@
-#include "engine/scene/painted_brows.h"
+#include "importers/painted_brows.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/common.hpp>
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 // Brow shape in units of the distance between the eye centres (~63 mm on an
@@ -80,4 +84,4 @@ float browCoverage(const std::vector<BrowFrame>& frames, const glm::vec3& p) {
 
 glm::vec3 browColour() { return {0.045f, 0.030f, 0.022f}; }
 
-}  // namespace eng
+}  // namespace importers

@@ -1,6 +1,6 @@
 #pragma once
 // Keyframe (blend shape) sets exported as OBJ files -- neutral.obj plus one
-// OBJ per expression -- turned into one glTF-ready Model: the neutral mesh
+// OBJ per expression -- turned into one glTF-ready eng::Model: the neutral mesh
 // with one morph target per file (position and normal differences).
 //
 // A glTF vertex is a unique (v, vt, vn) corner of the NEUTRAL mesh; targets
@@ -15,7 +15,7 @@
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 
-namespace eng {
+namespace importers {
 
 struct ObjTargetFile {
   std::string name;  // morph target name (unique, non-empty)
@@ -38,11 +38,11 @@ struct ObjTargetReport {
 };
 
 struct ObjKeyframeImport {
-  Model model;
+  eng::Model model;
   std::vector<ObjTargetReport> targets;
 };
 
-Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutral, std::span<const ObjTargetFile> targets,
+eng::Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutral, std::span<const ObjTargetFile> targets,
                                              const ObjKeyframeOptions& options = {});
 
 struct ObjKeyframeFolder {
@@ -51,6 +51,6 @@ struct ObjKeyframeFolder {
 };
 
 // DIR/neutral.obj plus every other *.obj in DIR, each a target named after its file.
-Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir);
+eng::Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir);
 
-}  // namespace eng
+}  // namespace importers

@@ -1,4 +1,4 @@
-#include "engine/scene/obj_correspondence.h"
+#include "importers/obj_correspondence.h"
 
 #include <algorithm>
 #include <deque>
@@ -6,7 +6,11 @@
 
 #include "engine/scene/position_hash.h"
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 std::string faceVertices(const ObjPolygonMesh& mesh, size_t f) {
@@ -124,4 +128,4 @@ ObjCornerMap matchObjByPosition(const ObjPolygonMesh& neutral, const ObjPolygonM
   return map;
 }
 
-}  // namespace eng
+}  // namespace importers

@@ -1,8 +1,8 @@
-#include "tests/engine/scene/obj_test_files.h"
+#include "tests/common/obj_test_files.h"
 
 #include <sstream>
 
-namespace scene_test {
+namespace testing_support {
 
 glm::vec3 GridObj::rest(int index) const {
   return glm::vec3(static_cast<float>(index % (nx + 1)), static_cast<float>(index / (nx + 1)), 0.0f);
@@ -57,4 +57,4 @@ std::string GridObj::text() const {
   return out.str();
 }
 
-}  // namespace scene_test
+}  // namespace testing_support

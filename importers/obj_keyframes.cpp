@@ -1,4 +1,4 @@
-#include "engine/scene/obj_keyframes.h"
+#include "importers/obj_keyframes.h"
 
 #include <algorithm>
 #include <set>
@@ -7,10 +7,14 @@
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
-#include "engine/scene/obj_correspondence.h"
-#include "engine/scene/obj_mesh.h"
+#include "importers/obj_correspondence.h"
+#include "importers/obj_mesh.h"
 
-namespace eng {
+namespace importers {
+
+// The engine's scene types (Model, Result, ...) unqualified.
+using namespace eng;
+
 namespace {
 
 struct CornerKey {
@@ -248,4 +252,4 @@ Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir
   return folder;
 }
 
-}  // namespace eng
+}  // namespace importers

@@ -15,7 +15,7 @@
 
 #include "engine/scene/model.h"
 
-namespace eng {
+namespace importers {
 
 struct OcclusionOptions {
   int resolution = 128;  // voxels along the longest side of the bounds
@@ -25,7 +25,7 @@ struct OcclusionOptions {
 
 // Per mesh, per primitive, per vertex: visibility in [0, 1] (1 = open sky),
 // for every mesh instance's first drawing node. Meshes no node draws get 1.
-std::vector<std::vector<std::vector<float>>> bakeVertexOcclusion(const Model& model,
+std::vector<std::vector<std::vector<float>>> bakeVertexOcclusion(const eng::Model& model,
                                                                  const OcclusionOptions& options = {});
 
-}  // namespace eng
+}  // namespace importers

@@ -2,8 +2,8 @@
 // How a face that arrives without textures is shown. A scan or sculpt
 // exported untextured (facecap, many ARKit captures) is one plain white
 // material on skin, eyeballs and teeth alike: a plaster cast whose blank
-// eyes and washed-out shading hide every expression. For display only (the
-// loaded model itself is not changed), such a face is dressed:
+// eyes and washed-out shading hide every expression. For display, such a
+// face is dressed:
 //  - eyeballs get the procedural eye (procedural_eyes.h);
 //  - teeth and tongue, found by name, get ivory and a muted pink;
 //  - the skin -- the untextured, white material of a mesh that carries morph
@@ -14,12 +14,19 @@
 //    (vertex_occlusion.h), so the mouth's inside, nostrils and the rim of
 //    the lids read as deep.
 // Anything textured or given a colour by its author is left as it is.
+//
+// Dressing is a step of loading that the caller asks for, never done behind
+// its back: the renderer draws a model as given. The programs ask for it
+// (importers::loadFace with LoadFaceOptions::dressForDisplay) and draw the
+// dressed copy, keeping the model as loaded for what they inspect, rig and
+// export; an embedder that wants the same look calls dressedForDisplay.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "engine/scene/model.h"
 
-namespace eng {
+namespace importers {
 
 struct FaceDressing {
   size_t eyes = 0;   // primitives dressed as eyeballs
@@ -28,17 +35,12 @@ struct FaceDressing {
   size_t total() const { return eyes + mouth + skin; }
 };
 
-// Parts of a face that sit inside the head: eyeballs, teeth, tongue and the
-// mouth's inside, found by the names of the primitive's material, mesh or
-// nodes, and only where the primitive's rest bounds lie within another
-// primitive's (the head around it). The shadows they cast fall into the eye
-// sockets and the mouth, which the head's own shadow and its occlusion
-// already darken: a renderer may leave them out of its shadow map.
-// One flag per primitive, mesh-major.
-std::vector<std::vector<bool>> partsInsideTheHead(const Model& model);
-
 // What dressUntexturedFace would change, without changing anything.
-FaceDressing planFaceDressing(const Model& model);
-FaceDressing dressUntexturedFace(Model& model);
+FaceDressing planFaceDressing(const eng::Model& model);
+// Dresses `model` in place; what was dressed (all 0: nothing changed).
+FaceDressing dressUntexturedFace(eng::Model& model);
+// A dressed copy of `model` to draw, or nullopt when nothing in it needs
+// dressing (draw the model itself).
+std::optional<eng::Model> dressedForDisplay(const eng::Model& model);
 
-}  // namespace eng
+}  // namespace importers

@@ -1,0 +1,101 @@
+// The one loader of every program (importers/load_face.h): formats told
+// apart by content, each file read once, shapes baked into the rest mesh,
+// and the display dressing only when asked for.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/gltf_writer.h"
+#include "importers/load_face.h"
+#include "tests/common/test_face.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+using cli_test::kCustom;
+using cli_test::makeTestFace;
+
+// The test face as an untextured scan arrives: one plain white material.
+std::filesystem::path writePlasterFace(const std::string& name) {
+  eng::Model face = makeTestFace();
+  for (eng::Material& material : face.materials) material.baseColorFactor = glm::vec4(1.0f);
+  const std::filesystem::path path = testing_support::freshTempDir(name) / "plaster.glb";
+  EXPECT_TRUE(eng::saveModel(face, path));
+  return path;
+}
+
+TEST(LoadFace, ShapesBakeIntoTheRestMesh) {
+  eng::Model model = makeTestFace();
+  const eng::Model original = model;
+  const std::vector<std::string> shapes = {"Custom-Shape=0.5"};  // loose spelling of "custom_shape"
+  ASSERT_TRUE(importers::bakeShapes(model, shapes));
+  const eng::Primitive& before = original.meshes[0].primitives[0];
+  const eng::Primitive& after = model.meshes[0].primitives[0];
+  const auto& delta = before.targets[kCustom].positions;
+  bool moved = false;
+  for (size_t v = 0; v < before.positions.size(); ++v) {
+    EXPECT_NEAR(after.positions[v].z, before.positions[v].z + 0.5f * delta[v].z, 1e-6f);
+    moved |= delta[v] != glm::vec3(0.0f);
+  }
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(model.meshes[0].defaultWeights[kCustom], 0.0f);  // not applied twice
+}
+
+// The bytes that told the format apart are the ones parsed: the file is not
+// opened again (here it is gone before the load).
+TEST(LoadFace, ParsesTheBytesItWasGivenWithoutReopeningTheFile) {
+  const std::filesystem::path path = cli_test::writeTestFace("load_face_bytes");
+  auto fromFile = importers::loadFace(path);
+  ASSERT_TRUE(fromFile) << fromFile.error().message;
+  auto bytes = eng::readFileBytes(path, size_t{1} << 24);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  std::filesystem::remove(path);
+  auto fromBytes = importers::loadFaceFromBytes(*bytes, path);
+  ASSERT_TRUE(fromBytes) << fromBytes.error().message;
+  EXPECT_EQ(fromBytes->format, importers::FaceFormat::Gltf);
+  EXPECT_EQ(fromBytes->model.meshes[0].targetNames, fromFile->model.meshes[0].targetNames);
+  EXPECT_EQ(fromBytes->model.meshes[0].primitives[0].positions, fromFile->model.meshes[0].primitives[0].positions);
+  EXPECT_EQ(importers::loadFace(path).error().kind, eng::ErrorKind::NotFound) << "the file is really gone";
+}
+
+TEST(LoadFaceValidity, BytesOfNoFaceFormatAreNamed) {
+  const std::string text = "solid cube\nendsolid\n";
+  const std::vector<uint8_t> bytes(text.begin(), text.end());
+  auto face = importers::loadFaceFromBytes(bytes, "cube.stl");
+  ASSERT_FALSE(face);
+  EXPECT_EQ(face.error().kind, eng::ErrorKind::Unsupported);
+  EXPECT_NE(face.error().message.find("cube.stl: not a face this program reads"), std::string::npos) << face.error().message;
+}
+
+TEST(LoadFace, DressingIsOffUnlessAskedFor) {
+  const std::filesystem::path path = writePlasterFace("load_face_plain");
+  auto face = importers::loadFace(path);
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_FALSE(face->dressed.has_value());
+  EXPECT_EQ(&face->displayModel(), &face->model);
+}
+
+// Asked for, the display gets a dressed copy (skin tone, occlusion) and the
+// model stays as the file has it: what tools inspect and export.
+TEST(LoadFace, DressingForDisplayLeavesTheModelAsLoaded) {
+  const std::filesystem::path path = writePlasterFace("load_face_dressed");
+  auto plain = importers::loadFace(path);
+  auto face = importers::loadFace(path, {.dressForDisplay = true});
+  ASSERT_TRUE(plain && face);
+  ASSERT_TRUE(face->dressed.has_value());
+  EXPECT_EQ(&face->displayModel(), &*face->dressed);
+  EXPECT_EQ(face->model.materials.size(), plain->model.materials.size());
+  EXPECT_EQ(face->model.materials[0].baseColorFactor, glm::vec4(1.0f));
+  EXPECT_TRUE(face->model.meshes[0].primitives[0].colors.empty());
+  const eng::Model& dressed = *face->dressed;
+  EXPECT_GT(dressed.materials.size(), face->model.materials.size()) << "the skin tone is a material of its own";
+  const eng::Primitive& skin = dressed.meshes[0].primitives[0];
+  EXPECT_LT(dressed.materials[size_t(skin.material)].baseColorFactor.r, 0.99f);
+  EXPECT_EQ(skin.colors.size(), skin.positions.size()) << "occlusion baked into the vertex colours";
+  EXPECT_EQ(skin.positions, face->model.meshes[0].primitives[0].positions) << "the same geometry";
+}
+
+}  // namespace
