@@ -14,7 +14,7 @@ void appendUtf8(std::string& out, char32_t codepoint);
 
 // The lower-case ASCII letter a Latin letter is written on: 'e' for "é", "ê",
 // "ế", "E"; 'd' for "đ"; 'a' for "ă"; 0 for anything else. Covers Latin-1,
-// the Latin Extended-A/B letters of French and Vietnamese and the precomposed
+// the Latin Extended-A/B letters of French, Vietnamese and pinyin and the precomposed
 // Vietnamese vowels (U+1EA0..U+1EF9).
 char latinBaseLetter(char32_t codepoint);
 
