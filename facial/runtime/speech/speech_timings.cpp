@@ -215,8 +215,9 @@ void spreadWord(const TimedWord& word, std::vector<TimedViseme>& cues) {
   const std::vector<Viseme> visemes = visemesForWord(word.word);
   const float step = (word.end - word.start) / static_cast<float>(std::max<size_t>(visemes.size(), 1));
   for (size_t i = 0; i < visemes.size(); ++i) {
+    // Both ends from the same expression, so that one cue ends exactly where the next starts.
     const float start = word.start + step * static_cast<float>(i);
-    const float end = i + 1 == visemes.size() ? word.end : start + step;
+    const float end = i + 1 == visemes.size() ? word.end : word.start + step * static_cast<float>(i + 1);
     if (!cues.empty() && cues.back().viseme == visemes[i] && cues.back().end == start)
       cues.back().end = end;
     else
