@@ -135,9 +135,11 @@ TEST(SpeechTimings, RhubarbProblems) {
 }
 
 TEST(SpeechTimings, HugeInputIsRefusedWithTheLimitInTheMessage) {
+  // The count is checked as lines are read, before the times are compared: the same line will do.
   std::string tsv;
-  tsv.reserve(16 * (kMaxSpeechCues + 3));
-  for (size_t i = 0; i <= kMaxSpeechCues + 1; ++i) tsv += std::to_string(i * 0.01) + "\tB\n";
+  const std::string_view line = "0.5\tB\n";
+  tsv.reserve(line.size() * (kMaxSpeechCues + 2));
+  for (size_t i = 0; i <= kMaxSpeechCues + 1; ++i) tsv += line;
   const auto r = rhubarbFromTsv(tsv, "huge.tsv");
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().kind, eng::ErrorKind::TooLarge);
