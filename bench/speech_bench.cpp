@@ -2,11 +2,11 @@
 // of phonemes (about ten minutes of speech), and sampling it once per frame
 // at 60 Hz over its whole length (the per-frame part; it allocates nothing).
 //   build/bin/facial_bench --benchmark_filter=Speech
+#include <benchmark/benchmark.h>
+
 #include <random>
 #include <string>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "facial/runtime/speech/viseme_track.h"
 #include "tests/common/allocation_counter.h"
@@ -21,11 +21,15 @@ using namespace facial;
 // 250-450 ms pause after each sentence of 8-16 words, until `characters`
 // characters of text (letters and spaces) are spoken.
 std::vector<TimedPhoneme> synthesiseSpeech(size_t characters, uint32_t seed) {
-  const char* consonants[] = {"p", "b", "m", "f", "v", "θ", "ð", "t", "d", "n", "l", "s", "z", "ʃ", "tʃ", "dʒ", "k", "ɡ", "ŋ", "ɹ", "w", "j", "h"};
-  const char* vowels[] = {"a", "ɑː", "æ", "ɛ", "e", "ɪ", "iː", "ɒ", "ɔː", "ʊ", "uː", "ʌ", "ə", "ɜː", "aɪ", "eɪ", "oʊ", "aʊ", "ɔɪ"};
+  const char* consonants[] = {"p", "b", "m",  "f",  "v", "θ", "ð", "t", "d", "n", "l", "s",
+                              "z", "ʃ", "tʃ", "dʒ", "k", "ɡ", "ŋ", "ɹ", "w", "j", "h"};
+  const char* vowels[] = {"a",  "ɑː", "æ", "ɛ",  "e",  "ɪ",  "iː", "ɒ",  "ɔː", "ʊ",
+                          "uː", "ʌ",  "ə", "ɜː", "aɪ", "eɪ", "oʊ", "aʊ", "ɔɪ"};
   std::mt19937 rng(seed);
   const auto uniform = [&](float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); };
-  const auto pick = [&](const auto& list) { return list[std::uniform_int_distribution<size_t>(0, std::size(list) - 1)(rng)]; };
+  const auto pick = [&](const auto& list) {
+    return list[std::uniform_int_distribution<size_t>(0, std::size(list) - 1)(rng)];
+  };
   std::vector<TimedPhoneme> out;
   float t = 0.2f;
   size_t written = 0, wordsInSentence = 0, sentenceLength = 12;
@@ -84,7 +88,9 @@ void BM_SpeechSampleFrame(benchmark::State& state) {
   const uint64_t allocationsBefore = testing_support::allocationCount();
   for (auto _ : state) {
     // Forward playback at 60 Hz, looping back to the start at the end (a seek).
-    VisemeSampleJob{.track = &track, .time = track.startTime() + t, .cursors = cursors, .visemes = visemes, .mouth = mouth}.Run();
+    VisemeSampleJob{
+        .track = &track, .time = track.startTime() + t, .cursors = cursors, .visemes = visemes, .mouth = mouth}
+        .Run();
     benchmark::DoNotOptimize(visemes.data());
     t += frame;
     if (t > length) t = 0;

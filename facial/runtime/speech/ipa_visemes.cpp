@@ -1,6 +1,7 @@
 #include "facial/runtime/speech/ipa_visemes.h"
 
 #include <algorithm>
+#include <string_view>
 
 #include "facial/runtime/speech/utf8_text.h"
 
@@ -11,48 +12,43 @@ using V = Viseme;
 
 // What a base symbol is: a viseme, or no shape of its own.
 struct SymbolClass {
-  char32_t symbol;
   int8_t viseme;  // a Viseme, or kTransparent
   bool vowel;     // a syllable nucleus (diphthongs join vowels; j, w, ɥ are glides, not vowels)
 };
 constexpr int8_t kTransparent = -1;
 
-constexpr SymbolClass S(char32_t c, V v, bool vowel = false) { return {c, static_cast<int8_t>(v), vowel}; }
-constexpr SymbolClass Vw(char32_t c, V v) { return S(c, v, true); }
+struct SymbolGroup {
+  SymbolClass cls;
+  std::u32string_view symbols;
+};
+constexpr SymbolClass C(V v) { return {static_cast<int8_t>(v), false}; }
+constexpr SymbolClass Vowel(V v) { return {static_cast<int8_t>(v), true}; }
 
 // The consonants and vowels of English, French and Vietnamese (and their IPA
 // neighbours) in the Oculus classes: PP bilabials, FF labiodentals, TH
 // dentals, DD alveolar stops and taps, nn nasals and laterals (Oculus puts l
-// with n), kk velars, uvulars and palatal stops, CH postalveolars, SS
-// sibilants, RR rhotics. Vowels by their visible shape: aa open, E mid
-// unrounded (and schwa), I close unrounded, O mid/open rounded, U close
-// rounded (the French front rounded y, ø, œ round like u and o).
-constexpr SymbolClass kSymbols[] = {
-    S(U'p', V::PP),  S(U'b', V::PP),  S(U'm', V::PP),  S(U'ɓ', V::PP),  S(U'ʙ', V::PP),  S(U'f', V::FF),  S(U'v', V::FF),
-    S(U'ɸ', V::FF),  S(U'β', V::FF),  S(U'ʋ', V::FF),  S(U'ɱ', V::FF),  S(U'θ', V::TH),  S(U'ð', V::TH),  S(U't', V::DD),
-    S(U'd', V::DD),  S(U'ɗ', V::DD),  S(U'ʈ', V::DD),  S(U'ɖ', V::DD),  S(U'ɾ', V::DD),  S(U'ɽ', V::DD),  S(U'ɬ', V::DD),
-    S(U'ɮ', V::DD),  S(U'n', V::nn),  S(U'ɲ', V::nn),  S(U'ŋ', V::nn),  S(U'ɳ', V::nn),  S(U'ɴ', V::nn),  S(U'l', V::nn),
-    S(U'ɫ', V::nn),  S(U'ɭ', V::nn),  S(U'ʎ', V::nn),  S(U'ʟ', V::nn),  S(U'k', V::kk),  S(U'g', V::kk),  S(U'ɡ', V::kk),
-    S(U'x', V::kk),  S(U'ɣ', V::kk),  S(U'q', V::kk),  S(U'ɢ', V::kk),  S(U'χ', V::kk),  S(U'ɠ', V::kk),  S(U'c', V::kk),
-    S(U'ɟ', V::kk),  S(U'ʃ', V::CH),  S(U'ʒ', V::CH),  S(U'ɕ', V::CH),  S(U'ʑ', V::CH),  S(U'ʂ', V::CH),  S(U'ʐ', V::CH),
-    S(U'ç', V::CH),  S(U'ʝ', V::CH),  S(U's', V::SS),  S(U'z', V::SS),  S(U'r', V::RR),  S(U'ɹ', V::RR),  S(U'ɻ', V::RR),
-    S(U'ʁ', V::RR),  S(U'ʀ', V::RR),  S(U'j', V::I),   S(U'w', V::U),   S(U'ɥ', V::U),   S(U'ʍ', V::U),   Vw(U'a', V::aa),
-    Vw(U'ɑ', V::aa), Vw(U'ɐ', V::aa), Vw(U'æ', V::aa), Vw(U'ʌ', V::aa), Vw(U'ä', V::aa), Vw(U'ɶ', V::aa), Vw(U'e', V::E),
-    Vw(U'ɛ', V::E),  Vw(U'ə', V::E),  Vw(U'ɜ', V::E),  Vw(U'ɘ', V::E),  Vw(U'ɤ', V::E),  Vw(U'ɚ', V::RR), Vw(U'ɝ', V::RR),
-    Vw(U'i', V::I),  Vw(U'ɪ', V::I),  Vw(U'ɨ', V::I),  Vw(U'ɯ', V::I),  Vw(U'o', V::O),  Vw(U'ɔ', V::O),  Vw(U'ɒ', V::O),
-    Vw(U'ø', V::O),  Vw(U'œ', V::O),  Vw(U'ɵ', V::O),  Vw(U'ɞ', V::O),  Vw(U'u', V::U),  Vw(U'ʊ', V::U),  Vw(U'y', V::U),
-    Vw(U'ʏ', V::U),  Vw(U'ʉ', V::U),  {U'h', kTransparent, false},    {U'ɦ', kTransparent, false},    {U'ʔ', kTransparent, false},
-    {U'ħ', kTransparent, false},      {U'ʕ', kTransparent, false},
+// with n), kk velars, uvular stops and palatal stops, CH postalveolars, SS
+// sibilants, RR rhotics; the glides j (I) and w, ɥ (U). Vowels by their
+// visible shape: aa open, E mid unrounded (and schwa), I close unrounded, O
+// mid/open rounded, U close rounded (the French front rounded y rounds like u,
+// ø and œ like o). h and the glottals have no shape of their own.
+constexpr SymbolGroup kSymbolGroups[] = {
+    {C(V::PP), U"pbmɓʙ"},      {C(V::FF), U"fvɸβʋɱ"},     {C(V::TH), U"θð"},
+    {C(V::DD), U"tdɗʈɖɾɽɬɮ"},  {C(V::nn), U"nɲŋɳɴlɫɭʎʟ"}, {C(V::kk), U"kgɡxɣqɢχɠcɟ"},
+    {C(V::CH), U"ʃʒɕʑʂʐçʝ"},   {C(V::SS), U"sz"},         {C(V::RR), U"rɹɻʁʀ"},
+    {C(V::I), U"j"},           {C(V::U), U"wɥʍ"},         {Vowel(V::aa), U"aɑɐæʌäɶ"},
+    {Vowel(V::E), U"eɛəɜɘɤ"},  {Vowel(V::RR), U"ɚɝ"},     {Vowel(V::I), U"iɪɨɯ"},
+    {Vowel(V::O), U"oɔɒøœɵɞ"}, {Vowel(V::U), U"uʊyʏʉ"},   {{kTransparent, false}, U"hɦʔħʕ"},
 };
 
 const SymbolClass* findSymbol(char32_t c) {
-  for (const SymbolClass& s : kSymbols)
-    if (s.symbol == c) return &s;
+  for (const SymbolGroup& g : kSymbolGroups)
+    if (g.symbols.find(c) != std::u32string_view::npos) return &g.cls;
   return nullptr;
 }
 
-// Unknown symbols by the Latin letter they are written on ("ẽ" -> e, "ʈ"
-// is listed, "ǎ" -> a), so a new aligner's spelling lands in the nearest class.
+// Unknown symbols by the Latin letter they are written on ("ẽ" -> e, "ǎ" ->
+// a), so a new aligner's spelling lands in the nearest class.
 const SymbolClass* classify(char32_t c) {
   if (const SymbolClass* s = findSymbol(c)) return s;
   const char base = latinBaseLetter(c);
@@ -166,7 +162,8 @@ std::vector<std::string> splitIpa(std::string_view text) {
       joinNext = false;
       continue;
     }
-    const bool join = lastBase != 0 && (joinNext || joinsAsOnePhoneme(lastBase, c) || isVietnameseToneMark(c, lastBase));
+    const bool join =
+        lastBase != 0 && (joinNext || joinsAsOnePhoneme(lastBase, c) || isVietnameseToneMark(c, lastBase));
     if (join)
       phonemes.back() += bytes;
     else

@@ -63,38 +63,42 @@ eng::Result<TimedViseme> readRhubarbCue(const JsonNode& item) {
   const JsonNode value = ENG_TRY_VALUE(item.at("value"));
   const std::string shape = ENG_TRY_VALUE(value.string());
   const std::optional<Viseme> viseme = shape.size() == 1 ? visemeForRhubarbShape(shape[0]) : std::nullopt;
-  if (!viseme) return value.error("unknown mouth shape \"" + shape + "\" (expected A, B, C, D, E, F, G, H or X)");
+  if (!viseme)
+    return value.error("unknown mouth shape " + quotedForMessage(shape) + " (expected A, B, C, D, E, F, G, H or X)");
   return TimedViseme{*viseme, ENG_TRY_VALUE(item.numberAt("start")), ENG_TRY_VALUE(item.numberAt("end"))};
 }
 
 }  // namespace
 
-eng::Result<std::vector<TimedPhoneme>> phonemesFromJson(std::string_view text, std::string_view source, size_t maxCues) {
-  return readDocument<std::vector<TimedPhoneme>>(text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedPhoneme>> {
-    ENG_TRY(requireVersion(root, kSpeechTimingsVersion));
-    ENG_TRY(root.allowOnly({"version", "phonemes"}));
-    return readCues<TimedPhoneme>(ENG_TRY_VALUE(cueArray(root, "phonemes", maxCues)),
-                                  [](const JsonNode& item) -> eng::Result<TimedPhoneme> {
-                                    ENG_TRY(item.allowOnly({"ipa", "start", "end"}));
-                                    return TimedPhoneme{ENG_TRY_VALUE(item.stringAt("ipa")),
-                                                        ENG_TRY_VALUE(item.numberAt("start")),
-                                                        ENG_TRY_VALUE(item.numberAt("end"))};
-                                  });
-  });
+eng::Result<std::vector<TimedPhoneme>> phonemesFromJson(std::string_view text, std::string_view source,
+                                                        size_t maxCues) {
+  return readDocument<std::vector<TimedPhoneme>>(
+      text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedPhoneme>> {
+        ENG_TRY(requireVersion(root, kSpeechTimingsVersion));
+        ENG_TRY(root.allowOnly({"version", "phonemes"}));
+        return readCues<TimedPhoneme>(
+            ENG_TRY_VALUE(cueArray(root, "phonemes", maxCues)), [](const JsonNode& item) -> eng::Result<TimedPhoneme> {
+              ENG_TRY(item.allowOnly({"ipa", "start", "end"}));
+              return TimedPhoneme{ENG_TRY_VALUE(item.stringAt("ipa")), ENG_TRY_VALUE(item.numberAt("start")),
+                                  ENG_TRY_VALUE(item.numberAt("end"))};
+            });
+      });
 }
 
 eng::Result<std::vector<TimedViseme>> visemesFromJson(std::string_view text, std::string_view source, size_t maxCues) {
-  return readDocument<std::vector<TimedViseme>>(text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
-    ENG_TRY(requireVersion(root, kSpeechTimingsVersion));
-    ENG_TRY(root.allowOnly({"version", "visemes"}));
-    return readCues<TimedViseme>(ENG_TRY_VALUE(cueArray(root, "visemes", maxCues)), readNamedViseme);
-  });
+  return readDocument<std::vector<TimedViseme>>(
+      text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
+        ENG_TRY(requireVersion(root, kSpeechTimingsVersion));
+        ENG_TRY(root.allowOnly({"version", "visemes"}));
+        return readCues<TimedViseme>(ENG_TRY_VALUE(cueArray(root, "visemes", maxCues)), readNamedViseme);
+      });
 }
 
 eng::Result<std::vector<TimedViseme>> rhubarbFromJson(std::string_view text, std::string_view source, size_t maxCues) {
-  return readDocument<std::vector<TimedViseme>>(text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
-    return readCues<TimedViseme>(ENG_TRY_VALUE(cueArray(root, "mouthCues", maxCues)), readRhubarbCue);
-  });
+  return readDocument<std::vector<TimedViseme>>(
+      text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
+        return readCues<TimedViseme>(ENG_TRY_VALUE(cueArray(root, "mouthCues", maxCues)), readRhubarbCue);
+      });
 }
 
 namespace {
@@ -119,12 +123,13 @@ eng::Result<std::optional<TsvEntry>> readTsvLine(std::string_view line, size_t n
   const std::string_view field = line.substr(0, tab);
   const auto parsed = std::from_chars(field.data(), field.data() + field.size(), time);
   if (parsed.ec != std::errc() || parsed.ptr != field.data() + field.size())
-    return lineError(number, "\"" + std::string(field) + "\" is not a time in seconds");
+    return lineError(number, quotedForMessage(field) + " is not a time in seconds");
   std::string_view shape = line.substr(tab + 1);
   while (!shape.empty() && (shape.front() == '\t' || shape.front() == ' ')) shape.remove_prefix(1);
   const std::optional<Viseme> viseme = shape.size() == 1 ? visemeForRhubarbShape(shape[0]) : std::nullopt;
   if (!viseme)
-    return lineError(number, "unknown mouth shape \"" + std::string(shape) + "\" (expected A, B, C, D, E, F, G, H or X)");
+    return lineError(number,
+                     "unknown mouth shape " + quotedForMessage(shape) + " (expected A, B, C, D, E, F, G, H or X)");
   return std::optional<TsvEntry>(TsvEntry{time, *viseme, number});
 }
 
@@ -137,12 +142,14 @@ eng::Result<std::vector<TimedViseme>> readTsv(std::string_view text, size_t maxC
     const std::optional<TsvEntry> entry = ENG_TRY_VALUE(readTsvLine(text.substr(pos, end - pos), number));
     if (entry) entries.push_back(*entry);
     // Each line but the last starts a cue: refuse as soon as the count is known to be over.
-    if (entries.size() > maxCues + 1) return lineError(number, tooMany(entries.size() - 1, maxCues).message, eng::ErrorKind::TooLarge);
+    if (entries.size() > maxCues + 1)
+      return lineError(number, tooMany(entries.size() - 1, maxCues).message, eng::ErrorKind::TooLarge);
     pos = end + 1;
   }
   if (entries.size() < 2)
-    return eng::makeError(eng::ErrorKind::Malformed,
-                          "needs at least two lines: each starts a mouth shape, the last marks the end of the recording");
+    return eng::makeError(
+        eng::ErrorKind::Malformed,
+        "needs at least two lines: each starts a mouth shape, the last marks the end of the recording");
   std::vector<TimedViseme> cues;
   cues.reserve(entries.size() - 1);
   float previousEnd = -std::numeric_limits<float>::infinity();
@@ -227,37 +234,51 @@ void spreadWord(const TimedWord& word, std::vector<TimedViseme>& cues) {
 
 }  // namespace
 
-eng::Result<std::vector<TimedViseme>> azureVisemesFromJson(std::string_view text, std::string_view source, size_t maxCues) {
-  return readDocument<std::vector<TimedViseme>>(text, source, [&](const JsonNode& root) { return readAzure(root, maxCues); });
+eng::Result<std::vector<TimedViseme>> azureVisemesFromJson(std::string_view text, std::string_view source,
+                                                           size_t maxCues) {
+  return readDocument<std::vector<TimedViseme>>(text, source,
+                                                [&](const JsonNode& root) { return readAzure(root, maxCues); });
 }
 
-eng::Result<std::vector<TimedViseme>> wordVisemesFromJson(std::string_view text, std::string_view source, size_t maxCues) {
-  return readDocument<std::vector<TimedViseme>>(text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
-    const std::vector<TimedWord> words = ENG_TRY_VALUE(readCues<TimedWord>(
-        ENG_TRY_VALUE(cueArray(root, "words", maxCues)), [](const JsonNode& item) -> eng::Result<TimedWord> {
-          return TimedWord{ENG_TRY_VALUE(item.stringAt("word")), ENG_TRY_VALUE(item.numberAt("start")),
-                           ENG_TRY_VALUE(item.numberAt("end"))};
-        }));
-    std::vector<TimedViseme> cues;
-    for (const TimedWord& word : words) spreadWord(word, cues);
-    if (cues.empty()) return root.error("no word has a letter to speak");
-    return cues;
-  });
+eng::Result<std::vector<TimedViseme>> wordVisemesFromJson(std::string_view text, std::string_view source,
+                                                          size_t maxCues) {
+  return readDocument<std::vector<TimedViseme>>(
+      text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
+        const std::vector<TimedWord> words = ENG_TRY_VALUE(readCues<TimedWord>(
+            ENG_TRY_VALUE(cueArray(root, "words", maxCues)), [](const JsonNode& item) -> eng::Result<TimedWord> {
+              return TimedWord{ENG_TRY_VALUE(item.stringAt("word")), ENG_TRY_VALUE(item.numberAt("start")),
+                               ENG_TRY_VALUE(item.numberAt("end"))};
+            }));
+        std::vector<TimedViseme> cues;
+        for (const TimedWord& word : words) spreadWord(word, cues);
+        if (cues.empty()) return root.error("no word has a letter to speak");
+        return cues;
+      });
 }
 
 std::optional<Viseme> visemeForRhubarbShape(char shape) {
   using V = Viseme;
   switch (shape) {
-    case 'A': return V::PP;
-    case 'B': return V::SS;
-    case 'C': return V::E;
-    case 'D': return V::aa;
-    case 'E': return V::O;
-    case 'F': return V::U;
-    case 'G': return V::FF;
-    case 'H': return V::nn;
-    case 'X': return V::sil;
-    default: return std::nullopt;
+    case 'A':
+      return V::PP;
+    case 'B':
+      return V::SS;
+    case 'C':
+      return V::E;
+    case 'D':
+      return V::aa;
+    case 'E':
+      return V::O;
+    case 'F':
+      return V::U;
+    case 'G':
+      return V::FF;
+    case 'H':
+      return V::nn;
+    case 'X':
+      return V::sil;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -276,14 +297,14 @@ namespace {
 
 // Letters to visemes, English- and French-leaning and read by base letter
 // (so Vietnamese "đ" is d, "ư" is u): good enough when only words are timed.
-constexpr std::pair<std::string_view, Viseme> kDigraphs[] = {
-    {"th", Viseme::TH}, {"sh", Viseme::CH}, {"ch", Viseme::CH}, {"ph", Viseme::FF}, {"ng", Viseme::nn},
-    {"qu", Viseme::kk}, {"oo", Viseme::U},  {"ou", Viseme::U},  {"ee", Viseme::I}};
+constexpr std::pair<std::string_view, Viseme> kDigraphs[] = {{"th", Viseme::TH}, {"sh", Viseme::CH}, {"ch", Viseme::CH},
+                                                             {"ph", Viseme::FF}, {"ng", Viseme::nn}, {"qu", Viseme::kk},
+                                                             {"oo", Viseme::U},  {"ou", Viseme::U},  {"ee", Viseme::I}};
 // a..z; sil marks a silent letter (h).
-constexpr Viseme kLetters[26] = {Viseme::aa, Viseme::PP, Viseme::kk, Viseme::DD, Viseme::E,  Viseme::FF, Viseme::kk,
+constexpr Viseme kLetters[26] = {Viseme::aa,  Viseme::PP, Viseme::kk, Viseme::DD, Viseme::E,  Viseme::FF, Viseme::kk,
                                  Viseme::sil, Viseme::I,  Viseme::CH, Viseme::kk, Viseme::nn, Viseme::PP, Viseme::nn,
-                                 Viseme::O,  Viseme::PP, Viseme::kk, Viseme::RR, Viseme::SS, Viseme::DD, Viseme::U,
-                                 Viseme::FF, Viseme::U,  Viseme::kk, Viseme::I,  Viseme::SS};
+                                 Viseme::O,   Viseme::PP, Viseme::kk, Viseme::RR, Viseme::SS, Viseme::DD, Viseme::U,
+                                 Viseme::FF,  Viseme::U,  Viseme::kk, Viseme::I,  Viseme::SS};
 
 }  // namespace
 

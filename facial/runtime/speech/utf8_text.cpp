@@ -57,7 +57,7 @@ constexpr std::array<LetterRange, 31> kLetterRanges = {{
     {0x100, 0x105, 'a'},   {0x106, 0x10D, 'c'},   {0x10E, 0x111, 'd'},   {0x112, 0x11B, 'e'},   {0x128, 0x131, 'i'},
     {0x14C, 0x153, 'o'},   {0x168, 0x173, 'u'},   {0x178, 0x178, 'y'},   {0x1A0, 0x1A1, 'o'},   {0x1AF, 0x1B0, 'u'},
     {0x1EA0, 0x1EB7, 'a'}, {0x1EB8, 0x1EC7, 'e'}, {0x1EC8, 0x1ECB, 'i'}, {0x1ECC, 0x1EE3, 'o'}, {0x1EE4, 0x1EF1, 'u'},
-    {0x1EF2, 0x1EF9, 'y'}, {0x15A, 0x161, 's'},     {0x1CD, 0x1CE, 'a'},   {0x1CF, 0x1D0, 'i'},   {0x1D1, 0x1D2, 'o'},
+    {0x1EF2, 0x1EF9, 'y'}, {0x15A, 0x161, 's'},   {0x1CD, 0x1CE, 'a'},   {0x1CF, 0x1D0, 'i'},   {0x1D1, 0x1D2, 'o'},
     {0x1D3, 0x1DC, 'u'},
 }};
 
@@ -70,6 +70,25 @@ char latinBaseLetter(char32_t cp) {
   for (const LetterRange& r : kLetterRanges)
     if (cp >= r.first && cp <= r.last) return r.base;
   return 0;
+}
+
+std::string quotedForMessage(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || byte == 0x7F) {
+      constexpr char kHex[] = "0123456789abcdef";
+      out += "\\u00";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xF];
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
 }
 
 }  // namespace facial

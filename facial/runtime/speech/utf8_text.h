@@ -18,4 +18,8 @@ void appendUtf8(std::string& out, char32_t codepoint);
 // Vietnamese vowels (U+1EA0..U+1EF9).
 char latinBaseLetter(char32_t codepoint);
 
+// `text` in double quotes for a one-line message: quotes, backslashes and
+// control characters (a newline in a phoneme) escaped, as JSON writes them.
+std::string quotedForMessage(std::string_view text);
+
 }  // namespace facial

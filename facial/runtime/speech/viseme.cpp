@@ -6,13 +6,15 @@ namespace facial {
 namespace {
 
 using V = Viseme;
-constexpr detail::EnumName<Viseme> kVisemeNames[] = {
-    {V::sil, "sil"}, {V::PP, "PP"}, {V::FF, "FF"}, {V::TH, "TH"}, {V::DD, "DD"}, {V::kk, "kk"}, {V::CH, "CH"}, {V::SS, "SS"},
-    {V::nn, "nn"},   {V::RR, "RR"}, {V::aa, "aa"}, {V::E, "E"},   {V::I, "I"},   {V::O, "O"},   {V::U, "U"}};
+constexpr detail::EnumName<Viseme> kVisemeNames[] = {{V::sil, "sil"}, {V::PP, "PP"}, {V::FF, "FF"}, {V::TH, "TH"},
+                                                     {V::DD, "DD"},   {V::kk, "kk"}, {V::CH, "CH"}, {V::SS, "SS"},
+                                                     {V::nn, "nn"},   {V::RR, "RR"}, {V::aa, "aa"}, {V::E, "E"},
+                                                     {V::I, "I"},     {V::O, "O"},   {V::U, "U"}};
 static_assert(std::size(kVisemeNames) == kVisemeCount);
 
-constexpr detail::EnumName<MouthChannel> kMouthChannelNames[] = {
-    {MouthChannel::JawOpen, "jawOpen"}, {MouthChannel::LipClosure, "lipClosure"}, {MouthChannel::LipRounding, "lipRounding"}};
+constexpr detail::EnumName<MouthChannel> kMouthChannelNames[] = {{MouthChannel::JawOpen, "jawOpen"},
+                                                                 {MouthChannel::LipClosure, "lipClosure"},
+                                                                 {MouthChannel::LipRounding, "lipRounding"}};
 static_assert(std::size(kMouthChannelNames) == kMouthChannelCount);
 
 // Jaw, closure, rounding per viseme, in enum order. Rest (sil) is the closed,

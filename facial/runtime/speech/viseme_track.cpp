@@ -7,6 +7,7 @@
 
 #include "facial/runtime/json/json_document.h"
 #include "facial/runtime/speech/ipa_visemes.h"
+#include "facial/runtime/speech/utf8_text.h"
 
 namespace facial {
 
@@ -47,8 +48,8 @@ struct Segment {
 };
 
 // The widest tail, and how far (3 widths) a tail is followed before it counts as 0.
-constexpr float kWidestTail = std::max({kVowelAnticipation, kRoundingAnticipation, kVowelCarryOver, kConsonantSpread,
-                                        kSilenceSpread});
+constexpr float kWidestTail =
+    std::max({kVowelAnticipation, kRoundingAnticipation, kVowelCarryOver, kConsonantSpread, kSilenceSpread});
 constexpr float kReach = 3.0f * kWidestTail;
 
 float smoothstep(float edge0, float edge1, float x) {
@@ -238,7 +239,8 @@ ChannelKeys keysFromSegments(std::span<const Segment> segments) {
 }
 
 eng::Result<void> checkCount(size_t count, std::string_view what) {
-  if (count == 0) return eng::makeError(eng::ErrorKind::InvalidArgument, "no " + std::string(what) + " to build a track from");
+  if (count == 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "no " + std::string(what) + " to build a track from");
   if (count > kMaxSpeechCues)
     return eng::makeError(eng::ErrorKind::TooLarge, std::to_string(count) + " " + std::string(what) +
                                                         ", over the limit of " + std::to_string(kMaxSpeechCues));
@@ -248,8 +250,8 @@ eng::Result<void> checkCount(size_t count, std::string_view what) {
 // A cue's times checked against the previous cue, the error naming the cue.
 eng::Result<void> checkCue(std::string_view name, float start, float end, float& previousEnd) {
   if (auto ok = checkCueTimes(start, end, previousEnd); !ok) {
-    const eng::ErrorKind kind = ok.error().kind == eng::ErrorKind::TooLarge ? eng::ErrorKind::TooLarge
-                                                                            : eng::ErrorKind::InvalidArgument;
+    const eng::ErrorKind kind =
+        ok.error().kind == eng::ErrorKind::TooLarge ? eng::ErrorKind::TooLarge : eng::ErrorKind::InvalidArgument;
     return eng::makeError(kind, std::string(name) + ": " + ok.error().message);
   }
   previousEnd = end;
@@ -283,10 +285,11 @@ eng::Result<VisemeTrackBuild> VisemeTrackBuilder::build(std::span<const TimedPho
   float previousEnd = -std::numeric_limits<float>::infinity();
   for (size_t i = 0; i < phonemes.size(); ++i) {
     const TimedPhoneme& p = phonemes[i];
-    ENG_TRY(checkCue("phoneme " + std::to_string(i) + " \"" + p.ipa + "\"", p.start, p.end, previousEnd));
+    ENG_TRY(checkCue("phoneme " + std::to_string(i) + " " + quotedForMessage(p.ipa), p.start, p.end, previousEnd));
     const std::optional<PhonemeVisemes> mapped = visemesForIpa(p.ipa);
     if (!mapped)
-      result.warnings.push_back("phoneme " + std::to_string(i) + " \"" + p.ipa + "\" at " + formatNumber(p.start) +
+      result.warnings.push_back("phoneme " + std::to_string(i) + " " + quotedForMessage(p.ipa) + " at " +
+                                formatNumber(p.start) +
                                 " s: no viseme for its symbols; it takes its neighbours' shape");
     if (!mapped || mapped->kind == PhonemeVisemes::Kind::Transparent) {
       borrowers.push_back(cues.size());

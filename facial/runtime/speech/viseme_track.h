@@ -108,7 +108,9 @@ class VisemeTrack {
   // channel < kSpeechChannelCount: the visemes in enum order, then the MouthChannels.
   std::span<const Keyframe> channelKeys(size_t channel) const;
   std::span<const Keyframe> visemeKeys(Viseme v) const { return channelKeys(static_cast<size_t>(v)); }
-  std::span<const Keyframe> mouthKeys(MouthChannel c) const { return channelKeys(kVisemeCount + static_cast<size_t>(c)); }
+  std::span<const Keyframe> mouthKeys(MouthChannel c) const {
+    return channelKeys(kVisemeCount + static_cast<size_t>(c));
+  }
   // The track's time range (rest before and after included); outside it the end values hold (sil).
   float startTime() const { return startTime_; }
   float endTime() const { return endTime_; }

@@ -1,10 +1,10 @@
 // IPA -> visemes on real espeak-ng transcriptions (espeak-ng 1.51, `-q --ipa`)
 // of English, French and Vietnamese, and the symbol handling under them.
+#include "facial/runtime/speech/ipa_visemes.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
-
-#include "facial/runtime/speech/ipa_visemes.h"
 
 using namespace facial;
 
@@ -15,10 +15,10 @@ std::string visemesOf(std::string_view transcription) {
   std::string out;
   for (const std::string& phoneme : splitIpa(transcription)) {
     const auto mapped = visemesForIpa(phoneme);
-    std::string word = !mapped                                                    ? "?"
+    std::string word = !mapped                                             ? "?"
                        : mapped->kind == PhonemeVisemes::Kind::Transparent ? "-"
                        : mapped->kind == PhonemeVisemes::Kind::Silence     ? "sil"
-                                                                           : std::string(visemeName(mapped->visemes[0]));
+                                                                       : std::string(visemeName(mapped->visemes[0]));
     if (mapped && mapped->count == 2) word += "+" + std::string(visemeName(mapped->visemes[1]));
     out += (out.empty() ? "" : " ") + word;
   }
@@ -76,7 +76,7 @@ TEST(IpaVisemes, DiphthongsGiveTheirStartAndEnd) {
   EXPECT_EQ(ai->visemes[0], Viseme::aa);
   EXPECT_EQ(ai->visemes[1], Viseme::I);
   EXPECT_EQ(visemesForIpa("eɪ")->count, 2);  // E -> I
-  EXPECT_EQ(visemesForIpa("ɛː")->count, 1);   // a long vowel is not a diphthong
+  EXPECT_EQ(visemesForIpa("ɛː")->count, 1);  // a long vowel is not a diphthong
 }
 
 TEST(IpaVisemes, SilenceAndShapelessPhonemes) {

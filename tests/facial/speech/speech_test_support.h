@@ -2,8 +2,8 @@
 // Helpers shared by the speech tests: phoneme lists and sampling a built track.
 #include <algorithm>
 #include <array>
-#include <stdexcept>
 #include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,7 +13,8 @@
 namespace facial::speech_test {
 
 // Phonemes laid end to end from `start`, each {ipa, duration}.
-inline std::vector<TimedPhoneme> phonemeRun(std::initializer_list<std::pair<const char*, float>> items, float start = 0.0f) {
+inline std::vector<TimedPhoneme> phonemeRun(std::initializer_list<std::pair<const char*, float>> items,
+                                            float start = 0.0f) {
   std::vector<TimedPhoneme> out;
   for (const auto& [ipa, duration] : items) {
     out.push_back({ipa, start, start + duration});

@@ -1,13 +1,14 @@
 // Timings from elsewhere: the project's phoneme and viseme JSON, Rhubarb Lip
 // Sync (JSON, TSV), Azure viseme events and word timestamps. Each bad input
 // fails with one line naming the source, where (JSON pointer or line) and what.
+#include "facial/runtime/speech/speech_timings.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "facial/runtime/speech/speech_timings.h"
 #include "tests/facial/speech/speech_test_support.h"
 
 using namespace facial;
@@ -55,15 +56,21 @@ TEST(SpeechTimings, ProjectPhonemeJson) {
 
 TEST(SpeechTimings, ProjectPhonemeJsonProblems) {
   using K = eng::ErrorKind;
-  expectError(phonemesFromJson(R"({"version": 2, "phonemes": []})", "a.json"), K::Unsupported,
-              "a.json: /version: unsupported version 2: written by a newer release of facial (this build reads version 1)");
+  expectError(
+      phonemesFromJson(R"({"version": 2, "phonemes": []})", "a.json"), K::Unsupported,
+      "a.json: /version: unsupported version 2: written by a newer release of facial (this build reads version 1)");
   expectError(phonemesFromJson(R"({"version": 1})", "a.json"), K::Malformed, "a.json: /: missing \"phonemes\"");
-  expectError(phonemesFromJson(R"({"version": 1, "phonemes": []})", "a.json"), K::Malformed, "a.json: /phonemes: no cues");
-  expectError(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0, "end": 1, "stress": 1}]})", "a.json"),
-              K::Malformed, "a.json: /phonemes/0/stress: unknown key (expected one of: ipa, start, end)");
+  expectError(phonemesFromJson(R"({"version": 1, "phonemes": []})", "a.json"), K::Malformed,
+              "a.json: /phonemes: no cues");
+  expectError(
+      phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0, "end": 1, "stress": 1}]})", "a.json"),
+      K::Malformed, "a.json: /phonemes/0/stress: unknown key (expected one of: ipa, start, end)");
   expectError(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0.5, "end": 0.6},
-                                   {"ipa": "b", "start": 0.1, "end": 0.2}]})", "a.json"),
-              K::Malformed, "a.json: /phonemes/1: starts at 0.1 s, before the previous cue ends (0.6 s): cues must be sorted and must not overlap");
+                                   {"ipa": "b", "start": 0.1, "end": 0.2}]})",
+                               "a.json"),
+              K::Malformed,
+              "a.json: /phonemes/1: starts at 0.1 s, before the previous cue ends (0.6 s): cues must be sorted and "
+              "must not overlap");
   expectError(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": "a", "start": -1, "end": 0.6}]})", "a.json"),
               K::Malformed, "a.json: /phonemes/0: negative start -1 s");
   expectError(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0, "end": 1e39}]})", "a.json"),
@@ -72,7 +79,8 @@ TEST(SpeechTimings, ProjectPhonemeJsonProblems) {
               K::TooLarge, "a.json: /phonemes/0: ends at 20000 s, past the limit of 14400 s");
   expectError(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": 3, "start": 0, "end": 1}]})", "a.json"),
               K::Malformed, "a.json: /phonemes/0/ipa: expected a string, got number");
-  const std::string three = R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0, "end": 1}, {"ipa": "a", "start": 1, "end": 2},
+  const std::string three =
+      R"({"version": 1, "phonemes": [{"ipa": "a", "start": 0, "end": 1}, {"ipa": "a", "start": 1, "end": 2},
                                 {"ipa": "a", "start": 2, "end": 3}]})";
   expectError(phonemesFromJson(three, "a.json", 2), K::TooLarge, "a.json: /phonemes: 3 cues, over the limit of 2");
   EXPECT_FALSE(phonemesFromJson("{\"version\": 1, \"phonemes\": [", "a.json"));
@@ -80,13 +88,15 @@ TEST(SpeechTimings, ProjectPhonemeJsonProblems) {
 
 TEST(SpeechTimings, ProjectVisemeJson) {
   const auto v = visemesFromJson(R"({"version": 1, "visemes": [{"viseme": "PP", "start": 0.1, "end": 0.18},
-                                    {"viseme": "aa", "start": 0.18, "end": 0.4}]})", "v.json");
+                                    {"viseme": "aa", "start": 0.18, "end": 0.4}]})",
+                                 "v.json");
   ASSERT_TRUE(v) << v.error().message;
   ASSERT_EQ(v->size(), 2u);
   EXPECT_EQ((*v)[0].viseme, Viseme::PP);
-  expectError(visemesFromJson(R"({"version": 1, "visemes": [{"viseme": "pp", "start": 0.1, "end": 0.18}]})", "v.json"),
-              eng::ErrorKind::Malformed,
-              "v.json: /visemes/0/viseme: unknown viseme (expected sil, PP, FF, TH, DD, kk, CH, SS, nn, RR, aa, E, I, O or U)");
+  expectError(
+      visemesFromJson(R"({"version": 1, "visemes": [{"viseme": "pp", "start": 0.1, "end": 0.18}]})", "v.json"),
+      eng::ErrorKind::Malformed,
+      "v.json: /visemes/0/viseme: unknown viseme (expected sil, PP, FF, TH, DD, kk, CH, SS, nn, RR, aa, E, I, O or U)");
 }
 
 TEST(SpeechTimings, RhubarbJsonAndTsvReadTheSameCues) {
@@ -107,8 +117,9 @@ TEST(SpeechTimings, RhubarbJsonAndTsvReadTheSameCues) {
 }
 
 TEST(SpeechTimings, RhubarbShapes) {
-  const std::pair<char, Viseme> shapes[] = {{'A', Viseme::PP}, {'B', Viseme::SS}, {'C', Viseme::E},  {'D', Viseme::aa}, {'E', Viseme::O},
-                                            {'F', Viseme::U},  {'G', Viseme::FF}, {'H', Viseme::nn}, {'X', Viseme::sil}};
+  const std::pair<char, Viseme> shapes[] = {{'A', Viseme::PP}, {'B', Viseme::SS}, {'C', Viseme::E},
+                                            {'D', Viseme::aa}, {'E', Viseme::O},  {'F', Viseme::U},
+                                            {'G', Viseme::FF}, {'H', Viseme::nn}, {'X', Viseme::sil}};
   for (const auto& [shape, viseme] : shapes) EXPECT_EQ(visemeForRhubarbShape(shape), viseme) << shape;
   EXPECT_FALSE(visemeForRhubarbShape('I'));
   EXPECT_FALSE(visemeForRhubarbShape('a'));
@@ -118,20 +129,28 @@ TEST(SpeechTimings, RhubarbProblems) {
   using K = eng::ErrorKind;
   expectError(rhubarbFromJson(R"({"mouthCues": [{"start": 0, "end": 0.1, "value": "Q"}]})", "r.json"), K::Malformed,
               "r.json: /mouthCues/0/value: unknown mouth shape \"Q\" (expected A, B, C, D, E, F, G, H or X)");
-  expectError(rhubarbFromJson(R"({"mouthCues": [{"start": 0, "end": 0.1, "value": "X"}, {"start": 0.05, "end": 0.2, "value": "A"}]})", "r.json"),
-              K::Malformed, "r.json: /mouthCues/1: starts at 0.05 s, before the previous cue ends (0.1 s): cues must be sorted and must not overlap");
+  expectError(
+      rhubarbFromJson(
+          R"({"mouthCues": [{"start": 0, "end": 0.1, "value": "X"}, {"start": 0.05, "end": 0.2, "value": "A"}]})",
+          "r.json"),
+      K::Malformed,
+      "r.json: /mouthCues/1: starts at 0.05 s, before the previous cue ends (0.1 s): cues must be sorted and must not "
+      "overlap");
   expectError(rhubarbFromJson(R"({"metadata": {}})", "r.json"), K::Malformed, "r.json: /: missing \"mouthCues\"");
   expectError(rhubarbFromTsv("0.00\tX\n0.1\tQ\n0.2\tX\n", "r.tsv"), K::Malformed,
               "r.tsv: line 2: unknown mouth shape \"Q\" (expected A, B, C, D, E, F, G, H or X)");
-  expectError(rhubarbFromTsv("0.00\tX\nabc\tA\n", "r.tsv"), K::Malformed, "r.tsv: line 2: \"abc\" is not a time in seconds");
-  expectError(rhubarbFromTsv("0.00\tX\nnan\tA\n0.3\tX\n", "r.tsv"), K::Malformed, "r.tsv: line 1: time is not a finite number");
+  expectError(rhubarbFromTsv("0.00\tX\nabc\tA\n", "r.tsv"), K::Malformed,
+              "r.tsv: line 2: \"abc\" is not a time in seconds");
+  expectError(rhubarbFromTsv("0.00\tX\nnan\tA\n0.3\tX\n", "r.tsv"), K::Malformed,
+              "r.tsv: line 1: time is not a finite number");
   expectError(rhubarbFromTsv("0.00\tX\n0.30\tA\n0.10\tX\n", "r.tsv"), K::Malformed,
               "r.tsv: line 2: ends at 0.1 s, not after its start 0.3 s");
   expectError(rhubarbFromTsv("0.00 X", "r.tsv"), K::Malformed,
               "r.tsv: needs at least two lines: each starts a mouth shape, the last marks the end of the recording");
   expectError(rhubarbFromTsv("", "r.tsv"), K::Malformed,
               "r.tsv: needs at least two lines: each starts a mouth shape, the last marks the end of the recording");
-  expectError(rhubarbFromTsv("0.00\n", "r.tsv"), K::Malformed, "r.tsv: line 1: expected a time and a mouth shape separated by a tab");
+  expectError(rhubarbFromTsv("0.00\n", "r.tsv"), K::Malformed,
+              "r.tsv: line 1: expected a time and a mouth shape separated by a tab");
 }
 
 TEST(SpeechTimings, HugeInputIsRefusedWithTheLimitInTheMessage) {
@@ -147,15 +166,18 @@ TEST(SpeechTimings, HugeInputIsRefusedWithTheLimitInTheMessage) {
 }
 
 TEST(SpeechTimings, AzureVisemeEvents) {
-  const auto ticks = azureVisemesFromJson(R"([{"visemeId": 0, "audioOffset": 0}, {"visemeId": 21, "audioOffset": 500000},
-                                             {"visemeId": 2, "audioOffset": 1250000}, {"visemeId": 0, "audioOffset": 3000000}])", "az.json");
+  const auto ticks =
+      azureVisemesFromJson(R"([{"visemeId": 0, "audioOffset": 0}, {"visemeId": 21, "audioOffset": 500000},
+                                             {"visemeId": 2, "audioOffset": 1250000}, {"visemeId": 0, "audioOffset": 3000000}])",
+                           "az.json");
   ASSERT_TRUE(ticks) << ticks.error().message;
   ASSERT_EQ(ticks->size(), 4u);
   EXPECT_EQ((*ticks)[1].viseme, Viseme::PP);
   EXPECT_FLOAT_EQ((*ticks)[1].start, 0.05f);
   EXPECT_FLOAT_EQ((*ticks)[1].end, 0.125f);
   EXPECT_FLOAT_EQ((*ticks)[3].end, 0.3f + kAzureLastEventSeconds);
-  const auto ms = azureVisemesFromJson(R"([{"visemeId": 19, "offsetMs": 20}, {"visemeId": 0, "offsetMs": 95}])", "az.json");
+  const auto ms =
+      azureVisemesFromJson(R"([{"visemeId": 19, "offsetMs": 20}, {"visemeId": 0, "offsetMs": 95}])", "az.json");
   ASSERT_TRUE(ms) << ms.error().message;
   EXPECT_EQ((*ms)[0].viseme, Viseme::DD);
   EXPECT_FLOAT_EQ((*ms)[0].end, 0.095f);
@@ -166,19 +188,20 @@ TEST(SpeechTimings, AzureVisemeEvents) {
               "az.json: /0/visemeId: viseme id 1.5 is not one of Azure's 0..21");
   expectError(azureVisemesFromJson(R"([{"visemeId": 1, "offsetMs": 0, "audioOffset": 0}])", "az.json"), K::Malformed,
               "az.json: /0: expected one of \"audioOffset\" (100-ns ticks) or \"offsetMs\" (milliseconds)");
-  expectError(azureVisemesFromJson(R"([{"visemeId": 1, "offsetMs": 50}, {"visemeId": 2, "offsetMs": 50}])", "az.json"), K::Malformed,
-              "az.json: /0: ends at 0.05 s, not after its start 0.05 s");
+  expectError(azureVisemesFromJson(R"([{"visemeId": 1, "offsetMs": 50}, {"visemeId": 2, "offsetMs": 50}])", "az.json"),
+              K::Malformed, "az.json: /0: ends at 0.05 s, not after its start 0.05 s");
   expectError(azureVisemesFromJson(R"([])", "az.json"), K::Malformed, "az.json: /: no viseme events");
-  expectError(azureVisemesFromJson(R"({"visemeId": 1})", "az.json"), K::Malformed, "az.json: /: expected an array, got object");
+  expectError(azureVisemesFromJson(R"({"visemeId": 1})", "az.json"), K::Malformed,
+              "az.json: /: expected an array, got object");
 }
 
 TEST(SpeechTimings, AzureIdsCoverTheSapiSet) {
   EXPECT_EQ(visemeForAzureId(0), Viseme::sil);
-  EXPECT_EQ(visemeForAzureId(2), Viseme::aa);  // aa
-  EXPECT_EQ(visemeForAzureId(7), Viseme::U);   // w uw
-  EXPECT_EQ(visemeForAzureId(16), Viseme::CH); // sh ch jh zh
-  EXPECT_EQ(visemeForAzureId(18), Viseme::FF); // f v
-  EXPECT_EQ(visemeForAzureId(21), Viseme::PP); // p b m
+  EXPECT_EQ(visemeForAzureId(2), Viseme::aa);   // aa
+  EXPECT_EQ(visemeForAzureId(7), Viseme::U);    // w uw
+  EXPECT_EQ(visemeForAzureId(16), Viseme::CH);  // sh ch jh zh
+  EXPECT_EQ(visemeForAzureId(18), Viseme::FF);  // f v
+  EXPECT_EQ(visemeForAzureId(21), Viseme::PP);  // p b m
   EXPECT_FALSE(visemeForAzureId(-1));
   EXPECT_FALSE(visemeForAzureId(22));
 }
@@ -190,7 +213,8 @@ TEST(SpeechTimings, WordsAreSpreadOverTheirInterval) {
   EXPECT_EQ(visemesForWord("thing"), (std::vector<Viseme>{Viseme::TH, Viseme::I, Viseme::nn}));
   EXPECT_TRUE(visemesForWord("42").empty());
   const auto cues = wordVisemesFromJson(R"({"words": [{"word": "Good", "start": 0.0, "end": 0.3, "probability": 0.9},
-                                          {"word": "map", "start": 0.5, "end": 0.8}]})", "w.json");
+                                          {"word": "map", "start": 0.5, "end": 0.8}]})",
+                                        "w.json");
   ASSERT_TRUE(cues) << cues.error().message;
   ASSERT_EQ(cues->size(), 6u);
   EXPECT_EQ((*cues)[0].viseme, Viseme::kk);
@@ -199,17 +223,21 @@ TEST(SpeechTimings, WordsAreSpreadOverTheirInterval) {
   EXPECT_EQ((*cues)[3].viseme, Viseme::PP);
   EXPECT_FLOAT_EQ((*cues)[3].start, 0.5f);
   EXPECT_TRUE(VisemeTrackBuilder{}.build(*cues));
-  expectError(wordVisemesFromJson(R"({"words": [{"word": "!", "start": 0.0, "end": 0.3}]})", "w.json"), eng::ErrorKind::Malformed,
-              "w.json: /: no word has a letter to speak");
-  expectError(wordVisemesFromJson(R"({"words": [{"word": "a", "start": 0.0, "end": 0.3}, {"word": "b", "start": 0.2, "end": 0.4}]})", "w.json"),
-              eng::ErrorKind::Malformed,
-              "w.json: /words/1: starts at 0.2 s, before the previous cue ends (0.3 s): cues must be sorted and must not overlap");
+  expectError(wordVisemesFromJson(R"({"words": [{"word": "!", "start": 0.0, "end": 0.3}]})", "w.json"),
+              eng::ErrorKind::Malformed, "w.json: /: no word has a letter to speak");
+  expectError(
+      wordVisemesFromJson(
+          R"({"words": [{"word": "a", "start": 0.0, "end": 0.3}, {"word": "b", "start": 0.2, "end": 0.4}]})", "w.json"),
+      eng::ErrorKind::Malformed,
+      "w.json: /words/1: starts at 0.2 s, before the previous cue ends (0.3 s): cues must be sorted and must not "
+      "overlap");
 }
 
 // The shared French recordings' Rhubarb output (../shared/speech, test use only).
 TEST(SpeechTimings, SharedRecordingsRhubarbCues) {
   const std::filesystem::path dir = std::filesystem::path(FACIAL_SHARED_DIR) / "speech";
-  if (!std::filesystem::exists(dir / "bonjour.json")) GTEST_SKIP() << "../shared is absent (" << dir << "): no Rhubarb recordings";
+  if (!std::filesystem::exists(dir / "bonjour.json"))
+    GTEST_SKIP() << "../shared is absent (" << dir << "): no Rhubarb recordings";
   for (const auto& [name, cueCount] : {std::pair{"bonjour.json", size_t{42}}, std::pair{"youpi.json", size_t{24}}}) {
     const auto cues = rhubarbFromJson(readFile(dir / name), name);
     ASSERT_TRUE(cues) << cues.error().message;
@@ -221,8 +249,10 @@ TEST(SpeechTimings, SharedRecordingsRhubarbCues) {
       const float middle = 0.5f * (cue.start + cue.end);
       const Frame f = sampleAt(built->track, middle);
       if (cue.viseme == Viseme::PP) EXPECT_GT(f[MouthChannel::LipClosure], 0.99f) << name << " A at " << cue.start;
-      if (cue.viseme == Viseme::sil && cue.end - cue.start > 0.3f) EXPECT_GT(f[Viseme::sil], 0.9f) << name << " X at " << cue.start;
-      if (cue.viseme == Viseme::aa && cue.end - cue.start > 0.1f) EXPECT_GT(f[MouthChannel::JawOpen], 0.5f) << name << " D at " << cue.start;
+      if (cue.viseme == Viseme::sil && cue.end - cue.start > 0.3f)
+        EXPECT_GT(f[Viseme::sil], 0.9f) << name << " X at " << cue.start;
+      if (cue.viseme == Viseme::aa && cue.end - cue.start > 0.1f)
+        EXPECT_GT(f[MouthChannel::JawOpen], 0.5f) << name << " D at " << cue.start;
     }
   }
 }

@@ -13,9 +13,17 @@ using namespace facial::speech_test;
 namespace {
 
 const VisemeTrack& sampleTrack() {
-  static const VisemeTrack track =
-      buildOrDie(phonemeRun({{"h", 0.06f}, {"ə", 0.05f}, {"l", 0.07f}, {"oʊ", 0.25f}, {"_", 0.3f}, {"w", 0.06f},
-                             {"ɜː", 0.15f}, {"l", 0.06f}, {"d", 0.08f}, {"m", 0.07f}, {"a", 0.2f}}));
+  static const VisemeTrack track = buildOrDie(phonemeRun({{"h", 0.06f},
+                                                          {"ə", 0.05f},
+                                                          {"l", 0.07f},
+                                                          {"oʊ", 0.25f},
+                                                          {"_", 0.3f},
+                                                          {"w", 0.06f},
+                                                          {"ɜː", 0.15f},
+                                                          {"l", 0.06f},
+                                                          {"d", 0.08f},
+                                                          {"m", 0.07f},
+                                                          {"a", 0.2f}}));
   return track;
 }
 
@@ -36,7 +44,11 @@ TEST(VisemeSampleJobValidity, RefusesWhatDoesNotFitAndLeavesOutputsAlone) {
       {.track = track, .time = 0.1f, .cursors = cursors, .visemes = fewVisemes, .mouth = mouth},
       {.track = track, .time = 0.1f, .cursors = cursors, .visemes = visemes, .mouth = badMouth},
       {.track = track, .time = nan, .cursors = cursors, .visemes = visemes, .mouth = mouth},
-      {.track = track, .time = std::numeric_limits<float>::infinity(), .cursors = cursors, .visemes = visemes, .mouth = mouth},
+      {.track = track,
+       .time = std::numeric_limits<float>::infinity(),
+       .cursors = cursors,
+       .visemes = visemes,
+       .mouth = mouth},
   };
   for (const VisemeSampleJob& job : bad) {
     visemes.fill(7.0f), fewVisemes.fill(7.0f), mouth.fill(7.0f);
@@ -62,7 +74,9 @@ TEST(VisemeSampleJob, PlaybackWithCursorsEqualsSamplingAfresh) {
   times.push_back(0.3f);
   for (float t = 0.31f; t < 0.9f; t += 1.0f / 60.0f) times.push_back(t);
   for (float t : times) {
-    ASSERT_TRUE((VisemeSampleJob{.track = &track, .time = t, .cursors = cursors, .visemes = played.visemes, .mouth = played.mouth}.Run()));
+    ASSERT_TRUE((VisemeSampleJob{
+        .track = &track, .time = t, .cursors = cursors, .visemes = played.visemes, .mouth = played.mouth}
+                     .Run()));
     const Frame fresh = sampleAt(track, t);
     for (size_t v = 0; v < kVisemeCount; ++v) ASSERT_FLOAT_EQ(played.visemes[v], fresh.visemes[v]) << "t = " << t;
     for (size_t c = 0; c < kMouthChannelCount; ++c) ASSERT_FLOAT_EQ(played.mouth[c], fresh.mouth[c]) << "t = " << t;
@@ -88,8 +102,12 @@ TEST(VisemeSampleJob, RunAllocatesNothing) {
   bool allRan = true;
   const uint64_t before = testing_support::allocationCount();
   for (int frame = 0; frame < 2000; ++frame)
-    allRan &= VisemeSampleJob{.track = &track, .time = -0.5f + frame * 0.001f, .cursors = cursors, .visemes = visemes, .mouth = mouth}.Run();
-  allRan &= VisemeSampleJob{.track = &track, .time = 0.2f, .cursors = cursors, .visemes = visemes, .mouth = mouth}.Run();  // a seek back
+    allRan &=
+        VisemeSampleJob{
+            .track = &track, .time = -0.5f + frame * 0.001f, .cursors = cursors, .visemes = visemes, .mouth = mouth}
+            .Run();
+  allRan &= VisemeSampleJob{.track = &track, .time = 0.2f, .cursors = cursors, .visemes = visemes, .mouth = mouth}
+                .Run();  // a seek back
   EXPECT_EQ(testing_support::allocationCount() - before, 0u);
   EXPECT_TRUE(allRan);
   // The counter does count: a refused job's message allocates.

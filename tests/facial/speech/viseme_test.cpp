@@ -1,7 +1,7 @@
 // The viseme set's names and mouth shapes.
-#include <gtest/gtest.h>
-
 #include "facial/runtime/speech/viseme.h"
+
+#include <gtest/gtest.h>
 
 using namespace facial;
 

@@ -62,13 +62,15 @@ TEST(VisemeTrackRules, LabiodentalIsTheDominantShapeOfItsInterval) {
   const Frame f = sampleAt(track, 0.23f);
   EXPECT_GT(f[Viseme::FF], 0.5f);
   for (size_t v = 0; v < kVisemeCount; ++v)
-    if (static_cast<Viseme>(v) != Viseme::FF) EXPECT_LT(f.visemes[v], f[Viseme::FF]) << visemeName(static_cast<Viseme>(v));
+    if (static_cast<Viseme>(v) != Viseme::FF)
+      EXPECT_LT(f.visemes[v], f[Viseme::FF]) << visemeName(static_cast<Viseme>(v));
 }
 
 // --- Rule: rounded vowels ----------------------------------------------------
 
 TEST(VisemeTrackRules, RoundedVowelsRoundTheLips) {
-  const VisemeTrack track = buildOrDie(phonemeRun({{"t", 0.08f}, {"u", 0.2f}, {"d", 0.08f}, {"o", 0.2f}, {"d", 0.08f}, {"i", 0.2f}}));
+  const VisemeTrack track =
+      buildOrDie(phonemeRun({{"t", 0.08f}, {"u", 0.2f}, {"d", 0.08f}, {"o", 0.2f}, {"d", 0.08f}, {"i", 0.2f}}));
   const Frame u = sampleAt(track, 0.18f), o = sampleAt(track, 0.46f), i = sampleAt(track, 0.74f);
   EXPECT_GT(u[Viseme::U], 0.7f);
   EXPECT_GT(o[Viseme::O], 0.7f);
@@ -116,8 +118,8 @@ TEST(VisemeTrackRules, TheTrackStartsAndEndsAtRest) {
 // --- Rules over a whole utterance: no pops, bounds, dominance blending -------
 
 std::vector<TimedPhoneme> randomUtterance(uint32_t seed) {
-  const char* inventory[] = {"p", "b", "m", "f", "v", "θ", "t", "d", "k", "ɡ", "tʃ", "s", "z", "n", "l", "ɹ", "h",
-                             "a", "ɛ", "i", "ɔ", "u", "aɪ", "oʊ", "ə", "ʁ", "y", "ɔ̃", "ŋ", "ɗ", "_"};
+  const char* inventory[] = {"p", "b", "m", "f", "v", "θ", "t",  "d",  "k", "ɡ", "tʃ", "s", "z", "n", "l", "ɹ",
+                             "h", "a", "ɛ", "i", "ɔ", "u", "aɪ", "oʊ", "ə", "ʁ", "y",  "ɔ̃", "ŋ", "ɗ", "_"};
   std::mt19937 rng(seed);
   std::uniform_int_distribution<size_t> pick(0, std::size(inventory) - 1);
   std::uniform_real_distribution<float> duration(0.01f, 0.25f), gap(0.0f, 1.0f);
@@ -175,13 +177,22 @@ TEST(VisemeTrackBuilderInput, AnUnmappablePhonemeIsReportedNotDropped) {
   EXPECT_GT(sampleAt(built->track, 0.25f)[Viseme::aa], 0.8f) << "its interval keeps its neighbours' shape";
 }
 
+TEST(VisemeTrackBuilderInput, MessagesStayOneLineWhateverThePhonemeHolds) {
+  const auto built = VisemeTrackBuilder{}.build(phonemeRun({{"a", 0.2f}, {"\n\"☃", 0.1f}}));
+  ASSERT_TRUE(built) << built.error().message;
+  ASSERT_EQ(built->warnings.size(), 1u);
+  EXPECT_EQ(built->warnings[0],
+            "phoneme 1 \"\\u000a\\\"☃\" at 0.2 s: no viseme for its symbols; it takes its neighbours' shape");
+}
+
 TEST(VisemeTrackBuilderInput, RefusesBadTimesNamingThePhoneme) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   const struct {
     std::vector<TimedPhoneme> phonemes;
     const char* expected;
   } cases[] = {
-      {{{"a", 0.0f, 0.1f}, {"b", 0.05f, 0.2f}}, "phoneme 1 \"b\": starts at 0.05 s, before the previous cue ends (0.1 s)"},
+      {{{"a", 0.0f, 0.1f}, {"b", 0.05f, 0.2f}},
+       "phoneme 1 \"b\": starts at 0.05 s, before the previous cue ends (0.1 s)"},
       {{{"a", 0.5f, 0.6f}, {"b", 0.1f, 0.2f}}, "phoneme 1 \"b\": starts at 0.1 s, before the previous cue ends"},
       {{{"a", nan, 0.1f}}, "phoneme 0 \"a\": time is not a finite number"},
       {{{"a", 0.0f, inf}}, "phoneme 0 \"a\": time is not a finite number"},
@@ -211,7 +222,8 @@ TEST(VisemeTrackBuilderInput, VisemeCuesBuildTheSameWay) {
   EXPECT_GT(sampleAt(built->track, 0.24f)[Viseme::PP], 0.99f);
   EXPECT_GT(sampleAt(built->track, 0.4f)[Viseme::O], 0.7f);
   const std::vector<TimedViseme> overlapping = {{Viseme::aa, 0.0f, 0.2f}, {Viseme::PP, 0.1f, 0.28f}};
-  EXPECT_NE(VisemeTrackBuilder{}.build(overlapping).error().message.find("viseme cue 1: starts at 0.1 s"), std::string::npos);
+  EXPECT_NE(VisemeTrackBuilder{}.build(overlapping).error().message.find("viseme cue 1: starts at 0.1 s"),
+            std::string::npos);
 }
 
 TEST(VisemeTrackBuilderInput, KeysAreSortedAndThinned) {
@@ -221,6 +233,7 @@ TEST(VisemeTrackBuilderInput, KeysAreSortedAndThinned) {
     EXPECT_TRUE(validateKeys(track.channelKeys(c))) << "channel " << c;
     keys += track.channelKeys(c).size();
   }
-  const size_t gridSamples = static_cast<size_t>((track.endTime() - track.startTime()) / kSampleStep) * kSpeechChannelCount;
+  const size_t gridSamples =
+      static_cast<size_t>((track.endTime() - track.startTime()) / kSampleStep) * kSpeechChannelCount;
   EXPECT_LT(keys, gridSamples / 2) << "thinning keeps well under half the grid";
 }
