@@ -31,12 +31,11 @@ eng::Result<std::vector<Cue>> readCues(const JsonNode& array, ReadCue readCue) {
   const size_t count = ENG_TRY_VALUE(array.size());
   std::vector<Cue> cues;
   cues.reserve(count);
-  float previousEnd = -std::numeric_limits<float>::infinity();
+  CueOrderCheck order;
   for (size_t i = 0; i < count; ++i) {
     const JsonNode item = array.element(i);
     Cue cue = ENG_TRY_VALUE(readCue(item));
-    if (auto times = checkCueTimes(cue.start, cue.end, previousEnd); !times) return item.error(times.error());
-    previousEnd = cue.end;
+    if (auto times = order.accept(cue.start, cue.end); !times) return item.error(times.error());
     cues.push_back(std::move(cue));
   }
   return cues;
@@ -152,12 +151,11 @@ eng::Result<std::vector<TimedViseme>> readTsv(std::string_view text, size_t maxC
         "needs at least two lines: each starts a mouth shape, the last marks the end of the recording");
   std::vector<TimedViseme> cues;
   cues.reserve(entries.size() - 1);
-  float previousEnd = -std::numeric_limits<float>::infinity();
+  CueOrderCheck order;
   for (size_t i = 0; i + 1 < entries.size(); ++i) {
     const float start = entries[i].time, end = entries[i + 1].time;
-    if (auto times = checkCueTimes(start, end, previousEnd); !times)
+    if (auto times = order.accept(start, end); !times)
       return lineError(entries[i].line, times.error().message, times.error().kind);
-    previousEnd = end;
     cues.push_back({entries[i].viseme, start, end});
   }
   return cues;
@@ -199,13 +197,12 @@ eng::Result<std::vector<TimedViseme>> readAzure(const JsonNode& root, size_t max
   for (size_t i = 0; i < count; ++i) events.push_back(ENG_TRY_VALUE(readAzureEvent(root.element(i))));
   std::vector<TimedViseme> cues;
   cues.reserve(count);
-  float previousEnd = -std::numeric_limits<float>::infinity();
+  CueOrderCheck order;
   for (size_t i = 0; i < count; ++i) {
     // An event lasts until the next one starts.
     const float start = events[i].offset;
     const float end = i + 1 < count ? events[i + 1].offset : start + kAzureLastEventSeconds;
-    if (auto times = checkCueTimes(start, end, previousEnd); !times) return root.element(i).error(times.error());
-    previousEnd = end;
+    if (auto times = order.accept(start, end); !times) return root.element(i).error(times.error());
     cues.push_back({events[i].viseme, start, end});
   }
   return cues;

@@ -13,7 +13,7 @@ namespace facial {
 
 using namespace speech_rules;
 
-eng::Result<void> checkCueTimes(float start, float end, float previousEnd) {
+eng::Result<void> CueOrderCheck::accept(float start, float end) {
   using eng::ErrorKind;
   if (!std::isfinite(start) || !std::isfinite(end))
     return eng::makeError(ErrorKind::Malformed, "time is not a finite number");
@@ -21,13 +21,18 @@ eng::Result<void> checkCueTimes(float start, float end, float previousEnd) {
   if (end <= start)
     return eng::makeError(ErrorKind::Malformed,
                           "ends at " + formatNumber(end) + " s, not after its start " + formatNumber(start) + " s");
-  if (start < previousEnd)
-    return eng::makeError(ErrorKind::Malformed, "starts at " + formatNumber(start) +
-                                                    " s, before the previous cue ends (" + formatNumber(previousEnd) +
-                                                    " s): cues must be sorted and must not overlap");
+  if (start < previousStart_)
+    return eng::makeError(ErrorKind::Malformed, "starts at " + formatNumber(start) + " s, before the previous cue (" +
+                                                    formatNumber(previousStart_) + " s): cues must be in time order");
+  if (start < previousEnd_)
+    return eng::makeError(ErrorKind::Malformed, "starts at " + formatNumber(start) + " s, inside the previous cue (" +
+                                                    formatNumber(previousStart_) + " to " + formatNumber(previousEnd_) +
+                                                    " s): cues must not overlap");
   if (end > kMaxSpeechSeconds)
     return eng::makeError(ErrorKind::TooLarge, "ends at " + formatNumber(end) + " s, past the limit of " +
                                                    formatNumber(kMaxSpeechSeconds) + " s");
+  previousStart_ = start;
+  previousEnd_ = end;
   return {};
 }
 
@@ -248,13 +253,12 @@ eng::Result<void> checkCount(size_t count, std::string_view what) {
 }
 
 // A cue's times checked against the previous cue, the error naming the cue.
-eng::Result<void> checkCue(std::string_view name, float start, float end, float& previousEnd) {
-  if (auto ok = checkCueTimes(start, end, previousEnd); !ok) {
+eng::Result<void> checkCue(std::string_view name, float start, float end, CueOrderCheck& order) {
+  if (auto ok = order.accept(start, end); !ok) {
     const eng::ErrorKind kind =
         ok.error().kind == eng::ErrorKind::TooLarge ? eng::ErrorKind::TooLarge : eng::ErrorKind::InvalidArgument;
     return eng::makeError(kind, std::string(name) + ": " + ok.error().message);
   }
-  previousEnd = end;
   return {};
 }
 
@@ -282,10 +286,10 @@ eng::Result<VisemeTrackBuild> VisemeTrackBuilder::build(std::span<const TimedPho
   std::vector<Segment> cues;
   cues.reserve(phonemes.size() + phonemes.size() / 4);
   std::vector<size_t> borrowers;
-  float previousEnd = -std::numeric_limits<float>::infinity();
+  CueOrderCheck order;
   for (size_t i = 0; i < phonemes.size(); ++i) {
     const TimedPhoneme& p = phonemes[i];
-    ENG_TRY(checkCue("phoneme " + std::to_string(i) + " " + quotedForMessage(p.ipa), p.start, p.end, previousEnd));
+    ENG_TRY(checkCue("phoneme " + std::to_string(i) + " " + quotedForMessage(p.ipa), p.start, p.end, order));
     const std::optional<PhonemeVisemes> mapped = visemesForIpa(p.ipa);
     if (!mapped)
       result.warnings.push_back("phoneme " + std::to_string(i) + " " + quotedForMessage(p.ipa) + " at " +
@@ -313,10 +317,10 @@ eng::Result<VisemeTrackBuild> VisemeTrackBuilder::build(std::span<const TimedVis
   ENG_TRY(checkCount(visemes.size(), "viseme cues"));
   std::vector<Segment> cues;
   cues.reserve(visemes.size());
-  float previousEnd = -std::numeric_limits<float>::infinity();
+  CueOrderCheck order;
   for (size_t i = 0; i < visemes.size(); ++i) {
     const TimedViseme& v = visemes[i];
-    ENG_TRY(checkCue("viseme cue " + std::to_string(i), v.start, v.end, previousEnd));
+    ENG_TRY(checkCue("viseme cue " + std::to_string(i), v.start, v.end, order));
     if (static_cast<size_t>(v.viseme) >= kVisemeCount)
       return eng::makeError(eng::ErrorKind::InvalidArgument, "viseme cue " + std::to_string(i) + ": viseme " +
                                                                  std::to_string(static_cast<int>(v.viseme)) +
@@ -346,6 +350,9 @@ VisemeTrack VisemeTrackBuilder::assemble(std::array<std::vector<Keyframe>, kSpee
 eng::Result<void> VisemeSampleJob::Validate() const {
   using eng::ErrorKind;
   if (!track) return eng::makeError(ErrorKind::InvalidArgument, "VisemeSampleJob: no track");
+  if (track->keyCount() == 0)
+    return eng::makeError(ErrorKind::InvalidArgument,
+                          "VisemeSampleJob: the track is empty (not built by VisemeTrackBuilder)");
   if (cursors.size() != kSpeechChannelCount || visemes.size() != kVisemeCount ||
       (!mouth.empty() && mouth.size() != kMouthChannelCount))
     return eng::makeError(ErrorKind::InvalidArgument,

@@ -14,6 +14,7 @@
 // constraints a blend alone misses (lips must close for p/b/m).
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,12 +44,19 @@ struct TimedViseme {
 inline constexpr size_t kMaxSpeechCues = 1'000'000;
 inline constexpr float kMaxSpeechSeconds = 4.0f * 3600.0f;
 
-// Whether cue [start, end] may follow a cue that ended at previousEnd (pass
-// -infinity for the first): times finite, start >= 0, end > start, start not
-// before previousEnd (sorted, no overlap), end within kMaxSpeechSeconds.
-// Fails Malformed (TooLarge past the limit) with the problem alone; callers
-// put the cue's name (index, JSON pointer, line) in front.
-eng::Result<void> checkCueTimes(float start, float end, float previousEnd);
+// Checks cues in their order: times finite, start >= 0, end > start, not
+// before the previous cue (unsorted) nor inside it (overlapping), end within
+// kMaxSpeechSeconds. accept() fails Malformed (TooLarge past the limit) with
+// the problem alone, callers put the cue's name (index, JSON pointer, line)
+// in front; an accepted cue becomes the previous one.
+class CueOrderCheck {
+ public:
+  eng::Result<void> accept(float start, float end);
+
+ private:
+  float previousStart_ = -std::numeric_limits<float>::infinity();
+  float previousEnd_ = -std::numeric_limits<float>::infinity();
+};
 
 // The coarticulation rules' constants (seconds unless said otherwise).
 namespace speech_rules {
@@ -153,7 +161,7 @@ struct VisemeSampleJob {
   std::span<uint32_t> cursors;
   std::span<float> visemes;  // kVisemeCount
   std::span<float> mouth;    // kMouthChannelCount, or empty
-  // InvalidArgument: no track, a span of the wrong size, a non-finite time.
+  // InvalidArgument: no track or an empty one, a span of the wrong size, a non-finite time.
   eng::Result<void> Validate() const;
   bool Run() const;
 };

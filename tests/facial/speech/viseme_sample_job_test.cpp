@@ -37,9 +37,11 @@ TEST(VisemeSampleJobValidity, RefusesWhatDoesNotFitAndLeavesOutputsAlone) {
   std::array<float, kMouthChannelCount> mouth{};
   std::array<float, 2> badMouth{};
   const VisemeTrack* track = &sampleTrack();
+  const VisemeTrack empty;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const VisemeSampleJob bad[] = {
       {.track = nullptr, .time = 0.1f, .cursors = cursors, .visemes = visemes, .mouth = mouth},
+      {.track = &empty, .time = 0.1f, .cursors = cursors, .visemes = visemes, .mouth = mouth},
       {.track = track, .time = 0.1f, .cursors = fewCursors, .visemes = visemes, .mouth = mouth},
       {.track = track, .time = 0.1f, .cursors = cursors, .visemes = fewVisemes, .mouth = mouth},
       {.track = track, .time = 0.1f, .cursors = cursors, .visemes = visemes, .mouth = badMouth},

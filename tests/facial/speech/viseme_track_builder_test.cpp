@@ -192,8 +192,9 @@ TEST(VisemeTrackBuilderInput, RefusesBadTimesNamingThePhoneme) {
     const char* expected;
   } cases[] = {
       {{{"a", 0.0f, 0.1f}, {"b", 0.05f, 0.2f}},
-       "phoneme 1 \"b\": starts at 0.05 s, before the previous cue ends (0.1 s)"},
-      {{{"a", 0.5f, 0.6f}, {"b", 0.1f, 0.2f}}, "phoneme 1 \"b\": starts at 0.1 s, before the previous cue ends"},
+       "phoneme 1 \"b\": starts at 0.05 s, inside the previous cue (0 to 0.1 s): cues must not overlap"},
+      {{{"a", 0.5f, 0.6f}, {"b", 0.1f, 0.2f}},
+       "phoneme 1 \"b\": starts at 0.1 s, before the previous cue (0.5 s): cues must be in time order"},
       {{{"a", nan, 0.1f}}, "phoneme 0 \"a\": time is not a finite number"},
       {{{"a", 0.0f, inf}}, "phoneme 0 \"a\": time is not a finite number"},
       {{{"a", -0.5f, 0.1f}}, "phoneme 0 \"a\": negative start -0.5 s"},
@@ -222,8 +223,19 @@ TEST(VisemeTrackBuilderInput, VisemeCuesBuildTheSameWay) {
   EXPECT_GT(sampleAt(built->track, 0.24f)[Viseme::PP], 0.99f);
   EXPECT_GT(sampleAt(built->track, 0.4f)[Viseme::O], 0.7f);
   const std::vector<TimedViseme> overlapping = {{Viseme::aa, 0.0f, 0.2f}, {Viseme::PP, 0.1f, 0.28f}};
-  EXPECT_NE(VisemeTrackBuilder{}.build(overlapping).error().message.find("viseme cue 1: starts at 0.1 s"),
+  EXPECT_NE(VisemeTrackBuilder{}
+                .build(overlapping)
+                .error()
+                .message.find("viseme cue 1: starts at 0.1 s, inside the previous cue"),
             std::string::npos);
+}
+
+TEST(VisemeTrackBuilderInput, RefusesAVisemeOutsideTheSet) {
+  const std::vector<TimedViseme> cues = {{static_cast<Viseme>(kVisemeCount), 0.0f, 0.2f}};
+  const auto built = VisemeTrackBuilder{}.build(cues);
+  ASSERT_FALSE(built);
+  EXPECT_EQ(built.error().kind, eng::ErrorKind::InvalidArgument);
+  EXPECT_EQ(built.error().message, "viseme cue 0: viseme 15 is not one of the 15");
 }
 
 TEST(VisemeTrackBuilderInput, KeysAreSortedAndThinned) {
