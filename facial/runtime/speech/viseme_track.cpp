@@ -50,6 +50,7 @@ struct Segment {
   float dominance = kDefaultDominance;
   float lead = kConsonantSpread;   // Gaussian width before start
   float trail = kConsonantSpread;  // Gaussian width after end
+  bool borrowed = false;           // h, ʔ or unmapped: a neighbour's shape, weakly, and never a lip closure
 };
 
 // The widest tail, and how far (3 widths) a tail is followed before it counts as 0.
@@ -119,7 +120,7 @@ struct Hold {
 std::vector<Hold> closureHolds(std::span<const Segment> segments) {
   std::vector<Hold> holds;
   for (const Segment& s : segments) {
-    if (s.viseme != Viseme::PP) continue;
+    if (s.viseme != Viseme::PP || s.borrowed) continue;
     const float centre = 0.5f * (s.start + s.end), half = 0.5f * std::max(kMinClosureHold, s.end - s.start);
     holds.push_back({std::min(s.start, centre - half), std::max(s.end, centre + half)});
   }
@@ -267,7 +268,7 @@ eng::Result<void> checkCue(std::string_view name, float start, float end, CueOrd
 // mouth), else of the previous one, with a weak dominance.
 void resolveBorrowedShapes(std::vector<Segment>& cues, std::span<const size_t> borrowers) {
   for (size_t b : borrowers) {
-    const auto shaped = [&](size_t i) { return cues[i].viseme != Viseme::sil && cues[i].dominance != 0.0f; };
+    const auto shaped = [&](size_t i) { return cues[i].viseme != Viseme::sil && !cues[i].borrowed; };
     size_t from = b;
     for (size_t i = b + 1; i < cues.size() && from == b; ++i)
       if (shaped(i)) from = i;
@@ -297,7 +298,7 @@ eng::Result<VisemeTrackBuild> VisemeTrackBuilder::build(std::span<const TimedPho
                                 " s: no viseme for its symbols; it takes its neighbours' shape");
     if (!mapped || mapped->kind == PhonemeVisemes::Kind::Transparent) {
       borrowers.push_back(cues.size());
-      cues.push_back({.start = p.start, .end = p.end, .dominance = 0.0f});
+      cues.push_back({.start = p.start, .end = p.end, .borrowed = true});
     } else if (mapped->kind == PhonemeVisemes::Kind::Silence) {
       cues.push_back({.viseme = Viseme::sil, .start = p.start, .end = p.end});
     } else if (mapped->count == 1) {

@@ -167,6 +167,13 @@ TEST(VisemeTrackRules, HTakesTheShapeOfTheVowelAfterIt) {
   EXPECT_GT(sampleAt(track, 0.34f)[Viseme::U], 0.5f);
 }
 
+TEST(VisemeTrackRules, ABorrowedBilabialShapeDoesNotCloseTheLips) {
+  // "a h m a": h takes m's shape weakly, but only the m itself closes the lips.
+  const VisemeTrack track = buildOrDie(phonemeRun({{"a", 0.2f}, {"h", 0.12f}, {"m", 0.08f}, {"a", 0.2f}}));
+  EXPECT_LT(sampleAt(track, 0.23f)[MouthChannel::LipClosure], 0.9f);
+  EXPECT_GT(sampleAt(track, 0.36f)[MouthChannel::LipClosure], 0.99f);
+}
+
 // --- The builder's input ------------------------------------------------------
 
 TEST(VisemeTrackBuilderInput, AnUnmappablePhonemeIsReportedNotDropped) {
