@@ -123,6 +123,7 @@ eng::Result<std::optional<TsvEntry>> readTsvLine(std::string_view line, size_t n
   const auto parsed = std::from_chars(field.data(), field.data() + field.size(), time);
   if (parsed.ec != std::errc() || parsed.ptr != field.data() + field.size())
     return lineError(number, quotedForMessage(field) + " is not a time in seconds");
+  if (!std::isfinite(time)) return lineError(number, "time is not a finite number");
   std::string_view shape = line.substr(tab + 1);
   while (!shape.empty() && (shape.front() == '\t' || shape.front() == ' ')) shape.remove_prefix(1);
   const std::optional<Viseme> viseme = shape.size() == 1 ? visemeForRhubarbShape(shape[0]) : std::nullopt;

@@ -140,7 +140,9 @@ TEST(SpeechTimings, RhubarbProblems) {
   expectError(rhubarbFromTsv("0.00\tX\nabc\tA\n", "r.tsv"), K::Malformed,
               "r.tsv: line 2: \"abc\" is not a time in seconds");
   expectError(rhubarbFromTsv("0.00\tX\nnan\tA\n0.3\tX\n", "r.tsv"), K::Malformed,
-              "r.tsv: line 1: time is not a finite number");
+              "r.tsv: line 2: time is not a finite number");
+  expectError(rhubarbFromTsv("0.00\tX\n0.1\tA\ninf\tX\n", "r.tsv"), K::Malformed,
+              "r.tsv: line 3: time is not a finite number");
   expectError(rhubarbFromTsv("0.00\tX\n0.30\tA\n0.10\tX\n", "r.tsv"), K::Malformed,
               "r.tsv: line 2: ends at 0.1 s, not after its start 0.3 s");
   expectError(rhubarbFromTsv("0.00 X", "r.tsv"), K::Malformed,
