@@ -212,16 +212,18 @@ MouthShape mouthOf(std::span<const float> w) {
 ChannelKeys keysFromSegments(std::span<const Segment> segments) {
   const std::vector<Hold> holds = closureHolds(segments);
   const float t0 = segments.front().start, t1 = segments.back().end;
-  const size_t samples = static_cast<size_t>(std::ceil((t1 - t0) / kSampleStep)) + 1;
+  // A uniform grid no coarser than kSampleStep that ends exactly at t1.
+  const size_t intervals = std::max<size_t>(1, static_cast<size_t>(std::ceil((t1 - t0) / kSampleStep)));
+  const float step = (t1 - t0) / static_cast<float>(intervals);
   ChannelKeys channelKeys;
   std::vector<KeyThinner> thinners;
   thinners.reserve(kSpeechChannelCount);
   for (auto& keys : channelKeys) thinners.emplace_back(keys);
   std::array<float, kSpeechChannelCount> w{}, previous{};
   size_t firstSegment = 0, firstHold = 0;
-  const float maxStep = kMaxWeightRate * kSampleStep;
-  for (size_t i = 0; i < samples; ++i) {
-    const float t = i + 1 == samples ? t1 : t0 + static_cast<float>(i) * kSampleStep;
+  const float maxStep = kMaxWeightRate * step;
+  for (size_t i = 0; i <= intervals; ++i) {
+    const float t = i == intervals ? t1 : t0 + static_cast<float>(i) * step;
     const std::span<float> visemes = std::span(w).first<kVisemeCount>();
     blendAt(segments, firstSegment, t, visemes);
     // Bilabial closure overrides the blend: lips fully closed in the hold.
