@@ -7,8 +7,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
+#include "facial/runtime/speech/ipa_visemes.h"
 #include "tests/facial/speech/speech_test_support.h"
 
 using namespace facial;
@@ -257,5 +259,22 @@ TEST(SpeechTimings, SharedRecordingsRhubarbCues) {
       closedCues += closed ? 1 : 0;
     }
     EXPECT_GT(closedCues, 3u) << name << ": the recordings have A cues (4 and 8)";
+  }
+}
+
+// Broken input of any shape is an error of one line, never a crash.
+TEST(SpeechTimings, RandomBytesAreRefusedInOneLine) {
+  std::mt19937 rng(3);
+  const std::string alphabet = "0123456789.\t\n -eEXABnaif{}[]\":,visemeIdstartendmouthCuesword\xc3\xa9\xff";
+  std::uniform_int_distribution<size_t> length(0, 48), letter(0, alphabet.size() - 1);
+  for (int i = 0; i < 3000; ++i) {
+    std::string text;
+    for (size_t n = length(rng); n > 0; --n) text += alphabet[letter(rng)];
+    for (const auto& r : {rhubarbFromTsv(text, "x"), rhubarbFromJson(text, "x"), azureVisemesFromJson(text, "x"),
+                          wordVisemesFromJson(text, "x"), visemesFromJson(text, "x")})
+      ASSERT_TRUE(r || r.error().message.find('\n') == std::string::npos) << r.error().message;
+    const auto phonemes = phonemesFromJson(text, "x");
+    ASSERT_TRUE(phonemes || phonemes.error().message.find('\n') == std::string::npos) << phonemes.error().message;
+    for (const std::string& phoneme : splitIpa(text)) (void)visemesForIpa(phoneme);
   }
 }
