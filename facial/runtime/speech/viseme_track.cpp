@@ -113,16 +113,24 @@ float dominanceAt(const Segment& s, float t) {
   return s.dominance * std::exp(-x * x);
 }
 
-// The closure holds of the bilabials: [start, end] widened to kMinClosureHold.
+// The closure holds of the bilabials: [start, end] widened to kMinClosureHold,
+// and into a pause beside it by up to kClosureFromRest.
 struct Hold {
   float start, end;
 };
 std::vector<Hold> closureHolds(std::span<const Segment> segments) {
   std::vector<Hold> holds;
-  for (const Segment& s : segments) {
+  const auto isPause = [&](size_t i) { return segments[i].viseme == Viseme::sil && !segments[i].borrowed; };
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
     if (s.viseme != Viseme::PP || s.borrowed) continue;
     const float centre = 0.5f * (s.start + s.end), half = 0.5f * std::max(kMinClosureHold, s.end - s.start);
-    holds.push_back({std::min(s.start, centre - half), std::max(s.end, centre + half)});
+    Hold hold{std::min(s.start, centre - half), std::max(s.end, centre + half)};
+    if (i > 0 && isPause(i - 1))
+      hold.start = std::min(hold.start, std::max(segments[i - 1].start, s.start - kClosureFromRest));
+    if (i + 1 < segments.size() && isPause(i + 1))
+      hold.end = std::max(hold.end, std::min(segments[i + 1].end, s.end + kClosureFromRest));
+    holds.push_back(hold);
   }
   return holds;
 }

@@ -93,6 +93,10 @@ inline constexpr float kVisiblePeak = 0.5f;  // "visible": at least half the sha
 // plosives an occlusion of 4-12 cs for the same reason.
 inline constexpr float kMinClosureHold = 0.04f;
 inline constexpr float kClosureRamp = 0.04f;
+// A bilabial next to a pause keeps the lips closed from rest into the closure
+// (and back) over up to kClosureFromRest: rest and p/b/m are both closed, so
+// opening between them for an anticipated vowel would flap the jaw.
+inline constexpr float kClosureFromRest = 0.1f;
 // Pauses: a silence shorter than kBridgedPause is bridged (the mouth keeps
 // talking, Rhubarb holds the previous shape under 12 cs); one longer than
 // kRestPause relaxes to rest (sil); dominance ramps smoothly in between.

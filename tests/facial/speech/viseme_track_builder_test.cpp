@@ -55,6 +55,15 @@ TEST(VisemeTrackRules, AVeryShortBilabialStillClosesForTheMinimumHold) {
   }
 }
 
+TEST(VisemeTrackRules, FromRestABilabialKeepsTheLipsClosed) {
+  // "(pause) b ɔ̃": no jaw opening between rest and the b for the anticipated vowel.
+  const VisemeTrack track = buildOrDie(phonemeRun({{"b", 0.07f}, {"ɔ̃", 0.12f}}, 0.5f));
+  for (float t = 0.5f - kClosureFromRest; t < 0.57f; t += 0.005f) {
+    EXPECT_LT(sampleAt(track, t)[MouthChannel::JawOpen], 0.01f) << "t = " << t;
+    EXPECT_GT(sampleAt(track, t)[MouthChannel::LipClosure], 0.99f) << "t = " << t;
+  }
+}
+
 // --- Rule: labiodentals ------------------------------------------------------
 
 TEST(VisemeTrackRules, LabiodentalIsTheDominantShapeOfItsInterval) {
