@@ -82,11 +82,10 @@ inline constexpr float kDefaultDominance = 1.0f;
 inline constexpr float kTransparentDominance = 0.5f;  // h, ʔ, unmapped: the neighbour's shape
 // Short phonemes never dropped: a phoneme shorter than kMinVisible gets its
 // dominance raised by kMinVisible / duration (at most kMaxShortBoost), so a
-// 20 ms consonant still peaks at a visible weight (Rhubarb keeps shapes at
+// 20 ms consonant still peaks above half its shape (Rhubarb keeps shapes at
 // least 7 cs for the same reason, by retiming instead).
 inline constexpr float kMinVisible = 0.06f;
 inline constexpr float kMaxShortBoost = 4.0f;
-inline constexpr float kVisiblePeak = 0.5f;  // "visible": at least half the shape (what the tests hold)
 // Bilabial closure: p/b/m close the lips completely (PP = 1, lip closure 1)
 // for the phoneme or at least kMinClosureHold, whatever the blend says; the
 // lips close and open over kClosureRamp (a cosine) around it. Rhubarb gives

@@ -95,7 +95,7 @@ TEST(VisemeTrackRules, ATwentyMillisecondConsonantReachesAVisiblePeak) {
   for (const char* consonant : {"t", "k", "s", "n", "ʃ"}) {
     const VisemeTrack track = buildOrDie(phonemeRun({{"a", 0.2f}, {consonant, 0.02f}, {"a", 0.2f}}));
     const Viseme v = visemesForIpa(consonant)->visemes[0];
-    EXPECT_GT(peakOver(track, v, 0.19f, 0.23f), 0.5f) << consonant;  // kVisiblePeak
+    EXPECT_GT(peakOver(track, v, 0.19f, 0.23f), 0.5f) << consonant;  // visible: at least half the shape
   }
 }
 
