@@ -256,28 +256,11 @@ eng::Result<std::vector<TimedViseme>> wordVisemesFromJson(std::string_view text,
 
 std::optional<Viseme> visemeForRhubarbShape(char shape) {
   using V = Viseme;
-  switch (shape) {
-    case 'A':
-      return V::PP;
-    case 'B':
-      return V::SS;
-    case 'C':
-      return V::E;
-    case 'D':
-      return V::aa;
-    case 'E':
-      return V::O;
-    case 'F':
-      return V::U;
-    case 'G':
-      return V::FF;
-    case 'H':
-      return V::nn;
-    case 'X':
-      return V::sil;
-    default:
-      return std::nullopt;
-  }
+  constexpr std::pair<char, Viseme> kShapes[] = {{'A', V::PP}, {'B', V::SS}, {'C', V::E},  {'D', V::aa}, {'E', V::O},
+                                                 {'F', V::U},  {'G', V::FF}, {'H', V::nn}, {'X', V::sil}};
+  for (const auto& [name, viseme] : kShapes)
+    if (name == shape) return viseme;
+  return std::nullopt;
 }
 
 std::optional<Viseme> visemeForAzureId(int id) {
