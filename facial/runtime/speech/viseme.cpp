@@ -1,18 +1,18 @@
 #include "facial/runtime/speech/viseme.h"
 
-#include "facial/runtime/speech/detail/enum_names.h"
+#include "engine/core/enum_names.h"
 
 namespace facial {
 namespace {
 
 using V = Viseme;
-constexpr detail::EnumName<Viseme> kVisemeNames[] = {{V::sil, "sil"}, {V::PP, "PP"}, {V::FF, "FF"}, {V::TH, "TH"},
+constexpr eng::EnumName<Viseme> kVisemeNames[] = {{V::sil, "sil"}, {V::PP, "PP"}, {V::FF, "FF"}, {V::TH, "TH"},
                                                      {V::DD, "DD"},   {V::kk, "kk"}, {V::CH, "CH"}, {V::SS, "SS"},
                                                      {V::nn, "nn"},   {V::RR, "RR"}, {V::aa, "aa"}, {V::E, "E"},
                                                      {V::I, "I"},     {V::O, "O"},   {V::U, "U"}};
 static_assert(std::size(kVisemeNames) == kVisemeCount);
 
-constexpr detail::EnumName<MouthChannel> kMouthChannelNames[] = {{MouthChannel::JawOpen, "jawOpen"},
+constexpr eng::EnumName<MouthChannel> kMouthChannelNames[] = {{MouthChannel::JawOpen, "jawOpen"},
                                                                  {MouthChannel::LipClosure, "lipClosure"},
                                                                  {MouthChannel::LipRounding, "lipRounding"}};
 static_assert(std::size(kMouthChannelNames) == kMouthChannelCount);
@@ -40,10 +40,10 @@ constexpr std::array<MouthShape, kVisemeCount> kMouthShapes = {{
 
 }  // namespace
 
-std::string_view visemeName(Viseme viseme) { return detail::nameOf(kVisemeNames, viseme); }
-std::optional<Viseme> visemeFromName(std::string_view name) { return detail::valueNamed(kVisemeNames, name); }
-std::string visemeNameList() { return detail::nameList(kVisemeNames); }
-std::string_view mouthChannelName(MouthChannel channel) { return detail::nameOf(kMouthChannelNames, channel); }
+std::string_view visemeName(Viseme viseme) { return eng::nameOf(kVisemeNames, viseme); }
+std::optional<Viseme> visemeFromName(std::string_view name) { return eng::valueNamed(kVisemeNames, name); }
+std::string visemeNameList() { return eng::nameList(kVisemeNames); }
+std::string_view mouthChannelName(MouthChannel channel) { return eng::nameOf(kMouthChannelNames, channel); }
 const MouthShape& mouthShapeOf(Viseme viseme) { return kMouthShapes[static_cast<size_t>(viseme)]; }
 
 }  // namespace facial
