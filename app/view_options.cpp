@@ -19,7 +19,7 @@ void addFramingOption(CLI::App& app, std::string& frame) {
 }
 
 eng::Result<eng::FramingMode> framingModeOption(const std::string& frame) {
-  if (auto mode = eng::parseFramingMode(frame)) return *mode;
+  if (auto mode = eng::framingModeFromName(frame)) return *mode;
   return eng::makeError(eng::ErrorKind::InvalidArgument, "--frame '" + frame + "' is neither 'face' nor 'all'");
 }
 
@@ -37,8 +37,8 @@ void addQualityOption(CLI::App& app, std::string& quality) {
 }
 
 eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality) {
-  if (auto tier = eng::vk::parseRenderQuality(quality)) return *tier;
-  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not fast, balanced or high");
+  if (auto tier = eng::vk::renderQualityFromName(quality)) return *tier;
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not " + eng::nameList(eng::vk::kRenderQualityNames));
 }
 
 void addWindowQualityOption(CLI::App& app, std::string& quality) {
@@ -50,8 +50,8 @@ void addWindowQualityOption(CLI::App& app, std::string& quality) {
 eng::Result<eng::vk::RenderQuality> windowQualityOption(const std::string& quality, VkPhysicalDeviceType device) {
   if (quality == kWindowQualityAuto)
     return device == VK_PHYSICAL_DEVICE_TYPE_CPU ? eng::vk::RenderQuality::Balanced : eng::vk::RenderQuality::High;
-  if (auto tier = eng::vk::parseRenderQuality(quality)) return *tier;
-  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not auto, fast, balanced or high");
+  if (auto tier = eng::vk::renderQualityFromName(quality)) return *tier;
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not auto, " + eng::nameList(eng::vk::kRenderQualityNames));
 }
 
 void addViewOptions(CLI::App& app, ViewOptions& view) {

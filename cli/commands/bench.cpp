@@ -115,7 +115,7 @@ void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, 
   std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
               "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
               "lod_error=%g triangles=%llu coarser_draws=%u timestamps=%s\n",
-              eng::vk::qualityName(quality), int(offscreen.samples()), tier.shadowMapSize,
+              std::string(eng::vk::renderQualityName(quality)).c_str(), int(offscreen.samples()), tier.shadowMapSize,
               tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
               tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
               double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
@@ -137,7 +137,7 @@ void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, 
   const double cpuP95 = quantile(cpuMs, 0.95);
   std::string line = "bench frames " + std::filesystem::path(o.model).filename().string() + " " +
                      std::to_string(width) + "x" + std::to_string(height) +
-                     " quality=" + eng::vk::qualityName(quality) +
+                     " quality=" + std::string(eng::vk::renderQualityName(quality)) +
                      " msaa=" + std::to_string(int(offscreen.samples())) + " instances=" + std::to_string(count) +
                      " animate=" + o.animate + " targets=" + std::to_string(targets) +
                      " triangles=" + std::to_string(stats.triangles) +

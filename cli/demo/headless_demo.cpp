@@ -28,7 +28,7 @@
 #include "engine/vk/device/context.h"
 #include "engine/view/framing_bounds.h"
 #include "engine/vk/draw/offscreen_renderer.h"
-#include "facial/runtime/character/face_driver.h"
+#include "facial/character.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/nodes/state_machine_node.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -75,10 +75,11 @@ glm::mat4 idleMotion(float t, float phase, const glm::vec3& pivot, float size) {
          glm::translate(glm::mat4(1.0f), -pivot);
 }
 
-// The tour's faces, posed frame by frame: one FaceDriver per member of the
-// crowd grid (app/crowd_layout.h), with the idle sway and breathing above, the
-// --clip under it and the VRM material binds. Members of a crowd pick their
-// own emotions at random moments.
+// The tour's faces, posed frame by frame: one facial::Character per member of
+// the crowd grid (app/crowd_layout.h), with the headless run's own idle sway
+// and breathing (idleMotion above: repeatable frames for the goldens, so the
+// characters' idle life is off), the --clip under it and the VRM material
+// binds. Members of a crowd pick their own emotions at random moments.
 class HeadlessCrowd {
  public:
   static eng::Result<HeadlessCrowd> create(const app::FaceSetup& setup, const facial::SharedGraphDefinition& graph,
@@ -93,8 +94,10 @@ class HeadlessCrowd {
     auto materials = app::FaceMaterials::create(setup);  // VRM material binds, one set per face
     if (!materials) return materials.error();
     const std::vector<std::string> targetNames = setup.layout().names();
+    const facial::CharacterParts parts{.graph = graph, .rig = &setup.graphRig(), .restWeights = setup.baseWeights(),
+                                       .vrm = setup.vrm()};
     for (uint32_t i = 0; i < crowd; ++i) {
-      auto face = facial::FaceDriver::create(graph, &setup.graphRig(), targetNames, setup.baseWeights(), o.seed + i);
+      auto face = facial::Character::create(parts, targetNames, {.seed = o.seed + i, .idleLife = false});
       if (!face) return face.error().prefixed(graphPath.string() + ": ");
       c.faces_.push_back(std::move(*face));
     }
@@ -106,7 +109,7 @@ class HeadlessCrowd {
     return c;
   }
 
-  const facial::FaceDriver& first() const { return faces_[0]; }
+  const facial::Character& first() const { return faces_[0]; }
   const std::vector<glm::vec3>& offsets() const { return offsets_; }
 
   eng::Result<std::span<const eng::vk::ModelInstance>> pose(const app::FrameContext& frame, const eng::vk::GpuModel& model) {
@@ -115,18 +118,18 @@ class HeadlessCrowd {
     const glm::vec3 swayPivot{bounds_.center().x, bounds_.min.y, bounds_.center().z};
     for (size_t i = 0; i < crowd; ++i) {
       if (crowd > 1 && frame.time >= nextTrigger_[i]) triggerRandomEmotion(i, frame.time);
-      faces_[i].update(frame.dt);
+      if (auto updated = faces_[i].update(frame.dt); !updated) return updated.error();
       if (auto moved = materials_[i].update(faces_[i].expressionWeights()); !moved) return moved.error();
       const float phase = 1.7f * float(i);
       const glm::mat4 place = glm::translate(glm::mat4(1.0f), offsets_[i]);
       if (skeletons_[i].turnsHeadJoint()) {
         skeletons_[i].update(frame.time, idleHeadTurn(frame.time, phase));
         instances_[i] = {&model, glm::translate(place, idleBreathing(frame.time, phase, bounds_.diagonal())),
-                         faces_[i].targetWeights(), skeletons_[i].nodeWorld()};
+                         faces_[i].weights(), skeletons_[i].nodeWorld()};
       } else {
         skeletons_[i].update(frame.time);
         instances_[i] = {&model, place * idleMotion(frame.time, phase, swayPivot, bounds_.diagonal()),
-                         faces_[i].targetWeights(), skeletons_[i].nodeWorld()};
+                         faces_[i].weights(), skeletons_[i].nodeWorld()};
       }
       instances_[i].materials = materials_[i].materials();
     }
@@ -137,16 +140,16 @@ class HeadlessCrowd {
   HeadlessCrowd() = default;
 
   void triggerRandomEmotion(size_t i, float time) {
-    auto& g = faces_[i].graph();
-    if (auto autoplay = g.definition().findParameter("autoplay")) g.setBool(*autoplay, false);
+    // A graph without these parameters simply keeps playing.
+    (void)faces_[i].setBool("autoplay", false);
     const char* name = kEmotions[size_t(std::uniform_int_distribution<int>(0, int(kEmotions.size()) - 1)(random_))];
-    if (auto trigger = g.definition().findParameter(name)) g.setTrigger(*trigger);
+    (void)faces_[i].trigger(name);
     nextTrigger_[i] = time + std::uniform_real_distribution<float>(1.5f, 4.0f)(random_);
   }
 
   eng::Aabb bounds_;
   std::vector<glm::vec3> offsets_;
-  std::vector<facial::FaceDriver> faces_;
+  std::vector<facial::Character> faces_;
   std::vector<app::SkeletonMotion> skeletons_;
   std::vector<app::FaceMaterials> materials_;
   std::vector<eng::vk::ModelInstance> instances_;
@@ -157,16 +160,15 @@ class HeadlessCrowd {
 // One contact-sheet tile per state visit, taken once the state has been
 // held a moment (after its blend has finished).
 struct StateTiles {
-  const facial::StateMachineNode& machine;
-  facial::NodeIndex node;
+  std::string machineName;
   std::vector<eng::ContactSheetTile> tiles;
   std::set<std::string> captured;
 
-  void capture(const facial::GraphInstance& graph, const eng::Image& image) {
-    const auto status = graph.stateMachineStatus(node);
+  void capture(const facial::Character& face, const eng::Image& image) {
+    const auto status = face.machineStatus(machineName);
     if (!status || status->blending) return;
-    const std::string& name = machine.states[status->current].name;
-    if (status->stateTime >= 1.2f && captured.insert(name).second) {
+    const std::string name(status->state);
+    if (status->secondsInState >= 1.2f && captured.insert(name).second) {
       eng::ContactSheetTile tile{eng::Canvas(image.width, image.height), name};
       tile.image.rgba = image.rgba8;
       tiles.push_back(std::move(tile));
@@ -237,11 +239,11 @@ int runHeadlessDemo(const DemoOptions& o) {
   sequence.gifPath = outDir / "tour.gif";
   sequence.progressLabel = "tour";
 
-  StateTiles states{*machine, *machineNode};
+  StateTiles states{"emotions"};
   auto summary = app::recordSequence(
       renderer->offscreen(), view, sequence,
       [&](const app::FrameContext& frame) { return faces->pose(frame, renderer->gpuModel()); },
-      [&](const app::FrameContext&, const eng::Image& image) { states.capture(faces->first().graph(), image); });
+      [&](const app::FrameContext&, const eng::Image& image) { states.capture(faces->first(), image); });
   if (!summary) return fail(summary.error().message);
 
   std::filesystem::path sheetPath;

@@ -72,13 +72,9 @@ Aabb headAround(const Aabb& face, const std::vector<MeshNode>& nodes, const Mode
 
 }  // namespace
 
-std::optional<FramingMode> parseFramingMode(std::string_view text) {
-  if (text == "face") return FramingMode::Face;
-  if (text == "all") return FramingMode::All;
-  return std::nullopt;
-}
+std::string_view framingModeName(FramingMode mode) { return nameOf(kFramingModeNames, mode); }
 
-std::string_view framingModeName(FramingMode mode) { return mode == FramingMode::Face ? "face" : "all"; }
+std::optional<FramingMode> framingModeFromName(std::string_view name) { return valueNamed(kFramingModeNames, name); }
 
 Aabb morphedRegionBounds(const Model& model) { return morphedBounds(sceneMeshNodes(model), model); }
 

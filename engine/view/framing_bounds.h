@@ -16,15 +16,16 @@
 #include <optional>
 #include <string_view>
 
+#include "engine/core/enum_names.h"
 #include "engine/scene/model.h"
 
 namespace eng {
 
 enum class FramingMode { Face, All };
 
-// "face" / "all"; nullopt otherwise.
-std::optional<FramingMode> parseFramingMode(std::string_view text);
+inline constexpr EnumName<FramingMode> kFramingModeNames[] = {{FramingMode::Face, "face"}, {FramingMode::All, "all"}};
 std::string_view framingModeName(FramingMode mode);
+std::optional<FramingMode> framingModeFromName(std::string_view name);
 
 Aabb framingBounds(const Model& model, FramingMode mode = FramingMode::All);
 

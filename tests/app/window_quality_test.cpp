@@ -19,7 +19,7 @@ TEST(WindowQuality, AutoIsBalancedOnACpuRasteriserAndHighOnAGpu) {
 TEST(WindowQuality, NamedTiersAreKeptOnEveryDevice) {
   for (eng::vk::RenderQuality q :
        {eng::vk::RenderQuality::Fast, eng::vk::RenderQuality::Balanced, eng::vk::RenderQuality::High}) {
-    auto tier = app::windowQualityOption(eng::vk::qualityName(q), VK_PHYSICAL_DEVICE_TYPE_CPU);
+    auto tier = app::windowQualityOption(std::string(eng::vk::renderQualityName(q)), VK_PHYSICAL_DEVICE_TYPE_CPU);
     ASSERT_TRUE(tier) << tier.error().message;
     EXPECT_EQ(*tier, q);
   }

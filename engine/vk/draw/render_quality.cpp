@@ -16,19 +16,8 @@ QualitySettings qualitySettings(RenderQuality quality) {
   return {};
 }
 
-const char* qualityName(RenderQuality quality) {
-  switch (quality) {
-    case RenderQuality::Fast: return "fast";
-    case RenderQuality::Balanced: return "balanced";
-    case RenderQuality::High: return "high";
-  }
-  return "high";
-}
+std::string_view renderQualityName(RenderQuality quality) { return nameOf(kRenderQualityNames, quality); }
 
-std::optional<RenderQuality> parseRenderQuality(std::string_view text) {
-  for (RenderQuality q : {RenderQuality::Fast, RenderQuality::Balanced, RenderQuality::High})
-    if (text == qualityName(q)) return q;
-  return std::nullopt;
-}
+std::optional<RenderQuality> renderQualityFromName(std::string_view name) { return valueNamed(kRenderQualityNames, name); }
 
 }  // namespace eng::vk

@@ -14,6 +14,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "engine/core/enum_names.h"
+
 namespace eng::vk {
 
 enum class RenderQuality : uint8_t { Fast, Balanced, High };
@@ -38,7 +40,12 @@ struct QualitySettings {
 
 QualitySettings qualitySettings(RenderQuality quality);
 // "fast", "balanced", "high".
-const char* qualityName(RenderQuality quality);
-std::optional<RenderQuality> parseRenderQuality(std::string_view text);
+inline constexpr EnumName<RenderQuality> kRenderQualityNames[] = {
+    {RenderQuality::Fast, "fast"},
+    {RenderQuality::Balanced, "balanced"},
+    {RenderQuality::High, "high"},
+};
+std::string_view renderQualityName(RenderQuality quality);
+std::optional<RenderQuality> renderQualityFromName(std::string_view name);
 
 }  // namespace eng::vk

@@ -87,6 +87,15 @@ class Character {
   // The current state of a state machine node of the graph, by node name
   // (empty: the graph's first state machine); none when there is no such node.
   std::optional<std::string_view> currentState(std::string_view machineNode = {}) const;
+  // The same machine in more detail: how long the character has been in the
+  // state and whether a transition into it is still blending (a tool that
+  // captures each state once it has settled).
+  struct MachineStatus {
+    std::string_view state;
+    float secondsInState = 0.0f;
+    bool blending = false;
+  };
+  std::optional<MachineStatus> machineStatus(std::string_view machineNode = {}) const;
 
   // Where the eyes look, in head space (+X the face's left, +Y up, +Z out of
   // the face, origin between the eyes, metres). Errors: a non-finite coordinate.

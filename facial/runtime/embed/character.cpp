@@ -178,13 +178,19 @@ eng::Result<void> Character::resetTrigger(std::string_view parameter) {
 }
 
 std::optional<std::string_view> Character::currentState(std::string_view machineNode) const {
+  const auto status = machineStatus(machineNode);
+  if (!status) return std::nullopt;
+  return status->state;
+}
+
+std::optional<Character::MachineStatus> Character::machineStatus(std::string_view machineNode) const {
   const GraphInstance& graph = state_->driver->graph();
   const auto node = findStateMachine(graph.definition(), machineNode);
   if (!node) return std::nullopt;
   const auto status = graph.stateMachineStatus(*node);
   const auto* machine = graph.definition().nodeAs<StateMachineNode>(*node);
   if (!status || status->current >= machine->states.size()) return std::nullopt;
-  return std::string_view(machine->states[status->current].name);
+  return MachineStatus{machine->states[status->current].name, status->stateTime, status->blending};
 }
 
 eng::Result<void> Character::overridePose(std::span<const float> targetWeights, std::span<const float> expressionWeights,

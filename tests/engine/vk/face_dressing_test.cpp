@@ -244,9 +244,9 @@ TEST(FaceFraming, ModelWithoutTargetsFallsBackToTheWholeModel) {
   const eng::Aabb face = eng::framingBounds(model, eng::FramingMode::Face);
   EXPECT_EQ(face.min, all.min);
   EXPECT_EQ(face.max, all.max);
-  EXPECT_EQ(eng::parseFramingMode("face"), eng::FramingMode::Face);
-  EXPECT_EQ(eng::parseFramingMode("all"), eng::FramingMode::All);
-  EXPECT_FALSE(eng::parseFramingMode("body"));
+  EXPECT_EQ(eng::framingModeFromName("face"), eng::FramingMode::Face);
+  EXPECT_EQ(eng::framingModeFromName("all"), eng::FramingMode::All);
+  EXPECT_FALSE(eng::framingModeFromName("body"));
 }
 
 TEST(FaceFraming, FeatureBoundsKeepWhatTargetsCarryNotTheSkinTheyDrag) {

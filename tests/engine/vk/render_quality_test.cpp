@@ -17,9 +17,9 @@ namespace {
 
 TEST(RenderQuality, NamesRoundTripAndJunkIsRefused) {
   for (auto q : {eng::vk::RenderQuality::Fast, eng::vk::RenderQuality::Balanced, eng::vk::RenderQuality::High})
-    EXPECT_EQ(eng::vk::parseRenderQuality(eng::vk::qualityName(q)), q);
-  EXPECT_FALSE(eng::vk::parseRenderQuality("ultra"));
-  EXPECT_FALSE(eng::vk::parseRenderQuality(""));
+    EXPECT_EQ(eng::vk::renderQualityFromName(eng::vk::renderQualityName(q)), q);
+  EXPECT_FALSE(eng::vk::renderQualityFromName("ultra"));
+  EXPECT_FALSE(eng::vk::renderQualityFromName(""));
 }
 
 TEST(RenderQuality, TiersTradeSamplesShadowsAndHighlights) {

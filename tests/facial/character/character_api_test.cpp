@@ -133,6 +133,25 @@ TEST(Character, LastTriggerWinsAfterAReset) {
   EXPECT_FALSE(character.resetTrigger("autoplay")) << "a bool is no trigger";
 }
 
+TEST(Character, MachineStatusTellsBlendingFromSettled) {
+  facial::Character character = tourCharacter(false);
+  ASSERT_TRUE(character.setBool("autoplay", false));
+  for (int frame = 0; frame < 30; ++frame) ASSERT_TRUE(character.update(1.0f / 60.0f));  // settled in neutral
+  ASSERT_TRUE(character.trigger("surprise"));
+  ASSERT_TRUE(character.update(1.0f / 60.0f));
+  auto blending = character.machineStatus("emotions");
+  ASSERT_TRUE(blending);
+  EXPECT_EQ(blending->state, "surprise") << "the destination while blending";
+  EXPECT_TRUE(blending->blending);
+  for (int frame = 0; frame < 180; ++frame) ASSERT_TRUE(character.update(1.0f / 60.0f));
+  auto settled = character.machineStatus("emotions");
+  ASSERT_TRUE(settled);
+  EXPECT_EQ(settled->state, "surprise");
+  EXPECT_FALSE(settled->blending);
+  EXPECT_NEAR(settled->secondsInState, blending->secondsInState + 3.0f, 1e-3f);
+  EXPECT_FALSE(character.machineStatus("nope").has_value());
+}
+
 TEST(Character, AnOverridePoseTakesOverByItsAmountUnderTheGaze) {
   facial::Character plain = tourCharacter(false);
   facial::Character posed = tourCharacter(false);
