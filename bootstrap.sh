@@ -18,6 +18,8 @@ PACKAGES=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev
+  libespeak-ng-dev espeak-ng-data libsndfile1-dev libavformat-dev libavcodec-dev libswscale-dev
+  libswresample-dev portaudio19-dev
   clang libclang-rt-14-dev llvm liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
 )
