@@ -11,6 +11,7 @@ extern "C" {
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,16 @@ AVSampleFormat encoderSampleFormat(const AVCodec* codec) {
   for (const AVSampleFormat* f = codec->sample_fmts; f && *f != AV_SAMPLE_FMT_NONE; ++f)
     if (*f == AV_SAMPLE_FMT_FLT || *f == AV_SAMPLE_FMT_FLTP || *f == AV_SAMPLE_FMT_S16 || *f == AV_SAMPLE_FMT_S16P) return *f;
   return AV_SAMPLE_FMT_NONE;
+}
+
+// libx264 and the AAC encoder report their settings and statistics at the
+// default (info) level on stderr; a program's own log says what it wrote.
+// Errors still print. A level someone chose (not the default) is kept.
+void quietenEncoderLogs() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_ERROR);
+  });
 }
 
 }  // namespace
@@ -270,6 +281,7 @@ VideoWriter& VideoWriter::operator=(VideoWriter&&) noexcept = default;
 VideoWriter::~VideoWriter() = default;
 
 eng::Result<VideoWriter> VideoWriter::create(const std::filesystem::path& path, const VideoSettings& settings) {
+  quietenEncoderLogs();
   const std::string name = path.string();
   const ContainerChoice* choice = containerFor(path);
   if (!choice) return eng::makeError(eng::ErrorKind::Unsupported, name + ": video files end in .mp4 or .webm");
