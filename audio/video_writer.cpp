@@ -1,11 +1,12 @@
 #include "audio/video_writer.h"
 
+#include "audio/resample.h"
+
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 #include <libavutil/channel_layout.h>
 #include <libavutil/opt.h>
-#include <libswresample/swresample.h>
 #include <libswscale/swscale.h>
 }
 
@@ -39,9 +40,6 @@ struct PacketFree {
 };
 struct SwsFree {
   void operator()(SwsContext* s) const { sws_freeContext(s); }
-};
-struct SwrFree {
-  void operator()(SwrContext* s) const { swr_free(&s); }
 };
 struct OutputFree {
   void operator()(AVFormatContext* f) const {
@@ -220,25 +218,9 @@ eng::Result<void> VideoWriter::Impl::openSound(const ContainerChoice& choice) {
 }
 
 eng::Result<void> VideoWriter::Impl::resampleSoundtrack() {
-  const int from = settings.audioSampleRate, to = sound->sample_rate;
-  if (from == to) {
-    soundtrack.assign(settings.audioSamples.begin(), settings.audioSamples.end());
-    return {};
-  }
-  AVChannelLayout mono = AV_CHANNEL_LAYOUT_MONO;
-  SwrContext* raw = nullptr;
-  if (int rc = swr_alloc_set_opts2(&raw, &mono, AV_SAMPLE_FMT_FLT, to, &mono, AV_SAMPLE_FMT_FLT, from, 0, nullptr); rc < 0)
-    return fail(sound.get(), "cannot set up resampling", rc);
-  std::unique_ptr<SwrContext, SwrFree> resampler(raw);
-  if (int rc = swr_init(resampler.get()); rc < 0) return fail(sound.get(), "cannot set up resampling", rc);
-  soundtrack.resize(size_t(av_rescale_rnd(int64_t(settings.audioSamples.size()), to, from, AV_ROUND_UP)) + 256);
-  uint8_t* out[1] = {reinterpret_cast<uint8_t*>(soundtrack.data())};
-  const uint8_t* in[1] = {reinterpret_cast<const uint8_t*>(settings.audioSamples.data())};
-  const int converted = swr_convert(resampler.get(), out, int(soundtrack.size()), in, int(settings.audioSamples.size()));
-  if (converted < 0) return fail(sound.get(), "resampling failed", converted);
-  uint8_t* tail[1] = {reinterpret_cast<uint8_t*>(soundtrack.data() + converted)};
-  const int flushed = swr_convert(resampler.get(), tail, int(soundtrack.size()) - converted, nullptr, 0);
-  soundtrack.resize(size_t(converted) + size_t(std::max(0, flushed)));
+  auto resampled = resampleMono(settings.audioSamples, settings.audioSampleRate, sound->sample_rate);
+  if (!resampled) return resampled.error().prefixed(name + ": ");
+  soundtrack = std::move(resampled).value();
   return {};
 }
 
