@@ -65,13 +65,14 @@ TEST(Player, SoundCardClockFollowsTheAudio) {
   ASSERT_TRUE(player.play(clip, 44100).ok());
   if (!player.hasSound()) GTEST_SKIP() << player.note();
   double previous = 0;
-  while (!player.finished()) {  // bounded: the clock runs to the clip's end
+  for (int poll = 0; poll < 500 && !player.finished(); ++poll) {  // 5 s at most: a stalled device fails below
     const double now = player.clockSeconds();
     EXPECT_GE(now, previous);
     EXPECT_LE(now, 0.3);
     previous = now;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  EXPECT_TRUE(player.finished()) << "the sound card's clock stopped at " << player.clockSeconds() << " s";
   EXPECT_DOUBLE_EQ(player.clockSeconds(), 0.3);
 }
 
