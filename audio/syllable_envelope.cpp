@@ -9,7 +9,7 @@ namespace audio {
 namespace {
 
 constexpr double kHopSeconds = 0.010;       // analysis step
-constexpr double kWindowSeconds = 0.025;    // RMS window
+constexpr size_t kWindowHops = 3;           // RMS over 30 ms
 constexpr int kSmoothingFrames = 5;         // 50 ms moving average: one syllable stays one peak
 constexpr float kSilenceBelowPeakDb = 30;   // quieter than the loudest frame by this much: silence
 constexpr float kSilenceFloorDb = -60;      // and always silence below this (dBFS)
@@ -41,31 +41,30 @@ struct Biquad {
   }
 };
 
-// Smoothed voice-band level in dBFS, one value per hop.
+// Smoothed voice-band level in dBFS, one value per hop. Memory is per hop,
+// not per sample (30 minutes at 48 kHz is 86 million samples).
 std::vector<float> voiceBandLevels(std::span<const float> samples, int sampleRate) {
   Biquad highPass = Biquad::make(true, 300, sampleRate);
   const bool lowPassFits = 3000 < sampleRate * 0.45;
   Biquad lowPass = Biquad::make(false, 3000, sampleRate);
-  std::vector<double> squared(samples.size());
+  const size_t hop = std::max<size_t>(1, size_t(kHopSeconds * sampleRate));
+  const size_t frames = (samples.size() + hop - 1) / hop;
+  std::vector<double> hopEnergy(frames, 0.0);
   for (size_t i = 0; i < samples.size(); ++i) {
     const double x = std::isfinite(samples[i]) ? samples[i] : 0.0;
     double y = highPass.process(x);
     if (lowPassFits) y = lowPass.process(y);
-    squared[i] = y * y;
+    hopEnergy[i / hop] += y * y;
   }
-  // Prefix sums give each window's mean in constant time.
-  std::vector<double> prefix(squared.size() + 1, 0.0);
-  for (size_t i = 0; i < squared.size(); ++i) prefix[i + 1] = prefix[i] + squared[i];
-  const size_t hop = std::max<size_t>(1, size_t(kHopSeconds * sampleRate));
-  const size_t window = std::max<size_t>(1, size_t(kWindowSeconds * sampleRate));
-  const size_t frames = (samples.size() + hop - 1) / hop;
+  // Each level: the mean square over kWindowHops hops centred on it.
   std::vector<float> levels(frames);
   for (size_t f = 0; f < frames; ++f) {
-    const size_t centre = f * hop + hop / 2;
-    const size_t from = centre > window / 2 ? centre - window / 2 : 0;
-    const size_t to = std::min(samples.size(), from + window);
-    const double meanSquare = to > from ? (prefix[to] - prefix[from]) / double(to - from) : 0.0;
-    levels[f] = float(10 * std::log10(meanSquare + 1e-12));
+    const size_t from = f >= kWindowHops / 2 ? f - kWindowHops / 2 : 0;
+    const size_t to = std::min(frames, f + kWindowHops / 2 + 1);
+    double energy = 0;
+    for (size_t k = from; k < to; ++k) energy += hopEnergy[k];
+    const size_t counted = std::min(samples.size(), to * hop) - from * hop;
+    levels[f] = float(10 * std::log10(energy / double(counted) + 1e-12));
   }
   std::vector<float> smoothed(frames);
   for (size_t f = 0; f < frames; ++f) {

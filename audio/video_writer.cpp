@@ -82,8 +82,8 @@ eng::Result<void> checkSettings(const std::string& name, const VideoSettings& s)
     return invalid(std::to_string(s.framesPerSecond) + " frames a second is outside 1..240");
   if (!s.audioSamples.empty() && (s.audioSampleRate < 8000 || s.audioSampleRate > 192000))
     return invalid("audio sample rate " + std::to_string(s.audioSampleRate) + " Hz is outside 8000..192000");
-  if (!s.audioSamples.empty() && double(s.audioSamples.size()) / s.audioSampleRate > 4 * 3600)
-    return invalid("over 4 hours of audio");
+  if (!s.audioSamples.empty() && double(s.audioSamples.size()) / s.audioSampleRate > kMaxSoundtrackSeconds)
+    return eng::makeError(eng::ErrorKind::TooLarge, name + ": over " + std::to_string(int(kMaxSoundtrackSeconds / 60)) + " minutes of audio");
   return {};
 }
 

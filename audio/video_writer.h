@@ -13,6 +13,9 @@
 
 namespace audio {
 
+// Longer soundtracks are refused (the writer keeps a resampled copy).
+inline constexpr double kMaxSoundtrackSeconds = 30 * 60;
+
 struct VideoSettings {
   int width = 0, height = 0;  // even, 16..8192 (4:2:0 chroma halves both)
   float framesPerSecond = 30; // 1..240
