@@ -173,6 +173,8 @@ TEST(VideoWriter, RefusesBadArgumentsNamingTheFile) {
   expectRefused(dir / "clip.mp4", {.width = 32, .height = 32, .framesPerSecond = 0}, ErrorKind::InvalidArgument);
   expectRefused(dir / "clip.mp4", {.width = 32, .height = 32, .audioSamples = tone, .audioSampleRate = 0}, ErrorKind::InvalidArgument);
   expectRefused(dir / "no_such_folder" / "clip.webm", {.width = 32, .height = 32}, ErrorKind::Io);
+  const std::vector<float> overLimit(size_t(8000 * (audio::kMaxSoundtrackSeconds + 1)), 0.0f);
+  expectRefused(dir / "long.mp4", {.width = 32, .height = 32, .audioSamples = overLimit, .audioSampleRate = 8000}, ErrorKind::TooLarge);
 
   auto writer = audio::VideoWriter::create(dir / "clip.mp4", {.width = 32, .height = 32});
   ASSERT_TRUE(writer.ok()) << writer.error().message;
