@@ -4,13 +4,14 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 namespace audio {
 namespace {
 
 constexpr double kHopSeconds = 0.010;       // analysis step
 constexpr size_t kWindowHops = 3;           // RMS over 30 ms
-constexpr int kSmoothingFrames = 5;         // 50 ms moving average: one syllable stays one peak
+constexpr size_t kSmoothingFrames = 5;        // 50 ms moving average: one syllable stays one peak
 constexpr float kSilenceBelowPeakDb = 30;   // quieter than the loudest frame by this much: silence
 constexpr float kSilenceFloorDb = -60;      // and always silence below this (dBFS)
 constexpr float kMinProminenceDb = 3;       // a nucleus rises this much above the valleys beside it
@@ -41,6 +42,11 @@ struct Biquad {
   }
 };
 
+// [from, to) of `width` frames centred on `frame`, cut at both ends.
+std::pair<size_t, size_t> centredWindow(size_t frame, size_t width, size_t frames) {
+  return {frame >= width / 2 ? frame - width / 2 : 0, std::min(frames, frame + width / 2 + 1)};
+}
+
 // Smoothed voice-band level in dBFS, one value per hop. Memory is per hop,
 // not per sample (30 minutes at 48 kHz is 86 million samples).
 std::vector<float> voiceBandLevels(std::span<const float> samples, int sampleRate) {
@@ -59,8 +65,7 @@ std::vector<float> voiceBandLevels(std::span<const float> samples, int sampleRat
   // Each level: the mean square over kWindowHops hops centred on it.
   std::vector<float> levels(frames);
   for (size_t f = 0; f < frames; ++f) {
-    const size_t from = f >= kWindowHops / 2 ? f - kWindowHops / 2 : 0;
-    const size_t to = std::min(frames, f + kWindowHops / 2 + 1);
+    const auto [from, to] = centredWindow(f, kWindowHops, frames);
     double energy = 0;
     for (size_t k = from; k < to; ++k) energy += hopEnergy[k];
     const size_t counted = std::min(samples.size(), to * hop) - from * hop;
@@ -68,8 +73,7 @@ std::vector<float> voiceBandLevels(std::span<const float> samples, int sampleRat
   }
   std::vector<float> smoothed(frames);
   for (size_t f = 0; f < frames; ++f) {
-    const size_t from = f >= kSmoothingFrames / 2 ? f - kSmoothingFrames / 2 : 0;
-    const size_t to = std::min(frames, f + kSmoothingFrames / 2 + 1);
+    const auto [from, to] = centredWindow(f, kSmoothingFrames, frames);
     float sum = 0;
     for (size_t k = from; k < to; ++k) sum += levels[k];
     smoothed[f] = sum / float(to - from);
