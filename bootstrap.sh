@@ -18,6 +18,9 @@ PACKAGES=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev
+  libespeak-ng-dev espeak-ng-data libsndfile1-dev libavformat-dev libavcodec-dev libswscale-dev
+  libswresample-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
+  libpocketsphinx-dev pocketsphinx-en-us
   clang libclang-rt-14-dev llvm liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
 )

@@ -6,6 +6,7 @@
 #   importers/   load-time importers: facial/ and engine/
 #   bake/        offline builders: facial/, importers/, engine/
 #   app/         what the program and the editor share
+#   audio/       speech for the programs (GPL: espeak-ng, x264); no library includes it
 #   cli/, editor/ the two programs, never each other
 # Usage: cmake -DSOURCE_DIR=<project root> -P layout_check.cmake
 if(NOT SOURCE_DIR)
@@ -43,6 +44,10 @@ check_includes(engine/vk/draw "include[ \t]*[\"<]engine/vk/present/" "engine/vk/
 check_includes(importers "include[ \t]*[\"<](bake|app|cli|editor)/" "importers/ is below the applications")
 check_includes(bake "include[ \t]*[\"<](app|cli|editor)/" "bake/ is below the applications")
 check_includes(app "include[ \t]*[\"<](cli|editor)/" "app/ is shared by cli/ and editor/")
+foreach(library facial engine importers bake)
+  check_includes(${library} "include[ \t]*[\"<]audio/" "audio/ links GPL code: programs only")
+endforeach()
+check_includes(audio "include[ \t]*[\"<](cli|editor)/" "audio/ is shared by the programs")
 check_includes(editor "include[ \t]*[\"<]cli/" "editor/ and cli/ are separate programs")
 check_includes(cli "include[ \t]*[\"<]editor/" "editor/ and cli/ are separate programs")
 
