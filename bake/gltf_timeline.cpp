@@ -106,47 +106,50 @@ float trackSlope(std::span<const facial::Keyframe> keys, float time, bool left) 
   return segmentDerivative(keys[segment], keys[segment + 1], time);
 }
 
-}  // namespace
-
-eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& timeline, const GltfTimelineExport& options) {
-  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed("timeline '" + timeline.name + "': ");
-  int node = options.node;
-  if (node < 0) {
-    // A face file often holds several meshes (head, eyes, teeth): pick the
-    // first node whose mesh has a target for every track, else the first mesh.
-    int firstMeshNode = -1;
-    for (size_t n = 0; n < model.nodes.size() && node < 0; ++n) {
-      const int m = model.nodes[n].mesh;
-      if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
-      if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
-      const std::vector<std::string>& names = model.meshes[m].targetNames;
-      if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const facial::TimelineTrack& track) {
-            return std::find(names.begin(), names.end(), track.channel) != names.end();
-          }))
-        node = static_cast<int>(n);
-    }
-    if (node < 0) node = firstMeshNode;
+// A face file often holds several meshes (head, eyes, teeth): the first node
+// whose mesh has a target for every track, else the first node with a mesh
+// (-1 when none has one).
+int nodeForTimeline(const eng::Model& model, const facial::Timeline& timeline) {
+  int node = -1;
+  int firstMeshNode = -1;
+  for (size_t n = 0; n < model.nodes.size() && node < 0; ++n) {
+    const int m = model.nodes[n].mesh;
+    if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
+    if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
+    const std::vector<std::string>& names = model.meshes[m].targetNames;
+    if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const facial::TimelineTrack& track) {
+          return std::find(names.begin(), names.end(), track.channel) != names.end();
+        }))
+      node = static_cast<int>(n);
   }
-  if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || model.nodes[node].mesh < 0 ||
-      static_cast<size_t>(model.nodes[node].mesh) >= model.meshes.size())
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline '" + timeline.name + "': node " + std::to_string(node) +
-                          " does not exist or has no mesh (" + std::to_string(model.nodes.size()) + " nodes)");
-  if (!(options.sampleRate > 0.0f) || !(options.stepRamp > 0.0f))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline export: sampleRate and stepRamp must be > 0");
-  const int meshIndex = model.nodes[node].mesh;
-  const eng::Mesh& mesh = model.meshes[meshIndex];
-  const size_t targets = mesh.targetNames.size();
+  return node < 0 ? firstMeshNode : node;
+}
 
-  // Track of each target (or none), and the segment kinds in use.
-  std::vector<int> trackOfTarget(targets, -1);
+// The track animating each of the mesh's targets, or -1. Errors: a track
+// whose channel is not one of the mesh's targets.
+eng::Result<std::vector<int>> trackOfEachTarget(const eng::Mesh& mesh, const facial::Timeline& timeline, int node) {
+  std::vector<int> trackOfTarget(mesh.targetNames.size(), -1);
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
     auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), timeline.tracks[i].channel);
     if (it == mesh.targetNames.end())
       return eng::makeError(eng::ErrorKind::NotFound, "timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
                             "', which is not a morph target of mesh '" + mesh.name + "' (node " + std::to_string(node) +
-                            ", " + std::to_string(targets) + " targets)");
+                            ", " + std::to_string(mesh.targetNames.size()) + " targets)");
     trackOfTarget[static_cast<size_t>(it - mesh.targetNames.begin())] = static_cast<int>(i);
   }
+  return trackOfTarget;
+}
+
+// The glTF key times and the one interpolation all targets share.
+struct ExportKeys {
+  std::vector<float> times;
+  eng::Interpolation interpolation = eng::Interpolation::Linear;
+};
+
+// All-step or all-linear timelines keep their own keys and mode; any other
+// mix becomes cubic spline, with extra keys inside cosine segments (at
+// sampleRate) and a short ramp before each step, which a spline cannot jump.
+ExportKeys exportKeys(const facial::Timeline& timeline, const GltfTimelineExport& options) {
   bool allStep = true, allLinear = true;
   std::vector<float> times;
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
@@ -179,19 +182,22 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& 
   times.push_back(timeline.duration);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
+  return ExportKeys{std::move(times), allStep    ? eng::Interpolation::Step
+                                      : allLinear ? eng::Interpolation::Linear
+                                                  : eng::Interpolation::CubicSpline};
+}
 
-  eng::WeightsChannel channel;
-  channel.node = node;
-  channel.mesh = meshIndex;
-  channel.targetCount = targets;
-  channel.interpolation = allStep ? eng::Interpolation::Step : allLinear ? eng::Interpolation::Linear
-                                                                         : eng::Interpolation::CubicSpline;
-  channel.times = times;
-  channel.values.reserve(times.size() * targets * (cubic ? 3 : 1));
+// Every target's weight at each key time (untracked targets hold their
+// default weight); for cubic splines with the in- and out-slopes around it.
+void sampleWeights(eng::WeightsChannel& channel, const eng::Mesh& mesh, const facial::Timeline& timeline,
+                   const std::vector<int>& trackOfTarget) {
+  const size_t targets = channel.targetCount;
+  const bool cubic = channel.interpolation == eng::Interpolation::CubicSpline;
+  channel.values.reserve(channel.times.size() * targets * (cubic ? 3 : 1));
   auto emit = [&](auto&& perTarget) {
     for (size_t t = 0; t < targets; ++t) channel.values.push_back(perTarget(t));
   };
-  for (float time : times) {
+  for (float time : channel.times) {
     auto value = [&](size_t t) {
       const int track = trackOfTarget[t];
       if (track < 0) return t < mesh.defaultWeights.size() ? mesh.defaultWeights[t] : 0.0f;
@@ -207,6 +213,32 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& 
     emit(value);
     if (cubic) emit(slope(false));
   }
+}
+
+}  // namespace
+
+eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& timeline, const GltfTimelineExport& options) {
+  if (auto valid = timeline.validate(); !valid) return valid.error().prefixed("timeline '" + timeline.name + "': ");
+  const int node = options.node >= 0 ? options.node : nodeForTimeline(model, timeline);
+  if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || model.nodes[node].mesh < 0 ||
+      static_cast<size_t>(model.nodes[node].mesh) >= model.meshes.size())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline '" + timeline.name + "': node " + std::to_string(node) +
+                          " does not exist or has no mesh (" + std::to_string(model.nodes.size()) + " nodes)");
+  if (!(options.sampleRate > 0.0f) || !(options.stepRamp > 0.0f))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "timeline export: sampleRate and stepRamp must be > 0");
+  const int meshIndex = model.nodes[node].mesh;
+  const eng::Mesh& mesh = model.meshes[meshIndex];
+  eng::Result<std::vector<int>> trackOfTarget = trackOfEachTarget(mesh, timeline, node);
+  if (!trackOfTarget) return trackOfTarget.error();
+
+  ExportKeys keys = exportKeys(timeline, options);
+  eng::WeightsChannel channel;
+  channel.node = node;
+  channel.mesh = meshIndex;
+  channel.targetCount = mesh.targetNames.size();
+  channel.interpolation = keys.interpolation;
+  channel.times = std::move(keys.times);
+  sampleWeights(channel, mesh, timeline, *trackOfTarget);
   model.animations.push_back(eng::Animation{timeline.name, {std::move(channel)}});
   return {};
 }

@@ -237,59 +237,77 @@ eng::MorphTarget makeTarget(const eng::Primitive& base, const std::vector<glm::v
   return target;
 }
 
-}  // namespace
+// The four sections every CANDIDE-3 file has, in their fixed order.
+struct CandideSections {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  std::vector<Unit> animationUnits;
+  std::vector<Unit> shapeUnits;
+};
 
-eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
-  if (text.size() > kMaxFileBytes)
-    return eng::makeError(eng::ErrorKind::TooLarge, std::string(source) + ": file of " + std::to_string(text.size()) +
-                          " bytes exceeds the limit of " + std::to_string(kMaxFileBytes) + " bytes");
-  LineReader in(text, source);
+// Reads the required sections; each must follow its header, in order.
+eng::Result<CandideSections> readRequiredSections(LineReader& in) {
+  CandideSections sections;
   if (auto r = expectHeader(in, "VERTEX LIST"); !r) return r.error();
   auto positions = readVertices(in);
   if (!positions) return positions.error();
-  const size_t n = positions->size();
+  sections.positions = std::move(*positions);
+  const size_t n = sections.positions.size();
   if (auto r = expectHeader(in, "FACE LIST"); !r) return r.error();
   auto indices = readFaces(in, n);
   if (!indices) return indices.error();
+  sections.indices = std::move(*indices);
   if (auto r = expectHeader(in, "ANIMATION UNITS LIST"); !r) return r.error();
   auto animationUnits = readUnits(in, n, "animation unit");
   if (!animationUnits) return animationUnits.error();
+  sections.animationUnits = std::move(*animationUnits);
   if (auto r = expectHeader(in, "SHAPE UNITS LIST"); !r) return r.error();
   auto shapeUnits = readUnits(in, n, "shape unit");
   if (!shapeUnits) return shapeUnits.error();
+  sections.shapeUnits = std::move(*shapeUnits);
+  return sections;
+}
 
-  // Optional trailing sections, in the file's order.
-  std::vector<float> animationParameters(animationUnits->size(), 0.0f);
-  std::vector<float> shapeParameters(shapeUnits->size(), 0.0f);
+// What the optional trailing sections give; absent ones leave their defaults
+// (all parameters zero, no texture coordinates).
+struct CandideOptionalSections {
+  std::vector<float> animationParameters;
+  std::vector<float> shapeParameters;
   std::vector<glm::vec2> texcoords;
+};
+
+// Reads the optional trailing sections, in the file's order, up to END OF FILE.
+eng::Result<CandideOptionalSections> readOptionalSections(LineReader& in, const CandideSections& sections) {
+  const size_t n = sections.positions.size();
+  CandideOptionalSections optional;
+  optional.animationParameters.assign(sections.animationUnits.size(), 0.0f);
+  optional.shapeParameters.assign(sections.shapeUnits.size(), 0.0f);
   std::string_view line;
   while (in.next(line)) {
     const std::string_view header = headerName(line);
     if (header == "END OF FILE") break;
     if (header == "ANIMATION PARAMETERS" || header == "SHAPE PARAMETERS") {
       const bool animation = header == "ANIMATION PARAMETERS";
-      auto values = readValues(in, animation ? animationParameters.size() : shapeParameters.size(),
-                               animation ? "ANIMATION PARAMETERS" : "SHAPE PARAMETERS");
+      std::vector<float>& parameters = animation ? optional.animationParameters : optional.shapeParameters;
+      auto values = readValues(in, parameters.size(), animation ? "ANIMATION PARAMETERS" : "SHAPE PARAMETERS");
       if (!values) return values.error();
-      (animation ? animationParameters : shapeParameters) = std::move(*values);
+      parameters = std::move(*values);
     } else if (header == "TEXTURE") {
       auto values = readValues(in, 2 * n, "TEXTURE (u v per vertex)");
       if (!values) return values.error();
-      texcoords.resize(n);
-      for (size_t v = 0; v < n; ++v) texcoords[v] = glm::vec2((*values)[2 * v], (*values)[2 * v + 1]);
+      optional.texcoords.resize(n);
+      for (size_t v = 0; v < n; ++v) optional.texcoords[v] = glm::vec2((*values)[2 * v], (*values)[2 * v + 1]);
     } else {
       return in.error("unexpected line '" + std::string(line) +
                       "' (expected ANIMATION PARAMETERS, SHAPE PARAMETERS, TEXTURE or END OF FILE)");
     }
   }
+  return optional;
+}
 
-  eng::Model model;
-  model.sourcePath = std::string(source);
-  eng::Primitive primitive;
-  primitive.positions = std::move(*positions);
-  primitive.indices = std::move(*indices);
-  // CANDIDE does not fix a winding; glTF wants counter-clockwise front faces.
-  // The mask faces +z, so the area-weighted normals must sum towards +z.
+// CANDIDE does not fix a winding; glTF wants counter-clockwise front faces.
+// The mask faces +z, so the area-weighted normals must sum towards +z.
+void windTowardsViewer(eng::Primitive& primitive) {
   float facing = 0.0f;
   for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
     const glm::vec3 &a = primitive.positions[primitive.indices[i]], &b = primitive.positions[primitive.indices[i + 1]],
@@ -298,52 +316,49 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   }
   if (facing < 0.0f)
     for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) std::swap(primitive.indices[i + 1], primitive.indices[i + 2]);
-  primitive.texcoords = std::move(texcoords);
+}
 
-  // The eyes: the skin between the lids is cut out (candide_eyes.h). The
-  // vertices only that skin used stay, unused, so the file's vertex numbers
-  // (which trackers and papers refer to) keep naming the same points.
+// The eyes: the skin between the lids is cut out (candide_eyes.h). The
+// vertices only that skin used stay, unused, so the file's vertex numbers
+// (which trackers and papers refer to) keep naming the same points.
+std::vector<MaskEyeOpening> cutEyes(eng::Primitive& primitive, const std::vector<Unit>& animationUnits,
+                                    std::string_view source, std::vector<std::string>& warnings) {
   std::vector<MaskEyeOpening> eyes;
-  for (const Unit& unit : *animationUnits)
+  for (const Unit& unit : animationUnits)
     if (const facial::CandideAnimationUnit* known = facial::findCandideUnit(unit.name); known && known->facsNumber == 45)
       eyes = cutEyeOpenings(primitive.positions, primitive.indices, unit.deltas);
   if (eyes.size() < 2)
-    model.warnings.push_back(std::string(source) + ": " + std::to_string(eyes.size()) +
-                             " of 2 eye openings found (a loop of lid margins moved by 'Eyes closed' and two corners); "
-                             "the rest stay skin, with no eyeball");
-  primitive.normals = vertexNormals(primitive.positions, primitive.indices);
+    warnings.push_back(std::string(source) + ": " + std::to_string(eyes.size()) +
+                       " of 2 eye openings found (a loop of lid margins moved by 'Eyes closed' and two corners); "
+                       "the rest stay skin, with no eyeball");
+  return eyes;
+}
 
-  eng::Mesh mesh;
-  mesh.name = "candide3 face";  // "face": shown dressed like other untextured faces (skin tone, occlusion)
-  for (const Unit& unit : *animationUnits) {
+// One morph target per unit: animation units under their FACS target names
+// (unknown ones under their own), then shape units as SU_<name>.
+void addUnitTargets(eng::Mesh& mesh, eng::Primitive& primitive, const CandideSections& sections, std::string_view source,
+                    std::vector<std::string>& warnings) {
+  for (const Unit& unit : sections.animationUnits) {
     const facial::CandideAnimationUnit* known = facial::findCandideUnit(unit.name);
     if (!known)
-      model.warnings.push_back(std::string(source) + ": animation unit '" + unit.name +
-                               "' is not one of CANDIDE-3's 14; kept under its own name");
+      warnings.push_back(std::string(source) + ": animation unit '" + unit.name +
+                         "' is not one of CANDIDE-3's 14; kept under its own name");
     mesh.targetNames.push_back(known ? facial::candideTargetName(*known) : unit.name);
     primitive.targets.push_back(makeTarget(primitive, unit.deltas));
   }
-  for (const Unit& unit : *shapeUnits) {
+  for (const Unit& unit : sections.shapeUnits) {
     mesh.targetNames.push_back("SU_" + unit.name);
     primitive.targets.push_back(makeTarget(primitive, unit.deltas));
   }
-  mesh.defaultWeights = animationParameters;
-  mesh.defaultWeights.insert(mesh.defaultWeights.end(), shapeParameters.begin(), shapeParameters.end());
-  mesh.primitives.push_back(std::move(primitive));
-  model.meshes.push_back(std::move(mesh));
+}
 
-  eng::Node node;
-  node.name = "candide3";
-  node.mesh = 0;
-  model.nodes.push_back(node);
-  model.roots.push_back(0);
-
-  // The eyeballs are primitives of the mask's mesh, so they share its
-  // targets: an expression leaves them still (the lids move over them), an
-  // identity shape carries each with its rim and grows it with its opening,
-  // so a mask reshaped by --shape keeps its eyes filling their openings.
-  // Their material's name marks them as eyeballs for the dressing
-  // (importers/procedural_eyes.h).
+// The eyeballs are primitives of the mask's mesh, so they share its
+// targets: an expression leaves them still (the lids move over them), an
+// identity shape carries each with its rim and grows it with its opening,
+// so a mask reshaped by --shape keeps its eyes filling their openings.
+// Their material's name marks them as eyeballs for the dressing
+// (importers/procedural_eyes.h).
+void addEyeballs(eng::Model& model, const std::vector<MaskEyeOpening>& eyes, const CandideSections& sections) {
   eng::Mesh& face = model.meshes[0];
   if (!eyes.empty()) {
     eng::Material eyeMaterial;
@@ -356,11 +371,49 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
     eng::MorphTarget still;
     still.positions.assign(ball.positions.size(), glm::vec3(0.0f));
     still.normals = still.positions;
-    ball.targets.assign(animationUnits->size(), still);
-    for (const Unit& unit : *shapeUnits)
+    ball.targets.assign(sections.animationUnits.size(), still);
+    for (const Unit& unit : sections.shapeUnits)
       ball.targets.push_back(eyeballFollowing(face.primitives[0].positions, eye, ball, unit.deltas));
     face.primitives.push_back(std::move(ball));
   }
+}
+
+}  // namespace
+
+eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
+  if (text.size() > kMaxFileBytes)
+    return eng::makeError(eng::ErrorKind::TooLarge, std::string(source) + ": file of " + std::to_string(text.size()) +
+                          " bytes exceeds the limit of " + std::to_string(kMaxFileBytes) + " bytes");
+  LineReader in(text, source);
+  auto sections = readRequiredSections(in);
+  if (!sections) return sections.error();
+  auto optional = readOptionalSections(in, *sections);
+  if (!optional) return optional.error();
+
+  eng::Model model;
+  model.sourcePath = std::string(source);
+  eng::Primitive primitive;
+  primitive.positions = std::move(sections->positions);
+  primitive.indices = std::move(sections->indices);
+  windTowardsViewer(primitive);
+  primitive.texcoords = std::move(optional->texcoords);
+  const std::vector<MaskEyeOpening> eyes = cutEyes(primitive, sections->animationUnits, source, model.warnings);
+  primitive.normals = vertexNormals(primitive.positions, primitive.indices);
+
+  eng::Mesh mesh;
+  mesh.name = "candide3 face";  // "face": shown dressed like other untextured faces (skin tone, occlusion)
+  addUnitTargets(mesh, primitive, *sections, source, model.warnings);
+  mesh.defaultWeights = optional->animationParameters;
+  mesh.defaultWeights.insert(mesh.defaultWeights.end(), optional->shapeParameters.begin(), optional->shapeParameters.end());
+  mesh.primitives.push_back(std::move(primitive));
+  model.meshes.push_back(std::move(mesh));
+
+  eng::Node node;
+  node.name = "candide3";
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  model.roots.push_back(0);
+  addEyeballs(model, eyes, *sections);
   return model;
 }
 

@@ -40,32 +40,49 @@ struct Operator {
   }
 };
 
-}  // namespace
+// Every undirected edge once, keyed by eng::undirectedEdgeKey.
+struct EdgeTable {
+  std::unordered_map<uint64_t, Edge> edges;
+  std::vector<uint64_t> order;  // first-seen order: deterministic vertex numbering
 
-eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
+  Edge& at(uint32_t a, uint32_t b) { return edges[eng::undirectedEdgeKey(a, b)]; }
+};
+
+// Errors: an index count that is not a multiple of three, or an index past the vertices.
+eng::Result<void> checkTriangleList(const eng::Primitive& prim, std::string_view what) {
   const uint32_t n = static_cast<uint32_t>(prim.positions.size());
   if (prim.indices.size() % 3 != 0)
     return eng::makeError(eng::ErrorKind::InvalidArgument, std::string(what) + ": " + std::to_string(prim.indices.size()) + " indices is not a triangle list");
   for (uint32_t i : prim.indices)
     if (i >= n) return eng::makeError(eng::ErrorKind::InvalidArgument, std::string(what) + ": index " + std::to_string(i) + " of " + std::to_string(n) + " vertices");
+  return {};
+}
 
-  std::unordered_map<uint64_t, Edge> edges;
-  std::vector<uint64_t> edgeOrder;  // first-seen order: deterministic vertex numbering
-  for (size_t t = 0; t < prim.indices.size(); t += 3)
+// Each edge with the number of triangles on it and the corners opposite it
+// (the first two), which the interior edge rule weighs.
+EdgeTable collectEdges(const std::vector<uint32_t>& indices) {
+  EdgeTable table;
+  for (size_t t = 0; t < indices.size(); t += 3)
     for (int k = 0; k < 3; ++k) {
-      const uint32_t a = prim.indices[t + k], b = prim.indices[t + (k + 1) % 3], c = prim.indices[t + (k + 2) % 3];
+      const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3], c = indices[t + (k + 2) % 3];
       const uint64_t key = eng::undirectedEdgeKey(a, b);
-      auto [it, inserted] = edges.try_emplace(key, Edge{std::min(a, b), std::max(a, b)});
-      if (inserted) edgeOrder.push_back(key);
+      auto [it, inserted] = table.edges.try_emplace(key, Edge{std::min(a, b), std::max(a, b)});
+      if (inserted) table.order.push_back(key);
       if (it->second.faces < 2) it->second.opposite[it->second.faces] = c;
       ++it->second.faces;
     }
+  return table;
+}
 
+// One row per old vertex: Loop's interior rule, the boundary rule, or
+// staying put where neither applies (non-manifold, isolated, or a boundary
+// vertex without exactly two boundary neighbours).
+void addOldVertexRows(Operator& op, uint32_t n, EdgeTable& table) {
   // Neighbours per old vertex, and which of them lie along a boundary edge.
   std::vector<std::vector<uint32_t>> neighbours(n), boundaryNeighbours(n);
   std::vector<bool> irregular(n, false);
-  for (uint64_t key : edgeOrder) {
-    const Edge& e = edges[key];
+  for (uint64_t key : table.order) {
+    const Edge& e = table.edges[key];
     neighbours[e.a].push_back(e.b);
     neighbours[e.b].push_back(e.a);
     if (e.faces == 1) {
@@ -74,8 +91,6 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
     }
     if (e.faces > 2) irregular[e.a] = irregular[e.b] = true;
   }
-
-  Operator op;
   for (uint32_t v = 0; v < n; ++v) {
     const size_t k = neighbours[v].size();
     if (irregular[v] || k == 0 || (!boundaryNeighbours[v].empty() && boundaryNeighbours[v].size() != 2)) {
@@ -91,9 +106,15 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
     }
     op.endRow();
   }
+}
+
+// One new vertex per edge, numbered after the old ones in edge order: the
+// interior edge rule (3/8 ends, 1/8 opposite corners) or the boundary midpoint.
+// Returns the vertex count after subdivision.
+uint32_t addEdgeVertexRows(Operator& op, uint32_t n, EdgeTable& table) {
   uint32_t next = n;
-  for (uint64_t key : edgeOrder) {
-    Edge& e = edges[key];
+  for (uint64_t key : table.order) {
+    Edge& e = table.edges[key];
     e.newVertex = next++;
     if (e.faces == 2) {
       op.add(e.a, 0.375f);
@@ -106,28 +127,39 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
     }
     op.endRow();
   }
+  return next;
+}
 
+// Every triangle becomes four: three at its corners and one between its edge midpoints.
+std::vector<uint32_t> splitTriangles(const std::vector<uint32_t>& oldIndices, EdgeTable& table) {
   std::vector<uint32_t> indices;
-  indices.reserve(prim.indices.size() * 4);
-  for (size_t t = 0; t < prim.indices.size(); t += 3) {
-    const uint32_t a = prim.indices[t], b = prim.indices[t + 1], c = prim.indices[t + 2];
-    const uint32_t ab = edges[eng::undirectedEdgeKey(a, b)].newVertex, bc = edges[eng::undirectedEdgeKey(b, c)].newVertex,
-                   ca = edges[eng::undirectedEdgeKey(c, a)].newVertex;
+  indices.reserve(oldIndices.size() * 4);
+  for (size_t t = 0; t < oldIndices.size(); t += 3) {
+    const uint32_t a = oldIndices[t], b = oldIndices[t + 1], c = oldIndices[t + 2];
+    const uint32_t ab = table.at(a, b).newVertex, bc = table.at(b, c).newVertex, ca = table.at(c, a).newVertex;
     indices.insert(indices.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
   }
+  return indices;
+}
 
-  std::vector<glm::vec3> positions = op.apply(prim.positions);
-  if (!prim.texcoords.empty()) {
-    std::vector<glm::vec2> uv = prim.texcoords;
-    uv.resize(next);
-    for (uint64_t key : edgeOrder) {
-      const Edge& e = edges[key];
-      uv[e.newVertex] = 0.5f * (prim.texcoords[e.a] + prim.texcoords[e.b]);
-    }
-    prim.texcoords = std::move(uv);
+// Texture coordinates are not smoothed: old vertices keep theirs, edge
+// vertices take their edge's midpoint, so seams and atlases stay put.
+std::vector<glm::vec2> interpolateTexcoords(const std::vector<glm::vec2>& texcoords, uint32_t vertexCount,
+                                            EdgeTable& table) {
+  std::vector<glm::vec2> uv = texcoords;
+  uv.resize(vertexCount);
+  for (uint64_t key : table.order) {
+    const Edge& e = table.edges[key];
+    uv[e.newVertex] = 0.5f * (texcoords[e.a] + texcoords[e.b]);
   }
-  const std::vector<glm::vec3> normals = eng::computeSmoothNormals(positions, indices);
-  for (eng::MorphTarget& target : prim.targets) {
+  return uv;
+}
+
+// The same weights move each target's position deltas (Loop is linear);
+// normal deltas are recomputed against the subdivided base's smooth normals.
+void subdivideTargets(std::vector<eng::MorphTarget>& targets, const Operator& op, const std::vector<glm::vec3>& positions,
+                      const std::vector<glm::vec3>& normals, const std::vector<uint32_t>& indices) {
+  for (eng::MorphTarget& target : targets) {
     if (target.positions.empty()) continue;
     target.positions = op.apply(target.positions);
     std::vector<glm::vec3> moved = positions;
@@ -137,6 +169,23 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
     for (size_t v = 0; v < movedNormals.size(); ++v) target.normals[v] = movedNormals[v] - normals[v];
     target.tangents.clear();
   }
+}
+
+}  // namespace
+
+eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
+  if (auto checked = checkTriangleList(prim, what); !checked) return checked.error();
+  const uint32_t n = static_cast<uint32_t>(prim.positions.size());
+  EdgeTable edges = collectEdges(prim.indices);
+  Operator op;
+  addOldVertexRows(op, n, edges);
+  const uint32_t vertexCount = addEdgeVertexRows(op, n, edges);
+  std::vector<uint32_t> indices = splitTriangles(prim.indices, edges);
+
+  std::vector<glm::vec3> positions = op.apply(prim.positions);
+  if (!prim.texcoords.empty()) prim.texcoords = interpolateTexcoords(prim.texcoords, vertexCount, edges);
+  const std::vector<glm::vec3> normals = eng::computeSmoothNormals(positions, indices);
+  subdivideTargets(prim.targets, op, positions, normals, indices);
   prim.positions = std::move(positions);
   prim.normals = normals;
   prim.indices = std::move(indices);

@@ -144,21 +144,81 @@ MorphTarget targetDeltas(const PrimitiveBuild& b, const ObjPolygonMesh& target, 
   return t;
 }
 
+// Target names become morph target names: each must be non-empty and used once.
+Result<void> checkTargetNames(std::span<const ObjTargetFile> targets) {
+  std::set<std::string> names;
+  for (const ObjTargetFile& t : targets) {
+    if (t.name.empty()) return makeError(ErrorKind::Malformed, t.path.string() + ": target name is empty");
+    if (!names.insert(t.name).second) return makeError(ErrorKind::Malformed, t.path.string() + ": target name '" + t.name + "' is used twice");
+  }
+  return {};
+}
+
+// Reads one target OBJ, matches its corners to the neutral's (by position or
+// strictly by topology) and adds its deltas to every primitive.
+Result<ObjTargetReport> addTargetFile(const ObjTargetFile& file, const ObjPolygonMesh& neutral,
+                                      const std::filesystem::path& neutralPath, const ObjKeyframeOptions& options,
+                                      float tolerance, std::vector<PrimitiveBuild>& builds, std::vector<std::string>& warnings) {
+  auto target = readObjPolygonMesh(file.path, ObjReadOptions{.materials = false});
+  if (!target) return target.error();
+  for (const std::string& w : target->warnings) warnings.push_back(file.path.filename().string() + ": " + w);
+  ObjCornerMap map;
+  if (options.matchByPosition) {
+    map = matchObjByPosition(neutral, *target, tolerance);
+  } else {
+    auto strict = matchObjByTopology(neutral, *target, neutralPath.string(), file.path.string());
+    if (!strict) return strict.error();
+    map = std::move(*strict);
+  }
+  ObjTargetReport report{file.name, 0, map.unmatchedVertices};
+  for (PrimitiveBuild& b : builds) b.prim.targets.push_back(targetDeltas(b, *target, map, neutral, report.movedVertices));
+  return report;
+}
+
+// One glTF material per OBJ material; an unreadable texture is a warning.
+Material materialFromObj(const ObjMaterial& src, Model& model) {
+  Material mat;
+  mat.name = src.name;
+  mat.baseColorFactor = src.diffuse;
+  mat.roughness = 0.6f;
+  mat.metallic = 0.0f;
+  if (!src.diffuseTexture.empty()) {
+    auto image = readImage(src.diffuseTexture);
+    if (image) {
+      image->name = src.diffuseTexture.filename().string();
+      mat.baseColorImage = static_cast<int>(model.images.size());
+      model.images.push_back(std::move(*image));
+    } else {
+      model.warnings.push_back("material '" + src.name + "': texture skipped: " + image.error().message);
+    }
+  }
+  return mat;
+}
+
+// Materials: only those faces use, in the order the primitives met them;
+// renumbers each primitive's material from the OBJ's list to the model's.
+void addUsedMaterials(Mesh& mesh, const std::vector<ObjMaterial>& objMaterials, Model& model) {
+  std::unordered_map<int, int> materialRemap;
+  for (Primitive& prim : mesh.primitives) {
+    if (prim.material < 0) continue;
+    auto [it, added] = materialRemap.try_emplace(prim.material, static_cast<int>(model.materials.size()));
+    if (added) model.materials.push_back(materialFromObj(objMaterials[prim.material], model));
+    prim.material = it->second;
+  }
+}
+
 std::string lowerExtension(const std::filesystem::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
+
 }  // namespace
 
 Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutralPath, std::span<const ObjTargetFile> targets,
                                              const ObjKeyframeOptions& options) {
-  std::set<std::string> names;
-  for (const ObjTargetFile& t : targets) {
-    if (t.name.empty()) return makeError(ErrorKind::Malformed, t.path.string() + ": target name is empty");
-    if (!names.insert(t.name).second) return makeError(ErrorKind::Malformed, t.path.string() + ": target name '" + t.name + "' is used twice");
-  }
+  if (auto named = checkTargetNames(targets); !named) return named.error();
   auto neutral = readObjPolygonMesh(neutralPath);
   if (!neutral) return neutral.error();
 
@@ -172,22 +232,10 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
   Aabb box;
   for (const glm::vec3& p : neutral->positions) box.extend(p);
   const float tolerance = std::max(box.diagonal() * options.relativeTolerance, 1e-12f);
-
   for (const ObjTargetFile& file : targets) {
-    auto target = readObjPolygonMesh(file.path, ObjReadOptions{.materials = false});
-    if (!target) return target.error();
-    for (const std::string& w : target->warnings) model.warnings.push_back(file.path.filename().string() + ": " + w);
-    ObjCornerMap map;
-    if (options.matchByPosition) {
-      map = matchObjByPosition(*neutral, *target, tolerance);
-    } else {
-      auto strict = matchObjByTopology(*neutral, *target, neutralPath.string(), file.path.string());
-      if (!strict) return strict.error();
-      map = std::move(*strict);
-    }
-    ObjTargetReport report{file.name, 0, map.unmatchedVertices};
-    for (PrimitiveBuild& b : *builds) b.prim.targets.push_back(targetDeltas(b, *target, map, *neutral, report.movedVertices));
-    result.targets.push_back(std::move(report));
+    auto report = addTargetFile(file, *neutral, neutralPath, options, tolerance, *builds, model.warnings);
+    if (!report) return report.error();
+    result.targets.push_back(std::move(*report));
   }
 
   Mesh mesh;
@@ -195,33 +243,7 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
   for (const ObjTargetFile& t : targets) mesh.targetNames.push_back(t.name);
   mesh.defaultWeights.assign(targets.size(), 0.0f);
   for (PrimitiveBuild& b : *builds) mesh.primitives.push_back(std::move(b.prim));
-
-  // Materials: only those faces use, in the order the primitives met them.
-  std::unordered_map<int, int> materialRemap;
-  for (Primitive& prim : mesh.primitives) {
-    if (prim.material < 0) continue;
-    auto [it, added] = materialRemap.try_emplace(prim.material, static_cast<int>(model.materials.size()));
-    if (added) {
-      const ObjMaterial& src = neutral->materials[prim.material];
-      Material mat;
-      mat.name = src.name;
-      mat.baseColorFactor = src.diffuse;
-      mat.roughness = 0.6f;
-      mat.metallic = 0.0f;
-      if (!src.diffuseTexture.empty()) {
-        auto image = readImage(src.diffuseTexture);
-        if (image) {
-          image->name = src.diffuseTexture.filename().string();
-          mat.baseColorImage = static_cast<int>(model.images.size());
-          model.images.push_back(std::move(*image));
-        } else {
-          model.warnings.push_back("material '" + src.name + "': texture skipped: " + image.error().message);
-        }
-      }
-      model.materials.push_back(std::move(mat));
-    }
-    prim.material = it->second;
-  }
+  addUsedMaterials(mesh, neutral->materials, model);
   model.meshes.push_back(std::move(mesh));
   Node node;
   node.name = model.meshes[0].name;

@@ -85,6 +85,71 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// Errors: a corner naming a vertex, texcoord or normal the file does not have
+// (1-based, as in the file). A missing texcoord or normal is -1 and allowed.
+Result<void> checkCorner(const tinyobj::index_t& idx, const ObjPolygonMesh& mesh, const std::string& file) {
+  const int nv = static_cast<int>(mesh.positions.size());
+  const int nt = static_cast<int>(mesh.texcoords.size());
+  const int nn = static_cast<int>(mesh.normals.size());
+  const size_t face = mesh.faceCount() + 1;
+  if (idx.vertex_index < 0 || idx.vertex_index >= nv)
+    return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses vertex " + std::to_string(idx.vertex_index + 1) +
+                     ", the file has " + std::to_string(nv));
+  if (idx.texcoord_index >= nt || idx.texcoord_index < -1)
+    return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses texcoord " +
+                     std::to_string(idx.texcoord_index + 1) + ", the file has " + std::to_string(nt));
+  if (idx.normal_index >= nn || idx.normal_index < -1)
+    return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses normal " + std::to_string(idx.normal_index + 1) +
+                     ", the file has " + std::to_string(nn));
+  return {};
+}
+
+// The shapes' polygons, all into one flat corner list, with each face's
+// material (-1 where it names none the file defines).
+Result<void> copyFaces(const std::vector<tinyobj::shape_t>& shapes, size_t materialCount, const std::string& file,
+                       ObjPolygonMesh& mesh) {
+  mesh.faceStart.push_back(0);
+  for (const tinyobj::shape_t& shape : shapes) {
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const size_t count = shape.mesh.num_face_vertices[f];
+      if (offset + count > shape.mesh.indices.size())
+        return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(mesh.faceCount() + 1) + " has missing corners");
+      for (size_t k = 0; k < count; ++k) {
+        const tinyobj::index_t& idx = shape.mesh.indices[offset + k];
+        if (auto r = checkCorner(idx, mesh, file); !r) return r.error();
+        mesh.corners.push_back({idx.vertex_index, idx.texcoord_index, idx.normal_index});
+      }
+      offset += count;
+      mesh.faceStart.push_back(static_cast<uint32_t>(mesh.corners.size()));
+      const int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+      mesh.faceMaterial.push_back(material >= 0 && material < static_cast<int>(materialCount) ? material : -1);
+    }
+  }
+  return {};
+}
+
+// The MTL materials, with a non-finite colour replaced by white and a texture
+// outside the OBJ's folder dropped (each with a warning).
+void copyMaterials(const std::vector<tinyobj::material_t>& materials, const std::filesystem::path& dir, ObjPolygonMesh& mesh) {
+  for (const tinyobj::material_t& m : materials) {
+    ObjMaterial out;
+    out.name = m.name;
+    out.diffuse = glm::vec4(m.diffuse[0], m.diffuse[1], m.diffuse[2], m.dissolve);
+    if (!std::isfinite(out.diffuse.r + out.diffuse.g + out.diffuse.b + out.diffuse.a)) {
+      mesh.warnings.push_back("material '" + m.name + "' has non-finite Kd/d; white used");
+      out.diffuse = glm::vec4(1.0f);
+    }
+    if (!m.diffuse_texname.empty()) {
+      out.diffuseTexture = confined(dir, m.diffuse_texname);
+      if (out.diffuseTexture.empty())
+        mesh.warnings.push_back("material '" + m.name + "': texture '" + m.diffuse_texname +
+                                "' is outside the OBJ's folder; ignored");
+    }
+    mesh.materials.push_back(std::move(out));
+  }
+}
+
 }  // namespace
 
 Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options) {
@@ -119,54 +184,10 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
   if (auto r = copyFinite(attrib.normals, mesh.normals, "normal"); !r) return r.error().prefixed(file + ": ");
   if (mesh.positions.empty()) return makeError(ErrorKind::Malformed, file + ": no vertices ('v' lines)");
 
-  const int nv = static_cast<int>(mesh.positions.size());
-  const int nt = static_cast<int>(mesh.texcoords.size());
-  const int nn = static_cast<int>(mesh.normals.size());
-  mesh.faceStart.push_back(0);
-  for (const tinyobj::shape_t& shape : shapes) {
-    size_t offset = 0;
-    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      const size_t count = shape.mesh.num_face_vertices[f];
-      if (offset + count > shape.mesh.indices.size())
-        return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(mesh.faceCount() + 1) + " has missing corners");
-      for (size_t k = 0; k < count; ++k) {
-        const tinyobj::index_t& idx = shape.mesh.indices[offset + k];
-        const size_t face = mesh.faceCount() + 1;
-        if (idx.vertex_index < 0 || idx.vertex_index >= nv)
-          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses vertex " + std::to_string(idx.vertex_index + 1) +
-                           ", the file has " + std::to_string(nv));
-        if (idx.texcoord_index >= nt || idx.texcoord_index < -1)
-          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses texcoord " +
-                           std::to_string(idx.texcoord_index + 1) + ", the file has " + std::to_string(nt));
-        if (idx.normal_index >= nn || idx.normal_index < -1)
-          return makeError(ErrorKind::Malformed, file + ": face " + std::to_string(face) + " uses normal " + std::to_string(idx.normal_index + 1) +
-                           ", the file has " + std::to_string(nn));
-        mesh.corners.push_back({idx.vertex_index, idx.texcoord_index, idx.normal_index});
-      }
-      offset += count;
-      mesh.faceStart.push_back(static_cast<uint32_t>(mesh.corners.size()));
-      const int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      mesh.faceMaterial.push_back(material >= 0 && material < static_cast<int>(materials.size()) ? material : -1);
-    }
-  }
+  if (auto r = copyFaces(shapes, materials.size(), file, mesh); !r) return r.error();
   if (mesh.faceCount() == 0) return makeError(ErrorKind::Malformed, file + ": no faces ('f' lines)");
 
-  for (const tinyobj::material_t& m : materials) {
-    ObjMaterial out;
-    out.name = m.name;
-    out.diffuse = glm::vec4(m.diffuse[0], m.diffuse[1], m.diffuse[2], m.dissolve);
-    if (!std::isfinite(out.diffuse.r + out.diffuse.g + out.diffuse.b + out.diffuse.a)) {
-      mesh.warnings.push_back("material '" + m.name + "' has non-finite Kd/d; white used");
-      out.diffuse = glm::vec4(1.0f);
-    }
-    if (!m.diffuse_texname.empty()) {
-      out.diffuseTexture = confined(dir, m.diffuse_texname);
-      if (out.diffuseTexture.empty())
-        mesh.warnings.push_back("material '" + m.name + "': texture '" + m.diffuse_texname +
-                                "' is outside the OBJ's folder; ignored");
-    }
-    mesh.materials.push_back(std::move(out));
-  }
+  copyMaterials(materials, dir, mesh);
   for (std::string& line : lines(warn)) mesh.warnings.push_back(std::move(line));
   return mesh;
 }

@@ -307,55 +307,54 @@ class SkinBuilder {
   }
 
   // --- eyelids ---------------------------------------------------------------
-  eng::Result<void> buildEyelidPatch(float side) {
-    const EyeOpening eye(prop_, side);
-    const PatchRect& r = eyeRects_[side > 0 ? 0 : 1];
-    const std::string name = side > 0 ? "eye_L" : "eye_R";
+  // Rings cast onto the surface between the patch border and the lid edge.
+  static constexpr int kLidCastRings = 12;
 
-    // Border loop, counter-clockwise seen from the front.
+  // Lid thickness at margin angles a: the lower lid's below the eye's
+  // middle, the upper lid's above, blended smoothly across it.
+  float lidThickness(const EyeOpening& eye, const vec2& a) const {
+    const float t = static_cast<float>(glm::smoothstep(-6.0, 6.0, static_cast<double>(a.y - eye.middle().y)));
+    return prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) * t;
+  }
+  // Angles a moved `degrees` further out from the eye's middle (in the
+  // almond's scaled coordinates): the lid edge lies past the margin.
+  static vec2 pushedOut(const EyeOpening& eye, const vec2& a, float degrees) {
+    const vec2 q = (a - eye.middle()) / eye.halfExtent();
+    const float len = glm::length(q);
+    return len > 0 ? a + (q / len) * degrees : a;
+  }
+
+  // The eye patch's border loop, counter-clockwise seen from the front.
+  std::vector<uint32_t> eyePatchBorder(const PatchRect& r) const {
     std::vector<uint32_t> ring0;
     for (int i = r.i0; i < r.i1; ++i) ring0.push_back(grid_[index(i, r.j0)]);
     for (int j = r.j0; j < r.j1; ++j) ring0.push_back(grid_[index(r.i1, j)]);
     for (int i = r.i1; i > r.i0; --i) ring0.push_back(grid_[index(i, r.j1)]);
     for (int j = r.j1; j > r.j0; --j) ring0.push_back(grid_[index(r.i0, j)]);
-    const size_t n = ring0.size();
+    return ring0;
+  }
 
+  // Ring positions: 0 = border, 1..kLidCastRings cast onto the head's
+  // surface, then the lid edge, the margin (inside the eyeball) and a tucked
+  // ring. `margin` holds each border vertex's margin angles.
+  std::vector<std::vector<vec3>> eyelidRingPositions(const EyeOpening& eye, const std::vector<uint32_t>& ring0,
+                                                     const std::vector<vec2>& margin) const {
+    const size_t n = ring0.size();
     const vec3 e = eye.centre();
     const vec3 castOrigin = e - vec3(0.0f, 0.0f, 0.007f);
     const float rEye = eye.radius();
-    constexpr int kCast = 12;  // rings cast onto the surface between border and lid edge
-    // Per border vertex: margin angles and whether it is on the upper lid.
-    std::vector<vec2> margin(n);
-    std::vector<bool> upper(n);
-    for (size_t s = 0; s < n; ++s) {
-      bool up = true;
-      margin[s] = eye.marginAt(eye.polarAngle(eye.angles(out_.positions[ring0[s]] - e)), &up);
-      upper[s] = up;
-    }
-    auto thickness = [&](const vec2& a) {
-      const float t = static_cast<float>(glm::smoothstep(-6.0, 6.0, static_cast<double>(a.y - eye.middle().y)));
-      return prop_.lowerLidThickness + (prop_.upperLidThickness - prop_.lowerLidThickness) * t;
-    };
-    auto pushedOut = [&](const vec2& a, float degrees) {
-      const vec2 q = (a - eye.middle()) / eye.halfExtent();
-      const float len = glm::length(q);
-      return len > 0 ? a + (q / len) * degrees : a;
-    };
-
-    // Rings: 0 = border, 1..kCast cast, then lid edge, margin (inside the
-    // eyeball), a tucked ring and the centre.
     std::vector<std::vector<vec3>> ringPos;
     ringPos.push_back({});
     for (size_t s = 0; s < n; ++s) ringPos[0].push_back(out_.positions[ring0[s]]);
     std::vector<vec3> edge(n), inner(n), tucked(n);
     for (size_t s = 0; s < n; ++s) {
-      const vec2 edgeAngles = pushedOut(margin[s], 2.2f);
-      edge[s] = e + eye.direction(edgeAngles) * (rEye + 0.85f * thickness(edgeAngles));
+      const vec2 edgeAngles = pushedOut(eye, margin[s], 2.2f);
+      edge[s] = e + eye.direction(edgeAngles) * (rEye + 0.85f * lidThickness(eye, edgeAngles));
       inner[s] = e + eye.direction(margin[s]) * (rEye - 0.0004f);
       tucked[s] = e + eye.direction(glm::mix(margin[s], eye.middle(), 0.45f)) * (rEye - 0.0015f);
     }
-    for (int k = 1; k <= kCast; ++k) {
-      const float w = spokeParameter(float(k) / (kCast + 1));
+    for (int k = 1; k <= kLidCastRings; ++k) {
+      const float w = spokeParameter(float(k) / (kLidCastRings + 1));
       std::vector<vec3> ring(n);
       for (size_t s = 0; s < n; ++s) {
         const vec3 d0 = glm::normalize(ringPos[0][s] - castOrigin);
@@ -366,14 +365,23 @@ class SkinBuilder {
       }
       ringPos.push_back(std::move(ring));
     }
-    relaxPatch(ringPos, edge, kCast);
+    relaxPatch(ringPos, edge, kLidCastRings);
     ringPos.push_back(edge);
     ringPos.push_back(inner);
     ringPos.push_back(tucked);
-    const size_t edgeRing = ringPos.size() - 3;
+    return ringPos;
+  }
 
-    // Texture coordinates continue the grid's own mapping (the direction seen
-    // from the grid centre), so the lids get as many texels as the skin around.
+  // Adds the vertices of every ring after the border (which exists already)
+  // and marks all of them with their eye, lid and lid ring (0 at the border,
+  // 1 at the lid edge, above 1 inside it). Returns each ring's vertex ids.
+  // Texture coordinates continue the grid's own mapping (the direction seen
+  // from the grid centre), so the lids get as many texels as the skin around.
+  std::vector<std::vector<uint32_t>> addEyelidVertices(const std::vector<std::vector<vec3>>& ringPos,
+                                                       const std::vector<uint32_t>& ring0, const std::vector<bool>& upper,
+                                                       float side) {
+    const size_t n = ring0.size();
+    const size_t edgeRing = ringPos.size() - 3;
     std::vector<std::vector<uint32_t>> ringIds(ringPos.size());
     ringIds[0] = ring0;
     for (size_t s = 0; s < n; ++s) {
@@ -400,6 +408,13 @@ class SkinBuilder {
         ringIds[k].push_back(v);
       }
     }
+    return ringIds;
+  }
+
+  // Quads between neighbouring rings, then a fan closing the innermost ring
+  // on a centre vertex set deepest into the eye.
+  void stitchEyelidRings(const std::vector<std::vector<uint32_t>>& ringIds, const EyeOpening& eye, float side) {
+    const size_t n = ringIds[0].size();
     for (size_t k = 0; k + 1 < ringIds.size(); ++k)
       for (size_t s = 0; s < n; ++s) {
         const size_t t = (s + 1) % n;
@@ -407,14 +422,20 @@ class SkinBuilder {
         tri(a, b, c);
         tri(a, c, d);
       }
-    const vec3 centrePos = e + eye.direction(eye.middle()) * (rEye - 0.0025f);
+    const vec3 centrePos = eye.centre() + eye.direction(eye.middle()) * (eye.radius() - 0.0025f);
     const uint32_t centre = addVertex(centrePos, gridUv(centrePos), SkinPart::Skin);
     out_.eyeSide[centre] = side;
     out_.lidRing[centre] = 2.0f;
     for (size_t s = 0; s < n; ++s) tri(ringIds.back()[s], ringIds.back()[(s + 1) % n], centre);
+  }
 
-    // Landmark features on the lid edge.
-    auto edgePoint = [&](const vec2& a) { return e + eye.direction(pushedOut(a, 2.2f)) * (rEye + 0.85f * thickness(a)); };
+  // Landmark features on the lid edge, named "<name>.<feature>".
+  void addEyelidFeatures(const EyeOpening& eye, const std::string& name) {
+    const vec3 e = eye.centre();
+    const float rEye = eye.radius();
+    auto edgePoint = [&](const vec2& a) {
+      return e + eye.direction(pushedOut(eye, a, 2.2f)) * (rEye + 0.85f * lidThickness(eye, a));
+    };
     out_.features[name + ".centre"] = e;
     out_.features[name + ".inner_corner"] = edgePoint(eye.upperLid(0.0f));
     out_.features[name + ".outer_corner"] = edgePoint(eye.upperLid(1.0f));
@@ -433,6 +454,24 @@ class SkinBuilder {
     out_.features[name + ".lower_lid"] = edgePoint(eye.lowerLid(0.5f));
     out_.features[name + ".lower_lid_inner"] = edgePoint(eye.lowerLid(0.25f));
     out_.features[name + ".lower_lid_outer"] = edgePoint(eye.lowerLid(0.75f));
+  }
+
+  // The eyelid patch of one eye: rings from the grid's eye hole in to the lid
+  // edge and on into the eyeball, where the eyeball mesh hides them.
+  eng::Result<void> buildEyelidPatch(float side) {
+    const EyeOpening eye(prop_, side);
+    const std::vector<uint32_t> ring0 = eyePatchBorder(eyeRects_[side > 0 ? 0 : 1]);
+    // Per border vertex: margin angles and whether it is on the upper lid.
+    std::vector<vec2> margin(ring0.size());
+    std::vector<bool> upper(ring0.size());
+    for (size_t s = 0; s < ring0.size(); ++s) {
+      bool up = true;
+      margin[s] = eye.marginAt(eye.polarAngle(eye.angles(out_.positions[ring0[s]] - eye.centre())), &up);
+      upper[s] = up;
+    }
+    const std::vector<std::vector<vec3>> ringPos = eyelidRingPositions(eye, ring0, margin);
+    stitchEyelidRings(addEyelidVertices(ringPos, ring0, upper, side), eye, side);
+    addEyelidFeatures(eye, side > 0 ? "eye_L" : "eye_R");
     return {};
   }
 

@@ -7,7 +7,7 @@
 
 #include "engine/core/log.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -23,12 +23,12 @@ eng::Image solidImage(int w, int h, glm::u8vec4 colour) {
 
 // A grey sphere whose material has a red layer on t1 and a blue layer (other size) on t2.
 eng::Model layeredSphere() {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.color = {0.7f, 0.7f, 0.7f, 1.0f};
-  eng::Model model = vk_test::makeSphereModel(spec);
+  eng::Model model = testing_support::makeSphereModel(spec);
   model.images.push_back(solidImage(4, 4, {255, 0, 0, 255}));
   model.images.push_back(solidImage(2, 8, {0, 0, 255, 255}));
-  model.materials[0].detailLayers = {{0, vk_test::targetName(1), 1.0f}, {1, vk_test::targetName(2), 0.5f}};
+  model.materials[0].detailLayers = {{0, testing_support::targetName(1), 1.0f}, {1, testing_support::targetName(2), 0.5f}};
   return model;
 }
 

@@ -26,7 +26,7 @@
 #include "engine/view/framing_bounds.h"
 #include "tests/common/golden.h"
 #include "tests/common/test_support.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -111,17 +111,17 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Needs no shared assets: instancing, morphing and detail layers together.
 TEST(GoldenProcedural, SphereInstancesWithDetailLayer) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.targets = 3;
   spec.tangents = true;
-  eng::Model model = vk_test::makeSphereModel(spec);
+  eng::Model model = testing_support::makeSphereModel(spec);
   eng::Image stripes;
   stripes.name = "stripes";
   stripes.width = stripes.height = 16;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) stripes.rgba8.insert(stripes.rgba8.end(), {40, 90, 200, uint8_t(x < 8 ? 255 : 0)});
   model.images.push_back(stripes);
-  model.materials[0].detailLayers = {{0, vk_test::targetName(2), 1.0f}};
+  model.materials[0].detailLayers = {{0, testing_support::targetName(2), 1.0f}};
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> rest{0, 0, 0}, bulge{1, 0, 0}, layered{0, 0.8f, 1.0f};

@@ -19,7 +19,7 @@
 #include "engine/scene/skinning.h"
 #include "engine/scene/weights.h"
 #include "tests/common/test_support.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -109,10 +109,10 @@ TEST(GpuMorph, CaptureIsSupportedOnTheTestDevice) {
 }
 
 TEST(GpuMorph, AgreesWithCpuOnASmallMesh) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.targets = 6;
   spec.tangents = true;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const Agreement a = compareWithCpu(model, *gpu, {variedWeights(6, 0.0f)});
@@ -122,7 +122,7 @@ TEST(GpuMorph, AgreesWithCpuOnASmallMesh) {
 }
 
 TEST(GpuMorph, RestPoseWhenAllWeightsAreZero) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> zeros(gpu->weightCount(), 0.0f);
@@ -136,11 +136,11 @@ TEST(GpuMorph, RestPoseWhenAllWeightsAreZero) {
 }
 
 TEST(GpuMorph, TwoHundredFiftySixTargetsAllActive) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.rings = 12;
   spec.segments = 16;
   spec.targets = 256;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights = variedWeights(256, 0.3f);
@@ -151,9 +151,9 @@ TEST(GpuMorph, TwoHundredFiftySixTargetsAllActive) {
 }
 
 TEST(GpuMorph, InstancesKeepIndependentWeights) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.targets = 40;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   std::vector<std::vector<float>> weights{variedWeights(40, 0.0f), std::vector<float>(40, 0.0f),
@@ -165,9 +165,9 @@ TEST(GpuMorph, InstancesKeepIndependentWeights) {
 }
 
 TEST(GpuMorph, MeshWithoutNormalDeltasKeepsRestNormals) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.normalDeltas = false;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const Agreement a = compareWithCpu(model, *gpu, {variedWeights(4, 1.0f)});

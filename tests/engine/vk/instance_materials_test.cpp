@@ -14,7 +14,7 @@
 
 #include "engine/vk/draw/offscreen_renderer.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -39,7 +39,7 @@ int maxDifference(const eng::Image& a, const eng::Image& b) {
 // The sphere with a texture of 4 x 4 distinct colours, so a texture
 // coordinate change shows.
 eng::Model texturedSphere() {
-  eng::Model model = vk_test::makeSphereModel({.targets = 0, .color = glm::vec4(1.0f)});
+  eng::Model model = testing_support::makeSphereModel({.targets = 0, .color = glm::vec4(1.0f)});
   eng::Image checker;
   checker.name = "checker";
   checker.width = checker.height = 4;
@@ -75,7 +75,7 @@ std::pair<eng::Image, eng::Image> overrideAndBaked(const eng::Model& model, cons
 }
 
 TEST(InstanceMaterials, ColourAndEmissionOverridesDrawLikeBakedMaterials) {
-  const eng::Model model = vk_test::makeSphereModel({.color = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f)});
+  const eng::Model model = testing_support::makeSphereModel({.color = glm::vec4(0.8f, 0.6f, 0.5f, 1.0f)});
   eng::vk::InstanceMaterial record;
   record.baseColorFactor = glm::vec4(0.9f, 0.1f, 0.1f, 1.0f);
   record.emissive = glm::vec4(0.0f, 0.05f, 0.2f, 0.0f);
@@ -106,7 +106,7 @@ TEST(InstanceMaterials, TextureTransformOverrideDrawsLikeTransformedTexcoords) {
 }
 
 TEST(InstanceMaterials, InstancesOfOneModelKeepTheirOwnRecords) {
-  const eng::Model model = vk_test::makeSphereModel({.color = glm::vec4(0.7f, 0.7f, 0.7f, 1.0f)});
+  const eng::Model model = testing_support::makeSphereModel({.color = glm::vec4(0.7f, 0.7f, 0.7f, 1.0f)});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   ASSERT_EQ(gpu->materials().size(), 2u) << "the model's material, then the default material";
@@ -132,7 +132,7 @@ TEST(InstanceMaterials, InstancesOfOneModelKeepTheirOwnRecords) {
 }
 
 TEST(InstanceMaterialsValidity, TooManyOrNonFiniteRecordsAreRefused) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights(gpu->weightCount(), 0.0f);

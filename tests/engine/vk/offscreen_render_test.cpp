@@ -12,7 +12,7 @@
 
 #include "engine/scene/weights.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -39,7 +39,7 @@ TEST(OffscreenRender, EmptySceneIsTheBackgroundGradient) {
 }
 
 TEST(OffscreenRender, SphereCoversTheCentreAndIsLitFromTheKeySide) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights(gpu->weightCount(), 0.0f);
@@ -58,9 +58,9 @@ TEST(OffscreenRender, SphereCoversTheCentreAndIsLitFromTheKeySide) {
 }
 
 TEST(OffscreenRender, InstancesOfOneMeshDrawInOneCallWithTheirOwnWeights) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.targets = 2;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> rest{0.0f, 0.0f};
@@ -102,11 +102,11 @@ TEST(OffscreenRender, InstancesOfOneMeshDrawInOneCallWithTheirOwnWeights) {
 TEST(OffscreenRender, BackFacesCulledUnlessDoubleSided) {
   // A sphere seen from inside shows only back faces.
   for (bool doubleSided : {false, true}) {
-    vk_test::SphereSpec spec;
+    testing_support::SphereSpec spec;
     spec.targets = 0;
     spec.doubleSided = doubleSided;
     spec.radius = 10.0f;
-    const eng::Model model = vk_test::makeSphereModel(spec);
+    const eng::Model model = testing_support::makeSphereModel(spec);
     auto gpu = vk_test::renderer().upload(model);
     ASSERT_TRUE(gpu) << gpu.error().message;
     eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});  // camera inside the sphere
@@ -123,9 +123,9 @@ TEST(OffscreenRender, BackFacesCulledUnlessDoubleSided) {
 }
 
 // A sphere without targets, uploaded (the spec's targets are ignored).
-eng::Result<eng::vk::GpuModel> uploadPlainSphere(vk_test::SphereSpec spec) {
+eng::Result<eng::vk::GpuModel> uploadPlainSphere(testing_support::SphereSpec spec) {
   spec.targets = 0;
-  return vk_test::renderer().upload(vk_test::makeSphereModel(spec));
+  return vk_test::renderer().upload(testing_support::makeSphereModel(spec));
 }
 
 // Mean absolute difference of the colour channels, in 8-bit levels.
@@ -377,9 +377,9 @@ TEST(OffscreenRender, ToonOutlineRingsTheSilhouetteAtTheWidthItAsksFor) {
 }
 
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
-  vk_test::SphereSpec spec;
+  testing_support::SphereSpec spec;
   spec.withMaterial = false;
-  const eng::Model model = vk_test::makeSphereModel(spec);
+  const eng::Model model = testing_support::makeSphereModel(spec);
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights(gpu->weightCount(), 0.0f);
@@ -391,7 +391,7 @@ TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
 }
 
 TEST(OffscreenRenderValidity, WrongWeightCountNamesTheSizes) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights(3, 0.0f);
@@ -403,7 +403,7 @@ TEST(OffscreenRenderValidity, WrongWeightCountNamesTheSizes) {
 }
 
 TEST(OffscreenRenderValidity, NonFiniteWeightAndNullModelAreErrors) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   std::vector<float> weights(4, 0.0f);
@@ -420,7 +420,7 @@ TEST(OffscreenRenderValidity, NonFiniteWeightAndNullModelAreErrors) {
 }
 
 TEST(OffscreenRenderValidity, InconsistentModelIsRejectedByName) {
-  eng::Model model = vk_test::makeSphereModel({});
+  eng::Model model = testing_support::makeSphereModel({});
   model.sourcePath = "broken.glb";
   model.meshes[0].primitives[0].indices.back() = 100000;
   auto gpu = vk_test::renderer().upload(model);
@@ -431,13 +431,13 @@ TEST(OffscreenRenderValidity, InconsistentModelIsRejectedByName) {
   EXPECT_NE(gpu.error().message.find("is out of range of " + vertices + " vertices"), std::string::npos)
       << gpu.error().message;
 
-  eng::Model shortNormals = vk_test::makeSphereModel({});
+  eng::Model shortNormals = testing_support::makeSphereModel({});
   shortNormals.meshes[0].primitives[0].normals.pop_back();
   auto rejected = vk_test::renderer().upload(shortNormals);
   ASSERT_FALSE(rejected);
   EXPECT_NE(rejected.error().message.find("normals for"), std::string::npos) << rejected.error().message;
 
-  eng::Model badTarget = vk_test::makeSphereModel({});
+  eng::Model badTarget = testing_support::makeSphereModel({});
   badTarget.meshes[0].primitives[0].targets[1].positions.resize(5);
   auto targetError = vk_test::renderer().upload(badTarget);
   ASSERT_FALSE(targetError);

@@ -10,7 +10,7 @@
 
 #include "engine/vk/draw/offscreen_renderer.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -54,7 +54,7 @@ eng::Image renderTier(eng::vk::RenderQuality quality, const eng::vk::SceneView& 
 }
 
 TEST(RenderQuality, EveryTierDrawsTheSameLitSubject) {
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   const eng::vk::SceneView view{eng::OrbitCamera::frame(model.bounds()), {}};
   VkSampleCountFlagBits highSamples{}, balancedSamples{}, fastSamples{};
   const eng::Image high = renderTier(eng::vk::RenderQuality::High, view, model, highSamples);

@@ -15,7 +15,7 @@
 #include "engine/vk/device/shader_library.h"
 #include "tests/common/test_support.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -82,7 +82,7 @@ TEST(ShaderHotReload, ChangedShaderIsUsedAndBrokenShaderKeepsThePrevious) {
   options.shaderSourceDir = dir;
   auto renderer = eng::vk::OffscreenRenderer::create(vk_test::context(), options);
   ASSERT_TRUE(renderer) << renderer.error().message;
-  const eng::Model model = vk_test::makeSphereModel({});
+  const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = renderer->upload(model);
   ASSERT_TRUE(gpu) << gpu.error().message;
   const std::vector<float> weights(gpu->weightCount(), 0.0f);

@@ -21,7 +21,7 @@
 #include "engine/vk/present/imgui_layer.h"
 #include "tests/common/test_support.h"
 #include "tests/engine/vk/image_probe.h"
-#include "tests/engine/vk/test_models.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -69,7 +69,7 @@ struct WindowRig {
 };
 
 struct SphereScene {
-  eng::Model model = vk_test::makeSphereModel({});
+  eng::Model model = testing_support::makeSphereModel({});
   std::optional<eng::vk::GpuModel> gpu;
   std::vector<float> weights = std::vector<float>(4, 0.0f);
   eng::vk::ModelInstance instance;

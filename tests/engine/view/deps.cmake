@@ -1,0 +1,1 @@
+set(TEST_DEPS eng_view eng_scene)
