@@ -511,6 +511,11 @@ TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
   bind["targetValue"] = Json::array({1.0, std::nan(""), 0.0, 1.0});
   EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue/1: must be a finite number"),
             std::string::npos);
+  // A finite double past the float range would become an infinite colour.
+  bind["targetValue"] = Json::parse("[1, 1e39, 0, 1]");
+  EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
+            "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/targetValue/1: must be a "
+            "finite number, got 1e+39; bind ignored");
   doc = vrm0Document();
   doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][4]["materialValues"][0]["materialName"] = "iris";
   const std::string warning = onlyWarningOf(doc, 0, 0);
@@ -518,6 +523,17 @@ TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
                          "no material is named 'iris'; bind ignored"),
             std::string::npos)
       << warning;
+}
+
+// A material whose name is not a string is not the one a VRM 0.x value names.
+TEST(VrmRigValidity, Vrm0MaterialNamesThatAreNotStringsAreSkipped) {
+  Json doc = vrm0Document();
+  doc["materials"][0]["name"] = 5;
+  auto set = importers::importVrmExpressions(doc, "old.vrm");
+  ASSERT_TRUE(set) << set.error().message;
+  ASSERT_EQ(set->materialColorBinds.size(), 1u);
+  EXPECT_EQ(set->materialColorBinds[0].material, 1u);  // "eye"
+  EXPECT_TRUE(set->warnings.empty());
 }
 
 TEST(VrmRigValidity, StageAndTargetCountsMustAgree) {
