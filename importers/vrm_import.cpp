@@ -1,17 +1,18 @@
 #include "importers/vrm_import.h"
 
 #include <array>
-#include <cmath>
+#include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
-#include "facial/runtime/json/json_document.h"
+#include "facial/runtime/json/json_node.h"
 
 namespace importers {
 namespace {
+
+using facial::JsonNode;
 
 constexpr size_t kMaxVrmFileBytes = size_t{512} << 20;
 
@@ -29,258 +30,235 @@ bool contains(const std::array<std::string_view, N>& list, std::string_view name
   return false;
 }
 
-// Parsing context: source name for messages, the document, the flat target layout.
+// Parsing context: the source for warnings, the document, the set being filled.
+// Errors carry only their JSON pointer; importVrmExpressions puts the source in front.
 struct Context {
   std::string_view source;
-  const facial::Json& gltf;
+  JsonNode gltf;
   facial::VrmExpressionSet& set;
+
+  // A warning names the source, the pointer and the problem like an error, then what was done about it.
+  void warn(const eng::Error& problem, std::string_view consequence) const {
+    set.warnings.push_back(std::string(source) + ": " + problem.message + std::string(consequence));
+  }
 };
 
-eng::Result<size_t> readIndex(const Context& c, const facial::Json& object, std::string_view key, const std::string& path,
-                              size_t limit, std::string_view limitWhat) {
-  const std::string keyPath = facial::childPath(path, key);
-  if (!object.contains(key)) return facial::jsonError(c.source, keyPath, "missing");
-  const facial::Json& v = object[std::string(key)];
-  if (!v.is_number_integer() || v.get<int64_t>() < 0)
-    return facial::jsonError(c.source, keyPath, "must be a non-negative integer, got " + v.dump());
-  const size_t index = static_cast<size_t>(v.get<int64_t>());
+// A non-negative integer below `limit`: an index into the document's nodes, meshes, materials or targets.
+eng::Result<size_t> readIndex(const JsonNode& object, std::string_view key, size_t limit, std::string_view limitWhat) {
+  const JsonNode v = ENG_TRY_VALUE(object.at(key));
+  if (!v.raw().is_number_integer() || v.raw().get<int64_t>() < 0)
+    return v.error("must be a non-negative integer, got " + v.raw().dump());
+  const size_t index = static_cast<size_t>(v.raw().get<int64_t>());
   if (index >= limit)
-    return facial::jsonError(c.source, keyPath,
-                     std::to_string(index) + " is out of range (" + std::to_string(limit) + " " + std::string(limitWhat) + ")");
+    return v.error(std::to_string(index) + " is out of range (" + std::to_string(limit) + " " + std::string(limitWhat) + ")");
   return index;
 }
 
-eng::Result<float> readBindWeight(const Context& c, const facial::Json& bind, const std::string& path, double maxWeight) {
-  const std::string keyPath = facial::childPath(path, "weight");
-  if (!bind.contains("weight")) return facial::jsonError(c.source, keyPath, "missing");
-  const facial::Json& v = bind["weight"];
-  if (!v.is_number()) return facial::jsonError(c.source, keyPath, "must be a number, got " + std::string(facial::jsonTypeName(v)));
-  const double w = v.get<double>();
-  if (!std::isfinite(w) || w < 0.0 || w > maxWeight)
-    return facial::jsonError(c.source, keyPath, "weight " + facial::formatNumber(w) + " is outside [0, " + facial::formatNumber(maxWeight) + "]");
-  return static_cast<float>(w / maxWeight);
+// A morph bind's "weight" in [0, maxWeight], scaled to [0, 1].
+eng::Result<float> readBindWeight(const JsonNode& bind, float maxWeight) {
+  const JsonNode v = ENG_TRY_VALUE(bind.at("weight"));
+  const float w = ENG_TRY_VALUE(v.number());
+  if (w < 0.0f || w > maxWeight)
+    return v.error("weight " + facial::formatNumber(w) + " is outside [0, " + facial::formatNumber(maxWeight) + "]");
+  return w / maxWeight;
 }
 
-eng::Result<bool> readBool(const Context& c, const facial::Json& object, std::string_view key, const std::string& path) {
-  if (!object.contains(key)) return false;
-  const facial::Json& v = object[std::string(key)];
-  if (!v.is_boolean()) return facial::jsonError(c.source, facial::childPath(path, key), "must be true or false, got " + v.dump());
-  return v.get<bool>();
+// A material value's component. Serialisers write a NaN as null, so the message shows the value.
+eng::Result<float> readFiniteNumber(const JsonNode& v) {
+  auto x = v.number();
+  if (!x) return v.error("must be a finite number, got " + v.raw().dump());
+  return *x;
 }
 
-// Flat, mesh-major target list of the document.
-eng::Result<void> readTargets(const Context& c) {
-  facial::VrmExpressionSet& set = c.set;
-  set.meshTargetOffsets.push_back(0);
-  if (!c.gltf.contains("meshes")) return {};
-  const facial::Json& meshes = c.gltf["meshes"];
-  if (!meshes.is_array()) return facial::jsonError(c.source, "/meshes", "must be an array");
-  for (size_t m = 0; m < meshes.size(); ++m) {
-    const std::string path = facial::childPath("/meshes", m);
-    const facial::Json& mesh = meshes[m];
-    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
-      return facial::jsonError(c.source, path, "a mesh must be an object with a primitives array");
-    size_t count = 0;
-    const facial::Json& primitives = mesh["primitives"];
-    for (size_t p = 0; p < primitives.size(); ++p) {
-      const facial::Json& prim = primitives[p];
-      const size_t n = prim.is_object() && prim.contains("targets") && prim["targets"].is_array() ? prim["targets"].size() : 0;
-      if (p == 0) count = n;
-      else if (n != count)
-        return facial::jsonError(c.source, facial::childPath(facial::childPath(facial::childPath(path, "primitives"), p), "targets"),
-                         std::to_string(n) + " morph targets, primitive 0 has " + std::to_string(count));
-    }
-    const std::string meshName =
-        mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "mesh_" + std::to_string(m);
-    const facial::Json* names = nullptr;
-    if (mesh.contains("extras") && mesh["extras"].is_object() && mesh["extras"].contains("targetNames") &&
-        mesh["extras"]["targetNames"].is_array() && mesh["extras"]["targetNames"].size() == count)
-      names = &mesh["extras"]["targetNames"];
-    for (size_t t = 0; t < count; ++t) {
-      const std::string targetName =
-          names && (*names)[t].is_string() ? (*names)[t].get<std::string>() : "target_" + std::to_string(t);
-      set.targetNames.push_back(meshName + "/" + targetName);
-    }
-    set.meshTargetOffsets.push_back(static_cast<uint32_t>(set.targetNames.size()));
-  }
-  return {};
+// The first N numbers of an array (a colour, a UV scale or offset).
+template <size_t N>
+eng::Result<std::array<float, N>> readFloats(const JsonNode& v) {
+  if (!v.isArray() || v.raw().size() < N)
+    return v.error("must be an array of " + std::to_string(N) + " numbers, got " + v.raw().dump());
+  std::array<float, N> out{};
+  for (size_t i = 0; i < N; ++i) out[i] = ENG_TRY_VALUE(readFiniteNumber(v.element(i)));
+  return out;
+}
+
+size_t materialCountOf(const JsonNode& gltf) {
+  const auto materials = gltf.find("materials");
+  return materials && materials->isArray() ? materials->raw().size() : 0;
 }
 
 size_t meshTargetCount(const facial::VrmExpressionSet& set, size_t mesh) {
   return set.meshTargetOffsets[mesh + 1] - set.meshTargetOffsets[mesh];
 }
 
-eng::Result<std::array<float, 4>> readFloats(const Context& c, const facial::Json& object, std::string_view key,
-                                             const std::string& path, size_t count, bool required) {
-  std::array<float, 4> out{};
-  const std::string keyPath = facial::childPath(path, key);
-  if (!object.contains(key)) {
-    if (required) return facial::jsonError(c.source, keyPath, "missing");
-    return out;
+// ---- targets ----
+
+// How many morph targets a mesh has: every primitive must have as many.
+eng::Result<size_t> meshMorphTargetCount(const JsonNode& mesh) {
+  const auto primitives = mesh.find("primitives");
+  if (!primitives || !primitives->isArray()) return mesh.error("a mesh must be an object with a primitives array");
+  size_t count = 0;
+  for (size_t p = 0; p < primitives->raw().size(); ++p) {
+    const JsonNode primitive = primitives->element(p);
+    const auto targets = primitive.find("targets");
+    const size_t n = targets && targets->isArray() ? targets->raw().size() : 0;
+    if (p == 0) count = n;
+    else if (n != count)
+      return (targets ? *targets : primitive)
+          .error(std::to_string(n) + " morph targets, primitive 0 has " + std::to_string(count));
   }
-  const facial::Json& v = object[std::string(key)];
-  if (!v.is_array() || v.size() < count)
-    return facial::jsonError(c.source, keyPath, "must be an array of " + std::to_string(count) + " numbers, got " + v.dump());
-  for (size_t i = 0; i < count; ++i) {
-    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-      return facial::jsonError(c.source, facial::childPath(keyPath, i), "must be a finite number, got " + v[i].dump());
-    out[i] = v[i].get<float>();
-  }
-  return out;
+  return count;
 }
 
+// One mesh's targets, "<mesh name>/<target name>" from mesh.extras.targetNames
+// when it names them all ("mesh_M", "target_N" without).
+eng::Result<void> readMeshTargets(const JsonNode& mesh, size_t m, facial::VrmExpressionSet& set) {
+  const size_t count = ENG_TRY_VALUE(meshMorphTargetCount(mesh));
+  std::string meshName = "mesh_" + std::to_string(m);
+  if (auto name = mesh.find("name"); name && name->isString()) meshName = name->raw().get<std::string>();
+  std::optional<JsonNode> names;
+  if (auto extras = mesh.find("extras"))
+    if (auto list = extras->find("targetNames"); list && list->isArray() && list->raw().size() == count) names = list;
+  for (size_t t = 0; t < count; ++t) {
+    std::string targetName = "target_" + std::to_string(t);
+    if (names && names->element(t).isString()) targetName = names->element(t).raw().get<std::string>();
+    set.targetNames.push_back(meshName + "/" + targetName);
+  }
+  set.meshTargetOffsets.push_back(static_cast<uint32_t>(set.targetNames.size()));
+  return {};
+}
+
+// Flat, mesh-major target list of the document.
+eng::Result<void> readTargets(const Context& c) {
+  c.set.meshTargetOffsets.push_back(0);
+  const auto meshes = c.gltf.find("meshes");
+  if (!meshes) return {};
+  const size_t count = ENG_TRY_VALUE(meshes->size());
+  for (size_t m = 0; m < count; ++m) ENG_TRY(readMeshTargets(meshes->element(m), m, c.set));
+  return {};
+}
+
+// ---- material binds ----
 // A material bind that cannot be applied (no such material, unknown type, a
 // value that is not a finite number) is left out with one warning naming the
 // file and the bind: the rest of the avatar still works.
-void skipMaterialBind(const Context& c, const eng::Error& why) {
-  c.set.warnings.push_back(why.message + "; bind ignored");
+
+constexpr std::string_view kBindIgnored = "; bind ignored";
+
+eng::Result<facial::VrmMaterialColorType> readColorType(const JsonNode& bind) {
+  const JsonNode type = ENG_TRY_VALUE(bind.at("type"));
+  for (auto t : {facial::VrmMaterialColorType::Color, facial::VrmMaterialColorType::EmissionColor,
+                 facial::VrmMaterialColorType::ShadeColor, facial::VrmMaterialColorType::MatcapColor,
+                 facial::VrmMaterialColorType::RimColor, facial::VrmMaterialColorType::OutlineColor})
+    if (type.isString() && facial::vrmMaterialColorTypeName(t) == type.raw().get<std::string>()) return t;
+  return type.error("must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " + type.raw().dump());
 }
 
-size_t materialCountOf(const facial::Json& gltf) {
-  return gltf.contains("materials") && gltf["materials"].is_array() ? gltf["materials"].size() : 0;
+// VRM 1.0 materialColorBinds[i]: {material, type, targetValue[4]}.
+eng::Result<facial::VrmMaterialColorBind> readColorBind(const JsonNode& bind, size_t materials) {
+  facial::VrmMaterialColorBind out;
+  out.material = static_cast<uint32_t>(ENG_TRY_VALUE(readIndex(bind, "material", materials, "materials")));
+  out.type = ENG_TRY_VALUE(readColorType(bind));
+  out.targetValue = ENG_TRY_VALUE(readFloats<4>(ENG_TRY_VALUE(bind.at("targetValue"))));
+  return out;
 }
 
-// VRM 1.0 materialColorBinds [{material, type, targetValue[4]}] and
-// textureTransformBinds [{material, scale[2], offset[2]}].
-eng::Result<void> readVrm1MaterialBinds(const Context& c, const facial::Json& e, const std::string& path, facial::VrmExpression& expression) {
+// VRM 1.0 textureTransformBinds[i]: {material, scale[2], offset[2]}.
+eng::Result<facial::VrmTextureTransformBind> readTextureTransformBind(const JsonNode& bind, size_t materials) {
+  facial::VrmTextureTransformBind out;
+  out.material = static_cast<uint32_t>(ENG_TRY_VALUE(readIndex(bind, "material", materials, "materials")));
+  if (auto scale = bind.find("scale")) out.scale = ENG_TRY_VALUE(readFloats<2>(*scale));
+  if (auto offset = bind.find("offset")) out.offset = ENG_TRY_VALUE(readFloats<2>(*offset));
+  return out;
+}
+
+// A VRM 1.0 bind list: each bind must be an object; one that cannot be applied is skipped.
+template <class Bind, class ReadBind>
+eng::Result<void> readVrm1MaterialBindList(const Context& c, const JsonNode& binds, std::string_view shape,
+                                           std::vector<Bind>& out, ReadBind readBind) {
+  const size_t count = ENG_TRY_VALUE(binds.size());
   const size_t materials = materialCountOf(c.gltf);
-  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
-  if (e.contains("materialColorBinds")) {
-    const std::string bindsPath = facial::childPath(path, "materialColorBinds");
-    const facial::Json& binds = e["materialColorBinds"];
-    if (!binds.is_array()) return facial::jsonError(c.source, bindsPath, "must be an array");
-    for (size_t b = 0; b < binds.size(); ++b) {
-      const std::string bindPath = facial::childPath(bindsPath, b);
-      const facial::Json& bind = binds[b];
-      if (!bind.is_object()) return facial::jsonError(c.source, bindPath, "a bind must be an object {material, type, targetValue}");
-      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
-      if (!material) {
-        skipMaterialBind(c, material.error());
-        continue;
-      }
-      const std::string type = bind.contains("type") && bind["type"].is_string() ? bind["type"].get<std::string>() : "";
-      facial::VrmMaterialColorBind out;
-      out.material = static_cast<uint32_t>(*material);
-      bool known = false;
-      for (auto t : {facial::VrmMaterialColorType::Color, facial::VrmMaterialColorType::EmissionColor, facial::VrmMaterialColorType::ShadeColor,
-                     facial::VrmMaterialColorType::MatcapColor, facial::VrmMaterialColorType::RimColor, facial::VrmMaterialColorType::OutlineColor})
-        if (facial::vrmMaterialColorTypeName(t) == type) {
-          out.type = t;
-          known = true;
-        }
-      if (!known) {
-        skipMaterialBind(c, facial::jsonError(c.source, facial::childPath(bindPath, "type"),
-                                      "must be color, emissionColor, shadeColor, matcapColor, rimColor or outlineColor, got " +
-                                          (bind.contains("type") ? bind["type"].dump() : std::string("nothing"))));
-        continue;
-      }
-      auto value = readFloats(c, bind, "targetValue", bindPath, 4, true);
-      if (!value) {
-        skipMaterialBind(c, value.error());
-        continue;
-      }
-      out.targetValue = *value;
-      c.set.materialColorBinds.push_back(out);
-    }
+  for (size_t b = 0; b < count; ++b) {
+    const JsonNode bind = binds.element(b);
+    if (!bind.isObject()) return bind.error("a bind must be an object " + std::string(shape));
+    auto read = readBind(bind, materials);
+    if (read) out.push_back(std::move(read).value());
+    else c.warn(read.error(), kBindIgnored);
   }
-  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
+  return {};
+}
 
+eng::Result<void> readVrm1MaterialBinds(const Context& c, const JsonNode& e, facial::VrmExpression& expression) {
+  expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
+  if (auto binds = e.find("materialColorBinds"))
+    ENG_TRY(readVrm1MaterialBindList(c, *binds, "{material, type, targetValue}", c.set.materialColorBinds, readColorBind));
+  expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
   expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
-  if (e.contains("textureTransformBinds")) {
-    const std::string bindsPath = facial::childPath(path, "textureTransformBinds");
-    const facial::Json& binds = e["textureTransformBinds"];
-    if (!binds.is_array()) return facial::jsonError(c.source, bindsPath, "must be an array");
-    for (size_t b = 0; b < binds.size(); ++b) {
-      const std::string bindPath = facial::childPath(bindsPath, b);
-      const facial::Json& bind = binds[b];
-      if (!bind.is_object()) return facial::jsonError(c.source, bindPath, "a bind must be an object {material, scale, offset}");
-      auto material = readIndex(c, bind, "material", bindPath, materials, "materials");
-      if (!material) {
-        skipMaterialBind(c, material.error());
-        continue;
-      }
-      facial::VrmTextureTransformBind out;
-      out.material = static_cast<uint32_t>(*material);
-      auto scale = readFloats(c, bind, "scale", bindPath, 2, false);
-      auto offset = readFloats(c, bind, "offset", bindPath, 2, false);
-      if (!scale || !offset) {
-        skipMaterialBind(c, !scale ? scale.error() : offset.error());
-        continue;
-      }
-      if (bind.contains("scale")) out.scale = {(*scale)[0], (*scale)[1]};
-      out.offset = {(*offset)[0], (*offset)[1]};
-      c.set.textureTransformBinds.push_back(out);
-    }
-  }
+  if (auto binds = e.find("textureTransformBinds"))
+    ENG_TRY(readVrm1MaterialBindList(c, *binds, "{material, scale, offset}", c.set.textureTransformBinds,
+                                     readTextureTransformBind));
   expression.textureTransformBindCount =
       static_cast<uint32_t>(c.set.textureTransformBinds.size()) - expression.firstTextureTransformBind;
   return {};
 }
 
-// VRM 0.x materialValues [{materialName, propertyName, targetValue[]}]:
-// _Color / _EmissionColor / _ShadeColor / _SphereAdd / _RimColor / _OutlineColor
-// are colours, _MainTex_ST is a texture transform (scale xy, offset zw).
-eng::Result<void> readVrm0MaterialValues(const Context& c, const facial::Json& group, const std::string& path,
-                                         facial::VrmExpression& expression) {
+// The index of the glTF material called `name` (an unnamed material is called ""), if any.
+std::optional<size_t> materialNamed(const JsonNode& gltf, std::string_view name) {
+  const auto materials = gltf.find("materials");
+  const size_t count = materialCountOf(gltf);
+  for (size_t m = 0; m < count; ++m) {
+    const JsonNode material = materials->element(m);
+    if (!material.isObject()) continue;
+    const auto own = material.find("name");
+    if ((own && own->isString() ? own->raw().get<std::string>() : std::string()) == name) return m;
+  }
+  return std::nullopt;
+}
+
+// The colour a VRM 0.x material property sets (nullopt: not a colour).
+std::optional<facial::VrmMaterialColorType> vrm0ColorProperty(std::string_view property) {
+  struct Property {
+    std::string_view name;
+    facial::VrmMaterialColorType type;
+  };
+  constexpr std::array kProperties = {Property{"_Color", facial::VrmMaterialColorType::Color},
+                                      Property{"_EmissionColor", facial::VrmMaterialColorType::EmissionColor},
+                                      Property{"_ShadeColor", facial::VrmMaterialColorType::ShadeColor},
+                                      Property{"_SphereAdd", facial::VrmMaterialColorType::MatcapColor},
+                                      Property{"_RimColor", facial::VrmMaterialColorType::RimColor},
+                                      Property{"_OutlineColor", facial::VrmMaterialColorType::OutlineColor}};
+  for (const Property& p : kProperties)
+    if (p.name == property) return p.type;
+  return std::nullopt;
+}
+
+// VRM 0.x materialValues[i]: {materialName, propertyName, targetValue[4]}; a
+// colour property or _MainTex_ST (a texture transform: scale xy, offset zw).
+// An error skips the value; a property that is neither is ignored with a warning.
+eng::Result<void> readVrm0MaterialValue(const Context& c, const JsonNode& value) {
+  const JsonNode materialName = ENG_TRY_VALUE(value.at("materialName"));
+  const JsonNode propertyName = ENG_TRY_VALUE(value.at("propertyName"));
+  const std::string name = ENG_TRY_VALUE(materialName.string());
+  const std::string property = ENG_TRY_VALUE(propertyName.string());
+  const std::optional<size_t> material = materialNamed(c.gltf, name);
+  if (!material) return materialName.error("no material is named '" + name + "'");
+  const std::array<float, 4> target = ENG_TRY_VALUE(readFloats<4>(ENG_TRY_VALUE(value.at("targetValue"))));
+  const auto index = static_cast<uint32_t>(*material);
+  if (property == "_MainTex_ST") {
+    c.set.textureTransformBinds.push_back({index, {target[0], target[1]}, {target[2], target[3]}});
+  } else if (const auto type = vrm0ColorProperty(property)) {
+    c.set.materialColorBinds.push_back({index, *type, target});
+  } else {
+    c.warn(propertyName.error("'" + property + "' is not a colour or _MainTex_ST"), "; ignored");
+  }
+  return {};
+}
+
+eng::Result<void> readVrm0MaterialValues(const Context& c, const JsonNode& group, facial::VrmExpression& expression) {
   expression.firstMaterialColorBind = static_cast<uint32_t>(c.set.materialColorBinds.size());
   expression.firstTextureTransformBind = static_cast<uint32_t>(c.set.textureTransformBinds.size());
-  if (group.contains("materialValues")) {
-    const std::string valuesPath = facial::childPath(path, "materialValues");
-    const facial::Json& values = group["materialValues"];
-    if (!values.is_array()) return facial::jsonError(c.source, valuesPath, "must be an array");
-    const size_t materials = materialCountOf(c.gltf);
-    for (size_t b = 0; b < values.size(); ++b) {
-      const std::string valuePath = facial::childPath(valuesPath, b);
-      const facial::Json& value = values[b];
-      if (!value.is_object() || !value.contains("materialName") || !value["materialName"].is_string() ||
-          !value.contains("propertyName") || !value["propertyName"].is_string()) {
-        skipMaterialBind(c, facial::jsonError(c.source, valuePath,
-                                      "a material value must be an object {materialName, propertyName, targetValue}"));
-        continue;
-      }
-      const std::string materialName = value["materialName"].get<std::string>();
-      size_t material = materials;
-      for (size_t m = 0; m < materials; ++m)
-        if (c.gltf["materials"][m].is_object() && c.gltf["materials"][m].value("name", std::string()) == materialName) {
-          material = m;
-          break;
-        }
-      if (material == materials) {
-        skipMaterialBind(c, facial::jsonError(c.source, facial::childPath(valuePath, "materialName"),
-                                      "no material is named '" + materialName + "'"));
-        continue;
-      }
-      const std::string property = value["propertyName"].get<std::string>();
-      auto target = readFloats(c, value, "targetValue", valuePath, 4, true);
-      if (!target) {
-        skipMaterialBind(c, target.error());
-        continue;
-      }
-      if (property == "_MainTex_ST") {
-        c.set.textureTransformBinds.push_back(
-            {static_cast<uint32_t>(material), {(*target)[0], (*target)[1]}, {(*target)[2], (*target)[3]}});
-        continue;
-      }
-      struct Property {
-        std::string_view name;
-        facial::VrmMaterialColorType type;
-      };
-      constexpr std::array kProperties = {Property{"_Color", facial::VrmMaterialColorType::Color},
-                                          Property{"_EmissionColor", facial::VrmMaterialColorType::EmissionColor},
-                                          Property{"_ShadeColor", facial::VrmMaterialColorType::ShadeColor},
-                                          Property{"_SphereAdd", facial::VrmMaterialColorType::MatcapColor},
-                                          Property{"_RimColor", facial::VrmMaterialColorType::RimColor},
-                                          Property{"_OutlineColor", facial::VrmMaterialColorType::OutlineColor}};
-      bool known = false;
-      for (const Property& p : kProperties)
-        if (p.name == property) {
-          c.set.materialColorBinds.push_back({static_cast<uint32_t>(material), p.type, *target});
-          known = true;
-        }
-      if (!known)
-        c.set.warnings.push_back(std::string(c.source) + ": " + facial::childPath(valuePath, "propertyName") + ": '" + property +
-                                 "' is not a colour or _MainTex_ST; ignored");
-    }
+  if (auto values = group.find("materialValues")) {
+    const size_t count = ENG_TRY_VALUE(values->size());
+    for (size_t b = 0; b < count; ++b)
+      if (auto read = readVrm0MaterialValue(c, values->element(b)); !read) c.warn(read.error(), kBindIgnored);
   }
   expression.materialColorBindCount = static_cast<uint32_t>(c.set.materialColorBinds.size()) - expression.firstMaterialColorBind;
   expression.textureTransformBindCount =
@@ -288,89 +266,103 @@ eng::Result<void> readVrm0MaterialValues(const Context& c, const facial::Json& g
   return {};
 }
 
-eng::Result<facial::VrmOverride> readOverride(const Context& c, const facial::Json& expression, std::string_view key,
-                                      const std::string& path) {
-  if (!expression.contains(key)) return facial::VrmOverride::None;
-  const facial::Json& v = expression[std::string(key)];
-  const std::string text = v.is_string() ? v.get<std::string>() : std::string();
+// ---- VRM 1.0 expressions ----
+
+eng::Result<facial::VrmOverride> readOverride(const JsonNode& expression, std::string_view key) {
+  const auto v = expression.find(key);
+  if (!v) return facial::VrmOverride::None;
+  const std::string text = v->isString() ? v->raw().get<std::string>() : std::string();
   if (text == "none") return facial::VrmOverride::None;
   if (text == "block") return facial::VrmOverride::Block;
   if (text == "blend") return facial::VrmOverride::Blend;
-  return facial::jsonError(c.source, facial::childPath(path, key), "must be \"none\", \"block\" or \"blend\", got " + v.dump());
+  return v->error("must be \"none\", \"block\" or \"blend\", got " + v->raw().dump());
 }
 
-eng::Result<void> readVrm1Expression(const Context& c, const std::string& name, const facial::Json& e, const std::string& path,
-                                     bool isPreset) {
-  if (!e.is_object()) return facial::jsonError(c.source, path, "an expression must be an object");
+// The flat target of a morphTargetBinds entry {node, index, weight}: the node's mesh, then the index on it.
+eng::Result<facial::VrmMorphBind> readVrm1MorphBind(const Context& c, const JsonNode& bind) {
+  const auto nodes = c.gltf.find("nodes");
+  const size_t nodeCount = nodes && nodes->isArray() ? nodes->raw().size() : 0;
+  const size_t node = ENG_TRY_VALUE(readIndex(bind, "node", nodeCount, "nodes"));
+  const auto meshRef = nodes->element(node).find("mesh");
+  if (!meshRef || !meshRef->raw().is_number_integer())
+    return ENG_TRY_VALUE(bind.at("node")).error("node " + std::to_string(node) + " has no mesh");
+  const int64_t mesh = meshRef->raw().get<int64_t>();
+  const size_t meshCount = c.set.meshTargetOffsets.size() - 1;
+  if (mesh < 0 || static_cast<size_t>(mesh) >= meshCount)
+    return meshRef->error(std::to_string(mesh) + " is out of range (" + std::to_string(meshCount) + " meshes)");
+  const size_t index = ENG_TRY_VALUE(readIndex(bind, "index", meshTargetCount(c.set, size_t(mesh)),
+                                               "morph targets on mesh " + std::to_string(mesh)));
+  const float weight = ENG_TRY_VALUE(readBindWeight(bind, 1.0f));
+  return facial::VrmMorphBind{c.set.meshTargetOffsets[size_t(mesh)] + static_cast<uint32_t>(index), weight};
+}
+
+eng::Result<void> readVrm1MorphBinds(const Context& c, const JsonNode& binds) {
+  const size_t count = ENG_TRY_VALUE(binds.size());
+  for (size_t b = 0; b < count; ++b) {
+    const JsonNode bind = binds.element(b);
+    if (!bind.isObject()) return bind.error("a bind must be an object {node, index, weight}");
+    c.set.binds.push_back(ENG_TRY_VALUE(readVrm1MorphBind(c, bind)));
+  }
+  return {};
+}
+
+eng::Result<void> readVrm1Expression(const Context& c, std::string_view name, const JsonNode& e, bool isPreset) {
+  if (!e.isObject()) return e.error("an expression must be an object");
   facial::VrmExpression expression;
   expression.name = name;
   expression.isPreset = isPreset;
   expression.group = isPreset ? facial::vrmProceduralGroup(name) : facial::VrmProceduralGroup::None;
-  auto binary = readBool(c, e, "isBinary", path);
-  if (!binary) return binary.error();
-  expression.isBinary = *binary;
-  auto blink = readOverride(c, e, "overrideBlink", path);
-  if (!blink) return blink.error();
-  auto lookAt = readOverride(c, e, "overrideLookAt", path);
-  if (!lookAt) return lookAt.error();
-  auto mouth = readOverride(c, e, "overrideMouth", path);
-  if (!mouth) return mouth.error();
-  expression.overrideBlink = *blink;
-  expression.overrideLookAt = *lookAt;
-  expression.overrideMouth = *mouth;
-  if (auto r = readVrm1MaterialBinds(c, e, path, expression); !r) return r.error();
-
+  expression.isBinary = ENG_TRY_VALUE(e.booleanOr("isBinary", false));
+  expression.overrideBlink = ENG_TRY_VALUE(readOverride(e, "overrideBlink"));
+  expression.overrideLookAt = ENG_TRY_VALUE(readOverride(e, "overrideLookAt"));
+  expression.overrideMouth = ENG_TRY_VALUE(readOverride(e, "overrideMouth"));
+  ENG_TRY(readVrm1MaterialBinds(c, e, expression));
   expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
-  if (e.contains("morphTargetBinds")) {
-    const std::string bindsPath = facial::childPath(path, "morphTargetBinds");
-    const facial::Json& binds = e["morphTargetBinds"];
-    if (!binds.is_array()) return facial::jsonError(c.source, bindsPath, "must be an array");
-    const facial::Json* nodes = c.gltf.contains("nodes") && c.gltf["nodes"].is_array() ? &c.gltf["nodes"] : nullptr;
-    for (size_t b = 0; b < binds.size(); ++b) {
-      const std::string bindPath = facial::childPath(bindsPath, b);
-      const facial::Json& bind = binds[b];
-      if (!bind.is_object()) return facial::jsonError(c.source, bindPath, "a bind must be an object {node, index, weight}");
-      auto node = readIndex(c, bind, "node", bindPath, nodes ? nodes->size() : 0, "nodes");
-      if (!node) return node.error();
-      const facial::Json& nodeJson = (*nodes)[*node];
-      if (!nodeJson.is_object() || !nodeJson.contains("mesh") || !nodeJson["mesh"].is_number_integer())
-        return facial::jsonError(c.source, facial::childPath(bindPath, "node"), "node " + std::to_string(*node) + " has no mesh");
-      const int64_t mesh = nodeJson["mesh"].get<int64_t>();
-      if (mesh < 0 || static_cast<size_t>(mesh) + 1 >= c.set.meshTargetOffsets.size())
-        return facial::jsonError(c.source, facial::childPath(facial::childPath("/nodes", *node), "mesh"),
-                         std::to_string(mesh) + " is out of range (" + std::to_string(c.set.meshTargetOffsets.size() - 1) +
-                             " meshes)");
-      auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, size_t(mesh)),
-                             "morph targets on mesh " + std::to_string(mesh));
-      if (!index) return index.error();
-      auto weight = readBindWeight(c, bind, bindPath, 1.0);
-      if (!weight) return weight.error();
-      c.set.binds.push_back({c.set.meshTargetOffsets[size_t(mesh)] + static_cast<uint32_t>(*index), *weight});
-    }
-  }
+  if (auto binds = e.find("morphTargetBinds")) ENG_TRY(readVrm1MorphBinds(c, *binds));
   expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
   c.set.expressions.push_back(std::move(expression));
   return {};
 }
 
-// A lookAt range map: `inputKey` (degrees, (0, 180]) and `outputKey` (finite, >= 0),
-// each defaulting to the map's own value when absent.
-eng::Result<void> readRangeMap(const Context& c, const facial::Json& owner, std::string_view key, const std::string& path,
-                               std::string_view inputKey, std::string_view outputKey, facial::VrmLookAtRangeMap& map) {
-  if (!owner.contains(key)) return {};
-  const std::string mapPath = facial::childPath(path, key);
-  const facial::Json& m = owner[std::string(key)];
-  if (!m.is_object()) return facial::jsonError(c.source, mapPath, "must be an object");
-  for (auto [field, out, maxValue] : {std::tuple{inputKey, &map.inputMaxValue, 180.0}, std::tuple{outputKey, &map.outputScale, 1e6}}) {
-    if (!m.contains(field)) continue;
-    const facial::Json& v = m[std::string(field)];
-    const double x = v.is_number() ? v.get<double>() : -1.0;
-    if (!v.is_number() || !std::isfinite(x) || x < 0.0 || x > maxValue || (out == &map.inputMaxValue && x == 0.0))
-      return facial::jsonError(c.source, facial::childPath(mapPath, field), "must be a number in " +
-                       std::string(out == &map.inputMaxValue ? "(0, 180]" : "[0, 1e6]") + ", got " + v.dump());
-    *out = static_cast<float>(x);
+// expressions.preset or expressions.custom: {name: expression}.
+eng::Result<void> readVrm1Expressions(const Context& c, const JsonNode& list, bool presets) {
+  for (const auto& [name, e] : ENG_TRY_VALUE(list.members())) {
+    const bool presetName = contains(kVrm1Presets, name);
+    if (presets && !presetName) c.warn(e.error("not a VRM 1.0 preset name"), "; treated as custom");
+    if (!presets && presetName)
+      return e.error("a custom expression must not reuse the preset name '" + std::string(name) + "'");
+    ENG_TRY(readVrm1Expression(c, name, e, presets && presetName));
   }
   return {};
+}
+
+// ---- lookAt ----
+
+// A lookAt range map: `inputKey` (degrees, (0, 180]) and `outputKey` (finite, >= 0),
+// each defaulting to the map's own value when absent.
+eng::Result<void> readRangeMap(const JsonNode& m, std::string_view inputKey, std::string_view outputKey,
+                               facial::VrmLookAtRangeMap& map) {
+  if (!m.isObject()) return m.error("must be an object");
+  if (auto v = m.find(inputKey)) {
+    const double x = v->isNumber() ? v->raw().get<double>() : -1.0;
+    if (!(x > 0.0 && x <= 180.0)) return v->error("must be a number in (0, 180], got " + v->raw().dump());
+    map.inputMaxValue = static_cast<float>(x);
+  }
+  if (auto v = m.find(outputKey)) {
+    const double x = v->isNumber() ? v->raw().get<double>() : -1.0;
+    if (!(x >= 0.0 && x <= 1e6)) return v->error("must be a number in [0, 1e6], got " + v->raw().dump());
+    map.outputScale = static_cast<float>(x);
+  }
+  return {};
+}
+
+// Either spelling in either version: "bone" / "Bone", "expression" / "BlendShape".
+eng::Result<facial::VrmLookAtType> readLookAtType(const JsonNode& t, bool vrm1) {
+  const std::string type = t.isString() ? t.raw().get<std::string>() : std::string();
+  if (type == "bone" || type == "Bone") return facial::VrmLookAtType::Bone;
+  if (type == "expression" || type == "BlendShape") return facial::VrmLookAtType::Expression;
+  return t.error(std::string(vrm1 ? "must be \"bone\" or \"expression\", got " : "must be \"Bone\" or \"BlendShape\", got ") +
+                 t.raw().dump());
 }
 
 // VRMC_vrm.lookAt {type, rangeMapHorizontalInner/Outer, rangeMapVerticalDown/Up
@@ -378,22 +370,12 @@ eng::Result<void> readRangeMap(const Context& c, const facial::Json& owner, std:
 // lookAtHorizontalInner/Outer, lookAtVerticalDown/Up {xRange, yRange, curve}}
 // (the curve is taken as linear). Absent: expression type, 90 degrees -> 1;
 // bone type outputs default to 10 degrees.
-eng::Result<void> readLookAt(const Context& c, const facial::Json& vrm, bool vrm1) {
-  const char* ownerKey = vrm1 ? "lookAt" : "firstPerson";
-  if (!vrm.is_object() || !vrm.contains(ownerKey)) return {};
-  const std::string path = std::string(vrm1 ? "/extensions/VRMC_vrm/" : "/extensions/VRM/") + ownerKey;
-  const facial::Json& owner = vrm[ownerKey];
-  if (!owner.is_object()) return facial::jsonError(c.source, path, "must be an object");
+eng::Result<void> readLookAt(const Context& c, const JsonNode& vrm, bool vrm1) {
+  const auto owner = vrm.find(vrm1 ? "lookAt" : "firstPerson");
+  if (!owner) return {};
+  if (!owner->isObject()) return owner->error("must be an object");
   facial::VrmLookAt lookAt;
-  const char* typeKey = vrm1 ? "type" : "lookAtTypeName";
-  if (owner.contains(typeKey)) {
-    const facial::Json& t = owner[typeKey];
-    const std::string type = t.is_string() ? t.get<std::string>() : "";
-    if (type == "bone" || type == "Bone") lookAt.type = facial::VrmLookAtType::Bone;
-    else if (type == "expression" || type == "BlendShape") lookAt.type = facial::VrmLookAtType::Expression;
-    else return facial::jsonError(c.source, facial::childPath(path, typeKey), vrm1 ? "must be \"bone\" or \"expression\", got " + t.dump()
-                                                                   : "must be \"Bone\" or \"BlendShape\", got " + t.dump());
-  }
+  if (auto type = owner->find(vrm1 ? "type" : "lookAtTypeName")) lookAt.type = ENG_TRY_VALUE(readLookAtType(*type, vrm1));
   if (lookAt.type == facial::VrmLookAtType::Bone)
     for (facial::VrmLookAtRangeMap* map : {&lookAt.horizontalInner, &lookAt.horizontalOuter, &lookAt.verticalDown, &lookAt.verticalUp})
       map->outputScale = 10.0f;
@@ -404,133 +386,124 @@ eng::Result<void> readLookAt(const Context& c, const facial::Json& vrm, bool vrm
       std::pair{vrm1 ? "rangeMapVerticalDown" : "lookAtVerticalDown", &lookAt.verticalDown},
       std::pair{vrm1 ? "rangeMapVerticalUp" : "lookAtVerticalUp", &lookAt.verticalUp}};
   for (const auto& [key, map] : maps)
-    if (auto r = readRangeMap(c, owner, key, path, inputKey, outputKey, *map); !r) return r;
+    if (auto m = owner->find(key)) ENG_TRY(readRangeMap(*m, inputKey, outputKey, *map));
   c.set.lookAt = lookAt;
   return {};
 }
 
-eng::Result<void> readVrm1(const Context& c, const facial::Json& vrm) {
+eng::Result<void> readVrm1(const Context& c, const JsonNode& vrm) {
   c.set.specVersion = 1;
-  if (!vrm.is_object()) return facial::jsonError(c.source, "/extensions/VRMC_vrm", "must be an object");
-  if (auto r = readLookAt(c, vrm, true); !r) return r;
-  if (!vrm.contains("expressions")) return {};
-  const facial::Json& expressions = vrm["expressions"];
-  const std::string path = "/extensions/VRMC_vrm/expressions";
-  if (!expressions.is_object()) return facial::jsonError(c.source, path, "must be an object {preset, custom}");
-  for (const char* kind : {"preset", "custom"}) {
-    if (!expressions.contains(kind)) continue;
-    const std::string kindPath = facial::childPath(path, kind);
-    const facial::Json& list = expressions[kind];
-    if (!list.is_object()) return facial::jsonError(c.source, kindPath, "must be an object of name: expression");
-    const bool presets = std::string_view(kind) == "preset";
-    for (const auto& [name, e] : list.items()) {
-      const std::string ePath = facial::childPath(kindPath, name);
-      bool isPreset = presets;
-      if (presets && !contains(kVrm1Presets, name)) {
-        c.set.warnings.push_back(std::string(c.source) + ": " + ePath + ": not a VRM 1.0 preset name; treated as custom");
-        isPreset = false;
-      }
-      if (!presets && contains(kVrm1Presets, name))
-        return facial::jsonError(c.source, ePath, "a custom expression must not reuse the preset name '" + name + "'");
-      if (auto r = readVrm1Expression(c, name, e, ePath, isPreset); !r) return r.error();
-    }
+  if (!vrm.isObject()) return vrm.error("must be an object");
+  ENG_TRY(readLookAt(c, vrm, true));
+  const auto expressions = vrm.find("expressions");
+  if (!expressions) return {};
+  if (!expressions->isObject()) return expressions->error("must be an object {preset, custom}");
+  if (auto presets = expressions->find("preset")) ENG_TRY(readVrm1Expressions(c, *presets, true));
+  if (auto custom = expressions->find("custom")) ENG_TRY(readVrm1Expressions(c, *custom, false));
+  return {};
+}
+
+// ---- VRM 0.x blend shape groups ----
+
+// presetName: a VRM 0.x preset, "unknown" when absent or empty.
+eng::Result<std::string> readVrm0PresetName(const JsonNode& group) {
+  const auto node = group.find("presetName");
+  if (!node) return std::string("unknown");
+  std::string preset = ENG_TRY_VALUE(node->string());
+  if (preset.empty()) preset = "unknown";
+  if (!contains(kVrm0Presets, preset)) return node->error("'" + preset + "' is not a VRM 0.x preset name");
+  return preset;
+}
+
+// A group is called by its presetName, or its own name for "unknown" ("group_G"
+// without one); a name already taken gets " (G)" after it, with a warning.
+std::string vrm0GroupName(const Context& c, const JsonNode& group, const std::string& preset, size_t g) {
+  std::string name = preset;
+  if (preset == "unknown") {
+    const auto own = group.find("name");
+    name = own && own->isString() && !own->raw().get<std::string>().empty() ? own->raw().get<std::string>()
+                                                                             : "group_" + std::to_string(g);
+  }
+  for (const facial::VrmExpression& existing : c.set.expressions) {
+    if (existing.name != name) continue;
+    const std::string renamed = name + " (" + std::to_string(g) + ")";
+    c.warn(group.error("a second expression named '" + name + "'"), "; renamed '" + renamed + "'");
+    return renamed;
+  }
+  return name;
+}
+
+// binds [{mesh, index, weight}]; VRM 0.x weights run 0..100.
+eng::Result<void> readVrm0Binds(const Context& c, const JsonNode& binds) {
+  const size_t count = ENG_TRY_VALUE(binds.size());
+  for (size_t b = 0; b < count; ++b) {
+    const JsonNode bind = binds.element(b);
+    if (!bind.isObject()) return bind.error("a bind must be an object {mesh, index, weight}");
+    const size_t mesh = ENG_TRY_VALUE(readIndex(bind, "mesh", c.set.meshTargetOffsets.size() - 1, "meshes"));
+    const size_t index = ENG_TRY_VALUE(
+        readIndex(bind, "index", meshTargetCount(c.set, mesh), "morph targets on mesh " + std::to_string(mesh)));
+    const float weight = ENG_TRY_VALUE(readBindWeight(bind, 100.0f));
+    c.set.binds.push_back({c.set.meshTargetOffsets[mesh] + static_cast<uint32_t>(index), weight});
   }
   return {};
 }
 
-eng::Result<void> readVrm0(const Context& c, const facial::Json& vrm) {
+eng::Result<void> readVrm0Group(const Context& c, const JsonNode& group, size_t g) {
+  if (!group.isObject()) return group.error("a blend shape group must be an object");
+  const std::string preset = ENG_TRY_VALUE(readVrm0PresetName(group));
+  facial::VrmExpression expression;
+  expression.name = vrm0GroupName(c, group, preset, g);
+  expression.isPreset = preset != "unknown";
+  expression.group = expression.isPreset ? facial::vrmProceduralGroup(preset) : facial::VrmProceduralGroup::None;
+  expression.isBinary = ENG_TRY_VALUE(group.booleanOr("isBinary", false));
+  ENG_TRY(readVrm0MaterialValues(c, group, expression));
+  expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
+  if (auto binds = group.find("binds")) ENG_TRY(readVrm0Binds(c, *binds));
+  expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
+  c.set.expressions.push_back(std::move(expression));
+  return {};
+}
+
+eng::Result<void> readVrm0(const Context& c, const JsonNode& vrm) {
   c.set.specVersion = 0;
-  if (auto r = readLookAt(c, vrm, false); !r) return r;
-  const std::string masterPath = "/extensions/VRM/blendShapeMaster";
-  if (!vrm.is_object() || !vrm.contains("blendShapeMaster")) return {};
-  const facial::Json& master = vrm["blendShapeMaster"];
-  if (!master.is_object()) return facial::jsonError(c.source, masterPath, "must be an object");
-  if (!master.contains("blendShapeGroups")) return {};
-  const std::string groupsPath = facial::childPath(masterPath, "blendShapeGroups");
-  const facial::Json& groups = master["blendShapeGroups"];
-  if (!groups.is_array()) return facial::jsonError(c.source, groupsPath, "must be an array");
-  for (size_t g = 0; g < groups.size(); ++g) {
-    const std::string path = facial::childPath(groupsPath, g);
-    const facial::Json& group = groups[g];
-    if (!group.is_object()) return facial::jsonError(c.source, path, "a blend shape group must be an object");
-    std::string preset = "unknown";
-    if (group.contains("presetName")) {
-      if (!group["presetName"].is_string())
-        return facial::jsonError(c.source, facial::childPath(path, "presetName"), "must be a string");
-      preset = group["presetName"].get<std::string>();
-      if (preset.empty()) preset = "unknown";
-    }
-    if (!contains(kVrm0Presets, preset))
-      return facial::jsonError(c.source, facial::childPath(path, "presetName"), "'" + preset + "' is not a VRM 0.x preset name");
-    std::string name = preset;
-    if (preset == "unknown")
-      name = group.contains("name") && group["name"].is_string() && !group["name"].get<std::string>().empty()
-                 ? group["name"].get<std::string>()
-                 : "group_" + std::to_string(g);
-    for (const facial::VrmExpression& existing : c.set.expressions) {
-      if (existing.name != name) continue;
-      c.set.warnings.push_back(std::string(c.source) + ": " + path + ": a second expression named '" + name +
-                               "'; renamed '" + name + " (" + std::to_string(g) + ")'");
-      name += " (" + std::to_string(g) + ")";
-      break;
-    }
-    facial::VrmExpression expression;
-    expression.name = name;
-    expression.isPreset = preset != "unknown";
-    expression.group = expression.isPreset ? facial::vrmProceduralGroup(preset) : facial::VrmProceduralGroup::None;
-    auto binary = readBool(c, group, "isBinary", path);
-    if (!binary) return binary.error();
-    expression.isBinary = *binary;
-    if (auto r = readVrm0MaterialValues(c, group, path, expression); !r) return r.error();
-    expression.firstBind = static_cast<uint32_t>(c.set.binds.size());
-    if (group.contains("binds")) {
-      const std::string bindsPath = facial::childPath(path, "binds");
-      const facial::Json& binds = group["binds"];
-      if (!binds.is_array()) return facial::jsonError(c.source, bindsPath, "must be an array");
-      for (size_t b = 0; b < binds.size(); ++b) {
-        const std::string bindPath = facial::childPath(bindsPath, b);
-        const facial::Json& bind = binds[b];
-        if (!bind.is_object()) return facial::jsonError(c.source, bindPath, "a bind must be an object {mesh, index, weight}");
-        auto mesh = readIndex(c, bind, "mesh", bindPath, c.set.meshTargetOffsets.size() - 1, "meshes");
-        if (!mesh) return mesh.error();
-        auto index = readIndex(c, bind, "index", bindPath, meshTargetCount(c.set, *mesh),
-                               "morph targets on mesh " + std::to_string(*mesh));
-        if (!index) return index.error();
-        auto weight = readBindWeight(c, bind, bindPath, 100.0);  // VRM 0.x weights run 0..100
-        if (!weight) return weight.error();
-        c.set.binds.push_back({c.set.meshTargetOffsets[*mesh] + static_cast<uint32_t>(*index), *weight});
-      }
-    }
-    expression.bindCount = static_cast<uint32_t>(c.set.binds.size()) - expression.firstBind;
-    c.set.expressions.push_back(std::move(expression));
-  }
+  ENG_TRY(readLookAt(c, vrm, false));
+  const auto master = vrm.find("blendShapeMaster");
+  if (!master) return {};
+  if (!master->isObject()) return master->error("must be an object");
+  const auto groups = master->find("blendShapeGroups");
+  if (!groups) return {};
+  const size_t count = ENG_TRY_VALUE(groups->size());
+  for (size_t g = 0; g < count; ++g) ENG_TRY(readVrm0Group(c, groups->element(g), g));
+  return {};
+}
+
+eng::Result<void> readVrmDocument(const JsonNode& gltf, std::string_view source, facial::VrmExpressionSet& set) {
+  if (!gltf.isObject()) return gltf.error("a glTF document must be an object");
+  const auto extensions = gltf.find("extensions");
+  const auto vrm1 = extensions ? extensions->find("VRMC_vrm") : std::nullopt;
+  const auto vrm0 = extensions ? extensions->find("VRM") : std::nullopt;
+  if (!vrm1 && !vrm0)
+    return extensions.value_or(gltf).error("no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
+  set.materialCount = static_cast<uint32_t>(materialCountOf(gltf));
+  const Context c{source, gltf, set};
+  ENG_TRY(readTargets(c));
+  ENG_TRY(vrm1 ? readVrm1(c, *vrm1) : readVrm0(c, *vrm0));
+  if (vrm1 && vrm0) set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");
   return {};
 }
 
 }  // namespace
 
 eng::Result<facial::VrmExpressionSet> importVrmExpressions(const facial::Json& gltf, std::string_view source) {
-  if (!gltf.is_object()) return facial::jsonError(source, "", "a glTF document must be an object");
-  const facial::Json* extensions = gltf.contains("extensions") && gltf["extensions"].is_object() ? &gltf["extensions"] : nullptr;
-  const bool hasVrm1 = extensions && extensions->contains("VRMC_vrm");
-  const bool hasVrm0 = extensions && extensions->contains("VRM");
-  if (!hasVrm1 && !hasVrm0)
-    return facial::jsonError(source, "/extensions", "no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
   facial::VrmExpressionSet set;
-  set.materialCount = static_cast<uint32_t>(materialCountOf(gltf));
-  const Context c{source, gltf, set};
-  if (auto r = readTargets(c); !r) return r.error();
-  if (auto r = hasVrm1 ? readVrm1(c, (*extensions)["VRMC_vrm"]) : readVrm0(c, (*extensions)["VRM"]); !r)
-    return r.error();
-  if (hasVrm1 && hasVrm0)
-    set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");
+  if (auto read = readVrmDocument(JsonNode(gltf, ""), source, set); !read) return read.error().prefixed(std::string(source) + ": ");
   if (auto valid = set.validate(); !valid) return valid.error().prefixed(std::string(source) + ": ");
   return set;
 }
 
 bool hasVrmExtension(const facial::Json& gltf) {
-  return gltf.is_object() && gltf.contains("extensions") && gltf["extensions"].is_object() &&
-         (gltf["extensions"].contains("VRMC_vrm") || gltf["extensions"].contains("VRM"));
+  const auto extensions = JsonNode(gltf, "").find("extensions");
+  return extensions && (extensions->has("VRMC_vrm") || extensions->has("VRM"));
 }
 
 namespace {

@@ -131,6 +131,16 @@ TEST(VrmImport, LoadsTextAndBinaryFiles) {
   }
 }
 
+// The fuzzer's seeds (fuzz/seeds/vrm) are well-formed VRM 1.0 and 0.x documents.
+TEST(VrmImport, FuzzSeedsLoad) {
+  const std::filesystem::path seeds = testing_support::sourceDir() / "fuzz" / "seeds" / "vrm";
+  for (const char* file : {"vrm1_triangle.gltf", "vrm0_triangle.gltf"}) {
+    auto set = importers::loadVrmExpressions(seeds / file);
+    ASSERT_TRUE(set) << set.error().message;
+    EXPECT_FALSE(set->expressions.empty()) << file;
+  }
+}
+
 TEST(VrmImport, EmotionPresetsDriveVrmExpressionsWithOverrides) {
   auto set = importers::importVrmExpressions(vrm1Document(), "avatar.gltf");
   ASSERT_TRUE(set) << set.error().message;
@@ -260,7 +270,7 @@ TEST(VrmImportValidity, FieldsAreCheckedByType) {
             std::string::npos);
   doc = vrm1Document();
   doc["extensions"]["VRMC_vrm"]["expressions"]["preset"]["blink"]["isBinary"] = "yes";
-  EXPECT_NE(errorOf(doc).find("preset/blink/isBinary: must be true or false"), std::string::npos);
+  EXPECT_NE(errorOf(doc).find("preset/blink/isBinary: expected true or false, got string"), std::string::npos);
   doc = vrm1Document();
   doc["extensions"]["VRMC_vrm"]["expressions"]["custom"]["happy"] = Json::object();
   EXPECT_NE(errorOf(doc).find("custom/happy: a custom expression must not reuse the preset name"), std::string::npos);
@@ -287,7 +297,7 @@ TEST(VrmImportValidity, Vrm0WeightsRunToOneHundredAndPresetsAreKnown) {
 
 TEST(VrmImportValidity, NonVrmAndBrokenFilesAreNamed) {
   EXPECT_EQ(errorOf(Json::parse(R"({"asset": {"version": "2.0"}})")),
-            "bad.vrm: /extensions: no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
+            "bad.vrm: /: no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
   const std::filesystem::path dir = testing_support::freshTempDir("vrm_import_bad");
   std::vector<uint8_t> glb = eng::buildGlb(vrm1Document().dump(), {});
   glb.resize(glb.size() / 2);  // truncated container
@@ -501,6 +511,11 @@ TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
   bind["targetValue"] = Json::array({1.0, std::nan(""), 0.0, 1.0});
   EXPECT_NE(onlyWarningOf(doc, colours - 1, textures).find("materialColorBinds/0/targetValue/1: must be a finite number"),
             std::string::npos);
+  // A finite double past the float range would become an infinite colour.
+  bind["targetValue"] = Json::parse("[1, 1e39, 0, 1]");
+  EXPECT_EQ(onlyWarningOf(doc, colours - 1, textures),
+            "bad.vrm: /extensions/VRMC_vrm/expressions/preset/happy/materialColorBinds/0/targetValue/1: must be a "
+            "finite number, got 1e+39; bind ignored");
   doc = vrm0Document();
   doc["extensions"]["VRM"]["blendShapeMaster"]["blendShapeGroups"][4]["materialValues"][0]["materialName"] = "iris";
   const std::string warning = onlyWarningOf(doc, 0, 0);
@@ -508,6 +523,17 @@ TEST(VrmRigValidity, BadMaterialBindsAreSkippedWithOneWarning) {
                          "no material is named 'iris'; bind ignored"),
             std::string::npos)
       << warning;
+}
+
+// A material whose name is not a string is not the one a VRM 0.x value names.
+TEST(VrmRigValidity, Vrm0MaterialNamesThatAreNotStringsAreSkipped) {
+  Json doc = vrm0Document();
+  doc["materials"][0]["name"] = 5;
+  auto set = importers::importVrmExpressions(doc, "old.vrm");
+  ASSERT_TRUE(set) << set.error().message;
+  ASSERT_EQ(set->materialColorBinds.size(), 1u);
+  EXPECT_EQ(set->materialColorBinds[0].material, 1u);  // "eye"
+  EXPECT_TRUE(set->warnings.empty());
 }
 
 TEST(VrmRigValidity, StageAndTargetCountsMustAgree) {

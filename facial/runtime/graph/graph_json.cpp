@@ -25,16 +25,15 @@ class GraphParser {
 
   eng::Result<void> timelines(const JsonNode& map) {
     if (!map.isObject()) return map.error("expected an object {\"name\": path or timeline}");
-    for (auto it = map.raw().begin(); it != map.raw().end(); ++it) {
-      const JsonNode entry = ENG_TRY_VALUE(map.at(it.key()));
+    for (const auto& [name, entry] : ENG_TRY_VALUE(map.members())) {
       if (entry.isString()) {
         const std::filesystem::path file = folder_ / ENG_TRY_VALUE(entry.string());
         auto timeline = loadTimeline(file);
         if (!timeline) return entry.error(timeline.error());
-        timeline->name = it.key();
+        timeline->name = name;
         builder_.addTimeline(std::move(timeline).value());
       } else {
-        builder_.addTimeline(ENG_TRY_VALUE(detail::parseTimeline(entry, it.key())));
+        builder_.addTimeline(ENG_TRY_VALUE(detail::parseTimeline(entry, std::string(name))));
       }
     }
     return {};

@@ -39,11 +39,6 @@ eng::Result<Json> parseJsonText(std::string_view text, std::string_view source) 
   }
 }
 
-eng::Error jsonError(std::string_view source, std::string_view path, std::string_view problem) {
-  return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ": " + std::string(path.empty() ? "/" : path) + ": " +
-                        std::string(problem));
-}
-
 std::string childPath(std::string_view parent, std::string_view key) {
   std::string path(parent);
   path += '/';

@@ -1,8 +1,9 @@
 #pragma once
-// Reading the rig layer's JSON inputs (expression presets, rig maps, VRM
-// extensions) with errors that name the source, the JSON path (RFC 6901
-// pointer) and the problem: "data/expressions.json: /expressions/happy/
-// actionUnits/AU13: unknown action unit".
+// JSON documents from files and text, and the pieces their readers share.
+// The values are read through JsonNode (json_node.h), whose errors name the
+// JSON path (RFC 6901 pointer) and the problem; the reader puts the source in
+// front: "data/expressions.json: /expressions/happy/actionUnits/AU13: unknown
+// action unit".
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -25,9 +26,6 @@ inline constexpr size_t kMaxJsonFileBytes = size_t{16} << 20;
 eng::Result<Json> readJsonFile(const std::filesystem::path& path, size_t maxBytes = kMaxJsonFileBytes);
 // Parses text that came from `source` (a file name, "GLB JSON chunk of x.vrm").
 eng::Result<Json> parseJsonText(std::string_view text, std::string_view source);
-
-// "<source>: <path>: <problem>" (path "" reads as the document root "/").
-eng::Error jsonError(std::string_view source, std::string_view path, std::string_view problem);
 
 // JSON pointer of a child: childPath("/a", "b/c") == "/a/b~1c", childPath("/a", 3) == "/a/3".
 std::string childPath(std::string_view parent, std::string_view key);

@@ -43,6 +43,15 @@ eng::Result<void> JsonNode::allowOnly(std::initializer_list<std::string_view> kn
   return {};
 }
 
+eng::Result<std::vector<std::pair<std::string_view, JsonNode>>> JsonNode::members() const {
+  if (!value_->is_object()) return typeError("an object");
+  std::vector<std::pair<std::string_view, JsonNode>> out;
+  out.reserve(value_->size());
+  for (auto it = value_->begin(); it != value_->end(); ++it)
+    out.emplace_back(it.key(), JsonNode(it.value(), childPath(pointer_, it.key())));
+  return out;
+}
+
 eng::Result<size_t> JsonNode::size() const {
   if (!value_->is_array()) return typeError("an array");
   return value_->size();

@@ -16,6 +16,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "engine/core/result.h"
 #include "facial/runtime/json/json_document.h"
@@ -46,6 +48,10 @@ class JsonNode {
   std::optional<JsonNode> find(std::string_view key) const;
   // Fails on a member not in `known` (catches misspelt keys).
   eng::Result<void> allowOnly(std::initializer_list<std::string_view> known) const;
+  // Every member in file order, for objects whose keys are data (names of
+  // expressions, channels); fails unless this is an object. The keys point
+  // into the document.
+  eng::Result<std::vector<std::pair<std::string_view, JsonNode>>> members() const;
 
   // Arrays: size() fails unless this is an array; element(i) needs i < size().
   eng::Result<size_t> size() const;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facial/runtime/json/json_node.h"
 #include "facial/runtime/rig/action_units.h"
-#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 namespace {
@@ -24,92 +24,92 @@ std::string knownEmotionNames(bool withNeutral) {
   return names;
 }
 
-// A weight in [0,1]; JSON has no NaN literal, but 1e999 parses to infinity.
-eng::Result<float> readWeight(const Json& value, std::string_view source, const std::string& path) {
-  if (!value.is_number())
-    return jsonError(source, path, "weight must be a number, got " + std::string(jsonTypeName(value)));
-  const double w = value.get<double>();
-  if (!std::isfinite(w)) return jsonError(source, path, "weight is not a finite number");
-  if (w < 0.0 || w > 1.0) return jsonError(source, path, "weight " + formatNumber(w) + " is outside [0, 1]");
-  return static_cast<float>(w);
+// A weight in [0, 1].
+eng::Result<float> readWeight(const JsonNode& value) {
+  const float w = ENG_TRY_VALUE(value.number());
+  if (w < 0.0f || w > 1.0f) return value.error("weight " + formatNumber(w) + " is outside [0, 1]");
+  return w;
 }
 
-eng::Result<std::string> readText(const Json& value, std::string_view source, const std::string& path) {
-  if (!value.is_string()) return jsonError(source, path, "must be a string, got " + std::string(jsonTypeName(value)));
-  return value.get<std::string>();
+// {"AU12_LipCornerPuller_L": 1.0, ...}, in ascending channel order.
+eng::Result<std::vector<ActionUnitWeight>> readActionUnits(const JsonNode& units) {
+  std::vector<ActionUnitWeight> weights;
+  for (const auto& [name, weight] : ENG_TRY_VALUE(units.members())) {
+    const std::optional<uint32_t> channel = actionUnitIndex(name);
+    if (!channel) return weight.error("unknown action unit (known: " + knownActionUnitNames() + ")");
+    weights.push_back({*channel, ENG_TRY_VALUE(readWeight(weight))});
+  }
+  std::sort(weights.begin(), weights.end(),
+            [](const ActionUnitWeight& a, const ActionUnitWeight& b) { return a.channel < b.channel; });
+  return weights;
 }
 
-eng::Result<ExpressionPreset> readPreset(const std::string& name, const Json& body, std::string_view source,
-                                         const std::string& path) {
-  if (!body.is_object())
-    return jsonError(source, path, "an expression must be an object, got " + std::string(jsonTypeName(body)));
+// {"happy": 0.65, ...}; emotions not named stay 0.
+eng::Result<std::array<float, kEmotionCount>> readEmotions(const JsonNode& emotions) {
+  std::array<float, kEmotionCount> weights{};
+  for (const auto& [name, weight] : ENG_TRY_VALUE(emotions.members())) {
+    const std::optional<uint32_t> index = emotionIndex(name);
+    if (!index) return weight.error("unknown emotion (known: " + knownEmotionNames(true) + ")");
+    weights[*index] = ENG_TRY_VALUE(readWeight(weight));
+  }
+  return weights;
+}
+
+// ["happy", "surprise"]: two or more distinct basic emotions.
+eng::Result<std::vector<Emotion>> readComponents(const JsonNode& list) {
+  const size_t count = ENG_TRY_VALUE(list.size());
+  std::vector<Emotion> components;
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode item = list.element(i);
+    const std::string name = ENG_TRY_VALUE(item.string());
+    const std::optional<uint32_t> index = emotionIndex(name);
+    if (!index || *index == static_cast<uint32_t>(Emotion::Neutral))
+      return item.error("'" + name + "' is not a basic emotion (known: " + knownEmotionNames(false) + ")");
+    const Emotion emotion = static_cast<Emotion>(*index);
+    if (std::find(components.begin(), components.end(), emotion) != components.end())
+      return item.error("component '" + name + "' is listed twice");
+    components.push_back(emotion);
+  }
+  if (components.size() < 2)
+    return list.error("a compound needs at least 2 components, got " + std::to_string(components.size()));
+  return components;
+}
+
+// Without "emotions": 1 on the preset's own name when it is an emotion, else
+// an equal share over the components.
+std::array<float, kEmotionCount> defaultEmotions(std::string_view name, const std::vector<Emotion>& components) {
+  std::array<float, kEmotionCount> weights{};
+  if (const std::optional<uint32_t> own = emotionIndex(name)) {
+    weights[*own] = 1.0f;
+  } else {
+    for (Emotion e : components) weights[static_cast<size_t>(e)] = 1.0f / static_cast<float>(components.size());
+  }
+  return weights;
+}
+
+eng::Result<ExpressionPreset> readPreset(std::string_view name, const JsonNode& body) {
+  ENG_TRY(body.allowOnly({"actionUnits", "emotions", "components", "facs", "description"}));
   ExpressionPreset preset;
   preset.name = name;
-  bool hasEmotions = false;
-  for (const auto& [key, value] : body.items()) {
-    const std::string keyPath = childPath(path, key);
-    if (key == "facs" || key == "description") {
-      auto text = readText(value, source, keyPath);
-      if (!text) return text.error();
-      (key == "facs" ? preset.facs : preset.description) = std::move(*text);
-    } else if (key == "actionUnits") {
-      if (!value.is_object())
-        return jsonError(source, keyPath, "must be an object of channel: weight, got " + std::string(jsonTypeName(value)));
-      for (const auto& [channelName, weightValue] : value.items()) {
-        const std::string auPath = childPath(keyPath, channelName);
-        const std::optional<uint32_t> channel = actionUnitIndex(channelName);
-        if (!channel) return jsonError(source, auPath, "unknown action unit (known: " + knownActionUnitNames() + ")");
-        auto weight = readWeight(weightValue, source, auPath);
-        if (!weight) return weight.error();
-        preset.actionUnits.push_back({*channel, *weight});
-      }
-    } else if (key == "emotions") {
-      if (!value.is_object())
-        return jsonError(source, keyPath, "must be an object of emotion: weight, got " + std::string(jsonTypeName(value)));
-      hasEmotions = true;
-      for (const auto& [emotion, weightValue] : value.items()) {
-        const std::string emotionPath = childPath(keyPath, emotion);
-        const std::optional<uint32_t> index = emotionIndex(emotion);
-        if (!index) return jsonError(source, emotionPath, "unknown emotion (known: " + knownEmotionNames(true) + ")");
-        auto weight = readWeight(weightValue, source, emotionPath);
-        if (!weight) return weight.error();
-        preset.emotions[*index] = *weight;
-      }
-    } else if (key == "components") {
-      if (!value.is_array())
-        return jsonError(source, keyPath, "must be an array of basic emotions, got " + std::string(jsonTypeName(value)));
-      for (size_t i = 0; i < value.size(); ++i) {
-        const std::string componentPath = childPath(keyPath, i);
-        auto component = readText(value[i], source, componentPath);
-        if (!component) return component.error();
-        const std::optional<uint32_t> index = emotionIndex(*component);
-        if (!index || *index == static_cast<uint32_t>(Emotion::Neutral))
-          return jsonError(source, componentPath,
-                           "'" + *component + "' is not a basic emotion (known: " + knownEmotionNames(false) + ")");
-        const Emotion emotion = static_cast<Emotion>(*index);
-        if (std::find(preset.components.begin(), preset.components.end(), emotion) != preset.components.end())
-          return jsonError(source, componentPath, "component '" + *component + "' is listed twice");
-        preset.components.push_back(emotion);
-      }
-      if (preset.components.size() < 2)
-        return jsonError(source, keyPath,
-                         "a compound needs at least 2 components, got " + std::to_string(preset.components.size()));
-    } else {
-      return jsonError(source, keyPath,
-                       "unknown key (expected actionUnits, emotions, components, facs, description)");
-    }
-  }
-  std::sort(preset.actionUnits.begin(), preset.actionUnits.end(),
-            [](const ActionUnitWeight& a, const ActionUnitWeight& b) { return a.channel < b.channel; });
-  if (!hasEmotions) {
-    if (const std::optional<uint32_t> own = emotionIndex(name)) {
-      preset.emotions[*own] = 1.0f;
-    } else {
-      for (Emotion e : preset.components)
-        preset.emotions[static_cast<size_t>(e)] = 1.0f / static_cast<float>(preset.components.size());
-    }
-  }
+  preset.facs = ENG_TRY_VALUE(body.stringOr("facs", ""));
+  preset.description = ENG_TRY_VALUE(body.stringOr("description", ""));
+  if (auto units = body.find("actionUnits")) preset.actionUnits = ENG_TRY_VALUE(readActionUnits(*units));
+  if (auto components = body.find("components")) preset.components = ENG_TRY_VALUE(readComponents(*components));
+  if (auto emotions = body.find("emotions")) preset.emotions = ENG_TRY_VALUE(readEmotions(*emotions));
+  else preset.emotions = defaultEmotions(name, preset.components);
   return preset;
+}
+
+eng::Result<std::vector<ExpressionPreset>> readPresets(const JsonNode& root) {
+  ENG_TRY(requireVersion(root, kFormatVersion));
+  ENG_TRY(root.allowOnly({"version", "expressions"}));
+  const JsonNode expressions = ENG_TRY_VALUE(root.at("expressions"));
+  std::vector<ExpressionPreset> presets;
+  for (const auto& [name, body] : ENG_TRY_VALUE(expressions.members())) {
+    if (name.empty()) return body.error("an expression name must not be empty");
+    presets.push_back(ENG_TRY_VALUE(readPreset(name, body)));
+  }
+  return presets;
 }
 
 float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }
@@ -135,27 +135,10 @@ eng::Result<ExpressionLibrary> ExpressionLibrary::parse(std::string_view text, s
 }
 
 eng::Result<ExpressionLibrary> ExpressionLibrary::fromJson(const Json& root, std::string_view source) {
-  if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
-  if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
-  const Json& version = root["version"];
-  if (auto supported = checkFormatVersion(version, kFormatVersion); !supported)
-    return supported.error().prefixed(std::string(source) + ": /version: ");
-  for (const auto& [key, value] : root.items())
-    if (key != "version" && key != "expressions")
-      return jsonError(source, childPath("", key), "unknown key (expected version, expressions)");
-  if (!root.contains("expressions")) return jsonError(source, "/expressions", "missing");
-  const Json& expressions = root["expressions"];
-  if (!expressions.is_object())
-    return jsonError(source, "/expressions", "must be an object of name: expression, got " +
-                                                 std::string(jsonTypeName(expressions)));
+  auto presets = readPresets(JsonNode(root, ""));
+  if (!presets) return presets.error().prefixed(std::string(source) + ": ");
   ExpressionLibrary library;
-  for (const auto& [name, body] : expressions.items()) {
-    const std::string path = childPath("/expressions", name);
-    if (name.empty()) return jsonError(source, path, "an expression name must not be empty");
-    auto preset = readPreset(name, body, source, path);
-    if (!preset) return preset.error();
-    library.presets_.push_back(std::move(*preset));
-  }
+  library.presets_ = std::move(*presets);
   return library;
 }
 

@@ -1,122 +1,117 @@
 #include "facial/runtime/rig/rigmap_file.h"
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
+#include "facial/runtime/json/json_node.h"
 #include "facial/runtime/rig/action_units.h"
-#include "facial/runtime/json/json_document.h"
 
 namespace facial {
 namespace {
 
-eng::Result<float> readNumber(const Json& value, std::string_view source, const std::string& path, double lo,
-                              double hi) {
-  if (!value.is_number())
-    return jsonError(source, path, "must be a number, got " + std::string(jsonTypeName(value)));
-  const double x = value.get<double>();
-  if (!std::isfinite(x) || x < lo || x > hi)
-    return jsonError(source, path,
-                     "value " + formatNumber(x) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
-  return static_cast<float>(x);
+constexpr int kFormatVersion = 1;
+
+// A finite number in [lo, hi] (weights, calibration factors).
+eng::Result<float> numberIn(const JsonNode& value, float lo, float hi) {
+  const float x = ENG_TRY_VALUE(value.number());
+  if (x < lo || x > hi)
+    return value.error("value " + formatNumber(x) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
+  return x;
 }
 
-eng::Result<RigMapFile> fromJson(const Json& root, std::string_view source, std::span<const std::string> targetNames) {
-  RigMapFile file;
-  if (!root.is_object()) return jsonError(source, "", "the document must be an object, got " + std::string(jsonTypeName(root)));
-  if (!root.contains("version")) return jsonError(source, "/version", "missing (this build reads version 1)");
-  if (auto supported = checkFormatVersion(root["version"], 1); !supported)
-    return supported.error().prefixed(std::string(source) + ": /version: ");
+// "weightRange": [min, max], both in [-1, 1].
+eng::Result<void> readWeightRange(const JsonNode& range, RigMappingBuilder& builder) {
+  const size_t count = ENG_TRY_VALUE(range.size());
+  if (count != 2) return range.error("expected [min, max], got " + std::to_string(count) + " numbers");
+  const float lo = ENG_TRY_VALUE(numberIn(range.element(0), -1.0f, 1.0f));
+  const float hi = ENG_TRY_VALUE(numberIn(range.element(1), -1.0f, 1.0f));
+  if (!(lo < hi)) return range.error("min must be below max");
+  builder.setWeightRange(lo, hi);
+  return {};
+}
 
-  RigMappingBuilder builder(RigScheme::Custom, targetNames);
-  builder.setDetail("rig map " + std::string(source));
-  bool hasMap = false;
-  for (const auto& [key, value] : root.items()) {
-    const std::string path = childPath("", key);
-    if (key == "version") continue;
-    if (key == "model" || key == "description") {
-      if (!value.is_string()) return jsonError(source, path, "must be a string, got " + std::string(jsonTypeName(value)));
-    } else if (key == "weightRange") {
-      if (!value.is_array() || value.size() != 2)
-        return jsonError(source, path, "must be an array [min, max]");
-      auto lo = readNumber(value[0], source, childPath(path, size_t{0}), -1.0, 1.0);
-      if (!lo) return lo.error();
-      auto hi = readNumber(value[1], source, childPath(path, size_t{1}), -1.0, 1.0);
-      if (!hi) return hi.error();
-      if (!(*lo < *hi)) return jsonError(source, path, "min must be below max");
-      builder.setWeightRange(*lo, *hi);
-    } else if (key == "map") {
-      if (!value.is_object())
-        return jsonError(source, path, "must be an object of channel: [{target, weight}], got " +
-                                           std::string(jsonTypeName(value)));
-      hasMap = true;
-      for (const auto& [channel, list] : value.items()) {
-        const std::string channelPath = childPath(path, channel);
-        const std::optional<uint32_t> input = rigInputIndex(channel);
-        if (!input)
-          return jsonError(source, channelPath, "unknown channel (an action unit such as AU12_LipCornerPuller_L, "
-                                                "or an emotion: neutral, happy, sad, surprise, fear, anger, disgust)");
-        if (!list.is_array())
-          return jsonError(source, channelPath, "must be an array of {target, weight}, got " +
-                                                    std::string(jsonTypeName(list)));
-        std::vector<std::string> seen;
-        for (size_t i = 0; i < list.size(); ++i) {
-          const std::string entryPath = childPath(channelPath, i);
-          const Json& entry = list[i];
-          if (!entry.is_object()) return jsonError(source, entryPath, "must be an object {target, weight}");
-          for (const auto& [field, _] : entry.items())
-            if (field != "target" && field != "weight")
-              return jsonError(source, childPath(entryPath, field), "unknown key (expected target, weight)");
-          if (!entry.contains("target") || !entry["target"].is_string())
-            return jsonError(source, childPath(entryPath, "target"), "missing or not a string");
-          if (!entry.contains("weight")) return jsonError(source, childPath(entryPath, "weight"), "missing");
-          const std::string target = entry["target"].get<std::string>();
-          auto weight = readNumber(entry["weight"], source, childPath(entryPath, "weight"), -1.0, 1.0);
-          if (!weight) return weight.error();
-          if (std::find(seen.begin(), seen.end(), target) != seen.end())
-            return jsonError(source, childPath(entryPath, "target"), "'" + target + "' is listed twice for " + channel);
-          seen.push_back(target);
-          bool found = false;
-          for (uint32_t t = 0; t < targetNames.size(); ++t) {
-            if (targetNames[t] != target) continue;
-            builder.add(*input, t, *weight);
-            found = true;
-          }
-          if (!found)
-            return jsonError(source, childPath(entryPath, "target"),
-                             "the model has no target '" + target + "' (" + std::to_string(targetNames.size()) +
-                                 " targets)");
-        }
-      }
-    } else if (key == "calibration") {
-      if (!value.is_object())
-        return jsonError(source, path, "must be an object of action unit: scale, got " + std::string(jsonTypeName(value)));
-      for (const auto& [channel, scale] : value.items()) {
-        const std::string channelPath = childPath(path, channel);
-        const std::optional<uint32_t> input = rigInputIndex(channel);
-        if (!input || *input >= actionUnits().size())
-          return jsonError(source, channelPath, "unknown action unit channel (such as AU12_LipCornerPuller_L)");
-        auto factor = readNumber(scale, source, channelPath, 0.0, 4.0);
-        if (!factor) return factor.error();
-        file.calibration.emplace_back(channel, *factor);
-      }
-    } else {
-      return jsonError(source, path, "unknown key (expected version, model, description, weightRange, map, calibration)");
+// One channel's [{target, weight}]: every target of that name is driven.
+eng::Result<void> readChannelTargets(const JsonNode& list, std::string_view channel, uint32_t input,
+                                     std::span<const std::string> targetNames, RigMappingBuilder& builder) {
+  const size_t count = ENG_TRY_VALUE(list.size());
+  std::vector<std::string> seen;
+  for (size_t i = 0; i < count; ++i) {
+    const JsonNode entry = list.element(i);
+    ENG_TRY(entry.allowOnly({"target", "weight"}));
+    const JsonNode targetNode = ENG_TRY_VALUE(entry.at("target"));
+    const std::string target = ENG_TRY_VALUE(targetNode.string());
+    const float weight = ENG_TRY_VALUE(numberIn(ENG_TRY_VALUE(entry.at("weight")), -1.0f, 1.0f));
+    if (std::find(seen.begin(), seen.end(), target) != seen.end())
+      return targetNode.error("'" + target + "' is listed twice for " + std::string(channel));
+    seen.push_back(target);
+    bool found = false;
+    for (uint32_t t = 0; t < targetNames.size(); ++t) {
+      if (targetNames[t] != target) continue;
+      builder.add(input, t, weight);
+      found = true;
     }
+    if (!found)
+      return targetNode.error("the model has no target '" + target + "' (" + std::to_string(targetNames.size()) + " targets)");
   }
-  if (!hasMap) {
-    if (file.calibration.empty()) return jsonError(source, "/map", "missing (a file without a map must calibrate)");
+  return {};
+}
+
+// "map": {channel: [{target, weight}]}, channels are action units or emotions.
+eng::Result<void> readMap(const JsonNode& map, std::span<const std::string> targetNames, RigMappingBuilder& builder) {
+  for (const auto& [channel, list] : ENG_TRY_VALUE(map.members())) {
+    const std::optional<uint32_t> input = rigInputIndex(channel);
+    if (!input)
+      return list.error("unknown channel (an action unit such as AU12_LipCornerPuller_L, "
+                        "or an emotion: neutral, happy, sad, surprise, fear, anger, disgust)");
+    ENG_TRY(readChannelTargets(list, channel, *input, targetNames, builder));
+  }
+  return {};
+}
+
+// "calibration": {action unit: factor in [0, 4]}.
+eng::Result<std::vector<std::pair<std::string, float>>> readCalibration(const JsonNode& calibration) {
+  std::vector<std::pair<std::string, float>> factors;
+  for (const auto& [channel, scale] : ENG_TRY_VALUE(calibration.members())) {
+    const std::optional<uint32_t> input = rigInputIndex(channel);
+    if (!input || *input >= actionUnits().size())
+      return scale.error("unknown action unit channel (such as AU12_LipCornerPuller_L)");
+    factors.emplace_back(channel, ENG_TRY_VALUE(numberIn(scale, 0.0f, 4.0f)));
+  }
+  return factors;
+}
+
+eng::Result<RigMapFile> readRigMapFile(const JsonNode& root, std::string_view source,
+                                       std::span<const std::string> targetNames) {
+  ENG_TRY(requireVersion(root, kFormatVersion));
+  ENG_TRY(root.allowOnly({"version", "model", "description", "weightRange", "map", "calibration"}));
+  ENG_TRY(root.stringOr("model", ""));  // informational: only the type is checked
+  ENG_TRY(root.stringOr("description", ""));
+  RigMapFile file;
+  if (auto calibration = root.find("calibration")) file.calibration = ENG_TRY_VALUE(readCalibration(*calibration));
+  const std::optional<JsonNode> map = root.find("map");
+  if (!map) {
+    if (file.calibration.empty()) return root.error("missing \"map\" (a file without a map must calibrate)");
     return file;  // calibration only: the detected scheme drives the model
   }
-  eng::Result<RigMapping> mapping = builder.build();
-  if (!mapping) return mapping.error().prefixed(std::string(source) + ": ");
-  file.mapping = std::move(*mapping);
+  RigMappingBuilder builder(RigScheme::Custom, targetNames);
+  builder.setDetail("rig map " + std::string(source));
+  if (auto range = root.find("weightRange")) ENG_TRY(readWeightRange(*range, builder));
+  ENG_TRY(readMap(*map, targetNames, builder));
+  file.mapping = ENG_TRY_VALUE(builder.build());
+  return file;
+}
+
+eng::Result<RigMapFile> rigMapFileFromJson(const Json& document, std::string_view source,
+                                           std::span<const std::string> targetNames) {
+  auto file = readRigMapFile(JsonNode(document, ""), source, targetNames);
+  if (!file) return file.error().prefixed(std::string(source) + ": ");
   return file;
 }
 
 eng::Result<RigMapping> mappingOf(eng::Result<RigMapFile> file, std::string_view source) {
   if (!file) return file.error();
-  if (!file->mapping) return jsonError(source, "/map", "missing");
+  if (!file->mapping)
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source) + ": /: missing \"map\" (the file only calibrates)");
   return std::move(*file->mapping);
 }
 
@@ -125,7 +120,7 @@ eng::Result<RigMapping> mappingOf(eng::Result<RigMapFile> file, std::string_view
 eng::Result<RigMapFile> loadRigMapFile(const std::filesystem::path& file, std::span<const std::string> targetNames) {
   eng::Result<Json> json = readJsonFile(file);
   if (!json) return json.error();
-  return fromJson(*json, file.string(), targetNames);
+  return rigMapFileFromJson(*json, file.string(), targetNames);
 }
 
 eng::Result<RigMapping> loadRigMap(const std::filesystem::path& file, std::span<const std::string> targetNames) {
@@ -136,7 +131,7 @@ eng::Result<RigMapping> parseRigMap(std::string_view text, std::string_view sour
                                     std::span<const std::string> targetNames) {
   eng::Result<Json> json = parseJsonText(text, source);
   if (!json) return json.error();
-  return mappingOf(fromJson(*json, source, targetNames), source);
+  return mappingOf(rigMapFileFromJson(*json, source, targetNames), source);
 }
 
 }  // namespace facial

@@ -59,6 +59,21 @@ TEST(RigMapFile, SignedRangeAndSeveralTargetsOfOneName) {
   EXPECT_EQ(mapping->report().unmappedTargets, std::vector<std::string>{"Beard/Frown"});
 }
 
+// The fuzzer's seeds (fuzz/seeds/rigmap) load against the fuzzer's target names.
+TEST(RigMapFile, FuzzSeedsLoad) {
+  const std::vector<std::string> targets = {"Angry", "Surprised", "Sad", "jawOpen", "eyeBlink_L", "eyeBlink_R",
+                                            "mouthSmile_L", "mouthSmile_R", "browInnerUp", "target_0"};
+  const std::filesystem::path seeds = testing_support::sourceDir() / "fuzz" / "seeds" / "rigmap";
+  auto calibration = loadRigMapFile(seeds / "calibration_only.json", targets);
+  ASSERT_TRUE(calibration) << calibration.error().message;
+  EXPECT_FALSE(calibration->mapping);
+  EXPECT_EQ(calibration->calibration.size(), 1u);
+  auto both = loadRigMapFile(seeds / "map_and_calibration.json", targets);
+  ASSERT_TRUE(both) << both.error().message;
+  EXPECT_TRUE(both->mapping);
+  EXPECT_EQ(both->calibration.size(), 1u);
+}
+
 // ---- refused maps ----
 
 std::string rigMapErrorOf(std::string_view json) {
@@ -74,9 +89,9 @@ TEST(RigMapFileValidity, ErrorsNameFilePathAndProblem) {
   EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": 3}]}})"),
             "bot.json: /map/anger/0/weight: value 3 is outside [-1, 1]");
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": "full"}]}})")
-                .find("/map/anger/0/weight: must be a number, got string"),
+                .find("bot.json: /map/anger/0/weight: expected a number, got string"),
             std::string::npos);
-  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry"}]}})").find("/map/anger/0/weight: missing"),
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry"}]}})").find("bot.json: /map/anger/0: missing \"weight\""),
             std::string::npos);
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": [{"target": "Angry", "weight": 1, "gain": 2}]}})")
                 .find("/map/anger/0/gain: unknown key"),
@@ -85,11 +100,11 @@ TEST(RigMapFileValidity, ErrorsNameFilePathAndProblem) {
                 .find("/map/anger/1/target: 'Angry' is listed twice"),
             std::string::npos);
   EXPECT_NE(rigMapErrorOf(R"({"version": 2, "map": {}})").find("/version: unsupported version 2"), std::string::npos);
-  EXPECT_NE(rigMapErrorOf(R"({"version": 1})").find("bot.json: /map: missing"), std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1})").find("bot.json: /: missing \"map\""), std::string::npos);
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {}, "maps": {}})").find("/maps: unknown key"), std::string::npos);
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "weightRange": [1, 0], "map": {}})").find("/weightRange: min must be below max"),
             std::string::npos);
-  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": {"target": "Angry"}}})").find("/map/anger: must be an array"),
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": {"target": "Angry"}}})").find("bot.json: /map/anger: expected an array, got object"),
             std::string::npos);
 }
 

@@ -48,10 +48,9 @@ eng::Result<std::vector<float>> readWeights(const JsonNode& w, const ChannelSet&
     return weights;
   }
   if (!w.isObject()) return w.error("expected {\"channel\": weight} or an array of weights");
-  for (auto it = w.raw().begin(); it != w.raw().end(); ++it) {
-    const JsonNode value = ENG_TRY_VALUE(w.at(it.key()));
-    auto c = channels.find(it.key());
-    if (!c) return value.error("'" + it.key() + "' is not a channel of this graph");
+  for (const auto& [name, value] : ENG_TRY_VALUE(w.members())) {
+    auto c = channels.find(name);
+    if (!c) return value.error("'" + std::string(name) + "' is not a channel of this graph");
     weights[*c] = ENG_TRY_VALUE(value.number());
   }
   return weights;
