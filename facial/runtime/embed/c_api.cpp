@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "facial/character.h"
+#include "facial/runtime/rig/rig_mapping.h"
+#include "facial/runtime/speech/viseme_track.h"
 
 struct facial_character {
   facial::Character character;
@@ -70,6 +72,15 @@ facial_status guarded(const char* function, Body&& body) {
 
 facial_status check(const eng::Result<void>& result, facial_status failure) {
   return result ? FACIAL_OK : fail(failure, result.error());
+}
+
+// Builds the track from the cues and hands it to the character.
+template <class Cue>
+facial_status speakCues(facial_character& character, const std::vector<Cue>& cues, const char* function) {
+  auto built = facial::VisemeTrackBuilder{}.build(cues);
+  if (!built) return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + built.error().message);
+  auto track = std::make_shared<const facial::VisemeTrack>(std::move(built->track));
+  return check(character.character.speak(std::move(track)), FACIAL_ERROR_INVALID_ARGUMENT);
 }
 
 facial_status writeQuat(const std::array<float, 4>& q, float out[4]) {
@@ -190,6 +201,53 @@ facial_status facial_character_eye_rotation(const facial_character* character, f
       return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_eye_rotation: eye is neither left nor right");
     return writeQuat(
         character->character.eyeRotation(value == FACIAL_EYE_LEFT ? facial::Eye::Left : facial::Eye::Right), out_xyzw);
+  });
+}
+
+facial_status facial_character_speak_phonemes(facial_character* character, const facial_timed_phoneme* phonemes,
+                                              uint32_t count) {
+  return guarded("facial_character_speak_phonemes", [&] {
+    FACIAL_REQUIRE(character, "facial_character_speak_phonemes");
+    if (count > 0) FACIAL_REQUIRE(phonemes, "facial_character_speak_phonemes");
+    std::vector<facial::TimedPhoneme> cues(count);
+    for (uint32_t i = 0; i < count; ++i) {
+      if (!phonemes[i].ipa)
+        return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_speak_phonemes: phonemes[" + std::to_string(i) + "].ipa is NULL");
+      cues[i] = {phonemes[i].ipa, phonemes[i].start, phonemes[i].end};
+    }
+    return speakCues(*character, cues, "facial_character_speak_phonemes");
+  });
+}
+
+facial_status facial_character_speak_visemes(facial_character* character, const facial_timed_viseme* visemes,
+                                             uint32_t count) {
+  return guarded("facial_character_speak_visemes", [&] {
+    FACIAL_REQUIRE(character, "facial_character_speak_visemes");
+    if (count > 0) FACIAL_REQUIRE(visemes, "facial_character_speak_visemes");
+    std::vector<facial::TimedViseme> cues(count);
+    for (uint32_t i = 0; i < count; ++i) {
+      const std::optional<facial::Viseme> viseme = visemes[i].viseme ? facial::rigVisemeIndex(visemes[i].viseme) : std::nullopt;
+      if (!viseme)
+        return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_speak_visemes: visemes[" + std::to_string(i) +
+                                                       "].viseme is not one of " + facial::visemeNameList());
+      cues[i] = {*viseme, visemes[i].start, visemes[i].end};
+    }
+    return speakCues(*character, cues, "facial_character_speak_visemes");
+  });
+}
+
+facial_status facial_character_set_speech_time(facial_character* character, float audio_clock_seconds) {
+  return guarded("facial_character_set_speech_time", [&] {
+    FACIAL_REQUIRE(character, "facial_character_set_speech_time");
+    return check(character->character.setSpeechTime(audio_clock_seconds), FACIAL_ERROR_INVALID_ARGUMENT);
+  });
+}
+
+facial_status facial_character_stop_speaking(facial_character* character) {
+  return guarded("facial_character_stop_speaking", [&] {
+    FACIAL_REQUIRE(character, "facial_character_stop_speaking");
+    character->character.stopSpeaking();
+    return FACIAL_OK;
   });
 }
 
