@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -74,9 +75,18 @@ facial_status check(const eng::Result<void>& result, facial_status failure) {
   return result ? FACIAL_OK : fail(failure, result.error());
 }
 
-// Builds the track from the cues and hands it to the character.
-template <class Cue>
-facial_status speakCues(facial_character& character, const std::vector<Cue>& cues, const char* function) {
+// Converts the C cues (an error names what is wrong with one), builds the
+// track and hands it to the character.
+template <class Cue, class CCue, class Convert>
+facial_status speakCues(facial_character& character, std::span<const CCue> items, const char* function, Convert convert) {
+  std::vector<Cue> cues;
+  cues.reserve(items.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    eng::Result<Cue> cue = convert(items[i]);
+    if (!cue)
+      return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": cue " + std::to_string(i) + ": " + cue.error().message);
+    cues.push_back(std::move(*cue));
+  }
   auto built = facial::VisemeTrackBuilder{}.build(cues);
   if (!built) return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + built.error().message);
   auto track = std::make_shared<const facial::VisemeTrack>(std::move(built->track));
@@ -209,13 +219,11 @@ facial_status facial_character_speak_phonemes(facial_character* character, const
   return guarded("facial_character_speak_phonemes", [&] {
     FACIAL_REQUIRE(character, "facial_character_speak_phonemes");
     if (count > 0) FACIAL_REQUIRE(phonemes, "facial_character_speak_phonemes");
-    std::vector<facial::TimedPhoneme> cues(count);
-    for (uint32_t i = 0; i < count; ++i) {
-      if (!phonemes[i].ipa)
-        return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_speak_phonemes: phonemes[" + std::to_string(i) + "].ipa is NULL");
-      cues[i] = {phonemes[i].ipa, phonemes[i].start, phonemes[i].end};
-    }
-    return speakCues(*character, cues, "facial_character_speak_phonemes");
+    return speakCues<facial::TimedPhoneme>(*character, std::span(phonemes, count), "facial_character_speak_phonemes",
+                                           [](const facial_timed_phoneme& p) -> eng::Result<facial::TimedPhoneme> {
+                                             if (!p.ipa) return eng::makeError(eng::ErrorKind::InvalidArgument, "ipa is NULL");
+                                             return facial::TimedPhoneme{p.ipa, p.start, p.end};
+                                           });
   });
 }
 
@@ -224,15 +232,14 @@ facial_status facial_character_speak_visemes(facial_character* character, const 
   return guarded("facial_character_speak_visemes", [&] {
     FACIAL_REQUIRE(character, "facial_character_speak_visemes");
     if (count > 0) FACIAL_REQUIRE(visemes, "facial_character_speak_visemes");
-    std::vector<facial::TimedViseme> cues(count);
-    for (uint32_t i = 0; i < count; ++i) {
-      const std::optional<facial::Viseme> viseme = visemes[i].viseme ? facial::rigVisemeIndex(visemes[i].viseme) : std::nullopt;
-      if (!viseme)
-        return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_speak_visemes: visemes[" + std::to_string(i) +
-                                                       "].viseme is not one of " + facial::visemeNameList());
-      cues[i] = {*viseme, visemes[i].start, visemes[i].end};
-    }
-    return speakCues(*character, cues, "facial_character_speak_visemes");
+    return speakCues<facial::TimedViseme>(*character, std::span(visemes, count), "facial_character_speak_visemes",
+                                          [](const facial_timed_viseme& v) -> eng::Result<facial::TimedViseme> {
+                                            const auto viseme = v.viseme ? facial::rigVisemeIndex(v.viseme) : std::nullopt;
+                                            if (!viseme)
+                                              return eng::makeError(eng::ErrorKind::InvalidArgument,
+                                                                    "viseme is not one of " + facial::visemeNameList());
+                                            return facial::TimedViseme{*viseme, v.start, v.end};
+                                          });
   });
 }
 

@@ -20,18 +20,6 @@ namespace {
 
 
 
-std::string speechShapeKey(std::string_view name) {
-  if (const size_t cut = name.find_last_of(".:|"); cut != std::string_view::npos) name = name.substr(cut + 1);
-  return asciiLower(name);
-}
-
-std::vector<uint32_t> findSpeechShape(std::span<const std::string> names, std::string_view key) {
-  std::vector<uint32_t> found;
-  for (uint32_t t = 0; t < names.size(); ++t)
-    if (speechShapeKey(names[t]) == key) found.push_back(t);
-  return found;
-}
-
 float mouthShapeDistance(Viseme a, Viseme b) {
   const MouthShape& x = mouthShapeOf(a);
   const MouthShape& y = mouthShapeOf(b);
@@ -46,7 +34,7 @@ bool mapOculusVisemes(RigMappingBuilder& builder) {
   std::array<std::vector<uint32_t>, kVisemeCount> found;
   size_t present = 0;
   for (size_t v = 0; v < kVisemeCount; ++v) {
-    found[v] = findSpeechShape(names, asciiLower(rigVisemeInputName(Viseme(v))));
+    found[v] = findShapesByKey(names, asciiLower(rigVisemeInputName(Viseme(v))));
     present += found[v].empty() ? 0 : 1;
   }
   if (present == 0) return false;
@@ -109,13 +97,13 @@ bool mapVowels(RigMappingBuilder& builder, RigScheme scheme) {
     if (spelling.expressionsOnly && scheme != RigScheme::Expressions) continue;
     std::array<std::vector<uint32_t>, 5> vowels;
     size_t present = 0;
-    for (size_t k = 0; k < 5; ++k) present += (vowels[k] = findSpeechShape(names, spelling.vowels[k])).empty() ? 0 : 1;
+    for (size_t k = 0; k < 5; ++k) present += (vowels[k] = findShapesByKey(names, spelling.vowels[k])).empty() ? 0 : 1;
     if (present == 0) continue;
     for (size_t v = 0; v < kVisemeCount; ++v)
       for (size_t k = 0; k < 5; ++k)
         if (kVowelBlend[v][k] > 0.0f)
           for (uint32_t t : vowels[k]) builder.addViseme(Viseme(v), t, kVowelBlend[v][k]);
-    const std::vector<uint32_t> closed = spelling.closed.empty() ? std::vector<uint32_t>{} : findSpeechShape(names, spelling.closed);
+    const std::vector<uint32_t> closed = spelling.closed.empty() ? std::vector<uint32_t>{} : findShapesByKey(names, spelling.closed);
     for (uint32_t t : closed) builder.addViseme(Viseme::PP, t, 1.0f);
     builder.setSpeech(std::string(spelling.label) + " (" + std::to_string(present) + " of 5 vowels" +
                       (closed.empty() ? "" : ", closed mouth for PP") + "), a vowel blend per viseme");

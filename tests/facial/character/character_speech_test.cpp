@@ -171,7 +171,7 @@ TEST(CharacterSpeechCApi, TimedPhonemesAndVisemesDriveTheMouth) {
 
   const facial_timed_viseme unknown[] = {{"oo", 0.0f, 0.3f}};
   EXPECT_EQ(facial_character_speak_visemes(c, unknown, 1), FACIAL_ERROR_INVALID_ARGUMENT);
-  EXPECT_NE(std::string(facial_last_error_message()).find("visemes[0].viseme is not one of"), std::string::npos)
+  EXPECT_NE(std::string(facial_last_error_message()).find("cue 0: viseme is not one of sil, PP"), std::string::npos)
       << facial_last_error_message();
   const facial_timed_phoneme overlapping[] = {{"p", 0.1f, 0.3f}, {"a", 0.2f, 0.4f}};
   EXPECT_EQ(facial_character_speak_phonemes(c, overlapping, 2), FACIAL_ERROR_INVALID_ARGUMENT);
