@@ -292,12 +292,12 @@ RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool wi
     const auto gains = rig.gains(input);
     for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
   }
-  for (size_t v = 0; withRows && v < kVisemeCount; ++v) {
+  for (size_t v = 0; v < kVisemeCount; ++v) {
     const auto targets = rig.visemeTargets(Viseme(v));
     const auto gains = rig.visemeGains(Viseme(v));
     for (size_t i = 0; i < targets.size(); ++i) builder.addViseme(Viseme(v), targets[i], gains[i]);
   }
-  if (withRows) builder.setSpeech(rig.report().speech);
+  builder.setSpeech(rig.report().speech);
   return builder;
 }
 

@@ -181,8 +181,9 @@ class RigMappingBuilder {
  public:
   RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames);
   // A builder that starts as `rig` does: its scheme, control names, detail,
-  // notes, weight range and expression stage, and its rows unless `withRows`
-  // is false (for code that re-derives a mapping's rows).
+  // notes, weight range, expression stage and viseme block, and its pose rows
+  // unless `withRows` is false (for code that re-derives the pose rows, as
+  // calibration does: the rig keeps speaking).
   static RigMappingBuilder startingFrom(const RigMapping& rig, bool withRows = true);
 
   std::span<const std::string> targetNames() const { return targetNames_; }

@@ -15,6 +15,7 @@
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/arkit_names.h"
 #include "facial/runtime/rig/candide_units.h"
+#include "facial/runtime/rig/rig_calibration.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "tests/common/test_support.h"
 
@@ -182,6 +183,21 @@ TEST(SpeechRig, ActionUnitHeadComposesVisemesFromLipAndJawUnits) {
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.8f);
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::I), "AU20_LipStretcher"), 0.5f);
   EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), "AU4_BrowLowerer"), 0.0f);
+}
+
+TEST(SpeechRig, CalibrationKeepsTheVisemeBlock) {
+  std::vector<std::string> names;
+  for (const ActionUnitInfo& unit : actionUnits()) names.emplace_back(unit.name);
+  auto rig = buildRigMapping(names);
+  ASSERT_TRUE(rig) << rig.error().message;
+  auto calibrated = calibrateRig(*rig, std::vector<float>(names.size(), 0.01f));
+  ASSERT_TRUE(calibrated) << calibrated.error().message;
+  ASSERT_TRUE(calibrated->rig.speaks());
+  for (size_t v = 0; v < kVisemeCount; ++v) {
+    EXPECT_TRUE(std::ranges::equal(calibrated->rig.visemeTargets(Viseme(v)), rig->visemeTargets(Viseme(v))));
+    EXPECT_TRUE(std::ranges::equal(calibrated->rig.visemeGains(Viseme(v)), rig->visemeGains(Viseme(v))));
+  }
+  EXPECT_EQ(calibrated->rig.report().speech, rig->report().speech);
 }
 
 TEST(SpeechRig, Candide3SpeaksThroughItsAnimationUnits) {
