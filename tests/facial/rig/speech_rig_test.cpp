@@ -92,7 +92,8 @@ TEST(SpeechRig, AVisemeOnlyFaceBorrowsTheClosestShapeForMissingVisemes) {
   EXPECT_FLOAT_EQ(out[4], 0.5f);
 }
 
-TEST(SpeechRig, VrmVowelExpressionsThroughTheStageHonourOverrideMouth) {
+// A VRM 1.0 face: happy (binds the smile, with the given overrideMouth) and the five vowels.
+std::shared_ptr<VrmExpressionSet> vrmVowelFace(VrmOverride happyOverridesMouth) {
   auto set = std::make_shared<VrmExpressionSet>();
   set->targetNames = {"Face/smile", "Face/A", "Face/I", "Face/U", "Face/E", "Face/O"};
   set->meshTargetOffsets = {0, 6};
@@ -107,12 +108,23 @@ TEST(SpeechRig, VrmVowelExpressionsThroughTheStageHonourOverrideMouth) {
     set->binds.push_back({target, 1.0f});
     set->expressions.push_back(e);
   };
-  add("happy", VrmProceduralGroup::None, 0, VrmOverride::Block);
+  add("happy", VrmProceduralGroup::None, 0, happyOverridesMouth);
   add("aa", VrmProceduralGroup::Mouth, 1, VrmOverride::None);
   add("ih", VrmProceduralGroup::Mouth, 2, VrmOverride::None);
   add("ou", VrmProceduralGroup::Mouth, 3, VrmOverride::None);
   add("ee", VrmProceduralGroup::Mouth, 4, VrmOverride::None);
   add("oh", VrmProceduralGroup::Mouth, 5, VrmOverride::None);
+  return set;
+}
+
+std::vector<float> happyAt(float weight) {
+  std::vector<float> emotions(kEmotionCount, 0.0f);
+  emotions[size_t(Emotion::Happy)] = weight;
+  return emotions;
+}
+
+TEST(SpeechRig, VrmVowelExpressionsThroughTheStage) {
+  auto set = vrmVowelFace(VrmOverride::None);
   auto rig = buildVrmRigMapping(set, set->targetNames);
   ASSERT_TRUE(rig) << rig.error().message;
   ASSERT_TRUE(rig->speaks()) << rig->report().summary();
@@ -121,12 +133,27 @@ TEST(SpeechRig, VrmVowelExpressionsThroughTheStageHonourOverrideMouth) {
   EXPECT_FLOAT_EQ(out[5], 1.0f);
   EXPECT_FLOAT_EQ(out[1], 0.0f);
   EXPECT_GT(speak(*rig, Viseme::CH)[3], 0.3f);  // CH rounds: some "ou"
-  // UniVRM: happy's overrideMouth = block silences the mouth expressions while happy is on.
-  std::vector<float> happy(kEmotionCount, 0.0f);
-  happy[size_t(Emotion::Happy)] = 1.0f;
-  out = speak(*rig, Viseme::aa, happy);
+  out = speak(*rig, Viseme::aa, happyAt(1.0f));  // no override: both show
+  EXPECT_FLOAT_EQ(out[0], 1.0f);
+  EXPECT_FLOAT_EQ(out[1], 1.0f);
+}
+
+// UniVRM / VRM 1.0: an expression's overrideMouth acts on the mouth group
+// (the vowels) while it shows: block silences it, blend scales it by 1 - weight.
+TEST(SpeechRig, VrmOverrideMouthOfTheEmotionHoldsOverTheVowels) {
+  auto blocking = vrmVowelFace(VrmOverride::Block);
+  auto block = buildVrmRigMapping(blocking, blocking->targetNames);
+  ASSERT_TRUE(block) << block.error().message;
+  std::vector<float> out = speak(*block, Viseme::aa, happyAt(1.0f));
   EXPECT_FLOAT_EQ(out[0], 1.0f);
   EXPECT_FLOAT_EQ(out[1], 0.0f);
+  EXPECT_FLOAT_EQ(speak(*block, Viseme::aa)[1], 1.0f);  // without the emotion the vowel shows
+  auto blending = vrmVowelFace(VrmOverride::Blend);
+  auto blend = buildVrmRigMapping(blending, blending->targetNames);
+  ASSERT_TRUE(blend) << blend.error().message;
+  out = speak(*blend, Viseme::aa, happyAt(0.25f));
+  EXPECT_FLOAT_EQ(out[0], 0.25f);
+  EXPECT_FLOAT_EQ(out[1], 0.75f);
 }
 
 TEST(SpeechRig, VRoidMouthVowelsAndClose) {
