@@ -117,6 +117,10 @@ bool mapVowels(RigMappingBuilder& builder, RigScheme scheme) {
 // gives them): PP presses and rolls the lips with the jaw shut, FF rolls the
 // lower lip in under the upper teeth, CH/O/U funnel and pucker, TH shows the
 // tongue, aa opens the jaw. Shapes named once stand for both sides.
+// Compared with TalkingHead's table (met4citizen/TalkingHead, as ported by
+// VTuber tools): the same shapes per viseme, but mouthClose stays low for PP,
+// since ARKit defines it as lips closed against an open jaw; with the jaw
+// shut, mouthPress and mouthRoll close the lips without pulling them through.
 struct ArkitPart {
   std::string_view shape;
   float weight;
