@@ -45,6 +45,7 @@ nlohmann::ordered_json toJson(const std::string& modelPath, importers::FaceForma
           {"expressionStage", report.stage},
           {"emotions", report.emotions},
           {"visemes", report.visemes},
+          {"speech", report.speech},
           {"unmappedExpressions", report.unmappedControls},
           {"targetCount", rig.targetCount()},
           {"drivenTargetCount", rig.drivenTargets().size()},

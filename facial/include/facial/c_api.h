@@ -80,6 +80,33 @@ uint32_t facial_character_weight_count(const facial_character* character);
 facial_status facial_character_head_rotation(const facial_character* character, float out_xyzw[4]);
 facial_status facial_character_eye_rotation(const facial_character* character, facial_eye eye, float out_xyzw[4]);
 
+/* Lip sync. Timed phonemes (IPA as espeak-ng --ipa or an aligner writes it,
+ * "h", "ˈaɪ", ...) or timed visemes (the Oculus set "sil PP FF TH DD kk CH SS
+ * nn RR aa E I O U"), seconds from the audio's start, sorted and not
+ * overlapping; `ipa` / `viseme` must not be NULL. The track is built in the
+ * call (it allocates); playback then follows facial_character_set_speech_time
+ * (the host's audio clock, seconds; 0 until set) with no allocation per
+ * frame. The emotion keeps the brows, eyes, cheeks and head while speech
+ * owns the mouth. FACIAL_ERROR_INVALID_ARGUMENT: a NULL pointer, bad cue
+ * times or names, a rig that nothing on the mouth can move (the message
+ * says which targets were looked for). */
+typedef struct facial_timed_phoneme {
+  const char* ipa;
+  float start;
+  float end;
+} facial_timed_phoneme;
+typedef struct facial_timed_viseme {
+  const char* viseme;
+  float start;
+  float end;
+} facial_timed_viseme;
+facial_status facial_character_speak_phonemes(facial_character* character, const facial_timed_phoneme* phonemes,
+                                              uint32_t count);
+facial_status facial_character_speak_visemes(facial_character* character, const facial_timed_viseme* visemes,
+                                             uint32_t count);
+facial_status facial_character_set_speech_time(facial_character* character, float audio_clock_seconds);
+facial_status facial_character_stop_speaking(facial_character* character);
+
 /* The last failure's message on this thread ("" when none). */
 const char* facial_last_error_message(void);
 /* The last failure's kind on this thread (FACIAL_KIND_NONE when none). */

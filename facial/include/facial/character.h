@@ -35,6 +35,7 @@ class GraphDefinition;  // facial/runtime/graph/graph_definition.h
 using SharedGraphDefinition = std::shared_ptr<const GraphDefinition>;
 class RigMapping;              // facial/runtime/rig/rig_mapping.h
 struct VrmExpressionSet;       // facial/runtime/rig/vrm_expressions.h
+class VisemeTrack;             // facial/runtime/speech/viseme_track.h
 
 // For an engine that has already loaded the graph and built the rig (our
 // programs' face loader does, VRM expressions included): create() takes
@@ -55,6 +56,10 @@ struct CharacterOptions {
   std::filesystem::path rigmap;
   uint64_t seed = 0;      // blink and saccade streams, sway phases
   bool idleLife = true;   // head sway, breathing and saccades (the graph's blinks stay)
+  // The character will speak (speak()): create() fails, in one line naming the
+  // model's target count and what was looked for, when nothing on its rig
+  // moves the mouth.
+  bool speaks = false;
   // Eye centres in head space (+X the face's left), where lookAt() aims from.
   std::array<float, 3> leftEye{0.032f, 0.0f, 0.0f};
   std::array<float, 3> rightEye{-0.032f, 0.0f, 0.0f};
@@ -110,6 +115,19 @@ class Character {
   // (nothing changes): other sizes, an amount outside [0, 1].
   eng::Result<void> overridePose(std::span<const float> targetWeights, std::span<const float> expressionWeights,
                                  float amount);
+
+  // Lip sync: the track plays from the next update() on, sampled at the time
+  // of setSpeechTime() (the host's audio clock, seconds from the track's 0;
+  // 0 until set). Speech owns the mouth while it speaks; the graph's emotion
+  // keeps the brows, eyes, cheeks and head and a share of the smile or frown
+  // (docs/speech.md, "Speaking with an emotion"). A graph with a speech node
+  // layers it itself. No allocation per frame. Errors (nothing changes): no
+  // track or an empty one, a rig that cannot speak (nothing moves the mouth,
+  // or a graph over raw target names), a non-finite time.
+  eng::Result<void> speak(std::shared_ptr<const VisemeTrack> track);
+  eng::Result<void> setSpeechTime(float audioClockSeconds);
+  void stopSpeaking();
+  bool speaking() const;
 
   // Advances by dt seconds and refreshes every output. Errors (nothing
   // changes): a negative or non-finite dt.

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/speech/viseme_action_units.h"
 
 namespace facial {
 namespace {
@@ -30,12 +31,14 @@ eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const Ri
   FaceDriver driver(std::move(*instance));
   driver.targetWeights_.assign(baseWeights.begin(), baseWeights.end());
 
-  if (speaksActionUnits(channels)) {
+  driver.graphVisemes_ = channels.firstVisemeChannel();
+  if (speaksActionUnits(channels) || driver.graphVisemes_) {
     if (!rig) return eng::makeError(eng::ErrorKind::Unsupported, "face driver: the graph drives action units but the model has no rig mapping");
     if (rig->targetCount() != baseWeights.size())
       return eng::makeError(eng::ErrorKind::InvalidArgument, "face driver: rig mapping covers " + std::to_string(rig->targetCount()) +
                             " targets, the model has " + std::to_string(baseWeights.size()));
     driver.rig_ = rig;
+    driver.auScratch_.assign(actionUnits().size(), 0.0f);
     if (rig->expressionStage()) driver.expressionWeights_.assign(rig->controlNames().size(), 0.0f);
     return driver;
   }
@@ -52,12 +55,37 @@ eng::Result<FaceDriver> FaceDriver::create(SharedGraphDefinition graph, const Ri
   return driver;
 }
 
+bool FaceDriver::setSpeech(const VisemeTrack* track, float audioTime) {
+  if (!graph_.setSpeech(track, audioTime)) return false;
+  speech_ = track;
+  speechTime_ = audioTime;
+  return true;
+}
+
+// The graph's action units with the mouth yielded to the track's visemes
+// (into auScratch_ and visemes_); false when there is nothing to say.
+bool FaceDriver::layerSpeech(std::span<const float> graphActionUnits) {
+  const VisemeSampleJob job{
+      .track = speech_, .time = speechTime_, .cursors = speechCursors_, .visemes = visemes_, .mouth = mouth_};
+  if (!speech_ || !job.Run()) return false;
+  std::copy(graphActionUnits.begin(), graphActionUnits.end(), auScratch_.begin());
+  yieldMouthToSpeech(auScratch_, speechActivity(visemes_), mouth_[static_cast<size_t>(MouthChannel::LipClosure)]);
+  return true;
+}
+
 bool FaceDriver::update(float dt) {
   if (!graph_.update(dt)) return false;
   const std::span<const float> weights = graph_.weights();
   if (rig_) {
-    // Sizes were checked in create(), so apply() cannot fail here.
-    (void)rig_->apply(weights, {}, targetWeights_, expressionWeights_);
+    // Sizes were checked in create(), so the rig cannot fail here.
+    const size_t units = actionUnits().size();
+    if (graphVisemes_ && speech_)
+      (void)rig_->applyWithVisemes(weights.first(units), {}, weights.subspan(*graphVisemes_, kVisemeCount), targetWeights_,
+                                   expressionWeights_);
+    else if (!graphVisemes_ && layerSpeech(weights))
+      (void)rig_->applyWithVisemes(auScratch_, {}, visemes_, targetWeights_, expressionWeights_);
+    else
+      (void)rig_->apply(weights.first(units), {}, targetWeights_, expressionWeights_);
   } else {
     for (size_t c = 0; c < channelToTarget_.size(); ++c) targetWeights_[channelToTarget_[c]] = weights[c];
   }

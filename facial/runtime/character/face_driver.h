@@ -4,11 +4,18 @@
 // speak action units (mapped through a RigMapping) or the model's own target
 // names (copied by name). Sized in create(); update() does not allocate.
 //
+// Speech (setSpeech): a graph with viseme channels (a speech node) layers it
+// itself; for any other action-unit graph the driver samples the track,
+// yields the graph's mouth to it (mouth-ownership table,
+// speech/viseme_action_units.h) and drives the rig's viseme block.
+//
 //   auto face = FaceDriver::create(graph, rig, layoutDefaults, /*seed=*/id);
 //   face->graph().setTrigger(*graph->findParameter("happy"));
 //   face->update(dt);
 //   renderer.draw(..., face->targetWeights());
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,6 +40,11 @@ class FaceDriver {
   // (nothing changes) for a negative or non-finite dt.
   bool update(float dt);
 
+  // The speech played from the next update() on: a track (not owned, must
+  // outlive its use; null: none) at the host's audio-clock time. False (no
+  // change) for a non-finite time. The caller checks that the rig speaks.
+  bool setSpeech(const VisemeTrack* track, float audioTime);
+
   std::span<const float> targetWeights() const { return targetWeights_; }
   // The rig's expression weights this frame (RigMapping::controlNames()
   // order) when it has an expression stage (VRM), for the expressions'
@@ -44,12 +56,20 @@ class FaceDriver {
 
  private:
   FaceDriver(GraphInstance graph) : graph_(std::move(graph)) {}
+  bool layerSpeech(std::span<const float> graphActionUnits);
 
   GraphInstance graph_;
   const RigMapping* rig_ = nullptr;           // set when the graph speaks action units
   std::vector<uint32_t> channelToTarget_;     // set when it speaks target names (UINT32_MAX: no such target)
   std::vector<float> targetWeights_;
   std::vector<float> expressionWeights_;
+  std::optional<uint32_t> graphVisemes_;   // the graph's first viseme channel (a graph that speaks)
+  const VisemeTrack* speech_ = nullptr;
+  float speechTime_ = 0;
+  std::array<uint32_t, kSpeechChannelCount> speechCursors_{};
+  std::array<float, kVisemeCount> visemes_{};
+  std::array<float, kMouthChannelCount> mouth_{};
+  std::vector<float> auScratch_;           // the graph's action units with the mouth yielded to speech
 };
 
 }  // namespace facial

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstring>
 #include <new>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "facial/character.h"
+#include "facial/runtime/rig/rig_mapping.h"
+#include "facial/runtime/speech/viseme_track.h"
 
 struct facial_character {
   facial::Character character;
@@ -70,6 +73,24 @@ facial_status guarded(const char* function, Body&& body) {
 
 facial_status check(const eng::Result<void>& result, facial_status failure) {
   return result ? FACIAL_OK : fail(failure, result.error());
+}
+
+// Converts the C cues (an error names what is wrong with one), builds the
+// track and hands it to the character.
+template <class Cue, class CCue, class Convert>
+facial_status speakCues(facial_character& character, std::span<const CCue> items, const char* function, Convert convert) {
+  std::vector<Cue> cues;
+  cues.reserve(items.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    eng::Result<Cue> cue = convert(items[i]);
+    if (!cue)
+      return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": cue " + std::to_string(i) + ": " + cue.error().message);
+    cues.push_back(std::move(*cue));
+  }
+  auto built = facial::VisemeTrackBuilder{}.build(cues);
+  if (!built) return fail(FACIAL_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + built.error().message);
+  auto track = std::make_shared<const facial::VisemeTrack>(std::move(built->track));
+  return check(character.character.speak(std::move(track)), FACIAL_ERROR_INVALID_ARGUMENT);
 }
 
 facial_status writeQuat(const std::array<float, 4>& q, float out[4]) {
@@ -190,6 +211,50 @@ facial_status facial_character_eye_rotation(const facial_character* character, f
       return fail(FACIAL_ERROR_INVALID_ARGUMENT, "facial_character_eye_rotation: eye is neither left nor right");
     return writeQuat(
         character->character.eyeRotation(value == FACIAL_EYE_LEFT ? facial::Eye::Left : facial::Eye::Right), out_xyzw);
+  });
+}
+
+facial_status facial_character_speak_phonemes(facial_character* character, const facial_timed_phoneme* phonemes,
+                                              uint32_t count) {
+  return guarded("facial_character_speak_phonemes", [&] {
+    FACIAL_REQUIRE(character, "facial_character_speak_phonemes");
+    if (count > 0) FACIAL_REQUIRE(phonemes, "facial_character_speak_phonemes");
+    return speakCues<facial::TimedPhoneme>(*character, std::span(phonemes, count), "facial_character_speak_phonemes",
+                                           [](const facial_timed_phoneme& p) -> eng::Result<facial::TimedPhoneme> {
+                                             if (!p.ipa) return eng::makeError(eng::ErrorKind::InvalidArgument, "ipa is NULL");
+                                             return facial::TimedPhoneme{p.ipa, p.start, p.end};
+                                           });
+  });
+}
+
+facial_status facial_character_speak_visemes(facial_character* character, const facial_timed_viseme* visemes,
+                                             uint32_t count) {
+  return guarded("facial_character_speak_visemes", [&] {
+    FACIAL_REQUIRE(character, "facial_character_speak_visemes");
+    if (count > 0) FACIAL_REQUIRE(visemes, "facial_character_speak_visemes");
+    return speakCues<facial::TimedViseme>(*character, std::span(visemes, count), "facial_character_speak_visemes",
+                                          [](const facial_timed_viseme& v) -> eng::Result<facial::TimedViseme> {
+                                            const auto viseme = v.viseme ? facial::rigVisemeIndex(v.viseme) : std::nullopt;
+                                            if (!viseme)
+                                              return eng::makeError(eng::ErrorKind::InvalidArgument,
+                                                                    "viseme is not one of " + facial::visemeNameList());
+                                            return facial::TimedViseme{*viseme, v.start, v.end};
+                                          });
+  });
+}
+
+facial_status facial_character_set_speech_time(facial_character* character, float audio_clock_seconds) {
+  return guarded("facial_character_set_speech_time", [&] {
+    FACIAL_REQUIRE(character, "facial_character_set_speech_time");
+    return check(character->character.setSpeechTime(audio_clock_seconds), FACIAL_ERROR_INVALID_ARGUMENT);
+  });
+}
+
+facial_status facial_character_stop_speaking(facial_character* character) {
+  return guarded("facial_character_stop_speaking", [&] {
+    FACIAL_REQUIRE(character, "facial_character_stop_speaking");
+    character->character.stopSpeaking();
+    return FACIAL_OK;
   });
 }
 

@@ -31,6 +31,7 @@ struct Character::State {
   std::vector<float> overrideWeights, overrideExpressions;
   float overrideAmount = 0.0f;
   std::string scheme = "target names";
+  std::shared_ptr<const VisemeTrack> speech;  // what the driver samples; kept alive here
 };
 
 namespace {
@@ -64,6 +65,15 @@ std::optional<NodeIndex> findStateMachine(const GraphDefinition& graph, std::str
   return std::nullopt;
 }
 
+// Whether the character's rig can carry speech, as one line when it cannot.
+eng::Result<void> checkCanSpeak(const std::optional<RigMapping>& rig) {
+  if (!rig)
+    return eng::makeError(eng::ErrorKind::Unsupported, "character: cannot speak: the graph drives the model's target names "
+                          "directly, with no rig to carry visemes (use a graph over action units)");
+  if (!rig->speaks()) return eng::makeError(eng::ErrorKind::Unsupported, cannotSpeakMessage(*rig, "character"));
+  return {};
+}
+
 }  // namespace
 
 // What both create()s share once the graph and the rig are known: the driver, the idle life and the gaze.
@@ -71,6 +81,7 @@ eng::Result<void> Character::start(State& state, const SharedGraphDefinition& gr
                                    const VrmExpressionSet* vrm, const CharacterOptions& options) {
   auto driver = FaceDriver::create(graph, state.graphRig ? &*state.graphRig : nullptr, state.targetNames, rest, options.seed);
   if (!driver) return driver.error();
+  if (options.speaks) ENG_TRY(checkCanSpeak(state.graphRig));
   state.driver.emplace(std::move(*driver));
   CharacterLifeOptions lifeOptions{.seed = options.seed, .sway = options.idleLife, .saccades = options.idleLife};
   lifeOptions.leftEye = {options.leftEye[0], options.leftEye[1], options.leftEye[2]};
@@ -212,6 +223,28 @@ eng::Result<void> Character::overridePose(std::span<const float> targetWeights, 
 eng::Result<void> Character::lookAt(float x, float y, float z) { return state_->life->lookAt({x, y, z}); }
 
 void Character::lookAhead() { state_->life->lookAhead(); }
+
+eng::Result<void> Character::speak(std::shared_ptr<const VisemeTrack> track) {
+  if (!track || track->keyCount() == 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "speak: no viseme track, or an empty one");
+  ENG_TRY(checkCanSpeak(state_->graphRig));
+  state_->driver->setSpeech(track.get(), 0.0f);
+  state_->speech = std::move(track);
+  return {};
+}
+
+eng::Result<void> Character::setSpeechTime(float audioClockSeconds) {
+  if (!state_->driver->setSpeech(state_->speech.get(), audioClockSeconds))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "setSpeechTime: the time is not a finite number of seconds");
+  return {};
+}
+
+void Character::stopSpeaking() {
+  state_->driver->setSpeech(nullptr, 0.0f);
+  state_->speech.reset();
+}
+
+bool Character::speaking() const { return state_->speech != nullptr; }
 
 eng::Result<void> Character::update(float dt) {
   if (!(dt >= 0.0f) || !std::isfinite(dt))

@@ -1,5 +1,7 @@
 #include "facial/runtime/graph/channel_set.h"
 
+#include "facial/runtime/rig/rig_mapping.h"  // rigVisemeInputName
+
 namespace facial {
 namespace {
 
@@ -20,6 +22,22 @@ ChannelSet ChannelSet::actionUnits() {
   for (const ActionUnitInfo& au : facial::actionUnits())
     set.channels_.push_back({std::string(au.name), au.region, au.side});
   return set;
+}
+
+ChannelSet ChannelSet::actionUnitsAndVisemes() {
+  ChannelSet set = actionUnits();
+  for (size_t v = 0; v < kVisemeCount; ++v) set.channels_.push_back({rigVisemeInputName(Viseme(v)), FaceRegion::Lower, FaceSide::Both});
+  return set;
+}
+
+std::optional<uint32_t> ChannelSet::firstVisemeChannel() const {
+  const std::span<const ActionUnitInfo> units = facial::actionUnits();
+  if (channels_.size() != units.size() + kVisemeCount) return std::nullopt;
+  for (size_t c = 0; c < units.size(); ++c)
+    if (channels_[c].name != units[c].name) return std::nullopt;
+  for (size_t v = 0; v < kVisemeCount; ++v)
+    if (channels_[units.size() + v].name != rigVisemeInputName(Viseme(v))) return std::nullopt;
+  return static_cast<uint32_t>(units.size());
 }
 
 eng::Result<ChannelSet> ChannelSet::fromNames(std::span<const std::string> names) {

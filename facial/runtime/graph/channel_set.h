@@ -25,6 +25,12 @@ class ChannelSet {
   ChannelSet() = default;
   // The action-unit channels, in actionUnits() order, with their regions and sides.
   static ChannelSet actionUnits();
+  // actionUnits(), then the 15 viseme channels "viseme_sil" .. "viseme_U"
+  // (lower face, both sides): the channels of a graph that speaks (speech
+  // node; JSON "channels": "actionUnitsAndVisemes").
+  static ChannelSet actionUnitsAndVisemes();
+  // The first viseme channel when the set is actionUnitsAndVisemes()'s layout, else nullopt.
+  std::optional<uint32_t> firstVisemeChannel() const;
   // Arbitrary names (e.g. a mesh's target names). Names that are action units
   // take the unit's region and side; others get their side from a suffix
   // (_L/_R, Left/Right) and no region. Fails on an empty or duplicate name.

@@ -34,9 +34,17 @@ void GraphInstance::reset() {
 bool GraphInstance::update(float dt) {
   if (!std::isfinite(dt) || dt < 0.0f) return false;
   EvalContext ctx{*definition_, parameters_, states_, scratch_, dt};
+  ctx.speech = {.track = speechTrack_, .time = speechTime_, .cursors = speechCursors_};
   ctx.evaluate(definition_->root(), output_);
   // Weights leave in [0,1] whatever curves overshoot; NaN (never expected) reads 0.
   for (float& w : std::span<float>(output_).first(definition_->channelCount())) w = w > 0.0f ? (w < 1.0f ? w : 1.0f) : 0.0f;
+  return true;
+}
+
+bool GraphInstance::setSpeech(const VisemeTrack* track, float audioTime) {
+  if (!std::isfinite(audioTime)) return false;
+  speechTrack_ = track;
+  speechTime_ = audioTime;
   return true;
 }
 

@@ -8,6 +8,7 @@
 //   face->setTrigger(happy);                                       // any time
 //   face->update(dt);                                              // per frame
 //   upload(face->weights());                                       // channel weights in [0,1]
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -48,8 +49,15 @@ class GraphInstance {
   bool resetTrigger(ParameterIndex parameter);
   std::span<const float> parameters() const { return parameters_; }
 
-  // Back to the state right after create() (parameters at their defaults).
+  // Back to the state right after create() (parameters at their defaults;
+  // the speech input is the host's and stays).
   void reset();
+
+  // The speech the graph's speech nodes play from the next update() on: a
+  // track (not owned; it must outlive its use, null: silence) sampled at the
+  // host's audio-clock time. No allocation. False (no change) for a
+  // non-finite time.
+  bool setSpeech(const VisemeTrack* track, float audioTime);
 
   // Where a state machine node stands, or nullopt when `node` is not one.
   std::optional<StateMachineStatus> stateMachineStatus(NodeIndex node) const;
@@ -64,6 +72,9 @@ class GraphInstance {
   std::vector<NodeState> states_;
   ScratchStack scratch_;
   std::vector<float> output_;
+  const VisemeTrack* speechTrack_ = nullptr;
+  float speechTime_ = 0;
+  std::array<uint32_t, kSpeechChannelCount> speechCursors_{};
 };
 
 }  // namespace facial

@@ -63,7 +63,9 @@ class GraphParser {
 eng::Result<ChannelSet> channelSet(const JsonNode& j) {
   if (j.isString()) {
     const std::string name = ENG_TRY_VALUE(j.string());
-    if (name != "actionUnits") return j.error("unknown channel set '" + name + "' (expected \"actionUnits\" or a list of names)");
+    if (name == "actionUnitsAndVisemes") return ChannelSet::actionUnitsAndVisemes();
+    if (name != "actionUnits")
+      return j.error("unknown channel set '" + name + "' (expected \"actionUnits\", \"actionUnitsAndVisemes\" or a list of names)");
     return ChannelSet::actionUnits();
   }
   const size_t count = ENG_TRY_VALUE(j.size());

@@ -15,13 +15,14 @@
 #include "facial/runtime/graph/nodes/control_map_node.h"
 #include "facial/runtime/graph/nodes/freeform_map_node.h"
 #include "facial/runtime/graph/nodes/pose_node.h"
+#include "facial/runtime/graph/nodes/speech_node.h"
 #include "facial/runtime/graph/nodes/state_machine_node.h"
 #include "facial/runtime/graph/nodes/timeline_node.h"
 
 namespace facial {
 
 using NodeData = std::variant<PoseNode, BlendNode, BilinearNode, ControlMapNode, FreeformMapNode, AdditiveNode,
-                              TimelineNode, StateMachineNode, BlinkNode>;
+                              TimelineNode, StateMachineNode, BlinkNode, SpeechNode>;
 
 // The node's JSON "type" name (its kType).
 std::string_view nodeTypeName(const NodeData& data);

@@ -71,6 +71,16 @@ std::optional<uint32_t> rigInputIndex(std::string_view name) {
   return std::nullopt;
 }
 
+std::string rigVisemeInputName(Viseme viseme) { return "viseme_" + std::string(visemeName(viseme)); }
+
+std::optional<Viseme> rigVisemeIndex(std::string_view name) {
+  const std::string key = asciiLower(name);
+  const std::string_view bare = std::string_view(key).substr(key.compare(0, 7, "viseme_") == 0 ? 7 : 0);
+  for (size_t v = 0; v < kVisemeCount; ++v)
+    if (asciiLower(visemeName(Viseme(v))) == bare) return Viseme(v);
+  return std::nullopt;
+}
+
 std::string RigMappingReport::summary() const {
   auto list = [](const std::vector<std::string>& items) {
     std::string out;
@@ -82,6 +92,7 @@ std::string RigMappingReport::summary() const {
   if (!stage.empty()) text += "\nexpression stage: " + stage;
   for (const std::string& e : emotions) text += "\nemotion " + e;
   if (!visemes.empty()) text += "\nvisemes (" + std::to_string(visemes.size()) + ", lip sync): " + list(visemes);
+  text += "\nspeech: " + (speech.empty() ? std::string("none (nothing on the rig moves the mouth)") : speech);
   if (!stage.empty())
     text += "\nunmapped expressions (" + std::to_string(unmappedControls.size()) + "): " + list(unmappedControls);
   text += "\nunmapped targets (" + std::to_string(unmappedTargets.size()) + "): " + list(unmappedTargets);
@@ -98,6 +109,18 @@ std::span<const uint32_t> RigMapping::targets(uint32_t input) const {
 std::span<const float> RigMapping::gains(uint32_t input) const {
   if (input + 1 >= offsets_.size()) return {};
   return std::span<const float>(entryGains_).subspan(offsets_[input], offsets_[input + 1] - offsets_[input]);
+}
+
+std::span<const uint32_t> RigMapping::visemeTargets(Viseme viseme) const {
+  const size_t v = static_cast<size_t>(viseme);
+  if (v + 1 >= visemeOffsets_.size()) return {};
+  return std::span<const uint32_t>(visemeEntryTargets_).subspan(visemeOffsets_[v], visemeOffsets_[v + 1] - visemeOffsets_[v]);
+}
+
+std::span<const float> RigMapping::visemeGains(Viseme viseme) const {
+  const size_t v = static_cast<size_t>(viseme);
+  if (v + 1 >= visemeOffsets_.size()) return {};
+  return std::span<const float>(visemeEntryGains_).subspan(visemeOffsets_[v], visemeOffsets_[v + 1] - visemeOffsets_[v]);
 }
 
 eng::Result<void> RigMapping::validate() const {
@@ -124,6 +147,18 @@ eng::Result<void> RigMapping::validate() const {
     if (!std::isfinite(entryGains_[e]))
       return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: entry " + std::to_string(e) + " has a non-finite gain");
   }
+  if (visemeOffsets_.size() != kVisemeCount + 1 || visemeOffsets_.back() != visemeEntryTargets_.size() ||
+      visemeEntryTargets_.size() != visemeEntryGains_.size())
+    return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: the viseme block has " + std::to_string(visemeOffsets_.size()) +
+                          " row offsets for " + std::to_string(visemeEntryTargets_.size()) + " entries");
+  for (size_t e = 0; e < visemeEntryTargets_.size(); ++e)
+    if (visemeEntryTargets_[e] >= controls || !std::isfinite(visemeEntryGains_[e]))
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: viseme entry " + std::to_string(e) + " drives control " +
+                            std::to_string(visemeEntryTargets_[e]) + " of " + std::to_string(controls) + " or is not finite");
+  for (uint32_t t : speechDrivenTargets_)
+    if (t >= targetNames_.size())
+      return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: speech-driven target " + std::to_string(t) + " of " +
+                            std::to_string(targetNames_.size()));
   for (uint32_t t : drivenTargets_)
     if (t >= targetNames_.size())
       return eng::makeError(eng::ErrorKind::Malformed, "rig mapping: driven target " + std::to_string(t) + " of " +
@@ -157,7 +192,7 @@ eng::Result<void> RigMapping::checkInputs(std::span<const float> auWeights, std:
 }
 
 void RigMapping::accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights,
-                            std::span<float> rows) const {
+                            std::span<const float> visemeWeights, std::span<float> rows) const {
   const uint32_t channels = static_cast<uint32_t>(actionUnits().size());
   auto add = [&](uint32_t input, float weight) {
     if (weight == 0.0f) return;
@@ -165,10 +200,27 @@ void RigMapping::accumulate(std::span<const float> auWeights, std::span<const fl
   };
   for (uint32_t i = 0; i < channels; ++i) add(i, auWeights[i]);
   for (uint32_t i = 0; i < emotionWeights.size(); ++i) add(channels + i, emotionWeights[i]);
+  for (uint32_t v = 0; v < visemeWeights.size(); ++v) {
+    if (visemeWeights[v] == 0.0f) continue;
+    for (uint32_t e = visemeOffsets_[v]; e < visemeOffsets_[v + 1]; ++e)
+      rows[visemeEntryTargets_[e]] += visemeWeights[v] * visemeEntryGains_[e];
+  }
 }
 
 eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<const float> emotionWeights,
                                     std::span<float> targetWeights, std::span<float> expressionWeights) const {
+  return applyWithVisemes(auWeights, emotionWeights, {}, targetWeights, expressionWeights);
+}
+
+eng::Result<void> RigMapping::applyWithVisemes(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                               std::span<const float> visemeWeights, std::span<float> targetWeights,
+                                               std::span<float> expressionWeights) const {
+  if (!visemeWeights.empty() && visemeWeights.size() != kVisemeCount)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: got " + std::to_string(visemeWeights.size()) +
+                          " viseme weights; expected 0 or " + std::to_string(kVisemeCount));
+  for (size_t v = 0; v < visemeWeights.size(); ++v)
+    if (!std::isfinite(visemeWeights[v]))
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping: viseme weight " + rigVisemeInputName(Viseme(v)) + " is not finite");
   const size_t channels = actionUnits().size();
   if (auWeights.size() != channels || (!emotionWeights.empty() && emotionWeights.size() != kEmotionCount) ||
       targetWeights.size() != targetNames_.size())
@@ -182,22 +234,47 @@ eng::Result<void> RigMapping::apply(std::span<const float> auWeights, std::span<
                           " expression weights, the rig has " +
                           (stage_ ? std::to_string(controlNames_.size()) : std::string("no expression stage")));
   if (auto valid = checkInputs(auWeights, emotionWeights); !valid) return valid;
+  // Without visemes exactly the pose-driven targets are written, as before the viseme block.
+  const std::span<const uint32_t> written = visemeWeights.empty() ? drivenTargets_ : speechDrivenTargets_;
   if (!stage_) {
-    for (uint32_t t : drivenTargets_) targetWeights[t] = 0.0f;
-    accumulate(auWeights, emotionWeights, targetWeights);
-    for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
+    for (uint32_t t : written) targetWeights[t] = 0.0f;
+    accumulate(auWeights, emotionWeights, visemeWeights, targetWeights);
+    for (uint32_t t : written) targetWeights[t] = std::clamp(targetWeights[t], minWeight_, maxWeight_);
     return {};
   }
   // Rows land on the expressions; the stage resolves them (it writes every
   // target, only the driven ones are kept).
   std::fill(controlScratch_.begin(), controlScratch_.end(), 0.0f);
-  accumulate(auWeights, emotionWeights, controlScratch_);
+  accumulate(auWeights, emotionWeights, visemeWeights, controlScratch_);
   for (float& w : controlScratch_) w = std::clamp(w, 0.0f, 1.0f);
   if (auto resolved = stage_->apply(controlScratch_, stageScratch_); !resolved) return resolved;
   if (!expressionWeights.empty()) std::copy(controlScratch_.begin(), controlScratch_.end(), expressionWeights.begin());
-  for (uint32_t t : drivenTargets_) targetWeights[t] = std::clamp(stageScratch_[t], minWeight_, maxWeight_);
+  for (uint32_t t : written) targetWeights[t] = std::clamp(stageScratch_[t], minWeight_, maxWeight_);
   return {};
 }
+
+namespace {
+template <class Entry>
+void layOutSparseRows(const std::vector<Entry>& entries, size_t inputs, std::vector<uint32_t>& offsets,
+                      std::vector<uint32_t>& targets, std::vector<float>& gains) {
+  std::vector<Entry> sorted = entries;
+  std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
+    return a.input != b.input ? a.input < b.input : a.target < b.target;
+  });
+  offsets.assign(inputs + 1, 0);
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    const Entry& e = sorted[i];
+    if (i > 0 && sorted[i - 1].input == e.input && sorted[i - 1].target == e.target) {
+      gains.back() += e.gain;
+      continue;
+    }
+    targets.push_back(e.target);
+    gains.push_back(e.gain);
+    ++offsets[e.input + 1];
+  }
+  for (size_t i = 0; i < inputs; ++i) offsets[i + 1] += offsets[i];
+}
+}  // namespace
 
 RigMappingBuilder::RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames)
     : scheme_(scheme), targetNames_(targetNames.begin(), targetNames.end()) {}
@@ -215,10 +292,31 @@ RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool wi
     const auto gains = rig.gains(input);
     for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
   }
+  for (size_t v = 0; v < kVisemeCount; ++v) {
+    const auto targets = rig.visemeTargets(Viseme(v));
+    const auto gains = rig.visemeGains(Viseme(v));
+    for (size_t i = 0; i < targets.size(); ++i) builder.addViseme(Viseme(v), targets[i], gains[i]);
+  }
+  builder.setSpeech(rig.report().speech);
   return builder;
 }
 
 void RigMappingBuilder::add(uint32_t input, uint32_t target, float gain) { entries_.push_back({input, target, gain}); }
+
+void RigMappingBuilder::addViseme(Viseme viseme, uint32_t target, float gain) {
+  visemeEntries_.push_back({static_cast<uint32_t>(viseme), target, gain});
+}
+
+std::vector<std::pair<uint32_t, float>> RigMappingBuilder::row(uint32_t input) const {
+  std::vector<std::pair<uint32_t, float>> out;
+  for (const Entry& e : entries_) {
+    if (e.input != input) continue;
+    auto same = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == e.target; });
+    if (same != out.end()) same->second += e.gain;
+    else out.emplace_back(e.target, e.gain);
+  }
+  return out;
+}
 
 void RigMappingBuilder::setWeightRange(float minWeight, float maxWeight) {
   minWeight_ = minWeight;
@@ -238,7 +336,10 @@ eng::Result<RigMapping> RigMappingBuilder::build() const {
   if (auto ok = checkEntries(); !ok) return ok.error();
   RigMapping mapping;
   layOutRows(mapping);
+  layOutVisemeRows(mapping);
   if (auto ok = markDrivenTargets(mapping); !ok) return ok.error();
+  markSpeechTargets(mapping);
+  mapping.report_.speech = mapping.speaks() ? speech_ : std::string();
   describeEmotions(mapping);
   mapping.report_.scheme = scheme_;
   mapping.report_.detail = detail_;
@@ -260,31 +361,44 @@ eng::Result<void> RigMappingBuilder::checkEntries() const {
       return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: non-finite gain for " + std::string(rigInputName(e.input)) + " -> " +
                             targetNames_[e.target]);
   }
+  for (const Entry& e : visemeEntries_)
+    if (e.input >= kVisemeCount || e.target >= targetNames_.size() || !std::isfinite(e.gain))
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "rig mapping builder: viseme entry " + std::to_string(e.input) + " -> target " +
+                            std::to_string(e.target) + " of " + std::to_string(targetNames_.size()) + " (gain " +
+                            formatGain(e.gain) + ") is out of range");
   return {};
 }
 
 // Sorted by (input, target) with repeats merged, so every row is ascending and unique.
 void RigMappingBuilder::layOutRows(RigMapping& mapping) const {
-  const uint32_t inputs = rigInputCount();
-  std::vector<Entry> sorted = entries_;
-  std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
-    return a.input != b.input ? a.input < b.input : a.target < b.target;
-  });
   mapping.targetNames_ = targetNames_;
   mapping.minWeight_ = minWeight_;
   mapping.maxWeight_ = maxWeight_;
-  mapping.offsets_.assign(inputs + 1, 0);
-  for (size_t i = 0; i < sorted.size(); ++i) {
-    const Entry& e = sorted[i];
-    if (i > 0 && sorted[i - 1].input == e.input && sorted[i - 1].target == e.target) {
-      mapping.entryGains_.back() += e.gain;
+  layOutSparseRows(entries_, rigInputCount(), mapping.offsets_, mapping.entryTargets_, mapping.entryGains_);
+}
+
+// The viseme block laid out as the pose rows are.
+void RigMappingBuilder::layOutVisemeRows(RigMapping& mapping) const {
+  layOutSparseRows(visemeEntries_, kVisemeCount, mapping.visemeOffsets_, mapping.visemeEntryTargets_,
+                   mapping.visemeEntryGains_);
+}
+
+// speechDrivenTargets_: the pose-driven targets plus what the viseme rows
+// reach (through the stage's binds when there is one). Runs after markDrivenTargets.
+void RigMappingBuilder::markSpeechTargets(RigMapping& mapping) const {
+  std::vector<bool> driven(mapping.targetNames_.size(), false);
+  for (uint32_t t : mapping.drivenTargets_) driven[t] = true;
+  for (uint32_t c : mapping.visemeEntryTargets_) {
+    if (!stage_) {
+      driven[c] = true;
       continue;
     }
-    mapping.entryTargets_.push_back(e.target);
-    mapping.entryGains_.push_back(e.gain);
-    ++mapping.offsets_[e.input + 1];
+    const VrmExpression& e = stage_->expressions[c];
+    for (uint32_t b = e.firstBind; b < e.firstBind + e.bindCount && b < stage_->binds.size(); ++b)
+      if (stage_->binds[b].target < driven.size()) driven[stage_->binds[b].target] = true;
   }
-  for (uint32_t i = 0; i < inputs; ++i) mapping.offsets_[i + 1] += mapping.offsets_[i];
+  for (uint32_t t = 0; t < driven.size(); ++t)
+    if (driven[t]) mapping.speechDrivenTargets_.push_back(t);
 }
 
 // VRM's mouth presets (aa..oh, 0.x a..o) are visemes too when they are expressions.

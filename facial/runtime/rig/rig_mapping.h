@@ -26,6 +26,22 @@
 // report(), never dropped silently; viseme shapes (lip sync) are listed as
 // visemes, not as unmapped targets.
 //
+// Viseme block (lip sync): besides the pose inputs (rigInputCount(): action
+// units, then emotions) every mapping has a third block of 15 inputs, the
+// Oculus visemes (speech/viseme.h), named "viseme_sil" .. "viseme_U"
+// (rigVisemeInputName; rigVisemeIndex also reads "PP", "pp", "viseme_pp").
+// They are kept apart from the pose inputs so that code laid over the pose
+// layout (rig maps, calibration, the editor's timeline) is unchanged; they are
+// driven by applyWithVisemes(). How each scheme realises them (speech_rig.cpp):
+//   viseme_* targets (any scheme)  identity
+//   VRM aa/ih/ou/ee/oh, 0.x a/i/u/e/o, VRoid Fcl_MTH_A..O (+ Fcl_MTH_Close)
+//                                   a vowel blend per viseme (through the
+//                                   expression stage: overrideMouth applies)
+//   ARKit 52                        composed from the mouth shapes
+//   action units, CANDIDE-3         composed through the rig's own AU rows
+// A rig none of these reach cannot speak (speaks() false). Custom rig maps
+// get no viseme rows yet (rigmap_file.cpp does not read them).
+//
 // Expression stage (VRM): a mapping built over a VRM model's expressions
 // (attachExpressionStage) has rows that address expressions, not morph
 // targets; apply() turns the expression weights into morph weights through
@@ -42,10 +58,12 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/core/result.h"
 #include "facial/runtime/rig/emotions.h"
+#include "facial/runtime/speech/viseme.h"
 #include "facial/runtime/rig/vrm_expressions.h"
 
 namespace facial {
@@ -59,6 +77,9 @@ uint32_t emotionInput(Emotion emotion);
 std::string_view rigInputName(uint32_t input);
 // AU channel name or emotion name -> input index.
 std::optional<uint32_t> rigInputIndex(std::string_view name);
+// The viseme block: "viseme_PP"; read back from "viseme_PP", "PP" or any case of either.
+std::string rigVisemeInputName(Viseme viseme);
+std::optional<Viseme> rigVisemeIndex(std::string_view name);
 
 struct RigMappingReport {
   RigScheme scheme = RigScheme::ActionUnits;
@@ -66,7 +87,8 @@ struct RigMappingReport {
   std::vector<std::string> unmappedTargets;  // model targets that no input drives
   std::vector<std::string> unmappedInputs;   // AU / emotion channels that drive no target
   std::vector<std::string> notes;            // approximations and other decisions worth knowing
-  std::vector<std::string> visemes;          // lip-sync shapes / expressions, left for a speech driver
+  std::vector<std::string> visemes;          // lip-sync shapes / expressions of the model
+  std::string speech;                        // how the viseme block is realised ("" when the rig cannot speak)
   // How each emotion channel is realised when the rig binds emotions
   // ("happy <- 'joy'", "fear <- 'surprised' x0.55 + 'sad' x0.45"); empty when
   // emotions reach the face through the action units only.
@@ -96,6 +118,11 @@ class RigMapping {
   std::span<const float> gains(uint32_t input) const;
   // Targets that some input drives (ascending); apply() writes only these.
   std::span<const uint32_t> drivenTargets() const { return drivenTargets_; }
+  // The viseme block's sparse rows (controls, as targets()).
+  std::span<const uint32_t> visemeTargets(Viseme viseme) const;
+  std::span<const float> visemeGains(Viseme viseme) const;
+  // Whether any viseme drives something: the rig can speak.
+  bool speaks() const { return !visemeEntryTargets_.empty(); }
 
   // Internal consistency (offsets, indices in range, finite gains, range).
   eng::Result<void> validate() const;
@@ -117,12 +144,18 @@ class RigMapping {
   eng::Result<void> apply(std::span<const float> auWeights, std::span<float> targetWeights) const {
     return apply(auWeights, {}, targetWeights);
   }
+  // apply() with the viseme block: visemeWeights empty (exactly apply()) or
+  // kVisemeCount, finite. It writes the targets the visemes drive as well.
+  eng::Result<void> applyWithVisemes(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                                     std::span<const float> visemeWeights, std::span<float> targetWeights,
+                                     std::span<float> expressionWeights = {}) const;
 
  private:
   friend class RigMappingBuilder;
   eng::Result<void> checkInputs(std::span<const float> auWeights, std::span<const float> emotionWeights) const;
   // rows[c] = sum over inputs of weight * gain for every control c the rows reach.
-  void accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights, std::span<float> rows) const;
+  void accumulate(std::span<const float> auWeights, std::span<const float> emotionWeights,
+                  std::span<const float> visemeWeights, std::span<float> rows) const;
 
   RigMappingReport report_;
   std::vector<std::string> targetNames_;
@@ -130,6 +163,10 @@ class RigMapping {
   std::vector<uint32_t> entryTargets_;
   std::vector<float> entryGains_;
   std::vector<uint32_t> drivenTargets_;
+  std::vector<uint32_t> visemeOffsets_;  // kVisemeCount + 1, as offsets_
+  std::vector<uint32_t> visemeEntryTargets_;
+  std::vector<float> visemeEntryGains_;
+  std::vector<uint32_t> speechDrivenTargets_;  // drivenTargets_ and the targets the visemes drive (ascending)
   float minWeight_ = 0.0f;
   float maxWeight_ = 1.0f;
   std::shared_ptr<const VrmExpressionSet> stage_;
@@ -144,13 +181,20 @@ class RigMappingBuilder {
  public:
   RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames);
   // A builder that starts as `rig` does: its scheme, control names, detail,
-  // notes, weight range and expression stage, and its rows unless `withRows`
-  // is false (for code that re-derives a mapping's rows).
+  // notes, weight range, expression stage and viseme block, and its pose rows
+  // unless `withRows` is false (for code that re-derives the pose rows, as
+  // calibration does: the rig keeps speaking).
   static RigMappingBuilder startingFrom(const RigMapping& rig, bool withRows = true);
 
   std::span<const std::string> targetNames() const { return targetNames_; }
   // Gains of repeated (input, target) pairs add up.
   void add(uint32_t input, uint32_t target, float gain);
+  void addViseme(Viseme viseme, uint32_t target, float gain);
+  // The (target, gain) entries added so far for a pose input, repeats merged
+  // (what a composed viseme row is made of).
+  std::vector<std::pair<uint32_t, float>> row(uint32_t input) const;
+  bool speaks() const { return !visemeEntries_.empty(); }
+  void setSpeech(std::string speech) { speech_ = std::move(speech); }
   void setDetail(std::string detail) { detail_ = std::move(detail); }
   void note(std::string note) { notes_.push_back(std::move(note)); }
   void setWeightRange(float minWeight, float maxWeight);
@@ -171,12 +215,16 @@ class RigMappingBuilder {
   // The steps of build(), in order.
   eng::Result<void> checkEntries() const;
   void layOutRows(RigMapping& mapping) const;
+  void layOutVisemeRows(RigMapping& mapping) const;
+  void markSpeechTargets(RigMapping& mapping) const;
   bool isViseme(const std::string& name) const;
   eng::Result<void> markDrivenTargets(RigMapping& mapping) const;
   void describeEmotions(RigMapping& mapping) const;
   RigScheme scheme_;
   std::vector<std::string> targetNames_;
   std::vector<Entry> entries_;
+  std::vector<Entry> visemeEntries_;  // input: the Viseme
+  std::string speech_;
   std::string detail_;
   std::vector<std::string> notes_;
   float minWeight_ = 0.0f;
@@ -213,6 +261,12 @@ eng::Result<RigMapping> attachExpressionStage(const RigMapping& rows, std::share
 // A lip-sync shape or expression: Oculus / Ready Player Me "viseme_*", VRM 1.0
 // aa/ih/ou/ee/oh, VRM 0.x a/i/u/e/o, VRoid Fcl_MTH_A/I/U/E/O.
 bool isVisemeName(std::string_view name);
+// Fills the builder's viseme block for its scheme (see "Viseme block" above);
+// leaves it empty when nothing on the rig moves the mouth.
+void mapSpeech(RigMappingBuilder& builder, RigScheme scheme);
+// One line for a rig that cannot speak: "<model>: cannot speak: none of its N
+// targets ... (looked for ...)".
+std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model);
 
 // Forces one built-in scheme (not Custom); fails when it recognises none of the names.
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme);

@@ -35,6 +35,7 @@ eng::Result<RigMapping> buildWith(const SchemeEntry& entry, std::span<const std:
   RigMappingBuilder builder(entry.scheme, targetNames);
   builder.setDetail(recognition.detail);
   entry.map(builder);
+  mapSpeech(builder, entry.scheme);
   return builder.build();
 }
 

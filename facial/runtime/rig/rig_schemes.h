@@ -6,6 +6,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "facial/runtime/rig/rig_mapping.h"
 
@@ -33,6 +34,11 @@ void mapVRoid(RigMappingBuilder& builder);
 
 SchemeRecognition recogniseVisemes(std::span<const std::string> targetNames);
 void mapVisemes(RigMappingBuilder& builder);
+
+// A target name as lip-sync shapes are matched: after the last '.', ':' or
+// '|' (mesh prefixes), lower case; and the targets whose key is `key`.
+std::string shapeKey(std::string_view name);
+std::vector<uint32_t> findShapesByKey(std::span<const std::string> names, std::string_view key);
 
 inline std::string asciiLower(std::string_view s) {
   std::string out(s);

@@ -16,22 +16,26 @@ namespace {
 constexpr std::array<std::string_view, 15> kOculusVisemes = {"sil", "pp", "ff", "th", "dd", "kk", "ch", "ss",
                                                              "nn",  "rr", "aa", "e",  "i",  "o",  "u"};
 
-std::string visemeKey(std::string_view name) {
-  if (const size_t cut = name.find_last_of(".:|"); cut != std::string_view::npos) name = name.substr(cut + 1);
-  return asciiLower(name);
-}
-
 std::vector<uint32_t> findOculus(std::span<const std::string> names, std::string_view viseme) {
-  std::vector<uint32_t> found;
-  for (uint32_t t = 0; t < names.size(); ++t)
-    if (visemeKey(names[t]) == "viseme_" + std::string(viseme)) found.push_back(t);
-  return found;
+  return findShapesByKey(names, "viseme_" + std::string(viseme));
 }
 
 }  // namespace
 
+std::string shapeKey(std::string_view name) {
+  if (const size_t cut = name.find_last_of(".:|"); cut != std::string_view::npos) name = name.substr(cut + 1);
+  return asciiLower(name);
+}
+
+std::vector<uint32_t> findShapesByKey(std::span<const std::string> names, std::string_view key) {
+  std::vector<uint32_t> found;
+  for (uint32_t t = 0; t < names.size(); ++t)
+    if (shapeKey(names[t]) == key) found.push_back(t);
+  return found;
+}
+
 bool isVisemeName(std::string_view name) {
-  const std::string key = visemeKey(name);
+  const std::string key = shapeKey(name);
   if (key.compare(0, 7, "viseme_") == 0) {
     for (std::string_view v : kOculusVisemes)
       if (key.size() == 7 + v.size() && key.compare(7, std::string::npos, v) == 0) return true;

@@ -10,6 +10,7 @@
 
 #include "facial/runtime/graph/node.h"
 #include "facial/runtime/graph/parameters.h"
+#include "facial/runtime/speech/viseme_track.h"
 
 namespace facial {
 
@@ -46,12 +47,21 @@ class ScratchPose {
   std::span<float> pose_;
 };
 
+// The host's speech for this frame (GraphInstance::setSpeech): the track, the
+// audio-clock time and the instance's sampling cursors. No track: silence.
+struct SpeechInput {
+  const VisemeTrack* track = nullptr;
+  float time = 0;
+  std::span<uint32_t> cursors;  // kSpeechChannelCount
+};
+
 struct EvalContext {
   const GraphDefinition& definition;
   std::span<float> parameters;
   std::span<NodeState> states;
   ScratchStack& scratch;
   float dt = 0;
+  SpeechInput speech = {};
 
   // Advances `node` by dt and writes its pose (stride floats) to out.
   void evaluate(NodeIndex node, std::span<float> out);

@@ -1,0 +1,42 @@
+#pragma once
+// Speech over action units: the lip and jaw units each viseme is made of (how
+// a FACS-driven face speaks), and the mouth-ownership table (how an emotion's
+// own mouth yields to speech while the brows, eyes, cheeks and head stay the
+// emotion's). Used by rigs that speak through their action units
+// (rig/speech_rig.cpp) and by everything that layers speech over an emotion
+// (the speech node, facial::Character).
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "facial/runtime/speech/viseme.h"
+
+namespace facial {
+
+struct VisemeActionUnit {
+  std::string_view channel;  // an actionUnits() channel name
+  float weight;
+};
+// The units of one viseme (empty for sil: the relaxed, closed mouth).
+std::span<const VisemeActionUnit> visemeActionUnits(Viseme viseme);
+
+// While speech is active, the emotion's weight on a mouth channel is scaled by
+//   1 - activity * (1 - kept) - activity * lipClosure * (kept - keptOnClosure)
+// i.e. `kept` of it stays through speech and `keptOnClosure` while the lips
+// close (p b m). Speech owns a channel whose kept is 0 (jaw drop, lips part,
+// stretch, pressor, tightener, lower lip): the emotion's shape there fades as
+// speech starts, so it never fights the visemes. Channels not in the table
+// (brows, lids, cheek raiser, nose, blink) stay the emotion's.
+struct MouthOwnership {
+  std::string_view channel;
+  float kept;           // fraction of the emotion's weight left at full speech activity
+  float keptOnClosure;  // fraction left on a full bilabial closure (<= kept)
+};
+std::span<const MouthOwnership> mouthOwnershipTable();
+
+// How much speech owns the mouth now: 1 - the sil weight, in [0, 1].
+float speechActivity(std::span<const float> visemeWeights);
+// Applies the table to action-unit weights (actionUnits() order) in place.
+void yieldMouthToSpeech(std::span<float> auWeights, float activity, float lipClosure);
+
+}  // namespace facial
