@@ -36,14 +36,13 @@ struct StreamFacts {
 };
 
 StreamFacts reopen(const fs::path& path) {
-  StreamFacts facts;
   AVFormatContext* input = nullptr;
-  if (avformat_open_input(&input, path.c_str(), nullptr, nullptr) < 0) return facts;
-  avformat_find_stream_info(input, nullptr);
-  facts.durationSeconds = input->duration / double(AV_TIME_BASE);
-  for (unsigned i = 0; i < input->nb_streams; ++i) {
-    facts.video = facts.video || input->streams[i]->codecpar->codec_type == AVMEDIA_TYPE_VIDEO;
-    facts.audio = facts.audio || input->streams[i]->codecpar->codec_type == AVMEDIA_TYPE_AUDIO;
+  if (avformat_open_input(&input, path.c_str(), nullptr, nullptr) < 0) return {};
+  StreamFacts facts;
+  if (avformat_find_stream_info(input, nullptr) >= 0) {
+    facts.video = av_find_best_stream(input, AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0) >= 0;
+    facts.audio = av_find_best_stream(input, AVMEDIA_TYPE_AUDIO, -1, -1, nullptr, 0) >= 0;
+    facts.durationSeconds = input->duration / double(AV_TIME_BASE);
   }
   avformat_close_input(&input);
   return facts;
