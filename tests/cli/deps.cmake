@@ -1,5 +1,6 @@
-# test_cli: the `facial express / sheet / rig` commands, run as the built
+# test_cli: the `facial express / sheet / rig / say` commands, run as the built
 # program (exit codes, messages, golden contact sheets), and their shared
-# FaceSetup, linked from facial_app (app/) for direct tests.
-set(TEST_DEPS facial_app)
+# FaceSetup, linked from facial_app (app/) for direct tests. `say`'s videos are
+# reopened with libavformat (through facial_audio's FFmpeg).
+set(TEST_DEPS facial_app facial_audio PkgConfig::FFMPEG)
 add_dependencies(test_cli facial_cli)

@@ -1,0 +1,203 @@
+// `facial say`: a sentence, Rhubarb cues or a bare recording spoken by a face
+// into a video with its sound; the frames follow the viseme track (lips shut
+// on PP, open on aa); refused input exits non-zero with one line and no video.
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+extern "C" {
+#include <libavformat/avformat.h>
+}
+
+#include "engine/scene/gltf_writer.h"
+#include "tests/cli/cli_runner.h"
+#include "tests/cli/cli_test_support.h"
+#include "tests/common/test_face.h"
+#include "tests/common/test_support.h"
+
+namespace cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFps = 12;
+// Bilabials and open vowels, about 1.5 s in espeak-ng's English.
+constexpr const char* kSentence = "Bob, my papa, parked a car.";
+
+struct StreamFacts {
+  bool video = false, audio = false;
+  double durationSeconds = 0;
+};
+
+StreamFacts reopen(const fs::path& path) {
+  AVFormatContext* input = nullptr;
+  if (avformat_open_input(&input, path.c_str(), nullptr, nullptr) < 0) return {};
+  StreamFacts facts;
+  if (avformat_find_stream_info(input, nullptr) >= 0) {
+    facts.video = av_find_best_stream(input, AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0) >= 0;
+    facts.audio = av_find_best_stream(input, AVMEDIA_TYPE_AUDIO, -1, -1, nullptr, 0) >= 0;
+    facts.durationSeconds = input->duration / double(AV_TIME_BASE);
+  }
+  avformat_close_input(&input);
+  return facts;
+}
+
+// A mono 16-bit WAV of `seconds` of a tone pulsed four times a second (syllable-like bursts).
+fs::path writePulsedTone(const fs::path& path, double seconds) {
+  constexpr int rate = 16000;
+  std::vector<int16_t> samples(size_t(seconds * rate));
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const double t = double(i) / rate;
+    const double gate = std::fmod(t, 0.25) < 0.15 ? 1.0 : 0.0;
+    samples[i] = int16_t(12000 * gate * std::sin(2 * M_PI * 220 * t));
+  }
+  std::ofstream out(path, std::ios::binary);
+  auto put = [&](uint32_t value, int bytes) { out.write(reinterpret_cast<const char*>(&value), bytes); };
+  const uint32_t dataBytes = uint32_t(samples.size() * 2);
+  out.write("RIFF", 4), put(36 + dataBytes, 4), out.write("WAVEfmt ", 8), put(16, 4), put(1, 2), put(1, 2);
+  put(rate, 4), put(rate * 2, 4), put(2, 2), put(16, 2), out.write("data", 4), put(dataBytes, 4);
+  out.write(reinterpret_cast<const char*>(samples.data()), dataBytes);
+  return path;
+}
+
+// The middle of the longest cue of `viseme` in the --visemes JSON, as a frame index (-1: none).
+int frameOnViseme(const nlohmann::json& cues, const std::string& viseme) {
+  double longest = 0, middle = -1;
+  for (const auto& cue : cues["visemes"])
+    if (cue["viseme"] == viseme && double(cue["end"]) - double(cue["start"]) > longest) {
+      longest = double(cue["end"]) - double(cue["start"]);
+      middle = 0.5 * (double(cue["start"]) + double(cue["end"]));
+    }
+  return middle < 0 ? -1 : int(std::lround(middle * kFps));
+}
+
+// Dark pixels in the lower middle of the frame, where the head's mouth is: an open mouth is dark inside.
+size_t darkMouthPixels(const eng::Image& image) {
+  size_t dark = 0;
+  for (int y = image.height * 55 / 100; y < image.height * 85 / 100; ++y)
+    for (int x = image.width * 35 / 100; x < image.width * 65 / 100; ++x) {
+      const uint8_t* p = &image.rgba8[(size_t(y) * image.width + x) * 4];
+      if (0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] < 60) ++dark;
+    }
+  return dark;
+}
+
+class SayCommand : public ::testing::Test {
+ protected:
+  // One sentence rendered once for the suite (the slow part), with frames and the track.
+  static void SetUpTestSuite() {
+    sentenceDir_ = testing_support::freshTempDir("say_command_sentence");
+    sentenceRun_ = runFacial({"say", kSentence, "--size", "128x128", "--fps", std::to_string(kFps), "--out",
+                              (sentenceDir_ / "talk.mp4").string(), "--frames", (sentenceDir_ / "frames").string(),
+                              "--visemes", (sentenceDir_ / "visemes.json").string()});
+  }
+  void SetUp() override { dir_ = testing_support::freshTempDir("say_command"); }
+
+  // Runs `say` with `args` expecting a one-line refusal containing `expected`, and no video left behind.
+  void expectRefused(std::vector<std::string> args, const std::string& expected) {
+    const fs::path out = dir_ / "refused.mp4";
+    args.insert(args.begin(), "say");
+    args.insert(args.end(), {"--size", "64x64", "--out", out.string()});
+    const CommandOutput run = runFacial(args);
+    EXPECT_NE(run.exitCode, 0) << expected;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << run.err;
+    EXPECT_EQ(countOccurrences(run.err, "\n"), 1u) << run.err;
+    EXPECT_FALSE(fs::exists(out)) << expected;
+    EXPECT_FALSE(fs::exists(out.string() + ".partial")) << expected;
+  }
+
+  static inline fs::path sentenceDir_;
+  static inline CommandOutput sentenceRun_;
+  fs::path dir_;
+};
+
+TEST_F(SayCommand, SentenceBecomesAVideoWithSound) {
+  ASSERT_TRUE(ranCleanly(sentenceRun_));
+  const StreamFacts facts = reopen(sentenceDir_ / "talk.mp4");
+  EXPECT_TRUE(facts.video);
+  EXPECT_TRUE(facts.audio);
+  // The sentence lasts about 1.5 s, plus the 0.2 s rest at the end.
+  EXPECT_GT(facts.durationSeconds, 1.0);
+  EXPECT_LT(facts.durationSeconds, 3.0);
+  const size_t frames = std::distance(fs::directory_iterator(sentenceDir_ / "frames"), fs::directory_iterator());
+  EXPECT_NEAR(double(frames) / kFps, facts.durationSeconds, 0.25);
+}
+
+TEST_F(SayCommand, LipsCloseOnPPAndOpenOnAa) {
+  ASSERT_TRUE(ranCleanly(sentenceRun_));
+  std::ifstream in(sentenceDir_ / "visemes.json");
+  const nlohmann::json cues = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_TRUE(cues.is_object());
+  const int closed = frameOnViseme(cues, "PP");
+  const int open = frameOnViseme(cues, "aa");
+  ASSERT_GE(closed, 0);
+  ASSERT_GE(open, 0);
+  char closedName[32], openName[32];
+  std::snprintf(closedName, sizeof closedName, "frame_%04d.png", closed);
+  std::snprintf(openName, sizeof openName, "frame_%04d.png", open);
+  const size_t closedDark = darkMouthPixels(readPngOrFail(sentenceDir_ / "frames" / closedName));
+  const size_t openDark = darkMouthPixels(readPngOrFail(sentenceDir_ / "frames" / openName));
+  // At 128 px about 16 dark pixels with the lips shut (the lip line), 50-80 on an open vowel.
+  EXPECT_GT(openDark, 2 * closedDark + 10) << closedDark << " dark on PP frame " << closed << ", " << openDark
+                                           << " dark on aa frame " << open;
+}
+
+TEST_F(SayCommand, RhubarbCuesDriveTheFaceOverTheirRecording) {
+  FACIAL_REQUIRE_SHARED();
+  const fs::path speech = testing_support::sharedDir() / "speech";
+  const fs::path out = dir_ / "bonjour.webm";
+  const CommandOutput run = runFacial({"say", "--cues", (speech / "bonjour.json").string(), "--audio",
+                                       (speech / "bonjour.ogg").string(), "--size", "64x64", "--fps", "8", "--out",
+                                       out.string()});
+  ASSERT_TRUE(ranCleanly(run));
+  const StreamFacts facts = reopen(out);
+  EXPECT_TRUE(facts.video);
+  EXPECT_TRUE(facts.audio);
+}
+
+TEST_F(SayCommand, RecordingAloneMovesTheMouth) {
+  const fs::path out = dir_ / "tone.mp4";
+  const CommandOutput run = runFacial({"say", "--audio", writePulsedTone(dir_ / "tone.wav", 1.0).string(),
+                                       "--size", "64x64", "--fps", "8", "--out", out.string(), "--visemes",
+                                       (dir_ / "tone.json").string()});
+  ASSERT_TRUE(ranCleanly(run));
+  EXPECT_TRUE(reopen(out).audio);
+  std::ifstream in(dir_ / "tone.json");
+  const nlohmann::json cues = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_TRUE(cues.is_object());
+  bool opened = false;
+  for (const auto& cue : cues["visemes"]) opened = opened || cue["viseme"] != "sil";
+  EXPECT_TRUE(opened) << cues.dump();
+}
+
+TEST_F(SayCommand, BadInputIsRefusedInOneLineWithoutAVideo) {
+  expectRefused({"   "}, "TEXT is empty");
+  expectRefused({"hello", "--lang", "xx-nowhere"}, "unknown language 'xx-nowhere'");
+  expectRefused({"hello", "--emotion", "bored"}, "--emotion 'bored'");
+  expectRefused({"--audio", (dir_ / "missing.wav").string()}, "missing.wav");
+  std::ofstream(dir_ / "corrupt.wav") << "RIFF not really a wave file";
+  expectRefused({"--audio", (dir_ / "corrupt.wav").string()}, "corrupt.wav");
+  const fs::path tone = writePulsedTone(dir_ / "tone.wav", 0.5);
+  std::ofstream(dir_ / "bad_cues.json") << R"({"mouthCues": [{"start": 0.0, "end": 0.2, "value": "Z"}]})";
+  expectRefused({"--cues", (dir_ / "bad_cues.json").string(), "--audio", tone.string()}, "bad_cues.json");
+}
+
+TEST_F(SayCommand, FaceThatCannotSpeakIsRefused) {
+  // The test face with its mouth and jaw targets renamed to brow and lid units: nothing moves the mouth.
+  eng::Model face = makeTestFace();
+  for (auto& mesh : face.meshes)
+    mesh.targetNames = {"AU1_InnerBrowRaiser", "AU2_OuterBrowRaiser", "AU4_BrowLowerer", "AU5_UpperLidRaiser",
+                        "custom_shape"};
+  const fs::path model = dir_ / "mute_face.glb";
+  ASSERT_TRUE(eng::saveModel(face, model));
+  expectRefused({"hello", "--model", model.string()}, "cannot speak");
+}
+
+}  // namespace
+}  // namespace cli_test
