@@ -15,6 +15,7 @@
 #include "facial/runtime/json/json_document.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "tests/common/test_support.h"
+#include "tests/importers/shared_vrm.h"
 
 namespace facial {
 namespace {
@@ -548,18 +549,15 @@ TEST(VrmRigValidity, StageAndTargetCountsMustAgree) {
 TEST(VrmRig, SharedVrm0And1AvatarsBuildRigsOverTheirShapeKey) {
   FACIAL_REQUIRE_SHARED();
   for (const char* file : {"modifier_shapekey_vrm0.vrm", "modifier_shapekey_vrm1.vrm"}) {
-    auto set = importers::findVrmExpressions(testing_support::sharedDir() / "assets" / "vrm" / file);
-    ASSERT_TRUE(set) << set.error().message;
-    ASSERT_TRUE(set->has_value()) << file;
-    auto shared = std::make_shared<const VrmExpressionSet>(std::move(**set));
-    auto rig = buildVrmRigMapping(shared, std::vector<std::string>{"A"});
-    ASSERT_TRUE(rig) << rig.error().message;
+    auto loaded = vrm_test::sharedVrmRig(file);
+    ASSERT_TRUE(loaded);
+    const RigMapping* rig = &loaded->rig;
     EXPECT_EQ(rig->scheme(), RigScheme::Expressions) << file;
     const RigMappingReport& report = rig->report();
     // The files bind the shape key only to the open vowel (0.x 'a', 1.0 'aa'): a viseme, no emotion moves the mesh.
     EXPECT_EQ(report.visemes.size(), 5u) << file << "\n" << report.summary();
     EXPECT_TRUE(contains(report.notes, "expressions that bind nothing")) << report.summary();
-    EXPECT_TRUE(contains(report.emotions, std::string("happy <- '") + (shared->specVersion == 0 ? "joy'" : "happy'")))
+    EXPECT_TRUE(contains(report.emotions, std::string("happy <- '") + (loaded->expressions->specVersion == 0 ? "joy'" : "happy'")))
         << report.summary();
   }
   auto plain = importers::findVrmExpressions(testing_support::sharedDir() / "assets" / "facecap.glb");

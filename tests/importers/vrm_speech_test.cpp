@@ -11,6 +11,7 @@
 #include "facial/runtime/rig/rig_mapping.h"
 #include "importers/vrm_import.h"
 #include "tests/common/test_support.h"
+#include "tests/importers/shared_vrm.h"
 
 namespace facial {
 namespace {
@@ -18,12 +19,10 @@ namespace {
 TEST(VrmSpeech, SharedVrm0And1AvatarsOpenTheMouthOnAa) {
   FACIAL_REQUIRE_SHARED();
   for (const char* file : {"modifier_shapekey_vrm0.vrm", "modifier_shapekey_vrm1.vrm"}) {
-    auto set = importers::findVrmExpressions(testing_support::sharedDir() / "assets" / "vrm" / file);
-    ASSERT_TRUE(set) << set.error().message;
-    ASSERT_TRUE(set->has_value()) << file;
-    auto shared = std::make_shared<const VrmExpressionSet>(std::move(**set));
-    auto rig = buildVrmRigMapping(shared, std::vector<std::string>{"A"});
-    ASSERT_TRUE(rig) << rig.error().message;
+    auto loaded = vrm_test::sharedVrmRig(file);
+    ASSERT_TRUE(loaded);
+    const std::shared_ptr<const VrmExpressionSet>& shared = loaded->expressions;
+    RigMapping* rig = &loaded->rig;
     ASSERT_TRUE(rig->speaks()) << file << "\n" << rig->report().summary();
     EXPECT_NE(rig->report().speech.find(shared->specVersion == 0 ? "VRM 0.x" : "VRM 1.0"), std::string::npos)
         << rig->report().speech;
