@@ -69,4 +69,31 @@ eng::Result<AudioClip> readAudioFile(const std::filesystem::path& path) {
   return clip;
 }
 
+eng::Result<void> writeWavFile(const std::filesystem::path& path, std::span<const float> samples, int sampleRate) {
+  const std::string name = path.string();
+  if (sampleRate <= 0) return eng::makeError(eng::ErrorKind::InvalidArgument, name + ": sample rate " + std::to_string(sampleRate) + " Hz");
+  const std::filesystem::path partial = name + ".partial";
+  SF_INFO info{.samplerate = sampleRate, .channels = 1, .format = SF_FORMAT_WAV | SF_FORMAT_PCM_16};
+  {
+    SndfileHandle file(sf_open(partial.c_str(), SFM_WRITE, &info));
+    if (!file) return eng::makeError(eng::ErrorKind::Io, name + ": cannot write: " + sf_strerror(nullptr));
+    // Floats past -1..1 clip instead of wrapping around.
+    sf_command(file.get(), SFC_SET_CLIPPING, nullptr, SF_TRUE);
+    const auto count = static_cast<sf_count_t>(samples.size());
+    if (sf_writef_float(file.get(), samples.data(), count) != count) {
+      const std::string why = sf_strerror(file.get());
+      file.reset();
+      std::filesystem::remove(partial);
+      return eng::makeError(eng::ErrorKind::Io, name + ": cannot write: " + why);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::filesystem::remove(partial, ec);
+    return eng::makeError(eng::ErrorKind::Io, name + ": cannot write: " + ec.message());
+  }
+  return {};
+}
+
 }  // namespace audio

@@ -2,6 +2,7 @@
 // Reading recorded speech (libsndfile: WAV, FLAC, OGG/Vorbis, Opus, MP3) as
 // mono float samples, for the audio-only mouth drive and for playback.
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include "engine/core/result.h"
@@ -21,5 +22,10 @@ struct AudioClip {
 // empty (no samples), longer than kMaxAudioFileSeconds. A valid silent file
 // reads as zeros.
 eng::Result<AudioClip> readAudioFile(const std::filesystem::path& path);
+
+// Writes mono samples (-1..1, clipped) as a 16-bit PCM WAV: into
+// PATH.partial, renamed to PATH when complete, so a failed write never
+// leaves a half file under the name. Errors name the file.
+eng::Result<void> writeWavFile(const std::filesystem::path& path, std::span<const float> samples, int sampleRate);
 
 }  // namespace audio

@@ -109,6 +109,26 @@ TEST(AudioFile, OverTheLengthLimitIsRefusedWithTheLimit) {
   EXPECT_NE(clip.error().message.find("1800 s"), std::string::npos) << clip.error().message;
 }
 
+TEST(AudioFile, WavWriterRoundTripsClipsAndLeavesNoPartial) {
+  const fs::path dir = testing_support::freshTempDir("audio_file_write");
+  std::vector<float> samples;
+  for (int i = 0; i < 22050; ++i) samples.push_back(0.5f * std::sin(float(i) * 0.05f));
+  samples[10] = 3.0f;  // clips to full scale, never wraps to negative
+  ASSERT_TRUE(audio::writeWavFile(dir / "voice.wav", samples, 22050).ok());
+  EXPECT_FALSE(fs::exists(dir / "voice.wav.partial"));
+  auto clip = audio::readAudioFile(dir / "voice.wav");
+  ASSERT_TRUE(clip.ok()) << clip.error().message;
+  EXPECT_EQ(clip->sampleRate, 22050);
+  ASSERT_EQ(clip->samples.size(), samples.size());
+  EXPECT_NEAR(clip->samples[1000], samples[1000], 1e-4f);
+  EXPECT_GT(clip->samples[10], 0.99f);
+
+  auto unwritable = audio::writeWavFile(dir / "no_such_folder" / "voice.wav", samples, 22050);
+  ASSERT_FALSE(unwritable.ok());
+  EXPECT_NE(unwritable.error().message.find("no_such_folder/voice.wav: cannot write"), std::string::npos)
+      << unwritable.error().message;
+}
+
 TEST(AudioFile, ReadsTheSharedFrenchRecording) {
   FACIAL_REQUIRE_SHARED();
   const fs::path path = testing_support::sharedDir() / "speech" / "bonjour.ogg";
