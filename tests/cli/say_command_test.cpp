@@ -1,6 +1,8 @@
-// `facial say`: a sentence, Rhubarb cues or a bare recording spoken by a face
-// into a video with its sound; the frames follow the viseme track (lips shut
-// on PP, open on aa); refused input exits non-zero with one line and no video.
+// `facial say`: a sentence, a presenter script, Rhubarb cues, a recording with
+// its transcript or a bare recording spoken by a face into a video with its
+// sound; the frames follow the viseme track (lips shut on PP, open on aa) and
+// the emotions (their intensity, their changes mid-line); refused input exits
+// non-zero with one line and no video.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -15,6 +17,8 @@ extern "C" {
 #include <libavformat/avformat.h>
 }
 
+#include "app/presenter_script.h"
+#include "audio/audio_file.h"
 #include "engine/scene/gltf_writer.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
@@ -95,7 +99,8 @@ class SayCommand : public ::testing::Test {
     sentenceDir_ = testing_support::freshTempDir("say_command_sentence");
     sentenceRun_ = runFacial({"say", kSentence, "--size", "128x128", "--fps", std::to_string(kFps), "--out",
                               (sentenceDir_ / "talk.mp4").string(), "--frames", (sentenceDir_ / "frames").string(),
-                              "--visemes", (sentenceDir_ / "visemes.json").string()});
+                              "--visemes", (sentenceDir_ / "visemes.json").string(), "--wav",
+                              (sentenceDir_ / "talk.wav").string()});
   }
   void SetUp() override { dir_ = testing_support::freshTempDir("say_command"); }
 
@@ -110,6 +115,20 @@ class SayCommand : public ::testing::Test {
     EXPECT_EQ(countOccurrences(run.err, "\n"), 1u) << run.err;
     EXPECT_FALSE(fs::exists(out)) << expected;
     EXPECT_FALSE(fs::exists(out.string() + ".partial")) << expected;
+  }
+
+  // The first and last frames of `say` with `args` at 64x64, 10 fps.
+  std::pair<eng::Image, eng::Image> firstAndLastFrames(std::vector<std::string> args, const std::string& name) {
+    const fs::path frames = dir_ / name;
+    args.insert(args.begin(), "say");
+    args.insert(args.end(), {"--size", "64x64", "--fps", "10", "--out", (dir_ / (name + ".mp4")).string(),
+                             "--frames", frames.string()});
+    const CommandOutput run = runFacial(args);
+    EXPECT_TRUE(ranCleanly(run)) << name;
+    const size_t count = std::distance(fs::directory_iterator(frames), fs::directory_iterator());
+    char last[32];
+    std::snprintf(last, sizeof last, "frame_%04zu.png", count - 1);
+    return {readPngOrFail(frames / "frame_0000.png"), readPngOrFail(frames / last)};
   }
 
   static inline fs::path sentenceDir_;
@@ -127,6 +146,90 @@ TEST_F(SayCommand, SentenceBecomesAVideoWithSound) {
   EXPECT_LT(facts.durationSeconds, 3.0);
   const size_t frames = std::distance(fs::directory_iterator(sentenceDir_ / "frames"), fs::directory_iterator());
   EXPECT_NEAR(double(frames) / kFps, facts.durationSeconds, 0.25);
+}
+
+TEST_F(SayCommand, WavIsTheVideosSoundtrack) {
+  ASSERT_TRUE(ranCleanly(sentenceRun_));
+  EXPECT_FALSE(fs::exists(sentenceDir_ / "talk.wav.partial"));
+  auto clip = audio::readAudioFile(sentenceDir_ / "talk.wav");
+  ASSERT_TRUE(clip.ok()) << clip.error().message;
+  EXPECT_EQ(clip->sampleRate, 22050);  // espeak-ng's
+  // The soundtrack is padded with silence to the video's length (the 0.2 s rest at the end).
+  EXPECT_NEAR(clip->durationSeconds(), reopen(sentenceDir_ / "talk.mp4").durationSeconds, 0.1);
+}
+
+TEST_F(SayCommand, RecordingWithItsTranscriptIsAligned) {
+  ASSERT_TRUE(ranCleanly(sentenceRun_));
+  const CommandOutput run = runFacial({"say", "--audio", (sentenceDir_ / "talk.wav").string(), "--text", kSentence,
+                                       "--size", "64x64", "--fps", "8", "--out", (dir_ / "aligned.mp4").string(),
+                                       "--visemes", (dir_ / "aligned.json").string()});
+  ASSERT_TRUE(ranCleanly(run));
+  EXPECT_EQ(run.err.find("note:"), std::string::npos) << run.err;
+  std::ifstream in(dir_ / "aligned.json");
+  const nlohmann::json cues = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_TRUE(cues.is_object());
+  // The phonemes came from the transcript: the bilabials of "Bob, my papa" close the lips.
+  int bilabials = 0;
+  for (const auto& cue : cues["visemes"]) bilabials += cue["viseme"] == "PP";
+  EXPECT_GE(bilabials, 4) << cues.dump();
+}
+
+TEST_F(SayCommand, TranscriptThatCannotBeAlignedFallsBackToTheSyllables) {
+  const CommandOutput run = runFacial({"say", "--audio", writePulsedTone(dir_ / "tone.wav", 1.0).string(), "--text",
+                                       "zzqxvw blorf", "--size", "64x64", "--fps", "8", "--out",
+                                       (dir_ / "fallback.mp4").string()});
+  ASSERT_TRUE(ranCleanly(run));
+  EXPECT_EQ(countOccurrences(run.err, "facial say: note: --text not aligned to"), 1u) << run.err;
+  EXPECT_NE(run.err.find("the mouth follows its syllables instead"), std::string::npos) << run.err;
+  EXPECT_TRUE(reopen(dir_ / "fallback.mp4").audio);
+}
+
+TEST_F(SayCommand, IntensityScalesTheEmotion) {
+  const auto neutral = firstAndLastFrames({"Mmm.", "--emotion", "neutral"}, "neutral");
+  const auto happy = firstAndLastFrames({"Mmm.", "--emotion", "happy"}, "happy");
+  const auto faint = firstAndLastFrames({"Mmm.", "--emotion", "happy", "--intensity", "0.1"}, "faint");
+  const double faintToNeutral = differingFraction(faint.first, neutral.first);
+  const double faintToHappy = differingFraction(faint.first, happy.first);
+  EXPECT_LT(faintToNeutral, faintToHappy) << faintToNeutral << " vs " << faintToHappy;
+  EXPECT_GT(differingFraction(neutral.first, happy.first), 0.02);
+}
+
+TEST_F(SayCommand, ScriptSwitchesTheEmotionMidLine) {
+  const auto happy = firstAndLastFrames({"Mmm.", "--emotion", "happy"}, "happy");
+  const auto sad = firstAndLastFrames({"Mmm.", "--emotion", "sad"}, "sad");
+  std::ofstream(dir_ / "bulletin.txt") << "# two emotions in one line\n[happy] Mmm, mmm. [sad] Mmm, mmm, mmm.\n";
+  const fs::path frames = dir_ / "script";
+  const CommandOutput run = runFacial({"say", "--script", (dir_ / "bulletin.txt").string(), "--size", "64x64",
+                                       "--fps", "10", "--out", (dir_ / "bulletin.mp4").string(), "--frames",
+                                       frames.string()});
+  ASSERT_TRUE(ranCleanly(run));
+  EXPECT_NE(run.out.find("(happy > sad)"), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("say: 100%"), std::string::npos) << run.err;  // the progress
+  const StreamFacts facts = reopen(dir_ / "bulletin.mp4");
+  EXPECT_TRUE(facts.video && facts.audio);
+  const size_t count = std::distance(fs::directory_iterator(frames), fs::directory_iterator());
+  char lastName[32];
+  std::snprintf(lastName, sizeof lastName, "frame_%04zu.png", count - 1);
+  const eng::Image first = readPngOrFail(frames / "frame_0000.png");
+  const eng::Image last = readPngOrFail(frames / lastName);
+  EXPECT_LT(differingFraction(first, happy.first), differingFraction(first, sad.first));
+  EXPECT_LT(differingFraction(last, sad.second), differingFraction(last, happy.second));
+}
+
+TEST_F(SayCommand, MalformedScriptIsRefusedWithItsLine) {
+  const fs::path script = dir_ / "bulletin.txt";
+  std::ofstream(script) << "Good evening.\n[bored] Here is the news.\n";
+  expectRefused({"--script", script.string()}, "bulletin.txt:2: unknown tag '[bored]'");
+  std::ofstream(script) << "Good evening [pause soon].\n";
+  expectRefused({"--script", script.string()}, "bulletin.txt:1: pause 'soon'");
+  std::ofstream(script) << "\n\nGood [happy evening.\n";
+  expectRefused({"--script", script.string()}, "bulletin.txt:3: '[' is not closed");
+  std::ofstream(script) << "# nothing\n";
+  expectRefused({"--script", script.string()}, "says nothing");
+  std::ofstream(script) << std::string(app::kMaxPresenterScriptBytes + 1, 'a');
+  expectRefused({"--script", script.string()}, "over the script limit of 1 MB");
+  expectRefused({"--script", script.string(), "hello"}, "give no TEXT, --audio or --cues");
+  expectRefused({"--script", (dir_ / "absent.txt").string()}, "absent.txt: cannot open the script");
 }
 
 TEST_F(SayCommand, LipsCloseOnPPAndOpenOnAa) {
@@ -180,6 +283,9 @@ TEST_F(SayCommand, BadInputIsRefusedInOneLineWithoutAVideo) {
   expectRefused({"   "}, "TEXT is empty");
   expectRefused({"hello", "--lang", "xx-nowhere"}, "unknown language 'xx-nowhere'");
   expectRefused({"hello", "--emotion", "bored"}, "--emotion 'bored'");
+  expectRefused({"hello", "--intensity", "1.5"}, "--intensity must be a number in [0, 1]");
+  expectRefused({"hello", "--intensity", "nan"}, "--intensity must be a number in [0, 1]");
+  expectRefused({"hello", "--wav", (dir_ / "voice.mp3").string()}, "must end in .wav");
   expectRefused({"--audio", (dir_ / "missing.wav").string()}, "missing.wav");
   std::ofstream(dir_ / "corrupt.wav") << "RIFF not really a wave file";
   expectRefused({"--audio", (dir_ / "corrupt.wav").string()}, "corrupt.wav");

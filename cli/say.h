@@ -1,0 +1,91 @@
+#pragma once
+// `facial say` (cli/commands/say.cpp) in two halves: what the face says
+// (say_speech.cpp: synthesis, recordings, cues, alignment, presenter scripts
+// -> one soundtrack, one viseme track, the emotion changes on its clock) and
+// how it is rendered (say_render.cpp: the speaking character, the emotion
+// changes played on it, the video with its sound).
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "app/face_materials.h"
+#include "app/face_setup.h"
+#include "app/headless_model_renderer.h"
+#include "app/sequence_recorder.h"
+#include "app/view_options.h"
+#include "engine/core/result.h"
+#include "facial/character.h"
+#include "facial/runtime/speech/viseme_track.h"
+
+namespace cli::say {
+
+struct SayOptions {
+  std::string text;
+  std::string language = "en";
+  std::string emotion = "neutral";
+  float intensity = 1.0f;
+  std::string model;
+  std::string rigmap;
+  std::vector<std::string> shapes;
+  app::ViewOptions view;
+  float fps = 25.0f;
+  std::string cues;
+  std::string audio;
+  std::string script;
+  std::string out;
+  std::string wav;
+  std::string frames;
+  std::string visemes;
+};
+
+// The emotions of data/graphs/tour.json, each shading the synthesized voice a
+// little (sad slower and lower, happy and surprise quicker and higher).
+struct EmotionVoice {
+  const char* name;
+  float ratePercent;
+  float pitchPercent;
+};
+const EmotionVoice* emotionVoice(const std::string& name);
+std::string emotionList();
+
+// From `time` on the soundtrack the face shows `emotion` at `intensity`.
+struct EmotionCue {
+  float time = 0.0f;
+  std::string emotion;
+  float intensity = 1.0f;
+};
+
+// What the face says: the soundtrack, the viseme track that follows it and
+// the emotions along it (the first at 0).
+struct Speech {
+  std::vector<float> samples;
+  int sampleRate = 0;
+  std::shared_ptr<const facial::VisemeTrack> track;
+  std::vector<std::string> notes;  // printed as "facial say: note: ..."
+  std::vector<EmotionCue> emotions;
+  float seconds() const { return sampleRate > 0 ? float(samples.size()) / float(sampleRate) : 0.0f; }
+};
+
+// Text, a recording (with cues, a transcript or alone) or a presenter script,
+// as the options say; errors are one line naming the argument or file.
+eng::Result<Speech> speechFor(const SayOptions& o);
+
+// The track as the project's timed-viseme JSON (visemesFromJson reads it).
+eng::Result<void> writeVisemeJson(const facial::VisemeTrack& track, const std::string& path);
+
+struct Presenter {
+  app::FaceSetup setup;
+  facial::Character character;
+  app::FaceMaterials materials;
+};
+
+// The face speaking `speech`, its first emotion settled before frame 0.
+eng::Result<Presenter> makePresenter(const SayOptions& o, const Speech& speech);
+
+// Renders the clip into the video (and the PNG frames), the audio clock
+// driving the mouth and the emotion changes.
+eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
+                                             const app::HeadlessRenderOptions& renderOptions, float seconds);
+
+}  // namespace cli::say
