@@ -26,7 +26,7 @@
 #include "app/sequence_recorder.h"
 #include "app/view_options.h"
 #include "audio/audio_file.h"
-#include "audio/speech_synthesis.h"
+#include "audio/spoken_line.h"
 #include "audio/syllable_envelope.h"
 #include "audio/video_writer.h"
 #include "cli/command.h"
@@ -92,12 +92,7 @@ std::string emotionList() {
 }
 
 // What the face says: the soundtrack and the viseme track that follows it.
-struct Speech {
-  std::vector<float> samples;
-  int sampleRate = 0;
-  std::shared_ptr<const facial::VisemeTrack> track;
-  std::vector<std::string> warnings;
-};
+using Speech = audio::SpokenLine;
 
 eng::Result<Speech> withTrack(Speech speech, eng::Result<facial::VisemeTrackBuild> built) {
   if (!built) return built.error();
@@ -109,18 +104,11 @@ eng::Result<Speech> withTrack(Speech speech, eng::Result<facial::VisemeTrackBuil
 eng::Result<Speech> synthesizedSpeech(const SayOptions& o, const EmotionVoice& voice) {
   if (std::all_of(o.text.begin(), o.text.end(), [](unsigned char c) { return std::isspace(c); }))
     return eng::Error{eng::ErrorKind::InvalidArgument, "TEXT is empty (give a sentence, or --audio FILE)"};
-  auto spoken = audio::synthesize(o.text, {.language = o.language,
-                                           .ratePercent = voice.ratePercent,
-                                           .pitchPercent = voice.pitchPercent});
+  auto spoken = audio::speakLine(o.text, {.language = o.language,
+                                          .ratePercent = voice.ratePercent,
+                                          .pitchPercent = voice.pitchPercent});
   if (!spoken) return spoken.error().prefixed("--lang '" + o.language + "': ");
-  Speech speech;
-  speech.sampleRate = spoken->sampleRate;
-  speech.samples.reserve(spoken->samples.size());
-  for (int16_t s : spoken->samples) speech.samples.push_back(float(s) / 32768.0f);
-  std::vector<facial::TimedPhoneme> phonemes;
-  for (const audio::TimedPhoneme& p : spoken->phonemes)
-    phonemes.push_back({.ipa = p.ipa, .start = float(p.start), .end = float(p.end)});
-  return withTrack(std::move(speech), facial::VisemeTrackBuilder{}.build(phonemes));
+  return spoken;
 }
 
 eng::Result<std::string> readText(const std::string& path) {
