@@ -9,13 +9,13 @@ namespace audio {
 eng::Result<std::shared_ptr<const facial::VisemeTrack>> LiveSpeech::start(std::string_view text,
                                                                            std::string_view language) {
   if (std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isspace(c); }))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "nothing to say: the text is empty");
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "speech: nothing to say: the text is empty");
   if (text.size() > kMaxLiveCharacters)
-    return eng::makeError(eng::ErrorKind::TooLarge, "the text is " + std::to_string(text.size()) +
+    return eng::makeError(eng::ErrorKind::TooLarge, "speech: the text is " + std::to_string(text.size()) +
                                                         " bytes; at most " + std::to_string(kMaxLiveCharacters) +
                                                         " are spoken live (facial say takes longer texts)");
   auto line = speakLine(text, {.language = std::string(language)});
-  if (!line) return line.error().prefixed("language '" + std::string(language) + "': ");
+  if (!line) return line.error();  // "speech: unknown language 'xx' (...)", ...
   if (!player_) player_.emplace(Player::open(playerOptions_));
   if (auto played = player_->play(line->samples, line->sampleRate); !played) return played.error();
   warnings_ = std::move(line->warnings);

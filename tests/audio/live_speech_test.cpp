@@ -126,13 +126,13 @@ TEST(LiveSpeech, BadLinesAreRefusedInOneLineAndTheLinePlayingGoesOn) {
   ASSERT_TRUE(live.start("Still talking here for a little while.", "en"));
   auto blank = live.start("  \n\t", "en");
   ASSERT_FALSE(blank);
-  EXPECT_EQ(blank.error().message, "nothing to say: the text is empty");
+  EXPECT_EQ(blank.error().message, "speech: nothing to say: the text is empty");
   auto huge = live.start(std::string(audio::kMaxLiveCharacters + 1, 'a'), "en");
   ASSERT_FALSE(huge);
   EXPECT_NE(huge.error().message.find("at most 2000"), std::string::npos) << huge.error().message;
   auto unknown = live.start("Hello", "xx-nowhere");
   ASSERT_FALSE(unknown);
-  EXPECT_EQ(unknown.error().message.rfind("language 'xx-nowhere': ", 0), 0u) << unknown.error().message;
+  EXPECT_EQ(unknown.error().message.rfind("speech: unknown language 'xx-nowhere'", 0), 0u) << unknown.error().message;
   EXPECT_EQ(unknown.error().message.find('\n'), std::string::npos) << unknown.error().message;
   EXPECT_TRUE(live.speaking());
   EXPECT_EQ(live.text(), "Still talking here for a little while.");
