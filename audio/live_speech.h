@@ -10,8 +10,9 @@
 //   if (auto t = live.update()) face.setSpeechTime(*t);
 //   else if (face.speaking()) face.stopSpeaking();
 //
-// Synthesis runs on the caller's thread: about 50 ms for a sentence, a
-// second for the longest line a text box takes (kMaxLiveCharacters).
+// Synthesis runs on the caller's thread: 10-20 ms for a sentence, a quarter
+// of a second for the longest line it takes (kMaxLiveCharacters, two minutes
+// of speech; docs/audio.md).
 #include <memory>
 #include <optional>
 #include <string>
