@@ -346,6 +346,10 @@ void WindowDemo::speak() {
   }
   if (!track) return speechBox_.reportProblem("facial demo", track.error().message);
   speechBox_.reportStarted("facial demo", speech_.describe(), speech_.takeNotes());
+  // The slider's or pad's pose covers the whole face, mouth included: the
+  // graph takes the face back to speak (the slider's emotion, triggered).
+  if (override_->control() == Control::Slider) trigger(override_->chosen());
+  override_->returnToGraph();
 }
 
 void WindowDemo::stopSpeaking(const char* why) {

@@ -443,6 +443,31 @@ TEST(WindowDemo, SayMovesTheMouthWhileTheLinePlaysAndRestsAfter) {
   EXPECT_LT(after, widest / 5) << "the mouth rests after the line";
 }
 
+// The slider's pose covers the whole face: speaking hands the face back to
+// the graph, in the slider's emotion, so the mouth moves.
+TEST(WindowDemo, SayWhileTheSliderHoldsTheFaceSpeaksInItsEmotion) {
+  REQUIRE_VIRTUAL_DISPLAY();
+  const fs::path model = builtInHead();
+  ASSERT_FALSE(model.empty());
+  const fs::path dir = testing_support::freshTempDir("demo_window_say_slider");
+  testing_support::writeFile(dir / "script.txt",
+                             "0.3 intensity 1\n1.5 screenshot\n"
+                             "1.6 say Papa, how are you? Ah, hello, hello, a long and happy day for all of us here!\n"
+                             "2.0 screenshot\n2.3 screenshot\n2.6 screenshot\n");
+  const DemoRun run =
+      runDemo(dir, model, {.seconds = 3.0f, .arguments = "--still --mute --script '" + (dir / "script.txt").string() + "'"});
+  eng::Image last;
+  ASSERT_TRUE(ranCleanly(run, last));
+  EXPECT_EQ(statesLogged(run.log), (std::vector<std::string>{"neutral", "happy"})) << run.log;
+  ASSERT_EQ(run.shots.size(), 5u) << run.log;
+  const eng::Image held = readShot(run.shots[0]);
+  const PixelBox mouth = mouthBox(held);
+  size_t widest = 0;
+  for (size_t i = 1; i <= 3; ++i) widest = std::max(widest, changedPixels(held, readShot(run.shots[i]), mouth));
+  std::printf("mouth pixels changed while speaking after the slider: up to %zu\n", widest);
+  EXPECT_GT(widest, 1000u) << "the mouth moves once the graph has the face back";
+}
+
 TEST(WindowDemoValidity, BrokenScriptIsRefusedNamingFileAndLine) {
   const fs::path dir = testing_support::freshTempDir("demo_window_bad_script");
   testing_support::writeFile(dir / "bad.txt", "1.0 trigger happy\n2.0 wiggle 3\n");
