@@ -17,17 +17,6 @@ namespace {
 
 constexpr auto kMalformed = eng::ErrorKind::Malformed;
 
-bool knownEmotion(std::string_view name) {
-  const auto names = facial::emotionNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-std::string emotionList() {
-  std::string list;
-  for (std::string_view name : facial::emotionNames()) list += (list.empty() ? "" : ", ") + std::string(name);
-  return list;
-}
-
 eng::Result<float> intensityFrom(const std::string& word) {
   float value = 0;
   if (!parseScriptNumber(word, value) || value < 0.0f || value > 1.0f)
@@ -68,7 +57,7 @@ class ScriptBuilder {
   }
   void paragraph() { implicitPause_ = std::max(implicitPause_, kParagraphPauseSeconds); }
   eng::Result<void> setEmotion(const std::string& name, float intensity) {
-    if (!knownEmotion(name)) return eng::makeError(kMalformed, "unknown emotion '" + name + "' (known: " + emotionList() + ")");
+    if (!facial::emotionIndex(name)) return eng::makeError(kMalformed, "unknown emotion '" + name + "' (known: " + facial::emotionNameList() + ")");
     emotion_ = name;
     intensity_ = intensity;
     return {};
@@ -98,8 +87,8 @@ class ScriptBuilder {
       pause(ENG_TRY_VALUE(pauseFrom(words[1])));
       return {};
     }
-    if (!knownEmotion(name))
-      return eng::makeError(kMalformed, "unknown tag '[" + std::string(tag) + "]': not pause or an emotion (" + emotionList() + ")");
+    if (!facial::emotionIndex(name))
+      return eng::makeError(kMalformed, "unknown tag '[" + std::string(tag) + "]': not pause or an emotion (" + facial::emotionNameList() + ")");
     return setEmotion(name, words.size() == 2 ? ENG_TRY_VALUE(intensityFrom(words[1])) : defaultIntensity_);
   }
 

@@ -11,7 +11,7 @@ namespace {
 struct Verb {
   std::string_view word;
   ScriptAction::Kind kind;
-  int numbers;  // arguments after the word (Trigger: one name instead)
+  int numbers;  // arguments after the word (Trigger, SayLanguage: one name instead; Say: the rest of the line)
 };
 constexpr Verb kVerbs[] = {
     {"trigger", ScriptAction::Kind::Trigger, 0},  {"intensity", ScriptAction::Kind::Intensity, 1},
@@ -19,7 +19,13 @@ constexpr Verb kVerbs[] = {
     {"orbit", ScriptAction::Kind::Orbit, 2},      {"screenshot", ScriptAction::Kind::Screenshot, 0},
     {"resize", ScriptAction::Kind::Resize, 2},    {"iconify", ScriptAction::Kind::Iconify, 0},
     {"restore", ScriptAction::Kind::Restore, 0},  {"frame", ScriptAction::Kind::Frame, 0},
+    {"say", ScriptAction::Kind::Say, 0},          {"say-lang", ScriptAction::Kind::SayLanguage, 0},
+    {"say-stop", ScriptAction::Kind::SayStop, 0},
 };
+
+bool takesName(ScriptAction::Kind kind) {
+  return kind == ScriptAction::Kind::Trigger || kind == ScriptAction::Kind::SayLanguage;
+}
 
 bool parseFloat(const std::string& word, float& value) {
   const char* end = word.data() + word.size();
@@ -82,13 +88,20 @@ eng::Result<std::vector<ScriptAction>> parseWindowScript(std::string_view text, 
       if (v.word == words[0]) verb = &v;
     if (!verb)
       return fail("unknown action '" + words[0] +
-                  "' (trigger, intensity, pad, graph, orbit, screenshot, resize, iconify, restore)");
+                  "' (trigger, intensity, pad, graph, orbit, screenshot, resize, iconify, restore, say, say-lang, "
+                  "say-stop)");
     action.kind = verb->kind;
-    const size_t wanted = 1 + (verb->kind == ScriptAction::Kind::Trigger ? 1 : verb->numbers);
+    if (action.kind == ScriptAction::Kind::Say) {
+      if (words.size() < 2) return fail("'say' needs the text to speak");
+      for (size_t w = 1; w < words.size(); ++w) action.name += (w > 1 ? " " : "") + words[w];
+      actions.push_back(std::move(action));
+      continue;
+    }
+    const size_t wanted = 1 + (takesName(verb->kind) ? 1 : verb->numbers);
     if (words.size() != wanted)
       return fail("'" + words[0] + "' takes " + std::to_string(wanted - 1) + " argument(s), got " +
                   std::to_string(words.size() - 1));
-    if (verb->kind == ScriptAction::Kind::Trigger) {
+    if (takesName(verb->kind)) {
       action.name = words[1];
     } else {
       float* values[] = {&action.a, &action.b};

@@ -16,6 +16,9 @@
 //   4.0  resize 900 600     the window's size in screen coordinates
 //   4.5  iconify            minimise / restore through the window manager
 //   5.0  restore
+//   6.0  say-lang vi        the Speak box's language (an espeak-ng voice; "en" until set)
+//   6.5  say Xin chào!      the Speak box's text (the rest of the line) and its Speak button
+//   9.0  say-stop           the Stop button
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -26,10 +29,10 @@
 namespace app {
 
 struct ScriptAction {
-  enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Frame, Screenshot, Resize, Iconify, Restore };
+  enum class Kind { Trigger, Intensity, Pad, Graph, Orbit, Frame, Screenshot, Resize, Iconify, Restore, Say, SayLanguage, SayStop };
   float time = 0.0f;
   Kind kind = Kind::Screenshot;
-  std::string name;   // Trigger: the trigger parameter
+  std::string name;   // Trigger: the trigger parameter; Say: the text; SayLanguage: the language
   float a = 0, b = 0;  // Intensity: a; Pad, Orbit: a, b; Resize: a x b
 };
 

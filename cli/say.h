@@ -39,16 +39,6 @@ struct SayOptions {
   std::string visemes;
 };
 
-// The emotions of data/graphs/tour.json, each shading the synthesized voice a
-// little (sad slower and lower, happy and surprise quicker and higher).
-struct EmotionVoice {
-  const char* name;
-  float ratePercent;
-  float pitchPercent;
-};
-const EmotionVoice* emotionVoice(const std::string& name);
-std::string emotionList();
-
 // From `time` on the soundtrack the face shows `emotion` at `intensity`.
 struct EmotionCue {
   float time = 0.0f;

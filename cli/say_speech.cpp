@@ -14,6 +14,7 @@
 #include "app/presenter_script.h"
 #include "audio/audio_file.h"
 #include "audio/speech_synthesis.h"
+#include "audio/spoken_line.h"
 #include "audio/syllable_envelope.h"
 #include "audio/transcript_alignment.h"
 #include "cli/say.h"
@@ -21,11 +22,6 @@
 
 namespace cli::say {
 namespace {
-
-constexpr EmotionVoice kEmotionVoices[] = {
-    {"neutral", 100, 100}, {"happy", 108, 115}, {"sad", 85, 85},        {"anger", 105, 95},
-    {"fear", 110, 120},    {"surprise", 110, 125}, {"disgust", 95, 90},
-};
 
 // --visemes samples the track this often to write its dominant viseme.
 constexpr float kVisemeSampleRate = 100.0f;
@@ -46,17 +42,12 @@ eng::Result<Speech> withTrack(Speech speech, const std::vector<Timed>& timed) {
 // intensity) to the soundtrack, its phonemes shifted to where it starts.
 eng::Result<void> speakInto(Speech& speech, std::vector<facial::TimedPhoneme>& phonemes, const std::string& text,
                             const std::string& language, const EmotionCue& emotion) {
-  const EmotionVoice& voice = *emotionVoice(emotion.emotion);
-  auto shade = [&](float percent) { return 100.0f + (percent - 100.0f) * emotion.intensity; };
-  auto spoken = audio::synthesize(text, {.language = language,
-                                         .ratePercent = shade(voice.ratePercent),
-                                         .pitchPercent = shade(voice.pitchPercent)});
+  auto spoken = audio::synthesize(text, audio::emotionalVoice(language, emotion.emotion, emotion.intensity));
   if (!spoken) return spoken.error().prefixed("--lang '" + language + "': ");
   if (speech.sampleRate == 0) speech.sampleRate = spoken->sampleRate;
   const float offset = speech.seconds();
   for (int16_t s : spoken->samples) speech.samples.push_back(float(s) / 32768.0f);
-  for (const audio::TimedPhoneme& p : spoken->phonemes)
-    phonemes.push_back({.ipa = p.ipa, .start = offset + float(p.start), .end = offset + float(p.end)});
+  audio::appendTrackPhonemes(spoken->phonemes, offset, phonemes);
   return {};
 }
 
@@ -148,8 +139,7 @@ eng::Result<Speech> alignedSpeech(Speech speech, const SayOptions& o) {
   auto aligned = audio::alignTranscript(speech.samples, speech.sampleRate, o.text);
   if (aligned && !aligned->phonemes.empty()) {
     std::vector<facial::TimedPhoneme> phonemes;
-    for (const audio::TimedPhoneme& p : aligned->phonemes)
-      phonemes.push_back({.ipa = p.ipa, .start = float(p.start), .end = float(p.end)});
+    audio::appendTrackPhonemes(aligned->phonemes, 0.0f, phonemes);
     return withTrack(std::move(speech), phonemes);
   }
   const std::string why = aligned ? "no phonemes aligned" : aligned.error().message;
@@ -173,18 +163,6 @@ eng::Result<Speech> recordedSpeech(const SayOptions& o) {
 }
 
 }  // namespace
-
-const EmotionVoice* emotionVoice(const std::string& name) {
-  for (const EmotionVoice& e : kEmotionVoices)
-    if (name == e.name) return &e;
-  return nullptr;
-}
-
-std::string emotionList() {
-  std::string list;
-  for (const EmotionVoice& e : kEmotionVoices) list += (list.empty() ? "" : ", ") + std::string(e.name);
-  return list;
-}
 
 eng::Result<Speech> speechFor(const SayOptions& o) {
   if (!o.script.empty()) {

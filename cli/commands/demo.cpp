@@ -42,8 +42,9 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
                  "Window: write the last frame here before quitting (F12 screenshots go to the same folder)");
   app.add_option("--script", o->script,
                  "Window: timed actions, one per line 'SECONDS ACTION ARGS' (trigger NAME, intensity X, pad X Y, "
-                 "graph, orbit YAW PITCH, screenshot, resize W H, iconify, restore)");
+                 "graph, orbit YAW PITCH, screenshot, resize W H, iconify, restore, say TEXT, say-lang CODE, say-stop)");
   app.add_flag("--still", o->still, "Window: no idle sway, breathing or eye saccades (blinks stay)");
+  app.add_flag("--mute", o->mute, "Window: Speak moves the mouth without playing the voice");
   return [o] { return (o->headless || !hasDisplay()) ? runHeadlessDemo(*o) : runWindowDemo(*o); };
 });
 

@@ -17,6 +17,7 @@
 #include "audio/audio_file.h"
 #include "cli/command.h"
 #include "cli/say.h"
+#include "facial/runtime/rig/emotions.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit, where their file-local names would clash.
@@ -41,8 +42,8 @@ eng::Result<void> checkOptions(const SayOptions& o) {
     return eng::Error{invalid, "--out " + o.out + ": the video must end in .mp4 or .webm"};
   if (!o.wav.empty() && std::filesystem::path(o.wav).extension() != ".wav")
     return eng::Error{invalid, "--wav " + o.wav + ": the soundtrack file must end in .wav"};
-  if (!say::emotionVoice(o.emotion))
-    return eng::Error{invalid, "--emotion '" + o.emotion + "' is not one of " + say::emotionList()};
+  if (!facial::emotionIndex(o.emotion))
+    return eng::Error{invalid, "--emotion '" + o.emotion + "' is not one of " + facial::emotionNameList()};
   return {};
 }
 
@@ -93,7 +94,7 @@ CommandRegistrar reg("say", "A face speaks text, a presenter script or a recordi
   app.add_option("--text", o->text, "With --audio: its transcript (English), force-aligned to time the mouth");
   app.add_option("--script", o->script, "A presenter script: lines, [emotion X] and [pause S] tags (docs/speech.md)");
   app.add_option("--lang", o->language, "espeak-ng language or voice: en, fr, vi, en-us, ...")->capture_default_str();
-  app.add_option("--emotion", o->emotion, "The face's emotion while it speaks: " + say::emotionList())
+  app.add_option("--emotion", o->emotion, "The face's emotion while it speaks: " + facial::emotionNameList())
       ->capture_default_str();
   app.add_option("--intensity,-i", o->intensity, "How strongly the emotion shows, 0..1")->capture_default_str();
   app::addFaceOptions(app, o->model, o->rigmap);

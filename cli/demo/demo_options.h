@@ -30,6 +30,7 @@ struct DemoOptions {
   std::string screenshot;          // windowed: last frame's screenshot file (F12 shots go beside it)
   std::string script;              // windowed: timed actions (window_script.h)
   bool still = false;              // windowed: no idle sway, breathing or saccades (comparable shots)
+  bool mute = false;               // windowed: the Speak button's voice is not played (the mouth still moves)
 };
 
 int runHeadlessDemo(const DemoOptions& options);

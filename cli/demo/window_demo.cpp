@@ -6,6 +6,9 @@
 // wheel zooms, F12 saves a screenshot, Esc quits. `--script` replays timed
 // actions through the same paths (window_script.h); state changes are logged.
 // `--crowd N`: N faces in a grid, each its own facial::Character with random triggers.
+// The Speak box (app/speech_box.h) makes the single face say a typed line
+// aloud: audio::LiveSpeech synthesizes and plays it, and the mouth follows
+// the audio clock (silently, with one note, when there is no sound card).
 //
 // The parts: the faces (demo_faces.h, one facial::Character each), the
 // panel's hold on the single face (face_override.h), the camera
@@ -25,10 +28,12 @@
 #include "app/cli_parse.h"
 #include "app/face_setup.h"
 #include "app/program_error.h"
+#include "app/speech_box.h"
 #include "app/view_options.h"
 #include "app/window_loop.h"
 #include "app/window_script.h"
 #include "app/window_session.h"
+#include "audio/live_speech.h"
 #include "cli/demo/demo_camera.h"
 #include "cli/demo/demo_faces.h"
 #include "cli/demo/demo_options.h"
@@ -75,6 +80,9 @@ class WindowDemo {
   glm::vec2 displaySize() const;
   void drawPanel();
   void drawPad();
+  void speak();
+  void stopSpeaking(const char* why);
+  void followSpeech();
   void notePanelExtent();
   void handleInput();
   void runScript(float elapsed);
@@ -96,6 +104,9 @@ class WindowDemo {
   std::vector<app::ScriptAction> script_;
   size_t nextAction_ = 0;
   std::string loggedState_;
+  audio::LiveSpeech speech_;
+  app::SpeechBox speechBox_;
+  float speechTime_ = 0.0f;
 
   std::unique_ptr<app::WindowSession> session_;
   std::optional<eng::vk::GpuModel> gpuModel_;  // destroyed before the session
@@ -108,6 +119,7 @@ class WindowDemo {
 
 int WindowDemo::setUp(const DemoOptions& o) {
   options_ = o;
+  speech_ = audio::LiveSpeech({.silent = o.mute});
   uint32_t width = 1280, height = 800;
   if (!o.size.empty() && !app::parseSize(o.size, width, height))
     return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
@@ -193,6 +205,12 @@ void WindowDemo::runScript(float elapsed) {
       case app::ScriptAction::Kind::Resize: glfwSetWindowSize(window, int(a.a), int(a.b)); break;
       case app::ScriptAction::Kind::Iconify: glfwIconifyWindow(window); break;
       case app::ScriptAction::Kind::Restore: glfwRestoreWindow(window); break;
+      case app::ScriptAction::Kind::Say:
+        speechBox_.setText(a.name);
+        speak();
+        break;
+      case app::ScriptAction::Kind::SayLanguage: speechBox_.setLanguage(a.name); break;
+      case app::ScriptAction::Kind::SayStop: stopSpeaking("stopped"); break;
     }
   }
 }
@@ -273,6 +291,13 @@ void WindowDemo::drawPanel() {
 
   ImGui::Separator();
   drawPad();
+  ImGui::Separator();
+  switch (speechBox_.draw({.speaking = speech_.speaking(), .time = speechTime_, .seconds = float(speech_.lineSeconds())},
+                          ImGui::GetContentRegionAvail().x)) {
+    case app::SpeechBox::Action::Speak: speak(); break;
+    case app::SpeechBox::Action::Stop: stopSpeaking("stopped"); break;
+    case app::SpeechBox::Action::None: break;
+  }
   if (override_->control() != Control::Graph && ImGui::Button("back to the graph")) override_->returnToGraph();
   ImGui::TextDisabled("drag: orbit  wheel: zoom  F: face/whole model  F12: screenshot  Esc: quit");
   notePanelExtent();
@@ -309,9 +334,48 @@ void WindowDemo::drawPad() {
                         override_->control() == Control::Pad ? IM_COL32(255, 190, 90, 255) : IM_COL32(150, 150, 150, 255));
 }
 
+// The box's line, replacing the one playing; a problem shows under the box and in the log.
+void WindowDemo::speak() {
+  if (faces_->crowd()) return;
+  auto track = speech_.start(speechBox_.text(), speechBox_.language());
+  if (track) {
+    if (auto spoken = faces_->single().speak(*track); !spoken) {
+      speech_.stop();
+      track = spoken.error();
+    }
+  }
+  if (!track) return speechBox_.reportProblem("facial demo", track.error().message);
+  speechBox_.reportStarted("facial demo", speech_.describe(), speech_.takeNotes());
+  // The slider's or pad's pose covers the whole face, mouth included: the
+  // graph takes the face back to speak (the slider's emotion, triggered).
+  if (override_->control() == Control::Slider) trigger(override_->chosen());
+  override_->returnToGraph();
+}
+
+void WindowDemo::stopSpeaking(const char* why) {
+  speech_.stop();
+  if (faces_->crowd() || !faces_->single().speaking()) return;
+  faces_->single().stopSpeaking();
+  std::printf("facial demo: speech: %s\n", why);
+  std::fflush(stdout);
+}
+
+// The mouth at the time of the sample being heard (the audio clock, not the frame clock).
+void WindowDemo::followSpeech() {
+  if (const std::optional<float> time = speech_.update()) {
+    speechTime_ = *time;
+    (void)faces_->single().setSpeechTime(*time);  // the player's clock is finite
+  } else {
+    stopSpeaking("done");
+  }
+}
+
 void WindowDemo::updateFaces(float dt) {
   override_->update(dt);
-  if (!faces_->crowd()) override_->applyTo(faces_->single());
+  if (!faces_->crowd()) {
+    override_->applyTo(faces_->single());
+    followSpeech();
+  }
   faces_->update(dt, camera_->camera().position());
 }
 

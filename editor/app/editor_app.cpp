@@ -164,6 +164,7 @@ int EditorApp::setUp(const EditorOptions& o) {
 
   const std::string graphPath = o.graph.empty() ? (app::dataDirectory() / "graphs" / "tour.json").string() : o.graph;
   if (auto loaded = machine_.load(*setup_, graphPath); !loaded) return fail(loaded.error().message);
+  if (o.mute) machine_.muteSpeech();
   if (!o.trigger.empty() && !machine_.fire(o.trigger))
     return fail(graphPath + ": no trigger parameter named '" + o.trigger + "'");
   if (auto created = controlMap_.create(*setup_); !created) return fail(created.error().message);
@@ -328,6 +329,11 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SculptFalloff: return sculpt_.chooseFalloff(a.a);
     case Kind::SculptBake: return sculpt_.pressBake(a.text);
     case Kind::SculptSave: return sculpt_.pressSave(a.text);
+    case Kind::Say:
+      machine_.setSpeechText(a.text);
+      return machine_.pressSpeak(*this);
+    case Kind::SayLanguage: machine_.setSpeechLanguage(a.text); return true;
+    case Kind::SayStop: machine_.pressStopSpeaking(); return true;
     case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
     case Kind::Quit: quitRequested_ = true; return true;
   }

@@ -25,6 +25,7 @@ struct EditorOptions {
   float quitAfter = 0.0f;
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12
   std::string script;      // timed actions (editor_script.h)
+  bool mute = false;       // Speak moves the mouth without playing the voice
 };
 
 int runEditor(const EditorOptions& options);

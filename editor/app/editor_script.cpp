@@ -13,7 +13,8 @@ using Kind = EditorScriptAction::Kind;
 struct Verb {
   std::string_view word;
   Kind kind;
-  // Arguments: 'w' a word (name or path), 'n' a number; those after '?' may be left out.
+  // Arguments: 'w' a word (name or path), 'n' a number, 't' the rest of the line
+  // (one or more words, as one text); those after '?' may be left out.
   std::string_view arguments;
 };
 constexpr Verb kVerbs[] = {
@@ -37,6 +38,9 @@ constexpr Verb kVerbs[] = {
     {"sculpt-falloff", Kind::SculptFalloff, "n"},
     {"sculpt-bake", Kind::SculptBake, "w"},
     {"sculpt-save", Kind::SculptSave, "w"},
+    {"say", Kind::Say, "t"},
+    {"say-lang", Kind::SayLanguage, "w"},
+    {"say-stop", Kind::SayStop, ""},
     {"screenshot", Kind::Screenshot, "?w"},
     {"quit", Kind::Quit, ""},
 };
@@ -72,8 +76,9 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     const size_t optionalAt = spec.find('?');
     const size_t required = optionalAt == std::string_view::npos ? spec.size() : optionalAt;
     const size_t most = spec.size() - (optionalAt == std::string_view::npos ? 0 : 1);
+    const bool restIsText = spec == "t";
     const size_t given = words.size() - 1;
-    if (given < required || given > most)
+    if (given < required || (given > most && !restIsText))
       return fail("'" + words[0] + "' takes " +
                   (required == most ? std::to_string(most) : std::to_string(required) + " or " + std::to_string(most)) +
                   " argument(s), got " + std::to_string(given));
@@ -84,6 +89,11 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     action.kind = verb->kind;
     for (const std::string& w : words) action.written += (action.written.empty() ? "" : " ") + w;
     action.source = where + action.written;
+    if (restIsText) {
+      action.text = action.written.substr(words[0].size() + 1);
+      actions.push_back(std::move(action));
+      continue;
+    }
     float* numbers[] = {&action.a, &action.b, &action.c};
     size_t nextNumber = 0;
     size_t argument = 1;

@@ -23,6 +23,9 @@
 //   2.6 sculpt-kernel multiquadric 0.02   biharmonic | polyharmonic | multiquadric [c]
 //   2.8 sculpt-bake smirk          Bake as a named morph target
 //   3.0 sculpt-save OUT.glb        Save .glb
+//   3.0 say-lang vi                the Speak box's language (an espeak-ng voice; "en" until set)
+//   3.1 say Xin chào các bạn!      the Speak box's text (the rest of the line) and Speak
+//   3.15 say-stop                  its Stop button
 //   3.2 screenshot shot.png        as F12 (no path: where F12 writes); later actions wait for it
 //   3.5 quit                       close the window (the --screenshot frame is still written)
 //
@@ -44,12 +47,13 @@ struct EditorScriptAction {
     Trigger, Pad, Orbit,
     TimelineOpen, TimelineSeek, TimelineKeyAll, TimelineKey, TimelineMoveSelected, TimelineDelete, Undo, Redo, TimelineSave,
     SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptFalloff, SculptBake, SculptSave,
+    Say, SayLanguage, SayStop,
     Screenshot, Quit,
   };
   float time = 0.0f;
   int line = 0;
   Kind kind = Kind::Quit;
-  std::string text;                      // the name or path argument ("" when none)
+  std::string text;                      // the name, path or text argument ("" when none)
   float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
   bool hasNumber = false;                // sculpt-kernel: c was given
   std::string written;                   // "ACTION ARGS" as in the file

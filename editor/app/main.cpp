@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");
   app.add_option("--script", o.script,
                  "Timed actions through the panels' own handlers, one a line: SECONDS ACTION ARGS "
-                 "(trigger, pad, timeline-*, undo, redo, sculpt-*, screenshot, quit; see README)");
+                 "(trigger, pad, timeline-*, undo, redo, sculpt-*, say, say-lang, say-stop, screenshot, quit; see README)");
+  app.add_flag("--mute", o.mute, "Speak moves the mouth without playing the voice");
   CLI11_PARSE(app, argc, argv);
   return editor::runEditor(o);
 }

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "facial/runtime/graph/graph_json.h"
@@ -42,7 +43,44 @@ eng::Result<void> StateMachinePanel::load(const app::FaceSetup& face, const std:
 }
 
 void StateMachinePanel::update(float dt) {
-  if (driver_) driver_->update(dt);
+  if (!driver_) return;
+  // The mouth at the time of the sample being heard (the audio clock, not the frame clock).
+  const std::optional<float> time = speech_.update();
+  if (time) {
+    speechTime_ = *time;
+  } else if (speechShown_) {
+    speechShown_ = false;
+    std::printf("facial-editor: speech: done\n");
+    std::fflush(stdout);
+  }
+  driver_->setSpeech(speech_.track(), speechTime_);  // the player's clock is finite
+  driver_->update(dt);
+}
+
+bool StateMachinePanel::pressSpeak(FaceDelegate& face) {
+  if (!driver_) return false;
+  if (!face_->graphRig().speaks()) {
+    message_.report(facial::cannotSpeakMessage(face_->graphRig(), face_->name()), true);
+    return false;
+  }
+  auto track = speech_.start(speechBox_.text(), speechBox_.language());
+  if (!track) {
+    speechBox_.reportProblem("facial-editor", track.error().message);
+    return false;
+  }
+  face.takeControl(FaceSource::StateMachine);
+  speechTime_ = 0.0f;
+  speechShown_ = true;
+  speechBox_.reportStarted("facial-editor", speech_.describe(), speech_.takeNotes());
+  return true;
+}
+
+void StateMachinePanel::pressStopSpeaking() {
+  if (!speech_.speaking()) return;
+  speech_.stop();
+  speechShown_ = false;
+  std::printf("facial-editor: speech: stopped\n");
+  std::fflush(stdout);
 }
 
 std::string StateMachinePanel::currentState() const {
@@ -125,6 +163,14 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     ImGui::PushID(int(p));
     if (ImGui::Button(decl.name.c_str(), {92.0f, 0.0f})) pressTrigger(decl.name, face);
     ImGui::PopID();
+  }
+  ImGui::Separator();
+  ImGui::TextDisabled("speak (under the current emotion)");
+  switch (speechBox_.draw({.speaking = speech_.speaking(), .time = speechTime_, .seconds = float(speech_.lineSeconds())},
+                          ImGui::GetContentRegionAvail().x)) {
+    case app::SpeechBox::Action::Speak: pressSpeak(face); break;
+    case app::SpeechBox::Action::Stop: pressStopSpeaking(); break;
+    case app::SpeechBox::Action::None: break;
   }
   ImGui::Separator();
   ImGui::TextDisabled("parameters");

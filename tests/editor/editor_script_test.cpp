@@ -310,6 +310,55 @@ TEST(EditorScript, ABrokenScriptIsRefusedNamingFileAndLine) {
   EXPECT_NE(refusal("1 trigger giggle\n").find("bad.txt:1: trigger giggle: no trigger parameter 'giggle'"), std::string::npos);
   EXPECT_NE(refusal("1 sculpt-landmark mouth_corner_L\n").find("'mouth_corner_L' is not one of the sculpt panel's landmarks"),
             std::string::npos);
+  EXPECT_NE(refusal("1 say\n").find("bad.txt:1: 'say' takes 1 argument(s), got 0"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------
+// Speech
+
+// Viewport pixels (x 320..960, y 0..560 at 1280x800, less the status line
+// on top, whose frame time changes) whose colour moved by more than 30
+// between two shots: a small, sharp change such as the mouth's.
+size_t changedViewportPixels(const eng::Image& a, const eng::Image& b) {
+  size_t changed = 0;
+  for (int y = 30; y < 530; ++y)
+    for (int x = 320; x < 960; ++x)
+      if (editor_test::colourDistance(editor_test::pixel(a, x, y), editor_test::pixel(b, x, y)) > 30) ++changed;
+  return changed;
+}
+
+// The Speak box through the script (--mute: silent, as with no sound card):
+// the happy face says a line and its mouth moves, then rests; Vietnamese
+// speaks; the state machine keeps the face while it speaks.
+TEST(EditorScript, SayMovesTheMouthUnderTheEmotionAndRestsAfter) {
+  REQUIRE_XVFB();
+  const fs::path dir = testing_support::freshTempDir("editor_script_say");
+  testing_support::writeFile(dir / "say.txt",
+                             "0.3 trigger happy\n"
+                             "1.5 screenshot rest.png\n"
+                             "1.6 say Papa, how are you? Ah, hello, hello, a long and happy day!\n"
+                             "1.9 screenshot s1.png\n2.2 screenshot s2.png\n2.5 screenshot s3.png\n2.8 screenshot s4.png\n"
+                             "3.0 say-lang vi\n3.1 say Xin chào, đây là bản tin tối nay.\n"
+                             "3.4 screenshot s5.png\n3.7 screenshot s6.png\n"
+                             "9.0 screenshot after.png\n");
+  const editor_test::EditorRun run = runEditor(dir, "--mute --script say.txt", 9.5f);
+  ASSERT_TRUE(editor_test::ranCleanly(run));
+  EXPECT_NE(run.log.find("facial-editor: speech: \"Papa, how are you? Ah, hello, hello, a long and happy day!\" (en, "),
+            std::string::npos)
+      << run.log;
+  EXPECT_NE(run.log.find("facial-editor: speech: \"Xin chào, đây là bản tin tối nay.\" (vi, "), std::string::npos)
+      << run.log;
+  EXPECT_NE(run.log.find("facial-editor: note: sound off: silent player asked for"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("facial-editor: speech: done"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("state happy"), std::string::npos) << "the emotion stays while the face speaks:\n" << run.log;
+  const eng::Image rest = readShot(dir / "rest.png");
+  size_t widest = 0;
+  for (int i = 1; i <= 6; ++i)
+    widest = std::max(widest, changedViewportPixels(rest, readShot(dir / ("s" + std::to_string(i) + ".png"))));
+  const size_t after = changedViewportPixels(rest, readShot(dir / "after.png"));
+  std::printf("viewport pixels changed while speaking: up to %zu; after the line: %zu\n", widest, after);
+  EXPECT_GT(widest, 400u) << "the mouth moves while the face speaks";
+  EXPECT_LT(after, widest / 4) << "the mouth rests after the line";
 }
 
 }  // namespace

@@ -4,7 +4,27 @@
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
+#include <filesystem>
+
 namespace eng::vk {
+namespace {
+
+// ImGui's built-in font has Latin-1 only: a typed line in Vietnamese (the
+// Speak box) would show "?" for most of its letters. DejaVu Sans (Debian's
+// fonts-dejavu-core, as the image labels use) lends Latin Extended and
+// Vietnamese glyphs, merged into the built-in font so ASCII looks as before.
+void addLatinExtendedGlyphs() {
+  static const ImWchar kRanges[] = {0x0100, 0x024F, 0x0300, 0x036F, 0x1E00, 0x1EFF, 0};
+  const char* path = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->AddFontDefault();
+  if (!std::filesystem::exists(path)) return;  // the built-in font alone
+  ImFontConfig merge;
+  merge.MergeMode = true;
+  io.Fonts->AddFontFromFileTTF(path, 13.0f, &merge, kRanges);
+}
+
+}  // namespace
 
 Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const Context& ctx,
                                                             const WindowRenderer& renderer,
@@ -14,6 +34,7 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(const Context& ctx,
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the user's folder
   ImGui::StyleColorsDark();
+  addLatinExtendedGlyphs();
   // true: ImGui chains to callbacks installed before it (the demo's key queue).
   if (!ImGui_ImplGlfw_InitForVulkan(window.handle(), true)) return makeError(ErrorKind::Device, "ImGui: GLFW backend failed to start");
   layer->glfwReady_ = true;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace facial {
@@ -19,5 +20,7 @@ std::span<const std::string_view> emotionNames();
 std::string_view emotionName(Emotion emotion);
 // Channel index of a name, or nullopt. Exact, lower-case match.
 std::optional<uint32_t> emotionIndex(std::string_view name);
+// "neutral, happy, sad, ..." for messages that list the accepted names.
+std::string emotionNameList();
 
 }  // namespace facial

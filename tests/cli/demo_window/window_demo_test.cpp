@@ -8,6 +8,7 @@
 // window instead, which is what a window manager does to a minimised X11
 // window. The 0x0-framebuffer path of other platforms is covered by
 // tests/engine/vk/frame_pacing_test.cpp.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -365,6 +366,106 @@ TEST(WindowDemo, LostDeviceIsReportedInOneLineAndTheDemoExits) {
   EXPECT_NE(run.log.find("validation on"), std::string::npos) << run.log;
   EXPECT_EQ(run.log.find("vulkan validation:"), std::string::npos) << run.log;
   EXPECT_TRUE(run.shots.empty()) << "no frame after the loss, so no final screenshot:\n" << run.log;
+}
+
+// The box around the mouth in a shot of the built-in head from the front:
+// the face's pixels (unlike the backdrop at the right end of their row, in
+// the window's right half, clear of the panel), then the middle of their
+// width over the part of their height between the nose and the chin.
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+PixelBox mouthBox(const eng::Image& shot) {
+  PixelBox face{shot.width, shot.height, 0, 0};
+  for (int y = 0; y < shot.height; ++y) {
+    const size_t backdrop = (size_t(y) * shot.width + shot.width - 3) * 4;
+    for (int x = shot.width * 45 / 100; x < shot.width; ++x)
+      if (channelDistance(shot, (size_t(y) * shot.width + x) * 4, shot, backdrop) > 60)
+        face = {std::min(face.x0, x), std::min(face.y0, y), std::max(face.x1, x), std::max(face.y1, y)};
+  }
+  const int w = face.x1 - face.x0, h = face.y1 - face.y0;
+  return {face.x0 + w * 3 / 10, face.y0 + h * 58 / 100, face.x0 + w * 7 / 10, face.y0 + h * 82 / 100};
+}
+
+// Pixels of `box` whose colour moved by more than 30 between two shots.
+size_t changedPixels(const eng::Image& a, const eng::Image& b, const PixelBox& box) {
+  size_t changed = 0;
+  for (int y = box.y0; y < box.y1; ++y)
+    for (int x = box.x0; x < box.x1; ++x) {
+      const size_t i = (size_t(y) * a.width + x) * 4;
+      if (channelDistance(a, i, b, i) > 30) ++changed;
+    }
+  return changed;
+}
+
+// The Speak box through the script: the face says a line (silently: --mute,
+// as on a machine with no sound card) and its mouth moves on the audio clock,
+// then rests; a second line in Vietnamese replaces a first one mid-way; an
+// unknown language is one line in the log and the demo goes on.
+TEST(WindowDemo, SayMovesTheMouthWhileTheLinePlaysAndRestsAfter) {
+  REQUIRE_VIRTUAL_DISPLAY();
+  const fs::path model = builtInHead();
+  ASSERT_FALSE(model.empty());
+  const fs::path dir = testing_support::freshTempDir("demo_window_say");
+  testing_support::writeFile(dir / "script.txt",
+                             "0.6 screenshot\n"
+                             // About 10 s of speech: still playing when the second line replaces it, however
+                             // slow the frames (the script's clock lags wall time below 10 frames/s).
+                             "0.7 say Papa, how are you? Ah, hello, hello, a long and happy day! We are here to talk about the weather, the news and the markets, and then about the long weekend.\n"
+                             "1.0 screenshot\n1.3 screenshot\n1.6 screenshot\n1.9 screenshot\n"
+                             "2.2 say-lang xx-nowhere\n2.3 say Nothing\n"
+                             "2.4 say-lang vi\n2.5 say Xin chào, đây là bản tin tối nay.\n"
+                             "2.8 screenshot\n3.1 screenshot\n"
+                             "7.0 screenshot\n"
+                             "7.5 say-lang en\n7.6 say One more line, stopped at once.\n7.7 say-stop\n");
+  const DemoRun run = runDemo(
+      dir, model, {.seconds = 9.5f, .arguments = "--still --mute --script '" + (dir / "script.txt").string() + "'"});
+  eng::Image last;
+  ASSERT_TRUE(ranCleanly(run, last));
+  EXPECT_EQ(linesWith(run.log, "speech: \"Papa, how are you? Ah, hello, hello, a long and happy day! We are here to talk about the weather, the news and the markets, and then about the long weekend.\" (en, "), 1u)
+      << run.log;
+  EXPECT_EQ(linesWith(run.log, "speech: \"Xin chào, đây là bản tin tối nay.\" (vi, "), 1u) << run.log;
+  EXPECT_EQ(linesWith(run.log, "facial demo: speech: unknown language 'xx-nowhere'"), 1u) << run.log;
+  EXPECT_EQ(linesWith(run.log, "facial demo: note: sound off: silent player asked for"), 1u) << "once:\n" << run.log;
+  EXPECT_EQ(linesWith(run.log, "speech: done"), 1u) << "the second line replaced the first:\n" << run.log;
+  EXPECT_EQ(linesWith(run.log, "speech: stopped"), 1u) << "say-stop ends the third line:\n" << run.log;
+  EXPECT_LT(run.log.find("speech: done"), run.log.find("speech: \"One more line")) << run.log;
+  ASSERT_EQ(run.shots.size(), 9u) << run.log;
+  const eng::Image rest = readShot(run.shots[0]);
+  const PixelBox mouth = mouthBox(rest);
+  ASSERT_GT(mouth.x1 - mouth.x0, 50) << "the face is found in the shot";
+  size_t widest = 0;
+  for (size_t i = 1; i <= 6; ++i) widest = std::max(widest, changedPixels(rest, readShot(run.shots[i]), mouth));
+  const size_t after = changedPixels(rest, readShot(run.shots[7]), mouth);
+  std::printf("mouth pixels changed while speaking: up to %zu of %d; after the line: %zu\n", widest,
+              (mouth.x1 - mouth.x0) * (mouth.y1 - mouth.y0), after);
+  EXPECT_GT(widest, 1000u) << "the mouth moves while the face speaks";
+  EXPECT_LT(after, widest / 5) << "the mouth rests after the line";
+}
+
+// The slider's pose covers the whole face: speaking hands the face back to
+// the graph, in the slider's emotion, so the mouth moves.
+TEST(WindowDemo, SayWhileTheSliderHoldsTheFaceSpeaksInItsEmotion) {
+  REQUIRE_VIRTUAL_DISPLAY();
+  const fs::path model = builtInHead();
+  ASSERT_FALSE(model.empty());
+  const fs::path dir = testing_support::freshTempDir("demo_window_say_slider");
+  testing_support::writeFile(dir / "script.txt",
+                             "0.3 intensity 1\n1.5 screenshot\n"
+                             "1.6 say Papa, how are you? Ah, hello, hello, a long and happy day for all of us here!\n"
+                             "2.0 screenshot\n2.3 screenshot\n2.6 screenshot\n");
+  const DemoRun run =
+      runDemo(dir, model, {.seconds = 3.0f, .arguments = "--still --mute --script '" + (dir / "script.txt").string() + "'"});
+  eng::Image last;
+  ASSERT_TRUE(ranCleanly(run, last));
+  EXPECT_EQ(statesLogged(run.log), (std::vector<std::string>{"neutral", "happy"})) << run.log;
+  ASSERT_EQ(run.shots.size(), 5u) << run.log;
+  const eng::Image held = readShot(run.shots[0]);
+  const PixelBox mouth = mouthBox(held);
+  size_t widest = 0;
+  for (size_t i = 1; i <= 3; ++i) widest = std::max(widest, changedPixels(held, readShot(run.shots[i]), mouth));
+  std::printf("mouth pixels changed while speaking after the slider: up to %zu\n", widest);
+  EXPECT_GT(widest, 1000u) << "the mouth moves once the graph has the face back";
 }
 
 TEST(WindowDemoValidity, BrokenScriptIsRefusedNamingFileAndLine) {
