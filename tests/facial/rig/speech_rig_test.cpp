@@ -261,6 +261,7 @@ TEST(SpeechRig, ActionUnitHeadComposesVisemesFromLipAndJawUnits) {
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.8f);
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::I), "AU20_LipStretcher"), 0.5f);
   EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), "AU4_BrowLowerer"), 0.0f);
+  EXPECT_TRUE(speak(*rig, Viseme::sil) == std::vector<float>(names.size(), 0.0f));  // rest: the neutral mouth
 }
 
 TEST(SpeechRig, CalibrationKeepsTheVisemeBlock) {
