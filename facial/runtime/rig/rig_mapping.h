@@ -33,10 +33,11 @@
 // They are kept apart from the pose inputs so that code laid over the pose
 // layout (rig maps, calibration, the editor's timeline) is unchanged; they are
 // driven by applyWithVisemes(). How each scheme realises them (speech_rig.cpp):
-//   viseme_* targets (any scheme)  identity
+//   viseme_* targets (any scheme)  identity (rest also meets the lips)
 //   VRM aa/ih/ou/ee/oh, 0.x a/i/u/e/o, VRoid Fcl_MTH_A..O (+ Fcl_MTH_Close)
 //                                   a vowel blend per viseme (through the
-//                                   expression stage: overrideMouth applies)
+//                                   expression stage: overrideMouth applies;
+//                                   a vowel that binds nothing borrows one)
 //   ARKit 52                        composed from the mouth shapes
 //   action units, CANDIDE-3         composed through the rig's own AU rows
 //   rig map "visemes" block         the targets it names per viseme or mouth
