@@ -160,6 +160,24 @@ TEST(SpeechFaces, ARigMapOfMouthChannelsSpeaks) {
   expectLipsCloseAndOpen(testing_support::sharedDir() / "assets" / "facecap.glb", rigmap);
 }
 
+// The shared VRMs bind their one shape key from 'aa' / 'a' only: every vowel
+// still opens it (borrowing aa at its own jaw opening); p b m and rest do not.
+TEST(SpeechFaces, VrmAvatarsThatBindOnlyAaSpeakEveryVowel) {
+  FACIAL_REQUIRE_SHARED();
+  for (const char* file : {"modifier_shapekey_vrm0.vrm", "modifier_shapekey_vrm1.vrm"}) {
+    SCOPED_TRACE(file);
+    auto f = loadSpeakingFace(testing_support::sharedDir() / "assets" / "vrm" / file);
+    ASSERT_TRUE(f);
+    ASSERT_EQ(f->layout.total(), 1u);
+    EXPECT_FLOAT_EQ(weightsAt(*f, Viseme::aa)[0], 1.0f);
+    EXPECT_NEAR(weightsAt(*f, Viseme::E)[0], 0.55f, 1e-5f);
+    EXPECT_NEAR(weightsAt(*f, Viseme::O)[0], 0.6f, 1e-5f);
+    EXPECT_NEAR(weightsAt(*f, Viseme::U)[0], 0.3f, 1e-5f);
+    EXPECT_FLOAT_EQ(weightsAt(*f, Viseme::PP)[0], 0.0f);
+    EXPECT_FLOAT_EQ(weightsAt(*f, std::nullopt)[0], 0.0f);
+  }
+}
+
 TEST(SpeechFaces, BuiltInHeadLipsCloseOnPpAndOpenOnAa) {
   expectLipsCloseAndOpen(testing_support::sourceDir() / "data" / "head.glb");
 }
