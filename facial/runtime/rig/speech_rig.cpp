@@ -221,8 +221,6 @@ bool mapArkitVisemes(RigMappingBuilder& builder) {
   return true;
 }
 
-// Rigs driven by action units (FACS-named targets, CANDIDE-3): each viseme's
-// action units (viseme_action_units.h) pushed through the rig's own AU rows.
 // CANDIDE-3 has no pucker or funneler; its units are linear offsets, so the
 // lip stretcher run backwards draws the corners in and forward: a rounded
 // viseme narrows the mouth by this much of it per unit of rounding.
@@ -239,6 +237,8 @@ void roundCandideLips(RigMappingBuilder& builder) {
   }
 }
 
+// Rigs driven by action units (FACS-named targets, CANDIDE-3): each viseme's
+// action units (viseme_action_units.h) pushed through the rig's own AU rows.
 bool mapActionUnitVisemes(RigMappingBuilder& builder) {
   size_t composed = 0;
   for (size_t v = 0; v < kVisemeCount; ++v) {
