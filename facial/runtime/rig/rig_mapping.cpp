@@ -279,7 +279,7 @@ void layOutSparseRows(const std::vector<Entry>& entries, size_t inputs, std::vec
 RigMappingBuilder::RigMappingBuilder(RigScheme scheme, std::span<const std::string> targetNames)
     : scheme_(scheme), targetNames_(targetNames.begin(), targetNames.end()) {}
 
-RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool withRows) {
+RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool withRows, bool withVisemes) {
   RigMappingBuilder builder(rig.scheme(), rig.controlNames());
   if (rig.expressionStage())
     builder.setExpressionStage(rig.sharedExpressionStage(),
@@ -292,12 +292,12 @@ RigMappingBuilder RigMappingBuilder::startingFrom(const RigMapping& rig, bool wi
     const auto gains = rig.gains(input);
     for (size_t i = 0; i < targets.size(); ++i) builder.add(input, targets[i], gains[i]);
   }
-  for (size_t v = 0; v < kVisemeCount; ++v) {
+  for (size_t v = 0; withVisemes && v < kVisemeCount; ++v) {
     const auto targets = rig.visemeTargets(Viseme(v));
     const auto gains = rig.visemeGains(Viseme(v));
     for (size_t i = 0; i < targets.size(); ++i) builder.addViseme(Viseme(v), targets[i], gains[i]);
   }
-  builder.setSpeech(rig.report().speech);
+  if (withVisemes) builder.setSpeech(rig.report().speech);
   return builder;
 }
 

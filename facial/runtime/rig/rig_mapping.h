@@ -33,14 +33,18 @@
 // They are kept apart from the pose inputs so that code laid over the pose
 // layout (rig maps, calibration, the editor's timeline) is unchanged; they are
 // driven by applyWithVisemes(). How each scheme realises them (speech_rig.cpp):
-//   viseme_* targets (any scheme)  identity
+//   viseme_* targets (any scheme)  identity (rest also meets the lips)
 //   VRM aa/ih/ou/ee/oh, 0.x a/i/u/e/o, VRoid Fcl_MTH_A..O (+ Fcl_MTH_Close)
 //                                   a vowel blend per viseme (through the
-//                                   expression stage: overrideMouth applies)
+//                                   expression stage: overrideMouth applies;
+//                                   a vowel that binds nothing borrows one)
 //   ARKit 52                        composed from the mouth shapes
 //   action units, CANDIDE-3         composed through the rig's own AU rows
-// A rig none of these reach cannot speak (speaks() false). Custom rig maps
-// get no viseme rows yet (rigmap_file.cpp does not read them).
+//   rig map "visemes" block         the targets it names per viseme or mouth
+//                                   channel (rigmap_file.h); a rig map without
+//                                   one gets the first realisation above its
+//                                   rows and names allow
+// A rig none of these reach cannot speak (speaks() false).
 //
 // Expression stage (VRM): a mapping built over a VRM model's expressions
 // (attachExpressionStage) has rows that address expressions, not morph
@@ -184,9 +188,12 @@ class RigMappingBuilder {
   // notes, weight range, expression stage and viseme block, and its pose rows
   // unless `withRows` is false (for code that re-derives the pose rows, as
   // calibration does: the rig keeps speaking).
-  static RigMappingBuilder startingFrom(const RigMapping& rig, bool withRows = true);
+  // withVisemes false leaves the viseme block empty (for mapSpeech to fill again).
+  static RigMappingBuilder startingFrom(const RigMapping& rig, bool withRows = true, bool withVisemes = true);
 
   std::span<const std::string> targetNames() const { return targetNames_; }
+  const VrmExpressionSet* expressionStage() const { return stage_.get(); }
+  float minWeight() const { return minWeight_; }
   // Gains of repeated (input, target) pairs add up.
   void add(uint32_t input, uint32_t target, float gain);
   void addViseme(Viseme viseme, uint32_t target, float gain);
@@ -264,8 +271,8 @@ bool isVisemeName(std::string_view name);
 // Fills the builder's viseme block for its scheme (see "Viseme block" above);
 // leaves it empty when nothing on the rig moves the mouth.
 void mapSpeech(RigMappingBuilder& builder, RigScheme scheme);
-// One line for a rig that cannot speak: "<model>: cannot speak: none of its N
-// targets ... (looked for ...)".
+// One line for a rig that cannot speak: "<model>: cannot speak: it has nothing
+// to move the mouth; none of its N targets is ...; a rig map can name ...".
 std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model);
 
 // Forces one built-in scheme (not Custom); fails when it recognises none of the names.

@@ -1,10 +1,13 @@
 #include "facial/runtime/rig/rigmap_file.h"
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <vector>
 
 #include "facial/runtime/json/json_node.h"
 #include "facial/runtime/rig/action_units.h"
+#include "facial/runtime/speech/viseme.h"
 
 namespace facial {
 namespace {
@@ -68,6 +71,61 @@ eng::Result<void> readMap(const JsonNode& map, std::span<const std::string> targ
   return {};
 }
 
+// Every target named `target` gets (viseme, gain * shape(viseme)) for each
+// viseme whose shape is not zero; false when the model has no such target.
+bool addVisemeTarget(std::string_view target, float gain, std::span<const std::string> targetNames,
+                     std::span<const float> shape, RigMappingBuilder& builder) {
+  bool found = false;
+  for (uint32_t t = 0; t < targetNames.size(); ++t) {
+    if (targetNames[t] != target) continue;
+    found = true;
+    for (size_t v = 0; v < kVisemeCount; ++v)
+      if (gain * shape[v] != 0.0f) builder.addViseme(Viseme(v), t, gain * shape[v]);
+  }
+  return found;
+}
+
+// What one key of "visemes" drives, per viseme: a viseme drives only itself;
+// a mouth channel drives every viseme by its mouth shape (mouthShapeOf),
+// except sil, the relaxed mouth, which drives nothing.
+std::optional<std::array<float, kVisemeCount>> visemeKeyShape(std::string_view key) {
+  std::array<float, kVisemeCount> shape{};
+  if (const std::optional<Viseme> viseme = rigVisemeIndex(key)) {
+    shape[size_t(*viseme)] = 1.0f;
+    return shape;
+  }
+  for (size_t c = 0; c < kMouthChannelCount; ++c) {
+    if (key != mouthChannelName(MouthChannel(c))) continue;
+    for (size_t v = 1; v < kVisemeCount; ++v) {
+      const MouthShape& m = mouthShapeOf(Viseme(v));
+      shape[v] = std::array{m.jawOpen, m.lipClosure, m.lipRounding}[c];
+    }
+    return shape;
+  }
+  return std::nullopt;
+}
+
+// "visemes": {viseme or mouth channel: {target: weight}}; the visemes are
+// the Oculus 15 (any spelling rigVisemeIndex reads), the mouth channels
+// jawOpen, lipClosure, lipRounding.
+eng::Result<void> readVisemes(const JsonNode& visemes, std::span<const std::string> targetNames,
+                              RigMappingBuilder& builder) {
+  for (const auto& [key, targets] : ENG_TRY_VALUE(visemes.members())) {
+    const std::optional<std::array<float, kVisemeCount>> shape = visemeKeyShape(key);
+    if (!shape)
+      return targets.error("unknown viseme '" + std::string(key) + "' (expected one of " + visemeNameList() +
+                           ", or a mouth channel: jawOpen, lipClosure, lipRounding)");
+    for (const auto& [target, weight] : ENG_TRY_VALUE(targets.members())) {
+      const float gain = ENG_TRY_VALUE(numberIn(weight, -1.0f, 1.0f));
+      if (!addVisemeTarget(target, gain, targetNames, *shape, builder))
+        return weight.error("the model has no target '" + std::string(target) + "' (" +
+                            std::to_string(targetNames.size()) + " targets)");
+    }
+  }
+  if (!builder.speaks()) return visemes.error("no viseme drives a target (every weight is 0 or the block is empty)");
+  return {};
+}
+
 // "calibration": {action unit: factor in [0, 4]}.
 eng::Result<std::vector<std::pair<std::string, float>>> readCalibration(const JsonNode& calibration) {
   std::vector<std::pair<std::string, float>> factors;
@@ -83,20 +141,30 @@ eng::Result<std::vector<std::pair<std::string, float>>> readCalibration(const Js
 eng::Result<RigMapFile> readRigMapFile(const JsonNode& root, std::string_view source,
                                        std::span<const std::string> targetNames) {
   ENG_TRY(requireVersion(root, kFormatVersion));
-  ENG_TRY(root.allowOnly({"version", "model", "description", "weightRange", "map", "calibration"}));
+  ENG_TRY(root.allowOnly({"version", "model", "description", "weightRange", "map", "visemes", "calibration"}));
   ENG_TRY(root.stringOr("model", ""));  // informational: only the type is checked
   ENG_TRY(root.stringOr("description", ""));
   RigMapFile file;
   if (auto calibration = root.find("calibration")) file.calibration = ENG_TRY_VALUE(readCalibration(*calibration));
   const std::optional<JsonNode> map = root.find("map");
-  if (!map) {
+  const std::optional<JsonNode> visemes = root.find("visemes");
+  if (!map && !visemes) {
     if (file.calibration.empty()) return root.error("missing \"map\" (a file without a map must calibrate)");
     return file;  // calibration only: the detected scheme drives the model
   }
+  if (!map && !file.calibration.empty())
+    return root.error("\"visemes\" without \"map\" replaces the detected scheme, so there is nothing to calibrate; "
+                      "add a \"map\" or drop the \"calibration\"");
   RigMappingBuilder builder(RigScheme::Custom, targetNames);
   builder.setDetail("rig map " + std::string(source));
   if (auto range = root.find("weightRange")) ENG_TRY(readWeightRange(*range, builder));
-  ENG_TRY(readMap(*map, targetNames, builder));
+  if (map) ENG_TRY(readMap(*map, targetNames, builder));
+  if (visemes) {
+    ENG_TRY(readVisemes(*visemes, targetNames, builder));
+    builder.setSpeech("the rig map's \"visemes\" block");
+  } else {
+    mapSpeech(builder, RigScheme::Custom);  // viseme_* targets, or the lip and jaw units the map binds
+  }
   file.mapping = ENG_TRY_VALUE(builder.build());
   return file;
 }

@@ -9,6 +9,9 @@
 //    "map": {
 //      "anger":        [{"target": "Angry", "weight": 1.0}],
 //      "AU45_Blink_L": [{"target": "EyeClose_L", "weight": 1.0}]},
+//    "visemes": {                          (optional: lip sync)
+//      "aa": {"MouthOpen": 1.0}, "PP": {"MouthClose": 1.0},
+//      "jawOpen": {"JawDown": 1.0}},
 //    "calibration": {"AU12_LipCornerPuller_L": 1.2}}  (optional)
 //
 // "calibration" scales action units on top of the measured per-rig
@@ -20,6 +23,15 @@
 // names (emotionNames()); weights are finite numbers in [-1, 1]; a target
 // must exist in the model (every target of that name is driven). Errors name
 // the file, the JSON path and the problem.
+//
+// Keys of "visemes" are the 15 Oculus visemes (sil PP FF TH DD kk CH SS nn RR
+// aa E I O U, any spelling rigVisemeIndex reads) or the three mouth channels
+// (jawOpen, lipClosure, lipRounding), each {target: weight in [-1, 1]}. A
+// mouth channel drives its target by every viseme's mouth shape
+// (mouthShapeOf; sil, the relaxed mouth, drives nothing), so a face with only
+// a jaw-open target speaks with one line. Keys add up. A file with "visemes"
+// and no "map" drives only the mouth. Without "visemes" the block comes from
+// the names and rows as detection would give it (mapSpeech).
 #include <filesystem>
 #include <optional>
 #include <utility>

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/arkit_names.h"
+#include "facial/runtime/rig/candide_units.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "facial/runtime/rig/rig_schemes.h"
 #include "facial/runtime/speech/viseme_action_units.h"
@@ -25,6 +27,13 @@ float mouthShapeDistance(Viseme a, Viseme b) {
   const MouthShape& y = mouthShapeOf(b);
   return std::abs(x.jawOpen - y.jawOpen) + std::abs(x.lipClosure - y.lipClosure) + std::abs(x.lipRounding - y.lipRounding);
 }
+
+// Rest (sil) on a viseme face: Ready Player Me's viseme_sil is empty and its
+// neutral mouth hangs parted (on rpm-visemes.glb the lip gap is 0.7 % of the
+// face height, an eighth of aa's, and viseme_PP closes it at 1), so between
+// words and after a line the lips would stay open; rest also takes this much
+// of viseme_PP, which brings the lips together without the press.
+constexpr float kRestClosure = 0.8f;
 
 // viseme_* targets drive themselves; a viseme the face lacks borrows the
 // present one closest in mouth shape (jaw, closure, rounding), so a face with
@@ -50,7 +59,9 @@ bool mapOculusVisemes(RigMappingBuilder& builder) {
     }
     for (uint32_t t : found[source]) builder.addViseme(Viseme(v), t, 1.0f);
   }
+  for (uint32_t t : found[size_t(Viseme::PP)]) builder.addViseme(Viseme::sil, t, kRestClosure);
   builder.setSpeech(std::to_string(present) + " of 15 Oculus viseme targets, identity" +
+                    (found[size_t(Viseme::PP)].empty() ? "" : ", rest closes the lips (viseme_PP x0.8)") +
                     (borrowed.empty() ? std::string() : " (missing ones borrow the closest shape: " + borrowed + ")"));
   return true;
 }
@@ -91,22 +102,58 @@ constexpr std::array kVowelSpellings = {
                   "fcl_mth_close", false},
 };
 
+constexpr std::array<Viseme, 5> kVowelVisemes = {Viseme::aa, Viseme::I, Viseme::U, Viseme::E, Viseme::O};
+
+// The controls of one vowel; on a VRM only expressions that bind something
+// (many avatars bind 'aa' alone and leave the other vowels empty).
+std::vector<uint32_t> vowelControls(const RigMappingBuilder& builder, std::string_view key) {
+  std::vector<uint32_t> found = findShapesByKey(builder.targetNames(), key);
+  if (const VrmExpressionSet* stage = builder.expressionStage())
+    std::erase_if(found, [&](uint32_t c) {
+      const VrmExpression& e = stage->expressions[c];
+      return e.bindCount + e.materialColorBindCount + e.textureTransformBindCount == 0;
+    });
+  return found;
+}
+
+// A vowel the face lacks is made by the present vowel closest in mouth shape,
+// no wider than its own jaw opening (e from a: a at 0.55).
+std::pair<size_t, float> vowelSource(const std::array<std::vector<uint32_t>, 5>& vowels, size_t k) {
+  if (!vowels[k].empty()) return {k, 1.0f};
+  size_t source = k;
+  for (size_t s = 0; s < 5; ++s)
+    if (!vowels[s].empty() && (source == k || mouthShapeDistance(kVowelVisemes[k], kVowelVisemes[s]) <
+                                                  mouthShapeDistance(kVowelVisemes[k], kVowelVisemes[source])))
+      source = s;
+  const float jaw = mouthShapeOf(kVowelVisemes[k]).jawOpen, sourceJaw = mouthShapeOf(kVowelVisemes[source]).jawOpen;
+  return {source, std::min(1.0f, jaw / sourceJaw)};
+}
+
 bool mapVowels(RigMappingBuilder& builder, RigScheme scheme) {
-  const std::span<const std::string> names = builder.targetNames();
   for (const VowelSpelling& spelling : kVowelSpellings) {
     if (spelling.expressionsOnly && scheme != RigScheme::Expressions) continue;
     std::array<std::vector<uint32_t>, 5> vowels;
     size_t present = 0;
-    for (size_t k = 0; k < 5; ++k) present += (vowels[k] = findShapesByKey(names, spelling.vowels[k])).empty() ? 0 : 1;
+    for (size_t k = 0; k < 5; ++k) present += (vowels[k] = vowelControls(builder, spelling.vowels[k])).empty() ? 0 : 1;
     if (present == 0) continue;
-    for (size_t v = 0; v < kVisemeCount; ++v)
-      for (size_t k = 0; k < 5; ++k)
+    std::string borrowed;
+    for (size_t k = 0; k < 5; ++k) {
+      const auto [source, scale] = vowelSource(vowels, k);
+      if (source != k) {
+        char gain[16];
+        std::snprintf(gain, sizeof gain, " x%.2g", double(scale));
+        borrowed += (borrowed.empty() ? "" : ", ") + std::string(spelling.vowels[k]) + " <- " +
+                    std::string(spelling.vowels[source]) + gain;
+      }
+      for (size_t v = 0; v < kVisemeCount; ++v)
         if (kVowelBlend[v][k] > 0.0f)
-          for (uint32_t t : vowels[k]) builder.addViseme(Viseme(v), t, kVowelBlend[v][k]);
-    const std::vector<uint32_t> closed = spelling.closed.empty() ? std::vector<uint32_t>{} : findShapesByKey(names, spelling.closed);
+          for (uint32_t t : vowels[source]) builder.addViseme(Viseme(v), t, kVowelBlend[v][k] * scale);
+    }
+    const std::vector<uint32_t> closed = spelling.closed.empty() ? std::vector<uint32_t>{} : vowelControls(builder, spelling.closed);
     for (uint32_t t : closed) builder.addViseme(Viseme::PP, t, 1.0f);
     builder.setSpeech(std::string(spelling.label) + " (" + std::to_string(present) + " of 5 vowels" +
-                      (closed.empty() ? "" : ", closed mouth for PP") + "), a vowel blend per viseme");
+                      (closed.empty() ? "" : ", closed mouth for PP") + "), a vowel blend per viseme" +
+                      (borrowed.empty() ? "" : "; missing vowels borrow the closest: " + borrowed));
     return true;
   }
   return false;
@@ -143,7 +190,7 @@ constexpr std::array kArkitVisemes = {
     ArkitViseme{Viseme::E, {{{"jawOpen", 0.4f}, {"mouthStretch", 0.4f}, {"mouthUpperUp", 0.2f}, {}}}},
     ArkitViseme{Viseme::I, {{{"jawOpen", 0.2f}, {"mouthStretch", 0.6f}, {}, {}}}},
     ArkitViseme{Viseme::O, {{{"jawOpen", 0.45f}, {"mouthFunnel", 0.7f}, {}, {}}}},
-    ArkitViseme{Viseme::U, {{{"jawOpen", 0.2f}, {"mouthPucker", 0.9f}, {"mouthFunnel", 0.3f}, {}}}},
+    ArkitViseme{Viseme::U, {{{"jawOpen", 0.15f}, {"mouthPucker", 1.0f}, {"mouthFunnel", 0.15f}, {}}}},
 };
 
 bool arkitShapeIs(std::string_view canonical, std::string_view part) {
@@ -174,6 +221,22 @@ bool mapArkitVisemes(RigMappingBuilder& builder) {
   return true;
 }
 
+// CANDIDE-3 has no pucker or funneler; its units are linear offsets, so the
+// lip stretcher run backwards draws the corners in and forward: a rounded
+// viseme narrows the mouth by this much of it per unit of rounding.
+constexpr float kCandideRounding = 0.6f;
+
+void roundCandideLips(RigMappingBuilder& builder) {
+  const std::span<const std::string> names = builder.targetNames();
+  for (uint32_t t = 0; t < names.size(); ++t) {
+    const CandideAnimationUnit* unit = findCandideUnit(names[t]);
+    if (!unit || unit->facsNumber != 20) continue;
+    for (size_t v = 0; v < kVisemeCount; ++v)
+      if (const float rounding = mouthShapeOf(Viseme(v)).lipRounding; rounding > 0.0f)
+        builder.addViseme(Viseme(v), t, -kCandideRounding * rounding);
+  }
+}
+
 // Rigs driven by action units (FACS-named targets, CANDIDE-3): each viseme's
 // action units (viseme_action_units.h) pushed through the rig's own AU rows.
 bool mapActionUnitVisemes(RigMappingBuilder& builder) {
@@ -193,19 +256,38 @@ bool mapActionUnitVisemes(RigMappingBuilder& builder) {
   return true;
 }
 
+// Lips cannot pucker and smile at once: a rounded viseme takes back part of
+// the smile the emotion keeps through speech (mouthOwnershipTable), through
+// the rig's own AU12 rows, so a happy "oo" narrows instead of stretching. The
+// negative gains only lower a smile that is there: the targets clamp at 0.
+// Not on signed rigs (CANDIDE-3: its smile is a negative depressor, so a
+// negative smile would turn the corners down).
+constexpr float kRoundingEasesSmile = 0.5f;
+
+void easeSmileWhenRounded(RigMappingBuilder& builder) {
+  if (builder.minWeight() < 0.0f || !builder.speaks()) return;
+  for (const char* corner : {"AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R"})
+    for (const auto& [target, gain] : builder.row(*actionUnitIndex(corner)))
+      for (size_t v = 0; v < kVisemeCount; ++v)
+        if (const float rounding = mouthShapeOf(Viseme(v)).lipRounding; rounding > 0.0f && gain > 0.0f)
+          builder.addViseme(Viseme(v), target, -kRoundingEasesSmile * rounding * gain);
+}
+
 }  // namespace
 
 void mapSpeech(RigMappingBuilder& builder, RigScheme scheme) {
-  if (mapOculusVisemes(builder) || mapVowels(builder, scheme)) return;
-  if (scheme == RigScheme::Arkit52 && mapArkitVisemes(builder)) return;
-  mapActionUnitVisemes(builder);
+  const bool mapped = mapOculusVisemes(builder) || mapVowels(builder, scheme) ||
+                      (scheme == RigScheme::Arkit52 && mapArkitVisemes(builder)) || mapActionUnitVisemes(builder);
+  if (mapped && scheme == RigScheme::Candide3) roundCandideLips(builder);
+  if (mapped) easeSmileWhenRounded(builder);
 }
 
 std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model) {
-  return std::string(model) + ": cannot speak: nothing on the rig moves the mouth; none of its " +
+  return std::string(model) + ": cannot speak: it has nothing to move the mouth; none of its " +
          std::to_string(rig.targetCount()) + " targets is an Oculus viseme_* shape, a VRM aa/ih/ou/ee/oh or A/I/U/E/O "
          "expression, a VRoid Fcl_MTH_A..O shape, an ARKit jawOpen/mouth* shape or a lip or jaw action unit (AU10 AU17 "
-         "AU20 AU23 AU24 AU25 AU26)";
+         "AU20 AU23 AU24 AU25 AU26); a rig map can name the targets that open and close it in a \"visemes\" block "
+         "(data/rigmaps/README.md)";
 }
 
 }  // namespace facial

@@ -22,10 +22,12 @@ eng::Result<RigMapping> buildVrmRigMapping(std::shared_ptr<const VrmExpressionSe
   const std::vector<std::string> names = vrm->expressionNames();
   auto rows = buildRigMapping(names, options);
   if (!rows) return rows.error();
-  auto rig = attachExpressionStage(*rows, vrm, morphTargetNames);
-  if (!rig) return rig.error();
-
-  return rig;
+  if (rows->scheme() == RigScheme::Custom) return attachExpressionStage(*rows, vrm, morphTargetNames);
+  // Speech again, now that the stage tells which mouth expressions bind nothing.
+  RigMappingBuilder builder = RigMappingBuilder::startingFrom(*rows, true, false);
+  builder.setExpressionStage(std::move(vrm), std::vector<std::string>(morphTargetNames.begin(), morphTargetNames.end()));
+  mapSpeech(builder, rows->scheme());
+  return builder.build();
 }
 
 }  // namespace facial

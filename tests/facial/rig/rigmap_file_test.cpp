@@ -74,6 +74,78 @@ TEST(RigMapFile, FuzzSeedsLoad) {
   EXPECT_EQ(both->calibration.size(), 1u);
 }
 
+// ---- the "visemes" block (lip sync) ----
+
+std::vector<float> speakWith(const RigMapping& rig, Viseme viseme) {
+  std::vector<float> au(actionUnits().size(), 0.0f), visemes(kVisemeCount, 0.0f), out(rig.targetCount(), 0.0f);
+  visemes[size_t(viseme)] = 1.0f;
+  auto applied = rig.applyWithVisemes(au, {}, visemes, out);
+  EXPECT_TRUE(applied) << applied.error().message;
+  return out;
+}
+
+const std::vector<std::string> kPuppet = {"Brows", "MouthOpen", "MouthClose", "MouthRound", "JawDown"};
+
+TEST(RigMapFileVisemes, NamedVisemesDriveTheirTargets) {
+  auto rig = parseRigMap(R"({"version": 1, "map": {"AU1_InnerBrowRaiser": [{"target": "Brows", "weight": 1}]},
+      "visemes": {"aa": {"MouthOpen": 1.0}, "PP": {"MouthClose": 1}, "viseme_O": {"MouthOpen": 0.5, "MouthRound": 1},
+                  "u": {"MouthRound": 1}}})",
+                         "puppet.json", kPuppet);
+  ASSERT_TRUE(rig) << rig.error().message;
+  ASSERT_TRUE(rig->speaks());
+  EXPECT_EQ(rig->report().speech, "the rig map's \"visemes\" block");
+  EXPECT_EQ(speakWith(*rig, Viseme::aa), (std::vector<float>{0, 1, 0, 0, 0}));
+  EXPECT_EQ(speakWith(*rig, Viseme::PP), (std::vector<float>{0, 0, 1, 0, 0}));
+  EXPECT_EQ(speakWith(*rig, Viseme::O), (std::vector<float>{0, 0.5f, 0, 1, 0}));
+  EXPECT_EQ(speakWith(*rig, Viseme::U), (std::vector<float>{0, 0, 0, 1, 0}));
+  EXPECT_EQ(speakWith(*rig, Viseme::sil), (std::vector<float>(5, 0.0f)));  // rest: the neutral mouth
+}
+
+// A face with only a jaw: the mouth channels drive it by each viseme's shape.
+TEST(RigMapFileVisemes, MouthChannelsDriveEveryVisemeByItsShape) {
+  auto rig = parseRigMap(R"({"version": 1, "visemes": {"jawOpen": {"JawDown": 1}, "lipClosure": {"MouthClose": 0.5},
+      "lipRounding": {"MouthRound": 1}}})",
+                         "jaw.json", kPuppet);
+  ASSERT_TRUE(rig) << rig.error().message;
+  for (size_t v = 0; v < kVisemeCount; ++v) {
+    const std::vector<float> out = speakWith(*rig, Viseme(v));
+    const MouthShape& shape = mouthShapeOf(Viseme(v));
+    const bool rest = Viseme(v) == Viseme::sil;
+    EXPECT_FLOAT_EQ(out[4], rest ? 0.0f : shape.jawOpen) << visemeName(Viseme(v));
+    EXPECT_FLOAT_EQ(out[2], rest ? 0.0f : 0.5f * shape.lipClosure) << visemeName(Viseme(v));
+    EXPECT_FLOAT_EQ(out[3], rest ? 0.0f : shape.lipRounding) << visemeName(Viseme(v));
+  }
+  EXPECT_FLOAT_EQ(speakWith(*rig, Viseme::aa)[4], 1.0f);
+  EXPECT_FLOAT_EQ(speakWith(*rig, Viseme::PP)[4], 0.0f);
+  // No "map": the pose inputs drive nothing, every target is the mouth's.
+  EXPECT_EQ(rig->report().unmappedInputs.size(), size_t(rigInputCount()));
+}
+
+// A rig map that binds the lip and jaw units speaks through them, as a FACS rig does.
+TEST(RigMapFileVisemes, WithoutTheBlockTheMappedJawSpeaks) {
+  auto rig = parseRigMap(R"({"version": 1, "map": {"AU26_JawDrop": [{"target": "JawDown", "weight": 1}],
+      "AU24_LipPressor": [{"target": "MouthClose", "weight": 1}]}})",
+                         "au.json", kPuppet);
+  ASSERT_TRUE(rig) << rig.error().message;
+  ASSERT_TRUE(rig->speaks()) << rig->report().summary();
+  EXPECT_GT(speakWith(*rig, Viseme::aa)[4], 0.7f);
+  EXPECT_GT(speakWith(*rig, Viseme::PP)[2], 0.7f);
+  EXPECT_FLOAT_EQ(speakWith(*rig, Viseme::PP)[4], 0.0f);
+}
+
+// The robot's map binds whole emotions only: nothing moves its mouth, and the
+// line says so and where the fix goes.
+TEST(RigMapFileVisemes, AMapWithNothingForTheMouthCannotSpeak) {
+  auto rig = loadRigMap(robotMap(), kRobotHead);
+  ASSERT_TRUE(rig) << rig.error().message;
+  EXPECT_FALSE(rig->speaks());
+  const std::string message = cannotSpeakMessage(*rig, "RobotExpressive.glb");
+  EXPECT_NE(message.find("RobotExpressive.glb: cannot speak: it has nothing to move the mouth"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("\"visemes\""), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
 // ---- refused maps ----
 
 std::string rigMapErrorOf(std::string_view json) {
@@ -105,6 +177,28 @@ TEST(RigMapFileValidity, ErrorsNameFilePathAndProblem) {
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "weightRange": [1, 0], "map": {}})").find("/weightRange: min must be below max"),
             std::string::npos);
   EXPECT_NE(rigMapErrorOf(R"({"version": 1, "map": {"anger": {"target": "Angry"}}})").find("bot.json: /map/anger: expected an array, got object"),
+            std::string::npos);
+}
+
+TEST(RigMapFileValidity, VisemeErrorsNameFilePointerAndProblem) {
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "visemes": {"ah": {"Angry": 1}}})")
+                .find("bot.json: /visemes/ah: unknown viseme 'ah' (expected one of sil, PP"),
+            std::string::npos);
+  EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"MouthOpen": 1}}})"),
+            "bot.json: /visemes/aa/MouthOpen: the model has no target 'MouthOpen' (3 targets)");
+  EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"Surprised": 2}}})"),
+            "bot.json: /visemes/aa/Surprised: value 2 is outside [-1, 1]");
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"Surprised": NaN}}})").find("bot.json"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"Surprised": "open"}}})")
+                .find("bot.json: /visemes/aa/Surprised: expected a number, got string"),
+            std::string::npos);
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": ["Surprised"]}})").find("bot.json: /visemes/aa: expected an object"),
+            std::string::npos);
+  EXPECT_EQ(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"Surprised": 0}}})"),
+            "bot.json: /visemes: no viseme drives a target (every weight is 0 or the block is empty)");
+  EXPECT_NE(rigMapErrorOf(R"({"version": 1, "visemes": {"aa": {"Surprised": 1}}, "calibration": {"AU26_JawDrop": 1}})")
+                .find("bot.json: /: \"visemes\" without \"map\""),
             std::string::npos);
 }
 

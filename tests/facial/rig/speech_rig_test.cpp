@@ -64,11 +64,19 @@ TEST(SpeechRig, OculusVisemesAreDrivenByIdentityBesideArkit) {
   ASSERT_TRUE(rig) << rig.error().message;
   EXPECT_EQ(rig->scheme(), RigScheme::Arkit52);
   ASSERT_TRUE(rig->speaks());
+  // Each viseme drives its own target; rest also meets the lips (a part of
+  // PP) and the rounded ones ease a smile (mouthSmile, negative).
   for (size_t v = 0; v < kVisemeCount; ++v) {
-    ASSERT_EQ(rig->visemeTargets(Viseme(v)).size(), 1u) << visemeName(Viseme(v));
-    EXPECT_EQ(rig->visemeTargets(Viseme(v))[0], indexOf(names, kOculus[v]));
-    EXPECT_FLOAT_EQ(rig->visemeGains(Viseme(v))[0], 1.0f);
+    const auto targets = rig->visemeTargets(Viseme(v));
+    const auto gains = rig->visemeGains(Viseme(v));
+    for (size_t i = 0; i < targets.size(); ++i) {
+      const std::string& name = names[targets[i]];
+      if (name == kOculus[v]) EXPECT_FLOAT_EQ(gains[i], 1.0f);
+      else if (Viseme(v) == Viseme::sil) EXPECT_EQ(name, "viseme_PP");
+      else EXPECT_TRUE(name.starts_with("mouthSmile") && gains[i] < 0.0f) << visemeName(Viseme(v)) << " -> " << name;
+    }
   }
+  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::sil), "viseme_PP"), 0.2f);
   const std::vector<float> out = speak(*rig, Viseme::PP);
   EXPECT_FLOAT_EQ(weightOf(*rig, out, "viseme_PP"), 1.0f);
   EXPECT_FLOAT_EQ(weightOf(*rig, out, "viseme_aa"), 0.0f);
@@ -156,6 +164,23 @@ TEST(SpeechRig, VrmOverrideMouthOfTheEmotionHoldsOverTheVowels) {
   EXPECT_FLOAT_EQ(out[1], 0.75f);
 }
 
+// Many VRMs bind 'aa' alone (the shared test avatars do): the empty vowels
+// borrow it at their own jaw opening instead of leaving the mouth still.
+TEST(SpeechRig, VrmVowelsThatBindNothingBorrowTheOpenVowel) {
+  auto set = vrmVowelFace(VrmOverride::None);
+  for (size_t e = 2; e < set->expressions.size(); ++e) set->expressions[e].bindCount = 0;  // ih ou ee oh
+  auto rig = buildVrmRigMapping(set, set->targetNames);
+  ASSERT_TRUE(rig) << rig.error().message;
+  EXPECT_NE(rig->report().speech.find("1 of 5 vowels"), std::string::npos) << rig->report().speech;
+  EXPECT_NE(rig->report().speech.find("ee <- aa x0.55"), std::string::npos) << rig->report().speech;
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::aa)[1], 1.0f);
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::E)[1], 0.55f);
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::O)[1], 0.6f);
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::I)[1], 0.3f);
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::PP)[1], 0.0f);
+  EXPECT_FLOAT_EQ(speak(*rig, Viseme::sil)[1], 0.0f);
+}
+
 TEST(SpeechRig, VRoidMouthVowelsAndClose) {
   const std::vector<std::string> names = {"Fcl_ALL_Joy",  "Fcl_EYE_Close", "Fcl_MTH_A", "Fcl_MTH_I",
                                           "Fcl_MTH_U",    "Fcl_MTH_E",     "Fcl_MTH_O", "Fcl_MTH_Close"};
@@ -194,6 +219,32 @@ TEST(SpeechRig, ArkitOnlyFaceComposesVisemesFromMouthShapes) {
   EXPECT_NE(rig->report().speech.find("ARKit mouth shapes"), std::string::npos);
 }
 
+// A happy face cannot pucker through a full smile: rounded visemes take back
+// part of the smile through the rig's AU12 rows; unrounded ones leave it.
+TEST(SpeechRig, RoundedVisemesEaseTheSmile) {
+  std::vector<std::string> names;
+  for (std::string_view n : arkitBlendShapeNames()) names.emplace_back(n);
+  auto rig = buildRigMapping(names);
+  ASSERT_TRUE(rig) << rig.error().message;
+  std::vector<float> au(actionUnits().size(), 0.0f), visemes(kVisemeCount, 0.0f), out(names.size(), 0.0f);
+  au[*actionUnitIndex("AU12_LipCornerPuller_L")] = au[*actionUnitIndex("AU12_LipCornerPuller_R")] = 0.75f;
+  auto smileAt = [&](Viseme v) {
+    std::fill(visemes.begin(), visemes.end(), 0.0f);
+    visemes[size_t(v)] = 1.0f;
+    EXPECT_TRUE(rig->applyWithVisemes(au, {}, visemes, out));
+    return weightOf(*rig, out, "mouthSmileLeft");
+  };
+  const float open = smileAt(Viseme::aa), rounded = smileAt(Viseme::U), half = smileAt(Viseme::O);
+  EXPECT_GT(open, 0.5f);
+  EXPECT_LT(rounded, open - 0.4f);
+  EXPECT_GT(rounded, 0.0f);
+  EXPECT_LT(half, open - 0.2f);
+  EXPECT_GT(half, rounded);
+  // Without a smile the rounded viseme writes no negative weight (clamped at 0).
+  std::fill(au.begin(), au.end(), 0.0f);
+  EXPECT_FLOAT_EQ(smileAt(Viseme::U), 0.0f);
+}
+
 TEST(SpeechRig, ActionUnitHeadComposesVisemesFromLipAndJawUnits) {
   std::vector<std::string> names;
   for (const ActionUnitInfo& unit : actionUnits()) names.emplace_back(unit.name);
@@ -210,6 +261,7 @@ TEST(SpeechRig, ActionUnitHeadComposesVisemesFromLipAndJawUnits) {
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.8f);
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::I), "AU20_LipStretcher"), 0.5f);
   EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), "AU4_BrowLowerer"), 0.0f);
+  EXPECT_TRUE(speak(*rig, Viseme::sil) == std::vector<float>(names.size(), 0.0f));  // rest: the neutral mouth
 }
 
 TEST(SpeechRig, CalibrationKeepsTheVisemeBlock) {
@@ -236,9 +288,18 @@ TEST(SpeechRig, Candide3SpeaksThroughItsAnimationUnits) {
   ASSERT_TRUE(rig->speaks());
   const std::string jaw = candideTargetName(*findCandideUnit("Jaw drop"));
   const std::string presser = candideTargetName(*findCandideUnit("Lip presser"));
+  const std::string stretcher = candideTargetName(*findCandideUnit("Lip stretcher"));
+  const std::string depressor = candideTargetName(*findCandideUnit("Lip corner depressor"));
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::aa), jaw), 0.7f);
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::PP), presser), 0.8f);
   EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::PP), jaw), 0.0f);
+  // No pucker on the mask: rounded visemes draw the corners in (the stretcher
+  // backwards), and leave the signed smile (a negative depressor) alone.
+  EXPECT_LT(weightOf(*rig, speak(*rig, Viseme::U), stretcher), -0.5f);
+  EXPECT_LT(weightOf(*rig, speak(*rig, Viseme::O), stretcher), -0.3f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), stretcher), 0.0f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::U), depressor), 0.0f);
+  for (const std::string& target : names) EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::sil), target), 0.0f);
 }
 
 TEST(SpeechRig, AFaceWithNothingToMoveTheMouthCannotSpeak) {
