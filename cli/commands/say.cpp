@@ -30,6 +30,7 @@
 #include "audio/syllable_envelope.h"
 #include "audio/video_writer.h"
 #include "cli/command.h"
+#include "engine/vk/present/window_renderer.h"
 #include "facial/character.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -48,7 +49,8 @@ struct SayOptions {
   std::string model;
   std::string rigmap;
   std::vector<std::string> shapes;
-  app::ViewOptions view;
+  // Balanced: high's 4x multisampling triples lavapipe's frame time (docs/performance.md, `say`).
+  app::ViewOptions view{.quality = "balanced"};
   float fps = 25.0f;
   std::string cues;
   std::string audio;
@@ -254,7 +256,10 @@ eng::Result<void> checkOptions(const SayOptions& o) {
 
 // Renders the clip into the video (and the PNG frames), the audio clock driving the mouth.
 eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
-                                             const app::HeadlessRenderOptions& renderOptions, float seconds) {
+                                             app::HeadlessRenderOptions renderOptions, float seconds) {
+  // Video frames take the windows' level of detail (within half a pixel of the full mesh): a
+  // third of lavapipe's frame time on the built-in head, the same picture (docs/performance.md).
+  renderOptions.lodPixelError = eng::vk::kWindowLodPixelError;
   auto renderer = app::HeadlessModelRenderer::create(p.setup.displayModel(), renderOptions);
   if (!renderer) return renderer.error();
   auto writer = audio::VideoWriter::create(o.out, {.width = int(renderOptions.width),
