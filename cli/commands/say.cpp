@@ -30,7 +30,6 @@
 #include "audio/syllable_envelope.h"
 #include "audio/video_writer.h"
 #include "cli/command.h"
-#include "engine/vk/present/window_renderer.h"
 #include "facial/character.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -256,10 +255,7 @@ eng::Result<void> checkOptions(const SayOptions& o) {
 
 // Renders the clip into the video (and the PNG frames), the audio clock driving the mouth.
 eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
-                                             app::HeadlessRenderOptions renderOptions, float seconds) {
-  // Video frames take the windows' level of detail (within half a pixel of the full mesh): a
-  // third of lavapipe's frame time on the built-in head, the same picture (docs/performance.md).
-  renderOptions.lodPixelError = eng::vk::kWindowLodPixelError;
+                                             const app::HeadlessRenderOptions& renderOptions, float seconds) {
   auto renderer = app::HeadlessModelRenderer::create(p.setup.displayModel(), renderOptions);
   if (!renderer) return renderer.error();
   auto writer = audio::VideoWriter::create(o.out, {.width = int(renderOptions.width),
