@@ -11,9 +11,13 @@ extern "C" {
 }
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <condition_variable>
+#include <cstring>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace audio {
@@ -130,7 +134,19 @@ struct VideoWriter::Impl {
   int64_t framesWritten = 0;
   bool open = false;              // header written, trailer not yet
 
+  // The encoder thread: addFrame() copies each frame into a free slot and
+  // returns, so the caller renders the next frame while this one is converted,
+  // encoded and muxed. The slots are allocated once; a full queue blocks addFrame().
+  std::array<std::vector<uint8_t>, 3> slots;
+  size_t firstQueued = 0, queued = 0;  // the queued slots, in order, wrapping
+  bool closing = false;                // no more frames: the thread ends once the queue is empty
+  eng::Result<void> encoded;           // the encoder thread's first error (later frames are dropped)
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::thread encoder;
+
   ~Impl() {
+    stopEncoder(/*dropQueued=*/true);
     if (!output) return;
     output.reset();
     std::error_code ignored;
@@ -146,6 +162,10 @@ struct VideoWriter::Impl {
   eng::Result<void> resampleSoundtrack();
   eng::Result<void> drain(AVCodecContext* codec, AVStream* stream);
   eng::Result<void> sendSound(int64_t untilSample);
+  eng::Result<void> encodeFrame(const std::vector<uint8_t>& rgba8);
+  void encodeQueued();
+  eng::Result<void> stopEncoder(bool dropQueued);
+  eng::Result<void> queueFrame(std::span<const uint8_t> rgba8);
 };
 
 eng::Result<void> VideoWriter::Impl::openVideo(const ContainerChoice& choice) {
@@ -287,7 +307,69 @@ eng::Result<VideoWriter> VideoWriter::create(const std::filesystem::path& path, 
   if (int rc = avformat_write_header(impl->output.get(), nullptr); rc < 0)
     return impl->fail(nullptr, std::string("cannot write the ") + choice->muxer + " header", rc);
   impl->open = true;
+  for (std::vector<uint8_t>& slot : impl->slots) slot.resize(size_t(settings.width) * settings.height * 4);
+  Impl* encoding = impl.get();  // stable: the writer moves the pointer, not the Impl
+  impl->encoder = std::thread([encoding] { encoding->encodeQueued(); });
   return VideoWriter(std::move(impl));
+}
+
+// Converts, encodes and muxes one frame, with the sound up to its end (on the encoder thread).
+eng::Result<void> VideoWriter::Impl::encodeFrame(const std::vector<uint8_t>& rgba8) {
+  if (int rc = av_frame_make_writable(picture.get()); rc < 0) return fail(video.get(), "cannot reuse the frame", rc);
+  const uint8_t* source[1] = {rgba8.data()};
+  const int sourceStride[1] = {settings.width * 4};
+  sws_scale(scaler.get(), source, sourceStride, 0, settings.height, picture->data, picture->linesize);
+  picture->pts = framesWritten++;
+  if (int rc = avcodec_send_frame(video.get(), picture.get()); rc < 0) return fail(video.get(), "encoding video failed", rc);
+  ENG_TRY(drain(video.get(), videoStream));
+  // Sound up to the end of this frame, so the muxer interleaves as it goes.
+  if (sound) ENG_TRY(sendSound(av_rescale_q(framesWritten, video->time_base, sound->time_base)));
+  return {};
+}
+
+// The encoder thread's loop: the queue's frames in order until closing; after an error it only empties the queue.
+void VideoWriter::Impl::encodeQueued() {
+  std::unique_lock lock(mutex);
+  for (;;) {
+    changed.wait(lock, [&] { return queued > 0 || closing; });
+    if (queued == 0) return;
+    const size_t slot = firstQueued;
+    const bool healthy = bool(encoded);
+    lock.unlock();
+    eng::Result<void> done = healthy ? encodeFrame(slots[slot]) : eng::Result<void>{};
+    lock.lock();
+    if (!done && encoded) encoded = std::move(done);
+    firstQueued = (firstQueued + 1) % slots.size();
+    --queued;
+    changed.notify_all();
+  }
+}
+
+// Ends the encoder thread: after the queued frames, or at once dropping them (a writer given up).
+eng::Result<void> VideoWriter::Impl::stopEncoder(bool dropQueued) {
+  if (!encoder.joinable()) return encoded;
+  {
+    std::lock_guard lock(mutex);
+    closing = true;
+    if (dropQueued && encoded) encoded = eng::makeError(eng::ErrorKind::Io, name + ": video abandoned");
+  }
+  changed.notify_all();
+  encoder.join();
+  return encoded;
+}
+
+eng::Result<void> VideoWriter::Impl::queueFrame(std::span<const uint8_t> rgba8) {
+  std::unique_lock lock(mutex);
+  changed.wait(lock, [&] { return queued < slots.size() || !encoded; });
+  if (!encoded) return encoded;
+  // The slot after the queued ones: the encoder thread does not touch it until it is queued.
+  const size_t slot = (firstQueued + queued) % slots.size();
+  lock.unlock();
+  std::memcpy(slots[slot].data(), rgba8.data(), rgba8.size());
+  lock.lock();
+  ++queued;
+  changed.notify_all();
+  return {};
 }
 
 eng::Result<void> VideoWriter::addFrame(std::span<const uint8_t> rgba8) {
@@ -297,22 +379,14 @@ eng::Result<void> VideoWriter::addFrame(std::span<const uint8_t> rgba8) {
   if (rgba8.size() != expected)
     return eng::makeError(eng::ErrorKind::InvalidArgument, s.name + ": video frame has " + std::to_string(rgba8.size()) +
                                                                " bytes, expected " + std::to_string(expected));
-  if (int rc = av_frame_make_writable(s.picture.get()); rc < 0) return s.fail(s.video.get(), "cannot reuse the frame", rc);
-  const uint8_t* source[1] = {rgba8.data()};
-  const int sourceStride[1] = {s.settings.width * 4};
-  sws_scale(s.scaler.get(), source, sourceStride, 0, s.settings.height, s.picture->data, s.picture->linesize);
-  s.picture->pts = s.framesWritten++;
-  if (int rc = avcodec_send_frame(s.video.get(), s.picture.get()); rc < 0) return s.fail(s.video.get(), "encoding video failed", rc);
-  ENG_TRY(s.drain(s.video.get(), s.videoStream));
-  // Sound up to the end of this frame, so the muxer interleaves as it goes.
-  if (s.sound) ENG_TRY(s.sendSound(av_rescale_q(s.framesWritten, s.video->time_base, s.sound->time_base)));
-  return {};
+  return s.queueFrame(rgba8);
 }
 
 eng::Result<void> VideoWriter::finish() {
   Impl& s = *impl_;
   if (!s.open) return {};
   s.open = false;
+  ENG_TRY(s.stopEncoder(/*dropQueued=*/false));
   if (s.sound) {
     ENG_TRY(s.sendSound(int64_t(s.soundtrack.size())));
     if (int rc = avcodec_send_frame(s.sound.get(), nullptr); rc < 0) return s.fail(s.sound.get(), "flushing audio failed", rc);

@@ -32,7 +32,10 @@ class VideoWriter {
   VideoWriter& operator=(VideoWriter&&) noexcept;
   ~VideoWriter();  // without finish(): closes and removes the partial file
 
-  // rgba8: width * height * 4 bytes, row 0 at the top (alpha ignored).
+  // rgba8: width * height * 4 bytes, row 0 at the top (alpha ignored). Copied
+  // and queued: the writer's own thread converts and encodes it while the
+  // caller renders the next one (at most 3 frames wait; then this blocks). An
+  // encoding error comes back from the next addFrame() or from finish().
   eng::Result<void> addFrame(std::span<const uint8_t> rgba8);
   // Writes the rest of the sound, closes the file and moves it to `path`.
   eng::Result<void> finish();

@@ -28,7 +28,8 @@ struct SayOptions {
   std::string model;
   std::string rigmap;
   std::vector<std::string> shapes;
-  app::ViewOptions view;
+  // Balanced: high's 4x multisampling triples lavapipe's frame time (docs/performance.md, `say`).
+  app::ViewOptions view{.quality = "balanced"};
   float fps = 25.0f;
   std::string cues;
   std::string audio;

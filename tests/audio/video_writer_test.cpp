@@ -7,7 +7,9 @@ extern "C" {
 #include <libavformat/avformat.h>
 }
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "tests/audio/speech_samples.h"
 #include "tests/common/test_support.h"
@@ -152,6 +154,71 @@ TEST(VideoWriter, UnfinishedVideoLeavesNoFile) {
     ASSERT_TRUE(writer.ok()) << writer.error().message;
     ASSERT_TRUE(writer->addFrame(gradientFrame(32, 32, 0)).ok());
   }
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// The mean luma (Y, 16..235) of each decoded video frame, in presentation order.
+std::vector<double> frameLumas(const fs::path& path) {
+  std::vector<double> lumas;
+  AVFormatContext* input = nullptr;
+  if (avformat_open_input(&input, path.c_str(), nullptr, nullptr) < 0) return lumas;
+  const AVCodec* codec = nullptr;
+  const int stream = avformat_find_stream_info(input, nullptr) >= 0
+                         ? av_find_best_stream(input, AVMEDIA_TYPE_VIDEO, -1, -1, &codec, 0) : -1;
+  AVCodecContext* decoder = stream >= 0 ? avcodec_alloc_context3(codec) : nullptr;
+  if (decoder && avcodec_parameters_to_context(decoder, input->streams[stream]->codecpar) >= 0 &&
+      avcodec_open2(decoder, codec, nullptr) >= 0) {
+    AVPacket* packet = av_packet_alloc();
+    AVFrame* frame = av_frame_alloc();
+    const auto receive = [&] {
+      while (avcodec_receive_frame(decoder, frame) == 0) {
+        double sum = 0;
+        for (int y = 0; y < frame->height; ++y)
+          for (int x = 0; x < frame->width; ++x) sum += frame->data[0][y * frame->linesize[0] + x];
+        lumas.push_back(sum / (frame->width * frame->height));
+      }
+    };
+    while (av_read_frame(input, packet) >= 0) {
+      if (packet->stream_index == stream && avcodec_send_packet(decoder, packet) == 0) receive();
+      av_packet_unref(packet);
+    }
+    if (avcodec_send_packet(decoder, nullptr) == 0) receive();
+    av_frame_free(&frame);
+    av_packet_free(&packet);
+  }
+  avcodec_free_context(&decoder);
+  avformat_close_input(&input);
+  return lumas;
+}
+
+// addFrame() copies the frame and queues it for the writer's encoder thread:
+// many more frames than the queue holds, from one buffer the caller overwrites
+// at once, come out all there, in order, each with its own picture.
+TEST(VideoWriter, QueuedFramesKeepTheirOrderAndPictures) {
+  const fs::path path = testing_support::freshTempDir("video_writer_queue") / "clip.mp4";
+  constexpr int kFrames = 40;
+  auto writer = audio::VideoWriter::create(path, {.width = 32, .height = 32, .framesPerSecond = 25});
+  ASSERT_TRUE(writer.ok()) << writer.error().message;
+  std::vector<uint8_t> rgba(32 * 32 * 4);
+  for (int i = 0; i < kFrames; ++i) {
+    std::fill(rgba.begin(), rgba.end(), uint8_t(20 + i * 5));  // grey, brighter each frame
+    ASSERT_TRUE(writer->addFrame(rgba).ok());
+    std::fill(rgba.begin(), rgba.end(), uint8_t(0));  // the caller reuses its buffer at once
+  }
+  ASSERT_TRUE(writer->finish().ok());
+  const std::vector<double> lumas = frameLumas(path);
+  ASSERT_EQ(lumas.size(), size_t(kFrames));
+  for (int i = 0; i < kFrames; ++i)
+    EXPECT_NEAR(lumas[i], 16 + 219.0 * (20 + i * 5) / 255, 2.0) << "frame " << i;
+}
+
+TEST(VideoWriter, AbandonedWithAFullQueueLeavesNoFile) {
+  const fs::path dir = testing_support::freshTempDir("video_writer_abandoned");
+  {
+    auto writer = audio::VideoWriter::create(dir / "clip.mp4", {.width = 64, .height = 64, .framesPerSecond = 30});
+    ASSERT_TRUE(writer.ok()) << writer.error().message;
+    for (int i = 0; i < 20; ++i) ASSERT_TRUE(writer->addFrame(gradientFrame(64, 64, i)).ok());
+  }  // destroyed while frames may still wait for the encoder
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
