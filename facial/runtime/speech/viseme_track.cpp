@@ -48,6 +48,7 @@ struct Segment {
   float start = 0;
   float end = 0;
   float dominance = kDefaultDominance;
+  float tailDominance = kDefaultDominance;  // the tails' peak: a lip consonant wins its interval, not its neighbours'
   float lead = kConsonantSpread;   // Gaussian width before start
   float trail = kConsonantSpread;  // Gaussian width after end
   bool borrowed = false;           // h, ʔ or unmapped: a neighbour's shape, weakly, and never a lip closure
@@ -69,6 +70,7 @@ void applyDominanceRules(Segment& s, float scale) {
   if (s.viseme == Viseme::sil) {  // pauses: bridged when short, rest when long
     s.dominance = std::lerp(kBridgedSilenceDominance, kRestDominance, smoothstep(kBridgedPause, kRestPause, duration));
     s.lead = s.trail = kSilenceSpread;
+    s.tailDominance = s.dominance;
     return;
   }
   if (isVowelViseme(s.viseme)) {  // vowel anticipation, wider for rounding
@@ -76,8 +78,9 @@ void applyDominanceRules(Segment& s, float scale) {
     s.trail = kVowelCarryOver;
   }
   const bool lipConsonant = s.viseme == Viseme::PP || s.viseme == Viseme::FF;
-  s.dominance = scale * (lipConsonant ? kLipConsonantDominance : kDefaultDominance);
-  if (duration < kMinVisible) s.dominance *= std::min(kMaxShortBoost, kMinVisible / duration);  // short never dropped
+  const float boost = duration < kMinVisible ? std::min(kMaxShortBoost, kMinVisible / duration) : 1.0f;  // short never dropped
+  s.dominance = scale * (lipConsonant ? kLipConsonantDominance : kDefaultDominance) * boost;
+  s.tailDominance = scale * (lipConsonant ? kLipConsonantTailDominance : kDefaultDominance) * boost;
 }
 
 // Cues in time order, gaps and both ends filled with silence, rules applied.
@@ -109,15 +112,22 @@ float dominanceAt(const Segment& s, float t) {
   if (d == 0.0f) return s.dominance;
   const float width = t < s.start ? s.lead : s.trail;
   if (d > 3.0f * width) return 0.0f;
-  const float x = d / width;
-  return s.dominance * std::exp(-x * x);
+  const float x = d / width, edge = d / kStrongEdge;
+  // The strength above the tail's falls off within kStrongEdge: continuous, no pop at the boundary.
+  return s.tailDominance * std::exp(-x * x) + (s.dominance - s.tailDominance) * std::exp(-edge * edge);
 }
 
 // The closure holds of the bilabials: [start, end] widened to kMinClosureHold,
-// and into a pause beside it by up to kClosureFromRest.
+// and into a pause beside it by up to kClosureFromRest. Beside a phoneme the
+// lips close and open over a ramp of at most kMaxClosureRampShare of it, so
+// the vowel of "mama" still opens.
 struct Hold {
   float start, end;
+  float rampIn, rampOut;
 };
+float rampInto(const Segment& neighbour) {
+  return std::clamp(kMaxClosureRampShare * (neighbour.end - neighbour.start), kMinClosureRamp, kClosureRamp);
+}
 std::vector<Hold> closureHolds(std::span<const Segment> segments) {
   std::vector<Hold> holds;
   const auto isPause = [&](size_t i) { return segments[i].viseme == Viseme::sil && !segments[i].borrowed; };
@@ -125,11 +135,17 @@ std::vector<Hold> closureHolds(std::span<const Segment> segments) {
     const Segment& s = segments[i];
     if (s.viseme != Viseme::PP || s.borrowed) continue;
     const float centre = 0.5f * (s.start + s.end), half = 0.5f * std::max(kMinClosureHold, s.end - s.start);
-    Hold hold{std::min(s.start, centre - half), std::max(s.end, centre + half)};
-    if (i > 0 && isPause(i - 1))
+    Hold hold{std::min(s.start, centre - half), std::max(s.end, centre + half), kClosureRamp, kClosureRamp};
+    if (i > 0 && isPause(i - 1)) {
       hold.start = std::min(hold.start, std::max(segments[i - 1].start, s.start - kClosureFromRest));
-    if (i + 1 < segments.size() && isPause(i + 1))
+    } else if (i > 0) {
+      hold.rampIn = rampInto(segments[i - 1]);
+    }
+    if (i + 1 < segments.size() && isPause(i + 1)) {
       hold.end = std::max(hold.end, std::min(segments[i + 1].end, s.end + kClosureFromRest));
+    } else if (i + 1 < segments.size()) {
+      hold.rampOut = rampInto(segments[i + 1]);
+    }
     holds.push_back(hold);
   }
   return holds;
@@ -140,8 +156,10 @@ float closureAt(std::span<const Hold> holds, size_t& first, float t) {
   while (first < holds.size() && holds[first].end + kClosureRamp < t) ++first;
   float k = 0;
   for (size_t i = first; i < holds.size() && holds[i].start - kClosureRamp <= t; ++i) {
-    const float d = t < holds[i].start ? holds[i].start - t : t > holds[i].end ? t - holds[i].end : 0.0f;
-    k = std::max(k, d >= kClosureRamp ? 0.0f : 0.5f * (1.0f + std::cos(std::numbers::pi_v<float> * d / kClosureRamp)));
+    const bool before = t < holds[i].start;
+    const float d = before ? holds[i].start - t : t > holds[i].end ? t - holds[i].end : 0.0f;
+    const float ramp = before ? holds[i].rampIn : holds[i].rampOut;
+    k = std::max(k, d >= ramp ? 0.0f : 0.5f * (1.0f + std::cos(std::numbers::pi_v<float> * d / ramp)));
   }
   return k;
 }

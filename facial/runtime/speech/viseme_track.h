@@ -75,9 +75,13 @@ inline constexpr float kVowelCarryOver = 0.05f;
 // Consonants are brief gestures: narrow tails on both sides.
 inline constexpr float kConsonantSpread = 0.03f;
 // Dominance (the weight a segment holds against its neighbours): lip
-// consonants win over the vowels around them (the lips must do their
-// gesture), tongue consonants share with them.
+// consonants win over the vowels around them within their own interval (the
+// lips must do their gesture), tongue consonants share with them. Their tails
+// are weak (a quick, precise gesture; p/b/m's closure has its own ramps), so
+// the vowel between two bilabials ("mama", "Bob") still owns its interval.
 inline constexpr float kLipConsonantDominance = 2.5f;  // PP, FF
+inline constexpr float kLipConsonantTailDominance = 0.5f;
+inline constexpr float kStrongEdge = 0.012f;  // the width over which the extra dominance fades
 inline constexpr float kDefaultDominance = 1.0f;
 inline constexpr float kTransparentDominance = 0.5f;  // h, ʔ, unmapped: the neighbour's shape
 // Short phonemes never dropped: a phoneme shorter than kMinVisible gets its
@@ -92,6 +96,13 @@ inline constexpr float kMaxShortBoost = 4.0f;
 // plosives an occlusion of 4-12 cs for the same reason.
 inline constexpr float kMinClosureHold = 0.04f;
 inline constexpr float kClosureRamp = 0.04f;
+// ... but beside a phoneme a ramp takes at most this share of it: lips part
+// within about 20 ms of a release, and a full 40 ms each side would cover the whole vowel of "mama" and keep it closed. Never
+// shorter than kMinClosureRamp, the fastest a cosine ramp may be under
+// kMaxWeightRate with room for the blend changing under it (its steepest
+// slope is pi / 2 / ramp).
+inline constexpr float kMaxClosureRampShare = 0.4f;
+inline constexpr float kMinClosureRamp = 0.03f;
 // A bilabial next to a pause keeps the lips closed from rest into the closure
 // (and back) over up to kClosureFromRest: rest and p/b/m are both closed, so
 // opening between them for an anticipated vowel would flap the jaw.

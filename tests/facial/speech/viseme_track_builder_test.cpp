@@ -45,6 +45,18 @@ TEST(VisemeTrackRules, BilabialsCloseTheLipsFully) {
   }
 }
 
+TEST(VisemeTrackRules, AShortVowelBetweenBilabialsStillOpensTheMouth) {
+  // "mama" as espeak-ng times it: the 52 ms vowel between two m's opens the
+  // jaw, each m closes fully (the m's dominance and closure ramps once kept
+  // the whole word shut).
+  const VisemeTrack track = buildOrDie(phonemeRun({{"m", 0.081f}, {"a", 0.052f}, {"m", 0.064f}, {"a", 0.051f}}, 0.5f));
+  const float firstVowelMiddle = 0.5f + 0.081f + 0.026f, secondM = 0.5f + 0.133f + 0.032f;
+  EXPECT_GT(sampleAt(track, firstVowelMiddle)[Viseme::aa], 0.6f);
+  EXPECT_GT(sampleAt(track, firstVowelMiddle)[MouthChannel::JawOpen], 0.6f);
+  EXPECT_LT(sampleAt(track, firstVowelMiddle)[MouthChannel::LipClosure], 0.4f);
+  EXPECT_GT(sampleAt(track, secondM)[MouthChannel::LipClosure], 0.99f);
+}
+
 TEST(VisemeTrackRules, AVeryShortBilabialStillClosesForTheMinimumHold) {
   // A 15 ms b between open vowels: closed for 40 ms (kMinClosureHold) around its centre.
   const VisemeTrack track = buildOrDie(phonemeRun({{"a", 0.2f}, {"b", 0.015f}, {"a", 0.2f}}));
