@@ -33,6 +33,7 @@ constexpr std::array kActionUnits = {
     ActionUnitInfo{"AU26_JawDrop", 26, "Jaw Drop", R::Lower, S::Both},
     ActionUnitInfo{"AU27_MouthStretch", 27, "Mouth Stretch", R::Lower, S::Both},
     ActionUnitInfo{"AU28_LipSuck", 28, "Lip Suck", R::Lower, S::Both},
+    ActionUnitInfo{"AU29_JawThrust", 29, "Jaw Thrust", R::Lower, S::Both},
     ActionUnitInfo{"AU45_Blink_L", 45, "Blink", R::Upper, S::Left},
     ActionUnitInfo{"AU45_Blink_R", 45, "Blink", R::Upper, S::Right},
 };

@@ -77,6 +77,7 @@ constexpr std::array kTable = {
     AuToArkit{"AU27_MouthStretch", "mouthStretchRight", 0.3f},
     AuToArkit{"AU28_LipSuck", "mouthRollUpper", 1.0f},
     AuToArkit{"AU28_LipSuck", "mouthRollLower", 1.0f},
+    AuToArkit{"AU29_JawThrust", "jawForward", 1.0f},
     AuToArkit{"AU45_Blink_L", "eyeBlinkLeft", 1.0f},
     AuToArkit{"AU45_Blink_R", "eyeBlinkRight", 1.0f},
 };

@@ -38,7 +38,7 @@ const std::array<std::span<const VAU>, kVisemeCount> kVisemeUnits = {
     std::span<const VAU>{}, kPP, kFF, kTH, kDD, kKK, kCH, kSS, kNN, kRR, kAA, kE, kI, kO, kU};
 
 // The mouth-ownership table (docs/speech.md, "Speaking with an emotion").
-constexpr std::array<MouthOwnership, 17> kOwnership = {{
+constexpr std::array<MouthOwnership, 18> kOwnership = {{
     {"AU12_LipCornerPuller_L", 0.75f, 0.55f},   // the smile stays, eased on p/b/m so the lips can meet
     {"AU12_LipCornerPuller_R", 0.75f, 0.55f},
     {"AU15_LipCornerDepressor", 0.85f, 0.7f},  // sad corners stay
@@ -55,6 +55,7 @@ constexpr std::array<MouthOwnership, 17> kOwnership = {{
     {"AU26_JawDrop", 0.0f, 0.0f},
     {"AU27_MouthStretch", 0.0f, 0.0f},
     {"AU28_LipSuck", 0.0f, 0.0f},
+    {"AU29_JawThrust", 0.0f, 0.0f},
     {"AU9_NoseWrinkler", 1.0f, 1.0f},          // listed to say so: the nose stays the emotion's
 }};
 

@@ -197,6 +197,15 @@ TEST(HeadActionUnits, MouthStretchStacksOnJawDropWithinItsReach) {
   EXPECT_GT(maxDelta(headPrimitive(builtInHead().model, HeadPrimitive::TeethLower), target("AU27_MouthStretch")), 0.015f);
 }
 
+TEST(HeadActionUnits, JawThrustBringsTheChinAndLowerTeethForward) {
+  EXPECT_GT(landmarkDelta("AU29_JawThrust", "chin").z, 0.003f);
+  EXPECT_GT(landmarkDelta("AU29_JawThrust", "lower_lip_centre").z, 0.003f);
+  EXPECT_LT(glm::length(landmarkDelta("AU29_JawThrust", "upper_lip_centre")), 0.001f);
+  const eng::Primitive& lower = headPrimitive(builtInHead().model, HeadPrimitive::TeethLower);
+  const int t = target("AU29_JawThrust");
+  for (size_t v = 0; v < lower.vertexCount(); ++v) ASSERT_GT(lower.targets[t].positions[v].z, 0.002f) << "lower tooth vertex " << v;
+}
+
 TEST(HeadActionUnits, TongueShowRaisesTheTipToTheUpperTeeth) {
   const bake::GeneratedHead& head = builtInHead();
   const eng::Primitive& tongue = headPrimitive(head.model, HeadPrimitive::Tongue);
@@ -221,7 +230,7 @@ TEST(HeadActionUnits, TongueShowRaisesTheTipToTheUpperTeeth) {
 TEST(HeadActionUnits, NoOtherUnitMovesTheTeeth) {
   const eng::Model& model = builtInHead().model;
   for (const facial::ActionUnitInfo& info : facial::actionUnits()) {
-    if (info.name == "AU26_JawDrop" || info.name == "AU27_MouthStretch") continue;  // the jaw units
+    if (info.name == "AU26_JawDrop" || info.name == "AU27_MouthStretch" || info.name == "AU29_JawThrust") continue;  // the jaw units
     const int t = target(std::string(info.name));
     EXPECT_EQ(maxDelta(headPrimitive(model, HeadPrimitive::TeethUpper), t), 0.0f) << info.name;
     EXPECT_EQ(maxDelta(headPrimitive(model, HeadPrimitive::TeethLower), t), 0.0f) << info.name;

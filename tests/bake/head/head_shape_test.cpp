@@ -80,6 +80,7 @@ std::vector<std::vector<std::pair<std::string, float>>> mouthPoses() {
   poses.push_back({{"AU19_TongueShow", 1.0f}, {"AU26_JawDrop", 1.0f}, {"AU27_MouthStretch", 1.0f}});
   poses.push_back({{"AU24_LipPressor", 1.0f}, {"AU23_LipTightener", 1.0f}, {"AU28_LipSuck", 1.0f}});
   poses.push_back({{"AU25_LipsPart", 1.0f}, {"AU26_JawDrop", 1.0f}, {"AU27_MouthStretch", 1.0f}});
+  poses.push_back({{"AU29_JawThrust", 1.0f}, {"AU25_LipsPart", 1.0f}, {"AU26_JawDrop", 0.3f}});
   return poses;
 }
 
