@@ -2,7 +2,10 @@
 // The canonical FACS channel vocabulary shared by presets, the animation graph
 // and rig mappings. A pose over action units is a float per entry of
 // actionUnits(), in this order. Bilateral units are split where one-sided
-// motion is common (2, 12, 45); the others act on both sides.
+// motion is common (2, 12, 45); the others act on both sides. 19 is FACS's
+// action descriptor "tongue show" (the tongue tip up between the teeth, as for
+// th, t, d, n, l): a tongue channel in the same vocabulary, so FACS-named faces
+// ("AU19") and ARKit's tongueOut both reach it.
 #include <cstdint>
 #include <optional>
 #include <span>

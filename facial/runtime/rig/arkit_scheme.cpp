@@ -25,7 +25,9 @@ struct AuToArkit {
 //  - AU25 parts the lips without much jaw: lower lip down, a hint of upper lip
 //    and jaw.
 //  - AU26 is a relaxed jaw drop; jawOpen at 1 is a wide-open mouth (AU27), so
-//    AU26 reaches about 60% of it.
+//    AU26 reaches about 60% of it, and AU27 (mouth stretch) adds the rest.
+//  - AU19 (tongue show) is tongueOut at half: the tip between the teeth, not
+//    the whole tongue out.
 constexpr std::array kTable = {
     AuToArkit{"AU1_InnerBrowRaiser", "browInnerUp", 1.0f},
     AuToArkit{"AU2_OuterBrowRaiser_L", "browOuterUpLeft", 1.0f},
@@ -54,8 +56,11 @@ constexpr std::array kTable = {
     AuToArkit{"AU16_LowerLipDepressor", "mouthLowerDownRight", 1.0f},
     AuToArkit{"AU17_ChinRaiser", "mouthShrugLower", 1.0f},
     AuToArkit{"AU17_ChinRaiser", "mouthShrugUpper", 0.4f},
+    AuToArkit{"AU18_LipPucker", "mouthPucker", 1.0f},
+    AuToArkit{"AU19_TongueShow", "tongueOut", 0.5f},
     AuToArkit{"AU20_LipStretcher", "mouthStretchLeft", 1.0f},
     AuToArkit{"AU20_LipStretcher", "mouthStretchRight", 1.0f},
+    AuToArkit{"AU22_LipFunneler", "mouthFunnel", 1.0f},
     AuToArkit{"AU23_LipTightener", "mouthRollUpper", 0.35f},
     AuToArkit{"AU23_LipTightener", "mouthRollLower", 0.35f},
     AuToArkit{"AU23_LipTightener", "mouthPucker", 0.2f},
@@ -67,6 +72,12 @@ constexpr std::array kTable = {
     AuToArkit{"AU25_LipsPart", "mouthUpperUpRight", 0.1f},
     AuToArkit{"AU25_LipsPart", "jawOpen", 0.1f},
     AuToArkit{"AU26_JawDrop", "jawOpen", 0.6f},
+    AuToArkit{"AU27_MouthStretch", "jawOpen", 0.4f},
+    AuToArkit{"AU27_MouthStretch", "mouthStretchLeft", 0.3f},
+    AuToArkit{"AU27_MouthStretch", "mouthStretchRight", 0.3f},
+    AuToArkit{"AU28_LipSuck", "mouthRollUpper", 1.0f},
+    AuToArkit{"AU28_LipSuck", "mouthRollLower", 1.0f},
+    AuToArkit{"AU29_JawThrust", "jawForward", 1.0f},
     AuToArkit{"AU45_Blink_L", "eyeBlinkLeft", 1.0f},
     AuToArkit{"AU45_Blink_R", "eyeBlinkRight", 1.0f},
 };

@@ -243,16 +243,21 @@ bool mapActionUnitVisemes(RigMappingBuilder& builder) {
   size_t composed = 0;
   for (size_t v = 0; v < kVisemeCount; ++v) {
     bool any = false;
-    for (const VisemeActionUnit& unit : visemeActionUnits(Viseme(v)))
-      for (const auto& [target, gain] : builder.row(*actionUnitIndex(unit.channel))) {
-        builder.addViseme(Viseme(v), target, unit.weight * gain);
+    for (const VisemeActionUnit& unit : visemeActionUnits(Viseme(v))) {
+      // A unit the rig lacks gives way to its fallback (AU23 for rounding).
+      const bool lacking = builder.row(*actionUnitIndex(unit.channel)).empty() && !unit.fallback.empty();
+      const std::string_view channel = lacking ? unit.fallback : unit.channel;
+      const float weight = lacking ? unit.fallbackWeight : unit.weight;
+      for (const auto& [target, gain] : builder.row(*actionUnitIndex(channel))) {
+        builder.addViseme(Viseme(v), target, weight * gain);
         any = true;
       }
+    }
     composed += any ? 1 : 0;
   }
   if (composed == 0) return false;
   builder.setSpeech(std::to_string(composed) + " of 14 visemes composed from the lip and jaw action units "
-                    "(AU10 AU17 AU20 AU23 AU24 AU25 AU26) through the rig's action-unit rows");
+                    "(AU10 AU17 AU18 AU19 AU20 AU22-AU28) through the rig's action-unit rows");
   return true;
 }
 
@@ -285,9 +290,9 @@ void mapSpeech(RigMappingBuilder& builder, RigScheme scheme) {
 std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model) {
   return std::string(model) + ": cannot speak: it has nothing to move the mouth; none of its " +
          std::to_string(rig.targetCount()) + " targets is an Oculus viseme_* shape, a VRM aa/ih/ou/ee/oh or A/I/U/E/O "
-         "expression, a VRoid Fcl_MTH_A..O shape, an ARKit jawOpen/mouth* shape or a lip or jaw action unit (AU10 AU17 "
-         "AU20 AU23 AU24 AU25 AU26); a rig map can name the targets that open and close it in a \"visemes\" block "
-         "(data/rigmaps/README.md)";
+         "expression, a VRoid Fcl_MTH_A..O shape, an ARKit jawOpen/mouth* shape or a lip, jaw or tongue action unit "
+         "(AU10 AU17 AU18 AU19 AU20 AU22-AU28); a rig map can name the targets that open and close it in a \"visemes\" "
+         "block (data/rigmaps/README.md)";
 }
 
 }  // namespace facial

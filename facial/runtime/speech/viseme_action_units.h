@@ -16,6 +16,12 @@ namespace facial {
 struct VisemeActionUnit {
   std::string_view channel;  // an actionUnits() channel name
   float weight;
+  // What a face without `channel` moves instead (empty: nothing). The lip
+  // pucker, funneler and suck, the mouth stretch and the tongue are recent
+  // additions most FACS rigs (CANDIDE-3, older heads) lack: rounding then
+  // falls back to the lip tightener and a wide jaw to the jaw drop.
+  std::string_view fallback = {};
+  float fallbackWeight = 0.0f;
 };
 // The units of one viseme (empty for sil: the relaxed, closed mouth).
 std::span<const VisemeActionUnit> visemeActionUnits(Viseme viseme);

@@ -1,7 +1,9 @@
 // The built-in head's action-unit targets: canonical names on every part of
 // the "Head" mesh, lids that close over the eyes (AU45) without cutting into
 // them, a jaw that drops with the lower teeth (AU26), lips that part (AU25),
-// one-sided units that stay on their side, and mirror-image left/right pairs.
+// one-sided units that stay on their side, mirror-image left/right pairs, and
+// the speech units: lips that pucker, funnel and roll in, a wider jaw
+// (AU27), and a tongue whose tip rises to the upper teeth (AU19).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,8 +51,10 @@ TEST(HeadActionUnits, HeadMeshHasEveryCanonicalChannelInOrder) {
 
 TEST(HeadActionUnits, EveryUnitMovesTheSkinVisibly) {
   const eng::Primitive& skin = headPrimitive(builtInHead().model, HeadPrimitive::Skin);
-  for (const facial::ActionUnitInfo& info : facial::actionUnits())
+  for (const facial::ActionUnitInfo& info : facial::actionUnits()) {
+    if (info.facsNumber == 19) continue;  // the tongue's unit (TongueShowRaisesTheTipToTheUpperTeeth)
     EXPECT_GT(maxDelta(skin, target(std::string(info.name))), 0.002f) << info.name << " moves less than 2 mm";
+  }
 }
 
 TEST(HeadActionUnits, BlinkBringsTheUpperLidDownToTheLowerLid) {
@@ -146,10 +150,87 @@ TEST(HeadActionUnits, JawDropOpensTheMouthAndCarriesTheLowerTeeth) {
       << "mouth still closed at the middle: skin at z " << openZ.value_or(0.0f) << ", at rest " << *restZ;
 }
 
+// Displacement of the skin vertex nearest a landmark under one unit.
+glm::vec3 landmarkDelta(const std::string& unit, const std::string& name) {
+  const bake::GeneratedHead& head = builtInHead();
+  const eng::Primitive& skin = headPrimitive(head.model, HeadPrimitive::Skin);
+  return skin.targets[target(unit)].positions[head_testing::nearestVertex(skin.positions, landmark(head, name))];
+}
+
+TEST(HeadActionUnits, PuckerPushesTheLipsForwardAndTheCornersInward) {
+  for (const char* lip : {"upper_lip_centre", "lower_lip_centre"})
+    EXPECT_GT(landmarkDelta("AU18_LipPucker", lip).z, 0.005f) << lip;
+  const glm::vec3 left = landmarkDelta("AU18_LipPucker", "mouth_corner_L"), right = landmarkDelta("AU18_LipPucker", "mouth_corner_R");
+  EXPECT_LT(left.x, -0.005f);  // toward the middle from both sides
+  EXPECT_GT(right.x, 0.005f);
+  EXPECT_GT(left.z, 0.002f);
+}
+
+TEST(HeadActionUnits, FunnelerFlaresTheLipsForwardAndApart) {
+  const glm::vec3 upper = landmarkDelta("AU22_LipFunneler", "upper_lip_centre");
+  const glm::vec3 lower = landmarkDelta("AU22_LipFunneler", "lower_lip_centre");
+  EXPECT_GT(upper.z, 0.004f);
+  EXPECT_GT(lower.z, 0.004f);
+  EXPECT_GT(upper.y - lower.y, 0.004f);  // the opening rounds: lips apart, corners in
+  EXPECT_LT(landmarkDelta("AU22_LipFunneler", "mouth_corner_L").x, -0.003f);
+}
+
+TEST(HeadActionUnits, LipSuckRollsTheLipsInTowardTheTeeth) {
+  const glm::vec3 upper = landmarkDelta("AU28_LipSuck", "upper_lip_centre");
+  const glm::vec3 lower = landmarkDelta("AU28_LipSuck", "lower_lip_centre");
+  EXPECT_LT(upper.z, -0.004f);
+  EXPECT_LT(lower.z, -0.004f);
+  EXPECT_LT(upper.y, -0.002f);
+  EXPECT_GT(lower.y, 0.002f);
+}
+
+TEST(HeadActionUnits, MouthStretchStacksOnJawDropWithinItsReach) {
+  // AU26 + AU27 open the jaw about twice as far as AU26; AU27 alone stays
+  // within AU26's reach, so the framing bounds (every target at full weight)
+  // and with them every render of the head do not move.
+  const glm::vec3 stretch = landmarkDelta("AU27_MouthStretch", "chin"), drop = landmarkDelta("AU26_JawDrop", "chin");
+  EXPECT_LT(stretch.y, 0.8f * drop.y);
+  EXPECT_GE(stretch.y, drop.y - 1e-4f);
+  EXPECT_GE(stretch.z, drop.z - 1e-4f);
+  EXPECT_LT(landmarkDelta("AU27_MouthStretch", "mouth_corner_L").y, landmarkDelta("AU26_JawDrop", "mouth_corner_L").y);
+  EXPECT_LT(glm::length(landmarkDelta("AU27_MouthStretch", "upper_lip_centre")), 0.001f);
+  EXPECT_GT(maxDelta(headPrimitive(builtInHead().model, HeadPrimitive::TeethLower), target("AU27_MouthStretch")), 0.015f);
+}
+
+TEST(HeadActionUnits, JawThrustBringsTheChinAndLowerTeethForward) {
+  EXPECT_GT(landmarkDelta("AU29_JawThrust", "chin").z, 0.003f);
+  EXPECT_GT(landmarkDelta("AU29_JawThrust", "lower_lip_centre").z, 0.003f);
+  EXPECT_LT(glm::length(landmarkDelta("AU29_JawThrust", "upper_lip_centre")), 0.001f);
+  const eng::Primitive& lower = headPrimitive(builtInHead().model, HeadPrimitive::TeethLower);
+  const int t = target("AU29_JawThrust");
+  for (size_t v = 0; v < lower.vertexCount(); ++v) ASSERT_GT(lower.targets[t].positions[v].z, 0.002f) << "lower tooth vertex " << v;
+}
+
+TEST(HeadActionUnits, TongueShowRaisesTheTipToTheUpperTeeth) {
+  const bake::GeneratedHead& head = builtInHead();
+  const eng::Primitive& tongue = headPrimitive(head.model, HeadPrimitive::Tongue);
+  const int t = target("AU19_TongueShow");
+  size_t tip = 0, back = 0;
+  for (size_t v = 0; v < tongue.vertexCount(); ++v) {
+    if (tongue.positions[v].z > tongue.positions[tip].z) tip = v;
+    if (tongue.positions[v].z < tongue.positions[back].z) back = v;
+  }
+  const glm::vec3 moved = tongue.positions[tip] + tongue.targets[t].positions[tip];
+  const glm::vec3 incisor = landmark(head, "upper_incisor");
+  EXPECT_GT(tongue.targets[t].positions[tip].y, 0.004f);  // up
+  EXPECT_GT(tongue.targets[t].positions[tip].z, 0.0f);    // and forward
+  EXPECT_LT(std::abs(moved.y - incisor.y), 0.004f) << "the tip ends " << (moved.y - incisor.y) * 1000.0f << " mm from the incisor edge";
+  EXPECT_LT(moved.z, incisor.z) << "the tip ends in front of the upper teeth";
+  EXPECT_EQ(glm::length(tongue.targets[t].positions[back]), 0.0f);  // the root stays
+  // Only the tongue moves.
+  for (HeadPrimitive p : {HeadPrimitive::Skin, HeadPrimitive::Mouth, HeadPrimitive::TeethUpper, HeadPrimitive::TeethLower})
+    EXPECT_EQ(maxDelta(headPrimitive(head.model, p), t), 0.0f) << int(p);
+}
+
 TEST(HeadActionUnits, NoOtherUnitMovesTheTeeth) {
   const eng::Model& model = builtInHead().model;
   for (const facial::ActionUnitInfo& info : facial::actionUnits()) {
-    if (info.name == "AU26_JawDrop") continue;
+    if (info.name == "AU26_JawDrop" || info.name == "AU27_MouthStretch" || info.name == "AU29_JawThrust") continue;  // the jaw units
     const int t = target(std::string(info.name));
     EXPECT_EQ(maxDelta(headPrimitive(model, HeadPrimitive::TeethUpper), t), 0.0f) << info.name;
     EXPECT_EQ(maxDelta(headPrimitive(model, HeadPrimitive::TeethLower), t), 0.0f) << info.name;

@@ -73,6 +73,14 @@ std::vector<std::vector<std::pair<std::string, float>>> mouthPoses() {
                    {"AU17_ChinRaiser", 1.0f}, {"AU25_LipsPart", 1.0f}});
   poses.push_back({{"AU23_LipTightener", 1.0f}, {"AU24_LipPressor", 1.0f}, {"AU17_ChinRaiser", 1.0f}});
   poses.push_back({{"AU15_LipCornerDepressor", 1.0f}, {"AU17_ChinRaiser", 1.0f}, {"AU16_LowerLipDepressor", 1.0f}});
+  // The speech units at full weight and as the visemes mix them (O, U, TH, PP, aa).
+  poses.push_back({{"AU22_LipFunneler", 1.0f}, {"AU18_LipPucker", 1.0f}, {"AU25_LipsPart", 1.0f}, {"AU26_JawDrop", 1.0f}});
+  poses.push_back({{"AU18_LipPucker", 1.0f}, {"AU22_LipFunneler", 0.3f}, {"AU25_LipsPart", 0.6f}, {"AU26_JawDrop", 0.3f}});
+  poses.push_back({{"AU19_TongueShow", 1.0f}, {"AU25_LipsPart", 0.6f}, {"AU26_JawDrop", 0.15f}});
+  poses.push_back({{"AU19_TongueShow", 1.0f}, {"AU26_JawDrop", 1.0f}, {"AU27_MouthStretch", 1.0f}});
+  poses.push_back({{"AU24_LipPressor", 1.0f}, {"AU23_LipTightener", 1.0f}, {"AU28_LipSuck", 1.0f}});
+  poses.push_back({{"AU25_LipsPart", 1.0f}, {"AU26_JawDrop", 1.0f}, {"AU27_MouthStretch", 1.0f}});
+  poses.push_back({{"AU29_JawThrust", 1.0f}, {"AU25_LipsPart", 1.0f}, {"AU26_JawDrop", 0.3f}});
   return poses;
 }
 

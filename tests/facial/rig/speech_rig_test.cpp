@@ -258,10 +258,36 @@ TEST(SpeechRig, ActionUnitHeadComposesVisemesFromLipAndJawUnits) {
   EXPECT_FLOAT_EQ(weightOf(*rig, pp, "AU25_LipsPart"), 0.0f);
   const std::vector<float> aa = speak(*rig, Viseme::aa);
   EXPECT_FLOAT_EQ(weightOf(*rig, aa, "AU26_JawDrop"), 1.0f);
-  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.8f);
+  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::U), "AU18_LipPucker"), 0.8f);
+  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::O), "AU22_LipFunneler"), 0.6f);
+  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::CH), "AU22_LipFunneler"), 0.4f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.0f);  // rounding is pucker and funnel here
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::TH), "AU19_TongueShow"), 1.0f);
+  EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::DD), "AU19_TongueShow"), 0.3f);
   EXPECT_GT(weightOf(*rig, speak(*rig, Viseme::I), "AU20_LipStretcher"), 0.5f);
   EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), "AU4_BrowLowerer"), 0.0f);
   EXPECT_TRUE(speak(*rig, Viseme::sil) == std::vector<float>(names.size(), 0.0f));  // rest: the neutral mouth
+}
+
+TEST(SpeechRig, AnActionUnitFaceWithoutPuckerOrFunnelRoundsWithTheLipTightener) {
+  // Older FACS rigs have no AU18/AU22/AU19/AU27/AU28: rounding falls back to
+  // AU23, and what has no fallback (the tongue) is simply absent.
+  std::vector<std::string> names;
+  const std::vector<int> lacking = {18, 19, 22, 27, 28};
+  for (const ActionUnitInfo& unit : actionUnits())
+    if (std::ranges::find(lacking, unit.facsNumber) == lacking.end()) names.emplace_back(unit.name);
+  auto rig = buildRigMapping(names);
+  ASSERT_TRUE(rig) << rig.error().message;
+  EXPECT_EQ(rig->scheme(), RigScheme::ActionUnits);
+  ASSERT_TRUE(rig->speaks());
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::U), "AU23_LipTightener"), 0.9f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::O), "AU23_LipTightener"), 0.6f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::CH), "AU23_LipTightener"), 0.4f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::O), "AU26_JawDrop"), 0.6f);
+  EXPECT_FLOAT_EQ(weightOf(*rig, speak(*rig, Viseme::aa), "AU26_JawDrop"), 1.0f);
+  const std::vector<float> th = speak(*rig, Viseme::TH);
+  EXPECT_GT(weightOf(*rig, th, "AU25_LipsPart"), 0.5f);
+  EXPECT_EQ(std::count_if(th.begin(), th.end(), [](float w) { return w > 0.0f; }), 2);  // lips part and jaw, no tongue
 }
 
 TEST(SpeechRig, CalibrationKeepsTheVisemeBlock) {
