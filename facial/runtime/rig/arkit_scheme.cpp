@@ -28,6 +28,9 @@ struct AuToArkit {
 //    AU26 reaches about 60% of it, and AU27 (mouth stretch) adds the rest.
 //  - AU19 (tongue show) is tongueOut at half: the tip between the teeth, not
 //    the whole tongue out.
+//  - AU29 (jaw thrust) is not mapped to jawForward: nothing speaks or emotes
+//    with it, and a driven target loses the model's own default weight
+//    (facecap rests with jawForward 0.1, which closes its lips).
 constexpr std::array kTable = {
     AuToArkit{"AU1_InnerBrowRaiser", "browInnerUp", 1.0f},
     AuToArkit{"AU2_OuterBrowRaiser_L", "browOuterUpLeft", 1.0f},
@@ -77,7 +80,6 @@ constexpr std::array kTable = {
     AuToArkit{"AU27_MouthStretch", "mouthStretchRight", 0.3f},
     AuToArkit{"AU28_LipSuck", "mouthRollUpper", 1.0f},
     AuToArkit{"AU28_LipSuck", "mouthRollLower", 1.0f},
-    AuToArkit{"AU29_JawThrust", "jawForward", 1.0f},
     AuToArkit{"AU45_Blink_L", "eyeBlinkLeft", 1.0f},
     AuToArkit{"AU45_Blink_R", "eyeBlinkRight", 1.0f},
 };

@@ -83,17 +83,17 @@ TEST(ArkitMapping, BothSpellingsGiveTheSameMapping) {
 TEST(ArkitMapping, EveryActionUnitIsMappedAndTheRestIsReported) {
   auto mapping = buildRigMapping(canonicalNames());
   ASSERT_TRUE(mapping);
-  for (uint32_t c = 0; c < actionUnits().size(); ++c)
-    EXPECT_FALSE(mapping->targets(c).empty()) << actionUnits()[c].name;
+  for (uint32_t c = 0; c < actionUnits().size(); ++c)  // but AU29: jawForward keeps the model's default
+    EXPECT_EQ(mapping->targets(c).empty(), actionUnits()[c].name == "AU29_JawThrust") << actionUnits()[c].name;
   std::vector<std::string> unmapped = mapping->report().unmappedTargets;
   std::sort(unmapped.begin(), unmapped.end());
   const std::vector<std::string> expected = {
       "cheekPuff",        "eyeLookDownLeft", "eyeLookDownRight", "eyeLookInLeft", "eyeLookInRight",
       "eyeLookOutLeft",   "eyeLookOutRight", "eyeLookUpLeft",    "eyeLookUpRight",
-      "jawLeft",          "jawRight",        "mouthClose",       "mouthDimpleLeft", "mouthDimpleRight",
+      "jawForward",       "jawLeft",          "jawRight",        "mouthClose",       "mouthDimpleLeft", "mouthDimpleRight",
       "mouthLeft",        "mouthRight"};
   EXPECT_EQ(unmapped, expected);
-  EXPECT_EQ(mapping->report().unmappedInputs.size(), kEmotionCount);  // AU-level rig: emotions not used
+  EXPECT_EQ(mapping->report().unmappedInputs.size(), kEmotionCount + 1);  // AU-level rig: emotions not used; AU29
 }
 
 TEST(ArkitMapping, TheTableSendsUnitsToTheirShapes) {
@@ -136,7 +136,7 @@ TEST(ArkitMapping, FaceCapHeadIsDrivenByEveryBasicEmotion) {
   ASSERT_TRUE(mapping) << mapping.error().message;
   EXPECT_EQ(mapping->scheme(), RigScheme::Arkit52);
   EXPECT_NE(mapping->report().detail.find("52 of 52 ARKit names, _L/_R spelling"), std::string::npos);
-  EXPECT_EQ(mapping->report().unmappedTargets.size(), 16u);  // mouthFunnel, tongueOut, jawForward drive AU22, AU19, AU29
+  EXPECT_EQ(mapping->report().unmappedTargets.size(), 17u);  // mouthFunnel, tongueOut drive AU22, AU19; jawForward keeps its default
 
   // The shapes that make each emotion read, at full intensity.
   const std::map<std::string, std::vector<std::string>> signature = {
