@@ -65,11 +65,12 @@ bool FaceDriver::setSpeech(const VisemeTrack* track, float audioTime) {
 // The graph's action units with the mouth yielded to the track's visemes
 // (into auScratch_ and visemes_); false when there is nothing to say.
 bool FaceDriver::layerSpeech(std::span<const float> graphActionUnits) {
-  const VisemeSampleJob job{
-      .track = speech_, .time = speechTime_, .cursors = speechCursors_, .visemes = visemes_, .mouth = mouth_};
+  float ownership = 0.0f;
+  const VisemeSampleJob job{.track = speech_, .time = speechTime_, .cursors = speechCursors_, .visemes = visemes_,
+                            .mouth = mouth_, .ownership = &ownership};
   if (!speech_ || !job.Run()) return false;
   std::copy(graphActionUnits.begin(), graphActionUnits.end(), auScratch_.begin());
-  yieldMouthToSpeech(auScratch_, speechActivity(visemes_), mouth_[static_cast<size_t>(MouthChannel::LipClosure)]);
+  yieldMouthToSpeech(auScratch_, ownership, mouth_[static_cast<size_t>(MouthChannel::LipClosure)]);
   return true;
 }
 

@@ -30,8 +30,11 @@ enum class MouthChannel : uint8_t {
 inline constexpr size_t kMouthChannelCount = 3;
 std::string_view mouthChannelName(MouthChannel channel);
 
-// A track's channels: the 15 visemes, then the 3 mouth channels.
-inline constexpr size_t kSpeechChannelCount = kVisemeCount + kMouthChannelCount;
+// A track's channels: the 15 visemes, the 3 mouth channels, then how much
+// speech owns the mouth (1 through a line and its short pauses, 0 at rest
+// before and after it and in long pauses: the emotion's mouth then shows).
+inline constexpr size_t kOwnershipChannel = kVisemeCount + kMouthChannelCount;
+inline constexpr size_t kSpeechChannelCount = kOwnershipChannel + 1;
 
 // How a viseme sets the mouth channels (a mouth shape in three numbers).
 struct MouthShape {

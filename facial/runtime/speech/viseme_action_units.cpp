@@ -65,11 +65,6 @@ std::span<const VisemeActionUnit> visemeActionUnits(Viseme viseme) { return kVis
 
 std::span<const MouthOwnership> mouthOwnershipTable() { return kOwnership; }
 
-float speechActivity(std::span<const float> visemeWeights) {
-  if (visemeWeights.size() < kVisemeCount) return 0.0f;
-  return std::clamp(1.0f - visemeWeights[static_cast<size_t>(Viseme::sil)], 0.0f, 1.0f);
-}
-
 void yieldMouthToSpeech(std::span<float> auWeights, float activity, float lipClosure) {
   activity = std::clamp(activity, 0.0f, 1.0f);
   lipClosure = std::clamp(lipClosure, 0.0f, 1.0f);

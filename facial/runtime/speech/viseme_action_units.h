@@ -40,9 +40,8 @@ struct MouthOwnership {
 };
 std::span<const MouthOwnership> mouthOwnershipTable();
 
-// How much speech owns the mouth now: 1 - the sil weight, in [0, 1].
-float speechActivity(std::span<const float> visemeWeights);
-// Applies the table to action-unit weights (actionUnits() order) in place.
+// Applies the table to action-unit weights (actionUnits() order) in place;
+// activity: how much speech owns the mouth (the track's kOwnershipChannel).
 void yieldMouthToSpeech(std::span<float> auWeights, float activity, float lipClosure);
 
 }  // namespace facial

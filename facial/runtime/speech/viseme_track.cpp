@@ -223,6 +223,24 @@ void blendAt(std::span<const Segment> segments, size_t& first, float t, std::spa
 
 using ChannelKeys = std::array<std::vector<Keyframe>, kSpeechChannelCount>;
 
+// How much speech owns the mouth at t: 0 in the rests before and after the
+// line and in pauses of kReleasePause or more, ramping over kOwnershipRamp
+// (a smoothstep) after the phoneme before and back by the phoneme after.
+float ownershipAt(std::span<const Segment> segments, size_t first, float t) {
+  float release = 0.0f;
+  for (size_t i = first; i < segments.size() && segments[i].start <= t; ++i) {
+    const Segment& s = segments[i];
+    if (t > s.end || s.viseme != Viseme::sil || s.borrowed) continue;
+    const bool leadIn = i == 0, leadOut = i + 1 == segments.size();
+    if (!leadIn && !leadOut && s.end - s.start < kReleasePause) continue;
+    const float ramp = std::min(kOwnershipRamp, leadIn || leadOut ? s.end - s.start : 0.5f * (s.end - s.start));
+    const float out = leadIn ? 1.0f : smoothstep(s.start, s.start + ramp, t);
+    const float back = leadOut ? 1.0f : 1.0f - smoothstep(s.end - ramp, s.end, t);
+    release = std::max(release, std::min(out, back));
+  }
+  return 1.0f - release;
+}
+
 MouthShape mouthOf(std::span<const float> w) {
   MouthShape mouth{0, 0, 0};
   for (size_t v = 0; v < kVisemeCount; ++v) {
@@ -260,6 +278,7 @@ ChannelKeys keysFromSegments(std::span<const Segment> segments) {
     w[kVisemeCount + 0] = mouth.jawOpen;
     w[kVisemeCount + 1] = mouth.lipClosure;
     w[kVisemeCount + 2] = mouth.lipRounding;
+    w[kOwnershipChannel] = ownershipAt(segments, firstSegment, t);
     // No pops: the per-channel rate limit (rarely active; see kMaxWeightRate).
     for (size_t c = 0; c < kSpeechChannelCount; ++c) {
       if (i > 0) w[c] = std::clamp(w[c], previous[c] - maxStep, previous[c] + maxStep);
@@ -399,6 +418,8 @@ bool VisemeSampleJob::Run() const {
   for (size_t v = 0; v < kVisemeCount; ++v) visemes[v] = sampleKeys(track->channelKeys(v), time, cursors[v]);
   for (size_t c = 0; c < mouth.size(); ++c)
     mouth[c] = sampleKeys(track->channelKeys(kVisemeCount + c), time, cursors[kVisemeCount + c]);
+  if (ownership)
+    *ownership = sampleKeys(track->channelKeys(kOwnershipChannel), time, cursors[kOwnershipChannel]);
   return true;
 }
 

@@ -97,8 +97,8 @@ inline constexpr float kMaxShortBoost = 4.0f;
 inline constexpr float kMinClosureHold = 0.04f;
 inline constexpr float kClosureRamp = 0.04f;
 // ... but beside a phoneme a ramp takes at most this share of it: lips part
-// within about 20 ms of a release, and a full 40 ms each side would cover the whole vowel of "mama" and keep it closed. Never
-// shorter than kMinClosureRamp, the fastest a cosine ramp may be under
+// within about 20 ms of a release, and a full 40 ms each side would cover
+// the whole vowel of "mama" and keep it closed. Never shorter than kMinClosureRamp, the fastest a cosine ramp may be under
 // kMaxWeightRate with room for the blend changing under it (its steepest
 // slope is pi / 2 / ramp).
 inline constexpr float kMaxClosureRampShare = 0.4f;
@@ -117,6 +117,13 @@ inline constexpr float kRestDominance = 2.0f;
 inline constexpr float kSilenceSpread = 0.06f;
 // Rest before the first and after the last phoneme (the track starts and ends at sil).
 inline constexpr float kLeadIn = 0.3f;
+// Mouth ownership (kOwnershipChannel): speech keeps the mouth through pauses
+// shorter than kReleasePause (commas, sentence ends inside a line: the lips
+// rest closed, a smile's corners stay), so the emotion's own open mouth does
+// not flash between words; in longer pauses and around the line it hands the
+// mouth back over kOwnershipRamp, taking it again before the next phoneme.
+inline constexpr float kReleasePause = 0.6f;
+inline constexpr float kOwnershipRamp = 0.25f;
 // No pops: no weight changes faster than this (per second): a full swing takes
 // at least 15 ms, a frame at 60 Hz. The blend stays under it by construction;
 // a final per-channel limit guarantees it.
@@ -166,7 +173,7 @@ class VisemeTrackBuilder {
 };
 
 // Samples a track at `time` (the audio clock, seconds) into 15 viseme weights
-// and, when `mouth` is not empty, the 3 mouth channels. cursors: one per
+// and, when asked, the 3 mouth channels and the mouth ownership. cursors: one per
 // channel (kSpeechChannelCount), kept between calls: forward playback is O(1)
 // amortised, seeks stay correct. Allocates nothing.
 struct VisemeSampleJob {
@@ -175,6 +182,7 @@ struct VisemeSampleJob {
   std::span<uint32_t> cursors;
   std::span<float> visemes;  // kVisemeCount
   std::span<float> mouth;    // kMouthChannelCount, or empty
+  float* ownership = nullptr;  // how much speech owns the mouth now (0..1), or null
   // InvalidArgument: no track or an empty one, a span of the wrong size, a non-finite time.
   eng::Result<void> Validate() const;
   bool Run() const;

@@ -27,6 +27,7 @@ inline std::vector<TimedPhoneme> phonemeRun(std::initializer_list<std::pair<cons
 struct Frame {
   std::array<float, kVisemeCount> visemes{};
   std::array<float, kMouthChannelCount> mouth{};
+  float ownership = 0;  // how much speech owns the mouth
   float operator[](Viseme v) const { return visemes[static_cast<size_t>(v)]; }
   float operator[](MouthChannel c) const { return mouth[static_cast<size_t>(c)]; }
   float sum() const {
@@ -39,7 +40,9 @@ struct Frame {
 inline Frame sampleAt(const VisemeTrack& track, float time) {
   Frame f;
   std::array<uint32_t, kSpeechChannelCount> cursors{};
-  VisemeSampleJob{.track = &track, .time = time, .cursors = cursors, .visemes = f.visemes, .mouth = f.mouth}.Run();
+  VisemeSampleJob{.track = &track, .time = time, .cursors = cursors, .visemes = f.visemes, .mouth = f.mouth,
+                  .ownership = &f.ownership}
+      .Run();
   return f;
 }
 

@@ -155,6 +155,25 @@ std::vector<TimedPhoneme> randomUtterance(uint32_t seed) {
   return out;
 }
 
+// --- Rule: mouth ownership ----------------------------------------------------
+
+TEST(VisemeTrackRules, SpeechOwnsTheMouthThroughShortPausesAndGivesItBackInLongOnes) {
+  // "ma (0.3 s) ma (1.2 s) ma": the comma-length pause stays speech's (closed
+  // lips, no flash of the emotion's open mouth), the long one and the rests
+  // around the line are the emotion's.
+  std::vector<TimedPhoneme> line = phonemeRun({{"m", 0.08f}, {"a", 0.15f}}, 0.5f);
+  for (const TimedPhoneme& p : phonemeRun({{"m", 0.08f}, {"a", 0.15f}}, 1.03f)) line.push_back(p);
+  for (const TimedPhoneme& p : phonemeRun({{"m", 0.08f}, {"a", 0.15f}}, 2.46f)) line.push_back(p);
+  const VisemeTrack track = buildOrDie(line);
+  EXPECT_LT(sampleAt(track, track.startTime()).ownership, 0.01f);
+  EXPECT_GT(sampleAt(track, 0.5f).ownership, 0.99f);    // the first phoneme: speech's
+  EXPECT_GT(sampleAt(track, 0.88f).ownership, 0.99f);   // inside the 0.3 s pause
+  EXPECT_GT(sampleAt(track, 0.88f)[Viseme::sil], 0.5f); // ... at rest, closed
+  EXPECT_LT(sampleAt(track, 1.85f).ownership, 0.01f);   // the middle of the 1.2 s pause
+  EXPECT_GT(sampleAt(track, 2.46f).ownership, 0.99f);   // back by the next phoneme
+  EXPECT_LT(sampleAt(track, track.endTime()).ownership, 0.01f);
+}
+
 TEST(VisemeTrackRules, NoWeightChangesFasterThanTheRateBound) {
   for (uint32_t seed : {1u, 2u, 3u}) {
     const VisemeTrack track = buildOrDie(randomUtterance(seed));

@@ -28,14 +28,15 @@ void SpeechNode::evaluate(EvalContext& ctx, NodeIndex, std::span<float> out) con
   const float share = std::clamp(ctx.read(amount), 0.0f, 1.0f);
   std::array<float, kVisemeCount> visemes{};
   std::array<float, kMouthChannelCount> mouth{};
-  const VisemeSampleJob job{
-      .track = ctx.speech.track, .time = ctx.speech.time, .cursors = ctx.speech.cursors, .visemes = visemes, .mouth = mouth};
+  float ownership = 0.0f;
+  const VisemeSampleJob job{.track = ctx.speech.track, .time = ctx.speech.time, .cursors = ctx.speech.cursors,
+                            .visemes = visemes, .mouth = mouth, .ownership = &ownership};
   // No track (or none that samples): the input's own mouth, no visemes.
   if (!ctx.speech.track || share <= 0.0f || !job.Run()) {
     for (float& v : visemeChannels) v *= 1.0f - share;
     return;
   }
-  yieldMouthToSpeech(out.first(firstVisemeChannel), share * speechActivity(visemes),
+  yieldMouthToSpeech(out.first(firstVisemeChannel), share * ownership,
                      mouth[static_cast<size_t>(MouthChannel::LipClosure)]);
   for (size_t v = 0; v < kVisemeCount; ++v) visemeChannels[v] += share * (visemes[v] - visemeChannels[v]);
 }
