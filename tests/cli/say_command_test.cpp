@@ -193,7 +193,8 @@ TEST_F(SayCommand, IntensityScalesTheEmotion) {
   const double faintToNeutral = differingFraction(faint.first, neutral.first);
   const double faintToHappy = differingFraction(faint.first, happy.first);
   EXPECT_LT(faintToNeutral, faintToHappy) << faintToNeutral << " vs " << faintToHappy;
-  EXPECT_GT(differingFraction(neutral.first, happy.first), 0.02);
+  // The first frame is already speech's "m" (lips closed): happy differs in the smile's corners, cheeks and eyes.
+  EXPECT_GT(differingFraction(neutral.first, happy.first), 0.01);
 }
 
 TEST_F(SayCommand, ScriptSwitchesTheEmotionMidLine) {
