@@ -106,7 +106,10 @@ eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, 
       renderer->offscreen(), renderer->view(), sequence,
       [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         if (!written) return written.error();
-        if (auto clock = p.character.setSpeechTime(frame.time); !clock) return clock.error();
+        // A frame stands for the sound of its whole interval: the mouth at its middle
+        // (at the start it trailed the sound by 0.7 frame, tests/cli/say_sync_test.cpp).
+        const float heard = frame.time + 0.5f / o.fps;
+        if (auto clock = p.character.setSpeechTime(heard); !clock) return clock.error();
         if (auto moved = emotions.advance(p.character, frame.time); !moved) return moved.error();
         if (auto stepped = p.character.update(frame.index == 0 ? kSettleStep : frame.dt); !stepped)
           return stepped.error();

@@ -198,7 +198,7 @@ TEST_F(SaySync, LipsShutOnEveryBilabial) {
   for (const auto& cue : track["visemes"]) {
     const double start = cue["start"], end = cue["end"];
     if (cue["viseme"] != "PP" || end - start < 1 / kFps) continue;  // shorter ones may fall between frames
-    const size_t k = size_t(std::lround(0.5 * (start + end) * kFps));
+    const size_t k = size_t(std::floor(0.5 * (start + end) * kFps));  // the frame whose interval holds the middle
     if (k >= mouth_.size()) continue;
     ++checked;
     EXPECT_TRUE(closed(k)) << "PP " << start << "-" << end << " s: frame " << k << " moved " << mouth_[k] << " of "
