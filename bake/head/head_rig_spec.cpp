@@ -219,7 +219,8 @@ eng::Result<void> parseAnchors(const JsonNode& list, std::set<std::string>& name
   for (size_t i = 0; i < count; ++i) {
     const JsonNode entry = list.element(i);
     ENG_TRY(entry.allowOnly({"name", "position"}));
-    AnchorDef a{ENG_TRY_VALUE(nonEmptyStringAt(entry, "name")), ENG_TRY_VALUE(vec<3>(ENG_TRY_VALUE(entry.at("position"))))};
+    const auto position = ENG_TRY_VALUE(vec<3>(ENG_TRY_VALUE(entry.at("position"))));
+    AnchorDef a{ENG_TRY_VALUE(nonEmptyStringAt(entry, "name")), position};  // the string's read last (result.h)
     if (!names.insert(a.name).second) return ENG_TRY_VALUE(entry.at("name")).error("duplicate name \"" + a.name + "\"");
     spec.anchors.push_back(a);
   }

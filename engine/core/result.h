@@ -100,6 +100,11 @@ inline Error makeError(ErrorKind kind, std::string message, int32_t code = 0) {
 // function: `float w = ENG_TRY_VALUE(node.number());`. A statement expression
 // (GCC and Clang, the compilers this project builds with) so that readers of
 // nested data stay one line per field instead of three.
+// Its `return` leaves the enclosing full-expression without destroying what
+// that expression already built: never put it after a non-trivial part of
+// one aggregate or call (Foo{.name = ENG_TRY_VALUE(a), .x = ENG_TRY_VALUE(b)}
+// leaks `name` when b fails; the graph fuzzer found one). One read per
+// statement, or only one read in the expression (other parts read before).
 #define ENG_TRY_VALUE(expr)                                  \
   ({                                                         \
     auto eng_try_value_ = (expr);                            \

@@ -9,7 +9,8 @@
 //
 //   eng::Result<Blend> readBlend(const JsonNode& j) {
 //     ENG_TRY(j.allowOnly({"a", "b", "factor"}));
-//     return Blend{.a = ENG_TRY_VALUE(j.stringAt("a")), .factor = ENG_TRY_VALUE(j.numberOr("factor", 0.5f))};
+//     const float factor = ENG_TRY_VALUE(j.numberOr("factor", 0.5f));
+//     return Blend{.a = ENG_TRY_VALUE(j.stringAt("a")), .factor = factor};  // not two reads in one aggregate: result.h
 //   }
 #include <cstddef>
 #include <initializer_list>

@@ -78,8 +78,8 @@ eng::Result<std::vector<TimedPhoneme>> phonemesFromJson(std::string_view text, s
         return readCues<TimedPhoneme>(
             ENG_TRY_VALUE(cueArray(root, "phonemes", maxCues)), [](const JsonNode& item) -> eng::Result<TimedPhoneme> {
               ENG_TRY(item.allowOnly({"ipa", "start", "end"}));
-              return TimedPhoneme{ENG_TRY_VALUE(item.stringAt("ipa")), ENG_TRY_VALUE(item.numberAt("start")),
-                                  ENG_TRY_VALUE(item.numberAt("end"))};
+              const float start = ENG_TRY_VALUE(item.numberAt("start")), end = ENG_TRY_VALUE(item.numberAt("end"));
+              return TimedPhoneme{ENG_TRY_VALUE(item.stringAt("ipa")), start, end};  // the string last (result.h)
             });
       });
 }
@@ -244,8 +244,8 @@ eng::Result<std::vector<TimedViseme>> wordVisemesFromJson(std::string_view text,
       text, source, [&](const JsonNode& root) -> eng::Result<std::vector<TimedViseme>> {
         const std::vector<TimedWord> words = ENG_TRY_VALUE(readCues<TimedWord>(
             ENG_TRY_VALUE(cueArray(root, "words", maxCues)), [](const JsonNode& item) -> eng::Result<TimedWord> {
-              return TimedWord{ENG_TRY_VALUE(item.stringAt("word")), ENG_TRY_VALUE(item.numberAt("start")),
-                               ENG_TRY_VALUE(item.numberAt("end"))};
+              const float start = ENG_TRY_VALUE(item.numberAt("start")), end = ENG_TRY_VALUE(item.numberAt("end"));
+              return TimedWord{ENG_TRY_VALUE(item.stringAt("word")), start, end};  // the string last (result.h)
             }));
         std::vector<TimedViseme> cues;
         for (const TimedWord& word : words) spreadWord(word, cues);

@@ -214,6 +214,18 @@ TEST(GraphJsonValidity, ABadNodeNamesFileNodeAndProblemInOneLine) {
   EXPECT_EQ(graph.error().message, wrongType.string() + ": /root/expression: parameter 'go' is a trigger, expected a float");
 }
 
+// A state whose name was read when its node fails: the name is freed (the
+// graph fuzzer found it leaked, under LeakSanitizer in tools/sanitizers/run.sh;
+// a name past the short-string buffer, so that it is on the heap).
+TEST(GraphJsonValidity, AStateWithABadNodeLeaksNothing) {
+  const auto path = writeGraph("badStateNode", R"({"version": 1, "channels": "actionUnits",
+    "root": {"type": "stateMachine", "states": [
+      {"name": "a state name well past the short-string buffer", "node": {"type": "pose", "preset": "nope"}}]}})");
+  auto graph = loadGraph(path, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_NE(graph.error().message.find("/root/states/0/node"), std::string::npos) << graph.error().message;
+}
+
 // Kinds survive the reader's internal conversion: a missing timeline file stays NotFound, a
 // newer format version is Unsupported, and the message still names both files.
 TEST(GraphJsonValidity, NestedErrorsKeepTheirKind) {

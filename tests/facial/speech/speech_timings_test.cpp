@@ -208,6 +208,15 @@ TEST(SpeechTimings, AzureIdsCoverTheSapiSet) {
   EXPECT_FALSE(visemeForAzureId(22));
 }
 
+// A cue whose text was read when its time fails: the text is freed (long
+// enough to be on the heap; LeakSanitizer in tools/sanitizers/run.sh).
+TEST(SpeechTimings, ACueWithABadTimeLeaksItsText) {
+  const std::string longText = "a word well past the short-string buffer";
+  EXPECT_FALSE(phonemesFromJson(R"({"version": 1, "phonemes": [{"ipa": ")" + longText + R"(", "start": 0, "end": "x"}]})",
+                                "p.json"));
+  EXPECT_FALSE(wordVisemesFromJson(R"({"words": [{"word": ")" + longText + R"(", "start": 0, "end": "x"}]})", "w.json"));
+}
+
 TEST(SpeechTimings, WordsAreSpreadOverTheirInterval) {
   EXPECT_EQ(visemesForWord("Good"), (std::vector<Viseme>{Viseme::kk, Viseme::U, Viseme::DD}));
   EXPECT_EQ(visemesForWord("chào"), (std::vector<Viseme>{Viseme::CH, Viseme::aa, Viseme::O}));

@@ -291,7 +291,9 @@ eng::Result<StateMachineNode> StateMachineNode::read(const JsonNode& j, NodeRead
   for (size_t i = 0; i < count; ++i) {
     const JsonNode s = states.element(i);
     ENG_TRY(s.allowOnly({"name", "node", "transitions"}));
-    MachineState state{.name = ENG_TRY_VALUE(s.stringAt("name")), .node = ENG_TRY_VALUE(r.nodeAt(s, "node"))};
+    MachineState state;  // one read per statement: ENG_TRY_VALUE must not leave a half-built aggregate (result.h)
+    state.name = ENG_TRY_VALUE(s.stringAt("name"));
+    state.node = ENG_TRY_VALUE(r.nodeAt(s, "node"));
     if (auto t = s.find("transitions")) state.transitions = ENG_TRY_VALUE(readTransitions(*t, r));
     m.states.push_back(std::move(state));
   }
