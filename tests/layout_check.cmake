@@ -5,6 +5,7 @@
 #   facial/      the component: engine/core only, no Vulkan, GLFW or ImGui
 #   importers/   load-time importers: facial/ and engine/
 #   bake/        offline builders: facial/, importers/, engine/
+#   autorig/     targets made for faces without them: like bake/, no Vulkan
 #   app/         what the program and the editor share
 #   audio/       speech for the programs (GPL: espeak-ng, x264); no library includes it
 #   cli/, editor/ the two programs, never each other
@@ -43,8 +44,9 @@ check_includes(engine/vk/device "include[ \t]*[\"<]engine/vk/(draw|present)/" "e
 check_includes(engine/vk/draw "include[ \t]*[\"<]engine/vk/present/" "engine/vk/draw knows nothing of windows")
 check_includes(importers "include[ \t]*[\"<](bake|app|cli|editor)/" "importers/ is below the applications")
 check_includes(bake "include[ \t]*[\"<](app|cli|editor)/" "bake/ is below the applications")
+check_includes(autorig "include[ \t]*[\"<](engine/vk/|vulkan/|app/|cli/|editor/)" "autorig/ is an offline builder: no Vulkan, below the applications")
 check_includes(app "include[ \t]*[\"<](cli|editor)/" "app/ is shared by cli/ and editor/")
-foreach(library facial engine importers bake)
+foreach(library facial engine importers bake autorig)
   check_includes(${library} "include[ \t]*[\"<]audio/" "audio/ links GPL code: programs only")
 endforeach()
 check_includes(audio "include[ \t]*[\"<](cli|editor)/" "audio/ is shared by the programs")
