@@ -17,6 +17,8 @@
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
+#include "facial/runtime/graph/weight_range.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
@@ -59,6 +61,8 @@ std::string suggestNames(const std::vector<std::string>& names, const std::strin
 }
 
 int runRender(const RenderOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"model", o.model}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
 
@@ -72,6 +76,7 @@ int runRender(const RenderOptions& o) {
     float value = 0.0f;
     if (eq == std::string::npos || eq == 0 || !app::parseFloat(std::string_view(assignment).substr(eq + 1), value))
       return fail("--weight '" + assignment + "' is not NAME=VALUE with a finite number");
+    if (!facial::isWeightInRange(value)) return fail("--weight '" + assignment + "': " + facial::weightRangeProblem(value));
     const std::string name = assignment.substr(0, eq);
     const eng::Result<int> matched = layout.setByName(weights, name, value);
     if (!matched) return fail(matched.error().message);
