@@ -18,7 +18,10 @@ namespace {
 
 constexpr std::string_view kStagingFolder = ".partial-frames";
 
-std::string described(const NamedPath& p) { return std::string(p.option) + " '" + std::string(p.path) + "'"; }
+std::string described(const NamedPath& p) {
+  const std::string quoted = "'" + std::string(p.path) + "'";
+  return p.option.empty() ? quoted : std::string(p.option) + " " + quoted;
+}
 
 // The same file: hard links and links between existing files, or the same path
 // once `..` and links are resolved (an output not written yet).

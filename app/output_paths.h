@@ -17,7 +17,7 @@ namespace app {
 
 // A path given on the command line and the option (or argument) that gave it.
 struct NamedPath {
-  std::string_view option;  // "--out", "model"
+  std::string_view option;  // "--out", "model"; empty: the path alone names it
   std::string_view path;    // empty: not given, skipped
 };
 
