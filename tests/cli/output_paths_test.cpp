@@ -195,6 +195,11 @@ TEST(FilesCommand, AWeightOutsideTheRangeIsRefused) {
   const CommandOutput run = runFacial({"render", face.string(), "--weight", "AU26_JawDrop=1e38", "--out", out.string()});
   EXPECT_TRUE(failedInOneLine(run));
   EXPECT_EQ(run.err, "facial render: error: --weight 'AU26_JawDrop=1e38': weight 1e+38 is outside [-10, 10]\n");
+  // An identity shape is a weight too, baked into the rest mesh.
+  const CommandOutput shape = runFacial({"render", face.string(), "--shape", "custom_shape=-1e30", "--out", out.string()});
+  EXPECT_TRUE(failedInOneLine(shape));
+  EXPECT_NE(shape.err.find(": --shape 'custom_shape=-1e30': weight -1e+30 is outside [-10, 10]\n"), std::string::npos)
+      << shape.err;
   EXPECT_FALSE(fs::exists(out));
 }
 
