@@ -186,4 +186,18 @@ TEST(FaceLandmarkFinder, MissingPredictorNamesTheFile) {
       << landmarks.error().message;
 }
 
+// Too small a picture for dlib's detector (it wants faces of 80 pixels): the
+// predictor is fitted in the box of the region the morph targets move, and
+// the points still make a face.
+TEST(FaceLandmarkFinder, UndetectedFaceFittedInTheTargetsBox) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  const autorig::PosedFace posed = autorig::poseAtRest(*model);
+  const auto picture = testing_support::freshTempDir("face_landmark_finder") / "head-128.png";
+  auto landmarks = app::findFaceLandmarks(*model, posed, {.size = 128, .picture = picture});
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  EXPECT_TRUE(landmarks->source.starts_with("dlib's shape predictor in the box of the morph targets")) << landmarks->source;
+  expectFaceLayout(*landmarks);
+}
+
 }  // namespace
