@@ -263,10 +263,16 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, cons
     if (e >= 0) recordEyeball(parts, side, c);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  if (named) return *named;
-  const FacePart part = partOfShape(c, f);
-  if (part == FacePart::EyeballRight || part == FacePart::EyeballLeft) recordEyeball(parts, part == FacePart::EyeballLeft, c);
-  return part;
+  // A mesh called "Head" often holds the eyeballs as pieces of its own;
+  // only those are taken from shape (an island inside the mouth may be the
+  // mouth's own lining rather than teeth).
+  if (named && *named != FacePart::Skin) return *named;
+  const int eye = eyeballSide(c, f);
+  if (eye >= 0) {
+    recordEyeball(parts, eye, c);
+    return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
+  }
+  return named ? *named : partOfShape(c, f);
 }
 
 void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
