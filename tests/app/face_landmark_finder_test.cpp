@@ -147,8 +147,7 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_LT(glm::distance(mostMoved(f, "mouthSmile_R"), p[48]), 0.15f * span);
   EXPECT_LT(glm::distance(mostMoved(f, "browInnerUp"), (p[21] + p[22]) / 2.0f), 0.3f * span);  // 0.23 seen
   EXPECT_LT(glm::distance(mostMoved(f, "mouthRollLower"), p[57]), 0.15f * span);  // 0.08 seen
-  // Nothing is named: the eyeballs (meshes 0 and 1) and the teeth (mesh 3)
-  // are told by their shapes and places.
+  // Meshes 0 and 1 are eyeballs (their nodes' parents say so), mesh 3 the teeth.
   using autorig::FacePart;
   ASSERT_EQ(f.parts.vertexParts.size(), 4u);
   const auto all = [&](size_t i, FacePart part) {
@@ -157,9 +156,7 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_TRUE((all(0, FacePart::EyeballLeft) && all(1, FacePart::EyeballRight)) ||
               (all(0, FacePart::EyeballRight) && all(1, FacePart::EyeballLeft)));
   EXPECT_TRUE(all(2, FacePart::Skin));
-  const auto& teeth = f.parts.vertexParts[3];
-  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::UpperTeeth), 100);
-  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::LowerTeeth), 100);
+  EXPECT_TRUE(all(3, FacePart::UpperTeeth));  // one arch of 14 teeth, above the mouth line
   EXPECT_TRUE(f.parts.eyeballsFound);
 }
 
@@ -172,8 +169,10 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
   EXPECT_EQ(shareOf(f, "Wolf3D_Head", FacePart::Skin), 1.0f);
   EXPECT_EQ(shareOf(f, "EyeLeft", FacePart::EyeballLeft), 1.0f);  // ARKit's and RPM's Left: the subject's
   EXPECT_EQ(shareOf(f, "EyeRight", FacePart::EyeballRight), 1.0f);
-  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::UpperTeeth), 0.3f);
-  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::LowerTeeth), 0.3f);
+  // Three pieces: the rows of 31 and 29 vertices, and a tongue of 24 inside them.
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::UpperTeeth), 31.0f / 84.0f, 1e-6f);
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::LowerTeeth), 29.0f / 84.0f, 1e-6f);
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::Tongue), 24.0f / 84.0f, 1e-6f);
   EXPECT_EQ(shareOf(f, "Wolf3D_Hair", FacePart::Hair), 1.0f);
   EXPECT_EQ(shareOf(f, "Wolf3D_Glasses", FacePart::Glasses), 1.0f);
   for (const char* clothes : {"Wolf3D_Body", "Wolf3D_Outfit_Top", "Wolf3D_Outfit_Bottom", "Wolf3D_Outfit_Footwear"})
