@@ -348,23 +348,25 @@ void recordEyeball(FaceParts& parts, int side, const Component& c) {
   parts.eyeRadii[size_t(side)] = radius;
 }
 
-FacePart partOfComponent(std::optional<FacePart> named, const Component& c, const FaceFrame& f, FaceParts& parts) {
+FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool island, const FaceFrame& f,
+                         FaceParts& parts) {
   if (named == FacePart::EyeballRight || named == FacePart::EyeballLeft) {
     const int e = eyeOver(c, f);
     const int side = e >= 0 ? e : (glm::dot(c.centre - f.centre, f.right) > 0.0f ? 1 : 0);
     if (e >= 0) recordEyeball(parts, side, c);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  // A mesh called "Head" often holds the eyeballs as pieces of its own;
-  // only those are taken from shape (an island inside the mouth may be the
-  // mouth's own lining rather than teeth).
+  // A mesh called "Head" often holds the eyeballs, and the teeth as islands
+  // beside its largest piece (facecap's lower row): those are taken from
+  // shape. A primitive that is one piece inside the mouth is its lining.
   if (named && *named != FacePart::Skin) return *named;
   const int eye = eyeballSide(c, f);
   if (eye >= 0) {
     recordEyeball(parts, eye, c);
     return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  return named ? *named : partOfShape(c, f);
+  if (!named) return partOfShape(c, f);
+  return island && insideTheMouth(c, f) ? FacePart::UpperTeeth : FacePart::Skin;  // the row: splitTeethRows
 }
 
 // Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
@@ -398,10 +400,13 @@ void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimiti
   }
   std::vector<std::vector<uint32_t>> members(count);
   for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  size_t largest = 0;
+  for (const std::vector<uint32_t>& m : members) largest = std::max(largest, m.size());
   for (std::vector<uint32_t>& vertices : members) {
+    const bool island = vertices.size() < largest;
     Component c = describe(p.positions, std::move(vertices));
     if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
-    const FacePart part = partOfComponent(named, c, f, parts);
+    const FacePart part = partOfComponent(named, c, island, f, parts);
     for (uint32_t v : c.vertices) out[v] = part;
     if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});
   }
@@ -472,17 +477,34 @@ void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth
     for (uint32_t v : piece.vertices) sum += along(piece, v, f.up);
     return float(sum / double(piece.vertices.size()));
   };
+  // Teeth in more than one primitive: a row each (facecap's upper row is a
+  // mesh, its lower row islands of the head), so an arch's tilt cannot mix
+  // them; their heights are the primitives' means.
+  std::vector<size_t> primitives;
+  for (const TeethPiece& piece : teeth) primitives.push_back(piece.primitive);
+  std::sort(primitives.begin(), primitives.end());
+  primitives.erase(std::unique(primitives.begin(), primitives.end()), primitives.end());
+  std::vector<glm::dvec2> byPrimitive(posed.primitives.size());  // height sum, count
+  for (const TeethPiece& piece : teeth)
+    byPrimitive[piece.primitive] += glm::dvec2(double(meanHeight(piece)) * double(piece.vertices.size()), double(piece.vertices.size()));
+  auto rowHeight = [&](const TeethPiece& piece) {
+    const glm::dvec2 h = byPrimitive[piece.primitive];
+    return primitives.size() > 1 ? float(h.x / h.y) : meanHeight(piece);
+  };
   std::vector<std::pair<float, double>> values;
-  for (const TeethPiece& piece : teeth) {
-    if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
-    else
-      for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
-  }
+  if (primitives.size() > 1)
+    for (size_t i : primitives) values.emplace_back(float(byPrimitive[i].x / byPrimitive[i].y), byPrimitive[i].y);
+  else
+    for (const TeethPiece& piece : teeth) {
+      if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
+      else
+        for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
+    }
   const float split = otsuSplit(values);
   std::array<glm::dvec3, 2> sums{};  // below, above: height, depth, vertex count
   for (const TeethPiece& piece : teeth)
     for (uint32_t v : piece.vertices) {
-      const bool above = teeth.size() > 1 ? meanHeight(piece) > split : along(piece, v, f.up) > split;
+      const bool above = teeth.size() > 1 ? rowHeight(piece) > split : along(piece, v, f.up) > split;
       sums[above] += glm::dvec3(along(piece, v, f.up), along(piece, v, f.forward), 1.0);
       parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
     }
