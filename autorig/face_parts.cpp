@@ -440,6 +440,31 @@ glm::vec2 extent(const PosedFace& posed, const TeethPiece& piece, const glm::vec
   return r;
 }
 
+// The inside of the mouth as a piece of its own (a sac behind the lips):
+// it holds two or more of the other pieces (teeth, tongue) in its box, as
+// no row of teeth does. Skin: it moves with the lips and jaw.
+void takeOutLining(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  std::vector<glm::vec3> centres;  // in the face's axes
+  for (const TeethPiece& piece : teeth) {
+    glm::dvec3 sum(0.0);
+    for (uint32_t v : piece.vertices) sum += glm::dvec3(posed.primitives[piece.primitive].positions[v]);
+    const glm::vec3 c = glm::vec3(sum / double(piece.vertices.size())) - f.mouthCentre;
+    centres.emplace_back(glm::dot(c, f.right), glm::dot(c, f.up), glm::dot(c, f.forward));
+  }
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right), y = extent(posed, teeth[i], f.mouthCentre, f.up);
+    const glm::vec2 z = extent(posed, teeth[i], f.mouthCentre, f.forward);
+    size_t held = 0;
+    for (size_t k = 0; k < teeth.size(); ++k)
+      held += k != i && centres[k].x > x.x && centres[k].x < x.y && centres[k].y > y.x && centres[k].y < y.y &&
+              centres[k].z > z.x && centres[k].z < z.y;
+    if (held < 2) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Skin;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+    centres.erase(centres.begin() + std::ptrdiff_t(i));
+  }
+}
+
 // A tongue kept with the teeth (Ready Player Me's Wolf3D_Teeth): a piece as
 // wide as the arches but short of their front, lying inside them. Taken out
 // of `teeth` and marked.
@@ -543,6 +568,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
   for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)

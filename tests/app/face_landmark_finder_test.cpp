@@ -160,8 +160,9 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_TRUE((all(0, FacePart::EyeballLeft) && all(1, FacePart::EyeballRight)) ||
               (all(0, FacePart::EyeballRight) && all(1, FacePart::EyeballLeft)));
   const auto& head = f.parts.vertexParts[2];
-  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::Skin), 1954);
-  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::LowerTeeth), 740);
+  // 1954 skin and the lining that holds the lower teeth (166), 14 teeth of 41-49.
+  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::Skin), 1954 + 166);
+  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::LowerTeeth), 574);
   const eng::Mesh& headMesh = f.model.meshes[f.posed.primitives[2].mesh];
   const size_t jawOpen = size_t(std::find(headMesh.targetNames.begin(), headMesh.targetNames.end(), "jawOpen") -
                                 headMesh.targetNames.begin());
@@ -169,8 +170,8 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   const auto& jaw = headMesh.primitives[0].targets[jawOpen].positions;
   glm::dvec2 moved(0.0);  // skin, lower teeth: mean displacement
   for (size_t v = 0; v < head.size(); ++v)
-    if (head[v] == FacePart::Skin) moved.x += glm::length(jaw[v]) / 1954.0;
-    else moved.y += glm::length(jaw[v]) / 740.0;
+    if (head[v] == FacePart::Skin) moved.x += glm::length(jaw[v]) / (1954.0 + 166.0);
+    else moved.y += glm::length(jaw[v]) / 574.0;
   EXPECT_GT(moved.y, 3.0 * moved.x);
   EXPECT_TRUE(all(3, FacePart::UpperTeeth));  // one arch of 14 teeth, above the mouth line
   EXPECT_TRUE(f.parts.eyeballsFound);
@@ -239,6 +240,11 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarPartsByShape) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
   Found f = find(path, "rpm-visemes-named");
   expectSamePartsByShape(f, 3, 31 + 29);  // mesh 3: Wolf3D_Teeth
+}
+
+TEST(FaceLandmarkFinder, BuiltInHeadPartsByShape) {
+  Found f = find(testing_support::sourceDir() / "data" / "head.glb", "head-named");
+  expectSamePartsByShape(f, -1, 0);
 }
 
 TEST(FaceLandmarkFinder, FacecapPartsByShape) {
