@@ -1,0 +1,581 @@
+#include "autorig/face_parts.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string_view>
+
+#include <Eigen/Dense>
+
+#include "engine/core/enum_names.h"
+#include "engine/scene/inner_face_parts.h"
+#include "engine/scene/position_hash.h"
+
+namespace autorig {
+
+namespace {
+
+constexpr eng::EnumName<FacePart> kFacePartNames[] = {
+    {FacePart::Skin, "skin"},           {FacePart::EyeballRight, "right eyeball"}, {FacePart::EyeballLeft, "left eyeball"},
+    {FacePart::UpperTeeth, "upper teeth"}, {FacePart::LowerTeeth, "lower teeth"}, {FacePart::Tongue, "tongue"},
+    {FacePart::Lashes, "lashes"},       {FacePart::Brows, "brows"},             {FacePart::Glasses, "glasses"},
+    {FacePart::Hair, "hair"},           {FacePart::Other, "other"},
+};
+
+struct NamedPart {
+  std::string_view needle;  // empty: eng::namesAnEyeball decides
+  FacePart part;
+};
+
+// Checked in order on each name: "eyeglasses" is glasses and "eyelash"
+// lashes before "eye" can mean an eyeball; "Outfit_Top" is clothes before
+// "top" could mean the upper teeth; "MouthTeeth" is teeth while the mouth's
+// inside is skin (it moves with it).
+constexpr std::array<NamedPart, 22> kNamedParts = {{
+    {"lash", FacePart::Lashes},     {"brow", FacePart::Brows},       {"tongue", FacePart::Tongue},
+    {"glass", FacePart::Glasses},   {"spectacle", FacePart::Glasses}, {"eyewear", FacePart::Glasses},
+    {"", FacePart::EyeballRight},   {"hair", FacePart::Hair},        {"outfit", FacePart::Other},
+    {"cloth", FacePart::Other},     {"body", FacePart::Other},       {"shirt", FacePart::Other},
+    {"foot", FacePart::Other},      {"shoe", FacePart::Other},       {"hand", FacePart::Other},
+    {"teeth", FacePart::UpperTeeth}, {"tooth", FacePart::UpperTeeth}, {"mouth", FacePart::Skin},
+    {"head", FacePart::Skin},       {"face", FacePart::Skin},        {"skin", FacePart::Skin},
+    {"nose", FacePart::Skin},
+}};
+
+// The most particular first: material, mesh, node, then the node's parents
+// (an eye node under a "Head" node is an eye).
+std::vector<std::string_view> primitiveNames(const eng::Model& model, const PosedPrimitive& p) {
+  std::vector<std::string_view> names;
+  const int material = model.meshes[p.mesh].primitives[p.primitive].material;
+  if (material >= 0 && size_t(material) < model.materials.size()) names.push_back(model.materials[size_t(material)].name);
+  for (std::string_view n : eng::meshAndNodeNames(model, p.mesh, p.node)) names.push_back(n);
+  return names;
+}
+
+std::optional<FacePart> partNamed(std::string_view name) {
+  for (const NamedPart& named : kNamedParts) {
+    const bool says = named.needle.empty() ? eng::namesAnEyeball(std::string(name))
+                                           : eng::anyNameContains({name}, named.needle);
+    if (says) return named.part;
+  }
+  return std::nullopt;
+}
+
+// Whether the names say which row of teeth: "TeethLower", "upper_teeth".
+std::optional<FacePart> teethRowNamed(const std::vector<std::string_view>& names) {
+  if (eng::anyNameContains(names, "lower") || eng::anyNameContains(names, "bottom")) return FacePart::LowerTeeth;
+  if (eng::anyNameContains(names, "upper")) return FacePart::UpperTeeth;
+  return std::nullopt;
+}
+
+}  // namespace
+
+const char* facePartName(FacePart part) { return eng::nameOf(kFacePartNames, part).data(); }
+
+std::optional<FacePart> facePartFromNames(const eng::Model& model, const PosedPrimitive& primitive) {
+  if (primitive.mesh >= model.meshes.size() || primitive.primitive >= model.meshes[primitive.mesh].primitives.size())
+    return std::nullopt;
+  const std::vector<std::string_view> names = primitiveNames(model, primitive);
+  for (std::string_view name : names)
+    if (const std::optional<FacePart> part = partNamed(name)) {
+      if (*part != FacePart::UpperTeeth) return part;
+      return teethRowNamed(names).value_or(FacePart::UpperTeeth);
+    }
+  return std::nullopt;
+}
+
+namespace {
+
+// Where the face is and which way it looks, from its landmarks.
+struct FaceFrame {
+  glm::vec3 right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, 1};  // right: toward the subject's left (36 -> 45)
+  float span = 1.0f;                                         // outer eye corners apart
+  std::array<glm::vec3, 2> eyeCentre{};                      // the lid lines' centres (0: right eye)
+  std::array<float, 2> eyeWidth{};
+  glm::vec3 mouthCentre{0.0f};  // the inner lips' centre: the line the teeth part at
+  float mouthWidth = 0.0f;
+  std::array<glm::vec3, 2> browCentre{};  // 17-21 (right), 22-26
+  glm::vec3 centre{0.0f};
+  const FaceLandmarks* landmarks = nullptr;
+};
+
+glm::vec3 mean(const FaceLandmarks& l, size_t first, size_t last) {
+  glm::vec3 sum(0.0f);
+  for (size_t i = first; i <= last; ++i) sum += l.points[i];
+  return sum / float(last - first + 1);
+}
+
+FaceFrame faceFrame(const FaceLandmarks& l) {
+  FaceFrame f;
+  const auto& p = l.points;
+  f.span = std::max(glm::distance(p[36], p[45]), 1e-6f);
+  f.right = (p[45] - p[36]) / f.span;
+  // Up from the mouth to the eyes: the chin sits back from the nose bridge,
+  // so 8 -> 27 would lean the face forward.
+  const glm::vec3 rise = mean(l, 36, 47) - mean(l, 60, 67);
+  const glm::vec3 up = rise - f.right * glm::dot(rise, f.right);
+  if (glm::length(up) > 1e-9f) f.up = glm::normalize(up);
+  f.forward = glm::cross(f.right, f.up);
+  f.eyeCentre = {mean(l, 36, 41), mean(l, 42, 47)};
+  f.eyeWidth = {glm::distance(p[36], p[39]), glm::distance(p[42], p[45])};
+  f.mouthCentre = mean(l, 60, 67);
+  f.mouthWidth = glm::distance(p[48], p[54]);
+  f.browCentre = {mean(l, 17, 21), mean(l, 22, 26)};
+  f.centre = mean(l, 0, kLandmarkCount - 1);
+  f.landmarks = &l;
+  return f;
+}
+
+// Connected components of a primitive's triangles, vertices at one position
+// joined (texture seams split a surface's vertices, not the surface).
+std::vector<uint32_t> components(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+                                 float weld, uint32_t& count) {
+  std::vector<uint32_t> parent(positions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto root = [&](uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  auto join = [&](uint32_t a, uint32_t b) { parent[root(a)] = root(b); };
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    if (indices[t] >= positions.size() || indices[t + 1] >= positions.size() || indices[t + 2] >= positions.size())
+      continue;
+    join(indices[t], indices[t + 1]);
+    join(indices[t], indices[t + 2]);
+  }
+  const eng::PositionHash hash(positions, weld);
+  for (uint32_t v = 0; v < positions.size(); ++v)
+    for (uint32_t other : hash.near(positions[v], weld)) join(v, other);
+  std::vector<uint32_t> label(positions.size(), UINT32_MAX), byRoot(positions.size(), UINT32_MAX);
+  count = 0;
+  for (uint32_t v = 0; v < positions.size(); ++v) {
+    uint32_t& l = byRoot[root(v)];
+    if (l == UINT32_MAX) l = count++;
+    label[v] = l;
+  }
+  return label;
+}
+
+struct Component {
+  std::vector<uint32_t> vertices;
+  glm::vec3 centre{0.0f};  // vertex mean
+  // The best sphere through the vertices (least squares, so the front half
+  // of an eyeball finds the ball's centre) and how far they stray from it
+  // over its radius: ~0 for a sphere.
+  glm::vec3 sphereCentre{0.0f};
+  float radius = 0.0f;
+  float spread = 1.0f;
+  glm::vec3 lo{0.0f}, hi{0.0f};
+  bool bearsLandmarks = false;  // some landmark of the nose, eyes or mouth lies on it: the face's own skin
+};
+
+// |p|^2 = 2 p.c + (r^2 - |c|^2) is linear in c and the last term: solved by
+// least squares about the vertex mean.
+void fitSphere(const std::vector<glm::vec3>& positions, Component& c) {
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  for (uint32_t v : c.vertices) {
+    const glm::dvec3 p = glm::dvec3(positions[v] - c.centre);
+    const Eigen::Vector4d row(2.0 * p.x, 2.0 * p.y, 2.0 * p.z, 1.0);
+    normal += row * row.transpose();
+    rhs += row * glm::dot(p, p);
+  }
+  const Eigen::Vector4d x = normal.ldlt().solve(rhs);
+  const glm::dvec3 centre(x[0], x[1], x[2]);
+  const double r2 = x[3] + glm::dot(centre, centre);
+  if (!x.allFinite() || !(r2 > 0.0)) return;
+  c.sphereCentre = c.centre + glm::vec3(centre);
+  c.radius = float(std::sqrt(r2));
+  double sum2 = 0.0;
+  for (uint32_t v : c.vertices) {
+    const double d = glm::distance(glm::dvec3(positions[v]), glm::dvec3(c.sphereCentre)) - double(c.radius);
+    sum2 += d * d;
+  }
+  c.spread = float(std::sqrt(sum2 / double(c.vertices.size())) / double(c.radius));
+}
+
+Component describe(const std::vector<glm::vec3>& positions, std::vector<uint32_t> vertices) {
+  Component c;
+  c.vertices = std::move(vertices);
+  c.lo = c.hi = positions[c.vertices[0]];
+  for (uint32_t v : c.vertices) c.centre += positions[v], c.lo = glm::min(c.lo, positions[v]), c.hi = glm::max(c.hi, positions[v]);
+  c.centre /= float(c.vertices.size());
+  c.sphereCentre = c.centre;
+  if (c.vertices.size() >= 4) fitSphere(positions, c);
+  return c;
+}
+
+// Whether a landmark of the nose, eyes or mouth lies within 5 % of the eye
+// corners' distance of a vertex of `c`.
+bool bearsLandmarks(const std::vector<glm::vec3>& positions, const Component& c, const FaceFrame& f) {
+  const float reach = 0.05f * f.span;
+  // Not the jaw line and brows: hair hangs beside the face and over the brows.
+  for (size_t i = 27; i < kLandmarkCount; ++i) {
+    const glm::vec3& l = f.landmarks->points[i];
+    if (glm::any(glm::lessThan(l, c.lo - reach)) || glm::any(glm::greaterThan(l, c.hi + reach))) continue;
+    for (uint32_t v : c.vertices)
+      if (glm::distance(positions[v], l) < reach) return true;
+  }
+  return false;
+}
+
+// The eye (0 right, 1 left) whose lid line lies over `c`, or -1.
+int eyeOver(const Component& c, const FaceFrame& f) {
+  for (int e = 0; e < 2; ++e) {
+    const glm::vec3 d = c.centre - f.eyeCentre[size_t(e)];
+    const float across = glm::length(d - f.forward * glm::dot(d, f.forward));
+    if (across < 0.5f * f.eyeWidth[size_t(e)] && glm::dot(d, f.forward) < 0.25f * f.span) return e;
+  }
+  return -1;
+}
+
+// An eyeball's size under an eye's lid line, and round: a near-sphere, or a
+// ball's front half with an iris set in it (Ready Player Me's), at least
+// 0.4 as deep as it is wide, where lashes are thin strips.
+int eyeballSide(const Component& c, const FaceFrame& f) {
+  const int e = eyeOver(c, f);
+  if (e < 0 || c.vertices.size() < 20) return -1;
+  const glm::vec3 size = c.hi - c.lo;
+  const float longest = std::max({size.x, size.y, size.z}), shortest = std::min({size.x, size.y, size.z});
+  const float ratio = longest / f.eyeWidth[size_t(e)];
+  return (c.spread < 0.1f || shortest > 0.4f * longest) && ratio > 0.4f && ratio < 3.0f ? e : -1;
+}
+
+bool insideTheMouth(const Component& c, const FaceFrame& f) {
+  const glm::vec3 d = c.centre - f.mouthCentre;
+  return std::abs(glm::dot(d, f.right)) < 0.5f * f.mouthWidth && std::abs(glm::dot(d, f.up)) < 0.35f * f.span &&
+         glm::dot(d, f.forward) < 0.05f * f.span && glm::dot(d, f.forward) > -0.8f * f.span &&
+         glm::length(c.hi - c.lo) < 1.5f * f.span;
+}
+
+// The extent of a component's box along an axis, from `origin`.
+glm::vec2 boxExtent(const Component& c, const glm::vec3& origin, const glm::vec3& axis) {
+  glm::vec2 r(INFINITY, -INFINITY);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? c.hi.x : c.lo.x, corner & 2 ? c.hi.y : c.lo.y, corner & 4 ? c.hi.z : c.lo.z);
+    const float x = glm::dot(p - origin, axis);
+    r = {std::min(r.x, x), std::max(r.y, x)};
+  }
+  return r;
+}
+
+// Reaching across both eyes, its front before them, at their height: a pair
+// of glasses (their arms may run back to the ears).
+bool spansTheEyes(const Component& c, const FaceFrame& f) {
+  const glm::vec3 eyes = (f.eyeCentre[0] + f.eyeCentre[1]) * 0.5f;
+  const float half = 0.5f * glm::distance(f.eyeCentre[0], f.eyeCentre[1]);
+  const glm::vec2 across = boxExtent(c, eyes, f.right), depth = boxExtent(c, eyes, f.forward);
+  const glm::vec2 height = boxExtent(c, eyes, f.up);
+  return across.x < -half && across.y > half && depth.y > 0.0f && height.y - height.x < f.span &&
+         std::abs(glm::dot(c.centre - eyes, f.up)) < 0.3f * f.span;
+}
+
+// Small and over a brow (a brow card), or over an eye's lid line (a lash
+// strip); both lie on landmarks, so that cannot tell them from the skin.
+std::optional<FacePart> hairOnTheFace(const Component& c, const FaceFrame& f) {
+  const glm::vec3 size = c.hi - c.lo;
+  if (std::max({size.x, size.y, size.z}) > 0.6f * f.span) return std::nullopt;
+  for (size_t side = 0; side < 2; ++side) {
+    const float toBrow = glm::distance(c.centre, f.browCentre[side]);
+    const float toEye = glm::distance(c.centre, f.eyeCentre[side]);
+    if (toBrow < toEye && toBrow < 0.25f * f.span) return FacePart::Brows;
+    if (toEye <= toBrow && toEye < 0.6f * f.eyeWidth[side]) return FacePart::Lashes;
+  }
+  return std::nullopt;
+}
+
+// Off the face's own skin, across the head and over its top: hair (or a
+// hat), long hair hanging far below the brows too.
+bool hairOnTheHead(const Component& c, const FaceFrame& f) {
+  const glm::vec3 brows = (f.browCentre[0] + f.browCentre[1]) * 0.5f;
+  const glm::vec2 across = boxExtent(c, brows, f.right), height = boxExtent(c, brows, f.up);
+  return across.y - across.x > 0.8f * f.span && height.y > 0.5f * f.span;
+}
+
+// Off the face's own skin and below the chin: the neck's and body's pieces, clothes.
+bool belowTheChin(const Component& c, const FaceFrame& f) {
+  return glm::dot(c.centre - f.landmarks->points[8], f.up) < -0.2f * f.span;
+}
+
+// What geometry says an unnamed component is.
+FacePart partOfShape(const Component& c, const FaceFrame& f) {
+  if (glm::distance(c.centre, f.centre) > 2.5f * f.span) return FacePart::Other;
+  if (const int e = eyeballSide(c, f); e >= 0) return e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
+  if (insideTheMouth(c, f)) return FacePart::UpperTeeth;  // which row: splitTeethRows
+  if (spansTheEyes(c, f)) return FacePart::Glasses;
+  if (const std::optional<FacePart> part = hairOnTheFace(c, f)) return *part;
+  if (c.bearsLandmarks) return FacePart::Skin;
+  if (hairOnTheHead(c, f)) return FacePart::Hair;
+  return belowTheChin(c, f) ? FacePart::Other : FacePart::Skin;
+}
+
+std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
+  const std::string& mesh = model.meshes[p.mesh].name;
+  std::string label = mesh.empty() ? "mesh " + std::to_string(p.mesh) : mesh;
+  if (model.meshes[p.mesh].primitives.size() > 1) label += " primitive " + std::to_string(p.primitive);
+  return label;
+}
+
+// "Wolf3D_Teeth: upper teeth 40, lower teeth 44 (by name)"; nothing for
+// plain skin.
+void notePrimitive(const eng::Model& model, const PosedPrimitive& p, const std::vector<FacePart>& parts,
+                   std::vector<std::string>& notes) {
+  std::array<size_t, 11> counts{};
+  for (FacePart v : parts) ++counts[size_t(v)];
+  if (counts[size_t(FacePart::Skin)] == parts.size()) return;
+  std::string line = primitiveLabel(model, p) + ":";
+  const char* sep = " ";
+  for (size_t k = 0; k < counts.size(); ++k)
+    if (counts[k]) line += sep + std::string(facePartName(FacePart(k))) + " " + std::to_string(counts[k]), sep = ", ";
+  notes.push_back(line + (facePartFromNames(model, p) ? " (by name)" : " (by shape)"));
+}
+
+// Teeth whose row no name gives: one component each, sorted into rows later.
+struct TeethPiece {
+  size_t primitive;
+  std::vector<uint32_t> vertices;
+};
+
+// Keeps the larger ball of each eye (not its iris or cornea): the fitted
+// sphere, or the box of a ball that is no sphere.
+void recordEyeball(FaceParts& parts, int side, const Component& c) {
+  const bool sphere = c.spread < 0.1f;
+  const float radius = sphere ? c.radius : 0.5f * std::max({c.hi.x - c.lo.x, c.hi.y - c.lo.y, c.hi.z - c.lo.z});
+  if (radius <= parts.eyeRadii[size_t(side)]) return;
+  parts.eyeCentres[size_t(side)] = sphere ? c.sphereCentre : (c.lo + c.hi) * 0.5f;
+  parts.eyeRadii[size_t(side)] = radius;
+}
+
+FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool island, const FaceFrame& f,
+                         FaceParts& parts) {
+  if (named == FacePart::EyeballRight || named == FacePart::EyeballLeft) {
+    const int e = eyeOver(c, f);
+    const int side = e >= 0 ? e : (glm::dot(c.centre - f.centre, f.right) > 0.0f ? 1 : 0);
+    if (e >= 0) recordEyeball(parts, side, c);
+    return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
+  }
+  // A mesh called "Head" often holds the eyeballs, and the teeth as islands
+  // beside its largest piece (facecap's lower row): those are taken from
+  // shape. A primitive that is one piece inside the mouth is its lining.
+  if (named && *named != FacePart::Skin) return *named;
+  const int eye = eyeballSide(c, f);
+  if (eye >= 0) {
+    recordEyeball(parts, eye, c);
+    return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
+  }
+  if (!named) return partOfShape(c, f);
+  return island && insideTheMouth(c, f) ? FacePart::UpperTeeth : FacePart::Skin;  // the row: splitTeethRows
+}
+
+// Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
+// an unnamed primitive that is glasses or hair as a whole is all of it.
+std::optional<FacePart> wholePrimitivePart(const std::vector<glm::vec3>& positions, const FaceFrame& f) {
+  std::vector<uint32_t> all(positions.size());
+  std::iota(all.begin(), all.end(), 0u);
+  const Component whole = describe(positions, std::move(all));
+  // Glasses rest on the nose, near its landmarks; the skin is too tall to pass.
+  if (spansTheEyes(whole, f)) return FacePart::Glasses;
+  if (!bearsLandmarks(positions, whole, f) && hairOnTheHead(whole, f)) return FacePart::Hair;
+  return std::nullopt;
+}
+
+void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
+                       FaceParts& parts, std::vector<TeethPiece>& teeth) {
+  std::vector<FacePart>& out = parts.vertexParts[index];
+  out.assign(p.positions.size(), FacePart::Skin);
+  if (p.positions.empty()) return;
+  const std::optional<FacePart> named = facePartFromNames(model, p);
+  const bool rowNamed = named == FacePart::LowerTeeth || (named == FacePart::UpperTeeth &&
+                                                           teethRowNamed(primitiveNames(model, p)).has_value());
+  uint32_t count = 0;
+  const std::vector<uint32_t> label =
+      components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
+  if (!named) {
+    if (const std::optional<FacePart> whole = wholePrimitivePart(p.positions, f)) {
+      out.assign(p.positions.size(), *whole);
+      return;
+    }
+  }
+  std::vector<std::vector<uint32_t>> members(count);
+  for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  size_t largest = 0;
+  for (const std::vector<uint32_t>& m : members) largest = std::max(largest, m.size());
+  for (std::vector<uint32_t>& vertices : members) {
+    const bool island = vertices.size() < largest;
+    Component c = describe(p.positions, std::move(vertices));
+    if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
+    const FacePart part = partOfComponent(named, c, island, f, parts);
+    for (uint32_t v : c.vertices) out[v] = part;
+    if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});
+  }
+}
+
+// Otsu's threshold over weighted values: the cut between two groups that
+// makes them most apart (rows in a gap, or where touching rows meet).
+float otsuSplit(std::vector<std::pair<float, double>> values) {
+  std::sort(values.begin(), values.end());
+  double total = 0.0, weight = 0.0;
+  for (const auto& [v, w] : values) total += double(v) * w, weight += w;
+  double below = 0.0, belowWeight = 0.0, bestScore = -1.0;
+  float split = values.empty() ? 0.0f : values.front().first;
+  for (size_t k = 1; k < values.size(); ++k) {
+    below += double(values[k - 1].first) * values[k - 1].second;
+    belowWeight += values[k - 1].second;
+    const double d = below / belowWeight - (total - below) / (weight - belowWeight);
+    const double score = belowWeight * (weight - belowWeight) * d * d;
+    if (score > bestScore) bestScore = score, split = (values[k - 1].first + values[k].first) / 2.0f;
+  }
+  return split;
+}
+
+// Extent of a piece along an axis, from the mouth centre.
+glm::vec2 extent(const PosedFace& posed, const TeethPiece& piece, const glm::vec3& origin, const glm::vec3& axis) {
+  glm::vec2 r(INFINITY, -INFINITY);
+  for (uint32_t v : piece.vertices) {
+    const float x = glm::dot(posed.primitives[piece.primitive].positions[v] - origin, axis);
+    r = {std::min(r.x, x), std::max(r.y, x)};
+  }
+  return r;
+}
+
+// The inside of the mouth as a piece of its own (a sac behind the lips):
+// it holds two or more of the other pieces (teeth, tongue) in its box, as
+// no row of teeth does. Skin: it moves with the lips and jaw.
+void takeOutLining(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  std::vector<glm::vec3> centres;  // in the face's axes
+  for (const TeethPiece& piece : teeth) {
+    glm::dvec3 sum(0.0);
+    for (uint32_t v : piece.vertices) sum += glm::dvec3(posed.primitives[piece.primitive].positions[v]);
+    const glm::vec3 c = glm::vec3(sum / double(piece.vertices.size())) - f.mouthCentre;
+    centres.emplace_back(glm::dot(c, f.right), glm::dot(c, f.up), glm::dot(c, f.forward));
+  }
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right), y = extent(posed, teeth[i], f.mouthCentre, f.up);
+    const glm::vec2 z = extent(posed, teeth[i], f.mouthCentre, f.forward);
+    size_t held = 0;
+    for (size_t k = 0; k < teeth.size(); ++k)
+      held += k != i && centres[k].x > x.x && centres[k].x < x.y && centres[k].y > y.x && centres[k].y < y.y &&
+              centres[k].z > z.x && centres[k].z < z.y;
+    if (held < 2) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Skin;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+    centres.erase(centres.begin() + std::ptrdiff_t(i));
+  }
+}
+
+// A tongue kept with the teeth (Ready Player Me's Wolf3D_Teeth): a piece as
+// wide as the arches but short of their front, lying inside them. Taken out
+// of `teeth` and marked.
+void takeOutTongue(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  if (teeth.size() < 2) return;
+  glm::vec2 across(INFINITY, -INFINITY);
+  std::vector<float> front(teeth.size());
+  for (size_t i = 0; i < teeth.size(); ++i) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right);
+    across = {std::min(across.x, x.x), std::max(across.y, x.y)};
+    front[i] = extent(posed, teeth[i], f.mouthCentre, f.forward).y;
+  }
+  const float frontMost = *std::max_element(front.begin(), front.end());
+  const float width = across.y - across.x;
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right);
+    if (x.y - x.x < 0.5f * width || front[i] > frontMost - 0.15f * width) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Tongue;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+  }
+}
+
+// Rows in pieces of their own (teeth apart, or one primitive per row) go
+// whole by their mean height; a single piece holding both rows is split per
+// vertex. Two rows lie one over the other; when the two sides of the split
+// lie more one behind the other (the front teeth of a single tilted arch
+// against its back teeth), there is one row, and the mouth line says which.
+void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  const glm::vec3& mouth = f.mouthCentre;
+  auto along = [&](const TeethPiece& piece, uint32_t v, const glm::vec3& axis) {
+    return glm::dot(posed.primitives[piece.primitive].positions[v] - mouth, axis);
+  };
+  auto meanHeight = [&](const TeethPiece& piece) {
+    double sum = 0.0;
+    for (uint32_t v : piece.vertices) sum += along(piece, v, f.up);
+    return float(sum / double(piece.vertices.size()));
+  };
+  // Teeth in more than one primitive: a row each (facecap's upper row is a
+  // mesh, its lower row islands of the head), so an arch's tilt cannot mix
+  // them; their heights are the primitives' means.
+  std::vector<size_t> primitives;
+  for (const TeethPiece& piece : teeth) primitives.push_back(piece.primitive);
+  std::sort(primitives.begin(), primitives.end());
+  primitives.erase(std::unique(primitives.begin(), primitives.end()), primitives.end());
+  std::vector<glm::dvec2> byPrimitive(posed.primitives.size());  // height sum, count
+  for (const TeethPiece& piece : teeth)
+    byPrimitive[piece.primitive] += glm::dvec2(double(meanHeight(piece)) * double(piece.vertices.size()), double(piece.vertices.size()));
+  auto rowHeight = [&](const TeethPiece& piece) {
+    const glm::dvec2 h = byPrimitive[piece.primitive];
+    return primitives.size() > 1 ? float(h.x / h.y) : meanHeight(piece);
+  };
+  std::vector<std::pair<float, double>> values;
+  if (primitives.size() > 1)
+    for (size_t i : primitives) values.emplace_back(float(byPrimitive[i].x / byPrimitive[i].y), byPrimitive[i].y);
+  else
+    for (const TeethPiece& piece : teeth) {
+      if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
+      else
+        for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
+    }
+  const float split = otsuSplit(values);
+  std::array<glm::dvec3, 2> sums{};  // below, above: height, depth, vertex count
+  for (const TeethPiece& piece : teeth)
+    for (uint32_t v : piece.vertices) {
+      const bool above = teeth.size() > 1 ? rowHeight(piece) > split : along(piece, v, f.up) > split;
+      sums[above] += glm::dvec3(along(piece, v, f.up), along(piece, v, f.forward), 1.0);
+      parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
+    }
+  const glm::dvec3 apart = sums[1] / std::max(sums[1].z, 1.0) - sums[0] / std::max(sums[0].z, 1.0);
+  const bool twoRows = sums[0].z > 0.0 && sums[1].z > 0.0 && std::abs(apart.x) > std::abs(apart.y);
+  const FacePart oneRow = values.empty() || meanHeight(teeth[0]) > 0.0f ? FacePart::UpperTeeth : FacePart::LowerTeeth;
+  if (!twoRows)
+    for (const TeethPiece& piece : teeth)
+      for (uint32_t v : piece.vertices) parts.vertexParts[piece.primitive][v] = oneRow;
+  char text[160];
+  if (twoRows)
+    std::snprintf(text, sizeof text, "teeth: %zu piece%s, upper and lower rows parted %.4g above the mouth line",
+                  teeth.size(), teeth.size() > 1 ? "s" : "", double(split));
+  else
+    std::snprintf(text, sizeof text, "teeth: %zu piece%s, one row, %s the mouth line", teeth.size(),
+                  teeth.size() > 1 ? "s" : "", oneRow == FacePart::UpperTeeth ? "above" : "below");
+  parts.notes.push_back(text);
+}
+
+// No eyeball mesh: the ball sits behind the lid line, its radius about 0.45
+// of the eye's width (a 24 mm ball behind a 28 mm opening).
+void estimateEyeballs(FaceParts& parts, const FaceFrame& f) {
+  for (size_t e = 0; e < 2; ++e) {
+    if (parts.eyeRadii[e] > 0.0f) continue;
+    parts.eyeRadii[e] = 0.45f * f.eyeWidth[e];
+    parts.eyeCentres[e] = f.eyeCentre[e] - f.forward * (0.8f * parts.eyeRadii[e]);
+    parts.notes.push_back(std::string(e == 0 ? "right" : "left") + " eyeball: no mesh, estimated behind the lids");
+  }
+}
+
+}  // namespace
+
+FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const FaceLandmarks& landmarks) {
+  FaceParts parts;
+  const FaceFrame frame = faceFrame(landmarks);
+  parts.vertexParts.resize(posed.primitives.size());
+  std::vector<TeethPiece> teeth;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  takeOutLining(posed, teeth, frame, parts);
+  takeOutTongue(posed, teeth, frame, parts);
+  splitTeethRows(posed, teeth, frame, parts);
+  for (size_t i = 0; i < posed.primitives.size(); ++i)
+    notePrimitive(model, posed.primitives[i], parts.vertexParts[i], parts.notes);
+  parts.eyeballsFound = parts.eyeRadii[0] > 0.0f && parts.eyeRadii[1] > 0.0f;
+  estimateEyeballs(parts, frame);
+  return parts;
+}
+
+}  // namespace autorig
