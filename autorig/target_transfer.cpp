@@ -238,12 +238,14 @@ EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t e
 // source vertex follows its own lid's turn is carried over as a number, and
 // the target's lid turns as large a share of its own opening as the
 // source's does.
-void closeLids(const SourceFace& source, const TriangleGrid& sourceGrid, const FaceSurface& src,
-               const std::vector<glm::vec3>& raw, const FaceLandmarks& landmarks, const FaceSurface& tgt,
-               const Correspondence& corr, const FaceParts& parts, std::vector<glm::vec3>& deltas) {
+using BothEyes = std::array<EyeLids, 2>;  // right, left
+
+void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const TriangleGrid& sourceGrid,
+               const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
+               const Correspondence& corr, std::vector<glm::vec3>& deltas) {
   for (size_t eye = 0; eye < 2; ++eye) {
-    const EyeLids from = eyeLids(source.landmarks, source.parts, eye, src, corr.sourceRegions);
-    const EyeLids to = eyeLids(landmarks, parts, eye, tgt, corr.targetRegions);
+    const EyeLids& from = sourceEyes[eye];
+    const EyeLids& to = targetEyes[eye];
     if (!(from.radius > 0.0f) || !(to.radius > 0.0f) || !(from.openAngle() > 0.0f)) continue;
     const ClosestPoint margin = sourceGrid.closest(from.upper, FaceRegion::None, 1e9f);
     if (!margin.found) continue;
@@ -320,6 +322,10 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   const ClosestPoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
   const JawHinge sourceHinge = estimateJawHinge(source.landmarks), targetHinge = estimateJawHinge(landmarks);
 
+  const BothEyes sourceEyes{eyeLids(source.landmarks, source.parts, 0, src, corr.sourceRegions),
+                            eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions)};
+  const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions),
+                            eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
   std::vector<glm::vec3> carried(src.positions.size());
   for (size_t u = 0; u < units.size(); ++u) {
     for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * raw[u][i];
@@ -330,7 +336,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
       unit.deltas[v] = weight * atMatch(carried, src, match);
     }
-    closeLids(source, sourceGrid, src, raw[u], landmarks, tgt, corr, parts, unit.deltas);
+    closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
     const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end();
     if (jawUnit && chin.found) turnWithJaw(JawTurn{sourceHinge, targetHinge, hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin))},
@@ -370,7 +376,12 @@ void widenWeightChannels(eng::Model& model, size_t mesh) {
 
 // Appends `target` to every mesh it moves: displacements into each vertex's
 // mesh space, normal displacements from the smooth normals before and after.
-void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target) {
+// Rest normals as computeSmoothNormals gives them, per mesh and primitive,
+// made once and shared by every target written.
+using RestNormals = std::vector<std::vector<std::vector<glm::vec3>>>;
+
+void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target,
+                 RestNormals& restNormals) {
   constexpr float kStill = 1e-7f;
   std::vector<std::vector<size_t>> byMesh(model.meshes.size());
   for (size_t k = 0; k < moved.vertices.size(); ++k)
@@ -392,7 +403,10 @@ void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, 
       bool any = false;
       for (size_t v = 0; v < after.size(); ++v) after[v] += added[p].positions[v], any = any || added[p].positions[v] != glm::vec3(0.0f);
       if (!any) continue;
-      const std::vector<glm::vec3> before = eng::computeSmoothNormals(primitive.positions, primitive.indices);
+      restNormals.resize(model.meshes.size());
+      restNormals[m].resize(mesh.primitives.size());
+      std::vector<glm::vec3>& before = restNormals[m][p];
+      if (before.empty()) before = eng::computeSmoothNormals(primitive.positions, primitive.indices);
       const std::vector<glm::vec3> turned = eng::computeSmoothNormals(after, primitive.indices);
       added[p].normals.resize(after.size());
       for (size_t v = 0; v < after.size(); ++v) added[p].normals[v] = turned[v] - before[v];
@@ -450,12 +464,13 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
       report.warnings.push_back(line);
     }
   }
+  RestNormals restNormals;
   for (const NamedDeltas& target : made) {
     if (faceHas(face, target.name, !target.name.starts_with("AU"))) {
       report.kept.push_back(target.name);
       continue;
     }
-    writeTarget(result.model, posed, moved, target);
+    writeTarget(result.model, posed, moved, target, restNormals);
     report.made.push_back(target.name);
   }
   if (jaw.positions.empty()) report.warnings.push_back("no lower teeth or tongue found: the jaw units move the skin only");
