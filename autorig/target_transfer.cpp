@@ -188,7 +188,7 @@ constexpr std::array<std::array<size_t, 4>, 2> kLidLandmarks{{{37, 38, 41, 40}, 
 // A unit closes an eye when it turns the upper lid this share of the way to the lower.
 constexpr float kClosing = 0.2f;
 // Around an eye (eyeball radii from its centre) a closing unit is all turn; beyond, the carried displacement.
-constexpr float kLidTurnInner = 1.8f, kLidTurnOuter = 2.6f;
+constexpr float kLidTurnInner = 1.25f, kLidTurnOuter = 1.75f;
 
 struct EyeLids {
   JawHinge axis;  // through the eye's centre, towards the subject's left
@@ -274,27 +274,39 @@ struct JawTurn {
   float angle = 0.0f;  // the source's chin about its hinge
 };
 
-// A jaw unit as a turn about the target's hinge: how far each source vertex
-// follows its own jaw's turn (its displacement along the turn's, 0 above the
-// lips, 1 on the chin) is carried over as a number, so the lips part along
-// the mouth line and the chin swings instead of stretching. What the source
-// has nothing close to below the lips (the inside of a deeper mouth), the
-// lower teeth and the tongue turn fully.
-void turnWithJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
-                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
-                 std::vector<glm::vec3>& deltas) {
-  std::vector<glm::vec3> follow(src.positions.size(), glm::vec3(0.0f));  // the share in x (a scalar carried as a vector)
+// A jaw unit split on the source: how far each vertex follows its jaw's
+// turn (its displacement along the turn's, 0 above the lips, 1 on the chin)
+// and what is left (lips parting further than the jaw turns them).
+struct JawSplit {
+  std::vector<glm::vec3> follow;    // the share in x (a number carried as a vector)
+  std::vector<glm::vec3> residual;  // carried like any unit
+};
+
+JawSplit splitJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw) {
+  JawSplit split{std::vector<glm::vec3>(src.positions.size(), glm::vec3(0.0f)), raw};
   for (size_t i = 0; i < src.positions.size(); ++i) {
     const glm::vec3 full = turnAboutHinge(turn.source, turn.angle, src.positions[i]);
     const float energy = glm::dot(full, full);
-    if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    if (!(energy > 0.0f)) continue;
+    split.follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    split.residual[i] -= split.follow[i].x * full;
   }
+  return split;
+}
+
+// The turn of a jaw unit about the target's hinge, added to its carried
+// residual: so the lips part along the mouth line and the chin swings
+// instead of stretching. What the source has nothing close to below the lips
+// (the inside of a deeper mouth), the lower teeth and the tongue turn fully.
+void turnWithJaw(const JawTurn& turn, const JawSplit& split, const FaceSurface& src, const FaceSurface& tgt,
+                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
+                 std::vector<glm::vec3>& deltas) {
   for (size_t v = 0; v < tgt.positions.size(); ++v) {
     const ClosestPoint& match = corr.matches[v];
     const float matched = match.found ? 1.0f - glm::smoothstep(fullGap, maxGap, match.distance) : 0.0f;
-    float share = match.found ? matched * atMatch(follow, src, match).x : 0.0f;
+    float share = match.found ? matched * atMatch(split.follow, src, match).x : 0.0f;
     if (corr.targetRegions[v] == FaceRegion::LowerLip) share += 1.0f - matched;
-    deltas[v] = share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
+    deltas[v] += share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
   }
   for (size_t j = 0; j < jaw.positions.size(); ++j)
     deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
@@ -328,7 +340,11 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
                             eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
   std::vector<glm::vec3> carried(src.positions.size());
   for (size_t u = 0; u < units.size(); ++u) {
-    for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * raw[u][i];
+    const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end() && chin.found;
+    const JawTurn turn{sourceHinge, targetHinge, jawUnit ? hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin)) : 0.0f};
+    const JawSplit split = jawUnit ? splitJaw(turn, src, raw[u]) : JawSplit{};
+    const std::vector<glm::vec3>& moving = jawUnit ? split.residual : raw[u];
+    for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * moving[i];
     NamedDeltas unit{units[u], std::vector<glm::vec3>(moved.positions.size(), glm::vec3(0.0f))};
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
       const ClosestPoint& match = corr.matches[v];
@@ -338,9 +354,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
     }
     closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
-    const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end();
-    if (jawUnit && chin.found) turnWithJaw(JawTurn{sourceHinge, targetHinge, hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin))},
-                                           src, raw[u], tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+    if (jawUnit) turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
     moved.units.push_back(std::move(unit));
   }
   return moved;
