@@ -24,6 +24,9 @@ namespace {
 // more than kMaxOffSurface of them and the landmarks are not this face's.
 constexpr float kOffSurface = 0.2f;
 constexpr size_t kMaxOffSurface = 10;
+// The landmarks' smallest spread (across their best plane) against their
+// largest, below which they are flat; a face's is about 0.2.
+constexpr double kMinDepth = 0.02;
 // A matched target vertex takes the whole displacement up to kFullGap from
 // the warped source and none beyond the correspondence's maxGap (eye spans):
 // lashes a little off the skin follow, a shoulder does not.
@@ -66,6 +69,19 @@ eng::Result<void> checkLandmarks(const FaceLandmarks& landmarks, const char* who
     return eng::makeError(eng::ErrorKind::InvalidArgument,
                           describeLandmarks(whose) + "collapsed: the 68 points lie within " + std::to_string(spread) +
                               " of their centre, the eye corners 36 and 45 " + std::to_string(eyeSpan) + " apart");
+  // A face has depth (the nose stands out of the eyes' plane): points in one
+  // plane are a picture, a sheet or a mistake.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const glm::vec3& p : landmarks.points) {
+    const Eigen::Vector3d d(p.x - mean.x, p.y - mean.y, p.z - mean.z);
+    covariance += d * d.transpose();
+  }
+  const Eigen::Vector3d sigma = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues();
+  if (!(std::sqrt(std::max(sigma(0), 0.0)) > kMinDepth * std::sqrt(sigma(2))))
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          describeLandmarks(whose) + "flat: the 68 points lie in one plane (depth " +
+                              std::to_string(std::sqrt(std::max(sigma(0), 0.0))) + " against a spread of " +
+                              std::to_string(std::sqrt(sigma(2))) + "): not a face");
   return {};
 }
 
@@ -460,7 +476,9 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const LandmarkFrame frame(landmarks);
   ENG_TRY(checkOnSurface(tgt, landmarks, frame));
   ENG_TRY(checkFacing(source, landmarks));
-  const Correspondence corr = ENG_TRY_VALUE(correspond(src, source.landmarks, tgt, landmarks));
+  eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, landmarks);
+  if (!matched) return matched.error().prefixed("target transfer: ");
+  const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   const Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
 

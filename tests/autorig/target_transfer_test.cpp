@@ -107,6 +107,11 @@ TEST(TargetTransfer, RefusesLandmarksThatDoNotMakeThisFace) {
   for (glm::vec3& p : away.points) p += glm::vec3(0.5f, 0.0f, 0.0f);
   EXPECT_NE(attempt(away).find("68 of 68 landmarks are off the face's skin"), std::string::npos) << attempt(away);
 
+  // All in one plane (a picture, a sheet: the Khronos SimpleMorph square had dlib find a face).
+  autorig::FaceLandmarks flat = source.landmarks;
+  for (glm::vec3& p : flat.points) p.z = 0.09f;
+  EXPECT_NE(attempt(flat).find("face landmarks: flat: the 68 points lie in one plane"), std::string::npos) << attempt(flat);
+
   autorig::FaceLandmarks broken = source.landmarks;
   broken.points[40].y = NAN;
   EXPECT_NE(attempt(broken).find("point 40 of 68 is not finite"), std::string::npos) << attempt(broken);
