@@ -82,7 +82,7 @@ struct Row {
 // Measured (docs/autorig.md has the table): the bounds are the measurement
 // with 0.1 of margin.
 constexpr Row kRows[] = {
-    {"jawOpen", "jawOpen", 0.6f, 0.8f},
+    {"jawOpen", "jawOpen", 0.66f, 0.73f},
     {"mouthSmileLeft", "mouthSmile_L", 0.8f, 0.63f},
     {"eyeBlinkLeft", "eyeBlink_L", 1.0f, 0.5f},
     {"browInnerUp", "browInnerUp", 0.67f, 0.73f},
