@@ -135,6 +135,18 @@ TEST(TargetTransfer, RefusesLandmarksThatDoNotMakeThisFace) {
   EXPECT_NE(attempt(broken).find("point 40 of 68 is not finite"), std::string::npos) << attempt(broken);
 }
 
+TEST(TargetTransfer, RefusesAFaceOverTheVertexBound) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Result<autorig::TransferResult> r = autorig::transferTargets(
+      source, stripped(*head), source.posed, source.landmarks, source.parts, {.maxSkinVertices = 1000});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, eng::ErrorKind::TooLarge);
+  EXPECT_NE(r.error().message.find("skin vertices, more than 1000: simplify it first"), std::string::npos)
+      << r.error().message;
+}
+
 TEST(TargetTransfer, RefusesASourceWithoutActionUnits) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
