@@ -7,10 +7,11 @@
 #include <numeric>
 #include <string_view>
 
-#include "engine/scene/position_hash.h"
+#include <Eigen/Dense>
 
 #include "engine/core/enum_names.h"
 #include "engine/scene/inner_face_parts.h"
+#include "engine/scene/position_hash.h"
 
 namespace autorig {
 
@@ -95,7 +96,9 @@ struct FaceFrame {
   std::array<float, 2> eyeWidth{};
   glm::vec3 mouthCentre{0.0f};  // the inner lips' centre: the line the teeth part at
   float mouthWidth = 0.0f;
+  std::array<glm::vec3, 2> browCentre{};  // 17-21 (right), 22-26
   glm::vec3 centre{0.0f};
+  const FaceLandmarks* landmarks = nullptr;
 };
 
 glm::vec3 mean(const FaceLandmarks& l, size_t first, size_t last) {
@@ -119,7 +122,9 @@ FaceFrame faceFrame(const FaceLandmarks& l) {
   f.eyeWidth = {glm::distance(p[36], p[39]), glm::distance(p[42], p[45])};
   f.mouthCentre = mean(l, 60, 67);
   f.mouthWidth = glm::distance(p[48], p[54]);
+  f.browCentre = {mean(l, 17, 21), mean(l, 22, 26)};
   f.centre = mean(l, 0, kLandmarkCount - 1);
+  f.landmarks = &l;
   return f;
 }
 
@@ -156,10 +161,40 @@ std::vector<uint32_t> components(const std::vector<glm::vec3>& positions, const 
 struct Component {
   std::vector<uint32_t> vertices;
   glm::vec3 centre{0.0f};  // vertex mean
-  float radius = 0.0f;     // mean distance from it
-  float spread = 1.0f;     // the distances' deviation over the radius: ~0 for a sphere
+  // The best sphere through the vertices (least squares, so the front half
+  // of an eyeball finds the ball's centre) and how far they stray from it
+  // over its radius: ~0 for a sphere.
+  glm::vec3 sphereCentre{0.0f};
+  float radius = 0.0f;
+  float spread = 1.0f;
   glm::vec3 lo{0.0f}, hi{0.0f};
+  bool bearsLandmarks = false;  // some landmark of the nose, eyes or mouth lies on it: the face's own skin
 };
+
+// |p|^2 = 2 p.c + (r^2 - |c|^2) is linear in c and the last term: solved by
+// least squares about the vertex mean.
+void fitSphere(const std::vector<glm::vec3>& positions, Component& c) {
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  for (uint32_t v : c.vertices) {
+    const glm::dvec3 p = glm::dvec3(positions[v] - c.centre);
+    const Eigen::Vector4d row(2.0 * p.x, 2.0 * p.y, 2.0 * p.z, 1.0);
+    normal += row * row.transpose();
+    rhs += row * glm::dot(p, p);
+  }
+  const Eigen::Vector4d x = normal.ldlt().solve(rhs);
+  const glm::dvec3 centre(x[0], x[1], x[2]);
+  const double r2 = x[3] + glm::dot(centre, centre);
+  if (!x.allFinite() || !(r2 > 0.0)) return;
+  c.sphereCentre = c.centre + glm::vec3(centre);
+  c.radius = float(std::sqrt(r2));
+  double sum2 = 0.0;
+  for (uint32_t v : c.vertices) {
+    const double d = glm::distance(glm::dvec3(positions[v]), glm::dvec3(c.sphereCentre)) - double(c.radius);
+    sum2 += d * d;
+  }
+  c.spread = float(std::sqrt(sum2 / double(c.vertices.size())) / double(c.radius));
+}
 
 Component describe(const std::vector<glm::vec3>& positions, std::vector<uint32_t> vertices) {
   Component c;
@@ -167,15 +202,23 @@ Component describe(const std::vector<glm::vec3>& positions, std::vector<uint32_t
   c.lo = c.hi = positions[c.vertices[0]];
   for (uint32_t v : c.vertices) c.centre += positions[v], c.lo = glm::min(c.lo, positions[v]), c.hi = glm::max(c.hi, positions[v]);
   c.centre /= float(c.vertices.size());
-  double sum = 0.0, sum2 = 0.0;
-  for (uint32_t v : c.vertices) {
-    const double d = glm::distance(positions[v], c.centre);
-    sum += d, sum2 += d * d;
-  }
-  const double n = double(c.vertices.size());
-  c.radius = float(sum / n);
-  c.spread = c.radius > 0.0f ? float(std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) / (sum / n)) : 1.0f;
+  c.sphereCentre = c.centre;
+  if (c.vertices.size() >= 4) fitSphere(positions, c);
   return c;
+}
+
+// Whether a landmark of the nose, eyes or mouth lies within 5 % of the eye
+// corners' distance of a vertex of `c`.
+bool bearsLandmarks(const std::vector<glm::vec3>& positions, const Component& c, const FaceFrame& f) {
+  const float reach = 0.05f * f.span;
+  // Not the jaw line and brows: hair hangs beside the face and over the brows.
+  for (size_t i = 27; i < kLandmarkCount; ++i) {
+    const glm::vec3& l = f.landmarks->points[i];
+    if (glm::any(glm::lessThan(l, c.lo - reach)) || glm::any(glm::greaterThan(l, c.hi + reach))) continue;
+    for (uint32_t v : c.vertices)
+      if (glm::distance(positions[v], l) < reach) return true;
+  }
+  return false;
 }
 
 // The eye (0 right, 1 left) whose lid line lies over `c`, or -1.
@@ -188,12 +231,16 @@ int eyeOver(const Component& c, const FaceFrame& f) {
   return -1;
 }
 
-// A closed near-sphere of an eyeball's size behind an eye's lid line.
+// An eyeball's size under an eye's lid line, and round: a near-sphere, or a
+// ball's front half with an iris set in it (Ready Player Me's), at least
+// 0.4 as deep as it is wide, where lashes are thin strips.
 int eyeballSide(const Component& c, const FaceFrame& f) {
   const int e = eyeOver(c, f);
-  if (e < 0 || c.spread > 0.15f || c.vertices.size() < 20) return -1;
-  const float ratio = c.radius / f.eyeWidth[size_t(e)];
-  return ratio > 0.2f && ratio < 0.9f ? e : -1;
+  if (e < 0 || c.vertices.size() < 20) return -1;
+  const glm::vec3 size = c.hi - c.lo;
+  const float longest = std::max({size.x, size.y, size.z}), shortest = std::min({size.x, size.y, size.z});
+  const float ratio = longest / f.eyeWidth[size_t(e)];
+  return (c.spread < 0.1f || shortest > 0.4f * longest) && ratio > 0.4f && ratio < 3.0f ? e : -1;
 }
 
 bool insideTheMouth(const Component& c, const FaceFrame& f) {
@@ -203,16 +250,53 @@ bool insideTheMouth(const Component& c, const FaceFrame& f) {
          glm::length(c.hi - c.lo) < 1.5f * f.span;
 }
 
-// In front of both eyes and reaching across them: a pair of glasses.
-bool spansTheEyes(const Component& c, const FaceFrame& f) {
-  float lo = INFINITY, hi = -INFINITY;
-  for (const glm::vec3& corner : {c.lo, c.hi}) {
-    const float x = glm::dot(corner - f.centre, f.right);
-    lo = std::min(lo, x), hi = std::max(hi, x);
+// The extent of a component's box along an axis, from `origin`.
+glm::vec2 boxExtent(const Component& c, const glm::vec3& origin, const glm::vec3& axis) {
+  glm::vec2 r(INFINITY, -INFINITY);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? c.hi.x : c.lo.x, corner & 2 ? c.hi.y : c.lo.y, corner & 4 ? c.hi.z : c.lo.z);
+    const float x = glm::dot(p - origin, axis);
+    r = {std::min(r.x, x), std::max(r.y, x)};
   }
-  const float eyes = glm::dot(f.eyeCentre[1] - f.centre, f.right);
-  const glm::vec3 d = c.centre - (f.eyeCentre[0] + f.eyeCentre[1]) * 0.5f;
-  return lo < -eyes && hi > eyes && glm::dot(d, f.forward) > 0.0f && std::abs(glm::dot(d, f.up)) < 0.3f * f.span;
+  return r;
+}
+
+// Reaching across both eyes, its front before them, at their height: a pair
+// of glasses (their arms may run back to the ears).
+bool spansTheEyes(const Component& c, const FaceFrame& f) {
+  const glm::vec3 eyes = (f.eyeCentre[0] + f.eyeCentre[1]) * 0.5f;
+  const float half = 0.5f * glm::distance(f.eyeCentre[0], f.eyeCentre[1]);
+  const glm::vec2 across = boxExtent(c, eyes, f.right), depth = boxExtent(c, eyes, f.forward);
+  const glm::vec2 height = boxExtent(c, eyes, f.up);
+  return across.x < -half && across.y > half && depth.y > 0.0f && height.y - height.x < f.span &&
+         std::abs(glm::dot(c.centre - eyes, f.up)) < 0.3f * f.span;
+}
+
+// Small and over a brow (a brow card), or over an eye's lid line (a lash
+// strip); both lie on landmarks, so that cannot tell them from the skin.
+std::optional<FacePart> hairOnTheFace(const Component& c, const FaceFrame& f) {
+  const glm::vec3 size = c.hi - c.lo;
+  if (std::max({size.x, size.y, size.z}) > 0.6f * f.span) return std::nullopt;
+  for (size_t side = 0; side < 2; ++side) {
+    const float toBrow = glm::distance(c.centre, f.browCentre[side]);
+    const float toEye = glm::distance(c.centre, f.eyeCentre[side]);
+    if (toBrow < toEye && toBrow < 0.25f * f.span) return FacePart::Brows;
+    if (toEye <= toBrow && toEye < 0.6f * f.eyeWidth[side]) return FacePart::Lashes;
+  }
+  return std::nullopt;
+}
+
+// Off the face's own skin, across the head and over its top: hair (or a
+// hat), long hair hanging far below the brows too.
+bool hairOnTheHead(const Component& c, const FaceFrame& f) {
+  const glm::vec3 brows = (f.browCentre[0] + f.browCentre[1]) * 0.5f;
+  const glm::vec2 across = boxExtent(c, brows, f.right), height = boxExtent(c, brows, f.up);
+  return across.y - across.x > 0.8f * f.span && height.y > 0.5f * f.span;
+}
+
+// Off the face's own skin and below the chin: the neck's and body's pieces, clothes.
+bool belowTheChin(const Component& c, const FaceFrame& f) {
+  return glm::dot(c.centre - f.landmarks->points[8], f.up) < -0.2f * f.span;
 }
 
 // What geometry says an unnamed component is.
@@ -221,7 +305,10 @@ FacePart partOfShape(const Component& c, const FaceFrame& f) {
   if (const int e = eyeballSide(c, f); e >= 0) return e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   if (insideTheMouth(c, f)) return FacePart::UpperTeeth;  // which row: splitTeethRows
   if (spansTheEyes(c, f)) return FacePart::Glasses;
-  return FacePart::Skin;
+  if (const std::optional<FacePart> part = hairOnTheFace(c, f)) return *part;
+  if (c.bearsLandmarks) return FacePart::Skin;
+  if (hairOnTheHead(c, f)) return FacePart::Hair;
+  return belowTheChin(c, f) ? FacePart::Other : FacePart::Skin;
 }
 
 std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
@@ -251,28 +338,47 @@ struct TeethPiece {
   std::vector<uint32_t> vertices;
 };
 
-// Keeps the larger sphere of each eye (the ball, not its iris or cornea).
+// Keeps the larger ball of each eye (not its iris or cornea): the fitted
+// sphere, or the box of a ball that is no sphere.
 void recordEyeball(FaceParts& parts, int side, const Component& c) {
-  if (c.radius > parts.eyeRadii[size_t(side)]) parts.eyeCentres[size_t(side)] = c.centre, parts.eyeRadii[size_t(side)] = c.radius;
+  const bool sphere = c.spread < 0.1f;
+  const float radius = sphere ? c.radius : 0.5f * std::max({c.hi.x - c.lo.x, c.hi.y - c.lo.y, c.hi.z - c.lo.z});
+  if (radius <= parts.eyeRadii[size_t(side)]) return;
+  parts.eyeCentres[size_t(side)] = sphere ? c.sphereCentre : (c.lo + c.hi) * 0.5f;
+  parts.eyeRadii[size_t(side)] = radius;
 }
 
-FacePart partOfComponent(std::optional<FacePart> named, const Component& c, const FaceFrame& f, FaceParts& parts) {
+FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool island, const FaceFrame& f,
+                         FaceParts& parts) {
   if (named == FacePart::EyeballRight || named == FacePart::EyeballLeft) {
     const int e = eyeOver(c, f);
     const int side = e >= 0 ? e : (glm::dot(c.centre - f.centre, f.right) > 0.0f ? 1 : 0);
     if (e >= 0) recordEyeball(parts, side, c);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  // A mesh called "Head" often holds the eyeballs as pieces of its own;
-  // only those are taken from shape (an island inside the mouth may be the
-  // mouth's own lining rather than teeth).
+  // A mesh called "Head" often holds the eyeballs, and the teeth as islands
+  // beside its largest piece (facecap's lower row): those are taken from
+  // shape. A primitive that is one piece inside the mouth is its lining.
   if (named && *named != FacePart::Skin) return *named;
   const int eye = eyeballSide(c, f);
   if (eye >= 0) {
     recordEyeball(parts, eye, c);
     return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  return named ? *named : partOfShape(c, f);
+  if (!named) return partOfShape(c, f);
+  return island && insideTheMouth(c, f) ? FacePart::UpperTeeth : FacePart::Skin;  // the row: splitTeethRows
+}
+
+// Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
+// an unnamed primitive that is glasses or hair as a whole is all of it.
+std::optional<FacePart> wholePrimitivePart(const std::vector<glm::vec3>& positions, const FaceFrame& f) {
+  std::vector<uint32_t> all(positions.size());
+  std::iota(all.begin(), all.end(), 0u);
+  const Component whole = describe(positions, std::move(all));
+  // Glasses rest on the nose, near its landmarks; the skin is too tall to pass.
+  if (spansTheEyes(whole, f)) return FacePart::Glasses;
+  if (!bearsLandmarks(positions, whole, f) && hairOnTheHead(whole, f)) return FacePart::Hair;
+  return std::nullopt;
 }
 
 void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
@@ -286,11 +392,21 @@ void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimiti
   uint32_t count = 0;
   const std::vector<uint32_t> label =
       components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
+  if (!named) {
+    if (const std::optional<FacePart> whole = wholePrimitivePart(p.positions, f)) {
+      out.assign(p.positions.size(), *whole);
+      return;
+    }
+  }
   std::vector<std::vector<uint32_t>> members(count);
   for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  size_t largest = 0;
+  for (const std::vector<uint32_t>& m : members) largest = std::max(largest, m.size());
   for (std::vector<uint32_t>& vertices : members) {
-    const Component c = describe(p.positions, std::move(vertices));
-    const FacePart part = partOfComponent(named, c, f, parts);
+    const bool island = vertices.size() < largest;
+    Component c = describe(p.positions, std::move(vertices));
+    if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
+    const FacePart part = partOfComponent(named, c, island, f, parts);
     for (uint32_t v : c.vertices) out[v] = part;
     if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});
   }
@@ -322,6 +438,31 @@ glm::vec2 extent(const PosedFace& posed, const TeethPiece& piece, const glm::vec
     r = {std::min(r.x, x), std::max(r.y, x)};
   }
   return r;
+}
+
+// The inside of the mouth as a piece of its own (a sac behind the lips):
+// it holds two or more of the other pieces (teeth, tongue) in its box, as
+// no row of teeth does. Skin: it moves with the lips and jaw.
+void takeOutLining(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  std::vector<glm::vec3> centres;  // in the face's axes
+  for (const TeethPiece& piece : teeth) {
+    glm::dvec3 sum(0.0);
+    for (uint32_t v : piece.vertices) sum += glm::dvec3(posed.primitives[piece.primitive].positions[v]);
+    const glm::vec3 c = glm::vec3(sum / double(piece.vertices.size())) - f.mouthCentre;
+    centres.emplace_back(glm::dot(c, f.right), glm::dot(c, f.up), glm::dot(c, f.forward));
+  }
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right), y = extent(posed, teeth[i], f.mouthCentre, f.up);
+    const glm::vec2 z = extent(posed, teeth[i], f.mouthCentre, f.forward);
+    size_t held = 0;
+    for (size_t k = 0; k < teeth.size(); ++k)
+      held += k != i && centres[k].x > x.x && centres[k].x < x.y && centres[k].y > y.x && centres[k].y < y.y &&
+              centres[k].z > z.x && centres[k].z < z.y;
+    if (held < 2) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Skin;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+    centres.erase(centres.begin() + std::ptrdiff_t(i));
+  }
 }
 
 // A tongue kept with the teeth (Ready Player Me's Wolf3D_Teeth): a piece as
@@ -361,17 +502,34 @@ void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth
     for (uint32_t v : piece.vertices) sum += along(piece, v, f.up);
     return float(sum / double(piece.vertices.size()));
   };
+  // Teeth in more than one primitive: a row each (facecap's upper row is a
+  // mesh, its lower row islands of the head), so an arch's tilt cannot mix
+  // them; their heights are the primitives' means.
+  std::vector<size_t> primitives;
+  for (const TeethPiece& piece : teeth) primitives.push_back(piece.primitive);
+  std::sort(primitives.begin(), primitives.end());
+  primitives.erase(std::unique(primitives.begin(), primitives.end()), primitives.end());
+  std::vector<glm::dvec2> byPrimitive(posed.primitives.size());  // height sum, count
+  for (const TeethPiece& piece : teeth)
+    byPrimitive[piece.primitive] += glm::dvec2(double(meanHeight(piece)) * double(piece.vertices.size()), double(piece.vertices.size()));
+  auto rowHeight = [&](const TeethPiece& piece) {
+    const glm::dvec2 h = byPrimitive[piece.primitive];
+    return primitives.size() > 1 ? float(h.x / h.y) : meanHeight(piece);
+  };
   std::vector<std::pair<float, double>> values;
-  for (const TeethPiece& piece : teeth) {
-    if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
-    else
-      for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
-  }
+  if (primitives.size() > 1)
+    for (size_t i : primitives) values.emplace_back(float(byPrimitive[i].x / byPrimitive[i].y), byPrimitive[i].y);
+  else
+    for (const TeethPiece& piece : teeth) {
+      if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
+      else
+        for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
+    }
   const float split = otsuSplit(values);
   std::array<glm::dvec3, 2> sums{};  // below, above: height, depth, vertex count
   for (const TeethPiece& piece : teeth)
     for (uint32_t v : piece.vertices) {
-      const bool above = teeth.size() > 1 ? meanHeight(piece) > split : along(piece, v, f.up) > split;
+      const bool above = teeth.size() > 1 ? rowHeight(piece) > split : along(piece, v, f.up) > split;
       sums[above] += glm::dvec3(along(piece, v, f.up), along(piece, v, f.forward), 1.0);
       parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
     }
@@ -410,6 +568,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
   for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)
