@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "autorig/face_frame.h"
-#include "autorig/face_parts.h"
 #include "autorig/target_transfer.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -41,30 +40,17 @@ const Rigged* rigFacecap() {
   if (tried) return cached ? &*cached : nullptr;
   tried = true;
   eng::Result<eng::Model> truth = eng::loadModel(testing_support::sharedDir() / "assets/facecap.glb");
-  eng::Result<autorig::FaceLandmarks> landmarks =
-      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/facecap.landmarks.json");
-  std::optional<eng::Model> head = transfer_fixture::loadHead();
-  if (!truth || !landmarks || !head) {
-    ADD_FAILURE() << (truth ? landmarks ? "head" : landmarks.error().message : truth.error().message);
+  if (!truth) {
+    ADD_FAILURE() << truth.error().message;
     return nullptr;
   }
-  static eng::Model headModel = std::move(*head);
-  static const autorig::SourceFace source = transfer_fixture::headSource(headModel);
-  eng::Model face = *truth;
-  face.animations.clear();  // its take animates the 52 targets taken away
-  for (eng::Mesh& mesh : face.meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
+  eng::Model face = transfer_fixture::stripped(*truth);
   autorig::PosedFace posed = autorig::poseAtRest(face);
-  const autorig::FaceParts parts = autorig::findFaceParts(face, posed, *landmarks);
-  eng::Result<autorig::TransferResult> result = autorig::transferTargets(source, face, posed, *landmarks, parts);
-  if (!result) {
-    ADD_FAILURE() << result.error().message;
-    return nullptr;
-  }
-  cached = Rigged{std::move(*truth), std::move(result->model), std::move(posed), *landmarks, result->report};
+  autorig::FaceLandmarks landmarks;
+  std::optional<autorig::TransferResult> result =
+      transfer_fixture::rigWithFixtureLandmarks(face, posed, "facecap.landmarks.json", &landmarks);
+  if (!result) return nullptr;
+  cached = Rigged{std::move(*truth), std::move(result->model), std::move(posed), landmarks, result->report};
   // For a person to look at (facial sheet -m ..., facial render ... --weight jawOpen=1).
   const auto out = testing_support::freshTempDir("facecap_ground_truth") / "facecap-rigged.glb";
   eng::Result<void> saved = eng::saveModel(cached->rigged, out);
@@ -146,16 +132,10 @@ TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
   FACIAL_REQUIRE_SHARED();
   eng::Result<eng::Model> face = eng::loadModel(testing_support::sharedDir() / "assets/facecap.glb");
   ASSERT_TRUE(face) << face.error().message;
-  eng::Result<autorig::FaceLandmarks> landmarks =
-      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/facecap.landmarks.json");
-  ASSERT_TRUE(landmarks) << landmarks.error().message;
-  std::optional<eng::Model> head = transfer_fixture::loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = transfer_fixture::headSource(*head);
   const autorig::PosedFace posed = autorig::poseAtRest(*face);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(
-      source, *face, posed, *landmarks, autorig::findFaceParts(*face, posed, *landmarks));
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  const std::optional<autorig::TransferResult> rigged =
+      transfer_fixture::rigWithFixtureLandmarks(*face, posed, "facecap.landmarks.json");
+  ASSERT_TRUE(rigged);
   const autorig::TransferReport& report = rigged->report;
   EXPECT_EQ(report.kept.size(), 36u);  // every ARKit shape the units make: facecap has all 52
   EXPECT_NE(std::find(report.kept.begin(), report.kept.end(), "mouthSmileLeft"), report.kept.end());

@@ -10,16 +10,7 @@ namespace {
 
 using transfer_fixture::headSource;
 using transfer_fixture::loadHead;
-
-// The head without any target: a face to rig.
-eng::Model stripped(eng::Model model) {
-  for (eng::Mesh& mesh : model.meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  return model;
-}
+using transfer_fixture::stripped;
 
 TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   std::optional<eng::Model> head = loadHead();
