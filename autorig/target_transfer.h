@@ -20,7 +20,8 @@
 namespace autorig {
 
 // The face the targets come from (the built-in head, data/head.glb), with its
-// landmarks and parts found the same way as the target face's.
+// landmarks and parts: autorig::builtInSource (autorig/builtin_source.h) sets
+// it up, its landmarks where dlib puts them on the head.
 struct SourceFace {
   const eng::Model* model = nullptr;
   PosedFace posed;
@@ -31,6 +32,10 @@ struct SourceFace {
 struct TransferOptions {
   bool actionUnits = true;  // the head's AU targets (AU1_InnerBrowRaiser, ...)
   bool arkit = true;        // the ARKit 52 built from them (jawOpen, mouthSmileLeft, ...)
+  // Bounded memory: every made target holds a displacement per skin vertex
+  // (63 targets of a 600k-vertex face are about 1.4 GB with their normals).
+  // A face over this is refused with its count.
+  size_t maxSkinVertices = 600000;
 };
 
 struct TransferReport {

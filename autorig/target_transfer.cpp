@@ -1,0 +1,519 @@
+#include "autorig/target_transfer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <string_view>
+
+#include <Eigen/Dense>
+#include <glm/gtx/compatibility.hpp>
+
+#include "autorig/arkit_from_units.h"
+#include "autorig/dense_correspondence.h"
+#include "autorig/face_frame.h"
+#include "autorig/jaw_hinge.h"
+#include "engine/scene/normals.h"
+#include "facial/runtime/rig/arkit_names.h"
+
+namespace autorig {
+namespace {
+
+// Landmarks farther than this from the face's skin (eye spans) are off it;
+// more than kMaxOffSurface of them and the landmarks are not this face's.
+constexpr float kOffSurface = 0.2f;
+constexpr size_t kMaxOffSurface = 10;
+// The landmarks' smallest spread (across their best plane) against their
+// largest, below which they are flat; a face's is about 0.2.
+constexpr double kMinDepth = 0.02;
+// A matched target vertex takes the whole displacement up to kFullGap from
+// the warped source and none beyond the correspondence's maxGap (eye spans):
+// lashes a little off the skin follow, a shoulder does not.
+constexpr float kFullGap = 0.05f;
+// The lid constraint: within kLidInner eyeball radii of the centre a vertex
+// keeps its distance to it; it fades out by kLidOuter.
+constexpr float kLidInner = 1.25f, kLidOuter = 1.7f;
+// Units that open the jaw: the lower teeth and tongue turn with them.
+constexpr std::array<std::string_view, 2> kJawUnits{"AU26_JawDrop", "AU27_MouthStretch"};
+// Finite-difference step of the warp's Jacobian, in source eye spans (about
+// a millimetre: smooth over the biharmonic kernel's kinks at control points).
+constexpr float kJacobianStep = 0.01f;
+// The warp's local stretch is kept within this factor of its overall scale:
+// where grown pairs crowd, the RBF can fold, and a folded Jacobian would send
+// a unit's displacement the wrong way or tenfold.
+constexpr float kMaxStretch = 2.0f;
+
+bool sameName(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+std::string describeLandmarks(const char* whose) { return std::string(whose) + " landmarks: "; }
+
+eng::Result<void> checkLandmarks(const FaceLandmarks& landmarks, const char* whose) {
+  glm::dvec3 mean(0.0);
+  for (size_t i = 0; i < kLandmarkCount; ++i) {
+    const glm::vec3& p = landmarks.points[i];
+    if (!std::isfinite(p.x + p.y + p.z))
+      return eng::makeError(eng::ErrorKind::InvalidArgument,
+                            describeLandmarks(whose) + "point " + std::to_string(i) + " of 68 is not finite");
+    mean += glm::dvec3(p);
+  }
+  mean /= double(kLandmarkCount);
+  double spread = 0.0;
+  for (const glm::vec3& p : landmarks.points) spread = std::max(spread, glm::length(glm::dvec3(p) - mean));
+  const float eyeSpan = glm::length(landmarks.points[45] - landmarks.points[36]);
+  if (!(spread > 1e-6) || !(eyeSpan > 1e-3f * float(spread)))
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          describeLandmarks(whose) + "collapsed: the 68 points lie within " + std::to_string(spread) +
+                              " of their centre, the eye corners 36 and 45 " + std::to_string(eyeSpan) + " apart");
+  // A face has depth (the nose stands out of the eyes' plane): points in one
+  // plane are a picture, a sheet or a mistake.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const glm::vec3& p : landmarks.points) {
+    const Eigen::Vector3d d(p.x - mean.x, p.y - mean.y, p.z - mean.z);
+    covariance += d * d.transpose();
+  }
+  const Eigen::Vector3d sigma = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues();
+  if (!(std::sqrt(std::max(sigma(0), 0.0)) > kMinDepth * std::sqrt(sigma(2))))
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          describeLandmarks(whose) + "flat: the 68 points lie in one plane (depth " +
+                              std::to_string(std::sqrt(std::max(sigma(0), 0.0))) + " against a spread of " +
+                              std::to_string(std::sqrt(sigma(2))) + "): not a face");
+  return {};
+}
+
+std::vector<std::string> sourceUnits(const eng::Model& model) {
+  std::vector<std::string> units;
+  for (const eng::Mesh& mesh : model.meshes)
+    for (const std::string& name : mesh.targetNames)
+      if (name.size() > 2 && name.starts_with("AU") && std::isdigit(static_cast<unsigned char>(name[2])) &&
+          std::find(units.begin(), units.end(), name) == units.end())
+        units.push_back(name);
+  return units;
+}
+
+// Each unit's world displacement of every source vertex.
+std::vector<std::vector<glm::vec3>> sourceDeltas(const SourceFace& source, const FaceSurface& surface,
+                                                 const std::vector<std::string>& units) {
+  std::vector<std::vector<glm::vec3>> deltas(units.size(), std::vector<glm::vec3>(surface.positions.size(), glm::vec3(0.0f)));
+  for (size_t i = 0; i < surface.vertices.size(); ++i) {
+    const PosedPrimitive& posed = source.posed.primitives[surface.vertices[i].primitive];
+    const eng::Mesh& mesh = source.model->meshes[posed.mesh];
+    const eng::Primitive& primitive = mesh.primitives[posed.primitive];
+    const uint32_t v = surface.vertices[i].vertex;
+    const glm::mat3 toWorld = glm::inverse(posed.worldToLocal[v]);
+    for (size_t u = 0; u < units.size(); ++u) {
+      auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), units[u]);
+      const size_t t = size_t(it - mesh.targetNames.begin());
+      if (it == mesh.targetNames.end() || t >= primitive.targets.size()) continue;
+      const std::vector<glm::vec3>& local = primitive.targets[t].positions;
+      if (v < local.size()) deltas[u][i] = toWorld * local[v];
+    }
+  }
+  return deltas;
+}
+
+glm::vec3 atMatch(const std::vector<glm::vec3>& perVertex, const FaceSurface& surface, const ClosestPoint& match) {
+  const auto& t = surface.triangles[match.triangle];
+  return match.barycentric.x * perVertex[t[0]] + match.barycentric.y * perVertex[t[1]] + match.barycentric.z * perVertex[t[2]];
+}
+
+// Too many landmarks away from the face's skin: they were found on another
+// face, on hair or glasses, or typed wrong.
+eng::Result<void> checkOnSurface(const FaceSurface& target, const FaceLandmarks& landmarks, const LandmarkFrame& frame) {
+  const TriangleGrid grid(target.positions, target.triangles, {});
+  size_t off = 0, worst = 0;
+  float worstGap = 0.0f;
+  for (size_t i = 0; i < kLandmarkCount; ++i) {
+    const ClosestPoint hit = grid.closest(landmarks.points[i], FaceRegion::None, kOffSurface * frame.eyeSpan());
+    if (hit.found) continue;
+    ++off;
+    worst = i;
+    worstGap = kOffSurface;
+  }
+  if (off > kMaxOffSurface)
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          std::to_string(off) + " of 68 landmarks are off the face's skin (farther than " +
+                              std::to_string(worstGap) + " eye spans; the last is point " + std::to_string(worst) +
+                              "): they do not belong to this face");
+  return {};
+}
+
+// The target seen the other way round from the source (a face from the
+// back, or left and right swapped): its forward turns against the source's.
+eng::Result<void> checkFacing(const SourceFace& source, const FaceLandmarks& landmarks) {
+  const Similarity fit = ENG_TRY_VALUE(fitSimilarity(source.landmarks.points, landmarks.points));
+  const glm::vec3 carried = fit.rotation * LandmarkFrame(source.landmarks).forward();
+  if (glm::dot(carried, LandmarkFrame(landmarks).forward()) < 0.0f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          "landmarks: the face's 68 points are mirrored (left and right swapped, or seen from the back)");
+  return {};
+}
+
+// The Jacobian with its singular values clamped to [scale / kMaxStretch,
+// scale * kMaxStretch] and a reflection (a fold) undone.
+glm::mat3 tamed(const glm::mat3& j, float scale) {
+  Eigen::Matrix3f m;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) m(r, c) = j[c][r];
+  Eigen::JacobiSVD<Eigen::Matrix3f> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Vector3f sigma = svd.singularValues().cwiseMax(scale / kMaxStretch).cwiseMin(scale * kMaxStretch);
+  Eigen::Matrix3f u = svd.matrixU();
+  if (u.determinant() * svd.matrixV().determinant() < 0.0f) u.col(2) = -u.col(2);
+  const Eigen::Matrix3f out = u * sigma.asDiagonal() * svd.matrixV().transpose();
+  glm::mat3 result;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) result[c][r] = out(r, c);
+  return result;
+}
+
+struct Moved {
+  std::vector<FaceSurface::VertexRef> vertices;  // skin-following vertices, then lower teeth and tongue
+  std::vector<glm::vec3> positions;
+  std::vector<NamedDeltas> units;
+};
+
+// Lids slide over the eyeball: a vertex near an eye keeps its distance to
+// the eye's centre, so a blink closes along the ball instead of through it.
+glm::vec3 alongEyeball(const glm::vec3& p, const glm::vec3& delta, const FaceParts& parts) {
+  glm::vec3 result = delta;
+  for (size_t e = 0; e < 2; ++e) {
+    const float r = parts.eyeRadii[e];
+    if (!(r > 0.0f)) continue;
+    const glm::vec3 c = parts.eyeCentres[e];
+    const float d = glm::length(p - c);
+    if (d >= kLidOuter * r || d < 1e-6f) continue;
+    const glm::vec3 moved = p + delta - c;
+    const float length = glm::length(moved);
+    if (length < 1e-6f) continue;
+    const glm::vec3 onSphere = c + moved * (d / length) - p;
+    result = glm::mix(delta, onSphere, 1.0f - glm::smoothstep(kLidInner * r, kLidOuter * r, d));
+  }
+  return result;
+}
+
+}  // namespace
+
+namespace {
+
+// The lid landmarks of each eye (right, left): upper pair, lower pair.
+constexpr std::array<std::array<size_t, 4>, 2> kLidLandmarks{{{37, 38, 41, 40}, {43, 44, 47, 46}}};
+// A unit closes an eye when it turns the upper lid this share of the way to the lower.
+constexpr float kClosing = 0.2f;
+// Around an eye (eyeball radii from its centre) a closing unit is all turn; beyond, the carried displacement.
+constexpr float kLidTurnInner = 1.25f, kLidTurnOuter = 1.75f;
+
+struct EyeLids {
+  JawHinge axis;  // through the eye's centre, towards the subject's left
+  glm::vec3 upper{0.0f}, lower{0.0f};  // the lids' margins (landmark pair middles)
+  float radius = 0.0f;
+  float openAngle() const { return std::abs(hingeAngle(axis, upper, lower - upper)); }
+};
+
+// The lids' margins: where the skin has an opening over the eye, its rim's
+// middle above and below the ball (the landmarks sit on the visible edge,
+// a little inside the margins); else the lid landmarks.
+EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t eye, const FaceSurface& surface,
+                const std::vector<FaceRegion>& regions) {
+  const auto& l = kLidLandmarks[eye];
+  const LandmarkFrame frame(landmarks);
+  EyeLids lids{.axis = {.pivot = parts.eyeCentres[eye], .axis = frame.side()},
+               .upper = (landmarks.points[l[0]] + landmarks.points[l[1]]) * 0.5f,
+               .lower = (landmarks.points[l[2]] + landmarks.points[l[3]]) * 0.5f,
+               .radius = parts.eyeRadii[eye]};
+  std::unordered_map<uint64_t, int> edges;
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
+      ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+    }
+  const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
+  const FaceRegion lower = opposite(upper);
+  const float middle = frame.sideOf(lids.axis.pivot);
+  float bestUpper = std::numeric_limits<float>::max(), bestLower = bestUpper;
+  glm::vec3 rimUpper(0.0f), rimLower(0.0f);
+  for (const auto& [edge, count] : edges) {
+    if (count != 1) continue;
+    for (const uint32_t v : {uint32_t(edge >> 32), uint32_t(edge & 0xffffffffu)}) {
+      const glm::vec3& p = surface.positions[v];
+      if (glm::length(p - lids.axis.pivot) > 1.6f * lids.radius || glm::dot(p - lids.axis.pivot, frame.forward()) < 0.0f) continue;
+      const float off = std::abs(frame.sideOf(p) - middle);
+      if (regions[v] == upper && off < bestUpper) bestUpper = off, rimUpper = p;
+      if (regions[v] == lower && off < bestLower) bestLower = off, rimLower = p;
+    }
+  }
+  if (bestUpper < 0.1f && bestLower < 0.1f) lids.upper = rimUpper, lids.lower = rimLower;
+  return lids;
+}
+
+// A closing unit as the upper lid turning over the eyeball about its centre
+// (so the lid slides along the ball and meets the lower lid): how far each
+// source vertex follows its own lid's turn is carried over as a number, and
+// the target's lid turns as large a share of its own opening as the
+// source's does.
+using BothEyes = std::array<EyeLids, 2>;  // right, left
+
+void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const TriangleGrid& sourceGrid,
+               const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
+               const Correspondence& corr, std::vector<glm::vec3>& deltas) {
+  for (size_t eye = 0; eye < 2; ++eye) {
+    const EyeLids& from = sourceEyes[eye];
+    const EyeLids& to = targetEyes[eye];
+    if (!(from.radius > 0.0f) || !(to.radius > 0.0f) || !(from.openAngle() > 0.0f)) continue;
+    const ClosestPoint margin = sourceGrid.closest(from.upper, FaceRegion::None, 1e9f);
+    if (!margin.found) continue;
+    const float angle = hingeAngle(from.axis, from.upper, atMatch(raw, src, margin));
+    const float share = std::abs(angle) / from.openAngle();
+    if (share < kClosing) continue;
+    std::vector<glm::vec3> follow(src.positions.size(), glm::vec3(0.0f));
+    for (size_t i = 0; i < src.positions.size(); ++i) {
+      const glm::vec3 full = turnAboutHinge(from.axis, angle, src.positions[i]);
+      const float energy = glm::dot(full, full);
+      if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    }
+    const float targetAngle = std::copysign(share * to.openAngle(), angle);
+    for (size_t v = 0; v < tgt.positions.size(); ++v) {
+      const float near = 1.0f - glm::smoothstep(kLidTurnInner * to.radius, kLidTurnOuter * to.radius,
+                                                glm::length(tgt.positions[v] - to.axis.pivot));
+      if (near <= 0.0f || !corr.matches[v].found) continue;
+      const float f = atMatch(follow, src, corr.matches[v]).x;
+      deltas[v] = glm::mix(deltas[v], f * turnAboutHinge(to.axis, targetAngle, tgt.positions[v]), near);
+    }
+  }
+}
+
+struct JawTurn {
+  JawHinge source, target;
+  float angle = 0.0f;  // the source's chin about its hinge
+};
+
+// A jaw unit split on the source: how far each vertex follows its jaw's
+// turn (its displacement along the turn's, 0 above the lips, 1 on the chin)
+// and what is left (lips parting further than the jaw turns them).
+struct JawSplit {
+  std::vector<glm::vec3> follow;    // the share in x (a number carried as a vector)
+  std::vector<glm::vec3> residual;  // carried like any unit
+};
+
+JawSplit splitJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw) {
+  JawSplit split{std::vector<glm::vec3>(src.positions.size(), glm::vec3(0.0f)), raw};
+  for (size_t i = 0; i < src.positions.size(); ++i) {
+    const glm::vec3 full = turnAboutHinge(turn.source, turn.angle, src.positions[i]);
+    const float energy = glm::dot(full, full);
+    if (!(energy > 0.0f)) continue;
+    split.follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    split.residual[i] -= split.follow[i].x * full;
+  }
+  return split;
+}
+
+// The turn of a jaw unit about the target's hinge, added to its carried
+// residual: so the lips part along the mouth line and the chin swings
+// instead of stretching. What the source has nothing close to below the lips
+// (the inside of a deeper mouth), the lower teeth and the tongue turn fully.
+void turnWithJaw(const JawTurn& turn, const JawSplit& split, const FaceSurface& src, const FaceSurface& tgt,
+                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
+                 std::vector<glm::vec3>& deltas) {
+  for (size_t v = 0; v < tgt.positions.size(); ++v) {
+    const ClosestPoint& match = corr.matches[v];
+    const float matched = match.found ? 1.0f - glm::smoothstep(fullGap, maxGap, match.distance) : 0.0f;
+    float share = match.found ? matched * atMatch(split.follow, src, match).x : 0.0f;
+    if (corr.targetRegions[v] == FaceRegion::LowerLip) share += 1.0f - matched;
+    deltas[v] += share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
+  }
+  for (size_t j = 0; j < jaw.positions.size(); ++j)
+    deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
+}
+
+Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const FaceSurface& jaw,
+                 const Correspondence& corr, const std::vector<std::string>& units, const FaceLandmarks& landmarks,
+                 const FaceParts& parts) {
+  const LandmarkFrame sourceFrame(source.landmarks), targetFrame(landmarks);
+  const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
+  std::vector<glm::mat3> jacobians(src.positions.size());
+  for (size_t i = 0; i < src.positions.size(); ++i)
+    jacobians[i] = tamed(corr.warp.jacobian(src.positions[i], kJacobianStep * sourceFrame.eyeSpan()), corr.warp.similarity().scale);
+
+  Moved moved;
+  moved.vertices = tgt.vertices;
+  moved.positions = tgt.positions;
+  moved.vertices.insert(moved.vertices.end(), jaw.vertices.begin(), jaw.vertices.end());
+  moved.positions.insert(moved.positions.end(), jaw.positions.begin(), jaw.positions.end());
+  const float maxGap = CorrespondenceOptions{}.maxGap * targetFrame.eyeSpan();
+  const float fullGap = kFullGap * targetFrame.eyeSpan();
+
+  // The source's chin and its jaw hinge give each jaw unit's angle.
+  const TriangleGrid sourceGrid(src.positions, src.triangles, {});
+  const ClosestPoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
+  const JawHinge sourceHinge = estimateJawHinge(source.landmarks), targetHinge = estimateJawHinge(landmarks);
+
+  const BothEyes sourceEyes{eyeLids(source.landmarks, source.parts, 0, src, corr.sourceRegions),
+                            eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions)};
+  const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions),
+                            eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
+  std::vector<glm::vec3> carried(src.positions.size());
+  for (size_t u = 0; u < units.size(); ++u) {
+    const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end() && chin.found;
+    const JawTurn turn{sourceHinge, targetHinge, jawUnit ? hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin)) : 0.0f};
+    const JawSplit split = jawUnit ? splitJaw(turn, src, raw[u]) : JawSplit{};
+    const std::vector<glm::vec3>& moving = jawUnit ? split.residual : raw[u];
+    for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * moving[i];
+    NamedDeltas unit{units[u], std::vector<glm::vec3>(moved.positions.size(), glm::vec3(0.0f))};
+    for (size_t v = 0; v < tgt.positions.size(); ++v) {
+      const ClosestPoint& match = corr.matches[v];
+      if (!match.found) continue;
+      const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
+      unit.deltas[v] = weight * atMatch(carried, src, match);
+    }
+    closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
+    for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
+    if (jawUnit) turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+    moved.units.push_back(std::move(unit));
+  }
+  return moved;
+}
+
+bool faceHas(const eng::Model& face, std::string_view name, bool arkit) {
+  const std::optional<uint32_t> shape = arkit ? facial::arkitIndex(name) : std::nullopt;
+  for (const eng::Mesh& mesh : face.meshes)
+    for (const std::string& existing : mesh.targetNames) {
+      if (sameName(existing, name)) return true;
+      if (shape && facial::arkitIndex(existing) == shape) return true;
+    }
+  return false;
+}
+
+// A new last target on mesh `mesh`: every weights channel animating it gets
+// a zero weight for it in each key (in each of a cubic spline's triples).
+void widenWeightChannels(eng::Model& model, size_t mesh) {
+  for (eng::Animation& animation : model.animations)
+    for (eng::WeightsChannel& channel : animation.channels) {
+      if (channel.mesh != int(mesh) || channel.targetCount == 0) continue;
+      const size_t n = channel.targetCount;
+      std::vector<float> widened;
+      widened.reserve(channel.values.size() / n * (n + 1));
+      for (size_t i = 0; i + n <= channel.values.size(); i += n) {
+        widened.insert(widened.end(), channel.values.begin() + long(i), channel.values.begin() + long(i + n));
+        widened.push_back(0.0f);
+      }
+      channel.values = std::move(widened);
+      channel.targetCount = n + 1;
+    }
+}
+
+// Appends `target` to every mesh it moves: displacements into each vertex's
+// mesh space, normal displacements from the smooth normals before and after.
+// Rest normals as computeSmoothNormals gives them, per mesh and primitive,
+// made once and shared by every target written.
+using RestNormals = std::vector<std::vector<std::vector<glm::vec3>>>;
+
+void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target,
+                 RestNormals& restNormals) {
+  constexpr float kStill = 1e-7f;
+  std::vector<std::vector<size_t>> byMesh(model.meshes.size());
+  for (size_t k = 0; k < moved.vertices.size(); ++k)
+    if (glm::length(target.deltas[k]) > kStill)
+      byMesh[posed.primitives[moved.vertices[k].primitive].mesh].push_back(k);
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    if (byMesh[m].empty()) continue;
+    eng::Mesh& mesh = model.meshes[m];
+    std::vector<eng::MorphTarget> added(mesh.primitives.size());
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) added[p].positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
+    for (size_t k : byMesh[m]) {
+      const PosedPrimitive& pp = posed.primitives[moved.vertices[k].primitive];
+      added[pp.primitive].positions[moved.vertices[k].vertex] = pp.toLocal(moved.vertices[k].vertex, target.deltas[k]);
+    }
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      eng::Primitive& primitive = mesh.primitives[p];
+      if (primitive.normals.size() != primitive.vertexCount()) continue;
+      std::vector<glm::vec3> after(primitive.positions);
+      bool any = false;
+      for (size_t v = 0; v < after.size(); ++v) after[v] += added[p].positions[v], any = any || added[p].positions[v] != glm::vec3(0.0f);
+      if (!any) continue;
+      restNormals.resize(model.meshes.size());
+      restNormals[m].resize(mesh.primitives.size());
+      std::vector<glm::vec3>& before = restNormals[m][p];
+      if (before.empty()) before = eng::computeSmoothNormals(primitive.positions, primitive.indices);
+      const std::vector<glm::vec3> turned = eng::computeSmoothNormals(after, primitive.indices);
+      added[p].normals.resize(after.size());
+      for (size_t v = 0; v < after.size(); ++v) added[p].normals[v] = turned[v] - before[v];
+    }
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) mesh.primitives[p].targets.push_back(std::move(added[p]));
+    mesh.targetNames.push_back(target.name);
+    mesh.defaultWeights.push_back(0.0f);
+    widenWeightChannels(model, m);
+  }
+}
+
+}  // namespace
+
+eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng::Model& face, const PosedFace& posed,
+                                            const FaceLandmarks& landmarks, const FaceParts& parts,
+                                            const TransferOptions& options) {
+  if (!source.model) return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: no source face");
+  ENG_TRY(checkLandmarks(source.landmarks, "source"));
+  ENG_TRY(checkLandmarks(landmarks, "face"));
+  const std::vector<std::string> units = sourceUnits(*source.model);
+  if (units.empty()) {
+    size_t targets = 0;
+    for (const eng::Mesh& mesh : source.model->meshes) targets += mesh.targetNames.size();
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          "target transfer: the source has no action units (AU... targets) among its " +
+                              std::to_string(targets) + " targets on " + std::to_string(source.model->meshes.size()) + " meshes");
+  }
+  const FaceSurface src = gatherSurface(*source.model, source.posed, source.parts, {FacePart::Skin});
+  const FaceSurface tgt = gatherSurface(face, posed, parts, {FacePart::Skin, FacePart::Lashes, FacePart::Brows});
+  if (src.triangles.empty())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the source has no skin triangles (" +
+                                                               std::to_string(src.positions.size()) + " skin vertices)");
+  if (tgt.triangles.empty())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the face has no skin triangles (" +
+                                                               std::to_string(tgt.positions.size()) + " skin vertices of " +
+                                                               std::to_string(posed.vertexCount()) + ")");
+  if (tgt.positions.size() > options.maxSkinVertices)
+    return eng::makeError(eng::ErrorKind::TooLarge,
+                          "target transfer: the face has " + std::to_string(tgt.positions.size()) +
+                              " skin vertices, more than " + std::to_string(options.maxSkinVertices) +
+                              ": simplify it first (a face reads at 10-50k)");
+  const LandmarkFrame frame(landmarks);
+  ENG_TRY(checkOnSurface(tgt, landmarks, frame));
+  ENG_TRY(checkFacing(source, landmarks));
+  eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, landmarks);
+  if (!matched) return matched.error().prefixed("target transfer: ");
+  const Correspondence corr = std::move(*matched);
+  const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
+  const Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
+
+  TransferResult result{.model = face, .report = {}};
+  TransferReport& report = result.report;
+  std::vector<NamedDeltas> made;
+  if (options.actionUnits)
+    for (const NamedDeltas& unit : moved.units) made.push_back(unit);
+  if (options.arkit) {
+    std::vector<std::string> unmade;
+    for (NamedDeltas& shape : arkitFromUnits(moved.units, moved.positions, frame, unmade)) made.push_back(std::move(shape));
+    if (!unmade.empty()) {
+      std::string line = std::to_string(unmade.size()) + " ARKit shapes have no action unit to be made from:";
+      for (const std::string& name : unmade) line += " " + name;
+      report.warnings.push_back(line);
+    }
+  }
+  RestNormals restNormals;
+  for (const NamedDeltas& target : made) {
+    if (faceHas(face, target.name, !target.name.starts_with("AU"))) {
+      report.kept.push_back(target.name);
+      continue;
+    }
+    writeTarget(result.model, posed, moved, target, restNormals);
+    report.made.push_back(target.name);
+  }
+  if (jaw.positions.empty()) report.warnings.push_back("no lower teeth or tongue found: the jaw units move the skin only");
+  if (!(parts.eyeRadii[0] > 0.0f) || !(parts.eyeRadii[1] > 0.0f))
+    report.warnings.push_back("no eyeball size known: the lids follow the source's without sliding over the eyes");
+  return result;
+}
+
+}  // namespace autorig
