@@ -13,6 +13,7 @@ GraphBuilder::GraphBuilder(ChannelSet channels, size_t maxBytes) : budget_(maxBy
 }
 
 ParameterIndex GraphBuilder::addParameter(std::string name, ParameterType type, float defaultValue) {
+  definition_.parameterIndex_.add(name, static_cast<ParameterIndex>(definition_.parameters_.size()));
   definition_.parameters_.push_back({std::move(name), type, type == ParameterType::Trigger ? 0.0f : defaultValue});
   return static_cast<ParameterIndex>(definition_.parameters_.size() - 1);
 }
@@ -32,14 +33,13 @@ std::optional<ParameterIndex> GraphBuilder::findParameter(std::string_view name)
 }
 
 uint32_t GraphBuilder::addTimeline(Timeline timeline) {
+  definition_.timelineIndex_.add(timeline.name, static_cast<uint32_t>(definition_.timelines_.size()));
   definition_.timelines_.push_back(std::move(timeline));
   return static_cast<uint32_t>(definition_.timelines_.size() - 1);
 }
 
 std::optional<uint32_t> GraphBuilder::findTimeline(std::string_view name) const {
-  for (uint32_t i = 0; i < definition_.timelines_.size(); ++i)
-    if (definition_.timelines_[i].name == name) return i;
-  return std::nullopt;
+  return definition_.timelineIndex_.find(name);
 }
 
 NodeIndex GraphBuilder::add(NodeData node, std::string name, std::string origin) {
@@ -58,6 +58,7 @@ NodeIndex GraphBuilder::add(NodeData node, std::string name, std::string origin)
     overBudget_ = ok.error().prefixed(origin + ": ");
     return kNoNode;
   }
+  if (!name.empty()) definition_.nodeIndex_.add(name, index);
   definition_.nodes_.push_back({std::move(name), std::move(origin), std::move(node)});
   return index;
 }
