@@ -1,0 +1,211 @@
+#include "app/face_autorig.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "app/face_landmark_finder.h"
+#include "app/face_setup.h"
+#include "autorig/face_parts.h"
+#include "autorig/posed_face.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
+#include "engine/scene/weights.h"
+#include "facial/runtime/rig/rig_mapping.h"
+
+namespace app {
+namespace {
+
+std::string countOf(size_t n, std::string_view what) { return std::to_string(n) + " " + std::string(what); }
+
+std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalibration>& rig) {
+  const std::vector<std::string> names = eng::WeightLayout(model).names();
+  if (names.empty()) return "it has no morph targets";
+  if (!rig) {
+    std::string sample;
+    for (size_t i = 0; i < names.size() && i < 4; ++i) sample += (i ? ", " : "") + names[i];
+    return "no scheme recognises its " + countOf(names.size(), "target names") + " (" + sample +
+           (names.size() > 4 ? ", ..." : "") + ")";
+  }
+  const facial::RigMappingReport& report = rig->rig.report();
+  if (report.scheme == facial::RigScheme::Visemes)
+    return "its targets are lip-sync visemes only (" + report.detail + ")";
+  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners (" +
+         report.detail + ")";
+}
+
+// FNV-1a, 64 bits: a cache key, not a checksum against tampering.
+struct Fnv1a {
+  uint64_t h = 1469598103934665603ull;
+  void add(std::string_view bytes) {
+    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  }
+};
+
+eng::Result<std::string> readBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return eng::makeError(eng::ErrorKind::NotFound, path.string() + ": cannot be read");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::set<std::string> targetNameSet(const eng::Model& model) {
+  std::set<std::string> names;
+  for (const eng::Mesh& mesh : model.meshes) names.insert(mesh.targetNames.begin(), mesh.targetNames.end());
+  return names;
+}
+
+// made: names `rigged` has that `face` has not; kept: the face's own.
+void diffTargets(const eng::Model& face, const eng::Model& rigged, CachedAutorig& out) {
+  const std::set<std::string> before = targetNameSet(face), after = targetNameSet(rigged);
+  out.kept.assign(before.begin(), before.end());
+  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(out.made));
+}
+
+}  // namespace
+
+std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
+                          const std::filesystem::path& rigmapFile) {
+  if (face.format != importers::FaceFormat::Gltf || face.vrm) return {};
+  facial::RigMappingOptions options;
+  options.modelName = modelNameOf(face.model.sourcePath);
+  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  options.rigmapFile = rigmapFile;
+  if (!facial::rigMapFileFor(options).empty()) return {};
+  if (!rig) return rig.error().kind == eng::ErrorKind::Unsupported ? reasonOf(face.model, rig) : std::string();
+  return facial::showsEmotions(rig->rig) ? std::string() : reasonOf(face.model, rig);
+}
+
+std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,
+                            const eng::Result<facial::RigCalibration>& rig) {
+  return rig ? model.string() + ": cannot show emotions: " + reason : rig.error().message;
+}
+
+eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
+  FaceAutorig rigger;
+  rigger.headPath_ = head.empty() ? defaultModelPath() : head;
+  auto loaded = importers::loadFace(rigger.headPath_, {.dressForDisplay = true});
+  if (!loaded) return loaded.error();
+  rigger.head_ = std::make_unique<importers::LoadedFace>(std::move(*loaded));
+  // The head's landmarks are found as any face's (the same picture, detector
+  // and cast), so their biases cancel out in the warp.
+  auto landmarks = faceLandmarks(*rigger.head_, rigger.headPath_.string());
+  if (!landmarks) return landmarks.error().prefixed("the source head: ");
+  rigger.source_.model = &rigger.head_->model;
+  rigger.source_.posed = autorig::poseAtRest(rigger.head_->model);
+  rigger.source_.landmarks = std::move(*landmarks);
+  rigger.source_.parts = autorig::findFaceParts(rigger.head_->model, rigger.source_.posed, rigger.source_.landmarks);
+  return rigger;
+}
+
+eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face, const std::string& faceName,
+                                                  const std::filesystem::path& landmarksFile) {
+  if (!landmarksFile.empty()) return autorig::readLandmarksFile(landmarksFile);
+  const autorig::PosedFace posed = autorig::poseAtRest(face.model);
+  if (posed.vertexCount() == 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, faceName + ": nothing is drawn (no mesh in its scene)");
+  // The finder's errors name the model's file.
+  return findFaceLandmarks(face.model, posed, {.display = &face.displayModel()});
+}
+
+eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
+                                            const std::string& faceName) const {
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  auto transferred = autorig::transferTargets(source_, face, posed, landmarks, parts);
+  if (!transferred) return transferred.error().prefixed(faceName + ": ");
+  AutorigResult result;
+  result.model = std::move(transferred->model);
+  result.report = std::move(transferred->report);
+  result.landmarks = landmarks;
+  result.partNotes = std::move(parts.notes);
+  return result;
+}
+
+std::filesystem::path autorigCacheDirectory() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "facial" / "autorig";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "facial" / "autorig";
+  std::error_code ec;
+  return std::filesystem::temp_directory_path(ec) / "facial-autorig";
+}
+
+eng::Result<void> saveModelAtomically(const eng::Model& model, const std::filesystem::path& path) {
+  // The same extension, so saveModel picks the same container (.glb / .gltf);
+  // the process id, so two programs rigging the same face do not share it.
+  std::filesystem::path partial = path;
+  partial.replace_extension("." + std::to_string(getpid()) + ".partial" + path.extension().string());
+  std::error_code ec;
+  if (auto saved = eng::saveModel(model, partial); !saved) {
+    std::filesystem::remove(partial, ec);
+    return saved;
+  }
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot be written (" + ec.message() + ")");
+  }
+  return {};
+}
+
+eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath) {
+  const std::filesystem::path head = defaultModelPath();
+  auto modelBytes = readBytes(modelPath);
+  if (!modelBytes) return modelBytes.error();
+  auto headBytes = readBytes(head);
+  if (!headBytes) return headBytes.error();
+  Fnv1a key;
+  key.add(kAutorigVersion);
+  key.add(*headBytes);
+  key.add(*modelBytes);
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.glb", static_cast<unsigned long long>(key.h));
+  CachedAutorig cached;
+  cached.path = autorigCacheDirectory() / name;
+
+  auto face = importers::loadFace(modelPath, {.dressForDisplay = true});
+  if (!face) return face.error();
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(cached.path, ec)) {
+    if (auto rigged = eng::loadModel(cached.path)) {
+      cached.reused = true;
+      diffTargets(face->model, *rigged, cached);
+      return cached;
+    }
+    // An unreadable cache entry is made again below (and replaced).
+  }
+  auto landmarks = faceLandmarks(*face, modelPath.string());
+  if (!landmarks) return landmarks.error();
+  auto rigger = FaceAutorig::load(head);
+  if (!rigger) return rigger.error();
+  auto rigged = rigger->rig(face->model, *landmarks, modelPath.string());
+  if (!rigged) return rigged.error();
+  std::filesystem::create_directories(cached.path.parent_path(), ec);
+  if (ec)
+    return eng::makeError(eng::ErrorKind::Io, cached.path.parent_path().string() + ": cannot make the autorig cache (" +
+                          ec.message() + ")");
+  if (auto saved = saveModelAtomically(rigged->model, cached.path); !saved) return saved.error();
+  diffTargets(face->model, rigged->model, cached);
+  cached.warnings = std::move(rigged->report.warnings);
+  return cached;
+}
+
+eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath,
+                                          const importers::LoadFaceOptions& options, importers::LoadedFace& face) {
+  auto cached = autorigCached(modelPath);
+  if (!cached) return cached.error();
+  auto rigged = importers::loadFace(cached->path, options);
+  if (!rigged) return rigged.error();
+  rigged->model.sourcePath = modelPath.string();
+  face = std::move(*rigged);
+  return cached;
+}
+
+}  // namespace app
