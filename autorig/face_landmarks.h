@@ -18,7 +18,9 @@
 
 #include <glm/glm.hpp>
 
+#include "autorig/posed_face.h"
 #include "engine/core/result.h"
+#include "engine/scene/model.h"
 
 namespace autorig {
 
@@ -36,5 +38,13 @@ struct FaceLandmarks {
 eng::Result<FaceLandmarks> readLandmarksFile(const std::filesystem::path& path);
 // Written whole (a .partial file renamed into place).
 eng::Result<void> writeLandmarksFile(const FaceLandmarks& landmarks, const std::filesystem::path& path);
+
+// Landmarks from a file are checked against the face they are for: each
+// point within kOnSurfaceTolerance of the outer eye corners' distance from
+// some triangle (the first one farther is named, with its distance), and the
+// eye corners apart. Errors start with `source` (the file's name).
+inline constexpr float kOnSurfaceTolerance = 0.05f;
+eng::Result<void> checkLandmarksOnSurface(const FaceLandmarks& landmarks, const eng::Model& model,
+                                          const PosedFace& posed, const std::string& source);
 
 }  // namespace autorig

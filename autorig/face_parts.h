@@ -9,6 +9,7 @@
 // and tongue turn with the jaw.
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct FaceParts {
   // and lower teeth, split at y = 1.62"), for `facial rig` and notes.
   std::vector<std::string> notes;
 };
+
+// The part the names of a primitive's material, mesh, node and the node's
+// parents say it is, or nullopt when they say nothing (geometry decides).
+// Any eyeball comes back as EyeballRight: its side is the landmarks' call.
+std::optional<FacePart> facePartFromNames(const eng::Model& model, const PosedPrimitive& primitive);
 
 FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const FaceLandmarks& landmarks);
 

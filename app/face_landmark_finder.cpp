@@ -1,0 +1,91 @@
+#include "app/face_landmark_finder.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/headless_model_renderer.h"
+#include "autorig/surface_cast.h"
+#include "engine/scene/image_io.h"
+#include "engine/scene/weights.h"
+
+namespace app {
+
+namespace {
+
+std::string modelName(const eng::Model& model) { return model.sourcePath.empty() ? "the model" : model.sourcePath; }
+
+void drawDot(eng::Image& image, glm::vec2 centre, int radius, glm::u8vec4 colour) {
+  const glm::ivec2 c = glm::ivec2(glm::floor(centre));
+  for (int y = c.y - radius; y <= c.y + radius; ++y)
+    for (int x = c.x - radius; x <= c.x + radius; ++x) {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      if ((x - c.x) * (x - c.x) + (y - c.y) * (y - c.y) > radius * radius) continue;
+      uint8_t* p = &image.rgba8[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+      p[0] = colour.r, p[1] = colour.g, p[2] = colour.b, p[3] = 255;
+    }
+}
+
+// Detected points green, the cast points projected back red (drawn smaller,
+// on top): where red leaves its green ring the cast moved the point.
+eng::Result<void> writePicture(eng::Image image, const autorig::DetectedFace& face,
+                               const autorig::FaceLandmarks& landmarks, const autorig::SurfaceCaster& caster,
+                               const std::filesystem::path& path) {
+  for (const glm::vec2& p : face.pixels) drawDot(image, p, 4, {40, 220, 60, 255});
+  for (const glm::vec3& p : landmarks.points)
+    if (auto s = caster.project(p)) drawDot(image, *s, 2, {230, 30, 30, 255});
+  return eng::writePng(path, image.width, image.height, image.rgba8);
+}
+
+// How far from its pixel a point may be taken from the surface: 1 % of the
+// picture, and 4 % on the jaw line (0-16), which dlib puts on the face's
+// outline and a face cut out as a mask (facecap) may not reach.
+float reachPixels(size_t landmark, uint32_t size) { return float(size) * (landmark <= 16 ? 0.04f : 0.01f); }
+
+std::string describe(const autorig::DetectedFace& face) {
+  char text[96];
+  std::snprintf(text, sizeof text, "dlib (face box %.0f px, confidence %.2f)", double(face.box.max.x - face.box.min.x),
+                double(face.confidence));
+  return text;
+}
+
+}  // namespace
+
+eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
+                                                      const FaceLandmarkOptions& options) {
+  const std::string name = modelName(model);
+  if (posed.vertexCount() == 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, name + ": nothing is drawn, so there is no face to find");
+  if (options.size < 128 || options.size > 4096)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "the landmark picture's size must be 128 to 4096 pixels");
+  auto detector = autorig::LandmarkDetector::shared(options.predictor);
+  if (!detector) return detector.error();
+  const eng::Model& drawn = options.display ? *options.display : model;
+  auto renderer = HeadlessModelRenderer::create(
+      drawn, {.width = options.size, .height = options.size, .quality = eng::vk::RenderQuality::Fast});
+  if (!renderer) return renderer.error();
+  const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
+  auto image = renderer->render(weights);
+  if (!image) return image.error();
+  ENG_TRY(renderer->checkValidation());
+  const std::optional<autorig::DetectedFace> face = (*detector)->detect(*image);
+  if (!face) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
+
+  const eng::OrbitCamera& camera = renderer->view().camera;
+  const autorig::PictureCamera picture{camera.projection(1.0f) * camera.view(), glm::vec2(float(options.size))};
+  const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
+  autorig::FaceLandmarks landmarks;
+  landmarks.source = describe(*face);
+  std::optional<size_t> missed;
+  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
+    const std::optional<autorig::SurfacePoint> hit = caster.cast(face->pixels[i], reachPixels(i, options.size));
+    if (hit) landmarks.points[i] = hit->position;
+    else if (!missed) missed = i, landmarks.points[i] = glm::vec3(NAN);
+  }
+  if (!options.picture.empty()) ENG_TRY(writePicture(std::move(*image), *face, landmarks, caster, options.picture));
+  if (missed)
+    return eng::makeError(eng::ErrorKind::NotFound, name + ": landmark " + std::to_string(*missed) +
+                                                        " of the front view is not on the face's surface");
+  return landmarks;
+}
+
+}  // namespace app

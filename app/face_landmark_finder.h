@@ -1,0 +1,40 @@
+#pragma once
+// The 68 iBUG landmarks of a face found on its mesh (issue 33, step 1): the
+// model rendered front-on headless (face framing), dlib's detector and shape
+// predictor run on the picture (autorig/landmark_detector.h), and each point
+// cast from the camera back onto the face's outer skin
+// (autorig/surface_cast.h).
+//
+//   autorig::PosedFace posed = autorig::poseAtRest(model);
+//   auto landmarks = app::findFaceLandmarks(model, posed, {});
+//   if (!landmarks) reporter.fail(landmarks.error());  // "no face found in a front view of x.glb"
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "autorig/face_landmarks.h"
+#include "autorig/landmark_detector.h"
+#include "autorig/posed_face.h"
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+
+namespace app {
+
+struct FaceLandmarkOptions {
+  uint32_t size = 640;  // the square picture's side, pixels
+  std::filesystem::path predictor = autorig::kDefaultShapePredictor;
+  std::string device;   // eng::vk::ContextOptions::device
+  // What is drawn when it differs from the posed model (the dressed copy of
+  // an untextured face, LoadedFace::displayModel()): same scene, same space.
+  const eng::Model* display = nullptr;
+  // When set, the picture with the detected points (green) and the cast
+  // points seen from the same camera (red) is written there, for checking.
+  std::filesystem::path picture;
+};
+
+// Errors, each naming the model's file: no face in the front view, a point
+// that falls off the surface, the predictor file missing, rendering failed.
+eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
+                                                      const FaceLandmarkOptions& options = {});
+
+}  // namespace app

@@ -1,0 +1,120 @@
+#include "autorig/arkit_from_units.h"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+#include <glm/gtx/compatibility.hpp>
+
+#include "facial/runtime/rig/arkit_names.h"
+
+namespace autorig {
+namespace {
+
+enum class Mask : unsigned char { All, Left, Right, UpperLip, LowerLip };
+
+struct Term {
+  std::string_view unit;
+  float gain = 1.0f;
+  Mask mask = Mask::All;
+};
+
+struct Shape {
+  std::string_view name;  // canonical ARKit
+  std::array<Term, 2> terms;
+};
+
+// Half-widths of the masks' ramps, in eye spans: wide enough that the two
+// halves of a unit meet without a crease, narrow enough that a lip's roll
+// leaves the other lip.
+constexpr float kMidlineRamp = 0.08f;
+constexpr float kLipLineRamp = 0.03f;
+
+// Why AU26 alone for jawOpen: the head's AU26 turns the jaw about as far as
+// an ARKit capture's jawOpen at 1 (facecap's own is measured against it in
+// docs/autorig.md); AU27 also stretches the lips.
+constexpr std::array kShapes = {
+    Shape{"browInnerUp", {Term{"AU1_InnerBrowRaiser"}}},
+    Shape{"browDownLeft", {Term{"AU4_BrowLowerer", 1.0f, Mask::Left}}},
+    Shape{"browDownRight", {Term{"AU4_BrowLowerer", 1.0f, Mask::Right}}},
+    Shape{"browOuterUpLeft", {Term{"AU2_OuterBrowRaiser_L"}}},
+    Shape{"browOuterUpRight", {Term{"AU2_OuterBrowRaiser_R"}}},
+    Shape{"cheekSquintLeft", {Term{"AU6_CheekRaiser", 1.0f, Mask::Left}}},
+    Shape{"cheekSquintRight", {Term{"AU6_CheekRaiser", 1.0f, Mask::Right}}},
+    Shape{"eyeBlinkLeft", {Term{"AU45_Blink_L"}}},
+    Shape{"eyeBlinkRight", {Term{"AU45_Blink_R"}}},
+    Shape{"eyeSquintLeft", {Term{"AU7_LidTightener", 1.0f, Mask::Left}}},
+    Shape{"eyeSquintRight", {Term{"AU7_LidTightener", 1.0f, Mask::Right}}},
+    Shape{"eyeWideLeft", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Left}}},
+    Shape{"eyeWideRight", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Right}}},
+    Shape{"jawForward", {Term{"AU29_JawThrust"}}},
+    Shape{"jawOpen", {Term{"AU26_JawDrop"}}},
+    Shape{"mouthFrownLeft", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Left}}},
+    Shape{"mouthFrownRight", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Right}}},
+    Shape{"mouthFunnel", {Term{"AU22_LipFunneler"}}},
+    Shape{"mouthLowerDownLeft", {Term{"AU16_LowerLipDepressor", 1.0f, Mask::Left}}},
+    Shape{"mouthLowerDownRight", {Term{"AU16_LowerLipDepressor", 1.0f, Mask::Right}}},
+    Shape{"mouthPressLeft", {Term{"AU24_LipPressor", 1.0f, Mask::Left}}},
+    Shape{"mouthPressRight", {Term{"AU24_LipPressor", 1.0f, Mask::Right}}},
+    Shape{"mouthPucker", {Term{"AU18_LipPucker"}}},
+    Shape{"mouthRollLower", {Term{"AU28_LipSuck", 1.0f, Mask::LowerLip}}},
+    Shape{"mouthRollUpper", {Term{"AU28_LipSuck", 1.0f, Mask::UpperLip}}},
+    Shape{"mouthShrugLower", {Term{"AU17_ChinRaiser", 1.0f, Mask::LowerLip}}},
+    Shape{"mouthShrugUpper", {Term{"AU17_ChinRaiser", 1.0f, Mask::UpperLip}}},
+    Shape{"mouthSmileLeft", {Term{"AU12_LipCornerPuller_L"}}},
+    Shape{"mouthSmileRight", {Term{"AU12_LipCornerPuller_R"}}},
+    Shape{"mouthStretchLeft", {Term{"AU20_LipStretcher", 1.0f, Mask::Left}}},
+    Shape{"mouthStretchRight", {Term{"AU20_LipStretcher", 1.0f, Mask::Right}}},
+    Shape{"mouthUpperUpLeft", {Term{"AU10_UpperLipRaiser", 1.0f, Mask::Left}}},
+    Shape{"mouthUpperUpRight", {Term{"AU10_UpperLipRaiser", 1.0f, Mask::Right}}},
+    Shape{"noseSneerLeft", {Term{"AU9_NoseWrinkler", 1.0f, Mask::Left}}},
+    Shape{"noseSneerRight", {Term{"AU9_NoseWrinkler", 1.0f, Mask::Right}}},
+    Shape{"tongueOut", {Term{"AU19_TongueShow"}}},
+};
+
+float maskWeight(Mask mask, const glm::vec3& p, const FaceFrame& frame) {
+  auto ramp = [](float x, float halfWidth) { return glm::smoothstep(-halfWidth, halfWidth, x); };
+  switch (mask) {
+    case Mask::All: return 1.0f;
+    case Mask::Left: return ramp(frame.sideOf(p), kMidlineRamp);
+    case Mask::Right: return 1.0f - ramp(frame.sideOf(p), kMidlineRamp);
+    case Mask::UpperLip: return ramp(frame.aboveLipLine(p), kLipLineRamp);
+    case Mask::LowerLip: return 1.0f - ramp(frame.aboveLipLine(p), kLipLineRamp);
+  }
+  return 1.0f;
+}
+
+const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name) {
+  for (const NamedDeltas& u : units)
+    if (u.name == name) return &u;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
+                                        const FaceFrame& frame, std::vector<std::string>& unmade) {
+  std::vector<NamedDeltas> shapes;
+  for (std::string_view name : facial::arkitBlendShapeNames()) {
+    auto row = std::find_if(kShapes.begin(), kShapes.end(), [&](const Shape& s) { return s.name == name; });
+    bool made = false;
+    NamedDeltas shape{std::string(name), std::vector<glm::vec3>(positions.size(), glm::vec3(0.0f))};
+    if (row != kShapes.end()) {
+      for (const Term& term : row->terms) {
+        if (term.unit.empty()) continue;
+        const NamedDeltas* unit = findUnit(units, term.unit);
+        if (!unit || unit->deltas.size() != positions.size()) continue;
+        made = true;
+        for (size_t v = 0; v < positions.size(); ++v)
+          shape.deltas[v] += term.gain * maskWeight(term.mask, positions[v], frame) * unit->deltas[v];
+      }
+    }
+    if (made)
+      shapes.push_back(std::move(shape));
+    else
+      unmade.emplace_back(name);
+  }
+  return shapes;
+}
+
+}  // namespace autorig

@@ -1,0 +1,32 @@
+#pragma once
+// The ARKit 52 shapes a face can have from the built-in head's action units,
+// once those are on the face: each shape a sum of units, a bilateral unit
+// split into its left and right halves by a smooth mask across the midline
+// (the two halves add up to the unit), a unit of both lips into its upper and
+// lower lip by a mask across the lip line. The other direction of
+// facial/runtime/rig/arkit_scheme.cpp (ARKit -> units). Gaze, cheek puff,
+// dimples, mouth and jaw sideways and mouthClose have no unit to come from.
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "autorig/face_frame.h"
+
+namespace autorig {
+
+// One target's world-space displacements over a fixed list of vertices.
+struct NamedDeltas {
+  std::string name;
+  std::vector<glm::vec3> deltas;
+};
+
+// Shapes with ARKit's exact names (facial/runtime/rig/arkit_names.h), in
+// ARKit's order, over the same vertices as `units` (positions: world space,
+// at rest). A shape whose units are all missing is left out and named in
+// `unmade`, as is every shape without a unit.
+std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
+                                        const FaceFrame& frame, std::vector<std::string>& unmade);
+
+}  // namespace autorig

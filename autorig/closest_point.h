@@ -1,0 +1,55 @@
+#pragma once
+// Closest points on a triangle soup, through a uniform grid of the triangles'
+// bounds, searched in growing shells until no unsearched cell can be closer:
+// O(log)-ish per query on a surface, never a scan of every triangle.
+// Triangles carry a FaceRegion so a query may refuse one region (an upper-lip
+// vertex never lands on the lower lip).
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "autorig/face_frame.h"
+
+namespace autorig {
+
+struct SurfacePoint {
+  uint32_t triangle = 0;
+  glm::vec3 barycentric{1.0f, 0.0f, 0.0f};
+  glm::vec3 position{0.0f};
+  float distance = 0.0f;
+  bool found = false;
+};
+
+class TriangleGrid {
+ public:
+  // triangles index `positions`; regions: one per triangle (or empty: all None).
+  TriangleGrid(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles,
+               std::span<const FaceRegion> regions);
+
+  // The closest point on a triangle whose region is not `refused` (None
+  // refuses nothing), within maxDistance; found = false when there is none.
+  SurfacePoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const;
+
+ private:
+  glm::ivec3 cellOf(const glm::vec3& p) const;
+  size_t cellIndex(const glm::ivec3& c) const { return (size_t(c.z) * size_t(dims_.y) + size_t(c.y)) * size_t(dims_.x) + size_t(c.x); }
+
+  std::vector<glm::vec3> positions_;
+  std::vector<std::array<uint32_t, 3>> triangles_;
+  std::vector<FaceRegion> regions_;
+  glm::vec3 min_{0.0f};
+  float cell_ = 1.0f;
+  glm::ivec3 dims_{1};
+  std::vector<uint32_t> cellStart_;  // CSR: triangles of cell i at cellTriangles_[cellStart_[i] .. cellStart_[i+1])
+  std::vector<uint32_t> cellTriangles_;
+};
+
+// The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision
+// Detection 5.1.5), with its barycentric coordinates.
+glm::vec3 closestOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                            glm::vec3& barycentric);
+
+}  // namespace autorig

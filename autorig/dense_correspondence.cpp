@@ -1,0 +1,183 @@
+#include "autorig/dense_correspondence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <unordered_set>
+
+namespace autorig {
+namespace {
+
+constexpr uint32_t kNotGathered = UINT32_MAX;
+
+// Within this distance of a closing line (eye spans) a vertex's side is the
+// mesh's to say: about the lips' and the lids' thickness.
+constexpr float kLineBand = 0.03f;
+
+// A triangle is in a region when one of its vertices is (and none is in the opposite one).
+std::vector<FaceRegion> triangleRegions(const FaceSurface& surface, const std::vector<FaceRegion>& vertexRegions) {
+  std::vector<FaceRegion> regions(surface.triangles.size(), FaceRegion::None);
+  for (size_t i = 0; i < surface.triangles.size(); ++i)
+    for (uint32_t v : surface.triangles[i])
+      if (regions[i] == FaceRegion::None) regions[i] = vertexRegions[v];
+  return regions;
+}
+
+glm::vec3 onSource(const FaceSurface& source, const SurfacePoint& match) {
+  const auto& t = source.triangles[match.triangle];
+  return match.barycentric.x * source.positions[t[0]] + match.barycentric.y * source.positions[t[1]] +
+         match.barycentric.z * source.positions[t[2]];
+}
+
+// Well-spread target vertices on the face's front, away from the landmarks
+// and the closing lines (the landmarks hold those), each paired with its
+// closest point on the warped source, as (source rest point, target point).
+void growPairs(const FaceSurface& source, const std::vector<glm::vec3>& warped, const FaceSurface& target,
+               const FaceFrame& frame, const FaceLandmarks& landmarks, const CorrespondenceOptions& options,
+               std::vector<glm::vec3>& sourcePoints, std::vector<glm::vec3>& targetPoints) {
+  const TriangleGrid grid(warped, source.triangles, {});
+  const float spacing = options.sampleSpacing * frame.eyeSpan();
+  const float nearLandmark = 0.5f * spacing;
+  std::unordered_set<uint64_t> taken;
+  size_t added = 0;
+  for (size_t v = 0; v < target.positions.size() && added < size_t(options.maxGrownPairs); ++v) {
+    const glm::vec3& p = target.positions[v];
+    if (target.parts[v] != FacePart::Skin || frame.region(p) != FaceRegion::None) continue;
+    const glm::vec3 local = p - frame.origin();
+    // The face's front: within an eye span and a half of its middle, not behind the eyes.
+    if (glm::length(local) > 1.5f * frame.eyeSpan() || glm::dot(local, frame.forward()) < -0.3f * frame.eyeSpan()) continue;
+    const glm::ivec3 cell = glm::ivec3(glm::floor(local / spacing)) + 1024;
+    const uint64_t key = (uint64_t(cell.x) << 42) | (uint64_t(cell.y) << 21) | uint64_t(cell.z);
+    if (taken.count(key)) continue;
+    bool crowded = false;
+    for (const glm::vec3& l : landmarks.points) crowded = crowded || glm::length(l - p) < nearLandmark;
+    if (crowded) continue;
+    const SurfacePoint match = grid.closest(p, FaceRegion::None, 0.5f * spacing);
+    if (!match.found) continue;
+    taken.insert(key);
+    sourcePoints.push_back(onSource(source, match));
+    targetPoints.push_back(p);
+    ++added;
+  }
+}
+
+std::vector<glm::vec3> warpAll(const LandmarkWarp& warp, const std::vector<glm::vec3>& points) {
+  std::vector<glm::vec3> out(points.size());
+  for (size_t i = 0; i < points.size(); ++i) out[i] = warp.apply(points[i]);
+  return out;
+}
+
+}  // namespace
+
+std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const FaceFrame& frame) {
+  const size_t n = surface.positions.size();
+  std::vector<FaceRegion> regions(n, FaceRegion::None);
+  std::vector<float> reach(n, std::numeric_limits<float>::infinity());
+  using Entry = std::pair<float, uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
+  std::vector<bool> unsure(n, false);
+  for (size_t v = 0; v < n; ++v) {
+    float margin = 0.0f;
+    regions[v] = frame.region(surface.positions[v], &margin);
+    if (regions[v] == FaceRegion::None) continue;
+    if (margin < kLineBand) {
+      unsure[v] = true;
+      continue;
+    }
+    reach[v] = 0.0f;
+    front.push({0.0f, uint32_t(v)});
+  }
+  std::vector<std::vector<uint32_t>> neighbours(n);
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) neighbours[t[size_t(k)]].push_back(t[size_t((k + 1) % 3)]), neighbours[t[size_t((k + 1) % 3)]].push_back(t[size_t(k)]);
+  // Dijkstra from the sure vertices into the unsure ones along edges.
+  while (!front.empty()) {
+    const auto [distance, v] = front.top();
+    front.pop();
+    if (distance > reach[v]) continue;
+    for (uint32_t w : neighbours[v]) {
+      if (!unsure[w]) continue;
+      const float through = distance + glm::length(surface.positions[w] - surface.positions[v]);
+      if (through >= reach[w]) continue;
+      reach[w] = through;
+      regions[w] = regions[v];
+      front.push({through, w});
+    }
+  }
+  return regions;
+}
+
+FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const FaceParts& parts,
+                          std::initializer_list<FacePart> wanted) {
+  FaceSurface surface;
+  std::vector<uint32_t> index;
+  for (size_t pi = 0; pi < posed.primitives.size() && pi < parts.vertexParts.size(); ++pi) {
+    const PosedPrimitive& p = posed.primitives[pi];
+    const eng::Primitive& primitive = model.meshes[p.mesh].primitives[p.primitive];
+    const std::vector<FacePart>& vertexParts = parts.vertexParts[pi];
+    if (vertexParts.size() != p.positions.size()) continue;
+    index.assign(p.positions.size(), kNotGathered);
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      if (std::find(wanted.begin(), wanted.end(), vertexParts[v]) == wanted.end()) continue;
+      index[v] = uint32_t(surface.positions.size());
+      surface.vertices.push_back({uint32_t(pi), uint32_t(v)});
+      surface.parts.push_back(vertexParts[v]);
+      surface.positions.push_back(p.positions[v]);
+    }
+    for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
+      std::array<uint32_t, 3> t{};
+      bool whole = true;
+      for (int k = 0; k < 3; ++k) {
+        uint32_t v = primitive.indices[i + size_t(k)];
+        whole = whole && v < index.size() && index[v] != kNotGathered;
+        if (whole) t[size_t(k)] = index[v];
+      }
+      if (whole) surface.triangles.push_back(t);
+    }
+  }
+  return surface;
+}
+
+eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,
+                                       const FaceSurface& target, const FaceLandmarks& targetLandmarks,
+                                       const CorrespondenceOptions& options) {
+  const FaceFrame sourceFrame(sourceLandmarks), targetFrame(targetLandmarks);
+  // Landmarks that meet on the source (inner lips of a closed mouth) are one
+  // control point: the first pair holds it.
+  const float minSeparation = 1e-3f * sourceFrame.eyeSpan();
+  std::vector<glm::vec3> sourcePoints, targetPoints;
+  for (size_t i = 0; i < kLandmarkCount; ++i) {
+    const glm::vec3& s = sourceLandmarks.points[i];
+    bool met = false;
+    for (const glm::vec3& earlier : sourcePoints) met = met || glm::length(s - earlier) < 10.0f * minSeparation;
+    if (met) continue;
+    sourcePoints.push_back(s);
+    targetPoints.push_back(targetLandmarks.points[i]);
+  }
+  LandmarkWarp warp = ENG_TRY_VALUE(LandmarkWarp::build(sourcePoints, targetPoints, minSeparation));
+  std::vector<glm::vec3> warped = warpAll(warp, source.positions);
+  size_t grown = 0;
+  for (int round = 0; round < options.growthRounds; ++round) {
+    std::vector<glm::vec3> s(sourcePoints), t(targetPoints);
+    growPairs(source, warped, target, targetFrame, targetLandmarks, options, s, t);
+    // Grown points that crowd a source landmark would make the RBF refuse the set: a round that fails keeps the last warp.
+    eng::Result<LandmarkWarp> next = LandmarkWarp::build(s, t, minSeparation);
+    if (!next) break;
+    warp = std::move(*next);
+    grown = s.size() - sourcePoints.size();
+    warped = warpAll(warp, source.positions);
+  }
+
+  // Regions come from each face's own landmarks: the source's at rest, carried by the warp.
+  const TriangleGrid grid(warped, source.triangles, triangleRegions(source, labelRegions(source, sourceFrame)));
+  const std::vector<FaceRegion> targetRegions = labelRegions(target, targetFrame);
+  Correspondence result{.warp = std::move(warp), .grownPairs = grown, .warpedSource = std::move(warped), .matches = {}};
+  result.matches.resize(target.positions.size());
+  const float maxGap = options.maxGap * targetFrame.eyeSpan();
+  for (size_t v = 0; v < target.positions.size(); ++v)
+    result.matches[v] = grid.closest(target.positions[v], opposite(targetRegions[v]), maxGap);
+  return result;
+}
+
+}  // namespace autorig

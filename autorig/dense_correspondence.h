@@ -1,0 +1,68 @@
+#pragma once
+// Dense correspondence between the source face's skin and the target's,
+// grown from the landmarks: the source skin is warped onto the target
+// (autorig/landmark_warp.h), well-spread target vertices find their closest
+// points on it and join the landmarks as control points, the warp is solved
+// again; then every target vertex takes its closest point on the warped
+// source (a triangle and barycentrics), never across a closing line (upper
+// lip to upper lip, upper lid to upper lid).
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "autorig/closest_point.h"
+#include "autorig/face_frame.h"
+#include "autorig/face_landmarks.h"
+#include "autorig/face_parts.h"
+#include "autorig/landmark_warp.h"
+#include "autorig/posed_face.h"
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+
+namespace autorig {
+
+// Some parts of a face as one triangle soup in world space.
+struct FaceSurface {
+  struct VertexRef {
+    uint32_t primitive = 0;  // index into PosedFace::primitives
+    uint32_t vertex = 0;
+  };
+  std::vector<VertexRef> vertices;
+  std::vector<FacePart> parts;       // per vertex
+  std::vector<glm::vec3> positions;  // per vertex, world space at rest
+  std::vector<std::array<uint32_t, 3>> triangles;  // into vertices; only triangles wholly of the parts
+};
+
+// The vertices of `model` whose part is one of `wanted` (FaceParts order).
+FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const FaceParts& parts,
+                          std::initializer_list<FacePart> wanted);
+
+// Each vertex's region: by the landmarks' closing lines where it is clearly
+// above or below one, and near a line by the mesh instead (the region of the
+// nearest clearly labelled vertex along the surface's edges), because the
+// lips of a closed mouth and the lids of a closed eye meet there, often as
+// separate vertices at the same places.
+std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const FaceFrame& frame);
+
+struct CorrespondenceOptions {
+  int growthRounds = 2;       // warp, match, re-solve
+  int maxGrownPairs = 300;    // control points added to the 68 landmarks
+  float sampleSpacing = 0.09f;  // between grown pairs, in eye spans
+  float maxGap = 0.25f;       // a target vertex farther than this (eye spans) from the warped source gets no match
+};
+
+struct Correspondence {
+  LandmarkWarp warp;  // source -> target, landmarks and grown pairs
+  size_t grownPairs = 0;
+  std::vector<glm::vec3> warpedSource;  // the source surface's positions warped
+  std::vector<SurfacePoint> matches;    // one per target vertex (found = false: none within maxGap)
+};
+
+eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,
+                                       const FaceSurface& target, const FaceLandmarks& targetLandmarks,
+                                       const CorrespondenceOptions& options = {});
+
+}  // namespace autorig

@@ -1,0 +1,34 @@
+#include "autorig/jaw_hinge.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "autorig/face_frame.h"
+
+namespace autorig {
+namespace {
+
+// How far behind the jaw line's top points the condyles sit, in eye spans.
+constexpr float kHingeDepth = 0.1f;
+
+}  // namespace
+
+JawHinge estimateJawHinge(const FaceLandmarks& landmarks) {
+  const FaceFrame frame(landmarks);
+  const glm::vec3 middle = (landmarks.points[0] + landmarks.points[16]) * 0.5f;
+  return JawHinge{.pivot = middle - frame.forward() * (kHingeDepth * frame.eyeSpan()), .axis = frame.side()};
+}
+
+float hingeAngle(const JawHinge& hinge, const glm::vec3& point, const glm::vec3& displacement) {
+  auto flat = [&](const glm::vec3& v) { return v - glm::dot(v, hinge.axis) * hinge.axis; };
+  const glm::vec3 from = flat(point - hinge.pivot), to = flat(point + displacement - hinge.pivot);
+  return std::atan2(glm::dot(glm::cross(from, to), hinge.axis), glm::dot(from, to));
+}
+
+glm::vec3 turnAboutHinge(const JawHinge& hinge, float angle, const glm::vec3& point) {
+  const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), angle, hinge.axis));
+  return hinge.pivot + turn * (point - hinge.pivot) - point;
+}
+
+}  // namespace autorig

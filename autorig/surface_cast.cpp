@@ -1,0 +1,231 @@
+#include "autorig/surface_cast.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "autorig/face_parts.h"
+
+namespace autorig {
+
+namespace {
+
+const std::vector<uint32_t>* triangleIndices(const eng::Model& model, const PosedPrimitive& p) {
+  if (p.mesh >= model.meshes.size() || p.primitive >= model.meshes[p.mesh].primitives.size()) return nullptr;
+  return &model.meshes[p.mesh].primitives[p.primitive].indices;
+}
+
+bool validTriangle(const std::vector<uint32_t>& indices, size_t t, size_t vertexCount) {
+  return indices[3 * t] < vertexCount && indices[3 * t + 1] < vertexCount && indices[3 * t + 2] < vertexCount;
+}
+
+// Möller-Trumbore, both sides: the ray parameter, or nullopt.
+std::optional<float> intersect(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& a, const glm::vec3& b,
+                               const glm::vec3& c) {
+  const glm::vec3 e1 = b - a, e2 = c - a;
+  const glm::vec3 p = glm::cross(dir, e2);
+  const float det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-20f) return std::nullopt;
+  const float inv = 1.0f / det;
+  const glm::vec3 s = origin - a;
+  const float u = glm::dot(s, p) * inv;
+  if (u < 0.0f || u > 1.0f) return std::nullopt;
+  const glm::vec3 q = glm::cross(s, e1);
+  const float v = glm::dot(dir, q) * inv;
+  if (v < 0.0f || u + v > 1.0f) return std::nullopt;
+  const float t = glm::dot(e2, q) * inv;
+  if (t <= 0.0f) return std::nullopt;
+  return t;
+}
+
+// Ericson, Real-Time Collision Detection 5.1.5.
+glm::vec3 closestOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0f && d2 <= 0.0f) return a;
+  const glm::vec3 bp = p - b;
+  const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0f && d4 <= d3) return b;
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) return a + ab * (d1 / (d1 - d3));
+  const glm::vec3 cp = p - c;
+  const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0f && d5 <= d6) return c;
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) return a + ac * (d2 / (d2 - d6));
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const float denom = 1.0f / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Whether the triangles' normals (counter-clockwise) point away from the
+// primitive's centre, as glTF's front faces do; a mirrored node or an
+// exporter's flipped winding turns them in, and the casts' notion of which
+// side faces the camera with them.
+bool windsOutward(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
+  glm::dvec3 centre(0.0);
+  for (const glm::vec3& v : positions) centre += glm::dvec3(v);
+  centre /= double(std::max<size_t>(positions.size(), 1));
+  double outward = 0.0;
+  for (size_t t = 0; t < indices.size() / 3; ++t) {
+    if (!validTriangle(indices, t, positions.size())) continue;
+    const glm::dvec3 a(positions[indices[3 * t]]), b(positions[indices[3 * t + 1]]), c(positions[indices[3 * t + 2]]);
+    outward += glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre);
+  }
+  return outward >= 0.0;
+}
+
+}  // namespace
+
+SurfaceCaster::SurfaceCaster(const eng::Model& model, const PosedFace& posed, const std::vector<bool>& cast,
+                             const PictureCamera& camera)
+    : posed_(&posed), camera_(camera), inverse_(glm::inverse(camera.viewProjection)) {
+  bins_.resize(size_t(cells_) * size_t(cells_));
+  indices_.assign(posed.primitives.size(), nullptr);
+  outward_.assign(posed.primitives.size(), true);
+  for (size_t pi = 0; pi < posed.primitives.size(); ++pi) {
+    if (pi >= cast.size() || !cast[pi]) continue;
+    const PosedPrimitive& p = posed.primitives[pi];
+    const std::vector<uint32_t>* indices = triangleIndices(model, p);
+    if (!indices) continue;
+    indices_[pi] = indices;
+    outward_[pi] = windsOutward(p.positions, *indices);
+    std::vector<std::optional<glm::vec2>> projected(p.positions.size());
+    for (size_t v = 0; v < p.positions.size(); ++v) projected[v] = project(p.positions[v]);
+    for (size_t t = 0; t < indices->size() / 3; ++t) {
+      if (!validTriangle(*indices, t, p.positions.size())) continue;
+      glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      bool inFront = true;
+      for (int k = 0; k < 3; ++k) {
+        const auto& s = projected[(*indices)[3 * t + size_t(k)]];
+        if (!s) inFront = false;
+        else lo = glm::min(lo, *s), hi = glm::max(hi, *s);
+      }
+      if (!inFront || hi.x < 0.0f || hi.y < 0.0f || lo.x >= camera.imageSize.x || lo.y >= camera.imageSize.y) continue;
+      const glm::vec2 cellSize = camera.imageSize / float(cells_);
+      const glm::ivec2 c0 = glm::clamp(glm::ivec2(glm::floor(lo / cellSize)), glm::ivec2(0), glm::ivec2(cells_ - 1));
+      const glm::ivec2 c1 = glm::clamp(glm::ivec2(glm::floor(hi / cellSize)), glm::ivec2(0), glm::ivec2(cells_ - 1));
+      for (int y = c0.y; y <= c1.y; ++y)
+        for (int x = c0.x; x <= c1.x; ++x) bins_[size_t(y * cells_ + x)].push_back({uint32_t(pi), uint32_t(t)});
+    }
+  }
+}
+
+std::optional<glm::vec2> SurfaceCaster::project(const glm::vec3& world) const {
+  const glm::vec4 clip = camera_.viewProjection * glm::vec4(world, 1.0f);
+  if (!(clip.w > 1e-6f)) return std::nullopt;
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return (ndc * 0.5f + 0.5f) * camera_.imageSize;
+}
+
+int SurfaceCaster::cellOf(glm::vec2 pixel) const {
+  const glm::ivec2 c = glm::ivec2(glm::floor(pixel / camera_.imageSize * float(cells_)));
+  if (c.x < 0 || c.y < 0 || c.x >= cells_ || c.y >= cells_) return -1;
+  return c.y * cells_ + c.x;
+}
+
+std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixels) const {
+  const glm::vec2 ndc = pixel / camera_.imageSize * 2.0f - 1.0f;
+  const glm::vec4 nearH = inverse_ * glm::vec4(ndc, 0.0f, 1.0f);
+  const glm::vec4 farH = inverse_ * glm::vec4(ndc, 1.0f, 1.0f);
+  const glm::vec3 origin = glm::vec3(nearH) / nearH.w;
+  const glm::vec3 dir = glm::normalize(glm::vec3(farH) / farH.w - origin);
+  const int cell = cellOf(pixel);
+  if (cell < 0) return std::nullopt;
+  float bestT = std::numeric_limits<float>::max();
+  std::optional<SurfacePoint> best;
+  bool bestFaces = false;
+  for (const TriangleRef& ref : bins_[size_t(cell)]) {
+    const PosedPrimitive& p = posed_->primitives[ref.primitive];
+    const std::vector<uint32_t>& idx = *indices_[ref.primitive];
+    const glm::vec3& a = p.positions[idx[3 * ref.triangle]];
+    const glm::vec3& b = p.positions[idx[3 * ref.triangle + 1]];
+    const glm::vec3& c = p.positions[idx[3 * ref.triangle + 2]];
+    const std::optional<float> t = intersect(origin, dir, a, b, c);
+    if (!t || *t >= bestT) continue;
+    bestT = *t;
+    best = SurfacePoint{ref.primitive, origin + dir * *t, true};
+    bestFaces = (glm::dot(glm::cross(b - a, c - a), dir) < 0.0f) == outward_[ref.primitive];
+  }
+  if (best && bestFaces) return best;
+  // The inside of the head first: the ray went through an opening (an eye,
+  // parted lips), and the opening's rim nearest the camera is meant. No hit:
+  // the point lies just off the outline, and the outline is meant.
+  return nearestVertex(pixel, reachPixels, best.has_value());
+}
+
+// Among the vertices that land within reach of the pixel, the one nearest
+// the camera (`frontMost`: the lid's edge beside an eye opening, not the
+// skull behind it) or the one nearest the pixel (the outline).
+std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, bool frontMost) const {
+  const glm::vec2 cellSize = camera_.imageSize / float(cells_);
+  const glm::ivec2 c0 = glm::max(glm::ivec2(glm::floor((pixel - reachPixels) / cellSize)), glm::ivec2(0));
+  const glm::ivec2 c1 = glm::min(glm::ivec2(glm::floor((pixel + reachPixels) / cellSize)), glm::ivec2(cells_ - 1));
+  float bestScore = std::numeric_limits<float>::max();
+  std::optional<SurfacePoint> best;
+  for (int y = c0.y; y <= c1.y; ++y)
+    for (int x = c0.x; x <= c1.x; ++x)
+      for (const TriangleRef& ref : bins_[size_t(y * cells_ + x)]) {
+        const PosedPrimitive& p = posed_->primitives[ref.primitive];
+        const std::vector<uint32_t>& idx = *indices_[ref.primitive];
+        for (int k = 0; k < 3; ++k) {
+          const glm::vec3& v = p.positions[idx[3 * ref.triangle + size_t(k)]];
+          const glm::vec4 clip = camera_.viewProjection * glm::vec4(v, 1.0f);
+          if (!(clip.w > 1e-6f)) continue;
+          const glm::vec2 s = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * camera_.imageSize;
+          const float away = glm::distance(s, pixel);
+          const float score = frontMost ? clip.w : away;
+          if (away > reachPixels || score >= bestScore) continue;
+          bestScore = score;
+          best = SurfacePoint{ref.primitive, v, false};
+        }
+      }
+  return best;
+}
+
+std::vector<bool> outerSkinPrimitives(const eng::Model& model, const PosedFace& posed) {
+  const size_t n = posed.primitives.size();
+  std::vector<glm::vec3> lo(n, glm::vec3(std::numeric_limits<float>::max()));
+  std::vector<glm::vec3> hi(n, glm::vec3(-std::numeric_limits<float>::max()));
+  for (size_t i = 0; i < n; ++i)
+    for (const glm::vec3& v : posed.primitives[i].positions) lo[i] = glm::min(lo[i], v), hi[i] = glm::max(hi[i], v);
+  auto enclosed = [&](size_t i) {
+    for (size_t o = 0; o < n; ++o)
+      if (o != i && glm::all(glm::lessThan(lo[o], lo[i])) && glm::all(glm::lessThan(hi[i], hi[o]))) return true;
+    return false;
+  };
+  std::vector<bool> outer(n, false);
+  bool any = false;
+  for (size_t i = 0; i < n; ++i) {
+    const std::optional<FacePart> named = facePartFromNames(model, posed.primitives[i]);
+    outer[i] = (!named || *named == FacePart::Skin) && !enclosed(i);
+    any = any || outer[i];
+  }
+  if (!any) outer.assign(n, true);
+  return outer;
+}
+
+float distanceToSurface(const eng::Model& model, const PosedFace& posed, const glm::vec3& point,
+                        const std::vector<bool>& among) {
+  float best = std::numeric_limits<float>::infinity();
+  for (size_t pi = 0; pi < posed.primitives.size(); ++pi) {
+    if (!among.empty() && (pi >= among.size() || !among[pi])) continue;
+    const PosedPrimitive& p = posed.primitives[pi];
+    const std::vector<uint32_t>* indices = triangleIndices(model, p);
+    if (!indices || p.positions.empty()) continue;
+    // A primitive whose box lies farther than the best so far is skipped.
+    glm::vec3 lo = p.positions[0], hi = p.positions[0];
+    for (const glm::vec3& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    if (glm::distance(glm::clamp(point, lo, hi), point) >= best) continue;
+    for (size_t t = 0; t < indices->size() / 3; ++t) {
+      if (!validTriangle(*indices, t, p.positions.size())) continue;
+      const glm::vec3 q = closestOnTriangle(point, p.positions[(*indices)[3 * t]], p.positions[(*indices)[3 * t + 1]],
+                                            p.positions[(*indices)[3 * t + 2]]);
+      best = std::min(best, glm::distance(q, point));
+    }
+  }
+  return best;
+}
+
+}  // namespace autorig

@@ -1,0 +1,79 @@
+#pragma once
+// From a picture back to the mesh: a ray from the camera through a pixel,
+// its nearest hit on the posed face's surface. The triangles are binned once
+// by where they fall in the picture (a grid of cells), so each ray tests the
+// few hundred triangles of its cell, not every triangle of a 100k-vertex head.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "autorig/posed_face.h"
+#include "engine/scene/model.h"
+
+namespace autorig {
+
+// The camera the picture was taken with: world to clip (Vulkan: y down,
+// depth 0..1) and the picture's size in pixels.
+struct PictureCamera {
+  glm::mat4 viewProjection{1.0f};
+  glm::vec2 imageSize{1.0f};
+};
+
+struct SurfacePoint {
+  size_t primitive = 0;  // index into PosedFace::primitives
+  glm::vec3 position{0.0f};
+  // True when the ray hit a triangle facing the camera; false when it fell
+  // through a gap (an eye opening, parted lips) or just past an edge and a
+  // vertex beside it was taken instead.
+  bool hit = true;
+};
+
+class SurfaceCaster {
+ public:
+  // `cast`: one flag per PosedFace primitive, the ones rays may hit (the
+  // skin; not eyeballs, teeth or hair). `model` (its triangles) and `posed`
+  // must outlive the caster.
+  SurfaceCaster(const eng::Model& model, const PosedFace& posed, const std::vector<bool>& cast,
+                const PictureCamera& camera);
+
+  // The surface seen at `pixel` (x right, y down, pixel centres at +0.5):
+  // the nearest triangle facing the camera; where the ray meets the inside
+  // of the head first, the front-most vertex within `reachPixels` of it;
+  // where it meets nothing, the vertex nearest to it within reach. Nullopt
+  // when nothing of the surface is that close.
+  std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels = 6.0f) const;
+
+  // Where a world point lands in the picture (pixels), nullopt behind the camera.
+  std::optional<glm::vec2> project(const glm::vec3& world) const;
+
+ private:
+  struct TriangleRef {
+    uint32_t primitive;
+    uint32_t triangle;
+  };
+  std::optional<SurfacePoint> nearestVertex(glm::vec2 pixel, float reachPixels, bool frontMost) const;
+  int cellOf(glm::vec2 pixel) const;
+
+  const PosedFace* posed_;
+  std::vector<const std::vector<uint32_t>*> indices_;  // per primitive, null when not cast
+  std::vector<bool> outward_;                          // per primitive: counter-clockwise faces out
+  PictureCamera camera_;
+  glm::mat4 inverse_{1.0f};
+  int cells_ = 64;  // per side
+  std::vector<std::vector<TriangleRef>> bins_;
+};
+
+// The primitives rays should stop at: the outer surface of the face. Left
+// out are those whose names say they are not skin (eyeballs, teeth, lashes,
+// hair, glasses, clothes) and those that lie inside another primitive's box
+// (an unnamed eyeball, the mouth's inside, brows over the skin):
+// rays pass through to the skin behind them. All of them when that leaves none.
+std::vector<bool> outerSkinPrimitives(const eng::Model& model, const PosedFace& posed);
+
+// The distance from `point` to the nearest triangle of the primitives flagged
+// in `among` (all of them when empty); infinity when there are none.
+float distanceToSurface(const eng::Model& model, const PosedFace& posed, const glm::vec3& point, const std::vector<bool>& among = {});
+
+}  // namespace autorig

@@ -1,0 +1,22 @@
+#pragma once
+// The built-in head in transfer tests: loaded, set up as the source, and a
+// way to compare two targets vertex by vertex.
+#include <optional>
+
+#include "autorig/target_transfer.h"
+#include "engine/scene/model.h"
+
+namespace transfer_fixture {
+
+// data/head.glb, or nullopt (with a test failure) when it cannot be read.
+std::optional<eng::Model> loadHead();
+// autorig::builtInSource, a test failure when it fails; `head` must outlive it.
+autorig::SourceFace headSource(const eng::Model& head);
+
+// How far target B of b is from target A of a on one primitive of the mesh
+// named `mesh` (same vertices): the largest vertex difference over A's
+// largest displacement, |a - b|max / |a|max.
+float relativeError(const eng::Model& a, const eng::Model& b, const char* mesh, size_t primitive, const char* targetA,
+                    const char* targetB);
+
+}  // namespace transfer_fixture
