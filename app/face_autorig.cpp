@@ -13,6 +13,7 @@
 
 #include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
+#include "autorig/builtin_source.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
 #include "engine/scene/gltf_loader.h"
@@ -90,17 +91,12 @@ std::string cannotEmoteLine(const std::filesystem::path& model, const std::strin
 eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
   FaceAutorig rigger;
   rigger.headPath_ = head.empty() ? defaultModelPath() : head;
-  auto loaded = importers::loadFace(rigger.headPath_, {.dressForDisplay = true});
-  if (!loaded) return loaded.error();
-  rigger.head_ = std::make_unique<importers::LoadedFace>(std::move(*loaded));
-  // The head's landmarks are found as any face's (the same picture, detector
-  // and cast), so their biases cancel out in the warp.
-  auto landmarks = faceLandmarks(*rigger.head_, rigger.headPath_.string());
-  if (!landmarks) return landmarks.error().prefixed("the source head: ");
-  rigger.source_.model = &rigger.head_->model;
-  rigger.source_.posed = autorig::poseAtRest(rigger.head_->model);
-  rigger.source_.landmarks = std::move(*landmarks);
-  rigger.source_.parts = autorig::findFaceParts(rigger.head_->model, rigger.source_.posed, rigger.source_.landmarks);
+  auto head = eng::loadModel(rigger.headPath_);
+  if (!head) return head.error();
+  rigger.head_ = std::make_unique<eng::Model>(std::move(*head));
+  auto source = autorig::builtInSource(*rigger.head_);
+  if (!source) return source.error().prefixed(rigger.headPath_.string() + ": ");
+  rigger.source_ = std::move(*source);
   return rigger;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Expression targets made for a face that has none (issue 33), as the
 // programs run it: the built-in head (data/head.glb) loaded once with its
-// posed face, landmarks and parts (the source), the face's landmarks found on
+// posed face, landmarks and parts (the source, autorig/builtin_source.h), the face's landmarks found on
 // a front view (app/face_landmark_finder.h) or read from a file, its parts
 // told apart, the head's action units and the ARKit 52 carried over
 // (autorig/target_transfer.h).
@@ -66,8 +66,8 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
 
 class FaceAutorig {
  public:
-  // The source head: `head` (empty: app::defaultModelPath()) with its
-  // landmarks found the same way as any face's. Errors name the file.
+  // The source head: `head` (empty: app::defaultModelPath()), its parts and
+  // landmarks from its own layout (autorig::builtInSource). Errors name the file.
   static eng::Result<FaceAutorig> load(const std::filesystem::path& head = {});
 
   // `face` (LoadedFace::model without shapes: undressed, as saved) with the
@@ -81,7 +81,7 @@ class FaceAutorig {
  private:
   FaceAutorig() = default;
   std::filesystem::path headPath_;
-  std::unique_ptr<importers::LoadedFace> head_;  // SourceFace points at its model: a stable address
+  std::unique_ptr<eng::Model> head_;  // SourceFace points at it: a stable address
   autorig::SourceFace source_;
 };
 
