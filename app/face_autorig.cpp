@@ -91,9 +91,9 @@ std::string cannotEmoteLine(const std::filesystem::path& model, const std::strin
 eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
   FaceAutorig rigger;
   rigger.headPath_ = head.empty() ? defaultModelPath() : head;
-  auto head = eng::loadModel(rigger.headPath_);
-  if (!head) return head.error();
-  rigger.head_ = std::make_unique<eng::Model>(std::move(*head));
+  auto model = eng::loadModel(rigger.headPath_);
+  if (!model) return model.error();
+  rigger.head_ = std::make_unique<eng::Model>(std::move(*model));
   auto source = autorig::builtInSource(*rigger.head_);
   if (!source) return source.error().prefixed(rigger.headPath_.string() + ": ");
   rigger.source_ = std::move(*source);
