@@ -36,10 +36,9 @@ std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalib
            (names.size() > 4 ? ", ..." : "") + ")";
   }
   const facial::RigMappingReport& report = rig->rig.report();
-  if (report.scheme == facial::RigScheme::Visemes)
-    return "its targets are lip-sync visemes only (" + report.detail + ")";
-  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners (" +
-         report.detail + ")";
+  if (report.scheme == facial::RigScheme::Visemes) return "its targets are lip-sync visemes only: " + report.detail;
+  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners: " +
+         report.detail;
 }
 
 // FNV-1a, 64 bits: a cache key, not a checksum against tampering.
@@ -100,14 +99,14 @@ eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
   return rigger;
 }
 
-eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face, const std::string& faceName,
+eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face,
                                                   const std::filesystem::path& landmarksFile) {
-  if (!landmarksFile.empty()) return autorig::readLandmarksFile(landmarksFile);
   const autorig::PosedFace posed = autorig::poseAtRest(face.model);
-  if (posed.vertexCount() == 0)
-    return eng::makeError(eng::ErrorKind::InvalidArgument, faceName + ": nothing is drawn (no mesh in its scene)");
-  // The finder's errors name the model's file.
-  return findFaceLandmarks(face.model, posed, {.display = &face.displayModel()});
+  if (landmarksFile.empty()) return findFaceLandmarks(face.model, posed, {.display = &face.displayModel()});
+  auto landmarks = autorig::readLandmarksFile(landmarksFile);
+  if (!landmarks) return landmarks.error();
+  ENG_TRY(autorig::checkLandmarksOnSurface(*landmarks, face.model, posed, landmarksFile.string()));
+  return landmarks;
 }
 
 eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
@@ -177,7 +176,7 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
     }
     // An unreadable cache entry is made again below (and replaced).
   }
-  auto landmarks = faceLandmarks(*face, modelPath.string());
+  auto landmarks = faceLandmarks(*face);
   if (!landmarks) return landmarks.error();
   auto rigger = FaceAutorig::load(head);
   if (!rigger) return rigger.error();

@@ -7,7 +7,7 @@
 // (autorig/target_transfer.h).
 //
 //   auto face = importers::loadFace("face.glb", {.dressForDisplay = true});
-//   auto landmarks = app::faceLandmarks(*face, "face.glb");
+//   auto landmarks = app::faceLandmarks(*face);
 //   auto rigger = app::FaceAutorig::load();
 //   auto rigged = rigger->rig(face->model, *landmarks, "face.glb");  // rigged->model has the new targets
 //
@@ -57,11 +57,12 @@ struct AutorigResult {
   std::vector<std::string> partNotes;  // how its parts were told apart (autorig::FaceParts::notes)
 };
 
-// A face's landmarks: read from `landmarksFile` when given (errors name it),
+// A face's landmarks: read from `landmarksFile` when given and checked to lie
+// on the face (errors name the file),
 // else found on a front view of its display model (errors name the file: "no
 // face found in a front view of cube.glb ..."). Called before
 // FaceAutorig::load, so a face without one fails before the head is prepared.
-eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face, const std::string& faceName,
+eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face,
                                                   const std::filesystem::path& landmarksFile = {});
 
 class FaceAutorig {

@@ -56,7 +56,7 @@ int runAutorig(const AutorigOptions& o) {
   if (face->format != importers::FaceFormat::Gltf)
     return fail(o.model + ": a " + std::string(importers::faceFormatName(face->format)) +
                 " face; autorig makes targets for glTF / GLB faces (convert it first: facial convert)");
-  auto landmarks = app::faceLandmarks(*face, o.model, o.landmarks);
+  auto landmarks = app::faceLandmarks(*face, o.landmarks);
   if (!landmarks) return fail(landmarks.error().message + (o.landmarks.empty() ? "; pass --landmarks L.json (68 points)" : ""));
   if (!o.landmarksOut.empty())
     if (auto written = autorig::writeLandmarksFile(*landmarks, o.landmarksOut); !written)
