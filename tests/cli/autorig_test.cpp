@@ -43,6 +43,8 @@ class AutorigCommand : public ::testing::Test {
   CommandOutput facial(const std::vector<std::string>& args) {
     return runFacial(args, {"XDG_CACHE_HOME=" + cache_.string()});
   }
+  // The rigged faces; cache_ also holds Mesa's and the validation layer's.
+  fs::path rigCache() const { return cache_ / "facial" / "autorig"; }
   fs::path dir_, cache_, ball_;
 };
 
@@ -54,7 +56,7 @@ TEST_F(AutorigCommand, AMeshWithNoFaceIsOneLineAndNoFile) {
   EXPECT_NE(run.err.find("facial autorig: error: "), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("no face found in a front view of " + ball_.string()), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("--landmarks"), std::string::npos) << run.err;
-  EXPECT_EQ(filesIn(dir_), 1u) << "only the ball: no output, no .partial";
+  EXPECT_EQ(filesIn(dir_) - filesIn(cache_), 1u) << "only the ball: no output, no .partial";
 }
 
 TEST_F(AutorigCommand, ABadLandmarksFileIsNamed) {
@@ -87,7 +89,7 @@ TEST_F(AutorigCommand, PosingAFaceWithoutOneSaysBothWhatItLacksAndWhy) {
   EXPECT_NE(run.err.find("no scheme recognises the 0 target names"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("autorig: no face found in a front view"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(out));
-  EXPECT_FALSE(fs::exists(cache_) && filesIn(cache_) > 0) << "nothing cached for a failure";
+  EXPECT_EQ(filesIn(rigCache()), 0u) << "nothing cached for a failure";
 }
 
 class AutorigAvatar : public AutorigCommand {
@@ -100,11 +102,12 @@ class AutorigAvatar : public AutorigCommand {
   fs::path avatar_;
 };
 
-// The mouth corners of a face framed at 128x128: the band below the nose.
+// The mouth of the avatar framed (head and shoulders) at 128x128: the band
+// where its lips are (rows 45-60 %, columns 35-65 %).
 double mouthChange(const eng::Image& a, const eng::Image& b) {
   size_t changed = 0, total = 0;
-  for (uint32_t y = a.height * 55 / 100; y < a.height * 80 / 100; ++y)
-    for (uint32_t x = a.width * 25 / 100; x < a.width * 75 / 100; ++x, ++total)
+  for (uint32_t y = a.height * 45 / 100; y < a.height * 60 / 100; ++y)
+    for (uint32_t x = a.width * 35 / 100; x < a.width * 65 / 100; ++x, ++total)
       for (int c = 0; c < 3; ++c) {
         const size_t i = (size_t(y) * a.width + x) * 4 + c;
         if (std::abs(int(a.rgba8[i]) - int(b.rgba8[i])) > 12) {
@@ -124,14 +127,14 @@ TEST_F(AutorigAvatar, ExpressHappySmilesAfterOneNoteAndTheCacheServesTheNextRun)
   EXPECT_NE(happy.err.find("facial express: note: " + avatar_.string() + " cannot show emotions"), std::string::npos)
       << happy.err;
   EXPECT_NE(happy.err.find("cached as " + cache_.string()), std::string::npos) << happy.err;
-  EXPECT_EQ(filesIn(cache_), 1u) << "one rigged face, no .partial";
+  EXPECT_EQ(filesIn(rigCache()), 1u) << "one rigged face, no .partial";
 
   const CommandOutput neutral = facial({"express", "neutral", "--model", avatar_.string(), "--size", "128x128",
                                         "--quality", "fast", "--out", neutralPng.string()});
   ASSERT_TRUE(ranCleanly(neutral)) << neutral.err;
   EXPECT_NE(neutral.err.find("from the cache " + cache_.string()), std::string::npos) << neutral.err;
   const double change = mouthChange(readPngOrFail(neutralPng), readPngOrFail(happyPng));
-  EXPECT_GT(change, 0.05) << "happy moves the mouth of the rigged avatar";
+  EXPECT_GT(change, 0.15) << "happy moves the mouth of the rigged avatar (0.33 measured)";
 }
 
 TEST_F(AutorigAvatar, NoAutorigRefusesInOneLine) {
@@ -144,7 +147,7 @@ TEST_F(AutorigAvatar, NoAutorigRefusesInOneLine) {
             std::string::npos)
       << run.err;
   EXPECT_FALSE(fs::exists(out));
-  EXPECT_FALSE(fs::exists(cache_));
+  EXPECT_EQ(filesIn(rigCache()), 0u);
 }
 
 TEST_F(AutorigAvatar, RigReportsWhatWasMadeAndKept) {
