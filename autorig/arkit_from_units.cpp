@@ -72,7 +72,7 @@ constexpr std::array kShapes = {
     Shape{"tongueOut", {Term{"AU19_TongueShow"}}},
 };
 
-float maskWeight(Mask mask, const glm::vec3& p, const FaceFrame& frame) {
+float maskWeight(Mask mask, const glm::vec3& p, const LandmarkFrame& frame) {
   auto ramp = [](float x, float halfWidth) { return glm::smoothstep(-halfWidth, halfWidth, x); };
   switch (mask) {
     case Mask::All: return 1.0f;
@@ -93,7 +93,7 @@ const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view
 }  // namespace
 
 std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
-                                        const FaceFrame& frame, std::vector<std::string>& unmade) {
+                                        const LandmarkFrame& frame, std::vector<std::string>& unmade) {
   std::vector<NamedDeltas> shapes;
   for (std::string_view name : facial::arkitBlendShapeNames()) {
     auto row = std::find_if(kShapes.begin(), kShapes.end(), [&](const Shape& s) { return s.name == name; });

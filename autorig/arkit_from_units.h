@@ -27,6 +27,6 @@ struct NamedDeltas {
 // at rest). A shape whose units are all missing is left out and named in
 // `unmade`, as is every shape without a unit.
 std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
-                                        const FaceFrame& frame, std::vector<std::string>& unmade);
+                                        const LandmarkFrame& frame, std::vector<std::string>& unmade);
 
 }  // namespace autorig

@@ -82,8 +82,8 @@ glm::ivec3 TriangleGrid::cellOf(const glm::vec3& p) const {
   return glm::clamp(glm::ivec3(glm::floor((p - min_) / cell_)), glm::ivec3(0), dims_ - 1);
 }
 
-SurfacePoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const {
-  SurfacePoint best;
+ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const {
+  ClosestPoint best;
   best.distance = maxDistance;
   if (triangles_.empty() || !std::isfinite(p.x + p.y + p.z)) return best;
   // Distance from p to the grid's box: shells nearer than that hold nothing.
@@ -109,7 +109,7 @@ SurfacePoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float
             const glm::vec3 q = closestOnTriangle(p, positions_[t[0]], positions_[t[1]], positions_[t[2]], bary);
             const float d = glm::length(q - p);
             if (d < best.distance || (!best.found && d <= maxDistance)) {
-              best = SurfacePoint{.triangle = i, .barycentric = bary, .position = q, .distance = d, .found = true};
+              best = ClosestPoint{.triangle = i, .barycentric = bary, .position = q, .distance = d, .found = true};
             }
           }
         }

@@ -15,7 +15,7 @@
 
 namespace autorig {
 
-struct SurfacePoint {
+struct ClosestPoint {
   uint32_t triangle = 0;
   glm::vec3 barycentric{1.0f, 0.0f, 0.0f};
   glm::vec3 position{0.0f};
@@ -31,7 +31,7 @@ class TriangleGrid {
 
   // The closest point on a triangle whose region is not `refused` (None
   // refuses nothing), within maxDistance; found = false when there is none.
-  SurfacePoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const;
+  ClosestPoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const;
 
  private:
   glm::ivec3 cellOf(const glm::vec3& p) const;

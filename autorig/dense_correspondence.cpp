@@ -13,7 +13,7 @@ constexpr uint32_t kNotGathered = UINT32_MAX;
 
 // Within this distance of a closing line (eye spans) a vertex's side is the
 // mesh's to say: about the lips' and the lids' thickness.
-constexpr float kLineBand = 0.03f;
+constexpr float kLineBand = 0.06f;
 
 // A triangle is in a region when one of its vertices is (and none is in the opposite one).
 std::vector<FaceRegion> triangleRegions(const FaceSurface& surface, const std::vector<FaceRegion>& vertexRegions) {
@@ -24,7 +24,7 @@ std::vector<FaceRegion> triangleRegions(const FaceSurface& surface, const std::v
   return regions;
 }
 
-glm::vec3 onSource(const FaceSurface& source, const SurfacePoint& match) {
+glm::vec3 onSource(const FaceSurface& source, const ClosestPoint& match) {
   const auto& t = source.triangles[match.triangle];
   return match.barycentric.x * source.positions[t[0]] + match.barycentric.y * source.positions[t[1]] +
          match.barycentric.z * source.positions[t[2]];
@@ -34,7 +34,7 @@ glm::vec3 onSource(const FaceSurface& source, const SurfacePoint& match) {
 // and the closing lines (the landmarks hold those), each paired with its
 // closest point on the warped source, as (source rest point, target point).
 void growPairs(const FaceSurface& source, const std::vector<glm::vec3>& warped, const FaceSurface& target,
-               const FaceFrame& frame, const FaceLandmarks& landmarks, const CorrespondenceOptions& options,
+               const LandmarkFrame& frame, const FaceLandmarks& landmarks, const CorrespondenceOptions& options,
                std::vector<glm::vec3>& sourcePoints, std::vector<glm::vec3>& targetPoints) {
   const TriangleGrid grid(warped, source.triangles, {});
   const float spacing = options.sampleSpacing * frame.eyeSpan();
@@ -53,7 +53,7 @@ void growPairs(const FaceSurface& source, const std::vector<glm::vec3>& warped, 
     bool crowded = false;
     for (const glm::vec3& l : landmarks.points) crowded = crowded || glm::length(l - p) < nearLandmark;
     if (crowded) continue;
-    const SurfacePoint match = grid.closest(p, FaceRegion::None, 0.5f * spacing);
+    const ClosestPoint match = grid.closest(p, FaceRegion::None, 0.5f * spacing);
     if (!match.found) continue;
     taken.insert(key);
     sourcePoints.push_back(onSource(source, match));
@@ -70,7 +70,7 @@ std::vector<glm::vec3> warpAll(const LandmarkWarp& warp, const std::vector<glm::
 
 }  // namespace
 
-std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const FaceFrame& frame) {
+std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame) {
   const size_t n = surface.positions.size();
   std::vector<FaceRegion> regions(n, FaceRegion::None);
   std::vector<float> reach(n, std::numeric_limits<float>::infinity());
@@ -142,7 +142,7 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
 eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,
                                        const FaceSurface& target, const FaceLandmarks& targetLandmarks,
                                        const CorrespondenceOptions& options) {
-  const FaceFrame sourceFrame(sourceLandmarks), targetFrame(targetLandmarks);
+  const LandmarkFrame sourceFrame(sourceLandmarks), targetFrame(targetLandmarks);
   // Landmarks that meet on the source (inner lips of a closed mouth) are one
   // control point: the first pair holds it.
   const float minSeparation = 1e-3f * sourceFrame.eyeSpan();

@@ -45,7 +45,7 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
 // nearest clearly labelled vertex along the surface's edges), because the
 // lips of a closed mouth and the lids of a closed eye meet there, often as
 // separate vertices at the same places.
-std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const FaceFrame& frame);
+std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame);
 
 struct CorrespondenceOptions {
   int growthRounds = 2;       // warp, match, re-solve
@@ -58,7 +58,7 @@ struct Correspondence {
   LandmarkWarp warp;  // source -> target, landmarks and grown pairs
   size_t grownPairs = 0;
   std::vector<glm::vec3> warpedSource;  // the source surface's positions warped
-  std::vector<SurfacePoint> matches;    // one per target vertex (found = false: none within maxGap)
+  std::vector<ClosestPoint> matches;    // one per target vertex (found = false: none within maxGap)
 };
 
 eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,

@@ -32,7 +32,7 @@ FaceRegion opposite(FaceRegion region) {
   return FaceRegion::None;
 }
 
-FaceFrame::FaceFrame(const FaceLandmarks& landmarks) {
+LandmarkFrame::LandmarkFrame(const FaceLandmarks& landmarks) {
   const auto& p = landmarks.points;
   const glm::vec3 rightEye = (p[36] + p[39]) * 0.5f, leftEye = (p[42] + p[45]) * 0.5f;
   const glm::vec3 mouth = (p[48] + p[54]) * 0.5f;
@@ -55,7 +55,7 @@ FaceFrame::FaceFrame(const FaceLandmarks& landmarks) {
   }
 }
 
-FaceFrame::Line FaceFrame::makeLine(const FaceLandmarks& landmarks, std::span<const std::array<int, 2>> pairs) const {
+LandmarkFrame::Line LandmarkFrame::makeLine(const FaceLandmarks& landmarks, std::span<const std::array<int, 2>> pairs) const {
   Line line;
   for (const auto& pair : pairs)
     line.points.push_back(plane((landmarks.points[static_cast<size_t>(pair[0])] + landmarks.points[static_cast<size_t>(pair[1])]) * 0.5f));
@@ -64,7 +64,7 @@ FaceFrame::Line FaceFrame::makeLine(const FaceLandmarks& landmarks, std::span<co
   return line;
 }
 
-float FaceFrame::Line::heightAt(float x) const {
+float LandmarkFrame::Line::heightAt(float x) const {
   if (x <= points.front().x) return points.front().y;
   for (size_t i = 1; i < points.size(); ++i) {
     if (x > points[i].x) continue;
@@ -75,12 +75,12 @@ float FaceFrame::Line::heightAt(float x) const {
   return points.back().y;
 }
 
-float FaceFrame::aboveLipLine(const glm::vec3& p) const {
+float LandmarkFrame::aboveLipLine(const glm::vec3& p) const {
   glm::vec2 q = plane(p);
   return (q.y - lips_.heightAt(q.x)) / eyeSpan_;
 }
 
-FaceRegion FaceFrame::region(const glm::vec3& p, float* margin) const {
+FaceRegion LandmarkFrame::region(const glm::vec3& p, float* margin) const {
   // Only the front of the face: the back of the head projects onto the same lines.
   const float depth = glm::dot(p - origin_, forward_);
   if (depth < -0.6f * eyeSpan_) return FaceRegion::None;

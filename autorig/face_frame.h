@@ -30,9 +30,9 @@ enum class FaceRegion : unsigned char {
 // None for None.
 FaceRegion opposite(FaceRegion region);
 
-class FaceFrame {
+class LandmarkFrame {
  public:
-  explicit FaceFrame(const FaceLandmarks& landmarks);
+  explicit LandmarkFrame(const FaceLandmarks& landmarks);
 
   const glm::vec3& origin() const { return origin_; }  // between the eyes and the mouth
   const glm::vec3& side() const { return side_; }      // towards the subject's left (36 -> 45)

@@ -15,7 +15,7 @@ constexpr float kHingeDepth = 0.1f;
 }  // namespace
 
 JawHinge estimateJawHinge(const FaceLandmarks& landmarks) {
-  const FaceFrame frame(landmarks);
+  const LandmarkFrame frame(landmarks);
   const glm::vec3 middle = (landmarks.points[0] + landmarks.points[16]) * 0.5f;
   return JawHinge{.pivot = middle - frame.forward() * (kHingeDepth * frame.eyeSpan()), .axis = frame.side()};
 }

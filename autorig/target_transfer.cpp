@@ -93,19 +93,19 @@ std::vector<std::vector<glm::vec3>> sourceDeltas(const SourceFace& source, const
   return deltas;
 }
 
-glm::vec3 atMatch(const std::vector<glm::vec3>& perVertex, const FaceSurface& surface, const SurfacePoint& match) {
+glm::vec3 atMatch(const std::vector<glm::vec3>& perVertex, const FaceSurface& surface, const ClosestPoint& match) {
   const auto& t = surface.triangles[match.triangle];
   return match.barycentric.x * perVertex[t[0]] + match.barycentric.y * perVertex[t[1]] + match.barycentric.z * perVertex[t[2]];
 }
 
 // Too many landmarks away from the face's skin: they were found on another
 // face, on hair or glasses, or typed wrong.
-eng::Result<void> checkOnSurface(const FaceSurface& target, const FaceLandmarks& landmarks, const FaceFrame& frame) {
+eng::Result<void> checkOnSurface(const FaceSurface& target, const FaceLandmarks& landmarks, const LandmarkFrame& frame) {
   const TriangleGrid grid(target.positions, target.triangles, {});
   size_t off = 0, worst = 0;
   float worstGap = 0.0f;
   for (size_t i = 0; i < kLandmarkCount; ++i) {
-    const SurfacePoint hit = grid.closest(landmarks.points[i], FaceRegion::None, kOffSurface * frame.eyeSpan());
+    const ClosestPoint hit = grid.closest(landmarks.points[i], FaceRegion::None, kOffSurface * frame.eyeSpan());
     if (hit.found) continue;
     ++off;
     worst = i;
@@ -123,8 +123,8 @@ eng::Result<void> checkOnSurface(const FaceSurface& target, const FaceLandmarks&
 // back, or left and right swapped): its forward turns against the source's.
 eng::Result<void> checkFacing(const SourceFace& source, const FaceLandmarks& landmarks) {
   const Similarity fit = ENG_TRY_VALUE(fitSimilarity(source.landmarks.points, landmarks.points));
-  const glm::vec3 carried = fit.rotation * FaceFrame(source.landmarks).forward();
-  if (glm::dot(carried, FaceFrame(landmarks).forward()) < 0.0f)
+  const glm::vec3 carried = fit.rotation * LandmarkFrame(source.landmarks).forward();
+  if (glm::dot(carried, LandmarkFrame(landmarks).forward()) < 0.0f)
     return eng::makeError(eng::ErrorKind::InvalidArgument,
                           "landmarks: the face's 68 points are mirrored (left and right swapped, or seen from the back)");
   return {};
@@ -162,7 +162,7 @@ namespace {
 Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const FaceSurface& jaw,
                  const Correspondence& corr, const std::vector<std::string>& units, const FaceLandmarks& landmarks,
                  const FaceParts& parts) {
-  const FaceFrame sourceFrame(source.landmarks), targetFrame(landmarks);
+  const LandmarkFrame sourceFrame(source.landmarks), targetFrame(landmarks);
   const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
   std::vector<glm::mat3> jacobians(src.positions.size());
   for (size_t i = 0; i < src.positions.size(); ++i)
@@ -178,7 +178,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
 
   // The source's chin and its jaw hinge give each jaw unit's angle.
   const TriangleGrid sourceGrid(src.positions, src.triangles, {});
-  const SurfacePoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
+  const ClosestPoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
   const JawHinge sourceHinge = estimateJawHinge(source.landmarks), targetHinge = estimateJawHinge(landmarks);
 
   std::vector<glm::vec3> carried(src.positions.size());
@@ -186,7 +186,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
     for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * raw[u][i];
     NamedDeltas unit{units[u], std::vector<glm::vec3>(moved.positions.size(), glm::vec3(0.0f))};
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
-      const SurfacePoint& match = corr.matches[v];
+      const ClosestPoint& match = corr.matches[v];
       if (!match.found) continue;
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
       unit.deltas[v] = alongEyeball(tgt.positions[v], weight * atMatch(carried, src, match), parts);
@@ -210,6 +210,24 @@ bool faceHas(const eng::Model& face, std::string_view name, bool arkit) {
       if (shape && facial::arkitIndex(existing) == shape) return true;
     }
   return false;
+}
+
+// A new last target on mesh `mesh`: every weights channel animating it gets
+// a zero weight for it in each key (in each of a cubic spline's triples).
+void widenWeightChannels(eng::Model& model, size_t mesh) {
+  for (eng::Animation& animation : model.animations)
+    for (eng::WeightsChannel& channel : animation.channels) {
+      if (channel.mesh != int(mesh) || channel.targetCount == 0) continue;
+      const size_t n = channel.targetCount;
+      std::vector<float> widened;
+      widened.reserve(channel.values.size() / n * (n + 1));
+      for (size_t i = 0; i + n <= channel.values.size(); i += n) {
+        widened.insert(widened.end(), channel.values.begin() + long(i), channel.values.begin() + long(i + n));
+        widened.push_back(0.0f);
+      }
+      channel.values = std::move(widened);
+      channel.targetCount = n + 1;
+    }
 }
 
 // Appends `target` to every mesh it moves: displacements into each vertex's
@@ -244,6 +262,7 @@ void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, 
     for (size_t p = 0; p < mesh.primitives.size(); ++p) mesh.primitives[p].targets.push_back(std::move(added[p]));
     mesh.targetNames.push_back(target.name);
     mesh.defaultWeights.push_back(0.0f);
+    widenWeightChannels(model, m);
   }
 }
 
@@ -272,7 +291,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the face has no skin triangles (" +
                                                                std::to_string(tgt.positions.size()) + " skin vertices of " +
                                                                std::to_string(posed.vertexCount()) + ")");
-  const FaceFrame frame(landmarks);
+  const LandmarkFrame frame(landmarks);
   ENG_TRY(checkOnSurface(tgt, landmarks, frame));
   ENG_TRY(checkFacing(source, landmarks));
   const Correspondence corr = ENG_TRY_VALUE(correspond(src, source.landmarks, tgt, landmarks));

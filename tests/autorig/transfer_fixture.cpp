@@ -60,4 +60,30 @@ float relativeError(const eng::Model& a, const eng::Model& b, const char* mesh, 
   return size > 0.0f ? worst / size : std::numeric_limits<float>::infinity();
 }
 
+Comparison compareTargets(const eng::Mesh& made, const char* madeName, const eng::Mesh& truth, const char* trueName) {
+  auto index = [](const eng::Mesh& mesh, const char* name) {
+    return size_t(std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name) - mesh.targetNames.begin());
+  };
+  const size_t tm = index(made, madeName), tt = index(truth, trueName);
+  if (tm >= made.targetNames.size() || tt >= truth.targetNames.size()) {
+    ADD_FAILURE() << "no target " << (tm >= made.targetNames.size() ? madeName : trueName);
+    const float inf = std::numeric_limits<float>::infinity();
+    return {inf, inf, inf};
+  }
+  double diff = 0.0, trueEnergy = 0.0, madeEnergy = 0.0, dot = 0.0;
+  for (size_t p = 0; p < made.primitives.size() && p < truth.primitives.size(); ++p) {
+    const std::vector<glm::vec3>& m = made.primitives[p].targets[tm].positions;
+    const std::vector<glm::vec3>& t = truth.primitives[p].targets[tt].positions;
+    for (size_t v = 0; v < m.size() && v < t.size(); ++v) {
+      diff += double(glm::dot(m[v] - t[v], m[v] - t[v]));
+      trueEnergy += double(glm::dot(t[v], t[v]));
+      madeEnergy += double(glm::dot(m[v], m[v]));
+      dot += double(glm::dot(m[v], t[v]));
+    }
+  }
+  if (!(trueEnergy > 0.0)) return {};
+  return {float(std::sqrt(diff / trueEnergy)), float(dot / std::sqrt(std::max(trueEnergy * madeEnergy, 1e-300))),
+          float(dot / trueEnergy)};
+}
+
 }  // namespace transfer_fixture

@@ -19,4 +19,17 @@ autorig::SourceFace headSource(const eng::Model& head);
 float relativeError(const eng::Model& a, const eng::Model& b, const char* mesh, size_t primitive, const char* targetA,
                     const char* targetB);
 
+// A made target against a true one over every vertex of one mesh (all its
+// primitives), in the true target's own units:
+//   relativeRms = sqrt(sum |made - true|^2 / sum |true|^2)  (0: the same; 1: as far as no motion)
+//   cosine      = sum made.true / sqrt(sum |made|^2 sum |true|^2)  (direction agreement)
+//   gain        = sum made.true / sum |true|^2  (how much of the true motion is made)
+struct Comparison {
+  float relativeRms = 0.0f;
+  float cosine = 0.0f;
+  float gain = 0.0f;
+};
+// Errors (a test failure and infinities) when a target is missing.
+Comparison compareTargets(const eng::Mesh& made, const char* madeName, const eng::Mesh& truth, const char* trueName);
+
 }  // namespace transfer_fixture
