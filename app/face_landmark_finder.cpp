@@ -36,16 +36,66 @@ eng::Result<void> writePicture(eng::Image image, const autorig::DetectedFace& fa
   return eng::writePng(path, image.width, image.height, image.rgba8);
 }
 
-// How far from its pixel a point may be taken from the surface: 1 % of the
-// picture, and 4 % on the jaw line (0-16), which dlib puts on the face's
-// outline and a face cut out as a mask (facecap) may not reach.
-float reachPixels(size_t landmark, uint32_t size) { return float(size) * (landmark <= 16 ? 0.04f : 0.01f); }
+// How far from its pixel a point may be taken from the surface, of the
+// picture's side: dlib puts the jaw line on the face's outline, which a face
+// cut out as a mask may not reach, and a lid point inside the eye opening
+// goes to the rim, a few vertices away on a coarse mesh.
+constexpr float kReach = 0.04f;
 
 std::string describe(const autorig::DetectedFace& face) {
   char text[96];
   std::snprintf(text, sizeof text, "dlib (face box %.0f px, confidence %.2f)", double(face.box.max.x - face.box.min.x),
                 double(face.confidence));
   return text;
+}
+
+struct Sighting {
+  eng::Image image;
+  autorig::DetectedFace face;
+};
+
+// One picture from the renderer's camera and the face dlib finds in it.
+eng::Result<std::optional<Sighting>> look(HeadlessModelRenderer& renderer, std::span<const float> weights,
+                                          const autorig::LandmarkDetector& detector) {
+  auto image = renderer.render(weights);
+  if (!image) return image.error();
+  ENG_TRY(renderer.checkValidation());
+  std::optional<autorig::DetectedFace> face = detector.detect(*image);
+  if (!face) return std::optional<Sighting>();
+  return std::optional<Sighting>(Sighting{std::move(*image), *face});
+}
+
+// The face framing shows head and neck (a full-body avatar's face can be a
+// fifth of the picture): the camera moves in until the face box is about
+// 60 % of the picture wide, centred, so the predictor sees the features in
+// detail and the jaw line still fits.
+// False when the face is that big already.
+bool closeIn(eng::OrbitCamera& camera, const autorig::PixelBox& box, float size) {
+  const float k = std::min(0.6f * size / std::max(box.max.x - box.min.x, 1.0f), 4.0f);
+  if (k < 1.15f) return false;
+  const glm::vec2 centre = (box.min + box.max) / size - 1.0f;  // NDC, y down
+  camera.zoom *= k;
+  camera.imageCentre = (camera.imageCentre - centre) * k;
+  return true;
+}
+
+// Each detected pixel cast onto the face; the first that misses is named.
+eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& caster, const Sighting& seen,
+                                                 uint32_t size, const std::string& name,
+                                                 const std::filesystem::path& picture) {
+  autorig::FaceLandmarks landmarks;
+  landmarks.source = describe(seen.face);
+  std::optional<size_t> missed;
+  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
+    const std::optional<autorig::SurfacePoint> hit = caster.cast(seen.face.pixels[i], kReach * float(size));
+    if (hit) landmarks.points[i] = hit->position;
+    else if (!missed) missed = i, landmarks.points[i] = glm::vec3(NAN);
+  }
+  if (!picture.empty()) ENG_TRY(writePicture(seen.image, seen.face, landmarks, caster, picture));
+  if (missed)
+    return eng::makeError(eng::ErrorKind::NotFound, name + ": landmark " + std::to_string(*missed) +
+                                                        " of the front view is not on the face's surface");
+  return landmarks;
 }
 
 }  // namespace
@@ -64,28 +114,18 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       drawn, {.width = options.size, .height = options.size, .quality = eng::vk::RenderQuality::Fast});
   if (!renderer) return renderer.error();
   const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
-  auto image = renderer->render(weights);
-  if (!image) return image.error();
-  ENG_TRY(renderer->checkValidation());
-  const std::optional<autorig::DetectedFace> face = (*detector)->detect(*image);
-  if (!face) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
-
-  const eng::OrbitCamera& camera = renderer->view().camera;
+  std::optional<Sighting> seen = ENG_TRY_VALUE(look(*renderer, weights, **detector));
+  if (!seen) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
+  eng::OrbitCamera& camera = renderer->view().camera;
+  const eng::OrbitCamera wide = camera;
+  if (closeIn(camera, seen->face.box, float(options.size))) {
+    std::optional<Sighting> close = ENG_TRY_VALUE(look(*renderer, weights, **detector));
+    if (close) seen = std::move(close);
+    else camera = wide;
+  }
   const autorig::PictureCamera picture{camera.projection(1.0f) * camera.view(), glm::vec2(float(options.size))};
   const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
-  autorig::FaceLandmarks landmarks;
-  landmarks.source = describe(*face);
-  std::optional<size_t> missed;
-  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
-    const std::optional<autorig::SurfacePoint> hit = caster.cast(face->pixels[i], reachPixels(i, options.size));
-    if (hit) landmarks.points[i] = hit->position;
-    else if (!missed) missed = i, landmarks.points[i] = glm::vec3(NAN);
-  }
-  if (!options.picture.empty()) ENG_TRY(writePicture(std::move(*image), *face, landmarks, caster, options.picture));
-  if (missed)
-    return eng::makeError(eng::ErrorKind::NotFound, name + ": landmark " + std::to_string(*missed) +
-                                                        " of the front view is not on the face's surface");
-  return landmarks;
+  return castOntoFace(caster, *seen, options.size, name, options.picture);
 }
 
 }  // namespace app

@@ -24,28 +24,49 @@ constexpr eng::EnumName<FacePart> kFacePartNames[] = {
 };
 
 struct NamedPart {
-  std::string_view needle;
+  std::string_view needle;  // empty: eng::namesAnEyeball decides
   FacePart part;
 };
 
-// Checked in order: "Outfit_Top" is clothes before "top" could mean the
-// upper teeth, "eyelash" is lashes before "eye" could mean an eyeball, and
-// "MouthTeeth" is teeth while the mouth's inside is skin (it moves with it).
-constexpr std::array<NamedPart, 21> kNamedParts = {{
-    {"lash", FacePart::Lashes},     {"brow", FacePart::Brows},      {"tongue", FacePart::Tongue},
+// Checked in order on each name: "eyeglasses" is glasses and "eyelash"
+// lashes before "eye" can mean an eyeball; "Outfit_Top" is clothes before
+// "top" could mean the upper teeth; "MouthTeeth" is teeth while the mouth's
+// inside is skin (it moves with it).
+constexpr std::array<NamedPart, 22> kNamedParts = {{
+    {"lash", FacePart::Lashes},     {"brow", FacePart::Brows},       {"tongue", FacePart::Tongue},
     {"glass", FacePart::Glasses},   {"spectacle", FacePart::Glasses}, {"eyewear", FacePart::Glasses},
-    {"hair", FacePart::Hair},       {"outfit", FacePart::Other},    {"cloth", FacePart::Other},
-    {"body", FacePart::Other},      {"shirt", FacePart::Other},     {"foot", FacePart::Other},
-    {"shoe", FacePart::Other},      {"hand", FacePart::Other},      {"teeth", FacePart::UpperTeeth},
-    {"tooth", FacePart::UpperTeeth}, {"mouth", FacePart::Skin},     {"head", FacePart::Skin},
-    {"face", FacePart::Skin},       {"skin", FacePart::Skin},       {"nose", FacePart::Skin},
+    {"", FacePart::EyeballRight},   {"hair", FacePart::Hair},        {"outfit", FacePart::Other},
+    {"cloth", FacePart::Other},     {"body", FacePart::Other},       {"shirt", FacePart::Other},
+    {"foot", FacePart::Other},      {"shoe", FacePart::Other},       {"hand", FacePart::Other},
+    {"teeth", FacePart::UpperTeeth}, {"tooth", FacePart::UpperTeeth}, {"mouth", FacePart::Skin},
+    {"head", FacePart::Skin},       {"face", FacePart::Skin},        {"skin", FacePart::Skin},
+    {"nose", FacePart::Skin},
 }};
 
+// The most particular first: material, mesh, node, then the node's parents
+// (an eye node under a "Head" node is an eye).
 std::vector<std::string_view> primitiveNames(const eng::Model& model, const PosedPrimitive& p) {
-  std::vector<std::string_view> names = eng::meshAndNodeNames(model, p.mesh, p.node);
+  std::vector<std::string_view> names;
   const int material = model.meshes[p.mesh].primitives[p.primitive].material;
   if (material >= 0 && size_t(material) < model.materials.size()) names.push_back(model.materials[size_t(material)].name);
+  for (std::string_view n : eng::meshAndNodeNames(model, p.mesh, p.node)) names.push_back(n);
   return names;
+}
+
+std::optional<FacePart> partNamed(std::string_view name) {
+  for (const NamedPart& named : kNamedParts) {
+    const bool says = named.needle.empty() ? eng::namesAnEyeball(std::string(name))
+                                           : eng::anyNameContains({name}, named.needle);
+    if (says) return named.part;
+  }
+  return std::nullopt;
+}
+
+// Whether the names say which row of teeth: "TeethLower", "upper_teeth".
+std::optional<FacePart> teethRowNamed(const std::vector<std::string_view>& names) {
+  if (eng::anyNameContains(names, "lower") || eng::anyNameContains(names, "bottom")) return FacePart::LowerTeeth;
+  if (eng::anyNameContains(names, "upper")) return FacePart::UpperTeeth;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -56,14 +77,11 @@ std::optional<FacePart> facePartFromNames(const eng::Model& model, const PosedPr
   if (primitive.mesh >= model.meshes.size() || primitive.primitive >= model.meshes[primitive.mesh].primitives.size())
     return std::nullopt;
   const std::vector<std::string_view> names = primitiveNames(model, primitive);
-  for (const NamedPart& named : kNamedParts)
-    if (eng::anyNameContains(names, named.needle)) {
-      if (named.part != FacePart::UpperTeeth) return named.part;
-      const bool lower = eng::anyNameContains(names, "lower") || eng::anyNameContains(names, "bottom");
-      return lower ? FacePart::LowerTeeth : FacePart::UpperTeeth;
-    }
   for (std::string_view name : names)
-    if (eng::namesAnEyeball(std::string(name))) return FacePart::EyeballRight;
+    if (const std::optional<FacePart> part = partNamed(name)) {
+      if (*part != FacePart::UpperTeeth) return part;
+      return teethRowNamed(names).value_or(FacePart::UpperTeeth);
+    }
   return std::nullopt;
 }
 
@@ -91,7 +109,9 @@ FaceFrame faceFrame(const FaceLandmarks& l) {
   const auto& p = l.points;
   f.span = std::max(glm::distance(p[36], p[45]), 1e-6f);
   f.right = (p[45] - p[36]) / f.span;
-  const glm::vec3 rise = p[27] - p[8];
+  // Up from the mouth to the eyes: the chin sits back from the nose bridge,
+  // so 8 -> 27 would lean the face forward.
+  const glm::vec3 rise = mean(l, 36, 47) - mean(l, 60, 67);
   const glm::vec3 up = rise - f.right * glm::dot(rise, f.right);
   if (glm::length(up) > 1e-9f) f.up = glm::normalize(up);
   f.forward = glm::cross(f.right, f.up);
@@ -195,32 +215,14 @@ bool spansTheEyes(const Component& c, const FaceFrame& f) {
   return lo < -eyes && hi > eyes && glm::dot(d, f.forward) > 0.0f && std::abs(glm::dot(d, f.up)) < 0.3f * f.span;
 }
 
-FacePart teethSide(const glm::vec3& p, const FaceFrame& f) {
-  return glm::dot(p - f.mouthCentre, f.up) >= 0.0f ? FacePart::UpperTeeth : FacePart::LowerTeeth;
-}
-
-// A row of teeth lies mostly on one side of the mouth line (its edge may
-// cross it); nullopt for a set of both rows in one piece, split per vertex.
-std::optional<FacePart> teethRow(const std::vector<glm::vec3>& positions, const Component& c, const FaceFrame& f) {
-  size_t upper = 0;
-  for (uint32_t v : c.vertices) upper += teethSide(positions[v], f) == FacePart::UpperTeeth;
-  if (upper >= c.vertices.size() * 8 / 10) return FacePart::UpperTeeth;
-  if (upper <= c.vertices.size() * 2 / 10) return FacePart::LowerTeeth;
-  return std::nullopt;
-}
-
 // What geometry says an unnamed component is.
 FacePart partOfShape(const Component& c, const FaceFrame& f) {
   if (glm::distance(c.centre, f.centre) > 2.5f * f.span) return FacePart::Other;
   if (const int e = eyeballSide(c, f); e >= 0) return e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
-  if (insideTheMouth(c, f)) return FacePart::UpperTeeth;  // which row: per vertex, teethSide
+  if (insideTheMouth(c, f)) return FacePart::UpperTeeth;  // which row: splitTeethRows
   if (spansTheEyes(c, f)) return FacePart::Glasses;
   return FacePart::Skin;
 }
-
-struct PartCounts {
-  std::array<size_t, 11> vertices{};
-};
 
 std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
   const std::string& mesh = model.meshes[p.mesh].name;
@@ -229,17 +231,25 @@ std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
   return label;
 }
 
-// "Wolf3D_Teeth: upper teeth 40, lower teeth 44 (by name, split at the mouth line)".
-std::string note(const std::string& label, const PartCounts& counts, bool named) {
-  std::string line = label + ":";
+// "Wolf3D_Teeth: upper teeth 40, lower teeth 44 (by name)"; nothing for
+// plain skin.
+void notePrimitive(const eng::Model& model, const PosedPrimitive& p, const std::vector<FacePart>& parts,
+                   std::vector<std::string>& notes) {
+  std::array<size_t, 11> counts{};
+  for (FacePart v : parts) ++counts[size_t(v)];
+  if (counts[size_t(FacePart::Skin)] == parts.size()) return;
+  std::string line = primitiveLabel(model, p) + ":";
   const char* sep = " ";
-  for (size_t k = 0; k < counts.vertices.size(); ++k)
-    if (counts.vertices[k]) {
-      line += sep + std::string(facePartName(FacePart(k))) + " " + std::to_string(counts.vertices[k]);
-      sep = ", ";
-    }
-  return line + (named ? " (by name)" : " (by shape)");
+  for (size_t k = 0; k < counts.size(); ++k)
+    if (counts[k]) line += sep + std::string(facePartName(FacePart(k))) + " " + std::to_string(counts[k]), sep = ", ";
+  notes.push_back(line + (facePartFromNames(model, p) ? " (by name)" : " (by shape)"));
 }
+
+// Teeth whose row no name gives: one component each, sorted into rows later.
+struct TeethPiece {
+  size_t primitive;
+  std::vector<uint32_t> vertices;
+};
 
 // Keeps the larger sphere of each eye (the ball, not its iris or cornea).
 void recordEyeball(FaceParts& parts, int side, const Component& c) {
@@ -259,29 +269,72 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, cons
   return part;
 }
 
-void classifyPrimitive(const eng::Model& model, const PosedPrimitive& p, const FaceFrame& f, FaceParts& parts,
-                       std::vector<FacePart>& out) {
+void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
+                       FaceParts& parts, std::vector<TeethPiece>& teeth) {
+  std::vector<FacePart>& out = parts.vertexParts[index];
   out.assign(p.positions.size(), FacePart::Skin);
   if (p.positions.empty()) return;
   const std::optional<FacePart> named = facePartFromNames(model, p);
+  const bool rowNamed = named == FacePart::LowerTeeth || (named == FacePart::UpperTeeth &&
+                                                           teethRowNamed(primitiveNames(model, p)).has_value());
   uint32_t count = 0;
   const std::vector<uint32_t> label =
       components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
   std::vector<std::vector<uint32_t>> members(count);
   for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
-  PartCounts counts;
   for (std::vector<uint32_t>& vertices : members) {
     const Component c = describe(p.positions, std::move(vertices));
     const FacePart part = partOfComponent(named, c, f, parts);
-    const bool teeth = part == FacePart::UpperTeeth && named != FacePart::LowerTeeth;
-    const std::optional<FacePart> row = teeth ? teethRow(p.positions, c, f) : std::optional<FacePart>(part);
-    for (uint32_t v : c.vertices) {
-      out[v] = row ? *row : teethSide(p.positions[v], f);
-      ++counts.vertices[size_t(out[v])];
+    for (uint32_t v : c.vertices) out[v] = part;
+    if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});
+  }
+}
+
+// Otsu's threshold over weighted values: the cut between two groups that
+// makes them most apart (rows in a gap, or where touching rows meet).
+float otsuSplit(std::vector<std::pair<float, double>> values) {
+  std::sort(values.begin(), values.end());
+  double total = 0.0, weight = 0.0;
+  for (const auto& [v, w] : values) total += double(v) * w, weight += w;
+  double below = 0.0, belowWeight = 0.0, bestScore = -1.0;
+  float split = values.empty() ? 0.0f : values.front().first;
+  for (size_t k = 1; k < values.size(); ++k) {
+    below += double(values[k - 1].first) * values[k - 1].second;
+    belowWeight += values[k - 1].second;
+    const double d = below / belowWeight - (total - below) / (weight - belowWeight);
+    const double score = belowWeight * (weight - belowWeight) * d * d;
+    if (score > bestScore) bestScore = score, split = (values[k - 1].first + values[k].first) / 2.0f;
+  }
+  return split;
+}
+
+// Rows in pieces of their own (teeth apart, or one primitive per row) go
+// whole by their mean height; a single piece holding both rows is split per
+// vertex.
+void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  auto height = [&](const TeethPiece& piece, uint32_t v) { return glm::dot(posed.primitives[piece.primitive].positions[v], f.up); };
+  std::vector<std::pair<float, double>> values;
+  for (const TeethPiece& piece : teeth) {
+    double sum = 0.0;
+    for (uint32_t v : piece.vertices) sum += height(piece, v);
+    if (teeth.size() > 1) values.emplace_back(float(sum / double(piece.vertices.size())), double(piece.vertices.size()));
+    else
+      for (uint32_t v : piece.vertices) values.emplace_back(height(piece, v), 1.0);
+  }
+  const float split = otsuSplit(values);
+  for (const TeethPiece& piece : teeth) {
+    double sum = 0.0;
+    for (uint32_t v : piece.vertices) sum += height(piece, v);
+    const bool wholeAbove = sum / double(piece.vertices.size()) > split;
+    for (uint32_t v : piece.vertices) {
+      const bool above = teeth.size() > 1 ? wholeAbove : height(piece, v) > split;
+      parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
     }
   }
-  if (named != FacePart::Skin || counts.vertices[size_t(FacePart::Skin)] != p.positions.size())
-    parts.notes.push_back(note(primitiveLabel(model, p), counts, named.has_value()));
+  char text[128];
+  std::snprintf(text, sizeof text, "teeth: %zu piece%s sorted into upper and lower rows at %.4g along the face's up",
+                teeth.size(), teeth.size() > 1 ? "s" : "", double(split));
+  parts.notes.push_back(text);
 }
 
 // No eyeball mesh: the ball sits behind the lid line, its radius about 0.45
@@ -301,8 +354,11 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   FaceParts parts;
   const FaceFrame frame = faceFrame(landmarks);
   parts.vertexParts.resize(posed.primitives.size());
+  std::vector<TeethPiece> teeth;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  splitTeethRows(posed, teeth, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)
-    classifyPrimitive(model, posed.primitives[i], frame, parts, parts.vertexParts[i]);
+    notePrimitive(model, posed.primitives[i], parts.vertexParts[i], parts.notes);
   parts.eyeballsFound = parts.eyeRadii[0] > 0.0f && parts.eyeRadii[1] > 0.0f;
   estimateEyeballs(parts, frame);
   return parts;

@@ -150,15 +150,16 @@ std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixe
   }
   if (best && bestFaces) return best;
   // The inside of the head first: the ray went through an opening (an eye,
-  // parted lips), and the opening's rim nearest the camera is meant. No hit:
-  // the point lies just off the outline, and the outline is meant.
-  return nearestVertex(pixel, reachPixels, best.has_value());
+  // parted lips), and the opening's rim is meant: the nearest vertex of a
+  // triangle that faces the camera. No hit: the point lies just off the
+  // outline, and the outline is meant.
+  return nearestVertex(pixel, reachPixels, best ? &dir : nullptr);
 }
 
-// Among the vertices that land within reach of the pixel, the one nearest
-// the camera (`frontMost`: the lid's edge beside an eye opening, not the
-// skull behind it) or the one nearest the pixel (the outline).
-std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, bool frontMost) const {
+// The vertex that lands nearest the pixel, within reach; with `facing`, only
+// those of triangles that face a ray along it (the lid's rim beside an eye
+// opening, not the inside of the skull behind it).
+std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing) const {
   const glm::vec2 cellSize = camera_.imageSize / float(cells_);
   const glm::ivec2 c0 = glm::max(glm::ivec2(glm::floor((pixel - reachPixels) / cellSize)), glm::ivec2(0));
   const glm::ivec2 c1 = glm::min(glm::ivec2(glm::floor((pixel + reachPixels) / cellSize)), glm::ivec2(cells_ - 1));
@@ -169,15 +170,17 @@ std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float 
       for (const TriangleRef& ref : bins_[size_t(y * cells_ + x)]) {
         const PosedPrimitive& p = posed_->primitives[ref.primitive];
         const std::vector<uint32_t>& idx = *indices_[ref.primitive];
+        const uint32_t* corner = &idx[3 * ref.triangle];
+        const glm::vec3 n = glm::cross(p.positions[corner[1]] - p.positions[corner[0]],
+                                       p.positions[corner[2]] - p.positions[corner[0]]);
+        if (facing && (glm::dot(n, *facing) < 0.0f) != outward_[ref.primitive]) continue;
         for (int k = 0; k < 3; ++k) {
-          const glm::vec3& v = p.positions[idx[3 * ref.triangle + size_t(k)]];
-          const glm::vec4 clip = camera_.viewProjection * glm::vec4(v, 1.0f);
-          if (!(clip.w > 1e-6f)) continue;
-          const glm::vec2 s = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * camera_.imageSize;
-          const float away = glm::distance(s, pixel);
-          const float score = frontMost ? clip.w : away;
-          if (away > reachPixels || score >= bestScore) continue;
-          bestScore = score;
+          const glm::vec3& v = p.positions[corner[k]];
+          const std::optional<glm::vec2> s = project(v);
+          if (!s) continue;
+          const float away = glm::distance(*s, pixel);
+          if (away > reachPixels || away >= bestScore) continue;
+          bestScore = away;
           best = SurfacePoint{ref.primitive, v, false};
         }
       }

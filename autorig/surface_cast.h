@@ -40,10 +40,10 @@ class SurfaceCaster {
 
   // The surface seen at `pixel` (x right, y down, pixel centres at +0.5):
   // the nearest triangle facing the camera; where the ray meets the inside
-  // of the head first, the front-most vertex within `reachPixels` of it;
-  // where it meets nothing, the vertex nearest to it within reach. Nullopt
-  // when nothing of the surface is that close.
-  std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels = 6.0f) const;
+  // of the head first, the nearest vertex (within `reachPixels` of it) of a
+  // triangle facing the camera; where it meets nothing, the nearest vertex
+  // within reach. Nullopt when nothing of the surface is that close.
+  std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels) const;
 
   // Where a world point lands in the picture (pixels), nullopt behind the camera.
   std::optional<glm::vec2> project(const glm::vec3& world) const;
@@ -53,7 +53,7 @@ class SurfaceCaster {
     uint32_t primitive;
     uint32_t triangle;
   };
-  std::optional<SurfacePoint> nearestVertex(glm::vec2 pixel, float reachPixels, bool frontMost) const;
+  std::optional<SurfacePoint> nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing) const;
   int cellOf(glm::vec2 pixel) const;
 
   const PosedFace* posed_;

@@ -1,9 +1,11 @@
 // Landmarks found on real faces land where a face's features are; faces with
 // no front, and no face at all, are refused with one line naming the file.
 #include "app/face_landmark_finder.h"
+#include "autorig/face_parts.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -19,6 +21,7 @@ struct Found {
   eng::Model model;
   autorig::PosedFace posed;
   autorig::FaceLandmarks landmarks;
+  autorig::FaceParts parts;
 };
 
 // The picture with the points drawn goes to build/test-tmp for a person to look at.
@@ -32,7 +35,10 @@ Found find(const std::filesystem::path& path, const std::string& pictureName) {
   const auto picture = testing_support::freshTempDir("face_landmark_finder") / (pictureName + ".png");
   auto landmarks = app::findFaceLandmarks(f.model, f.posed, {.picture = picture});
   EXPECT_TRUE(landmarks) << landmarks.error().message;
-  if (landmarks) f.landmarks = *landmarks;
+  if (!landmarks) return f;
+  f.landmarks = *landmarks;
+  f.parts = autorig::findFaceParts(f.model, f.posed, f.landmarks);
+  for (const std::string& note : f.parts.notes) std::printf("  %s\n", note.c_str());
   return f;
 }
 
@@ -69,6 +75,18 @@ void expectFaceLayout(const autorig::FaceLandmarks& l) {
   EXPECT_NEAR(glm::distance(p[36], p[39]) / span, 0.28f, 0.1f);
 }
 
+// The share of the posed primitives of mesh `name` (all of them, or only
+// primitive `primitive`) that is `part`.
+float shareOf(const Found& f, const std::string& name, autorig::FacePart part, int primitive = -1) {
+  size_t all = 0, of = 0;
+  for (size_t i = 0; i < f.posed.primitives.size(); ++i) {
+    const autorig::PosedPrimitive& p = f.posed.primitives[i];
+    if (f.model.meshes[p.mesh].name != name || (primitive >= 0 && p.primitive != size_t(primitive))) continue;
+    for (autorig::FacePart v : f.parts.vertexParts[i]) all += 1, of += v == part;
+  }
+  return all ? float(of) / float(all) : -1.0f;
+}
+
 TEST(FaceLandmarkFinder, BuiltInHeadFeaturesWhereTheMeshHasThem) {
   Found f = find(testing_support::sourceDir() / "data" / "head.glb", "head");
   ASSERT_TRUE(f.landmarks.source.starts_with("dlib")) << f.landmarks.source;
@@ -83,6 +101,18 @@ TEST(FaceLandmarkFinder, BuiltInHeadFeaturesWhereTheMeshHasThem) {
   const glm::vec3 right = meshCentre(f, "EyeRight"), left = meshCentre(f, "EyeLeft");
   EXPECT_LT(glm::distance(glm::vec2((p[36] + p[39]) / 2.0f), glm::vec2(right)), 0.1f * span);
   EXPECT_LT(glm::distance(glm::vec2((p[42] + p[45]) / 2.0f), glm::vec2(left)), 0.1f * span);
+
+  using autorig::FacePart;
+  EXPECT_EQ(shareOf(f, "EyeRight", FacePart::EyeballRight), 1.0f);
+  EXPECT_EQ(shareOf(f, "EyeLeft", FacePart::EyeballLeft), 1.0f);
+  EXPECT_EQ(shareOf(f, "Head", FacePart::Skin, 0), 1.0f);
+  EXPECT_EQ(shareOf(f, "Head", FacePart::Skin, 1), 1.0f);  // the mouth's inside moves with the skin
+  EXPECT_EQ(shareOf(f, "Head", FacePart::UpperTeeth, 2), 1.0f);
+  EXPECT_EQ(shareOf(f, "Head", FacePart::LowerTeeth, 3), 1.0f);
+  EXPECT_EQ(shareOf(f, "Head", FacePart::Tongue, 4), 1.0f);
+  EXPECT_EQ(shareOf(f, "Ears", FacePart::Skin), 1.0f);
+  EXPECT_TRUE(f.parts.eyeballsFound);
+  EXPECT_LT(glm::distance(f.parts.eyeCentres[0], right), 0.02f * span);
 }
 
 TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
@@ -90,6 +120,20 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   Found f = find(path, "facecap");
   expectFaceLayout(f.landmarks);
+  // Nothing is named: the eyeballs (meshes 0 and 1) and the teeth (mesh 3)
+  // are told by their shapes and places.
+  using autorig::FacePart;
+  ASSERT_EQ(f.parts.vertexParts.size(), 4u);
+  const auto all = [&](size_t i, FacePart part) {
+    return std::all_of(f.parts.vertexParts[i].begin(), f.parts.vertexParts[i].end(), [&](FacePart v) { return v == part; });
+  };
+  EXPECT_TRUE((all(0, FacePart::EyeballLeft) && all(1, FacePart::EyeballRight)) ||
+              (all(0, FacePart::EyeballRight) && all(1, FacePart::EyeballLeft)));
+  EXPECT_TRUE(all(2, FacePart::Skin));
+  const auto& teeth = f.parts.vertexParts[3];
+  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::UpperTeeth), 100);
+  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::LowerTeeth), 100);
+  EXPECT_TRUE(f.parts.eyeballsFound);
 }
 
 TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
@@ -97,6 +141,17 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
   Found f = find(path, "rpm-visemes");
   expectFaceLayout(f.landmarks);
+  using autorig::FacePart;
+  EXPECT_EQ(shareOf(f, "Wolf3D_Head", FacePart::Skin), 1.0f);
+  EXPECT_EQ(shareOf(f, "EyeLeft", FacePart::EyeballLeft), 1.0f);  // ARKit's and RPM's Left: the subject's
+  EXPECT_EQ(shareOf(f, "EyeRight", FacePart::EyeballRight), 1.0f);
+  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::UpperTeeth), 0.3f);
+  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::LowerTeeth), 0.3f);
+  EXPECT_EQ(shareOf(f, "Wolf3D_Hair", FacePart::Hair), 1.0f);
+  EXPECT_EQ(shareOf(f, "Wolf3D_Glasses", FacePart::Glasses), 1.0f);
+  for (const char* clothes : {"Wolf3D_Body", "Wolf3D_Outfit_Top", "Wolf3D_Outfit_Bottom", "Wolf3D_Outfit_Footwear"})
+    EXPECT_EQ(shareOf(f, clothes, FacePart::Other), 1.0f) << clothes;
+  EXPECT_TRUE(f.parts.eyeballsFound);
 }
 
 TEST(FaceLandmarkFinder, SphereHasNoFace) {

@@ -1,0 +1,104 @@
+// A face's parts told apart by name and, without names, by shape: eyeballs
+// as spheres behind the lids (the subject's right one behind landmarks
+// 36-41), teeth inside the mouth split at the mouth line, far parts left out.
+#include "autorig/face_parts.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include "tests/common/test_meshes.h"
+
+namespace {
+
+// Landmarks laid on testing_support::plasterHead(): eyes over its eyeballs
+// (x = -0.35 is the subject's right), the mouth line through its teeth.
+autorig::FaceLandmarks plasterLandmarks() {
+  autorig::FaceLandmarks l;
+  for (size_t i = 0; i <= 16; ++i) {  // jaw, ear to ear under the chin
+    const float a = glm::pi<float>() * float(i) / 16.0f;
+    l.points[i] = {-0.8f * std::cos(a), -0.1f - 0.7f * std::sin(a), 0.6f};
+  }
+  for (size_t i = 17; i <= 26; ++i) l.points[i] = {-0.55f + 0.11f * float(i - 17) + (i > 21 ? 0.1f : 0.0f), 0.4f, 0.9f};
+  for (size_t i = 27; i <= 35; ++i) l.points[i] = {0.0f, 0.2f - 0.06f * float(i - 27), 0.98f};
+  for (int side = 0; side < 2; ++side) {
+    const float cx = side == 0 ? -0.35f : 0.35f;
+    const size_t first = side == 0 ? 36 : 42;
+    const float xs[6] = {-0.15f, -0.05f, 0.05f, 0.15f, 0.05f, -0.05f};
+    const float ys[6] = {0.0f, 0.05f, 0.05f, 0.0f, -0.05f, -0.05f};
+    for (size_t k = 0; k < 6; ++k) l.points[first + k] = {cx + xs[k], 0.2f + ys[k], 0.93f};
+  }
+  for (size_t i = 48; i <= 67; ++i) {
+    const float a = 2.0f * glm::pi<float>() * float(i - 48) / (i < 60 ? 12.0f : 8.0f);
+    const float w = i < 60 ? 0.25f : 0.18f, h = i < 60 ? 0.08f : 0.02f;
+    l.points[i] = {-w * std::cos(a), -0.4f + h * std::sin(a), 0.92f};
+  }
+  return l;
+}
+
+size_t count(const std::vector<autorig::FacePart>& parts, autorig::FacePart part) {
+  return size_t(std::count(parts.begin(), parts.end(), part));
+}
+
+void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts) {
+  using autorig::FacePart;
+  ASSERT_EQ(parts.vertexParts.size(), 5u);
+  const auto& head = parts.vertexParts[0];
+  EXPECT_EQ(count(head, FacePart::Skin), head.size());
+  EXPECT_EQ(count(parts.vertexParts[1], FacePart::EyeballLeft), parts.vertexParts[1].size());  // at +x
+  EXPECT_EQ(count(parts.vertexParts[2], FacePart::EyeballRight), parts.vertexParts[2].size());
+  const auto& teeth = parts.vertexParts[3];
+  EXPECT_GT(count(teeth, FacePart::UpperTeeth), teeth.size() / 3);
+  EXPECT_GT(count(teeth, FacePart::LowerTeeth), teeth.size() / 3);
+  EXPECT_EQ(count(teeth, FacePart::UpperTeeth) + count(teeth, FacePart::LowerTeeth), teeth.size());
+  EXPECT_EQ(count(parts.vertexParts[4], FacePart::Other), parts.vertexParts[4].size());
+  ASSERT_TRUE(parts.eyeballsFound);
+  EXPECT_LT(glm::distance(parts.eyeCentres[0], glm::vec3(-0.35f, 0.2f, 0.85f)), 0.01f);
+  EXPECT_LT(glm::distance(parts.eyeCentres[1], glm::vec3(0.35f, 0.2f, 0.85f)), 0.01f);
+  EXPECT_NEAR(parts.eyeRadii[0], 0.12f, 0.01f);
+  (void)model;
+}
+
+eng::Model plasterHeadWithProp() {
+  eng::Model model = testing_support::plasterHead();
+  testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "prop",
+                                 {6.0f, 0.0f, 0.0f}, glm::vec3(0.5f));
+  return model;
+}
+
+TEST(FaceParts, ByName) {
+  const eng::Model model = plasterHeadWithProp();
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  expectPlasterParts(model, parts);
+}
+
+// The same head with every name gone: the shapes alone tell the parts apart.
+TEST(FaceParts, ByShape) {
+  eng::Model model = plasterHeadWithProp();
+  for (eng::Node& n : model.nodes) n.name.clear();
+  for (eng::Mesh& m : model.meshes) m.name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  expectPlasterParts(model, parts);
+  EXPECT_FALSE(parts.notes.empty());
+}
+
+// No eyeball meshes: the balls are estimated behind the lid lines.
+TEST(FaceParts, EyeballsEstimatedWithoutMeshes) {
+  const eng::Model model = testing_support::makeSphereModel(testing_support::whiteSphereSpec(0));
+  const autorig::FaceLandmarks l = plasterLandmarks();
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), l);
+  EXPECT_FALSE(parts.eyeballsFound);
+  EXPECT_GT(parts.eyeRadii[0], 0.0f);
+  EXPECT_LT(parts.eyeCentres[0].z, l.points[36].z);
+  EXPECT_LT(parts.eyeCentres[0].x, 0.0f);
+  EXPECT_GT(parts.eyeCentres[1].x, 0.0f);
+}
+
+TEST(FaceParts, NamesOfParts) {
+  EXPECT_STREQ(autorig::facePartName(autorig::FacePart::EyeballLeft), "left eyeball");
+  EXPECT_STREQ(autorig::facePartName(autorig::FacePart::Other), "other");
+}
+
+}  // namespace
