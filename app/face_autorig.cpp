@@ -61,14 +61,15 @@ std::set<std::string> targetNameSet(const eng::Model& model) {
   return names;
 }
 
-// made: names `rigged` has that `face` has not; kept: the face's own.
-void diffTargets(const eng::Model& face, const eng::Model& rigged, CachedAutorig& out) {
-  const std::set<std::string> before = targetNameSet(face), after = targetNameSet(rigged);
-  out.kept.assign(before.begin(), before.end());
-  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(out.made));
-}
-
 }  // namespace
+
+TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged) {
+  const std::set<std::string> before = targetNameSet(face), after = targetNameSet(rigged);
+  TargetChanges changes;
+  changes.kept.assign(before.begin(), before.end());
+  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(changes.made));
+  return changes;
+}
 
 std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
                           const std::filesystem::path& rigmapFile) {
@@ -171,7 +172,7 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
   if (std::filesystem::is_regular_file(cached.path, ec)) {
     if (auto rigged = eng::loadModel(cached.path)) {
       cached.reused = true;
-      diffTargets(face->model, *rigged, cached);
+      static_cast<TargetChanges&>(cached) = targetChanges(face->model, *rigged);
       return cached;
     }
     // An unreadable cache entry is made again below (and replaced).
@@ -187,7 +188,7 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
     return eng::makeError(eng::ErrorKind::Io, cached.path.parent_path().string() + ": cannot make the autorig cache (" +
                           ec.message() + ")");
   if (auto saved = saveModelAtomically(rigged->model, cached.path); !saved) return saved.error();
-  diffTargets(face->model, rigged->model, cached);
+  static_cast<TargetChanges&>(cached) = targetChanges(face->model, rigged->model);
   cached.warnings = std::move(rigged->report.warnings);
   return cached;
 }

@@ -90,11 +90,16 @@ class FaceAutorig {
 // $HOME/.cache/facial/autorig, else <temp>/facial-autorig.
 std::filesystem::path autorigCacheDirectory();
 
-struct CachedAutorig {
+// Target names, each once however many meshes carry it (sorted).
+struct TargetChanges {
+  std::vector<std::string> made;  // names the rigged face has that the face had not
+  std::vector<std::string> kept;  // the face's own names (all kept)
+};
+TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged);
+
+struct CachedAutorig : TargetChanges {
   std::filesystem::path path;        // the rigged .glb in the cache
   bool reused = false;               // found there, not made now
-  std::vector<std::string> made;     // target names it has that the face had not
-  std::vector<std::string> kept;     // the face's own target names
   std::vector<std::string> warnings; // parts left out (when made now)
 };
 

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "app/face_autorig.h"
+#include "app/face_setup.h"
 #include "app/program_error.h"
 #include "cli/command.h"
 #include "importers/load_face.h"
@@ -56,6 +57,12 @@ int runAutorig(const AutorigOptions& o) {
   if (face->format != importers::FaceFormat::Gltf)
     return fail(o.model + ": a " + std::string(importers::faceFormatName(face->format)) +
                 " face; autorig makes targets for glTF / GLB faces (convert it first: facial convert)");
+  // Allowed (ground truth is measured this way), but the rigged copy's action
+  // units then take over from the face's own rig: say so.
+  if (auto rig = app::buildFaceRig(*face); rig && app::autorigReason(*face, rig, {}).empty())
+    std::fprintf(stderr, "facial autorig: warning: %s already shows emotions (%s rig); the rigged copy is driven by "
+                 "the action units made for it instead\n", o.model.c_str(),
+                 std::string(facial::rigSchemeName(rig->rig.scheme())).c_str());
   auto landmarks = app::faceLandmarks(*face, o.landmarks);
   if (!landmarks) return fail(landmarks.error().message + (o.landmarks.empty() ? "; pass --landmarks L.json (68 points)" : ""));
   if (!o.landmarksOut.empty())
@@ -67,10 +74,10 @@ int runAutorig(const AutorigOptions& o) {
   if (!rigged) return fail(rigged.error().message);
   if (auto saved = app::saveModelAtomically(rigged->model, o.out); !saved) return fail(saved.error().message);
   for (const std::string& w : rigged->report.warnings) std::fprintf(stderr, "facial autorig: warning: %s\n", w.c_str());
-  std::printf("wrote %s: %zu targets made (%s)", o.out.c_str(), rigged->report.made.size(),
-              joined(rigged->report.made, 6).c_str());
-  if (!rigged->report.kept.empty())
-    std::printf(", %zu of its own kept (%s)", rigged->report.kept.size(), joined(rigged->report.kept, 6).c_str());
+  const app::TargetChanges changes = app::targetChanges(face->model, rigged->model);
+  std::printf("wrote %s: %zu targets made (%s)", o.out.c_str(), changes.made.size(), joined(changes.made, 6).c_str());
+  if (!changes.kept.empty())
+    std::printf(", its %zu kept (%s)", changes.kept.size(), joined(changes.kept, 6).c_str());
   std::printf("\nlandmarks: %s\n", landmarks->source.c_str());
   for (const std::string& note : rigged->partNotes) std::printf("parts: %s\n", note.c_str());
   return 0;
