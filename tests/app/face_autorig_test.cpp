@@ -62,6 +62,8 @@ TEST(AutorigReason, SharedFacesWithRigsAreNeverAutorigged) {
   const fs::path shared = testing_support::sharedDir();
   if (!fs::exists(shared / "assets" / "facecap.glb")) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   EXPECT_EQ(reasonFor(shared / "assets" / "facecap.glb"), "");
+  EXPECT_EQ(reasonFor(shared / "assets" / "RobotExpressive.glb"), "") << "emotion-named targets";
+  if (fs::exists(shared / "candide3" / "candide3.wfm")) EXPECT_EQ(reasonFor(shared / "candide3" / "candide3.wfm"), "");
   for (const fs::path& file : testing_support::sharedModelFiles()) {
     auto face = importers::loadFace(file);
     if (!face || face->format != importers::FaceFormat::Vrm) continue;
