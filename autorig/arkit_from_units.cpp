@@ -30,9 +30,9 @@ struct Shape {
 constexpr float kMidlineRamp = 0.08f;
 constexpr float kLipLineRamp = 0.03f;
 
-// Why AU26 alone for jawOpen: the head's AU26 turns the jaw about as far as
-// an ARKit capture's jawOpen at 1 (facecap's own is measured against it in
-// docs/autorig.md); AU27 also stretches the lips.
+// jawOpen at 1 is the jaw as far open as it goes: AU26 (the relaxed drop)
+// and AU27 (the stretch beyond it) together, the sum arkit_scheme.cpp drives
+// jawOpen with (0.6 + 0.4).
 constexpr std::array kShapes = {
     Shape{"browInnerUp", {Term{"AU1_InnerBrowRaiser"}}},
     Shape{"browDownLeft", {Term{"AU4_BrowLowerer", 1.0f, Mask::Left}}},
@@ -48,7 +48,7 @@ constexpr std::array kShapes = {
     Shape{"eyeWideLeft", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Left}}},
     Shape{"eyeWideRight", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Right}}},
     Shape{"jawForward", {Term{"AU29_JawThrust"}}},
-    Shape{"jawOpen", {Term{"AU26_JawDrop"}}},
+    Shape{"jawOpen", {Term{"AU26_JawDrop"}, Term{"AU27_MouthStretch"}}},
     Shape{"mouthFrownLeft", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Left}}},
     Shape{"mouthFrownRight", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Right}}},
     Shape{"mouthFunnel", {Term{"AU22_LipFunneler"}}},

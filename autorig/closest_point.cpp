@@ -10,6 +10,8 @@ namespace {
 // Triangles per cell on average: a few keeps both the grid and each shell small.
 constexpr float kTrianglesPerCell = 2.0f;
 constexpr int kMaxCellsPerAxis = 256;
+// cos(70 degrees): how far a matched triangle may turn from the query's normal.
+constexpr float kMinFacing = 0.34f;
 
 }  // namespace
 
@@ -45,11 +47,31 @@ glm::vec3 closestOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::v
   return barycentric = {1 - v - w, v, w}, a + ab * v + ac * w;
 }
 
+std::vector<glm::vec3> vertexNormals(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles) {
+  std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+  for (const auto& t : triangles) {
+    const glm::vec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+    for (uint32_t v : t) normals[v] += n;
+  }
+  for (glm::vec3& n : normals) {
+    const float length = glm::length(n);
+    n = length > 0.0f ? n / length : glm::vec3(0.0f);
+  }
+  return normals;
+}
+
 TriangleGrid::TriangleGrid(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles,
                            std::span<const FaceRegion> regions)
     : positions_(positions.begin(), positions.end()), triangles_(triangles.begin(), triangles.end()) {
   regions_.assign(triangles.size(), FaceRegion::None);
   if (regions.size() == triangles.size()) std::copy(regions.begin(), regions.end(), regions_.begin());
+  normals_.resize(triangles_.size());
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    const auto& t = triangles_[i];
+    const glm::vec3 n = glm::cross(positions_[t[1]] - positions_[t[0]], positions_[t[2]] - positions_[t[0]]);
+    const float length = glm::length(n);
+    normals_[i] = length > 0.0f ? n / length : glm::vec3(0.0f);
+  }
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const auto& t : triangles_)
     for (uint32_t v : t) lo = glm::min(lo, positions_[v]), hi = glm::max(hi, positions_[v]);
@@ -82,7 +104,8 @@ glm::ivec3 TriangleGrid::cellOf(const glm::vec3& p) const {
   return glm::clamp(glm::ivec3(glm::floor((p - min_) / cell_)), glm::ivec3(0), dims_ - 1);
 }
 
-ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const {
+ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float maxDistance, const glm::vec3& facing) const {
+  const bool checkFacing = facing != glm::vec3(0.0f);
   ClosestPoint best;
   best.distance = maxDistance;
   if (triangles_.empty() || !std::isfinite(p.x + p.y + p.z)) return best;
@@ -104,6 +127,7 @@ ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float
           for (uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
             const uint32_t i = cellTriangles_[k];
             if (refused != FaceRegion::None && regions_[i] == refused) continue;
+            if (checkFacing && glm::dot(normals_[i], facing) < kMinFacing) continue;
             const auto& t = triangles_[i];
             glm::vec3 bary;
             const glm::vec3 q = closestOnTriangle(p, positions_[t[0]], positions_[t[1]], positions_[t[2]], bary);

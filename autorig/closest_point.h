@@ -30,8 +30,12 @@ class TriangleGrid {
                std::span<const FaceRegion> regions);
 
   // The closest point on a triangle whose region is not `refused` (None
-  // refuses nothing), within maxDistance; found = false when there is none.
-  ClosestPoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance) const;
+  // refuses nothing) and, when `facing` is not zero, whose normal is within
+  // about 70 degrees of it (the cheek never lands on the inside of the
+  // mouth or the back of an ear), within maxDistance; found = false when
+  // there is none.
+  ClosestPoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance,
+                       const glm::vec3& facing = glm::vec3(0.0f)) const;
 
  private:
   glm::ivec3 cellOf(const glm::vec3& p) const;
@@ -40,12 +44,16 @@ class TriangleGrid {
   std::vector<glm::vec3> positions_;
   std::vector<std::array<uint32_t, 3>> triangles_;
   std::vector<FaceRegion> regions_;
+  std::vector<glm::vec3> normals_;  // unit, per triangle (zero for a degenerate one)
   glm::vec3 min_{0.0f};
   float cell_ = 1.0f;
   glm::ivec3 dims_{1};
   std::vector<uint32_t> cellStart_;  // CSR: triangles of cell i at cellTriangles_[cellStart_[i] .. cellStart_[i+1])
   std::vector<uint32_t> cellTriangles_;
 };
+
+// Area-weighted unit normals of a triangle soup's vertices (zero for a vertex on no triangle).
+std::vector<glm::vec3> vertexNormals(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles);
 
 // The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision
 // Detection 5.1.5), with its barycentric coordinates.

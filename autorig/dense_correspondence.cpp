@@ -37,6 +37,7 @@ void growPairs(const FaceSurface& source, const std::vector<glm::vec3>& warped, 
                const LandmarkFrame& frame, const FaceLandmarks& landmarks, const CorrespondenceOptions& options,
                std::vector<glm::vec3>& sourcePoints, std::vector<glm::vec3>& targetPoints) {
   const TriangleGrid grid(warped, source.triangles, {});
+  const std::vector<glm::vec3> normals = vertexNormals(target.positions, target.triangles);
   const float spacing = options.sampleSpacing * frame.eyeSpan();
   const float nearLandmark = 0.5f * spacing;
   std::unordered_set<uint64_t> taken;
@@ -53,7 +54,7 @@ void growPairs(const FaceSurface& source, const std::vector<glm::vec3>& warped, 
     bool crowded = false;
     for (const glm::vec3& l : landmarks.points) crowded = crowded || glm::length(l - p) < nearLandmark;
     if (crowded) continue;
-    const ClosestPoint match = grid.closest(p, FaceRegion::None, 0.5f * spacing);
+    const ClosestPoint match = grid.closest(p, FaceRegion::None, 0.5f * spacing, normals[v]);
     if (!match.found) continue;
     taken.insert(key);
     sourcePoints.push_back(onSource(source, match));
@@ -170,13 +171,16 @@ eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLand
   }
 
   // Regions come from each face's own landmarks: the source's at rest, carried by the warp.
-  const TriangleGrid grid(warped, source.triangles, triangleRegions(source, labelRegions(source, sourceFrame)));
+  std::vector<FaceRegion> sourceRegions = labelRegions(source, sourceFrame);
+  const TriangleGrid grid(warped, source.triangles, triangleRegions(source, sourceRegions));
   const std::vector<FaceRegion> targetRegions = labelRegions(target, targetFrame);
-  Correspondence result{.warp = std::move(warp), .grownPairs = grown, .warpedSource = std::move(warped), .matches = {}};
+  const std::vector<glm::vec3> targetNormals = vertexNormals(target.positions, target.triangles);
+  Correspondence result{.warp = std::move(warp), .grownPairs = grown, .warpedSource = std::move(warped), .matches = {},
+                        .sourceRegions = std::move(sourceRegions), .targetRegions = targetRegions};
   result.matches.resize(target.positions.size());
   const float maxGap = options.maxGap * targetFrame.eyeSpan();
   for (size_t v = 0; v < target.positions.size(); ++v)
-    result.matches[v] = grid.closest(target.positions[v], opposite(targetRegions[v]), maxGap);
+    result.matches[v] = grid.closest(target.positions[v], opposite(targetRegions[v]), maxGap, targetNormals[v]);
   return result;
 }
 

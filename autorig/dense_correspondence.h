@@ -59,6 +59,8 @@ struct Correspondence {
   size_t grownPairs = 0;
   std::vector<glm::vec3> warpedSource;  // the source surface's positions warped
   std::vector<ClosestPoint> matches;    // one per target vertex (found = false: none within maxGap)
+  std::vector<FaceRegion> sourceRegions;  // labelRegions of the source
+  std::vector<FaceRegion> targetRegions;  // and of the target
 };
 
 eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
+#include <unordered_map>
 #include <string_view>
 
+#include <Eigen/Dense>
 #include <glm/gtx/compatibility.hpp>
 
 #include "autorig/arkit_from_units.h"
@@ -33,6 +36,10 @@ constexpr std::array<std::string_view, 2> kJawUnits{"AU26_JawDrop", "AU27_MouthS
 // Finite-difference step of the warp's Jacobian, in source eye spans (about
 // a millimetre: smooth over the biharmonic kernel's kinks at control points).
 constexpr float kJacobianStep = 0.01f;
+// The warp's local stretch is kept within this factor of its overall scale:
+// where grown pairs crowd, the RBF can fold, and a folded Jacobian would send
+// a unit's displacement the wrong way or tenfold.
+constexpr float kMaxStretch = 2.0f;
 
 bool sameName(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
@@ -130,6 +137,23 @@ eng::Result<void> checkFacing(const SourceFace& source, const FaceLandmarks& lan
   return {};
 }
 
+// The Jacobian with its singular values clamped to [scale / kMaxStretch,
+// scale * kMaxStretch] and a reflection (a fold) undone.
+glm::mat3 tamed(const glm::mat3& j, float scale) {
+  Eigen::Matrix3f m;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) m(r, c) = j[c][r];
+  Eigen::JacobiSVD<Eigen::Matrix3f> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Vector3f sigma = svd.singularValues().cwiseMax(scale / kMaxStretch).cwiseMin(scale * kMaxStretch);
+  Eigen::Matrix3f u = svd.matrixU();
+  if (u.determinant() * svd.matrixV().determinant() < 0.0f) u.col(2) = -u.col(2);
+  const Eigen::Matrix3f out = u * sigma.asDiagonal() * svd.matrixV().transpose();
+  glm::mat3 result;
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) result[c][r] = out(r, c);
+  return result;
+}
+
 struct Moved {
   std::vector<FaceSurface::VertexRef> vertices;  // skin-following vertices, then lower teeth and tongue
   std::vector<glm::vec3> positions;
@@ -159,6 +183,121 @@ glm::vec3 alongEyeball(const glm::vec3& p, const glm::vec3& delta, const FacePar
 
 namespace {
 
+// The lid landmarks of each eye (right, left): upper pair, lower pair.
+constexpr std::array<std::array<size_t, 4>, 2> kLidLandmarks{{{37, 38, 41, 40}, {43, 44, 47, 46}}};
+// A unit closes an eye when it turns the upper lid this share of the way to the lower.
+constexpr float kClosing = 0.2f;
+// Around an eye (eyeball radii from its centre) a closing unit is all turn; beyond, the carried displacement.
+constexpr float kLidTurnInner = 1.8f, kLidTurnOuter = 2.6f;
+
+struct EyeLids {
+  JawHinge axis;  // through the eye's centre, towards the subject's left
+  glm::vec3 upper{0.0f}, lower{0.0f};  // the lids' margins (landmark pair middles)
+  float radius = 0.0f;
+  float openAngle() const { return std::abs(hingeAngle(axis, upper, lower - upper)); }
+};
+
+// The lids' margins: where the skin has an opening over the eye, its rim's
+// middle above and below the ball (the landmarks sit on the visible edge,
+// a little inside the margins); else the lid landmarks.
+EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t eye, const FaceSurface& surface,
+                const std::vector<FaceRegion>& regions) {
+  const auto& l = kLidLandmarks[eye];
+  const LandmarkFrame frame(landmarks);
+  EyeLids lids{.axis = {.pivot = parts.eyeCentres[eye], .axis = frame.side()},
+               .upper = (landmarks.points[l[0]] + landmarks.points[l[1]]) * 0.5f,
+               .lower = (landmarks.points[l[2]] + landmarks.points[l[3]]) * 0.5f,
+               .radius = parts.eyeRadii[eye]};
+  std::unordered_map<uint64_t, int> edges;
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
+      ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+    }
+  const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
+  const FaceRegion lower = opposite(upper);
+  const float middle = frame.sideOf(lids.axis.pivot);
+  float bestUpper = std::numeric_limits<float>::max(), bestLower = bestUpper;
+  glm::vec3 rimUpper(0.0f), rimLower(0.0f);
+  for (const auto& [edge, count] : edges) {
+    if (count != 1) continue;
+    for (const uint32_t v : {uint32_t(edge >> 32), uint32_t(edge & 0xffffffffu)}) {
+      const glm::vec3& p = surface.positions[v];
+      if (glm::length(p - lids.axis.pivot) > 1.6f * lids.radius || glm::dot(p - lids.axis.pivot, frame.forward()) < 0.0f) continue;
+      const float off = std::abs(frame.sideOf(p) - middle);
+      if (regions[v] == upper && off < bestUpper) bestUpper = off, rimUpper = p;
+      if (regions[v] == lower && off < bestLower) bestLower = off, rimLower = p;
+    }
+  }
+  if (bestUpper < 0.1f && bestLower < 0.1f) lids.upper = rimUpper, lids.lower = rimLower;
+  return lids;
+}
+
+// A closing unit as the upper lid turning over the eyeball about its centre
+// (so the lid slides along the ball and meets the lower lid): how far each
+// source vertex follows its own lid's turn is carried over as a number, and
+// the target's lid turns as large a share of its own opening as the
+// source's does.
+void closeLids(const SourceFace& source, const TriangleGrid& sourceGrid, const FaceSurface& src,
+               const std::vector<glm::vec3>& raw, const FaceLandmarks& landmarks, const FaceSurface& tgt,
+               const Correspondence& corr, const FaceParts& parts, std::vector<glm::vec3>& deltas) {
+  for (size_t eye = 0; eye < 2; ++eye) {
+    const EyeLids from = eyeLids(source.landmarks, source.parts, eye, src, corr.sourceRegions);
+    const EyeLids to = eyeLids(landmarks, parts, eye, tgt, corr.targetRegions);
+    if (!(from.radius > 0.0f) || !(to.radius > 0.0f) || !(from.openAngle() > 0.0f)) continue;
+    const ClosestPoint margin = sourceGrid.closest(from.upper, FaceRegion::None, 1e9f);
+    if (!margin.found) continue;
+    const float angle = hingeAngle(from.axis, from.upper, atMatch(raw, src, margin));
+    const float share = std::abs(angle) / from.openAngle();
+    if (share < kClosing) continue;
+    std::vector<glm::vec3> follow(src.positions.size(), glm::vec3(0.0f));
+    for (size_t i = 0; i < src.positions.size(); ++i) {
+      const glm::vec3 full = turnAboutHinge(from.axis, angle, src.positions[i]);
+      const float energy = glm::dot(full, full);
+      if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    }
+    const float targetAngle = std::copysign(share * to.openAngle(), angle);
+    for (size_t v = 0; v < tgt.positions.size(); ++v) {
+      const float near = 1.0f - glm::smoothstep(kLidTurnInner * to.radius, kLidTurnOuter * to.radius,
+                                                glm::length(tgt.positions[v] - to.axis.pivot));
+      if (near <= 0.0f || !corr.matches[v].found) continue;
+      const float f = atMatch(follow, src, corr.matches[v]).x;
+      deltas[v] = glm::mix(deltas[v], f * turnAboutHinge(to.axis, targetAngle, tgt.positions[v]), near);
+    }
+  }
+}
+
+struct JawTurn {
+  JawHinge source, target;
+  float angle = 0.0f;  // the source's chin about its hinge
+};
+
+// A jaw unit as a turn about the target's hinge: how far each source vertex
+// follows its own jaw's turn (its displacement along the turn's, 0 above the
+// lips, 1 on the chin) is carried over as a number, so the lips part along
+// the mouth line and the chin swings instead of stretching. What the source
+// has nothing close to below the lips (the inside of a deeper mouth), the
+// lower teeth and the tongue turn fully.
+void turnWithJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
+                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
+                 std::vector<glm::vec3>& deltas) {
+  std::vector<glm::vec3> follow(src.positions.size(), glm::vec3(0.0f));  // the share in x (a scalar carried as a vector)
+  for (size_t i = 0; i < src.positions.size(); ++i) {
+    const glm::vec3 full = turnAboutHinge(turn.source, turn.angle, src.positions[i]);
+    const float energy = glm::dot(full, full);
+    if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+  }
+  for (size_t v = 0; v < tgt.positions.size(); ++v) {
+    const ClosestPoint& match = corr.matches[v];
+    const float matched = match.found ? 1.0f - glm::smoothstep(fullGap, maxGap, match.distance) : 0.0f;
+    float share = match.found ? matched * atMatch(follow, src, match).x : 0.0f;
+    if (corr.targetRegions[v] == FaceRegion::LowerLip) share += 1.0f - matched;
+    deltas[v] = share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
+  }
+  for (size_t j = 0; j < jaw.positions.size(); ++j)
+    deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
+}
+
 Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const FaceSurface& jaw,
                  const Correspondence& corr, const std::vector<std::string>& units, const FaceLandmarks& landmarks,
                  const FaceParts& parts) {
@@ -166,7 +305,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
   std::vector<glm::mat3> jacobians(src.positions.size());
   for (size_t i = 0; i < src.positions.size(); ++i)
-    jacobians[i] = corr.warp.jacobian(src.positions[i], kJacobianStep * sourceFrame.eyeSpan());
+    jacobians[i] = tamed(corr.warp.jacobian(src.positions[i], kJacobianStep * sourceFrame.eyeSpan()), corr.warp.similarity().scale);
 
   Moved moved;
   moved.vertices = tgt.vertices;
@@ -189,14 +328,13 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const ClosestPoint& match = corr.matches[v];
       if (!match.found) continue;
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
-      unit.deltas[v] = alongEyeball(tgt.positions[v], weight * atMatch(carried, src, match), parts);
+      unit.deltas[v] = weight * atMatch(carried, src, match);
     }
+    closeLids(source, sourceGrid, src, raw[u], landmarks, tgt, corr, parts, unit.deltas);
+    for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
     const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end();
-    if (jawUnit && chin.found) {
-      const float angle = hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin));
-      for (size_t j = 0; j < jaw.positions.size(); ++j)
-        unit.deltas[tgt.positions.size() + j] = turnAboutHinge(targetHinge, angle, jaw.positions[j]);
-    }
+    if (jawUnit && chin.found) turnWithJaw(JawTurn{sourceHinge, targetHinge, hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin))},
+                                           src, raw[u], tgt, corr, fullGap, maxGap, jaw, unit.deltas);
     moved.units.push_back(std::move(unit));
   }
   return moved;

@@ -2,15 +2,18 @@
 // real ARKit targets. Stripped of them and rigged from the built-in head, the
 // made targets are compared with its own, vertex by vertex, in each true
 // target's own size (docs/autorig.md has the table).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "autorig/target_transfer.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
+#include "facial/runtime/rig/arkit_names.h"
 #include "tests/autorig/transfer_fixture.h"
 #include "tests/common/test_support.h"
 
@@ -76,13 +79,14 @@ struct Row {
   float minCosine;
 };
 
-// Measured (docs/autorig.md): the bounds are the measurement with a margin.
+// Measured (docs/autorig.md has the table): the bounds are the measurement
+// with 0.1 of margin.
 constexpr Row kRows[] = {
-    {"jawOpen", "jawOpen", 1.0f, 0.0f},
-    {"mouthSmileLeft", "mouthSmile_L", 1.0f, 0.0f},
-    {"eyeBlinkLeft", "eyeBlink_L", 1.0f, 0.0f},
-    {"browInnerUp", "browInnerUp", 1.0f, 0.0f},
-    {"mouthPucker", "mouthPucker", 1.0f, 0.0f},
+    {"jawOpen", "jawOpen", 0.6f, 0.8f},
+    {"mouthSmileLeft", "mouthSmile_L", 0.8f, 0.63f},
+    {"eyeBlinkLeft", "eyeBlink_L", 1.0f, 0.5f},
+    {"browInnerUp", "browInnerUp", 0.67f, 0.73f},
+    {"mouthPucker", "mouthPucker", 1.12f, 0.6f},
 };
 
 TEST(FacecapGroundTruth, MadeTargetsAreNearFacecapsOwn) {
@@ -97,6 +101,63 @@ TEST(FacecapGroundTruth, MadeTargetsAreNearFacecapsOwn) {
     std::printf("| %s | %s | %.2f | %.2f | %.2f |\n", row.made, row.truth, c.relativeRms, c.cosine, c.gain);
     EXPECT_LT(c.relativeRms, row.maxRelativeRms) << row.made;
     EXPECT_GT(c.cosine, row.minCosine) << row.made;
+  }
+}
+
+// The gap between the left eye's lids (landmarks 43/44 against 47/46, at the
+// nearest skin vertices of mesh m) with `target` at 1, over the gap at rest.
+float leftLidGap(const eng::Model& model, size_t m, const autorig::PosedFace& posed,
+                 const autorig::FaceLandmarks& landmarks, const char* target) {
+  const autorig::PosedPrimitive* p = posed.find(m, 0);
+  const eng::Mesh& mesh = model.meshes[m];
+  const size_t t = size_t(std::find(mesh.targetNames.begin(), mesh.targetNames.end(), target) - mesh.targetNames.begin());
+  if (!p || t >= mesh.targetNames.size()) {
+    ADD_FAILURE() << "no " << target;
+    return NAN;
+  }
+  auto at = [&](size_t landmark, float weight) {
+    size_t nearest = 0;
+    for (size_t v = 0; v < p->positions.size(); ++v)
+      if (glm::length(p->positions[v] - landmarks.points[landmark]) <
+          glm::length(p->positions[nearest] - landmarks.points[landmark]))
+        nearest = v;
+    return p->positions[nearest] +
+           weight * (glm::inverse(p->worldToLocal[nearest]) * mesh.primitives[0].targets[t].positions[nearest]);
+  };
+  // Along the face's up: below zero the upper lid has passed the lower lid's landmarks.
+  const glm::vec3 up = autorig::LandmarkFrame(landmarks).up();
+  auto gap = [&](float w) { return glm::dot((at(43, w) + at(44, w)) - (at(47, w) + at(46, w)), up) * 0.5f; };
+  return gap(1.0f) / gap(0.0f);
+}
+
+// The lids close on a blink: the made blink leaves less than a fifth of the
+// gap between the lid landmarks (measured -0.31: the upper lid passes them).
+TEST(FacecapGroundTruth, BlinkClosesTheLids) {
+  FACIAL_REQUIRE_SHARED();
+  const Rigged* r = rigFacecap();
+  ASSERT_NE(r, nullptr);
+  const float made = leftLidGap(r->rigged, skinMesh(r->truth), r->posed, r->landmarks, "eyeBlinkLeft");
+  std::printf("left lid gap at eyeBlinkLeft 1: %.2f of the gap at rest\n", made);
+  EXPECT_LT(made, 0.2f);
+}
+
+// Every made shape that facecap also has, for docs/autorig.md (no bounds:
+// the five above are the issue's).
+TEST(FacecapGroundTruth, TableOfEveryShape) {
+  FACIAL_REQUIRE_SHARED();
+  const Rigged* r = rigFacecap();
+  ASSERT_NE(r, nullptr);
+  const size_t m = skinMesh(r->truth);
+  const eng::Mesh& truth = r->truth.meshes[m];
+  const eng::Mesh& made = r->rigged.meshes[m];
+  for (const std::string& name : made.targetNames) {
+    const std::optional<uint32_t> shape = facial::arkitIndex(name);
+    if (!shape || name.starts_with("AU")) continue;
+    for (const std::string& own : truth.targetNames) {
+      if (facial::arkitIndex(own) != shape) continue;
+      const transfer_fixture::Comparison c = transfer_fixture::compareTargets(made, name.c_str(), truth, own.c_str());
+      std::printf("| %s | %.2f | %.2f | %.2f |\n", name.c_str(), c.relativeRms, c.cosine, c.gain);
+    }
   }
 }
 

@@ -1,0 +1,52 @@
+// A Ready Player Me avatar with visemes only (../shared/speech/rpm-visemes.glb:
+// skinned, with hair, glasses, body and outfit) gets the head's units and the
+// ARKit shapes; its visemes stay, its hair and clothes do not move.
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "autorig/face_parts.h"
+#include "autorig/target_transfer.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
+#include "tests/autorig/transfer_fixture.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+TEST(AvatarTransfer, RiggsAVisemesOnlyAvatar) {
+  FACIAL_REQUIRE_SHARED();
+  eng::Result<eng::Model> avatar = eng::loadModel(testing_support::sharedDir() / "speech/rpm-visemes.glb");
+  ASSERT_TRUE(avatar) << avatar.error().message;
+  eng::Result<autorig::FaceLandmarks> landmarks =
+      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json");
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  std::optional<eng::Model> head = transfer_fixture::loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = transfer_fixture::headSource(*head);
+  const autorig::PosedFace posed = autorig::poseAtRest(*avatar);
+  const autorig::FaceParts parts = autorig::findFaceParts(*avatar, posed, *landmarks);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *avatar, posed, *landmarks, parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  const auto& made = rigged->report.made;
+  for (const char* name : {"AU12_LipCornerPuller_L", "mouthSmileLeft", "eyeBlinkLeft", "jawOpen", "browInnerUp"})
+    EXPECT_NE(std::find(made.begin(), made.end(), name), made.end()) << name;
+  for (const std::string& warning : rigged->report.warnings) std::printf("warning: %s\n", warning.c_str());
+  // Meshes other than the head, teeth, eyes (and whatever the parts call skin) get nothing.
+  for (size_t m = 0; m < avatar->meshes.size(); ++m) {
+    const eng::Mesh& before = avatar->meshes[m];
+    const eng::Mesh& after = rigged->model.meshes[m];
+    std::printf("%s: %zu -> %zu targets\n", before.name.c_str(), before.targetNames.size(), after.targetNames.size());
+    // Every target the mesh had is still there, first and in order.
+    ASSERT_GE(after.targetNames.size(), before.targetNames.size());
+    EXPECT_TRUE(std::equal(before.targetNames.begin(), before.targetNames.end(), after.targetNames.begin()));
+    if (before.name.find("Hair") != std::string::npos || before.name.find("Glasses") != std::string::npos ||
+        before.name.find("Outfit") != std::string::npos)
+      EXPECT_EQ(after.targetNames.size(), before.targetNames.size()) << before.name;
+  }
+  const auto out = testing_support::freshTempDir("avatar_transfer") / "rpm-visemes-rigged.glb";
+  eng::Result<void> saved = eng::saveModel(rigged->model, out);
+  EXPECT_TRUE(saved) << saved.error().message;
+}
+
+}  // namespace
