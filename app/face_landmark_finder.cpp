@@ -1,5 +1,6 @@
 #include "app/face_landmark_finder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -7,6 +8,7 @@
 #include "autorig/surface_cast.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
+#include "engine/view/framing_bounds.h"
 
 namespace app {
 
@@ -30,9 +32,10 @@ void drawDot(eng::Image& image, glm::vec2 centre, int radius, glm::u8vec4 colour
 eng::Result<void> writePicture(eng::Image image, const autorig::DetectedFace& face,
                                const autorig::FaceLandmarks& landmarks, const autorig::SurfaceCaster& caster,
                                const std::filesystem::path& path) {
-  for (const glm::vec2& p : face.pixels) drawDot(image, p, 4, {40, 220, 60, 255});
+  const int radius = std::max(1, image.width / 160);
+  for (const glm::vec2& p : face.pixels) drawDot(image, p, radius, {40, 220, 60, 255});
   for (const glm::vec3& p : landmarks.points)
-    if (auto s = caster.project(p)) drawDot(image, *s, 2, {230, 30, 30, 255});
+    if (auto s = caster.project(p)) drawDot(image, *s, radius / 2, {230, 30, 30, 255});
   return eng::writePng(path, image.width, image.height, image.rgba8);
 }
 
@@ -43,9 +46,13 @@ eng::Result<void> writePicture(eng::Image image, const autorig::DetectedFace& fa
 constexpr float kReach = 0.04f;
 
 std::string describe(const autorig::DetectedFace& face) {
-  char text[96];
-  std::snprintf(text, sizeof text, "dlib (face box %.0f px, confidence %.2f)", double(face.box.max.x - face.box.min.x),
-                double(face.confidence));
+  char text[128];
+  if (std::isfinite(face.confidence))
+    std::snprintf(text, sizeof text, "dlib (face box %.0f px, confidence %.2f)", double(face.box.max.x - face.box.min.x),
+                  double(face.confidence));
+  else
+    std::snprintf(text, sizeof text, "dlib's shape predictor in the box of the morph targets (%.0f px): no face detected",
+                  double(face.box.max.x - face.box.min.x));
   return text;
 }
 
@@ -77,6 +84,54 @@ bool closeIn(eng::OrbitCamera& camera, const autorig::PixelBox& box, float size)
   camera.zoom *= k;
   camera.imageCentre = (camera.imageCentre - centre) * k;
   return true;
+}
+
+autorig::PictureCamera pictureCamera(const eng::OrbitCamera& camera, uint32_t size) {
+  return {camera.projection(1.0f) * camera.view(), glm::vec2(float(size))};
+}
+
+// Where the face must be when dlib's detector misses it (a stylised face):
+// the square around the region its morph targets move, seen from the
+// camera. Nullopt unless that region is on the camera's side of the head
+// (a face turned away is no face) or when nothing morphs.
+std::optional<autorig::PixelBox> targetsBox(const eng::Model& model, const eng::OrbitCamera& camera, uint32_t size) {
+  const eng::Aabb features = eng::faceFeatureBounds(model);
+  const eng::Aabb head = eng::framingBounds(model, eng::FramingMode::Face);
+  if (!features.valid() || !head.valid()) return std::nullopt;
+  const glm::vec3 toCamera = glm::normalize(camera.position() - camera.target);
+  if (glm::dot(features.center() - head.center(), toCamera) < 0.1f * glm::dot(glm::abs(head.size()), glm::abs(toCamera)))
+    return std::nullopt;
+  autorig::PixelBox box{glm::vec2(INFINITY), glm::vec2(-INFINITY)};
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? features.max.x : features.min.x, corner & 2 ? features.max.y : features.min.y,
+                      corner & 4 ? features.max.z : features.min.z);
+    const std::optional<glm::vec2> s = autorig::projectToPicture(pictureCamera(camera, size), p);
+    if (!s) return std::nullopt;
+    box.min = glm::min(box.min, *s), box.max = glm::max(box.max, *s);
+  }
+  const glm::vec2 centre = (box.min + box.max) * 0.5f;
+  const float half = 0.5f * std::max(box.max.x - box.min.x, box.max.y - box.min.y);
+  return autorig::PixelBox{centre - half, centre + half};
+}
+
+// The detector missed: closer in on the targets' region and look again;
+// still nothing, and the predictor is fitted in that box.
+eng::Result<std::optional<Sighting>> lookWhereTheTargetsAre(const eng::Model& model, HeadlessModelRenderer& renderer,
+                                                            std::span<const float> weights,
+                                                            const autorig::LandmarkDetector& detector, uint32_t size) {
+  eng::OrbitCamera& camera = renderer.view().camera;
+  std::optional<autorig::PixelBox> box = targetsBox(model, camera, size);
+  if (!box) return std::optional<Sighting>();
+  if (closeIn(camera, *box, float(size))) {
+    std::optional<Sighting> seen = ENG_TRY_VALUE(look(renderer, weights, detector));
+    if (seen) return seen;
+    box = targetsBox(model, camera, size);
+    if (!box) return std::optional<Sighting>();
+  }
+  auto image = renderer.render(weights);
+  if (!image) return image.error();
+  autorig::DetectedFace face = detector.fit(*image, *box);
+  return std::optional<Sighting>(Sighting{std::move(*image), face});
 }
 
 // Each detected pixel cast onto the face; the first that misses is named.
@@ -115,15 +170,16 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
   if (!renderer) return renderer.error();
   const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
   std::optional<Sighting> seen = ENG_TRY_VALUE(look(*renderer, weights, **detector));
+  if (!seen) seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, *renderer, weights, **detector, options.size));
   if (!seen) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
   eng::OrbitCamera& camera = renderer->view().camera;
   const eng::OrbitCamera wide = camera;
-  if (closeIn(camera, seen->face.box, float(options.size))) {
+  if (std::isfinite(seen->face.confidence) && closeIn(camera, seen->face.box, float(options.size))) {
     std::optional<Sighting> close = ENG_TRY_VALUE(look(*renderer, weights, **detector));
     if (close) seen = std::move(close);
     else camera = wide;
   }
-  const autorig::PictureCamera picture{camera.projection(1.0f) * camera.view(), glm::vec2(float(options.size))};
+  const autorig::PictureCamera picture = pictureCamera(camera, options.size);
   const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
   return castOntoFace(caster, *seen, options.size, name, options.picture);
 }

@@ -263,10 +263,16 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, cons
     if (e >= 0) recordEyeball(parts, side, c);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  if (named) return *named;
-  const FacePart part = partOfShape(c, f);
-  if (part == FacePart::EyeballRight || part == FacePart::EyeballLeft) recordEyeball(parts, part == FacePart::EyeballLeft, c);
-  return part;
+  // A mesh called "Head" often holds the eyeballs as pieces of its own;
+  // only those are taken from shape (an island inside the mouth may be the
+  // mouth's own lining rather than teeth).
+  if (named && *named != FacePart::Skin) return *named;
+  const int eye = eyeballSide(c, f);
+  if (eye >= 0) {
+    recordEyeball(parts, eye, c);
+    return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
+  }
+  return named ? *named : partOfShape(c, f);
 }
 
 void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
@@ -308,32 +314,80 @@ float otsuSplit(std::vector<std::pair<float, double>> values) {
   return split;
 }
 
+// Extent of a piece along an axis, from the mouth centre.
+glm::vec2 extent(const PosedFace& posed, const TeethPiece& piece, const glm::vec3& origin, const glm::vec3& axis) {
+  glm::vec2 r(INFINITY, -INFINITY);
+  for (uint32_t v : piece.vertices) {
+    const float x = glm::dot(posed.primitives[piece.primitive].positions[v] - origin, axis);
+    r = {std::min(r.x, x), std::max(r.y, x)};
+  }
+  return r;
+}
+
+// A tongue kept with the teeth (Ready Player Me's Wolf3D_Teeth): a piece as
+// wide as the arches but short of their front, lying inside them. Taken out
+// of `teeth` and marked.
+void takeOutTongue(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  if (teeth.size() < 2) return;
+  glm::vec2 across(INFINITY, -INFINITY);
+  std::vector<float> front(teeth.size());
+  for (size_t i = 0; i < teeth.size(); ++i) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right);
+    across = {std::min(across.x, x.x), std::max(across.y, x.y)};
+    front[i] = extent(posed, teeth[i], f.mouthCentre, f.forward).y;
+  }
+  const float frontMost = *std::max_element(front.begin(), front.end());
+  const float width = across.y - across.x;
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right);
+    if (x.y - x.x < 0.5f * width || front[i] > frontMost - 0.15f * width) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Tongue;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+  }
+}
+
 // Rows in pieces of their own (teeth apart, or one primitive per row) go
 // whole by their mean height; a single piece holding both rows is split per
-// vertex.
+// vertex. Two rows lie one over the other; when the two sides of the split
+// lie more one behind the other (the front teeth of a single tilted arch
+// against its back teeth), there is one row, and the mouth line says which.
 void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
-  auto height = [&](const TeethPiece& piece, uint32_t v) { return glm::dot(posed.primitives[piece.primitive].positions[v], f.up); };
+  const glm::vec3& mouth = f.mouthCentre;
+  auto along = [&](const TeethPiece& piece, uint32_t v, const glm::vec3& axis) {
+    return glm::dot(posed.primitives[piece.primitive].positions[v] - mouth, axis);
+  };
+  auto meanHeight = [&](const TeethPiece& piece) {
+    double sum = 0.0;
+    for (uint32_t v : piece.vertices) sum += along(piece, v, f.up);
+    return float(sum / double(piece.vertices.size()));
+  };
   std::vector<std::pair<float, double>> values;
   for (const TeethPiece& piece : teeth) {
-    double sum = 0.0;
-    for (uint32_t v : piece.vertices) sum += height(piece, v);
-    if (teeth.size() > 1) values.emplace_back(float(sum / double(piece.vertices.size())), double(piece.vertices.size()));
+    if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
     else
-      for (uint32_t v : piece.vertices) values.emplace_back(height(piece, v), 1.0);
+      for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
   }
   const float split = otsuSplit(values);
-  for (const TeethPiece& piece : teeth) {
-    double sum = 0.0;
-    for (uint32_t v : piece.vertices) sum += height(piece, v);
-    const bool wholeAbove = sum / double(piece.vertices.size()) > split;
+  std::array<glm::dvec3, 2> sums{};  // below, above: height, depth, vertex count
+  for (const TeethPiece& piece : teeth)
     for (uint32_t v : piece.vertices) {
-      const bool above = teeth.size() > 1 ? wholeAbove : height(piece, v) > split;
+      const bool above = teeth.size() > 1 ? meanHeight(piece) > split : along(piece, v, f.up) > split;
+      sums[above] += glm::dvec3(along(piece, v, f.up), along(piece, v, f.forward), 1.0);
       parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
     }
-  }
-  char text[128];
-  std::snprintf(text, sizeof text, "teeth: %zu piece%s sorted into upper and lower rows at %.4g along the face's up",
-                teeth.size(), teeth.size() > 1 ? "s" : "", double(split));
+  const glm::dvec3 apart = sums[1] / std::max(sums[1].z, 1.0) - sums[0] / std::max(sums[0].z, 1.0);
+  const bool twoRows = sums[0].z > 0.0 && sums[1].z > 0.0 && std::abs(apart.x) > std::abs(apart.y);
+  const FacePart oneRow = values.empty() || meanHeight(teeth[0]) > 0.0f ? FacePart::UpperTeeth : FacePart::LowerTeeth;
+  if (!twoRows)
+    for (const TeethPiece& piece : teeth)
+      for (uint32_t v : piece.vertices) parts.vertexParts[piece.primitive][v] = oneRow;
+  char text[160];
+  if (twoRows)
+    std::snprintf(text, sizeof text, "teeth: %zu piece%s, upper and lower rows parted %.4g above the mouth line",
+                  teeth.size(), teeth.size() > 1 ? "s" : "", double(split));
+  else
+    std::snprintf(text, sizeof text, "teeth: %zu piece%s, one row, %s the mouth line", teeth.size(),
+                  teeth.size() > 1 ? "s" : "", oneRow == FacePart::UpperTeeth ? "above" : "below");
   parts.notes.push_back(text);
 }
 
@@ -356,6 +410,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
   for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)
     notePrimitive(model, posed.primitives[i], parts.vertexParts[i], parts.notes);

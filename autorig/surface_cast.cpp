@@ -112,11 +112,11 @@ SurfaceCaster::SurfaceCaster(const eng::Model& model, const PosedFace& posed, co
   }
 }
 
-std::optional<glm::vec2> SurfaceCaster::project(const glm::vec3& world) const {
-  const glm::vec4 clip = camera_.viewProjection * glm::vec4(world, 1.0f);
+std::optional<glm::vec2> projectToPicture(const PictureCamera& camera, const glm::vec3& world) {
+  const glm::vec4 clip = camera.viewProjection * glm::vec4(world, 1.0f);
   if (!(clip.w > 1e-6f)) return std::nullopt;
   const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-  return (ndc * 0.5f + 0.5f) * camera_.imageSize;
+  return (ndc * 0.5f + 0.5f) * camera.imageSize;
 }
 
 int SurfaceCaster::cellOf(glm::vec2 pixel) const {

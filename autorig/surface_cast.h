@@ -21,6 +21,9 @@ struct PictureCamera {
   glm::vec2 imageSize{1.0f};
 };
 
+// Where a world point lands in the picture (pixels), nullopt behind the camera.
+std::optional<glm::vec2> projectToPicture(const PictureCamera& camera, const glm::vec3& world);
+
 struct SurfacePoint {
   size_t primitive = 0;  // index into PosedFace::primitives
   glm::vec3 position{0.0f};
@@ -45,8 +48,7 @@ class SurfaceCaster {
   // within reach. Nullopt when nothing of the surface is that close.
   std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels) const;
 
-  // Where a world point lands in the picture (pixels), nullopt behind the camera.
-  std::optional<glm::vec2> project(const glm::vec3& world) const;
+  std::optional<glm::vec2> project(const glm::vec3& world) const { return projectToPicture(camera_, world); }
 
  private:
   struct TriangleRef {

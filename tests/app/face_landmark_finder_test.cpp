@@ -115,13 +115,39 @@ TEST(FaceLandmarkFinder, BuiltInHeadFeaturesWhereTheMeshHasThem) {
   EXPECT_LT(glm::distance(f.parts.eyeCentres[0], right), 0.02f * span);
 }
 
+// Where the posed face's target `name` moves a vertex most (world space).
+glm::vec3 mostMoved(const Found& f, const std::string& name) {
+  float best = -1.0f;
+  glm::vec3 at(NAN);
+  for (const autorig::PosedPrimitive& p : f.posed.primitives) {
+    const eng::Mesh& mesh = f.model.meshes[p.mesh];
+    const auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name);
+    if (it == mesh.targetNames.end()) continue;
+    const eng::MorphTarget& target = mesh.primitives[p.primitive].targets[size_t(it - mesh.targetNames.begin())];
+    for (size_t v = 0; v < target.positions.size(); ++v)
+      if (const float d = glm::length(target.positions[v]); d > best) best = d, at = p.positions[v];
+  }
+  return at;
+}
+
 TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   const auto path = testing_support::sharedDir() / "assets" / "facecap.glb";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   Found f = find(path, "facecap");
   expectFaceLayout(f.landmarks);
-  // Nothing is named: the eyeballs (meshes 0 and 1) and the teeth (mesh 3)
-  // are told by their shapes and places.
+  // Its own ARKit targets say where its features are: the subject's left
+  // lid ("_L": landmarks 42-47) closes most at the middle of 43-44, the left
+  // smile pulls corner 54 most, the inner brows rise between 21 and 22, the
+  // lower lip (57) rolls in.
+  const auto& p = f.landmarks.points;
+  const float span = glm::distance(p[36], p[45]);
+  EXPECT_LT(glm::distance(mostMoved(f, "eyeBlink_L"), (p[43] + p[44]) / 2.0f), 0.1f * span);
+  EXPECT_LT(glm::distance(mostMoved(f, "eyeBlink_R"), (p[37] + p[38]) / 2.0f), 0.1f * span);
+  EXPECT_LT(glm::distance(mostMoved(f, "mouthSmile_L"), p[54]), 0.15f * span);
+  EXPECT_LT(glm::distance(mostMoved(f, "mouthSmile_R"), p[48]), 0.15f * span);
+  EXPECT_LT(glm::distance(mostMoved(f, "browInnerUp"), (p[21] + p[22]) / 2.0f), 0.3f * span);  // 0.23 seen
+  EXPECT_LT(glm::distance(mostMoved(f, "mouthRollLower"), p[57]), 0.15f * span);  // 0.08 seen
+  // Meshes 0 and 1 are eyeballs (their nodes' parents say so), mesh 3 the teeth.
   using autorig::FacePart;
   ASSERT_EQ(f.parts.vertexParts.size(), 4u);
   const auto all = [&](size_t i, FacePart part) {
@@ -130,9 +156,7 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_TRUE((all(0, FacePart::EyeballLeft) && all(1, FacePart::EyeballRight)) ||
               (all(0, FacePart::EyeballRight) && all(1, FacePart::EyeballLeft)));
   EXPECT_TRUE(all(2, FacePart::Skin));
-  const auto& teeth = f.parts.vertexParts[3];
-  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::UpperTeeth), 100);
-  EXPECT_GT(std::count(teeth.begin(), teeth.end(), FacePart::LowerTeeth), 100);
+  EXPECT_TRUE(all(3, FacePart::UpperTeeth));  // one arch of 14 teeth, above the mouth line
   EXPECT_TRUE(f.parts.eyeballsFound);
 }
 
@@ -145,8 +169,10 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
   EXPECT_EQ(shareOf(f, "Wolf3D_Head", FacePart::Skin), 1.0f);
   EXPECT_EQ(shareOf(f, "EyeLeft", FacePart::EyeballLeft), 1.0f);  // ARKit's and RPM's Left: the subject's
   EXPECT_EQ(shareOf(f, "EyeRight", FacePart::EyeballRight), 1.0f);
-  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::UpperTeeth), 0.3f);
-  EXPECT_GT(shareOf(f, "Wolf3D_Teeth", FacePart::LowerTeeth), 0.3f);
+  // Three pieces: the rows of 31 and 29 vertices, and a tongue of 24 inside them.
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::UpperTeeth), 31.0f / 84.0f, 1e-6f);
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::LowerTeeth), 29.0f / 84.0f, 1e-6f);
+  EXPECT_NEAR(shareOf(f, "Wolf3D_Teeth", FacePart::Tongue), 24.0f / 84.0f, 1e-6f);
   EXPECT_EQ(shareOf(f, "Wolf3D_Hair", FacePart::Hair), 1.0f);
   EXPECT_EQ(shareOf(f, "Wolf3D_Glasses", FacePart::Glasses), 1.0f);
   for (const char* clothes : {"Wolf3D_Body", "Wolf3D_Outfit_Top", "Wolf3D_Outfit_Bottom", "Wolf3D_Outfit_Footwear"})
@@ -154,13 +180,31 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
   EXPECT_TRUE(f.parts.eyeballsFound);
 }
 
-TEST(FaceLandmarkFinder, SphereHasNoFace) {
+// A unit cube, flat-shaded: six faces of two triangles.
+eng::Primitive cube() {
+  eng::Primitive p;
+  for (int axis = 0; axis < 3; ++axis)
+    for (float sign : {-1.0f, 1.0f}) {
+      glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+      n[axis] = sign, u[(axis + 1) % 3] = 1.0f, v[(axis + 2) % 3] = sign;
+      const uint32_t first = uint32_t(p.positions.size());
+      for (glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+        p.positions.push_back(0.5f * (n + c.x * u + c.y * v)), p.normals.push_back(n);
+      for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p.indices.push_back(first + i);
+    }
+  return p;
+}
+
+TEST(FaceLandmarkFinder, NoFaceOnASphereOrACube) {
   eng::Model sphere = testing_support::makeSphereModel(testing_support::whiteSphereSpec(2));
   sphere.sourcePath = "ball.glb";
-  const autorig::PosedFace posed = autorig::poseAtRest(sphere);
-  auto landmarks = app::findFaceLandmarks(sphere, posed);
-  ASSERT_FALSE(landmarks);
-  EXPECT_EQ(landmarks.error().message, "no face found in a front view of ball.glb");
+  eng::Model box = testing_support::singleMeshModel(eng::Mesh{.name = "box", .primitives = {cube()}}, "box.glb");
+  for (const eng::Model* model : {&sphere, &box}) {
+    const autorig::PosedFace posed = autorig::poseAtRest(*model);
+    auto landmarks = app::findFaceLandmarks(*model, posed);
+    ASSERT_FALSE(landmarks) << model->sourcePath;
+    EXPECT_EQ(landmarks.error().message, "no face found in a front view of " + model->sourcePath);
+  }
 }
 
 // The built-in head turned round: the camera sees the back of its head.
@@ -184,6 +228,20 @@ TEST(FaceLandmarkFinder, MissingPredictorNamesTheFile) {
   ASSERT_FALSE(landmarks);
   EXPECT_NE(landmarks.error().message.find("/nonexistent/predictor.dat: no such file"), std::string::npos)
       << landmarks.error().message;
+}
+
+// Too small a picture for dlib's detector (it wants faces of 80 pixels): the
+// predictor is fitted in the box of the region the morph targets move, and
+// the points still make a face.
+TEST(FaceLandmarkFinder, UndetectedFaceFittedInTheTargetsBox) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  const autorig::PosedFace posed = autorig::poseAtRest(*model);
+  const auto picture = testing_support::freshTempDir("face_landmark_finder") / "head-128.png";
+  auto landmarks = app::findFaceLandmarks(*model, posed, {.size = 128, .picture = picture});
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  EXPECT_TRUE(landmarks->source.starts_with("dlib's shape predictor in the box of the morph targets")) << landmarks->source;
+  expectFaceLayout(*landmarks);
 }
 
 }  // namespace

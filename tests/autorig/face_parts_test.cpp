@@ -43,7 +43,8 @@ size_t count(const std::vector<autorig::FacePart>& parts, autorig::FacePart part
 
 void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts) {
   using autorig::FacePart;
-  ASSERT_EQ(parts.vertexParts.size(), 5u);
+  ASSERT_EQ(parts.vertexParts.size(), 6u);
+  EXPECT_EQ(count(parts.vertexParts[5], FacePart::Glasses), parts.vertexParts[5].size());
   const auto& head = parts.vertexParts[0];
   EXPECT_EQ(count(head, FacePart::Skin), head.size());
   EXPECT_EQ(count(parts.vertexParts[1], FacePart::EyeballLeft), parts.vertexParts[1].size());  // at +x
@@ -60,10 +61,13 @@ void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts
   (void)model;
 }
 
+// With a prop far away (Other) and a bar across the eyes (Glasses).
 eng::Model plasterHeadWithProp() {
   eng::Model model = testing_support::plasterHead();
   testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "prop",
                                  {6.0f, 0.0f, 0.0f}, glm::vec3(0.5f));
+  testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "glasses",
+                                 {0.0f, 0.2f, 1.05f}, glm::vec3(0.6f, 0.03f, 0.03f));
   return model;
 }
 
@@ -82,6 +86,36 @@ TEST(FaceParts, ByShape) {
   const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
   expectPlasterParts(model, parts);
   EXPECT_FALSE(parts.notes.empty());
+}
+
+// Eyeballs that are pieces of the mesh called "head": found by shape.
+TEST(FaceParts, EyeballsInsideTheHeadMesh) {
+  eng::Model model = testing_support::plasterHead();
+  eng::Primitive& head = model.meshes[0].primitives[0];
+  head.targets.clear();
+  model.meshes[0].targetNames.clear();
+  model.meshes[0].defaultWeights.clear();
+  for (size_t eye = 1; eye <= 2; ++eye) {
+    const glm::mat4 place = model.worldTransform(int(eye));
+    const eng::Primitive& ball = model.meshes[eye].primitives[0];
+    const uint32_t first = uint32_t(head.positions.size());
+    for (size_t v = 0; v < ball.positions.size(); ++v) {
+      head.positions.push_back(glm::vec3(place * glm::vec4(ball.positions[v], 1.0f)));
+      head.normals.push_back(ball.normals[v]);
+      if (!head.texcoords.empty()) head.texcoords.push_back(ball.texcoords.empty() ? glm::vec2(0.0f) : ball.texcoords[v]);
+    }
+    for (uint32_t i : ball.indices) head.indices.push_back(first + i);
+  }
+  model.nodes[1].mesh = model.nodes[2].mesh = -1;  // the eyes' own meshes no longer drawn
+  const autorig::PosedFace posed = autorig::poseAtRest(model);
+  const autorig::FaceParts parts = autorig::findFaceParts(model, posed, plasterLandmarks());
+  ASSERT_FALSE(parts.vertexParts.empty());
+  const auto& v = parts.vertexParts[0];
+  const size_t ball = model.meshes[1].primitives[0].vertexCount();
+  EXPECT_EQ(count(v, autorig::FacePart::EyeballLeft), ball);
+  EXPECT_EQ(count(v, autorig::FacePart::EyeballRight), ball);
+  EXPECT_EQ(count(v, autorig::FacePart::Skin), v.size() - 2 * ball);
+  EXPECT_TRUE(parts.eyeballsFound);
 }
 
 // No eyeball meshes: the balls are estimated behind the lid lines.
