@@ -55,6 +55,18 @@ eng::Result<std::string> readBytes(const std::filesystem::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// The running program's size and time: a rebuilt program (a changed
+// landmark finder or transfer) makes its rigs anew instead of trusting ones
+// an older build made, without reading the program's bytes each run.
+std::string programStamp() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  const auto size = std::filesystem::file_size(exe, ec);
+  const auto time = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
+  return ec ? std::string() : std::to_string(size) + ":" + std::to_string(time);
+}
+
 std::set<std::string> targetNameSet(const eng::Model& model) {
   std::set<std::string> names;
   for (const eng::Mesh& mesh : model.meshes) names.insert(mesh.targetNames.begin(), mesh.targetNames.end());
@@ -159,6 +171,7 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
   if (!headBytes) return headBytes.error();
   Fnv1a key;
   key.add(kAutorigVersion);
+  key.add(programStamp());
   key.add(*headBytes);
   key.add(*modelBytes);
   char name[32];
