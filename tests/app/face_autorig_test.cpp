@@ -138,6 +138,18 @@ TEST(SaveModelAtomically, WritesWholeOrNothing) {
   EXPECT_FALSE(fs::exists(dir / "missing"));
 }
 
+// The largest weight `happy` gives a target whose name starts with `prefix`.
+float happyWeightOf(app::FaceSetup& face, const std::string& prefix) {
+  const std::vector<std::string> names = face.layout().names();
+  std::vector<float> weights(face.weightCount());
+  auto happy = face.findExpression("happy");
+  EXPECT_TRUE(happy && face.expressionWeights(**happy, 1.0f, weights));
+  float most = 0.0f;
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i].rfind(prefix, 0) == 0) most = std::max(most, weights[i]);
+  return most;
+}
+
 // The visemes-only avatar, rigged for real: new action units and ARKit
 // shapes made, its 15 visemes kept; the rig takes the units for emotions and
 // the visemes for speech, and happy moves the lip corners.
@@ -155,18 +167,34 @@ TEST(FaceSetupAutorig, VisemesOnlyAvatarEmotesWithNewUnitsAndSpeaksWithItsViseme
   EXPECT_EQ(face->rig().scheme(), facial::RigScheme::ActionUnits) << face->rig().report().summary();
   EXPECT_NE(face->rig().report().speech.find("Oculus viseme"), std::string::npos) << face->rig().report().speech;
 
-  const std::vector<std::string> names = face->layout().names();
-  std::vector<float> weights(face->weightCount());
-  auto happy = face->findExpression("happy");
-  ASSERT_TRUE(happy);
-  ASSERT_TRUE(face->expressionWeights(**happy, 1.0f, weights));
-  float smile = 0.0f, visemes = 0.0f;
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (names[i].rfind("AU12_", 0) == 0) smile = std::max(smile, weights[i]);
-    if (names[i].rfind("viseme_", 0) == 0) visemes = std::max(visemes, weights[i]);
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f) << "happy pulls the made lip corners";
+  EXPECT_EQ(happyWeightOf(*face, "viseme_"), 0.0f) << "visemes no longer stand in for emotions";
+}
+
+// A face with no targets at all (facecap stripped of its 52): rigged on the
+// fly, and the seven states reach it through the made units.
+TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
+  const fs::path facecap = testing_support::sharedDir() / "assets" / "facecap.glb";
+  if (!fs::exists(facecap)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
+  auto model = eng::loadModel(facecap);
+  ASSERT_TRUE(model) << model.error().message;
+  for (eng::Mesh& mesh : model->meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
   }
-  EXPECT_GT(smile, 0.5f) << "happy pulls the made lip corners";
-  EXPECT_EQ(visemes, 0.0f) << "visemes no longer stand in for emotions";
+  model->animations.clear();
+  const fs::path dir = testing_support::freshTempDir("autorig_bare_facecap");
+  ASSERT_TRUE(eng::saveModel(*model, dir / "bare.glb"));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "bare.glb", .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
+  EXPECT_EQ(face->rig().scheme(), facial::RigScheme::ActionUnits);
+  EXPECT_TRUE(facial::showsEmotions(face->rig()));
+  EXPECT_TRUE(face->rig().speaks()) << "the made jaw and lip units speak";
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
 }
 
 }  // namespace
