@@ -163,25 +163,45 @@ eng::Result<void> saveModelAtomically(const eng::Model& model, const std::filesy
   return {};
 }
 
-eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath) {
-  const std::filesystem::path head = defaultModelPath();
-  auto modelBytes = readBytes(modelPath);
-  if (!modelBytes) return modelBytes.error();
-  auto headBytes = readBytes(head);
-  if (!headBytes) return headBytes.error();
+std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath) {
+  return modelPath.parent_path() / (modelPath.stem().string() + ".landmarks.json");
+}
+
+namespace {
+
+// The cache entry of `modelPath` rigged from `head` (and `landmarks`, when
+// not empty): named by the hash of everything that decides what is made.
+eng::Result<std::filesystem::path> cacheEntry(const std::filesystem::path& modelPath, const std::filesystem::path& head,
+                                              const std::filesystem::path& landmarks) {
   Fnv1a key;
   key.add(kAutorigVersion);
   key.add(programStamp());
-  key.add(*headBytes);
-  key.add(*modelBytes);
+  for (const std::filesystem::path& file : {head, modelPath, landmarks}) {
+    if (file.empty()) continue;
+    auto bytes = readBytes(file);
+    if (!bytes) return bytes.error();
+    key.add(file == landmarks ? "landmarks" : "");
+    key.add(*bytes);
+  }
   char name[32];
   std::snprintf(name, sizeof name, "%016llx.glb", static_cast<unsigned long long>(key.h));
+  return autorigCacheDirectory() / name;
+}
+
+}  // namespace
+
+eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath) {
+  const std::filesystem::path head = defaultModelPath();
+  std::error_code ec;
+  const std::filesystem::path landmarksFile =
+      std::filesystem::is_regular_file(landmarksBeside(modelPath), ec) ? landmarksBeside(modelPath) : std::filesystem::path();
+  auto entry = cacheEntry(modelPath, head, landmarksFile);
+  if (!entry) return entry.error();
   CachedAutorig cached;
-  cached.path = autorigCacheDirectory() / name;
+  cached.path = std::move(*entry);
 
   auto face = importers::loadFace(modelPath, {.dressForDisplay = true});
   if (!face) return face.error();
-  std::error_code ec;
   if (std::filesystem::is_regular_file(cached.path, ec)) {
     if (auto rigged = eng::loadModel(cached.path)) {
       cached.reused = true;
@@ -190,7 +210,7 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
     }
     // An unreadable cache entry is made again below (and replaced).
   }
-  auto landmarks = faceLandmarks(*face);
+  auto landmarks = faceLandmarks(*face, landmarksFile);
   if (!landmarks) return landmarks.error();
   auto rigger = FaceAutorig::load(head);
   if (!rigger) return rigger.error();

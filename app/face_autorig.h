@@ -105,8 +105,13 @@ struct CachedAutorig : TargetChanges {
   std::vector<std::string> warnings; // parts left out (when made now)
 };
 
+// Where a face's own landmarks file is looked for when it is rigged on the
+// fly: beside it, <stem>.landmarks.json (for faces the detector misses).
+std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath);
+
 // The rigged face of the glTF file `modelPath`: from the cache when it is
-// there, else made (FaceAutorig) and written there whole (.partial, renamed).
+// there, else made (FaceAutorig, through landmarksBeside() when that file
+// exists) and written there whole (.partial, renamed).
 eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath);
 
 // `face` (loaded from the glTF file `modelPath` with `options`) replaced by

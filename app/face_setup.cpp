@@ -110,9 +110,12 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
                           "head's action units (drop the flag, or write them once with `facial autorig " + model +
                           " --out rigged.glb`)");
   auto cached = loadAutorigged(modelPath, {.shapes = options.shapes, .dressForDisplay = options.dressForDisplay}, *face);
-  if (!cached)
+  if (!cached) {
+    std::error_code ec;
+    const std::filesystem::path beside = landmarksBeside(modelPath);
     return eng::makeError(cached.error().kind, refusal + "; autorig: " + cached.error().message +
-                          " (give its landmarks: facial autorig " + model + " --landmarks L.json --out rigged.glb)");
+                          (std::filesystem::exists(beside, ec) ? "" : " (give its 68 landmarks in " + beside.string() + ")"));
+  }
   return model + " cannot show emotions (" + reason + "): rigged with the built-in head's action units (" +
          std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
          " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +

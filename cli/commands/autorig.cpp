@@ -63,8 +63,16 @@ int runAutorig(const AutorigOptions& o) {
     std::fprintf(stderr, "facial autorig: warning: %s already shows emotions (%s rig); the rigged copy is driven by "
                  "the action units made for it instead\n", o.model.c_str(),
                  std::string(facial::rigSchemeName(rig->rig.scheme())).c_str());
-  auto landmarks = app::faceLandmarks(*face, o.landmarks);
-  if (!landmarks) return fail(landmarks.error().message + (o.landmarks.empty() ? "; pass --landmarks L.json (68 points)" : ""));
+  std::error_code ec;
+  const std::filesystem::path beside = app::landmarksBeside(o.model);
+  const std::filesystem::path landmarksFile =
+      !o.landmarks.empty() ? std::filesystem::path(o.landmarks)
+                           : (std::filesystem::is_regular_file(beside, ec) ? beside : std::filesystem::path());
+  auto landmarks = app::faceLandmarks(*face, landmarksFile);
+  if (!landmarks)
+    return fail(landmarks.error().message +
+                (landmarksFile.empty() ? "; pass --landmarks L.json (68 points, or write them to " + beside.string() + ")"
+                                       : ""));
   if (!o.landmarksOut.empty())
     if (auto written = autorig::writeLandmarksFile(*landmarks, o.landmarksOut); !written)
       return fail(written.error().message);
@@ -89,7 +97,7 @@ CommandRegistrar reg("autorig", "Make expression targets (FACS action units, ARK
   app.add_option("model", o->model, "Face: glTF / GLB")->required();
   app.add_option("--landmarks", o->landmarks,
                  "The face's 68 landmarks as JSON ({\"landmarks68\": [[x, y, z], ...]}, world space) instead of "
-                 "finding them on a front view");
+                 "finding them on a front view (default: <model stem>.landmarks.json beside the model, when there)");
   app.add_option("--landmarks-out", o->landmarksOut, "Also write the landmarks used, as a file --landmarks reads");
   app.add_option("--out,-o", o->out, "Output .glb / .gltf: the face with the new targets")->required();
   return [o] { return runAutorig(*o); };

@@ -92,6 +92,19 @@ TEST_F(AutorigCommand, PosingAFaceWithoutOneSaysBothWhatItLacksAndWhy) {
   EXPECT_EQ(filesIn(rigCache()), 0u) << "nothing cached for a failure";
 }
 
+TEST_F(AutorigCommand, LandmarksBesideTheModelAreReadOnTheFlyAndNamedWhenWrong) {
+  const fs::path beside = dir_ / "ball.landmarks.json", out = dir_ / "ball.png";
+  std::string points;
+  for (int i = 0; i < 68; ++i) points += std::string(i ? ", " : "") + "[100, 100, 100]";
+  testing_support::writeFile(beside, "{\"landmarks68\": [" + points + "]}");
+  const CommandOutput run = facial({"express", "happy", "--model", ball_.string(), "--size", "64x64", "--out", out.string()});
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_EQ(countOccurrences(run.err, "error:"), 1u) << run.err;
+  EXPECT_NE(run.err.find("autorig: " + beside.string()), std::string::npos) << "the file beside it is used: " << run.err;
+  EXPECT_EQ(run.err.find("front view"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 class AutorigAvatar : public AutorigCommand {
  protected:
   void SetUp() override {
