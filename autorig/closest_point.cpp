@@ -47,15 +47,35 @@ glm::vec3 closestOnTriangle(const glm::vec3& p, const glm::vec3& a, const glm::v
   return barycentric = {1 - v - w, v, w}, a + ab * v + ac * w;
 }
 
+namespace {
+
+// +1 when the triangles wind so their normals point away from the surface's
+// middle (outwards, as glTF's counter-clockwise front faces do on a head), -1
+// when the file winds them the other way: normals are compared outward-facing.
+float outwardSign(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles) {
+  glm::dvec3 middle(0.0);
+  for (const auto& t : triangles) middle += glm::dvec3(positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0;
+  if (!triangles.empty()) middle /= double(triangles.size());
+  double outward = 0.0;
+  for (const auto& t : triangles) {
+    const glm::vec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+    outward += double(glm::dot(n, (positions[t[0]] + positions[t[1]] + positions[t[2]]) / 3.0f - glm::vec3(middle)));
+  }
+  return outward < 0.0 ? -1.0f : 1.0f;
+}
+
+}  // namespace
+
 std::vector<glm::vec3> vertexNormals(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles) {
   std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
   for (const auto& t : triangles) {
     const glm::vec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
     for (uint32_t v : t) normals[v] += n;
   }
+  const float sign = outwardSign(positions, triangles);
   for (glm::vec3& n : normals) {
     const float length = glm::length(n);
-    n = length > 0.0f ? n / length : glm::vec3(0.0f);
+    n = length > 0.0f ? sign * n / length : glm::vec3(0.0f);
   }
   return normals;
 }
@@ -72,6 +92,8 @@ TriangleGrid::TriangleGrid(std::span<const glm::vec3> positions, std::span<const
     const float length = glm::length(n);
     normals_[i] = length > 0.0f ? n / length : glm::vec3(0.0f);
   }
+  const float sign = outwardSign(positions_, triangles_);
+  for (glm::vec3& n : normals_) n *= sign;
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const auto& t : triangles_)
     for (uint32_t v : t) lo = glm::min(lo, positions_[v]), hi = glm::max(hi, positions_[v]);

@@ -52,7 +52,9 @@ class TriangleGrid {
   std::vector<uint32_t> cellTriangles_;
 };
 
-// Area-weighted unit normals of a triangle soup's vertices (zero for a vertex on no triangle).
+// Area-weighted unit normals of a triangle soup's vertices (zero for a vertex
+// on no triangle), turned outwards whichever way the file winds its
+// triangles (as the grid's triangle normals are).
 std::vector<glm::vec3> vertexNormals(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles);
 
 // The closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision

@@ -103,9 +103,11 @@ SurfaceCaster::SurfaceCaster(const eng::Model& model, const PosedFace& posed, co
         else lo = glm::min(lo, *s), hi = glm::max(hi, *s);
       }
       if (!inFront || hi.x < 0.0f || hi.y < 0.0f || lo.x >= camera.imageSize.x || lo.y >= camera.imageSize.y) continue;
-      const glm::vec2 cellSize = camera.imageSize / float(cells_);
-      const glm::ivec2 c0 = glm::clamp(glm::ivec2(glm::floor(lo / cellSize)), glm::ivec2(0), glm::ivec2(cells_ - 1));
-      const glm::ivec2 c1 = glm::clamp(glm::ivec2(glm::floor(hi / cellSize)), glm::ivec2(0), glm::ivec2(cells_ - 1));
+      // Clamped as floats first: a vertex far off the picture is no int.
+      const glm::vec2 last(float(cells_ - 1));
+      const glm::vec2 cells = float(cells_) / camera.imageSize;
+      const glm::ivec2 c0(glm::clamp(glm::floor(lo * cells), glm::vec2(0.0f), last));
+      const glm::ivec2 c1(glm::clamp(glm::floor(hi * cells), glm::vec2(0.0f), last));
       for (int y = c0.y; y <= c1.y; ++y)
         for (int x = c0.x; x <= c1.x; ++x) bins_[size_t(y * cells_ + x)].push_back({uint32_t(pi), uint32_t(t)});
     }
@@ -116,13 +118,14 @@ std::optional<glm::vec2> projectToPicture(const PictureCamera& camera, const glm
   const glm::vec4 clip = camera.viewProjection * glm::vec4(world, 1.0f);
   if (!(clip.w > 1e-6f)) return std::nullopt;
   const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) return std::nullopt;
   return (ndc * 0.5f + 0.5f) * camera.imageSize;
 }
 
 int SurfaceCaster::cellOf(glm::vec2 pixel) const {
-  const glm::ivec2 c = glm::ivec2(glm::floor(pixel / camera_.imageSize * float(cells_)));
-  if (c.x < 0 || c.y < 0 || c.x >= cells_ || c.y >= cells_) return -1;
-  return c.y * cells_ + c.x;
+  const glm::vec2 c = glm::floor(pixel / camera_.imageSize * float(cells_));
+  if (!(c.x >= 0.0f && c.y >= 0.0f && c.x < float(cells_) && c.y < float(cells_))) return -1;
+  return int(c.y) * cells_ + int(c.x);
 }
 
 std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixels) const {
@@ -160,9 +163,10 @@ std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixe
 // those of triangles that face a ray along it (the lid's rim beside an eye
 // opening, not the inside of the skull behind it).
 std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing) const {
-  const glm::vec2 cellSize = camera_.imageSize / float(cells_);
-  const glm::ivec2 c0 = glm::max(glm::ivec2(glm::floor((pixel - reachPixels) / cellSize)), glm::ivec2(0));
-  const glm::ivec2 c1 = glm::min(glm::ivec2(glm::floor((pixel + reachPixels) / cellSize)), glm::ivec2(cells_ - 1));
+  const glm::vec2 cells = float(cells_) / camera_.imageSize;
+  const glm::vec2 last(float(cells_ - 1));
+  const glm::ivec2 c0(glm::clamp(glm::floor((pixel - reachPixels) * cells), glm::vec2(0.0f), last));
+  const glm::ivec2 c1(glm::clamp(glm::floor((pixel + reachPixels) * cells), glm::vec2(0.0f), last));
   float bestScore = std::numeric_limits<float>::max();
   std::optional<SurfacePoint> best;
   for (int y = c0.y; y <= c1.y; ++y)

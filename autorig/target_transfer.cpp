@@ -24,6 +24,9 @@ namespace {
 // more than kMaxOffSurface of them and the landmarks are not this face's.
 constexpr float kOffSurface = 0.2f;
 constexpr size_t kMaxOffSurface = 10;
+// The landmarks' smallest spread (across their best plane) against their
+// largest, below which they are flat; a face's is about 0.2.
+constexpr double kMinDepth = 0.02;
 // A matched target vertex takes the whole displacement up to kFullGap from
 // the warped source and none beyond the correspondence's maxGap (eye spans):
 // lashes a little off the skin follow, a shoulder does not.
@@ -66,6 +69,19 @@ eng::Result<void> checkLandmarks(const FaceLandmarks& landmarks, const char* who
     return eng::makeError(eng::ErrorKind::InvalidArgument,
                           describeLandmarks(whose) + "collapsed: the 68 points lie within " + std::to_string(spread) +
                               " of their centre, the eye corners 36 and 45 " + std::to_string(eyeSpan) + " apart");
+  // A face has depth (the nose stands out of the eyes' plane): points in one
+  // plane are a picture, a sheet or a mistake.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const glm::vec3& p : landmarks.points) {
+    const Eigen::Vector3d d(p.x - mean.x, p.y - mean.y, p.z - mean.z);
+    covariance += d * d.transpose();
+  }
+  const Eigen::Vector3d sigma = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues();
+  if (!(std::sqrt(std::max(sigma(0), 0.0)) > kMinDepth * std::sqrt(sigma(2))))
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          describeLandmarks(whose) + "flat: the 68 points lie in one plane (depth " +
+                              std::to_string(std::sqrt(std::max(sigma(0), 0.0))) + " against a spread of " +
+                              std::to_string(std::sqrt(sigma(2))) + "): not a face");
   return {};
 }
 
@@ -188,7 +204,7 @@ constexpr std::array<std::array<size_t, 4>, 2> kLidLandmarks{{{37, 38, 41, 40}, 
 // A unit closes an eye when it turns the upper lid this share of the way to the lower.
 constexpr float kClosing = 0.2f;
 // Around an eye (eyeball radii from its centre) a closing unit is all turn; beyond, the carried displacement.
-constexpr float kLidTurnInner = 1.8f, kLidTurnOuter = 2.6f;
+constexpr float kLidTurnInner = 1.25f, kLidTurnOuter = 1.75f;
 
 struct EyeLids {
   JawHinge axis;  // through the eye's centre, towards the subject's left
@@ -238,12 +254,14 @@ EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t e
 // source vertex follows its own lid's turn is carried over as a number, and
 // the target's lid turns as large a share of its own opening as the
 // source's does.
-void closeLids(const SourceFace& source, const TriangleGrid& sourceGrid, const FaceSurface& src,
-               const std::vector<glm::vec3>& raw, const FaceLandmarks& landmarks, const FaceSurface& tgt,
-               const Correspondence& corr, const FaceParts& parts, std::vector<glm::vec3>& deltas) {
+using BothEyes = std::array<EyeLids, 2>;  // right, left
+
+void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const TriangleGrid& sourceGrid,
+               const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
+               const Correspondence& corr, std::vector<glm::vec3>& deltas) {
   for (size_t eye = 0; eye < 2; ++eye) {
-    const EyeLids from = eyeLids(source.landmarks, source.parts, eye, src, corr.sourceRegions);
-    const EyeLids to = eyeLids(landmarks, parts, eye, tgt, corr.targetRegions);
+    const EyeLids& from = sourceEyes[eye];
+    const EyeLids& to = targetEyes[eye];
     if (!(from.radius > 0.0f) || !(to.radius > 0.0f) || !(from.openAngle() > 0.0f)) continue;
     const ClosestPoint margin = sourceGrid.closest(from.upper, FaceRegion::None, 1e9f);
     if (!margin.found) continue;
@@ -272,27 +290,39 @@ struct JawTurn {
   float angle = 0.0f;  // the source's chin about its hinge
 };
 
-// A jaw unit as a turn about the target's hinge: how far each source vertex
-// follows its own jaw's turn (its displacement along the turn's, 0 above the
-// lips, 1 on the chin) is carried over as a number, so the lips part along
-// the mouth line and the chin swings instead of stretching. What the source
-// has nothing close to below the lips (the inside of a deeper mouth), the
-// lower teeth and the tongue turn fully.
-void turnWithJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
-                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
-                 std::vector<glm::vec3>& deltas) {
-  std::vector<glm::vec3> follow(src.positions.size(), glm::vec3(0.0f));  // the share in x (a scalar carried as a vector)
+// A jaw unit split on the source: how far each vertex follows its jaw's
+// turn (its displacement along the turn's, 0 above the lips, 1 on the chin)
+// and what is left (lips parting further than the jaw turns them).
+struct JawSplit {
+  std::vector<glm::vec3> follow;    // the share in x (a number carried as a vector)
+  std::vector<glm::vec3> residual;  // carried like any unit
+};
+
+JawSplit splitJaw(const JawTurn& turn, const FaceSurface& src, const std::vector<glm::vec3>& raw) {
+  JawSplit split{std::vector<glm::vec3>(src.positions.size(), glm::vec3(0.0f)), raw};
   for (size_t i = 0; i < src.positions.size(); ++i) {
     const glm::vec3 full = turnAboutHinge(turn.source, turn.angle, src.positions[i]);
     const float energy = glm::dot(full, full);
-    if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    if (!(energy > 0.0f)) continue;
+    split.follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
+    split.residual[i] -= split.follow[i].x * full;
   }
+  return split;
+}
+
+// The turn of a jaw unit about the target's hinge, added to its carried
+// residual: so the lips part along the mouth line and the chin swings
+// instead of stretching. What the source has nothing close to below the lips
+// (the inside of a deeper mouth), the lower teeth and the tongue turn fully.
+void turnWithJaw(const JawTurn& turn, const JawSplit& split, const FaceSurface& src, const FaceSurface& tgt,
+                 const Correspondence& corr, float fullGap, float maxGap, const FaceSurface& jaw,
+                 std::vector<glm::vec3>& deltas) {
   for (size_t v = 0; v < tgt.positions.size(); ++v) {
     const ClosestPoint& match = corr.matches[v];
     const float matched = match.found ? 1.0f - glm::smoothstep(fullGap, maxGap, match.distance) : 0.0f;
-    float share = match.found ? matched * atMatch(follow, src, match).x : 0.0f;
+    float share = match.found ? matched * atMatch(split.follow, src, match).x : 0.0f;
     if (corr.targetRegions[v] == FaceRegion::LowerLip) share += 1.0f - matched;
-    deltas[v] = share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
+    deltas[v] += share * turnAboutHinge(turn.target, turn.angle, tgt.positions[v]);
   }
   for (size_t j = 0; j < jaw.positions.size(); ++j)
     deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
@@ -320,9 +350,17 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   const ClosestPoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
   const JawHinge sourceHinge = estimateJawHinge(source.landmarks), targetHinge = estimateJawHinge(landmarks);
 
+  const BothEyes sourceEyes{eyeLids(source.landmarks, source.parts, 0, src, corr.sourceRegions),
+                            eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions)};
+  const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions),
+                            eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
   std::vector<glm::vec3> carried(src.positions.size());
   for (size_t u = 0; u < units.size(); ++u) {
-    for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * raw[u][i];
+    const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end() && chin.found;
+    const JawTurn turn{sourceHinge, targetHinge, jawUnit ? hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin)) : 0.0f};
+    const JawSplit split = jawUnit ? splitJaw(turn, src, raw[u]) : JawSplit{};
+    const std::vector<glm::vec3>& moving = jawUnit ? split.residual : raw[u];
+    for (size_t i = 0; i < carried.size(); ++i) carried[i] = jacobians[i] * moving[i];
     NamedDeltas unit{units[u], std::vector<glm::vec3>(moved.positions.size(), glm::vec3(0.0f))};
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
       const ClosestPoint& match = corr.matches[v];
@@ -330,11 +368,9 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
       unit.deltas[v] = weight * atMatch(carried, src, match);
     }
-    closeLids(source, sourceGrid, src, raw[u], landmarks, tgt, corr, parts, unit.deltas);
+    closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
-    const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end();
-    if (jawUnit && chin.found) turnWithJaw(JawTurn{sourceHinge, targetHinge, hingeAngle(sourceHinge, chin.position, atMatch(raw[u], src, chin))},
-                                           src, raw[u], tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+    if (jawUnit) turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
     moved.units.push_back(std::move(unit));
   }
   return moved;
@@ -370,7 +406,12 @@ void widenWeightChannels(eng::Model& model, size_t mesh) {
 
 // Appends `target` to every mesh it moves: displacements into each vertex's
 // mesh space, normal displacements from the smooth normals before and after.
-void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target) {
+// Rest normals as computeSmoothNormals gives them, per mesh and primitive,
+// made once and shared by every target written.
+using RestNormals = std::vector<std::vector<std::vector<glm::vec3>>>;
+
+void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target,
+                 RestNormals& restNormals) {
   constexpr float kStill = 1e-7f;
   std::vector<std::vector<size_t>> byMesh(model.meshes.size());
   for (size_t k = 0; k < moved.vertices.size(); ++k)
@@ -392,7 +433,10 @@ void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, 
       bool any = false;
       for (size_t v = 0; v < after.size(); ++v) after[v] += added[p].positions[v], any = any || added[p].positions[v] != glm::vec3(0.0f);
       if (!any) continue;
-      const std::vector<glm::vec3> before = eng::computeSmoothNormals(primitive.positions, primitive.indices);
+      restNormals.resize(model.meshes.size());
+      restNormals[m].resize(mesh.primitives.size());
+      std::vector<glm::vec3>& before = restNormals[m][p];
+      if (before.empty()) before = eng::computeSmoothNormals(primitive.positions, primitive.indices);
       const std::vector<glm::vec3> turned = eng::computeSmoothNormals(after, primitive.indices);
       added[p].normals.resize(after.size());
       for (size_t v = 0; v < after.size(); ++v) added[p].normals[v] = turned[v] - before[v];
@@ -432,7 +476,9 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const LandmarkFrame frame(landmarks);
   ENG_TRY(checkOnSurface(tgt, landmarks, frame));
   ENG_TRY(checkFacing(source, landmarks));
-  const Correspondence corr = ENG_TRY_VALUE(correspond(src, source.landmarks, tgt, landmarks));
+  eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, landmarks);
+  if (!matched) return matched.error().prefixed("target transfer: ");
+  const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   const Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
 
@@ -450,12 +496,13 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
       report.warnings.push_back(line);
     }
   }
+  RestNormals restNormals;
   for (const NamedDeltas& target : made) {
     if (faceHas(face, target.name, !target.name.starts_with("AU"))) {
       report.kept.push_back(target.name);
       continue;
     }
-    writeTarget(result.model, posed, moved, target);
+    writeTarget(result.model, posed, moved, target, restNormals);
     report.made.push_back(target.name);
   }
   if (jaw.positions.empty()) report.warnings.push_back("no lower teeth or tongue found: the jaw units move the skin only");

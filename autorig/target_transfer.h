@@ -20,7 +20,8 @@
 namespace autorig {
 
 // The face the targets come from (the built-in head, data/head.glb), with its
-// landmarks and parts found the same way as the target face's.
+// landmarks and parts: autorig::builtInSource (autorig/builtin_source.h) sets
+// it up, its landmarks where dlib puts them on the head.
 struct SourceFace {
   const eng::Model* model = nullptr;
   PosedFace posed;

@@ -82,7 +82,7 @@ struct Row {
 // Measured (docs/autorig.md has the table): the bounds are the measurement
 // with 0.1 of margin.
 constexpr Row kRows[] = {
-    {"jawOpen", "jawOpen", 0.6f, 0.8f},
+    {"jawOpen", "jawOpen", 0.66f, 0.73f},
     {"mouthSmileLeft", "mouthSmile_L", 0.8f, 0.63f},
     {"eyeBlinkLeft", "eyeBlink_L", 1.0f, 0.5f},
     {"browInnerUp", "browInnerUp", 0.67f, 0.73f},
@@ -139,6 +139,35 @@ TEST(FacecapGroundTruth, BlinkClosesTheLids) {
   const float made = leftLidGap(r->rigged, skinMesh(r->truth), r->posed, r->landmarks, "eyeBlinkLeft");
   std::printf("left lid gap at eyeBlinkLeft 1: %.2f of the gap at rest\n", made);
   EXPECT_LT(made, 0.2f);
+}
+
+// A face that has the ARKit shapes keeps them: only the units are added.
+TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
+  FACIAL_REQUIRE_SHARED();
+  eng::Result<eng::Model> face = eng::loadModel(testing_support::sharedDir() / "assets/facecap.glb");
+  ASSERT_TRUE(face) << face.error().message;
+  eng::Result<autorig::FaceLandmarks> landmarks =
+      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/facecap.landmarks.json");
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  std::optional<eng::Model> head = transfer_fixture::loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = transfer_fixture::headSource(*head);
+  const autorig::PosedFace posed = autorig::poseAtRest(*face);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(
+      source, *face, posed, *landmarks, autorig::findFaceParts(*face, posed, *landmarks));
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  const autorig::TransferReport& report = rigged->report;
+  EXPECT_EQ(report.kept.size(), 36u);  // every ARKit shape the units make: facecap has all 52
+  EXPECT_NE(std::find(report.kept.begin(), report.kept.end(), "mouthSmileLeft"), report.kept.end());
+  EXPECT_EQ(report.made.size(), 27u);  // the units
+  const eng::Mesh& mesh = rigged->model.meshes[skinMesh(*face)];
+  EXPECT_EQ(std::count(mesh.targetNames.begin(), mesh.targetNames.end(), "jawOpen"), 1);
+  // The units that move its head (AU19, tongue show, moves only a tongue it lacks).
+  EXPECT_GE(mesh.targetNames.size(), 52u + 26u);
+  // Its take still plays: the weights channels carry a zero for each new target.
+  for (const eng::Animation& animation : rigged->model.animations)
+    for (const eng::WeightsChannel& channel : animation.channels)
+      if (channel.mesh == int(skinMesh(*face))) EXPECT_EQ(channel.targetCount, mesh.targetNames.size());
 }
 
 // Every made shape that facecap also has, for docs/autorig.md (no bounds:

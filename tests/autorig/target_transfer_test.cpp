@@ -44,6 +44,24 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   }
 }
 
+// A file that winds its triangles the other way (clockwise fronts) is the
+// same face: matches compare normals turned outwards.
+TEST(TargetTransfer, WindingDoesNotMatter) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Mesh& mesh : face.meshes)
+    for (eng::Primitive& p : mesh.primitives)
+      for (size_t i = 0; i + 2 < p.indices.size(); i += 3) std::swap(p.indices[i + 1], p.indices[i + 2]);
+  autorig::FaceParts parts = source.parts;
+  parts.eyeRadii = {0.0f, 0.0f};
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
+    EXPECT_LT(transfer_fixture::relativeError(*head, rigged->model, "Head", 0, unit, unit), 0.03f) << unit;
+}
+
 // A smooth deformation of the head (scaled, bent sideways and backwards):
 // the units carried over are the head's own, turned by the deformation's
 // Jacobian.
@@ -106,6 +124,11 @@ TEST(TargetTransfer, RefusesLandmarksThatDoNotMakeThisFace) {
   autorig::FaceLandmarks away = source.landmarks;
   for (glm::vec3& p : away.points) p += glm::vec3(0.5f, 0.0f, 0.0f);
   EXPECT_NE(attempt(away).find("68 of 68 landmarks are off the face's skin"), std::string::npos) << attempt(away);
+
+  // All in one plane (a picture, a sheet: the Khronos SimpleMorph square had dlib find a face).
+  autorig::FaceLandmarks flat = source.landmarks;
+  for (glm::vec3& p : flat.points) p.z = 0.09f;
+  EXPECT_NE(attempt(flat).find("face landmarks: flat: the 68 points lie in one plane"), std::string::npos) << attempt(flat);
 
   autorig::FaceLandmarks broken = source.landmarks;
   broken.points[40].y = NAN;
