@@ -7,10 +7,11 @@
 #include <numeric>
 #include <string_view>
 
-#include "engine/scene/position_hash.h"
+#include <Eigen/Dense>
 
 #include "engine/core/enum_names.h"
 #include "engine/scene/inner_face_parts.h"
+#include "engine/scene/position_hash.h"
 
 namespace autorig {
 
@@ -95,7 +96,9 @@ struct FaceFrame {
   std::array<float, 2> eyeWidth{};
   glm::vec3 mouthCentre{0.0f};  // the inner lips' centre: the line the teeth part at
   float mouthWidth = 0.0f;
+  std::array<glm::vec3, 2> browCentre{};  // 17-21 (right), 22-26
   glm::vec3 centre{0.0f};
+  const FaceLandmarks* landmarks = nullptr;
 };
 
 glm::vec3 mean(const FaceLandmarks& l, size_t first, size_t last) {
@@ -119,7 +122,9 @@ FaceFrame faceFrame(const FaceLandmarks& l) {
   f.eyeWidth = {glm::distance(p[36], p[39]), glm::distance(p[42], p[45])};
   f.mouthCentre = mean(l, 60, 67);
   f.mouthWidth = glm::distance(p[48], p[54]);
+  f.browCentre = {mean(l, 17, 21), mean(l, 22, 26)};
   f.centre = mean(l, 0, kLandmarkCount - 1);
+  f.landmarks = &l;
   return f;
 }
 
@@ -156,10 +161,40 @@ std::vector<uint32_t> components(const std::vector<glm::vec3>& positions, const 
 struct Component {
   std::vector<uint32_t> vertices;
   glm::vec3 centre{0.0f};  // vertex mean
-  float radius = 0.0f;     // mean distance from it
-  float spread = 1.0f;     // the distances' deviation over the radius: ~0 for a sphere
+  // The best sphere through the vertices (least squares, so the front half
+  // of an eyeball finds the ball's centre) and how far they stray from it
+  // over its radius: ~0 for a sphere.
+  glm::vec3 sphereCentre{0.0f};
+  float radius = 0.0f;
+  float spread = 1.0f;
   glm::vec3 lo{0.0f}, hi{0.0f};
+  bool bearsLandmarks = false;  // some landmark of the nose, eyes or mouth lies on it: the face's own skin
 };
+
+// |p|^2 = 2 p.c + (r^2 - |c|^2) is linear in c and the last term: solved by
+// least squares about the vertex mean.
+void fitSphere(const std::vector<glm::vec3>& positions, Component& c) {
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+  for (uint32_t v : c.vertices) {
+    const glm::dvec3 p = glm::dvec3(positions[v] - c.centre);
+    const Eigen::Vector4d row(2.0 * p.x, 2.0 * p.y, 2.0 * p.z, 1.0);
+    normal += row * row.transpose();
+    rhs += row * glm::dot(p, p);
+  }
+  const Eigen::Vector4d x = normal.ldlt().solve(rhs);
+  const glm::dvec3 centre(x[0], x[1], x[2]);
+  const double r2 = x[3] + glm::dot(centre, centre);
+  if (!x.allFinite() || !(r2 > 0.0)) return;
+  c.sphereCentre = c.centre + glm::vec3(centre);
+  c.radius = float(std::sqrt(r2));
+  double sum2 = 0.0;
+  for (uint32_t v : c.vertices) {
+    const double d = glm::distance(glm::dvec3(positions[v]), glm::dvec3(c.sphereCentre)) - double(c.radius);
+    sum2 += d * d;
+  }
+  c.spread = float(std::sqrt(sum2 / double(c.vertices.size())) / double(c.radius));
+}
 
 Component describe(const std::vector<glm::vec3>& positions, std::vector<uint32_t> vertices) {
   Component c;
@@ -167,15 +202,23 @@ Component describe(const std::vector<glm::vec3>& positions, std::vector<uint32_t
   c.lo = c.hi = positions[c.vertices[0]];
   for (uint32_t v : c.vertices) c.centre += positions[v], c.lo = glm::min(c.lo, positions[v]), c.hi = glm::max(c.hi, positions[v]);
   c.centre /= float(c.vertices.size());
-  double sum = 0.0, sum2 = 0.0;
-  for (uint32_t v : c.vertices) {
-    const double d = glm::distance(positions[v], c.centre);
-    sum += d, sum2 += d * d;
-  }
-  const double n = double(c.vertices.size());
-  c.radius = float(sum / n);
-  c.spread = c.radius > 0.0f ? float(std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) / (sum / n)) : 1.0f;
+  c.sphereCentre = c.centre;
+  if (c.vertices.size() >= 4) fitSphere(positions, c);
   return c;
+}
+
+// Whether a landmark of the nose, eyes or mouth lies within 5 % of the eye
+// corners' distance of a vertex of `c`.
+bool bearsLandmarks(const std::vector<glm::vec3>& positions, const Component& c, const FaceFrame& f) {
+  const float reach = 0.05f * f.span;
+  // Not the jaw line and brows: hair hangs beside the face and over the brows.
+  for (size_t i = 27; i < kLandmarkCount; ++i) {
+    const glm::vec3& l = f.landmarks->points[i];
+    if (glm::any(glm::lessThan(l, c.lo - reach)) || glm::any(glm::greaterThan(l, c.hi + reach))) continue;
+    for (uint32_t v : c.vertices)
+      if (glm::distance(positions[v], l) < reach) return true;
+  }
+  return false;
 }
 
 // The eye (0 right, 1 left) whose lid line lies over `c`, or -1.
@@ -188,12 +231,16 @@ int eyeOver(const Component& c, const FaceFrame& f) {
   return -1;
 }
 
-// A closed near-sphere of an eyeball's size behind an eye's lid line.
+// An eyeball's size under an eye's lid line, and round: a near-sphere, or a
+// ball's front half with an iris set in it (Ready Player Me's), at least
+// 0.4 as deep as it is wide, where lashes are thin strips.
 int eyeballSide(const Component& c, const FaceFrame& f) {
   const int e = eyeOver(c, f);
-  if (e < 0 || c.spread > 0.15f || c.vertices.size() < 20) return -1;
-  const float ratio = c.radius / f.eyeWidth[size_t(e)];
-  return ratio > 0.2f && ratio < 0.9f ? e : -1;
+  if (e < 0 || c.vertices.size() < 20) return -1;
+  const glm::vec3 size = c.hi - c.lo;
+  const float longest = std::max({size.x, size.y, size.z}), shortest = std::min({size.x, size.y, size.z});
+  const float ratio = longest / f.eyeWidth[size_t(e)];
+  return (c.spread < 0.1f || shortest > 0.4f * longest) && ratio > 0.4f && ratio < 3.0f ? e : -1;
 }
 
 bool insideTheMouth(const Component& c, const FaceFrame& f) {
@@ -203,16 +250,53 @@ bool insideTheMouth(const Component& c, const FaceFrame& f) {
          glm::length(c.hi - c.lo) < 1.5f * f.span;
 }
 
-// In front of both eyes and reaching across them: a pair of glasses.
-bool spansTheEyes(const Component& c, const FaceFrame& f) {
-  float lo = INFINITY, hi = -INFINITY;
-  for (const glm::vec3& corner : {c.lo, c.hi}) {
-    const float x = glm::dot(corner - f.centre, f.right);
-    lo = std::min(lo, x), hi = std::max(hi, x);
+// The extent of a component's box along an axis, from `origin`.
+glm::vec2 boxExtent(const Component& c, const glm::vec3& origin, const glm::vec3& axis) {
+  glm::vec2 r(INFINITY, -INFINITY);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? c.hi.x : c.lo.x, corner & 2 ? c.hi.y : c.lo.y, corner & 4 ? c.hi.z : c.lo.z);
+    const float x = glm::dot(p - origin, axis);
+    r = {std::min(r.x, x), std::max(r.y, x)};
   }
-  const float eyes = glm::dot(f.eyeCentre[1] - f.centre, f.right);
-  const glm::vec3 d = c.centre - (f.eyeCentre[0] + f.eyeCentre[1]) * 0.5f;
-  return lo < -eyes && hi > eyes && glm::dot(d, f.forward) > 0.0f && std::abs(glm::dot(d, f.up)) < 0.3f * f.span;
+  return r;
+}
+
+// Reaching across both eyes, its front before them, at their height: a pair
+// of glasses (their arms may run back to the ears).
+bool spansTheEyes(const Component& c, const FaceFrame& f) {
+  const glm::vec3 eyes = (f.eyeCentre[0] + f.eyeCentre[1]) * 0.5f;
+  const float half = 0.5f * glm::distance(f.eyeCentre[0], f.eyeCentre[1]);
+  const glm::vec2 across = boxExtent(c, eyes, f.right), depth = boxExtent(c, eyes, f.forward);
+  const glm::vec2 height = boxExtent(c, eyes, f.up);
+  return across.x < -half && across.y > half && depth.y > 0.0f && height.y - height.x < f.span &&
+         std::abs(glm::dot(c.centre - eyes, f.up)) < 0.3f * f.span;
+}
+
+// Small and over a brow (a brow card), or over an eye's lid line (a lash
+// strip); both lie on landmarks, so that cannot tell them from the skin.
+std::optional<FacePart> hairOnTheFace(const Component& c, const FaceFrame& f) {
+  const glm::vec3 size = c.hi - c.lo;
+  if (std::max({size.x, size.y, size.z}) > 0.6f * f.span) return std::nullopt;
+  for (size_t side = 0; side < 2; ++side) {
+    const float toBrow = glm::distance(c.centre, f.browCentre[side]);
+    const float toEye = glm::distance(c.centre, f.eyeCentre[side]);
+    if (toBrow < toEye && toBrow < 0.25f * f.span) return FacePart::Brows;
+    if (toEye <= toBrow && toEye < 0.6f * f.eyeWidth[side]) return FacePart::Lashes;
+  }
+  return std::nullopt;
+}
+
+// Off the face's own skin, across the head and over its top: hair (or a
+// hat), long hair hanging far below the brows too.
+bool hairOnTheHead(const Component& c, const FaceFrame& f) {
+  const glm::vec3 brows = (f.browCentre[0] + f.browCentre[1]) * 0.5f;
+  const glm::vec2 across = boxExtent(c, brows, f.right), height = boxExtent(c, brows, f.up);
+  return across.y - across.x > 0.8f * f.span && height.y > 0.5f * f.span;
+}
+
+// Off the face's own skin and below the chin: the neck's and body's pieces, clothes.
+bool belowTheChin(const Component& c, const FaceFrame& f) {
+  return glm::dot(c.centre - f.landmarks->points[8], f.up) < -0.2f * f.span;
 }
 
 // What geometry says an unnamed component is.
@@ -221,7 +305,10 @@ FacePart partOfShape(const Component& c, const FaceFrame& f) {
   if (const int e = eyeballSide(c, f); e >= 0) return e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   if (insideTheMouth(c, f)) return FacePart::UpperTeeth;  // which row: splitTeethRows
   if (spansTheEyes(c, f)) return FacePart::Glasses;
-  return FacePart::Skin;
+  if (const std::optional<FacePart> part = hairOnTheFace(c, f)) return *part;
+  if (c.bearsLandmarks) return FacePart::Skin;
+  if (hairOnTheHead(c, f)) return FacePart::Hair;
+  return belowTheChin(c, f) ? FacePart::Other : FacePart::Skin;
 }
 
 std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
@@ -251,9 +338,14 @@ struct TeethPiece {
   std::vector<uint32_t> vertices;
 };
 
-// Keeps the larger sphere of each eye (the ball, not its iris or cornea).
+// Keeps the larger ball of each eye (not its iris or cornea): the fitted
+// sphere, or the box of a ball that is no sphere.
 void recordEyeball(FaceParts& parts, int side, const Component& c) {
-  if (c.radius > parts.eyeRadii[size_t(side)]) parts.eyeCentres[size_t(side)] = c.centre, parts.eyeRadii[size_t(side)] = c.radius;
+  const bool sphere = c.spread < 0.1f;
+  const float radius = sphere ? c.radius : 0.5f * std::max({c.hi.x - c.lo.x, c.hi.y - c.lo.y, c.hi.z - c.lo.z});
+  if (radius <= parts.eyeRadii[size_t(side)]) return;
+  parts.eyeCentres[size_t(side)] = sphere ? c.sphereCentre : (c.lo + c.hi) * 0.5f;
+  parts.eyeRadii[size_t(side)] = radius;
 }
 
 FacePart partOfComponent(std::optional<FacePart> named, const Component& c, const FaceFrame& f, FaceParts& parts) {
@@ -275,6 +367,18 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, cons
   return named ? *named : partOfShape(c, f);
 }
 
+// Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
+// an unnamed primitive that is glasses or hair as a whole is all of it.
+std::optional<FacePart> wholePrimitivePart(const std::vector<glm::vec3>& positions, const FaceFrame& f) {
+  std::vector<uint32_t> all(positions.size());
+  std::iota(all.begin(), all.end(), 0u);
+  const Component whole = describe(positions, std::move(all));
+  // Glasses rest on the nose, near its landmarks; the skin is too tall to pass.
+  if (spansTheEyes(whole, f)) return FacePart::Glasses;
+  if (!bearsLandmarks(positions, whole, f) && hairOnTheHead(whole, f)) return FacePart::Hair;
+  return std::nullopt;
+}
+
 void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
                        FaceParts& parts, std::vector<TeethPiece>& teeth) {
   std::vector<FacePart>& out = parts.vertexParts[index];
@@ -286,10 +390,17 @@ void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimiti
   uint32_t count = 0;
   const std::vector<uint32_t> label =
       components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
+  if (!named) {
+    if (const std::optional<FacePart> whole = wholePrimitivePart(p.positions, f)) {
+      out.assign(p.positions.size(), *whole);
+      return;
+    }
+  }
   std::vector<std::vector<uint32_t>> members(count);
   for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
   for (std::vector<uint32_t>& vertices : members) {
-    const Component c = describe(p.positions, std::move(vertices));
+    Component c = describe(p.positions, std::move(vertices));
+    if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
     const FacePart part = partOfComponent(named, c, f, parts);
     for (uint32_t v : c.vertices) out[v] = part;
     if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <numeric>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -193,6 +195,30 @@ eng::Primitive cube() {
       for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p.indices.push_back(first + i);
     }
   return p;
+}
+
+// The same avatar with every name gone: its parts told by shape alone.
+TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarPartsByShape) {
+  const auto path = testing_support::sharedDir() / "speech" / "rpm-visemes.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
+  Found f = find(path, "rpm-visemes-named");
+  std::vector<std::string> meshNames;
+  for (eng::Mesh& m : f.model.meshes) meshNames.push_back(m.name), m.name.clear();
+  for (eng::Node& n : f.model.nodes) n.name.clear();
+  for (eng::Material& m : f.model.materials) m.name.clear();
+  const autorig::FaceParts parts = autorig::findFaceParts(f.model, f.posed, f.landmarks);
+  for (const std::string& note : parts.notes) std::printf("  %s\n", note.c_str());
+  for (size_t i = 0; i < f.posed.primitives.size(); ++i) {
+    const std::string& mesh = meshNames[f.posed.primitives[i].mesh];
+    const auto& named = f.parts.vertexParts[i];
+    const auto& shaped = parts.vertexParts[i];
+    const size_t same = size_t(std::inner_product(named.begin(), named.end(), shaped.begin(), 0, std::plus<>(),
+                                                  std::equal_to<>()));
+    if (mesh == "Wolf3D_Teeth")  // the tongue goes with the lower row or stays a tongue; the rows match
+      EXPECT_GE(same, 31u + 29u) << mesh;
+    else
+      EXPECT_EQ(same, named.size()) << mesh << ": " << same << " of " << named.size() << " as by name";
+  }
 }
 
 TEST(FaceLandmarkFinder, NoFaceOnASphereOrACube) {

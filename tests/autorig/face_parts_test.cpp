@@ -43,8 +43,10 @@ size_t count(const std::vector<autorig::FacePart>& parts, autorig::FacePart part
 
 void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts) {
   using autorig::FacePart;
-  ASSERT_EQ(parts.vertexParts.size(), 6u);
-  EXPECT_EQ(count(parts.vertexParts[5], FacePart::Glasses), parts.vertexParts[5].size());
+  ASSERT_EQ(parts.vertexParts.size(), 11u);
+  const FacePart others[] = {FacePart::Glasses, FacePart::Hair, FacePart::Brows, FacePart::Brows, FacePart::Lashes, FacePart::Lashes};
+  for (size_t i = 5; i < 11; ++i)
+    EXPECT_EQ(count(parts.vertexParts[i], others[i - 5]), parts.vertexParts[i].size()) << "part " << i;
   const auto& head = parts.vertexParts[0];
   EXPECT_EQ(count(head, FacePart::Skin), head.size());
   EXPECT_EQ(count(parts.vertexParts[1], FacePart::EyeballLeft), parts.vertexParts[1].size());  // at +x
@@ -61,13 +63,23 @@ void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts
   (void)model;
 }
 
-// With a prop far away (Other) and a bar across the eyes (Glasses).
+// With a prop far away (Other), a bar across the eyes (glasses), a cap over
+// the head (hair), brow cards and lash strips.
 eng::Model plasterHeadWithProp() {
   eng::Model model = testing_support::plasterHead();
   testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "prop",
                                  {6.0f, 0.0f, 0.0f}, glm::vec3(0.5f));
   testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "glasses",
                                  {0.0f, 0.2f, 1.05f}, glm::vec3(0.6f, 0.03f, 0.03f));
+  const auto add = [&](const char* name, glm::vec3 at, glm::vec3 scale) {
+    testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), name,
+                                   at, scale);
+  };
+  add("hair", {0.0f, 0.7f, -0.1f}, {1.05f, 0.5f, 1.05f});
+  add("browRight", {-0.33f, 0.42f, 0.95f}, {0.15f, 0.02f, 0.02f});
+  add("browLeft", {0.33f, 0.42f, 0.95f}, {0.15f, 0.02f, 0.02f});
+  add("lashRight", {-0.35f, 0.26f, 0.95f}, {0.12f, 0.01f, 0.01f});
+  add("lashLeft", {0.35f, 0.26f, 0.95f}, {0.12f, 0.01f, 0.01f});
   return model;
 }
 
