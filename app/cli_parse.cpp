@@ -1,7 +1,6 @@
 #include "app/cli_parse.h"
 
 #include <charconv>
-#include <cmath>
 #include <string_view>
 
 namespace app {
@@ -14,12 +13,6 @@ bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
     return ec == std::errc() && ptr == s.data() + s.size() && v > 0 && v <= 16384;
   };
   return parse(std::string_view(text).substr(0, x), width) && parse(std::string_view(text).substr(x + 1), height);
-}
-
-bool parseFloat(std::string_view text, float& out) {
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
 }  // namespace app

@@ -6,6 +6,7 @@
 
 #include "app/progress_bar.h"
 #include "app/gif_writer.h"
+#include "app/output_paths.h"
 #include "engine/scene/image_io.h"
 
 namespace app {
@@ -20,11 +21,8 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
   const uint32_t frameCount = static_cast<uint32_t>(std::ceil(options.seconds * options.framesPerSecond));
   const float dt = 1.0f / options.framesPerSecond;
 
-  if (!options.frameDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(options.frameDir, ec);
-    if (ec) return eng::makeError(eng::ErrorKind::Io, options.frameDir.string() + ": cannot create folder: " + ec.message());
-  }
+  std::optional<FrameFolder> frames;
+  if (!options.frameDir.empty()) frames.emplace(ENG_TRY_VALUE(FrameFolder::create(options.frameDir)));
   std::optional<app::GifWriter> gif;
   if (!options.gifPath.empty()) {
     const VkExtent2D extent = renderer.extent();
@@ -45,10 +43,8 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
     auto image = renderer.render(view, *instances);
     if (!image) return image.error().prefixed("frame " + std::to_string(i) + ": ");
     summary.renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
-    if (!options.frameDir.empty()) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%04u.png", i);
-      if (auto written = eng::writePng(options.frameDir / name, image->width, image->height, image->rgba8); !written)
+    if (frames) {
+      if (auto written = eng::writePng(frames->framePath(i), image->width, image->height, image->rgba8); !written)
         return written.error();
     }
     if (gif) {
@@ -62,6 +58,7 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
   if (gif) {
     if (auto finished = gif->finish(); !finished) return finished.error();
   }
+  if (frames) ENG_TRY(frames->commit());
   summary.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

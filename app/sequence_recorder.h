@@ -21,7 +21,7 @@ namespace app {
 struct SequenceOptions {
   float framesPerSecond = 24.0f;
   float seconds = 10.0f;
-  std::filesystem::path frameDir;    // frame_0000.png ...; empty: no PNGs
+  std::filesystem::path frameDir;    // frame_0000.png ..., written whole (app::FrameFolder); empty: no PNGs
   std::filesystem::path gifPath;     // empty: no GIF
   std::string progressLabel = "rendering";
 };

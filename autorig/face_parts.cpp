@@ -348,23 +348,25 @@ void recordEyeball(FaceParts& parts, int side, const Component& c) {
   parts.eyeRadii[size_t(side)] = radius;
 }
 
-FacePart partOfComponent(std::optional<FacePart> named, const Component& c, const FaceFrame& f, FaceParts& parts) {
+FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool island, const FaceFrame& f,
+                         FaceParts& parts) {
   if (named == FacePart::EyeballRight || named == FacePart::EyeballLeft) {
     const int e = eyeOver(c, f);
     const int side = e >= 0 ? e : (glm::dot(c.centre - f.centre, f.right) > 0.0f ? 1 : 0);
     if (e >= 0) recordEyeball(parts, side, c);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  // A mesh called "Head" often holds the eyeballs as pieces of its own;
-  // only those are taken from shape (an island inside the mouth may be the
-  // mouth's own lining rather than teeth).
+  // A mesh called "Head" often holds the eyeballs, and the teeth as islands
+  // beside its largest piece (facecap's lower row): those are taken from
+  // shape. A primitive that is one piece inside the mouth is its lining.
   if (named && *named != FacePart::Skin) return *named;
   const int eye = eyeballSide(c, f);
   if (eye >= 0) {
     recordEyeball(parts, eye, c);
     return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
-  return named ? *named : partOfShape(c, f);
+  if (!named) return partOfShape(c, f);
+  return island && insideTheMouth(c, f) ? FacePart::UpperTeeth : FacePart::Skin;  // the row: splitTeethRows
 }
 
 // Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
@@ -398,10 +400,13 @@ void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimiti
   }
   std::vector<std::vector<uint32_t>> members(count);
   for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  size_t largest = 0;
+  for (const std::vector<uint32_t>& m : members) largest = std::max(largest, m.size());
   for (std::vector<uint32_t>& vertices : members) {
+    const bool island = vertices.size() < largest;
     Component c = describe(p.positions, std::move(vertices));
     if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
-    const FacePart part = partOfComponent(named, c, f, parts);
+    const FacePart part = partOfComponent(named, c, island, f, parts);
     for (uint32_t v : c.vertices) out[v] = part;
     if (part == FacePart::UpperTeeth && !rowNamed) teeth.push_back({index, c.vertices});
   }
@@ -433,6 +438,31 @@ glm::vec2 extent(const PosedFace& posed, const TeethPiece& piece, const glm::vec
     r = {std::min(r.x, x), std::max(r.y, x)};
   }
   return r;
+}
+
+// The inside of the mouth as a piece of its own (a sac behind the lips):
+// it holds two or more of the other pieces (teeth, tongue) in its box, as
+// no row of teeth does. Skin: it moves with the lips and jaw.
+void takeOutLining(const PosedFace& posed, std::vector<TeethPiece>& teeth, const FaceFrame& f, FaceParts& parts) {
+  std::vector<glm::vec3> centres;  // in the face's axes
+  for (const TeethPiece& piece : teeth) {
+    glm::dvec3 sum(0.0);
+    for (uint32_t v : piece.vertices) sum += glm::dvec3(posed.primitives[piece.primitive].positions[v]);
+    const glm::vec3 c = glm::vec3(sum / double(piece.vertices.size())) - f.mouthCentre;
+    centres.emplace_back(glm::dot(c, f.right), glm::dot(c, f.up), glm::dot(c, f.forward));
+  }
+  for (size_t i = teeth.size(); i-- > 0;) {
+    const glm::vec2 x = extent(posed, teeth[i], f.mouthCentre, f.right), y = extent(posed, teeth[i], f.mouthCentre, f.up);
+    const glm::vec2 z = extent(posed, teeth[i], f.mouthCentre, f.forward);
+    size_t held = 0;
+    for (size_t k = 0; k < teeth.size(); ++k)
+      held += k != i && centres[k].x > x.x && centres[k].x < x.y && centres[k].y > y.x && centres[k].y < y.y &&
+              centres[k].z > z.x && centres[k].z < z.y;
+    if (held < 2) continue;
+    for (uint32_t v : teeth[i].vertices) parts.vertexParts[teeth[i].primitive][v] = FacePart::Skin;
+    teeth.erase(teeth.begin() + std::ptrdiff_t(i));
+    centres.erase(centres.begin() + std::ptrdiff_t(i));
+  }
 }
 
 // A tongue kept with the teeth (Ready Player Me's Wolf3D_Teeth): a piece as
@@ -472,17 +502,34 @@ void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth
     for (uint32_t v : piece.vertices) sum += along(piece, v, f.up);
     return float(sum / double(piece.vertices.size()));
   };
+  // Teeth in more than one primitive: a row each (facecap's upper row is a
+  // mesh, its lower row islands of the head), so an arch's tilt cannot mix
+  // them; their heights are the primitives' means.
+  std::vector<size_t> primitives;
+  for (const TeethPiece& piece : teeth) primitives.push_back(piece.primitive);
+  std::sort(primitives.begin(), primitives.end());
+  primitives.erase(std::unique(primitives.begin(), primitives.end()), primitives.end());
+  std::vector<glm::dvec2> byPrimitive(posed.primitives.size());  // height sum, count
+  for (const TeethPiece& piece : teeth)
+    byPrimitive[piece.primitive] += glm::dvec2(double(meanHeight(piece)) * double(piece.vertices.size()), double(piece.vertices.size()));
+  auto rowHeight = [&](const TeethPiece& piece) {
+    const glm::dvec2 h = byPrimitive[piece.primitive];
+    return primitives.size() > 1 ? float(h.x / h.y) : meanHeight(piece);
+  };
   std::vector<std::pair<float, double>> values;
-  for (const TeethPiece& piece : teeth) {
-    if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
-    else
-      for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
-  }
+  if (primitives.size() > 1)
+    for (size_t i : primitives) values.emplace_back(float(byPrimitive[i].x / byPrimitive[i].y), byPrimitive[i].y);
+  else
+    for (const TeethPiece& piece : teeth) {
+      if (teeth.size() > 1) values.emplace_back(meanHeight(piece), double(piece.vertices.size()));
+      else
+        for (uint32_t v : piece.vertices) values.emplace_back(along(piece, v, f.up), 1.0);
+    }
   const float split = otsuSplit(values);
   std::array<glm::dvec3, 2> sums{};  // below, above: height, depth, vertex count
   for (const TeethPiece& piece : teeth)
     for (uint32_t v : piece.vertices) {
-      const bool above = teeth.size() > 1 ? meanHeight(piece) > split : along(piece, v, f.up) > split;
+      const bool above = teeth.size() > 1 ? rowHeight(piece) > split : along(piece, v, f.up) > split;
       sums[above] += glm::dvec3(along(piece, v, f.up), along(piece, v, f.forward), 1.0);
       parts.vertexParts[piece.primitive][v] = above ? FacePart::UpperTeeth : FacePart::LowerTeeth;
     }
@@ -521,6 +568,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
   for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
@@ -11,6 +10,7 @@
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
+#include "facial/runtime/graph/weight_range.h"
 #include "importers/candide_import.h"
 #include "importers/face_dressing.h"
 #include "importers/loop_subdivision.h"
@@ -33,12 +33,6 @@ namespace {
 
 // Enough of the file to tell the formats apart.
 constexpr size_t kSniffBytes = 64;
-
-bool parseFiniteFloat(std::string_view text, float& out) {
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && std::isfinite(out);
-}
 
 std::string shapeKey(std::string_view name) {
   std::string key;
@@ -143,11 +137,9 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
 
 eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {
   for (const std::string& assignment : shapes) {
-    const size_t eq = assignment.rfind('=');
-    float value = 0.0f;
-    if (eq == std::string::npos || eq == 0 || !parseFiniteFloat(std::string_view(assignment).substr(eq + 1), value))
-      return eng::makeError(eng::ErrorKind::InvalidArgument, "--shape '" + assignment + "' is not NAME=VALUE with a finite number");
-    const std::string name = assignment.substr(0, eq);
+    const facial::NamedWeight shape = ENG_TRY_VALUE(facial::parseNamedWeight(assignment, "--shape"));
+    const std::string& name = shape.name;
+    const float value = shape.value;
     // Exact names first, then the loose spelling.
     int matched = 0;
     for (bool loose : {false, true}) {

@@ -5,6 +5,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include "engine/core/confined_path.h"
 #include "engine/scene/file_bytes.h"
 
 namespace importers {
@@ -14,25 +15,10 @@ using namespace eng;
 
 namespace {
 
-bool isInside(const std::filesystem::path& p, const std::filesystem::path& dir) {
-  auto pi = p.begin();
-  for (auto di = dir.begin(); di != dir.end(); ++di, ++pi) {
-    if (di->empty()) continue;
-    if (pi == p.end() || *pi != *di) return false;
-  }
-  return true;
-}
-
 // Resolves a file named inside an OBJ/MTL to a path in `dir`, or empty when it would leave it.
 std::filesystem::path confined(const std::filesystem::path& dir, const std::string& name) {
-  const std::filesystem::path rel(name);
-  if (name.empty() || rel.is_absolute()) return {};
-  const std::filesystem::path lexical = (dir / rel).lexically_normal();
-  if (!isInside(lexical, dir)) return {};
-  std::error_code ec;
-  const std::filesystem::path real = std::filesystem::weakly_canonical(lexical, ec);
-  if (!ec && !isInside(real, dir)) return {};
-  return lexical;
+  auto path = eng::resolveInsideFolder(dir, name);
+  return path ? *path : std::filesystem::path();
 }
 
 // tinyobjloader's mtllib hook, reading only .mtl files beside the OBJ.

@@ -12,6 +12,7 @@
 #include "cli/command.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
+#include "app/output_paths.h"
 #include "app/program_error.h"
 #include "importers/obj_keyframes.h"
 
@@ -46,6 +47,10 @@ int save(const eng::Model& model, const std::string& out) {
 }
 
 int run(const ConvertArgs& args) {
+  app::CommandFiles files{.inputs = {{"input", args.input}}, .outputs = {{"--out", args.out}}};
+  for (const std::string& spec : args.targets)  // [NAME=]FILE: npos + 1 is 0
+    files.inputs.push_back({"--target", std::string_view(spec).substr(spec.find('=') + 1)});
+  if (auto safe = app::checkOutputs(files); !safe) return fail(safe.error().message);
   const std::filesystem::path input(args.input);
   const std::string ext = lowerExtension(input);
   if (ext == ".gltf" || ext == ".glb") {

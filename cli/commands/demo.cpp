@@ -7,6 +7,8 @@
 #include "app/view_options.h"
 #include "cli/demo/demo_options.h"
 #include "app/face_setup.h"
+#include "app/output_paths.h"
+#include "app/program_error.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -45,7 +47,16 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
                  "graph, orbit YAW PITCH, screenshot, resize W H, iconify, restore, say TEXT, say-lang CODE, say-stop)");
   app.add_flag("--still", o->still, "Window: no idle sway, breathing or eye saccades (blinks stay)");
   app.add_flag("--mute", o->mute, "Window: Speak moves the mouth without playing the voice");
-  return [o] { return (o->headless || !hasDisplay()) ? runHeadlessDemo(*o) : runWindowDemo(*o); };
+  return [o] {
+    const std::string frames = o->out.empty() ? std::string() : (std::filesystem::path(o->out) / "frames").string();
+    if (auto safe = app::checkOutputs({.inputs = {{"--model", o->model}, {"--rigmap", o->rigmap}, {"--graph", o->graph},
+                                                  {"--script", o->script}},
+                                       .outputs = {{"--screenshot", o->screenshot}},
+                                       .frameFolders = {{"--out", frames}}});
+        !safe)
+      return app::ErrorReporter{"facial demo"}(safe.error().message);
+    return (o->headless || !hasDisplay()) ? runHeadlessDemo(*o) : runWindowDemo(*o);
+  };
 });
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
 #include "engine/scene/image_io.h"
 
 // Each command in a namespace of its own: the commands are compiled several
@@ -36,6 +37,8 @@ struct ExpressOptions {
 constexpr app::ErrorReporter fail{"facial express"};
 
 int runExpress(const ExpressOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
   if (std::isnan(o.intensity)) return fail("--intensity must be a number in [0, 1], got nan");

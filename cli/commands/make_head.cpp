@@ -12,6 +12,7 @@
 #include "bake/head/head_generator.h"
 #include "bake/head/head_rig_spec.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
 
 // Each command in a namespace of its own: the commands are compiled several
 // to a unit (demo/CMakeLists.txt), where their file-local names would clash.
@@ -34,6 +35,8 @@ std::filesystem::path defaultLandmarks() {
 
 int runMakeHead(const MakeHeadOptions& o) {
   const std::filesystem::path landmarks = o.landmarks.empty() ? defaultLandmarks() : std::filesystem::path(o.landmarks);
+  if (auto safe = app::checkOutputs({.inputs = {{"--landmarks", landmarks.native()}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   eng::Result<bake::HeadRigSpec> spec = bake::loadHeadRigSpec(landmarks);
   if (!spec) return fail(spec.error().message);
   eng::Result<bake::GeneratedHead> head = bake::generateHead(*spec);

@@ -21,6 +21,7 @@
 #include "app/sequence_recorder.h"
 #include "app/skeleton_motion.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
 #include "engine/core/json_nesting.h"
 #include "facial/runtime/character/face_driver.h"
 #include "facial/runtime/graph/graph_json.h"
@@ -48,6 +49,7 @@ struct PlayOptions {
   std::string frame = "face";
   std::string out;
   std::string video;
+  bool allowOutsidePaths = false;
 };
 
 constexpr app::ErrorReporter fail{"facial play"};
@@ -71,10 +73,16 @@ eng::Result<facial::SharedGraphDefinition> graphForTimeline(const app::FaceSetup
   };
   facial::GraphLoadOptions options;
   options.presets = facial::presetLookup(face.expressions());
+  options.allowOutsidePaths = true;  // the one file named is the user's own argument
   return facial::parseGraph(graph, file, options);
 }
 
 int runPlay(const PlayOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"file", o.file}, {"--model", o.model}, {"--rigmap", o.rigmap}},
+                                     .outputs = {{"--video", o.video}},
+                                     .frameFolders = {{"--out", o.out}}});
+      !safe)
+    return fail(safe.error().message);
   uint32_t width = 0, height = 0;
   if (!app::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 512x512)");
   std::ifstream in(o.file);
@@ -92,6 +100,7 @@ int runPlay(const PlayOptions& o) {
   float length = 24.0f;
   facial::GraphLoadOptions graphOptions;
   graphOptions.presets = facial::presetLookup(setup->expressions());
+  graphOptions.allowOutsidePaths = o.allowOutsidePaths;
   eng::Result<facial::SharedGraphDefinition> graph =
       document.contains("tracks") ? graphForTimeline(*setup, o.file, document, length)
                                   : facial::loadGraph(o.file, graphOptions);
@@ -160,6 +169,8 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
   app::addFramingOption(app, o->frame);
   app.add_option("--out,-o", o->out, "Folder for the numbered PNG frames")->required();
   app.add_option("--video", o->video, "Also write an animated GIF here");
+  app.add_flag("--allow-outside-paths", o->allowOutsidePaths,
+               "Let the graph name timeline files outside its own folder (absolute, ../)");
   app::addDeviceOption(app, o->device);
   app::addQualityOption(app, o->quality);
   return [o] { return runPlay(*o); };

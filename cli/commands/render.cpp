@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_parse.h"
 #include "cli/command.h"
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/view_options.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
+#include "facial/runtime/graph/weight_range.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
@@ -59,6 +60,8 @@ std::string suggestNames(const std::vector<std::string>& names, const std::strin
 }
 
 int runRender(const RenderOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"model", o.model}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
 
@@ -68,12 +71,10 @@ int runRender(const RenderOptions& o) {
   const eng::WeightLayout layout(*model);
   std::vector<float> weights = layout.defaults();
   for (const std::string& assignment : o.weights) {
-    const size_t eq = assignment.rfind('=');
-    float value = 0.0f;
-    if (eq == std::string::npos || eq == 0 || !app::parseFloat(std::string_view(assignment).substr(eq + 1), value))
-      return fail("--weight '" + assignment + "' is not NAME=VALUE with a finite number");
-    const std::string name = assignment.substr(0, eq);
-    const eng::Result<int> matched = layout.setByName(weights, name, value);
+    const eng::Result<facial::NamedWeight> parsed = facial::parseNamedWeight(assignment, "--weight");
+    if (!parsed) return fail(parsed.error().message);
+    const std::string& name = parsed->name;
+    const eng::Result<int> matched = layout.setByName(weights, name, parsed->value);
     if (!matched) return fail(matched.error().message);
     if (*matched == 0) {
       const std::vector<std::string> names = layout.names();

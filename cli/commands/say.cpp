@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "app/output_paths.h"
 #include "app/program_error.h"
 #include "audio/audio_file.h"
 #include "cli/command.h"
@@ -42,6 +43,10 @@ eng::Result<void> checkOptions(const SayOptions& o) {
     return eng::Error{invalid, "--out " + o.out + ": the video must end in .mp4 or .webm"};
   if (!o.wav.empty() && std::filesystem::path(o.wav).extension() != ".wav")
     return eng::Error{invalid, "--wav " + o.wav + ": the soundtrack file must end in .wav"};
+  ENG_TRY(app::checkOutputs({.inputs = {{"--script", o.script}, {"--cues", o.cues}, {"--audio", o.audio},
+                                        {"--model", o.model}, {"--rigmap", o.rigmap}},
+                             .outputs = {{"--out", o.out}, {"--wav", o.wav}, {"--visemes", o.visemes}},
+                             .frameFolders = {{"--frames", o.frames}}}));
   if (!facial::emotionIndex(o.emotion))
     return eng::Error{invalid, "--emotion '" + o.emotion + "' is not one of " + facial::emotionNameList()};
   return {};

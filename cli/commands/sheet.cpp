@@ -18,6 +18,7 @@
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
 #include "engine/image/contact_sheet.h"
 #include "engine/image/text.h"
 #include "engine/scene/image_io.h"
@@ -66,6 +67,8 @@ float labelHeightFor(const eng::TextRenderer& text, const std::vector<eng::Conta
 }
 
 int runSheet(const SheetOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   if (!std::isfinite(o.intensity)) return fail("--intensity must be a finite number in [0, 1]");
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);

@@ -11,6 +11,7 @@
 #include "cli/command.h"
 #include "app/face_setup.h"
 #include "app/program_error.h"
+#include "app/output_paths.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "bake/gltf_timeline.h"
@@ -46,6 +47,8 @@ eng::Result<size_t> pickAnimation(const eng::Model& model, const std::string& wh
 }
 
 int runImport(const TimelineOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"model", o.model}}, .outputs = {{"--out", o.out}}}); !safe)
+    return fail(safe.error().message);
   auto face = importers::loadFace(o.model);
   if (!face) return fail(face.error().message);
   eng::Model* model = &face->model;
@@ -62,6 +65,9 @@ int runImport(const TimelineOptions& o) {
 }
 
 int runExport(const TimelineOptions& o) {
+  if (auto safe = app::checkOutputs({.inputs = {{"timeline", o.timeline}, {"--model", o.model}}, .outputs = {{"--out", o.out}}});
+      !safe)
+    return fail(safe.error().message);
   auto timeline = facial::loadTimeline(o.timeline);
   if (!timeline) return fail(timeline.error().message);
   auto face = importers::loadFace(o.model);

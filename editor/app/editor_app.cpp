@@ -15,6 +15,7 @@
 #include "app/cli_parse.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
+#include "app/output_paths.h"
 #include "app/view_options.h"
 #include "engine/vk/present/imgui_layer.h"
 #include "app/window_loop.h"
@@ -187,6 +188,12 @@ int EditorApp::setUp(const EditorOptions& o) {
         return fail(a.source + ": '" + a.text + "' is not one of the sculpt panel's landmarks" +
                     (builtIn ? " (the surface and position landmarks of data/head_landmarks.json)"
                              : " (landmarks exist for the built-in head only)"));
+      using Kind = EditorScriptAction::Kind;
+      const bool writes = a.kind == Kind::TimelineSave || a.kind == Kind::SculptSave || a.kind == Kind::Screenshot;
+      if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", graphPath}, {"--script", o.script}},
+                                         .outputs = {{"", writes ? std::string_view(a.text) : std::string_view()}}});
+          !safe)
+        return fail(a.source + ": " + safe.error().message);
     }
     script_ = std::move(*script);
   }

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/face_setup.h"
+#include "app/output_paths.h"
+#include "app/program_error.h"
 #include "app/view_options.h"
 #include "editor/app/editor_app.h"
 
@@ -25,5 +27,10 @@ int main(int argc, char** argv) {
                  "(trigger, pad, timeline-*, undo, redo, sculpt-*, say, say-lang, say-stop, screenshot, quit; see README)");
   app.add_flag("--mute", o.mute, "Speak moves the mouth without playing the voice");
   CLI11_PARSE(app, argc, argv);
+  if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", o.graph},
+                                                {"--timeline", o.timeline}, {"--script", o.script}},
+                                     .outputs = {{"--screenshot", o.screenshot}}});
+      !safe)
+    return app::ErrorReporter{"facial-editor"}(safe.error().message);
   return editor::runEditor(o);
 }

@@ -149,7 +149,9 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_LT(glm::distance(mostMoved(f, "mouthSmile_R"), p[48]), 0.15f * span);
   EXPECT_LT(glm::distance(mostMoved(f, "browInnerUp"), (p[21] + p[22]) / 2.0f), 0.3f * span);  // 0.23 seen
   EXPECT_LT(glm::distance(mostMoved(f, "mouthRollLower"), p[57]), 0.15f * span);  // 0.08 seen
-  // Meshes 0 and 1 are eyeballs (their nodes' parents say so), mesh 3 the teeth.
+  // Meshes 0 and 1 are eyeballs (their nodes' parents say so), mesh 3 the
+  // upper teeth; the head (mesh 2) holds the lower row as islands, which
+  // its own jawOpen moves several times as far as the skin on average.
   using autorig::FacePart;
   ASSERT_EQ(f.parts.vertexParts.size(), 4u);
   const auto all = [&](size_t i, FacePart part) {
@@ -157,7 +159,20 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   };
   EXPECT_TRUE((all(0, FacePart::EyeballLeft) && all(1, FacePart::EyeballRight)) ||
               (all(0, FacePart::EyeballRight) && all(1, FacePart::EyeballLeft)));
-  EXPECT_TRUE(all(2, FacePart::Skin));
+  const auto& head = f.parts.vertexParts[2];
+  // 1954 skin and the lining that holds the lower teeth (166), 14 teeth of 41-49.
+  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::Skin), 1954 + 166);
+  EXPECT_EQ(std::count(head.begin(), head.end(), FacePart::LowerTeeth), 574);
+  const eng::Mesh& headMesh = f.model.meshes[f.posed.primitives[2].mesh];
+  const size_t jawOpen = size_t(std::find(headMesh.targetNames.begin(), headMesh.targetNames.end(), "jawOpen") -
+                                headMesh.targetNames.begin());
+  ASSERT_LT(jawOpen, headMesh.targetNames.size());
+  const auto& jaw = headMesh.primitives[0].targets[jawOpen].positions;
+  glm::dvec2 moved(0.0);  // skin, lower teeth: mean displacement
+  for (size_t v = 0; v < head.size(); ++v)
+    if (head[v] == FacePart::Skin) moved.x += glm::length(jaw[v]) / (1954.0 + 166.0);
+    else moved.y += glm::length(jaw[v]) / 574.0;
+  EXPECT_GT(moved.y, 3.0 * moved.x);
   EXPECT_TRUE(all(3, FacePart::UpperTeeth));  // one arch of 14 teeth, above the mouth line
   EXPECT_TRUE(f.parts.eyeballsFound);
 }
@@ -197,11 +212,10 @@ eng::Primitive cube() {
   return p;
 }
 
-// The same avatar with every name gone: its parts told by shape alone.
-TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarPartsByShape) {
-  const auto path = testing_support::sharedDir() / "speech" / "rpm-visemes.glb";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
-  Found f = find(path, "rpm-visemes-named");
+// The face with every name gone: its parts told by shape alone, the same as
+// by name (the teeth of mesh `teethMesh` at least `teethSame` vertices the
+// same: a tongue kept with them may go either way).
+void expectSamePartsByShape(Found& f, int teethMesh, size_t teethSame) {
   std::vector<std::string> meshNames;
   for (eng::Mesh& m : f.model.meshes) meshNames.push_back(m.name), m.name.clear();
   for (eng::Node& n : f.model.nodes) n.name.clear();
@@ -209,16 +223,35 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarPartsByShape) {
   const autorig::FaceParts parts = autorig::findFaceParts(f.model, f.posed, f.landmarks);
   for (const std::string& note : parts.notes) std::printf("  %s\n", note.c_str());
   for (size_t i = 0; i < f.posed.primitives.size(); ++i) {
-    const std::string& mesh = meshNames[f.posed.primitives[i].mesh];
+    const size_t meshIndex = f.posed.primitives[i].mesh;
+    const std::string& mesh = meshNames[meshIndex];
     const auto& named = f.parts.vertexParts[i];
     const auto& shaped = parts.vertexParts[i];
     const size_t same = size_t(std::inner_product(named.begin(), named.end(), shaped.begin(), 0, std::plus<>(),
                                                   std::equal_to<>()));
-    if (mesh == "Wolf3D_Teeth")  // the tongue goes with the lower row or stays a tongue; the rows match
-      EXPECT_GE(same, 31u + 29u) << mesh;
-    else
-      EXPECT_EQ(same, named.size()) << mesh << ": " << same << " of " << named.size() << " as by name";
+    EXPECT_GE(same, int(meshIndex) == teethMesh ? teethSame : named.size())
+        << "mesh " << meshIndex << " " << mesh << ": " << same << " of " << named.size();
   }
+  EXPECT_TRUE(parts.eyeballsFound);
+}
+
+TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarPartsByShape) {
+  const auto path = testing_support::sharedDir() / "speech" / "rpm-visemes.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
+  Found f = find(path, "rpm-visemes-named");
+  expectSamePartsByShape(f, 3, 31 + 29);  // mesh 3: Wolf3D_Teeth
+}
+
+TEST(FaceLandmarkFinder, BuiltInHeadPartsByShape) {
+  Found f = find(testing_support::sourceDir() / "data" / "head.glb", "head-named");
+  expectSamePartsByShape(f, -1, 0);
+}
+
+TEST(FaceLandmarkFinder, FacecapPartsByShape) {
+  const auto path = testing_support::sharedDir() / "assets" / "facecap.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
+  Found f = find(path, "facecap-named");
+  expectSamePartsByShape(f, -1, 0);
 }
 
 TEST(FaceLandmarkFinder, NoFaceOnASphereOrACube) {

@@ -311,6 +311,12 @@ TEST(EditorScript, ABrokenScriptIsRefusedNamingFileAndLine) {
   EXPECT_NE(refusal("1 sculpt-landmark mouth_corner_L\n").find("'mouth_corner_L' is not one of the sculpt panel's landmarks"),
             std::string::npos);
   EXPECT_NE(refusal("1 say\n").find("bad.txt:1: 'say' takes 1 argument(s), got 0"), std::string::npos);
+  // A save over a file the editor reads (issue 37), before the window opens.
+  for (const char* save : {"timeline-save", "sculpt-save", "screenshot"})
+    EXPECT_NE(refusal(std::string("1 ") + save + " ./sub/../bad.txt\n")
+                  .find("bad.txt:1: " + std::string(save) + " ./sub/../bad.txt: './sub/../bad.txt' is the input --script 'bad.txt'"),
+              std::string::npos)
+        << save;
 }
 
 // ---------------------------------------------------------------------------

@@ -1,5 +1,6 @@
 #include "facial/runtime/graph/graph_json.h"
 
+#include "engine/core/confined_path.h"
 #include "facial/runtime/graph/detail/json_reader.h"
 #include "facial/runtime/graph/detail/node_reader.h"
 #include "facial/runtime/graph/graph_builder.h"
@@ -15,7 +16,8 @@ namespace {
 // stay in the builder, which reports them at the nodes' JSON pointers.
 class GraphParser {
  public:
-  GraphParser(GraphBuilder& builder, std::filesystem::path folder) : builder_(builder), folder_(std::move(folder)) {}
+  GraphParser(GraphBuilder& builder, std::filesystem::path folder, bool allowOutsidePaths)
+      : builder_(builder), folder_(std::move(folder)), allowOutsidePaths_(allowOutsidePaths) {}
 
   eng::Result<void> parameters(const JsonNode& list) {
     const size_t count = ENG_TRY_VALUE(list.size());
@@ -27,11 +29,7 @@ class GraphParser {
     if (!map.isObject()) return map.error("expected an object {\"name\": path or timeline}");
     for (const auto& [name, entry] : ENG_TRY_VALUE(map.members())) {
       if (entry.isString()) {
-        const std::filesystem::path file = folder_ / ENG_TRY_VALUE(entry.string());
-        auto timeline = loadTimeline(file);
-        if (!timeline) return entry.error(timeline.error());
-        timeline->name = name;
-        builder_.addTimeline(std::move(timeline).value());
+        builder_.addTimeline(ENG_TRY_VALUE(timelineFile(entry, name)));
       } else {
         builder_.addTimeline(ENG_TRY_VALUE(detail::parseTimeline(entry, std::string(name))));
       }
@@ -40,6 +38,23 @@ class GraphParser {
   }
 
  private:
+  eng::Result<Timeline> timelineFile(const JsonNode& entry, std::string_view name) const {
+    const std::string file = ENG_TRY_VALUE(entry.string());
+    auto path = allowOutsidePaths_ ? eng::Result<std::filesystem::path>(folder_ / file)
+                                   : eng::resolveInsideFolder(folder_, file);
+    if (!path) return entry.error(path.error().message + " (a graph's files stay in its folder)", path.error().kind);
+    auto timeline = loadTimeline(*path);
+    // Only the kind: the message may quote the other file (its keys, its text).
+    if (!timeline && timeline.error().kind == eng::ErrorKind::NotFound)
+      return entry.error("timeline file '" + file + "' not found", eng::ErrorKind::NotFound);
+    if (!timeline)
+      return entry.error("timeline file '" + file + "' did not load (" + std::string(eng::errorKindName(timeline.error().kind)) +
+                             "); load it on its own to see why",
+                         timeline.error().kind);
+    timeline->name = name;
+    return timeline;
+  }
+
   eng::Result<void> parameter(const JsonNode& p) {
     ENG_TRY(p.allowOnly({"name", "type", "default"}));
     const JsonNode nameNode = ENG_TRY_VALUE(p.at("name"));
@@ -58,6 +73,7 @@ class GraphParser {
 
   GraphBuilder& builder_;
   std::filesystem::path folder_;
+  bool allowOutsidePaths_ = false;
 };
 
 eng::Result<ChannelSet> channelSet(const JsonNode& j) {
@@ -81,7 +97,7 @@ eng::Result<SharedGraphDefinition> readGraph(const JsonNode& root, const std::fi
   ENG_TRY(requireVersion(root, kGraphFileVersion));
   ENG_TRY(root.allowOnly({"version", "channels", "parameters", "timelines", "root"}));
   GraphBuilder builder(ENG_TRY_VALUE(channelSet(ENG_TRY_VALUE(root.at("channels")))));
-  GraphParser parser(builder, source.parent_path());
+  GraphParser parser(builder, source.parent_path(), options.allowOutsidePaths);
   if (auto p = root.find("parameters")) ENG_TRY(parser.parameters(*p));
   if (auto t = root.find("timelines")) ENG_TRY(parser.timelines(*t));
   NodeReader nodes(builder, options.presets);

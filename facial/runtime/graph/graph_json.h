@@ -6,7 +6,7 @@
 //    "channels": "actionUnits",                       // or ["eyeBlink_L", "jawOpen", ...]
 //    "parameters": [{"name": "happy", "type": "trigger"},
 //                   {"name": "x", "type": "float", "default": 0}],
-//    "timelines": {"talk": "../timelines/talk.json"}, // path (relative to this file) or inline object
+//    "timelines": {"talk": "timelines/talk.json"},   // path in this file's folder, or inline object
 //    "root": {"type": "blink", "input": {
 //      "type": "stateMachine", "defaultState": "neutral",
 //      "states": [
@@ -37,10 +37,16 @@ inline constexpr size_t kMaxGraphNodeDepth = 64;
 
 struct GraphLoadOptions {
   PresetLookup presets;  // empty: a graph that names a preset fails to load, saying so
+  // Timeline files a graph names resolve inside the graph's folder (no absolute
+  // paths, no `..` out of it, no links out of it), as glTF URIs do; true lifts that
+  // for a graph the user trusts (`--allow-outside-paths`).
+  bool allowOutsidePaths = false;
 };
 
 eng::Result<SharedGraphDefinition> loadGraph(const std::filesystem::path& path, const GraphLoadOptions& options = {});
-// `source` names the document in messages; relative timeline paths resolve against its folder.
+// `source` names the document in messages; timeline paths resolve in its folder. A
+// timeline file that fails is named with its error's kind, never its message: that
+// would quote the other file's content.
 eng::Result<SharedGraphDefinition> parseGraph(const Json& document, const std::filesystem::path& source,
                                               const GraphLoadOptions& options = {});
 

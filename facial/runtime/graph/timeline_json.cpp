@@ -4,6 +4,7 @@
 
 #include "facial/runtime/graph/curve_json.h"
 #include "facial/runtime/graph/detail/json_reader.h"
+#include "facial/runtime/graph/weight_range.h"
 
 namespace facial {
 
@@ -21,6 +22,8 @@ eng::Result<void> parseTrack(const JsonNode& track, Timeline& timeline) {
   const JsonNode keysNode = ENG_TRY_VALUE(track.at("keys"));
   const std::vector<Keyframe> keys = ENG_TRY_VALUE(detail::parseKeyframes(keysNode, interp));
   if (keys.front().time < 0.0f) return keysNode.element(0).error("key time is negative");
+  for (size_t k = 0; k < keys.size(); ++k)
+    if (!isWeightInRange(keys[k].value)) return keysNode.element(k).error(weightRangeProblem(keys[k].value));
   timeline.addTrack(channel, keys);
   return {};
 }

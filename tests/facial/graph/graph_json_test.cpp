@@ -14,7 +14,7 @@ const GraphLoadOptions kPresets{tablePresets({{"calm", {}}, {"happy", {{"AU12_Li
 
 std::filesystem::path writeGraph(const std::string& name, const std::string& text) {
   const auto dir = testing_support::freshTempDir("graph_json_" + name);
-  testing_support::writeFile(dir / "timelines" / "blink.json",
+  testing_support::writeFile(dir / "graphs" / "timelines" / "blink.json",
                              R"({"version": 1, "tracks": [{"channel": "AU45_Blink_L", "keys": [[0, 0], [0.1, 1], [0.2, 0]]}]})");
   testing_support::writeFile(dir / "graphs" / (name + ".json"), text);
   return dir / "graphs" / (name + ".json");
@@ -44,7 +44,7 @@ TEST(GraphJson, LoadsEveryNodeTypeWithParametersAndTimelines) {
     "version": 1, "channels": "actionUnits",
     "parameters": [{"name": "x", "type": "float", "default": 0.25}, {"name": "on", "type": "bool", "default": true},
                    {"name": "go", "type": "trigger"}, {"name": "column", "type": "float"}],
-    "timelines": {"blink": "../timelines/blink.json",
+    "timelines": {"blink": "timelines/blink.json",
                   "inline": {"duration": 1, "tracks": [{"channel": "AU26_JawDrop", "keys": [[0, 0.5]]}]}},
     "root": {"type": "blink", "name": "life", "minInterval": 1, "maxInterval": 2, "input": {
       "type": "additive", "mask": {"region": "upper", "side": "left"}, "weight": 0.5,
@@ -240,4 +240,54 @@ TEST(GraphJsonValidity, NestedErrorsKeepTheirKind) {
   graph = loadGraph(writeGraph("newer", R"({"version": 2, "channels": "actionUnits", "root": {}})"), kPresets);
   ASSERT_FALSE(graph.ok());
   EXPECT_EQ(graph.error().kind, eng::ErrorKind::Unsupported) << graph.error().message;
+}
+
+// A graph's timeline files stay in its folder, as glTF URIs do: a downloaded graph
+// cannot make the program read from anywhere on the disk.
+TEST(GraphJsonFiles, TimelineFilesOutsideTheGraphsFolderAreRefused) {
+  const auto outside = testing_support::freshTempDir("graph_json_outside") / "t.json";
+  testing_support::writeFile(outside, R"({"version": 1, "tracks": [{"channel": "AU26_JawDrop", "keys": [[0, 0], [1, 1]]}]})");
+  auto graphNaming = [](const std::string& file) {
+    return R"({"version": 1, "channels": "actionUnits", "timelines": {"t": ")" + file +
+           R"("}, "root": {"type": "timeline", "timeline": "t"}})";
+  };
+  std::string e = loadError("absolute", graphNaming(outside.string()));
+  EXPECT_NE(e.find("/timelines/t: '" + outside.string() + "' is an absolute path"), std::string::npos) << e;
+  e = loadError("dotdot", graphNaming("../timelines/../graphs/../timelines/blink.json"));
+  EXPECT_NE(e.find("/timelines/t: '../timelines/../graphs/../timelines/blink.json' points outside"), std::string::npos) << e;
+
+  const auto linked = writeGraph("linked", graphNaming("link.json"));
+  std::filesystem::create_symlink(outside, linked.parent_path() / "link.json");
+  auto graph = loadGraph(linked, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_NE(graph.error().message.find("'link.json' resolves (through a link) outside"), std::string::npos)
+      << graph.error().message;
+
+  // The embedder (or `play --allow-outside-paths`) may lift it for a graph it trusts.
+  GraphLoadOptions trusted = kPresets;
+  trusted.allowOutsidePaths = true;
+  graph = loadGraph(linked, trusted);
+  ASSERT_TRUE(graph.ok()) << graph.error().message;
+  graph = loadGraph(writeGraph("trustedAbsolute", graphNaming(outside.string())), trusted);
+  EXPECT_TRUE(graph.ok()) << graph.error().message;
+}
+
+// A referenced file that fails is named with the kind of failure, never with
+// its own message: that would quote its keys or text into the graph's error.
+TEST(GraphJsonFiles, AFailingTimelineFileIsNotQuoted) {
+  const auto path = writeGraph("quoting", R"({"version": 1, "channels": "actionUnits",
+    "timelines": {"t": "secret.json", "u": "text.json"}, "root": {"type": "timeline", "timeline": "t"}})");
+  testing_support::writeFile(path.parent_path() / "secret.json", R"({"version": 1, "api_key_4f2a": "hunter2", "tracks": []})");
+  auto graph = loadGraph(path, kPresets);
+  ASSERT_FALSE(graph.ok());
+  const std::string& e = graph.error().message;
+  EXPECT_EQ(e.rfind(path.string() + ": /timelines/t: timeline file 'secret.json' did not load (malformed)", 0), 0u) << e;
+  EXPECT_EQ(e.find("api_key_4f2a"), std::string::npos) << e;
+  EXPECT_EQ(e.find("hunter2"), std::string::npos) << e;
+
+  testing_support::writeFile(path.parent_path() / "secret.json", "root:x:0:0:root:/root:/bin/bash\n");
+  graph = loadGraph(path, kPresets);
+  ASSERT_FALSE(graph.ok());
+  EXPECT_EQ(graph.error().message.find("root:x"), std::string::npos) << graph.error().message;
+  EXPECT_NE(graph.error().message.find("'secret.json' did not load (malformed)"), std::string::npos) << graph.error().message;
 }
