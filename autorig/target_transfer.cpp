@@ -473,6 +473,11 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the face has no skin triangles (" +
                                                                std::to_string(tgt.positions.size()) + " skin vertices of " +
                                                                std::to_string(posed.vertexCount()) + ")");
+  if (tgt.positions.size() > options.maxSkinVertices)
+    return eng::makeError(eng::ErrorKind::TooLarge,
+                          "target transfer: the face has " + std::to_string(tgt.positions.size()) +
+                              " skin vertices, more than " + std::to_string(options.maxSkinVertices) +
+                              ": simplify it first (a face reads at 10-50k)");
   const LandmarkFrame frame(landmarks);
   ENG_TRY(checkOnSurface(tgt, landmarks, frame));
   ENG_TRY(checkFacing(source, landmarks));

@@ -32,6 +32,10 @@ struct SourceFace {
 struct TransferOptions {
   bool actionUnits = true;  // the head's AU targets (AU1_InnerBrowRaiser, ...)
   bool arkit = true;        // the ARKit 52 built from them (jawOpen, mouthSmileLeft, ...)
+  // Bounded memory: every made target holds a displacement per skin vertex
+  // (63 targets of a 600k-vertex face are about 1.4 GB with their normals).
+  // A face over this is refused with its count.
+  size_t maxSkinVertices = 600000;
 };
 
 struct TransferReport {

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include "autorig/face_parts.h"
 #include "autorig/target_transfer.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -18,16 +17,10 @@ TEST(AvatarTransfer, RiggsAVisemesOnlyAvatar) {
   FACIAL_REQUIRE_SHARED();
   eng::Result<eng::Model> avatar = eng::loadModel(testing_support::sharedDir() / "speech/rpm-visemes.glb");
   ASSERT_TRUE(avatar) << avatar.error().message;
-  eng::Result<autorig::FaceLandmarks> landmarks =
-      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json");
-  ASSERT_TRUE(landmarks) << landmarks.error().message;
-  std::optional<eng::Model> head = transfer_fixture::loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = transfer_fixture::headSource(*head);
   const autorig::PosedFace posed = autorig::poseAtRest(*avatar);
-  const autorig::FaceParts parts = autorig::findFaceParts(*avatar, posed, *landmarks);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *avatar, posed, *landmarks, parts);
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  const std::optional<autorig::TransferResult> rigged =
+      transfer_fixture::rigWithFixtureLandmarks(*avatar, posed, "rpm-visemes.landmarks.json");
+  ASSERT_TRUE(rigged);
   const auto& made = rigged->report.made;
   for (const char* name : {"AU12_LipCornerPuller_L", "mouthSmileLeft", "eyeBlinkLeft", "jawOpen", "browInnerUp"})
     EXPECT_NE(std::find(made.begin(), made.end(), name), made.end()) << name;

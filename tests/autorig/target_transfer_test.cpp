@@ -10,16 +10,7 @@ namespace {
 
 using transfer_fixture::headSource;
 using transfer_fixture::loadHead;
-
-// The head without any target: a face to rig.
-eng::Model stripped(eng::Model model) {
-  for (eng::Mesh& mesh : model.meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  return model;
-}
+using transfer_fixture::stripped;
 
 TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   std::optional<eng::Model> head = loadHead();
@@ -133,6 +124,18 @@ TEST(TargetTransfer, RefusesLandmarksThatDoNotMakeThisFace) {
   autorig::FaceLandmarks broken = source.landmarks;
   broken.points[40].y = NAN;
   EXPECT_NE(attempt(broken).find("point 40 of 68 is not finite"), std::string::npos) << attempt(broken);
+}
+
+TEST(TargetTransfer, RefusesAFaceOverTheVertexBound) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Result<autorig::TransferResult> r = autorig::transferTargets(
+      source, stripped(*head), source.posed, source.landmarks, source.parts, {.maxSkinVertices = 1000});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().kind, eng::ErrorKind::TooLarge);
+  EXPECT_NE(r.error().message.find("skin vertices, more than 1000: simplify it first"), std::string::npos)
+      << r.error().message;
 }
 
 TEST(TargetTransfer, RefusesASourceWithoutActionUnits) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "autorig/builtin_source.h"
+#include "autorig/face_parts.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
 
@@ -28,6 +29,38 @@ autorig::SourceFace headSource(const eng::Model& head) {
     return {};
   }
   return std::move(*source);
+}
+
+eng::Model stripped(eng::Model model) {
+  model.animations.clear();
+  for (eng::Mesh& mesh : model.meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
+  }
+  return model;
+}
+
+std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
+                                                              const char* landmarksFile,
+                                                              autorig::FaceLandmarks* landmarks) {
+  static const std::optional<eng::Model> head = loadHead();
+  if (!head) return std::nullopt;
+  static const autorig::SourceFace source = headSource(*head);
+  eng::Result<autorig::FaceLandmarks> points =
+      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data" / landmarksFile);
+  if (!points) {
+    ADD_FAILURE() << points.error().message;
+    return std::nullopt;
+  }
+  if (landmarks) *landmarks = *points;
+  eng::Result<autorig::TransferResult> rigged =
+      autorig::transferTargets(source, face, posed, *points, autorig::findFaceParts(face, posed, *points));
+  if (!rigged) {
+    ADD_FAILURE() << rigged.error().message;
+    return std::nullopt;
+  }
+  return std::move(*rigged);
 }
 
 float relativeError(const eng::Model& a, const eng::Model& b, const char* mesh, size_t primitive, const char* targetA,

@@ -13,6 +13,16 @@ std::optional<eng::Model> loadHead();
 // autorig::builtInSource, a test failure when it fails; `head` must outlive it.
 autorig::SourceFace headSource(const eng::Model& head);
 
+// The model without any morph target (nor the animations that weight them): a face to rig.
+eng::Model stripped(eng::Model model);
+
+// `face` (posed at rest) rigged from the built-in head with the landmarks of
+// tests/autorig/data/<landmarksFile> and the parts finder; nullopt, with a
+// test failure, when a step fails. `landmarks` (optional) receives them.
+std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
+                                                              const char* landmarksFile,
+                                                              autorig::FaceLandmarks* landmarks = nullptr);
+
 // How far target B of b is from target A of a on one primitive of the mesh
 // named `mesh` (same vertices): the largest vertex difference over A's
 // largest displacement, |a - b|max / |a|max.
