@@ -3,10 +3,10 @@
 // app::kSequenceFramesInFlight): the built-in head, every target on its own
 // sine, 512x512 at 30 fps, each frame read back and H.264-encoded
 // (audio::VideoWriter, on its own thread). Counter x_realtime: clip seconds
-// per wall second (> 1 is faster than real time). Interleave the two on a
-// loaded machine and compare their ratio (one line):
-//   build/bin/facial_bench --benchmark_filter=VideoSequence --benchmark_repetitions=3
-//       --benchmark_enable_random_interleaving=true
+// per wall second (> 1 is faster than real time). On a loaded machine run
+// the two alternately and compare their ratio (docs/performance.md):
+//   for r in 1 2 3; do for n in 1 3; do
+//     build/bin/facial_bench --benchmark_filter="VideoSequence/in_flight:$n/"; done; done
 #include <benchmark/benchmark.h>
 
 #include <cmath>
