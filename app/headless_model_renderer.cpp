@@ -20,7 +20,7 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   r.context_ = std::make_unique<eng::vk::Context>(std::move(*context));
   auto renderer = eng::vk::OffscreenRenderer::create(
       *r.context_, {.width = options.width, .height = options.height, .quality = options.quality,
-                    .lodPixelError = options.lodPixelError});
+                    .lodPixelError = options.lodPixelError, .framesInFlight = options.framesInFlight});
   if (!renderer) return renderer.error().prefixed("Vulkan: ");
   r.renderer_ = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));
   auto gpuModel = r.renderer_->upload(model);

@@ -33,6 +33,9 @@ struct HeadlessRenderOptions {
   eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
   eng::vk::RenderQuality quality = eng::vk::RenderQuality::High;  // multisampling, shadows, shading terms
   float lodPixelError = 0.0f;  // eng::vk::OffscreenOptions::lodPixelError (0: every triangle)
+  // eng::vk::OffscreenOptions::framesInFlight: sequences (recordSequence) take
+  // app::kSequenceFramesInFlight; single images keep the memory of one target.
+  uint32_t framesInFlight = 1;
 };
 
 class HeadlessModelRenderer {

@@ -3,13 +3,95 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 
-#include "app/progress_bar.h"
 #include "app/gif_writer.h"
 #include "app/output_paths.h"
+#include "app/progress_bar.h"
+#include "app/stage_profile.h"
 #include "engine/scene/image_io.h"
 
 namespace app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+enum Stage : size_t { kStep, kSubmit, kWait, kReadback, kPng, kGif, kSink, kGpuShadow, kGpuView };
+StageProfile makeProfile() {
+  return StageProfile({"step (graph, speech, materials)", "submit (upload, record)", "wait for the GPU",
+                       "read-back", "PNG encoding", "GIF encoding", "sink (video encoder queue, sheet)",
+                       "GPU: morph + shadow map", "GPU: 3D view + resolve + copy"});
+}
+
+// Where a collected frame goes: the PNG folder, the GIF, the caller's sink.
+struct Outputs {
+  std::optional<FrameFolder> frames;
+  std::optional<GifWriter> gif;
+  const FrameSink* sink = nullptr;
+
+  eng::Result<void> write(const FrameContext& frame, const eng::Image& image, StageProfile& profile) {
+    Clock::time_point start = Clock::now();
+    if (frames) {
+      ENG_TRY(eng::writePng(frames->framePath(frame.index), image.width, image.height, image.rgba8));
+      profile.add(kPng, msSince(start));
+    }
+    start = Clock::now();
+    if (gif) {
+      ENG_TRY(gif->addFrame(image.rgba8));
+      profile.add(kGif, msSince(start));
+    }
+    start = Clock::now();
+    if (*sink) {
+      (*sink)(frame, image);
+      profile.add(kSink, msSince(start));
+    }
+    return {};
+  }
+};
+
+eng::Result<Outputs> openOutputs(const eng::vk::OffscreenRenderer& renderer, const SequenceOptions& options,
+                                 const FrameSink& sink) {
+  Outputs out;
+  out.sink = &sink;
+  if (!options.frameDir.empty()) out.frames.emplace(ENG_TRY_VALUE(FrameFolder::create(options.frameDir)));
+  if (!options.gifPath.empty()) {
+    const VkExtent2D extent = renderer.extent();
+    out.gif.emplace(ENG_TRY_VALUE(GifWriter::create(options.gifPath, static_cast<int>(extent.width),
+                                                    static_cast<int>(extent.height), options.framesPerSecond)));
+  }
+  return out;
+}
+
+// The oldest frame in flight, read back and written out.
+eng::Result<void> finishOldest(eng::vk::OffscreenRenderer& renderer, std::deque<FrameContext>& inFlight,
+                               Outputs& out, StageProfile& profile, SequenceSummary& summary) {
+  const FrameContext frame = inFlight.front();
+  inFlight.pop_front();
+  const Clock::time_point start = Clock::now();
+  auto image = renderer.collect();
+  if (!image) return image.error().prefixed("frame " + std::to_string(frame.index) + ": ");
+  summary.renderSeconds += msSince(start) * 1e-3;
+  const eng::vk::OffscreenFrameTimes& times = renderer.lastFrameTimes();
+  profile.add(kWait, times.waitMs);
+  profile.add(kReadback, times.readbackMs);
+  if (times.gpuShadowMs) profile.add(kGpuShadow, *times.gpuShadowMs);
+  if (times.gpuViewMs) profile.add(kGpuView, *times.gpuViewMs);
+  ENG_TRY(out.write(frame, *image, profile));
+  profile.endFrame();
+  summary.frames = frame.index + 1;
+  return {};
+}
+
+// Drops the frames still in flight when a sequence ends early.
+struct DiscardOnExit {
+  eng::vk::OffscreenRenderer& renderer;
+  ~DiscardOnExit() { renderer.discardPending(); }
+};
+
+}  // namespace
 
 eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
                                             const SequenceOptions& options, const FrameStep& step,
@@ -20,46 +102,38 @@ eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer
     return eng::makeError(eng::ErrorKind::InvalidArgument, "duration must be in (0, 3600] seconds");
   const uint32_t frameCount = static_cast<uint32_t>(std::ceil(options.seconds * options.framesPerSecond));
   const float dt = 1.0f / options.framesPerSecond;
+  Outputs out = ENG_TRY_VALUE(openOutputs(renderer, options, sink));
 
-  std::optional<FrameFolder> frames;
-  if (!options.frameDir.empty()) frames.emplace(ENG_TRY_VALUE(FrameFolder::create(options.frameDir)));
-  std::optional<app::GifWriter> gif;
-  if (!options.gifPath.empty()) {
-    const VkExtent2D extent = renderer.extent();
-    auto created = app::GifWriter::create(options.gifPath, static_cast<int>(extent.width),
-                                          static_cast<int>(extent.height), options.framesPerSecond);
-    if (!created) return created.error();
-    gif.emplace(std::move(*created));
-  }
-
-  const auto start = std::chrono::steady_clock::now();
+  const Clock::time_point start = Clock::now();
   SequenceSummary summary;
+  StageProfile profile = makeProfile();
   ProgressBar progress(options.progressLabel, frameCount);
+  DiscardOnExit discard{renderer};
+  renderer.timeGpuPasses(options.profile);
+  std::deque<FrameContext> inFlight;
   for (uint32_t i = 0; i < frameCount; ++i) {
     const FrameContext frame{i, static_cast<float>(i) * dt, i == 0 ? 0.0f : dt};
+    Clock::time_point stageStart = Clock::now();
     auto instances = step(frame);
     if (!instances) return instances.error();
-    const auto renderStart = std::chrono::steady_clock::now();
-    auto image = renderer.render(view, *instances);
-    if (!image) return image.error().prefixed("frame " + std::to_string(i) + ": ");
-    summary.renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
-    if (frames) {
-      if (auto written = eng::writePng(frames->framePath(i), image->width, image->height, image->rgba8); !written)
-        return written.error();
-    }
-    if (gif) {
-      if (auto added = gif->addFrame(image->rgba8); !added) return added.error();
-    }
-    if (sink) sink(frame, *image);
-    summary.frames = i + 1;
+    profile.add(kStep, msSince(stageStart));
+    stageStart = Clock::now();
+    if (auto submitted = renderer.submit(view, *instances); !submitted)
+      return submitted.error().prefixed("frame " + std::to_string(i) + ": ");
+    const double submitMs = msSince(stageStart);
+    profile.add(kSubmit, submitMs);
+    summary.renderSeconds += submitMs * 1e-3;
+    inFlight.push_back(frame);
+    if (renderer.pendingFrames() == renderer.framesInFlight())
+      ENG_TRY(finishOldest(renderer, inFlight, out, profile, summary));
     progress.update(i + 1);
   }
+  while (!inFlight.empty()) ENG_TRY(finishOldest(renderer, inFlight, out, profile, summary));
   progress.finish();
-  if (gif) {
-    if (auto finished = gif->finish(); !finished) return finished.error();
-  }
-  if (frames) ENG_TRY(frames->commit());
-  summary.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (out.gif) ENG_TRY(out.gif->finish());
+  if (out.frames) ENG_TRY(out.frames->commit());
+  summary.totalSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (options.profile) profile.print(options.progressLabel, summary.totalSeconds);
   return summary;
 }
 

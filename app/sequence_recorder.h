@@ -18,12 +18,18 @@
 
 namespace app {
 
+// The renderer's frames in flight a sequence wants (HeadlessRenderOptions::
+// framesInFlight): one read back and encoded, one rendering, one queued.
+constexpr uint32_t kSequenceFramesInFlight = 3;
+
 struct SequenceOptions {
   float framesPerSecond = 24.0f;
   float seconds = 10.0f;
   std::filesystem::path frameDir;    // frame_0000.png ..., written whole (app::FrameFolder); empty: no PNGs
   std::filesystem::path gifPath;     // empty: no GIF
   std::string progressLabel = "rendering";
+  // Print where each frame's time went at the end (app::StageProfile).
+  bool profile = false;
 };
 
 // Called before frame `index` is rendered at time `time` (seconds): advance
@@ -35,15 +41,21 @@ struct FrameContext {
   float dt = 0;
 };
 using FrameStep = std::function<eng::Result<std::span<const eng::vk::ModelInstance>>(const FrameContext&)>;
-// Called after a frame was rendered, with its pixels (e.g. to keep it for a contact sheet).
+// Called after a frame was rendered, with its pixels (e.g. to keep it for a
+// contact sheet), in frame order. With frames in flight it comes after the
+// next frames' steps (the renderer copied their data when they were submitted).
 using FrameSink = std::function<void(const FrameContext&, const eng::Image&)>;
 
 struct SequenceSummary {
   uint32_t frames = 0;
-  double renderSeconds = 0;   // GPU/lavapipe frame time, summed
+  double renderSeconds = 0;   // submitting and waiting for the frames, summed
   double totalSeconds = 0;    // wall time incl. encoding
 };
 
+// Frames go through the renderer's frames in flight (OffscreenOptions::
+// framesInFlight): frame N is read back and encoded while the device renders
+// N+1. On an error the frames in flight are dropped and nothing is committed
+// (the PNG folder and the GIF are written whole or not at all).
 eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
                                             const SequenceOptions& options, const FrameStep& step,
                                             const FrameSink& sink = {});

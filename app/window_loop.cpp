@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "app/stage_profile.h"
 #include "engine/vk/device/vk_result.h"
 
 namespace app {
@@ -35,8 +36,12 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   uint64_t frameNumber = 0;
   float animationTime = 0.0f;
   Clock::time_point finalSince{};
+  StageProfile profile({"events", "frame (script, graph, UI)", "draw (upload, passes, ImGui, present)"});
+  auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
   while (!window.shouldClose()) {
+    const Clock::time_point polled = Clock::now();
     window.pollEvents();
+    const double eventsMs = msSince(polled);
     const Clock::time_point now = Clock::now();
     WindowTick tick;
     // Clamped: a stall (window dragged, breakpoint) must not jump the animation.
@@ -53,6 +58,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
 
     auto plan = frame(tick);
     if (!plan) return plan.error();
+    const double frameMs = msSince(now);
     if (plan->quit && !finalFrame) {
       finalFrame = true;
       finalSince = now;
@@ -60,11 +66,18 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     const bool endsWithShot = finalFrame && !options.finalScreenshot.empty();
     const std::filesystem::path shot = endsWithShot ? options.finalScreenshot : plan->requestedShot;
     plan->input.screenshot = shot;
+    const Clock::time_point drawStart = Clock::now();
     auto drawn = renderer.drawFrame(plan->input);
     ++frameNumber;
     if (!drawn) return frameError(frameNumber, drawn.error());
     const bool presented = *drawn == eng::vk::FrameResult::Presented;
     if (presented && tick.elapsed >= measureFrom && measuredFrames++ == 0) measureStart = Clock::now();
+    if (measuredFrames > 0) {  // the frames drawn since the fps line's clock started
+      profile.add(0, eventsMs);
+      profile.add(1, frameMs);
+      profile.add(2, msSince(drawStart));
+      profile.endFrame();
+    }
     if (!shot.empty() && presented) {
       std::printf("screenshot: %s\n", shot.c_str());
       shotWritten(shot);
@@ -80,6 +93,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
     std::printf("window: %ux%u %d frames presented in the last %.2f s (3D view at %.2f%s): fps=%.2f\n",
                 extent.width, extent.height, measuredFrames - 1, seconds, double(renderer.renderScale()),
                 renderer.adaptiveScale() ? ", adaptive" : "", double(measuredFrames - 1) / seconds);
+    if (options.profile) profile.print("window", seconds);
   }
   return {};
 }

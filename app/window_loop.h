@@ -18,6 +18,10 @@ struct WindowLoopOptions {
   // still reaches its last action before it ends; 0 = run until the window closes.
   float quitAfter = 0.0f;
   std::filesystem::path finalScreenshot;  // written by the last frame when quitAfter ends the run
+  // Print where the measured frames' time went on exit (app::StageProfile):
+  // events, the program's frame (script, graph, UI) and drawing (waiting for
+  // a frame slot, upload, shadow, 3D view, resolve, blit, ImGui, present).
+  bool profile = false;
 };
 
 struct WindowTick {

@@ -39,6 +39,7 @@ struct SayOptions {
   std::string wav;
   std::string frames;
   std::string visemes;
+  bool profile = false;  // print where each frame's time went
 };
 
 // From `time` on the soundtrack the face shows `emotion` at `intensity`.

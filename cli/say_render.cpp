@@ -88,7 +88,9 @@ eng::Result<Presenter> makePresenter(const SayOptions& o, const Speech& speech) 
 
 eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
                                              const app::HeadlessRenderOptions& renderOptions, float seconds) {
-  auto renderer = app::HeadlessModelRenderer::create(p.setup.displayModel(), renderOptions);
+  app::HeadlessRenderOptions pipelined = renderOptions;
+  pipelined.framesInFlight = app::kSequenceFramesInFlight;
+  auto renderer = app::HeadlessModelRenderer::create(p.setup.displayModel(), pipelined);
   if (!renderer) return renderer.error();
   auto writer = audio::VideoWriter::create(o.out, {.width = int(renderOptions.width),
                                                    .height = int(renderOptions.height),
@@ -98,7 +100,7 @@ eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, 
   if (!writer) return writer.error();
   if (!o.frames.empty()) std::filesystem::create_directories(o.frames);
   app::SequenceOptions sequence{.framesPerSecond = o.fps, .seconds = seconds, .frameDir = o.frames,
-                                .progressLabel = "say"};
+                                .progressLabel = "say", .profile = o.profile};
   EmotionPlayer emotions(speech.emotions);
   eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
   eng::Result<void> written;  // the sink cannot fail the recording itself: the next step does

@@ -39,6 +39,7 @@ CommandRegistrar reg("demo", "The virtual character: a window, or the headless t
   app::addDeviceOption(app, o->device);
   app::addWindowQualityOption(app, o->quality);
   app.add_option("--seed", o->seed, "Random seed (blinks, crowd triggers)")->capture_default_str();
+  app.add_flag("--profile", o->profile, "Print where the frames' time went (mean ms and share per stage; a window on exit)");
   app.add_option("--quit-after", o->quitAfter, "Window: close after this many seconds of animation (tests; a script's clock, which lags wall time only below 10 frames/s)");
   app.add_option("--screenshot", o->screenshot,
                  "Window: write the last frame here before quitting (F12 screenshots go to the same folder)");

@@ -50,6 +50,7 @@ struct PlayOptions {
   std::string out;
   std::string video;
   bool allowOutsidePaths = false;
+  bool profile = false;  // print where each frame's time went
 };
 
 constexpr app::ErrorReporter fail{"facial play"};
@@ -123,7 +124,8 @@ int runPlay(const PlayOptions& o) {
                                                                  .framing = *framing,
                                                                  .device = o.device,
                                                                  .backdrop = *backdrop,
-                                                                 .quality = *quality});
+                                                                 .quality = *quality,
+                                                                 .framesInFlight = app::kSequenceFramesInFlight});
   if (!renderer) return fail(renderer.error().message);
 
   app::SequenceOptions sequence;
@@ -132,6 +134,7 @@ int runPlay(const PlayOptions& o) {
   sequence.frameDir = o.out;
   sequence.gifPath = o.video;
   sequence.progressLabel = "play";
+  sequence.profile = o.profile;
   auto materials = app::FaceMaterials::create(*setup);  // VRM material binds follow the animated expressions
   if (!materials) return fail(materials.error().message);
   eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
@@ -173,6 +176,7 @@ CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (a
                "Let the graph name timeline files outside its own folder (absolute, ../)");
   app::addDeviceOption(app, o->device);
   app::addQualityOption(app, o->quality);
+  app.add_flag("--profile", o->profile, "Print where each frame's time went (mean ms and share per stage)");
   return [o] { return runPlay(*o); };
 });
 

@@ -111,6 +111,7 @@ CommandRegistrar reg("say", "A face speaks text, a presenter script or a recordi
   app.add_option("--out,-o", o->out, "The video: .mp4 (H.264 + AAC) or .webm (VP9 + Opus)")->required();
   app.add_option("--wav", o->wav, "Also write the soundtrack as a WAV file");
   app.add_option("--frames", o->frames, "Also write the frames as numbered PNGs into this folder");
+  app.add_flag("--profile", o->profile, "Print where each frame's time went (mean ms and share per stage)");
   app.add_option("--visemes", o->visemes, "Also write the viseme track used, as timed-viseme JSON");
   return [o] { return runSay(*o); };
 });

@@ -239,6 +239,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   sequence.frameDir = outDir / "frames";
   sequence.gifPath = outDir / "tour.gif";
   sequence.progressLabel = "tour";
+  sequence.profile = o.profile;
 
   StateTiles states{"emotions"};
   auto summary = app::recordSequence(

@@ -429,7 +429,7 @@ int WindowDemo::run(const DemoOptions& o) {
     if (shot != fs::path(o.screenshot)) screenshotRequested_ = false;
   };
   if (auto ran = app::runWindowLoop(session_->window(), session_->renderer(),
-                                    {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot}, frame, shotWritten);
+                                    {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot, .profile = o.profile}, frame, shotWritten);
       !ran)
     exitCode = fail(ran.error().message);
   int width = 0, height = 0;

@@ -464,7 +464,7 @@ int EditorApp::run(const EditorOptions& o) {
   auto shotWritten = [&](const fs::path& shot) {
     if (shot == pendingShot_) pendingShot_.clear();
   };
-  if (auto ran = app::runWindowLoop(session_->window(), session_->renderer(), {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot},
+  if (auto ran = app::runWindowLoop(session_->window(), session_->renderer(), {.quitAfter = o.quitAfter, .finalScreenshot = o.screenshot, .profile = o.profile},
                                     frame, shotWritten);
       !ran) {
     // The window cannot draw any more (a lost device, say): the user's edits

@@ -24,6 +24,7 @@ struct EditorOptions {
   std::string quality = "auto";  // render quality tier: auto | fast | balanced | high (app::windowQualityOption)
   std::string trigger;   // fired on the state machine at start
   float quitAfter = 0.0f;
+  bool profile = false;  // print where the frames' time went on exit (app::WindowLoopOptions)
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12
   std::string script;      // timed actions (editor_script.h)
   bool mute = false;       // Speak moves the mouth without playing the voice

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--script", o.script,
                  "Timed actions through the panels' own handlers, one a line: SECONDS ACTION ARGS "
                  "(trigger, pad, timeline-*, undo, redo, sculpt-*, say, say-lang, say-stop, screenshot, quit; see README)");
+  app.add_flag("--profile", o.profile, "On exit, print where the frames' time went (mean ms and share per stage)");
   app.add_flag("--mute", o.mute, "Speak moves the mouth without playing the voice");
   CLI11_PARSE(app, argc, argv);
   if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", o.graph},

@@ -1,8 +1,8 @@
 #include "engine/vk/device/frame_timestamps.h"
 
 #include <array>
-#include <vector>
 
+#include "engine/vk/device/pass_timestamps.h"
 #include "engine/vk/device/vk_result.h"
 
 namespace eng::vk {
@@ -10,13 +10,8 @@ namespace eng::vk {
 Result<FrameTimestamps> FrameTimestamps::create(const Context& ctx) {
   FrameTimestamps t;
   t.device_ = ctx.device();
-  const float period = ctx.deviceInfo().properties.limits.timestampPeriod;
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &familyCount, families.data());
-  const uint32_t validBits = ctx.queueFamily() < familyCount ? families[ctx.queueFamily()].timestampValidBits : 0;
-  if (!(period > 0.0f) || validBits == 0) return t;  // not timeable: supported() stays false
+  const std::optional<TimestampSupport> support = timestampSupport(ctx);
+  if (!support) return t;  // not timeable: supported() stays false
 
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -24,8 +19,8 @@ Result<FrameTimestamps> FrameTimestamps::create(const Context& ctx) {
   VkQueryPool pool = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateQueryPool(t.device_, &info, nullptr, &pool));
   t.pool_ = UniqueQueryPool(t.device_, pool);
-  t.nanosecondsPerTick_ = double(period);
-  t.validMask_ = validBits >= 64 ? ~uint64_t{0} : (uint64_t{1} << validBits) - 1;
+  t.nanosecondsPerTick_ = support->nanosecondsPerTick;
+  t.validMask_ = support->validMask;
   return t;
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <string>
 #include <cmath>
 
 #include "engine/vk/device/vk_result.h"
@@ -46,18 +48,46 @@ Result<OffscreenRenderer> OffscreenRenderer::create(const Context& ctx, const Of
   if (!layouts) return layouts.error();
   r.layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
   r.shaders_ = std::make_unique<ShaderLibrary>(options.shaderSourceDir);
-  auto target = OffscreenTarget::create(ctx, options.width, options.height, qualitySettings(options.quality).samples);
-  if (!target) return target.error();
-  r.target_ = std::move(target).value();
-  auto scene = SceneRenderer::create(ctx, *r.layouts_, *r.shaders_, r.target_.renderPass(),
-                                     r.target_.format().samples, 1, options.quality);
+  ENG_TRY(r.createFrames(std::max(1u, options.framesInFlight), options));
+  auto scene = SceneRenderer::create(ctx, *r.layouts_, *r.shaders_, r.target().renderPass(),
+                                     r.target().format().samples, r.framesInFlight(), options.quality);
   if (!scene) return scene.error();
   r.scene_ = std::move(scene).value();
   auto timestamps = FrameTimestamps::create(ctx);
   if (!timestamps) return timestamps.error();
   r.timestamps_ = std::move(timestamps).value();
+  auto passTimes = PassTimestamps::create(ctx, r.framesInFlight(), kPassMarks);
+  if (!passTimes) return passTimes.error();
+  r.passTimes_ = std::move(passTimes).value();
   r.lodPixelError_ = options.lodPixelError;
   return r;
+}
+
+Result<void> OffscreenRenderer::createFrames(uint32_t count, const OffscreenOptions& options) {
+  const VkDevice device = ctx_->device();
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = ctx_->queueFamily();
+  VkCommandPool pool = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
+  pool_ = UniqueCommandPool(device, pool);
+  const VkSampleCountFlagBits samples = qualitySettings(options.quality).samples;
+  for (uint32_t i = 0; i < count; ++i) {
+    Frame frame;
+    frame.target = ENG_TRY_VALUE(OffscreenTarget::create(*ctx_, options.width, options.height,
+                                                         samples));
+    VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    allocInfo.commandPool = pool;
+    allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    allocInfo.commandBufferCount = 1;
+    ENG_VK_TRY(vkAllocateCommandBuffers(device, &allocInfo, &frame.cmd));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateFence(device, &fenceInfo, nullptr, &fence));
+    frame.done = UniqueFence(device, fence);
+    frames_.push_back(std::move(frame));
+  }
+  return {};
 }
 
 bool OffscreenRenderer::reloadChangedShaders() { return shaders_->reloadIfChanged() && scene_.refreshPipelines(); }
@@ -87,12 +117,13 @@ glm::vec4 clearColour(const Backdrop& backdrop) {
 
 Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& view,
                                                             std::span<const ModelInstance> instances) {
-  const VkExtent2D extent = target_.extent();
+  ENG_TRY(requireIdle("renderTimed"));
+  const VkExtent2D extent = frames_.front().target.extent();
   const float aspect = float(extent.width) / float(extent.height);
   ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances,
                          {lodPixelError_, extent.height}));
   const bool studio = view.backdrop.kind == Backdrop::Kind::Studio;
-  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) {
+  ENG_TRY(frameSubmitted(frames_.front().target.render({[&](VkCommandBuffer cmd) {
                             timestamps_.recordStart(cmd);
                             scene_.recordShadowPass(cmd, 0);
                           },
@@ -103,32 +134,107 @@ Result<std::optional<double>> OffscreenRenderer::renderTimed(const SceneView& vi
 }
 
 Result<eng::Image> OffscreenRenderer::render(const SceneView& view, std::span<const ModelInstance> instances) {
-  const VkExtent2D extent = target_.extent();
+  ENG_TRY(requireIdle("render"));
+  ENG_TRY(submit(view, instances));
+  return collect();
+}
+
+Result<void> OffscreenRenderer::requireIdle(const char* call) const {
+  if (pending_ == 0) return {};
+  return makeError(ErrorKind::InvalidArgument,
+                   std::string("offscreen renderer: ") + call + " with frames still in flight (collect() them first)");
+}
+
+Result<void> OffscreenRenderer::recordFrame(Frame& frame, uint32_t slot, const SceneView& view) {
+  const VkExtent2D extent = frame.target.extent();
+  const bool studio = view.backdrop.kind == Backdrop::Kind::Studio;
+  ENG_VK_TRY(vkResetCommandBuffer(frame.cmd, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  ENG_VK_TRY(vkBeginCommandBuffer(frame.cmd, &begin));
+  frame.target.record(frame.cmd,
+                      {[&](VkCommandBuffer cmd) {
+                         if (frame.timed) passTimes_.mark(cmd, slot, 0);
+                         scene_.recordShadowPass(cmd, slot);
+                         if (frame.timed) passTimes_.mark(cmd, slot, 1);
+                       },
+                       [&](VkCommandBuffer cmd) { scene_.record(cmd, slot, extent, studio); },
+                       [&](VkCommandBuffer cmd) {
+                         if (frame.timed) passTimes_.mark(cmd, slot, 2);
+                       }},
+                      clearColour(view.backdrop));
+  ENG_VK_TRY(vkEndCommandBuffer(frame.cmd));
+  return {};
+}
+
+Result<void> OffscreenRenderer::submit(const SceneView& view, std::span<const ModelInstance> instances) {
+  if (pending_ == framesInFlight())
+    return makeError(ErrorKind::InvalidArgument, "offscreen renderer: every frame slot is in flight (collect() one)");
+  const uint32_t slot = next_;
+  Frame& frame = frames_[slot];
+  const VkExtent2D extent = frame.target.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(0, buildFrameGlobals(view.camera, aspect, view.lights), instances,
+  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(view.camera, aspect, view.lights), instances,
                          {lodPixelError_, extent.height}));
-  const Backdrop& backdrop = view.backdrop;
-  const glm::vec4 clear = clearColour(backdrop);
-  const bool studio = backdrop.kind == Backdrop::Kind::Studio;
-  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) { scene_.recordShadowPass(cmd, 0); },
-                          [&](VkCommandBuffer cmd) { scene_.record(cmd, 0, extent, studio); }, {}},
-                         clear)));
-  eng::Image image = target_.readPixels();
-  if (backdrop.kind == Backdrop::Kind::Transparent) unpremultiplySrgb(image);
+  frame.timed = timePasses_;
+  ENG_TRY(recordFrame(frame, slot, view));
+  frame.transparent = view.backdrop.kind == Backdrop::Kind::Transparent;
+  VkFence fence = frame.done.get();
+  ENG_VK_TRY(vkResetFences(ctx_->device(), 1, &fence));
+  VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  info.commandBufferCount = 1;
+  info.pCommandBuffers = &frame.cmd;
+  const VkResult submitted = vkQueueSubmit(ctx_->queue(), 1, &info, fence);
+  ENG_TRY(frameSubmitted(submitted == VK_SUCCESS ? Result<void>{} : vulkanError("vkQueueSubmit", submitted)));
+  next_ = (next_ + 1) % framesInFlight();
+  ++pending_;
+  return {};
+}
+
+Result<eng::Image> OffscreenRenderer::collect() {
+  if (pending_ == 0) return makeError(ErrorKind::InvalidArgument, "offscreen renderer: collect() with no frame in flight");
+  using Clock = std::chrono::steady_clock;
+  const uint32_t slot = (next_ + framesInFlight() - pending_) % framesInFlight();
+  Frame& frame = frames_[slot];
+  const Clock::time_point start = Clock::now();
+  VkFence fence = frame.done.get();
+  const VkResult waited = vkWaitForFences(ctx_->device(), 1, &fence, VK_TRUE, UINT64_MAX);
+  --pending_;
+  if (waited != VK_SUCCESS) return explainDeviceLost(vulkanError("vkWaitForFences", waited));
+  lastTimes_ = {};
+  // Read before the clock stops: lavapipe's query read-back waits for the whole device.
+  if (std::array<double, kPassMarks - 1> ms{}; frame.timed && passTimes_.read(slot, ms)) {
+    lastTimes_.gpuShadowMs = ms[0];
+    lastTimes_.gpuViewMs = ms[1];
+  }
+  const Clock::time_point done = Clock::now();
+  eng::Image image = frame.target.readPixels();
+  if (frame.transparent) unpremultiplySrgb(image);
+  lastTimes_.waitMs = std::chrono::duration<double, std::milli>(done - start).count();
+  lastTimes_.readbackMs = std::chrono::duration<double, std::milli>(Clock::now() - done).count();
   return image;
 }
 
+void OffscreenRenderer::discardPending() {
+  for (; pending_ > 0 && !frames_.empty(); --pending_) {
+    VkFence fence = frames_[(next_ + framesInFlight() - pending_) % framesInFlight()].done.get();
+    vkWaitForFences(ctx_->device(), 1, &fence, VK_TRUE, UINT64_MAX);  // an error here: the device is lost anyway
+  }
+}
+
 Result<std::vector<CapturedPrimitive>> OffscreenRenderer::capture(std::span<const ModelInstance> instances) {
+  ENG_TRY(requireIdle("capture"));
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) { scene_.recordMorphPass(cmd, 0); },
+  ENG_TRY(frameSubmitted(frames_.front().target.render({[&](VkCommandBuffer cmd) { scene_.recordMorphPass(cmd, 0); },
                           [&](VkCommandBuffer cmd) { scene_.recordCapture(cmd, 0); },
                           [](VkCommandBuffer cmd) { SceneRenderer::recordCaptureReadBarrier(cmd); }})));
   return scene_.readCapture(0);
 }
 
 Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const ModelInstance> instances) {
+  ENG_TRY(requireIdle("captureTimed"));
   ENG_TRY(scene_.prepareCapture(0, instances));
-  ENG_TRY(frameSubmitted(target_.render({[&](VkCommandBuffer cmd) {
+  ENG_TRY(frameSubmitted(frames_.front().target.render({[&](VkCommandBuffer cmd) {
                             timestamps_.recordStart(cmd);
                             scene_.recordMorphPass(cmd, 0);
                           },
@@ -138,6 +244,7 @@ Result<std::optional<double>> OffscreenRenderer::captureTimed(std::span<const Mo
 }
 
 Result<std::optional<double>> OffscreenRenderer::morphTimed(std::span<const ModelInstance> instances) {
+  ENG_TRY(requireIdle("morphTimed"));
   ENG_TRY(scene_.prepare(0, FrameGlobals{}, instances));
   ENG_TRY(frameSubmitted(ctx_->submitOneShot([&](VkCommandBuffer cmd) {
     timestamps_.recordStart(cmd);

@@ -21,6 +21,7 @@
 #include "engine/vk/device/context.h"
 #include "engine/vk/device/fault_injection.h"
 #include "engine/vk/device/frame_timestamps.h"
+#include "engine/vk/device/pass_timestamps.h"
 #include "engine/vk/draw/gpu_model.h"
 #include "engine/vk/draw/offscreen_target.h"
 #include "engine/vk/draw/render_quality.h"
@@ -43,6 +44,19 @@ struct OffscreenOptions {
   // Injected faults for tests (fault_injection.h: device-lost@N counts this
   // renderer's frame submissions); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
+  // Frames submit() may leave in flight (each with its own target and
+  // read-back buffer): 2-3 let a sequence read back and encode one frame while
+  // the device renders the next. 1 for single images (the memory of one target).
+  uint32_t framesInFlight = 1;
+};
+
+// Where a collected frame's time went: the CPU waiting for it and copying it
+// out, and where the device has timestamps its GPU passes (ms).
+struct OffscreenFrameTimes {
+  double waitMs = 0.0;      // collect() blocked on the frame's fence
+  double readbackMs = 0.0;  // the copy out of the mapped buffer (and un-premultiplying)
+  std::optional<double> gpuShadowMs;  // morph pre-pass and shadow map
+  std::optional<double> gpuViewMs;    // the 3D view, its resolve and the copy to the read-back buffer
 };
 
 class OffscreenRenderer {
@@ -52,6 +66,24 @@ class OffscreenRenderer {
 
   Result<GpuModel> upload(const Model& model) const;
   Result<eng::Image> render(const SceneView& view, std::span<const ModelInstance> instances);
+  // Frames in flight: submit() prepares, records and submits a frame and
+  // returns without waiting (the instances' data is copied, so the caller may
+  // change it at once); collect() waits for the oldest submitted frame and
+  // reads it back. At most framesInFlight() frames are outstanding: submit()
+  // then fails until one is collected. render() is submit() and collect()
+  // with nothing in flight; the timed and capture calls also need none.
+  Result<void> submit(const SceneView& view, std::span<const ModelInstance> instances);
+  Result<eng::Image> collect();
+  uint32_t framesInFlight() const { return static_cast<uint32_t>(frames_.size()); }
+  uint32_t pendingFrames() const { return pending_; }
+  // Waits for the frames in flight and drops them (a sequence that failed
+  // midway); the destructor does the same.
+  void discardPending();
+  const OffscreenFrameTimes& lastFrameTimes() const { return lastTimes_; }
+  // Times the GPU passes of the frames submitted from now on (where the
+  // device has timestamps). Off by default: lavapipe's query read-back waits
+  // for the whole device, which would undo the frames in flight.
+  void timeGpuPasses(bool on) { timePasses_ = on; }
   // The same frame without the read-back (the image stays on the GPU), for
   // benchmarks: returns once the GPU has finished it, with the GPU time of
   // its command buffer in ms where the device has timestamps (nullopt otherwise).
@@ -73,12 +105,34 @@ class OffscreenRenderer {
   // pipelines; on a compile error logs it and keeps drawing with the old ones.
   bool reloadChangedShaders();
 
-  VkExtent2D extent() const { return target_.extent(); }
-  VkSampleCountFlagBits samples() const { return target_.format().samples; }
+  VkExtent2D extent() const { return target().extent(); }
+  VkSampleCountFlagBits samples() const { return target().format().samples; }
   RenderQuality quality() const { return scene_.quality(); }
   bool canCapture() const { return scene_.canCapture(); }
 
+  OffscreenRenderer() = default;
+  OffscreenRenderer(OffscreenRenderer&&) = default;
+  OffscreenRenderer& operator=(OffscreenRenderer&&) = default;
+  ~OffscreenRenderer() { discardPending(); }
+
  private:
+  // One frame slot: its own target (and read-back buffer), command buffer
+  // and fence; the scene renderer's slot of the same index holds its data.
+  struct Frame {
+    OffscreenTarget target;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // from pool_
+    UniqueFence done;
+    bool transparent = false;  // its backdrop: un-premultiplied when read back
+    bool timed = false;        // its passes were timed (timeGpuPasses)
+  };
+  static constexpr uint32_t kPassMarks = 3;  // start, after the shadow pass, end
+
+  const OffscreenTarget& target() const { return frames_.front().target; }
+  Result<void> createFrames(uint32_t count, const OffscreenOptions& options);
+  // An error while frames are in flight (the one-submission calls share slot 0).
+  Result<void> requireIdle(const char* call) const;
+  Result<void> recordFrame(Frame& frame, uint32_t slot, const SceneView& view);
+
   // A frame's submission result, then the fault a test injects; a lost
   // device, real or injected, said plainly (explainDeviceLost).
   Result<void> frameSubmitted(Result<void> submitted);
@@ -87,9 +141,15 @@ class OffscreenRenderer {
   // Heap-held: the scene renderer and uploaded models point at them.
   std::unique_ptr<SceneLayouts> layouts_;
   std::unique_ptr<ShaderLibrary> shaders_;
-  OffscreenTarget target_;
+  UniqueCommandPool pool_;
+  std::vector<Frame> frames_;  // [0] also serves the one-submission calls
+  uint32_t next_ = 0;     // the slot submit() fills next
+  uint32_t pending_ = 0;  // submitted, not collected: the slots before next_
+  OffscreenFrameTimes lastTimes_;
+  bool timePasses_ = false;
   SceneRenderer scene_;
   FrameTimestamps timestamps_;
+  PassTimestamps passTimes_;
   FaultInjector faults_;
   float lodPixelError_ = 0.0f;
 };

@@ -80,38 +80,40 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
 }
 
 Result<void> OffscreenTarget::render(const Recorders& recorders, const glm::vec4& clearColor) {
-  return ctx_->submitOneShot([&](VkCommandBuffer cmd) {
-    if (recorders.beforePass) recorders.beforePass(cmd);
-    std::array<VkClearValue, 3> clears{};
-    clears[0].color = {{clearColor.r, clearColor.g, clearColor.b, clearColor.a}};
-    clears[1].depthStencil = {1.0f, 0};
-    clears[2].color = clears[0].color;
-    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = renderPass_.get();
-    begin.framebuffer = framebuffer_.get();
-    begin.renderArea = {{0, 0}, extent_};
-    begin.clearValueCount = format_.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
-    begin.pClearValues = clears.data();
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    if (recorders.inPass) recorders.inPass(cmd);
-    vkCmdEndRenderPass(cmd);
-    if (!recorders.readback) {
-      if (recorders.afterPass) recorders.afterPass(cmd);
-      return;
-    }
+  return ctx_->submitOneShot([&](VkCommandBuffer cmd) { record(cmd, recorders, clearColor); });
+}
 
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {extent_.width, extent_.height, 1};
-    vkCmdCopyImageToBuffer(cmd, resolved_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1,
-                           &copy);
-    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                         0, nullptr);
+void OffscreenTarget::record(VkCommandBuffer cmd, const Recorders& recorders, const glm::vec4& clearColor) const {
+  if (recorders.beforePass) recorders.beforePass(cmd);
+  std::array<VkClearValue, 3> clears{};
+  clears[0].color = {{clearColor.r, clearColor.g, clearColor.b, clearColor.a}};
+  clears[1].depthStencil = {1.0f, 0};
+  clears[2].color = clears[0].color;
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = renderPass_.get();
+  begin.framebuffer = framebuffer_.get();
+  begin.renderArea = {{0, 0}, extent_};
+  begin.clearValueCount = format_.samples != VK_SAMPLE_COUNT_1_BIT ? 3 : 2;
+  begin.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  if (recorders.inPass) recorders.inPass(cmd);
+  vkCmdEndRenderPass(cmd);
+  if (!recorders.readback) {
     if (recorders.afterPass) recorders.afterPass(cmd);
-  });
+    return;
+  }
+
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {extent_.width, extent_.height, 1};
+  vkCmdCopyImageToBuffer(cmd, resolved_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1,
+                         &copy);
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                       0, nullptr);
+  if (recorders.afterPass) recorders.afterPass(cmd);
 }
 
 eng::Image OffscreenTarget::readPixels() const {

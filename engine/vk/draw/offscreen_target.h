@@ -37,6 +37,9 @@ class OffscreenTarget {
   // waits for completion.
   // clearColor: linear RGBA the colour attachment starts from.
   Result<void> render(const Recorders& recorders, const glm::vec4& clearColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  // The same commands into `cmd`, for a caller that submits and waits itself
+  // (frames in flight, OffscreenRenderer::submit).
+  void record(VkCommandBuffer cmd, const Recorders& recorders, const glm::vec4& clearColor) const;
   // The last rendered image, RGBA8, top row first.
   eng::Image readPixels() const;
 
