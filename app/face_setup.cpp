@@ -1,10 +1,12 @@
 #include "app/face_setup.h"
 
+#include "app/face_autorig.h"
 #include "facial/runtime/rig/arkit_names.h"
 #include "facial/runtime/rig/rigmap_file.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include <CLI/CLI.hpp>
@@ -14,12 +16,15 @@
 
 namespace app {
 
-void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap) {
+void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap, bool& noAutorig) {
   app.add_option("--model,-m", model,
                  "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, <data>/head.glb)");
   app.add_option("--rigmap", rigmap,
                  "Rig map JSON naming which targets are which action unit or emotion "
                  "(default: <data>/rigmaps/<model>.json, else detected from the target names)");
+  app.add_flag("--no-autorig", noAutorig,
+               "Refuse a face that cannot show emotions (no known targets, or visemes only) instead of giving it "
+               "the built-in head's action units on the fly (see `facial autorig`)");
 }
 
 void addShapeOption(CLI::App& app, std::vector<std::string>& shapes) {
@@ -90,11 +95,48 @@ eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& fa
   return facial::RigCalibration{std::move(*rig), {}};
 }
 
+namespace {
+
+// A face that cannot show emotions, rigged on the fly (FaceSetupOptions::autorig):
+// the rigged copy from the cache loaded in its place, under its own name. The
+// note says so once; errors keep the rig's own message first.
+eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const std::filesystem::path& modelPath,
+                                        const std::string& reason, const eng::Result<facial::RigCalibration>& rig,
+                                        eng::Result<importers::LoadedFace>& face) {
+  const std::string model = modelPath.string();
+  const std::string refusal = cannotEmoteLine(modelPath, reason, rig);
+  if (!options.autorig)
+    return eng::makeError(eng::ErrorKind::Unsupported, refusal + "; --no-autorig refuses to give it the built-in "
+                          "head's action units (drop the flag, or write them once with `facial autorig " + model +
+                          " --out rigged.glb`)");
+  auto cached = loadAutorigged(modelPath, {.shapes = options.shapes, .dressForDisplay = options.dressForDisplay}, *face);
+  if (!cached) {
+    std::error_code ec;
+    const std::filesystem::path beside = landmarksBeside(modelPath);
+    return eng::makeError(cached.error().kind, refusal + "; autorig: " + cached.error().message +
+                          (std::filesystem::exists(beside, ec) ? "" : " (give its 68 landmarks in " + beside.string() + ")"));
+  }
+  return model + " cannot show emotions (" + reason + "): rigged with the built-in head's action units (" +
+         std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
+         " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +
+         "; --no-autorig refuses instead";
+}
+
+}  // namespace
+
 eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   const std::filesystem::path modelPath = options.model.empty() ? defaultModelPath() : options.model;
   auto face = importers::loadFace(modelPath, {.shapes = options.shapes, .dressForDisplay = options.dressForDisplay});
   if (!face) return face.error();
   auto calibration = buildFaceRig(*face, options.rigmap);
+  std::string note;
+  if (const std::string reason = autorigReason(*face, calibration, options.rigmap); !reason.empty()) {
+    auto rigged = autorigInPlace(options, modelPath, reason, calibration, face);
+    if (!rigged) return rigged.error();
+    note = std::move(*rigged);
+    std::fprintf(stderr, "%.*s: note: %s\n", int(options.program.size()), options.program.data(), note.c_str());
+    calibration = buildFaceRig(*face, options.rigmap);
+  }
   if (!calibration) return calibration.error();
   auto rig = std::optional<facial::RigMapping>(std::move(calibration->rig));
   auto expressions =
@@ -102,8 +144,10 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   if (!expressions) return expressions.error();
   auto graphRig = facial::actionUnitRig(*rig, *expressions);
   if (!graphRig) return graphRig.error().prefixed(modelPath.string() + ": ");
-  return FaceSetup(std::move(*face), modelNameOf(modelPath), std::move(*rig), std::move(*graphRig),
-                   std::move(*expressions));
+  FaceSetup setup(std::move(*face), modelNameOf(modelPath), std::move(*rig), std::move(*graphRig),
+                  std::move(*expressions));
+  setup.autorigNote_ = std::move(note);
+  return setup;
 }
 
 FaceSetup::FaceSetup(importers::LoadedFace face, std::string name, facial::RigMapping rig, facial::RigMapping graphRig,

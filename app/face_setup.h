@@ -35,9 +35,10 @@ class App;
 namespace app {
 
 // Declares the options every command that poses a face shares, with one
-// wording: --model/-m (default: the built-in head) and --rigmap (a rig map
-// file instead of <data>/rigmaps/<model>.json or detection).
-void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap);
+// wording: --model/-m (default: the built-in head), --rigmap (a rig map file
+// instead of <data>/rigmaps/<model>.json or detection) and --no-autorig (a
+// face that cannot show emotions is refused instead of rigged on the fly).
+void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap, bool& noAutorig);
 // --shape NAME=VALUE (repeatable): identity parameters (CANDIDE-3 shape units,
 // or any morph target) baked into the rest mesh before anything is drawn.
 void addShapeOption(CLI::App& app, std::vector<std::string>& shapes);
@@ -74,6 +75,12 @@ struct FaceSetupOptions {
   // The programs draw faces dressed (importers/face_dressing.h); a caller
   // that dresses what it draws itself (the editor's sculpted model) turns it off.
   bool dressForDisplay = true;
+  // A glTF face that cannot show emotions (app::autorigReason: no scheme knows
+  // its targets, or visemes only) is given the built-in head's action units
+  // first (app::autorigCached), with one note on stderr naming `program`;
+  // false refuses it with one error line instead.
+  bool autorig = true;
+  std::string_view program = "facial";
 };
 
 class FaceSetup {
@@ -91,6 +98,8 @@ class FaceSetup {
   // The VRM expressions (null unless format() is Vrm).
   const facial::VrmExpressionSet* vrm() const { return vrm_.get(); }
   const std::string& name() const { return name_; }
+  // The note printed when the face was rigged on the fly, else "".
+  const std::string& autorigNote() const { return autorigNote_; }
   const eng::WeightLayout& layout() const { return layout_; }
   const facial::RigMapping& rig() const { return rig_; }
   // The rig as a graph that speaks action units sees it (FaceDriver): the
@@ -130,6 +139,7 @@ class FaceSetup {
   importers::FaceFormat format_ = importers::FaceFormat::Gltf;
   std::shared_ptr<const facial::VrmExpressionSet> vrm_;
   std::string name_;
+  std::string autorigNote_;
   eng::WeightLayout layout_;
   facial::RigMapping rig_;
   facial::RigMapping graphRig_;

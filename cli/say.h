@@ -27,6 +27,7 @@ struct SayOptions {
   float intensity = 1.0f;
   std::string model;
   std::string rigmap;
+  bool noAutorig = false;
   std::vector<std::string> shapes;
   // Balanced: high's 4x multisampling triples lavapipe's frame time (docs/performance.md, `say`).
   app::ViewOptions view{.quality = "balanced"};

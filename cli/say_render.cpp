@@ -76,7 +76,7 @@ eng::Result<facial::Character> emotionalCharacter(const app::FaceSetup& setup, c
 }  // namespace
 
 eng::Result<Presenter> makePresenter(const SayOptions& o, const Speech& speech) {
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial say"});
   if (!setup) return setup.error();
   auto character = emotionalCharacter(*setup, speech.emotions.front());
   if (!character) return character.error();

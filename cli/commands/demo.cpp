@@ -24,7 +24,7 @@ bool hasDisplay() {
 CommandRegistrar reg("demo", "The virtual character: a window, or the headless tour without a display",
                      [](CLI::App& app) {
   auto o = std::make_shared<DemoOptions>();
-  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addFaceOptions(app, o->model, o->rigmap, o->noAutorig);
   app::addShapeOption(app, o->shapes);
   app.add_option("--graph", o->graph, "Animation graph (default: data/graphs/tour.json)");
   app.add_flag("--headless", o->headless, "Render the tour to files even when a display is present");

@@ -28,6 +28,7 @@ struct ExpressOptions {
   float intensity = 1.0f;
   std::string model;
   std::string rigmap;
+  bool noAutorig = false;
   std::vector<std::string> shapes;
   app::ViewOptions view;
   std::string out;
@@ -45,7 +46,7 @@ int runExpress(const ExpressOptions& o) {
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial express: note: intensity %g clamped to [0, 1]\n", o.intensity);
 
-  auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial express"});
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
   if (!preset) return fail(preset.error().message);
@@ -76,7 +77,7 @@ CommandRegistrar reg("express", "Render a model posed with an expression preset,
   app.add_option("--intensity,-i", o->intensity, "Preset strength, clamped to [0, 1]")
       ->check(CLI::Number)
       ->capture_default_str();
-  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addFaceOptions(app, o->model, o->rigmap, o->noAutorig);
   app::addShapeOption(app, o->shapes);
   app::addViewOptions(app, o->view);
   app.add_option("--out,-o", o->out, "Output PNG file")->required();

@@ -37,6 +37,7 @@ struct PlayOptions {
   std::string file;
   std::string model;
   std::string rigmap;
+  bool noAutorig = false;
   std::string clip;  // skeletal clip of the model: name, index or "all"; empty = rest pose
   std::vector<std::string> shapes;
   std::string background;
@@ -93,7 +94,7 @@ int runPlay(const PlayOptions& o) {
 
   auto framing = app::framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial play"});
   if (!setup) return fail(setup.error().message);
 
   float length = 24.0f;
@@ -157,7 +158,7 @@ int runPlay(const PlayOptions& o) {
 CommandRegistrar reg("play", "Play a graph or timeline headless to PNG frames (and a GIF)", [](CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
   app.add_option("file", o->file, "Graph (data/graphs/*.json) or timeline (data/timelines/*.json)")->required();
-  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addFaceOptions(app, o->model, o->rigmap, o->noAutorig);
   app.add_option("--clip", o->clip,
                  "Skeletal animation of the model to play under the face: its name, its index, or 'all' (loops)");
   app::addShapeOption(app, o->shapes);

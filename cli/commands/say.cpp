@@ -102,7 +102,7 @@ CommandRegistrar reg("say", "A face speaks text, a presenter script or a recordi
   app.add_option("--emotion", o->emotion, "The face's emotion while it speaks: " + facial::emotionNameList())
       ->capture_default_str();
   app.add_option("--intensity,-i", o->intensity, "How strongly the emotion shows, 0..1")->capture_default_str();
-  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addFaceOptions(app, o->model, o->rigmap, o->noAutorig);
   app::addShapeOption(app, o->shapes);
   app::addViewOptions(app, o->view);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();

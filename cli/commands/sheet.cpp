@@ -32,6 +32,7 @@ namespace {
 struct SheetOptions {
   std::string model;
   std::string rigmap;
+  bool noAutorig = false;
   std::vector<std::string> shapes;
   std::string background;
   bool compound = false;
@@ -73,7 +74,7 @@ int runSheet(const SheetOptions& o) {
     std::fprintf(stderr, "facial sheet: note: intensity %g clamped to [0, 1]\n", o.intensity);
   auto framing = app::framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial sheet"});
   if (!face) return fail(face.error().message);
   // Basic: exactly the emotion channels, in their order (neutral first).
   std::vector<const facial::ExpressionPreset*> presets;
@@ -142,7 +143,7 @@ int runSheet(const SheetOptions& o) {
 
 CommandRegistrar reg("sheet", "Render a labelled contact sheet of a model's expressions, headless", [](CLI::App& app) {
   auto o = std::make_shared<SheetOptions>();
-  app::addFaceOptions(app, o->model, o->rigmap);
+  app::addFaceOptions(app, o->model, o->rigmap, o->noAutorig);
   app::addShapeOption(app, o->shapes);
   app::addBackgroundOption(app, o->background);
   app.add_flag("--compound", o->compound, "The compound presets instead of neutral and the six basic emotions");

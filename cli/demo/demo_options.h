@@ -13,6 +13,7 @@ inline constexpr std::array<const char*, 7> kEmotions = {"neutral", "happy", "sa
 struct DemoOptions {
   std::string model;               // empty: the built-in head
   std::string rigmap;              // empty: <data>/rigmaps/<model>.json or the detected scheme
+  bool noAutorig = false;          // refuse a face that cannot show emotions (FaceSetupOptions::autorig)
   std::vector<std::string> shapes; // --shape NAME=VALUE identity parameters (CANDIDE-3 shape units)
   std::string graph;               // empty: data/graphs/tour.json
   std::string clip;                // skeletal clip of the model under the face (name, index, "all"); empty: none

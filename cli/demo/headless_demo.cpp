@@ -201,7 +201,7 @@ int runHeadlessDemo(const DemoOptions& o) {
 
   auto framing = app::framingModeOption(o.frame);
   if (!framing) return fail(framing.error().message);
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial demo"});
   if (!setup) return fail(setup.error().message);
   const std::filesystem::path graphPath = o.graph.empty() ? app::dataDirectory() / "graphs" / "tour.json" : std::filesystem::path(o.graph);
   auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(setup->expressions())});

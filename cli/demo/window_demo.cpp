@@ -124,7 +124,7 @@ int WindowDemo::setUp(const DemoOptions& o) {
   if (!o.size.empty() && !app::parseSize(o.size, width, height))
     return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
 
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial demo"});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   const fs::path graphPath = o.graph.empty() ? app::dataDirectory() / "graphs" / "tour.json" : fs::path(o.graph);

@@ -153,7 +153,8 @@ std::span<const float> EditorApp::faceExpressionWeights() const {
 int EditorApp::setUp(const EditorOptions& o) {
   uint32_t width = 1280, height = 800;
   if (!app::parseSize(o.size, width, height)) return fail("--size '" + o.size + "' is not WxH (e.g. 1280x800)");
-  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .dressForDisplay = false});
+  auto setup = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .dressForDisplay = false,
+                                      .autorig = !o.noAutorig, .program = "facial-editor"});
   if (!setup) return fail(setup.error().message);
   setup_.emplace(std::move(*setup));
   targetNames_ = setup_->layout().names();

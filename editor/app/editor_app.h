@@ -15,6 +15,7 @@ inline constexpr app::ErrorReporter fail{"facial-editor"};
 struct EditorOptions {
   std::string model;     // empty: the built-in head
   std::string rigmap;    // empty: data/rigmaps/<model>.json or the detected scheme
+  bool noAutorig = false;  // refuse a face that cannot show emotions (app::FaceSetupOptions::autorig)
   std::vector<std::string> shapes;  // --shape NAME=VALUE identity parameters (CANDIDE-3 shape units)
   std::string graph;     // empty: data/graphs/tour.json
   std::string timeline;  // opened in the timeline panel when given

@@ -12,10 +12,8 @@ int main(int argc, char** argv) {
   editor::EditorOptions o;
   CLI::App app{"facial-editor: edit keyframe timelines, drive the state machine and the control map, "
                "and sculpt expressions with RBF control points"};
-  app.add_option("--model", o.model,
-                 "Face: glTF / GLB, VRM, OBJ keyframe folder or CANDIDE-3 .wfm (default: the built-in head, data/head.glb)");
+  app::addFaceOptions(app, o.model, o.rigmap, o.noAutorig);
   app::addShapeOption(app, o.shapes);
-  app.add_option("--rigmap", o.rigmap, "Rig map JSON (default: data/rigmaps/<model>.json or the detected scheme)");
   app.add_option("--graph", o.graph, "Animation graph with a state machine (default: data/graphs/tour.json)");
   app.add_option("--timeline", o.timeline, "Timeline JSON to open in the timeline panel");
   app.add_option("--device", o.device, "Vulkan device: discrete, integrated, cpu or a name substring");

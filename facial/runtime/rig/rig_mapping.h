@@ -275,6 +275,13 @@ void mapSpeech(RigMappingBuilder& builder, RigScheme scheme);
 // to move the mouth; none of its N targets is ...; a rig map can name ...".
 std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model);
 
+// Whether the rig can show the seven emotions: an emotion input drives
+// something, or the action units move the brows or the lip corners (AU1, AU2,
+// AU4, AU12, AU15), the features every basic emotion is read from. A viseme
+// rig (jaw and lips only) or a blink-only one speaks or blinks but cannot
+// emote: such faces are the ones worth giving action units (issue 33's autorig).
+bool showsEmotions(const RigMapping& rig);
+
 // Forces one built-in scheme (not Custom); fails when it recognises none of the names.
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme);
 

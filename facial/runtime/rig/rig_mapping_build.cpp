@@ -2,6 +2,7 @@
 #include <array>
 #include <system_error>
 
+#include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "facial/runtime/rig/rig_schemes.h"
 #include "facial/runtime/rig/rigmap_file.h"
@@ -72,6 +73,17 @@ eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames
   return eng::makeError(eng::ErrorKind::Unsupported, "rig mapping: no scheme recognises the " + std::to_string(targetNames.size()) +
                         " target names of " + model + (sample.empty() ? "" : " (" + sample + ", ...)") +
                         "; write a rig map " + (rigmap.empty() ? std::string("data/rigmaps/<model>.json") : rigmap.string()));
+}
+
+bool showsEmotions(const RigMapping& rig) {
+  for (uint32_t e = 0; e < kEmotionCount; ++e)
+    if (Emotion(e) != Emotion::Neutral && !rig.targets(emotionInput(Emotion(e))).empty()) return true;
+  const std::span<const ActionUnitInfo> channels = actionUnits();
+  for (uint32_t c = 0; c < channels.size(); ++c) {
+    const int n = channels[c].facsNumber;
+    if ((n == 1 || n == 2 || n == 4 || n == 12 || n == 15) && !rig.targets(c).empty()) return true;
+  }
+  return false;
 }
 
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme) {

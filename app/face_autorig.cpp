@@ -1,0 +1,240 @@
+#include "app/face_autorig.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "app/face_landmark_finder.h"
+#include "app/face_setup.h"
+#include "autorig/builtin_source.h"
+#include "autorig/face_parts.h"
+#include "autorig/posed_face.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
+#include "engine/scene/weights.h"
+#include "facial/runtime/rig/rig_mapping.h"
+
+namespace app {
+namespace {
+
+std::string countOf(size_t n, std::string_view what) { return std::to_string(n) + " " + std::string(what); }
+
+std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalibration>& rig) {
+  const std::vector<std::string> names = eng::WeightLayout(model).names();
+  if (names.empty()) return "it has no morph targets";
+  if (!rig) {
+    std::string sample;
+    for (size_t i = 0; i < names.size() && i < 4; ++i) sample += (i ? ", " : "") + names[i];
+    return "no scheme recognises its " + countOf(names.size(), "target names") + " (" + sample +
+           (names.size() > 4 ? ", ..." : "") + ")";
+  }
+  const facial::RigMappingReport& report = rig->rig.report();
+  if (report.scheme == facial::RigScheme::Visemes) return "its targets are lip-sync visemes only: " + report.detail;
+  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners: " +
+         report.detail;
+}
+
+// FNV-1a, 64 bits: a cache key, not a checksum against tampering.
+struct Fnv1a {
+  uint64_t h = 1469598103934665603ull;
+  void add(std::string_view bytes) {
+    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  }
+};
+
+eng::Result<std::string> readBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return eng::makeError(eng::ErrorKind::NotFound, path.string() + ": cannot be read");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The running program's size and time: a rebuilt program (a changed
+// landmark finder or transfer) makes its rigs anew instead of trusting ones
+// an older build made, without reading the program's bytes each run.
+std::string programStamp() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  const auto size = std::filesystem::file_size(exe, ec);
+  const auto time = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
+  return ec ? std::string() : std::to_string(size) + ":" + std::to_string(time);
+}
+
+std::set<std::string> targetNameSet(const eng::Model& model) {
+  std::set<std::string> names;
+  for (const eng::Mesh& mesh : model.meshes) names.insert(mesh.targetNames.begin(), mesh.targetNames.end());
+  return names;
+}
+
+}  // namespace
+
+TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged) {
+  const std::set<std::string> before = targetNameSet(face), after = targetNameSet(rigged);
+  TargetChanges changes;
+  changes.kept.assign(before.begin(), before.end());
+  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(changes.made));
+  return changes;
+}
+
+std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
+                          const std::filesystem::path& rigmapFile) {
+  if (face.format != importers::FaceFormat::Gltf || face.vrm) return {};
+  facial::RigMappingOptions options;
+  options.modelName = modelNameOf(face.model.sourcePath);
+  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  options.rigmapFile = rigmapFile;
+  if (!facial::rigMapFileFor(options).empty()) return {};
+  if (!rig) return rig.error().kind == eng::ErrorKind::Unsupported ? reasonOf(face.model, rig) : std::string();
+  return facial::showsEmotions(rig->rig) ? std::string() : reasonOf(face.model, rig);
+}
+
+std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,
+                            const eng::Result<facial::RigCalibration>& rig) {
+  return rig ? model.string() + ": cannot show emotions: " + reason : rig.error().message;
+}
+
+eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
+  FaceAutorig rigger;
+  rigger.headPath_ = head.empty() ? defaultModelPath() : head;
+  auto model = eng::loadModel(rigger.headPath_);
+  if (!model) return model.error();
+  rigger.head_ = std::make_unique<eng::Model>(std::move(*model));
+  auto source = autorig::builtInSource(*rigger.head_);
+  if (!source) return source.error().prefixed(rigger.headPath_.string() + ": ");
+  rigger.source_ = std::move(*source);
+  return rigger;
+}
+
+eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face,
+                                                  const std::filesystem::path& landmarksFile) {
+  const autorig::PosedFace posed = autorig::poseAtRest(face.model);
+  if (landmarksFile.empty()) return findFaceLandmarks(face.model, posed, {.display = &face.displayModel()});
+  auto landmarks = autorig::readLandmarksFile(landmarksFile);
+  if (!landmarks) return landmarks.error();
+  ENG_TRY(autorig::checkLandmarksOnSurface(*landmarks, face.model, posed, landmarksFile.string()));
+  return landmarks;
+}
+
+eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
+                                            const std::string& faceName) const {
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  auto transferred = autorig::transferTargets(source_, face, posed, landmarks, parts);
+  if (!transferred) return transferred.error().prefixed(faceName + ": ");
+  AutorigResult result;
+  result.model = std::move(transferred->model);
+  result.report = std::move(transferred->report);
+  result.landmarks = landmarks;
+  result.partNotes = std::move(parts.notes);
+  return result;
+}
+
+std::filesystem::path autorigCacheDirectory() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "facial" / "autorig";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "facial" / "autorig";
+  std::error_code ec;
+  return std::filesystem::temp_directory_path(ec) / "facial-autorig";
+}
+
+eng::Result<void> saveModelAtomically(const eng::Model& model, const std::filesystem::path& path) {
+  // The same extension, so saveModel picks the same container (.glb / .gltf);
+  // the process id, so two programs rigging the same face do not share it.
+  std::filesystem::path partial = path;
+  partial.replace_extension("." + std::to_string(getpid()) + ".partial" + path.extension().string());
+  std::error_code ec;
+  if (auto saved = eng::saveModel(model, partial); !saved) {
+    std::filesystem::remove(partial, ec);
+    return saved;
+  }
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot be written (" + ec.message() + ")");
+  }
+  return {};
+}
+
+std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath) {
+  return modelPath.parent_path() / (modelPath.stem().string() + ".landmarks.json");
+}
+
+namespace {
+
+// The cache entry of `modelPath` rigged from `head` (and `landmarks`, when
+// not empty): named by the hash of everything that decides what is made.
+eng::Result<std::filesystem::path> cacheEntry(const std::filesystem::path& modelPath, const std::filesystem::path& head,
+                                              const std::filesystem::path& landmarks) {
+  Fnv1a key;
+  key.add(kAutorigVersion);
+  key.add(programStamp());
+  for (const std::filesystem::path& file : {head, modelPath, landmarks}) {
+    if (file.empty()) continue;
+    auto bytes = readBytes(file);
+    if (!bytes) return bytes.error();
+    key.add(file == landmarks ? "landmarks" : "");
+    key.add(*bytes);
+  }
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.glb", static_cast<unsigned long long>(key.h));
+  return autorigCacheDirectory() / name;
+}
+
+}  // namespace
+
+eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath) {
+  const std::filesystem::path head = defaultModelPath();
+  std::error_code ec;
+  const std::filesystem::path landmarksFile =
+      std::filesystem::is_regular_file(landmarksBeside(modelPath), ec) ? landmarksBeside(modelPath) : std::filesystem::path();
+  auto entry = cacheEntry(modelPath, head, landmarksFile);
+  if (!entry) return entry.error();
+  CachedAutorig cached;
+  cached.path = std::move(*entry);
+
+  auto face = importers::loadFace(modelPath, {.dressForDisplay = true});
+  if (!face) return face.error();
+  if (std::filesystem::is_regular_file(cached.path, ec)) {
+    if (auto rigged = eng::loadModel(cached.path)) {
+      cached.reused = true;
+      static_cast<TargetChanges&>(cached) = targetChanges(face->model, *rigged);
+      return cached;
+    }
+    // An unreadable cache entry is made again below (and replaced).
+  }
+  auto landmarks = faceLandmarks(*face, landmarksFile);
+  if (!landmarks) return landmarks.error();
+  auto rigger = FaceAutorig::load(head);
+  if (!rigger) return rigger.error();
+  auto rigged = rigger->rig(face->model, *landmarks, modelPath.string());
+  if (!rigged) return rigged.error();
+  std::filesystem::create_directories(cached.path.parent_path(), ec);
+  if (ec)
+    return eng::makeError(eng::ErrorKind::Io, cached.path.parent_path().string() + ": cannot make the autorig cache (" +
+                          ec.message() + ")");
+  if (auto saved = saveModelAtomically(rigged->model, cached.path); !saved) return saved.error();
+  static_cast<TargetChanges&>(cached) = targetChanges(face->model, rigged->model);
+  cached.warnings = std::move(rigged->report.warnings);
+  return cached;
+}
+
+eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath,
+                                          const importers::LoadFaceOptions& options, importers::LoadedFace& face) {
+  auto cached = autorigCached(modelPath);
+  if (!cached) return cached.error();
+  auto rigged = importers::loadFace(cached->path, options);
+  if (!rigged) return rigged.error();
+  rigged->model.sourcePath = modelPath.string();
+  face = std::move(*rigged);
+  return cached;
+}
+
+}  // namespace app

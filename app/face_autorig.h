@@ -1,0 +1,126 @@
+#pragma once
+// Expression targets made for a face that has none (issue 33), as the
+// programs run it: the built-in head (data/head.glb) loaded once with its
+// posed face, landmarks and parts (the source, autorig/builtin_source.h), the face's landmarks found on
+// a front view (app/face_landmark_finder.h) or read from a file, its parts
+// told apart, the head's action units and the ARKit 52 carried over
+// (autorig/target_transfer.h).
+//
+//   auto face = importers::loadFace("face.glb", {.dressForDisplay = true});
+//   auto landmarks = app::faceLandmarks(*face);
+//   auto rigger = app::FaceAutorig::load();
+//   auto rigged = rigger->rig(face->model, *landmarks, "face.glb");  // rigged->model has the new targets
+//
+// Commands that pose emotions rig such faces on the fly (FaceSetup::load):
+// autorigCached() keeps the result under the user's cache, keyed by the
+// model's bytes, the head's bytes, the program's build and kAutorigVersion,
+// so only the first run pays for the render, the detection and the transfer
+// (3.5 s for rpm-visemes.glb on the 2-core CI machine; a cached run adds
+// reading both files, about 0.3 s of 2 s for `express` there).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "autorig/face_landmarks.h"
+#include "autorig/target_transfer.h"
+#include "engine/core/result.h"
+#include "engine/scene/model.h"
+#include "facial/runtime/rig/rig_calibration.h"
+#include "importers/load_face.h"
+
+namespace app {
+
+// Part of the cache key (with the program's size and time, so a rebuilt
+// program rigs anew): bump it when the rigged file's layout changes.
+inline constexpr std::string_view kAutorigVersion = "autorig-1";
+
+// Why a loaded face cannot show emotions, or "" when it can (or when it is not
+// autorig's to decide): no rig map names its targets (a rig map, given or in
+// <data>/rigmaps, is the user's word), it is a glTF face (VRM, CANDIDE-3 and
+// OBJ keyframe sets have rigs of their own), and either no scheme recognises
+// its targets (`rig` failed as Unsupported) or the rig it has cannot emote
+// (facial::showsEmotions: visemes only, blink only). E.g. "its 15 targets are
+// visemes (lip sync) only", "it has no morph targets".
+std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
+                          const std::filesystem::path& rigmapFile);
+
+// What to say of a face autorigReason() picked, before what autorig did or
+// why it could not: the rig's own error when it has no rig (it names the file
+// and suggests a rig map), else "<model>: cannot show emotions: <reason>".
+std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,
+                            const eng::Result<facial::RigCalibration>& rig);
+
+struct AutorigResult {
+  eng::Model model;                  // the face with the new targets
+  autorig::FaceLandmarks landmarks;  // where its landmarks were taken from (source)
+  autorig::TransferReport report;    // targets made, kept, left out
+  std::vector<std::string> partNotes;  // how its parts were told apart (autorig::FaceParts::notes)
+};
+
+// A face's landmarks: read from `landmarksFile` when given and checked to lie
+// on the face (errors name the file),
+// else found on a front view of its display model (errors name the file: "no
+// face found in a front view of cube.glb ..."). Called before
+// FaceAutorig::load, so a face without one fails before the head is prepared.
+eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face,
+                                                  const std::filesystem::path& landmarksFile = {});
+
+class FaceAutorig {
+ public:
+  // The source head: `head` (empty: app::defaultModelPath()), its parts and
+  // landmarks from its own layout (autorig::builtInSource). Errors name the file.
+  static eng::Result<FaceAutorig> load(const std::filesystem::path& head = {});
+
+  // `face` (LoadedFace::model without shapes: undressed, as saved) with the
+  // head's targets carried over, through `landmarks` (faceLandmarks). Errors
+  // start with `faceName`.
+  eng::Result<AutorigResult> rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
+                                 const std::string& faceName) const;
+
+  const std::filesystem::path& headPath() const { return headPath_; }
+
+ private:
+  FaceAutorig() = default;
+  std::filesystem::path headPath_;
+  std::unique_ptr<eng::Model> head_;  // SourceFace points at it: a stable address
+  autorig::SourceFace source_;
+};
+
+// Where rigged faces are kept: $XDG_CACHE_HOME/facial/autorig, else
+// $HOME/.cache/facial/autorig, else <temp>/facial-autorig.
+std::filesystem::path autorigCacheDirectory();
+
+// Target names, each once however many meshes carry it (sorted).
+struct TargetChanges {
+  std::vector<std::string> made;  // names the rigged face has that the face had not
+  std::vector<std::string> kept;  // the face's own names (all kept)
+};
+TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged);
+
+struct CachedAutorig : TargetChanges {
+  std::filesystem::path path;        // the rigged .glb in the cache
+  bool reused = false;               // found there, not made now
+  std::vector<std::string> warnings; // parts left out (when made now)
+};
+
+// Where a face's own landmarks file is looked for when it is rigged on the
+// fly: beside it, <stem>.landmarks.json (for faces the detector misses).
+std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath);
+
+// The rigged face of the glTF file `modelPath`: from the cache when it is
+// there, else made (FaceAutorig, through landmarksBeside() when that file
+// exists) and written there whole (.partial, renamed).
+eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath);
+
+// `face` (loaded from the glTF file `modelPath` with `options`) replaced by
+// its rigged copy (autorigCached) loaded with the same options; its model
+// keeps the user's file as sourcePath, so messages never name the cache.
+eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath,
+                                          const importers::LoadFaceOptions& options, importers::LoadedFace& face);
+
+// Writes `model` to `path` whole: a .partial file beside it, renamed into place.
+eng::Result<void> saveModelAtomically(const eng::Model& model, const std::filesystem::path& path);
+
+}  // namespace app

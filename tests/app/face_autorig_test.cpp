@@ -1,0 +1,200 @@
+// app/face_autorig: which faces are rigged on the fly (and which never are,
+// so the goldens of rigged faces stay), the refusal under --no-autorig, the
+// cache's place and the whole write; with ../shared, the Ready Player Me
+// visemes-only avatar rigged for real: the new action units carry the
+// emotions and its own visemes the speech.
+#include "app/face_autorig.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/face_setup.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
+#include "engine/scene/weights.h"
+#include "tests/common/test_face.h"
+#include "tests/common/test_meshes.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A face loaded as FaceSetup loads it, and the reason autorig would give.
+std::string reasonFor(const fs::path& path, const fs::path& rigmap = {}) {
+  auto face = importers::loadFace(path);
+  EXPECT_TRUE(face) << (face ? "" : face.error().message);
+  if (!face) return "(not loaded)";
+  return app::autorigReason(*face, app::buildFaceRig(*face, rigmap), rigmap);
+}
+
+fs::path testFaceNamed(const std::string& dir, const std::vector<std::string>& names) {
+  eng::Model model = cli_test::makeTestFace();
+  model.meshes[0].targetNames = names;
+  model.meshes[0].primitives[0].targets.resize(names.size(), model.meshes[0].primitives[0].targets[0]);
+  model.meshes[0].defaultWeights.assign(names.size(), 0.0f);
+  const fs::path path = testing_support::freshTempDir(dir) / "face.glb";
+  EXPECT_TRUE(eng::saveModel(model, path));
+  return path;
+}
+
+const std::vector<std::string> kVisemes = {"viseme_sil", "viseme_PP", "viseme_FF", "viseme_aa", "viseme_E",
+                                           "viseme_I",   "viseme_O",  "viseme_U"};
+
+TEST(AutorigReason, FacesWithAnExpressionRigAreNeverAutorigged) {
+  EXPECT_EQ(reasonFor(testing_support::sourceDir() / "data" / "head.glb"), "");
+  EXPECT_EQ(reasonFor(cli_test::writeTestFace("autorig_reason_au")), "");
+  // ARKit-named, with visemes as well (a full Ready Player Me export).
+  std::vector<std::string> arkit = {"browInnerUp", "browDown_L", "browDown_R", "mouthSmile_L", "mouthSmile_R",
+                                    "mouthFrown_L", "mouthFrown_R", "jawOpen", "eyeBlink_L", "eyeBlink_R",
+                                    "eyeWide_L", "eyeWide_R"};
+  arkit.insert(arkit.end(), kVisemes.begin(), kVisemes.end());
+  EXPECT_EQ(reasonFor(testFaceNamed("autorig_reason_arkit", arkit)), "");
+  // Whole-expression targets are a rig of emotions.
+  EXPECT_EQ(reasonFor(testFaceNamed("autorig_reason_expr", {"Happy", "Sad", "Angry", "Surprised"})), "");
+}
+
+TEST(AutorigReason, SharedFacesWithRigsAreNeverAutorigged) {
+  const fs::path shared = testing_support::sharedDir();
+  if (!fs::exists(shared / "assets" / "facecap.glb")) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
+  EXPECT_EQ(reasonFor(shared / "assets" / "facecap.glb"), "");
+  EXPECT_EQ(reasonFor(shared / "assets" / "RobotExpressive.glb"), "") << "emotion-named targets";
+  if (fs::exists(shared / "candide3" / "candide3.wfm")) EXPECT_EQ(reasonFor(shared / "candide3" / "candide3.wfm"), "");
+  for (const fs::path& file : testing_support::sharedModelFiles()) {
+    auto face = importers::loadFace(file);
+    if (!face || face->format != importers::FaceFormat::Vrm) continue;
+    EXPECT_EQ(app::autorigReason(*face, app::buildFaceRig(*face), {}), "") << file;
+  }
+}
+
+TEST(AutorigReason, FacesThatCannotEmoteSayWhy) {
+  const std::string visemes = reasonFor(testFaceNamed("autorig_reason_visemes", kVisemes));
+  EXPECT_NE(visemes.find("visemes only"), std::string::npos) << visemes;
+  const std::string smile = reasonFor(testFaceNamed("autorig_reason_smile", {"mouthOpen", "mouthSmile"}));
+  EXPECT_NE(smile.find("no scheme recognises its 2 target names (mouthOpen, mouthSmile)"), std::string::npos) << smile;
+  const std::string blink = reasonFor(testFaceNamed("autorig_reason_blink", {"blink", "neutral"}));
+  EXPECT_NE(blink.find("moves neither brows nor lip corners"), std::string::npos) << blink;
+
+  eng::Model bare = testing_support::makeSphereModel(testing_support::whiteSphereSpec(0));
+  const fs::path barePath = testing_support::freshTempDir("autorig_reason_bare") / "bare.glb";
+  ASSERT_TRUE(eng::saveModel(bare, barePath));
+  EXPECT_EQ(reasonFor(barePath), "it has no morph targets");
+}
+
+TEST(AutorigReason, ARigMapIsTheUsersWord) {
+  const fs::path face = testFaceNamed("autorig_reason_rigmap", {"mouthOpen", "mouthSmile"});
+  const fs::path rigmap = face.parent_path() / "map.json";
+  testing_support::writeFile(rigmap, R"({"version": 1, "map": {"happy": [{"target": "mouthSmile", "weight": 1.0}]}})");
+  auto loaded = importers::loadFace(face);
+  ASSERT_TRUE(loaded);
+  auto rig = app::buildFaceRig(*loaded, rigmap);
+  EXPECT_EQ(app::autorigReason(*loaded, rig, rigmap), "") << (rig ? "" : rig.error().message);
+}
+
+TEST(FaceSetupAutorig, NoAutorigRefusesAFaceThatCannotEmoteInOneLine) {
+  const fs::path face = testFaceNamed("autorig_refused", kVisemes);
+  auto setup = app::FaceSetup::load({.model = face, .autorig = false});
+  ASSERT_FALSE(setup);
+  const std::string& message = setup.error().message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.rfind(face.string() + ": cannot show emotions: its targets are lip-sync visemes only", 0), 0u)
+      << message;
+  EXPECT_NE(message.find("--no-autorig"), std::string::npos) << message;
+
+  // Without a scheme the rig's own error comes first (it suggests a rig map).
+  auto unknown = app::FaceSetup::load({.model = testFaceNamed("autorig_refused_unknown", {"foo", "bar"}), .autorig = false});
+  ASSERT_FALSE(unknown);
+  EXPECT_NE(unknown.error().message.find("rig mapping: no scheme recognises the 2"), std::string::npos)
+      << unknown.error().message;
+}
+
+TEST(AutorigCache, LivesUnderTheUsersCacheFolder) {
+  const char* saved = std::getenv("XDG_CACHE_HOME");
+  const std::string restore = saved ? saved : "";
+  setenv("XDG_CACHE_HOME", "/tmp/some-cache", 1);
+  EXPECT_EQ(app::autorigCacheDirectory(), fs::path("/tmp/some-cache/facial/autorig"));
+  unsetenv("XDG_CACHE_HOME");
+  if (const char* home = std::getenv("HOME"); home && *home)
+    EXPECT_EQ(app::autorigCacheDirectory(), fs::path(home) / ".cache" / "facial" / "autorig");
+  if (saved) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
+}
+
+TEST(SaveModelAtomically, WritesWholeOrNothing) {
+  const fs::path dir = testing_support::freshTempDir("autorig_atomic");
+  const eng::Model model = cli_test::makeTestFace();
+  ASSERT_TRUE(app::saveModelAtomically(model, dir / "face.glb"));
+  EXPECT_TRUE(eng::loadModel(dir / "face.glb"));
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 1u) << "no .partial left beside it";
+
+  auto failed = app::saveModelAtomically(model, dir / "missing" / "face.glb");
+  ASSERT_FALSE(failed);
+  EXPECT_NE(failed.error().message.find("missing"), std::string::npos) << failed.error().message;
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
+// The largest weight `happy` gives a target whose name starts with `prefix`.
+float happyWeightOf(app::FaceSetup& face, const std::string& prefix) {
+  const std::vector<std::string> names = face.layout().names();
+  std::vector<float> weights(face.weightCount());
+  auto happy = face.findExpression("happy");
+  EXPECT_TRUE(happy && face.expressionWeights(**happy, 1.0f, weights));
+  float most = 0.0f;
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i].rfind(prefix, 0) == 0) most = std::max(most, weights[i]);
+  return most;
+}
+
+// The visemes-only avatar, rigged for real: new action units and ARKit
+// shapes made, its 15 visemes kept; the rig takes the units for emotions and
+// the visemes for speech, and happy moves the lip corners.
+TEST(FaceSetupAutorig, VisemesOnlyAvatarEmotesWithNewUnitsAndSpeaksWithItsVisemes) {
+  const fs::path avatar = testing_support::sharedDir() / "speech" / "rpm-visemes.glb";
+  if (!fs::exists(avatar)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
+  const fs::path cache = testing_support::freshTempDir("autorig_rpm_cache");
+  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+  auto face = app::FaceSetup::load({.model = avatar, .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("cannot show emotions"), std::string::npos) << face->autorigNote();
+  EXPECT_NE(face->autorigNote().find(cache.string()), std::string::npos) << face->autorigNote();
+  EXPECT_EQ(face->model().sourcePath, avatar.string()) << "messages name the user's file, not the cache";
+  EXPECT_EQ(face->rig().scheme(), facial::RigScheme::ActionUnits) << face->rig().report().summary();
+  EXPECT_NE(face->rig().report().speech.find("Oculus viseme"), std::string::npos) << face->rig().report().speech;
+
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f) << "happy pulls the made lip corners";
+  EXPECT_EQ(happyWeightOf(*face, "viseme_"), 0.0f) << "visemes no longer stand in for emotions";
+}
+
+// A face with no targets at all (facecap stripped of its 52): rigged on the
+// fly, and the seven states reach it through the made units.
+TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
+  const fs::path facecap = testing_support::sharedDir() / "assets" / "facecap.glb";
+  if (!fs::exists(facecap)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
+  auto model = eng::loadModel(facecap);
+  ASSERT_TRUE(model) << model.error().message;
+  for (eng::Mesh& mesh : model->meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
+  }
+  model->animations.clear();
+  const fs::path dir = testing_support::freshTempDir("autorig_bare_facecap");
+  ASSERT_TRUE(eng::saveModel(*model, dir / "bare.glb"));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "bare.glb", .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
+  EXPECT_EQ(face->rig().scheme(), facial::RigScheme::ActionUnits);
+  EXPECT_TRUE(facial::showsEmotions(face->rig()));
+  EXPECT_TRUE(face->rig().speaks()) << "the made jaw and lip units speak";
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+}
+
+}  // namespace
