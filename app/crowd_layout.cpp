@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "facial/runtime/graph/graph_instance.h"
 
 namespace app {
 
@@ -24,6 +27,13 @@ eng::Aabb crowdBounds(std::span<const glm::vec3> offsets, const eng::Aabb& box) 
   if (!box.valid()) return all;
   for (const glm::vec3& offset : offsets) all.extend(eng::Aabb{box.min + offset, box.max + offset});
   return all;
+}
+
+eng::Result<void> checkCrowdBudget(uint32_t count, const facial::GraphDefinition& graph, size_t maxBytes) {
+  const size_t each = facial::GraphInstance::bytesFor(graph);
+  eng::LoadBudget budget(maxBytes);
+  return budget.charge(count, each,
+                       "a crowd of " + std::to_string(count) + " characters (" + std::to_string(each) + " bytes of graph state each)");
 }
 
 }  // namespace app

@@ -19,7 +19,10 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/core/load_budget.h"
+#include "engine/core/result.h"
 #include "engine/scene/model.h"
+#include "facial/runtime/graph/graph_definition.h"
 
 namespace app {
 
@@ -29,5 +32,12 @@ std::vector<glm::vec3> crowdOffsets(uint32_t count, const eng::Aabb& box);
 
 // The box around `box` moved by every offset (what a camera frames to show the crowd).
 eng::Aabb crowdBounds(std::span<const glm::vec3> offsets, const eng::Aabb& box);
+
+// Each member runs its own GraphInstance: `count` of them are charged to a
+// budget of `maxBytes` before any is made (a graph of a few megabytes can
+// hold megabytes per character). The error names the count, the bytes each
+// and the limit; the caller puts the graph file in front.
+eng::Result<void> checkCrowdBudget(uint32_t count, const facial::GraphDefinition& graph,
+                                   size_t maxBytes = eng::kDefaultLoadBudgetBytes);
 
 }  // namespace app

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/scene/skeleton_pose.h"
 #include "facial/runtime/rig/action_unit_rig.h"
 #include "facial/runtime/rig/action_units.h"
 
@@ -50,10 +51,11 @@ std::vector<float> targetReach(const eng::Model& model) {
   const eng::Aabb face = eng::morphedRegionBounds(model);
   const float faceSize = face.valid() ? face.size().y : 0.0f;
   if (!(faceSize > 0.0f)) return reach;
+  const std::vector<glm::mat4> world = eng::restWorldMatrices(model);
   for (size_t i = 0; i < model.nodes.size(); ++i) {
     const int m = model.nodes[i].mesh;
     if (m < 0 || size_t(m) >= model.meshes.size()) continue;
-    const glm::mat3 linear(model.worldTransform(int(i)));
+    const glm::mat3 linear(world[i]);
     const eng::Mesh& mesh = model.meshes[size_t(m)];
     for (const eng::Primitive& prim : mesh.primitives) {
       for (size_t t = 0; t < prim.targets.size() && t < layout.count(m); ++t) {

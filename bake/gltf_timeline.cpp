@@ -149,19 +149,39 @@ struct ExportKeys {
 // All-step or all-linear timelines keep their own keys and mode; any other
 // mix becomes cubic spline, with extra keys inside cosine segments (at
 // sampleRate) and a short ramp before each step, which a spline cannot jump.
-ExportKeys exportKeys(const facial::Timeline& timeline, const GltfTimelineExport& options) {
+eng::Result<ExportKeys> exportKeys(const facial::Timeline& timeline, size_t targets, const GltfTimelineExport& options) {
   bool allStep = true, allLinear = true;
-  std::vector<float> times;
+  size_t count = 2;  // the keys at 0 and at the duration
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
     const std::span<const facial::Keyframe> keys = timeline.trackKeys(i);
-    for (size_t k = 0; k < keys.size(); ++k) {
-      times.push_back(keys[k].time);
-      if (k + 1 == keys.size()) break;  // the last key's mode shapes no segment
+    count += keys.size();
+    for (size_t k = 0; k + 1 < keys.size(); ++k) {  // the last key's mode shapes no segment
       allStep = allStep && keys[k].interpolation == facial::KeyInterpolation::Step;
       allLinear = allLinear && keys[k].interpolation == facial::KeyInterpolation::Linear;
     }
   }
   const bool cubic = !allStep && !allLinear;
+  // A cosine segment of hours at sampleRate is millions of keys from a few
+  // bytes of timeline: counted (in double, no overflow) and charged, with the
+  // weights of every target at each, before any is made.
+  if (cubic)
+    for (size_t i = 0; i < timeline.tracks.size(); ++i) {
+      const std::span<const facial::Keyframe> keys = timeline.trackKeys(i);
+      for (size_t k = 0; k + 1 < keys.size(); ++k)
+        if (keys[k].interpolation == facial::KeyInterpolation::Cosine)
+          count += static_cast<size_t>(std::min(1e15, std::ceil(double(keys[k + 1].time - keys[k].time) * options.sampleRate)));
+        else if (keys[k].interpolation == facial::KeyInterpolation::Step)
+          ++count;
+    }
+  eng::LoadBudget budget(options.maxBytes);
+  if (auto ok = budget.charge(count, sizeof(float) * (1 + targets * (cubic ? 3 : 1)),
+                              std::to_string(count) + " glTF keys of " + std::to_string(targets) + " targets");
+      !ok)
+    return ok.error().prefixed("timeline '" + timeline.name + "': ");
+  std::vector<float> times;
+  times.reserve(count);
+  for (size_t i = 0; i < timeline.tracks.size(); ++i)
+    for (const facial::Keyframe& key : timeline.trackKeys(i)) times.push_back(key.time);
   if (cubic) {
     for (size_t i = 0; i < timeline.tracks.size(); ++i) {
       const std::span<const facial::Keyframe> keys = timeline.trackKeys(i);
@@ -231,13 +251,14 @@ eng::Result<void> exportGltfTimeline(eng::Model& model, const facial::Timeline& 
   eng::Result<std::vector<int>> trackOfTarget = trackOfEachTarget(mesh, timeline, node);
   if (!trackOfTarget) return trackOfTarget.error();
 
-  ExportKeys keys = exportKeys(timeline, options);
+  eng::Result<ExportKeys> keys = exportKeys(timeline, mesh.targetNames.size(), options);
+  if (!keys) return keys.error();
   eng::WeightsChannel channel;
   channel.node = node;
   channel.mesh = meshIndex;
   channel.targetCount = mesh.targetNames.size();
-  channel.interpolation = keys.interpolation;
-  channel.times = std::move(keys.times);
+  channel.interpolation = keys->interpolation;
+  channel.times = std::move(keys->times);
   sampleWeights(channel, mesh, timeline, *trackOfTarget);
   model.animations.push_back(eng::Animation{timeline.name, {std::move(channel)}});
   return {};

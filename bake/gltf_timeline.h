@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 #include "facial/runtime/graph/timeline.h"
@@ -47,6 +48,9 @@ struct GltfTimelineExport {
   int node = -1;            // node whose mesh's weights are animated; -1: the first node with a mesh
   float sampleRate = 30.0f; // keys per second inside Cosine segments (CUBICSPLINE export)
   float stepRamp = 1e-3f;   // seconds a Step takes inside a CUBICSPLINE export
+  // The keys' times and values are charged to this budget before they are
+  // made (a long cosine segment at sampleRate is millions of keys).
+  size_t maxBytes = eng::kDefaultLoadBudgetBytes;
 };
 
 // Appends `timeline` to model.animations as an animation named like it.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/scene/cpu_morph.h"
+#include "engine/scene/skeleton_pose.h"
 #include "engine/scene/weights.h"
 
 namespace editor {
@@ -13,11 +14,12 @@ namespace editor {
 eng::Result<ModelSurface> ModelSurface::create(const eng::Model& model) {
   ModelSurface surface;
   std::vector<bool> placed(model.meshes.size(), false);
+  const std::vector<glm::mat4> worlds = eng::restWorldMatrices(model);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const int mesh = model.nodes[n].mesh;
     if (mesh < 0 || size_t(mesh) >= model.meshes.size() || placed[size_t(mesh)]) continue;
     placed[size_t(mesh)] = true;
-    const glm::mat4 world = model.worldTransform(int(n));
+    const glm::mat4& world = worlds[n];
     const glm::mat3 linear(world);
     if (std::abs(glm::determinant(linear)) < 1e-20f) continue;  // collapsed node: nothing to pick
     for (size_t p = 0; p < model.meshes[size_t(mesh)].primitives.size(); ++p) {

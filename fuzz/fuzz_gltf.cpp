@@ -4,10 +4,16 @@
 // embedded images), then what the runtime does with a loaded model: the
 // structural check the writer relies on, skeletal poses of every animation,
 // posed bounds with every target at full weight, the head joint, the weights
-// animations as timelines and rig detection over the target names.
+// animations as timelines and rig detection over the target names, and what
+// the upload computes per primitive (crease darkening, parts inside the head).
+// JSON inputs also grow under fuzz/json_growth.h's mutator (more nodes,
+// targets, deeper hierarchies): with -timeout, a loader or pass whose work
+// grows with the square of a count is a finding.
 #include <cmath>
 
+#include "engine/scene/crease_shading.h"
 #include "engine/scene/gltf_loader.h"
+#include "engine/scene/inner_face_parts.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/skeleton_pose.h"
@@ -15,6 +21,7 @@
 #include "bake/gltf_timeline.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "fuzz/fuzz_support.h"
+#include "fuzz/json_growth.h"
 
 namespace {
 
@@ -38,6 +45,12 @@ void exercise(const eng::Model& model) {
   std::vector<float> full(layout.total(), 1.0f);
   (void)eng::posedBounds(model, pose, full);
   (void)eng::findHeadJoint(model);
+  (void)eng::posedMorphedBounds(model, pose);
+  (void)eng::restWorldMatrices(model);
+  (void)eng::sceneMeshNodeIndices(model);
+  (void)eng::partsInsideTheHead(model);
+  for (const eng::Mesh& mesh : model.meshes)
+    for (const eng::Primitive& prim : mesh.primitives) (void)eng::bakeCreaseDarkening(prim);
   (void)bake::importGltfTimelines(model);
   (void)facial::buildRigMapping(layout.names());
 }
@@ -51,3 +64,5 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (model) exercise(*model);
   return 0;
 }
+
+FUZZ_GROW_JSON_MUTATOR

@@ -11,6 +11,7 @@
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/rig/expression_library.h"
 #include "fuzz/fuzz_support.h"
+#include "fuzz/json_growth.h"
 
 namespace {
 
@@ -58,3 +59,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   return 0;
 }
+
+// Larger graphs and timelines than byte mutations make (fuzz/json_growth.h).
+FUZZ_GROW_JSON_MUTATOR

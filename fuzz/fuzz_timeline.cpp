@@ -7,6 +7,7 @@
 
 #include "facial/runtime/graph/timeline_json.h"
 #include "fuzz/fuzz_support.h"
+#include "fuzz/json_growth.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto path = fuzz::writeInput("timeline.json", data, size);
@@ -26,3 +27,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   return 0;
 }
+
+// Larger graphs and timelines than byte mutations make (fuzz/json_growth.h).
+FUZZ_GROW_JSON_MUTATOR

@@ -77,6 +77,43 @@ def graph_with_inline_timelines(path):
     return json.dumps(doc).encode()
 
 
+def grown(name):
+    """Seeds of the shapes that once cost far more than their size (issue 37),
+    generated so the fuzzers start from them: (file name, bytes) pairs, the
+    glTF ones under run.sh's max_len for gltf (32 KiB)."""
+    seeds = []
+    if name == 'gltf':
+        base = json.loads((ROOT / 'fuzz' / 'seeds' / 'gltf' / 'skinned_sparse_morph.gltf').read_text())
+        chain = json.loads(json.dumps(base))  # a deep hierarchy, every node drawing the mesh
+        chain.pop('skins')
+        chain.pop('animations')
+        count = 600
+        chain['nodes'] = [dict({'mesh': 0}, **({'children': [i + 1]} if i + 1 < count else {})) for i in range(count)]
+        chain['scenes'] = [{'nodes': [0]}]
+        seeds.append(('grown_node_chain.gltf', chain))
+        empty = json.loads(json.dumps(base))  # many targets that hold nothing
+        mesh = empty['meshes'][0]
+        mesh['primitives'][0]['targets'] += [{}] * 2500
+        mesh['weights'] += [0] * 2500
+        mesh.pop('extras')
+        seeds.append(('grown_empty_targets.gltf', empty))
+    if name == 'graph':
+        n = 400
+        states = [{'name': 's%d' % i, 'node': {'type': 'timeline', 'name': 'n%d' % i, 'timeline': 't%d' % i},
+                   'transitions': [{'to': 's%d' % ((i + 1) % n), 'duration': 0.5,
+                                    'conditions': [{'parameter': 'p%d' % i, 'op': '>', 'value': 0.5}]}]}
+                  for i in range(n)]
+        seeds.append(('grown_names.json', {
+            'version': 1, 'channels': 'actionUnits',
+            'parameters': [{'name': 'p%d' % i, 'type': 'float'} for i in range(n)],
+            'timelines': {'t%d' % i: {'tracks': [{'channel': 'AU1_InnerBrowRaiser', 'keys': [[0, 0], [1, 1]]}]} for i in range(n)},
+            'root': {'type': 'stateMachine', 'name': 'machine', 'states': states}}))
+    if name in ('timeline', 'editor_timeline'):
+        seeds.append(('grown_tracks.json', {
+            'version': 1, 'tracks': [{'channel': 'c%d' % i, 'keys': [[0, 0], [1, 1]]} for i in range(3000)]}))
+    return [(file, json.dumps(doc, separators=(',', ':')).encode()) for file, doc in seeds]
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -104,6 +141,9 @@ def main():
                 print('make_corpus: %s: %s left out (%d bytes, over %d)' % (name, seed, len(content), MAX_SEED))
                 continue
             (folder / ('%02d_%s' % (kept, seed.name))).write_bytes(content)
+            kept += 1
+        for file, content in grown(name):
+            (folder / ('%02d_%s' % (kept, file))).write_bytes(content)
             kept += 1
         print('make_corpus: %s: %d seeds' % (name, kept))
 

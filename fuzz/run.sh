@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, -fsanitize=fuzzer,address,undefined) and
 # runs each for a bounded time on its seed corpus. Any crash, sanitizer report,
-# leak, timeout (one input over FUZZ_TIMEOUT s) or out-of-memory (over
-# FUZZ_RSS_MB) fails: the script exits 1 and names the input libFuzzer saved.
+# leak, timeout (one input over FUZZ_TIMEOUT s), out-of-memory (over
+# FUZZ_RSS_MB in all) or one allocation over FUZZ_MALLOC_MB fails: the script
+# exits 1 and names the input libFuzzer saved. So an input that makes a
+# loader work or allocate far beyond its size is a finding, like a crash.
 #
 #   fuzz/run.sh SECONDS [FUZZER...]     SECONDS per fuzzer (default 20), all fuzzers when none named
 #
 # Environment: FUZZ_BUILD_DIR (default build-sanitize: the same build serves the
 # sanitizer test suite), FUZZ_JOBS (fuzzers run at once, default nproc),
-# FUZZ_TIMEOUT (default 10 s), FUZZ_RSS_MB (default 2048).
+# FUZZ_TIMEOUT (default 10 s), FUZZ_RSS_MB (default 2048), FUZZ_MALLOC_MB
+# (default 1024: above any default load budget).
 # Corpora: seeds are assembled at run time by fuzz/make_corpus.py from
 # fuzz/seeds/, data/ and ../shared into $FUZZ_BUILD_DIR/fuzz-seeds/; what the
 # fuzzers find grows $FUZZ_BUILD_DIR/fuzz-corpus/ (kept between local runs);
@@ -22,7 +25,8 @@ seconds="${1:-20}"
 [ $# -gt 0 ] && shift
 build="${FUZZ_BUILD_DIR:-build-sanitize}"
 jobs="${FUZZ_JOBS:-$(nproc)}"
-export FUZZ_TIMEOUT="${FUZZ_TIMEOUT:-10}" FUZZ_RSS_MB="${FUZZ_RSS_MB:-2048}" FUZZ_SECONDS="$seconds" FUZZ_BUILD="$build"
+export FUZZ_TIMEOUT="${FUZZ_TIMEOUT:-10}" FUZZ_RSS_MB="${FUZZ_RSS_MB:-2048}" FUZZ_MALLOC_MB="${FUZZ_MALLOC_MB:-1024}"
+export FUZZ_SECONDS="$seconds" FUZZ_BUILD="$build"
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -52,7 +56,7 @@ run_one() {
   local status=0
   ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1" UBSAN_OPTIONS="print_stacktrace=1" \
     "$FUZZ_BUILD/fuzz/fuzz_$name" -max_total_time="$FUZZ_SECONDS" -timeout="$FUZZ_TIMEOUT" \
-      -rss_limit_mb="$FUZZ_RSS_MB" -dict="fuzz/$dict" -print_final_stats=1 "${maxlen[@]}" \
+      -rss_limit_mb="$FUZZ_RSS_MB" -malloc_limit_mb="$FUZZ_MALLOC_MB" -dict="fuzz/$dict" -print_final_stats=1 "${maxlen[@]}" \
       -artifact_prefix="$FUZZ_BUILD/fuzz-artifacts/${name}-" \
       "$corpus" "$FUZZ_BUILD/fuzz-seeds/$name" >"$log" 2>&1 || status=$?
   local runs cov
@@ -60,7 +64,7 @@ run_one() {
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | sed 's/cov: //')
   if [ "$status" -ne 0 ]; then
     echo "fuzz: $name FAILED (exit $status); log $log"
-    grep -E "ERROR: |SUMMARY: |property does not hold|Test unit written to" "$log" | head -8 | sed 's/^/  /'
+    grep -E "ERROR: |SUMMARY: |property does not hold|malloc\(|Test unit written to" "$log" | head -8 | sed 's/^/  /'
     return 1
   fi
   echo "fuzz: $name ok: ${runs:-?} inputs in ${FUZZ_SECONDS}s, ${cov:-?} coverage points, corpus $(ls "$corpus" | wc -l) files"

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -49,7 +50,8 @@ bool parseIndex(std::string_view token, size_t& value) {
 // Non-blank lines with their 1-based numbers, for "<source>:<line>:" messages.
 class LineReader {
  public:
-  LineReader(std::string_view text, std::string_view source) : text_(text), source_(source) {}
+  LineReader(std::string_view text, std::string_view source, eng::LoadBudget& budget)
+      : text_(text), source_(source), budget_(budget) {}
 
   // Next non-blank line, trimmed; false at the end of the text.
   bool next(std::string_view& line) {
@@ -77,10 +79,17 @@ class LineReader {
   eng::Error endError(const std::string& what) const {
     return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": file ends before " + what);
   }
+  // Charges what the line's numbers make to the load's budget.
+  eng::Result<void> charge(size_t count, size_t bytesEach, const std::string& what) {
+    auto ok = budget_.charge(count, bytesEach, what);
+    if (!ok) return ok.error().prefixed(std::string(source_) + ":" + std::to_string(lineNumber_) + ": ");
+    return {};
+  }
 
  private:
   std::string_view text_;
   std::string_view source_;
+  eng::LoadBudget& budget_;
   size_t pos_ = 0;
   size_t lineNumber_ = 0;
 };
@@ -120,6 +129,8 @@ eng::Result<size_t> readCount(LineReader& in, const std::string& what) {
 eng::Result<std::vector<glm::vec3>> readVertices(LineReader& in) {
   auto count = readCount(in, "vertex count");
   if (!count) return count.error();
+  // Positions and the normals made for them.
+  if (auto ok = in.charge(*count, 2 * sizeof(glm::vec3), std::to_string(*count) + " vertices"); !ok) return ok.error();
   std::vector<glm::vec3> positions(*count);
   for (size_t i = 0; i < *count; ++i) {
     std::string_view line;
@@ -136,6 +147,7 @@ eng::Result<std::vector<glm::vec3>> readVertices(LineReader& in) {
 eng::Result<std::vector<uint32_t>> readFaces(LineReader& in, size_t vertexCount) {
   auto count = readCount(in, "triangle count");
   if (!count) return count.error();
+  if (auto ok = in.charge(*count, 3 * sizeof(uint32_t), std::to_string(*count) + " triangles"); !ok) return ok.error();
   std::vector<uint32_t> indices;
   indices.reserve(*count * 3);
   for (size_t f = 0; f < *count; ++f) {
@@ -173,6 +185,12 @@ eng::Result<std::vector<Unit>> readUnits(LineReader& in, size_t vertexCount, con
       return in.error("expected the name line '# <name>' of " + which + ", got '" + std::string(line) + "'");
     Unit& unit = units[u];
     unit.name = std::string(trim(line.substr(1)));
+    // A unit is a delta for every vertex, and becomes a target of position
+    // and normal deltas: a few bytes of file each, whatever the vertex count.
+    if (auto ok = in.charge(vertexCount, 3 * sizeof(glm::vec3), which + " ('" + unit.name.substr(0, 40) + "', " +
+                                                                  std::to_string(vertexCount) + " vertices)");
+        !ok)
+      return ok.error();
     unit.deltas.assign(vertexCount, glm::vec3(0.0f));
     auto entries = readCount(in, "entry count of " + kind + " '" + unit.name + "'");
     if (!entries) return entries.error();
@@ -358,7 +376,8 @@ void addUnitTargets(eng::Mesh& mesh, eng::Primitive& primitive, const CandideSec
 // so a mask reshaped by --shape keeps its eyes filling their openings.
 // Their material's name marks them as eyeballs for the dressing
 // (importers/procedural_eyes.h).
-void addEyeballs(eng::Model& model, const std::vector<MaskEyeOpening>& eyes, const CandideSections& sections) {
+eng::Result<void> addEyeballs(eng::Model& model, const std::vector<MaskEyeOpening>& eyes, const CandideSections& sections,
+                              std::string_view source, eng::LoadBudget& budget) {
   eng::Mesh& face = model.meshes[0];
   if (!eyes.empty()) {
     eng::Material eyeMaterial;
@@ -368,6 +387,11 @@ void addEyeballs(eng::Model& model, const std::vector<MaskEyeOpening>& eyes, con
   for (const MaskEyeOpening& eye : eyes) {
     eng::Primitive ball = eyeballBehind(face.primitives[0].positions, eye);
     ball.material = int(model.materials.size()) - 1;
+    const size_t targets = sections.animationUnits.size() + sections.shapeUnits.size();
+    if (auto ok = budget.charge(targets, ball.positions.size() * 2 * sizeof(glm::vec3),
+                                "the eyeball's " + std::to_string(targets) + " morph targets");
+        !ok)
+      return ok.error().prefixed(std::string(source) + ": ");
     eng::MorphTarget still;
     still.positions.assign(ball.positions.size(), glm::vec3(0.0f));
     still.normals = still.positions;
@@ -376,15 +400,14 @@ void addEyeballs(eng::Model& model, const std::vector<MaskEyeOpening>& eyes, con
       ball.targets.push_back(eyeballFollowing(face.primitives[0].positions, eye, ball, unit.deltas));
     face.primitives.push_back(std::move(ball));
   }
+  return {};
 }
 
-}  // namespace
-
-eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
+eng::Result<eng::Model> parseCandide3Charged(std::string_view text, std::string_view source, eng::LoadBudget& budget) {
   if (text.size() > kMaxFileBytes)
     return eng::makeError(eng::ErrorKind::TooLarge, std::string(source) + ": file of " + std::to_string(text.size()) +
                           " bytes exceeds the limit of " + std::to_string(kMaxFileBytes) + " bytes");
-  LineReader in(text, source);
+  LineReader in(text, source, budget);
   auto sections = readRequiredSections(in);
   if (!sections) return sections.error();
   auto optional = readOptionalSections(in, *sections);
@@ -413,8 +436,24 @@ eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view so
   node.mesh = 0;
   model.nodes.push_back(node);
   model.roots.push_back(0);
-  addEyeballs(model, eyes, *sections);
+  if (auto ok = addEyeballs(model, eyes, *sections, source, budget); !ok) return ok.error();
   return model;
+}
+
+}  // namespace
+
+eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source) {
+  eng::LoadBudget budget;
+  return parseCandide3(text, source, budget);
+}
+
+eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source, eng::LoadBudget& budget) {
+  // The budget should make this unreachable; if memory still runs out, the file is named.
+  try {
+    return parseCandide3Charged(text, source, budget);
+  } catch (const std::bad_alloc&) {
+    return eng::makeError(eng::ErrorKind::TooLarge, std::string(source) + ": out of memory while loading");
+  }
 }
 
 eng::Result<eng::Model> importCandide3(const std::filesystem::path& wfmFile) {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 
@@ -20,5 +21,9 @@ namespace importers {
 eng::Result<eng::Model> importCandide3(const std::filesystem::path& wfmFile);
 // `source` names the text in messages ("<source>:<line>: <problem>").
 eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source);
+// The same, charging what the file's counts make (vertices, triangles, every
+// unit as a dense delta per vertex, the targets it becomes) to `budget`: a
+// caller that subdivides after passes the same budget on.
+eng::Result<eng::Model> parseCandide3(std::string_view text, std::string_view source, eng::LoadBudget& budget);
 
 }  // namespace importers

@@ -96,13 +96,14 @@ eng::Result<LoadedFace> loadGltfOrVrm(std::span<const uint8_t> bytes, const std:
 }
 
 eng::Result<LoadedFace> loadCandide3(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
-  auto model = parseCandide3(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path.string());
+  eng::LoadBudget budget;  // one for the parse and both subdivision steps
+  auto model = parseCandide3(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path.string(), budget);
   if (!model) return model.error();
   // 113 vertices shade and outline as facets: two Loop steps make the mask
   // (the first primitive; the others are its eyeballs) a smooth surface.
   eng::Mesh& mesh = model->meshes.front();
   for (int step = 0; step < 2; ++step)
-    if (auto smooth = loopSubdivide(mesh.primitives.front(), path.string() + ": " + mesh.name); !smooth) return smooth.error();
+    if (auto smooth = loopSubdivide(mesh.primitives.front(), path.string() + ": " + mesh.name, budget); !smooth) return smooth.error();
   return LoadedFace{std::move(*model), FaceFormat::Candide3, nullptr, std::nullopt};
 }
 

@@ -174,9 +174,24 @@ void subdivideTargets(std::vector<eng::MorphTarget>& targets, const Operator& op
 }  // namespace
 
 eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what) {
+  eng::LoadBudget budget;
+  return loopSubdivide(prim, what, budget);
+}
+
+eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what, eng::LoadBudget& budget) {
   if (auto checked = checkTriangleList(prim, what); !checked) return checked.error();
   const uint32_t n = static_cast<uint32_t>(prim.positions.size());
   EdgeTable edges = collectEdges(prim.indices);
+  // A vertex per edge: the base (position, normal, uv) and each target's
+  // position and normal deltas grow by that, the triangles fourfold.
+  const size_t grown = edges.order.size();
+  const size_t perVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2) + prim.targets.size() * 2 * sizeof(glm::vec3);
+  if (auto ok = budget.charge(grown, perVertex, "subdividing (" + std::to_string(n) + " + " + std::to_string(grown) +
+                                                    " vertices, " + std::to_string(prim.targets.size()) + " targets)");
+      !ok)
+    return ok.error().prefixed(std::string(what) + ": ");
+  if (auto ok = budget.charge(prim.indices.size() * 3, sizeof(uint32_t), "subdividing the triangles"); !ok)
+    return ok.error().prefixed(std::string(what) + ": ");
   Operator op;
   addOldVertexRows(op, n, edges);
   const uint32_t vertexCount = addEdgeVertexRows(op, n, edges);

@@ -13,6 +13,7 @@
 // stay put. Texture coordinates are interpolated linearly (midpoints).
 // Normals and morph normal deltas are recomputed smooth afterwards; tangents
 // are dropped.
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
 
@@ -20,5 +21,8 @@ namespace importers {
 
 // Errors: indices not a triangle list or out of range (names the primitive as `what`).
 eng::Result<void> loopSubdivide(eng::Primitive& primitive, std::string_view what);
+// The same, charging the vertices, triangles and target deltas it adds to the
+// load's `budget` before making them (each step multiplies them by about four).
+eng::Result<void> loopSubdivide(eng::Primitive& primitive, std::string_view what, eng::LoadBudget& budget);
 
 }  // namespace importers

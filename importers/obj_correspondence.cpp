@@ -4,6 +4,7 @@
 #include <deque>
 #include <unordered_map>
 
+#include "engine/core/work_counter.h"
 #include "engine/scene/position_hash.h"
 
 namespace importers {
@@ -12,6 +13,10 @@ namespace importers {
 using namespace eng;
 
 namespace {
+
+// Candidates looked at per vertex when matching by position: seams and
+// stacked duplicates have a handful, a hostile pile thousands.
+constexpr size_t kMaxCandidates = 64;
 
 std::string faceVertices(const ObjPolygonMesh& mesh, size_t f) {
   std::string s = "v[";
@@ -57,15 +62,16 @@ ObjCornerMap matchObjByPosition(const ObjPolygonMesh& neutral, const ObjPolygonM
   map.targetVertex.assign(nv, -1);
   std::vector<bool> claimed(target.positions.size(), false);
 
-  // 1. Vertices that did not move: nearest unclaimed target vertex within tolerance.
+  // 1. Vertices that did not move: nearest unclaimed target vertex within
+  //    tolerance, among a bounded number of candidates (a pile of coincident
+  //    points is left to step 2 past it, not searched whole per vertex).
   const PositionHash hash(target.positions, tolerance);
-  for (size_t v = 0; v < nv; ++v)
-    for (uint32_t t : hash.near(neutral.positions[v], tolerance))
-      if (!claimed[t]) {
-        claimed[t] = true;
-        map.targetVertex[v] = static_cast<int32_t>(t);
-        break;
-      }
+  for (size_t v = 0; v < nv; ++v) {
+    const int64_t t = hash.nearestFree(neutral.positions[v], tolerance, claimed, kMaxCandidates);
+    if (t < 0) continue;
+    claimed[size_t(t)] = true;
+    map.targetVertex[v] = static_cast<int32_t>(t);
+  }
 
   // 2. Spread across edges: a neutral face with one edge whose ends are both
   //    matched maps onto the target face owning that directed edge.
@@ -97,6 +103,7 @@ ObjCornerMap matchObjByPosition(const ObjPolygonMesh& neutral, const ObjPolygonM
   while (!queue.empty()) {
     const uint32_t f = queue.front();
     queue.pop_front();
+    countWork();
     if (resolved[f]) continue;
     const size_t n = neutral.faceSize(f);
     for (size_t j = 0; j < n && !resolved[f]; ++j) {

@@ -8,6 +8,7 @@
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
 #include "importers/obj_correspondence.h"
+#include "facial/runtime/json/json_document.h"  // formatNumber
 #include "importers/obj_mesh.h"
 
 namespace importers {
@@ -219,6 +220,10 @@ std::string lowerExtension(const std::filesystem::path& p) {
 Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutralPath, std::span<const ObjTargetFile> targets,
                                              const ObjKeyframeOptions& options) {
   if (auto named = checkTargetNames(targets); !named) return named.error();
+  if (options.matchByPosition && !(options.relativeTolerance > 0.0f && options.relativeTolerance <= kMaxRelativeTolerance))
+    return makeError(ErrorKind::InvalidArgument, "tolerance " + facial::formatNumber(options.relativeTolerance) +
+                                                     " is outside (0, " + facial::formatNumber(kMaxRelativeTolerance) +
+                                                     "] of the model's size: distinct vertices would be matched");
   auto neutral = readObjPolygonMesh(neutralPath);
   if (!neutral) return neutral.error();
 

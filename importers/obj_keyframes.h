@@ -27,9 +27,13 @@ struct ObjKeyframeOptions {
   // instead of requiring identical vertex and face order.
   bool matchByPosition = false;
   // Distance at which two vertices coincide, as a fraction of the neutral's
-  // bounding-box diagonal.
+  // bounding-box diagonal; at most kMaxRelativeTolerance.
   float relativeTolerance = 1e-5f;
 };
+
+// Beyond 1% of the model's size, distinct vertices (a lip and the one below
+// it) would "coincide" and be matched wrongly: such a tolerance is refused.
+inline constexpr float kMaxRelativeTolerance = 1e-2f;
 
 struct ObjTargetReport {
   std::string name;

@@ -1,5 +1,7 @@
 #include "importers/vertex_occlusion.h"
 
+#include "engine/scene/skeleton_pose.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -84,10 +86,11 @@ std::vector<std::vector<std::vector<float>>> bakeVertexOcclusion(const Model& mo
   // Each mesh's first drawing node places it.
   const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<glm::mat4> world(model.meshes.size(), glm::mat4(1.0f));
+  const std::vector<glm::mat4> nodeWorld = restWorldMatrices(model);
   Aabb bounds;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     if (nodeOfMesh[m] < 0) continue;
-    world[m] = model.worldTransform(nodeOfMesh[m]);
+    world[m] = nodeWorld[size_t(nodeOfMesh[m])];
     for (const Primitive& prim : model.meshes[m].primitives)
       for (const glm::vec3& p : prim.positions) bounds.extend(glm::vec3(world[m] * glm::vec4(p, 1.0f)));
   }

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "engine/core/name_index.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
 #include "facial/runtime/json/json_node.h"
@@ -36,6 +37,7 @@ struct Context {
   std::string_view source;
   JsonNode gltf;
   facial::VrmExpressionSet& set;
+  const eng::NameIndex& materialNames;  // VRM 0.x binds name materials: one look-up each
 
   // A warning names the source, the pointer and the problem like an error, then what was done about it.
   void warn(const eng::Error& problem, std::string_view consequence) const {
@@ -200,17 +202,19 @@ eng::Result<void> readVrm1MaterialBinds(const Context& c, const JsonNode& e, fac
   return {};
 }
 
-// The index of the glTF material called `name` (an unnamed material is called ""), if any.
-std::optional<size_t> materialNamed(const JsonNode& gltf, std::string_view name) {
+// The glTF materials by name (an unnamed material is called ""; of two with
+// one name, the first).
+eng::NameIndex materialNameIndex(const JsonNode& gltf) {
+  eng::NameIndex index;
   const auto materials = gltf.find("materials");
   const size_t count = materialCountOf(gltf);
   for (size_t m = 0; m < count; ++m) {
     const JsonNode material = materials->element(m);
     if (!material.isObject()) continue;
     const auto own = material.find("name");
-    if ((own && own->isString() ? own->raw().get<std::string>() : std::string()) == name) return m;
+    index.add(own && own->isString() ? own->raw().get<std::string>() : std::string(), static_cast<uint32_t>(m));
   }
-  return std::nullopt;
+  return index;
 }
 
 // The colour a VRM 0.x material property sets (nullopt: not a colour).
@@ -238,7 +242,7 @@ eng::Result<void> readVrm0MaterialValue(const Context& c, const JsonNode& value)
   const JsonNode propertyName = ENG_TRY_VALUE(value.at("propertyName"));
   const std::string name = ENG_TRY_VALUE(materialName.string());
   const std::string property = ENG_TRY_VALUE(propertyName.string());
-  const std::optional<size_t> material = materialNamed(c.gltf, name);
+  const std::optional<uint32_t> material = c.materialNames.find(name);
   if (!material) return materialName.error("no material is named '" + name + "'");
   const std::array<float, 4> target = ENG_TRY_VALUE(readFloats<4>(ENG_TRY_VALUE(value.at("targetValue"))));
   const auto index = static_cast<uint32_t>(*material);
@@ -485,7 +489,8 @@ eng::Result<void> readVrmDocument(const JsonNode& gltf, std::string_view source,
   if (!vrm1 && !vrm0)
     return extensions.value_or(gltf).error("no VRMC_vrm (VRM 1.0) or VRM (VRM 0.x) extension: not a VRM model");
   set.materialCount = static_cast<uint32_t>(materialCountOf(gltf));
-  const Context c{source, gltf, set};
+  const eng::NameIndex materialNames = materialNameIndex(gltf);
+  const Context c{source, gltf, set, materialNames};
   ENG_TRY(readTargets(c));
   ENG_TRY(vrm1 ? readVrm1(c, *vrm1) : readVrm0(c, *vrm0));
   if (vrm1 && vrm0) set.warnings.push_back(std::string(source) + ": both VRMC_vrm and VRM extensions present; VRM 1.0 used");

@@ -8,6 +8,7 @@
 
 #include "app/face_autorig.h"
 #include "app/face_setup.h"
+#include "app/output_paths.h"
 #include "app/program_error.h"
 #include "cli/command.h"
 #include "importers/load_face.h"
@@ -26,21 +27,18 @@ struct AutorigOptions {
   std::string out;
 };
 
-bool samePath(const std::filesystem::path& a, const std::filesystem::path& b) {
-  std::error_code ec;
-  if (std::filesystem::equivalent(a, b, ec)) return true;
-  return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
-}
-
-// Refusals that need no work: the output would replace the input, or is not glTF.
+// Refusals that need no work: an output that is an input (app::checkOutputs),
+// or a rigged face that would not be glTF.
 std::string checkPaths(const AutorigOptions& o) {
-  const std::filesystem::path out(o.out);
-  const std::string ext = out.extension().string();
+  const std::string ext = std::filesystem::path(o.out).extension().string();
   if (ext != ".glb" && ext != ".gltf") return "--out " + o.out + ": expected a .glb or .gltf file";
-  if (samePath(o.model, out)) return "--out " + o.out + " is the input model; write the rigged face to another file";
-  if (!o.landmarksOut.empty() && (samePath(o.landmarksOut, out) || samePath(o.landmarksOut, o.model)))
-    return "--landmarks-out " + o.landmarksOut + " would overwrite the model or the output";
-  return {};
+  // The landmarks beside the model are read only when they are there.
+  std::error_code ec;
+  const std::filesystem::path besidePath = app::landmarksBeside(o.model);
+  const std::string beside = std::filesystem::exists(besidePath, ec) ? besidePath.string() : std::string();
+  auto safe = app::checkOutputs({.inputs = {{"model", o.model}, {"--landmarks", o.landmarks}, {"", beside}},
+                                 .outputs = {{"--out", o.out}, {"--landmarks-out", o.landmarksOut}}});
+  return safe ? std::string() : safe.error().message;
 }
 
 std::string joined(const std::vector<std::string>& names, size_t most) {

@@ -108,7 +108,7 @@ CommandRegistrar reg("convert", "Convert an OBJ keyframe set (or a glTF) to a gl
                        app.add_flag("--match-by-position", args->matchByPosition,
                                     "Pair re-ordered vertices by position instead of requiring the neutral's order");
                        app.add_option("--tolerance", args->tolerance,
-                                      "Coincidence distance for --match-by-position, fraction of the bounding-box diagonal")
+                                      "Coincidence distance for --match-by-position, fraction of the bounding-box diagonal (at most 0.01)")
                            ->check(CLI::PositiveNumber);
                        return [args]() -> int { return run(*args); };
                      });

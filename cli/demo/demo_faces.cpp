@@ -30,6 +30,7 @@ eng::Result<DemoFaces> DemoFaces::create(const app::FaceSetup& setup, const faci
   const facial::CharacterParts parts{
       .graph = graph, .rig = &setup.graphRig(), .restWeights = setup.baseWeights(), .vrm = setup.vrm()};
   const bool autoplay = graph->findParameter("autoplay").has_value();
+  if (auto ok = app::checkCrowdBudget(count, *graph); !ok) return ok.error().prefixed(graphPath.string() + ": ");
   faces.faces_.reserve(count);
   for (uint32_t i = 0; i < count; ++i) {
     const HeadPlacement head(bounds, faceBounds);

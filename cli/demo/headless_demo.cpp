@@ -96,6 +96,7 @@ class HeadlessCrowd {
     const std::vector<std::string> targetNames = setup.layout().names();
     const facial::CharacterParts parts{.graph = graph, .rig = &setup.graphRig(), .restWeights = setup.baseWeights(),
                                        .vrm = setup.vrm()};
+    if (auto ok = app::checkCrowdBudget(crowd, *graph); !ok) return ok.error().prefixed(graphPath.string() + ": ");
     for (uint32_t i = 0; i < crowd; ++i) {
       auto face = facial::Character::create(parts, targetNames, {.seed = o.seed + i, .idleLife = false});
       if (!face) return face.error().prefixed(graphPath.string() + ": ");

@@ -114,7 +114,7 @@ Shape measure(const WeldedSurface& s, const std::vector<glm::vec3>& position, co
 
 }  // namespace
 
-std::vector<float> bakeCreaseDarkening(const Primitive& p) {
+std::vector<std::vector<float>> bakeCreaseDarkening(const Primitive& p) {
   if (p.targets.empty() || p.indices.size() < 3) return {};
   const WeldedSurface s = weld(p);
   const size_t nodeCount = s.firstVertex.size();
@@ -138,7 +138,7 @@ std::vector<float> bakeCreaseDarkening(const Primitive& p) {
   const Shape restShape = measure(s, rest, normal);
 
   const size_t vertexCount = p.positions.size();
-  std::vector<float> darkening(p.targets.size() * vertexCount, 0.0f);
+  std::vector<std::vector<float>> darkening(p.targets.size());
   std::vector<glm::vec3> posed(nodeCount);
   std::vector<float> raw(nodeCount), smoothed(nodeCount);
   for (size_t t = 0; t < p.targets.size(); ++t) {
@@ -164,14 +164,17 @@ std::vector<float> bakeCreaseDarkening(const Primitive& p) {
       const float smooth = end > begin ? 0.5f * raw[n] + 0.5f * around / float(end - begin) : raw[n];
       smoothed[n] = smooth < kThreshold ? 0.0f : std::min(smooth, 1.0f);
     }
-    float* out = darkening.data() + t * vertexCount;
+    if (std::all_of(smoothed.begin(), smoothed.end(), [](float d) { return d == 0.0f; })) continue;
+    std::vector<float>& out = darkening[t];
+    out.resize(vertexCount);
     for (size_t v = 0; v < vertexCount; ++v) out[v] = smoothed[s.nodeOf[v]];
   }
   return darkening;
 }
 
-bool hasCreases(const std::vector<float>& darkening) {
-  return std::any_of(darkening.begin(), darkening.end(), [](float d) { return d > kThreshold; });
+bool hasCreases(const std::vector<std::vector<float>>& darkening) {
+  // Kept targets hold a value of at least kThreshold somewhere.
+  return std::any_of(darkening.begin(), darkening.end(), [](const std::vector<float>& d) { return !d.empty(); });
 }
 
 }  // namespace eng

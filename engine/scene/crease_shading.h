@@ -17,13 +17,15 @@
 
 namespace eng {
 
-// Darkening per target and vertex, target-major (target t, vertex v at
-// t * vertexCount + v), each in [0, 1]; empty when the primitive has no
+// Darkening per target: out[t] holds a value in [0, 1] per vertex, or is
+// empty when target t darkens nothing (so targets without deltas cost
+// nothing: a file of thousands of empty targets over many vertices once
+// filled gigabytes with zeros). out is empty when the primitive has no
 // targets or no triangles. Seams (vertices split at the same position) get
 // the same value on both sides.
-std::vector<float> bakeCreaseDarkening(const Primitive& primitive);
+std::vector<std::vector<float>> bakeCreaseDarkening(const Primitive& primitive);
 
 // True when any target of the primitive darkens any vertex noticeably.
-bool hasCreases(const std::vector<float>& darkening);
+bool hasCreases(const std::vector<std::vector<float>>& darkening);
 
 }  // namespace eng

@@ -206,22 +206,11 @@ size_t gltfComponentSize(int componentType) {
   }
 }
 
-GltfAccessorReader::GltfAccessorReader(const tinygltf::Model& gltf, size_t maxDecodedBytes)
-    : gltf_(gltf), maxDecodedBytes_(maxDecodedBytes) {}
-
 Result<size_t> GltfAccessorReader::count(int accessor, std::string_view what) const {
   if (accessor < 0 || static_cast<size_t>(accessor) >= gltf_.accessors.size())
     return makeError(ErrorKind::Malformed, prefix(accessor, what) + " does not exist; the file has " + std::to_string(gltf_.accessors.size()) +
                      " accessors");
   return gltf_.accessors[accessor].count;
-}
-
-Result<void> GltfAccessorReader::charge(size_t bytes, std::string_view what) {
-  if (bytes > maxDecodedBytes_ - decodedBytes_)
-    return makeError(ErrorKind::TooLarge, std::string(what) + " would take the decoded data past the limit of " +
-                     std::to_string(maxDecodedBytes_) + " bytes (" + std::to_string(bytes) + " more requested)");
-  decodedBytes_ += bytes;
-  return {};
 }
 
 Result<std::vector<float>> GltfAccessorReader::readFloats(int accessor, int components, std::string_view what) {
@@ -263,7 +252,7 @@ Result<std::vector<T>> GltfAccessorReader::decode(int index, int components, boo
   const size_t valueCount = count * static_cast<size_t>(components);
   if (count > std::numeric_limits<size_t>::max() / (sizeof(T) * components))
     return makeError(ErrorKind::TooLarge, where + ": count " + std::to_string(count) + " is absurd");
-  if (auto ok = charge(valueCount * sizeof(T), where); !ok) return ok.error();
+  if (auto ok = budget_.charge(valueCount, sizeof(T), where); !ok) return ok.error();
 
   std::vector<T> out(valueCount, T{});
   auto readElement = [&](const uint8_t* src, T* dst) {

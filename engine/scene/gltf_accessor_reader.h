@@ -5,8 +5,8 @@
 // through here: count x stride is checked against the real buffer size before
 // anything is allocated, sparse substitution (with or without a base buffer
 // view) is applied, normalized integers are mapped to [-1,1]/[0,1], float
-// data must be finite, and a total decode budget caps what a file can make
-// us allocate.
+// data must be finite, and every array made is charged to the load's one
+// budget (engine/core/load_budget.h) before it is allocated.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 
 namespace eng {
@@ -27,7 +28,7 @@ size_t gltfComponentSize(int componentType);
 
 class GltfAccessorReader {
  public:
-  GltfAccessorReader(const tinygltf::Model& gltf, size_t maxDecodedBytes);
+  GltfAccessorReader(const tinygltf::Model& gltf, LoadBudget& budget) : gltf_(gltf), budget_(budget) {}
 
   // Element count of a valid accessor index; `what` names the use in messages.
   Result<size_t> count(int accessor, std::string_view what) const;
@@ -42,18 +43,16 @@ class GltfAccessorReader {
   // Unsigned integer SCALAR accessor (UNSIGNED_BYTE/SHORT/INT), not normalized.
   Result<std::vector<uint32_t>> readIndices(int accessor, std::string_view what);
 
-  size_t decodedBytes() const { return decodedBytes_; }
   // Charges data made from accessors (generated normals and indices, triangle
   // lists) to the same budget; callers charge before allocating.
-  Result<void> charge(size_t bytes, std::string_view what);
+  Result<void> charge(size_t bytes, std::string_view what) { return budget_.charge(bytes, what); }
 
  private:
   template <class T>
   Result<std::vector<T>> decode(int accessor, int components, bool indices, std::string_view what);
 
   const tinygltf::Model& gltf_;
-  size_t maxDecodedBytes_;
-  size_t decodedBytes_ = 0;
+  LoadBudget& budget_;
 };
 
 template <int N>

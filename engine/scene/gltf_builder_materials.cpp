@@ -17,11 +17,18 @@ bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
 }  // namespace
 
+std::string GltfModelBuilder::imageLabel(size_t i) const {
+  const tinygltf::Image& src = gltf_.images[i];
+  return src.uri.empty() || isDataUri(src.uri) ? (src.name.empty() ? "embedded" : src.name) : src.uri;
+}
+
+// Images are checked here and decoded when a material first draws them
+// (decodedImage): one no material uses is never decoded.
 Result<void> GltfModelBuilder::loadImages() {
-  imageRemap_.assign(gltf_.images.size(), -1);
+  imageRemap_.assign(gltf_.images.size(), kImageSkipped);
   for (size_t i = 0; i < gltf_.images.size(); ++i) {
     const tinygltf::Image& src = gltf_.images[i];
-    const std::string label = src.uri.empty() || isDataUri(src.uri) ? (src.name.empty() ? "embedded" : src.name) : src.uri;
+    const std::string label = imageLabel(i);
     if (src.image.empty()) {
       if (!src.uri.empty() && !isDataUri(src.uri)) {
         // tinygltf only warns about an unreadable image file; a face without
@@ -41,17 +48,42 @@ Result<void> GltfModelBuilder::loadImages() {
                                      " KTX2 image(s), no Basis Universal transcoder in Debian; factors kept";
       continue;
     }
-    auto decoded = decodeImage(src.image, label, limits_.maxImagePixels);
-    if (decoded && isWebp(src.image))
-      outcomes_[kExtTextureWebp] = "decoded: " + std::to_string(++webpDecoded_) + " WebP image(s) (libwebp)";
-    if (!decoded) {
-      warn("image " + std::to_string(i) + " skipped: " + decoded.error().message);
-      continue;
-    }
-    imageRemap_[i] = static_cast<int>(model_.images.size());
-    model_.images.push_back(std::move(*decoded));
+    imageRemap_[i] = kImagePending;
   }
   return {};
+}
+
+// Images with the same encoded bytes (one bufferView or file named by many
+// images) share one decode; the pixels are charged to the budget first.
+int GltfModelBuilder::decodedImage(size_t i) {
+  int& slot = imageRemap_[i];
+  if (slot != kImagePending) return slot;
+  slot = kImageSkipped;
+  const tinygltf::Image& src = gltf_.images[i];
+  const auto [same, fresh] =
+      imagesByBytes_.try_emplace(std::string_view(reinterpret_cast<const char*>(src.image.data()), src.image.size()), -1);
+  if (!fresh) return slot = same->second;
+  const std::string label = imageLabel(i);
+  auto size = imageSize(src.image, label, limits_.maxImagePixels);
+  if (size) {
+    auto ok = budget_.charge(static_cast<size_t>(size->width) * static_cast<size_t>(size->height), 4,
+                             "image " + std::to_string(i) + " ('" + label + "', " + std::to_string(size->width) + "x" +
+                                 std::to_string(size->height) + ") decoded");
+    if (!ok) {
+      if (!overBudget_) overBudget_ = fail(ok.error());
+      return kImageSkipped;
+    }
+  }
+  auto decoded = size ? decodeImage(src.image, label, limits_.maxImagePixels) : Result<Image>(size.error());
+  if (!decoded) {
+    warn("image " + std::to_string(i) + " skipped: " + decoded.error().message);
+    return kImageSkipped;
+  }
+  if (isWebp(src.image))
+    outcomes_[kExtTextureWebp] = "decoded: " + std::to_string(++webpDecoded_) + " WebP image(s) (libwebp)";
+  same->second = slot = static_cast<int>(model_.images.size());
+  model_.images.push_back(std::move(*decoded));
+  return slot;
 }
 
 int GltfModelBuilder::imageOfTexture(int texture, const std::string& where) {
@@ -72,7 +104,7 @@ int GltfModelBuilder::imageOfTexture(int texture, const std::string& where) {
          ", the file has " + std::to_string(imageRemap_.size()) + "; ignored");
     return -1;
   }
-  return imageRemap_[source];
+  return decodedImage(static_cast<size_t>(source));
 }
 
 int GltfModelBuilder::modelImage(int gltfImage, const std::string& where) {
@@ -81,7 +113,7 @@ int GltfModelBuilder::modelImage(int gltfImage, const std::string& where) {
          std::to_string(imageRemap_.size()) + "; ignored");
     return -1;
   }
-  return imageRemap_[gltfImage];
+  return decodedImage(static_cast<size_t>(gltfImage));
 }
 
 void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::string& where) {

@@ -184,6 +184,13 @@ void GltfModelBuilder::assignMaterial(const tinygltf::Primitive& src, const std:
 Result<void> GltfModelBuilder::readMorphTargets(const tinygltf::Primitive& src, const std::string& label,
                                                 bool generatedNormals, Primitive& out) {
   const size_t n = out.positions.size();
+  // A target costs at least a dense delta per vertex where it is drawn, even
+  // one that names no accessor or the same one as many others (what it reads
+  // is charged by the reader on top).
+  const std::string targets = label + ": " + std::to_string(src.targets.size()) + " morph targets of " +
+                           std::to_string(n) + " vertices";
+  if (auto ok = budget_.charge(src.targets.size(), sizeof(MorphTarget) + n * sizeof(glm::vec3), targets); !ok)
+    return fail(ok.error());
   out.targets.resize(src.targets.size());
   bool warnedOther = false;
   for (size_t t = 0; t < src.targets.size(); ++t) {

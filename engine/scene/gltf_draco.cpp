@@ -108,7 +108,7 @@ Result<void> appendIndices(const tinygltf::Model& gltf, const tinygltf::Primitiv
   if (size == 0) return makeError(ErrorKind::Malformed, where + ": Draco indices accessor has componentType " + std::to_string(type));
   const uint32_t faces = mesh.num_faces();
   const size_t count = static_cast<size_t>(faces) * 3;
-  if (count * size > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco indices pass the decode limit");
+  if (count * size > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco indices (" + std::to_string(count * size) + " bytes) pass the load budget of " + std::to_string(budget) + " bytes left");
   std::vector<uint8_t>& data = out.data;
   const size_t offset = data.size();
   data.resize(offset + count * size);
@@ -154,7 +154,7 @@ Result<void> appendAttributes(const tinygltf::Model& gltf, const tinygltf::Primi
                        " has a type Draco data cannot be written as");
     const size_t length = static_cast<size_t>(points) * components * compSize;
     if (length > budget - std::min(budget, out.data.size()))
-      return makeError(ErrorKind::TooLarge, where + ": decoded Draco " + semantic + " passes the decode limit");
+      return makeError(ErrorKind::TooLarge, where + ": decoded Draco " + semantic + " (" + std::to_string(length) + " bytes) passes the load budget of " + std::to_string(budget) + " bytes left");
     const size_t offset = out.data.size();
     if (!appendAttribute(*attr, points, components, acc.componentType, out.data))
       return makeError(ErrorKind::Malformed, where + ": Draco attribute " + semantic + " could not be converted to the accessor's type");
@@ -165,9 +165,10 @@ Result<void> appendAttributes(const tinygltf::Model& gltf, const tinygltf::Primi
 }
 
 // Decodes the primitive's Draco stream into a new buffer and points its
-// accessors at it; `budget` (bytes left to decode) shrinks by what it took.
+// accessors at it; what it took is charged to `loadBudget`.
 Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, const std::string& where,
-                             size_t& budget) {
+                             LoadBudget& loadBudget) {
+  const size_t budget = loadBudget.left();
   const tinygltf::Value& ext = prim.extensions.at(kKhrDraco);
   auto mesh = decodeDracoMesh(gltf, ext, where);
   if (!mesh) return mesh.error();
@@ -175,8 +176,7 @@ Result<void> decodePrimitive(tinygltf::Model& gltf, tinygltf::Primitive& prim, c
   if (prim.indices >= 0)
     if (auto ok = appendIndices(gltf, prim, **mesh, where, budget, decoded); !ok) return ok;
   if (auto ok = appendAttributes(gltf, prim, ext, **mesh, where, budget, decoded); !ok) return ok;
-  if (decoded.data.size() > budget) return makeError(ErrorKind::TooLarge, where + ": decoded Draco data passes the decode limit");
-  budget -= decoded.data.size();
+  if (auto ok = loadBudget.charge(decoded.data.size(), where + " decoded Draco data"); !ok) return ok;
 
   tinygltf::Buffer buffer;
   buffer.name = "decoded Draco data";
@@ -212,8 +212,7 @@ bool stubDracoIndices(nlohmann::json& doc) {
   return changed;
 }
 
-Result<size_t> decodeDracoPrimitives(tinygltf::Model& gltf, size_t maxDecodedBytes) {
-  size_t budget = maxDecodedBytes;
+Result<size_t> decodeDracoPrimitives(tinygltf::Model& gltf, LoadBudget& budget) {
   size_t decoded = 0;
   for (size_t m = 0; m < gltf.meshes.size(); ++m)
     for (size_t p = 0; p < gltf.meshes[m].primitives.size(); ++p) {

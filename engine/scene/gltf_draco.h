@@ -8,6 +8,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 
 namespace eng {
@@ -21,8 +22,8 @@ inline constexpr const char* kKhrDraco = "KHR_draco_mesh_compression";
 bool stubDracoIndices(nlohmann::json& doc);
 
 // Decodes every Draco-compressed primitive; returns how many. Decoded bytes
-// are charged against `maxDecodedBytes`. Errors name the mesh and primitive
+// are charged to `budget`. Errors name the mesh and primitive
 // but not the file (the caller adds it).
-Result<size_t> decodeDracoPrimitives(tinygltf::Model& gltf, size_t maxDecodedBytes);
+Result<size_t> decodeDracoPrimitives(tinygltf::Model& gltf, LoadBudget& budget);
 
 }  // namespace eng

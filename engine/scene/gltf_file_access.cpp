@@ -19,8 +19,8 @@ bool isInside(const std::filesystem::path& p, const std::filesystem::path& dir) 
 
 }  // namespace
 
-GltfFileAccess::GltfFileAccess(std::filesystem::path baseDir, size_t maxFileBytes)
-    : maxFileBytes_(maxFileBytes) {
+GltfFileAccess::GltfFileAccess(std::filesystem::path baseDir, size_t maxFileBytes, LoadBudget& budget)
+    : maxFileBytes_(maxFileBytes), budget_(budget) {
   std::error_code ec;
   std::filesystem::path canonical = std::filesystem::weakly_canonical(std::filesystem::absolute(baseDir), ec);
   baseDir_ = ec ? std::filesystem::absolute(baseDir).lexically_normal() : canonical;
@@ -114,6 +114,12 @@ bool GltfFileAccess::readWholeFile(std::vector<unsigned char>* out, std::string*
   if (!bytes) {
     access->record(access->uriOf(path), bytes.error().message, bytes.error().kind);
     if (err) *err += bytes.error().message;
+    return false;
+  }
+  // Every image and buffer that names the file holds its own copy.
+  if (auto ok = access->budget_.charge(bytes->size(), "file '" + access->uriOf(path) + "'"); !ok) {
+    access->record(access->uriOf(path), ok.error().message, ErrorKind::TooLarge);
+    if (err) *err += ok.error().message;
     return false;
   }
   *out = std::move(*bytes);

@@ -2,7 +2,8 @@
 // tinygltf file-system callbacks that never expand a path (tinygltf's default
 // ExpandFilePath has used wordexp on Linux, which runs `$(...)` and backticks)
 // and only read regular files inside the model's own folder, up to a size
-// limit. What was refused is remembered so the loader can say why.
+// limit, each charged to the load's budget. What was refused is remembered
+// so the loader can say why.
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include <tiny_gltf.h>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 
 namespace eng {
@@ -18,7 +20,7 @@ class GltfFileAccess {
  public:
   // baseDir: the model's folder, absolute. Every path tinygltf asks for must
   // be baseDir + "/" + uri and resolve (symlinks included) inside baseDir.
-  GltfFileAccess(std::filesystem::path baseDir, size_t maxFileBytes);
+  GltfFileAccess(std::filesystem::path baseDir, size_t maxFileBytes, LoadBudget& budget);
   GltfFileAccess(const GltfFileAccess&) = delete;
   GltfFileAccess& operator=(const GltfFileAccess&) = delete;
 
@@ -53,6 +55,7 @@ class GltfFileAccess {
   std::string baseDirString_;
   std::string prefix_;  // baseDirString_ with one trailing separator
   size_t maxFileBytes_;
+  LoadBudget& budget_;
   std::vector<std::pair<std::string, std::string>> uriProblems_;
   std::vector<std::string> problems_;
   ErrorKind firstProblemKind_ = ErrorKind::Malformed;

@@ -5,8 +5,10 @@
 // mention those extensions are parsed twice; the rest pass untouched.
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "engine/scene/gltf_meshopt.h"
 
@@ -17,5 +19,11 @@ namespace eng {
 // Returns the meshopt placeholder buffers, to be sized after parsing.
 Result<std::vector<MeshoptPlaceholder>> prepareCompressedGltf(std::span<const uint8_t> bytes, bool glb,
                                                               std::vector<uint8_t>& rewritten);
+
+// Charges the objects a glTF JSON document declares (entries of its top-level
+// arrays: materials, nodes, meshes, accessors, ...) at what tinygltf and the
+// Model hold for each, before either is made: an empty `{}` entry costs three
+// bytes of JSON and a full object in both. Scans the text without parsing it.
+Result<void> chargeGltfObjects(std::string_view json, LoadBudget& budget);
 
 }  // namespace eng

@@ -84,11 +84,13 @@ std::vector<std::string> splitLines(const std::string& text) {
 // It also checks what tinygltf does not: that an image's bufferView fits its buffer.
 struct ImageHookContext {
   const tinygltf::Model* gltf = nullptr;
+  LoadBudget* budget = nullptr;
+  std::optional<Error> overBudget;  // said instead of tinygltf's summary
 };
 
 bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                       const unsigned char* bytes, int size, void* user) {
-  const auto* ctx = static_cast<const ImageHookContext*>(user);
+  auto* ctx = static_cast<ImageHookContext*>(user);
   if (image->bufferView >= 0) {
     const tinygltf::Model& gltf = *ctx->gltf;
     const auto& bv = gltf.bufferViews[static_cast<size_t>(image->bufferView)];
@@ -103,6 +105,13 @@ bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err,
     }
   }
   if (size < 0) return false;
+  // Each image holds its own copy, even of a bufferView other images name too.
+  if (auto ok = ctx->budget->charge(static_cast<size_t>(size), "the encoded bytes of image " + std::to_string(index));
+      !ok) {
+    if (!ctx->overBudget) ctx->overBudget = ok.error();
+    if (err) *err += ok.error().message + "\n";
+    return false;
+  }
   image->image.assign(bytes, bytes + size);
   image->width = image->height = image->component = -1;  // still encoded
   return true;
@@ -114,13 +123,13 @@ enum class Container { Json, Glb };
 // Meshopt views and Draco primitives become plain buffer data before the
 // model is built, so everything after reads ordinary accessors.
 Result<void> decodeCompressedGeometry(tinygltf::Model& gltf, const std::vector<MeshoptPlaceholder>& placeholders,
-                                      const GltfLoadLimits& limits, ExtensionOutcomes& outcomes) {
-  auto meshopt = decodeMeshoptViews(gltf, placeholders, limits.maxDecodedBytes);
+                                      LoadBudget& budget, ExtensionOutcomes& outcomes) {
+  auto meshopt = decodeMeshoptViews(gltf, placeholders, budget);
   if (!meshopt) return meshopt.error();
   const std::string views = "decoded: " + std::to_string(meshopt->views) + " buffer view(s) (meshoptimizer)";
   if (meshopt->usedExt) outcomes[kExtMeshopt] = views;
   if (meshopt->usedKhr) outcomes[kKhrMeshopt] = views;
-  auto draco = decodeDracoPrimitives(gltf, limits.maxDecodedBytes);
+  auto draco = decodeDracoPrimitives(gltf, budget);
   if (!draco) return draco.error();
   if (*draco > 0) outcomes[kKhrDraco] = "decoded: " + std::to_string(*draco) + " primitive(s) (Draco)";
   return {};
@@ -157,7 +166,7 @@ Result<Model> loadModel(const std::filesystem::path& path, const GltfLoadLimits&
 }
 
 Result<Model> loadModelFromBytes(std::span<const uint8_t> fileBytes, const std::filesystem::path& path,
-                                 const GltfLoadLimits& limits) {
+                                 const GltfLoadLimits& limits, size_t* charged) {
   const std::string file = path.string();
   if (fileBytes.size() > limits.maxFileBytes)
     return makeError(ErrorKind::TooLarge, file + ": file of " + std::to_string(fileBytes.size()) + " bytes exceeds the limit of " +
@@ -173,8 +182,17 @@ Result<Model> loadModelFromBytes(std::span<const uint8_t> fileBytes, const std::
       if (!glb) return glb.error().prefixed(file + ": ");
       jsonText = glb->json;
     }
-    if (auto nesting = checkJsonNesting({reinterpret_cast<const char*>(jsonText.data()), jsonText.size()}, file); !nesting)
-      return nesting.error();
+    const std::string_view json(reinterpret_cast<const char*>(jsonText.data()), jsonText.size());
+    if (auto nesting = checkJsonNesting(json, file); !nesting) return nesting.error();
+    LoadBudget budget(limits.maxDecodedBytes);
+    struct Report {  // what was charged, however the load ends
+      const LoadBudget& budget;
+      size_t* out;
+      ~Report() {
+        if (out) *out = budget.charged();
+      }
+    } report{budget, charged};
+    if (auto ok = chargeGltfObjects(json, budget); !ok) return ok.error().prefixed(file + ": ");
     // Compressed files hold what tinygltf refuses (buffers without data, indices without a bufferView).
     std::vector<uint8_t> stubbed;
     auto placeholders = prepareCompressedGltf(bytes, *container == Container::Glb, stubbed);
@@ -183,9 +201,9 @@ Result<Model> loadModelFromBytes(std::span<const uint8_t> fileBytes, const std::
 
     std::error_code ec;
     const std::filesystem::path baseDir = std::filesystem::absolute(path, ec).parent_path();
-    GltfFileAccess files(baseDir, limits.maxFileBytes);
+    GltfFileAccess files(baseDir, limits.maxFileBytes, budget);
     tinygltf::Model gltf;
-    ImageHookContext imageHook{&gltf};
+    ImageHookContext imageHook{&gltf, &budget, std::nullopt};
     tinygltf::TinyGLTF parser;
     parser.SetFsCallbacks(files.callbacks());
     parser.SetImageLoader(&keepEncodedImage, &imageHook);
@@ -202,15 +220,16 @@ Result<Model> loadModelFromBytes(std::span<const uint8_t> fileBytes, const std::
                                           static_cast<unsigned>(bytes.size()), files.baseDirString());
     }
     if (!parsed) {
+      if (imageHook.overBudget) return imageHook.overBudget->prefixed(file + ": ");
       // What our file access refused or could not find says more than tinygltf's summary.
       if (!files.problems().empty()) return files.firstProblem().prefixed(file + ": ");
       return makeError(ErrorKind::Malformed, file + ": " + (err.empty() ? std::string("glTF parse failed") : oneLine(err)));
     }
     if (auto problem = assetVersionProblem(gltf.asset)) return problem->prefixed(file + ": ");
     ExtensionOutcomes outcomes;
-    if (auto ok = decodeCompressedGeometry(gltf, *placeholders, limits, outcomes); !ok)
+    if (auto ok = decodeCompressedGeometry(gltf, *placeholders, budget, outcomes); !ok)
       return ok.error().prefixed(file + ": ");
-    GltfModelBuilder builder(file, gltf, limits, files, outcomes);
+    GltfModelBuilder builder(file, gltf, limits, budget, files, outcomes);
     auto model = builder.build();
     if (!model) return model;
     model->extensions = describeExtensions(gltf, outcomes);

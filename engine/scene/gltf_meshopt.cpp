@@ -138,13 +138,9 @@ Result<std::vector<MeshoptPlaceholder>> stubMeshoptPlaceholders(nlohmann::json& 
 }
 
 Result<MeshoptDecodeStats> decodeMeshoptViews(tinygltf::Model& gltf, const std::vector<MeshoptPlaceholder>& placeholders,
-                                              size_t maxDecodedBytes) {
-  size_t allocated = 0;
+                                              LoadBudget& budget) {
   for (const MeshoptPlaceholder& p : placeholders) {
-    if (p.byteLength > maxDecodedBytes - allocated)
-      return makeError(ErrorKind::TooLarge, "meshopt fallback buffer " + std::to_string(p.buffer) + " claims " + std::to_string(p.byteLength) +
-                       " bytes, past the decode limit of " + std::to_string(maxDecodedBytes));
-    allocated += p.byteLength;
+    if (auto ok = budget.charge(p.byteLength, "meshopt fallback buffer " + std::to_string(p.buffer)); !ok) return ok.error();
     tinygltf::Buffer& buffer = gltf.buffers[static_cast<size_t>(p.buffer)];
     buffer.uri.clear();
     buffer.data.assign(p.byteLength, 0);
@@ -182,6 +178,8 @@ Result<MeshoptDecodeStats> decodeMeshoptViews(tinygltf::Model& gltf, const std::
                        std::to_string(view.byteOffset + view.byteLength) + " are out of range of buffer " +
                        std::to_string(view.buffer) + " (" + std::to_string(target.size()) + " bytes)");
     // Decoded apart, then copied: the source and the target may be the same buffer.
+    if (view.byteLength > scratch.capacity())
+      if (auto ok = budget.charge(view.byteLength - scratch.capacity(), where + " decode scratch"); !ok) return ok.error();
     scratch.assign(view.byteLength, 0);
     if (auto ok = decodeInto(scratch.data(), *cv, source.data() + cv->byteOffset, where); !ok) return ok.error();
     if (!scratch.empty()) std::memcpy(target.data() + view.byteOffset, scratch.data(), scratch.size());

@@ -16,6 +16,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 
 namespace eng {
@@ -40,10 +41,11 @@ struct MeshoptDecodeStats {
   bool usedExt = false, usedKhr = false;
 };
 
-// Sizes the placeholders (charged against `maxDecodedBytes`) and decodes every
-// compressed buffer view into its parent buffer. Errors name the buffer view
+// Sizes the placeholders and decodes every compressed buffer view into its
+// parent buffer; the zero-filled placeholders and the decode scratch are
+// charged to `budget`. Errors name the buffer view
 // and what is wrong with it; they do not name the file (the caller does).
 Result<MeshoptDecodeStats> decodeMeshoptViews(tinygltf::Model& gltf, const std::vector<MeshoptPlaceholder>& placeholders,
-                                              size_t maxDecodedBytes);
+                                              LoadBudget& budget);
 
 }  // namespace eng

@@ -12,6 +12,7 @@ Result<Model> GltfModelBuilder::build() {
   if (auto ok = checkExtensions(); !ok) return ok.error();
   if (auto ok = loadImages(); !ok) return ok.error();
   loadMaterials();
+  if (overBudget_) return *overBudget_;
   for (size_t m = 0; m < gltf_.meshes.size(); ++m)
     if (auto ok = loadMesh(static_cast<int>(m)); !ok) return ok.error();
   if (auto ok = loadNodes(); !ok) return ok.error();

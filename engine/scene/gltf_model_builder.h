@@ -8,6 +8,8 @@
 //   gltf_builder_nodes.cpp      the node hierarchy and animations
 // Accessors are decoded by gltf_accessor_reader, skins by gltf_skin_reader.
 #include <optional>
+#include <string_view>
+#include <unordered_map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +17,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "engine/scene/gltf_accessor_reader.h"
 #include "engine/scene/gltf_extensions.h"
@@ -26,10 +29,10 @@ namespace eng {
 
 class GltfModelBuilder {
  public:
-  GltfModelBuilder(std::string file, const tinygltf::Model& gltf, const GltfLoadLimits& limits,
-               const GltfFileAccess& files, ExtensionOutcomes& outcomes)
-      : file_(std::move(file)), gltf_(gltf), limits_(limits), files_(files), outcomes_(outcomes),
-        reader_(gltf, limits.maxDecodedBytes) {}
+  GltfModelBuilder(std::string file, const tinygltf::Model& gltf, const GltfLoadLimits& limits, LoadBudget& budget,
+                   const GltfFileAccess& files, ExtensionOutcomes& outcomes)
+      : file_(std::move(file)), gltf_(gltf), limits_(limits), budget_(budget), files_(files), outcomes_(outcomes),
+        reader_(gltf, budget) {}
 
   Result<Model> build();
 
@@ -49,9 +52,11 @@ class GltfModelBuilder {
   // gltf_model_builder.cpp
   Result<void> checkExtensions();
 
-  // gltf_builder_materials.cpp: images (decoded here, with the limits),
-  // textures and materials.
+  // gltf_builder_materials.cpp: images (checked up front, decoded once when a
+  // material first uses them), textures and materials.
   Result<void> loadImages();
+  std::string imageLabel(size_t gltfImage) const;
+  int decodedImage(size_t gltfImage);  // Model::images index, or kImageSkipped
   int imageOfTexture(int texture, const std::string& where);
   int modelImage(int gltfImage, const std::string& where);
   void loadMaterials();
@@ -109,11 +114,15 @@ class GltfModelBuilder {
   std::string file_;
   const tinygltf::Model& gltf_;
   const GltfLoadLimits& limits_;
+  LoadBudget& budget_;
   const GltfFileAccess& files_;
   ExtensionOutcomes& outcomes_;
   GltfAccessorReader reader_;
   Model model_;
-  std::vector<int> imageRemap_;  // glTF image -> Model::images index, -1 when skipped
+  static constexpr int kImageSkipped = -1, kImagePending = -2;
+  std::vector<int> imageRemap_;  // glTF image -> Model::images index, or one of the two above
+  std::unordered_map<std::string_view, int> imagesByBytes_;  // encoded bytes -> Model::images index
+  std::optional<Error> overBudget_;  // set where a step that only warns ran out of budget
   std::vector<BaseColorUv> baseColorUvs_;  // per material
   int ktx2Skipped_ = 0, webpDecoded_ = 0, uvTransformed_ = 0, unlitMaterials_ = 0, toonMaterials_ = 0;
 };

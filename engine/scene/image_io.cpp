@@ -141,11 +141,7 @@ Result<void> checkPngStream(std::span<const uint8_t> encoded, const std::string&
 }
 
 // WebP (EXT_texture_webp) is not an stb format: libwebp decodes it.
-Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
-  int w = 0, h = 0;
-  if (!WebPGetInfo(encoded.data(), encoded.size(), &w, &h))
-    return makeError(ErrorKind::Malformed, name + ": not a decodable WebP image (bad header)");
-  if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
+Result<Image> decodeWebp(std::span<const uint8_t> encoded, const std::string& name, int w, int h) {
   Image img;
   img.name = name;
   img.width = w;
@@ -183,20 +179,32 @@ Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span
   return writeFileBytes(path, png->data(), png->size());
 }
 
-Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
+Result<ImageSize> imageSize(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
   if (encoded.empty()) return makeError(ErrorKind::Malformed, name + ": image data is empty");
   if (encoded.size() > static_cast<size_t>(INT_MAX)) return makeError(ErrorKind::TooLarge, name + ": image data is larger than 2 GiB");
-  if (isWebp(encoded)) return decodeWebp(encoded, name, maxPixels);
-  if (isKtx2(encoded))
-    return makeError(ErrorKind::Unsupported, name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
-  if (uint32_t headerW = 0, headerH = 0; headerDimensions(encoded, headerW, headerH))
-    if (auto size = checkImageSize(headerW, headerH, name, maxPixels); !size) return size.error();
-  if (auto stream = checkPngStream(encoded, name); !stream) return stream.error();
+  int w = 0, h = 0, channels = 0;
+  if (isWebp(encoded)) {
+    if (!WebPGetInfo(encoded.data(), encoded.size(), &w, &h))
+      return makeError(ErrorKind::Malformed, name + ": not a decodable WebP image (bad header)");
+  } else {
+    if (isKtx2(encoded))
+      return makeError(ErrorKind::Unsupported, name + ": KTX2 (KHR_texture_basisu) needs a Basis Universal transcoder, which this build lacks");
+    if (uint32_t headerW = 0, headerH = 0; headerDimensions(encoded, headerW, headerH))
+      if (auto size = checkImageSize(headerW, headerH, name, maxPixels); !size) return size.error();
+    if (auto stream = checkPngStream(encoded, name); !stream) return stream.error();
+    if (!stbi_info_from_memory(encoded.data(), static_cast<int>(encoded.size()), &w, &h, &channels))
+      return makeError(ErrorKind::Malformed, name + ": not a decodable image (" + stbi_failure_reason() + ")");
+  }
+  if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
+  return ImageSize{w, h};
+}
+
+Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name, size_t maxPixels) {
+  auto size = imageSize(encoded, name, maxPixels);
+  if (!size) return size.error();
+  if (isWebp(encoded)) return decodeWebp(encoded, name, size->width, size->height);
   int w = 0, h = 0, channels = 0;
   const int len = static_cast<int>(encoded.size());
-  if (!stbi_info_from_memory(encoded.data(), len, &w, &h, &channels))
-    return makeError(ErrorKind::Malformed, name + ": not a decodable image (" + stbi_failure_reason() + ")");
-  if (auto size = checkImageSize(std::max(w, 0), std::max(h, 0), name, maxPixels); !size) return size.error();
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(encoded.data(), len, &w, &h, &channels, 4),
                                                     stbi_image_free);
   if (!pixels) return makeError(ErrorKind::Malformed, name + ": image decode failed (" + stbi_failure_reason() + ")");

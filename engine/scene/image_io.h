@@ -27,6 +27,13 @@ inline constexpr uint32_t kMaxImageSide = 16384;
 // recognised and refused by name (no Basis Universal transcoder in Debian).
 Result<Image> decodeImage(std::span<const uint8_t> encoded, const std::string& name,
                           size_t maxPixels = kDefaultMaxImagePixels);
+// The size decodeImage would make, from the header alone, with the same checks
+// (a loader charges width * height * 4 bytes to its budget before decoding).
+struct ImageSize {
+  int width = 0, height = 0;
+};
+Result<ImageSize> imageSize(std::span<const uint8_t> encoded, const std::string& name,
+                            size_t maxPixels = kDefaultMaxImagePixels);
 bool isWebp(std::span<const uint8_t> encoded);  // RIFF....WEBP
 bool isKtx2(std::span<const uint8_t> encoded);  // the 12-byte KTX 2.0 identifier
 Result<Image> readImage(const std::filesystem::path& path);

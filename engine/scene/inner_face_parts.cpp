@@ -1,5 +1,7 @@
 #include "engine/scene/inner_face_parts.h"
 
+#include "engine/scene/skeleton_pose.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -49,8 +51,9 @@ std::vector<std::vector<bool>> partsInsideTheHead(const Model& model) {
   // World-space rest bounds, each mesh placed by the first node drawing it.
   const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::vector<std::vector<Box>> boxes(model.meshes.size());
+  const std::vector<glm::mat4> worlds = restWorldMatrices(model);
   for (size_t m = 0; m < model.meshes.size(); ++m) {
-    const glm::mat4 world = nodeOfMesh[m] >= 0 ? model.worldTransform(nodeOfMesh[m]) : glm::mat4(1.0f);
+    const glm::mat4 world = nodeOfMesh[m] >= 0 ? worlds[size_t(nodeOfMesh[m])] : glm::mat4(1.0f);
     for (const Primitive& prim : model.meshes[m].primitives) {
       Box& box = boxes[m].emplace_back();
       for (const glm::vec3& p : prim.positions) {

@@ -4,6 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/core/work_counter.h"
+
 namespace eng {
 
 const char* textureWrapName(TextureWrap wrap) {
@@ -49,6 +51,7 @@ glm::mat4 Model::worldTransform(int node) const {
   for (size_t steps = 0; node >= 0 && node < static_cast<int>(nodes.size()) && steps <= nodes.size(); ++steps) {
     m = nodes[node].localTransform() * m;
     node = nodes[node].parent;
+    countWork();  // O(depth) per call: many nodes want restWorldMatrices (skeleton_pose.h)
   }
   return m;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "engine/core/work_counter.h"
+
 namespace eng {
 
 size_t PositionHash::CellKeyHash::operator()(const CellKey& k) const {
@@ -41,8 +43,8 @@ PositionHash::PositionHash(std::span<const glm::vec3> points, float maxRadius)
   }
 }
 
-std::vector<uint32_t> PositionHash::near(const glm::vec3& p, float radius) const {
-  std::vector<std::pair<float, uint32_t>> found;
+template <class Visit>
+void PositionHash::forEachNearCell(const glm::vec3& p, Visit&& visit) const {
   const CellKey c = cellOf(p);
   // With cells twice the radius, the ball around p reaches at most one
   // neighbour per axis: the one on the side of the nearer cell wall.
@@ -50,22 +52,47 @@ std::vector<uint32_t> PositionHash::near(const glm::vec3& p, float radius) const
     return static_cast<double>(v) / cellSize_ - cell < 0.5 ? -1 : 1;
   };
   const int sx = side(p.x, c.x), sy = side(p.y, c.y), sz = side(p.z, c.z);
-  const float r2 = radius * radius;
   for (int dz = 0; dz <= 1; ++dz)
     for (int dy = 0; dy <= 1; ++dy)
       for (int dx = 0; dx <= 1; ++dx) {
         auto it = cells_.find({c.x + dx * sx, c.y + dy * sy, c.z + dz * sz});
-        if (it == cells_.end()) continue;
-        for (uint32_t i = it->second.first; i < it->second.second; ++i) {
-          const glm::vec3 d = points_[order_[i]] - p;
-          const float d2 = glm::dot(d, d);
-          if (d2 <= r2) found.emplace_back(d2, order_[i]);
-        }
+        if (it != cells_.end()) visit(std::span<const uint32_t>(order_).subspan(it->second.first, it->second.second - it->second.first));
       }
+}
+
+std::vector<uint32_t> PositionHash::near(const glm::vec3& p, float radius) const {
+  std::vector<std::pair<float, uint32_t>> found;
+  const float r2 = radius * radius;
+  forEachNearCell(p, [&](std::span<const uint32_t> cell) {
+    countWork(cell.size());
+    for (const uint32_t i : cell) {
+      const glm::vec3 d = points_[i] - p;
+      const float d2 = glm::dot(d, d);
+      if (d2 <= r2) found.emplace_back(d2, i);
+    }
+  });
   std::sort(found.begin(), found.end());
   std::vector<uint32_t> out(found.size());
   for (size_t i = 0; i < found.size(); ++i) out[i] = found[i].second;
   return out;
+}
+
+int64_t PositionHash::nearestFree(const glm::vec3& p, float radius, const std::vector<bool>& taken,
+                                  size_t maxVisited) const {
+  int64_t best = -1;
+  float bestD2 = radius * radius;
+  size_t visited = 0;
+  forEachNearCell(p, [&](std::span<const uint32_t> cell) {
+    for (size_t k = 0; k < cell.size() && visited < maxVisited; ++k, ++visited) {
+      const uint32_t i = cell[k];
+      if (i < taken.size() && taken[i]) continue;
+      const glm::vec3 d = points_[i] - p;
+      const float d2 = glm::dot(d, d);
+      if (d2 < bestD2 || (d2 == bestD2 && (best < 0 || i < best))) best = i, bestD2 = d2;
+    }
+  });
+  countWork(visited);
+  return best;
 }
 
 }  // namespace eng

@@ -16,8 +16,17 @@ class PositionHash {
   // Queries up to maxRadius look at the 8 cells of side 2 * maxRadius around p.
   PositionHash(std::span<const glm::vec3> points, float maxRadius);
 
-  // Indices of points within `radius` of p (radius <= maxRadius), nearest first.
+  // Indices of points within `radius` of p (radius <= maxRadius), nearest
+  // first. Looks at every point of the cells around p (counted as work,
+  // work_counter.h): a pile of coincident points costs its size per query.
   std::vector<uint32_t> near(const glm::vec3& p, float radius) const;
+
+  // The nearest point within `radius` of p that is not taken[i], looking at
+  // no more than maxVisited points; -1 when none. The bound keeps a cluster
+  // of coincident points from costing its size per query (n^2 in all):
+  // past it, a point is ambiguous anyway. Counts the points looked at
+  // (work_counter.h).
+  int64_t nearestFree(const glm::vec3& p, float radius, const std::vector<bool>& taken, size_t maxVisited) const;
 
  private:
   struct CellKey {
@@ -28,6 +37,9 @@ class PositionHash {
     size_t operator()(const CellKey& k) const;
   };
   CellKey cellOf(const glm::vec3& p) const;
+  // The (up to 8) cells a ball of radius <= maxRadius around p can reach.
+  template <class Visit>
+  void forEachNearCell(const glm::vec3& p, Visit&& visit) const;
 
   std::span<const glm::vec3> points_;
   float cellSize_;

@@ -12,6 +12,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/core/work_counter.h"
+
 namespace eng {
 namespace {
 
@@ -149,12 +151,19 @@ void poseWorldMatrices(const Model& model, const Pose& pose, std::vector<glm::ma
       stack.pop_back();
       if (n < 0 || static_cast<size_t>(n) >= count || done[n]) continue;
       done[n] = true;
+      countWork();
       const int parent = model.nodes[n].parent;
       const glm::mat4 local = poseLocalMatrix(model, pose, n);
       out[n] = parent >= 0 ? out[parent] * local : local;
       for (int c : model.nodes[n].children) stack.push_back(c);
     }
   }
+}
+
+std::vector<glm::mat4> restWorldMatrices(const Model& model) {
+  std::vector<glm::mat4> world;
+  poseWorldMatrices(model, restPose(model), world);
+  return world;
 }
 
 void skinJointMatrices(const Skin& skin, std::span<const glm::mat4> world, int meshNode, std::vector<glm::mat4>& out) {

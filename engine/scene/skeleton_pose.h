@@ -47,6 +47,12 @@ glm::mat4 poseLocalMatrix(const Model& model, const Pose& pose, int node);
 // the node count. pose.nodeCount() must equal model.nodes.size().
 void poseWorldMatrices(const Model& model, const Pose& pose, std::vector<glm::mat4>& out);
 
+// poseWorldMatrices of the rest pose: every node's world matrix in one pass
+// over the hierarchy. Use it, not Model::worldTransform per node, wherever
+// many nodes are placed (that walks to the root each time: O(nodes x depth),
+// and a chain of nodes never finished).
+std::vector<glm::mat4> restWorldMatrices(const Model& model);
+
 // The matrices that move a skinned vertex from the bind pose into the space
 // of the mesh node that draws it: inverse(world[meshNode]) * world[joint] *
 // inverseBind (the glTF formulation; the mesh node's own transform then

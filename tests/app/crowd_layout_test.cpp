@@ -5,6 +5,12 @@
 
 #include "app/crowd_layout.h"
 
+#include <string>
+#include <vector>
+
+#include "facial/runtime/graph/graph_builder.h"
+#include "facial/runtime/graph/graph_instance.h"
+
 namespace {
 
 // A head-shaped box: 0.2 wide, 0.3 tall, so the cell is 0.3 x 1.15 = 0.345.
@@ -57,6 +63,34 @@ TEST(CrowdLayout, ABoxWithoutExtentGetsUnitCellsAndNoBounds) {
   EXPECT_NEAR(offsets[0].y - offsets[2].y, 1.0f, 1e-6f);
   EXPECT_FALSE(app::crowdBounds(offsets, eng::Aabb{}).valid());
   EXPECT_TRUE(app::crowdOffsets(0, kHead).empty());
+}
+
+// Every member runs its own graph instance: a graph of many channels (a few
+// megabytes of JSON) times --crowd 1024 is refused before any member is made.
+TEST(CrowdBudget, PerCharacterGraphStateIsChargedBeforeTheCrowdIsMade) {
+  constexpr size_t kChannels = 3000;
+  std::vector<std::string> names;
+  for (size_t c = 0; c < kChannels; ++c) names.push_back("c" + std::to_string(c));
+  auto channels = facial::ChannelSet::fromNames(names);
+  ASSERT_TRUE(channels) << channels.error().message;
+  facial::GraphBuilder b(std::move(channels).value());
+  b.setRoot(b.add(facial::PoseNode{.weights = std::vector<float>(kChannels, 0.0f)}));
+  auto graph = b.build();
+  ASSERT_TRUE(graph) << graph.error().message;
+  const size_t each = facial::GraphInstance::bytesFor(**graph);
+  EXPECT_GE(each, kChannels * sizeof(float));
+  EXPECT_TRUE(app::checkCrowdBudget(1024, **graph));  // 12 MB: far below the default
+  // A budget one byte short of 1024 characters.
+  const size_t limit = 1024 * each - 1;
+  EXPECT_TRUE(app::checkCrowdBudget(1023, **graph, limit));
+  auto crowd = app::checkCrowdBudget(1024, **graph, limit);
+  ASSERT_FALSE(crowd);
+  EXPECT_EQ(crowd.error().kind, eng::ErrorKind::TooLarge);
+  EXPECT_NE(crowd.error().message.find("a crowd of 1024 characters (" + std::to_string(each) + " bytes of graph state each)"),
+            std::string::npos)
+      << crowd.error().message;
+  EXPECT_NE(crowd.error().message.find("load budget of " + std::to_string(limit) + " bytes"), std::string::npos)
+      << crowd.error().message;
 }
 
 }  // namespace

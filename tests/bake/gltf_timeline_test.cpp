@@ -138,6 +138,41 @@ TEST(GltfTimeline, CosineAndStepInsideCubicExportAreCloseApproximations) {
   expectSameCurves(t, back, 1e-5f, /*skipBeforeSteps=*/bake::GltfTimelineExport{}.stepRamp);
 }
 
+// One cosine segment of 18 hours is 1.9 million keys at 30 a second: with
+// every target of an ARKit face at each, 1.2 GB from a few bytes of timeline.
+// The keys are counted and charged before any is made (issue 37).
+TEST(GltfTimelineBudget, KeysOfALongCosineSegmentAreChargedFirst) {
+  eng::Model model;
+  eng::Mesh face{.name = "face"};
+  for (int t = 0; t < 52; ++t) face.targetNames.push_back("t" + std::to_string(t));
+  face.defaultWeights.assign(52, 0.0f);
+  model.meshes.push_back(std::move(face));
+  model.nodes.push_back({.name = "head", .mesh = 0});
+  Timeline t;
+  t.name = "long";
+  t.duration = 18 * 3600.0f;
+  t.addTrack("t0", std::vector<Keyframe>{{0.0f, 0.0f, 0, 0, KeyInterpolation::Cosine}, {t.duration, 1.0f}});
+  auto exported = bake::exportGltfTimeline(model, t);
+  ASSERT_FALSE(exported);
+  EXPECT_EQ(exported.error().kind, eng::ErrorKind::TooLarge);
+  EXPECT_NE(exported.error().message.find("timeline 'long': 1944004 glTF keys of 52 targets would take"), std::string::npos)
+      << exported.error().message;
+  EXPECT_NE(exported.error().message.find("load budget of " + std::to_string(eng::kDefaultLoadBudgetBytes)), std::string::npos)
+      << exported.error().message;
+  EXPECT_TRUE(model.animations.empty());
+  // The embedder's budget: an hour (68 MB of keys) fits 128 MB, the 18 hours do not.
+  bake::GltfTimelineExport options;
+  options.maxBytes = size_t{128} << 20;
+  EXPECT_FALSE(bake::exportGltfTimeline(model, t, options));
+  Timeline hour;
+  hour.name = "hour";
+  hour.duration = 3600.0f;
+  hour.addTrack("t0", std::vector<Keyframe>{{0.0f, 0.0f, 0, 0, KeyInterpolation::Cosine}, {hour.duration, 1.0f}});
+  auto fits = bake::exportGltfTimeline(model, hour, options);
+  ASSERT_TRUE(fits) << fits.error().message;
+  EXPECT_EQ(model.animations.back().channels[0].times.size(), size_t{108'001});
+}
+
 TEST(GltfTimeline, TargetsWithoutATrackHoldTheMeshDefault) {
   Timeline t;
   t.name = "only a";

@@ -119,8 +119,8 @@ class AutorigAvatar : public AutorigCommand {
 // where its lips are (rows 45-60 %, columns 35-65 %).
 double mouthChange(const eng::Image& a, const eng::Image& b) {
   size_t changed = 0, total = 0;
-  for (uint32_t y = a.height * 45 / 100; y < a.height * 60 / 100; ++y)
-    for (uint32_t x = a.width * 35 / 100; x < a.width * 65 / 100; ++x, ++total)
+  for (int y = a.height * 45 / 100; y < a.height * 60 / 100; ++y)
+    for (int x = a.width * 35 / 100; x < a.width * 65 / 100; ++x, ++total)
       for (int c = 0; c < 3; ++c) {
         const size_t i = (size_t(y) * a.width + x) * 4 + c;
         if (std::abs(int(a.rgba8[i]) - int(b.rgba8[i])) > 12) {

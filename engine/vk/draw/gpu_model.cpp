@@ -9,13 +9,13 @@
 
 #include "engine/vk/device/descriptor_write.h"
 #include "engine/core/log.h"
-#include "engine/scene/crease_shading.h"
 #include "engine/scene/inner_face_parts.h"
 #include "engine/scene/mesh_lod.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/posed_bounds.h"
 #include "engine/scene/weights.h"
 #include "engine/vk/draw/detail_array.h"
+#include "engine/vk/draw/sparse_deltas.h"
 #include "engine/view/scene_mesh_nodes.h"
 #include "engine/vk/draw/texture.h"
 #include "engine/vk/device/vk_result.h"
@@ -72,81 +72,6 @@ std::string where(const Model& model, size_t mesh, size_t primitive) {
 
 // Target indices travel as float values, exact up to 2^24.
 constexpr size_t kMaxSparseTargets = size_t{1} << 24;
-
-// The sparse, vertex-major deltas of one primitive (morph.glsl), sliced:
-// vertices go in slices of kMorphSliceLanes consecutive vertices, and a
-// slice's k-th row holds the k-th entry of each of its vertices side by
-// side, so the lanes that morph neighbouring vertices read neighbouring
-// texels (a SIMD lane per vertex on a CPU device, a warp on a GPU) instead
-// of one scattered entry list each. A vertex's entries are one per
-// (vertex, target) pair that moves a position, normal or tangent or darkens
-// a crease, in target order; a slice has as many rows as its busiest vertex
-// has entries, the others padded with entries that add nothing.
-// Layout: offsets[s] is slice s's first row (slices + 1 values); row r's
-// planes follow each other, each kMorphSliceLanes texels, one per lane:
-//   entries[(r * planes + plane) * kMorphSliceLanes + lane]
-// planes: position delta + target index (as a float), normal delta + crease
-// darkening, then the tangent delta where the primitive has tangent deltas.
-constexpr uint32_t kMorphSliceLanes = 8;  // morph.glsl's MORPH_SLICE_LANES
-
-struct SparseDeltas {
-  std::vector<uint32_t> offsets;
-  std::vector<glm::vec4> entries;
-  bool hasNormals = false, hasTangents = false, hasCreases = false;
-};
-
-SparseDeltas compactDeltas(const Primitive& prim) {
-  SparseDeltas out;
-  for (const MorphTarget& t : prim.targets) {
-    out.hasNormals |= !t.normals.empty();
-    out.hasTangents |= !t.tangents.empty();
-  }
-  const std::vector<float> darkening = bakeCreaseDarkening(prim);
-  out.hasCreases = hasCreases(darkening);
-  const size_t n = prim.vertexCount();
-  const size_t planes = out.hasTangents ? 3 : 2;
-  auto at = [](const std::vector<glm::vec3>& deltas, size_t v) { return deltas.empty() ? glm::vec3(0.0f) : deltas[v]; };
-  // One vertex's entries, planes in order.
-  std::vector<glm::vec4> vertexEntries[kMorphSliceLanes];
-  const size_t slices = (n + kMorphSliceLanes - 1) / kMorphSliceLanes;
-  out.offsets.reserve(slices + 1);
-  uint32_t rows = 0;
-  for (size_t slice = 0; slice < slices; ++slice) {
-    out.offsets.push_back(rows);
-    size_t sliceRows = 0;
-    for (uint32_t lane = 0; lane < kMorphSliceLanes; ++lane) {
-      std::vector<glm::vec4>& list = vertexEntries[lane];
-      list.clear();
-      const size_t v = slice * kMorphSliceLanes + lane;
-      if (v >= n) continue;
-      for (size_t t = 0; t < prim.targets.size(); ++t) {
-        const MorphTarget& target = prim.targets[t];
-        const glm::vec3 position = at(target.positions, v), normal = at(target.normals, v);
-        const glm::vec3 tangent = at(target.tangents, v);
-        const float crease = out.hasCreases ? darkening[t * n + v] : 0.0f;
-        if (position == glm::vec3(0.0f) && normal == glm::vec3(0.0f) && tangent == glm::vec3(0.0f) && crease == 0.0f)
-          continue;  // adds exactly nothing
-        // The index as a float value, not its bits (small integers' bits are
-        // denormals, which a GPU's texel fetch may flush); exact below 2^24.
-        list.emplace_back(position, static_cast<float>(t));
-        list.emplace_back(normal, crease);
-        if (out.hasTangents) list.emplace_back(tangent, 0.0f);
-      }
-      sliceRows = std::max(sliceRows, list.size() / planes);
-    }
-    // Padding: zero deltas naming target 0, which add nothing whatever its weight.
-    const size_t first = out.entries.size();
-    out.entries.resize(first + sliceRows * planes * kMorphSliceLanes, glm::vec4(0.0f));
-    for (uint32_t lane = 0; lane < kMorphSliceLanes; ++lane)
-      for (size_t e = 0; e < vertexEntries[lane].size(); ++e) {
-        const size_t row = e / planes, plane = e % planes;
-        out.entries[first + (row * planes + plane) * kMorphSliceLanes + lane] = vertexEntries[lane][e];
-      }
-    rows += static_cast<uint32_t>(sliceRows);
-  }
-  out.offsets.push_back(rows);  // no row at all: no target moves anything, entries stay empty
-  return out;
-}
 
 }  // namespace
 

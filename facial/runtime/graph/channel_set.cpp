@@ -20,13 +20,13 @@ FaceSide sideFromSuffix(std::string_view name) {
 ChannelSet ChannelSet::actionUnits() {
   ChannelSet set;
   for (const ActionUnitInfo& au : facial::actionUnits())
-    set.channels_.push_back({std::string(au.name), au.region, au.side});
+    set.add({std::string(au.name), au.region, au.side});
   return set;
 }
 
 ChannelSet ChannelSet::actionUnitsAndVisemes() {
   ChannelSet set = actionUnits();
-  for (size_t v = 0; v < kVisemeCount; ++v) set.channels_.push_back({rigVisemeInputName(Viseme(v)), FaceRegion::Lower, FaceSide::Both});
+  for (size_t v = 0; v < kVisemeCount; ++v) set.add({rigVisemeInputName(Viseme(v)), FaceRegion::Lower, FaceSide::Both});
   return set;
 }
 
@@ -43,24 +43,26 @@ std::optional<uint32_t> ChannelSet::firstVisemeChannel() const {
 eng::Result<ChannelSet> ChannelSet::fromNames(std::span<const std::string> names) {
   ChannelSet set;
   set.channels_.reserve(names.size());
+  set.index_.reserve(names.size());
   for (size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     if (name.empty()) return eng::makeError(eng::ErrorKind::Malformed, "channel " + std::to_string(i) + " has an empty name");
     if (set.find(name)) return eng::makeError(eng::ErrorKind::Malformed, "channel name '" + name + "' appears twice");
     if (auto au = actionUnitIndex(name)) {
       const ActionUnitInfo& info = facial::actionUnits()[*au];
-      set.channels_.push_back({name, info.region, info.side});
+      set.add({name, info.region, info.side});
     } else {
-      set.channels_.push_back({name, std::nullopt, sideFromSuffix(name)});
+      set.add({name, std::nullopt, sideFromSuffix(name)});
     }
   }
   return set;
 }
 
-std::optional<uint32_t> ChannelSet::find(std::string_view name) const {
-  for (uint32_t i = 0; i < channels_.size(); ++i)
-    if (channels_[i].name == name) return i;
-  return std::nullopt;
+void ChannelSet::add(ChannelInfo info) {
+  index_.add(info.name, static_cast<uint32_t>(channels_.size()));
+  channels_.push_back(std::move(info));
 }
+
+std::optional<uint32_t> ChannelSet::find(std::string_view name) const { return index_.find(name); }
 
 }  // namespace facial

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/name_index.h"
 #include "engine/core/result.h"
 #include "facial/runtime/rig/action_units.h"
 
@@ -43,7 +44,10 @@ class ChannelSet {
   std::optional<uint32_t> find(std::string_view name) const;
 
  private:
+  void add(ChannelInfo info);
+
   std::vector<ChannelInfo> channels_;
+  eng::NameIndex index_;  // find() in one look-up: a mesh may have thousands of targets
 };
 
 }  // namespace facial

@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facial/runtime/graph/graph_instance.h"
 #include "facial/runtime/graph/nodes/build_context.h"
 
 namespace facial {
 
-GraphBuilder::GraphBuilder(ChannelSet channels) { definition_.channels_ = std::move(channels); }
+GraphBuilder::GraphBuilder(ChannelSet channels, size_t maxBytes) : budget_(maxBytes) {
+  definition_.channels_ = std::move(channels);
+}
 
 ParameterIndex GraphBuilder::addParameter(std::string name, ParameterType type, float defaultValue) {
+  definition_.parameterIndex_.add(name, static_cast<ParameterIndex>(definition_.parameters_.size()));
   definition_.parameters_.push_back({std::move(name), type, type == ParameterType::Trigger ? 0.0f : defaultValue});
   return static_cast<ParameterIndex>(definition_.parameters_.size() - 1);
 }
@@ -29,19 +33,32 @@ std::optional<ParameterIndex> GraphBuilder::findParameter(std::string_view name)
 }
 
 uint32_t GraphBuilder::addTimeline(Timeline timeline) {
+  definition_.timelineIndex_.add(timeline.name, static_cast<uint32_t>(definition_.timelines_.size()));
   definition_.timelines_.push_back(std::move(timeline));
   return static_cast<uint32_t>(definition_.timelines_.size() - 1);
 }
 
 std::optional<uint32_t> GraphBuilder::findTimeline(std::string_view name) const {
-  for (uint32_t i = 0; i < definition_.timelines_.size(); ++i)
-    if (definition_.timelines_[i].name == name) return i;
-  return std::nullopt;
+  return definition_.timelineIndex_.find(name);
 }
 
 NodeIndex GraphBuilder::add(NodeData node, std::string name, std::string origin) {
+  if (overBudget_) return kNoNode;
   const NodeIndex index = static_cast<NodeIndex>(definition_.nodes_.size());
   if (origin.empty()) origin = "node " + std::to_string(index) + " (" + std::string(nodeTypeName(node)) + ")";
+  // A pose holds its weights; an additive node makes its mask's at build.
+  const size_t channels = definition_.channels_.size();
+  const size_t dense = std::holds_alternative<PoseNode>(node)       ? std::get<PoseNode>(node).weights.size()
+                       : std::holds_alternative<AdditiveNode>(node) ? channels
+                                                                      : 0;
+  const size_t bytes = sizeof(NodeDef) + name.size() + origin.size() + dense * sizeof(float) +
+                       GraphInstance::nodeStateBytes(node, definition_.poseStride());
+  if (auto ok = budget_.charge(bytes, "node " + std::to_string(index) + " (" + std::to_string(channels) + " channels)");
+      !ok) {
+    overBudget_ = ok.error().prefixed(origin + ": ");
+    return kNoNode;
+  }
+  if (!name.empty()) definition_.nodeIndex_.add(name, index);
   definition_.nodes_.push_back({std::move(name), std::move(origin), std::move(node)});
   return index;
 }
@@ -61,6 +78,7 @@ uint32_t scratchNeed(const GraphDefinition& graph, NodeIndex node) {
 }  // namespace
 
 eng::Result<SharedGraphDefinition> GraphBuilder::build() const {
+  if (overBudget_) return *overBudget_;
   auto graph = std::make_shared<GraphDefinition>(definition_);
   if (graph->channels_.empty()) return eng::makeError(eng::ErrorKind::Malformed, "graph has no channels");
 

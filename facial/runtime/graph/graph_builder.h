@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "facial/runtime/graph/graph_definition.h"
 
@@ -23,7 +24,13 @@ namespace facial {
 
 class GraphBuilder {
  public:
-  explicit GraphBuilder(ChannelSet channels);
+  // Every node is charged as it is added to a budget of `maxBytes`: what the
+  // definition holds for it (its dense pose or mask, a float per channel) and
+  // the state it adds to every GraphInstance. Past the budget add() keeps
+  // nothing more, budgetError() says which node crossed it, and build() fails
+  // with it: a few bytes of JSON per node times thousands of channels never
+  // add up to gigabytes.
+  explicit GraphBuilder(ChannelSet channels, size_t maxBytes = eng::kDefaultLoadBudgetBytes);
 
   const ChannelSet& channels() const { return definition_.channels_; }
 
@@ -37,7 +44,8 @@ class GraphBuilder {
   uint32_t addTimeline(Timeline timeline);
   std::optional<uint32_t> findTimeline(std::string_view name) const;
 
-  NodeIndex add(NodeData node, std::string name = {}, std::string origin = {});
+  NodeIndex add(NodeData node, std::string name = {}, std::string origin = {});  // kNoNode once over the budget
+  const std::optional<eng::Error>& budgetError() const { return overBudget_; }
   // A node added earlier, to finish wiring it (e.g. states added after their machine).
   NodeData& node(NodeIndex node) { return definition_.nodes_[node].data; }
   uint32_t nodeCount() const { return static_cast<uint32_t>(definition_.nodes_.size()); }
@@ -50,6 +58,8 @@ class GraphBuilder {
 
  private:
   GraphDefinition definition_;
+  eng::LoadBudget budget_;
+  std::optional<eng::Error> overBudget_;
 };
 
 }  // namespace facial

@@ -1,6 +1,7 @@
 #include "facial/runtime/graph/graph_instance.h"
 
 #include <cmath>
+#include <type_traits>
 
 namespace facial {
 eng::Result<GraphInstance> GraphInstance::create(SharedGraphDefinition definition, uint64_t seed) {
@@ -14,6 +15,26 @@ eng::Result<GraphInstance> GraphInstance::create(SharedGraphDefinition definitio
   instance.states_.resize(graph.nodes().size());
   instance.reset();
   return instance;
+}
+
+size_t GraphInstance::nodeStateBytes(const NodeData& node, uint32_t poseStride) {
+  const size_t pose = size_t{poseStride} * sizeof(float);
+  const size_t held = std::visit(
+      [&](const auto& n) -> size_t {
+        using T = std::decay_t<decltype(n)>;
+        if constexpr (std::is_same_v<T, BilinearNode> || std::is_same_v<T, StateMachineNode>) return 2 * pose;
+        else if constexpr (std::is_same_v<T, TimelineNode>) return pose;  // a cursor per track, a track per channel at most
+        else return 0;
+      },
+      node);
+  return sizeof(NodeState) + held;
+}
+
+size_t GraphInstance::bytesFor(const GraphDefinition& graph) {
+  size_t bytes = sizeof(GraphInstance) + graph.parameters().size() * sizeof(float) +
+                 (size_t{graph.scratchPoseCount()} + 1) * graph.poseStride() * sizeof(float);
+  for (const NodeDef& node : graph.nodes()) bytes += nodeStateBytes(node.data, graph.poseStride());
+  return bytes;
 }
 
 void GraphInstance::reset() {

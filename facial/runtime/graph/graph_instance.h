@@ -26,6 +26,13 @@ class GraphInstance {
   // parameters and same time steps give the same weights, bit for bit.
   static eng::Result<GraphInstance> create(SharedGraphDefinition definition, uint64_t seed = 0);
 
+  // What one instance of `graph` holds (parameters, scratch and output poses,
+  // every node's state): a crowd holds it once per character, so a caller
+  // creating many charges count x this to its budget first.
+  static size_t bytesFor(const GraphDefinition& graph);
+  // The state one node adds to every instance, for a graph of `poseStride` floats per pose.
+  static size_t nodeStateBytes(const NodeData& node, uint32_t poseStride);
+
   GraphInstance(GraphInstance&&) noexcept = default;
   GraphInstance& operator=(GraphInstance&&) noexcept = default;
   GraphInstance(const GraphInstance&) = delete;

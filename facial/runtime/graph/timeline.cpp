@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/name_index.h"
 #include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace facial {
@@ -55,15 +56,15 @@ eng::Result<void> Timeline::validate() const {
   if (!std::isfinite(duration) || duration <= 0.0f)
     return eng::makeError(eng::ErrorKind::Malformed,
                           "duration must be a finite number > 0 (got " + formatNumber(duration) + ")");
+  eng::NameIndex channels;  // one look-up per track: thousands of tracks stay linear
   for (size_t i = 0; i < tracks.size(); ++i) {
     const TimelineTrack& t = tracks[i];
-    const std::string where = "track " + std::to_string(i) + " ('" + t.channel + "')";
     if (t.channel.empty())
       return eng::makeError(eng::ErrorKind::Malformed, "track " + std::to_string(i) + " has an empty channel name");
-    for (size_t j = 0; j < i; ++j)
-      if (tracks[j].channel == t.channel)
-        return eng::makeError(eng::ErrorKind::Malformed,
-                              where + " animates the same channel as track " + std::to_string(j));
+    const std::string where = "track " + std::to_string(i) + " ('" + t.channel + "')";
+    if (!channels.add(t.channel, static_cast<uint32_t>(i)))
+      return eng::makeError(eng::ErrorKind::Malformed,
+                            where + " animates the same channel as track " + std::to_string(*channels.find(t.channel)));
     if (size_t{t.firstKey} + t.keyCount > keys.size())
       return eng::makeError(eng::ErrorKind::Malformed, where + " keys [" + std::to_string(t.firstKey) + ", " +
                                                            std::to_string(t.firstKey + t.keyCount) + ") run past the " +

@@ -2,6 +2,8 @@
 
 #include <fstream>
 
+#include "engine/core/name_index.h"
+
 #include "facial/runtime/graph/curve_json.h"
 #include "facial/runtime/graph/detail/json_reader.h"
 #include "facial/runtime/graph/weight_range.h"
@@ -10,13 +12,15 @@ namespace facial {
 
 namespace {
 
-// One track: {"channel", "interpolation", "keys"}, added to `timeline`.
-eng::Result<void> parseTrack(const JsonNode& track, Timeline& timeline) {
+// One track: {"channel", "interpolation", "keys"}, added to `timeline`;
+// `channels` holds the channels of the tracks read so far.
+eng::Result<void> parseTrack(const JsonNode& track, Timeline& timeline, eng::NameIndex& channels) {
   ENG_TRY(track.allowOnly({"channel", "interpolation", "keys"}));
   const JsonNode channelNode = ENG_TRY_VALUE(track.at("channel"));
   const std::string channel = ENG_TRY_VALUE(channelNode.string());
   if (channel.empty()) return channelNode.error("empty channel name");
-  if (timeline.findTrack(channel)) return channelNode.error("channel '" + channel + "' already has a track");
+  if (!channels.add(channel, static_cast<uint32_t>(timeline.tracks.size())))
+    return channelNode.error("channel '" + channel + "' already has a track");
   KeyInterpolation interp = KeyInterpolation::Linear;
   if (auto d = track.find("interpolation")) interp = ENG_TRY_VALUE(detail::parseKeyInterpolation(*d));
   const JsonNode keysNode = ENG_TRY_VALUE(track.at("keys"));
@@ -42,7 +46,8 @@ eng::Result<Timeline> detail::parseTimeline(const JsonNode& node, std::string de
   }
   const JsonNode tracks = ENG_TRY_VALUE(node.at("tracks"));
   const size_t trackCount = ENG_TRY_VALUE(tracks.size());
-  for (size_t i = 0; i < trackCount; ++i) ENG_TRY(parseTrack(tracks.element(i), timeline));
+  eng::NameIndex channels;
+  for (size_t i = 0; i < trackCount; ++i) ENG_TRY(parseTrack(tracks.element(i), timeline, channels));
   if (auto d = node.find("duration")) {
     timeline.duration = ENG_TRY_VALUE(d->number());
     if (timeline.duration <= 0.0f) return d->error("duration must be > 0");

@@ -139,13 +139,14 @@ eng::Result<ExpressionLibrary> ExpressionLibrary::fromJson(const Json& root, std
   if (!presets) return presets.error().prefixed(std::string(source) + ": ");
   ExpressionLibrary library;
   library.presets_ = std::move(*presets);
+  library.index_.reserve(library.presets_.size());
+  for (size_t i = 0; i < library.presets_.size(); ++i) library.index_.add(library.presets_[i].name, static_cast<uint32_t>(i));
   return library;
 }
 
 const ExpressionPreset* ExpressionLibrary::find(std::string_view name) const {
-  for (const ExpressionPreset& p : presets_)
-    if (p.name == name) return &p;
-  return nullptr;
+  const std::optional<uint32_t> i = index_.find(name);
+  return i ? &presets_[*i] : nullptr;
 }
 
 std::vector<std::string_view> ExpressionLibrary::names() const {

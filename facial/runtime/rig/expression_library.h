@@ -29,6 +29,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "engine/core/name_index.h"
 #include "engine/core/result.h"
 #include "facial/runtime/rig/emotions.h"
 
@@ -80,6 +81,7 @@ class ExpressionLibrary {
   static eng::Result<ExpressionLibrary> fromJson(const nlohmann::ordered_json& root, std::string_view source);
 
   std::vector<ExpressionPreset> presets_;
+  eng::NameIndex index_;  // find() in one look-up: a graph names a preset per pose node
 };
 
 }  // namespace facial

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/core/name_index.h"
 #include "facial/runtime/json/json_node.h"
 #include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/speech/viseme.h"
@@ -33,40 +34,63 @@ eng::Result<void> readWeightRange(const JsonNode& range, RigMappingBuilder& buil
   return {};
 }
 
+// The model's targets by name, several to a name where the model repeats
+// one: each entry of a rig map finds its targets in one look-up, not a scan
+// of every target (a map of n entries on a model of n targets was n^2).
+class TargetsByName {
+ public:
+  explicit TargetsByName(std::span<const std::string> names) : next_(names.size(), kNone) {
+    std::vector<uint32_t> last(names.size(), kNone);  // per first target of a name: its last one
+    for (uint32_t t = 0; t < names.size(); ++t) {
+      if (auto first = index_.find(names[t])) {
+        next_[last[*first]] = t;
+        last[*first] = t;
+      } else {
+        index_.add(names[t], t);
+        last[t] = t;
+      }
+    }
+  }
+  // The first target called `name` (kNone: none), then next(t) for the others.
+  uint32_t first(std::string_view name) const { return index_.find(name).value_or(kNone); }
+  uint32_t next(uint32_t target) const { return next_[target]; }
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+ private:
+  eng::NameIndex index_;
+  std::vector<uint32_t> next_;
+};
+
 // One channel's [{target, weight}]: every target of that name is driven.
 eng::Result<void> readChannelTargets(const JsonNode& list, std::string_view channel, uint32_t input,
-                                     std::span<const std::string> targetNames, RigMappingBuilder& builder) {
+                                     const TargetsByName& targets, size_t targetCount, RigMappingBuilder& builder) {
   const size_t count = ENG_TRY_VALUE(list.size());
-  std::vector<std::string> seen;
+  eng::NameIndex seen;
   for (size_t i = 0; i < count; ++i) {
     const JsonNode entry = list.element(i);
     ENG_TRY(entry.allowOnly({"target", "weight"}));
     const JsonNode targetNode = ENG_TRY_VALUE(entry.at("target"));
     const std::string target = ENG_TRY_VALUE(targetNode.string());
     const float weight = ENG_TRY_VALUE(numberIn(ENG_TRY_VALUE(entry.at("weight")), -1.0f, 1.0f));
-    if (std::find(seen.begin(), seen.end(), target) != seen.end())
+    if (!seen.add(target, static_cast<uint32_t>(i)))
       return targetNode.error("'" + target + "' is listed twice for " + std::string(channel));
-    seen.push_back(target);
-    bool found = false;
-    for (uint32_t t = 0; t < targetNames.size(); ++t) {
-      if (targetNames[t] != target) continue;
-      builder.add(input, t, weight);
-      found = true;
-    }
-    if (!found)
-      return targetNode.error("the model has no target '" + target + "' (" + std::to_string(targetNames.size()) + " targets)");
+    const uint32_t first = targets.first(target);
+    if (first == TargetsByName::kNone)
+      return targetNode.error("the model has no target '" + target + "' (" + std::to_string(targetCount) + " targets)");
+    for (uint32_t t = first; t != TargetsByName::kNone; t = targets.next(t)) builder.add(input, t, weight);
   }
   return {};
 }
 
 // "map": {channel: [{target, weight}]}, channels are action units or emotions.
 eng::Result<void> readMap(const JsonNode& map, std::span<const std::string> targetNames, RigMappingBuilder& builder) {
+  const TargetsByName targets(targetNames);
   for (const auto& [channel, list] : ENG_TRY_VALUE(map.members())) {
     const std::optional<uint32_t> input = rigInputIndex(channel);
     if (!input)
       return list.error("unknown channel (an action unit such as AU12_LipCornerPuller_L, "
                         "or an emotion: neutral, happy, sad, surprise, fear, anger, disgust)");
-    ENG_TRY(readChannelTargets(list, channel, *input, targetNames, builder));
+    ENG_TRY(readChannelTargets(list, channel, *input, targets, targetNames.size(), builder));
   }
   return {};
 }

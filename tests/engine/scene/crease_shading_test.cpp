@@ -23,16 +23,28 @@ eng::MorphTarget targetFrom(const eng::Primitive& p, glm::vec3 (*delta)(glm::vec
   return t;
 }
 
-float at(const std::vector<float>& d, const eng::Primitive& p, size_t target, size_t vertex) {
-  return d[target * p.positions.size() + vertex];
+using Darkening = std::vector<std::vector<float>>;
+
+float at(const Darkening& d, const eng::Primitive& p, size_t target, size_t vertex) {
+  EXPECT_LT(target, d.size());
+  if (d[target].empty()) return 0.0f;  // the target darkens nothing
+  EXPECT_EQ(d[target].size(), p.positions.size());
+  return d[target][vertex];
+}
+
+bool allZero(const Darkening& d) {
+  return std::all_of(d.begin(), d.end(), [](const std::vector<float>& t) {
+    return std::all_of(t.begin(), t.end(), [](float v) { return v == 0.0f; });
+  });
 }
 
 TEST(CreaseShading, AFurrowDarkensAlongItsValleyOnly) {
   eng::Primitive p = sheet();
   // A groove along x = 0 sinking into the surface (a brow furrow).
   p.targets.push_back(targetFrom(p, [](glm::vec3 q) { return glm::vec3(0, 0, -0.08f * std::exp(-q.x * q.x / 0.004f)); }));
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
-  ASSERT_EQ(d.size(), p.positions.size());
+  const Darkening d = eng::bakeCreaseDarkening(p);
+  ASSERT_EQ(d.size(), 1u);
+  ASSERT_EQ(d[0].size(), p.positions.size());
   EXPECT_GT(at(d, p, 0, centre()), 0.3f) << "the valley floor";
   EXPECT_EQ(at(d, p, 0, size_t((kSide / 2) * kSide + 1)), 0.0f) << "flat skin far from the groove";
   EXPECT_TRUE(eng::hasCreases(d));
@@ -42,7 +54,7 @@ TEST(CreaseShading, BunchedSkinDarkensAndStretchedSkinDoesNot) {
   eng::Primitive p = sheet();
   p.targets.push_back(targetFrom(p, [](glm::vec3 q) { return glm::vec3(-0.4f * q.x, 0, 0); }));  // squeezed in x
   p.targets.push_back(targetFrom(p, [](glm::vec3 q) { return glm::vec3(0.4f * q.x, 0, 0); }));   // stretched
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
+  const Darkening d = eng::bakeCreaseDarkening(p);
   EXPECT_GT(at(d, p, 0, centre()), 0.2f);
   EXPECT_EQ(at(d, p, 1, centre()), 0.0f);
 }
@@ -53,10 +65,10 @@ TEST(CreaseShading, MovingOrBulgingTheSurfaceDoesNotDarkenIt) {
   p.targets.push_back(targetFrom(p, [](glm::vec3 q) {  // a bump rising out of the surface
     return glm::vec3(0, 0, 0.05f * std::exp(-(q.x * q.x + q.y * q.y) / 0.02f));
   }));
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
+  const Darkening d = eng::bakeCreaseDarkening(p);
   EXPECT_EQ(at(d, p, 0, centre()), 0.0f);
   EXPECT_EQ(at(d, p, 1, centre()), 0.0f) << "the top of a bump is convex";
-  EXPECT_FALSE(eng::hasCreases(std::vector<float>(d.begin(), d.begin() + long(p.positions.size()))));
+  EXPECT_FALSE(eng::hasCreases(Darkening(d.begin(), d.begin() + 1)));
 }
 
 TEST(CreaseShading, SplitSeamVerticesGetTheSameValue) {
@@ -68,7 +80,7 @@ TEST(CreaseShading, SplitSeamVerticesGetTheSameValue) {
   for (size_t i = 0; i < p.indices.size() / 2; ++i)
     if (p.indices[i] == centre()) p.indices[i] = copy;
   p.targets.push_back(targetFrom(p, [](glm::vec3 q) { return glm::vec3(0, 0, -0.08f * std::exp(-q.x * q.x / 0.004f)); }));
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
+  const Darkening d = eng::bakeCreaseDarkening(p);
   EXPECT_FLOAT_EQ(at(d, p, 0, copy), at(d, p, 0, centre()));
   EXPECT_GT(at(d, p, 0, copy), 0.3f);
 }
@@ -88,16 +100,16 @@ TEST(CreaseShadingValidity, MalformedTargetsAndIndicesAreSkippedNotRead) {
   shortTarget.positions.resize(3, glm::vec3(0, 0, -1));
   p.targets.push_back(shortTarget);
   p.indices.insert(p.indices.end(), {0, 1, 99999});  // out of range: ignored
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
-  ASSERT_EQ(d.size(), p.positions.size());
-  EXPECT_TRUE(std::all_of(d.begin(), d.end(), [](float v) { return v == 0.0f; }));
+  const Darkening d = eng::bakeCreaseDarkening(p);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_TRUE(d[0].empty()) << "a short target darkens nothing";
 }
 
 TEST(CreaseShadingValidity, NonFiniteDeltasDarkenNothing) {
   eng::Primitive p = sheet();
   p.targets.push_back(targetFrom(p, [](glm::vec3) { return glm::vec3(NAN, 0, 0); }));
-  const std::vector<float> d = eng::bakeCreaseDarkening(p);
-  EXPECT_TRUE(std::all_of(d.begin(), d.end(), [](float v) { return v == 0.0f; }));
+  const Darkening d = eng::bakeCreaseDarkening(p);
+  EXPECT_TRUE(allZero(d));
 }
 
 }  // namespace

@@ -480,8 +480,12 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   const std::vector<uint8_t> pixels = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128};
   auto png = eng::encodePng(2, 2, pixels);
   ASSERT_TRUE(png.ok());
+  // The detail layer's image differs: images with the same bytes share one decode.
+  const std::vector<uint8_t> detailPixels(pixels.rbegin(), pixels.rend());
+  auto detailPng = eng::encodePng(2, 2, detailPixels);
+  ASSERT_TRUE(detailPng.ok());
   b.doc["images"] = Json::array({{{"bufferView", b.addView(*png)}, {"mimeType", "image/png"}, {"name", "checker"}},
-                                 {{"uri", "data:image/png;base64," + scene_test::base64(*png)}}});
+                                 {{"uri", "data:image/png;base64," + scene_test::base64(*detailPng)}}});
   b.doc["textures"] = Json::array({{{"source", 0}}});
   b.doc["materials"] = Json::array({{{"name", "skin"},
                                      {"doubleSided", true},
@@ -497,7 +501,7 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   ASSERT_EQ(model.images.size(), 2u);
   EXPECT_EQ(model.images[0].width, 2);
   EXPECT_EQ(model.images[0].rgba8, pixels);
-  EXPECT_EQ(model.images[1].rgba8, pixels) << "data: URI image";
+  EXPECT_EQ(model.images[1].rgba8, detailPixels) << "data: URI image";
   ASSERT_EQ(model.materials.size(), 1u);
   const eng::Material& m = model.materials[0];
   EXPECT_EQ(m.name, "skin");

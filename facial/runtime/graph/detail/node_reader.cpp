@@ -58,7 +58,9 @@ eng::Result<NodeIndex> NodeReader::node(const JsonNode& j) {
   std::optional<eng::Result<NodeData>> data = readAs(type, j, *this, kAlternatives);
   if (!data) return typeNode.error("unknown node type '" + type + "' (expected " + typeList(kAlternatives) + ")");
   if (!*data) return data->error();
-  return builder_.add(std::move(**data), name, j.pointer());
+  const NodeIndex index = builder_.add(std::move(**data), name, j.pointer());
+  if (builder_.budgetError()) return *builder_.budgetError();  // stop reading at once
+  return index;
 }
 
 eng::Result<ParameterIndex> NodeReader::parameter(const JsonNode& j) const {

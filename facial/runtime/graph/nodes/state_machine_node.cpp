@@ -34,11 +34,7 @@ bool TransitionCondition::holds(std::span<const float> parameters) const {
   return false;
 }
 
-std::optional<uint32_t> StateMachineNode::findState(std::string_view name) const {
-  for (uint32_t i = 0; i < states.size(); ++i)
-    if (states[i].name == name) return i;
-  return std::nullopt;
-}
+std::optional<uint32_t> StateMachineNode::findState(std::string_view name) const { return stateIndex.find(name); }
 
 StateMachineStatus StateMachineNode::status(const State& state) const {
   StateMachineStatus s;
@@ -98,9 +94,11 @@ eng::Result<void> prepareTransitions(const BuildContext& ctx, const StateMachine
 
 eng::Result<void> StateMachineNode::prepare(const BuildContext& ctx) {
   if (states.empty()) return ctx.problem("states", "a state machine needs at least one state");
+  stateIndex = {};
+  stateIndex.reserve(states.size());
   for (size_t i = 0; i < states.size(); ++i) {
     if (states[i].name.empty()) return ctx.problem("states/" + std::to_string(i) + "/name", "empty state name");
-    if (findState(states[i].name) != i)
+    if (!stateIndex.add(states[i].name, static_cast<uint32_t>(i)))
       return ctx.problem("states/" + std::to_string(i) + "/name", "state '" + states[i].name + "' is declared twice");
   }
   if (defaultState.empty()) {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "engine/core/enum_names.h"
+#include "engine/core/name_index.h"
 #include "engine/core/result.h"
 #include "facial/runtime/curves/easing_curve.h"
 #include "facial/runtime/graph/node_types.h"
@@ -97,6 +98,7 @@ struct StateMachineNode {
   std::string defaultState;  // empty: the first state
 
   uint32_t defaultIndex = 0;  // derived at build
+  eng::NameIndex stateIndex;  // derived at build: state names to indices
 
   struct State {
     static constexpr uint32_t kNone = UINT32_MAX;
@@ -111,6 +113,7 @@ struct StateMachineNode {
     std::vector<float> lastOutput;           // what was on screen last frame
   };
 
+  // After prepare(), which indexes the names.
   std::optional<uint32_t> findState(std::string_view name) const;
   StateMachineStatus status(const State& state) const;
 
