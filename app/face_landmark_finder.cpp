@@ -1,8 +1,10 @@
 #include "app/face_landmark_finder.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "app/headless_model_renderer.h"
 #include "autorig/surface_cast.h"
@@ -134,6 +136,24 @@ eng::Result<std::optional<Sighting>> lookWhereTheTargetsAre(const eng::Model& mo
   return std::optional<Sighting>(Sighting{std::move(*image), face});
 }
 
+// The inner lips (60-67) and the outer lip point in front of each (the
+// corners for 60 and 64).
+constexpr std::array<size_t, 8> kOuterLipBefore = {48, 50, 51, 52, 54, 56, 57, 58};
+
+// How deep an inner-lip point may lie: a lip's inner rim is less than a fifth
+// of the mouth's width behind its outer edge. A ray between parted lips that
+// meets the mouth's back wall (facecap's inside faces the camera) went through
+// the opening: the rim is meant, as for a lid over an eye's opening. Infinity
+// until the outer lips are on the surface.
+float innerLipDepthLimit(const autorig::SurfaceCaster& caster, const autorig::FaceLandmarks& landmarks, size_t i) {
+  if (i < 60 || i > 67) return std::numeric_limits<float>::infinity();
+  const auto& p = landmarks.points;
+  const float width = glm::distance(p[48], p[54]);
+  const glm::vec3& before = p[kOuterLipBefore[i - 60]];
+  if (!std::isfinite(width) || !std::isfinite(before.x)) return std::numeric_limits<float>::infinity();
+  return caster.depth(before) + 0.2f * width;
+}
+
 // Each detected pixel cast onto the face; the first that misses is named.
 eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& caster, const Sighting& seen,
                                                  uint32_t size, const std::string& name,
@@ -141,8 +161,9 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
   autorig::FaceLandmarks landmarks;
   landmarks.source = describe(seen.face);
   std::optional<size_t> missed;
-  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
-    const std::optional<autorig::SurfacePoint> hit = caster.cast(seen.face.pixels[i], kReach * float(size));
+  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {  // in order: the outer lips before the inner
+    const std::optional<autorig::SurfacePoint> hit =
+        caster.cast(seen.face.pixels[i], kReach * float(size), innerLipDepthLimit(caster, landmarks, i));
     if (hit) landmarks.points[i] = hit->position;
     else if (!missed) missed = i, landmarks.points[i] = glm::vec3(NAN);
   }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include "autorig/face_frame.h"
 #include "engine/core/enum_names.h"
 #include "engine/scene/inner_face_parts.h"
 #include "engine/scene/position_hash.h"
@@ -89,6 +90,7 @@ std::optional<FacePart> facePartFromNames(const eng::Model& model, const PosedPr
 namespace {
 
 // Where the face is and which way it looks, from its landmarks.
+// The face's axes and size (LandmarkFrame) and where its features are.
 struct FaceFrame {
   glm::vec3 right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, 1};  // right: toward the subject's left (36 -> 45)
   float span = 1.0f;                                         // outer eye corners apart
@@ -110,14 +112,9 @@ glm::vec3 mean(const FaceLandmarks& l, size_t first, size_t last) {
 FaceFrame faceFrame(const FaceLandmarks& l) {
   FaceFrame f;
   const auto& p = l.points;
-  f.span = std::max(glm::distance(p[36], p[45]), 1e-6f);
-  f.right = (p[45] - p[36]) / f.span;
-  // Up from the mouth to the eyes: the chin sits back from the nose bridge,
-  // so 8 -> 27 would lean the face forward.
-  const glm::vec3 rise = mean(l, 36, 47) - mean(l, 60, 67);
-  const glm::vec3 up = rise - f.right * glm::dot(rise, f.right);
-  if (glm::length(up) > 1e-9f) f.up = glm::normalize(up);
-  f.forward = glm::cross(f.right, f.up);
+  const LandmarkFrame axes(l);
+  f.span = axes.eyeSpan();
+  f.right = axes.side(), f.up = axes.up(), f.forward = axes.forward();
   f.eyeCentre = {mean(l, 36, 41), mean(l, 42, 47)};
   f.eyeWidth = {glm::distance(p[36], p[39]), glm::distance(p[42], p[45])};
   f.mouthCentre = mean(l, 60, 67);

@@ -1,7 +1,7 @@
 #pragma once
 // The jaw's hinge (the temporomandibular axis), estimated from the landmarks:
-// the line through the jaw line's top points 0 and 16, set back into the head
-// by a tenth of the eye span. A jaw unit turns the lower teeth and the tongue
+// the line across the face through the jaw line's top points 0 and 16, at the
+// deeper one's depth, set back into the head by a tenth of the eye span. A jaw unit turns the lower teeth and the tongue
 // about it rigidly, by the angle the source face's chin turns about its own.
 #include <glm/glm.hpp>
 

@@ -82,6 +82,9 @@ SurfaceCaster::SurfaceCaster(const eng::Model& model, const PosedFace& posed, co
                              const PictureCamera& camera)
     : posed_(&posed), camera_(camera), inverse_(glm::inverse(camera.viewProjection)) {
   bins_.resize(size_t(cells_) * size_t(cells_));
+  const glm::vec4 nearH = inverse_ * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), farH = inverse_ * glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+  nearCentre_ = glm::vec3(nearH) / nearH.w;
+  forward_ = glm::normalize(glm::vec3(farH) / farH.w - nearCentre_);
   indices_.assign(posed.primitives.size(), nullptr);
   outward_.assign(posed.primitives.size(), true);
   for (size_t pi = 0; pi < posed.primitives.size(); ++pi) {
@@ -128,7 +131,7 @@ int SurfaceCaster::cellOf(glm::vec2 pixel) const {
   return int(c.y) * cells_ + int(c.x);
 }
 
-std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixels) const {
+std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixels, float maxDepth) const {
   const glm::vec2 ndc = pixel / camera_.imageSize * 2.0f - 1.0f;
   const glm::vec4 nearH = inverse_ * glm::vec4(ndc, 0.0f, 1.0f);
   const glm::vec4 farH = inverse_ * glm::vec4(ndc, 1.0f, 1.0f);
@@ -151,18 +154,19 @@ std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixe
     best = SurfacePoint{ref.primitive, origin + dir * *t, true};
     bestFaces = (glm::dot(glm::cross(b - a, c - a), dir) < 0.0f) == outward_[ref.primitive];
   }
-  if (best && bestFaces) return best;
+  if (best && bestFaces && depth(best->position) <= maxDepth) return best;
   // The inside of the head first: the ray went through an opening (an eye,
   // parted lips), and the opening's rim is meant: the nearest vertex of a
   // triangle that faces the camera. No hit: the point lies just off the
   // outline, and the outline is meant.
-  return nearestVertex(pixel, reachPixels, best ? &dir : nullptr);
+  return nearestVertex(pixel, reachPixels, best ? &dir : nullptr, maxDepth);
 }
 
 // The vertex that lands nearest the pixel, within reach; with `facing`, only
 // those of triangles that face a ray along it (the lid's rim beside an eye
 // opening, not the inside of the skull behind it).
-std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing) const {
+std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing,
+                                                         float maxDepth) const {
   const glm::vec2 cells = float(cells_) / camera_.imageSize;
   const glm::vec2 last(float(cells_ - 1));
   const glm::ivec2 c0(glm::clamp(glm::floor((pixel - reachPixels) * cells), glm::vec2(0.0f), last));
@@ -181,7 +185,7 @@ std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float 
         for (int k = 0; k < 3; ++k) {
           const glm::vec3& v = p.positions[corner[k]];
           const std::optional<glm::vec2> s = project(v);
-          if (!s) continue;
+          if (!s || depth(v) > maxDepth) continue;
           const float away = glm::distance(*s, pixel);
           if (away > reachPixels || away >= bestScore) continue;
           bestScore = away;

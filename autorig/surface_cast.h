@@ -4,6 +4,7 @@
 // by where they fall in the picture (a grid of cells), so each ray tests the
 // few hundred triangles of its cell, not every triangle of a 100k-vertex head.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -46,7 +47,14 @@ class SurfaceCaster {
   // of the head first, the nearest vertex (within `reachPixels` of it) of a
   // triangle facing the camera; where it meets nothing, the nearest vertex
   // within reach. Nullopt when nothing of the surface is that close.
-  std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels) const;
+  // A hit deeper than `maxDepth` (see depth()) counts as the inside too, and
+  // no vertex deeper than it is taken: the rim of an opening whose inside
+  // faces the camera (parted lips over a mouth's back wall).
+  std::optional<SurfacePoint> cast(glm::vec2 pixel, float reachPixels,
+                                   float maxDepth = std::numeric_limits<float>::infinity()) const;
+
+  // How far behind the camera's near plane a world point lies, along the view.
+  float depth(const glm::vec3& world) const { return glm::dot(world - nearCentre_, forward_); }
 
   std::optional<glm::vec2> project(const glm::vec3& world) const { return projectToPicture(camera_, world); }
 
@@ -55,7 +63,8 @@ class SurfaceCaster {
     uint32_t primitive;
     uint32_t triangle;
   };
-  std::optional<SurfacePoint> nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing) const;
+  std::optional<SurfacePoint> nearestVertex(glm::vec2 pixel, float reachPixels, const glm::vec3* facing,
+                                            float maxDepth) const;
   int cellOf(glm::vec2 pixel) const;
 
   const PosedFace* posed_;
@@ -63,6 +72,7 @@ class SurfaceCaster {
   std::vector<bool> outward_;                          // per primitive: counter-clockwise faces out
   PictureCamera camera_;
   glm::mat4 inverse_{1.0f};
+  glm::vec3 nearCentre_{0.0f}, forward_{0, 0, -1};  // the picture centre's ray
   int cells_ = 64;  // per side
   std::vector<std::vector<TriangleRef>> bins_;
 };

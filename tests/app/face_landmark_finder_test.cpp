@@ -4,6 +4,7 @@
 #include "autorig/face_parts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -149,6 +150,11 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   EXPECT_LT(glm::distance(mostMoved(f, "mouthSmile_R"), p[48]), 0.15f * span);
   EXPECT_LT(glm::distance(mostMoved(f, "browInnerUp"), (p[21] + p[22]) / 2.0f), 0.3f * span);  // 0.23 seen
   EXPECT_LT(glm::distance(mostMoved(f, "mouthRollLower"), p[57]), 0.15f * span);  // 0.08 seen
+  // The inner lips lie on the lips' rim, not on the mouth's back wall seen
+  // between them: at most a lip's depth behind the outer lip point in front
+  // (0.07 of the span seen; the wall was 0.16 and 0.19 behind).
+  constexpr std::array<std::array<size_t, 2>, 6> kInnerOuter{{{61, 50}, {62, 51}, {63, 52}, {65, 56}, {66, 57}, {67, 58}}};
+  for (const auto& [inner, outer] : kInnerOuter) EXPECT_LT(p[outer].z - p[inner].z, 0.12f * span) << "landmark " << inner;
   // Meshes 0 and 1 are eyeballs (their nodes' parents say so), mesh 3 the
   // upper teeth; the head (mesh 2) holds the lower row as islands, which
   // its own jawOpen moves several times as far as the skin on average.

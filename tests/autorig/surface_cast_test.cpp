@@ -64,6 +64,28 @@ TEST(SurfaceCaster, BesideTheOutlineTakesTheNearestVertexWithinReach) {
   EXPECT_FALSE(caster.cast({-5.0f, 200.0f}, 6.0f));  // off the picture
 }
 
+// A hit deeper than the limit is the inside of an opening (a mouth's back
+// wall between parted lips): the nearest vertex no deeper than the limit,
+// the rim, is taken instead.
+TEST(SurfaceCaster, AHitTooDeepTakesTheRimInFrontOfIt) {
+  const autorig::PosedFace posed = autorig::poseAtRest(sphere());
+  const autorig::SurfaceCaster caster(sphere(), posed, {true}, frontCamera());
+  EXPECT_NEAR(caster.depth({0.0f, 0.0f, 0.0f}) - caster.depth({0.0f, 0.0f, 1.0f}), 1.0f, 1e-4f);
+  const glm::vec3 onSphere = glm::normalize(glm::vec3(0.6f, 0.13f, 0.8f));  // off the mesh's edges
+  const glm::vec2 pixel = *caster.project(onSphere);
+  const auto deep = caster.cast(pixel, 80.0f);
+  ASSERT_TRUE(deep);
+  EXPECT_TRUE(deep->hit);
+  EXPECT_LT(glm::distance(deep->position, onSphere), 0.02f);
+  const float limit = caster.depth({0.0f, 0.0f, 0.9f});
+  const auto rim = caster.cast(pixel, 80.0f, limit);
+  ASSERT_TRUE(rim);
+  EXPECT_FALSE(rim->hit);
+  EXPECT_LE(caster.depth(rim->position), limit);
+  EXPECT_GT(rim->position.x, 0.3f);  // the rim beside the pixel, not the sphere's front
+  EXPECT_FALSE(caster.cast(pixel, 2.0f, limit));  // no vertex that shallow within reach
+}
+
 TEST(SurfaceCaster, DistanceToTheSurface) {
   const autorig::PosedFace posed = autorig::poseAtRest(sphere());
   EXPECT_NEAR(autorig::distanceToSurface(sphere(), posed, {0.0f, 0.0f, 2.0f}), 1.0f, 0.01f);
