@@ -72,9 +72,9 @@ TEST_F(HeadlessDeviceLost, SheetStopsAtTheLostTileAndWritesNoSheet) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// The tour stops at frame 2: the frames rendered before it are whole PNGs,
-// the GIF (written frame by frame) and the contact sheet do not exist, and no
-// partial file is left.
+// The tour stops at frame 2: frame folders are written whole (issue 37), so
+// the two frames rendered before it are dropped with their staging folder;
+// the GIF and the contact sheet do not exist, and no partial file is left.
 TEST_F(HeadlessDeviceLost, DemoTourLeavesNoGifOrSheet) {
   const fs::path out = dir_ / "tour";
   expectLostDeviceReported("demo",
@@ -83,16 +83,10 @@ TEST_F(HeadlessDeviceLost, DemoTourLeavesNoGifOrSheet) {
                            3);
   EXPECT_FALSE(fs::exists(out / "tour.gif"));
   EXPECT_FALSE(fs::exists(out / "contact_sheet.png"));
-  size_t frames = 0;
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(out)) {
-    if (!entry.is_regular_file()) continue;
-    EXPECT_EQ(entry.path().extension(), ".png") << "left behind: " << entry.path();
-    EXPECT_EQ(entry.path().parent_path().filename(), "frames") << entry.path();
-    auto image = eng::readImage(entry.path());
-    EXPECT_TRUE(image.ok()) << entry.path() << ": " << image.error().message;
-    ++frames;
+  if (fs::exists(out)) {
+    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(out))
+      EXPECT_FALSE(entry.is_regular_file()) << "left behind: " << entry.path();
   }
-  EXPECT_EQ(frames, 2u) << "frames 0 and 1 were rendered before the device was lost";
 }
 
 }  // namespace
