@@ -16,6 +16,7 @@
 #include "autorig/builtin_source.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
+#include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
@@ -145,22 +146,7 @@ std::filesystem::path autorigCacheDirectory() {
 }
 
 eng::Result<void> saveModelAtomically(const eng::Model& model, const std::filesystem::path& path) {
-  // The same extension, so saveModel picks the same container (.glb / .gltf);
-  // the process id, so two programs rigging the same face do not share it.
-  std::filesystem::path partial = path;
-  partial.replace_extension("." + std::to_string(getpid()) + ".partial" + path.extension().string());
-  std::error_code ec;
-  if (auto saved = eng::saveModel(model, partial); !saved) {
-    std::filesystem::remove(partial, ec);
-    return saved;
-  }
-  std::filesystem::rename(partial, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot be written (" + ec.message() + ")");
-  }
-  return {};
+  return eng::writeFileWhole(path, [&](const std::filesystem::path& partial) { return eng::saveModel(model, partial); });
 }
 
 std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath) {

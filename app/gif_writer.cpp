@@ -7,6 +7,8 @@
 #include <cgif.h>
 #include <libimagequant.h>
 
+#include "engine/scene/file_bytes.h"
+
 namespace app {
 
 struct GifWriter::Impl {
@@ -121,13 +123,7 @@ eng::Result<void> GifWriter::finish() {
     std::filesystem::remove(s.partialPath, ec);
     return eng::makeError(eng::ErrorKind::Io, s.pathString + ": closing GIF failed (cgif error " + std::to_string(rc) + ")");
   }
-  std::filesystem::rename(s.partialPath, s.path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(s.partialPath, ignored);
-    return eng::makeError(eng::ErrorKind::Io, s.pathString + ": cannot move the finished GIF into place: " + ec.message());
-  }
-  return {};
+  return eng::commitPartialFile(s.partialPath, s.path);
 }
 
 }  // namespace app

@@ -6,6 +6,8 @@
 #include <string>
 #include <system_error>
 
+#include "engine/scene/file_bytes.h"
+
 namespace audio {
 namespace {
 
@@ -72,7 +74,7 @@ eng::Result<AudioClip> readAudioFile(const std::filesystem::path& path) {
 eng::Result<void> writeWavFile(const std::filesystem::path& path, std::span<const float> samples, int sampleRate) {
   const std::string name = path.string();
   if (sampleRate <= 0) return eng::makeError(eng::ErrorKind::InvalidArgument, name + ": sample rate " + std::to_string(sampleRate) + " Hz");
-  const std::filesystem::path partial = name + ".partial";
+  const std::filesystem::path partial = eng::partialPathFor(path);
   SF_INFO info{.samplerate = sampleRate, .channels = 1, .format = SF_FORMAT_WAV | SF_FORMAT_PCM_16};
   {
     SndfileHandle file(sf_open(partial.c_str(), SFM_WRITE, &info));
@@ -87,12 +89,7 @@ eng::Result<void> writeWavFile(const std::filesystem::path& path, std::span<cons
       return eng::makeError(eng::ErrorKind::Io, name + ": cannot write: " + why);
     }
   }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) {
-    std::filesystem::remove(partial, ec);
-    return eng::makeError(eng::ErrorKind::Io, name + ": cannot write: " + ec.message());
-  }
+  ENG_TRY(eng::commitPartialFile(partial, path));
   return {};
 }
 

@@ -20,6 +20,8 @@ extern "C" {
 #include <thread>
 #include <vector>
 
+#include "engine/scene/file_bytes.h"
+
 namespace audio {
 namespace {
 
@@ -146,7 +148,7 @@ struct VideoWriter::Impl {
   std::thread encoder;
 
   ~Impl() {
-    stopEncoder(/*dropQueued=*/true);
+    (void)stopEncoder(/*dropQueued=*/true);  // abandoned: the partial file goes below, its error with it
     if (!output) return;
     output.reset();
     std::error_code ignored;
@@ -397,14 +399,7 @@ eng::Result<void> VideoWriter::finish() {
   if (int rc = av_write_trailer(s.output.get()); rc < 0) return s.fail(nullptr, "cannot finish the file", rc);
   if (int rc = avio_closep(&s.output->pb); rc < 0) return s.fail(nullptr, "cannot close the file", rc);
   s.output.reset();
-  std::error_code ec;
-  std::filesystem::rename(s.partialPath, s.path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(s.partialPath, ignored);
-    return eng::makeError(eng::ErrorKind::Io, s.name + ": cannot move the finished video into place: " + ec.message());
-  }
-  return {};
+  return eng::commitPartialFile(s.partialPath, s.path);
 }
 
 }  // namespace audio

@@ -62,20 +62,9 @@ eng::Result<void> writeLandmarksFile(const FaceLandmarks& landmarks, const std::
   }
   facial::Json json = {{"landmarks68", points}, {"source", landmarks.source}};
   const std::string text = json.dump(1) + "\n";
-  const std::filesystem::path partial = path.string() + ".partial";
-  if (auto written = eng::writeFileBytes(partial, text.data(), text.size()); !written) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    return written;
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(partial, ignored);
-    return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write (" + ec.message() + ")");
-  }
-  return {};
+  return eng::writeFileWhole(path, [&](const std::filesystem::path& partial) {
+    return eng::writeFileBytes(partial, text.data(), text.size());
+  });
 }
 
 eng::Result<void> checkLandmarksOnSurface(const FaceLandmarks& landmarks, const eng::Model& model,

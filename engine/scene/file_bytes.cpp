@@ -1,6 +1,9 @@
 #include "engine/scene/file_bytes.h"
 
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 namespace eng {
 
@@ -29,6 +32,32 @@ Result<void> writeFileBytes(const std::filesystem::path& path, const void* data,
   out.close();
   if (!out) return makeError(ErrorKind::Io, path.string() + ": write failed");
   return {};
+}
+
+std::filesystem::path partialPathFor(const std::filesystem::path& path) {
+  std::filesystem::path partial = path;
+  partial.replace_filename(path.stem().string() + "." + std::to_string(getpid()) + ".partial" + path.extension().string());
+  return partial;
+}
+
+Result<void> commitPartialFile(const std::filesystem::path& partial, const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (!ec) return {};
+  std::error_code ignored;
+  std::filesystem::remove(partial, ignored);
+  return makeError(ErrorKind::Io, path.string() + ": cannot move the finished file into place (" + ec.message() + ")");
+}
+
+Result<void> writeFileWhole(const std::filesystem::path& path,
+                            const std::function<Result<void>(const std::filesystem::path& partial)>& write) {
+  const std::filesystem::path partial = partialPathFor(path);
+  if (auto written = write(partial); !written) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    return written;
+  }
+  return commitPartialFile(partial, path);
 }
 
 }  // namespace eng

@@ -147,7 +147,9 @@ TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
   // Its take still plays: the weights channels carry a zero for each new target.
   for (const eng::Animation& animation : rigged->model.animations)
     for (const eng::WeightsChannel& channel : animation.channels)
-      if (channel.mesh == int(skinMesh(*face))) EXPECT_EQ(channel.targetCount, mesh.targetNames.size());
+      if (channel.mesh == int(skinMesh(*face))) {
+        EXPECT_EQ(channel.targetCount, mesh.targetNames.size());
+      }
 }
 
 // Every made shape that facecap also has, for docs/autorig.md (no bounds:

@@ -31,6 +31,14 @@ std::vector<std::filesystem::path> sharedModelFiles() {
 std::filesystem::path sourceDir() { return FACIAL_SOURCE_DIR; }
 std::filesystem::path binaryDir() { return FACIAL_BINARY_DIR; }
 
+size_t partialFilesIn(const std::filesystem::path& dir) {
+  size_t count = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.is_regular_file() && entry.path().filename().string().find(".partial") != std::string::npos) ++count;
+  return count;
+}
+
 std::filesystem::path freshTempDir(const std::string& name) {
   // ctest runs tests in parallel processes: the running test's own name (or the process id
   // outside a test) keeps one test from wiping a folder another is writing into.

@@ -29,4 +29,8 @@ std::filesystem::path freshTempDir(const std::string& name);
 
 void writeFile(const std::filesystem::path& path, const std::string& bytes);
 
+// Files in `dir` (not below) whose name holds ".partial": what a whole-file
+// write (eng::writeFileWhole, the GIF, WAV and video writers) left behind.
+size_t partialFilesIn(const std::filesystem::path& dir);
+
 }  // namespace testing_support
