@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 #include "facial/runtime/json/json_document.h"  // formatNumber
 
@@ -33,6 +34,9 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
   facial::Timeline timeline;
   timeline.name = source.name.empty() ? "animation" + std::to_string(animation) : source.name;
   std::vector<facial::Keyframe> keys;
+  // Targets already animated, hashed: a scan of the tracks per target was
+  // quadratic in a file with many targets.
+  std::unordered_set<std::string> animated;
   for (size_t c = 0; c < source.channels.size(); ++c) {
     const eng::WeightsChannel& channel = source.channels[c];
     const std::string where = label + " channel " + std::to_string(c);
@@ -56,7 +60,7 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
       return eng::makeError(eng::ErrorKind::Malformed, where + ": negative key time " + facial::formatNumber(channel.times.front()));
     for (size_t t = 0; t < channel.targetCount; ++t) {
       const std::string& target = mesh.targetNames[t];
-      if (timeline.findTrack(target)) {
+      if (animated.count(target) != 0) {
         if (warnings) warnings->push_back(where + ": target '" + target + "' is already animated by an earlier channel; kept the first");
         continue;
       }
@@ -73,7 +77,9 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
         }
         keys.push_back(key);
       }
-      if (!keys.empty()) timeline.addTrack(target, keys);
+      if (keys.empty()) continue;
+      timeline.addTrack(target, keys);
+      animated.insert(target);
     }
   }
   if (timeline.tracks.empty()) return eng::makeError(eng::ErrorKind::Malformed, label + " animates no morph weights");
