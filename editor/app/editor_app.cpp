@@ -20,6 +20,7 @@
 #include "engine/vk/present/imgui_layer.h"
 #include "app/window_loop.h"
 #include "app/window_session.h"
+#include "editor/app/bilinear_pad_panel.h"
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
@@ -27,6 +28,7 @@
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
 #include "editor/app/driver_channels.h"
+#include "editor/key_recorder.h"
 #include "engine/view/framing_bounds.h"
 #include "importers/face_dressing.h"
 
@@ -79,6 +81,12 @@ class EditorApp : public FaceDelegate {
   void runScript(float elapsed);
   bool runAction(const EditorScriptAction& action);
   void logTimeline() const;
+  // The state machine diagram, the bilinear pad and Record (issue 34, points 3 and 4).
+  bool runGraphOrPadAction(const EditorScriptAction& action);
+  bool startRecording();
+  bool stopRecording();
+  void sampleRecording(float dt);
+  void drawPadWindow();
   void drawControlPoints();
   eng::OrbitCamera renderCamera() const;
   // World ray through a window pixel.
@@ -91,6 +99,10 @@ class EditorApp : public FaceDelegate {
   std::optional<app::FaceSetup> setup_;
   StateMachinePanel machine_;
   ControlMapPanel controlMap_;
+  BilinearPadPanel bilinearPad_;
+  KeyRecorder recorder_;
+  std::vector<float> recordValues_;  // one frame's channel values, reused
+  float recordElapsed_ = 0.0f;
   std::unique_ptr<TimelinePanel> timeline_;
   SculptPanel sculpt_;
   FaceSource source_ = FaceSource::StateMachine;
@@ -128,6 +140,7 @@ float EditorApp::currentValue(std::string_view channel) const {
       const auto it = std::find(targetNames_.begin(), targetNames_.end(), channel);
       return it == targetNames_.end() ? 0.0f : timeline_->targetWeights()[size_t(it - targetNames_.begin())];
     }
+    case FaceSource::BilinearPad: return bilinearPad_.channelValue(channel);
   }
   return 0.0f;
 }
@@ -137,6 +150,7 @@ std::span<const float> EditorApp::faceWeights() const {
     case FaceSource::StateMachine: return machine_.targetWeights();
     case FaceSource::ControlMap: return controlMap_.targetWeights();
     case FaceSource::Timeline: return timeline_->targetWeights();
+    case FaceSource::BilinearPad: return bilinearPad_.targetWeights();
   }
   return machine_.targetWeights();
 }
@@ -146,6 +160,7 @@ std::span<const float> EditorApp::faceExpressionWeights() const {
     case FaceSource::StateMachine: return machine_.driver().expressionWeights();
     case FaceSource::ControlMap: return controlMap_.active().expressionWeights();
     case FaceSource::Timeline: return timeline_->expressionWeights();
+    case FaceSource::BilinearPad: return bilinearPad_.expressionWeights();
   }
   return machine_.driver().expressionWeights();
 }
@@ -170,6 +185,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   if (!o.trigger.empty() && !machine_.fire(o.trigger))
     return fail(graphPath + ": no trigger parameter named '" + o.trigger + "'");
   if (auto created = controlMap_.create(*setup_); !created) return fail(created.error().message);
+  if (auto created = bilinearPad_.create(*setup_); !created) return fail(created.error().message);
   timeline_ = std::make_unique<TimelinePanel>(*setup_);
   if (!o.timeline.empty() && !timeline_->open(o.timeline)) return 1;  // the panel logged why
   // Landmarks are in the built-in head's space: offered for that model only.
@@ -189,7 +205,8 @@ int EditorApp::setUp(const EditorOptions& o) {
                     (builtIn ? " (the surface and position landmarks of data/head_landmarks.json)"
                              : " (landmarks exist for the built-in head only)"));
       using Kind = EditorScriptAction::Kind;
-      const bool writes = a.kind == Kind::TimelineSave || a.kind == Kind::SculptSave || a.kind == Kind::Screenshot;
+      const bool writes = a.kind == Kind::TimelineSave || a.kind == Kind::SculptSave || a.kind == Kind::Screenshot ||
+                          a.kind == Kind::GraphSave;
       if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", graphPath}, {"--script", o.script}},
                                          .outputs = {{"", writes ? std::string_view(a.text) : std::string_view()}}});
           !safe)
@@ -344,8 +361,91 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SayStop: machine_.pressStopSpeaking(); return true;
     case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
     case Kind::Quit: quitRequested_ = true; return true;
+    default: return runGraphOrPadAction(a);
   }
   return false;
+}
+
+// ---------------------------------------------------------------------------
+// The state machine diagram, the bilinear pad and Record (issue 34, points 3 and 4).
+
+bool EditorApp::runGraphOrPadAction(const EditorScriptAction& a) {
+  using Kind = EditorScriptAction::Kind;
+  const auto& w = a.words;
+  if (a.kind >= Kind::GraphAddState && a.kind <= Kind::GraphEditTransition) machine_.showDiagram();
+  switch (a.kind) {
+    case Kind::GraphAddState: return machine_.addState(w[0], w.size() > 1 ? w[1] : w[0]);
+    case Kind::GraphRemoveState: return machine_.removeState(w[0]);
+    case Kind::GraphRenameState: return machine_.renameState(w[0], w[1]);
+    case Kind::GraphAddTransition: return machine_.addTransition(w[0], w[1], w[2], a.a, w[3]);
+    case Kind::GraphEditTransition:
+      return machine_.editTransition(w[0], w[1], a.a, w[2], std::isnan(a.b) ? std::nullopt : std::optional<float>(a.b), a.c != 0.0f);
+    case Kind::GraphSave: return machine_.saveGraph(a.text);
+    case Kind::BilinearPad: bilinearPad_.dragTo(a.a, a.b, *this); return true;
+    case Kind::RecordStart: return startRecording();
+    case Kind::RecordStop: return stopRecording();
+    default: return false;
+  }
+}
+
+bool EditorApp::startRecording() {
+  if (source_ == FaceSource::Timeline) {
+    fail("record: the timeline drives the face; move a pad or a slider to record it");
+    return false;
+  }
+  std::vector<std::string> channels;
+  for (uint32_t i = 0; i < facial::rigInputCount(); ++i) channels.emplace_back(facial::rigInputName(i));
+  recordValues_.assign(channels.size(), 0.0f);
+  recordElapsed_ = 0.0f;
+  recorder_.start(std::move(channels), timeline_->playhead());
+  sampleRecording(0.0f);
+  std::printf("record: started at %.3f s\n", timeline_->playhead());
+  std::fflush(stdout);
+  return true;
+}
+
+void EditorApp::sampleRecording(float dt) {
+  if (!recorder_.recording()) return;
+  recordElapsed_ += dt;
+  for (size_t c = 0; c < recordValues_.size(); ++c) recordValues_[c] = currentValue(recorder_.channels()[c]);
+  recorder_.sample(recordElapsed_, recordValues_);
+}
+
+bool EditorApp::stopRecording() {
+  if (!recorder_.recording()) return false;
+  const size_t samples = recorder_.sampleCount();
+  const std::vector<RecordedTrack> tracks = recorder_.stop();
+  auto written = writeRecording(timeline_->document(), tracks, samples);
+  if (!written) {
+    fail("record: " + written.error().message);
+    return false;
+  }
+  std::printf("record: %zu tracks, %zu keys from %zu frames over %.2f s\n", written->tracks, written->keys, written->samples,
+              written->seconds);
+  logTimeline();
+  return true;
+}
+
+void EditorApp::drawPadWindow() {
+  if (ImGui::Button(recorder_.recording() ? "Stop recording" : "Record")) {
+    if (recorder_.recording())
+      stopRecording();
+    else
+      startRecording();
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Writes what the pads and sliders do into the timeline as keys, from the playhead (a few keys a second)");
+  if (ImGui::BeginTabBar("pads")) {
+    if (ImGui::BeginTabItem("Control map")) {
+      controlMap_.draw(*this);
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Bilinear pad")) {
+      bilinearPad_.draw(*this);
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
 }
 
 void EditorApp::runScript(float elapsed) {
@@ -362,6 +462,9 @@ void EditorApp::runScript(float elapsed) {
     }
     const int k = int(a.kind);
     if (k >= int(EditorScriptAction::Kind::TimelineOpen) && k <= int(EditorScriptAction::Kind::TimelineSave)) logTimeline();
+    if (k >= int(EditorScriptAction::Kind::GraphAddState) && k <= int(EditorScriptAction::Kind::GraphSave) && machine_.document())
+      std::printf("graph: %zu states, %zu transitions%s\n", machine_.document()->states().size(),
+                  machine_.document()->transitions().size(), machine_.document()->dirty() ? ", modified" : "");
     if ((a.kind == EditorScriptAction::Kind::SculptMove || a.kind == EditorScriptAction::Kind::SculptDrag) && sculpt_.hasSelection()) {
       const SculptPoint& p = sculpt_.points()[size_t(sculpt_.selected())];
       std::printf("sculpt: '%s' displaced by (%.5f, %.5f, %.5f)\n", p.name.c_str(), p.displacement.x, p.displacement.y,
@@ -411,8 +514,9 @@ void EditorApp::drawPanels() {
   ImGui::SetNextWindowPos({0, l.leftSplit}, ImGuiCond_Always);
   ImGui::SetNextWindowSize({l.side, l.height - l.bottom - l.leftSplit}, ImGuiCond_Always);
   ImGui::Begin("Control map", nullptr, docked);
-  controlMap_.draw(*this);
+  drawPadWindow();
   ImGui::End();
+  machine_.drawDiagramWindow({l.x0() + 10.0f, 30.0f}, {std::min(l.x1() - l.x0() - 20.0f, 620.0f), std::min(l.y1() - 60.0f, 400.0f)});
 
   ImGui::SetNextWindowPos({l.width - l.side, 0}, ImGuiCond_Always);
   ImGui::SetNextWindowSize({l.side, l.height - l.bottom}, ImGuiCond_Always);
@@ -428,7 +532,8 @@ void EditorApp::drawPanels() {
 
   // Status over the viewport's top edge.
   char status[160];
-  std::snprintf(status, sizeof status, "%s  |  face from: %s  |  %.1f ms", setup_->name().c_str(), faceSourceName(source_), frameMs_);
+  std::snprintf(status, sizeof status, "%s  |  face from: %s  |  %.1f ms%s", setup_->name().c_str(), faceSourceName(source_), frameMs_,
+                recorder_.recording() ? "  |  REC" : "");
   ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, 8.0f}, IM_COL32(230, 230, 235, 255), status);
   ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, l.y1() - 22.0f}, IM_COL32(170, 170, 180, 255),
                                           "drag: orbit   wheel: zoom   F12: screenshot   Ctrl+Z/Y: undo/redo");
@@ -446,7 +551,9 @@ int EditorApp::run(const EditorOptions& o) {
     runScript(tick.animationTime);
     machine_.update(tick.dt);
     controlMap_.update(tick.dt);
+    bilinearPad_.update();
     timeline_->update(tick.dt);
+    sampleRecording(tick.dt);
     drawPanels();
     drawControlPoints();
     session_->ui().endFrame();

@@ -43,12 +43,44 @@ constexpr Verb kVerbs[] = {
     {"say-stop", Kind::SayStop, ""},
     {"screenshot", Kind::Screenshot, "?w"},
     {"quit", Kind::Quit, ""},
+    // The state machine diagram and the pads that record.
+    {"graph-add-state", Kind::GraphAddState, "w?w"},
+    {"graph-remove-state", Kind::GraphRemoveState, "w"},
+    {"graph-rename-state", Kind::GraphRenameState, "ww"},
+    {"graph-add-transition", Kind::GraphAddTransition, "wwwnw"},
+    {"graph-edit-transition", Kind::GraphEditTransition, "wwnwww"},
+    {"graph-save", Kind::GraphSave, "w"},
+    {"bilinear-pad", Kind::BilinearPad, "nn"},
+    {"record-start", Kind::RecordStart, ""},
+    {"record-stop", Kind::RecordStop, ""},
 };
 
 std::string verbList() {
   std::string list;
   for (const Verb& v : kVerbs) list += (list.empty() ? "" : ", ") + std::string(v.word);
   return list;
+}
+
+// The diagram's and the bilinear pad's arguments; "" when they are good.
+// graph-edit-transition keeps its exit time in b (NaN: none) and the interruption rule in c (1: yes).
+std::string checkGraphOrPadAction(EditorScriptAction& action) {
+  if (action.kind == Kind::BilinearPad)
+    return action.a < 0.0f || action.a > 1.0f || action.b < 0.0f || action.b > 1.0f ? "bilinear-pad s, t must lie in [0, 1]" : "";
+  if (!(action.a > 0.0f)) return "a transition's duration must be > 0 seconds";
+  const std::string& easing = action.kind == Kind::GraphAddTransition ? action.words[3] : action.words[2];
+  if (easing != "linear" && easing != "cosine" && easing != "smoothstep")
+    return "unknown easing '" + easing + "' (linear, cosine, smoothstep)";
+  if (action.kind == Kind::GraphAddTransition) return "";
+  const std::string& exit = action.words[3];
+  if (exit == "-") {
+    action.b = NAN;
+  } else if (!app::parseScriptNumber(exit, action.b) || action.b < 0.0f) {
+    return "exit time '" + exit + "' is not a number of seconds >= 0 (or '-': none)";
+  }
+  const std::string& interrupt = action.words[4];
+  if (interrupt != "yes" && interrupt != "no") return "interruption rule '" + interrupt + "' is not yes or no";
+  action.c = interrupt == "yes" ? 1.0f : 0.0f;
+  return "";
 }
 
 }  // namespace
@@ -103,6 +135,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       const std::string& word = words[argument++];
       if (type == 'w') {
         action.text = word;
+        action.words.push_back(word);
       } else {
         if (!app::parseScriptNumber(word, *numbers[nextNumber]))
           return fail("'" + word + "' is not a finite number");
@@ -131,6 +164,11 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
         break;
       case Kind::SculptFalloff:
         if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
+        break;
+      case Kind::GraphAddTransition:
+      case Kind::GraphEditTransition:
+      case Kind::BilinearPad:
+        if (auto problem = checkGraphOrPadAction(action); !problem.empty()) return fail(problem);
         break;
       default: break;
     }

@@ -29,6 +29,16 @@
 //   3.2 screenshot shot.png        as F12 (no path: where F12 writes); later actions wait for it
 //   3.5 quit                       close the window (the --screenshot frame is still written)
 //
+// The state machine diagram and the pads that record (issue 34, points 3 and 4):
+//   graph-add-state smirk [happy]         add a state (its pose: the preset, the state's name when left out)
+//   graph-remove-state sad                remove a state and the transitions into it
+//   graph-rename-state smirk grin         rename a state (transitions follow)
+//   graph-add-transition FROM TO TRIGGER DURATION EASING   FROM may be "any"; TRIGGER "-": none
+//   graph-edit-transition FROM TO DURATION EASING EXIT_TIME INTERRUPT   EXIT_TIME "-": none; INTERRUPT yes|no
+//   graph-save OUT.json                   the diagram's Save (the graph file the runtime reads)
+//   bilinear-pad 0.5 0.8                  the bilinear pad's cursor (s, t in [0, 1])
+//   record-start / record-stop            Record: what the pads and sliders do becomes timeline keys
+//
 // Paths are one word (no spaces), relative to the working folder. An action
 // that fails at run time (a pick that misses, a save that cannot write) is
 // reported like the button's failure, the script goes on, and the program
@@ -49,11 +59,14 @@ struct EditorScriptAction {
     SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptFalloff, SculptBake, SculptSave,
     Say, SayLanguage, SayStop,
     Screenshot, Quit,
+    GraphAddState, GraphRemoveState, GraphRenameState, GraphAddTransition, GraphEditTransition, GraphSave,
+    BilinearPad, RecordStart, RecordStop,
   };
   float time = 0.0f;
   int line = 0;
   Kind kind = Kind::Quit;
   std::string text;                      // the name, path or text argument ("" when none)
+  std::vector<std::string> words;        // every word argument, in order (text is the last)
   float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
   bool hasNumber = false;                // sculpt-kernel: c was given
   std::string written;                   // "ACTION ARGS" as in the file

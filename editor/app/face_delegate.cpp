@@ -9,6 +9,7 @@ const char* faceSourceName(FaceSource source) {
     case FaceSource::StateMachine: return "state machine";
     case FaceSource::ControlMap: return "control map";
     case FaceSource::Timeline: return "timeline";
+    case FaceSource::BilinearPad: return "bilinear pad";
   }
   return "?";
 }

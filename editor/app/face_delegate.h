@@ -9,7 +9,7 @@
 namespace editor {
 
 // Which panel poses the face this frame.
-enum class FaceSource { StateMachine, ControlMap, Timeline };
+enum class FaceSource { StateMachine, ControlMap, Timeline, BilinearPad };
 const char* faceSourceName(FaceSource source);
 
 class FaceDelegate {

@@ -27,15 +27,25 @@ eng::Result<void> StateMachinePanel::load(const app::FaceSetup& face, const std:
   face_ = &face;
   auto graph = facial::loadGraph(graphPath, {.presets = facial::presetLookup(face.expressions())});
   if (!graph) return graph.error();
-  const std::vector<std::string> names = face.layout().names();
-  auto driver = facial::FaceDriver::create(*graph, &face.graphRig(), names, face.baseWeights(), 1);
+  ENG_TRY(adopt(std::move(*graph), graphPath));
+  // A graph without a state machine runs; it just has no diagram to edit.
+  auto document = GraphDocument::load(graphPath);
+  document_.reset();
+  if (document) document_.emplace(std::move(*document));
+  selectedState_ = selectedTransition_ = -1;
+  return {};
+}
+
+eng::Result<void> StateMachinePanel::adopt(facial::SharedGraphDefinition graph, const std::string& graphPath) {
+  const std::vector<std::string> names = face_->layout().names();
+  auto driver = facial::FaceDriver::create(graph, &face_->graphRig(), names, face_->baseWeights(), 1);
   if (!driver) return driver.error().prefixed(graphPath + ": ");
   // The editor drives the machine by hand: a graph's autoplay switch starts off.
-  if (const auto autoplay = (*graph)->findParameter("autoplay");
-      autoplay && (*graph)->parameters()[*autoplay].type == facial::ParameterType::Bool)
+  if (const auto autoplay = graph->findParameter("autoplay");
+      autoplay && graph->parameters()[*autoplay].type == facial::ParameterType::Bool)
     driver->graph().setBool(*autoplay, false);
   driver_.emplace(std::move(*driver));
-  machine_ = findStateMachine(**graph);
+  machine_ = findStateMachine(*graph);
   loadedPath_ = graphPath;
   std::snprintf(pathInput_, sizeof pathInput_, "%s", graphPath.c_str());
   driver_->update(0.0f);
@@ -125,6 +135,7 @@ void StateMachinePanel::draw(FaceDelegate& face) {
   }
   message_.draw();
   if (!driver_) return;
+  if (document_) ImGui::Checkbox("diagram (edit the state machine)", &diagramShown_);
   facial::GraphInstance& graph = driver_->graph();
   const facial::GraphDefinition& definition = graph.definition();
 
