@@ -291,23 +291,17 @@ eng::Result<void> GraphDocument::removeTransition(std::string_view from, std::st
   return {};
 }
 
-bool GraphDocument::undo() {
-  if (undo_.empty()) return false;
-  redo_.push_back(snapshot());
-  document_ = std::move(undo_.back().document);
-  revision_ = undo_.back().revision;
-  undo_.pop_back();
+bool GraphDocument::step(std::vector<Snapshot>& from, std::vector<Snapshot>& to) {
+  if (from.empty()) return false;
+  to.push_back(snapshot());
+  document_ = std::move(from.back().document);
+  revision_ = from.back().revision;
+  from.pop_back();
   return true;
 }
 
-bool GraphDocument::redo() {
-  if (redo_.empty()) return false;
-  undo_.push_back(snapshot());
-  document_ = std::move(redo_.back().document);
-  revision_ = redo_.back().revision;
-  redo_.pop_back();
-  return true;
-}
+bool GraphDocument::undo() { return step(undo_, redo_); }
+bool GraphDocument::redo() { return step(redo_, undo_); }
 
 void GraphDocument::discardLast() {
   if (undo()) redo_.pop_back();

@@ -93,6 +93,8 @@ class GraphDocument {
   };
   void commit(Snapshot before);
   Snapshot snapshot() const { return {document_, revision_}; }
+  // Undo (undo_ -> redo_) or redo (redo_ -> undo_).
+  bool step(std::vector<Snapshot>& from, std::vector<Snapshot>& to);
 
   facial::Json document_;
   facial::Json::json_pointer machinePointer_;

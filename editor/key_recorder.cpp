@@ -62,17 +62,17 @@ std::vector<size_t> KeyRecorder::simplify(std::span<const float> times, std::spa
   return kept;
 }
 
-std::vector<facial::Keyframe> KeyRecorder::reduce(std::span<const float> values) const {
+RecordedTrack KeyRecorder::reduce(std::string channel, std::span<const float> values) const {
   const float seconds = times_.empty() ? 0.0f : times_.back() - times_.front();
   const size_t most = std::max<size_t>(2, size_t(std::ceil(options_.maxKeysPerSecond * seconds)) + 1);
+  RecordedTrack track{std::move(channel), {}, options_.tolerance};
   std::vector<size_t> kept;
-  for (float tolerance = options_.tolerance;; tolerance *= 2.0f) {
-    kept = simplify(times_, values, tolerance);
-    if (kept.size() <= most || tolerance > 1.0f) break;
+  for (;; track.tolerance *= 2.0f) {
+    kept = simplify(times_, values, track.tolerance);
+    if (kept.size() <= most || track.tolerance > 1.0f) break;
   }
-  std::vector<facial::Keyframe> keys;
-  for (const size_t i : kept) keys.push_back({.time = startTime_ + times_[i], .value = values[i]});
-  return keys;
+  for (const size_t i : kept) track.keys.push_back({.time = startTime_ + times_[i], .value = values[i]});
+  return track;
 }
 
 std::vector<RecordedTrack> KeyRecorder::stop() {
@@ -84,7 +84,7 @@ std::vector<RecordedTrack> KeyRecorder::stop() {
     for (size_t s = 0; s < samples; ++s) values[s] = values_[s * n + c];
     const auto [low, high] = std::minmax_element(values.begin(), values.end());
     if (*high - *low <= options_.tolerance) continue;  // this channel did not move
-    tracks.push_back({channels_[c], reduce(values)});
+    tracks.push_back(reduce(channels_[c], values));
   }
   return tracks;
 }

@@ -19,6 +19,7 @@ namespace editor {
 struct RecordedTrack {
   std::string channel;
   std::vector<facial::Keyframe> keys;  // linear, times from the recording's start time
+  float tolerance = 0.0f;              // the keys are within this of every frame (raised to fit the key rate)
 };
 
 struct RecordingSummary {
@@ -52,7 +53,7 @@ class KeyRecorder {
   static std::vector<size_t> simplify(std::span<const float> times, std::span<const float> values, float tolerance);
 
  private:
-  std::vector<facial::Keyframe> reduce(std::span<const float> values) const;
+  RecordedTrack reduce(std::string channel, std::span<const float> values) const;
 
   Options options_;
   bool recording_ = false;

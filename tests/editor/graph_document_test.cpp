@@ -84,7 +84,7 @@ TEST(GraphDocument, RefusesAGraphWithoutAStateMachine) {
 
 TEST(GraphDocument, AddsRemovesAndRenamesStatesWithTheirTransitions) {
   GraphDocument doc = tour();
-  ASSERT_TRUE(doc.addState("smirk", "happily disgusted").ok());
+  ASSERT_TRUE(doc.addState("smirk", "happily_disgusted").ok());
   EXPECT_FALSE(doc.addState("smirk", "happy").ok());
   EXPECT_FALSE(doc.addState("any", "happy").ok());
   ASSERT_TRUE(doc.addTransition("happy", "smirk", "smirk", 0.4f, "smoothstep").ok());
@@ -152,7 +152,7 @@ TEST(GraphDocument, UndoAndRedoEveryEdit) {
 
 TEST(GraphDocument, SavedGraphLoadsInTheRuntimeAndBehavesAsTheDocument) {
   GraphDocument doc = tour();
-  ASSERT_TRUE(doc.addState("smirk", "happily disgusted").ok());
+  ASSERT_TRUE(doc.addState("smirk", "happily_disgusted").ok());
   ASSERT_TRUE(doc.addTransition("neutral", "smirk", "smirk", 0.5f, "smoothstep").ok());
   ASSERT_TRUE(doc.editTransition("neutral", "smirk", 0.7f, "cosine", std::nullopt, false).ok());
   const fs::path dir = testing_support::freshTempDir("graph_document_save");
