@@ -71,15 +71,18 @@ float BilinearPadPanel::channelValue(std::string_view channel) const {
 }
 
 void BilinearPadPanel::draw(FaceDelegate& face) {
+  // The corner combos laid out as the pad: row 2 over row 1, "from" left, "to" right.
   const auto presets = face_->expressions().names();
-  for (size_t c = 0; c < 4; ++c) {
+  for (const size_t c : {size_t(BilinearPad::Q21), size_t(BilinearPad::Q22), size_t(BilinearPad::Q11), size_t(BilinearPad::Q12)}) {
     ImGui::PushID(int(c));
-    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f - 4.0f);
-    if (ImGui::BeginCombo(kCornerLabels[c], cornerNames_[c].c_str())) {
+    if (c % 2 == 1) ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * (c % 2 == 1 ? 1.0f : 0.5f) - 4.0f);
+    if (ImGui::BeginCombo("##corner", cornerNames_[c].c_str())) {
       for (const std::string_view name : presets)
         if (ImGui::Selectable(std::string(name).c_str(), name == cornerNames_[c])) chooseCorner(BilinearPad::Corner(c), name);
       ImGui::EndCombo();
     }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s%s", kCornerLabels[c], c % 2 == 1 ? " (re-bases: the face does not jump)" : "");
     ImGui::PopID();
   }
   const float side = std::max(100.0f, std::min(ImGui::GetContentRegionAvail().x, ImGui::GetContentRegionAvail().y - 26.0f));

@@ -103,6 +103,7 @@ class EditorApp : public FaceDelegate {
   KeyRecorder recorder_;
   std::vector<float> recordValues_;  // one frame's channel values, reused
   float recordElapsed_ = 0.0f;
+  int showPadTab_ = -1;  // a pad tab the script brings forward (0 control map, 1 bilinear), -1 none
   std::unique_ptr<TimelinePanel> timeline_;
   SculptPanel sculpt_;
   FaceSource source_ = FaceSource::StateMachine;
@@ -326,7 +327,10 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
   using Kind = EditorScriptAction::Kind;
   switch (a.kind) {
     case Kind::Trigger: return machine_.pressTrigger(a.text, *this);
-    case Kind::Pad: controlMap_.dragCursor({a.a, a.b}, *this); return true;
+    case Kind::Pad:
+      controlMap_.dragCursor({a.a, a.b}, *this);
+      showPadTab_ = 0;  // as clicking the Control map tab first
+      return true;
     case Kind::Orbit: orbit(a.a, a.b); return true;
     case Kind::TimelineOpen: return timeline_->open(a.text);
     case Kind::TimelineSeek: timeline_->seek(a.a, *this); return true;
@@ -381,7 +385,10 @@ bool EditorApp::runGraphOrPadAction(const EditorScriptAction& a) {
     case Kind::GraphEditTransition:
       return machine_.editTransition(w[0], w[1], a.a, w[2], std::isnan(a.b) ? std::nullopt : std::optional<float>(a.b), a.c != 0.0f);
     case Kind::GraphSave: return machine_.saveGraph(a.text);
-    case Kind::BilinearPad: bilinearPad_.dragTo(a.a, a.b, *this); return true;
+    case Kind::BilinearPad:
+      bilinearPad_.dragTo(a.a, a.b, *this);
+      showPadTab_ = 1;
+      return true;
     case Kind::RecordStart: return startRecording();
     case Kind::RecordStop: return stopRecording();
     default: return false;
@@ -436,15 +443,17 @@ void EditorApp::drawPadWindow() {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Writes what the pads and sliders do into the timeline as keys, from the playhead (a few keys a second)");
   if (ImGui::BeginTabBar("pads")) {
-    if (ImGui::BeginTabItem("Control map")) {
+    const auto tabFlags = [&](int tab) { return showPadTab_ == tab ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None; };
+    if (ImGui::BeginTabItem("Control map", nullptr, tabFlags(0))) {
       controlMap_.draw(*this);
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Bilinear pad")) {
+    if (ImGui::BeginTabItem("Bilinear pad", nullptr, tabFlags(1))) {
       bilinearPad_.draw(*this);
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();
+    showPadTab_ = -1;
   }
 }
 
