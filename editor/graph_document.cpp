@@ -62,7 +62,9 @@ GraphTransitionInfo describeTransition(const Json& t, std::string from) {
   return info;
 }
 
-eng::Result<void> checkTiming(float duration, std::string_view easing) {
+}  // namespace
+
+eng::Result<void> checkTransitionTiming(float duration, std::string_view easing) {
   if (!std::isfinite(duration) || duration <= 0.0f)
     return problem("a transition's duration must be a finite number > 0 (got " + facial::formatNumber(duration) + ")");
   const auto type = facial::easingTypeFromName(easing);
@@ -71,6 +73,8 @@ eng::Result<void> checkTiming(float duration, std::string_view easing) {
     return problem("unknown easing '" + std::string(easing) + "' (linear, cosine, smoothstep)");
   return {};
 }
+
+namespace {
 
 // Removes the transitions to `state` from one list.
 void dropTransitionsTo(Json& list, std::string_view state) {
@@ -232,7 +236,7 @@ eng::Result<void> GraphDocument::addTransition(std::string_view from, std::strin
   if (from != kAnyState && !hasState(from)) return problem("no state '" + std::string(from) + "' to start from");
   if (!hasState(to)) return problem("no state '" + std::string(to) + "' to go to");
   if (from == to) return problem("a state's transition to itself is not supported here ('" + std::string(from) + "')");
-  ENG_TRY(checkTiming(duration, easing));
+  ENG_TRY(checkTransitionTiming(duration, easing));
   if (findTransitionJson(from, to))
     return problem("there is already a transition " + std::string(from) + " -> " + std::string(to));
   Snapshot before = snapshot();
@@ -252,7 +256,7 @@ eng::Result<void> GraphDocument::addTransition(std::string_view from, std::strin
 eng::Result<void> GraphDocument::editTransition(std::string_view from, std::string_view to, float duration,
                                                 std::string_view easing, std::optional<float> exitTime,
                                                 bool interruptible) {
-  ENG_TRY(checkTiming(duration, easing));
+  ENG_TRY(checkTransitionTiming(duration, easing));
   if (exitTime && (!std::isfinite(*exitTime) || *exitTime < 0.0f))
     return problem("exit time must be a finite number >= 0 (got " + facial::formatNumber(*exitTime) + ")");
   Snapshot before = snapshot();

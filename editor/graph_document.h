@@ -37,6 +37,10 @@ struct GraphStateInfo {
   std::string expression;  // the pose node's preset; "" when the state holds another node
 };
 
+// A transition's duration (finite, > 0) and easing name (linear, cosine, smoothstep: the
+// named curves; Bezier and keyed curves stay as loaded until edited); the error says which is wrong.
+eng::Result<void> checkTransitionTiming(float duration, std::string_view easing);
+
 class GraphDocument {
  public:
   static constexpr std::string_view kAnyState = "any";

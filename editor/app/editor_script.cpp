@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "app/window_script.h"
+#include "editor/graph_document.h"
 
 namespace editor {
 
@@ -61,15 +62,15 @@ std::string verbList() {
   return list;
 }
 
-// The diagram's and the bilinear pad's arguments; "" when they are good.
+// The diagram's and the bilinear pad's arguments; "" when they are good (and for other actions).
 // graph-edit-transition keeps its exit time in b (NaN: none) and the interruption rule in c (1: yes).
 std::string checkGraphOrPadAction(EditorScriptAction& action) {
+  if (action.kind != Kind::BilinearPad && action.kind != Kind::GraphAddTransition && action.kind != Kind::GraphEditTransition)
+    return "";
   if (action.kind == Kind::BilinearPad)
     return action.a < 0.0f || action.a > 1.0f || action.b < 0.0f || action.b > 1.0f ? "bilinear-pad s, t must lie in [0, 1]" : "";
-  if (!(action.a > 0.0f)) return "a transition's duration must be > 0 seconds";
   const std::string& easing = action.kind == Kind::GraphAddTransition ? action.words[3] : action.words[2];
-  if (easing != "linear" && easing != "cosine" && easing != "smoothstep")
-    return "unknown easing '" + easing + "' (linear, cosine, smoothstep)";
+  if (auto timing = checkTransitionTiming(action.a, easing); !timing) return timing.error().message;
   if (action.kind == Kind::GraphAddTransition) return "";
   const std::string& exit = action.words[3];
   if (exit == "-") {
@@ -134,8 +135,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       if (argument > given) break;
       const std::string& word = words[argument++];
       if (type == 'w') {
-        action.text = word;
-        action.words.push_back(word);
+        action.words.push_back(action.text = word);  // text: the last word
       } else {
         if (!app::parseScriptNumber(word, *numbers[nextNumber]))
           return fail("'" + word + "' is not a finite number");
@@ -165,13 +165,9 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       case Kind::SculptFalloff:
         if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
         break;
-      case Kind::GraphAddTransition:
-      case Kind::GraphEditTransition:
-      case Kind::BilinearPad:
-        if (auto problem = checkGraphOrPadAction(action); !problem.empty()) return fail(problem);
-        break;
       default: break;
     }
+    if (auto problem = checkGraphOrPadAction(action); !problem.empty()) return fail(problem);
     actions.push_back(std::move(action));
   }
   return actions;

@@ -123,3 +123,22 @@ TEST(EditorGraphScript, RecordWritesAFewKeysPerSecondIntoTheTimeline) {
   EXPECT_GT(end.key.value, 0.9f);
   EXPECT_GT(both->sample(*jaw, end.key.time), 0.5f);
 }
+
+TEST(EditorGraphScript, BadArgumentsAreRefusedBeforeTheWindowOpens) {
+  REQUIRE_XVFB();
+  const fs::path dir = testing_support::freshTempDir("editor_script_graph_refused");
+  const std::pair<const char*, const char*> cases[] = {
+      {"0.1 graph-add-transition neutral happy happy 0.5 wobbly\n", "bad.txt:1: unknown easing 'wobbly' (linear, cosine, smoothstep)"},
+      {"0.1 graph-edit-transition neutral happy 0.5 cosine soon no\n",
+       "bad.txt:1: exit time 'soon' is not a number of seconds >= 0 (or '-': none)"},
+      {"0.1 graph-edit-transition neutral happy 0.5 cosine - maybe\n", "bad.txt:1: interruption rule 'maybe' is not yes or no"},
+      {"0.1 bilinear-pad 0.5 1.5\n", "bad.txt:1: bilinear-pad s, t must lie in [0, 1]"},
+  };
+  for (const auto& [line, message] : cases) {
+    testing_support::writeFile(dir / "bad.txt", line);
+    const editor_test::EditorRun run = editor_test::runEditor(dir, "--script bad.txt", 5.0f);
+    EXPECT_EQ(run.exitCode, 1) << run.log;
+    EXPECT_NE(run.log.find(message), std::string::npos) << run.log;
+    EXPECT_EQ(run.log.find("validation on"), std::string::npos) << "no window opened:\n" << run.log;
+  }
+}
