@@ -14,6 +14,7 @@ facial="$(realpath "$1")"
 source_dir="$(realpath "$2")"
 timeout_s="${FACIAL_CLUSTER_TIMEOUT:-150}"
 shards=4
+items=8
 export PATH="$PATH:/usr/sbin:/sbin"
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -148,10 +149,10 @@ start_slurm() {
 
 # The spec: data/datasets/example.json cut down to a few small images.
 write_tiny_spec() {
-  python3 - "$source_dir/data/datasets/example.json" "$tmp/tiny.json" <<'EOF'
+  python3 - "$source_dir/data/datasets/example.json" "$tmp/tiny.json" "$items" <<'EOF'
 import json, sys
 spec = json.load(open(sys.argv[1]))
-spec.update(count=8, size=[64, 64])
+spec.update(count=int(sys.argv[3]), size="64x64", quality="fast")
 json.dump(spec, open(sys.argv[2], "w"), indent=2)
 EOF
 }
@@ -181,7 +182,7 @@ check_result() {
   for ((i = 0; i < shards; i++)); do
     [ -s "$dir/shards/labels-$i-of-$shards.jsonl" ] || fail "task $i wrote no $dir/shards/labels-$i-of-$shards.jsonl"
   done
-  python3 - "$dir" 8 <<'EOF'
+  python3 - "$dir" "$items" <<'EOF'
 import json, os, sys
 folder, expected = sys.argv[1], int(sys.argv[2])
 lines = open(os.path.join(folder, "labels.jsonl")).read().splitlines()
