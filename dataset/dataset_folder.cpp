@@ -28,7 +28,7 @@ eng::Result<std::string> readText(const fs::path& path, size_t maxBytes) {
   return std::string(bytes->begin(), bytes->end());
 }
 
-bool exists(const fs::path& path) {
+bool isFile(const fs::path& path) {
   std::error_code ec;
   return fs::is_regular_file(path, ec);
 }
@@ -48,7 +48,7 @@ eng::Result<void> claimFolder(const DatasetSpec& spec, const fs::path& out) {
   ENG_TRY(makeFolders(out));
   const std::string text = canonicalSpecJson(spec) + "\n";
   const fs::path file = out / "spec.json";
-  if (!exists(file)) return writeWhole(file, text);
+  if (!isFile(file)) return writeWhole(file, text);
   auto held = readText(file, kMaxLabelBytes);
   if (!held) return held.error();
   if (*held == text) return {};
@@ -57,8 +57,22 @@ eng::Result<void> claimFolder(const DatasetSpec& spec, const fs::path& out) {
                             " differs; spec hash " + hashText(specHash(spec)) + "): use a new --out folder, or the same spec");
 }
 
+// What a killed run of this shard left: NNNNNN.<pid>.partial.png files of
+// its own items (another shard's may be in the middle of being written).
+void removeStalePartials(const fs::path& out, const Shard& shard) {
+  for (const char* sub : {"images", "labels", "overlays"}) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(out / sub, ec)) {
+      const std::string name = entry.path().filename().string();
+      const size_t digits = name.find_first_not_of("0123456789");
+      if (digits == 0 || digits > 18 || name.find(".partial") == std::string::npos) continue;
+      if (shard.owns(std::stoull(name.substr(0, digits)))) fs::remove(entry.path(), ec);
+    }
+  }
+}
+
 bool finished(const fs::path& out, uint64_t index, uint64_t count) {
-  return exists(out / labelName(index, count)) && exists(out / imageName(index, count));
+  return isFile(out / labelName(index, count)) && isFile(out / imageName(index, count));
 }
 
 struct Todo {
@@ -134,6 +148,7 @@ eng::Result<RunSummary> runDataset(const DatasetSpec& spec, const RunOptions& op
   const auto start = std::chrono::steady_clock::now();
   ENG_TRY(claimFolder(spec, options.out));
   if (options.overlays) ENG_TRY(makeOverlayFolder(options.out / "overlays"));
+  removeStalePartials(options.out, options.shard);
   RunSummary summary;
   const std::vector<Todo> todo = unfinishedItems(spec, options, summary);
   ENG_TRY(renderItems(spec, options, todo, summary));

@@ -10,6 +10,7 @@
 #include "dataset/light_rigs.h"
 #include "engine/scene/file_bytes.h"
 #include "facial/runtime/json/json_node.h"
+#include "facial/runtime/rig/action_units.h"
 #include "facial/runtime/rig/expression_library.h"
 
 namespace dataset {
@@ -80,6 +81,8 @@ eng::Result<void> readFields(DatasetSpec& spec, const JsonNode& root) {
   ENG_TRY(root.allowOnly({"format", "version", "about", "count", "seed", "size", "models", "emotions", "intensity",
                           "auMix", "yaw", "pitch", "zoom", "lights", "backgrounds", "quality"}));
   if (root.has("version")) ENG_TRY(facial::requireVersion(root, 1));
+  if (auto format = root.find("format"); format && ENG_TRY_VALUE(format->string()) != "facial-dataset-spec")
+    return format->error("expected \"facial-dataset-spec\"");
   if (auto n = root.find("count")) spec.count = ENG_TRY_VALUE(readWhole(*n));
   if (auto n = root.find("seed")) spec.seed = ENG_TRY_VALUE(readWhole(*n));
   if (auto n = root.find("size")) ENG_TRY(readSize(spec, *n));

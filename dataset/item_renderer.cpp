@@ -46,6 +46,7 @@ eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t
   auto tracker = LandmarkTracker::bind(r.face_->model(), *rest);
   if (!tracker) return tracker.error();
   r.tracker_.emplace(std::move(*tracker));
+  r.targetNames_ = r.face_->layout().names();
   r.weights_.resize(r.face_->weightCount());
   r.vrmExpressions_.resize(r.face_->vrmExpressionCount());
   r.auWeights_.resize(facial::actionUnits().size());
@@ -82,9 +83,8 @@ eng::Result<RenderedItem> ItemRenderer::render(const ItemParams& item) {
   label.intensity = item.intensity;
   for (size_t c = 0; c < auWeights_.size(); ++c)
     if (auWeights_[c] != 0.0f) label.actionUnits.emplace_back(std::string(facial::actionUnits()[c].name), auWeights_[c]);
-  const std::vector<std::string> names = face_->layout().names();
   for (size_t t = 0; t < weights_.size(); ++t)
-    if (weights_[t] != 0.0f) label.targets.emplace_back(names[t], weights_[t]);
+    if (weights_[t] != 0.0f) label.targets.emplace_back(targetNames_[t], weights_[t]);
   label.landmarks = projectLandmarks(world_, renderer_.view().camera, spec_->width, spec_->height);
   label.light = spec_->lights[item.light];
   label.background = spec_->backgrounds[item.background];

@@ -45,6 +45,7 @@ class ItemRenderer {
   app::HeadlessModelRenderer renderer_;
   std::optional<app::FaceMaterials> materials_;
   std::optional<LandmarkTracker> tracker_;
+  std::vector<std::string> targetNames_;  // the model's, flat
   std::vector<float> weights_, vrmExpressions_, auWeights_;
   Landmarks3 world_{};
 };
