@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/image/canvas.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/image_io.h"
 
@@ -17,22 +18,18 @@ glm::u8vec4 colourOf(size_t landmark) {
   return {240, 40, 40, 255};                       // lips
 }
 
-void drawDot(eng::Image& image, glm::vec2 centre, int radius, glm::u8vec4 colour) {
-  const glm::ivec2 c = glm::ivec2(glm::floor(centre));
-  for (int y = c.y - radius; y <= c.y + radius; ++y)
-    for (int x = c.x - radius; x <= c.x + radius; ++x) {
-      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
-      if ((x - c.x) * (x - c.x) + (y - c.y) * (y - c.y) > radius * radius) continue;
-      uint8_t* p = &image.rgba8[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
-      p[0] = colour.r, p[1] = colour.g, p[2] = colour.b, p[3] = 255;
-    }
-}
-
 }  // namespace
 
 void drawLandmarks(eng::Image& image, const Landmarks2& landmarks) {
-  const int radius = std::max(1, std::min(image.width, image.height) / 200);
-  for (size_t i = 0; i < landmarks.size(); ++i) drawDot(image, landmarks[i], radius, colourOf(i));
+  eng::Canvas canvas(image.width, image.height);
+  canvas.blit(image.rgba8, image.width, image.height, 0, 0);
+  // A square marker centred on each point, clipped by the canvas.
+  const int side = std::max(2, std::min(image.width, image.height) / 100);
+  for (size_t i = 0; i < landmarks.size(); ++i) {
+    const glm::ivec2 corner = glm::ivec2(glm::floor(landmarks[i])) - side / 2;
+    canvas.fillRect(corner.x, corner.y, side, side, colourOf(i));
+  }
+  image.rgba8 = std::move(canvas.rgba);
 }
 
 eng::Result<void> makeOverlayFolder(const std::filesystem::path& folder) {
