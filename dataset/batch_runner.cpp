@@ -64,6 +64,9 @@ std::string spawnAndWait(const BatchJob& job, const std::filesystem::path& progr
   if (pipe(pipeFds) != 0) return std::string("cannot make a pipe: ") + std::strerror(errno);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  // The child's stdout ("wrote ...") goes to our stderr, keeping our stdout
+  // the result lines alone; its stderr comes through the pipe.
+  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, pipeFds[0]);
   std::vector<char*> env = childEnvironment();

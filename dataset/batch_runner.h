@@ -1,8 +1,9 @@
 #pragma once
 // Runs a batch manifest's jobs (dataset/batch_manifest.h) in order, each as
 // its own `facial KIND ARGS...` process: a job that fails, or crashes, is
-// recorded with its error line and the next one runs. The child's stderr
-// passes through to ours; its last line is the result's error.
+// recorded with its error line and the next one runs. The child's stdout and
+// stderr pass through to our stderr (our stdout is the result lines); its
+// last stderr line is the result's error.
 #include <cstdio>
 #include <filesystem>
 #include <vector>

@@ -11,9 +11,11 @@
 namespace dataset {
 namespace {
 
-double rounded(double value, double step) { return std::round(value / step) * step; }
-double pixel(float value) { return rounded(value, 0.01); }
-double weight(float value) { return rounded(value, 0.0001); }
+// Divided by the power of ten (not times its inverse): the nearest double to
+// the decimal, so the text is "0.2935", never "0.29350000000000004".
+double rounded(double value, double scale) { return std::round(value * scale) / scale; }
+double pixel(float value) { return rounded(value, 100.0); }
+double weight(float value) { return rounded(value, 10000.0); }
 
 std::string numbered(const char* folder, uint64_t index, uint64_t count, const char* extension) {
   int digits = 6;
