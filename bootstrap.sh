@@ -2,6 +2,8 @@
 # One-command set-up: installs missing Debian packages, configures (CMake +
 # Ninja) into build/, builds, then runs what was asked:
 #   ./bootstrap.sh demo [facial demo options...]   the main job
+#   ./bootstrap.sh deps                            the packages only (the container
+#                                                  image's build stage runs this)
 #   ./bootstrap.sh test [ctest options...]         the whole test suite, then the
 #                                                  reliability checks (issue 12): the
 #                                                  sanitizer suite, the fuzzers and
@@ -24,6 +26,8 @@ PACKAGES=(
   libdlib-dev libdlib-data
   clang libclang-rt-14-dev llvm liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
+  # tests/cluster: a single-node Slurm, the deploy/ files' checks
+  slurm-wlm munge python3-yaml shellcheck
 )
 
 install_missing_packages() {
@@ -53,6 +57,9 @@ build() {
 mode="${1:-}"
 [ $# -gt 0 ] && shift
 case "$mode" in
+  deps)
+    install_missing_packages
+    ;;
   demo)
     install_missing_packages
     build
@@ -79,7 +86,7 @@ case "$mode" in
     fi
     ;;
   *)
-    echo "usage: $0 demo [options] | $0 test [ctest options]" >&2
+    echo "usage: $0 demo [options] | $0 test [ctest options] | $0 deps" >&2
     exit 2
     ;;
 esac

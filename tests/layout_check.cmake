@@ -7,6 +7,7 @@
 #   bake/        offline builders: facial/, importers/, engine/
 #   autorig/     targets made for faces without them: like bake/, no Vulkan
 #   app/         what the program and the editor share
+#   dataset/     labelled datasets, shards and batch jobs: above app/, for cli/ only
 #   audio/       speech for the programs (GPL: espeak-ng, x264); no library includes it
 #   cli/, editor/ the two programs, never each other
 # Usage: cmake -DSOURCE_DIR=<project root> -P layout_check.cmake
@@ -48,6 +49,10 @@ check_includes(autorig "include[ \t]*[\"<](engine/vk/|vulkan/|app/|cli/|editor/)
 check_includes(app "include[ \t]*[\"<](cli|editor)/" "app/ is shared by cli/ and editor/")
 foreach(library facial engine importers bake autorig)
   check_includes(${library} "include[ \t]*[\"<]audio/" "audio/ links GPL code: programs only")
+endforeach()
+check_includes(dataset "include[ \t]*[\"<](cli|editor|audio)/" "dataset/ is a program-side library below cli/")
+foreach(library facial engine importers bake autorig app editor)
+  check_includes(${library} "include[ \t]*[\"<]dataset/" "dataset/ sits above app/, for the program")
 endforeach()
 check_includes(audio "include[ \t]*[\"<](cli|editor)/" "audio/ is shared by the programs")
 check_includes(editor "include[ \t]*[\"<]cli/" "editor/ and cli/ are separate programs")
