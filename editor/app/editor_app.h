@@ -28,6 +28,7 @@ struct EditorOptions {
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12
   std::string script;      // timed actions (editor_script.h)
   bool mute = false;       // Speak moves the mouth without playing the voice
+  std::string project;     // opened at start (its model, rig map and graph are loaded with the face)
 };
 
 int runEditor(const EditorOptions& options);

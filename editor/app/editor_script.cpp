@@ -43,6 +43,15 @@ constexpr Verb kVerbs[] = {
     {"say-stop", Kind::SayStop, ""},
     {"screenshot", Kind::Screenshot, "?w"},
     {"quit", Kind::Quit, ""},
+    // Projects and export.
+    {"project-new", Kind::ProjectNew, ""},
+    {"project-open", Kind::ProjectOpen, "w"},
+    {"project-save", Kind::ProjectSave, "?w"},
+    {"project-save-as", Kind::ProjectSaveAs, "w"},
+    {"export-glb", Kind::ExportGlb, "w"},
+    {"export-gif", Kind::ExportGif, "w?w"},
+    {"quit-discard", Kind::QuitDiscard, ""},
+    {"quit-save", Kind::QuitSave, ""},
 };
 
 std::string verbList() {
@@ -102,7 +111,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       if (argument > given) break;
       const std::string& word = words[argument++];
       if (type == 'w') {
-        action.text = word;
+        (action.text.empty() ? action.text : action.second) = word;
       } else {
         if (!app::parseScriptNumber(word, *numbers[nextNumber]))
           return fail("'" + word + "' is not a finite number");

@@ -270,6 +270,21 @@ eng::Result<void> SculptPanel::bake(const std::string& name) {
   return {};
 }
 
+eng::Result<void> SculptPanel::restore(const eng::Model* sculpted, std::span<const std::pair<std::string, float>> targets) {
+  eng::Model working = face_->model();
+  for (const auto& [name, weight] : targets) {
+    if (!sculpted) return eng::makeError(eng::ErrorKind::InvalidArgument, "baked target '" + name + "' without the model that holds it");
+    if (auto copied = copyBakedTarget(*sculpted, name, working); !copied) return copied;
+  }
+  working_ = std::move(working);
+  baked_.assign(targets.begin(), targets.end());
+  clearPoints();
+  rebuildWorkingLayout();
+  preview_.reset();
+  ++displayRevision_;
+  return {};
+}
+
 eng::Result<void> SculptPanel::saveModel(const std::string& path) {
   return replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
     if (auto saved = eng::saveModel(working_, temp); !saved) return saved.error().prefixed(path + ": ");
