@@ -85,7 +85,7 @@ eng::Result<GlbExportSummary> exportGlb(eng::Model model, std::span<const Timeli
     ++summary.animations;
   }
   auto written = eng::writeFileWhole(path, [&](const fs::path& partial) { return eng::saveModel(model, partial); });
-  if (!written) return written.error();
+  if (!written) return written.error().prefixed(path.string() + ": not exported: ");  // the writer names the partial file
   return summary;
 }
 

@@ -31,9 +31,12 @@ const std::string kSculptSmirk =
     "0.3 sculpt-move 0.004 0.004 0\n"
     "0.4 sculpt-bake smirk\n";
 
+// A fresh folder with a copy of talk.json; the editors started from here keep
+// their recent projects list in it (XDG_CONFIG_HOME), not in the user's.
 fs::path folderWithTalk(const std::string& name) {
   const fs::path dir = testing_support::freshTempDir(name);
   fs::copy_file(testing_support::sourceDir() / "data" / "timelines" / "talk.json", dir / "talk.json");
+  setenv("XDG_CONFIG_HOME", (dir / "config").c_str(), 1);
   return dir;
 }
 
@@ -68,6 +71,10 @@ TEST(EditorProject, SavedSessionComesBackWhenTheProjectIsOpened) {
   EXPECT_NEAR(project->view.pitchDegrees, -8.0f, 1e-3f);
   EXPECT_FALSE(fs::exists(editor::projectAutosavePath(dir / "anim.json"))) << "saved: no autosave left";
   EXPECT_FALSE(fs::exists(dir / ".timeline.json.autosave")) << "the clip was saved with the project";
+  editor::RecentProjects recent(dir / "config" / "facial" / "recent.json");
+  ASSERT_TRUE(recent.load());
+  ASSERT_FALSE(recent.paths().empty());
+  EXPECT_TRUE(fs::equivalent(recent.paths()[0], dir / "anim.json")) << recent.paths()[0];
 
   // The next editor, started on the project, shows the same face at the same time.
   testing_support::writeFile(dir / "reopen.txt",
@@ -162,7 +169,7 @@ TEST(EditorProject, QuitWithUnsavedChangesSavesOrDiscardsWithoutHanging) {
 
 TEST(EditorProject, BrokenProjectIsOneLineNamingTheFile) {
   REQUIRE_XVFB();
-  const fs::path dir = testing_support::freshTempDir("editor_project_broken_open");
+  const fs::path dir = folderWithTalk("editor_project_broken_open");
   testing_support::writeFile(dir / "bad.json", "{\"version\": 1, \"view\": {\"zoom\": -1}}");
   testing_support::writeFile(dir / "open.txt", "0.3 project-open bad.json\n0.4 quit\n");
   const editor_test::EditorRun run = runEditor(dir, "--script open.txt", 20.0f);

@@ -90,7 +90,7 @@ TEST(GlbExport, APlaceThatCannotBeWrittenLeavesNothing) {
   const editor::TimelineDocument* clips[] = {&head.clip};
   auto failed = editor::exportGlb(head.face.model(), clips, pose, head.face.layout(), dir / "missing" / "out.glb");
   ASSERT_FALSE(failed);
-  EXPECT_NE(failed.error().message.find("out.glb"), std::string::npos) << failed.error().message;
+  EXPECT_NE(failed.error().message.find("out.glb"), std::string::npos) << "[" << failed.error().message << "]";
   EXPECT_TRUE(fs::is_empty(dir));
 }
 

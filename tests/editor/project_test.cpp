@@ -47,6 +47,7 @@ TEST(EditorProject, SavedProjectComesBack) {
 
 TEST(EditorProject, PathsAreRelativeSoTheProjectMovesWithItsFiles) {
   const fs::path dir = testing_support::freshTempDir("editor_project_moves");
+  fs::create_directories(dir / "a");
   ASSERT_TRUE(editor::saveProject(sampleProject(dir / "a"), dir / "a" / "anna.json"));
   const std::string text = editor_test::readText(dir / "a" / "anna.json");
   EXPECT_NE(text.find("\"faces/anna.glb\""), std::string::npos) << text;
