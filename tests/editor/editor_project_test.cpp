@@ -68,6 +68,8 @@ editor_test::EditorRun makeProject(const fs::path& dir) {
 TEST(EditorProject, SavedSessionComesBackWhenTheProjectIsOpened) {
   REQUIRE_XVFB();
   const fs::path dir = folderWithTalk("editor_project_session");
+  // One fixed render scale (not the dynamic resolution, which follows each run's frame times), so frames compare.
+  setenv("FACIAL_RENDER_SCALE", "1", 1);
   const editor_test::EditorRun made = makeProject(dir);
   ASSERT_TRUE(editor_test::ranCleanly(made));
   EXPECT_NE(made.log.find("saved project anim.json"), std::string::npos) << made.log;
@@ -117,6 +119,7 @@ TEST(EditorProject, SavedSessionComesBackWhenTheProjectIsOpened) {
   auto inside = eng::readImage(dir / "opened.png");
   ASSERT_TRUE(inside);
   EXPECT_LT(changedShare(*before, *inside), 0.01);
+  unsetenv("FACIAL_RENDER_SCALE");
 }
 
 TEST(EditorProject, UnsavedChangesOfAKilledEditorAreRecovered) {
@@ -191,6 +194,13 @@ TEST(EditorProject, BrokenProjectIsOneLineNamingTheFile) {
   const editor_test::EditorRun run = runEditor(dir, "--script open.txt", 20.0f);
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_NE(run.log.find("error: bad.json: /view: zoom -1 must be > 0"), std::string::npos) << run.log;
+  // The new actions' arguments are checked before the window opens, like every action's.
+  testing_support::writeFile(dir / "args.txt", "0.1 project-save-as\n");
+  const editor_test::EditorRun args = runEditor(dir, "--script args.txt", 5.0f);
+  EXPECT_EQ(args.exitCode, 1);
+  EXPECT_NE(args.log.find("args.txt:1: 'project-save-as' takes 1 argument(s), got 0"), std::string::npos) << args.log;
+  testing_support::writeFile(dir / "args.txt", "0.1 export-gif a.gif talk extra\n");
+  EXPECT_NE(runEditor(dir, "--script args.txt", 5.0f).log.find("'export-gif' takes 1 or 2 argument(s), got 3"), std::string::npos);
   const editor_test::EditorRun start = runEditor(dir, "--project bad.json", 5.0f);
   EXPECT_EQ(start.exitCode, 1);
   EXPECT_NE(start.log.find("facial-editor: error: bad.json: /view: zoom -1 must be > 0"), std::string::npos) << start.log;
