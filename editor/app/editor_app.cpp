@@ -100,6 +100,16 @@ class EditorApp : public FaceDelegate, public ProjectViewHost {
   bool runProjectAction(const EditorScriptAction& action);
   void runMenuRequest(const MenuRequest& request);
   void updateProjectAndTitle();
+  // Open: in this editor, or (a project on another face) in a new one after this closes.
+  bool openProject(const fs::path& path, size_t scriptNext, float scriptTime);
+
+ public:
+  // Set when run() ended to open a project made on another face (runEditor starts the next editor).
+  fs::path reopen;
+  size_t reopenScriptFrom = 0;
+  float reopenClock = 0.0f;
+
+ private:
   static void onWindowClose(GLFWwindow* window);
 
   std::optional<app::FaceSetup> setup_;
@@ -218,6 +228,9 @@ int EditorApp::setUp(const EditorOptions& o) {
         return fail(a.source + ": " + safe.error().message);
     }
     script_ = std::move(*script);
+    // Resumed in a new editor (a project on another face): the actions before are done, the clock goes on.
+    script_.erase(script_.begin(), script_.begin() + std::ptrdiff_t(std::min(o.scriptFrom, script_.size())));
+    for (EditorScriptAction& a : script_) a.time = std::max(0.0f, a.time - o.scriptClockFrom);
   }
 
   auto session = app::WindowSession::open({.width = width,
@@ -489,7 +502,7 @@ bool EditorApp::runProjectAction(const EditorScriptAction& a) {
   using Kind = EditorScriptAction::Kind;
   switch (a.kind) {
     case Kind::ProjectNew: return project_->newProject();
-    case Kind::ProjectOpen: return project_->open(a.text);
+    case Kind::ProjectOpen: return openProject(a.text, nextAction_ + 1, a.time);
     case Kind::ProjectSave: return a.text.empty() ? project_->save() : project_->saveAs(a.text);
     case Kind::ProjectSaveAs: return project_->saveAs(a.text);
     case Kind::ExportGlb: return project_->exportGlb(a.text);
@@ -513,7 +526,7 @@ void EditorApp::runMenuRequest(const MenuRequest& request) {
   switch (request.command) {
     case MenuCommand::None: return;
     case MenuCommand::New: project_->newProject(); return;
-    case MenuCommand::Open: project_->open(path); return;
+    case MenuCommand::Open: openProject(path, nextAction_, 0.0f); return;
     case MenuCommand::Save: project_->save(); return;
     case MenuCommand::SaveAs: project_->saveAs(path); return;
     case MenuCommand::ExportGlb: project_->exportGlb(path); return;
@@ -531,6 +544,18 @@ void EditorApp::runMenuRequest(const MenuRequest& request) {
       if (pendingShot_.empty()) pendingShot_ = defaultShot_;
       return;
   }
+}
+
+bool EditorApp::openProject(const fs::path& path, size_t scriptNext, float scriptTime) {
+  if (!project_->madeOnAnotherFace(path)) return project_->open(path);
+  // The face is loaded once per editor: this one closes (its unsaved changes
+  // stay in the autosaves) and runEditor starts one on the project's face.
+  std::printf("facial-editor: %s was made on another face: reopening the editor on it\n", path.string().c_str());
+  reopen = path;
+  reopenScriptFrom = scriptNext;
+  reopenClock = scriptTime;
+  quitRequested_ = true;
+  return true;
 }
 
 void EditorApp::updateProjectAndTitle() {
@@ -594,12 +619,13 @@ int EditorApp::run(const EditorOptions& o) {
     const std::string kept = timeline_->keepUnsavedEdits();
     exitCode = fail(ran.error().message + (kept.empty() ? "" : "; " + kept));
   }
+  gEditor = nullptr;  // the window's callbacks are done
   if (!quitDiscarded_) project_->keepUnsaved();  // a plain quit keeps unsaved changes in the autosaves
   std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);
   if (auto clean = session_->finish(); !clean) return fail(clean.error().message);
-  if (nextAction_ < script_.size() && exitCode == 0)
+  if (nextAction_ < script_.size() && exitCode == 0 && reopen.empty())
     std::printf("facial-editor: closed before %zu scripted action(s) ran\n", script_.size() - nextAction_);
   if (failedActions_ > 0 && exitCode == 0)
     return fail(std::to_string(failedActions_) + " scripted action(s) failed (" + o.script + ")");
@@ -610,16 +636,26 @@ int EditorApp::run(const EditorOptions& o) {
 
 int runEditor(const EditorOptions& options) {
   EditorOptions o = options;
-  if (!o.project.empty()) {
-    // The project's face, rig map and graph are what the editor loads (an autosave keeps the same ones).
-    auto project = loadProject(o.project);
-    if (!project) return fail(project.error().message);
-    o.model = project->model.string();
-    o.rigmap = project->rigmap.string();
-    o.graph = project->graph.string();
+  for (;;) {
+    if (!o.project.empty()) {
+      // The project's face, rig map and graph are what the editor loads (an autosave keeps the same ones).
+      auto project = loadProject(o.project);
+      if (!project) return fail(project.error().message);
+      o.model = project->model.string();
+      o.rigmap = project->rigmap.string();
+      o.graph = project->graph.string();
+    }
+    EditorApp app;
+    const int code = app.run(o);
+    if (code != 0 || app.reopen.empty()) return code;
+    // A project on another face: the next editor opens it and goes on with the script.
+    o.project = app.reopen.string();
+    o.scriptFrom += app.reopenScriptFrom;
+    o.scriptClockFrom += app.reopenClock;
+    if (o.quitAfter > 0.0f) o.quitAfter = std::max(0.1f, o.quitAfter - app.reopenClock);
+    o.trigger.clear();
+    o.timeline.clear();
   }
-  EditorApp app;
-  return app.run(o);
 }
 
 }  // namespace editor

@@ -80,6 +80,11 @@ bool ProjectActions::open(const fs::path& path) {
   return true;
 }
 
+bool ProjectActions::madeOnAnotherFace(const fs::path& path) const {
+  auto project = loadProject(path);  // an unreadable one is open()'s to report
+  return project && (!sameFile(project->model, model_, app::defaultModelPath()) || !sameFile(project->rigmap, rigmap_, {}));
+}
+
 bool ProjectActions::apply(const Project& project, const fs::path& path) {
   const std::string where = path.string() + ": ";
   if (!sameFile(project.model, model_, app::defaultModelPath()) || !sameFile(project.rigmap, rigmap_, {}))

@@ -3,8 +3,8 @@
 // autosave of the whole project and Export .glb, over the panels that hold
 // the work (editor/project.h is the file; this puts it into the panels and
 // takes it out of them). The face itself is loaded once per editor, so a
-// project made on another model is refused with one line saying how to open
-// it (`facial-editor --project P`, which loads its model first).
+// project made on another model opens in a new editor (the app asks
+// madeOnAnotherFace first; runEditor loads the project's face).
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -45,6 +45,9 @@ class ProjectActions {
   // Each returns false after reporting why (the menu's message line and the log).
   bool newProject();
   bool open(const std::filesystem::path& path);
+  // The project at `path` was made on another face or rig map than this
+  // editor's: it opens in a new editor (runEditor), not in this one.
+  bool madeOnAnotherFace(const std::filesystem::path& path) const;
   // Save to the project's file; an untitled project has none (Save As).
   bool save();
   bool saveAs(const std::filesystem::path& path);

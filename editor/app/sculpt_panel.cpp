@@ -341,7 +341,15 @@ void SculptPanel::draw() {
   if (ImGui::Button("Clear all")) clearPoints();
   tooltip("Delete every control point");
 
-  // Kernel.
+  drawKernel();
+  if (showingPreview_)
+    ImGui::TextDisabled("solve + preview upload data: %.1f ms, %zu points", solveMs_, points.size());
+  drawBakeAndSave();
+  message_.draw();
+}
+
+// The kernel, its c, the falloff, pins and preview.
+void SculptPanel::drawKernel() {
   ImGui::SetNextItemWidth(-60.0f);
   bool kernelChanged = ImGui::Combo("kernel", &kernelChoice_, kKernelNames, 3);
   tooltip("The radial basis function: how a point's move spreads over the face");
@@ -366,10 +374,9 @@ void SculptPanel::draw() {
   ImGui::SameLine();
   ImGui::Checkbox("Preview", &previewEnabled_);
   tooltip("Show the sculpt live on the face before it is baked");
-  if (showingPreview_)
-    ImGui::TextDisabled("solve + preview upload data: %.1f ms, %zu points", solveMs_, points.size());
+}
 
-  // Bake and save.
+void SculptPanel::drawBakeAndSave() {
   ImGui::Separator();
   ImGui::SetNextItemWidth(-60.0f);
   ImGui::InputText("##bakename", bakeName_, sizeof bakeName_);
@@ -387,7 +394,6 @@ void SculptPanel::draw() {
   ImGui::SameLine();
   if (ImGui::Button("Save .glb")) pressSave(savePath_);
   tooltip("Write the model with every baked target (File > Export .glb adds the clips)");
-  message_.draw();
 }
 
 }  // namespace editor

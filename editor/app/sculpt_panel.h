@@ -86,6 +86,8 @@ class SculptPanel {
 
  private:
   void workingWeights(std::span<const float> faceWeights, std::span<float> out) const;
+  void drawKernel();
+  void drawBakeAndSave();
   void reportPoint(size_t index);
   // Adds a point (and where it sits on the surface, for pointsOnFace) and selects it.
   eng::Result<size_t> addPoint(const std::string& name, const glm::vec3& rest, const std::optional<SurfaceHit>& hit);

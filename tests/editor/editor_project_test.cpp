@@ -186,6 +186,21 @@ TEST(EditorProject, QuitWithUnsavedChangesSavesOrDiscardsWithoutHanging) {
   EXPECT_EQ(untitled.log.find("closed before"), std::string::npos) << untitled.log;
 }
 
+TEST(EditorProject, AProjectOnAnotherFaceOpensInANewEditorAndTheScriptGoesOn) {
+  REQUIRE_XVFB();
+  const fs::path dir = folderWithTalk("editor_project_other_face");
+  fs::copy_file(testing_support::sourceDir() / "data" / "head.glb", dir / "other.glb");
+  testing_support::writeFile(dir / "make.txt", "0.3 orbit 30 0\n0.4 project-save-as other.json\n0.5 quit\n");
+  ASSERT_TRUE(editor_test::ranCleanly(runEditor(dir, "--model other.glb --script make.txt", 20.0f)));
+  testing_support::writeFile(dir / "open.txt", "0.3 project-open other.json\n0.5 screenshot opened.png\n0.6 quit\n");
+  const editor_test::EditorRun run = runEditor(dir, "--script open.txt", 30.0f);
+  ASSERT_TRUE(editor_test::ranCleanly(run));
+  EXPECT_NE(run.log.find("other.json was made on another face: reopening the editor on it"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("opened project other.json"), std::string::npos) << run.log;
+  EXPECT_NE(run.log.find("facial-editor: other,"), std::string::npos) << "the second editor runs the project's face:\n" << run.log;
+  EXPECT_TRUE(fs::exists(dir / "opened.png")) << "the script went on in the new editor";
+}
+
 TEST(EditorProject, BrokenProjectIsOneLineNamingTheFile) {
   REQUIRE_XVFB();
   const fs::path dir = folderWithTalk("editor_project_broken_open");
