@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <fstream>
 #include <system_error>
 
 namespace editor {
@@ -57,6 +58,17 @@ eng::Result<void> replaceFileAtomically(const fs::path& path,
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   syncToDisk(folder);
   return {};
+}
+
+eng::Result<void> writeJsonAtomically(const facial::Json& json, const fs::path& path) {
+  return replaceFileAtomically(path, [&](const fs::path& temp) -> eng::Result<void> {
+    std::ofstream out(temp, std::ios::binary);
+    if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": cannot write " + temp.string());
+    out << json.dump(1) << '\n';
+    out.close();
+    if (!out) return eng::makeError(eng::ErrorKind::Io, path.string() + ": write failed (disk full?)");
+    return {};
+  });
 }
 
 }  // namespace editor

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "engine/core/result.h"
+#include "facial/runtime/json/json_document.h"
 
 namespace editor {
 
@@ -17,5 +18,8 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path);
 // failure removes it and returns the writer's error. Errors name `path`.
 eng::Result<void> replaceFileAtomically(const std::filesystem::path& path,
                                         const std::function<eng::Result<void>(const std::filesystem::path&)>& write);
+
+// A JSON document (indented one space a level) written through replaceFileAtomically.
+eng::Result<void> writeJsonAtomically(const facial::Json& json, const std::filesystem::path& path);
 
 }  // namespace editor

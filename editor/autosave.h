@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "editor/project.h"
 #include "editor/timeline_document.h"
 #include "engine/core/result.h"
 
@@ -26,6 +27,25 @@ namespace editor {
 
 // "<dir>/.<name>.autosave" for "<dir>/<name>".
 std::filesystem::path autosavePathFor(const std::filesystem::path& document);
+
+// When an autosave is due: there are unsaved edits whose revision is not
+// written yet, and `interval` has passed since the last write (the first edit
+// is written at once).
+class AutosaveSchedule {
+ public:
+  using Clock = std::chrono::steady_clock;
+  explicit AutosaveSchedule(std::chrono::milliseconds interval) : interval_(interval) {}
+  bool due(bool dirty, uint64_t revision, Clock::time_point now) const;
+  // Unsaved edits not written yet, whatever the interval (a flush).
+  bool pending(bool dirty, uint64_t revision) const { return dirty && revision != writtenRevision_; }
+  void written(uint64_t revision, Clock::time_point now);
+  void reset();
+
+ private:
+  std::chrono::milliseconds interval_;
+  std::optional<Clock::time_point> lastWrite_;
+  uint64_t writtenRevision_ = UINT64_MAX;
+};
 
 class TimelineAutosave {
  public:
@@ -45,12 +65,10 @@ class TimelineAutosave {
   void discard();
 
  private:
-  eng::Result<bool> write(const TimelineDocument& document);
+  eng::Result<bool> write(const TimelineDocument& document, Clock::time_point now);
 
   std::filesystem::path file_;
-  std::chrono::milliseconds interval_;
-  std::optional<Clock::time_point> lastWrite_;
-  uint64_t writtenRevision_ = UINT64_MAX;  // document revision the autosave holds
+  AutosaveSchedule schedule_;
 };
 
 struct RecoveredTimeline {
@@ -64,5 +82,26 @@ struct RecoveredTimeline {
 // document is stale and removed). An autosave that does not load is an error
 // naming it; it is left in place for the user to look at.
 eng::Result<std::optional<RecoveredTimeline>> recoverAutosave(const std::filesystem::path& document);
+
+// The project's autosave covers what the project file holds: the project file
+// as it would be saved (projectAutosavePath) and, when something is baked, the
+// sculpted model (projectSculptAutosavePath). The clips are timeline files
+// with their own autosave (TimelineAutosave beside each), which opening them
+// recovers.
+std::filesystem::path projectAutosavePath(const std::filesystem::path& project);
+std::filesystem::path projectSculptAutosavePath(const std::filesystem::path& project);
+
+struct RecoveredProject {
+  Project project;      // unsaved: saving writes it to the project's path
+  std::string message;  // one line: what was recovered from where
+};
+
+// The project as an earlier editor autosaved it and never saved: the autosave
+// when it is newer than the project file (or that is gone); nullopt when there
+// is nothing to recover (a stale autosave is removed). A broken autosave is an
+// error naming it, left in place.
+eng::Result<std::optional<RecoveredProject>> recoverProjectAutosave(const std::filesystem::path& project);
+// Removes the project's autosave files (after a save, or a close on purpose).
+void discardProjectAutosave(const std::filesystem::path& project);
 
 }  // namespace editor

@@ -230,6 +230,35 @@ eng::Result<void> bakeSculptTarget(eng::Model& model, const ModelSurface& surfac
   return {};
 }
 
+eng::Result<void> copyBakedTarget(const eng::Model& from, std::string_view name, eng::Model& to) {
+  const std::string quoted = "'" + std::string(name) + "'";
+  std::vector<std::pair<size_t, size_t>> found;  // (mesh, target index in `from`)
+  for (size_t m = 0; m < from.meshes.size(); ++m) {
+    const auto& names = from.meshes[m].targetNames;
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) continue;
+    const bool fits = m < to.meshes.size() && to.meshes[m].primitives.size() == from.meshes[m].primitives.size() &&
+                      std::equal(from.meshes[m].primitives.begin(), from.meshes[m].primitives.end(), to.meshes[m].primitives.begin(),
+                                 [](const eng::Primitive& a, const eng::Primitive& b) { return a.vertexCount() == b.vertexCount(); });
+    if (!fits)
+      return eng::makeError(eng::ErrorKind::Malformed, from.sourcePath + ": mesh " + std::to_string(m) + " with target " + quoted +
+                                                           " is not a mesh of " + to.sourcePath + " (another model?)");
+    const auto& own = to.meshes[m].targetNames;
+    if (std::find(own.begin(), own.end(), name) != own.end())
+      return eng::makeError(eng::ErrorKind::InvalidArgument, to.sourcePath + ": already has a morph target " + quoted);
+    found.emplace_back(m, size_t(it - names.begin()));
+  }
+  if (found.empty()) return eng::makeError(eng::ErrorKind::NotFound, from.sourcePath + ": no morph target " + quoted);
+  for (const auto& [m, index] : found) {
+    eng::Mesh& mesh = to.meshes[m];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) mesh.primitives[p].targets.push_back(from.meshes[m].primitives[p].targets[index]);
+    mesh.targetNames.emplace_back(name);
+    mesh.defaultWeights.push_back(0.0f);
+    growWeightAnimations(to, int(m), 1);
+  }
+  return {};
+}
+
 eng::Result<SculptPreview> SculptPreview::build(const eng::Model& model, const ModelSurface& surface,
                                                 const SculptModel& sculpt) {
   if (!sculpt.prepared()) return eng::makeError(eng::ErrorKind::InvalidArgument, "sculpt preview: the RBF solve is out of date");

@@ -107,6 +107,13 @@ class SculptModel {
 // displacement at all, or a surface not made from `model`.
 eng::Result<void> bakeSculptTarget(eng::Model& model, const ModelSurface& surface, SculptModel& sculpt, std::string_view name);
 
+// Bakes again a target that bakeSculptTarget made on a copy of this model
+// (saved and reloaded, as a project does): the target `name` of every mesh of
+// `from` that has it is appended to the same mesh of `to`, as bakeSculptTarget
+// would. Fails (`to` unchanged) when no mesh has it, `to` already has it, or
+// the meshes differ in primitives or vertex counts (another model).
+eng::Result<void> copyBakedTarget(const eng::Model& from, std::string_view name, eng::Model& to);
+
 // Live preview without re-uploading per drag: a copy of `model` with three
 // targets per control point (its influence times the local x, y, z axis) on
 // every surface primitive. Their weights are the points' displacement

@@ -24,6 +24,8 @@
 #include "editor/app/control_map_panel.h"
 #include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
+#include "editor/app/menu_bar.h"
+#include "editor/app/project_actions.h"
 #include "editor/app/sculpt_panel.h"
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
@@ -41,6 +43,7 @@ namespace fs = std::filesystem;
 // Panel layout: fixed columns and a bottom strip, the face in the middle.
 struct Layout {
   float width = 0, height = 0;
+  float top = 0;        // the menu bar
   float side = 0;       // left and right column width
   float bottom = 0;     // timeline strip height
   float leftSplit = 0;  // state machine / control map boundary
@@ -49,18 +52,19 @@ struct Layout {
   float x1() const { return width - side; }
   float y1() const { return height - bottom; }
 
-  static Layout of(float width, float height) {
+  static Layout of(float width, float height, float top) {
     Layout l;
     l.width = width;
     l.height = height;
+    l.top = top;
     l.side = std::clamp(width * 0.25f, 240.0f, 340.0f);
     l.bottom = std::clamp(height * 0.3f, 170.0f, 280.0f);
-    l.leftSplit = (height - l.bottom) * 0.5f;
+    l.leftSplit = top + (height - top - l.bottom) * 0.5f;
     return l;
   }
 };
 
-class EditorApp : public FaceDelegate {
+class EditorApp : public FaceDelegate, public ProjectViewHost {
  public:
   int run(const EditorOptions& o);
 
@@ -68,6 +72,10 @@ class EditorApp : public FaceDelegate {
   float currentValue(std::string_view channel) const override;
   FaceSource source() const override { return source_; }
   void takeControl(FaceSource source) override { source_ = source; }
+
+  // ProjectViewHost
+  ProjectView viewSettings() const override;
+  void applyViewSettings(const ProjectView& view) override;
 
  private:
   int setUp(const EditorOptions& o);
@@ -95,6 +103,22 @@ class EditorApp : public FaceDelegate {
   // The face source's VRM expression weights (material binds); empty unless the rig has an expression stage.
   std::span<const float> faceExpressionWeights() const;
   eng::Result<void> uploadDisplayModel();
+  // Projects, export and the menu bar (editor/app/project_actions.h, menu_bar.h).
+  void setFraming(eng::FramingMode framing);
+  bool runProjectAction(const EditorScriptAction& action);
+  void runMenuRequest(const MenuRequest& request);
+  void updateProjectAndTitle();
+  // Open: in this editor, or (a project on another face) in a new one after this closes.
+  bool openProject(const fs::path& path, size_t scriptNext, float scriptTime);
+
+ public:
+  // Set when run() ended to open a project made on another face (runEditor starts the next editor).
+  fs::path reopen;
+  size_t reopenScriptFrom = 0;
+  float reopenClock = 0.0f;
+
+ private:
+  static void onWindowClose(GLFWwindow* window);
 
   std::optional<app::FaceSetup> setup_;
   StateMachinePanel machine_;
@@ -129,7 +153,13 @@ class EditorApp : public FaceDelegate {
   size_t failedActions_ = 0;
   bool quitRequested_ = false;
   float frameMs_ = 0.0f;
+  MenuBar menu_;
+  std::optional<ProjectActions> project_;
+  std::string title_;  // the window's, as last set
+  bool quitDiscarded_ = false;  // Quit > Discard: nothing is kept
 };
+
+EditorApp* gEditor = nullptr;  // for the window's close callback (one editor a process)
 
 float EditorApp::currentValue(std::string_view channel) const {
   switch (source_) {
@@ -193,6 +223,7 @@ int EditorApp::setUp(const EditorOptions& o) {
   const bool builtIn = o.model.empty() || fs::weakly_canonical(o.model) == fs::weakly_canonical(app::defaultModelPath());
   const std::string landmarks = builtIn ? (app::dataDirectory() / "head_landmarks.json").string() : std::string();
   if (auto created = sculpt_.create(*setup_, landmarks); !created) return fail(created.error().message);
+  project_.emplace(ProjectPanels{&*setup_, &machine_, timeline_.get(), &sculpt_, this}, o.model, o.rigmap, o.graph);
   defaultShot_ = o.screenshot.empty() ? fs::path("facial-editor.png") : fs::path(o.screenshot);
   if (!o.script.empty()) {
     // Names the script needs are checked before the window opens.
@@ -207,13 +238,16 @@ int EditorApp::setUp(const EditorOptions& o) {
                              : " (landmarks exist for the built-in head only)"));
       using Kind = EditorScriptAction::Kind;
       const bool writes = a.kind == Kind::TimelineSave || a.kind == Kind::SculptSave || a.kind == Kind::Screenshot ||
-                          a.kind == Kind::GraphSave;
+                          a.kind == Kind::GraphSave || a.kind == Kind::ProjectSave || a.kind == Kind::GraphSave || a.kind == Kind::ProjectSaveAs || a.kind == Kind::ExportGlb || a.kind == Kind::ExportGif;
       if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", graphPath}, {"--script", o.script}},
                                          .outputs = {{"", writes ? std::string_view(a.text) : std::string_view()}}});
           !safe)
         return fail(a.source + ": " + safe.error().message);
     }
     script_ = std::move(*script);
+    // Resumed in a new editor (a project on another face): the actions before are done, the clock goes on.
+    script_.erase(script_.begin(), script_.begin() + std::ptrdiff_t(std::min(o.scriptFrom, script_.size())));
+    for (EditorScriptAction& a : script_) a.time = std::max(0.0f, a.time - o.scriptClockFrom);
   }
 
   auto session = app::WindowSession::open({.width = width,
@@ -228,6 +262,9 @@ int EditorApp::setUp(const EditorOptions& o) {
   bounds_ = eng::framingBounds(setup_->model(), framing_);
   view_.camera = eng::OrbitCamera::frame(bounds_, 1.0f);
   if (auto uploaded = uploadDisplayModel(); !uploaded) return fail(uploaded.error().message);
+  if (!o.project.empty() && !project_->open(o.project)) return 1;  // it said why
+  gEditor = this;
+  glfwSetWindowCloseCallback(session_->window().handle(), &EditorApp::onWindowClose);
   return 0;
 }
 
@@ -252,7 +289,7 @@ eng::OrbitCamera EditorApp::renderCamera() const {
   eng::OrbitCamera camera = view_.camera;
   // Framed for the window as it is now (it may have been resized), then moved into the free part.
   camera.distance = eng::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
-  camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), 0.0f}, {layout_.x1(), layout_.y1()});
+  camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), layout_.top}, {layout_.x1(), layout_.y1()});
   return camera;
 }
 
@@ -268,12 +305,8 @@ void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& directio
 void EditorApp::handleViewportInput() {
   const ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F12, false) && pendingShot_.empty()) pendingShot_ = defaultShot_;
-  if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
-    // renderCamera() frames bounds_ each frame; the orbit target follows it.
-    framing_ = framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face;
-    bounds_ = eng::framingBounds(setup_->model(), framing_);
-    view_.camera.target = eng::OrbitCamera::frame(bounds_, 1.0f).target;
-  }
+  if (!io.WantTextInput && !io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_F, false))
+    setFraming(framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face);
   timeline_->handleShortcuts();
   const bool overViewport = !io.WantCaptureMouse;
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && overViewport) {
@@ -365,6 +398,9 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SayStop: machine_.pressStopSpeaking(); return true;
     case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
     case Kind::Quit: quitRequested_ = true; return true;
+    case Kind::ProjectNew: case Kind::ProjectOpen: case Kind::ProjectSave: case Kind::ProjectSaveAs:
+    case Kind::ExportGlb: case Kind::ExportGif: case Kind::QuitDiscard: case Kind::QuitSave:
+      return runProjectAction(a);
     default: return runGraphOrPadAction(a);
   }
   return false;
@@ -514,8 +550,8 @@ void EditorApp::drawControlPoints() {
 void EditorApp::drawPanels() {
   const ImGuiWindowFlags docked = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
   const Layout& l = layout_;
-  ImGui::SetNextWindowPos({0, 0}, ImGuiCond_Always);
-  ImGui::SetNextWindowSize({l.side, l.leftSplit}, ImGuiCond_Always);
+  ImGui::SetNextWindowPos({0, l.top}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.side, l.leftSplit - l.top}, ImGuiCond_Always);
   ImGui::Begin("State machine", nullptr, docked);
   machine_.draw(*this);
   ImGui::End();
@@ -527,8 +563,8 @@ void EditorApp::drawPanels() {
   ImGui::End();
   machine_.drawDiagramWindow({l.x0() + 10.0f, 30.0f}, {std::min(l.x1() - l.x0() - 20.0f, 620.0f), std::min(l.y1() - 60.0f, 400.0f)});
 
-  ImGui::SetNextWindowPos({l.width - l.side, 0}, ImGuiCond_Always);
-  ImGui::SetNextWindowSize({l.side, l.height - l.bottom}, ImGuiCond_Always);
+  ImGui::SetNextWindowPos({l.width - l.side, l.top}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({l.side, l.height - l.bottom - l.top}, ImGuiCond_Always);
   ImGui::Begin("RBF sculpt", nullptr, docked);
   sculpt_.draw();
   ImGui::End();
@@ -543,9 +579,111 @@ void EditorApp::drawPanels() {
   char status[160];
   std::snprintf(status, sizeof status, "%s  |  face from: %s  |  %.1f ms%s", setup_->name().c_str(), faceSourceName(source_), frameMs_,
                 recorder_.recording() ? "  |  REC" : "");
-  ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, 8.0f}, IM_COL32(230, 230, 235, 255), status);
+  ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, l.top + 8.0f}, IM_COL32(230, 230, 235, 255), status);
+  if (!project_->message().text.empty())
+    ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, l.top + 26.0f},
+                                            project_->message().error ? IM_COL32(255, 120, 100, 255) : IM_COL32(150, 215, 150, 255),
+                                            project_->message().text.c_str());
   ImGui::GetBackgroundDrawList()->AddText({l.x0() + 10.0f, l.y1() - 22.0f}, IM_COL32(170, 170, 180, 255),
                                           "drag: orbit   wheel: zoom   F12: screenshot   Ctrl+Z/Y: undo/redo");
+}
+
+// --- Projects, export and the menu bar (issue 34, points 5-7) ---
+
+ProjectView EditorApp::viewSettings() const {
+  return {.yawDegrees = view_.camera.yawDegrees,
+          .pitchDegrees = view_.camera.pitchDegrees,
+          .zoom = view_.camera.zoom,
+          .wholeModel = framing_ == eng::FramingMode::All};
+}
+
+void EditorApp::applyViewSettings(const ProjectView& view) {
+  setFraming(view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face);
+  view_.camera.yawDegrees = view.yawDegrees;
+  view_.camera.pitchDegrees = std::clamp(view.pitchDegrees, -80.0f, 80.0f);
+  view_.camera.zoom = std::clamp(view.zoom, 0.3f, 8.0f);
+}
+
+void EditorApp::setFraming(eng::FramingMode framing) {
+  // renderCamera() frames bounds_ each frame; the orbit target follows it.
+  framing_ = framing;
+  bounds_ = eng::framingBounds(setup_->model(), framing_);
+  view_.camera.target = eng::OrbitCamera::frame(bounds_, 1.0f).target;
+}
+
+bool EditorApp::runProjectAction(const EditorScriptAction& a) {
+  using Kind = EditorScriptAction::Kind;
+  switch (a.kind) {
+    case Kind::ProjectNew: return project_->newProject();
+    case Kind::ProjectOpen: return openProject(a.text, nextAction_ + 1, a.time);
+    case Kind::ProjectSave: return a.text.empty() ? project_->save() : project_->saveAs(a.text);
+    case Kind::ProjectSaveAs: return project_->saveAs(a.text);
+    case Kind::ExportGlb: return project_->exportGlb(a.text);
+    case Kind::ExportGif: return project_->exportGif(a.text, a.words.size() > 1 ? a.words[1] : std::string());
+    case Kind::QuitDiscard:
+      project_->discardUnsaved();
+      quitDiscarded_ = quitRequested_ = true;
+      return true;
+    case Kind::QuitSave: {
+      // Quits even when the save fails (a script must not hang on the question); the changes stay in the autosaves.
+      const bool saved = project_->save();
+      quitRequested_ = true;
+      return saved;
+    }
+    default: return false;
+  }
+}
+
+void EditorApp::runMenuRequest(const MenuRequest& request) {
+  const fs::path path = request.path;
+  switch (request.command) {
+    case MenuCommand::None: return;
+    case MenuCommand::New: project_->newProject(); return;
+    case MenuCommand::Open: openProject(path, nextAction_, 0.0f); return;
+    case MenuCommand::Save: project_->save(); return;
+    case MenuCommand::SaveAs: project_->saveAs(path); return;
+    case MenuCommand::ExportGlb: project_->exportGlb(path); return;
+    case MenuCommand::ExportGif: project_->exportGif(path, ""); return;
+    case MenuCommand::Quit: quitRequested_ = true; return;
+    case MenuCommand::QuitSave: quitRequested_ = path.empty() ? project_->save() : project_->saveAs(path); return;
+    case MenuCommand::QuitDiscard:
+      project_->discardUnsaved();
+      quitDiscarded_ = quitRequested_ = true;
+      return;
+    case MenuCommand::Undo: timeline_->undo(); return;
+    case MenuCommand::Redo: timeline_->redo(); return;
+    case MenuCommand::ToggleFraming: setFraming(framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face); return;
+    case MenuCommand::Screenshot:
+      if (pendingShot_.empty()) pendingShot_ = defaultShot_;
+      return;
+  }
+}
+
+bool EditorApp::openProject(const fs::path& path, size_t scriptNext, float scriptTime) {
+  if (!project_->madeOnAnotherFace(path)) return project_->open(path);
+  // The face is loaded once per editor: this one closes (its unsaved changes
+  // stay in the autosaves) and runEditor starts one on the project's face.
+  std::printf("facial-editor: %s was made on another face: reopening the editor on it\n", path.string().c_str());
+  reopen = path;
+  reopenScriptFrom = scriptNext;
+  reopenClock = scriptTime;
+  quitRequested_ = true;
+  return true;
+}
+
+void EditorApp::updateProjectAndTitle() {
+  project_->update(std::chrono::steady_clock::now());
+  std::string title = project_->windowTitle();
+  if (title == title_) return;
+  title_ = std::move(title);
+  glfwSetWindowTitle(session_->window().handle(), title_.c_str());
+}
+
+// The window's close button: with unsaved changes the window stays and the question is asked.
+void EditorApp::onWindowClose(GLFWwindow* window) {
+  if (!gEditor || !gEditor->project_ || !gEditor->project_->dirty()) return;
+  glfwSetWindowShouldClose(window, GLFW_FALSE);
+  gEditor->menu_.askToQuit();
 }
 
 int EditorApp::run(const EditorOptions& o) {
@@ -554,8 +692,13 @@ int EditorApp::run(const EditorOptions& o) {
   auto frame = [&](const app::WindowTick& tick) -> eng::Result<app::WindowFramePlan> {
     frameMs_ = frameMs_ == 0.0f ? 1000.0f * tick.dt : 0.9f * frameMs_ + 0.1f * 1000.0f * tick.dt;
     const VkExtent2D extent = session_->renderer().extent();
-    layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)));
+    layout_ = Layout::of(float(std::max(extent.width, 1u)), float(std::max(extent.height, 1u)), menu_.height());
     session_->ui().beginFrame();
+    runMenuRequest(menu_.draw({.recent = &project_->recent().paths(),
+                               .hasProjectFile = !project_->path().empty(),
+                               .dirty = project_->dirty(),
+                               .canUndo = timeline_->document().canUndo(),
+                               .canRedo = timeline_->document().canRedo()}));
     handleViewportInput();
     runScript(tick.animationTime);
     machine_.update(tick.dt);
@@ -566,6 +709,7 @@ int EditorApp::run(const EditorOptions& o) {
     drawPanels();
     drawControlPoints();
     session_->ui().endFrame();
+    updateProjectAndTitle();
 
     if (auto uploaded = uploadDisplayModel(); !uploaded) return uploaded.error();
     sculpt_.displayWeights(faceWeights(), displayWeights_);
@@ -586,14 +730,17 @@ int EditorApp::run(const EditorOptions& o) {
     // The window cannot draw any more (a lost device, say): the user's edits
     // go to the autosave before anything else can fail, and the one error
     // line says where they are.
+    project_->keepUnsaved();
     const std::string kept = timeline_->keepUnsavedEdits();
     exitCode = fail(ran.error().message + (kept.empty() ? "" : "; " + kept));
   }
+  gEditor = nullptr;  // the window's callbacks are done
+  if (!quitDiscarded_) project_->keepUnsaved();  // a plain quit keeps unsaved changes in the autosaves
   std::printf("facial-editor: %s, face from %s, state %s, %zu timeline tracks, %zu sculpt points, %.1f ms/frame\n",
               setup_->name().c_str(), faceSourceName(source_), machine_.currentState().c_str(),
               timeline_->document().tracks().size(), sculpt_.points().size(), frameMs_);
   if (auto clean = session_->finish(); !clean) return fail(clean.error().message);
-  if (nextAction_ < script_.size() && exitCode == 0)
+  if (nextAction_ < script_.size() && exitCode == 0 && reopen.empty())
     std::printf("facial-editor: closed before %zu scripted action(s) ran\n", script_.size() - nextAction_);
   if (failedActions_ > 0 && exitCode == 0)
     return fail(std::to_string(failedActions_) + " scripted action(s) failed (" + o.script + ")");
@@ -603,8 +750,27 @@ int EditorApp::run(const EditorOptions& o) {
 }  // namespace
 
 int runEditor(const EditorOptions& options) {
-  EditorApp app;
-  return app.run(options);
+  EditorOptions o = options;
+  for (;;) {
+    if (!o.project.empty()) {
+      // The project's face, rig map and graph are what the editor loads (an autosave keeps the same ones).
+      auto project = loadProject(o.project);
+      if (!project) return fail(project.error().message);
+      o.model = project->model.string();
+      o.rigmap = project->rigmap.string();
+      o.graph = project->graph.string();
+    }
+    EditorApp app;
+    const int code = app.run(o);
+    if (code != 0 || app.reopen.empty()) return code;
+    // A project on another face: the next editor opens it and goes on with the script.
+    o.project = app.reopen.string();
+    o.scriptFrom += app.reopenScriptFrom;
+    o.scriptClockFrom += app.reopenClock;
+    if (o.quitAfter > 0.0f) o.quitAfter = std::max(0.1f, o.quitAfter - app.reopenClock);
+    o.trigger.clear();
+    o.timeline.clear();
+  }
 }
 
 }  // namespace editor

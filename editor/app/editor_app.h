@@ -28,6 +28,10 @@ struct EditorOptions {
   std::string screenshot;  // written on the last frame (with --quit-after) or on F12
   std::string script;      // timed actions (editor_script.h)
   bool mute = false;       // Speak moves the mouth without playing the voice
+  std::string project;     // opened at start (its model, rig map and graph are loaded with the face)
+  // A project opened on another face goes on in a new editor (runEditor): the script from this action, its clock from this time.
+  size_t scriptFrom = 0;
+  float scriptClockFrom = 0.0f;
 };
 
 int runEditor(const EditorOptions& options);

@@ -44,6 +44,15 @@ constexpr Verb kVerbs[] = {
     {"say-stop", Kind::SayStop, ""},
     {"screenshot", Kind::Screenshot, "?w"},
     {"quit", Kind::Quit, ""},
+    // Projects and export.
+    {"project-new", Kind::ProjectNew, ""},
+    {"project-open", Kind::ProjectOpen, "w"},
+    {"project-save", Kind::ProjectSave, "?w"},
+    {"project-save-as", Kind::ProjectSaveAs, "w"},
+    {"export-glb", Kind::ExportGlb, "w"},
+    {"export-gif", Kind::ExportGif, "w?w"},
+    {"quit-discard", Kind::QuitDiscard, ""},
+    {"quit-save", Kind::QuitSave, ""},
     // The state machine diagram and the pads that record.
     {"graph-add-state", Kind::GraphAddState, "w?w"},
     {"graph-remove-state", Kind::GraphRemoveState, "w"},
@@ -135,7 +144,8 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       if (argument > given) break;
       const std::string& word = words[argument++];
       if (type == 'w') {
-        action.words.push_back(action.text = word);  // text: the last word
+        if (action.words.empty()) action.text = word;  // text: the first word
+        action.words.push_back(word);
       } else {
         if (!app::parseScriptNumber(word, *numbers[nextNumber]))
           return fail("'" + word + "' is not a finite number");

@@ -27,7 +27,16 @@
 //   3.1 say Xin chào các bạn!      the Speak box's text (the rest of the line) and Speak
 //   3.15 say-stop                  its Stop button
 //   3.2 screenshot shot.png        as F12 (no path: where F12 writes); later actions wait for it
-//   3.5 quit                       close the window (the --screenshot frame is still written)
+//   3.5 quit                       close the window (the --screenshot frame is still written); unsaved
+//                                  changes stay in the autosaves, as when the window is lost
+//   Projects and export (the File menu):
+//   4.0 project-new                New (unsaved changes stay in the autosaves)
+//   4.1 project-open P.json        Open (and Recent); an autosave newer than the file is recovered
+//   4.2 project-save [P.json]      Save (no path: the project's own file; a path: there, as Save As)
+//   4.3 project-save-as P.json     Save As
+//   4.4 export-glb OUT.glb         Export .glb: the face, its sculpted targets, every clip as an animation
+//   4.5 export-gif OUT.gif [CLIP]  Export GIF: the clip (the one being edited, or the project's clip CLIP)
+//   4.6 quit-discard, quit-save    the unsaved-changes question on quit answered Discard / Save
 //
 // The state machine diagram and the pads that record (issue 34, points 3 and 4):
 //   graph-add-state smirk [happy]         add a state (its pose: the preset, the state's name when left out)
@@ -61,12 +70,14 @@ struct EditorScriptAction {
     Screenshot, Quit,
     GraphAddState, GraphRemoveState, GraphRenameState, GraphAddTransition, GraphEditTransition, GraphSave,
     BilinearPad, RecordStart, RecordStop,
+    // Projects and export (File menu; editor/app/project_actions.h).
+    ProjectNew, ProjectOpen, ProjectSave, ProjectSaveAs, ExportGlb, ExportGif, QuitDiscard, QuitSave,
   };
   float time = 0.0f;
   int line = 0;
   Kind kind = Kind::Quit;
   std::string text;                      // the name, path or text argument ("" when none)
-  std::vector<std::string> words;        // every word argument, in order (text is the last)
+  std::vector<std::string> words;        // every word argument, in order (text is the first)
   float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
   bool hasNumber = false;                // sculpt-kernel: c was given
   std::string written;                   // "ACTION ARGS" as in the file

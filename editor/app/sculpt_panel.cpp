@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "editor/app/menu_bar.h"
 #include "editor/atomic_file.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/view/framing_bounds.h"
@@ -270,6 +271,21 @@ eng::Result<void> SculptPanel::bake(const std::string& name) {
   return {};
 }
 
+eng::Result<void> SculptPanel::restore(const eng::Model* sculpted, std::span<const std::pair<std::string, float>> targets) {
+  eng::Model working = face_->model();
+  for (const auto& [name, weight] : targets) {
+    if (!sculpted) return eng::makeError(eng::ErrorKind::InvalidArgument, "baked target '" + name + "' without the model that holds it");
+    if (auto copied = copyBakedTarget(*sculpted, name, working); !copied) return copied;
+  }
+  working_ = std::move(working);
+  baked_.assign(targets.begin(), targets.end());
+  clearPoints();
+  rebuildWorkingLayout();
+  preview_.reset();
+  ++displayRevision_;
+  return {};
+}
+
 eng::Result<void> SculptPanel::saveModel(const std::string& path) {
   return replaceFileAtomically(path, [&](const std::filesystem::path& temp) -> eng::Result<void> {
     if (auto saved = eng::saveModel(working_, temp); !saved) return saved.error().prefixed(path + ": ");
@@ -279,6 +295,7 @@ eng::Result<void> SculptPanel::saveModel(const std::string& path) {
 
 void SculptPanel::draw() {
   ImGui::Checkbox("Pick points on the face", &pickMode_);
+  tooltip("On: a click on the face adds a control point there. Off: drag orbits, Shift+drag moves the selected point");
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", pickMode_ ? "Click the face to add a point." : "Shift+drag in the view moves the selected point.");
   ImGui::PopStyleColor();
@@ -290,8 +307,10 @@ void SculptPanel::draw() {
         if (ImGui::Selectable(landmarks_[i].name.c_str(), int(i) == landmarkChoice_)) landmarkChoice_ = int(i);
       ImGui::EndCombo();
     }
+    tooltip("A named point of the built-in head (nose tip, lip corners...)");
     ImGui::SameLine();
     if (ImGui::Button("Add landmark")) pressAddLandmark(landmarks_[size_t(landmarkChoice_)].name);
+    tooltip("Add the chosen landmark as a control point (at rest: it pins that spot)");
   }
 
   // Control points.
@@ -311,19 +330,33 @@ void SculptPanel::draw() {
     ImGui::SetNextItemWidth(-60.0f);
     if (ImGui::DragFloat3("move", &d.x, 0.0005f * size_, -0.5f * size_, 0.5f * size_, "%.4f"))
       dragSelected(d - points[size_t(selected_)].displacement);
+    tooltip("The selected point's displacement in model units (x, y, z); drag or type");
     if (ImGui::Button("Reset point")) (void)sculpt_->setDisplacement(size_t(selected_), glm::vec3(0.0f));
+    tooltip("Put the selected point back at rest");
     ImGui::SameLine();
     if (ImGui::Button("Remove point")) removePoint(size_t(selected_));
+    tooltip("Delete the selected point");
     ImGui::SameLine();
   }
   if (ImGui::Button("Clear all")) clearPoints();
+  tooltip("Delete every control point");
 
-  // Kernel.
+  drawKernel();
+  if (showingPreview_)
+    ImGui::TextDisabled("solve + preview upload data: %.1f ms, %zu points", solveMs_, points.size());
+  drawBakeAndSave();
+  message_.draw();
+}
+
+// The kernel, its c, the falloff, pins and preview.
+void SculptPanel::drawKernel() {
   ImGui::SetNextItemWidth(-60.0f);
   bool kernelChanged = ImGui::Combo("kernel", &kernelChoice_, kKernelNames, 3);
+  tooltip("The radial basis function: how a point's move spreads over the face");
   if (kernelChoice_ == 2) {
     ImGui::SetNextItemWidth(-60.0f);
     kernelChanged |= ImGui::DragFloat("c", &multiquadricC_, 0.001f * size_, 1e-4f * size_, size_, "%.4f");
+    tooltip("The multiquadric's shape parameter c (model units): larger is smoother and wider");
   }
   if (kernelChanged)
     chooseKernel(kernelChoice_ == 0   ? facial::RbfKernelType::Biharmonic
@@ -334,25 +367,33 @@ void SculptPanel::draw() {
   ImGui::SetNextItemWidth(-60.0f);
   if (ImGui::SliderFloat("falloff", &falloff, 0.0f, 0.5f * size_, falloff > 0.0f ? "%.3f" : "off (whole face)"))
     chooseFalloff(falloff);
+  tooltip("Vertices farther than this from every point do not move (0: the whole face follows)");
   bool pins = sculpt_->pinsEnabled();
   if (ImGui::Checkbox("Pin the box corners", &pins)) sculpt_->setPinsEnabled(pins);
+  tooltip("Fixed points at the corners of the model's box keep far parts still");
   ImGui::SameLine();
   ImGui::Checkbox("Preview", &previewEnabled_);
-  if (showingPreview_)
-    ImGui::TextDisabled("solve + preview upload data: %.1f ms, %zu points", solveMs_, points.size());
+  tooltip("Show the sculpt live on the face before it is baked");
+}
 
-  // Bake and save.
+void SculptPanel::drawBakeAndSave() {
   ImGui::Separator();
   ImGui::SetNextItemWidth(-60.0f);
   ImGui::InputText("##bakename", bakeName_, sizeof bakeName_);
+  tooltip("The name of the morph target Bake makes");
   ImGui::SameLine();
   if (ImGui::Button("Bake")) pressBake(bakeName_);
-  for (auto& [name, weight] : baked_) ImGui::SliderFloat(name.c_str(), &weight, 0.0f, 1.0f);
+  tooltip("Add the sculpt as a morph target with this name (the points go back to rest)");
+  for (auto& [name, weight] : baked_) {
+    ImGui::SliderFloat(name.c_str(), &weight, 0.0f, 1.0f);
+    tooltip("This baked target's weight on the face");
+  }
   ImGui::SetNextItemWidth(-90.0f);
   ImGui::InputText("##savepath", savePath_, sizeof savePath_);
+  tooltip("Where Save .glb writes the model with every baked target");
   ImGui::SameLine();
   if (ImGui::Button("Save .glb")) pressSave(savePath_);
-  message_.draw();
+  tooltip("Write the model with every baked target (File > Export .glb adds the clips)");
 }
 
 }  // namespace editor

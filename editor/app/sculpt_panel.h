@@ -69,8 +69,25 @@ class SculptPanel {
   eng::Result<void> saveModel(const std::string& path);
   SculptModel& sculpt() { return *sculpt_; }
 
+  // Projects (editor/project.h): the baked targets with their slider weights,
+  // in bake order; restore() goes back to the face as loaded (no points,
+  // nothing baked) and bakes again the named targets of `sculpted` (a model
+  // saveModel wrote for this face; null when there are none). On failure
+  // nothing changes.
+  std::span<const std::pair<std::string, float>> bakedTargets() const { return baked_; }
+  // The face's model with the baked targets (what Save .glb writes).
+  const eng::Model& workingModel() const { return working_; }
+  // faceWeights (the FaceSetup layout) -> weights of workingModel(), the baked targets at their slider weights.
+  void bakedWeights(std::span<const float> faceWeights, std::vector<float>& out) const {
+    out.resize(workingLayout_->total());
+    workingWeights(faceWeights, out);
+  }
+  eng::Result<void> restore(const eng::Model* sculpted, std::span<const std::pair<std::string, float>> targets);
+
  private:
   void workingWeights(std::span<const float> faceWeights, std::span<float> out) const;
+  void drawKernel();
+  void drawBakeAndSave();
   void reportPoint(size_t index);
   // Adds a point (and where it sits on the surface, for pointsOnFace) and selects it.
   eng::Result<size_t> addPoint(const std::string& name, const glm::vec3& rest, const std::optional<SurfaceHit>& hit);

@@ -80,6 +80,24 @@ bool TimelinePanel::save(const std::string& path) {
   return true;
 }
 
+void TimelinePanel::openEmpty(const std::string& path) {
+  if (document_.dirty()) (void)autosave_.flush(document_);
+  document_ = TimelineDocument("untitled", 2.0f);
+  autosave_ = TimelineAutosave(autosavePathFor(path));
+  autosaveError_.clear();
+  std::snprintf(path_, sizeof path_, "%s", path.c_str());
+  playTime_ = playhead_ = 0.0f;
+  currentTrack_ = -1;
+  posedRevision_ = UINT64_MAX;
+  message_.report("new clip (saves to " + path + ")", false);
+}
+
+void TimelinePanel::discardUnsavedEdits() {
+  autosave_.discard();
+  document_ = TimelineDocument("untitled", 2.0f);
+  posedRevision_ = UINT64_MAX;
+}
+
 std::string TimelinePanel::keepUnsavedEdits() {
   if (!document_.dirty()) return {};
   if (auto kept = autosave_.flush(document_); !kept) return "unsaved timeline edits NOT kept: " + kept.error().message;

@@ -29,6 +29,12 @@ class TimelinePanel {
   // Unsaved edits an earlier editor autosaved for it are recovered instead, saying so.
   bool open(const std::string& path);
   bool save(const std::string& path);
+  // Projects (editor/project.h): File > New starts an empty clip that saves
+  // to `path`; the edits it replaces stay recoverable, as with open().
+  void openEmpty(const std::string& path);
+  // Quit > Discard: the unsaved edits and their autosave are dropped.
+  void discardUnsavedEdits();
+  const char* path() const { return path_; }
   // Writes unsaved edits to the autosave now (the window is going away on an
   // error) and says where they are, or why they could not be kept; empty when
   // there is nothing unsaved.

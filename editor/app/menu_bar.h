@@ -1,0 +1,62 @@
+#pragma once
+// The window's menu bar: File (New, Open, Save, Save As, Recent, Export .glb,
+// Export GIF, Quit), Edit (Undo, Redo), View (framing, screenshot) and Help,
+// each item with its shortcut listed and the same shortcuts on the keyboard.
+// ImGui has no file dialog, so Open, Save As and the exports ask for a path
+// in a small modal. Quitting with unsaved changes asks Save / Discard /
+// Cancel. The bar only says what was chosen (MenuRequest); the app does it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace editor {
+
+enum class MenuCommand {
+  None, New, Open, Save, SaveAs, ExportGlb, ExportGif, Quit, QuitSave, QuitDiscard,
+  Undo, Redo, ToggleFraming, Screenshot,
+};
+
+struct MenuRequest {
+  MenuCommand command = MenuCommand::None;
+  std::string path;  // Open, SaveAs, ExportGlb, ExportGif: the path typed or chosen from Recent
+};
+
+// What the menus show (greyed items, the recent list, the title's file).
+struct MenuState {
+  const std::vector<std::filesystem::path>* recent = nullptr;
+  bool hasProjectFile = false;
+  bool dirty = false;
+  bool canUndo = false;
+  bool canRedo = false;
+};
+
+// A hover help line on the last widget (one home for the panels' tooltips).
+void tooltip(const char* text);
+
+class MenuBar {
+ public:
+  // Draws the bar, the keyboard shortcuts and any open prompt; what the user chose this frame.
+  MenuRequest draw(const MenuState& state);
+  // Height of the bar as last drawn (the panels go below it).
+  float height() const { return height_; }
+  // The window's close button (or Quit) with unsaved changes: opens the Save / Discard / Cancel question.
+  void askToQuit() { quitAsked_ = true; }
+
+ private:
+  enum class Prompt { None, Open, SaveAs, ExportGlb, ExportGif };
+  MenuRequest drawMenus(const MenuState& state);
+  MenuRequest shortcuts(const MenuState& state);
+  MenuRequest drawPrompt();
+  MenuRequest drawQuitQuestion(const MenuState& state);
+  MenuRequest ask(Prompt prompt, const char* path);
+
+  float height_ = 0.0f;
+  Prompt prompt_ = Prompt::None;
+  bool promptOpening_ = false;
+  bool quitAsked_ = false;
+  bool quitAfterSaveAs_ = false;  // the quit question's Save on an untitled project
+  bool showHelp_ = false;
+  char path_[512] = {};
+};
+
+}  // namespace editor
