@@ -38,6 +38,10 @@ constexpr Verb kVerbs[] = {
     {"sculpt-falloff", Kind::SculptFalloff, "n"},
     {"sculpt-bake", Kind::SculptBake, "w"},
     {"sculpt-save", Kind::SculptSave, "w"},
+    {"landmarks-show", Kind::LandmarksShow, ""},
+    {"landmark-move", Kind::LandmarkMove, "nnn"},
+    {"autorig-rerun", Kind::AutorigRerun, ""},
+    {"landmarks-save", Kind::LandmarksSave, ""},
     {"say", Kind::Say, "t"},
     {"say-lang", Kind::SayLanguage, "w"},
     {"say-stop", Kind::SayStop, ""},
@@ -128,6 +132,10 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
         if (action.text != "multiquadric" && action.hasNumber)
           return fail("only the multiquadric kernel takes a shape parameter c");
         if (action.hasNumber && action.a <= 0.0f) return fail("multiquadric c " + words[2] + " must be > 0");
+        break;
+      case Kind::LandmarkMove:
+        if (action.a < 0.0f || action.a > 67.0f || action.a != std::floor(action.a))
+          return fail("landmark-move " + words[1] + " is not a landmark index (0-67)");
         break;
       case Kind::SculptFalloff:
         if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
