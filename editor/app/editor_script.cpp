@@ -55,6 +55,38 @@ std::string verbList() {
   return list;
 }
 
+// What is wrong with an action's arguments (their values, once parsed), or "".
+std::string argumentProblem(const EditorScriptAction& action, const std::vector<std::string>& words) {
+  switch (action.kind) {
+    case Kind::Pad:
+      if (std::abs(action.a) > 1.0f || std::abs(action.b) > 1.0f)
+        return "pad " + words[1] + " " + words[2] + " is outside [-1, 1]^2";
+      break;
+    case Kind::TimelineSeek:
+      if (action.a < 0.0f) return "timeline-seek " + words[1] + " is before 0 s";
+      break;
+    case Kind::SculptPick:
+      if (action.a < 0.0f || action.b < 0.0f) return "sculpt-pick " + words[1] + " " + words[2] + " is not a window pixel";
+      break;
+    case Kind::SculptKernel:
+      if (action.text != "biharmonic" && action.text != "polyharmonic" && action.text != "multiquadric")
+        return "unknown kernel '" + action.text + "' (biharmonic, polyharmonic, multiquadric)";
+      if (action.text != "multiquadric" && action.hasNumber)
+        return "only the multiquadric kernel takes a shape parameter c";
+      if (action.hasNumber && action.a <= 0.0f) return "multiquadric c " + words[2] + " must be > 0";
+      break;
+    case Kind::LandmarkMove:
+      if (action.a < 0.0f || action.a > 67.0f || action.a != std::floor(action.a))
+        return "landmark-move " + words[1] + " is not a landmark index (0-67)";
+      break;
+    case Kind::SculptFalloff:
+      if (action.a < 0.0f) return "sculpt-falloff " + words[1] + " must be >= 0 (0 = off)";
+      break;
+    default: break;
+  }
+  return {};
+}
+
 }  // namespace
 
 const char* editorScriptActionWord(Kind kind) {
@@ -115,33 +147,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     }
     action.hasNumber = nextNumber > 0;
 
-    switch (action.kind) {
-      case Kind::Pad:
-        if (std::abs(action.a) > 1.0f || std::abs(action.b) > 1.0f)
-          return fail("pad " + words[1] + " " + words[2] + " is outside [-1, 1]^2");
-        break;
-      case Kind::TimelineSeek:
-        if (action.a < 0.0f) return fail("timeline-seek " + words[1] + " is before 0 s");
-        break;
-      case Kind::SculptPick:
-        if (action.a < 0.0f || action.b < 0.0f) return fail("sculpt-pick " + words[1] + " " + words[2] + " is not a window pixel");
-        break;
-      case Kind::SculptKernel:
-        if (action.text != "biharmonic" && action.text != "polyharmonic" && action.text != "multiquadric")
-          return fail("unknown kernel '" + action.text + "' (biharmonic, polyharmonic, multiquadric)");
-        if (action.text != "multiquadric" && action.hasNumber)
-          return fail("only the multiquadric kernel takes a shape parameter c");
-        if (action.hasNumber && action.a <= 0.0f) return fail("multiquadric c " + words[2] + " must be > 0");
-        break;
-      case Kind::LandmarkMove:
-        if (action.a < 0.0f || action.a > 67.0f || action.a != std::floor(action.a))
-          return fail("landmark-move " + words[1] + " is not a landmark index (0-67)");
-        break;
-      case Kind::SculptFalloff:
-        if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
-        break;
-      default: break;
-    }
+    if (const std::string problem = argumentProblem(action, words); !problem.empty()) return fail(problem);
     actions.push_back(std::move(action));
   }
   return actions;
