@@ -61,6 +61,7 @@ glm::vec3 motion(const Measured& m, size_t index, const char* target) {
 // The features a unit moves, each as one number in the face's size.
 struct Amounts {
   float lipGap = 0.0f;       // inner lips apart (61-63 against 65-67), over the mouth's width
+  float upperLipUp = 0.0f;   // of which the upper lip's rise
   float chinDown = 0.0f;     // chin 8 down, over the mouth's width
   float cornersDown = 0.0f;  // lip corners 48/54 down, over the mouth's width
   float innerBrowUp = 0.0f;  // 21/22 up, eye spans
@@ -81,6 +82,7 @@ Amounts amounts(const Measured& m, const char* target) {
   };
   const float opening = glm::dot((p[37] + p[38] + p[43] + p[44]) - (p[41] + p[40] + p[47] + p[46]), up) * 0.25f;
   return {.lipGap = (rise({61, 62, 63}) - rise({65, 66, 67})) / mouth,
+          .upperLipUp = rise({61, 62, 63}) / mouth,
           .chinDown = -rise({8}) / mouth,
           .cornersDown = -rise({48, 54}) / mouth,
           .innerBrowUp = rise({21, 22}) / eye,
@@ -89,7 +91,7 @@ Amounts amounts(const Measured& m, const char* target) {
 }
 
 void print(const char* face, const char* unit, const Amounts& a) {
-  std::printf("%-10s %-24s gap %6.3f chin %6.3f corners %6.3f brow in %6.3f out %6.3f lid %6.3f\n", face, unit, a.lipGap,
+  std::printf("%-10s %-24s gap %6.3f (upper %6.3f) chin %6.3f corners %6.3f brow in %6.3f out %6.3f lid %6.3f\n", face, unit, a.lipGap, a.upperLipUp,
               a.chinDown, a.cornersDown, a.innerBrowUp, a.outerBrowUp, a.upperLidUp);
 }
 
