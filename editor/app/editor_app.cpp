@@ -358,7 +358,7 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SculptSave: return sculpt_.pressSave(a.text);
     case Kind::LandmarksShow: return landmarks_.pressShow(*setup_);
     case Kind::LandmarkMove: return landmarks_.selectAndMove(int(a.a), {a.b, a.c}, pictureCamera());
-    case Kind::AutorigRerun: return landmarks_.pressRerun();
+    case Kind::AutorigRerun: return landmarks_.pressRerun(*setup_);
     case Kind::LandmarksSave: return landmarks_.pressSave();
     case Kind::Say:
       machine_.setSpeechText(a.text);

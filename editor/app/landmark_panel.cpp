@@ -69,7 +69,7 @@ bool LandmarkPanel::selectAndMove(int index, glm::vec2 pixels, const autorig::Pi
   return true;
 }
 
-bool LandmarkPanel::pressRerun() {
+bool LandmarkPanel::pressRerun(const app::FaceSetup& face) {
   if (!edit_) return failed("landmarks: press Show first");
   if (!rigger_) {
     auto rigger = app::FaceAutorig::load();
@@ -84,7 +84,10 @@ bool LandmarkPanel::pressRerun() {
   if (!rigged) return failed(rigged.error().message);
   rigged_.emplace(std::move(*rigged));
   ++riggedRevision_;
-  message_.report("transfer run again from the landmarks as they are", false);
+  message_.report(sameTargets(*rigged_, face.model())
+                      ? "transfer run again from the landmarks as they are"
+                      : "transfer run again, but not shown: " + face.name() + " was not rigged on the fly (its targets differ)",
+                  false);
   return true;
 }
 
@@ -107,7 +110,7 @@ void LandmarkPanel::draw(const app::FaceSetup& face) {
   } else {
     ImGui::Text("selected: %s", edit_->selected() < 0 ? "none (click a point)" : std::to_string(edit_->selected()).c_str());
     ImGui::TextDisabled("drag a point to move it over the skin");
-    if (ImGui::Button(edit_->dirty() ? "Re-run transfer *" : "Re-run transfer")) pressRerun();
+    if (ImGui::Button(edit_->dirty() ? "Re-run transfer *" : "Re-run transfer")) pressRerun(face);
     ImGui::SameLine();
     if (ImGui::Button(edit_->unsaved() ? "Save *" : "Save")) pressSave();
   }

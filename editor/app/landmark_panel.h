@@ -35,7 +35,7 @@ class LandmarkPanel {
   bool clickAt(glm::vec2 pixel, const autorig::PictureCamera& camera);
   bool dragSelected(glm::vec2 pixels, const autorig::PictureCamera& camera);
   bool selectAndMove(int index, glm::vec2 pixels, const autorig::PictureCamera& camera);
-  bool pressRerun();
+  bool pressRerun(const app::FaceSetup& face);
   bool pressSave();
 
   // The face rigged again from the moved points, once re-run, when it can
