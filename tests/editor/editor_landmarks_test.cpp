@@ -4,6 +4,7 @@
 // dragged, the transfer run again and the points saved beside the face.
 #include <filesystem>
 #include <regex>
+#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -34,7 +35,10 @@ TEST(EditorLandmarks, ShowMoveRerunAndSave) {
                              "0.5 autorig-rerun\n"
                              "0.6 landmarks-save\n"
                              "0.7 quit\n");
+  // The face is rigged on the fly into a cache of the test's own.
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
   const editor_test::EditorRun run = editor_test::runEditor(dir, "--model rpm.glb --script landmarks.txt", 60.0f);
+  unsetenv("XDG_CACHE_HOME");
   EXPECT_EQ(run.exitCode, 1) << "the refused move fails the run:\n" << run.log;
   EXPECT_NE(run.log.find("68 landmarks from rpm.landmarks.json"), std::string::npos) << run.log;
   EXPECT_NE(run.log.find("landmark 57 moved to"), std::string::npos) << run.log;
