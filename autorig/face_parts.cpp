@@ -335,13 +335,23 @@ struct TeethPiece {
   std::vector<uint32_t> vertices;
 };
 
+// A ball's depth (along the face's forward) below this share of its width
+// is its front only: a shell, as Ready Player Me's eyes are.
+constexpr float kShellDepth = 0.75f;
+
 // Keeps the larger ball of each eye (not its iris or cornea): the fitted
-// sphere, or the box of a ball that is no sphere.
-void recordEyeball(FaceParts& parts, int side, const Component& c) {
+// sphere, or the box of a ball that is no sphere. A shell's box centre lies
+// in front of the ball's (by half the radius for a half ball), where the lids
+// would turn about a point inside them: the centre is a radius behind its front.
+void recordEyeball(FaceParts& parts, int side, const Component& c, const FaceFrame& f) {
   const bool sphere = c.spread < 0.1f;
-  const float radius = sphere ? c.radius : 0.5f * std::max({c.hi.x - c.lo.x, c.hi.y - c.lo.y, c.hi.z - c.lo.z});
+  const glm::vec3 size = c.hi - c.lo;
+  const float radius = sphere ? c.radius : 0.5f * std::max({size.x, size.y, size.z});
   if (radius <= parts.eyeRadii[size_t(side)]) return;
-  parts.eyeCentres[size_t(side)] = sphere ? c.sphereCentre : (c.lo + c.hi) * 0.5f;
+  glm::vec3 centre = sphere ? c.sphereCentre : (c.lo + c.hi) * 0.5f;
+  const float depth = glm::dot(glm::abs(f.forward), size);
+  if (!sphere && depth < kShellDepth * 2.0f * radius) centre += f.forward * (0.5f * depth - radius);
+  parts.eyeCentres[size_t(side)] = centre;
   parts.eyeRadii[size_t(side)] = radius;
 }
 
@@ -350,7 +360,7 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool
   if (named == FacePart::EyeballRight || named == FacePart::EyeballLeft) {
     const int e = eyeOver(c, f);
     const int side = e >= 0 ? e : (glm::dot(c.centre - f.centre, f.right) > 0.0f ? 1 : 0);
-    if (e >= 0) recordEyeball(parts, side, c);
+    if (e >= 0) recordEyeball(parts, side, c, f);
     return side == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
   // A mesh called "Head" often holds the eyeballs, and the teeth as islands
@@ -359,7 +369,7 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool
   if (named && *named != FacePart::Skin) return *named;
   const int eye = eyeballSide(c, f);
   if (eye >= 0) {
-    recordEyeball(parts, eye, c);
+    recordEyeball(parts, eye, c, f);
     return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;
   }
   if (!named) return partOfShape(c, f);

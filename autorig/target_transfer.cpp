@@ -328,6 +328,48 @@ void turnWithJaw(const JawTurn& turn, const JawSplit& split, const FaceSurface& 
     deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
 }
 
+// The inner lips' gap a unit's displacements open (61-63 against 65-67, at
+// the nearest vertex on each landmark's own lip), along the face's up, over
+// the mouth's width (48-54).
+float lipGapOverWidth(const FaceSurface& surface, const std::vector<FaceRegion>& regions, const FaceLandmarks& landmarks,
+                      const std::vector<glm::vec3>& deltas) {
+  const glm::vec3 up = LandmarkFrame(landmarks).up();
+  auto rise = [&](size_t first, FaceRegion lip) {
+    float sum = 0.0f;
+    for (size_t i = first; i < first + 3; ++i) {
+      size_t best = surface.positions.size();
+      float bestDistance = std::numeric_limits<float>::max();
+      for (size_t v = 0; v < surface.positions.size(); ++v) {
+        const float d = glm::length(surface.positions[v] - landmarks.points[i]);
+        if (regions[v] == lip && d < bestDistance) bestDistance = d, best = v;
+      }
+      if (best < surface.positions.size()) sum += glm::dot(deltas[best], up);
+    }
+    return sum / 3.0f;
+  };
+  const float width = glm::length(landmarks.points[54] - landmarks.points[48]);
+  return width > 0.0f ? (rise(61, FaceRegion::UpperLip) - rise(65, FaceRegion::LowerLip)) / width : 0.0f;
+}
+
+// The jaw's turn that opens the target's mouth as wide, for its width, as
+// the unit opens the source's: the angle carried from the source's chin
+// opens a longer face's mouth less (the lips lie nearer the hinge than the
+// chin does). Scaled within [1/kJawScale, kJawScale].
+constexpr float kJawScale = 2.5f;
+
+JawTurn openingLikeSource(JawTurn turn, const JawSplit& split, const FaceSurface& src, const std::vector<glm::vec3>& raw,
+                          const FaceSurface& tgt, const Correspondence& corr, const FaceLandmarks& sourceLandmarks,
+                          const FaceLandmarks& landmarks, float fullGap, float maxGap, const FaceSurface& jaw,
+                          const std::vector<glm::vec3>& residual) {
+  const float wanted = lipGapOverWidth(src, corr.sourceRegions, sourceLandmarks, raw);
+  const float unturned = lipGapOverWidth(tgt, corr.targetRegions, landmarks, residual);
+  std::vector<glm::vec3> turned = residual;
+  turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, turned);
+  const float byTurn = lipGapOverWidth(tgt, corr.targetRegions, landmarks, turned) - unturned;
+  if (byTurn > 1e-4f && wanted > 0.0f) turn.angle *= std::clamp((wanted - unturned) / byTurn, 1.0f / kJawScale, kJawScale);
+  return turn;
+}
+
 Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const FaceSurface& jaw,
                  const Correspondence& corr, const std::vector<std::string>& units, const FaceLandmarks& landmarks,
                  const FaceParts& parts) {
@@ -370,7 +412,11 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
     }
     closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
-    if (jawUnit) turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+    if (jawUnit) {
+      const JawTurn matched = openingLikeSource(turn, split, src, raw[u], tgt, corr, source.landmarks, landmarks,
+                                                fullGap, maxGap, jaw, unit.deltas);
+      turnWithJaw(matched, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+    }
     moved.units.push_back(std::move(unit));
   }
   return moved;

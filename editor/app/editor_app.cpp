@@ -26,6 +26,7 @@
 #include "editor/app/face_delegate.h"
 #include "editor/app/menu_bar.h"
 #include "editor/app/project_actions.h"
+#include "editor/app/landmark_panel.h"
 #include "editor/app/sculpt_panel.h"
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
@@ -119,6 +120,8 @@ class EditorApp : public FaceDelegate, public ProjectViewHost {
 
  private:
   static void onWindowClose(GLFWwindow* window);
+  // The view camera as a picture (the window): what the landmarks are projected with.
+  autorig::PictureCamera pictureCamera() const;
 
   std::optional<app::FaceSetup> setup_;
   StateMachinePanel machine_;
@@ -130,6 +133,9 @@ class EditorApp : public FaceDelegate, public ProjectViewHost {
   int showPadTab_ = -1;  // a pad tab the script brings forward (0 control map, 1 bilinear), -1 none
   std::unique_ptr<TimelinePanel> timeline_;
   SculptPanel sculpt_;
+  LandmarkPanel landmarks_;
+  bool landmarkDragging_ = false;
+  uint64_t uploadedRigRevision_ = 0;
   FaceSource source_ = FaceSource::StateMachine;
   std::vector<std::string> targetNames_;
 
@@ -270,16 +276,20 @@ int EditorApp::setUp(const EditorOptions& o) {
 
 eng::Result<void> EditorApp::uploadDisplayModel() {
   sculpt_.refresh();
-  if (gpuModel_ && uploadedRevision_ == sculpt_.displayRevision()) return {};
+  if (gpuModel_ && uploadedRevision_ == sculpt_.displayRevision() && uploadedRigRevision_ == landmarks_.riggedRevision()) return {};
   // The old model may still be read by frames in flight.
   if (gpuModel_) vkDeviceWaitIdle(session_->context().device());
   // Drawn dressed, as every program draws a face (importers/face_dressing.h);
   // dressed here at each upload, as sculpting moves what the occlusion is baked on.
-  const std::optional<eng::Model> dressed = importers::dressedForDisplay(sculpt_.displayModel());
-  auto gpu = session_->renderer().upload(dressed ? *dressed : sculpt_.displayModel());
+  // A face rigged again from moved landmarks stands in for it (same targets).
+  const eng::Model* rerigged = landmarks_.shownInstead(sculpt_.displayModel());
+  const eng::Model& shown = rerigged ? *rerigged : sculpt_.displayModel();
+  const std::optional<eng::Model> dressed = importers::dressedForDisplay(shown);
+  auto gpu = session_->renderer().upload(dressed ? *dressed : shown);
   if (!gpu) return gpu.error();
   gpuModel_.emplace(std::move(*gpu));
   uploadedRevision_ = sculpt_.displayRevision();
+  uploadedRigRevision_ = landmarks_.riggedRevision();
   return {};
 }
 
@@ -291,6 +301,11 @@ eng::OrbitCamera EditorApp::renderCamera() const {
   camera.distance = eng::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
   camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), layout_.top}, {layout_.x1(), layout_.y1()});
   return camera;
+}
+
+autorig::PictureCamera EditorApp::pictureCamera() const {
+  const eng::OrbitCamera camera = renderCamera();
+  return {camera.projection(layout_.width / layout_.height) * camera.view(), {layout_.width, layout_.height}};
 }
 
 void EditorApp::rayAt(float px, float py, glm::vec3& origin, glm::vec3& direction) const {
@@ -312,13 +327,17 @@ void EditorApp::handleViewportInput() {
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && overViewport) {
     if (sculpt_.pickMode()) {
       pickAt(io.MousePos.x, io.MousePos.y);
+    } else if (landmarks_.clickAt({io.MousePos.x, io.MousePos.y}, pictureCamera())) {
+      landmarkDragging_ = true;
     } else if (io.KeyShift && sculpt_.hasSelection()) {
       sculptDragging_ = true;
     } else {
       orbiting_ = true;
     }
   }
-  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = sculptDragging_ = false;
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) orbiting_ = sculptDragging_ = landmarkDragging_ = false;
+  if (landmarkDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
+    landmarks_.dragSelected({io.MouseDelta.x, io.MouseDelta.y}, pictureCamera());
   if (orbiting_) orbit(-0.3f * io.MouseDelta.x, 0.3f * io.MouseDelta.y);
   if (sculptDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
     dragSelectedByPixels(io.MouseDelta.x, io.MouseDelta.y);
@@ -391,6 +410,10 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SculptFalloff: return sculpt_.chooseFalloff(a.a);
     case Kind::SculptBake: return sculpt_.pressBake(a.text);
     case Kind::SculptSave: return sculpt_.pressSave(a.text);
+    case Kind::LandmarksShow: return landmarks_.pressShow(*setup_);
+    case Kind::LandmarkMove: return landmarks_.selectAndMove(int(a.a), {a.b, a.c}, pictureCamera());
+    case Kind::AutorigRerun: return landmarks_.pressRerun(*setup_);
+    case Kind::LandmarksSave: return landmarks_.pressSave();
     case Kind::Say:
       machine_.setSpeechText(a.text);
       return machine_.pressSpeak(*this);
@@ -567,6 +590,7 @@ void EditorApp::drawPanels() {
   ImGui::SetNextWindowSize({l.side, l.height - l.bottom - l.top}, ImGuiCond_Always);
   ImGui::Begin("RBF sculpt", nullptr, docked);
   sculpt_.draw();
+  if (ImGui::CollapsingHeader("Landmarks (autorig)")) landmarks_.draw(*setup_);
   ImGui::End();
 
   ImGui::SetNextWindowPos({0, l.height - l.bottom}, ImGuiCond_Always);
@@ -574,6 +598,8 @@ void EditorApp::drawPanels() {
   ImGui::Begin("Timeline", nullptr, docked);
   timeline_->draw(*this);
   ImGui::End();
+
+  landmarks_.drawOverlay(ImGui::GetBackgroundDrawList(), pictureCamera());
 
   // Status over the viewport's top edge.
   char status[160];

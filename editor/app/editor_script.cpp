@@ -39,6 +39,10 @@ constexpr Verb kVerbs[] = {
     {"sculpt-falloff", Kind::SculptFalloff, "n"},
     {"sculpt-bake", Kind::SculptBake, "w"},
     {"sculpt-save", Kind::SculptSave, "w"},
+    {"landmarks-show", Kind::LandmarksShow, ""},
+    {"landmark-move", Kind::LandmarkMove, "nnn"},
+    {"autorig-rerun", Kind::AutorigRerun, ""},
+    {"landmarks-save", Kind::LandmarksSave, ""},
     {"say", Kind::Say, "t"},
     {"say-lang", Kind::SayLanguage, "w"},
     {"say-stop", Kind::SayStop, ""},
@@ -91,6 +95,38 @@ std::string checkGraphOrPadAction(EditorScriptAction& action) {
   if (interrupt != "yes" && interrupt != "no") return "interruption rule '" + interrupt + "' is not yes or no";
   action.c = interrupt == "yes" ? 1.0f : 0.0f;
   return "";
+}
+
+// What is wrong with an action's arguments (their values, once parsed), or "".
+std::string argumentProblem(const EditorScriptAction& action, const std::vector<std::string>& words) {
+  switch (action.kind) {
+    case Kind::Pad:
+      if (std::abs(action.a) > 1.0f || std::abs(action.b) > 1.0f)
+        return "pad " + words[1] + " " + words[2] + " is outside [-1, 1]^2";
+      break;
+    case Kind::TimelineSeek:
+      if (action.a < 0.0f) return "timeline-seek " + words[1] + " is before 0 s";
+      break;
+    case Kind::SculptPick:
+      if (action.a < 0.0f || action.b < 0.0f) return "sculpt-pick " + words[1] + " " + words[2] + " is not a window pixel";
+      break;
+    case Kind::SculptKernel:
+      if (action.text != "biharmonic" && action.text != "polyharmonic" && action.text != "multiquadric")
+        return "unknown kernel '" + action.text + "' (biharmonic, polyharmonic, multiquadric)";
+      if (action.text != "multiquadric" && action.hasNumber)
+        return "only the multiquadric kernel takes a shape parameter c";
+      if (action.hasNumber && action.a <= 0.0f) return "multiquadric c " + words[2] + " must be > 0";
+      break;
+    case Kind::LandmarkMove:
+      if (action.a < 0.0f || action.a > 67.0f || action.a != std::floor(action.a))
+        return "landmark-move " + words[1] + " is not a landmark index (0-67)";
+      break;
+    case Kind::SculptFalloff:
+      if (action.a < 0.0f) return "sculpt-falloff " + words[1] + " must be >= 0 (0 = off)";
+      break;
+    default: break;
+  }
+  return {};
 }
 
 }  // namespace
@@ -154,29 +190,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     }
     action.hasNumber = nextNumber > 0;
 
-    switch (action.kind) {
-      case Kind::Pad:
-        if (std::abs(action.a) > 1.0f || std::abs(action.b) > 1.0f)
-          return fail("pad " + words[1] + " " + words[2] + " is outside [-1, 1]^2");
-        break;
-      case Kind::TimelineSeek:
-        if (action.a < 0.0f) return fail("timeline-seek " + words[1] + " is before 0 s");
-        break;
-      case Kind::SculptPick:
-        if (action.a < 0.0f || action.b < 0.0f) return fail("sculpt-pick " + words[1] + " " + words[2] + " is not a window pixel");
-        break;
-      case Kind::SculptKernel:
-        if (action.text != "biharmonic" && action.text != "polyharmonic" && action.text != "multiquadric")
-          return fail("unknown kernel '" + action.text + "' (biharmonic, polyharmonic, multiquadric)");
-        if (action.text != "multiquadric" && action.hasNumber)
-          return fail("only the multiquadric kernel takes a shape parameter c");
-        if (action.hasNumber && action.a <= 0.0f) return fail("multiquadric c " + words[2] + " must be > 0");
-        break;
-      case Kind::SculptFalloff:
-        if (action.a < 0.0f) return fail("sculpt-falloff " + words[1] + " must be >= 0 (0 = off)");
-        break;
-      default: break;
-    }
+    if (const std::string problem = argumentProblem(action, words); !problem.empty()) return fail(problem);
     if (auto problem = checkGraphOrPadAction(action); !problem.empty()) return fail(problem);
     actions.push_back(std::move(action));
   }

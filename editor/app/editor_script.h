@@ -23,6 +23,10 @@
 //   2.6 sculpt-kernel multiquadric 0.02   biharmonic | polyharmonic | multiquadric [c]
 //   2.8 sculpt-bake smirk          Bake as a named morph target
 //   3.0 sculpt-save OUT.glb        Save .glb
+//   3.0 landmarks-show             the Landmarks panel's Show (the 68 points the face was rigged from)
+//   3.0 landmark-move 48 6 -2      select landmark 48 and drag it by pixels in the view (over the skin)
+//   3.0 autorig-rerun              "Re-run transfer": the face rigged again from the points as they are
+//   3.0 landmarks-save             Save: <stem>.landmarks.json beside the face
 //   3.0 say-lang vi                the Speak box's language (an espeak-ng voice; "en" until set)
 //   3.1 say Xin chào các bạn!      the Speak box's text (the rest of the line) and Speak
 //   3.15 say-stop                  its Stop button
@@ -66,6 +70,7 @@ struct EditorScriptAction {
     Trigger, Pad, Orbit,
     TimelineOpen, TimelineSeek, TimelineKeyAll, TimelineKey, TimelineMoveSelected, TimelineDelete, Undo, Redo, TimelineSave,
     SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptFalloff, SculptBake, SculptSave,
+    LandmarksShow, LandmarkMove, AutorigRerun, LandmarksSave,
     Say, SayLanguage, SayStop,
     Screenshot, Quit,
     GraphAddState, GraphRemoveState, GraphRenameState, GraphAddTransition, GraphEditTransition, GraphSave,

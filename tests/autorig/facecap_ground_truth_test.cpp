@@ -68,7 +68,7 @@ struct Row {
 // Measured (docs/autorig.md has the table): the bounds are the measurement
 // with 0.1 of margin.
 constexpr Row kRows[] = {
-    {"jawOpen", "jawOpen", 0.52f, 0.81f},
+    {"jawOpen", "jawOpen", 0.55f, 0.84f},
     {"mouthSmileLeft", "mouthSmile_L", 0.68f, 0.72f},
     {"eyeBlinkLeft", "eyeBlink_L", 0.73f, 0.69f},
     {"browInnerUp", "browInnerUp", 0.70f, 0.70f},

@@ -1,0 +1,155 @@
+// How far the made units move a face's features, in the face's own size,
+// against how far the built-in head's own units move the head's: the jaw's
+// opening as the inner lips' gap over the mouth's width, the brows and lids
+// in eye spans. A made face whose jaw opens half as wide as the head's (for
+// its proportions) reads as a snarl, not surprise (issue 33).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "autorig/dense_correspondence.h"
+#include "autorig/face_frame.h"
+#include "engine/scene/gltf_loader.h"
+#include "tests/autorig/transfer_fixture.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+// A face with its unit targets, its rest pose, landmarks and skin.
+struct Measured {
+  const eng::Model* model = nullptr;
+  autorig::PosedFace posed;
+  autorig::FaceLandmarks landmarks;
+  autorig::FaceSurface skin;
+  std::vector<autorig::FaceRegion> regions;
+};
+
+Measured measured(const eng::Model& model, autorig::PosedFace posed, const autorig::FaceLandmarks& landmarks) {
+  Measured m{.model = &model, .posed = std::move(posed), .landmarks = landmarks, .skin = {}, .regions = {}};
+  const autorig::FaceParts parts = autorig::findFaceParts(model, m.posed, landmarks);
+  m.skin = autorig::gatherSurface(model, m.posed, parts, {autorig::FacePart::Skin});
+  m.regions = autorig::labelRegions(m.skin, autorig::LandmarkFrame(landmarks));
+  return m;
+}
+
+// The world displacement, under `target` at 1, of the skin vertex nearest
+// landmark `index` (on the landmark's own lip for the inner lips).
+glm::vec3 motion(const Measured& m, size_t index, const char* target) {
+  const autorig::FaceRegion wanted = index >= 61 && index <= 63   ? autorig::FaceRegion::UpperLip
+                                     : index >= 65 && index <= 67 ? autorig::FaceRegion::LowerLip
+                                                                  : autorig::FaceRegion::None;
+  size_t best = m.skin.positions.size();
+  float bestDistance = std::numeric_limits<float>::max();
+  for (size_t v = 0; v < m.skin.positions.size(); ++v) {
+    if (wanted != autorig::FaceRegion::None && m.regions[v] != wanted) continue;
+    const float d = glm::length(m.skin.positions[v] - m.landmarks.points[index]);
+    if (d < bestDistance) bestDistance = d, best = v;
+  }
+  if (best == m.skin.positions.size()) return glm::vec3(0.0f);
+  const autorig::FaceSurface::VertexRef ref = m.skin.vertices[best];
+  const autorig::PosedPrimitive& posed = m.posed.primitives[ref.primitive];
+  const eng::Mesh& mesh = m.model->meshes[posed.mesh];
+  const auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), target);
+  if (it == mesh.targetNames.end()) return glm::vec3(0.0f);
+  const eng::MorphTarget& t = mesh.primitives[posed.primitive].targets[size_t(it - mesh.targetNames.begin())];
+  return glm::inverse(posed.worldToLocal[ref.vertex]) * t.positions[ref.vertex];
+}
+
+// The features a unit moves, each as one number in the face's size.
+struct Amounts {
+  float lipGap = 0.0f;       // inner lips apart (61-63 against 65-67), over the mouth's width
+  float upperLipUp = 0.0f;   // of which the upper lip's rise
+  float chinDown = 0.0f;     // chin 8 down, over the mouth's width
+  float cornersDown = 0.0f;  // lip corners 48/54 down, over the mouth's width
+  float innerBrowUp = 0.0f;  // 21/22 up, eye spans
+  float outerBrowUp = 0.0f;  // 17/26 up, eye spans
+  float upperLidUp = 0.0f;   // 37/38/43/44 up, over the lids' opening
+};
+
+Amounts amounts(const Measured& m, const char* target) {
+  const autorig::LandmarkFrame frame(m.landmarks);
+  const glm::vec3 up = frame.up();
+  const auto& p = m.landmarks.points;
+  const float mouth = glm::length(p[54] - p[48]);
+  const float eye = frame.eyeSpan();
+  auto rise = [&](std::initializer_list<size_t> points) {
+    float sum = 0.0f;
+    for (size_t i : points) sum += glm::dot(motion(m, i, target), up);
+    return sum / float(points.size());
+  };
+  const float opening = glm::dot((p[37] + p[38] + p[43] + p[44]) - (p[41] + p[40] + p[47] + p[46]), up) * 0.25f;
+  return {.lipGap = (rise({61, 62, 63}) - rise({65, 66, 67})) / mouth,
+          .upperLipUp = rise({61, 62, 63}) / mouth,
+          .chinDown = -rise({8}) / mouth,
+          .cornersDown = -rise({48, 54}) / mouth,
+          .innerBrowUp = rise({21, 22}) / eye,
+          .outerBrowUp = rise({17, 26}) / eye,
+          .upperLidUp = rise({37, 38, 43, 44}) / opening};
+}
+
+void print(const char* face, const char* unit, const Amounts& a) {
+  std::printf("%-10s %-24s gap %6.3f (upper %6.3f) chin %6.3f corners %6.3f brow in %6.3f out %6.3f lid %6.3f\n", face, unit, a.lipGap, a.upperLipUp,
+              a.chinDown, a.cornersDown, a.innerBrowUp, a.outerBrowUp, a.upperLidUp);
+}
+
+constexpr const char* kUnits[] = {"AU26_JawDrop", "AU27_MouthStretch", "AU25_LipsPart", "AU1_InnerBrowRaiser",
+                                  "AU2_OuterBrowRaiser_L", "AU5_UpperLidRaiser", "AU15_LipCornerDepressor",
+                                  "AU4_BrowLowerer", "AU12_LipCornerPuller_L", "AU45_Blink_L", "AU7_LidTightener"};
+
+struct Rigged {
+  eng::Model model;
+  autorig::FaceLandmarks landmarks;
+};
+
+std::optional<Rigged> rigStripped(const std::filesystem::path& file, const char* landmarksFile) {
+  eng::Result<eng::Model> face = eng::loadModel(file);
+  if (!face) {
+    ADD_FAILURE() << face.error().message;
+    return std::nullopt;
+  }
+  const eng::Model bare = transfer_fixture::stripped(std::move(*face));
+  const autorig::PosedFace posed = autorig::poseAtRest(bare);
+  Rigged r;
+  std::optional<autorig::TransferResult> result =
+      transfer_fixture::rigWithFixtureLandmarks(bare, posed, landmarksFile, &r.landmarks);
+  if (!result) return std::nullopt;
+  r.model = std::move(result->model);
+  return r;
+}
+
+TEST(ExpressionAmounts, MadeUnitsMoveFeaturesAsFarAsTheHeads) {
+  FACIAL_REQUIRE_SHARED();
+  const std::optional<eng::Model> head = transfer_fixture::loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = transfer_fixture::headSource(*head);
+  const Measured own = measured(*head, source.posed, source.landmarks);
+  const std::filesystem::path shared = testing_support::sharedDir();
+  std::optional<Rigged> facecap = rigStripped(shared / "assets/facecap.glb", "facecap.landmarks.json");
+  std::optional<Rigged> rpm = rigStripped(shared / "speech/rpm-visemes.glb", "rpm-visemes.landmarks.json");
+  ASSERT_TRUE(facecap && rpm);
+  const Measured madeFacecap = measured(facecap->model, autorig::poseAtRest(facecap->model), facecap->landmarks);
+  const Measured madeRpm = measured(rpm->model, autorig::poseAtRest(rpm->model), rpm->landmarks);
+  for (const char* unit : kUnits) {
+    print("head", unit, amounts(own, unit));
+    print("facecap", unit, amounts(madeFacecap, unit));
+    print("rpm", unit, amounts(madeRpm, unit));
+  }
+  for (const Measured* made : {&madeFacecap, &madeRpm}) {
+    const char* face = made == &madeFacecap ? "facecap" : "rpm";
+    // The jaw opens the mouth as wide for its width (measured 0.43 to 0.44
+    // of the head's 0.44; the chin's angle alone gave 0.29 on rpm).
+    for (const char* jaw : {"AU26_JawDrop", "AU27_MouthStretch"})
+      EXPECT_NEAR(amounts(*made, jaw).lipGap / amounts(own, jaw).lipGap, 1.0f, 0.1f) << face << " " << jaw;
+    // The upper lid rises over its eyeball (rpm's half-ball eyes once put the
+    // turn's centre inside the lid: 0.28 of the opening against the head's 0.51).
+    EXPECT_GT(amounts(*made, "AU5_UpperLidRaiser").upperLidUp, 0.65f * amounts(own, "AU5_UpperLidRaiser").upperLidUp) << face;
+    EXPECT_GT(amounts(*made, "AU1_InnerBrowRaiser").innerBrowUp, 0.75f * amounts(own, "AU1_InnerBrowRaiser").innerBrowUp) << face;
+    EXPECT_GT(amounts(*made, "AU15_LipCornerDepressor").cornersDown,
+              0.75f * amounts(own, "AU15_LipCornerDepressor").cornersDown) << face;
+  }
+}
+
+}  // namespace
