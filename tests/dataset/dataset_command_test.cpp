@@ -142,6 +142,25 @@ TEST_F(DatasetCommand, ARerunCompletesWhatAKilledRunLeft) {
   EXPECT_EQ(testing_support::partialFilesIn(out / "images"), 0u);
 }
 
+TEST_F(DatasetCommand, AWorkerKilledMidRunIsFinishedByARerun) {
+  const fs::path reference = dir_ / "reference", out = dir_ / "killed";
+  ASSERT_TRUE(ranCleanly(dataset(reference)));
+  // SIGKILL once the second item is finished (at most a minute of waiting).
+  const std::string script =
+      "\"$0\" dataset --spec \"$1\" --out \"$2\" & pid=$!; n=0; "
+      "while [ ! -e \"$2/labels/000001.json\" ] && [ $n -lt 600 ]; do sleep 0.1; n=$((n+1)); done; "
+      "kill -9 $pid; wait $pid; exit 0";
+  const CommandOutput killed = runProgram("/bin/sh", {"-c", script, facialProgram().string(), spec_.string(), out.string()});
+  ASSERT_EQ(killed.exitCode, 0) << killed.err;
+  ASSERT_FALSE(fs::exists(out / "labels.jsonl")) << "the run finished before it was killed";
+  const CommandOutput rerun = dataset(out);
+  ASSERT_TRUE(ranCleanly(rerun));
+  EXPECT_NE(rerun.out.find("already there"), std::string::npos) << rerun.out;
+  EXPECT_TRUE(filesUnder(out / "images") == filesUnder(reference / "images"));
+  EXPECT_EQ(readText(out / "labels.jsonl"), readText(reference / "labels.jsonl"));
+  EXPECT_EQ(testing_support::partialFilesIn(out / "images") + testing_support::partialFilesIn(out / "labels"), 0u);
+}
+
 TEST_F(DatasetCommand, AFailedWriteNamesTheFileAndLeavesNothingHalfWritten) {
   const fs::path out = dir_ / "full";
   // A full disk, as the process sees it: writes past 2 KiB fail (EFBIG).
