@@ -22,7 +22,7 @@ struct ViewOptions {
   float zoom = 1.0f;
   std::string device;
   std::string background;  // --background (parseBackground)
-  std::string quality = "auto";  // --quality (qualityOption)
+  std::string quality = "high";  // --quality (qualityOption)
 };
 
 // --device alone, for commands that choose their own framing.
@@ -32,8 +32,11 @@ void addFramingOption(CLI::App& app, std::string& frame);
 // The --frame value as a mode; the error names the option and the value.
 eng::Result<eng::FramingMode> framingModeOption(const std::string& frame);
 // --quality auto|fast|balanced|high, for every command that draws a face;
-// "auto" (every command's default) is eng::vk::defaultQuality of the device
-// the command renders on: balanced on a CPU rasteriser, high on a GPU.
+// "auto" is eng::vk::defaultQuality of the device the command renders on:
+// balanced on a CPU rasteriser, high on a GPU. The windows and `say` default
+// to it; the still-image commands stay at high (issue 38: at 1x the judge
+// reads the built-in head's fear as surprise at 384 px, and the sheets'
+// edges differ), until a cheaper anti-aliasing than 4x MSAA keeps the look.
 inline constexpr const char* kQualityAuto = "auto";
 void addQualityOption(CLI::App& app, std::string& quality);
 // The --quality value as a tier, nullopt for "auto" (the device decides:

@@ -48,7 +48,7 @@ struct BenchFramesOptions {
   std::string animate = "all";
   int instances = 1;
   std::string device;
-  std::string quality = "auto";
+  std::string quality = "high";
   float lodError = 0.0f;
 };
 

@@ -42,7 +42,7 @@ struct PlayOptions {
   std::vector<std::string> shapes;
   std::string background;
   std::string device;
-  std::string quality = "auto";
+  std::string quality = "high";
   float fps = 24.0f;
   float seconds = 0.0f;  // 0: the timeline's length, or 24 s for a graph
   std::string size = "512x512";

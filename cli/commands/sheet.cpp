@@ -44,7 +44,7 @@ struct SheetOptions {
   bool zoomGiven = false;  // an explicit --zoom is taken as it is
   std::string frame = "face";
   std::string device;
-  std::string quality = "auto";
+  std::string quality = "high";
   std::string out;
 };
 

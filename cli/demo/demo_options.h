@@ -26,7 +26,7 @@ struct DemoOptions {
   uint32_t crowd = 0;              // >0: N faces in a grid, each with its own state machine
   uint64_t seed = 1;
   std::string device;              // Vulkan device (eng::vk::ContextOptions::device); empty: FACIAL_DEVICE or the best
-  std::string quality = "auto";    // auto | fast | balanced | high (app::windowQualityOption; headless: HeadlessRenderOptions)
+  std::string quality = "auto";    // auto | fast | balanced | high (app::windowQualityOption; headless: auto = high)
   bool profile = false;            // print where the frames' time went (windowed: on exit)
   float quitAfter = 0.0f;          // windowed: close after this many seconds (tests), 0 = never
   std::string screenshot;          // windowed: last frame's screenshot file (F12 shots go beside it)

@@ -222,7 +222,7 @@ int runHeadlessDemo(const DemoOptions& o) {
   std::fflush(stdout);
 
   // The tour's frames are written, not watched: auto draws them at high.
-  auto quality = app::qualityOption(o.quality);
+  auto quality = app::qualityOption(o.quality == app::kWindowQualityAuto ? "high" : o.quality);
   if (!quality) return fail(quality.error().message);
   auto renderer = app::HeadlessModelRenderer::create(
       setup->displayModel(), {.width = width, .height = height, .device = o.device, .quality = *quality});

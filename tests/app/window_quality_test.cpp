@@ -32,7 +32,7 @@ TEST(WindowQualityValidity, UnknownTierNamesTheOptionAndTheValue) {
   EXPECT_NE(tier.error().message.find("--quality 'ultra'"), std::string::npos) << tier.error().message;
 }
 
-// Headless commands take "auto" too (their default): the device decides,
+// Headless commands take "auto" too (`say`'s default): the device decides,
 // once the renderer has one (HeadlessRenderOptions::quality).
 TEST(HeadlessQuality, AutoIsLeftToTheDeviceAndNamedTiersAreKept) {
   auto automatic = app::qualityOption(app::kQualityAuto);
