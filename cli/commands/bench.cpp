@@ -105,8 +105,8 @@ int checkOptions(const BenchFramesOptions& o, uint32_t& width, uint32_t& height)
 
 // The report: the settings and what one frame drew, the memory, and the one
 // line of timings the benchmark scripts read.
-void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, app::HeadlessModelRenderer& renderer, uint32_t count, size_t targets, std::vector<double>& cpuMs,
-                  std::vector<double>& gpuMs) {
+void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, app::HeadlessModelRenderer& renderer,
+                  uint32_t count, size_t targets, std::vector<double>& cpuMs, std::vector<double>& gpuMs) {
   eng::vk::OffscreenRenderer& offscreen = renderer.offscreen();
   const eng::vk::SceneView& view = renderer.view();
   const eng::vk::FrameStats stats = offscreen.lastFrameStats();
