@@ -19,7 +19,7 @@ eng::Result<HeadlessModelRenderer> HeadlessModelRenderer::create(const eng::Mode
   if (!context) return context.error().prefixed("Vulkan: ");
   r.context_ = std::make_unique<eng::vk::Context>(std::move(*context));
   auto renderer = eng::vk::OffscreenRenderer::create(
-      *r.context_, {.width = options.width, .height = options.height, .quality = options.quality,
+      *r.context_, {.width = options.width, .height = options.height, .quality = options.quality.value_or(eng::vk::defaultQuality(r.context_->deviceInfo().type)),
                     .lodPixelError = options.lodPixelError, .framesInFlight = options.framesInFlight});
   if (!renderer) return renderer.error().prefixed("Vulkan: ");
   r.renderer_ = std::make_unique<eng::vk::OffscreenRenderer>(std::move(*renderer));

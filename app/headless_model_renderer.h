@@ -9,6 +9,7 @@
 //   if (auto clean = renderer->checkValidation(); !clean) ...  // FACIAL_VALIDATION=1 runs
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -31,7 +32,9 @@ struct HeadlessRenderOptions {
   eng::FramingMode framing = eng::FramingMode::Face;  // head and neck, or the whole model
   std::string device;         // eng::vk::ContextOptions::device
   eng::vk::Backdrop backdrop; // studio gradient, a solid colour or transparent (RGBA for compositing)
-  eng::vk::RenderQuality quality = eng::vk::RenderQuality::High;  // multisampling, shadows, shading terms
+  // Multisampling, shadows, shading terms; nullopt: eng::vk::defaultQuality
+  // of the device (balanced on a CPU rasteriser, high on a GPU).
+  std::optional<eng::vk::RenderQuality> quality;
   float lodPixelError = 0.0f;  // eng::vk::OffscreenOptions::lodPixelError (0: every triangle)
   // eng::vk::OffscreenOptions::framesInFlight: sequences (recordSequence) take
   // app::kSequenceFramesInFlight; single images keep the memory of one target.

@@ -28,7 +28,8 @@ namespace {
 constexpr const char* kQualityHelp =
     "Render quality: high (4x MSAA, soft key-light shadow, three highlights), balanced (the same with "
     "2x MSAA, 1x where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
-    "balanced takes about two thirds and fast about a third of high's frame time";
+    "balanced takes about half and fast about a third of high's frame time; auto: balanced on a CPU "
+    "rasteriser, high on a GPU";
 
 }  // namespace
 
@@ -36,22 +37,18 @@ void addQualityOption(CLI::App& app, std::string& quality) {
   app.add_option("--quality", quality, kQualityHelp)->capture_default_str();
 }
 
-eng::Result<eng::vk::RenderQuality> qualityOption(const std::string& quality) {
-  if (auto tier = eng::vk::renderQualityFromName(quality)) return *tier;
-  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not " + eng::nameList(eng::vk::kRenderQualityNames));
+eng::Result<std::optional<eng::vk::RenderQuality>> qualityOption(const std::string& quality) {
+  if (quality == kQualityAuto) return std::optional<eng::vk::RenderQuality>{};
+  if (auto tier = eng::vk::renderQualityFromName(quality)) return tier;
+  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not auto, " + eng::nameList(eng::vk::kRenderQualityNames));
 }
 
-void addWindowQualityOption(CLI::App& app, std::string& quality) {
-  app.add_option("--quality", quality,
-                 std::string(kQualityHelp) + "; auto: balanced on a CPU rasteriser, high on a GPU")
-      ->capture_default_str();
-}
+void addWindowQualityOption(CLI::App& app, std::string& quality) { addQualityOption(app, quality); }
 
 eng::Result<eng::vk::RenderQuality> windowQualityOption(const std::string& quality, VkPhysicalDeviceType device) {
-  if (quality == kWindowQualityAuto)
-    return device == VK_PHYSICAL_DEVICE_TYPE_CPU ? eng::vk::RenderQuality::Balanced : eng::vk::RenderQuality::High;
-  if (auto tier = eng::vk::renderQualityFromName(quality)) return *tier;
-  return eng::makeError(eng::ErrorKind::InvalidArgument, "--quality '" + quality + "' is not auto, " + eng::nameList(eng::vk::kRenderQualityNames));
+  auto tier = qualityOption(quality);
+  if (!tier) return tier.error();
+  return tier->value_or(eng::vk::defaultQuality(device));
 }
 
 void addViewOptions(CLI::App& app, ViewOptions& view) {

@@ -30,7 +30,7 @@ struct SayOptions {
   bool noAutorig = false;
   std::vector<std::string> shapes;
   // Balanced: high's 4x multisampling triples lavapipe's frame time (docs/performance.md, `say`).
-  app::ViewOptions view{.quality = "balanced"};
+  app::ViewOptions view{.quality = app::kQualityAuto};  // balanced on lavapipe, high on a GPU
   float fps = 25.0f;
   std::string cues;
   std::string audio;

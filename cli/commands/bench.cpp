@@ -1,5 +1,5 @@
 // `facial bench frames MODEL [--size WxH] [--frames N] [--warmup N]
-//  [--animate all|none] [--instances K] [--quality fast|balanced|high] [--lod-error PX] [--device D]`
+//  [--animate all|none] [--instances K] [--quality auto|fast|balanced|high] [--lod-error PX] [--device D]`
 // Times whole headless frames on whatever Vulkan device is present: per frame
 // the weights are updated (--animate all: every morph target re-weighted by
 // its own smooth sine, all of them active; none: all zero), K instances are
@@ -105,12 +105,12 @@ int checkOptions(const BenchFramesOptions& o, uint32_t& width, uint32_t& height)
 
 // The report: the settings and what one frame drew, the memory, and the one
 // line of timings the benchmark scripts read.
-void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, eng::vk::RenderQuality quality,
-                  app::HeadlessModelRenderer& renderer, uint32_t count, size_t targets, std::vector<double>& cpuMs,
-                  std::vector<double>& gpuMs) {
+void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, app::HeadlessModelRenderer& renderer,
+                  uint32_t count, size_t targets, std::vector<double>& cpuMs, std::vector<double>& gpuMs) {
   eng::vk::OffscreenRenderer& offscreen = renderer.offscreen();
   const eng::vk::SceneView& view = renderer.view();
   const eng::vk::FrameStats stats = offscreen.lastFrameStats();
+  const eng::vk::RenderQuality quality = offscreen.quality();  // "auto" resolved by the device
   const eng::vk::QualitySettings tier = eng::vk::qualitySettings(quality);
   std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
               "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
@@ -211,7 +211,7 @@ int runBenchFrames(const BenchFramesOptions& o) {
   }
   if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
 
-  printResults(o, width, height, *quality, *renderer, count, layout.total(), cpuMs, gpuMs);
+  printResults(o, width, height, *renderer, count, layout.total(), cpuMs, gpuMs);
   return 0;
 }
 

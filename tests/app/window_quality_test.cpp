@@ -30,8 +30,23 @@ TEST(WindowQualityValidity, UnknownTierNamesTheOptionAndTheValue) {
   ASSERT_FALSE(tier);
   EXPECT_EQ(tier.error().kind, eng::ErrorKind::InvalidArgument);
   EXPECT_NE(tier.error().message.find("--quality 'ultra'"), std::string::npos) << tier.error().message;
-  // Headless commands know no "auto".
-  EXPECT_FALSE(app::qualityOption("auto"));
+}
+
+// Headless commands take "auto" too (`say`'s default): the device decides,
+// once the renderer has one (HeadlessRenderOptions::quality).
+TEST(HeadlessQuality, AutoIsLeftToTheDeviceAndNamedTiersAreKept) {
+  auto automatic = app::qualityOption(app::kQualityAuto);
+  ASSERT_TRUE(automatic) << automatic.error().message;
+  EXPECT_FALSE(automatic->has_value());
+  auto high = app::qualityOption("high");
+  ASSERT_TRUE(high) << high.error().message;
+  EXPECT_EQ(*high, eng::vk::RenderQuality::High);
+  EXPECT_EQ(eng::vk::defaultQuality(VK_PHYSICAL_DEVICE_TYPE_CPU), eng::vk::RenderQuality::Balanced);
+  EXPECT_EQ(eng::vk::defaultQuality(VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU), eng::vk::RenderQuality::High);
+  auto bad = app::qualityOption("ultra");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("--quality 'ultra' is not auto, fast, balanced or high"), std::string::npos)
+      << bad.error().message;
 }
 
 }  // namespace

@@ -157,7 +157,7 @@ TEST(BenchCommandValidity, JunkAnimateIsRejected) {
 TEST(BenchCommandValidity, JunkQualityIsRejected) {
   const std::string face = writeTestFace("bench_command_bad").string();
   expectOneErrorLine(runFacial({"bench", "frames", face, "--quality", "ultra"}),
-                     "--quality 'ultra' is not fast, balanced or high");
+                     "--quality 'ultra' is not auto, fast, balanced or high");
 }
 
 }  // namespace

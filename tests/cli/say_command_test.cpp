@@ -98,7 +98,7 @@ class SayCommand : public ::testing::Test {
   static void SetUpTestSuite() {
     sentenceDir_ = testing_support::freshTempDir("say_command_sentence");
     // At high quality: the dark-pixel counts below were measured with 4x multisampling (say's
-    // default, balanced, is 1x on lavapipe, where an aliased lip line at 128 px doubles them).
+    // default, auto, is balanced and so 1x on lavapipe, where an aliased lip line at 128 px doubles them).
     sentenceRun_ = runFacial({"say", kSentence, "--size", "128x128", "--quality", "high", "--fps", std::to_string(kFps),
                               "--out", (sentenceDir_ / "talk.mp4").string(), "--frames", (sentenceDir_ / "frames").string(),
                               "--visemes", (sentenceDir_ / "visemes.json").string(), "--wav",

@@ -18,6 +18,10 @@ QualitySettings qualitySettings(RenderQuality quality) {
 
 std::string_view renderQualityName(RenderQuality quality) { return nameOf(kRenderQualityNames, quality); }
 
+RenderQuality defaultQuality(VkPhysicalDeviceType device) {
+  return device == VK_PHYSICAL_DEVICE_TYPE_CPU ? RenderQuality::Balanced : RenderQuality::High;
+}
+
 std::optional<RenderQuality> renderQualityFromName(std::string_view name) { return valueNamed(kRenderQualityNames, name); }
 
 }  // namespace eng::vk

@@ -46,6 +46,11 @@ inline constexpr EnumName<RenderQuality> kRenderQualityNames[] = {
     {RenderQuality::High, "high"},
 };
 std::string_view renderQualityName(RenderQuality quality);
+// The tier a caller that names none gets ("auto"): balanced on a CPU
+// rasteriser, where high's 4x multisampling alone about doubles the frame
+// (lavapipe: balanced is 1x with high's shadow and highlights; the pictures
+// differ only on silhouette edges), high on a GPU, where every tier is cheap.
+RenderQuality defaultQuality(VkPhysicalDeviceType device);
 std::optional<RenderQuality> renderQualityFromName(std::string_view name);
 
 }  // namespace eng::vk
