@@ -1,5 +1,6 @@
 #include "app/program_error.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace app {
@@ -33,6 +34,21 @@ std::string shortenNames(std::string_view message) {
     i = end;
   }
   return elideMiddle(out, kMaxMessageLine);
+}
+
+std::string shortenEachLine(std::string_view text) {
+  std::string out;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    out += shortenNames(text.substr(start, end - start)) + "\n";
+    start = end + 1;
+  }
+  return out;
+}
+
+void printWarning(std::string_view program, std::string_view message) {
+  const std::string line = shortenNames(message);
+  std::fprintf(stderr, "%.*s: warning: %s\n", static_cast<int>(program.size()), program.data(), line.c_str());
 }
 
 int ErrorReporter::operator()(std::string_view message) const {

@@ -22,6 +22,12 @@ std::string elideMiddle(std::string_view text, size_t limit);
 // `message` with each word (run of non-blanks: a file name, a quoted value)
 // longer than kMaxNameInMessage elided in the middle, then the line to kMaxMessageLine.
 std::string shortenNames(std::string_view message);
+// Each line of a multi-line text (CLI11's usage errors) shortened so; every line ends in '\n'.
+std::string shortenEachLine(std::string_view text);
+
+// Prints "<program>: warning: <message>" on stderr, names shortened: a
+// warning quotes names from the file (nodes, targets, images) as errors do.
+void printWarning(std::string_view program, std::string_view message);
 
 struct ErrorReporter {
   std::string_view program;  // "facial render", "facial-editor"

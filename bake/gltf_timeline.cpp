@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_set>
+#include <map>
 
+#include "engine/core/name_index.h"
+#include "engine/core/work_counter.h"
 #include "facial/runtime/json/json_document.h"  // formatNumber
 
 namespace bake {
@@ -36,7 +38,7 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
   std::vector<facial::Keyframe> keys;
   // Targets already animated, hashed: a scan of the tracks per target was
   // quadratic in a file with many targets.
-  std::unordered_set<std::string> animated;
+  eng::NameIndex animated;
   for (size_t c = 0; c < source.channels.size(); ++c) {
     const eng::WeightsChannel& channel = source.channels[c];
     const std::string where = label + " channel " + std::to_string(c);
@@ -60,11 +62,12 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
       return eng::makeError(eng::ErrorKind::Malformed, where + ": negative key time " + facial::formatNumber(channel.times.front()));
     for (size_t t = 0; t < channel.targetCount; ++t) {
       const std::string& target = mesh.targetNames[t];
-      if (animated.count(target) != 0) {
+      if (animated.find(target)) {
         if (warnings) warnings->push_back(where + ": target '" + target + "' is already animated by an earlier channel; kept the first");
         continue;
       }
       keys.clear();
+      eng::countWork(channel.times.size());
       for (size_t k = 0; k < channel.times.size(); ++k) {
         facial::Keyframe key{.time = channel.times[k], .interpolation = keyInterpolation(channel.interpolation)};
         const size_t base = k * perKey;
@@ -79,7 +82,7 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
       }
       if (keys.empty()) continue;
       timeline.addTrack(target, keys);
-      animated.insert(target);
+      animated.add(target, static_cast<uint32_t>(timeline.tracks.size() - 1));
     }
   }
   if (timeline.tracks.empty()) return eng::makeError(eng::ErrorKind::Malformed, label + " animates no morph weights");
@@ -112,36 +115,48 @@ float trackSlope(std::span<const facial::Keyframe> keys, float time, bool left) 
   return segmentDerivative(keys[segment], keys[segment + 1], time);
 }
 
+// A mesh's target names, hashed: looked up once per track (a search of the
+// names per track was quadratic in a face with many targets).
+eng::NameIndex targetIndex(const eng::Mesh& mesh) {
+  eng::NameIndex index;
+  index.reserve(mesh.targetNames.size());
+  for (size_t t = 0; t < mesh.targetNames.size(); ++t) index.add(mesh.targetNames[t], static_cast<uint32_t>(t));
+  return index;
+}
+
 // A face file often holds several meshes (head, eyes, teeth): the first node
 // whose mesh has a target for every track, else the first node with a mesh
-// (-1 when none has one).
+// (-1 when none has one). Each mesh is checked once, however many nodes draw it.
 int nodeForTimeline(const eng::Model& model, const facial::Timeline& timeline) {
-  int node = -1;
   int firstMeshNode = -1;
-  for (size_t n = 0; n < model.nodes.size() && node < 0; ++n) {
+  std::map<int, bool> coversEveryTrack;  // by mesh
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
     const int m = model.nodes[n].mesh;
     if (m < 0 || static_cast<size_t>(m) >= model.meshes.size()) continue;
     if (firstMeshNode < 0) firstMeshNode = static_cast<int>(n);
-    const std::vector<std::string>& names = model.meshes[m].targetNames;
-    if (std::all_of(timeline.tracks.begin(), timeline.tracks.end(), [&](const facial::TimelineTrack& track) {
-          return std::find(names.begin(), names.end(), track.channel) != names.end();
-        }))
-      node = static_cast<int>(n);
+    const auto [covers, fresh] = coversEveryTrack.try_emplace(m, false);
+    if (fresh) {
+      const eng::NameIndex names = targetIndex(model.meshes[m]);
+      covers->second = std::all_of(timeline.tracks.begin(), timeline.tracks.end(),
+                                   [&](const facial::TimelineTrack& track) { return names.find(track.channel).has_value(); });
+    }
+    if (covers->second) return static_cast<int>(n);
   }
-  return node < 0 ? firstMeshNode : node;
+  return firstMeshNode;
 }
 
 // The track animating each of the mesh's targets, or -1. Errors: a track
 // whose channel is not one of the mesh's targets.
 eng::Result<std::vector<int>> trackOfEachTarget(const eng::Mesh& mesh, const facial::Timeline& timeline, int node) {
   std::vector<int> trackOfTarget(mesh.targetNames.size(), -1);
+  const eng::NameIndex names = targetIndex(mesh);
   for (size_t i = 0; i < timeline.tracks.size(); ++i) {
-    auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), timeline.tracks[i].channel);
-    if (it == mesh.targetNames.end())
+    const std::optional<uint32_t> target = names.find(timeline.tracks[i].channel);
+    if (!target)
       return eng::makeError(eng::ErrorKind::NotFound, "timeline '" + timeline.name + "' animates '" + timeline.tracks[i].channel +
                             "', which is not a morph target of mesh '" + mesh.name + "' (node " + std::to_string(node) +
                             ", " + std::to_string(mesh.targetNames.size()) + " targets)");
-    trackOfTarget[static_cast<size_t>(it - mesh.targetNames.begin())] = static_cast<int>(i);
+    trackOfTarget[*target] = static_cast<int>(i);
   }
   return trackOfTarget;
 }

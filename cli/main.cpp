@@ -20,6 +20,10 @@ std::vector<CommandInfo>& commandRegistry() {
 int main(int argc, char** argv) {
   CLI::App app{"facial: real-time facial expression runtime"};
   app.require_subcommand(1);
+  // CLI11 quotes what it refuses: a hostile 100 KB argument is shortened like any name.
+  app.failure_message([](const CLI::App* program, const CLI::Error& e) {
+    return app::shortenEachLine(CLI::FailureMessage::simple(program, e));
+  });
   std::map<CLI::App*, std::function<int()>> runners;
   // Listed by name: the commands register from static initialisers, whose
   // order across (unity-built) files the language leaves open.

@@ -79,7 +79,7 @@ int runAutorig(const AutorigOptions& o) {
   auto rigged = rigger->rig(face->model, *landmarks, o.model);
   if (!rigged) return fail(rigged.error().message);
   if (auto saved = app::saveModelAtomically(rigged->model, o.out); !saved) return fail(saved.error().message);
-  for (const std::string& w : rigged->report.warnings) std::fprintf(stderr, "facial autorig: warning: %s\n", w.c_str());
+  for (const std::string& w : rigged->report.warnings) app::printWarning("facial autorig", w);
   const app::TargetChanges changes = app::targetChanges(face->model, rigged->model);
   std::printf("wrote %s: %zu targets made (%s)", o.out.c_str(), changes.made.size(), joined(changes.made, 6).c_str());
   if (!changes.kept.empty())

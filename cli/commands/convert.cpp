@@ -40,7 +40,7 @@ constexpr app::ErrorReporter fail{"facial convert"};
 int save(const eng::Model& model, const std::string& out) {
   auto saved = eng::saveModel(model, out);
   if (!saved) return fail(saved.error().message);
-  for (const std::string& w : model.warnings) std::fprintf(stderr, "facial convert: warning: %s\n", w.c_str());
+  for (const std::string& w : model.warnings) app::printWarning("facial convert", w);
   std::printf("wrote %s: %zu vertices, %zu morph target(s)\n", out.c_str(), model.totalVertexCount(),
               model.meshes.empty() ? size_t{0} : model.meshes[0].targetNames.size());
   return 0;

@@ -187,7 +187,7 @@ void printText(const eng::Model& model) {
   }
   if (!model.warnings.empty()) {
     std::printf("  %zu warning(s)\n", model.warnings.size());
-    for (const std::string& w : model.warnings) std::printf("    %s\n", w.c_str());
+    for (const std::string& w : model.warnings) std::printf("    %s\n", app::shortenNames(w).c_str());
   }
 }
 

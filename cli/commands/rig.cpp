@@ -59,7 +59,7 @@ void printAutorig(const AutorigDone& done) {
   for (const std::string& n : done.cached.kept) kept += (kept.empty() ? "" : ", ") + n;
   std::printf("  made (%zu): %s\n  kept (%zu): %s\n", done.cached.made.size(), made.c_str(), done.cached.kept.size(),
               kept.empty() ? "none" : kept.c_str());
-  for (const std::string& w : done.cached.warnings) std::printf("  warning: %s\n", w.c_str());
+  for (const std::string& w : done.cached.warnings) std::printf("  warning: %s\n", app::shortenNames(w).c_str());
 }
 
 nlohmann::ordered_json toJson(const std::string& modelPath, importers::FaceFormat format,

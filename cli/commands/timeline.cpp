@@ -57,7 +57,7 @@ int runImport(const TimelineOptions& o) {
   std::vector<std::string> warnings;
   auto timeline = bake::importGltfTimeline(*model, *index, &warnings);
   if (!timeline) return fail(o.model + ": " + timeline.error().message);
-  for (const std::string& warning : warnings) std::fprintf(stderr, "facial timeline: warning: %s\n", warning.c_str());
+  for (const std::string& warning : warnings) app::printWarning("facial timeline", warning);
   if (auto saved = facial::saveTimeline(*timeline, o.out); !saved) return fail(saved.error().message);
   std::printf("wrote %s: animation '%s' of %s, %zu track(s), %.3f s\n", o.out.c_str(), timeline->name.c_str(),
               o.model.c_str(), timeline->tracks.size(), timeline->duration);

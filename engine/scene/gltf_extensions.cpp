@@ -1,18 +1,16 @@
 #include "engine/scene/gltf_extensions.h"
 
-#include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <unordered_set>
 
+#include "engine/core/work_counter.h"
 #include "engine/scene/gltf_draco.h"
 #include "engine/scene/gltf_meshopt.h"
 #include "engine/scene/gltf_mtoon.h"
 
 namespace eng {
 namespace {
-
-bool listed(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
 
 // What a handled extension did when nothing more specific was recorded.
 std::string defaultOutcome(const std::string& name) {
@@ -43,15 +41,18 @@ bool isHandledExtension(const std::string& name) {
 }
 
 std::vector<ExtensionUse> describeExtensions(const tinygltf::Model& gltf, const ExtensionOutcomes& outcomes) {
-  std::vector<std::string> names = gltf.extensionsUsed;
-  for (const std::string& name : gltf.extensionsRequired)
-    if (!listed(names, name)) names.push_back(name);
+  // Hashed: a file may list many thousands of names (issue 37: quadratic when each was searched for).
+  const std::unordered_set<std::string_view> required(gltf.extensionsRequired.begin(), gltf.extensionsRequired.end());
+  std::unordered_set<std::string_view> seen;
   std::vector<ExtensionUse> out;
-  for (const std::string& name : names) {
-    if (std::any_of(out.begin(), out.end(), [&](const ExtensionUse& e) { return e.name == name; })) continue;
+  auto describe = [&](const std::string& name) {
+    countWork();
+    if (!seen.insert(name).second) return;
     auto it = outcomes.find(name);
-    out.push_back({name, listed(gltf.extensionsRequired, name), it != outcomes.end() ? it->second : defaultOutcome(name)});
-  }
+    out.push_back({name, required.count(name) > 0, it != outcomes.end() ? it->second : defaultOutcome(name)});
+  };
+  for (const std::string& name : gltf.extensionsUsed) describe(name);
+  for (const std::string& name : gltf.extensionsRequired) describe(name);
   return out;
 }
 

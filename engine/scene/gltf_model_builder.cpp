@@ -1,8 +1,10 @@
 // The order of the glTF model builder's steps, and the extensions a file may require.
 #include "engine/scene/gltf_model_builder.h"
 
-#include <algorithm>
+#include <string_view>
+#include <unordered_set>
 
+#include "engine/core/work_counter.h"
 #include "engine/scene/gltf_skin_reader.h"
 
 namespace eng {
@@ -25,10 +27,11 @@ Result<void> GltfModelBuilder::checkExtensions() {
   for (const std::string& ext : gltf_.extensionsRequired)
     if (!isHandledExtension(ext))
       return fail("requires glTF extension " + ext + ", which this loader does not support", ErrorKind::Unsupported);
+  // Hashed: each used name searched for among the required ones was quadratic in a long list (issue 37).
+  const std::unordered_set<std::string_view> required(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end());
   for (const std::string& ext : gltf_.extensionsUsed) {
-    const bool required =
-        std::find(gltf_.extensionsRequired.begin(), gltf_.extensionsRequired.end(), ext) != gltf_.extensionsRequired.end();
-    if (!required && !isHandledExtension(ext)) warn("optional extension " + ext + " ignored");
+    countWork();
+    if (!required.count(ext) && !isHandledExtension(ext)) warn("optional extension " + ext + " ignored");
   }
   return {};
 }

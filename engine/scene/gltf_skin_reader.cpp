@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include <glm/gtc/quaternion.hpp>
+
+#include "engine/core/work_counter.h"
 
 namespace eng {
 namespace {
@@ -46,6 +50,7 @@ int vrmHumanoidHead(const tinygltf::Model& gltf) {
 std::string jointRangeProblem(const Mesh& mesh, const Skin& skin) {
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const Primitive& prim = mesh.primitives[p];
+    countWork(prim.joints.size());
     for (size_t i = 0; i < prim.joints.size(); ++i)
       for (int k = 0; k < 4; ++k)
         if (prim.jointWeights[i][k] > 0.0f && prim.joints[i][k] >= skin.joints.size())
@@ -174,6 +179,7 @@ Result<void> readSkins(GltfAccessorReader& reader, const tinygltf::Model& gltf, 
     model.skins.push_back(std::move(skin));
   }
 
+  std::map<std::pair<int, int>, std::string> jointProblems;  // (mesh, skin) -> jointRangeProblem
   for (size_t i = 0; i < gltf.nodes.size() && i < model.nodes.size(); ++i) {
     const int s = gltf.nodes[i].skin;
     if (s < 0) continue;
@@ -186,7 +192,10 @@ Result<void> readSkins(GltfAccessorReader& reader, const tinygltf::Model& gltf, 
     if (!usable[s]) continue;
     Node& node = model.nodes[i];
     if (node.mesh < 0) continue;  // a skin without a mesh deforms nothing
-    if (const std::string problem = jointRangeProblem(model.meshes[node.mesh], model.skins[s]); !problem.empty()) {
+    // Many nodes may draw one skinned mesh: each pair is checked once, not once a node (nodes x vertices).
+    const auto [pair, fresh] = jointProblems.try_emplace({node.mesh, s});
+    if (fresh) pair->second = jointRangeProblem(model.meshes[node.mesh], model.skins[s]);
+    if (const std::string& problem = pair->second; !problem.empty()) {
       model.warnings.push_back(label + ": mesh " + std::to_string(node.mesh) + " " + problem + "; drawn unskinned");
       continue;
     }

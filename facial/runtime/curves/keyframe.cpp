@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "facial/runtime/json/json_document.h"  // formatNumber
 
@@ -16,9 +17,12 @@ eng::Result<void> validateKeys(std::span<const Keyframe> keys) {
   if (keys.empty()) return eng::makeError(eng::ErrorKind::Malformed, "no keys");
   for (size_t i = 0; i < keys.size(); ++i) {
     const Keyframe& k = keys[i];
-    if (!std::isfinite(k.time) || !std::isfinite(k.value) || !std::isfinite(k.inTangent) ||
-        !std::isfinite(k.outTangent))
-      return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " has a non-finite number");
+    const std::pair<const char*, float> numbers[] = {
+        {"time", k.time}, {"value", k.value}, {"in-tangent", k.inTangent}, {"out-tangent", k.outTangent}};
+    for (const auto& [field, v] : numbers)
+      if (!(std::abs(v) <= kMaxKeyMagnitude))
+        return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " " + field + " " + formatNumber(v) +
+                                                             " is not a finite number within [-1e+06, 1e+06]");
     if (i > 0 && !(k.time > keys[i - 1].time))
       return eng::makeError(eng::ErrorKind::Malformed, "key " + std::to_string(i) + " time " + formatNumber(k.time) +
                                                            " is not after key " + std::to_string(i - 1) + " time " +

@@ -38,8 +38,14 @@ inline constexpr eng::EnumName<KeyInterpolation> kKeyInterpolationNames[] = {
 std::string_view keyInterpolationName(KeyInterpolation value);
 std::optional<KeyInterpolation> keyInterpolationFromName(std::string_view name);
 
-// Malformed when a key array is unusable (unsorted or duplicate times,
-// non-finite numbers, empty). Messages name the key index.
+// Times, values and tangents (weight per second) of a key stay within this:
+// real curves hold seconds and weights of a few units, while a tangent of
+// 1e30 times a segment's length overflows to infinity.
+inline constexpr float kMaxKeyMagnitude = 1e6f;
+
+// Malformed when a key array is unusable (unsorted or duplicate times, a
+// number not finite or past kMaxKeyMagnitude, empty). Messages name the key
+// index and the field.
 eng::Result<void> validateKeys(std::span<const Keyframe> keys);
 
 // Value of the segment that starts at k0 and ends at k1, at `time` in [k0.time, k1.time].

@@ -91,10 +91,16 @@ eng::Result<EasingCurve> parseEasingCurve(const JsonNode& curve) {
 }  // namespace detail
 
 eng::Result<std::vector<Keyframe>> keyframesFromJson(const Json& keys, KeyInterpolation defaultInterpolation) {
-  return detail::parseKeyframes(JsonNode(keys, ""), defaultInterpolation);
+  const JsonNode root(keys, "");
+  ENG_TRY(detail::checkNumberRange(root));
+  return detail::parseKeyframes(root, defaultInterpolation);
 }
 
-eng::Result<EasingCurve> easingCurveFromJson(const Json& curve) { return detail::parseEasingCurve(JsonNode(curve, "")); }
+eng::Result<EasingCurve> easingCurveFromJson(const Json& curve) {
+  const JsonNode root(curve, "");
+  ENG_TRY(detail::checkNumberRange(root));
+  return detail::parseEasingCurve(root);
+}
 
 using detail::jsonNumber;
 

@@ -96,7 +96,8 @@ eng::Result<SharedGraphDefinition> readGraph(const JsonNode& root, const std::fi
                                              const GraphLoadOptions& options) {
   ENG_TRY(requireVersion(root, kGraphFileVersion));
   ENG_TRY(root.allowOnly({"version", "channels", "parameters", "timelines", "root"}));
-  GraphBuilder builder(ENG_TRY_VALUE(channelSet(ENG_TRY_VALUE(root.at("channels")))));
+  ENG_TRY(detail::checkNumberRange(root));  // before any field is read
+  GraphBuilder builder(ENG_TRY_VALUE(channelSet(ENG_TRY_VALUE(root.at("channels")))), options.maxBytes);
   GraphParser parser(builder, source.parent_path(), options.allowOutsidePaths);
   if (auto p = root.find("parameters")) ENG_TRY(parser.parameters(*p));
   if (auto t = root.find("timelines")) ENG_TRY(parser.timelines(*t));

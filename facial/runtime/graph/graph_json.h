@@ -24,6 +24,7 @@
 // Errors read "file: /root/input/states/2/transitions/0/duration: problem".
 #include <filesystem>
 
+#include "engine/core/load_budget.h"
 #include "engine/core/result.h"
 #include "facial/runtime/graph/graph_definition.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -41,6 +42,9 @@ struct GraphLoadOptions {
   // paths, no `..` out of it, no links out of it), as glTF URIs do; true lifts that
   // for a graph the user trusts (`--allow-outside-paths`).
   bool allowOutsidePaths = false;
+  // The load's budget (engine/core/load_budget.h): each node's dense pose and
+  // the state it adds to every character are charged as the graph is read.
+  size_t maxBytes = eng::kDefaultLoadBudgetBytes;
 };
 
 eng::Result<SharedGraphDefinition> loadGraph(const std::filesystem::path& path, const GraphLoadOptions& options = {});

@@ -68,6 +68,7 @@ eng::Result<Timeline> loadTimeline(const std::filesystem::path& path) {
   auto timeline = [&]() -> eng::Result<Timeline> {
     const JsonNode root(*document, "");
     ENG_TRY(requireVersion(root, kTimelineFileVersion));
+    ENG_TRY(detail::checkNumberRange(root));
     return detail::parseTimeline(root, path.stem().string());
   }();
   if (!timeline) return timeline.error().prefixed(path.string() + ": ");
@@ -75,7 +76,9 @@ eng::Result<Timeline> loadTimeline(const std::filesystem::path& path) {
 }
 
 eng::Result<Timeline> timelineFromJson(const Json& timeline, std::string defaultName) {
-  return detail::parseTimeline(JsonNode(timeline, ""), std::move(defaultName));
+  const JsonNode root(timeline, "");
+  ENG_TRY(detail::checkNumberRange(root));
+  return detail::parseTimeline(root, std::move(defaultName));
 }
 
 Json timelineToJson(const Timeline& timeline) {

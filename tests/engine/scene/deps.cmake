@@ -3,4 +3,6 @@
 find_package(meshoptimizer REQUIRED)
 find_package(ZLIB REQUIRED)
 pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
-set(TEST_DEPS facial_importers eng_scene nlohmann_json::nlohmann_json meshoptimizer::meshoptimizer PkgConfig::WEBP ZLIB::ZLIB)
+# allocation_counter: the loader scaling test counts the allocations of a load.
+set(TEST_DEPS facial_importers eng_scene nlohmann_json::nlohmann_json meshoptimizer::meshoptimizer PkgConfig::WEBP ZLIB::ZLIB
+    allocation_counter)

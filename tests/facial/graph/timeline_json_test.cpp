@@ -134,12 +134,15 @@ TEST(TimelineJsonValidity, InMemoryReadersReturnErrorsNotExceptions) {
   EXPECT_EQ(cosine->type(), EasingType::Cosine);
 }
 
-// A key is a weight: one far outside what any rig uses (1e38 overflows once
-// scaled or summed) is refused at its pointer.
+// A key is a weight: one outside what any rig uses is refused at its pointer;
+// 1e38 (which overflows once scaled or summed) already by the range of every
+// number in the file (NumberRange.*).
 TEST(TimelineJsonValidity, KeyValuesOutsideTheWeightRangeAreRefused) {
   std::string e = loadError("huge", R"({"version": 1, "tracks": [
       {"channel": "a", "keys": [[0, 0], [1, 1e38]]}]})");
-  EXPECT_NE(e.find("huge.json: /tracks/0/keys/1: weight 1e+38 is outside [-10, 10]"), std::string::npos) << e;
+  EXPECT_NE(e.find("huge.json: /tracks/0/keys/1/1: number 1e+38 is outside [-1e+06, 1e+06]"), std::string::npos) << e;
+  e = loadError("large", R"({"version": 1, "tracks": [{"channel": "a", "keys": [[0, 0], [1, 11]]}]})");
+  EXPECT_NE(e.find("large.json: /tracks/0/keys/1: weight 11 is outside [-10, 10]"), std::string::npos) << e;
   e = loadError("negative", R"({"version": 1, "tracks": [{"channel": "a", "keys": [{"t": 0, "v": -10.5}]}]})");
   EXPECT_NE(e.find("negative.json: /tracks/0/keys/0: weight -10.5 is outside [-10, 10]"), std::string::npos) << e;
   auto edge = timelineFromJson(Json::parse(R"({"tracks": [{"channel": "a", "keys": [[0, -10], [1, 10]]}]})"), "edge");

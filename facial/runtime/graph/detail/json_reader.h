@@ -17,6 +17,16 @@
 
 namespace facial::detail {
 
+// Every number a graph, timeline or curve holds (times, durations, weights,
+// tangents, thresholds, positions, defaults) lies within +-kMaxFileNumber:
+// real files stay far below (seconds, weights of a few units) while 1e30
+// overflows to infinity once scaled by a clip's length or summed.
+inline constexpr double kMaxFileNumber = kMaxKeyMagnitude;
+// Fails at the first number outside that range (or not finite), naming its
+// JSON pointer: "/tracks/0/keys/3/out: number 1e+30 is outside [-1e+06, 1e+06]".
+// Walks the document once, without recursion, holding a frame per level.
+eng::Result<void> checkNumberRange(const JsonNode& root);
+
 // The shortest decimal that reads back as `value` (0.1f is written 0.1, not 0.10000000149).
 double jsonNumber(float value);
 
