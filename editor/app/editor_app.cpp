@@ -344,6 +344,11 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::SayStop: machine_.pressStopSpeaking(); return true;
     case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
     case Kind::Quit: quitRequested_ = true; return true;
+    // Dope sheet and curve view (issue 34): the timeline panel runs its own.
+    case Kind::TimelineBoxSelect: case Kind::TimelineCopy: case Kind::TimelinePaste: case Kind::TimelineDuplicate:
+    case Kind::TimelineNudge: case Kind::TimelineSnap: case Kind::TimelineLoop: case Kind::TimelineSpeed:
+    case Kind::TimelineMute: case Kind::TimelineSolo: case Kind::CurveTangent: case Kind::TimelineKeyEmotion:
+      return timeline_->runScriptAction(a, *this);
   }
   return false;
 }
@@ -362,6 +367,7 @@ void EditorApp::runScript(float elapsed) {
     }
     const int k = int(a.kind);
     if (k >= int(EditorScriptAction::Kind::TimelineOpen) && k <= int(EditorScriptAction::Kind::TimelineSave)) logTimeline();
+    if (k >= int(EditorScriptAction::Kind::TimelineBoxSelect) && k <= int(EditorScriptAction::Kind::TimelineKeyEmotion)) logTimeline();
     if ((a.kind == EditorScriptAction::Kind::SculptMove || a.kind == EditorScriptAction::Kind::SculptDrag) && sculpt_.hasSelection()) {
       const SculptPoint& p = sculpt_.points()[size_t(sculpt_.selected())];
       std::printf("sculpt: '%s' displaced by (%.5f, %.5f, %.5f)\n", p.name.c_str(), p.displacement.x, p.displacement.y,
