@@ -99,6 +99,33 @@ std::string verbList() {
   return list;
 }
 
+// The words after the action into `action` by `spec` ('w' text and words,
+// 'n' numbers a, b, c, '*' the rest into words); a problem, or "".
+std::string readArguments(std::string_view spec, const std::vector<std::string>& words, EditorScriptAction& action) {
+  float* numbers[] = {&action.a, &action.b, &action.c};
+  size_t nextNumber = 0;
+  size_t argument = 1;
+  for (const char type : spec) {
+    if (type == '?') continue;
+    if (argument >= words.size()) break;
+    if (type == '*') {
+      action.words.insert(action.words.end(), words.begin() + std::ptrdiff_t(argument), words.end());
+      break;
+    }
+    const std::string& word = words[argument++];
+    if (type == 'w') {
+      action.text = word;
+      action.words.push_back(word);
+    } else {
+      if (!app::parseScriptNumber(word, *numbers[nextNumber])) return "'" + word + "' is not a finite number";
+      ++nextNumber;
+    }
+  }
+  action.hasNumber = nextNumber > 0;
+  action.numberCount = nextNumber;
+  return {};
+}
+
 }  // namespace
 
 const char* editorScriptActionWord(Kind kind) {
@@ -144,28 +171,7 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       actions.push_back(std::move(action));
       continue;
     }
-    float* numbers[] = {&action.a, &action.b, &action.c};
-    size_t nextNumber = 0;
-    size_t argument = 1;
-    for (const char type : spec) {
-      if (type == '?') continue;
-      if (argument > given) break;
-      if (type == '*') {
-        action.words.insert(action.words.end(), words.begin() + std::ptrdiff_t(argument), words.end());
-        break;
-      }
-      const std::string& word = words[argument++];
-      if (type == 'w') {
-        action.text = word;
-        action.words.push_back(word);
-      } else {
-        if (!app::parseScriptNumber(word, *numbers[nextNumber]))
-          return fail("'" + word + "' is not a finite number");
-        ++nextNumber;
-      }
-    }
-    action.hasNumber = nextNumber > 0;
-    action.numberCount = nextNumber;
+    if (const std::string problem = readArguments(spec, words, action); !problem.empty()) return fail(problem);
     if (const std::string problem = dopeSheetProblem(action); !problem.empty()) return fail(problem);
 
     switch (action.kind) {
