@@ -135,11 +135,8 @@ void TimelinePanel::seek(float time, FaceDelegate& face) {
 }
 
 bool TimelinePanel::selectTrack(std::string_view channel) {
-  const auto track = document_.findTrack(channel);
-  if (!track) {
-    message_.report("no track on channel '" + std::string(channel) + "'", true);
-    return false;
-  }
+  const auto track = trackNamed(channel);
+  if (!track) return false;
   currentTrack_ = int(*track);
   return true;
 }
@@ -694,14 +691,17 @@ void TimelinePanel::frameSelection() {
   window_.frame(first, last);
 }
 
+std::optional<size_t> TimelinePanel::trackNamed(std::string_view channel) {
+  const auto track = document_.findTrack(channel);
+  if (!track) message_.report("no track on channel '" + std::string(channel) + "'", true);
+  return track;
+}
+
 bool TimelinePanel::boxSelect(float t0, float t1, std::span<const std::string> channels) {
   std::vector<size_t> tracks;
   for (const std::string& channel : channels) {
-    const auto track = document_.findTrack(channel);
-    if (!track) {
-      message_.report("no track on channel '" + channel + "'", true);
-      return false;
-    }
+    const auto track = trackNamed(channel);
+    if (!track) return false;
     tracks.push_back(*track);
   }
   document_.selectBox(t0, t1, tracks, SelectMode::Replace);
@@ -721,22 +721,19 @@ bool TimelinePanel::copySelection() {
 bool TimelinePanel::pasteAt(float time) { return report(document_.paste(clipboard_, time)); }
 
 bool TimelinePanel::toggleTrackFlag(std::string_view channel, bool solo) {
-  const auto track = document_.findTrack(channel);
-  if (!track) {
-    message_.report("no track on channel '" + std::string(channel) + "'", true);
-    return false;
-  }
+  const auto track = trackNamed(channel);
+  if (!track) return false;
   const DocumentTrack& t = document_.tracks()[*track];
   return report(solo ? document_.setSolo(*track, !t.solo) : document_.setMuted(*track, !t.muted));
 }
 
 bool TimelinePanel::setCurveTangent(const std::string& channel, size_t index, CurveKeyMode mode, std::optional<float> in,
                                     std::optional<float> out) {
-  const auto track = document_.findTrack(channel);
-  if (!track || index >= document_.tracks()[*track].keys.size()) {
-    message_.report(track ? "track '" + channel + "' has " + std::to_string(document_.tracks()[*track].keys.size()) +
-                                " keys, no key " + std::to_string(index)
-                          : "no track on channel '" + channel + "'",
+  const auto track = trackNamed(channel);
+  if (!track) return false;
+  if (index >= document_.tracks()[*track].keys.size()) {
+    message_.report("track '" + channel + "' has " + std::to_string(document_.tracks()[*track].keys.size()) +
+                        " keys, no key " + std::to_string(index),
                     true);
     return false;
   }

@@ -78,6 +78,8 @@ class TimelinePanel {
  private:
   // Dope sheet and curve view actions: each reports why it failed.
   bool report(const eng::Result<void>& result);
+  // The track of `channel`, or none after saying so.
+  std::optional<size_t> trackNamed(std::string_view channel);
   bool boxSelect(float t0, float t1, std::span<const std::string> channels);
   bool copySelection();
   bool pasteAt(float time);
