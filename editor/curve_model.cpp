@@ -80,15 +80,20 @@ std::vector<glm::vec2> CurveView::curveSamples(std::span<const DocumentKey> keys
   std::vector<facial::Keyframe> plain(keys.size());
   for (size_t i = 0; i < keys.size(); ++i) plain[i] = keys[i].key;
   const float step = kSampleStep / pixelsPerSecond_;
+  const int count = int(std::ceil(window_.span() / step));
   size_t nextKey = 0;
   uint32_t cursor = 0;
-  for (float t = window_.start; t <= window_.end + 0.5f * step; t += step) {
-    // Every key's own time too, so corners (linear, step) are drawn where they are.
+  auto keysUpTo = [&](float t) {  // every key's own time too, so corners (linear, step) are drawn where they are
     for (; nextKey < plain.size() && plain[nextKey].time <= t; ++nextKey)
       if (plain[nextKey].time >= window_.start)
         out.push_back({plain[nextKey].time, facial::sampleKeys(plain, plain[nextKey].time, cursor)});
+  };
+  for (int i = 0; i <= count; ++i) {
+    const float t = std::min(window_.start + float(i) * step, window_.end);
+    keysUpTo(t);
     out.push_back({t, facial::sampleKeys(plain, t, cursor)});
   }
+  keysUpTo(window_.end);
   return out;
 }
 

@@ -361,6 +361,7 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
   const std::vector<TrackRow> rows = layoutTrackRows(tracks, collapsed_);
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
+  if (showingAll_) window_ = {0.0f, document_.duration()};  // the whole clip follows its length
   window_.clampTo(document_.duration());
   TimelineView view = TimelineView::fit(
       {.left = origin.x, .top = origin.y, .width = avail.x, .height = avail.y, .nameColumn = kNameColumn, .rulerHeight = kRulerHeight},
@@ -431,9 +432,13 @@ void TimelinePanel::drawTrackName(size_t t, float left, float y) {
 // Wheel: zoom about the mouse; middle drag: pan.
 void TimelinePanel::handleCanvasWheelAndPan(const TimelineView& view) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (ImGui::IsItemHovered() && io.MouseWheel != 0.0f) window_.zoom(view.timeAt(io.MousePos.x), std::pow(1.2f, io.MouseWheel));
+  if (ImGui::IsItemHovered() && io.MouseWheel != 0.0f) {
+    window_.zoom(view.timeAt(io.MousePos.x), std::pow(1.2f, io.MouseWheel));
+    showingAll_ = false;
+  }
   if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
     window_.pan(-view.secondsFor(io.MouseDelta.x));
+    showingAll_ = false;
     panning_ = true;
   }
   if (!ImGui::IsMouseDown(ImGuiMouseButton_Middle)) panning_ = false;
@@ -681,7 +686,10 @@ std::vector<size_t> TimelinePanel::curveTracks() const {
   return shown;
 }
 
-void TimelinePanel::frameAll() { window_ = {0.0f, document_.duration()}; }
+void TimelinePanel::frameAll() {
+  window_ = {0.0f, document_.duration()};
+  showingAll_ = true;
+}
 
 void TimelinePanel::frameSelection() {
   if (document_.selection().empty()) return frameAll();
@@ -689,6 +697,7 @@ void TimelinePanel::frameSelection() {
   for (KeyId id : document_.selection())
     if (const DocumentKey* k = document_.key(id)) first = std::min(first, k->key.time), last = std::max(last, k->key.time);
   window_.frame(first, last);
+  showingAll_ = false;
 }
 
 std::optional<size_t> TimelinePanel::trackNamed(std::string_view channel) {

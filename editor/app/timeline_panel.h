@@ -133,6 +133,7 @@ class TimelinePanel {
   bool panning_ = false;
   // The dope sheet's view and tools.
   TimeWindow window_{0.0f, 2.0f};
+  bool showingAll_ = true;  // the window shows the whole clip (and follows its length)
   std::array<bool, kTrackGroupCount> collapsed_{};
   KeyClipboard clipboard_;
   bool snapping_ = true;  // key drags move by whole frames

@@ -124,7 +124,7 @@ TEST(CurveView, HandlesLieAlongTheSlopesAndADragSetsThem) {
   const CurveView view = CurveView::fit({.left = 0.0f, .top = 0.0f, .width = 400.0f, .height = 216.0f},
                                         {.start = 0.0f, .end = 2.0f}, 0.0f, 1.0f);
   // 200 px/s and 200 px per unit of value: slope 0.5 is 0.5 px up per px right.
-  const facial::Keyframe& k = doc.key(mid)->key;
+  const facial::Keyframe k = doc.key(mid)->key;  // a copy: edits below replace the document's keys
   const glm::vec2 out = view.outHandle(k), in = view.inHandle(k), at = view.pixelOf(k);
   EXPECT_NEAR(glm::length(out - at), CurveView::kHandleLength, 1e-3f);
   EXPECT_NEAR((at.y - out.y) / (out.x - at.x), 0.5f, 1e-5f);
