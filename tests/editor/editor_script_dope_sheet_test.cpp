@@ -11,7 +11,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include "editor/curve_model.h"
 #include "facial/runtime/graph/timeline_json.h"
@@ -24,13 +23,7 @@ namespace fs = std::filesystem;
 
 // The program's refusal of a one-line script (parsed before the window opens: no display needed).
 std::string parseError(const std::string& line) {
-  const fs::path dir = testing_support::freshTempDir("editor_script_dope_sheet_broken");
-  const fs::path program = fs::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
-  testing_support::writeFile(dir / "s.txt", line);
-  const std::string command = "cd '" + dir.string() + "' && DISPLAY= '" + program.string() + "' --script s.txt >log.txt 2>&1";
-  const int status = std::system(command.c_str());
-  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << line;
-  return editor_test::readText(dir / "log.txt");
+  return editor_test::scriptRefusal(testing_support::freshTempDir("editor_script_dope_sheet_broken"), "s.txt", line);
 }
 
 TEST(EditorScriptDopeSheet, BrokenActionsAreRefusedNamingTheLine) {
