@@ -642,11 +642,11 @@ void TimelinePanel::draw(FaceDelegate& face) {
       drawViewControls();
       drawStatus(face);
       drawTracks(face);
+      if (!showCurves_) shownCurves_ = curveTracks();  // picked in the dope sheet; clicks in the curve view keep them
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Curves", nullptr, showCurves_ ? ImGuiTabItemFlags_SetSelected : 0)) {
-      const std::vector<size_t> shown = curveTracks();
-      curves_.draw(document_, shown, window_, playhead_);
+      curves_.draw(document_, shownCurves_, window_, playhead_);
       ImGui::EndTabItem();
     }
     showCurves_ = false;
@@ -747,6 +747,7 @@ bool TimelinePanel::setCurveTangent(const std::string& channel, size_t index, Cu
     return false;
   }
   const KeyId id = document_.tracks()[*track].keys[index].id;
+  if (std::find(shownCurves_.begin(), shownCurves_.end(), *track) == shownCurves_.end()) shownCurves_.push_back(*track);
   document_.select(id);
   currentTrack_ = int(*track);
   showCurves_ = true;  // as a person would: the curve tab, this key selected

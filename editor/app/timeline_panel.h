@@ -89,7 +89,7 @@ class TimelinePanel {
   bool keyEmotion(const std::string& emotion, float time, CurveKeyMode easing, FaceDelegate& face);
   void frameSelection();
   void frameAll();
-  // The tracks the curve view overlays: those with selected keys, else the current one.
+  // The tracks the dope sheet hands the curve view: those with selected keys, else the current one.
   std::vector<size_t> curveTracks() const;
   void handleEditShortcuts();
   void drawViewControls();
@@ -140,6 +140,7 @@ class TimelinePanel {
   bool showCurves_ = false;  // a script's curve edit brings the curve tab up
   bool addKeysFromKeyboard_ = false;  // K was pressed (keyed in draw(), which has the face)
   CurvePanel curves_;
+  std::vector<size_t> shownCurves_;  // the tracks the curve view overlays
   PanelMessage message_;
   // Beside the document's path (editor/autosave.h); follows open and save.
   TimelineAutosave autosave_{autosavePathFor("timeline.json")};

@@ -185,8 +185,11 @@ TEST(TimelineDocument, InterpolationPerKeyAndAutoCubicTangents) {
   EXPECT_FLOAT_EQ(doc.tracks()[track].keys[2].key.inTangent, 0.0f);
   // Auto tangents follow edits of the neighbours.
   doc.select(doc.tracks()[track].keys[0].id);
-  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.5f));
-  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.25f);
+  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.25f));
+  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.375f);
+  // Level with a neighbour, the key turns flat: the curve does not overshoot it.
+  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.25f));
+  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.0f);
   ASSERT_TRUE(doc.toTimeline().validate());
 }
 

@@ -18,12 +18,12 @@ std::optional<TangentMode> tangentModeFromName(std::string_view name) { return e
 
 namespace {
 
-// Catmull-Rom slope through the neighbours; 0 at the ends and where key i is
-// a peak or a dip (the curve would overshoot it otherwise).
+// Catmull-Rom slope through the neighbours; 0 at the ends, at a peak or a dip
+// and beside a level neighbour (the curve would overshoot the key otherwise).
 float autoSlope(std::span<const Keyframe> keys, size_t i) {
   if (i == 0 || i + 1 >= keys.size()) return 0.0f;
   const Keyframe &a = keys[i - 1], &k = keys[i], &b = keys[i + 1];
-  if ((k.value - a.value) * (b.value - k.value) < 0.0f) return 0.0f;
+  if ((k.value - a.value) * (b.value - k.value) <= 0.0f) return 0.0f;
   return (b.value - a.value) / (b.time - a.time);
 }
 

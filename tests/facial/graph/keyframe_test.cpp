@@ -122,6 +122,13 @@ TEST(KeyframeTangents, AutoIsCatmullRomFlatAtTheEndsAndAtPeaks) {
   EXPECT_FLOAT_EQ(keys[4].inTangent, 0.0f);    // end
   // The curve never leaves the range of its keys around the peak.
   for (float t = 1.0f; t <= 3.0f; t += 0.01f) EXPECT_LE(facial::sampleKeys(keys, t), 1.0f + 1e-6f);
+  // Beside a level neighbour: flat too (no dip below the level stretch).
+  std::vector<Keyframe> level = {key(0, 1, KeyInterpolation::Hermite), key(1, 0, KeyInterpolation::Hermite),
+                                 key(2, 0, KeyInterpolation::Hermite), key(3, 1)};
+  for (Keyframe& k : level) k.tangent = facial::TangentMode::Auto;
+  facial::resolveTangents(level);
+  EXPECT_FLOAT_EQ(level[1].outTangent, 0.0f);
+  for (float t = 0.0f; t <= 3.0f; t += 0.01f) EXPECT_GE(facial::sampleKeys(level, t), -1e-6f);
 }
 
 TEST(KeyframeTangents, SmoothFollowsOutFlatIsZeroBrokenKeepsBoth) {
