@@ -17,12 +17,23 @@ std::string seconds(float t) {
   return text;
 }
 
-// Catmull-Rom slope through the neighbours (flat at the ends).
-float autoSlope(const std::vector<DocumentKey>& keys, size_t i) {
-  if (i == 0 || i + 1 >= keys.size()) return 0.0f;
-  const facial::Keyframe& a = keys[i - 1].key;
-  const facial::Keyframe& b = keys[i + 1].key;
-  return (b.value - a.value) / (b.time - a.time);
+// The runtime's own tangent rule over the document's keys (one home: facial/runtime/curves).
+void resolveTrackTangents(std::vector<DocumentKey>& keys) {
+  std::vector<facial::Keyframe> plain(keys.size());
+  for (size_t i = 0; i < keys.size(); ++i) plain[i] = keys[i].key;
+  facial::resolveTangents(plain);
+  for (size_t i = 0; i < keys.size(); ++i) keys[i].key = plain[i];
+}
+
+bool sameKeys(const std::vector<DocumentKey>& a, const std::vector<DocumentKey>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const facial::Keyframe &x = a[i].key, &y = b[i].key;
+    if (a[i].id != b[i].id || x.time != y.time || x.value != y.value || x.inTangent != y.inTangent ||
+        x.outTangent != y.outTangent || x.tangent != y.tangent)
+      return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -40,7 +51,7 @@ eng::Result<TimelineDocument> TimelineDocument::fromTimeline(const facial::Timel
   doc.state_.loop = timeline.loop;
   for (size_t t = 0; t < timeline.tracks.size(); ++t) {
     DocumentTrack track{timeline.tracks[t].channel, {}};
-    for (const facial::Keyframe& k : timeline.trackKeys(t)) track.keys.push_back({doc.nextId_++, k, false});
+    for (const facial::Keyframe& k : timeline.trackKeys(t)) track.keys.push_back({doc.nextId_++, k});
     doc.state_.tracks.push_back(std::move(track));
   }
   return doc;
@@ -176,11 +187,7 @@ void TimelineDocument::normaliseTrack(DocumentTrack& track) const {
     kept.push_back(k);
   }
   keys = std::move(kept);
-  for (size_t i = 0; i < keys.size(); ++i) {
-    if (!keys[i].autoTangents || keys[i].key.interpolation != facial::KeyInterpolation::Hermite) continue;
-    keys[i].key.outTangent = autoSlope(keys, i);
-    if (i + 1 < keys.size()) keys[i + 1].key.inTangent = autoSlope(keys, i + 1);
-  }
+  resolveTrackTangents(keys);
 }
 
 void TimelineDocument::commit(std::string label, State before) {
@@ -221,7 +228,6 @@ eng::Result<KeyId> TimelineDocument::setKey(size_t track, float time, float valu
     if (std::abs(k.key.time - time) < kMinKeySpacing) {
       k.key.value = value;
       k.key.interpolation = interpolation;
-      k.autoTangents = interpolation == facial::KeyInterpolation::Hermite;
       id = k.id;
       break;
     }
@@ -232,7 +238,8 @@ eng::Result<KeyId> TimelineDocument::setKey(size_t track, float time, float valu
     k.time = time;
     k.value = value;
     k.interpolation = interpolation;
-    keys.push_back({id, k, interpolation == facial::KeyInterpolation::Hermite});
+    k.tangent = facial::TangentMode::Auto;  // new keys: smooth through their neighbours when cubic
+    keys.push_back({id, k});
   }
   selection_.assign(1, id);
   normaliseTrack(state_.tracks[track]);
@@ -258,8 +265,10 @@ eng::Result<void> TimelineDocument::setSelectedInterpolation(facial::KeyInterpol
   for (DocumentTrack& track : state_.tracks) {
     for (DocumentKey& k : track.keys) {
       if (!isSelected(k.id)) continue;
+      // Turning a key cubic gives it auto tangents (a loaded key's slopes stay until then).
+      if (interpolation == facial::KeyInterpolation::Hermite && k.key.interpolation != interpolation)
+        k.key.tangent = facial::TangentMode::Auto;
       k.key.interpolation = interpolation;
-      k.autoTangents = interpolation == facial::KeyInterpolation::Hermite;
     }
     normaliseTrack(track);
   }
@@ -328,13 +337,8 @@ void TimelineDocument::endMove() {
   State before = std::move(*moveStart_);
   moveStart_.reset();
   bool changed = before.tracks.size() != state_.tracks.size();
-  for (size_t t = 0; !changed && t < state_.tracks.size(); ++t) {
-    const auto& a = before.tracks[t].keys;
-    const auto& b = state_.tracks[t].keys;
-    changed = a.size() != b.size();
-    for (size_t i = 0; !changed && i < a.size(); ++i)
-      changed = a[i].id != b[i].id || a[i].key.time != b[i].key.time || a[i].key.value != b[i].key.value;
-  }
+  for (size_t t = 0; !changed && t < state_.tracks.size(); ++t)
+    changed = !sameKeys(before.tracks[t].keys, state_.tracks[t].keys);
   if (changed) commit("move keys", std::move(before));
 }
 
@@ -374,6 +378,255 @@ bool TimelineDocument::redo() {
   ++revision_;
   dropStaleSelection();
   return true;
+}
+
+// ---- Selection gestures, clipboard, frames, mute / solo, playback (issue 34) ----
+
+template <typename Edit>
+eng::Result<void> TimelineDocument::edit(std::string label, Edit&& change) {
+  State before = state_;
+  if (auto done = change(); !done) {
+    state_ = std::move(before);
+    return done;
+  }
+  commit(std::move(label), std::move(before));
+  return {};
+}
+
+eng::Result<void> TimelineDocument::requireSelection(std::string_view action) const {
+  if (selection_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no keys selected to " + std::string(action));
+  return {};
+}
+
+void TimelineDocument::selectKeys(std::span<const KeyId> ids, SelectMode mode) {
+  if (mode == SelectMode::Replace) selection_.clear();
+  for (KeyId id : ids) {
+    if (!locate(id)) continue;
+    const auto it = std::find(selection_.begin(), selection_.end(), id);
+    if (it == selection_.end()) selection_.push_back(id);
+    else if (mode == SelectMode::Toggle) selection_.erase(it);
+  }
+}
+
+std::vector<KeyId> TimelineDocument::keysInBox(float t0, float t1, std::span<const size_t> tracks, float v0,
+                                               float v1) const {
+  if (t0 > t1) std::swap(t0, t1);
+  if (v0 > v1) std::swap(v0, v1);
+  std::vector<KeyId> ids;
+  auto collect = [&](size_t t) {
+    if (t >= state_.tracks.size()) return;
+    for (const DocumentKey& k : state_.tracks[t].keys)
+      if (k.key.time >= t0 && k.key.time <= t1 && k.key.value >= v0 && k.key.value <= v1) ids.push_back(k.id);
+  };
+  if (tracks.empty())
+    for (size_t t = 0; t < state_.tracks.size(); ++t) collect(t);
+  for (size_t t : tracks) collect(t);
+  return ids;
+}
+
+void TimelineDocument::selectAtTime(float time, SelectMode mode) {
+  const float half = 0.5f * frameDuration();
+  selectKeys(keysInBox(time - half, time + half, {}), mode);
+}
+
+void TimelineDocument::selectAll() { selectKeys(keysInBox(0.0f, state_.duration, {}), SelectMode::Replace); }
+
+float TimelineDocument::snapTime(float time) const { return std::round(time * state_.frameRate) / state_.frameRate; }
+
+float TimelineDocument::playheadAt(float playTime) const {
+  const PlaybackSettings& p = state_.playback;
+  if (p.hasLoopRange && playTime >= p.loopStart)
+    return p.loopStart + facial::clipTime(facial::LoopMode::Loop, p.loopEnd - p.loopStart, playTime - p.loopStart);
+  return facial::clipTime(state_.loop, state_.duration, playTime);
+}
+
+bool TimelineDocument::audible(size_t track) const {
+  if (track >= state_.tracks.size() || state_.tracks[track].muted) return false;
+  const bool anySolo = std::any_of(state_.tracks.begin(), state_.tracks.end(), [](const DocumentTrack& t) { return t.solo; });
+  return !anySolo || state_.tracks[track].solo;
+}
+
+eng::Result<void> TimelineDocument::setKeyShape(KeyId id, facial::KeyInterpolation interpolation, facial::TangentMode tangent,
+                                                std::optional<float> inSlope, std::optional<float> outSlope) {
+  const auto where = locate(id);
+  if (!where) return eng::makeError(eng::ErrorKind::InvalidArgument, "no key " + std::to_string(id));
+  if ((inSlope && !std::isfinite(*inSlope)) || (outSlope && !std::isfinite(*outSlope)))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "tangent slopes must be finite numbers");
+  return edit("set tangent", [&]() -> eng::Result<void> {
+    DocumentTrack& track = state_.tracks[where->track];
+    facial::Keyframe& k = track.keys[where->index].key;
+    k.interpolation = interpolation;
+    k.tangent = tangent;
+    if (inSlope) k.inTangent = *inSlope;
+    if (outSlope) k.outTangent = *outSlope;
+    normaliseTrack(track);
+    return {};
+  });
+}
+
+bool TimelineDocument::dragTangent(KeyId id, float inSlope, float outSlope, bool breakTangent) {
+  const auto where = locate(id);
+  if (!moveStart_ || !where || !std::isfinite(inSlope) || !std::isfinite(outSlope)) return false;
+  DocumentTrack& track = state_.tracks[where->track];
+  facial::Keyframe& k = track.keys[where->index].key;
+  if (breakTangent || k.tangent == facial::TangentMode::Broken) {
+    k.tangent = facial::TangentMode::Broken;
+    k.inTangent = inSlope;
+  } else {
+    k.tangent = facial::TangentMode::Smooth;
+  }
+  k.outTangent = outSlope;
+  k.interpolation = facial::KeyInterpolation::Hermite;
+  normaliseTrack(track);
+  ++revision_;
+  return true;
+}
+
+eng::Result<void> TimelineDocument::keyExclusive(const std::string& channel, std::span<const std::string_view> group, float time,
+                                                 facial::KeyInterpolation interpolation, facial::TangentMode tangent) {
+  if (std::find(group.begin(), group.end(), channel) == group.end())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "'" + channel + "' is not one of the channels keyed together");
+  if (!std::isfinite(time) || time < 0.0f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "key time must be a number >= 0");
+  auto inGroup = [&](const DocumentTrack& t) { return std::find(group.begin(), group.end(), t.channel) != group.end(); };
+  std::vector<KeyId> keyed;
+  return edit("key " + channel, [&]() -> eng::Result<void> {
+    state_.duration = std::max(state_.duration, time);  // keying past the end grows the clip
+    if (!findTrack(channel)) {
+      DocumentTrack fresh{channel, {}};
+      for (const DocumentTrack& t : state_.tracks)  // 0 wherever the group was keyed before
+        if (inGroup(t))
+          for (const DocumentKey& k : t.keys)
+            if (k.key.time < time) fresh.keys.push_back({nextId_++, {.time = k.key.time, .interpolation = interpolation, .tangent = tangent}});
+      state_.tracks.push_back(std::move(fresh));
+    }
+    for (DocumentTrack& t : state_.tracks) {
+      if (!inGroup(t)) continue;
+      std::erase_if(t.keys, [&](const DocumentKey& k) { return std::abs(k.key.time - time) < kMinKeySpacing; });
+      const facial::Keyframe k{.time = time, .value = t.channel == channel ? 1.0f : 0.0f, .interpolation = interpolation,
+                               .tangent = tangent};
+      t.keys.push_back({nextId_++, k});
+      keyed.push_back(t.keys.back().id);
+      normaliseTrack(t);
+    }
+    selection_ = keyed;
+    return {};
+  });
+}
+
+KeyClipboard TimelineDocument::copySelection() const {
+  KeyClipboard clip;
+  float first = INFINITY, last = -INFINITY;
+  for (const DocumentTrack& track : state_.tracks)
+    for (const DocumentKey& k : track.keys)
+      if (isSelected(k.id)) {
+        clip.keys.push_back({track.channel, k.key});
+        first = std::min(first, k.key.time);
+        last = std::max(last, k.key.time);
+      }
+  for (KeyClipboard::Entry& e : clip.keys) e.key.time -= first;
+  clip.span = clip.keys.empty() ? 0.0f : last - first;
+  return clip;
+}
+
+eng::Result<void> TimelineDocument::paste(const KeyClipboard& clipboard, float time) {
+  if (clipboard.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "nothing copied to paste");
+  if (!std::isfinite(time) || time < 0.0f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "paste time must be a number >= 0");
+  std::vector<KeyId> pasted;
+  auto result = edit("paste keys", [&]() -> eng::Result<void> {
+    state_.duration = std::max(state_.duration, time + clipboard.span);  // the clip grows to hold them
+    for (const KeyClipboard::Entry& e : clipboard.keys) {
+      auto track = findTrack(e.channel);
+      if (!track) {
+        state_.tracks.push_back({e.channel, {}});
+        track = state_.tracks.size() - 1;
+      }
+      DocumentKey k{nextId_++, e.key};
+      k.key.time += time;
+      state_.tracks[*track].keys.push_back(k);
+      pasted.push_back(k.id);
+    }
+    selection_ = pasted;  // pasted keys win over keys already at those times
+    for (DocumentTrack& track : state_.tracks) normaliseTrack(track);
+    return {};
+  });
+  return result;
+}
+
+eng::Result<void> TimelineDocument::duplicateSelected() {
+  ENG_TRY(requireSelection("duplicate"));
+  const KeyClipboard clip = copySelection();
+  float first = INFINITY;
+  for (KeyId id : selection_) first = std::min(first, key(id)->key.time);
+  return paste(clip, first + clip.span + frameDuration());
+}
+
+eng::Result<void> TimelineDocument::nudgeSelected(int frames) {
+  ENG_TRY(requireSelection("nudge"));
+  return moveSelectedBy(float(frames) * frameDuration(), 0.0f);
+}
+
+eng::Result<void> TimelineDocument::snapToFrames(float framesPerSecond) {
+  if (!std::isfinite(framesPerSecond) || framesPerSecond < 1.0f || framesPerSecond > 1000.0f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "frame rate must be 1 to 1000 frames a second");
+  return edit("snap to frames", [&]() -> eng::Result<void> {
+    state_.frameRate = framesPerSecond;
+    const bool all = selection_.empty();
+    for (DocumentTrack& track : state_.tracks) {
+      for (DocumentKey& k : track.keys)
+        if (all || isSelected(k.id)) k.key.time = std::min(snapTime(k.key.time), state_.duration);
+      normaliseTrack(track);
+    }
+    return {};
+  });
+}
+
+eng::Result<void> TimelineDocument::setMuted(size_t track, bool muted) {
+  if (track >= state_.tracks.size()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no track " + std::to_string(track));
+  return edit(muted ? "mute track" : "unmute track", [&]() -> eng::Result<void> {
+    state_.tracks[track].muted = muted;
+    return {};
+  });
+}
+
+eng::Result<void> TimelineDocument::setSolo(size_t track, bool solo) {
+  if (track >= state_.tracks.size()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no track " + std::to_string(track));
+  return edit(solo ? "solo track" : "unsolo track", [&]() -> eng::Result<void> {
+    state_.tracks[track].solo = solo;
+    return {};
+  });
+}
+
+eng::Result<void> TimelineDocument::setLoopRange(float start, float end) {
+  if (!std::isfinite(start) || !std::isfinite(end) || start < 0.0f || end > state_.duration ||
+      end - start < frameDuration() * 0.999f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "loop range " + seconds(start) + " to " + seconds(end) +
+                                                               " must lie in the clip [0, " + seconds(state_.duration) +
+                                                               "] and be at least a frame long");
+  return edit("set loop range", [&]() -> eng::Result<void> {
+    state_.playback.hasLoopRange = true;
+    state_.playback.loopStart = start;
+    state_.playback.loopEnd = end;
+    return {};
+  });
+}
+
+eng::Result<void> TimelineDocument::clearLoopRange() {
+  if (!state_.playback.hasLoopRange) return {};
+  return edit("clear loop range", [&]() -> eng::Result<void> {
+    state_.playback.hasLoopRange = false;
+    return {};
+  });
+}
+
+eng::Result<void> TimelineDocument::setSpeed(float speed) {
+  if (!std::isfinite(speed) || speed < 0.05f || speed > 20.0f)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "playback speed must be 0.05 to 20");
+  return edit("set speed", [&]() -> eng::Result<void> {
+    state_.playback.speed = speed;
+    return {};
+  });
 }
 
 }  // namespace editor

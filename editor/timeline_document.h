@@ -13,6 +13,7 @@
 //   doc.beginMove();
 //   doc.moveSelected(dt, dv);   // each frame, relative to beginMove()
 //   doc.endMove();              // commits one "move keys" step (none if nothing moved)
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -31,15 +32,40 @@ using KeyId = uint32_t;
 
 struct DocumentKey {
   KeyId id = 0;
+  // key.tangent says where its slopes come from; facial::resolveTangents()
+  // re-derives them after every edit, as the runtime does when it reads the file.
   facial::Keyframe key;
-  // Cubic (Hermite) keys whose tangents the editor keeps as Catmull-Rom
-  // slopes through their neighbours; false keeps tangents as loaded.
-  bool autoTangents = false;
 };
 
 struct DocumentTrack {
   std::string channel;
   std::vector<DocumentKey> keys;  // sorted by time, at least kMinKeySpacing apart
+  // Preview only (what the editor plays): saved files hold every track.
+  bool muted = false;
+  bool solo = false;
+};
+
+// How a selection gesture combines with the keys already selected:
+// a plain click / box replaces, Shift extends, Ctrl toggles.
+enum class SelectMode { Replace, Extend, Toggle };
+
+// Copied keys: their channels and times relative to the earliest one.
+struct KeyClipboard {
+  struct Entry {
+    std::string channel;
+    facial::Keyframe key;  // time relative to the first copied key
+  };
+  std::vector<Entry> keys;
+  float span = 0.0f;  // last minus first copied time
+  bool empty() const { return keys.empty(); }
+};
+
+// Editor playback: an optional loop range inside the clip and a speed.
+struct PlaybackSettings {
+  bool hasLoopRange = false;
+  float loopStart = 0.0f, loopEnd = 0.0f;
+  float speed = 1.0f;
+  bool operator==(const PlaybackSettings&) const = default;
 };
 
 struct KeyLocation {
@@ -86,6 +112,29 @@ class TimelineDocument {
   void select(KeyId id, bool additive = false);
   void selectTrack(size_t track);
   void clearSelection() { selection_.clear(); }
+  void selectKeys(std::span<const KeyId> ids, SelectMode mode);
+  // Keys with time in [t0, t1] and value in [v0, v1] on `tracks` (every track when empty).
+  std::vector<KeyId> keysInBox(float t0, float t1, std::span<const size_t> tracks, float v0 = -INFINITY,
+                               float v1 = INFINITY) const;
+  void selectBox(float t0, float t1, std::span<const size_t> tracks, SelectMode mode) {
+    selectKeys(keysInBox(t0, t1, tracks), mode);
+  }
+  // Every key within half a frame of `time`, on every track (a column of the dope sheet).
+  void selectAtTime(float time, SelectMode mode);
+  void selectAll();
+
+  // The frame rate of nudges and snapping (frames per second).
+  float frameRate() const { return state_.frameRate; }
+  float frameDuration() const { return 1.0f / state_.frameRate; }
+  // `time` on the nearest frame.
+  float snapTime(float time) const;
+  const PlaybackSettings& playback() const { return state_.playback; }
+  // The playhead after `playTime` seconds of playback (speed applied by the
+  // caller's clock): wraps inside the loop range once it is reached, else
+  // follows the clip's loop mode as the runtime does.
+  float playheadAt(float playTime) const;
+  // Whether a track is heard in the preview: not muted, and soloed when any track is.
+  bool audible(size_t track) const;
 
   // Edits: each successful one is one undo step; a failed one changes nothing
   // and says why.
@@ -101,6 +150,35 @@ class TimelineDocument {
   // Fails below kMinDuration, when not finite, or when keys lie beyond the new end.
   eng::Result<void> setDuration(float duration);
   eng::Result<void> setLoop(facial::LoopMode loop);
+  // The curve view's key shape: interpolation of the segment it starts and
+  // where its tangents come from; in / out are used by Smooth (out) and Broken.
+  eng::Result<void> setKeyShape(KeyId id, facial::KeyInterpolation interpolation, facial::TangentMode tangent,
+                                std::optional<float> inSlope = {}, std::optional<float> outSlope = {});
+  // Keys `channel` at 1 and every other track of `group` at 0 at `time` (one
+  // step; the track is made when missing, holding 0 at the group's earlier key
+  // times; the clip grows to `time`): an emotion keyed over the others, "neutral -> happy -> surprise".
+  // The keys get `interpolation` / `tangent` and become the selection.
+  eng::Result<void> keyExclusive(const std::string& channel, std::span<const std::string_view> group, float time,
+                                 facial::KeyInterpolation interpolation, facial::TangentMode tangent);
+  // Copy / paste / duplicate: pasted keys land at `time` + their copied offsets
+  // on the tracks of their channels (made when missing), the clip growing to
+  // hold them; they become the selection.
+  KeyClipboard copySelection() const;
+  eng::Result<void> paste(const KeyClipboard& clipboard, float time);
+  // A copy of the selection one frame after its last key.
+  eng::Result<void> duplicateSelected();
+  // The selection by whole frames (arrow keys); clamped at the clip's ends.
+  eng::Result<void> nudgeSelected(int frames);
+  // Sets the frame rate and moves the selected keys (all keys when none are
+  // selected) to their nearest frames.
+  eng::Result<void> snapToFrames(float framesPerSecond);
+  eng::Result<void> setMuted(size_t track, bool muted);
+  eng::Result<void> setSolo(size_t track, bool solo);
+  // A loop range inside [0, duration] (at least a frame long), or none.
+  eng::Result<void> setLoopRange(float start, float end);
+  eng::Result<void> clearLoopRange();
+  // Playback speed, 0.05 to 20 (negative plays backwards is not offered).
+  eng::Result<void> setSpeed(float speed);
 
   // Drag of the selection (see the file comment).
   void beginMove();
@@ -111,6 +189,10 @@ class TimelineDocument {
   bool moving() const { return moveStart_.has_value(); }
   // One-shot move: beginMove + moveSelected + endMove.
   eng::Result<void> moveSelectedBy(float dt, float dv);
+  // A tangent handle's drag (inside beginMove / endMove): the key's slopes
+  // set, a Smooth key keeping both sides one slope, an Auto or Flat one
+  // becoming Smooth (Broken with `breakTangent`: Alt in the curve view).
+  bool dragTangent(KeyId id, float inSlope, float outSlope, bool breakTangent);
 
   bool canUndo() const { return !undo_.empty(); }
   bool canRedo() const { return !redo_.empty(); }
@@ -133,6 +215,8 @@ class TimelineDocument {
     float duration = 2.0f;
     facial::LoopMode loop = facial::LoopMode::Loop;
     std::vector<DocumentTrack> tracks;
+    float frameRate = 30.0f;
+    PlaybackSettings playback;
     uint64_t serial = 0;  // identifies this exact content (dirty tracking)
   };
   struct UndoStep {
@@ -143,6 +227,10 @@ class TimelineDocument {
   void commit(std::string label, State before);
   void normaliseTrack(DocumentTrack& track) const;
   void dropStaleSelection();
+  // Shared by the one-step edits: a copy of the state before `edit`, committed as `label` when edit succeeds.
+  template <typename Edit>
+  eng::Result<void> edit(std::string label, Edit&& edit);
+  eng::Result<void> requireSelection(std::string_view action) const;
 
   State state_;
   std::vector<KeyId> selection_;

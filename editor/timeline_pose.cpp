@@ -35,6 +35,7 @@ eng::Result<void> TimelinePose::pose(const TimelineDocument& document, float tim
   const auto tracks = document.tracks();
   const auto names = rig_->targetNames();
   for (size_t t = 0; t < tracks.size(); ++t) {
+    if (!document.audible(t)) continue;  // muted, or another track is soloed
     if (const auto input = facial::rigInputIndex(tracks[t].channel)) {
       const float value = document.sample(t, time);
       if (*input < actionUnits_.size())
@@ -45,7 +46,7 @@ eng::Result<void> TimelinePose::pose(const TimelineDocument& document, float tim
   }
   if (auto applied = rig_->apply(actionUnits_, emotions_, targets, expressionWeights_); !applied) return applied;
   for (size_t t = 0; t < tracks.size(); ++t) {
-    if (facial::rigInputIndex(tracks[t].channel)) continue;
+    if (!document.audible(t) || facial::rigInputIndex(tracks[t].channel)) continue;
     const auto it = std::find(names.begin(), names.end(), tracks[t].channel);
     if (it == names.end()) {
       ++unknownTracks_;

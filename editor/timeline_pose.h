@@ -24,7 +24,7 @@ class TimelinePose {
   bool knowsChannel(std::string_view channel) const;
 
   // targets = base weights, rig inputs of the tracks applied, then target-named
-  // tracks written. Tracks on unknown channels are skipped and counted in
+  // tracks written; muted tracks (and others while one is soloed) are left out. Tracks on unknown channels are skipped and counted in
   // unknownTracks(). Fails on a size mismatch (naming sizes).
   eng::Result<void> pose(const TimelineDocument& document, float time, std::span<float> targets);
   size_t unknownTracks() const { return unknownTracks_; }

@@ -4,6 +4,8 @@
 
 #include "app/window_script.h"
 #include "editor/graph_document.h"
+#include "editor/curve_model.h"
+#include "facial/runtime/rig/emotions.h"
 
 namespace editor {
 
@@ -15,7 +17,8 @@ struct Verb {
   std::string_view word;
   Kind kind;
   // Arguments: 'w' a word (name or path), 'n' a number, 't' the rest of the line
-  // (one or more words, as one text); those after '?' may be left out.
+  // (one or more words, as one text), '*' any number of further words (into
+  // `words`); those after '?' may be left out.
   std::string_view arguments;
 };
 constexpr Verb kVerbs[] = {
@@ -67,7 +70,52 @@ constexpr Verb kVerbs[] = {
     {"bilinear-pad", Kind::BilinearPad, "nn"},
     {"record-start", Kind::RecordStart, ""},
     {"record-stop", Kind::RecordStop, ""},
+    // Dope sheet and curve view (issue 34).
+    {"timeline-box-select", Kind::TimelineBoxSelect, "nn*"},
+    {"timeline-copy", Kind::TimelineCopy, ""},
+    {"timeline-paste", Kind::TimelinePaste, "n"},
+    {"timeline-duplicate", Kind::TimelineDuplicate, ""},
+    {"timeline-nudge", Kind::TimelineNudge, "n"},
+    {"timeline-snap", Kind::TimelineSnap, "n"},
+    {"timeline-loop", Kind::TimelineLoop, "nn"},
+    {"timeline-speed", Kind::TimelineSpeed, "n"},
+    {"timeline-mute", Kind::TimelineMute, "w"},
+    {"timeline-solo", Kind::TimelineSolo, "w"},
+    {"curve-tangent", Kind::CurveTangent, "wnw?nn"},
+    {"timeline-key-emotion", Kind::TimelineKeyEmotion, "wnw"},
 };
+
+// The dope sheet's and curve view's own checks ("" when fine).
+std::string dopeSheetProblem(const EditorScriptAction& action) {
+  switch (action.kind) {
+    case Kind::TimelineNudge:
+      if (action.a != std::round(action.a)) return "timeline-nudge takes whole frames";
+      break;
+    case Kind::TimelineSnap:
+      if (action.a < 1.0f || action.a > 1000.0f) return "timeline-snap: 1 to 1000 frames a second";
+      break;
+    case Kind::TimelineLoop:
+      if (!(action.a >= 0.0f && action.b > action.a)) return "timeline-loop: the end must come after the start (>= 0)";
+      break;
+    case Kind::TimelineSpeed:
+      if (action.a < 0.05f || action.a > 20.0f) return "timeline-speed: 0.05 to 20";
+      break;
+    case Kind::CurveTangent:
+      if (action.a < 0.0f || action.a != std::round(action.a)) return "curve-tangent: the key index is a whole number from 0";
+      if (action.numberCount == 2) return "curve-tangent: give both slopes IN OUT, or neither";
+      if (!curveKeyModeFromName(action.words[1]))
+        return "unknown tangent mode '" + action.words[1] + "' (" + eng::nameList(kCurveKeyModeNames) + ")";
+      break;
+    case Kind::TimelineKeyEmotion:
+      if (!facial::emotionIndex(action.words[0]))
+        return "unknown emotion '" + action.words[0] + "' (" + facial::emotionNameList() + ")";
+      if (!curveKeyModeFromName(action.words[1]))
+        return "unknown easing '" + action.words[1] + "' (" + eng::nameList(kCurveKeyModeNames) + ")";
+      break;
+    default: break;
+  }
+  return {};
+}
 
 std::string verbList() {
   std::string list;
@@ -129,6 +177,33 @@ std::string argumentProblem(const EditorScriptAction& action, const std::vector<
   return {};
 }
 
+// The words after the action into `action` by `spec` ('w' text and words,
+// 'n' numbers a, b, c, '*' the rest into words); a problem, or "".
+std::string readArguments(std::string_view spec, const std::vector<std::string>& words, EditorScriptAction& action) {
+  float* numbers[] = {&action.a, &action.b, &action.c};
+  size_t nextNumber = 0;
+  size_t argument = 1;
+  for (const char type : spec) {
+    if (type == '?') continue;
+    if (argument >= words.size()) break;
+    if (type == '*') {
+      action.words.insert(action.words.end(), words.begin() + std::ptrdiff_t(argument), words.end());
+      break;
+    }
+    const std::string& word = words[argument++];
+    if (type == 'w') {
+      if (action.words.empty()) action.text = word;  // text: the first word
+      action.words.push_back(word);
+    } else {
+      if (!app::parseScriptNumber(word, *numbers[nextNumber])) return "'" + word + "' is not a finite number";
+      ++nextNumber;
+    }
+  }
+  action.hasNumber = nextNumber > 0;
+  action.numberCount = nextNumber;
+  return {};
+}
+
 }  // namespace
 
 const char* editorScriptActionWord(Kind kind) {
@@ -151,12 +226,14 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
     if (!verb) return fail("unknown action '" + words[0] + "' (" + verbList() + ")");
 
     const std::string_view spec = verb->arguments;
-    const size_t optionalAt = spec.find('?');
-    const size_t required = optionalAt == std::string_view::npos ? spec.size() : optionalAt;
-    const size_t most = spec.size() - (optionalAt == std::string_view::npos ? 0 : 1);
+    const bool restIsWords = !spec.empty() && spec.back() == '*';
+    const std::string_view counted = restIsWords ? spec.substr(0, spec.size() - 1) : spec;
+    const size_t optionalAt = counted.find('?');
+    const size_t required = optionalAt == std::string_view::npos ? counted.size() : optionalAt;
+    const size_t most = counted.size() - (optionalAt == std::string_view::npos ? 0 : 1);
     const bool restIsText = spec == "t";
     const size_t given = words.size() - 1;
-    if (given < required || (given > most && !restIsText))
+    if (given < required || (given > most && !restIsText && !restIsWords))
       return fail("'" + words[0] + "' takes " +
                   (required == most ? std::to_string(most) : std::to_string(required) + " or " + std::to_string(most)) +
                   " argument(s), got " + std::to_string(given));
@@ -172,24 +249,8 @@ eng::Result<std::vector<EditorScriptAction>> parseEditorScript(std::string_view 
       actions.push_back(std::move(action));
       continue;
     }
-    float* numbers[] = {&action.a, &action.b, &action.c};
-    size_t nextNumber = 0;
-    size_t argument = 1;
-    for (const char type : spec) {
-      if (type == '?') continue;
-      if (argument > given) break;
-      const std::string& word = words[argument++];
-      if (type == 'w') {
-        if (action.words.empty()) action.text = word;  // text: the first word
-        action.words.push_back(word);
-      } else {
-        if (!app::parseScriptNumber(word, *numbers[nextNumber]))
-          return fail("'" + word + "' is not a finite number");
-        ++nextNumber;
-      }
-    }
-    action.hasNumber = nextNumber > 0;
-
+    if (const std::string problem = readArguments(spec, words, action); !problem.empty()) return fail(problem);
+    if (const std::string problem = dopeSheetProblem(action); !problem.empty()) return fail(problem);
     if (const std::string problem = argumentProblem(action, words); !problem.empty()) return fail(problem);
     if (auto problem = checkGraphOrPadAction(action); !problem.empty()) return fail(problem);
     actions.push_back(std::move(action));

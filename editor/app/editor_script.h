@@ -52,6 +52,18 @@
 //   bilinear-pad 0.5 0.8                  the bilinear pad's cursor (s, t in [0, 1])
 //   record-start / record-stop            Record: what the pads and sliders do becomes timeline keys
 //
+// The dope sheet and curve view (docs/editor.md, "Timeline" and "Curves"):
+//   timeline-key-emotion happy 1.0 cosine   key an emotion at 1 over the others at 0, with an
+//                                   easing: a curve key mode (auto smooth flat broken linear step cosine)
+//   timeline-box-select 0.9 2.1 [TRACK...]  a box over those times (the tracks named, else all)
+//   timeline-copy / timeline-paste 2.5 / timeline-duplicate   Ctrl+C / paste at that time / Ctrl+D
+//   timeline-nudge -2              the arrow keys: the selection by whole frames
+//   timeline-snap 24               the frame rate, and the selection (all keys if none) snapped to it
+//   timeline-loop 0.5 2.0 / timeline-speed 0.5   the loop range, the playback speed
+//   timeline-mute TRACK / timeline-solo TRACK    the track's M / S toggles
+//   curve-tangent TRACK 2 smooth [IN OUT]        key 2 of the track (from 0) in the curve view: its
+//                                   mode, and slopes (value per second; smooth takes OUT, broken both)
+//
 // Paths are one word (no spaces), relative to the working folder. An action
 // that fails at run time (a pick that misses, a save that cannot write) is
 // reported like the button's failure, the script goes on, and the program
@@ -77,14 +89,18 @@ struct EditorScriptAction {
     BilinearPad, RecordStart, RecordStop,
     // Projects and export (File menu; editor/app/project_actions.h).
     ProjectNew, ProjectOpen, ProjectSave, ProjectSaveAs, ExportGlb, ExportGif, QuitDiscard, QuitSave,
+    // Dope sheet and curve view (issue 34): TimelinePanel::runScriptAction runs these.
+    TimelineBoxSelect, TimelineCopy, TimelinePaste, TimelineDuplicate, TimelineNudge, TimelineSnap, TimelineLoop,
+    TimelineSpeed, TimelineMute, TimelineSolo, CurveTangent, TimelineKeyEmotion,
   };
   float time = 0.0f;
   int line = 0;
   Kind kind = Kind::Quit;
   std::string text;                      // the name, path or text argument ("" when none)
-  std::vector<std::string> words;        // every word argument, in order (text is the first)
   float a = 0.0f, b = 0.0f, c = 0.0f;   // the numeric arguments, in order
   bool hasNumber = false;                // sculpt-kernel: c was given
+  std::vector<std::string> words;        // every word argument, in order (text is the first; '*': the rest of the line's words)
+  size_t numberCount = 0;                // how many numbers were given
   std::string written;                   // "ACTION ARGS" as in the file
   std::string source;                    // "FILE:LINE: ACTION ARGS" for messages
 };

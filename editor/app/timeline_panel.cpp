@@ -7,8 +7,11 @@
 #include <cstring>
 #include <iterator>
 
+#include <GLFW/glfw3.h>
+
 #include "editor/app/editor_app.h"
 #include "facial/runtime/graph/timeline.h"
+#include "facial/runtime/rig/emotions.h"
 
 namespace editor {
 
@@ -54,6 +57,7 @@ bool TimelinePanel::open(const std::string& path) {
   autosaveError_.clear();
   std::snprintf(path_, sizeof path_, "%s", path.c_str());
   playTime_ = playhead_ = 0.0f;
+  window_ = {0.0f, document_.duration()};
   currentTrack_ = document_.tracks().empty() ? -1 : 0;
   size_t unknown = 0;
   for (const DocumentTrack& track : document_.tracks())
@@ -124,10 +128,12 @@ void TimelinePanel::togglePlaying() {
 void TimelinePanel::update(float dt) {
   if (playing_ && std::isfinite(dt)) {
     // Playback follows the clip's own loop mode, exactly as the runtime's timeline node plays it.
-    playTime_ += dt;
-    const facial::LoopMode mode = document_.loop();
-    if (mode == facial::LoopMode::Once && playTime_ >= document_.duration()) playing_ = false;
-    playhead_ = facial::clipTime(mode, document_.duration(), playTime_);
+    // The loop range, when set, wraps playback inside it; the speed scales the clock.
+    playTime_ += dt * document_.playback().speed;
+    if (document_.loop() == facial::LoopMode::Once && !document_.playback().hasLoopRange &&
+        playTime_ >= document_.duration())
+      playing_ = false;
+    playhead_ = document_.playheadAt(playTime_);
   }
   autosave();
   refreshPose();
@@ -147,11 +153,8 @@ void TimelinePanel::seek(float time, FaceDelegate& face) {
 }
 
 bool TimelinePanel::selectTrack(std::string_view channel) {
-  const auto track = document_.findTrack(channel);
-  if (!track) {
-    message_.report("no track on channel '" + std::string(channel) + "'", true);
-    return false;
-  }
+  const auto track = trackNamed(channel);
+  if (!track) return false;
   currentTrack_ = int(*track);
   return true;
 }
@@ -231,6 +234,30 @@ void TimelinePanel::handleShortcuts() {
   if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), false)) redo();
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete), false) && !document_.selection().empty()) deleteSelected();
   if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false) && !io.WantCaptureKeyboard) togglePlaying();
+  handleEditShortcuts();
+}
+
+// The dope sheet's habits (Blender, Unity): copy / paste / duplicate / select all,
+// arrows nudge the selection by a frame (without one, step the playhead),
+// Home / End, K keys every track, '.' frames the selection.
+void TimelinePanel::handleEditShortcuts() {
+  const ImGuiIO& io = ImGui::GetIO();
+  const auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
+  if (io.KeyCtrl && pressed(GLFW_KEY_C)) copySelection();
+  if (io.KeyCtrl && pressed(GLFW_KEY_V)) pasteAt(playhead_);
+  if (io.KeyCtrl && pressed(GLFW_KEY_D)) report(document_.duplicateSelected());
+  if (io.KeyCtrl && pressed(GLFW_KEY_A)) document_.selectAll();
+  for (const auto& [key, frames] : {std::pair{GLFW_KEY_LEFT, -1}, std::pair{GLFW_KEY_RIGHT, 1}}) {
+    if (!ImGui::IsKeyPressed(key, true)) continue;
+    const int step = io.KeyShift ? 10 * frames : frames;
+    if (!document_.selection().empty()) report(document_.nudgeSelected(step));
+    else setPlayhead(document_.snapTime(playhead_) + float(step) * document_.frameDuration());
+  }
+  const PlaybackSettings& p = document_.playback();
+  if (pressed(GLFW_KEY_HOME)) setPlayhead(p.hasLoopRange ? p.loopStart : 0.0f);
+  if (pressed(GLFW_KEY_END)) setPlayhead(p.hasLoopRange ? p.loopEnd : document_.duration());
+  if (!io.KeyCtrl && pressed(GLFW_KEY_K)) addKeysFromKeyboard_ = true;
+  if (pressed(GLFW_KEY_PERIOD)) frameSelection();
 }
 
 void TimelinePanel::drawToolbar(FaceDelegate& face) {
@@ -349,136 +376,304 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
   ImGui::BeginChild("tracks", {0.0f, 0.0f}, true);
   const auto tracks = document_.tracks();
   if (currentTrack_ >= int(tracks.size())) currentTrack_ = int(tracks.size()) - 1;
+  const std::vector<TrackRow> rows = layoutTrackRows(tracks, collapsed_);
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const TimelineView view = TimelineView::fit(
+  if (showingAll_) window_ = {0.0f, document_.duration()};  // the whole clip follows its length
+  window_.clampTo(document_.duration());
+  TimelineView view = TimelineView::fit(
       {.left = origin.x, .top = origin.y, .width = avail.x, .height = avail.y, .nameColumn = kNameColumn, .rulerHeight = kRulerHeight},
-      document_);
-  drawTrackNames(view, origin.x);
+      rows.size(), document_.duration(), document_.minValue(), document_.maxValue());
+  view.showTime(window_);
+  drawTrackNames(view, rows, origin.x);
   // The key canvas: one invisible button takes every click on ruler and rows.
   ImGui::SetCursorScreenPos({view.canvasLeft(), view.top()});
-  ImGui::InvisibleButton("canvas", {view.canvasWidth(), view.canvasHeight()});
-  handleCanvasMouse(view, face);
-  drawCanvas(view);
+  ImGui::InvisibleButton("canvas", {view.canvasWidth(), view.canvasHeight()},
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle);
+  handleCanvasMouse(view, rows, face);
+  drawCanvas(view, rows);
   ImGui::EndChild();
 }
 
-void TimelinePanel::drawTrackNames(const TimelineView& view, float left) {
-  const auto tracks = document_.tracks();
-  for (size_t t = 0; t < tracks.size(); ++t) {
-    ImGui::SetCursorScreenPos({left, view.rowTop(t) + (view.rowHeight() - ImGui::GetTextLineHeight()) * 0.5f});
-    ImGui::PushID(int(t));
-    const bool known = pose_.knowsChannel(tracks[t].channel);
-    if (!known) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.4f, 1.0f));
-    if (ImGui::Selectable(tracks[t].channel.c_str(), currentTrack_ == int(t), 0, {kNameColumn - 8.0f, 0.0f})) {
-      currentTrack_ = int(t);
-      if (ImGui::GetIO().KeyCtrl) document_.selectTrack(t);
-    }
-    if (!known) {
-      ImGui::PopStyleColor();
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("this face has no channel '%s'", tracks[t].channel.c_str());
-    }
-    ImGui::PopID();
+void TimelinePanel::drawTrackNames(const TimelineView& view, const std::vector<TrackRow>& rows, float left) {
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const float y = view.rowTop(r) + (view.rowHeight() - ImGui::GetFrameHeight()) * 0.5f;
+    if (rows[r].track) drawTrackName(*rows[r].track, left, y);
+    else drawGroupHeader(rows[r].group, left, y);
   }
 }
 
-// The canvas button's clicks and drags: a click on a key selects it (Ctrl or
-// Shift: adds it) and starts dragging the selection; anywhere else it clears
-// the selection (unless Ctrl) and scrubs the playhead.
-void TimelinePanel::handleCanvasMouse(const TimelineView& view, FaceDelegate& face) {
+void TimelinePanel::drawGroupHeader(TrackGroup group, float left, float y) {
+  ImGui::SetCursorScreenPos({left, y});
+  ImGui::PushID(int(group) + 100000);
+  bool& collapsed = collapsed_[size_t(group)];
+  if (ImGui::ArrowButton("##fold", collapsed ? ImGuiDir_Right : ImGuiDir_Down)) collapsed = !collapsed;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip(collapsed ? "Show the group's tracks" : "Fold the group's tracks away");
+  ImGui::SameLine();
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextDisabled("%.*s", int(trackGroupName(group).size()), trackGroupName(group).data());
+  ImGui::PopID();
+}
+
+// A track's name (click: current track; Ctrl+click or double-click: all its
+// keys selected, Shift adds them) and its M(ute) / S(olo) toggles.
+void TimelinePanel::drawTrackName(size_t t, float left, float y) {
+  const DocumentTrack& track = document_.tracks()[t];
+  ImGui::SetCursorScreenPos({left + 8.0f, y});
+  ImGui::PushID(int(t));
+  const bool known = pose_.knowsChannel(track.channel);
+  if (!known || !document_.audible(t))
+    ImGui::PushStyleColor(ImGuiCol_Text, known ? ImVec4(0.5f, 0.5f, 0.55f, 1.0f) : ImVec4(1.0f, 0.6f, 0.4f, 1.0f));
+  if (ImGui::Selectable(track.channel.c_str(), currentTrack_ == int(t), ImGuiSelectableFlags_AllowDoubleClick,
+                        {kNameColumn - 62.0f, ImGui::GetFrameHeight()})) {
+    currentTrack_ = int(t);
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.KeyCtrl || ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+      std::vector<KeyId> ids;
+      for (const DocumentKey& k : track.keys) ids.push_back(k.id);
+      document_.selectKeys(ids, io.KeyShift ? SelectMode::Extend : SelectMode::Replace);
+    }
+  }
+  if (!known || !document_.audible(t)) ImGui::PopStyleColor();
+  if (!known && ImGui::IsItemHovered()) ImGui::SetTooltip("this face has no channel '%s'", track.channel.c_str());
+  for (const bool solo : {false, true}) {
+    ImGui::SameLine(0.0f, 2.0f);
+    const bool on = solo ? track.solo : track.muted;
+    if (on) ImGui::PushStyleColor(ImGuiCol_Button, solo ? ImVec4(0.8f, 0.65f, 0.1f, 1.0f) : ImVec4(0.7f, 0.2f, 0.2f, 1.0f));
+    if (ImGui::SmallButton(solo ? "S" : "M")) toggleTrackFlag(track.channel, solo);
+    if (on) ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip(solo ? "Solo: preview only the soloed tracks" : "Mute: leave this track out of the preview (still saved)");
+  }
+  ImGui::PopID();
+}
+
+// Wheel: zoom about the mouse; middle drag: pan.
+void TimelinePanel::handleCanvasWheelAndPan(const TimelineView& view) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (ImGui::IsItemHovered() && io.MouseWheel != 0.0f) {
+    window_.zoom(view.timeAt(io.MousePos.x), std::pow(1.2f, io.MouseWheel));
+    showingAll_ = false;
+  }
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+    window_.pan(-view.secondsFor(io.MouseDelta.x));
+    showingAll_ = false;
+    panning_ = true;
+  }
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Middle)) panning_ = false;
+}
+
+// The canvas button's clicks and drags: the ruler scrubs (Alt: selects the
+// keys at that time); a key is selected (Ctrl or Shift: toggled) and drags the
+// selection, by whole frames while snapping; empty rows start a box (Shift
+// extends, Ctrl toggles; a click without a drag clears the selection).
+void TimelinePanel::handleCanvasMouse(const TimelineView& view, const std::vector<TrackRow>& rows, FaceDelegate& face) {
+  handleCanvasWheelAndPan(view);
   const ImGuiIO& io = ImGui::GetIO();
   const ImVec2 mouse = io.MousePos;
   if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
-    const auto hit = view.hitAt(document_.tracks(), {mouse.x, mouse.y});
-    if (hit) currentTrack_ = int(hit->row);
-    if (hit && hit->key) {
+    const auto hit = view.hitAt(document_.tracks(), rows, {mouse.x, mouse.y});
+    if (hit && rows[hit->row].track) currentTrack_ = int(*rows[hit->row].track);
+    if (!hit && io.KeyAlt) {
+      document_.selectAtTime(view.timeAt(mouse.x), io.KeyShift ? SelectMode::Extend : SelectMode::Replace);
+    } else if (hit && hit->key) {
       const KeyId key = *hit->key;
-      if (io.KeyCtrl || io.KeyShift)
-        document_.select(key, true);
-      else if (!document_.isSelected(key))
-        document_.select(key);
+      if (io.KeyCtrl || io.KeyShift) document_.select(key, true);
+      else if (!document_.isSelected(key)) document_.select(key);
       if (document_.isSelected(key)) {
         document_.beginMove();
         draggingKeys_ = true;
         dragStartX_ = mouse.x;
         dragStartY_ = mouse.y;
       }
+    } else if (hit) {
+      boxStart_ = glm::vec2(mouse.x, mouse.y);
     } else {
-      if (!io.KeyCtrl) document_.clearSelection();
       scrubbing_ = true;
     }
   }
-  if (ImGui::IsItemActive()) {
+  if (ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
     if (draggingKeys_) {
-      document_.moveSelected(view.secondsFor(mouse.x - dragStartX_), view.valueFor(mouse.y - dragStartY_));
+      float dt = view.secondsFor(mouse.x - dragStartX_);
+      if (snapping_) dt = document_.snapTime(dt);
+      document_.moveSelected(dt, view.valueFor(mouse.y - dragStartY_));
       face.takeControl(FaceSource::Timeline);
     } else if (scrubbing_) {
       seek(view.timeAt(mouse.x), face);
     }
   } else {
     if (draggingKeys_) document_.endMove();
+    if (boxStart_) finishBox(view, rows);
     draggingKeys_ = false;
     scrubbing_ = false;
   }
 }
 
-void TimelinePanel::drawCanvas(const TimelineView& view) {
-  const auto tracks = document_.tracks();
+void TimelinePanel::finishBox(const TimelineView& view, const std::vector<TrackRow>& rows) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const glm::vec2 a = *boxStart_, b{io.MousePos.x, io.MousePos.y};
+  boxStart_.reset();
+  const SelectMode mode = io.KeyCtrl ? SelectMode::Toggle : io.KeyShift ? SelectMode::Extend : SelectMode::Replace;
+  if (glm::length(b - a) < 3.0f) {  // a click, not a box
+    if (mode == SelectMode::Replace) document_.clearSelection();
+    return;
+  }
+  // The tracks of the rows the box spans; a group header takes its group's tracks.
+  std::vector<size_t> tracks;
+  const size_t first = view.rowAt(std::min(a.y, b.y)).value_or(0);
+  const size_t last = view.rowAt(std::max(a.y, b.y)).value_or(rows.empty() ? 0 : rows.size() - 1);
+  for (size_t r = first; r <= last && r < rows.size(); ++r) {
+    if (rows[r].track) tracks.push_back(*rows[r].track);
+    else
+      for (size_t t = 0; t < document_.tracks().size(); ++t)
+        if (trackGroupOf(document_.tracks()[t].channel) == rows[r].group) tracks.push_back(t);
+  }
+  if (tracks.empty()) return;
+  document_.selectBox(view.timeAt(a.x), view.timeAt(b.x), tracks, mode);
+}
+
+void TimelinePanel::drawRuler(const TimelineView& view) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const float left = view.canvasLeft(), right = view.canvasRight(), top = view.top(), rowsTop = view.rowsTop();
-  // Ruler: five ticks per label, labels every rulerLabelStep() seconds.
   draw->AddRectFilled({left, top}, {right, rowsTop}, IM_COL32(40, 44, 54, 255));
-  const float tickStep = TimelineView::rulerLabelStep(document_.duration()) / 5.0f;
-  for (int i = 0; float(i) * tickStep <= document_.duration() + 1e-4f; ++i) {
+  const PlaybackSettings& p = document_.playback();
+  if (p.hasLoopRange)
+    draw->AddRectFilled({std::max(view.xAt(p.loopStart), left), top}, {std::min(view.xAt(p.loopEnd), right), rowsTop},
+                        IM_COL32(70, 110, 70, 255));
+  // Five ticks per label, labels every rulerLabelStep() of the shown span.
+  const float labelStep = TimelineView::rulerLabelStep(view.timeEnd() - view.timeStart());
+  const float tickStep = (view.timeEnd() - view.timeStart() < 0.6f ? 0.1f : labelStep) / 5.0f;
+  for (int i = int(std::ceil(std::max(view.timeStart(), 0.0f) / tickStep));; ++i) {
     const float t = float(i) * tickStep, x = view.xAt(t);
+    if (x > right || t > document_.duration() + 1e-4f) break;
     const bool major = i % 5 == 0;
     draw->AddLine({x, rowsTop - (major ? 10.0f : 5.0f)}, {x, rowsTop}, IM_COL32(150, 150, 160, 255));
-    if (major) {
-      char label[16];
-      std::snprintf(label, sizeof label, "%.1f", double(t));
-      // Right of its tick, except where that would run past the canvas (the clip's end).
-      const float width = ImGui::CalcTextSize(label).x;
-      const float labelX = x + 2.0f + width > right ? x - 2.0f - width : x + 2.0f;
-      draw->AddText({labelX, top + 1.0f}, IM_COL32(190, 190, 200, 255), label);
-      draw->AddLine({x, rowsTop}, {x, view.rowsBottom()}, IM_COL32(55, 60, 72, 255));
-    }
+    if (!major) continue;
+    char label[16];
+    std::snprintf(label, sizeof label, tickStep < 0.05f ? "%.2f" : "%.1f", double(t));
+    const float width = ImGui::CalcTextSize(label).x;
+    draw->AddText({x + 2.0f + width > right ? x - 2.0f - width : x + 2.0f, top + 1.0f}, IM_COL32(190, 190, 200, 255), label);
+    draw->AddLine({x, rowsTop}, {x, view.rowsBottom()}, IM_COL32(55, 60, 72, 255));
   }
-  // Rows: background, the curve, the keys.
-  for (size_t t = 0; t < tracks.size(); ++t) {
-    const float rowTop = view.rowTop(t);
+}
+
+void TimelinePanel::drawRows(const TimelineView& view, const std::vector<TrackRow>& rows) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float left = view.canvasLeft(), right = view.canvasRight();
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const float rowTop = view.rowTop(r);
+    if (!rows[r].track) {
+      draw->AddRectFilled({left, rowTop}, {right, rowTop + view.rowHeight() - 1.0f}, IM_COL32(26, 28, 34, 255));
+      continue;
+    }
+    const size_t t = *rows[r].track;
+    const DocumentTrack& track = document_.tracks()[t];
     draw->AddRectFilled({left, rowTop}, {right, rowTop + view.rowHeight() - 1.0f},
-                        int(t) == currentTrack_ ? IM_COL32(44, 52, 70, 255) : (t % 2 ? IM_COL32(32, 35, 42, 255) : IM_COL32(36, 39, 47, 255)));
-    if (tracks[t].keys.empty()) continue;
-    ImVec2 previous{left, view.yAt(t, document_.sample(t, 0.0f))};
+                        int(t) == currentTrack_ ? IM_COL32(44, 52, 70, 255) : (r % 2 ? IM_COL32(32, 35, 42, 255) : IM_COL32(36, 39, 47, 255)));
+    if (track.keys.empty()) continue;
+    const ImU32 curve = document_.audible(t) ? IM_COL32(110, 170, 230, 200) : IM_COL32(90, 90, 100, 160);
+    ImVec2 previous{left, view.yAt(r, document_.sample(t, view.timeAt(left)))};
     for (float x = left + 3.0f; x <= right; x += 3.0f) {
-      const ImVec2 p{x, view.yAt(t, document_.sample(t, view.timeAt(x)))};
-      draw->AddLine(previous, p, IM_COL32(110, 170, 230, 200), 1.5f);
+      const ImVec2 p{x, view.yAt(r, document_.sample(t, view.timeAt(x)))};
+      draw->AddLine(previous, p, curve, 1.5f);
       previous = p;
     }
-    for (const DocumentKey& k : tracks[t].keys) {
-      const ImVec2 c{view.xAt(k.key.time), view.yAt(t, k.key.value)};
-      const float r = 5.0f;
+    for (const DocumentKey& k : track.keys) {
+      const ImVec2 c{view.xAt(k.key.time), view.yAt(r, k.key.value)};
+      const float s = 5.0f;
       const ImU32 colour = document_.isSelected(k.id) ? IM_COL32(255, 180, 60, 255) : IM_COL32(225, 225, 235, 255);
       if (k.key.interpolation == facial::KeyInterpolation::Step)
-        draw->AddRectFilled({c.x - r + 1, c.y - r + 1}, {c.x + r - 1, c.y + r - 1}, colour);
+        draw->AddRectFilled({c.x - s + 1, c.y - s + 1}, {c.x + s - 1, c.y + s - 1}, colour);
       else if (k.key.interpolation == facial::KeyInterpolation::Linear)
-        draw->AddQuadFilled({c.x, c.y - r}, {c.x + r, c.y}, {c.x, c.y + r}, {c.x - r, c.y}, colour);
+        draw->AddQuadFilled({c.x, c.y - s}, {c.x + s, c.y}, {c.x, c.y + s}, {c.x - s, c.y}, colour);
       else
-        draw->AddCircleFilled(c, r - 0.5f, colour, 12);
+        draw->AddCircleFilled(c, s - 0.5f, colour, 12);
     }
   }
-  // Playhead.
+}
+
+void TimelinePanel::drawCanvas(const TimelineView& view, const std::vector<TrackRow>& rows) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float left = view.canvasLeft(), right = view.canvasRight(), top = view.top();
+  draw->PushClipRect({left, top}, {right, view.top() + view.canvasHeight()}, true);
+  drawRuler(view);
+  drawRows(view, rows);
+  // The clip's end (the window may show past it) and the loop range's edges.
+  const float end = view.xAt(document_.duration());
+  draw->AddRectFilled({end, view.rowsTop()}, {right, view.rowsBottom()}, IM_COL32(0, 0, 0, 90));
+  const PlaybackSettings& p = document_.playback();
+  if (p.hasLoopRange)
+    for (const float t : {p.loopStart, p.loopEnd})
+      draw->AddLine({view.xAt(t), top}, {view.xAt(t), view.rowsBottom()}, IM_COL32(110, 200, 110, 200), 1.0f);
   const float px = view.xAt(playhead_);
   draw->AddLine({px, top}, {px, view.rowsBottom()}, IM_COL32(255, 80, 80, 255), 2.0f);
   draw->AddTriangleFilled({px - 6, top}, {px + 6, top}, {px, top + 8}, IM_COL32(255, 80, 80, 255));
-  if (tracks.empty()) {
-    draw->AddText({left + 10.0f, rowsTop + 8.0f}, IM_COL32(160, 160, 170, 255),
-                  "No tracks: pick a channel above and press 'Add track', or open a timeline file.");
+  if (boxStart_) {
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    draw->AddRectFilled({boxStart_->x, boxStart_->y}, mouse, IM_COL32(120, 160, 255, 40));
+    draw->AddRect({boxStart_->x, boxStart_->y}, mouse, IM_COL32(120, 160, 255, 200));
   }
+  if (document_.tracks().empty())
+    draw->AddText({left + 10.0f, view.rowsTop() + 8.0f}, IM_COL32(160, 160, 170, 255),
+                  "No tracks: pick a channel above and press 'Add track', or open a timeline file.");
+  draw->PopClipRect();
+}
+
+// The view row: time axis, frames, loop range, speed, then the status.
+void TimelinePanel::drawViewControls() {
+  if (ImGui::SmallButton("Frame all")) frameAll();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show the whole clip (wheel: zoom, middle drag: pan)");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Frame sel.")) frameSelection();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show the selected keys ('.')");
+  ImGui::SameLine();
+  ImGui::Checkbox("snap", &snapping_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key drags move by whole frames");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(50.0f);
+  float fps = document_.frameRate();
+  if (ImGui::InputFloat("fps", &fps, 0.0f, 0.0f, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue)) report(document_.snapToFrames(fps));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Frame rate of nudges and snapping; Enter also snaps the selected keys (all if none)");
+  ImGui::SameLine();
+  const PlaybackSettings p = document_.playback();
+  if (ImGui::SmallButton(p.hasLoopRange ? "Clear loop" : "Loop sel.")) {
+    if (p.hasLoopRange) report(document_.clearLoopRange());
+    else if (!document_.selection().empty()) {
+      float first = document_.duration(), last = 0.0f;
+      for (KeyId id : document_.selection()) first = std::min(first, document_.key(id)->key.time), last = std::max(last, document_.key(id)->key.time);
+      report(document_.setLoopRange(first, last));
+    }
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Loop playback over the selected keys' times (green on the ruler)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(60.0f);
+  float speed = p.speed;
+  if (ImGui::InputFloat("speed", &speed, 0.0f, 0.0f, "%.2fx", ImGuiInputTextFlags_EnterReturnsTrue)) report(document_.setSpeed(speed));
+  ImGui::SameLine();
 }
 
 void TimelinePanel::draw(FaceDelegate& face) {
   drawToolbar(face);
+  if (addKeysFromKeyboard_) keyAll(face);
+  addKeysFromKeyboard_ = false;
+  if (ImGui::BeginTabBar("timeline views")) {
+    if (ImGui::BeginTabItem("Dope sheet")) {
+      drawViewControls();
+      drawStatus(face);
+      drawTracks(face);
+      if (!showCurves_) shownCurves_ = curveTracks();  // picked in the dope sheet; clicks in the curve view keep them
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Curves", nullptr, showCurves_ ? ImGuiTabItemFlags_SetSelected : 0)) {
+      curves_.draw(document_, shownCurves_, window_, playhead_);
+      ImGui::EndTabItem();
+    }
+    showCurves_ = false;
+    ImGui::EndTabBar();
+  }
+  refreshPose();
+}
+
+void TimelinePanel::drawStatus(FaceDelegate& face) {
   char status[160];
   std::snprintf(status, sizeof status, "%s%s  %zu tracks  %zu selected  %s", document_.name().c_str(),
                 document_.dirty() ? " (modified)" : "", document_.tracks().size(), document_.selection().size(),
@@ -488,8 +683,123 @@ void TimelinePanel::draw(FaceDelegate& face) {
     ImGui::SameLine();
     message_.draw();
   }
-  drawTracks(face);
-  refreshPose();
+}
+
+// ---- Dope sheet and curve view actions (the keys, the widgets and the script) ----
+
+bool TimelinePanel::report(const eng::Result<void>& result) {
+  if (!result) message_.report(result.error().message, true);
+  return result.ok();
+}
+
+std::vector<size_t> TimelinePanel::curveTracks() const {
+  std::vector<size_t> shown;
+  for (size_t t = 0; t < document_.tracks().size(); ++t)
+    for (const DocumentKey& k : document_.tracks()[t].keys)
+      if (document_.isSelected(k.id)) {
+        shown.push_back(t);
+        break;
+      }
+  if (shown.empty() && currentTrack_ >= 0 && size_t(currentTrack_) < document_.tracks().size()) shown.push_back(size_t(currentTrack_));
+  return shown;
+}
+
+void TimelinePanel::frameAll() {
+  window_ = {0.0f, document_.duration()};
+  showingAll_ = true;
+}
+
+void TimelinePanel::frameSelection() {
+  if (document_.selection().empty()) return frameAll();
+  float first = document_.duration(), last = 0.0f;
+  for (KeyId id : document_.selection())
+    if (const DocumentKey* k = document_.key(id)) first = std::min(first, k->key.time), last = std::max(last, k->key.time);
+  window_.frame(first, last);
+  showingAll_ = false;
+}
+
+std::optional<size_t> TimelinePanel::trackNamed(std::string_view channel) {
+  const auto track = document_.findTrack(channel);
+  if (!track) message_.report("no track on channel '" + std::string(channel) + "'", true);
+  return track;
+}
+
+bool TimelinePanel::boxSelect(float t0, float t1, std::span<const std::string> channels) {
+  std::vector<size_t> tracks;
+  for (const std::string& channel : channels) {
+    const auto track = trackNamed(channel);
+    if (!track) return false;
+    tracks.push_back(*track);
+  }
+  document_.selectBox(t0, t1, tracks, SelectMode::Replace);
+  return true;
+}
+
+bool TimelinePanel::copySelection() {
+  if (document_.selection().empty()) {
+    message_.report("no keys selected to copy", true);
+    return false;
+  }
+  clipboard_ = document_.copySelection();
+  message_.report("copied " + std::to_string(clipboard_.keys.size()) + " keys", false);
+  return true;
+}
+
+bool TimelinePanel::pasteAt(float time) { return report(document_.paste(clipboard_, time)); }
+
+bool TimelinePanel::toggleTrackFlag(std::string_view channel, bool solo) {
+  const auto track = trackNamed(channel);
+  if (!track) return false;
+  const DocumentTrack& t = document_.tracks()[*track];
+  return report(solo ? document_.setSolo(*track, !t.solo) : document_.setMuted(*track, !t.muted));
+}
+
+bool TimelinePanel::setCurveTangent(const std::string& channel, size_t index, CurveKeyMode mode, std::optional<float> in,
+                                    std::optional<float> out) {
+  const auto track = trackNamed(channel);
+  if (!track) return false;
+  if (index >= document_.tracks()[*track].keys.size()) {
+    message_.report("track '" + channel + "' has " + std::to_string(document_.tracks()[*track].keys.size()) +
+                        " keys, no key " + std::to_string(index),
+                    true);
+    return false;
+  }
+  const KeyId id = document_.tracks()[*track].keys[index].id;
+  if (std::find(shownCurves_.begin(), shownCurves_.end(), *track) == shownCurves_.end()) shownCurves_.push_back(*track);
+  document_.select(id);
+  currentTrack_ = int(*track);
+  showCurves_ = true;  // as a person would: the curve tab, this key selected
+  return report(setCurveKeyMode(document_, id, mode, in, out));
+}
+
+bool TimelinePanel::keyEmotion(const std::string& emotion, float time, CurveKeyMode easing, FaceDelegate& face) {
+  const CurveKeyShape shape = curveKeyShape(easing);
+  if (!report(document_.keyExclusive(emotion, facial::emotionNames(), time, shape.interpolation, shape.tangent))) return false;
+  currentTrack_ = int(*document_.findTrack(emotion));
+  face.takeControl(FaceSource::Timeline);
+  return true;
+}
+
+bool TimelinePanel::runScriptAction(const EditorScriptAction& a, FaceDelegate& face) {
+  using Kind = EditorScriptAction::Kind;
+  switch (a.kind) {
+    case Kind::TimelineBoxSelect: return boxSelect(a.a, a.b, a.words);
+    case Kind::TimelineCopy: return copySelection();
+    case Kind::TimelinePaste: return pasteAt(a.a);
+    case Kind::TimelineDuplicate: return report(document_.duplicateSelected());
+    case Kind::TimelineNudge: return report(document_.nudgeSelected(int(a.a)));
+    case Kind::TimelineSnap: return report(document_.snapToFrames(a.a));
+    case Kind::TimelineLoop: return report(document_.setLoopRange(a.a, a.b));
+    case Kind::TimelineSpeed: return report(document_.setSpeed(a.a));
+    case Kind::TimelineMute: return toggleTrackFlag(a.text, false);
+    case Kind::TimelineSolo: return toggleTrackFlag(a.text, true);
+    case Kind::CurveTangent:
+      return setCurveTangent(a.words[0], size_t(a.a), *curveKeyModeFromName(a.words[1]),
+                             a.numberCount == 3 ? std::optional(a.b) : std::nullopt,
+                             a.numberCount == 3 ? std::optional(a.c) : std::nullopt);
+    case Kind::TimelineKeyEmotion: return keyEmotion(a.words[0], a.a, *curveKeyModeFromName(a.words[1]), face);
+    default: return false;
+  }
 }
 
 }  // namespace editor

@@ -1,15 +1,23 @@
 #pragma once
-// Timeline panel: the keyframe editor over a TimelineDocument. Track list on
-// the left, keys on a time ruler (height in a row = value), a playhead
-// scrubbed in float time, play / pause / loop, add key at the playhead from
-// the face on screen, select (ctrl: add) and drag keys in time and value,
-// delete, per-key interpolation, undo / redo, open / save.
+// Timeline panel: the keyframe editor over a TimelineDocument, two tabs over
+// one time axis. The dope sheet: tracks grouped (brows, eyes, ..., the
+// model's own targets; collapsible) with mute / solo, keys on a time ruler
+// (height in a row = value), a playhead scrubbed on the ruler, box select
+// (Shift extends, Ctrl toggles), drags snapped to frames, copy / paste /
+// duplicate, nudge, zoom (wheel) and pan (middle drag), a loop range and a
+// speed. The curves: editor/app/curve_panel.h. Keys: Space play, K key all,
+// Delete, Ctrl+C/V/D/A, arrows nudge, Home/End, '.' frame selection.
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "app/face_setup.h"
+#include "editor/app/curve_panel.h"
+#include "editor/app/editor_script.h"
 #include "editor/app/face_delegate.h"
 #include "editor/autosave.h"
 #include "editor/timeline_document.h"
@@ -70,15 +78,42 @@ class TimelinePanel {
   bool deleteSelected();
   bool undo();
   bool redo();
+  // The dope sheet's and curve view's script actions (editor_script.h, issue 34).
+  bool runScriptAction(const EditorScriptAction& action, FaceDelegate& face);
 
  private:
+  // Dope sheet and curve view actions: each reports why it failed.
+  bool report(const eng::Result<void>& result);
+  // The track of `channel`, or none after saying so.
+  std::optional<size_t> trackNamed(std::string_view channel);
+  bool boxSelect(float t0, float t1, std::span<const std::string> channels);
+  bool copySelection();
+  bool pasteAt(float time);
+  bool toggleTrackFlag(std::string_view channel, bool solo);
+  bool setCurveTangent(const std::string& channel, size_t index, CurveKeyMode mode, std::optional<float> in,
+                       std::optional<float> out);
+  bool keyEmotion(const std::string& emotion, float time, CurveKeyMode easing, FaceDelegate& face);
+  void frameSelection();
+  void frameAll();
+  // The tracks the dope sheet hands the curve view: those with selected keys, else the current one.
+  std::vector<size_t> curveTracks() const;
+  void handleEditShortcuts();
+  void drawViewControls();
+  void drawStatus(FaceDelegate& face);
+  void drawTrackName(size_t track, float left, float y);
+  void drawGroupHeader(TrackGroup group, float left, float y);
+  void handleCanvasWheelAndPan(const TimelineView& view);
+  void finishBox(const TimelineView& view, const std::vector<TrackRow>& rows);
+  void drawRuler(const TimelineView& view);
+  void drawRows(const TimelineView& view, const std::vector<TrackRow>& rows);
+
   void drawToolbar(FaceDelegate& face);
   void drawFileAndTransport(FaceDelegate& face);
   void drawKeyAndTrackControls(FaceDelegate& face);
   void drawTracks(FaceDelegate& face);
-  void drawTrackNames(const TimelineView& view, float left);
-  void handleCanvasMouse(const TimelineView& view, FaceDelegate& face);
-  void drawCanvas(const TimelineView& view);
+  void drawTrackNames(const TimelineView& view, const std::vector<TrackRow>& rows, float left);
+  void handleCanvasMouse(const TimelineView& view, const std::vector<TrackRow>& rows, FaceDelegate& face);
+  void drawCanvas(const TimelineView& view, const std::vector<TrackRow>& rows);
   bool addKeys(FaceDelegate& face, bool allTracks);
   void refreshPose();
   void autosave();
@@ -100,6 +135,18 @@ class TimelinePanel {
   bool draggingKeys_ = false;
   bool scrubbing_ = false;
   float dragStartX_ = 0.0f, dragStartY_ = 0.0f;
+  std::optional<glm::vec2> boxStart_;  // a box selection being drawn
+  bool panning_ = false;
+  // The dope sheet's view and tools.
+  TimeWindow window_{0.0f, 2.0f};
+  bool showingAll_ = true;  // the window shows the whole clip (and follows its length)
+  std::array<bool, kTrackGroupCount> collapsed_{};
+  KeyClipboard clipboard_;
+  bool snapping_ = true;  // key drags move by whole frames
+  bool showCurves_ = false;  // a script's curve edit brings the curve tab up
+  bool addKeysFromKeyboard_ = false;  // K was pressed (keyed in draw(), which has the face)
+  CurvePanel curves_;
+  std::vector<size_t> shownCurves_;  // the tracks the curve view overlays
   PanelMessage message_;
   // Beside the document's path (editor/autosave.h); follows open and save.
   TimelineAutosave autosave_{autosavePathFor("timeline.json")};

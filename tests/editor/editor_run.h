@@ -2,6 +2,7 @@
 // Running the built facial-editor under a virtual X server (xvfb-run) with
 // validation on, and reading what it leaves behind: its log, its screenshots.
 #include <cstdlib>
+#include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -79,6 +80,17 @@ inline ::testing::AssertionResult validationSilent(const EditorRun& run) {
 inline ::testing::AssertionResult ranCleanly(const EditorRun& run) {
   if (run.exitCode != 0) return ::testing::AssertionFailure() << "exit code " << run.exitCode << ":\n" << run.log;
   return validationSilent(run);
+}
+
+// `script` written to DIR/NAME and refused before any window opens (no
+// display): expects exit status 1 and returns what the program said.
+inline std::string scriptRefusal(const std::filesystem::path& dir, const std::string& name, const std::string& script) {
+  const std::filesystem::path program = std::filesystem::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
+  testing_support::writeFile(dir / name, script);
+  const std::string command = "cd '" + dir.string() + "' && DISPLAY= '" + program.string() + "' --script " + name + " >log.txt 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << script;
+  return readText(dir / "log.txt");
 }
 
 inline glm::ivec3 pixel(const eng::Image& image, int x, int y) {

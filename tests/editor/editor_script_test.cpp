@@ -293,14 +293,7 @@ TEST(EditorScript, TimelineKeyMoveDeleteUndoRedoAndSave) {
 TEST(EditorScript, ABrokenScriptIsRefusedNamingFileAndLine) {
   // Parsed before the window opens: no display needed.
   const fs::path dir = testing_support::freshTempDir("editor_script_broken");
-  const fs::path program = fs::path(FACIAL_BINARY_DIR) / "bin" / "facial-editor";
-  const auto refusal = [&](const std::string& script) {
-    testing_support::writeFile(dir / "bad.txt", script);
-    const std::string command = "cd '" + dir.string() + "' && DISPLAY= '" + program.string() + "' --script bad.txt >log.txt 2>&1";
-    const int status = std::system(command.c_str());
-    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1);
-    return editor_test::readText(dir / "log.txt");
-  };
+  const auto refusal = [&](const std::string& script) { return editor_test::scriptRefusal(dir, "bad.txt", script); };
   EXPECT_NE(refusal("0.5 sculpt-pick 10 10\n1.0 sculpt-wiggle 3\n").find("bad.txt:2: unknown action 'sculpt-wiggle'"),
             std::string::npos);
   EXPECT_NE(refusal("1 sculpt-move 0 1\n").find("bad.txt:1: 'sculpt-move' takes 3 argument(s), got 2"), std::string::npos);

@@ -185,8 +185,11 @@ TEST(TimelineDocument, InterpolationPerKeyAndAutoCubicTangents) {
   EXPECT_FLOAT_EQ(doc.tracks()[track].keys[2].key.inTangent, 0.0f);
   // Auto tangents follow edits of the neighbours.
   doc.select(doc.tracks()[track].keys[0].id);
-  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.5f));
-  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.25f);
+  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.25f));
+  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.375f);
+  // Level with a neighbour, the key turns flat: the curve does not overshoot it.
+  ASSERT_TRUE(doc.moveSelectedBy(0.0f, 0.25f));
+  EXPECT_FLOAT_EQ(doc.key(mid)->key.outTangent, 0.0f);
   ASSERT_TRUE(doc.toTimeline().validate());
 }
 
@@ -290,3 +293,154 @@ TEST(TimelineDocument, AFailedSaveLeavesTheOldFileIntact) {
 }
 
 }  // namespace
+
+// ---- Dope sheet editing (issue 34): box select, clipboard, frames, mute / solo, playback ----
+
+namespace dope {
+
+using editor::SelectMode;
+
+// Two tracks with keys at 0, 0.5, 1, 1.5 (values 0.1 .. 0.4 and 0.5 .. 0.8).
+TimelineDocument twoTracks() {
+  TimelineDocument doc("dope", 2.0f);
+  const size_t a = *doc.addTrack("happy"), b = *doc.addTrack("AU26_JawDrop");
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_TRUE(doc.setKey(a, 0.5f * float(i), 0.1f * float(i + 1)));
+    EXPECT_TRUE(doc.setKey(b, 0.5f * float(i), 0.5f + 0.1f * float(i)));
+  }
+  doc.clearSelection();
+  return doc;
+}
+
+TEST(TimelineDocumentDopeSheet, BoxSelectReplacesShiftExtendsCtrlToggles) {
+  TimelineDocument doc = twoTracks();
+  doc.selectBox(0.4f, 1.1f, {}, SelectMode::Replace);
+  EXPECT_EQ(doc.selection().size(), 4u);  // 0.5 and 1 on both tracks
+  const std::vector<size_t> onlyA{0};
+  doc.selectBox(1.4f, 1.6f, onlyA, SelectMode::Extend);
+  EXPECT_EQ(doc.selection().size(), 5u);
+  doc.selectBox(0.9f, 1.6f, onlyA, SelectMode::Toggle);  // 1 and 1.5 on track 0 flip off
+  EXPECT_EQ(doc.selection().size(), 3u);
+  doc.selectBox(1.1f, 0.4f, onlyA, SelectMode::Replace);  // reversed bounds work
+  EXPECT_EQ(doc.selection().size(), 2u);
+  // Curve view boxes have a value range too.
+  EXPECT_EQ(doc.keysInBox(0.0f, 2.0f, {}, 0.45f, 0.75f).size(), 3u);
+  doc.selectAtTime(1.01f, SelectMode::Replace);  // within half a frame: the column at 1 s
+  EXPECT_EQ(doc.selection().size(), 2u);
+  doc.selectAll();
+  EXPECT_EQ(doc.selection().size(), 8u);
+}
+
+TEST(TimelineDocumentDopeSheet, CopyPasteAtATimeAndDuplicateAreUndoable) {
+  TimelineDocument doc = twoTracks();
+  doc.selectBox(1.0f, 1.5f, {}, SelectMode::Replace);
+  const editor::KeyClipboard clip = doc.copySelection();
+  ASSERT_EQ(clip.keys.size(), 4u);
+  EXPECT_FLOAT_EQ(clip.span, 0.5f);
+  ASSERT_TRUE(doc.paste(clip, 1.8f));  // runs past the 2 s end: the clip grows to 2.3 s
+  EXPECT_FLOAT_EQ(doc.duration(), 2.3f);
+  EXPECT_EQ(times(doc, 0), (std::vector<float>{0.0f, 0.5f, 1.0f, 1.5f, 1.8f, 2.3f}));
+  EXPECT_FLOAT_EQ(doc.tracks()[0].keys[4].key.value, 0.3f);
+  EXPECT_EQ(doc.selection().size(), 4u);  // the pasted keys
+  ASSERT_TRUE(doc.undo());
+  EXPECT_FLOAT_EQ(doc.duration(), 2.0f);
+  EXPECT_EQ(times(doc, 0).size(), 4u);
+  // Paste onto a channel without a track makes it; onto existing keys replaces them.
+  TimelineDocument other("other", 2.0f);
+  ASSERT_TRUE(other.paste(clip, 0.0f));
+  ASSERT_EQ(other.tracks().size(), 2u);
+  EXPECT_EQ(other.tracks()[1].channel, "AU26_JawDrop");
+  // Duplicate: one frame (30 fps) after the selection's last key.
+  doc.selectBox(0.0f, 0.5f, std::vector<size_t>{1}, SelectMode::Replace);
+  ASSERT_TRUE(doc.duplicateSelected());
+  const auto t1 = times(doc, 1);
+  ASSERT_EQ(t1.size(), 6u);  // copies at 0.5 + 1/30 and 1 + 1/30
+  EXPECT_NEAR(t1[2], 0.5f + 1.0f / 30.0f, 1e-5f);
+  EXPECT_NEAR(t1[4], 1.0f + 1.0f / 30.0f, 1e-5f);
+  EXPECT_FALSE(TimelineDocument().paste({}, 0.0f));
+  EXPECT_FALSE(doc.paste(clip, -1.0f));
+}
+
+TEST(TimelineDocumentDopeSheet, NudgeAndSnapWorkInFrames) {
+  TimelineDocument doc = twoTracks();
+  doc.selectBox(0.4f, 0.6f, std::vector<size_t>{0}, SelectMode::Replace);
+  ASSERT_TRUE(doc.nudgeSelected(3));
+  EXPECT_NEAR(times(doc, 0)[1], 0.6f, 1e-5f);  // 3 frames at 30 fps
+  ASSERT_TRUE(doc.nudgeSelected(-6));
+  EXPECT_NEAR(times(doc, 0)[1], 0.4f, 1e-5f);
+  doc.clearSelection();
+  EXPECT_FALSE(doc.nudgeSelected(1));
+  // Snap at 4 fps (nothing selected: every key): 0.4 -> 0.5 collides with nothing, stays one key each.
+  ASSERT_TRUE(doc.snapToFrames(4.0f));
+  EXPECT_FLOAT_EQ(doc.frameRate(), 4.0f);
+  EXPECT_EQ(times(doc, 0), (std::vector<float>{0.0f, 0.5f, 1.0f, 1.5f}));
+  EXPECT_FLOAT_EQ(doc.snapTime(0.13f), 0.25f);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_FLOAT_EQ(doc.frameRate(), 30.0f);
+  EXPECT_FALSE(doc.snapToFrames(0.0f));
+  EXPECT_FALSE(doc.snapToFrames(NAN));
+}
+
+TEST(TimelineDocumentDopeSheet, MuteAndSoloDecideWhatIsHeard) {
+  TimelineDocument doc = twoTracks();
+  EXPECT_TRUE(doc.audible(0) && doc.audible(1));
+  ASSERT_TRUE(doc.setMuted(0, true));
+  EXPECT_FALSE(doc.audible(0));
+  EXPECT_TRUE(doc.audible(1));
+  ASSERT_TRUE(doc.setSolo(0, true));  // solo does not un-mute
+  EXPECT_FALSE(doc.audible(0));
+  EXPECT_FALSE(doc.audible(1));
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
+  EXPECT_TRUE(doc.audible(0));
+  EXPECT_FALSE(doc.setMuted(7, true));
+  // Muting is a preview: the saved clip keeps the track.
+  ASSERT_TRUE(doc.setMuted(1, true));
+  EXPECT_EQ(doc.toTimeline().tracks.size(), 2u);
+}
+
+TEST(TimelineDocumentDopeSheet, LoopRangeAndSpeedShapePlayback) {
+  TimelineDocument doc = twoTracks();
+  ASSERT_TRUE(doc.setLoop(facial::LoopMode::Once));
+  EXPECT_FLOAT_EQ(doc.playheadAt(5.0f), 2.0f);
+  ASSERT_TRUE(doc.setLoopRange(0.5f, 1.5f));
+  EXPECT_FLOAT_EQ(doc.playheadAt(0.25f), 0.25f);  // before the range: plays into it
+  EXPECT_FLOAT_EQ(doc.playheadAt(1.25f), 1.25f);
+  EXPECT_NEAR(doc.playheadAt(1.75f), 0.75f, 1e-5f);  // wraps inside it
+  EXPECT_FALSE(doc.setLoopRange(1.0f, 3.0f));  // past the end
+  EXPECT_FALSE(doc.setLoopRange(1.0f, 1.01f));  // shorter than a frame
+  ASSERT_TRUE(doc.setSpeed(0.5f));
+  EXPECT_FLOAT_EQ(doc.playback().speed, 0.5f);
+  EXPECT_FALSE(doc.setSpeed(0.0f));
+  ASSERT_TRUE(doc.undo());
+  EXPECT_FLOAT_EQ(doc.playback().speed, 1.0f);
+  ASSERT_TRUE(doc.clearLoopRange());
+  EXPECT_FALSE(doc.playback().hasLoopRange);
+}
+
+TEST(TimelineDocumentDopeSheet, KeyingOneEmotionOverTheOthersCrossfades) {
+  TimelineDocument doc("emotions", 3.0f);
+  constexpr std::string_view kGroup[] = {"neutral", "happy", "surprise"};
+  const auto cosine = facial::KeyInterpolation::Cosine;
+  ASSERT_TRUE(doc.keyExclusive("neutral", kGroup, 0.0f, cosine, facial::TangentMode::Auto));
+  ASSERT_TRUE(doc.keyExclusive("happy", kGroup, 1.0f, cosine, facial::TangentMode::Auto));
+  ASSERT_TRUE(doc.keyExclusive("surprise", kGroup, 2.0f, cosine, facial::TangentMode::Auto));
+  ASSERT_EQ(doc.tracks().size(), 3u);
+  const size_t happy = *doc.findTrack("happy"), surprise = *doc.findTrack("surprise");
+  // The new tracks hold 0 at the earlier key times, so each emotion rises from its predecessor's key.
+  EXPECT_EQ(times(doc, surprise), (std::vector<float>{0.0f, 1.0f, 2.0f}));
+  EXPECT_FLOAT_EQ(doc.sample(happy, 0.5f), 0.5f);  // cosine midpoint
+  EXPECT_LT(doc.sample(happy, 0.25f), 0.25f);      // eased
+  EXPECT_FLOAT_EQ(doc.sample(happy, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(doc.sample(surprise, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(doc.sample(happy, 2.0f), 0.0f);
+  EXPECT_EQ(doc.selection().size(), 3u);  // the keys at 2 s
+  ASSERT_TRUE(doc.undo());
+  EXPECT_FALSE(doc.findTrack("surprise").has_value());
+  EXPECT_FALSE(doc.keyExclusive("giggle", kGroup, 1.0f, cosine, facial::TangentMode::Auto));
+  EXPECT_FALSE(doc.keyExclusive("happy", kGroup, -1.0f, cosine, facial::TangentMode::Auto));
+  ASSERT_TRUE(doc.keyExclusive("happy", kGroup, 4.0f, cosine, facial::TangentMode::Auto));  // past the end: grows
+  EXPECT_FLOAT_EQ(doc.duration(), 4.0f);
+}
+
+}  // namespace dope

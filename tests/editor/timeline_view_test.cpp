@@ -1,5 +1,7 @@
 // TimelineView: the timeline panel's canvas geometry without ImGui: time and
 // value to pixels and back, which row and key a click lands on, the ruler.
+#include <array>
+
 #include <gtest/gtest.h>
 
 #include "editor/timeline_document.h"
@@ -89,3 +91,76 @@ TEST(TimelineView, RulerLabelsGetSparserOnLongerClips) {
 }
 
 }  // namespace
+
+// ---- Groups, rows and the time window (issue 34) ----
+
+namespace groups {
+
+using editor::TrackGroup;
+
+TEST(TimelineViewGroups, ChannelsJoinTheGroupTheirNameSays) {
+  EXPECT_EQ(editor::trackGroupOf("AU1_InnerBrowRaiser"), TrackGroup::Brows);
+  EXPECT_EQ(editor::trackGroupOf("browInnerUp"), TrackGroup::Brows);
+  EXPECT_EQ(editor::trackGroupOf("eyeBlinkLeft"), TrackGroup::Eyes);
+  EXPECT_EQ(editor::trackGroupOf("AU45_Blink_L"), TrackGroup::Eyes);
+  EXPECT_EQ(editor::trackGroupOf("AU6_CheekRaiser"), TrackGroup::Cheeks);
+  EXPECT_EQ(editor::trackGroupOf("noseSneerLeft"), TrackGroup::Cheeks);
+  EXPECT_EQ(editor::trackGroupOf("AU12_LipCornerPuller_L"), TrackGroup::Mouth);
+  EXPECT_EQ(editor::trackGroupOf("mouthSmileLeft"), TrackGroup::Mouth);
+  EXPECT_EQ(editor::trackGroupOf("AU26_JawDrop"), TrackGroup::Jaw);
+  EXPECT_EQ(editor::trackGroupOf("happy"), TrackGroup::Emotions);
+  EXPECT_EQ(editor::trackGroupOf("viseme_PP"), TrackGroup::Visemes);
+  EXPECT_EQ(editor::trackGroupOf("Fcl_HA_Hide"), TrackGroup::Targets);
+  EXPECT_EQ(editor::trackGroupName(TrackGroup::Targets), "targets");
+}
+
+TEST(TimelineViewGroups, RowsPutAHeaderOverEachGroupAndFoldCollapsedOnes) {
+  editor::TimelineDocument doc("rows", 2.0f);
+  for (const char* channel : {"happy", "AU26_JawDrop", "browInnerUp", "sad", "custom"}) ASSERT_TRUE(doc.addTrack(channel));
+  const auto rows = editor::layoutTrackRows(doc.tracks(), {});
+  // brows: header + browInnerUp; jaw: header + jaw; emotions: header + happy + sad; targets: header + custom.
+  ASSERT_EQ(rows.size(), 9u);
+  EXPECT_FALSE(rows[0].track.has_value());
+  EXPECT_EQ(rows[0].group, TrackGroup::Brows);
+  EXPECT_EQ(rows[1].track, 2u);
+  EXPECT_EQ(rows[5].track, 0u);
+  EXPECT_EQ(rows[6].track, 3u);
+  std::array<bool, editor::kTrackGroupCount> collapsed{};
+  collapsed[size_t(TrackGroup::Emotions)] = true;
+  const auto folded = editor::layoutTrackRows(doc.tracks(), collapsed);
+  ASSERT_EQ(folded.size(), 7u);  // the emotions' header stays
+  EXPECT_EQ(folded[4].group, TrackGroup::Emotions);
+  EXPECT_FALSE(folded[4].track.has_value());
+  // A click on a row maps to its track; a header row has no key.
+  TimelineView view = TimelineView::fit(kArea, rows.size(), 2.0f, 0.0f, 1.0f);
+  ASSERT_TRUE(doc.setKey(2, 1.0f, 1.0f));
+  const auto hit = view.hitAt(doc.tracks(), rows, {view.xAt(1.0f), view.yAt(1, 1.0f)});
+  ASSERT_TRUE(hit && hit->key);
+  EXPECT_FALSE(view.hitAt(doc.tracks(), rows, {view.xAt(1.0f), view.yAt(0, 1.0f)})->key.has_value());
+}
+
+TEST(TimelineViewGroups, TheTimeWindowZoomsAboutTheMouseAndPans) {
+  editor::TimeWindow window{0.0f, 2.0f};
+  window.zoom(0.5f, 2.0f);  // closer, keeping 0.5 s in place
+  EXPECT_FLOAT_EQ(window.start, 0.25f);
+  EXPECT_FLOAT_EQ(window.end, 1.25f);
+  window.pan(0.5f);
+  EXPECT_FLOAT_EQ(window.start, 0.75f);
+  window.zoom(1.0f, 1000.0f);
+  EXPECT_FLOAT_EQ(window.span(), editor::TimeWindow::kMinSpan);
+  window.frame(1.0f, 2.0f);
+  EXPECT_FLOAT_EQ(window.start, 0.95f);
+  EXPECT_FLOAT_EQ(window.end, 2.05f);
+  window = {-50.0f, 100.0f};
+  window.clampTo(2.0f);  // at most twice the clip, not far off it
+  EXPECT_FLOAT_EQ(window.span(), 4.0f);
+  EXPECT_GE(window.start, -2.0f);
+  // The view shows the window across the canvas.
+  TimelineView view = TimelineView::fit(kArea, 1, 2.0f, 0.0f, 1.0f);
+  view.showTime({0.5f, 1.5f});
+  EXPECT_FLOAT_EQ(view.xAt(0.5f), view.canvasLeft());
+  EXPECT_FLOAT_EQ(view.xAt(1.5f), view.canvasRight());
+  EXPECT_FLOAT_EQ(view.timeAt(view.xAt(1.2f)), 1.2f);
+}
+
+}  // namespace groups

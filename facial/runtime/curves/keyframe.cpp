@@ -13,6 +13,35 @@ std::string_view keyInterpolationName(KeyInterpolation value) { return eng::name
 
 std::optional<KeyInterpolation> keyInterpolationFromName(std::string_view name) { return eng::valueNamed(kKeyInterpolationNames, name); }
 
+std::string_view tangentModeName(TangentMode value) { return eng::nameOf(kTangentModeNames, value); }
+
+std::optional<TangentMode> tangentModeFromName(std::string_view name) { return eng::valueNamed(kTangentModeNames, name); }
+
+namespace {
+
+// Catmull-Rom slope through the neighbours; 0 at the ends, at a peak or a dip
+// and beside a level neighbour (the curve would overshoot the key otherwise).
+float autoSlope(std::span<const Keyframe> keys, size_t i) {
+  if (i == 0 || i + 1 >= keys.size()) return 0.0f;
+  const Keyframe &a = keys[i - 1], &k = keys[i], &b = keys[i + 1];
+  if ((k.value - a.value) * (b.value - k.value) <= 0.0f) return 0.0f;
+  return (b.value - a.value) / (b.time - a.time);
+}
+
+}  // namespace
+
+void resolveTangents(std::span<Keyframe> keys) {
+  for (size_t i = 0; i < keys.size(); ++i) {
+    Keyframe& k = keys[i];
+    switch (k.tangent) {
+      case TangentMode::Broken: break;
+      case TangentMode::Auto: k.inTangent = k.outTangent = autoSlope(keys, i); break;
+      case TangentMode::Smooth: k.inTangent = k.outTangent; break;
+      case TangentMode::Flat: k.inTangent = k.outTangent = 0.0f; break;
+    }
+  }
+}
+
 eng::Result<void> validateKeys(std::span<const Keyframe> keys) {
   if (keys.empty()) return eng::makeError(eng::ErrorKind::Malformed, "no keys");
   for (size_t i = 0; i < keys.size(); ++i) {

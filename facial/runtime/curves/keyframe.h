@@ -21,12 +21,23 @@ enum class KeyInterpolation : uint8_t {
   Hermite,  // cubic Hermite: key k's outTangent, key k+1's inTangent (value per second)
 };
 
+// Where a key's tangents (inTangent, outTangent) come from. The curve editor
+// and the runtime both resolve them with resolveTangents(), so a clip plays
+// exactly the curve the editor draws.
+enum class TangentMode : uint8_t {
+  Broken,  // in and out as given, independent (the default: files without modes keep their slopes)
+  Auto,    // Catmull-Rom through the neighbours, flat at the ends and at a peak or dip (no overshoot there)
+  Smooth,  // one slope both sides: out is given, in follows it
+  Flat,    // both 0
+};
+
 struct Keyframe {
   float time = 0;
   float value = 0;
   float inTangent = 0;   // d value / d time arriving at this key (Hermite segments ending here)
   float outTangent = 0;  // d value / d time leaving this key (Hermite segment starting here)
   KeyInterpolation interpolation = KeyInterpolation::Linear;
+  TangentMode tangent = TangentMode::Broken;
 };
 
 inline constexpr eng::EnumName<KeyInterpolation> kKeyInterpolationNames[] = {
@@ -37,6 +48,20 @@ inline constexpr eng::EnumName<KeyInterpolation> kKeyInterpolationNames[] = {
 };
 std::string_view keyInterpolationName(KeyInterpolation value);
 std::optional<KeyInterpolation> keyInterpolationFromName(std::string_view name);
+
+inline constexpr eng::EnumName<TangentMode> kTangentModeNames[] = {
+    {TangentMode::Broken, "broken"},
+    {TangentMode::Auto, "auto"},
+    {TangentMode::Smooth, "smooth"},
+    {TangentMode::Flat, "flat"},
+};
+std::string_view tangentModeName(TangentMode value);
+std::optional<TangentMode> tangentModeFromName(std::string_view name);
+
+// Sets each key's inTangent / outTangent from its TangentMode (sorted keys;
+// Broken keys are left alone). Run after every edit of a key array and after
+// reading one, so editor and runtime sample the same curve.
+void resolveTangents(std::span<Keyframe> keys);
 
 // Times, values and tangents (weight per second) of a key stay within this:
 // real curves hold seconds and weights of a few units, while a tangent of

@@ -14,7 +14,14 @@ eng::Result<KeyInterpolation> parseKeyInterpolation(const JsonNode& name) {
 
 namespace {
 
-// One key: [time, value], or {"t", "v", "interp", "in", "out"}.
+eng::Result<TangentMode> parseTangentMode(const JsonNode& name) {
+  const std::string text = ENG_TRY_VALUE(name.string());
+  auto mode = tangentModeFromName(text);
+  if (!mode) return name.error("unknown tangent mode '" + text + "' (expected " + eng::nameList(kTangentModeNames) + ")");
+  return *mode;
+}
+
+// One key: [time, value], or {"t", "v", "interp", "in", "out", "tangent"}.
 eng::Result<Keyframe> parseKeyframe(const JsonNode& key, KeyInterpolation defaultInterpolation) {
   Keyframe k;
   k.interpolation = defaultInterpolation;
@@ -25,12 +32,13 @@ eng::Result<Keyframe> parseKeyframe(const JsonNode& key, KeyInterpolation defaul
     k.value = ENG_TRY_VALUE(key.element(1).number());
     return k;
   }
-  ENG_TRY(key.allowOnly({"t", "v", "interp", "in", "out"}));
+  ENG_TRY(key.allowOnly({"t", "v", "interp", "in", "out", "tangent"}));
   k.time = ENG_TRY_VALUE(key.numberAt("t"));
   k.value = ENG_TRY_VALUE(key.numberAt("v"));
   if (auto interp = key.find("interp")) k.interpolation = ENG_TRY_VALUE(parseKeyInterpolation(*interp));
   k.inTangent = ENG_TRY_VALUE(key.numberOr("in", 0.0f));
   k.outTangent = ENG_TRY_VALUE(key.numberOr("out", 0.0f));
+  if (auto tangent = key.find("tangent")) k.tangent = ENG_TRY_VALUE(parseTangentMode(*tangent));
   return k;
 }
 
@@ -49,6 +57,7 @@ eng::Result<std::vector<Keyframe>> parseKeyframes(const JsonNode& keys, KeyInter
     out.push_back(k);
   }
   if (out.empty()) return keys.error("no keys");
+  resolveTangents(out);  // the slopes the editor drew: the same function made them
   return out;
 }
 
@@ -107,7 +116,8 @@ using detail::jsonNumber;
 Json keyframesToJson(std::span<const Keyframe> keys, KeyInterpolation defaultInterpolation) {
   Json out = Json::array();
   for (const Keyframe& k : keys) {
-    if (k.interpolation == defaultInterpolation && k.inTangent == 0.0f && k.outTangent == 0.0f) {
+    if (k.interpolation == defaultInterpolation && k.inTangent == 0.0f && k.outTangent == 0.0f &&
+        k.tangent == TangentMode::Broken) {
       out.push_back({jsonNumber(k.time), jsonNumber(k.value)});
       continue;
     }
@@ -115,6 +125,7 @@ Json keyframesToJson(std::span<const Keyframe> keys, KeyInterpolation defaultInt
     if (k.interpolation != defaultInterpolation) key["interp"] = keyInterpolationName(k.interpolation);
     if (k.inTangent != 0.0f) key["in"] = jsonNumber(k.inTangent);
     if (k.outTangent != 0.0f) key["out"] = jsonNumber(k.outTangent);
+    if (k.tangent != TangentMode::Broken) key["tangent"] = tangentModeName(k.tangent);
     out.push_back(std::move(key));
   }
   return out;

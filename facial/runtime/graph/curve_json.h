@@ -2,6 +2,8 @@
 // JSON forms of keys and easing curves, shared by timeline files and graphs.
 //   key:   [time, value]                    (interpolation from the enclosing default)
 //          {"t": 0.5, "v": 1, "interp": "hermite", "in": 0, "out": -2}
+//          {"t": 0.5, "v": 1, "interp": "hermite", "tangent": "auto"}   (tangent: broken (default:
+//          "in"/"out" as given), auto, smooth ("in" follows "out"), flat; resolveTangents() in keyframe.h)
 //   curve: "linear" | "cosine" | "smoothstep"
 //          {"type": "bezier", "handles": [x1, y1, x2, y2]}
 //          {"type": "keyed", "keys": [[0,0], [0.3,0.7], [1,1]], "interpolation": "linear"}

@@ -3,6 +3,8 @@
 //   {"version": 1, "name": "talk", "duration": 2.0, "loop": "loop",
 //    "tracks": [{"channel": "AU26_JawDrop", "interpolation": "cosine",
 //                "keys": [[0, 0], [0.25, 0.6], {"t": 0.5, "v": 0, "interp": "hermite", "in": 0, "out": -1}]}]}
+// A key's "tangent" (auto, smooth, flat, broken) says where its slopes come from
+// (curve_json.h); files without it keep "in" / "out" as written.
 // "duration" defaults to the last key time, "loop" (once|clamp, loop, pingpong)
 // to once, "interpolation" (a track's default per key) to linear.
 #include <filesystem>

@@ -105,3 +105,49 @@ TEST(KeyframeValidity, InterpolationNamesRoundTrip) {
     EXPECT_EQ(facial::keyInterpolationFromName(facial::keyInterpolationName(k)), k);
   EXPECT_FALSE(facial::keyInterpolationFromName("bezier").has_value());
 }
+
+// ---- Tangent modes: the slopes the editor's curve view and the runtime both derive ----
+
+TEST(KeyframeTangents, AutoIsCatmullRomFlatAtTheEndsAndAtPeaks) {
+  std::vector<Keyframe> keys = {key(0, 0, KeyInterpolation::Hermite), key(1, 0.5f, KeyInterpolation::Hermite),
+                                key(2, 1, KeyInterpolation::Hermite), key(3, 0.2f, KeyInterpolation::Hermite),
+                                key(4, 0.4f)};
+  for (Keyframe& k : keys) k.tangent = facial::TangentMode::Auto;
+  facial::resolveTangents(keys);
+  EXPECT_FLOAT_EQ(keys[0].outTangent, 0.0f);   // end
+  EXPECT_FLOAT_EQ(keys[1].inTangent, 0.5f);    // (1 - 0) / (2 - 0)
+  EXPECT_FLOAT_EQ(keys[1].outTangent, 0.5f);
+  EXPECT_FLOAT_EQ(keys[2].outTangent, 0.0f);   // a peak: no overshoot above it
+  EXPECT_FLOAT_EQ(keys[3].inTangent, 0.0f);    // a dip
+  EXPECT_FLOAT_EQ(keys[4].inTangent, 0.0f);    // end
+  // The curve never leaves the range of its keys around the peak.
+  for (float t = 1.0f; t <= 3.0f; t += 0.01f) EXPECT_LE(facial::sampleKeys(keys, t), 1.0f + 1e-6f);
+  // Beside a level neighbour: flat too (no dip below the level stretch).
+  std::vector<Keyframe> level = {key(0, 1, KeyInterpolation::Hermite), key(1, 0, KeyInterpolation::Hermite),
+                                 key(2, 0, KeyInterpolation::Hermite), key(3, 1)};
+  for (Keyframe& k : level) k.tangent = facial::TangentMode::Auto;
+  facial::resolveTangents(level);
+  EXPECT_FLOAT_EQ(level[1].outTangent, 0.0f);
+  for (float t = 0.0f; t <= 3.0f; t += 0.01f) EXPECT_GE(facial::sampleKeys(level, t), -1e-6f);
+}
+
+TEST(KeyframeTangents, SmoothFollowsOutFlatIsZeroBrokenKeepsBoth) {
+  std::vector<Keyframe> keys = {key(0, 0, KeyInterpolation::Hermite, 3, 2), key(1, 1, KeyInterpolation::Hermite, 5, -1),
+                                key(2, 0, KeyInterpolation::Hermite, 7, 9)};
+  keys[0].tangent = facial::TangentMode::Smooth;
+  keys[1].tangent = facial::TangentMode::Flat;
+  keys[2].tangent = facial::TangentMode::Broken;
+  facial::resolveTangents(keys);
+  EXPECT_FLOAT_EQ(keys[0].inTangent, 2.0f);
+  EXPECT_FLOAT_EQ(keys[0].outTangent, 2.0f);
+  EXPECT_FLOAT_EQ(keys[1].inTangent, 0.0f);
+  EXPECT_FLOAT_EQ(keys[1].outTangent, 0.0f);
+  EXPECT_FLOAT_EQ(keys[2].inTangent, 7.0f);
+  EXPECT_FLOAT_EQ(keys[2].outTangent, 9.0f);
+}
+
+TEST(KeyframeTangents, ModeNamesReadBack) {
+  for (const auto& entry : facial::kTangentModeNames)
+    EXPECT_EQ(facial::tangentModeFromName(facial::tangentModeName(entry.value)), entry.value);
+  EXPECT_FALSE(facial::tangentModeFromName("clamped").has_value());
+}

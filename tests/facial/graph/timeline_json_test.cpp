@@ -148,3 +148,33 @@ TEST(TimelineJsonValidity, KeyValuesOutsideTheWeightRangeAreRefused) {
   auto edge = timelineFromJson(Json::parse(R"({"tracks": [{"channel": "a", "keys": [[0, -10], [1, 10]]}]})"), "edge");
   EXPECT_TRUE(edge.ok()) << edge.error().message;
 }
+
+TEST(TimelineJson, TangentModesAreReadResolvedAndWrittenBack) {
+  // An auto key's slopes come from its neighbours whatever "in"/"out" say; a
+  // key without "tangent" (every older file) keeps its slopes as written.
+  auto t = loadTimeline(writeTimeline("tangents", R"({"version": 1, "tracks": [{"channel": "a", "keys": [
+      [0, 0],
+      {"t": 1, "v": 0.5, "interp": "hermite", "tangent": "auto", "in": 9, "out": 9},
+      {"t": 2, "v": 1, "interp": "hermite", "in": 0.25, "out": -3},
+      {"t": 3, "v": 1, "tangent": "flat"}]}]})"));
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  const auto keys = t->trackKeys(0);
+  EXPECT_EQ(keys[1].tangent, TangentMode::Auto);
+  EXPECT_FLOAT_EQ(keys[1].outTangent, 0.5f);
+  EXPECT_FLOAT_EQ(keys[2].inTangent, 0.25f);
+  EXPECT_FLOAT_EQ(keys[2].outTangent, -3.0f);
+  EXPECT_EQ(keys[2].tangent, TangentMode::Broken);
+  EXPECT_EQ(keys[3].tangent, TangentMode::Flat);
+  const Json written = timelineToJson(*t);
+  EXPECT_EQ(written["tracks"][0]["keys"][1]["tangent"], "auto");
+  EXPECT_FALSE(written["tracks"][0]["keys"][2].contains("tangent"));
+  auto back = timelineFromJson(written, "back");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    EXPECT_EQ(back->keys[i].inTangent, keys[i].inTangent) << i;
+    EXPECT_EQ(back->keys[i].outTangent, keys[i].outTangent) << i;
+    EXPECT_EQ(back->keys[i].tangent, keys[i].tangent) << i;
+  }
+  EXPECT_NE(loadError("bad_tangent", R"({"version": 1, "tracks": [{"channel": "a", "keys": [
+      {"t": 0, "v": 0, "tangent": "clamped"}, [1, 1]]}]})").find("unknown tangent mode 'clamped'"), std::string::npos);
+}
