@@ -39,8 +39,8 @@ build="${FACIAL_SANITIZE_BUILD_DIR:-build-sanitize}"
 # test_bake_head 100, test_engine_vk 60, test_soak 50, test_cli_demo 35, the rest
 # under 25), so that two at a time finish together.
 vulkan_free=(test_bake_head test_facial_speech test_facial_json test_audio test_facial_graph test_engine_scene test_editor_files test_facial_rig test_importers test_autorig test_bake test_engine_image test_engine_view test_facial_character)
-# test_app renders (the landmark finder, on-the-fly rigging): the driver is preloaded for it.
-vulkan_ci=(test_cli test_engine_vk test_soak test_app test_cli_demo)
+# test_app (the landmark finder, on-the-fly rigging) and test_dataset render: the driver is preloaded for them.
+vulkan_ci=(test_cli test_engine_vk test_soak test_app test_dataset test_cli_demo)
 vulkan_windows=(test_cli_demo_window test_editor)
 # What CI leaves out of an executable (a gtest negative filter), unless FACIAL_SANITIZE_ALL=1.
 ci_excluded() {
