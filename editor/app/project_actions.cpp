@@ -148,7 +148,8 @@ bool ProjectActions::exportGlb(const fs::path& path) {
   if (!panels_.timeline->document().tracks().empty()) clips.push_back(&panels_.timeline->document());
   for (const TimelineDocument& clip : others) clips.push_back(&clip);
   TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights(), &panels_.face->expressions());
-  auto exported = editor::exportGlb(panels_.sculpt->workingModel(), clips, pose, panels_.face->layout(), path);
+  auto exported = editor::exportGlb(panels_.sculpt->workingModel(), clips, pose, panels_.face->layout(), path,
+                                    kGlbExportSampleRate, panels_.sculpt->bakedTargets());
   if (!exported) return fail(exported.error().message);
   message_.report("exported " + path.string() + ": the face with " + std::to_string(panels_.sculpt->bakedTargets().size()) +
                       " sculpted target(s) and " + std::to_string(exported->animations) + " clip(s) as weights animations" +

@@ -192,6 +192,13 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     case app::SpeechBox::Action::Stop: pressStopSpeaking(); break;
     case app::SpeechBox::Action::None: break;
   }
+  drawParameters();
+}
+
+// The graph's float and bool parameters as sliders and check boxes.
+void StateMachinePanel::drawParameters() {
+  facial::GraphInstance& graph = driver_->graph();
+  const facial::GraphDefinition& definition = graph.definition();
   ImGui::Separator();
   ImGui::TextDisabled("parameters");
   for (facial::ParameterIndex p = 0; p < definition.parameters().size(); ++p) {
