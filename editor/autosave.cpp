@@ -115,6 +115,12 @@ fs::path projectSculptAutosavePath(const fs::path& project) {
   return project.parent_path() / ("." + stem.string() + ".sculpt.autosave.glb");
 }
 
+fs::path projectGraphAutosavePath(const fs::path& project) {
+  fs::path stem = project.filename();
+  stem.replace_extension();
+  return project.parent_path() / ("." + stem.string() + ".graph.autosave.json");
+}
+
 eng::Result<std::optional<RecoveredProject>> recoverProjectAutosave(const fs::path& project) {
   const fs::path file = projectAutosavePath(project);
   bool projectExists = false;
@@ -133,6 +139,7 @@ void discardProjectAutosave(const fs::path& project) {
   std::error_code ignored;
   fs::remove(projectAutosavePath(project), ignored);
   fs::remove(projectSculptAutosavePath(project), ignored);
+  fs::remove(projectGraphAutosavePath(project), ignored);
 }
 
 }  // namespace editor

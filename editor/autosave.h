@@ -90,6 +90,8 @@ eng::Result<std::optional<RecoveredTimeline>> recoverAutosave(const std::filesys
 // recovers.
 std::filesystem::path projectAutosavePath(const std::filesystem::path& project);
 std::filesystem::path projectSculptAutosavePath(const std::filesystem::path& project);
+// A graph edited in the diagram and not saved yet: ".<stem>.graph.autosave.json".
+std::filesystem::path projectGraphAutosavePath(const std::filesystem::path& project);
 
 struct RecoveredProject {
   Project project;      // unsaved: saving writes it to the project's path

@@ -71,7 +71,8 @@ eng::Result<SampledClip> sampleClipWeights(const TimelineDocument& clip, Timelin
 }
 
 eng::Result<GlbExportSummary> exportGlb(eng::Model model, std::span<const TimelineDocument* const> clips, TimelinePose& pose,
-                                        const eng::WeightLayout& layout, const fs::path& path, float sampleRate) {
+                                        const eng::WeightLayout& layout, const fs::path& path, float sampleRate,
+                                        std::span<const std::pair<std::string, float>> held) {
   GlbExportSummary summary;
   for (const TimelineDocument* clip : clips) {
     auto sampled = sampleClipWeights(*clip, pose, layout, sampleRate);
@@ -80,6 +81,12 @@ eng::Result<GlbExportSummary> exportGlb(eng::Model model, std::span<const Timeli
     if (sampled->mesh < 0) continue;
     const auto node = std::find_if(model.nodes.begin(), model.nodes.end(), [&](const eng::Node& n) { return n.mesh == sampled->mesh; });
     if (node == model.nodes.end()) continue;  // a mesh no node draws is not shown either
+    const std::vector<std::string>& meshTargets = model.meshes[size_t(sampled->mesh)].targetNames;
+    for (const auto& [name, weight] : held)
+      if (std::find(meshTargets.begin(), meshTargets.end(), name) != meshTargets.end() && !sampled->timeline.findTrack(name)) {
+        const facial::Keyframe hold[] = {{.time = 0.0f, .value = weight}, {.time = clip->duration(), .value = weight}};
+        sampled->timeline.addTrack(name, hold);
+      }
     if (auto added = bake::exportGltfTimeline(model, sampled->timeline, {.node = int(node - model.nodes.begin())}); !added)
       return added.error().prefixed(path.string() + ": clip '" + clip->name() + "': ");
     ++summary.animations;

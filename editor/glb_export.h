@@ -43,9 +43,13 @@ struct GlbExportSummary {
 
 // Appends every clip to `model` (the face with its baked targets: it has
 // every target of `layout` by name) as an animation named like the clip and
-// writes it to `path` whole (nothing half-written on failure).
+// writes it to `path` whole (nothing half-written on failure). `held`:
+// targets of the model outside `layout` (the baked ones) and the weight the
+// editor shows them at, held over every clip (a glTF weights animation sets
+// every target of its mesh, so they must be in it).
 eng::Result<GlbExportSummary> exportGlb(eng::Model model, std::span<const TimelineDocument* const> clips, TimelinePose& pose,
                                         const eng::WeightLayout& layout, const std::filesystem::path& path,
-                                        float sampleRate = kGlbExportSampleRate);
+                                        float sampleRate = kGlbExportSampleRate,
+                                        std::span<const std::pair<std::string, float>> held = {});
 
 }  // namespace editor

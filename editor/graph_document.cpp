@@ -311,11 +311,15 @@ void GraphDocument::discardLast() {
   if (undo()) redo_.pop_back();
 }
 
-eng::Result<void> GraphDocument::save(const std::filesystem::path& path) {
+eng::Result<void> GraphDocument::writeCopy(const std::filesystem::path& path) const {
   const std::string text = document_.dump(2) + "\n";
-  ENG_TRY(eng::writeFileWhole(path, [&](const std::filesystem::path& partial) -> eng::Result<void> {
+  return eng::writeFileWhole(path, [&](const std::filesystem::path& partial) -> eng::Result<void> {
     return eng::writeFileBytes(partial, text.data(), text.size());
-  }));
+  });
+}
+
+eng::Result<void> GraphDocument::save(const std::filesystem::path& path) {
+  ENG_TRY(writeCopy(path));
   savedRevision_ = revision_;
   return {};
 }

@@ -79,6 +79,8 @@ class GraphDocument {
 
   // Writes the graph file whole (a failed save leaves the old file). Marks the document saved.
   eng::Result<void> save(const std::filesystem::path& path);
+  // The same file, leaving the document unsaved (an autosave).
+  eng::Result<void> writeCopy(const std::filesystem::path& path) const;
   bool dirty() const { return revision_ != savedRevision_; }
   // Changes with every edit, undo and redo.
   uint64_t revision() const { return revision_; }

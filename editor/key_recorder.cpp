@@ -100,26 +100,26 @@ eng::Result<RecordingSummary> writeRecording(TimelineDocument& document, std::sp
     }
   if (tracks.empty() || last < first) return summary;
   summary.seconds = last - first;
-  if (last > document.duration()) ENG_TRY(document.setDuration(last));
-  // The recorded span is replaced: keys already there would bend the gesture.
-  document.clearSelection();
-  for (const RecordedTrack& t : tracks)
-    if (const auto track = document.findTrack(t.channel))
-      for (const DocumentKey& k : document.tracks()[*track].keys)
-        if (k.key.time >= first - TimelineDocument::kMinKeySpacing && k.key.time <= last + TimelineDocument::kMinKeySpacing)
-          document.select(k.id, true);
-  if (!document.selection().empty()) ENG_TRY(document.deleteSelected());
-  for (const RecordedTrack& t : tracks) {
-    const auto found = document.findTrack(t.channel);
-    size_t track = 0;
-    if (found)
-      track = *found;
-    else
-      track = ENG_TRY_VALUE(document.addTrack(t.channel));
-    for (const facial::Keyframe& k : t.keys) ENG_TRY(document.setKey(track, k.time, k.value));
-    ++summary.tracks;
-    summary.keys += t.keys.size();
-  }
+  // One undo step: Ctrl+Z takes the whole take back.
+  ENG_TRY(document.grouped("record", [&]() -> eng::Result<void> {
+    if (last > document.duration()) ENG_TRY(document.setDuration(last));
+    // The recorded span is replaced: keys already there would bend the gesture.
+    document.clearSelection();
+    for (const RecordedTrack& t : tracks)
+      if (const auto track = document.findTrack(t.channel))
+        for (const DocumentKey& k : document.tracks()[*track].keys)
+          if (k.key.time >= first - TimelineDocument::kMinKeySpacing && k.key.time <= last + TimelineDocument::kMinKeySpacing)
+            document.select(k.id, true);
+    if (!document.selection().empty()) ENG_TRY(document.deleteSelected());
+    for (const RecordedTrack& t : tracks) {
+      const auto found = document.findTrack(t.channel);
+      const size_t track = found ? *found : ENG_TRY_VALUE(document.addTrack(t.channel));
+      for (const facial::Keyframe& k : t.keys) ENG_TRY(document.setKey(track, k.time, k.value));
+      ++summary.tracks;
+      summary.keys += t.keys.size();
+    }
+    return {};
+  }));
   return summary;
 }
 

@@ -30,12 +30,49 @@ eng::Result<fs::path> pathAt(const facial::JsonNode& object, std::string_view ke
   return (path.is_absolute() ? path : folderOf(project) / path).lexically_normal();
 }
 
+eng::Result<std::vector<std::string>> readNames(const facial::JsonNode& j, std::string_view key) {
+  std::vector<std::string> names;
+  if (const auto list = j.find(key)) {
+    const size_t count = ENG_TRY_VALUE(list->size());
+    for (size_t i = 0; i < count; ++i) names.push_back(ENG_TRY_VALUE(list->element(i).string()));
+  }
+  return names;
+}
+
+eng::Result<TimelineSettings> readClipSettings(const facial::JsonNode& j) {
+  ENG_TRY(j.allowOnly({"fps", "speed", "loop", "muted", "solo"}));
+  TimelineSettings s;
+  s.frameRate = ENG_TRY_VALUE(j.numberOr("fps", 30.0f));
+  if (!(s.frameRate >= 1.0f && s.frameRate <= 1000.0f)) return j.error("fps " + facial::formatNumber(s.frameRate) + " must be 1 to 1000");
+  s.playback.speed = ENG_TRY_VALUE(j.numberOr("speed", 1.0f));
+  if (!(s.playback.speed >= 0.05f && s.playback.speed <= 20.0f))
+    return j.error("speed " + facial::formatNumber(s.playback.speed) + " must be 0.05 to 20");
+  if (const auto loop = j.find("loop")) {
+    if (ENG_TRY_VALUE(loop->size()) != 2) return loop->error("expected [start, end] seconds");
+    s.playback.hasLoopRange = true;
+    s.playback.loopStart = ENG_TRY_VALUE(loop->element(0).number());
+    s.playback.loopEnd = ENG_TRY_VALUE(loop->element(1).number());
+    if (!(s.playback.loopStart >= 0.0f && s.playback.loopEnd > s.playback.loopStart))
+      return loop->error("loop range must start at 0 or later and end after it");
+  }
+  s.muted = ENG_TRY_VALUE(readNames(j, "muted"));
+  s.solo = ENG_TRY_VALUE(readNames(j, "solo"));
+  return s;
+}
+
+facial::Json clipSettingsToJson(const TimelineSettings& s) {
+  facial::Json json = {{"fps", s.frameRate}, {"speed", s.playback.speed}, {"muted", s.muted}, {"solo", s.solo}};
+  if (s.playback.hasLoopRange) json["loop"] = {s.playback.loopStart, s.playback.loopEnd};
+  return json;
+}
+
 eng::Result<ProjectClip> readClip(const facial::JsonNode& j, const fs::path& project) {
-  ENG_TRY(j.allowOnly({"name", "file"}));
+  ENG_TRY(j.allowOnly({"name", "file", "settings"}));
   ProjectClip clip;
   clip.name = ENG_TRY_VALUE(j.stringAt("name"));
   clip.file = ENG_TRY_VALUE(pathAt(j, "file", project));
   if (clip.file.empty()) return j.error("a clip needs its timeline \"file\"");
+  if (const auto settings = j.find("settings")) clip.settings = ENG_TRY_VALUE(readClipSettings(*settings));
   return clip;
 }
 
@@ -87,9 +124,16 @@ fs::path projectSculptPath(const fs::path& project) {
   return project.parent_path() / (stem.string() + ".sculpt.glb");
 }
 
+fs::path projectGraphPath(const fs::path& project) {
+  fs::path stem = project.filename();
+  stem.replace_extension();
+  return project.parent_path() / (stem.string() + ".graph.json");
+}
+
 facial::Json projectToJson(const Project& data, const fs::path& project) {
   facial::Json clips = facial::Json::array();
-  for (const ProjectClip& clip : data.clips) clips.push_back({{"name", clip.name}, {"file", stored(clip.file, project)}});
+  for (const ProjectClip& clip : data.clips)
+    clips.push_back({{"name", clip.name}, {"file", stored(clip.file, project)}, {"settings", clipSettingsToJson(clip.settings)}});
   facial::Json targets = facial::Json::array();
   for (const ProjectSculptTarget& t : data.sculptTargets) targets.push_back({{"name", t.name}, {"weight", t.weight}});
   return {{"version", kProjectFileVersion},

@@ -4,7 +4,8 @@
 //
 //   {"version": 1,
 //    "model": "faces/anna.glb", "rigmap": "", "graph": "graphs/anna.json",
-//    "clips": [{"name": "hello", "file": "anna.clips/hello.json"}],
+//    "clips": [{"name": "hello", "file": "anna.clips/hello.json",
+//               "settings": {"fps": 24, "speed": 0.5, "loop": [0.5, 2], "muted": ["AU12"], "solo": []}}],
 //    "sculpt": {"file": "anna.sculpt.glb", "targets": [{"name": "smirk", "weight": 1}]},
 //    "view": {"yaw": 10, "pitch": -5, "zoom": 1.2, "framing": "face"}}
 //
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "editor/timeline_document.h"
 #include "engine/core/result.h"
 #include "facial/runtime/json/json_document.h"
 
@@ -29,6 +31,8 @@ inline constexpr int kProjectFileVersion = 1;
 struct ProjectClip {
   std::string name;
   std::filesystem::path file;  // timeline JSON
+  // The editor's settings for it (frame rate, loop range, speed, mute / solo), which the timeline file does not hold.
+  TimelineSettings settings;
 };
 
 struct ProjectSculptTarget {
@@ -54,10 +58,11 @@ struct Project {
   ProjectView view;
 };
 
-// Where a project's own files go, beside it: "<dir>/<stem>.clips/<clip>.json"
-// and "<dir>/<stem>.sculpt.glb" (the stem without ".json").
+// Where a project's own files go, beside it: "<dir>/<stem>.clips/<clip>.json",
+// "<dir>/<stem>.sculpt.glb" and an edited graph "<dir>/<stem>.graph.json" (the stem without ".json").
 std::filesystem::path projectClipPath(const std::filesystem::path& project, const std::string& clipName);
 std::filesystem::path projectSculptPath(const std::filesystem::path& project);
+std::filesystem::path projectGraphPath(const std::filesystem::path& project);
 
 // `project` names the file, for the relative paths.
 facial::Json projectToJson(const Project& data, const std::filesystem::path& project);

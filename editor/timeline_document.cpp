@@ -630,3 +630,34 @@ eng::Result<void> TimelineDocument::setSpeed(float speed) {
 }
 
 }  // namespace editor
+
+namespace editor {
+
+TimelineSettings TimelineDocument::settings() const {
+  TimelineSettings s{.frameRate = state_.frameRate, .playback = state_.playback};
+  for (const DocumentTrack& track : state_.tracks) {
+    if (track.muted) s.muted.push_back(track.channel);
+    if (track.solo) s.solo.push_back(track.channel);
+  }
+  return s;
+}
+
+void TimelineDocument::restoreSettings(const TimelineSettings& s) {
+  if (std::isfinite(s.frameRate) && s.frameRate >= 1.0f && s.frameRate <= 1000.0f) state_.frameRate = s.frameRate;
+  if (std::isfinite(s.playback.speed) && s.playback.speed >= 0.05f && s.playback.speed <= 20.0f) state_.playback.speed = s.playback.speed;
+  const PlaybackSettings& p = s.playback;
+  const bool loopFits = p.hasLoopRange && std::isfinite(p.loopStart) && std::isfinite(p.loopEnd) && p.loopStart >= 0.0f &&
+                        p.loopEnd <= state_.duration && p.loopEnd > p.loopStart;
+  state_.playback.hasLoopRange = loopFits;
+  if (loopFits) {
+    state_.playback.loopStart = p.loopStart;
+    state_.playback.loopEnd = p.loopEnd;
+  }
+  for (DocumentTrack& track : state_.tracks) {
+    track.muted = std::find(s.muted.begin(), s.muted.end(), track.channel) != s.muted.end();
+    track.solo = std::find(s.solo.begin(), s.solo.end(), track.channel) != s.solo.end();
+  }
+  ++revision_;  // players re-sample; serial (dirty) unchanged
+}
+
+}  // namespace editor

@@ -13,6 +13,7 @@
 //   doc.beginMove();
 //   doc.moveSelected(dt, dv);   // each frame, relative to beginMove()
 //   doc.endMove();              // commits one "move keys" step (none if nothing moved)
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -66,6 +67,15 @@ struct PlaybackSettings {
   float loopStart = 0.0f, loopEnd = 0.0f;
   float speed = 1.0f;
   bool operator==(const PlaybackSettings&) const = default;
+};
+
+// The editor settings of a clip that its timeline file (what the runtime
+// plays) does not hold; a project keeps them beside the clip.
+struct TimelineSettings {
+  float frameRate = 30.0f;
+  PlaybackSettings playback;
+  std::vector<std::string> muted, solo;  // channels
+  bool operator==(const TimelineSettings&) const = default;
 };
 
 struct KeyLocation {
@@ -133,6 +143,10 @@ class TimelineDocument {
   // caller's clock): wraps inside the loop range once it is reached, else
   // follows the clip's loop mode as the runtime does.
   float playheadAt(float playTime) const;
+  TimelineSettings settings() const;
+  // Puts saved settings back (a project opened): not an edit, the document
+  // stays as clean as it was; channels without a track and values out of range are skipped.
+  void restoreSettings(const TimelineSettings& settings);
   // Whether a track is heard in the preview: not muted, and soloed when any track is.
   bool audible(size_t track) const;
 
@@ -179,6 +193,11 @@ class TimelineDocument {
   eng::Result<void> clearLoopRange();
   // Playback speed, 0.05 to 20 (negative plays backwards is not offered).
   eng::Result<void> setSpeed(float speed);
+
+  // Several edits as one undo step `label` (a recording's keys): all of them
+  // stay, or none when one fails (its error is returned).
+  template <typename Edits>
+  eng::Result<void> grouped(std::string label, Edits&& edits);
 
   // Drag of the selection (see the file comment).
   void beginMove();
@@ -244,5 +263,22 @@ class TimelineDocument {
   float minValue_ = 0.0f;
   float maxValue_ = 1.0f;
 };
+
+template <typename Edits>
+eng::Result<void> TimelineDocument::grouped(std::string label, Edits&& edits) {
+  const size_t mark = undo_.size();
+  State before = state_;
+  eng::Result<void> done = edits();
+  const bool changed = undo_.size() > mark;
+  undo_.erase(undo_.begin() + std::ptrdiff_t(std::min(mark, undo_.size())), undo_.end());
+  if (!done) {
+    state_ = std::move(before);
+    ++revision_;
+    dropStaleSelection();
+    return done;
+  }
+  if (changed) commit(std::move(label), std::move(before));
+  return {};
+}
 
 }  // namespace editor

@@ -10,13 +10,20 @@ namespace {
 uint32_t actionUnitInputs() { return facial::rigInputCount() - uint32_t(facial::kEmotionCount); }
 }  // namespace
 
-TimelinePose::TimelinePose(const facial::RigMapping& rig, std::span<const float> baseWeights)
+TimelinePose::TimelinePose(const facial::RigMapping& rig, std::span<const float> baseWeights,
+                           const facial::ExpressionLibrary* expressions)
     : rig_(&rig), base_(baseWeights.begin(), baseWeights.end()) {
   for (uint32_t i = 0; i < facial::rigInputCount(); ++i) channelNames_.emplace_back(facial::rigInputName(i));
   for (const std::string& name : rig.targetNames())
     if (std::find(channelNames_.begin(), channelNames_.end(), name) == channelNames_.end()) channelNames_.push_back(name);
   actionUnits_.assign(actionUnitInputs(), 0.0f);
   emotions_.assign(facial::kEmotionCount, 0.0f);
+  emotionUnits_.resize(facial::kEmotionCount);
+  for (size_t e = 0; e < facial::kEmotionCount && expressions; ++e) {
+    const uint32_t input = actionUnitInputs() + uint32_t(e);
+    const facial::ExpressionPreset* preset = expressions->find(facial::rigInputName(input));
+    if (preset && rig.targets(input).empty()) emotionUnits_[e] = preset->actionUnits;
+  }
   if (rig.expressionStage()) expressionWeights_.assign(rig.controlNames().size(), 0.0f);
 }
 
@@ -44,6 +51,8 @@ eng::Result<void> TimelinePose::pose(const TimelineDocument& document, float tim
         emotions_[*input - actionUnits_.size()] = value;
     }
   }
+  for (size_t e = 0; e < emotions_.size(); ++e)
+    for (const facial::ActionUnitWeight& unit : emotionUnits_[e]) actionUnits_[unit.channel] += emotions_[e] * unit.weight;
   if (auto applied = rig_->apply(actionUnits_, emotions_, targets, expressionWeights_); !applied) return applied;
   for (size_t t = 0; t < tracks.size(); ++t) {
     if (!document.audible(t) || facial::rigInputIndex(tracks[t].channel)) continue;

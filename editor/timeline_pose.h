@@ -2,7 +2,10 @@
 // Poses a face from a timeline document: each track's channel is a rig input
 // (an action unit like "AU12_LipCornerPuller_L" or an emotion) mapped through
 // the model's RigMapping, or one of the model's own morph target names
-// written directly. Sized at construction; pose() does not allocate.
+// written directly. An emotion the rig binds to no target (an action-unit
+// face such as the built-in head) is played as its expression preset's action
+// units at the track's value, so keying "happy" shows happy on every face.
+// Sized at construction; pose() does not allocate.
 #include <span>
 #include <string>
 #include <string_view>
@@ -10,6 +13,7 @@
 
 #include "editor/timeline_document.h"
 #include "engine/core/result.h"
+#include "facial/runtime/rig/expression_library.h"
 #include "facial/runtime/rig/rig_mapping.h"
 
 namespace editor {
@@ -17,7 +21,9 @@ namespace editor {
 class TimelinePose {
  public:
   // rig must outlive this; baseWeights: the model's defaults (targets nothing drives).
-  TimelinePose(const facial::RigMapping& rig, std::span<const float> baseWeights);
+  // expressions: the presets unbound emotions are played through (none: such emotions do nothing).
+  TimelinePose(const facial::RigMapping& rig, std::span<const float> baseWeights,
+               const facial::ExpressionLibrary* expressions = nullptr);
 
   // Every channel a track may use: the rig inputs, then the model's target names.
   std::span<const std::string> channelNames() const { return channelNames_; }
@@ -38,6 +44,8 @@ class TimelinePose {
   std::vector<std::string> channelNames_;
   std::vector<float> actionUnits_;
   std::vector<float> emotions_;
+  // Per emotion: the action units it is played as (empty when the rig binds it, or it has none).
+  std::vector<std::vector<facial::ActionUnitWeight>> emotionUnits_;
   std::vector<float> expressionWeights_;
   size_t unknownTracks_ = 0;
 };

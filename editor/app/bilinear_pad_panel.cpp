@@ -1,4 +1,5 @@
 #include "editor/app/bilinear_pad_panel.h"
+#include "editor/app/menu_bar.h"
 
 #include <imgui.h>
 
@@ -92,6 +93,7 @@ void BilinearPadPanel::draw(FaceDelegate& face) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     dragTo(1.0f - (m.y - o.y) / side, (m.x - o.x) / side, face);
   }
+  if (!ImGui::IsItemActive()) tooltip("Drag: t across from the \"from\" column to the \"to\" column, s up from row 1 to row 2");
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(o, {o.x + side, o.y + side}, IM_COL32(28, 32, 42, 255), 4.0f);
   draw->AddRect(o, {o.x + side, o.y + side}, IM_COL32(110, 120, 140, 255), 4.0f);

@@ -1,4 +1,5 @@
 #include "editor/app/control_map_panel.h"
+#include "editor/app/menu_bar.h"
 
 #include <imgui.h>
 
@@ -86,8 +87,10 @@ void ControlMapPanel::dragCursor(glm::vec2 cursor, FaceDelegate& face) {
 void ControlMapPanel::draw(FaceDelegate& face) {
   int layout = int(layout_);
   ImGui::RadioButton("4 poles (study)", &layout, 0);
+  tooltip("The study's control map: happy +x, sad -x, surprise +y, anger -y around neutral");
   ImGui::SameLine();
   ImGui::RadioButton("6 poles (freeform)", &layout, 1);
+  tooltip("A freeform map of six emotions around neutral");
   layout_ = Layout(layout);
 
   const float side = std::max(120.0f, std::min(ImGui::GetContentRegionAvail().x, ImGui::GetContentRegionAvail().y - 26.0f));
@@ -100,6 +103,7 @@ void ControlMapPanel::draw(FaceDelegate& face) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     dragCursor({((m.x - origin.x) / side * 2.0f - 1.0f) / 0.85f, (1.0f - (m.y - origin.y) / side * 2.0f) / 0.85f}, face);
   }
+  if (!ImGui::IsItemActive()) tooltip("Drag the cursor: the face blends the poles around it (Record writes it as keys)");
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 end{origin.x + side, origin.y + side};
   draw->AddRectFilled(origin, end, IM_COL32(28, 32, 42, 255), 4.0f);

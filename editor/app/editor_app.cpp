@@ -90,6 +90,7 @@ class EditorApp : public FaceDelegate, public ProjectViewHost {
   void runScript(float elapsed);
   bool runAction(const EditorScriptAction& action);
   void logTimeline() const;
+  void logView() const;
   // The state machine diagram, the bilinear pad and Record (issue 34, points 3 and 4).
   bool runGraphOrPadAction(const EditorScriptAction& action);
   bool startRecording();
@@ -342,7 +343,7 @@ void EditorApp::handleViewportInput() {
   if (sculptDragging_ && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
     dragSelectedByPixels(io.MouseDelta.x, io.MouseDelta.y);
   if (overViewport && io.MouseWheel != 0.0f)
-    view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), 0.3f, 8.0f);
+    view_.camera.zoom = std::clamp(view_.camera.zoom * std::pow(1.1f, io.MouseWheel), kMinViewZoom, kMaxViewZoom);
 }
 
 bool EditorApp::pickAt(float px, float py) {
@@ -367,6 +368,14 @@ void EditorApp::orbit(float yawDegrees, float pitchDegrees) {
   view_.camera.pitchDegrees = std::clamp(view_.camera.pitchDegrees + pitchDegrees, -80.0f, 80.0f);
 }
 
+// Where the face is drawn and from where: a screenshot compared with another
+// program's frame is cropped to this region (the camera is framed into it).
+void EditorApp::logView() const {
+  std::printf("view: region %.0f,%.0f %.0fx%.0f, yaw %.2f, pitch %.2f, zoom %.4f, %s\n", layout_.x0(), layout_.top,
+              layout_.x1() - layout_.x0(), layout_.y1() - layout_.top, view_.camera.yawDegrees, view_.camera.pitchDegrees,
+              view_.camera.zoom, framing_ == eng::FramingMode::All ? "whole model" : "face");
+}
+
 void EditorApp::logTimeline() const {
   const TimelineDocument& doc = timeline_->document();
   size_t keys = 0;
@@ -384,6 +393,7 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
       showPadTab_ = 0;  // as clicking the Control map tab first
       return true;
     case Kind::Orbit: orbit(a.a, a.b); return true;
+    case Kind::Zoom: view_.camera.zoom = std::clamp(a.a, kMinViewZoom, kMaxViewZoom); return true;
     case Kind::TimelineOpen: return timeline_->open(a.text);
     case Kind::TimelineSeek: timeline_->seek(a.a, *this); return true;
     case Kind::TimelineKeyAll: return timeline_->keyAll(*this);
@@ -419,7 +429,10 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
       return machine_.pressSpeak(*this);
     case Kind::SayLanguage: machine_.setSpeechLanguage(a.text); return true;
     case Kind::SayStop: machine_.pressStopSpeaking(); return true;
-    case Kind::Screenshot: pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text); return true;
+    case Kind::Screenshot:
+      pendingShot_ = a.text.empty() ? defaultShot_ : fs::path(a.text);
+      logView();
+      return true;
     case Kind::Quit: quitRequested_ = true; return true;
     // Dope sheet and curve view (issue 34): the timeline panel runs its own.
     case Kind::TimelineBoxSelect: case Kind::TimelineCopy: case Kind::TimelinePaste: case Kind::TimelineDuplicate:
@@ -633,7 +646,7 @@ void EditorApp::applyViewSettings(const ProjectView& view) {
   setFraming(view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face);
   view_.camera.yawDegrees = view.yawDegrees;
   view_.camera.pitchDegrees = std::clamp(view.pitchDegrees, -80.0f, 80.0f);
-  view_.camera.zoom = std::clamp(view.zoom, 0.3f, 8.0f);
+  view_.camera.zoom = std::clamp(view.zoom, kMinViewZoom, kMaxViewZoom);
 }
 
 void EditorApp::setFraming(eng::FramingMode framing) {
@@ -684,6 +697,10 @@ void EditorApp::runMenuRequest(const MenuRequest& request) {
       return;
     case MenuCommand::Undo: timeline_->undo(); return;
     case MenuCommand::Redo: timeline_->redo(); return;
+    case MenuCommand::Copy: timeline_->copySelection(); return;
+    case MenuCommand::Paste: timeline_->pasteAt(timeline_->playhead()); return;
+    case MenuCommand::Duplicate: timeline_->duplicateSelection(); return;
+    case MenuCommand::SelectAll: timeline_->selectAll(); return;
     case MenuCommand::ToggleFraming: setFraming(framing_ == eng::FramingMode::Face ? eng::FramingMode::All : eng::FramingMode::Face); return;
     case MenuCommand::Screenshot:
       if (pendingShot_.empty()) pendingShot_ = defaultShot_;
@@ -730,7 +747,9 @@ int EditorApp::run(const EditorOptions& o) {
                                .hasProjectFile = !project_->path().empty(),
                                .dirty = project_->dirty(),
                                .canUndo = timeline_->document().canUndo(),
-                               .canRedo = timeline_->document().canRedo()}));
+                               .canRedo = timeline_->document().canRedo(),
+                               .hasSelection = !timeline_->document().selection().empty(),
+                               .hasClipboard = timeline_->hasClipboard()}));
     handleViewportInput();
     runScript(tick.animationTime);
     machine_.update(tick.dt);

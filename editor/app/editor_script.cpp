@@ -25,6 +25,7 @@ constexpr Verb kVerbs[] = {
     {"trigger", Kind::Trigger, "w"},
     {"pad", Kind::Pad, "nn"},
     {"orbit", Kind::Orbit, "nn"},
+    {"zoom", Kind::Zoom, "n"},
     {"timeline-open", Kind::TimelineOpen, "w"},
     {"timeline-seek", Kind::TimelineSeek, "n"},
     {"timeline-key-all", Kind::TimelineKeyAll, ""},
@@ -99,6 +100,9 @@ std::string dopeSheetProblem(const EditorScriptAction& action) {
       break;
     case Kind::TimelineSpeed:
       if (action.a < 0.05f || action.a > 20.0f) return "timeline-speed: 0.05 to 20";
+      break;
+    case Kind::Zoom:
+      if (action.a < kMinViewZoom || action.a > kMaxViewZoom) return "zoom: 0.3 to 8";
       break;
     case Kind::CurveTangent:
       if (action.a < 0.0f || action.a != std::round(action.a)) return "curve-tangent: the key index is a whole number from 0";

@@ -8,6 +8,7 @@
 //   0.5 trigger happy              a state machine trigger button
 //   0.8 pad 0.7 -0.2               the control map pad's cursor ([-1, 1]^2)
 //   1.0 orbit 20 -5                turn the camera (yaw / pitch degrees), as a drag in the view
+//   1.1 zoom 1.15                  the camera's zoom, as the wheel sets it (0.3 to 8; 1: the face framed)
 //   1.2 timeline-open T.json       the timeline panel's Open
 //   1.4 timeline-seek 0.5          scrub the playhead (the timeline drives the face)
 //   1.5 timeline-key-all           "Key all": every track at the playhead, value on screen
@@ -77,9 +78,12 @@
 
 namespace editor {
 
+// The view camera's zoom range (the wheel, the zoom action, a project's view).
+inline constexpr float kMinViewZoom = 0.3f, kMaxViewZoom = 8.0f;
+
 struct EditorScriptAction {
   enum class Kind {
-    Trigger, Pad, Orbit,
+    Trigger, Pad, Orbit, Zoom,
     TimelineOpen, TimelineSeek, TimelineKeyAll, TimelineKey, TimelineMoveSelected, TimelineDelete, Undo, Redo, TimelineSave,
     SculptPick, SculptLandmark, SculptMove, SculptDrag, SculptKernel, SculptFalloff, SculptBake, SculptSave,
     LandmarksShow, LandmarkMove, AutorigRerun, LandmarksSave,

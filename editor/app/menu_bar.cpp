@@ -79,6 +79,12 @@ MenuRequest MenuBar::drawMenus(const MenuState& state) {
   if (ImGui::BeginMenu("Edit")) {
     if (ImGui::MenuItem("Undo", "Ctrl+Z", false, state.canUndo)) chosen.command = MenuCommand::Undo;
     if (ImGui::MenuItem("Redo", "Ctrl+Y", false, state.canRedo)) chosen.command = MenuCommand::Redo;
+    ImGui::Separator();
+    // The dope sheet's keys (its own Ctrl+C / V / D / A do the same while no text field has focus).
+    if (ImGui::MenuItem("Copy keys", "Ctrl+C", false, state.hasSelection)) chosen.command = MenuCommand::Copy;
+    if (ImGui::MenuItem("Paste keys at playhead", "Ctrl+V", false, state.hasClipboard)) chosen.command = MenuCommand::Paste;
+    if (ImGui::MenuItem("Duplicate keys", "Ctrl+D", false, state.hasSelection)) chosen.command = MenuCommand::Duplicate;
+    if (ImGui::MenuItem("Select all keys", "Ctrl+A")) chosen.command = MenuCommand::SelectAll;
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {

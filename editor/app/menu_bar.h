@@ -1,6 +1,7 @@
 #pragma once
 // The window's menu bar: File (New, Open, Save, Save As, Recent, Export .glb,
-// Export GIF, Quit), Edit (Undo, Redo), View (framing, screenshot) and Help,
+// Export GIF, Quit), Edit (Undo, Redo, and the dope sheet's Copy, Paste at the
+// playhead, Duplicate, Select all), View (framing, screenshot) and Help,
 // each item with its shortcut listed and the same shortcuts on the keyboard.
 // ImGui has no file dialog, so Open, Save As and the exports ask for a path
 // in a small modal. Quitting with unsaved changes asks Save / Discard /
@@ -13,7 +14,7 @@ namespace editor {
 
 enum class MenuCommand {
   None, New, Open, Save, SaveAs, ExportGlb, ExportGif, Quit, QuitSave, QuitDiscard,
-  Undo, Redo, ToggleFraming, Screenshot,
+  Undo, Redo, Copy, Paste, Duplicate, SelectAll, ToggleFraming, Screenshot,
 };
 
 struct MenuRequest {
@@ -28,6 +29,8 @@ struct MenuState {
   bool dirty = false;
   bool canUndo = false;
   bool canRedo = false;
+  bool hasSelection = false;  // the dope sheet's keys: Copy, Duplicate
+  bool hasClipboard = false;  // Paste
 };
 
 // A hover help line on the last widget (one home for the panels' tooltips).

@@ -33,11 +33,15 @@ ProjectActions::ProjectActions(ProjectPanels panels, fs::path model, fs::path ri
 Project ProjectActions::current(const fs::path& projectFile) const {
   Project p{.model = model_, .rigmap = rigmap_, .graph = graph_};
   const TimelineDocument& clip = panels_.timeline->document();
-  if (!clip.tracks().empty()) p.clips.push_back({clip.name(), projectClipPath(projectFile, clip.name())});
+  if (!clip.tracks().empty()) p.clips.push_back({clip.name(), projectClipPath(projectFile, clip.name()), clip.settings()});
   p.clips.insert(p.clips.end(), otherClips_.begin(), otherClips_.end());
   for (const auto& [name, weight] : panels_.sculpt->bakedTargets()) p.sculptTargets.push_back({name, weight});
   if (!p.sculptTargets.empty()) p.sculptModel = projectSculptPath(projectFile);
   p.view = panels_.view->viewSettings();
+  // A graph edited in the diagram (or the project's own one, saved under another name) goes beside the project.
+  const fs::path ownGraph = projectGraphPath(projectFile);
+  const bool projectOwnsGraph = !path_.empty() && (sameFile(graph_, projectGraphPath(path_), {}) || sameFile(graph_, projectGraphAutosavePath(path_), {}));
+  if (graphEdited() || (projectOwnsGraph && !sameFile(graph_, ownGraph, {}))) p.graph = ownGraph;
   return p;
 }
 
@@ -53,7 +57,10 @@ bool ProjectActions::saveAs(const fs::path& path) {
   }
   if (!project.sculptModel.empty())
     if (auto saved = panels_.sculpt->saveModel(project.sculptModel.string()); !saved) return fail(saved.error().message);
+  if ((graphEdited() || project.graph != graph_) && !panels_.machine->saveGraph(project.graph.string()))
+    return fail(path.string() + ": not saved: the edited graph could not be written (see the state machine panel)");
   if (auto saved = saveProject(project, path); !saved) return fail(saved.error().message);
+  graph_ = project.graph;
   path_ = path;
   rememberSaved();
   discardProjectAutosave(path);
@@ -100,7 +107,7 @@ bool ProjectActions::apply(const Project& project, const fs::path& path) {
   for (const ProjectSculptTarget& t : project.sculptTargets) bakes.emplace_back(t.name, t.weight);
   if (auto restored = panels_.sculpt->restore(sculpted ? &*sculpted : nullptr, bakes); !restored)
     return fail(where + "sculpted expressions: " + restored.error().message);
-  if (!sameFile(project.graph, graph_, {})) {
+  if (!sameFile(project.graph, graph_, {}) || graphEdited()) {
     const fs::path graph = project.graph.empty() ? app::dataDirectory() / "graphs" / "tour.json" : project.graph;
     if (auto machine = panels_.machine->load(*panels_.face, graph.string()); !machine) return fail(where + machine.error().message);
     graph_ = project.graph;
@@ -109,6 +116,8 @@ bool ProjectActions::apply(const Project& project, const fs::path& path) {
     panels_.timeline->openEmpty(projectClipPath(path, "untitled").string());
   } else if (!panels_.timeline->open(project.clips.front().file.string())) {
     return fail(where + "clip '" + project.clips.front().name + "' did not open (see above)");
+  } else {
+    panels_.timeline->document().restoreSettings(project.clips.front().settings);
   }
   otherClips_.assign(project.clips.empty() ? project.clips.end() : project.clips.begin() + 1, project.clips.end());
   panels_.view->applyViewSettings(project.view);
@@ -138,8 +147,9 @@ bool ProjectActions::exportGlb(const fs::path& path) {
   std::vector<const TimelineDocument*> clips;
   if (!panels_.timeline->document().tracks().empty()) clips.push_back(&panels_.timeline->document());
   for (const TimelineDocument& clip : others) clips.push_back(&clip);
-  TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights());
-  auto exported = editor::exportGlb(panels_.sculpt->workingModel(), clips, pose, panels_.face->layout(), path);
+  TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights(), &panels_.face->expressions());
+  auto exported = editor::exportGlb(panels_.sculpt->workingModel(), clips, pose, panels_.face->layout(), path,
+                                    kGlbExportSampleRate, panels_.sculpt->bakedTargets());
   if (!exported) return fail(exported.error().message);
   message_.report("exported " + path.string() + ": the face with " + std::to_string(panels_.sculpt->bakedTargets().size()) +
                       " sculpted target(s) and " + std::to_string(exported->animations) + " clip(s) as weights animations" +
@@ -172,7 +182,7 @@ bool ProjectActions::exportGif(const fs::path& path, const std::string& clipName
                                                       .framing = view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face,
                                                       .framesInFlight = app::kSequenceFramesInFlight});
   if (!renderer) return fail(path.string() + ": not exported: " + renderer.error().message);
-  TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights());
+  TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights(), &panels_.face->expressions());
   std::vector<float> faceWeights(panels_.face->layout().total()), weights;
   eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
   auto recorded = app::recordSequence(renderer->offscreen(), renderer->view(),
@@ -192,7 +202,12 @@ bool ProjectActions::exportGif(const fs::path& path, const std::string& clipName
 bool ProjectActions::dirty() const {
   const auto bakes = panels_.sculpt->bakedTargets();
   return recoveredUnsaved_ || panels_.timeline->document().dirty() || !std::equal(bakes.begin(), bakes.end(), savedBakes_.begin(), savedBakes_.end()) ||
-         graph_ != savedGraph_;
+         graph_ != savedGraph_ || graphEdited();
+}
+
+bool ProjectActions::graphEdited() const {
+  const std::optional<GraphDocument>& graph = panels_.machine->document();
+  return graph && graph->dirty();
 }
 
 std::string ProjectActions::windowTitle() const {
@@ -202,6 +217,7 @@ std::string ProjectActions::windowTitle() const {
 
 uint64_t ProjectActions::revision() const {
   uint64_t h = panels_.timeline->document().revision() * 1000003u ^ std::hash<std::string>()(graph_.string());
+  if (panels_.machine->document()) h = h * 31u + panels_.machine->document()->revision();
   for (const auto& [name, weight] : panels_.sculpt->bakedTargets()) h = h * 31u + std::hash<std::string>()(name) + std::hash<float>()(weight);
   return h;
 }
@@ -223,6 +239,11 @@ void ProjectActions::update(std::chrono::steady_clock::time_point now) {
 
 bool ProjectActions::writeAutosave() {
   Project project = current(path_);
+  project.graph = graph_;  // the graph file as it is, unless the diagram changed it since
+  if (graphEdited()) {
+    project.graph = projectGraphAutosavePath(path_);
+    if (auto saved = panels_.machine->document()->writeCopy(project.graph); !saved) return reportAutosave(saved.error().message);
+  }
   const auto bakes = panels_.sculpt->bakedTargets();
   if (!project.sculptTargets.empty()) {
     project.sculptModel = projectSculptAutosavePath(path_);

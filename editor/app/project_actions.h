@@ -56,7 +56,7 @@ class ProjectActions {
   // headless into an animated GIF, seen from the view on screen.
   bool exportGif(const std::filesystem::path& path, const std::string& clip);
 
-  // Unsaved changes: the clip's edits, bakes or their weights, another graph.
+  // Unsaved changes: the clip's edits or settings, bakes or their weights, another or an edited graph.
   bool dirty() const;
   // "NAME* - facial editor" ("untitled" before the first save; "*" when dirty).
   std::string windowTitle() const;
@@ -80,6 +80,8 @@ class ProjectActions {
     return false;
   }
   uint64_t revision() const;
+  // The diagram changed the graph since it was loaded or saved.
+  bool graphEdited() const;
   void rememberSaved();
   bool writeAutosave();
   bool reportAutosave(const std::string& problem);

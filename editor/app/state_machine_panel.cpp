@@ -1,4 +1,5 @@
 #include "editor/app/state_machine_panel.h"
+#include "editor/app/menu_bar.h"
 
 #include <imgui.h>
 
@@ -121,8 +122,11 @@ bool StateMachinePanel::fire(std::string_view trigger) {
 void StateMachinePanel::draw(FaceDelegate& face) {
   ImGui::SetNextItemWidth(-70.0f);
   ImGui::InputText("##graph", pathInput_, sizeof pathInput_);
+  tooltip("A graph file (data/graphs/*.json), relative to the folder the editor was started in");
   ImGui::SameLine();
-  if (ImGui::Button("Load##graph")) {
+  const bool loadPressed = ImGui::Button("Load##graph");
+  tooltip("Load the graph and run it on the face (the one running stays when it does not load)");
+  if (loadPressed) {
     const std::string path = pathInput_;
     auto previous = std::move(driver_);
     if (auto loaded = load(*face_, path); loaded) {
@@ -135,12 +139,16 @@ void StateMachinePanel::draw(FaceDelegate& face) {
   }
   message_.draw();
   if (!driver_) return;
-  if (document_) ImGui::Checkbox("diagram (edit the state machine)", &diagramShown_);
+  if (document_) {
+    ImGui::Checkbox("diagram (edit the state machine)", &diagramShown_);
+    tooltip("States as boxes, transitions as arrows: add, rename, remove, edit timing; Save writes the graph file");
+  }
   facial::GraphInstance& graph = driver_->graph();
   const facial::GraphDefinition& definition = graph.definition();
 
   const bool driving = face.source() == FaceSource::StateMachine;
   if (!driving && ImGui::Button("Drive the face from this graph")) face.takeControl(FaceSource::StateMachine);
+  if (!driving) tooltip("Give the face back to the state machine (a pad or the timeline drives it now)");
   if (driving) ImGui::TextColored({0.55f, 0.85f, 1.0f, 1.0f}, "drives the face");
 
   if (machine_) {
@@ -173,6 +181,7 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     if (shown++ % 3 != 0) ImGui::SameLine();
     ImGui::PushID(int(p));
     if (ImGui::Button(decl.name.c_str(), {92.0f, 0.0f})) pressTrigger(decl.name, face);
+    tooltip("Fire this trigger: the state machine takes the transition it starts");
     ImGui::PopID();
   }
   ImGui::Separator();
@@ -183,6 +192,13 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     case app::SpeechBox::Action::Stop: pressStopSpeaking(); break;
     case app::SpeechBox::Action::None: break;
   }
+  drawParameters();
+}
+
+// The graph's float and bool parameters as sliders and check boxes.
+void StateMachinePanel::drawParameters() {
+  facial::GraphInstance& graph = driver_->graph();
+  const facial::GraphDefinition& definition = graph.definition();
   ImGui::Separator();
   ImGui::TextDisabled("parameters");
   for (facial::ParameterIndex p = 0; p < definition.parameters().size(); ++p) {
@@ -191,9 +207,11 @@ void StateMachinePanel::draw(FaceDelegate& face) {
     if (decl.type == facial::ParameterType::Float) {
       float value = graph.parameters()[p];
       if (ImGui::SliderFloat(decl.name.c_str(), &value, 0.0f, 1.0f)) graph.setFloat(p, value);
+      tooltip("A float parameter of the graph (Ctrl+click to type a value)");
     } else if (decl.type == facial::ParameterType::Bool) {
       bool value = graph.parameters()[p] != 0.0f;
       if (ImGui::Checkbox(decl.name.c_str(), &value)) graph.setBool(p, value);
+      tooltip("A bool parameter of the graph (conditions of transitions read it)");
     }
     ImGui::PopID();
   }

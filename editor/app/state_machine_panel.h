@@ -76,6 +76,7 @@ class StateMachinePanel {
   // an edit that fails, or that the runtime refuses, is reported and undone.
   bool applyEdit(const eng::Result<void>& edited, const std::string& what);
   bool rebuildFromDocument();
+  void drawParameters();
   void drawDiagramCanvas();
   void drawStateEditor();
   void drawTransitionEditor();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "editor/app/menu_bar.h"
 #include "editor/app/state_machine_panel.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -200,7 +201,9 @@ void StateMachinePanel::drawStateEditor() {
   ImGui::InputText("##rename", renameInput_, sizeof renameInput_);
   ImGui::SameLine();
   if (ImGui::Button("Rename")) renameState(state.name, renameInput_);
+  tooltip("Rename the state; transitions and the default state follow");
   if (ImGui::Button("Remove state")) removeState(state.name);
+  tooltip("Remove the state and every transition into it (Undo brings it back)");
   ImGui::Separator();
 }
 
@@ -220,6 +223,7 @@ void StateMachinePanel::drawTransitionEditor() {
   if (!t.trigger.empty()) ImGui::TextDisabled("when: %s", t.trigger.c_str());
   ImGui::DragFloat("duration", &t.duration, 0.01f, 0.01f, 10.0f, "%.2f s");
   bool commit = ImGui::IsItemDeactivatedAfterEdit();
+  tooltip("Seconds the blend into the target state takes (drag, or Ctrl+click to type)");
   int easing = 0;
   for (int i = 0; i < 3; ++i)
     if (t.easing == kEasings[i]) easing = i;
@@ -227,8 +231,9 @@ void StateMachinePanel::drawTransitionEditor() {
     t.easing = kEasings[easing];
     commit = true;
   }
+  tooltip("The blend's curve over its duration: linear, cosine (the study's ease), smoothstep");
   commit |= ImGui::Checkbox("exit time", &editingHasExit_);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Seconds the source state must have run before this transition may start");
+  tooltip("Seconds the source state must have run before this transition may start");
   if (editingHasExit_) {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1.0f);
@@ -236,11 +241,12 @@ void StateMachinePanel::drawTransitionEditor() {
     commit |= ImGui::IsItemDeactivatedAfterEdit();
   }
   commit |= ImGui::Checkbox("interruptible", &t.interruptible);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("May another transition cut in while this one blends");
+  tooltip("May another transition cut in while this one blends");
   if (commit)
     editTransition(t.from, t.to, std::max(t.duration, 0.01f), t.easing,
                    editingHasExit_ ? std::optional<float>(editingExit_) : std::nullopt, t.interruptible);
   if (ImGui::Button("Remove transition")) removeTransition(t.from, t.to);
+  tooltip("Remove this arrow (Undo brings it back)");
   ImGui::Separator();
 }
 
@@ -259,6 +265,7 @@ void StateMachinePanel::drawAddControls() {
   }
   ImGui::SameLine();
   if (ImGui::Button("Add##state") && !presets.empty()) addState(newStateInput_, presets[size_t(newExpression_)]);
+  tooltip("Add a state holding the chosen expression preset");
   ImGui::TextDisabled("add a transition");
   const auto stateCombo = [&](const char* id, int& choice, bool withAny) {
     const int count = int(states.size()) + (withAny ? 1 : 0);
@@ -277,18 +284,22 @@ void StateMachinePanel::drawAddControls() {
   ImGui::InputTextWithHint("##trigger", "trigger (empty: none)", newTriggerInput_, sizeof newTriggerInput_);
   ImGui::SameLine();
   if (ImGui::Button("Add##transition")) addTransition(from, to, newTriggerInput_, 0.5f, "cosine");
+  tooltip("Add a transition (0.5 s, cosine); a new trigger name is declared as a parameter");
   ImGui::Separator();
   ImGui::BeginDisabled(!document_->canUndo());
   if (ImGui::Button("Undo##graph")) undoGraphEdit();
+  tooltip("Undo the last diagram edit");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(!document_->canRedo());
   if (ImGui::Button("Redo##graph")) redoGraphEdit();
+  tooltip("Redo the diagram edit undone last");
   ImGui::EndDisabled();
   ImGui::SetNextItemWidth(-50.0f);
   ImGui::InputText("##savepath", savePathInput_, sizeof savePathInput_);
   ImGui::SameLine();
   if (ImGui::Button("Save##graph")) saveGraph(savePathInput_);
+  tooltip("Write the graph file the runtime reads (facial play, --graph); save it beside the timeline files it names");
 }
 
 }  // namespace editor

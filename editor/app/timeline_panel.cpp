@@ -32,7 +32,7 @@ bool textCaseInsensitiveContains(const std::string& text, const char* filter) {
 }  // namespace
 
 TimelinePanel::TimelinePanel(const app::FaceSetup& face)
-    : document_("untitled", 2.0f), pose_(face.rig(), face.baseWeights()), weights_(face.baseWeights().begin(), face.baseWeights().end()) {}
+    : document_("untitled", 2.0f), pose_(face.rig(), face.baseWeights(), &face.expressions()), weights_(face.baseWeights().begin(), face.baseWeights().end()) {}
 
 TimelinePanel::~TimelinePanel() {
   if (!document_.dirty()) {
@@ -245,8 +245,8 @@ void TimelinePanel::handleEditShortcuts() {
   const auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
   if (io.KeyCtrl && pressed(GLFW_KEY_C)) copySelection();
   if (io.KeyCtrl && pressed(GLFW_KEY_V)) pasteAt(playhead_);
-  if (io.KeyCtrl && pressed(GLFW_KEY_D)) report(document_.duplicateSelected());
-  if (io.KeyCtrl && pressed(GLFW_KEY_A)) document_.selectAll();
+  if (io.KeyCtrl && pressed(GLFW_KEY_D)) duplicateSelection();
+  if (io.KeyCtrl && pressed(GLFW_KEY_A)) selectAll();
   for (const auto& [key, frames] : {std::pair{GLFW_KEY_LEFT, -1}, std::pair{GLFW_KEY_RIGHT, 1}}) {
     if (!ImGui::IsKeyPressed(key, true)) continue;
     const int step = io.KeyShift ? 10 * frames : frames;
@@ -786,7 +786,7 @@ bool TimelinePanel::runScriptAction(const EditorScriptAction& a, FaceDelegate& f
     case Kind::TimelineBoxSelect: return boxSelect(a.a, a.b, a.words);
     case Kind::TimelineCopy: return copySelection();
     case Kind::TimelinePaste: return pasteAt(a.a);
-    case Kind::TimelineDuplicate: return report(document_.duplicateSelected());
+    case Kind::TimelineDuplicate: return duplicateSelection();
     case Kind::TimelineNudge: return report(document_.nudgeSelected(int(a.a)));
     case Kind::TimelineSnap: return report(document_.snapToFrames(a.a));
     case Kind::TimelineLoop: return report(document_.setLoopRange(a.a, a.b));

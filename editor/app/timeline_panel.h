@@ -78,6 +78,13 @@ class TimelinePanel {
   bool deleteSelected();
   bool undo();
   bool redo();
+  // Edit > Copy / Paste / Duplicate / Select all (and Ctrl+C / V / D / A): the
+  // selected keys to the clipboard, pasted at `time`, duplicated a frame after.
+  bool copySelection();
+  bool pasteAt(float time);
+  bool duplicateSelection() { return report(document_.duplicateSelected()); }
+  void selectAll() { document_.selectAll(); }
+  bool hasClipboard() const { return !clipboard_.empty(); }
   // The dope sheet's and curve view's script actions (editor_script.h, issue 34).
   bool runScriptAction(const EditorScriptAction& action, FaceDelegate& face);
 
@@ -87,8 +94,6 @@ class TimelinePanel {
   // The track of `channel`, or none after saying so.
   std::optional<size_t> trackNamed(std::string_view channel);
   bool boxSelect(float t0, float t1, std::span<const std::string> channels);
-  bool copySelection();
-  bool pasteAt(float time);
   bool toggleTrackFlag(std::string_view channel, bool solo);
   bool setCurveTangent(const std::string& channel, size_t index, CurveKeyMode mode, std::optional<float> in,
                        std::optional<float> out);

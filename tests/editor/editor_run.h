@@ -93,6 +93,19 @@ inline std::string scriptRefusal(const std::filesystem::path& dir, const std::st
   return readText(dir / "log.txt");
 }
 
+// Issue 34's keying, as a script's first lines (0.2 to 0.8 s): neutral ->
+// happy -> surprise keyed at 0, 1, 2 s with cosine easing, the last two keys
+// of every track box-selected and moved to 0.8 s and 1.8 s, copied, pasted at
+// 2.5 s (the clip grows to 3.5 s).
+inline const std::string kKeyEmotionsMoveAndPaste =
+    "0.2 timeline-key-emotion neutral 0 cosine\n"
+    "0.3 timeline-key-emotion happy 1 cosine\n"
+    "0.4 timeline-key-emotion surprise 2 cosine\n"
+    "0.5 timeline-box-select 0.9 2.1          # the last two keys of every track\n"
+    "0.6 timeline-move-selected -0.2 0        # to 0.8 s and 1.8 s\n"
+    "0.7 timeline-copy\n"
+    "0.8 timeline-paste 2.5                   # 2.5 s and 3.5 s: the clip grows to 3.5 s\n";
+
 inline glm::ivec3 pixel(const eng::Image& image, int x, int y) {
   const size_t i = (size_t(y) * size_t(image.width) + size_t(x)) * 4;
   return {image.rgba8[i], image.rgba8[i + 1], image.rgba8[i + 2]};

@@ -45,13 +45,7 @@ TEST(EditorScriptDopeSheet, KeyEmotionsMoveTheLastKeysPasteThemLaterAndBendATang
   REQUIRE_XVFB();
   const fs::path dir = testing_support::freshTempDir("editor_script_dope_sheet");
   testing_support::writeFile(dir / "session.txt",
-                             "0.2 timeline-key-emotion neutral 0 cosine\n"
-                             "0.3 timeline-key-emotion happy 1 cosine\n"
-                             "0.4 timeline-key-emotion surprise 2 cosine\n"
-                             "0.5 timeline-box-select 0.9 2.1          # the last two keys of every track\n"
-                             "0.6 timeline-move-selected -0.2 0        # to 0.8 s and 1.8 s\n"
-                             "0.7 timeline-copy\n"
-                             "0.8 timeline-paste 2.5                   # 2.5 s and 3.5 s: the clip grows to 3.5 s\n"
+                             editor_test::kKeyEmotionsMoveAndPaste +
                              "0.9 timeline-snap 24\n"
                              "1.0 timeline-nudge -2                    # the pasted keys, 2 frames earlier\n"
                              "1.1 curve-tangent happy 1 broken 0.5 -1.5\n"

@@ -123,3 +123,22 @@ TEST(KeyRecorder, WritesKeysOverTheRecordedSpanAndLengthensTheClip) {
   EXPECT_FLOAT_EQ(doc.tracks()[a].keys[0].key.value, 0.1f);
   EXPECT_NEAR(doc.sample(a, 1.0f), linearAt(tracks[0].keys, 1.0f), 1e-5f);
 }
+
+TEST(KeyRecorder, TheWholeTakeIsOneUndoStep) {
+  editor::TimelineDocument doc("clip", 2.0f);
+  const size_t a = doc.addTrack("a").value();
+  ASSERT_TRUE(doc.setKey(a, 1.0f, 0.9f).ok());
+  const std::string before = std::string(doc.undoLabel());
+  KeyRecorder recorder = recordSwing(0.5f);
+  const size_t samples = recorder.sampleCount();
+  ASSERT_TRUE(editor::writeRecording(doc, recorder.stop(), samples).ok());
+  EXPECT_EQ(doc.undoLabel(), "record");
+  EXPECT_GT(doc.tracks()[a].keys.size(), 2u);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(doc.undoLabel(), before) << "one step took the keys, the deleted key and the longer clip back";
+  ASSERT_EQ(doc.tracks()[a].keys.size(), 1u);
+  EXPECT_FLOAT_EQ(doc.tracks()[a].keys[0].key.value, 0.9f);
+  EXPECT_FLOAT_EQ(doc.duration(), 2.0f);
+  ASSERT_TRUE(doc.redo());
+  EXPECT_FLOAT_EQ(doc.duration(), 2.5f);
+}

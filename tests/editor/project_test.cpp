@@ -19,7 +19,9 @@ editor::Project sampleProject(const fs::path& dir) {
   editor::Project p;
   p.model = dir / "faces" / "anna.glb";
   p.graph = dir / "graphs" / "anna.json";
-  p.clips = {{"hello", editor::projectClipPath(dir / "anna.json", "hello")}};
+  editor::TimelineSettings settings{.frameRate = 24.0f, .muted = {"AU12"}, .solo = {"happy", "sad"}};
+  settings.playback = {.hasLoopRange = true, .loopStart = 0.5f, .loopEnd = 1.5f, .speed = 0.5f};
+  p.clips = {{"hello", editor::projectClipPath(dir / "anna.json", "hello"), settings}};
   p.sculptModel = editor::projectSculptPath(dir / "anna.json");
   p.sculptTargets = {{"smirk", 0.75f}, {"frown", 1.0f}};
   p.view = {.yawDegrees = 20.0f, .pitchDegrees = -5.0f, .zoom = 1.5f, .wholeModel = true};
@@ -38,6 +40,7 @@ TEST(EditorProject, SavedProjectComesBack) {
   ASSERT_EQ(loaded->clips.size(), 1u);
   EXPECT_EQ(loaded->clips[0].name, "hello");
   EXPECT_EQ(loaded->clips[0].file, dir / "anna.clips" / "hello.json");
+  EXPECT_EQ(loaded->clips[0].settings, saved.clips[0].settings) << "the dope sheet's frame rate, loop range, speed, mute / solo";
   EXPECT_EQ(loaded->sculptModel, dir / "anna.sculpt.glb");
   ASSERT_EQ(loaded->sculptTargets.size(), 2u);
   EXPECT_EQ(loaded->sculptTargets[0].name, "smirk");
@@ -79,6 +82,10 @@ TEST(EditorProject, BrokenProjectsNameTheFileAndTheProblem) {
   EXPECT_NE(problem("{\"version\": 1, \"sculpt\": {\"targets\": [{\"name\": \"s\"}]}}").find("no \"file\""),
             std::string::npos);
   EXPECT_NE(problem("{\"version\": 1,").find(file), std::string::npos);
+  const std::string clip = "{\"version\": 1, \"clips\": [{\"name\": \"a\", \"file\": \"a.json\", \"settings\": ";
+  EXPECT_NE(problem(clip + "{\"fps\": 0}}]}").find("/clips/0/settings: fps 0 must be 1 to 1000"), std::string::npos);
+  EXPECT_NE(problem(clip + "{\"loop\": [2, 1]}}]}").find("/clips/0/settings/loop: loop range"), std::string::npos);
+  EXPECT_NE(problem(clip + "{\"muted\": [1]}}]}").find("/clips/0/settings/muted/0"), std::string::npos);
   auto missing = editor::loadProject(dir / "none.json");
   ASSERT_FALSE(missing);
   EXPECT_EQ(missing.error().kind, eng::ErrorKind::NotFound);

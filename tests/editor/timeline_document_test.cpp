@@ -418,6 +418,62 @@ TEST(TimelineDocumentDopeSheet, LoopRangeAndSpeedShapePlayback) {
   EXPECT_FALSE(doc.playback().hasLoopRange);
 }
 
+TEST(TimelineDocumentDopeSheet, SettingsComeBackWithoutAnUndoStepOrUnsavedChanges) {
+  TimelineDocument doc = twoTracks();
+  ASSERT_TRUE(doc.snapToFrames(24.0f));
+  ASSERT_TRUE(doc.setLoopRange(0.5f, 1.5f));
+  ASSERT_TRUE(doc.setSpeed(0.5f));
+  ASSERT_TRUE(doc.setMuted(0, true));
+  ASSERT_TRUE(doc.setSolo(1, true));
+  const editor::TimelineSettings saved = doc.settings();
+  EXPECT_FLOAT_EQ(saved.frameRate, 24.0f);
+  EXPECT_EQ(saved.muted, std::vector<std::string>{doc.tracks()[0].channel});
+  EXPECT_EQ(saved.solo, std::vector<std::string>{doc.tracks()[1].channel});
+
+  TimelineDocument reopened = twoTracks();  // the clip as its file holds it: no settings
+  const bool wasDirty = reopened.dirty();
+  const bool couldUndo = reopened.canUndo();
+  reopened.restoreSettings(saved);
+  EXPECT_EQ(reopened.settings(), saved);
+  EXPECT_EQ(reopened.dirty(), wasDirty);
+  EXPECT_EQ(reopened.canUndo(), couldUndo);
+  // Settings that do not fit this clip are left out, not forced in.
+  editor::TimelineSettings odd = saved;
+  odd.playback.loopEnd = 99.0f;
+  odd.frameRate = 0.0f;
+  odd.muted = {"no such track"};
+  reopened.restoreSettings(odd);
+  EXPECT_FALSE(reopened.playback().hasLoopRange);
+  EXPECT_FLOAT_EQ(reopened.frameRate(), 24.0f);
+  EXPECT_TRUE(reopened.settings().muted.empty());
+}
+
+TEST(TimelineDocumentDopeSheet, GroupedEditsAreOneUndoStepOrNone) {
+  TimelineDocument doc = twoTracks();
+  const size_t stepsBefore = [&] { size_t n = 0; TimelineDocument copy = doc; while (copy.undo()) ++n; return n; }();
+  ASSERT_TRUE(doc.grouped("two keys", [&]() -> eng::Result<void> {
+    ENG_TRY(doc.setKey(0, 0.3f, 0.5f));
+    ENG_TRY(doc.setKey(1, 0.6f, 0.25f));
+    return {};
+  }));
+  EXPECT_EQ(doc.undoLabel(), "two keys");
+  ASSERT_TRUE(doc.undo());
+  size_t steps = 0;
+  for (TimelineDocument copy = doc; copy.undo();) ++steps;
+  EXPECT_EQ(steps, stepsBefore);
+  ASSERT_TRUE(doc.redo());
+  EXPECT_FLOAT_EQ(doc.sample(1, 0.6f), 0.25f);
+  // A failing edit takes the ones before it in the group back.
+  const size_t keys = doc.tracks()[0].keys.size();
+  EXPECT_FALSE(doc.grouped("half", [&]() -> eng::Result<void> {
+    ENG_TRY(doc.setKey(0, 0.9f, 0.5f));
+    ENG_TRY(doc.setDuration(-1.0f));
+    return {};
+  }));
+  EXPECT_EQ(doc.tracks()[0].keys.size(), keys);
+  EXPECT_EQ(doc.undoLabel(), "two keys");
+}
+
 TEST(TimelineDocumentDopeSheet, KeyingOneEmotionOverTheOthersCrossfades) {
   TimelineDocument doc("emotions", 3.0f);
   constexpr std::string_view kGroup[] = {"neutral", "happy", "surprise"};
