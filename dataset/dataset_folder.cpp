@@ -22,12 +22,6 @@ eng::Result<void> writeWhole(const fs::path& path, std::string_view bytes) {
   return eng::writeFileWhole(path, [&](const fs::path& partial) { return eng::writeFileBytes(partial, bytes.data(), bytes.size()); });
 }
 
-eng::Result<std::string> readText(const fs::path& path, size_t maxBytes) {
-  auto bytes = eng::readFileBytes(path, maxBytes);
-  if (!bytes) return bytes.error();
-  return std::string(bytes->begin(), bytes->end());
-}
-
 bool isFile(const fs::path& path) {
   std::error_code ec;
   return fs::is_regular_file(path, ec);
@@ -49,7 +43,7 @@ eng::Result<void> claimFolder(const DatasetSpec& spec, const fs::path& out) {
   const std::string text = canonicalSpecJson(spec) + "\n";
   const fs::path file = out / "spec.json";
   if (!isFile(file)) return writeWhole(file, text);
-  auto held = readText(file, kMaxLabelBytes);
+  auto held = eng::readFileText(file, kMaxLabelBytes);
   if (!held) return held.error();
   if (*held == text) return {};
   return eng::makeError(eng::ErrorKind::InvalidArgument,
@@ -135,7 +129,7 @@ std::string shardListName(const Shard& shard) {
 eng::Result<void> writeShardList(const DatasetSpec& spec, const RunOptions& options) {
   std::string lines;
   for (uint64_t k = options.shard.index; k < spec.count; k += options.shard.count) {
-    auto line = readText(options.out / labelName(k, spec.count), kMaxLabelBytes);
+    auto line = eng::readFileText(options.out / labelName(k, spec.count), kMaxLabelBytes);
     if (!line) return line.error();
     lines += *line;
   }

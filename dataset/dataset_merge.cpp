@@ -19,12 +19,6 @@ constexpr size_t kMaxShardListBytes = size_t{16} << 30;
 constexpr size_t kMissingListed = 1000;   // in index.json (the count is always there)
 constexpr size_t kMissingInMessage = 10;  // in the error line
 
-eng::Result<std::string> readText(const fs::path& path, size_t maxBytes) {
-  auto bytes = eng::readFileBytes(path, maxBytes);
-  if (!bytes) return bytes.error();
-  return std::string(bytes->begin(), bytes->end());
-}
-
 struct FolderSpec {
   uint64_t count = 0;
   std::string hash;
@@ -32,7 +26,7 @@ struct FolderSpec {
 
 eng::Result<FolderSpec> readFolderSpec(const fs::path& out) {
   const fs::path file = out / "spec.json";
-  auto text = readText(file, kMaxSpecBytes);
+  auto text = eng::readFileText(file, kMaxSpecBytes);
   if (!text) return text.error().prefixed(out.string() + ": not a dataset folder (no spec.json from a `facial dataset` run): ");
   const nlohmann::json spec = nlohmann::json::parse(*text, nullptr, false);
   if (!spec.is_object() || !spec.contains("count") || !spec["count"].is_number_unsigned())
@@ -44,7 +38,7 @@ eng::Result<FolderSpec> readFolderSpec(const fs::path& out) {
 
 // Each line of one shard's list into lines[index]; errors name the file and line.
 eng::Result<void> readShardList(const fs::path& file, uint64_t count, std::vector<std::string>& lines) {
-  auto text = readText(file, kMaxShardListBytes);
+  auto text = eng::readFileText(file, kMaxShardListBytes);
   if (!text) return text.error();
   size_t start = 0, lineNumber = 0;
   for (size_t end; (end = text->find('\n', start)) != std::string::npos; start = end + 1) {

@@ -25,6 +25,12 @@ Result<std::vector<uint8_t>> readFileBytes(const std::filesystem::path& path, si
   return bytes;
 }
 
+Result<std::string> readFileText(const std::filesystem::path& path, size_t maxBytes) {
+  auto bytes = readFileBytes(path, maxBytes);
+  if (!bytes) return bytes.error();
+  return std::string(bytes->begin(), bytes->end());
+}
+
 Result<void> writeFileBytes(const std::filesystem::path& path, const void* data, size_t size) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) return makeError(ErrorKind::Io, path.string() + ": cannot open for writing");

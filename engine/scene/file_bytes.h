@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "engine/core/result.h"
@@ -13,6 +14,8 @@
 namespace eng {
 
 Result<std::vector<uint8_t>> readFileBytes(const std::filesystem::path& path, size_t maxBytes);
+// The same bytes as a string (text files: specs, label lists).
+Result<std::string> readFileText(const std::filesystem::path& path, size_t maxBytes);
 Result<void> writeFileBytes(const std::filesystem::path& path, const void* data, size_t size);
 
 // The sibling a file is written to until it is complete: NAME.<pid>.partial.EXT
