@@ -99,12 +99,12 @@ constexpr const char* kUnits[] = {"AU26_JawDrop", "AU27_MouthStretch", "AU25_Lip
                                   "AU2_OuterBrowRaiser_L", "AU5_UpperLidRaiser", "AU15_LipCornerDepressor",
                                   "AU4_BrowLowerer", "AU12_LipCornerPuller_L", "AU45_Blink_L", "AU7_LidTightener"};
 
-struct Rigged {
+struct StrippedAndRigged {
   eng::Model model;
   autorig::FaceLandmarks landmarks;
 };
 
-std::optional<Rigged> rigStripped(const std::filesystem::path& file, const char* landmarksFile) {
+std::optional<StrippedAndRigged> rigStripped(const std::filesystem::path& file, const char* landmarksFile) {
   eng::Result<eng::Model> face = eng::loadModel(file);
   if (!face) {
     ADD_FAILURE() << face.error().message;
@@ -112,7 +112,7 @@ std::optional<Rigged> rigStripped(const std::filesystem::path& file, const char*
   }
   const eng::Model bare = transfer_fixture::stripped(std::move(*face));
   const autorig::PosedFace posed = autorig::poseAtRest(bare);
-  Rigged r;
+  StrippedAndRigged r;
   std::optional<autorig::TransferResult> result =
       transfer_fixture::rigWithFixtureLandmarks(bare, posed, landmarksFile, &r.landmarks);
   if (!result) return std::nullopt;
@@ -127,8 +127,8 @@ TEST(ExpressionAmounts, MadeUnitsMoveFeaturesAsFarAsTheHeads) {
   const autorig::SourceFace source = transfer_fixture::headSource(*head);
   const Measured own = measured(*head, source.posed, source.landmarks);
   const std::filesystem::path shared = testing_support::sharedDir();
-  std::optional<Rigged> facecap = rigStripped(shared / "assets/facecap.glb", "facecap.landmarks.json");
-  std::optional<Rigged> rpm = rigStripped(shared / "speech/rpm-visemes.glb", "rpm-visemes.landmarks.json");
+  std::optional<StrippedAndRigged> facecap = rigStripped(shared / "assets/facecap.glb", "facecap.landmarks.json");
+  std::optional<StrippedAndRigged> rpm = rigStripped(shared / "speech/rpm-visemes.glb", "rpm-visemes.landmarks.json");
   ASSERT_TRUE(facecap && rpm);
   const Measured madeFacecap = measured(facecap->model, autorig::poseAtRest(facecap->model), facecap->landmarks);
   const Measured madeRpm = measured(rpm->model, autorig::poseAtRest(rpm->model), rpm->landmarks);

@@ -32,5 +32,7 @@ void writeFile(const std::filesystem::path& path, const std::string& bytes);
 // Files in `dir` (not below) whose name holds ".partial": what a whole-file
 // write (eng::writeFileWhole, the GIF, WAV and video writers) left behind.
 size_t partialFilesIn(const std::filesystem::path& dir);
+// A whole file as a string ("" when it cannot be read).
+std::string readTextFile(const std::filesystem::path& path);
 
 }  // namespace testing_support

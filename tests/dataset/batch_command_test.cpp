@@ -25,13 +25,6 @@ std::vector<nlohmann::json> resultLines(const std::string& text) {
   return lines;
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 class BatchCommand : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -52,7 +45,7 @@ TEST_F(BatchCommand, RunsEveryJobAndRecordsFailures) {
   EXPECT_EQ(run.exitCode, 1) << run.err;
   const std::vector<nlohmann::json> results = resultLines(run.out);
   ASSERT_EQ(results.size(), 4u) << run.out;
-  EXPECT_EQ(readText(dir_ / "r.jsonl"), run.out);
+  EXPECT_EQ(testing_support::readTextFile(dir_ / "r.jsonl"), run.out);
   for (size_t j = 0; j < results.size(); ++j) EXPECT_EQ(results[j]["job"], j);
   EXPECT_EQ(results[0]["ok"], true);
   EXPECT_EQ(results[0]["output"], (dir_ / "happy.png").string());

@@ -27,16 +27,9 @@ const std::string kTinySpec = R"({"format": "facial-dataset-spec", "version": 1,
   "auMix": {"probability": 0.5, "units": [1, 2], "weight": [0.3, 0.6]},
   "yaw": [-25, 25], "pitch": [-10, 10], "lights": ["studio", "left"], "backgrounds": ["transparent"], "quality": "fast"})";
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 std::vector<nlohmann::json> readLines(const fs::path& path) {
   std::vector<nlohmann::json> lines;
-  std::istringstream in(readText(path));
+  std::istringstream in(testing_support::readTextFile(path));
   for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
   return lines;
 }
@@ -45,7 +38,7 @@ std::vector<nlohmann::json> readLines(const fs::path& path) {
 std::map<std::string, std::string> filesUnder(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.is_regular_file()) files[fs::relative(entry.path(), dir).string()] = readText(entry.path());
+    if (entry.is_regular_file()) files[fs::relative(entry.path(), dir).string()] = testing_support::readTextFile(entry.path());
   return files;
 }
 
@@ -92,7 +85,7 @@ TEST_F(DatasetCommand, LabelsDescribeTheImagesAndTheirLandmarksSitOnTheFace) {
     const auto& box = label["faceBox"];
     EXPECT_GT(box[2].get<double>() - box[0].get<double>(), 25.0) << "face box of item " << k;
   }
-  const nlohmann::json index = nlohmann::json::parse(readText(out / "index.json"));
+  const nlohmann::json index = nlohmann::json::parse(testing_support::readTextFile(out / "index.json"));
   EXPECT_EQ(index["count"], 5);
   EXPECT_EQ(index["complete"], true);
   EXPECT_EQ(index["shards"], nlohmann::json::array({"0/1"}));
@@ -116,18 +109,18 @@ TEST_F(DatasetCommand, TwoShardsPlusTheMergeEqualTheUnshardedRunFileForFile) {
   auto a = filesUnder(whole / "images"), b = filesUnder(sharded / "images");
   EXPECT_EQ(a.size(), 5u);
   EXPECT_TRUE(a == b) << "the shards' images differ from the unsharded run's";
-  EXPECT_EQ(readText(whole / "labels.jsonl"), readText(sharded / "labels.jsonl"));
+  EXPECT_EQ(testing_support::readTextFile(whole / "labels.jsonl"), testing_support::readTextFile(sharded / "labels.jsonl"));
   EXPECT_TRUE(filesUnder(whole / "labels") == filesUnder(sharded / "labels"));
-  const nlohmann::json index = nlohmann::json::parse(readText(sharded / "index.json"));
+  const nlohmann::json index = nlohmann::json::parse(testing_support::readTextFile(sharded / "index.json"));
   EXPECT_EQ(index["shards"], nlohmann::json::array({"0/2", "1/2"}));
-  EXPECT_EQ(index["specHash"], nlohmann::json::parse(readText(whole / "index.json"))["specHash"]);
+  EXPECT_EQ(index["specHash"], nlohmann::json::parse(testing_support::readTextFile(whole / "index.json"))["specHash"]);
 }
 
 TEST_F(DatasetCommand, ARerunCompletesWhatAKilledRunLeft) {
   const fs::path out = dir_ / "set";
   ASSERT_TRUE(ranCleanly(dataset(out)));
   const auto before = filesUnder(out / "images");
-  const std::string labels = readText(out / "labels.jsonl");
+  const std::string labels = testing_support::readTextFile(out / "labels.jsonl");
   // What a worker killed mid-item leaves: an image without its label, a
   // label gone, a partial file.
   fs::remove(out / "labels/000001.json");
@@ -138,7 +131,7 @@ TEST_F(DatasetCommand, ARerunCompletesWhatAKilledRunLeft) {
   ASSERT_TRUE(ranCleanly(rerun));
   EXPECT_NE(rerun.out.find("5 items, 2 made, 3 already there"), std::string::npos) << rerun.out;
   EXPECT_TRUE(filesUnder(out / "images") == before);
-  EXPECT_EQ(readText(out / "labels.jsonl"), labels);
+  EXPECT_EQ(testing_support::readTextFile(out / "labels.jsonl"), labels);
   EXPECT_EQ(testing_support::partialFilesIn(out / "images"), 0u);
 }
 
@@ -157,7 +150,7 @@ TEST_F(DatasetCommand, AWorkerKilledMidRunIsFinishedByARerun) {
   ASSERT_TRUE(ranCleanly(rerun));
   EXPECT_NE(rerun.out.find("already there"), std::string::npos) << rerun.out;
   EXPECT_TRUE(filesUnder(out / "images") == filesUnder(reference / "images"));
-  EXPECT_EQ(readText(out / "labels.jsonl"), readText(reference / "labels.jsonl"));
+  EXPECT_EQ(testing_support::readTextFile(out / "labels.jsonl"), testing_support::readTextFile(reference / "labels.jsonl"));
   EXPECT_EQ(testing_support::partialFilesIn(out / "images") + testing_support::partialFilesIn(out / "labels"), 0u);
 }
 
@@ -188,7 +181,7 @@ TEST_F(DatasetCommand, MergeNamesTheMissingItems) {
   EXPECT_EQ(countOccurrences(merge.err, "\n"), 1u) << merge.err;
   EXPECT_NE(merge.err.find("2 of 5 items missing (1, 3); shard label lists seen: 0/2"), std::string::npos) << merge.err;
   EXPECT_FALSE(fs::exists(out / "labels.jsonl"));
-  const nlohmann::json index = nlohmann::json::parse(readText(out / "index.json"));
+  const nlohmann::json index = nlohmann::json::parse(testing_support::readTextFile(out / "index.json"));
   EXPECT_EQ(index["complete"], false);
   EXPECT_EQ(index["missing"], nlohmann::json::array({1, 3}));
 }
