@@ -16,6 +16,7 @@
 #include "autorig/builtin_source.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
+#include "engine/core/fnv1a.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -41,14 +42,6 @@ std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalib
   return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners: " +
          report.detail;
 }
-
-// FNV-1a, 64 bits: a cache key, not a checksum against tampering.
-struct Fnv1a {
-  uint64_t h = 1469598103934665603ull;
-  void add(std::string_view bytes) {
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  }
-};
 
 eng::Result<std::string> readBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -159,7 +152,7 @@ namespace {
 // not empty): named by the hash of everything that decides what is made.
 eng::Result<std::filesystem::path> cacheEntry(const std::filesystem::path& modelPath, const std::filesystem::path& head,
                                               const std::filesystem::path& landmarks) {
-  Fnv1a key;
+  eng::Fnv1a key;
   key.add(kAutorigVersion);
   key.add(programStamp());
   for (const std::filesystem::path& file : {head, modelPath, landmarks}) {

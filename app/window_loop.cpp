@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "app/stage_profile.h"
 #include "engine/vk/device/vk_result.h"
@@ -15,6 +16,23 @@ namespace {
 // One line for a frame that failed; a lost device ends the run, said plainly.
 eng::Error frameError(uint64_t frame, const eng::Error& error) {
   return eng::vk::explainDeviceLost(error).prefixed("frame " + std::to_string(frame) + ": ");
+}
+
+// The stages --profile prints: the loop's own, then (WindowRendererOptions::timeFrames)
+// the renderer's steps inside "draw" and its passes on the device.
+std::vector<std::string> windowProfileStages() {
+  std::vector<std::string> stages{"events", "frame (script, graph, UI)", "draw (upload, passes, ImGui, present)"};
+  for (const char* name : eng::vk::kWindowCpuStepNames) stages.push_back(std::string("  ") + name);
+  for (const char* name : eng::vk::kWindowGpuPassNames) stages.push_back(name);
+  return stages;
+}
+
+void addFrameTimes(StageProfile& profile, const eng::vk::WindowFrameTimes& times) {
+  constexpr size_t kFirst = 3;
+  if (times.cpuTimed)
+    for (size_t i = 0; i < times.cpu.size(); ++i) profile.add(kFirst + i, times.cpu[i]);
+  if (times.gpuTimed)
+    for (size_t i = 0; i < times.gpu.size(); ++i) profile.add(kFirst + times.cpu.size() + i, times.gpu[i]);
 }
 
 }  // namespace
@@ -36,7 +54,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
   uint64_t frameNumber = 0;
   float animationTime = 0.0f;
   Clock::time_point finalSince{};
-  StageProfile profile({"events", "frame (script, graph, UI)", "draw (upload, passes, ImGui, present)"});
+  StageProfile profile(windowProfileStages());
   auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
   while (!window.shouldClose()) {
     const Clock::time_point polled = Clock::now();
@@ -76,6 +94,7 @@ eng::Result<void> runWindowLoop(eng::vk::Window& window, eng::vk::WindowRenderer
       profile.add(0, eventsMs);
       profile.add(1, frameMs);
       profile.add(2, msSince(drawStart));
+      addFrameTimes(profile, renderer.lastFrameTimes());
       profile.endFrame();
     }
     if (!shot.empty() && presented) {

@@ -20,7 +20,7 @@ eng::Result<std::unique_ptr<WindowSession>> WindowSession::open(const WindowSess
   session->context_.emplace(std::move(*context));
   auto quality = windowQualityOption(options.quality, session->context_->deviceInfo().type);
   if (!quality) return quality.error();
-  auto renderer = eng::vk::WindowRenderer::create(*session->context_, *session->window_, {.quality = *quality});
+  auto renderer = eng::vk::WindowRenderer::create(*session->context_, *session->window_, {.quality = *quality, .timeFrames = options.timeFrames});
   if (!renderer) return renderer.error().prefixed("Vulkan: ");
   session->renderer_ = std::move(*renderer);
   auto ui = eng::vk::ImGuiLayer::create(*session->context_, *session->renderer_, *session->window_);

@@ -32,6 +32,7 @@ struct WindowSessionOptions {
   std::string applicationName = "facial";  // the Vulkan instance's application name
   std::string device;                      // eng::vk::ContextOptions::device (empty: FACIAL_DEVICE or the best)
   std::string quality = "auto";            // auto | fast | balanced | high
+  bool timeFrames = false;                 // --profile: the renderer times each frame's steps and passes
 };
 
 class WindowSession {

@@ -167,7 +167,8 @@ int WindowDemo::openWindow(uint32_t width, uint32_t height) {
   char title[256];
   std::snprintf(title, sizeof title, "facial demo - %s", setup_->name().c_str());
   auto session = app::WindowSession::open(
-      {.width = width, .height = height, .title = title, .device = options_.device, .quality = options_.quality});
+      {.width = width, .height = height, .title = title, .device = options_.device, .quality = options_.quality,
+       .timeFrames = options_.profile});
   if (!session) return fail(session.error().message);
   session_ = std::move(*session);
   auto gpuModel = session_->renderer().upload(setup_->displayModel());

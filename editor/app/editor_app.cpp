@@ -262,7 +262,8 @@ int EditorApp::setUp(const EditorOptions& o) {
                                            .title = "facial editor - " + setup_->name(),
                                            .applicationName = "facial-editor",
                                            .device = o.device,
-                                           .quality = o.quality});
+                                           .quality = o.quality,
+                                           .timeFrames = o.profile});
   if (!session) return fail(session.error().message);
   session_ = std::move(*session);
 

@@ -1,5 +1,7 @@
 #include "engine/vk/draw/gpu_model.h"
 
+#include <atomic>
+
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -197,6 +199,8 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
     return valid.error().prefixed((model.sourcePath.empty() ? std::string("<model>") : model.sourcePath) + ": ");
 
   GpuModel gpu;
+  static std::atomic<uint64_t> uploads{0};
+  gpu.uploadSerial_ = ++uploads;
   gpu.name_ = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
   gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
   gpu.weightCount_ = WeightLayout(model).total();

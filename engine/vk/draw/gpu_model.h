@@ -75,6 +75,9 @@ class GpuModel {
   static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model);
 
   const std::string& name() const { return name_; }
+  // Unique per upload in this process (kept by moves): a new upload of
+  // changed content at the same address is still another model.
+  uint64_t uploadSerial() const { return uploadSerial_; }
   std::span<const GpuMesh> meshes() const { return meshes_; }
   std::span<const MeshNode> meshNodes() const { return meshNodes_; }
   // Materials an instance may override (ModelInstance::materials): those of
@@ -117,6 +120,7 @@ class GpuModel {
                          const PrimitiveRanges& ranges, const MorphInputViews& morph, GpuPrimitive& gp) const;
 
   std::string name_;
+  uint64_t uploadSerial_ = 0;
   std::vector<GpuMesh> meshes_;
   std::vector<MeshNode> meshNodes_;
   uint32_t weightCount_ = 0;

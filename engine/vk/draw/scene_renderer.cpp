@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "engine/vk/device/descriptor_write.h"
+#include "engine/core/fnv1a.h"
 #include "engine/core/log.h"
 #include "engine/vk/draw/active_weights.h"
 #include "engine/vk/device/vk_result.h"
@@ -490,7 +491,26 @@ Result<void> SceneRenderer::prepare(uint32_t slot, const FrameGlobals& globals,
   FrameGlobals written = globals;
   if (qualitySettings(quality_).shadowMapSize == 0) written.shadow.w = 0.0f;  // the tier has no shadow pass
   std::memcpy(slots_[slot].globals.mapped(), &written, sizeof(FrameGlobals));
+  slots_[slot].contentKey = keyContent(slots_[slot], written);
   return {};
+}
+
+uint64_t SceneRenderer::keyContent(const Slot& slot, const FrameGlobals& written) const {
+  Fnv1a key;
+  key.addValue(written);
+  key.addValue(pipelineGeneration_);
+  key.addValues(std::span<const GpuInstance>(instanceScratch_));
+  key.addValues(std::span<const float>(weightScratch_));
+  key.addValues(std::span<const glm::mat4>(jointScratch_));
+  key.addValues(std::span<const InstanceMaterial>(materialScratch_));
+  for (const Batch& b : slot.batches) {
+    // Not the levels of detail: they follow the view's size, which the caller
+    // keys itself (a window's still view is drawn again at full resolution).
+    const std::array<uint64_t, 7> drawn{b.model->uploadSerial(), b.mesh, b.primitive, b.firstInstance, b.instanceCount,
+                                        b.detailLayerMask, uint64_t{b.castsShadow} << 1 | uint64_t{b.mirrored}};
+    key.addValues(std::span<const uint64_t>(drawn));
+  }
+  return key.h;
 }
 
 Result<void> SceneRenderer::prepareCapture(uint32_t slot, std::span<const ModelInstance> instances) {

@@ -97,6 +97,11 @@ class SceneRenderer {
   Result<void> prepare(uint32_t slot, const FrameGlobals& globals, std::span<const ModelInstance> instances,
                        const LodPolicy& lod = {});
   FrameStats stats(uint32_t slot) const;
+  // A key of everything slot's last prepare() would draw (frame globals,
+  // instance records, weights, joints, materials, models, pipelines) but the
+  // levels of detail: equal keys at one view size draw the same picture, so
+  // a window can re-present its last 3D view instead of drawing it again.
+  uint64_t contentKey(uint32_t slot) const { return slot < slots_.size() ? slots_[slot].contentKey : 0; }
   // Before the scene's render pass: the morph pre-pass (recordMorphPass),
   // then the key light's shadow map for the prepared draws.
   void recordShadowPass(VkCommandBuffer cmd, uint32_t slot) const;
@@ -158,6 +163,7 @@ class SceneRenderer {
     uint32_t capturedVertices = 0;
     uint32_t morphedVec4s = 0;
     FrameStats stats;
+    uint64_t contentKey = 0;
   };
 
   // Lays out the instances' frame data in the slot: the steps below, in order.
@@ -203,6 +209,8 @@ class SceneRenderer {
   void drawBatches(VkCommandBuffer cmd, const Slot& slot, DrawPass pass) const;
   // Fills slot.drawOrder (after build: reads instanceScratch_).
   void orderDraws(Slot& slot, const FrameGlobals& globals);
+  // Slot::contentKey of the prepared slot drawn with `written` globals.
+  uint64_t keyContent(const Slot& slot, const FrameGlobals& written) const;
 
   const Context* ctx_ = nullptr;
   const SceneLayouts* layouts_ = nullptr;

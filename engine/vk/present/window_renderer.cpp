@@ -48,6 +48,20 @@ float chooseRenderScale(const Context& ctx, const WindowRendererOptions& options
   return scale;
 }
 
+Result<UniqueFramebuffer> createFramebuffer(const Context& ctx, VkRenderPass pass, std::span<const VkImageView> views,
+                                            VkExtent2D size) {
+  VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fbInfo.renderPass = pass;
+  fbInfo.attachmentCount = static_cast<uint32_t>(views.size());
+  fbInfo.pAttachments = views.data();
+  fbInfo.width = size.width;
+  fbInfo.height = size.height;
+  fbInfo.layers = 1;
+  VkFramebuffer fb = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateFramebuffer(ctx.device(), &fbInfo, nullptr, &fb));
+  return UniqueFramebuffer(ctx.device(), fb);
+}
+
 // The options' level-of-detail error, or FACIAL_LOD_PIXEL_ERROR where set (0 draws every triangle).
 float chooseLodPixelError(const WindowRendererOptions& options) {
   return environmentNumber("FACIAL_LOD_PIXEL_ERROR", "[0, 64]", [](float v) { return v >= 0.0f && v <= 64.0f; })
@@ -109,6 +123,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   if (!depth) return depth.error();
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
   r->renderScale_ = chooseRenderScale(ctx, options, r->swapchain_);
+  r->blitView_ = r->renderScale_ < 1.0f;
   r->options_.lodPixelError = chooseLodPixelError(options);
   const bool automaticScale = options.renderScale <= 0.0f && !std::getenv("FACIAL_RENDER_SCALE") &&
                               ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && r->scaled();
@@ -144,6 +159,11 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   VkDescriptorPool pool = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
   r->imguiPool_ = UniqueDescriptorPool(ctx.device(), pool);
+  if (options.timeFrames) {
+    auto timer = PassTimestamps::create(ctx, kFramesInFlight, WindowFrameTimes::kGpuPasses + 1);
+    if (!timer) return timer.error();
+    r->passTimes_ = std::move(timer).value();
+  }
   r->lastShaderPoll_ = std::chrono::steady_clock::now();
   return r;
 }
@@ -160,7 +180,7 @@ Result<void> WindowRenderer::recreateSwapchain() {
     return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
   swapchain_ = std::move(swapchain).value();
-  if (adaptive_) renderScale_ = adaptive_->scale();  // sceneExtent() follows the images, not ahead of them
+  if (adaptive_) renderScale_ = sharpView_ ? 1.0f : adaptive_->scale();  // sceneExtent() follows the images
   return createSwapchainResources();
 }
 
@@ -172,6 +192,32 @@ VkExtent2D WindowRenderer::sceneExtent() const {
 }
 
 Result<void> WindowRenderer::createSwapchainResources() {
+  ENG_TRY(createViewResources());
+  for (uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
+    std::vector<VkImageView> views;
+    const bool msaa = format_.samples != VK_SAMPLE_COUNT_1_BIT;
+    if (scaled()) {
+      views.push_back(swapchain_.view(i));
+    } else {
+      views.push_back(msaa ? msaaColor_.view() : swapchain_.view(i));
+      views.push_back(depth_.view());
+      if (msaa) views.push_back(swapchain_.view(i));
+    }
+    auto fb = createFramebuffer(*ctx_, scaled() ? overlayPass_.get() : renderPass_.get(), views, swapchain_.extent());
+    if (!fb) return fb.error();
+    framebuffers_.push_back(std::move(fb).value());
+    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore sem = VK_NULL_HANDLE;
+    ENG_VK_TRY(vkCreateSemaphore(ctx_->device(), &semInfo, nullptr, &sem));
+    renderFinished_.emplace_back(ctx_->device(), sem);
+  }
+  swapchainStale_ = false;
+  return {};
+}
+
+Result<void> WindowRenderer::createViewResources() {
+  viewValid_ = false;
+  sceneFramebuffer_ = {};
   const VkExtent2D extent = sceneExtent();
   const bool msaa = format_.samples != VK_SAMPLE_COUNT_1_BIT;
   if (msaa) {
@@ -196,19 +242,6 @@ Result<void> WindowRenderer::createSwapchainResources() {
   if (!depthImage) return depthImage.error();
   depth_ = std::move(depthImage).value();
 
-  auto framebuffer = [&](VkRenderPass pass, std::span<const VkImageView> views,
-                         VkExtent2D size) -> Result<UniqueFramebuffer> {
-    VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fbInfo.renderPass = pass;
-    fbInfo.attachmentCount = static_cast<uint32_t>(views.size());
-    fbInfo.pAttachments = views.data();
-    fbInfo.width = size.width;
-    fbInfo.height = size.height;
-    fbInfo.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    ENG_VK_TRY(vkCreateFramebuffer(ctx_->device(), &fbInfo, nullptr, &fb));
-    return UniqueFramebuffer(ctx_->device(), fb);
-  };
   if (scaled()) {
     ImageDesc color;
     color.extent = extent;
@@ -220,30 +253,26 @@ Result<void> WindowRenderer::createSwapchainResources() {
     sceneColor_ = std::move(image).value();
     std::vector<VkImageView> views{msaa ? msaaColor_.view() : sceneColor_.view(), depth_.view()};
     if (msaa) views.push_back(sceneColor_.view());
-    auto fb = framebuffer(renderPass_.get(), views, extent);
+    auto fb = createFramebuffer(*ctx_, renderPass_.get(), views, extent);
     if (!fb) return fb.error();
     sceneFramebuffer_ = std::move(fb).value();
   }
-
-  for (uint32_t i = 0; i < swapchain_.imageCount(); ++i) {
-    std::vector<VkImageView> views;
-    if (scaled()) {
-      views.push_back(swapchain_.view(i));
-    } else {
-      views.push_back(msaa ? msaaColor_.view() : swapchain_.view(i));
-      views.push_back(depth_.view());
-      if (msaa) views.push_back(swapchain_.view(i));
-    }
-    auto fb = framebuffer(scaled() ? overlayPass_.get() : renderPass_.get(), views, swapchain_.extent());
-    if (!fb) return fb.error();
-    framebuffers_.push_back(std::move(fb).value());
-    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore sem = VK_NULL_HANDLE;
-    ENG_VK_TRY(vkCreateSemaphore(ctx_->device(), &semInfo, nullptr, &sem));
-    renderFinished_.emplace_back(ctx_->device(), sem);
-  }
-  swapchainStale_ = false;
   return {};
+}
+
+Result<bool> WindowRenderer::followStillness(uint64_t contentKey) {
+  stillFrames_ = contentKey == lastKey_ ? stillFrames_ + 1 : 0;
+  lastKey_ = contentKey;
+  if (!adaptive_) return false;
+  const bool sharp = stillFrames_ >= kStillFramesBeforeSharp;
+  if (sharp == sharpView_) return false;
+  sharpView_ = sharp;
+  vkDeviceWaitIdle(ctx_->device());  // the other frame in flight may still read the view's images
+  renderScale_ = sharp ? 1.0f : adaptive_->scale();
+  lastPresented_ = {};  // the next frame is not the adaptive scale's to time
+  adaptive_->restart();
+  ENG_TRY(createViewResources());
+  return true;
 }
 
 Result<GpuModel> WindowRenderer::upload(const Model& model) const { return GpuModel::create(*ctx_, *layouts_, model); }
@@ -297,12 +326,22 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   const uint32_t slot = frameIndex_ % kFramesInFlight;
   FrameSync& f = frames_[slot];
   VkFence fence = f.inFlight.get();
+  StepClock clock(times_, options_.timeFrames);
   ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+  if (options_.timeFrames) times_.gpuTimed = frameIndex_ >= kFramesInFlight && passTimes_.read(slot, times_.gpu);
+  clock.lap(WindowFrameTimes::WaitSlot);
 
   const VkExtent2D extent = swapchain_.extent();
   const float aspect = float(extent.width) / float(extent.height);
-  ENG_TRY(scene_.prepare(slot, buildFrameGlobals(frame.view.camera, aspect, frame.view.lights), frame.instances,
-                         {options_.lodPixelError * renderScale_, sceneExtent().height}));
+  const FrameGlobals globals = buildFrameGlobals(frame.view.camera, aspect, frame.view.lights);
+  ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
+  auto rescaled = followStillness(scene_.contentKey(slot));
+  if (!rescaled) return rescaled.error();
+  if (*rescaled)  // the levels of detail follow the new size
+    ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
+  // Nothing changed since the view image was drawn: blit it again (and the overlay over it).
+  const bool reuseView = scaled() && viewValid_ && viewKey_ == lastKey_;
+  clock.lap(WindowFrameTimes::Upload);
 
   uint32_t image = 0;
   VkResult acquired = faults_.beforeAcquire();
@@ -316,14 +355,21 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   if (acquired == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;  // still presentable: draw, rebuild next frame
   else if (acquired != VK_SUCCESS) return vulkanError("vkAcquireNextImageKHR", acquired);
   ENG_VK_TRY(vkResetFences(device, 1, &fence));
+  clock.lap(WindowFrameTimes::Acquire);
 
   if (!frame.screenshot.empty()) ENG_TRY(ensureScreenshotBuffer(extent));
-  ENG_TRY(recordFrame(f, slot, image, frame));
-  ENG_TRY(submitAndPresent(f, image));
+  ENG_TRY(recordFrame(f, slot, image, frame, reuseView));
+  clock.lap(WindowFrameTimes::Record);
+  ENG_TRY(submitAndPresent(f, image, clock));
 
   lastSlot_ = slot;
   ++frameIndex_;
-  if (adaptive_) adaptRenderScale();
+  lastViewReused_ = reuseView;
+  viewKey_ = lastKey_;
+  viewValid_ = scaled();
+  // Only frames drawn at the adaptive scale time it.
+  if (adaptive_ && !reuseView && !sharpView_) adaptRenderScale();
+  else lastPresented_ = {};
   if (!frame.screenshot.empty()) {
     ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
     ENG_TRY(saveScreenshot(frame.screenshot));
@@ -340,13 +386,24 @@ Result<void> WindowRenderer::ensureScreenshotBuffer(VkExtent2D extent) {
   return {};
 }
 
-Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame) {
+Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame,
+                                         bool reuseView) {
   VkCommandBuffer cmd = f.cmd;
   ENG_VK_TRY(vkResetCommandPool(ctx_->device(), f.pool.get(), 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   ENG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+  passTimes_.mark(cmd, slot, 0);
+  if (reuseView) {
+    passTimes_.mark(cmd, slot, 1);
+    passTimes_.mark(cmd, slot, 2);
+    recordUpscaleAndOverlay(cmd, image, frame.overlay, slot);
+    if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
+    ENG_VK_TRY(vkEndCommandBuffer(cmd));
+    return {};
+  }
   scene_.recordShadowPass(cmd, slot);
+  passTimes_.mark(cmd, slot, 1);
   std::array<VkClearValue, 3> clears{};
   clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
   clears[1].depthStencil = {1.0f, 0};
@@ -362,7 +419,13 @@ Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint
   scene_.record(cmd, slot, viewExtent);
   if (!scaled() && frame.overlay) frame.overlay(cmd);
   vkCmdEndRenderPass(cmd);
-  if (scaled()) recordUpscaleAndOverlay(cmd, image, frame.overlay);
+  passTimes_.mark(cmd, slot, 2);
+  if (scaled()) {
+    recordUpscaleAndOverlay(cmd, image, frame.overlay, slot);
+  } else {
+    passTimes_.mark(cmd, slot, 3);  // nothing blitted; the overlay was drawn in the view's pass
+    passTimes_.mark(cmd, slot, 4);
+  }
   if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
   ENG_VK_TRY(vkEndCommandBuffer(cmd));
   return {};
@@ -388,7 +451,7 @@ void WindowRenderer::recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) c
                        nullptr);
 }
 
-Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image) {
+Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image, StepClock& clock) {
   VkCommandBuffer cmd = f.cmd;
   const VkSemaphore waitSemaphore = f.imageAvailable.get();
   const VkSemaphore signalSemaphore = renderFinished_[image].get();
@@ -404,6 +467,7 @@ Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image
   if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, f.inFlight.get()));
       submitted != VK_SUCCESS)
     return vulkanError("vkQueueSubmit", submitted);
+  clock.lap(WindowFrameTimes::Submit);
 
   const VkSwapchainKHR swapchain = swapchain_.handle();
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
@@ -413,6 +477,7 @@ Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image
   present.pSwapchains = &swapchain;
   present.pImageIndices = &image;
   const VkResult presented = vkQueuePresentKHR(ctx_->queue(), &present);
+  clock.lap(WindowFrameTimes::Present);
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;
   else if (presented != VK_SUCCESS) return vulkanError("vkQueuePresentKHR", presented);
   return {};
@@ -429,7 +494,8 @@ void WindowRenderer::adaptRenderScale() {
   adaptive_->restart();
 }
 
-void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const {
+void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay,
+                                             uint32_t slot) const {
   const VkImage target = swapchain_.image(image);
   // Chained to the acquire semaphore's wait (colour-attachment-output stage).
   recordImageBarrier(cmd, {target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -444,6 +510,7 @@ void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image
   // The scene pass left the view in TRANSFER_SRC_OPTIMAL, its writes ordered before transfers.
   vkCmdBlitImage(cmd, sceneColor_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+  passTimes_.mark(cmd, slot, 3);
   VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   pass.renderPass = overlayPass_.get();
   pass.framebuffer = framebuffers_[image].get();
@@ -457,6 +524,7 @@ void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image
     overlay(cmd);
   }
   vkCmdEndRenderPass(cmd);
+  passTimes_.mark(cmd, slot, 4);
 }
 
 Result<void> WindowRenderer::saveScreenshot(const std::filesystem::path& path) {

@@ -36,6 +36,7 @@
 #include "engine/vk/device/fault_injection.h"
 #include "engine/vk/present/frame_pacing.h"
 #include "engine/vk/device/gpu_image.h"
+#include "engine/vk/device/pass_timestamps.h"
 #include "engine/vk/draw/gpu_model.h"
 #include "engine/vk/device/render_pass.h"
 #include "engine/vk/draw/render_quality.h"
@@ -77,7 +78,27 @@ struct WindowRendererOptions {
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
   // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
+  // Time each frame's steps (lastFrameTimes): the CPU's with a clock, the
+  // passes with GPU timestamps where the queue has them. Off by default:
+  // lavapipe's query read-back waits for the whole device, so frames no
+  // longer overlap while it is on.
+  bool timeFrames = false;
 };
+
+// Where one frame's time went (WindowRendererOptions::timeFrames), in ms.
+struct WindowFrameTimes {
+  enum Cpu : uint8_t { WaitSlot, Upload, Acquire, Record, Submit, Present, kCpuSteps };
+  enum Gpu : uint8_t { MorphAndShadow, View3D, Blit, Overlay, kGpuPasses };
+  std::array<double, kCpuSteps> cpu{};
+  std::array<double, kGpuPasses> gpu{};  // of the last frame its slot completed
+  bool cpuTimed = false;                 // timeFrames is on
+  bool gpuTimed = false;                 // ... and the queue timed the passes
+};
+inline constexpr const char* kWindowCpuStepNames[WindowFrameTimes::kCpuSteps] = {
+    "wait for a frame slot", "upload (weights, materials)", "acquire image", "record commands", "submit",
+    "present"};
+inline constexpr const char* kWindowGpuPassNames[WindowFrameTimes::kGpuPasses] = {
+    "GPU: morph + shadow map", "GPU: 3D view + resolve", "GPU: blit up", "GPU: ImGui overlay"};
 
 // Everything ImGui_ImplVulkan_Init needs (copy into ImGui_ImplVulkan_InitInfo;
 // pass renderPass as its second argument).
@@ -98,6 +119,10 @@ struct ImGuiVulkanInfo {
 // The automatic renderScale on a CPU device: a 1280x800 window's 3D view at
 // 832x520, about 30 frames/s of the built-in head on lavapipe (2 cores).
 inline constexpr float kCpuRenderScale = 0.65f;
+// With the adaptive scale: frames in a row with nothing changed in the 3D
+// view after which it is drawn once at full resolution (and re-presented
+// until something changes).
+inline constexpr uint32_t kStillFramesBeforeSharp = 3;
 
 using OverlayRecorder = std::function<void(VkCommandBuffer)>;
 
@@ -109,6 +134,24 @@ struct FrameInput {
 };
 
 enum class FrameResult { Presented, Skipped };
+
+// Laps of one frame's CPU steps into WindowFrameTimes::cpu (when on).
+class StepClock {
+ public:
+  StepClock(WindowFrameTimes& times, bool on) : times_(on ? &times : nullptr), last_(std::chrono::steady_clock::now()) {
+    times.cpuTimed = on;
+  }
+  void lap(WindowFrameTimes::Cpu step) {
+    if (!times_) return;
+    const auto now = std::chrono::steady_clock::now();
+    times_->cpu[step] = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+  }
+
+ private:
+  WindowFrameTimes* times_;
+  std::chrono::steady_clock::time_point last_;
+};
 
 class WindowRenderer {
  public:
@@ -131,7 +174,11 @@ class WindowRenderer {
   VkExtent2D sceneExtent() const;
   float renderScale() const { return renderScale_; }
   bool adaptiveScale() const { return adaptive_.has_value(); }
+  // The last frame re-presented the 3D view of the frame before (nothing in
+  // it changed: SceneRenderer::contentKey) instead of drawing it again.
+  bool lastViewReused() const { return lastViewReused_; }
   FrameStats lastFrameStats() const { return scene_.stats(lastSlot_); }
+  const WindowFrameTimes& lastFrameTimes() const { return times_; }
   const ShaderLibrary& shaders() const { return *shaders_; }
   // Polls the shader sources now and rebuilds pipelines if they changed and compile.
   bool reloadChangedShaders();
@@ -150,18 +197,29 @@ class WindowRenderer {
   Result<void> recreateSwapchain();
   // MSAA colour, depth, framebuffers and semaphores for the current swapchain.
   Result<void> createSwapchainResources();
-  bool scaled() const { return renderScale_ < 1.0f; }
+  // The 3D view is drawn into its own image and blitted into the swapchain's
+  // (fixed at creation: a CPU device's scale below 1, which a still view
+  // may raise to 1 for a while).
+  bool scaled() const { return blitView_; }
+  // The view's images (multisampled colour, depth, the blitted view) at sceneExtent().
+  Result<void> createViewResources();
+  // After prepare: counts still frames, and in the adaptive mode switches to
+  // the full resolution once the view has been still for a few frames and
+  // back at the first change (rebuilding the view's images). True when the
+  // scale changed (the frame is prepared again for it).
+  Result<bool> followStillness(uint64_t contentKey);
   // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
-  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay) const;
+  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay,
+                               uint32_t slot) const;
   Result<void> saveScreenshot(const std::filesystem::path& path);
   // The steps of drawFrame after the swapchain image is acquired.
   Result<void> ensureScreenshotBuffer(VkExtent2D extent);
   // The frame's commands: shadow pass, the 3D view (and overlay), the blit when scaled, the screenshot copy.
-  Result<void> recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame);
+  Result<void> recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame, bool reuseView);
   // Swapchain image -> screenshotBuffer_, back to present layout, visible to the host.
   void recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) const;
   // Submits the frame (signalling f's fence) and presents it; a stale swapchain is marked, not an error.
-  Result<void> submitAndPresent(const FrameSync& f, uint32_t image);
+  Result<void> submitAndPresent(const FrameSync& f, uint32_t image, StepClock& clock);
   // After a presented frame: times it, and on a new scale marks the view for rebuilding.
   void adaptRenderScale();
 
@@ -174,6 +232,15 @@ class WindowRenderer {
   UniqueRenderPass renderPass_;   // the 3D view (+ the overlay when not scaled)
   UniqueRenderPass overlayPass_;  // scaled: the overlay over the blitted view
   float renderScale_ = 1.0f;
+  bool blitView_ = false;
+  // Stillness: the content key of the last frame, how many frames in a row
+  // had it, and the key the view image holds (while viewValid_).
+  uint64_t lastKey_ = 0;
+  uint32_t stillFrames_ = 0;
+  bool sharpView_ = false;  // adaptive mode, still: the view at full resolution
+  uint64_t viewKey_ = 0;
+  bool viewValid_ = false;
+  bool lastViewReused_ = false;
   std::optional<AdaptiveRenderScale> adaptive_;             // dynamic resolution, when on
   std::chrono::steady_clock::time_point lastPresented_{};  // of the previous presented frame; {}: none to time from
   Swapchain swapchain_;
@@ -191,6 +258,8 @@ class WindowRenderer {
   Buffer screenshotBuffer_;
   uint32_t frameIndex_ = 0;
   uint32_t lastSlot_ = 0;
+  PassTimestamps passTimes_;  // timeFrames: marks between the passes, per slot
+  WindowFrameTimes times_;
   std::chrono::steady_clock::time_point lastShaderPoll_{};
 };
 

@@ -181,6 +181,7 @@ TEST(WindowRenderer, AdaptiveScaleKeepsTheViewWithinItsLimits) {
   SphereScene scene(*rig.renderer);
   const eng::vk::AdaptiveRenderScale::Limits limits;
   for (int i = 0; i < 3 * int(eng::vk::AdaptiveRenderScale::kWindow) + 2; ++i) {
+    scene.weights[0] = float(i % 2);  // moving: a still view would be drawn sharp instead
     auto drawn = rig.renderer->drawFrame(scene.frame());
     ASSERT_TRUE(drawn) << drawn.error().message;
     rig.window->pollEvents();
@@ -188,6 +189,7 @@ TEST(WindowRenderer, AdaptiveScaleKeepsTheViewWithinItsLimits) {
   const float scale = rig.renderer->renderScale();
   EXPECT_GE(scale, limits.minScale - 1e-4f);
   EXPECT_LE(scale, limits.maxScale + 1e-4f);
+  scene.weights[0] = 0.5f;
   const eng::Image shot = screenshotOf(rig, scene.frame(), "adaptive");
   EXPECT_EQ(shot.width, int(rig.renderer->extent().width));
   const VkExtent2D view = rig.renderer->sceneExtent();
@@ -200,6 +202,49 @@ TEST(WindowRenderer, AdaptiveScaleKeepsTheViewWithinItsLimits) {
   WindowRig chosen({.renderScale = 0.5f});
   ASSERT_TRUE(chosen.ok());
   EXPECT_FALSE(chosen.renderer->adaptiveScale());
+}
+
+// Nothing changed in the 3D view: the last view image is blitted again
+// instead of drawn; still for a few frames, the adaptive mode draws it once at
+// the window's full resolution (sharp) and keeps re-presenting that; the first
+// change goes back to the adaptive scale. The picture is the one a drawn frame
+// would show.
+TEST(WindowRenderer, StillViewIsRepresentedAndDrawnSharp) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  if (!rig.renderer->adaptiveScale()) GTEST_SKIP() << "the view is blitted only with a scale (a CPU device)";
+  SphereScene scene(*rig.renderer);
+  auto draw = [&] {
+    auto drawn = rig.renderer->drawFrame(scene.frame());
+    EXPECT_TRUE(drawn) << (drawn ? "" : drawn.error().message);
+    rig.window->pollEvents();
+  };
+  draw();
+  EXPECT_FALSE(rig.renderer->lastViewReused()) << "the first frame is drawn";
+  const float adaptive = rig.renderer->renderScale();
+  ASSERT_LT(adaptive, 1.0f);
+  draw();
+  EXPECT_TRUE(rig.renderer->lastViewReused()) << "the same frame again";
+  for (uint32_t i = 1; i < eng::vk::kStillFramesBeforeSharp; ++i) draw();
+  EXPECT_EQ(rig.renderer->renderScale(), 1.0f) << "still long enough: drawn at full resolution";
+  EXPECT_FALSE(rig.renderer->lastViewReused()) << "the sharp view is drawn once";
+  EXPECT_EQ(rig.renderer->sceneExtent().width, rig.renderer->extent().width);
+  const eng::Image drawnShot = screenshotOf(rig, scene.frame(), "sharp_reused");
+  EXPECT_TRUE(rig.renderer->lastViewReused()) << "then re-presented";
+  EXPECT_EQ(rig.renderer->renderScale(), 1.0f);
+
+  scene.weights[0] = 1.0f;
+  draw();
+  EXPECT_FALSE(rig.renderer->lastViewReused()) << "a weight changed";
+  EXPECT_EQ(rig.renderer->renderScale(), adaptive) << "moving again: back to the adaptive scale";
+  scene.weights[0] = 0.0f;
+  for (uint32_t i = 0; i < eng::vk::kStillFramesBeforeSharp; ++i) draw();
+  const eng::Image redrawn = screenshotOf(rig, scene.frame(), "sharp_drawn");
+  EXPECT_FALSE(rig.renderer->lastViewReused()) << "the sharp view drawn anew";
+  ASSERT_EQ(redrawn.width, drawnShot.width);
+  ASSERT_EQ(redrawn.height, drawnShot.height);
+  EXPECT_EQ(redrawn.rgba8, drawnShot.rgba8) << "a re-presented view is the picture a drawn one shows";
 }
 
 TEST(WindowRenderer, ImGuiOverlayDrawsIntoTheScenePass) {
