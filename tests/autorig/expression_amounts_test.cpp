@@ -67,6 +67,7 @@ struct Amounts {
   float innerBrowUp = 0.0f;  // 21/22 up, eye spans
   float outerBrowUp = 0.0f;  // 17/26 up, eye spans
   float upperLidUp = 0.0f;   // 37/38/43/44 up, over the lids' opening
+  float mouthWider = 0.0f;   // lip corners 48-54 apart, over the mouth's width (< 0: narrower)
 };
 
 Amounts amounts(const Measured& m, const char* target) {
@@ -87,12 +88,13 @@ Amounts amounts(const Measured& m, const char* target) {
           .cornersDown = -rise({48, 54}) / mouth,
           .innerBrowUp = rise({21, 22}) / eye,
           .outerBrowUp = rise({17, 26}) / eye,
-          .upperLidUp = rise({37, 38, 43, 44}) / opening};
+          .upperLidUp = rise({37, 38, 43, 44}) / opening,
+          .mouthWider = glm::dot(motion(m, 54, target) - motion(m, 48, target), (p[54] - p[48]) / mouth) / mouth};
 }
 
 void print(const char* face, const char* unit, const Amounts& a) {
-  std::printf("%-10s %-24s gap %6.3f (upper %6.3f) chin %6.3f corners %6.3f brow in %6.3f out %6.3f lid %6.3f\n", face, unit, a.lipGap, a.upperLipUp,
-              a.chinDown, a.cornersDown, a.innerBrowUp, a.outerBrowUp, a.upperLidUp);
+  std::printf("%-10s %-24s gap %6.3f (upper %6.3f) chin %6.3f corners %6.3f brow in %6.3f out %6.3f lid %6.3f wider %6.3f\n", face, unit,
+              a.lipGap, a.upperLipUp, a.chinDown, a.cornersDown, a.innerBrowUp, a.outerBrowUp, a.upperLidUp, a.mouthWider);
 }
 
 constexpr const char* kUnits[] = {"AU26_JawDrop", "AU27_MouthStretch", "AU25_LipsPart", "AU1_InnerBrowRaiser",
