@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace editor {
 
@@ -11,6 +12,16 @@ using facial::TangentMode;
 std::string_view curveKeyModeName(CurveKeyMode mode) { return eng::nameOf(kCurveKeyModeNames, mode); }
 
 std::optional<CurveKeyMode> curveKeyModeFromName(std::string_view name) { return eng::valueNamed(kCurveKeyModeNames, name); }
+
+std::string keyHoverText(std::string_view channel, const facial::Keyframe& key, float frameRate) {
+  const float frame = key.time * frameRate;
+  const bool onFrame = std::abs(frame - std::round(frame)) < 1e-3f;
+  char text[192];
+  std::snprintf(text, sizeof text, onFrame ? "%.*s: %.2f s (frame %.0f), value %.3f, %.*s" : "%.*s: %.2f s (frame %.1f), value %.3f, %.*s",
+                int(channel.size()), channel.data(), double(key.time), double(frame), double(key.value),
+                int(curveKeyModeName(curveKeyModeOf(key)).size()), curveKeyModeName(curveKeyModeOf(key)).data());
+  return text;
+}
 
 CurveKeyMode curveKeyModeOf(const facial::Keyframe& key) {
   switch (key.interpolation) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -37,6 +38,11 @@ inline constexpr eng::EnumName<CurveKeyMode> kCurveKeyModeNames[] = {
 std::string_view curveKeyModeName(CurveKeyMode mode);
 std::optional<CurveKeyMode> curveKeyModeFromName(std::string_view name);
 CurveKeyMode curveKeyModeOf(const facial::Keyframe& key);
+
+// What hovering a key in the dope sheet or the curve view says: its track,
+// time (and frame at `frameRate`), value and mode, e.g.
+// "happy: 1.00 s (frame 30), value 0.750, cosine".
+std::string keyHoverText(std::string_view channel, const facial::Keyframe& key, float frameRate);
 
 // The interpolation and tangent mode a curve key mode stands for.
 struct CurveKeyShape {

@@ -1,5 +1,5 @@
 #include "editor/app/bilinear_pad_panel.h"
-#include "editor/app/menu_bar.h"
+#include "editor/app/tooltip.h"
 
 #include <imgui.h>
 
@@ -78,12 +78,15 @@ void BilinearPadPanel::draw(FaceDelegate& face) {
     ImGui::PushID(int(c));
     if (c % 2 == 1) ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * (c % 2 == 1 ? 1.0f : 0.5f) - 4.0f);
-    if (ImGui::BeginCombo("##corner", cornerNames_[c].c_str())) {
-      for (const std::string_view name : presets)
+    const bool choosing = ImGui::BeginCombo("##corner", cornerNames_[c].c_str());
+    if (!choosing) tooltip(std::string(kCornerLabels[c]) + (c % 2 == 1 ? " (re-bases: the face does not jump)" : ""));
+    if (choosing) {
+      for (const std::string_view name : presets) {
         if (ImGui::Selectable(std::string(name).c_str(), name == cornerNames_[c])) chooseCorner(BilinearPad::Corner(c), name);
+        tooltip("This expression preset at the corner");
+      }
       ImGui::EndCombo();
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s%s", kCornerLabels[c], c % 2 == 1 ? " (re-bases: the face does not jump)" : "");
     ImGui::PopID();
   }
   const float side = std::max(100.0f, std::min(ImGui::GetContentRegionAvail().x, ImGui::GetContentRegionAvail().y - 26.0f));
@@ -93,7 +96,7 @@ void BilinearPadPanel::draw(FaceDelegate& face) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     dragTo(1.0f - (m.y - o.y) / side, (m.x - o.x) / side, face);
   }
-  if (!ImGui::IsItemActive()) tooltip("Drag: t across from the \"from\" column to the \"to\" column, s up from row 1 to row 2");
+  if (!ImGui::IsItemActive()) tooltip("Drag: t across from the \"from\" column to the \"to\" column, s up from row 1 to row 2", kCanvasHelpDelay);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(o, {o.x + side, o.y + side}, IM_COL32(28, 32, 42, 255), 4.0f);
   draw->AddRect(o, {o.x + side, o.y + side}, IM_COL32(110, 120, 140, 255), 4.0f);

@@ -1,5 +1,5 @@
 #include "editor/app/control_map_panel.h"
-#include "editor/app/menu_bar.h"
+#include "editor/app/tooltip.h"
 
 #include <imgui.h>
 
@@ -103,7 +103,7 @@ void ControlMapPanel::draw(FaceDelegate& face) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     dragCursor({((m.x - origin.x) / side * 2.0f - 1.0f) / 0.85f, (1.0f - (m.y - origin.y) / side * 2.0f) / 0.85f}, face);
   }
-  if (!ImGui::IsItemActive()) tooltip("Drag the cursor: the face blends the poles around it (Record writes it as keys)");
+  if (!ImGui::IsItemActive()) tooltip("Drag the cursor: the face blends the poles around it (Record writes it as keys)", kCanvasHelpDelay);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 end{origin.x + side, origin.y + side};
   draw->AddRectFilled(origin, end, IM_COL32(28, 32, 42, 255), 4.0f);

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <string>
+
+#include "editor/app/tooltip.h"
 
 namespace editor {
 
@@ -15,6 +18,7 @@ void CurvePanel::draw(TimelineDocument& document, std::span<const size_t> tracks
                                         document.minValue(), document.maxValue());
   ImGui::InvisibleButton("curves", {std::max(avail.x, 50.0f), std::max(avail.y, 2.0f * CurveView::kValueMargin + 20.0f)});
   handleMouse(document, tracks, view);
+  tooltipForPlot(document, tracks, view);
   drawCurves(document, tracks, view, playhead);
 }
 
@@ -32,21 +36,40 @@ void CurvePanel::drawKeyFields(TimelineDocument& document) {
   ImGui::SetNextItemWidth(90.0f);
   if (ImGui::Combo("mode", &mode, kModes, int(std::size(kModes))))
     (void)setCurveKeyMode(document, id, CurveKeyMode(mode), k.inTangent, k.outTangent);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("The key's tangents / the segment it starts (also for the runtime)");
+  tooltip("The key's tangents / the segment it starts (also for the runtime): auto, smooth, flat, broken, linear, step, cosine");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80.0f);
   float values[2] = {k.time, k.value};
   if (ImGui::InputFloat2("time, value", values, "%.3f", ImGuiInputTextFlags_EnterReturnsTrue))
     (void)document.moveSelectedBy(values[0] - k.time, values[1] - k.value);
+  tooltip("The key's time (seconds) and value; Enter moves the selected keys by the change");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(140.0f);
   float slopes[2] = {k.inTangent, k.outTangent};
   if (ImGui::InputFloat2("in, out slope", slopes, "%.3f", ImGuiInputTextFlags_EnterReturnsTrue))
     (void)setCurveKeyMode(document, id, k.tangent == facial::TangentMode::Broken ? CurveKeyMode::Broken : CurveKeyMode::Smooth,
                           slopes[0], slopes[1] != k.outTangent ? slopes[1] : slopes[0]);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Value per second; a smooth key keeps one slope both sides");
+  tooltip("Value per second; a smooth key keeps one slope both sides, Enter sets them");
   ImGui::SameLine();
   ImGui::TextDisabled("%zu selected", document.selection().size());
+}
+
+void CurvePanel::tooltipForPlot(const TimelineDocument& document, std::span<const size_t> tracks, const CurveView& view) const {
+  if (dragging_ || boxStart_) return;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (const auto hit = view.hitAt(document, tracks, {mouse.x, mouse.y}))
+    if (const DocumentKey* k = document.key(hit->key)) {
+      const std::string key = keyHoverText(document.tracks()[hit->track].channel, k->key, document.frameRate());
+      if (hit->part == CurveView::Part::Key) return tooltip(key);
+      char slope[96];
+      std::snprintf(slope, sizeof slope, "\n%s slope %.3f per second (drag: smooth, Alt+drag: broken)",
+                    hit->part == CurveView::Part::InHandle ? "in" : "out",
+                    double(hit->part == CurveView::Part::InHandle ? k->key.inTangent : k->key.outTangent));
+      return tooltip(key + slope);
+    }
+  tooltip("Click a key: select (Shift / Ctrl: toggle), drag: move; drag a handle: bend the tangent (Alt: break it).\n"
+          "Drag on empty space: box select in time and value",
+          kCanvasHelpDelay);
 }
 
 // A press on a handle or key drags it (Alt: breaks the tangent); on empty

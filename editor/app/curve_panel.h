@@ -21,6 +21,8 @@ class CurvePanel {
  private:
   void drawKeyFields(TimelineDocument& document);
   void handleMouse(TimelineDocument& document, std::span<const size_t> tracks, const CurveView& view);
+  // Hovering a key says its track, time, value and mode; a handle, its slope; the empty plot, after a rest, how to use it.
+  void tooltipForPlot(const TimelineDocument& document, std::span<const size_t> tracks, const CurveView& view) const;
   void drawCurves(const TimelineDocument& document, std::span<const size_t> tracks, const CurveView& view,
                   float playhead) const;
 

@@ -30,6 +30,7 @@
 #include "editor/app/sculpt_panel.h"
 #include "editor/app/state_machine_panel.h"
 #include "editor/app/timeline_panel.h"
+#include "editor/app/tooltip.h"
 #include "editor/app/driver_channels.h"
 #include "editor/key_recorder.h"
 #include "engine/view/framing_bounds.h"
@@ -245,7 +246,8 @@ int EditorApp::setUp(const EditorOptions& o) {
                              : " (landmarks exist for the built-in head only)"));
       using Kind = EditorScriptAction::Kind;
       const bool writes = a.kind == Kind::TimelineSave || a.kind == Kind::SculptSave || a.kind == Kind::Screenshot ||
-                          a.kind == Kind::GraphSave || a.kind == Kind::ProjectSave || a.kind == Kind::GraphSave || a.kind == Kind::ProjectSaveAs || a.kind == Kind::ExportGlb || a.kind == Kind::ExportGif;
+                          a.kind == Kind::GraphSave || a.kind == Kind::ProjectSave || a.kind == Kind::GraphSave || a.kind == Kind::ProjectSaveAs || a.kind == Kind::ExportGlb || a.kind == Kind::ExportGif ||
+                          a.kind == Kind::ExportVideo;
       if (auto safe = app::checkOutputs({.inputs = {{"--model", o.model}, {"--rigmap", o.rigmap}, {"--graph", graphPath}, {"--script", o.script}},
                                          .outputs = {{"", writes ? std::string_view(a.text) : std::string_view()}}});
           !safe)
@@ -441,7 +443,7 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::TimelineMute: case Kind::TimelineSolo: case Kind::CurveTangent: case Kind::TimelineKeyEmotion:
       return timeline_->runScriptAction(a, *this);
     case Kind::ProjectNew: case Kind::ProjectOpen: case Kind::ProjectSave: case Kind::ProjectSaveAs:
-    case Kind::ExportGlb: case Kind::ExportGif: case Kind::QuitDiscard: case Kind::QuitSave:
+    case Kind::ExportGlb: case Kind::ExportGif: case Kind::ExportVideo: case Kind::QuitDiscard: case Kind::QuitSave:
       return runProjectAction(a);
     default: return runGraphOrPadAction(a);
   }
@@ -518,15 +520,18 @@ void EditorApp::drawPadWindow() {
     else
       startRecording();
   }
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Writes what the pads and sliders do into the timeline as keys, from the playhead (a few keys a second)");
+  tooltip("Writes what the pads and sliders do into the timeline as keys, from the playhead (a few keys a second)");
   if (ImGui::BeginTabBar("pads")) {
     const auto tabFlags = [&](int tab) { return showPadTab_ == tab ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None; };
-    if (ImGui::BeginTabItem("Control map", nullptr, tabFlags(0))) {
+    const bool controlMap = ImGui::BeginTabItem("Control map", nullptr, tabFlags(0));
+    tooltip("The study's control map (four poles) or the freeform map (six): drag its cursor");
+    if (controlMap) {
       controlMap_.draw(*this);
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Bilinear pad", nullptr, tabFlags(1))) {
+    const bool bilinear = ImGui::BeginTabItem("Bilinear pad", nullptr, tabFlags(1));
+    tooltip("Four expressions at the corners, blended bilinearly (s, t): drag its cursor");
+    if (bilinear) {
       bilinearPad_.draw(*this);
       ImGui::EndTabItem();
     }
@@ -610,7 +615,9 @@ void EditorApp::drawPanels() {
   ImGui::SetNextWindowSize({l.side, l.height - l.bottom - l.top}, ImGuiCond_Always);
   ImGui::Begin("RBF sculpt", nullptr, docked);
   sculpt_.draw();
-  if (ImGui::CollapsingHeader("Landmarks (autorig)")) landmarks_.draw(*setup_);
+  const bool landmarksOpen = ImGui::CollapsingHeader("Landmarks (autorig)");
+  tooltip("The 68 face landmarks the targets were rigged from: show, move and rig again");
+  if (landmarksOpen) landmarks_.draw(*setup_);
   ImGui::End();
 
   ImGui::SetNextWindowPos({0, l.height - l.bottom}, ImGuiCond_Always);
@@ -666,6 +673,7 @@ bool EditorApp::runProjectAction(const EditorScriptAction& a) {
     case Kind::ProjectSaveAs: return project_->saveAs(a.text);
     case Kind::ExportGlb: return project_->exportGlb(a.text);
     case Kind::ExportGif: return project_->exportGif(a.text, a.words.size() > 1 ? a.words[1] : std::string());
+    case Kind::ExportVideo: return project_->exportVideo(a.text, a.words.size() > 1 ? a.words[1] : std::string());
     case Kind::QuitDiscard:
       project_->discardUnsaved();
       quitDiscarded_ = quitRequested_ = true;
@@ -690,6 +698,7 @@ void EditorApp::runMenuRequest(const MenuRequest& request) {
     case MenuCommand::SaveAs: project_->saveAs(path); return;
     case MenuCommand::ExportGlb: project_->exportGlb(path); return;
     case MenuCommand::ExportGif: project_->exportGif(path, ""); return;
+    case MenuCommand::ExportVideo: project_->exportVideo(path, ""); return;
     case MenuCommand::Quit: quitRequested_ = true; return;
     case MenuCommand::QuitSave: quitRequested_ = path.empty() ? project_->save() : project_->saveAs(path); return;
     case MenuCommand::QuitDiscard:

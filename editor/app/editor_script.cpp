@@ -59,6 +59,7 @@ constexpr Verb kVerbs[] = {
     {"project-save-as", Kind::ProjectSaveAs, "w"},
     {"export-glb", Kind::ExportGlb, "w"},
     {"export-gif", Kind::ExportGif, "w?w"},
+    {"export-video", Kind::ExportVideo, "w?w"},
     {"quit-discard", Kind::QuitDiscard, ""},
     {"quit-save", Kind::QuitSave, ""},
     // The state machine diagram and the pads that record.

@@ -41,6 +41,7 @@
 //   4.3 project-save-as P.json     Save As
 //   4.4 export-glb OUT.glb         Export .glb: the face, its sculpted targets, every clip as an animation
 //   4.5 export-gif OUT.gif [CLIP]  Export GIF: the clip (the one being edited, or the project's clip CLIP)
+//   4.5 export-video OUT.mp4 [CLIP]  Export video: the same frames at 30 fps as H.264 MP4 (no sound)
 //   4.6 quit-discard, quit-save    the unsaved-changes question on quit answered Discard / Save
 //
 // The state machine diagram and the pads that record (issue 34, points 3 and 4):
@@ -92,7 +93,7 @@ struct EditorScriptAction {
     GraphAddState, GraphRemoveState, GraphRenameState, GraphAddTransition, GraphEditTransition, GraphSave,
     BilinearPad, RecordStart, RecordStop,
     // Projects and export (File menu; editor/app/project_actions.h).
-    ProjectNew, ProjectOpen, ProjectSave, ProjectSaveAs, ExportGlb, ExportGif, QuitDiscard, QuitSave,
+    ProjectNew, ProjectOpen, ProjectSave, ProjectSaveAs, ExportGlb, ExportGif, ExportVideo, QuitDiscard, QuitSave,
     // Dope sheet and curve view (issue 34): TimelinePanel::runScriptAction runs these.
     TimelineBoxSelect, TimelineCopy, TimelinePaste, TimelineDuplicate, TimelineNudge, TimelineSnap, TimelineLoop,
     TimelineSpeed, TimelineMute, TimelineSolo, CurveTangent, TimelineKeyEmotion,

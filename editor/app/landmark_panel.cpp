@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "editor/app/tooltip.h"
 #include "importers/load_face.h"
 
 namespace editor {
@@ -107,12 +108,15 @@ void LandmarkPanel::draw(const app::FaceSetup& face) {
   if (!edit_) {
     ImGui::TextWrapped("The 68 points the face's targets were made from.");
     if (ImGui::Button("Show landmarks")) pressShow(face);
+    tooltip("Draw the 68 landmarks the face was rigged from over the view, to move them");
   } else {
     ImGui::Text("selected: %s", edit_->selected() < 0 ? "none (click a point)" : std::to_string(edit_->selected()).c_str());
     ImGui::TextDisabled("drag a point to move it over the skin");
     if (ImGui::Button(edit_->dirty() ? "Re-run transfer *" : "Re-run transfer")) pressRerun(face);
+    tooltip("Rig the face again from the points as they are now (* : moved since the last run)");
     ImGui::SameLine();
     if (ImGui::Button(edit_->unsaved() ? "Save *" : "Save")) pressSave();
+    tooltip("Save the points as <face>.landmarks.json beside the face (* : unsaved)");
   }
   message_.draw();
 }

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot", o.screenshot, "Write the last frame here (with --quit-after); F12 writes one any time");
   app.add_option("--script", o.script,
                  "Timed actions through the panels' own handlers, one a line: SECONDS ACTION ARGS "
-                 "(trigger, pad, timeline-*, undo, redo, sculpt-*, say, say-lang, say-stop, project-*, export-glb, export-gif, "
+                 "(trigger, pad, timeline-*, undo, redo, sculpt-*, say, say-lang, say-stop, project-*, export-glb, export-gif, export-video, "
                  "screenshot, quit, quit-save, quit-discard; see docs/editor.md)");
   app.add_flag("--profile", o.profile, "On exit, print where the frames' time went (mean ms and share per stage)");
   app.add_flag("--mute", o.mute, "Speak moves the mouth without playing the voice");

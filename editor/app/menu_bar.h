@@ -1,6 +1,6 @@
 #pragma once
 // The window's menu bar: File (New, Open, Save, Save As, Recent, Export .glb,
-// Export GIF, Quit), Edit (Undo, Redo, and the dope sheet's Copy, Paste at the
+// Export GIF, Export video, Quit), Edit (Undo, Redo, and the dope sheet's Copy, Paste at the
 // playhead, Duplicate, Select all), View (framing, screenshot) and Help,
 // each item with its shortcut listed and the same shortcuts on the keyboard.
 // ImGui has no file dialog, so Open, Save As and the exports ask for a path
@@ -13,13 +13,13 @@
 namespace editor {
 
 enum class MenuCommand {
-  None, New, Open, Save, SaveAs, ExportGlb, ExportGif, Quit, QuitSave, QuitDiscard,
+  None, New, Open, Save, SaveAs, ExportGlb, ExportGif, ExportVideo, Quit, QuitSave, QuitDiscard,
   Undo, Redo, Copy, Paste, Duplicate, SelectAll, ToggleFraming, Screenshot,
 };
 
 struct MenuRequest {
   MenuCommand command = MenuCommand::None;
-  std::string path;  // Open, SaveAs, ExportGlb, ExportGif: the path typed or chosen from Recent
+  std::string path;  // Open, SaveAs and the exports: the path typed or chosen from Recent
 };
 
 // What the menus show (greyed items, the recent list, the title's file).
@@ -33,9 +33,6 @@ struct MenuState {
   bool hasClipboard = false;  // Paste
 };
 
-// A hover help line on the last widget (one home for the panels' tooltips).
-void tooltip(const char* text);
-
 class MenuBar {
  public:
   // Draws the bar, the keyboard shortcuts and any open prompt; what the user chose this frame.
@@ -46,7 +43,7 @@ class MenuBar {
   void askToQuit() { quitAsked_ = true; }
 
  private:
-  enum class Prompt { None, Open, SaveAs, ExportGlb, ExportGif };
+  enum class Prompt { None, Open, SaveAs, ExportGlb, ExportGif, ExportVideo };
   MenuRequest drawMenus(const MenuState& state);
   MenuRequest shortcuts(const MenuState& state);
   MenuRequest drawPrompt();

@@ -4,6 +4,7 @@
 
 #include "app/headless_model_renderer.h"
 #include "app/sequence_recorder.h"
+#include "audio/video_writer.h"
 #include "editor/glb_export.h"
 #include "importers/face_dressing.h"
 #include "engine/scene/gltf_loader.h"
@@ -160,42 +161,75 @@ bool ProjectActions::exportGlb(const fs::path& path) {
   return true;
 }
 
-bool ProjectActions::exportGif(const fs::path& path, const std::string& clipName) {
+eng::Result<const TimelineDocument*> ProjectActions::clipToExport(const std::string& clipName, std::optional<TimelineDocument>& other) const {
   const TimelineDocument& editing = panels_.timeline->document();
-  std::optional<TimelineDocument> other;
   if (!clipName.empty() && clipName != editing.name()) {
     const auto it = std::find_if(otherClips_.begin(), otherClips_.end(), [&](const ProjectClip& c) { return c.name == clipName; });
-    if (it == otherClips_.end()) return fail(path.string() + ": not exported: the project has no clip '" + clipName + "'");
-    auto loaded = TimelineDocument::load(it->file);
-    if (!loaded) return fail(path.string() + ": not exported: " + loaded.error().message);
-    other.emplace(std::move(*loaded));
+    if (it == otherClips_.end()) return eng::makeError(eng::ErrorKind::NotFound, "the project has no clip '" + clipName + "'");
+    other.emplace(ENG_TRY_VALUE(TimelineDocument::load(it->file)));
   }
   const TimelineDocument& clip = other ? *other : editing;
-  if (clip.tracks().empty()) return fail(path.string() + ": not exported: the clip has no tracks");
-  // Drawn as the window draws the face: dressed, with the baked targets.
+  if (clip.tracks().empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "the clip has no tracks");
+  return &clip;
+}
+
+eng::Result<app::SequenceSummary> ProjectActions::recordClip(const TimelineDocument& clip, app::SequenceOptions sequence,
+                                                             const app::FrameSink& sink) const {
+  // Drawn as the window draws the face: dressed, with the baked targets, from the view on screen.
   const eng::Model& model = panels_.sculpt->workingModel();
   const std::optional<eng::Model> dressed = importers::dressedForDisplay(model);
   const ProjectView view = panels_.view->viewSettings();
-  auto renderer = app::HeadlessModelRenderer::create(dressed ? *dressed : model,
-                                                     {.width = 384, .height = 384, .yawDegrees = view.yawDegrees,
-                                                      .pitchDegrees = view.pitchDegrees, .zoom = view.zoom,
-                                                      .framing = view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face,
-                                                      .framesInFlight = app::kSequenceFramesInFlight});
-  if (!renderer) return fail(path.string() + ": not exported: " + renderer.error().message);
+  auto renderer = ENG_TRY_VALUE(app::HeadlessModelRenderer::create(
+      dressed ? *dressed : model, {.width = kClipExportSize, .height = kClipExportSize, .yawDegrees = view.yawDegrees,
+                                   .pitchDegrees = view.pitchDegrees, .zoom = view.zoom,
+                                   .framing = view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face,
+                                   .framesInFlight = app::kSequenceFramesInFlight}));
   TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights(), &panels_.face->expressions());
   std::vector<float> faceWeights(panels_.face->layout().total()), weights;
-  eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
-  auto recorded = app::recordSequence(renderer->offscreen(), renderer->view(),
-                                      {.framesPerSecond = 20.0f, .seconds = clip.duration(), .gifPath = path, .progressLabel = "export gif"},
-                                      [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
-                                        if (auto posed = pose.pose(clip, frame.time, faceWeights); !posed) return posed.error();
-                                        panels_.sculpt->bakedWeights(faceWeights, weights);
-                                        instance.weights = weights;
-                                        return std::span<const eng::vk::ModelInstance>(&instance, 1);
-                                      });
+  eng::vk::ModelInstance instance{&renderer.gpuModel(), glm::mat4(1.0f), {}};
+  sequence.seconds = clip.duration();
+  auto recorded = ENG_TRY_VALUE(app::recordSequence(
+      renderer.offscreen(), renderer.view(), sequence,
+      [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
+        if (auto posed = pose.pose(clip, frame.time, faceWeights); !posed) return posed.error();
+        panels_.sculpt->bakedWeights(faceWeights, weights);
+        instance.weights = weights;
+        return std::span<const eng::vk::ModelInstance>(&instance, 1);
+      },
+      sink));
+  ENG_TRY(renderer.checkValidation());
+  return recorded;
+}
+
+bool ProjectActions::exportGif(const fs::path& path, const std::string& clipName) {
+  std::optional<TimelineDocument> other;
+  auto clip = clipToExport(clipName, other);
+  if (!clip) return fail(path.string() + ": not exported: " + clip.error().message);
+  auto recorded = recordClip(**clip, {.framesPerSecond = kGifExportFps, .gifPath = path, .progressLabel = "export gif"}, {});
   if (!recorded) return fail(path.string() + ": not exported: " + recorded.error().message);
-  if (auto clean = renderer->checkValidation(); !clean) return fail(path.string() + ": " + clean.error().message);
-  message_.report("exported " + path.string() + ": clip '" + clip.name() + "', " + std::to_string(recorded->frames) + " frames", false);
+  message_.report("exported " + path.string() + ": clip '" + (*clip)->name() + "', " + std::to_string(recorded->frames) + " frames", false);
+  return true;
+}
+
+bool ProjectActions::exportVideo(const fs::path& path, const std::string& clipName) {
+  std::optional<TimelineDocument> other;
+  auto clip = clipToExport(clipName, other);
+  if (!clip) return fail(path.string() + ": not exported: " + clip.error().message);
+  // The writer fills "<path>.partial" and renames it when finished: a failed export leaves no file.
+  auto writer = audio::VideoWriter::create(path, {.width = int(kClipExportSize), .height = int(kClipExportSize), .framesPerSecond = kVideoExportFps});
+  if (!writer) return fail(path.string() + ": not exported: " + writer.error().message);
+  eng::Result<void> written;  // the sink cannot fail the recording: the next frame's step does
+  auto recorded = recordClip(**clip, {.framesPerSecond = kVideoExportFps, .progressLabel = "export video"},
+                             [&](const app::FrameContext&, const eng::Image& image) {
+                               if (written) written = writer->addFrame(image.rgba8);
+                             });
+  if (recorded && !written) recorded = written.error();
+  if (recorded)
+    if (auto finished = writer->finish(); !finished) recorded = finished.error();
+  if (!recorded) return fail(path.string() + ": not exported: " + recorded.error().message);
+  message_.report("exported " + path.string() + ": clip '" + (*clip)->name() + "', " + std::to_string(recorded->frames) +
+                      " frames at " + std::to_string(int(kVideoExportFps)) + " fps, no sound",
+                  false);
   return true;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/face_setup.h"
+#include "app/sequence_recorder.h"
 #include "editor/app/face_delegate.h"
 #include "editor/app/sculpt_panel.h"
 #include "editor/app/state_machine_panel.h"
@@ -36,6 +37,10 @@ struct ProjectPanels {
   ProjectViewHost* view = nullptr;
 };
 
+// Clip exports: square frames of this size, the GIF at 20 and the video at 30 frames a second.
+inline constexpr uint32_t kClipExportSize = 384;
+inline constexpr float kGifExportFps = 20.0f, kVideoExportFps = 30.0f;
+
 class ProjectActions {
  public:
   // model / rigmap / graph: what the editor was started with ("" = defaults).
@@ -55,6 +60,9 @@ class ProjectActions {
   // The clip (empty: the one being edited; else a project clip by name) played
   // headless into an animated GIF, seen from the view on screen.
   bool exportGif(const std::filesystem::path& path, const std::string& clip);
+  // The same frames as the GIF, at 30 fps, as an H.264 MP4 without sound (the
+  // clip holds no speech): complete or absent (audio::VideoWriter).
+  bool exportVideo(const std::filesystem::path& path, const std::string& clip);
 
   // Unsaved changes: the clip's edits or settings, bakes or their weights, another or an edited graph.
   bool dirty() const;
@@ -74,6 +82,10 @@ class ProjectActions {
 
  private:
   Project current(const std::filesystem::path& projectFile) const;
+  // The clip an export plays: the one being edited (clip empty or its name) or a project clip, loaded into `other`.
+  eng::Result<const TimelineDocument*> clipToExport(const std::string& clip, std::optional<TimelineDocument>& other) const;
+  // The clip played headless as the window draws it (GIF and video export): `sequence` without its length, each frame to `sink`.
+  eng::Result<app::SequenceSummary> recordClip(const TimelineDocument& clip, app::SequenceOptions sequence, const app::FrameSink& sink) const;
   bool apply(const Project& project, const std::filesystem::path& path);
   bool fail(const std::string& problem) {
     message_.report(problem, true);

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "editor/app/menu_bar.h"
+#include "editor/app/tooltip.h"
 #include "editor/atomic_file.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/view/framing_bounds.h"
@@ -302,12 +302,15 @@ void SculptPanel::draw() {
   if (!landmarks_.empty()) {
     landmarkChoice_ = std::clamp(landmarkChoice_, 0, int(landmarks_.size()) - 1);
     ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Add landmark").x - 24.0f);
-    if (ImGui::BeginCombo("##landmark", landmarks_[size_t(landmarkChoice_)].name.c_str())) {
-      for (size_t i = 0; i < landmarks_.size(); ++i)
+    const bool choosing = ImGui::BeginCombo("##landmark", landmarks_[size_t(landmarkChoice_)].name.c_str());
+    if (!choosing) tooltip("A named point of the built-in head (nose tip, lip corners...)");
+    if (choosing) {
+      for (size_t i = 0; i < landmarks_.size(); ++i) {
         if (ImGui::Selectable(landmarks_[i].name.c_str(), int(i) == landmarkChoice_)) landmarkChoice_ = int(i);
+        tooltip("Pick this landmark for Add landmark");
+      }
       ImGui::EndCombo();
     }
-    tooltip("A named point of the built-in head (nose tip, lip corners...)");
     ImGui::SameLine();
     if (ImGui::Button("Add landmark")) pressAddLandmark(landmarks_[size_t(landmarkChoice_)].name);
     tooltip("Add the chosen landmark as a control point (at rest: it pins that spot)");
@@ -322,6 +325,7 @@ void SculptPanel::draw() {
     const glm::vec3 d = points[i].displacement;
     std::snprintf(label, sizeof label, "%s  (%.4f %.4f %.4f)##%zu", points[i].name.c_str(), d.x, d.y, d.z, i);
     if (ImGui::Selectable(label, int(i) == selected_)) selected_ = int(i);
+    tooltip("Select this point (its displacement in brackets): the XYZ drags and Shift+drag in the view move it");
   }
   if (points.empty()) ImGui::TextDisabled("no control points yet");
   ImGui::EndChild();

@@ -1,5 +1,5 @@
 #include "editor/app/state_machine_panel.h"
-#include "editor/app/menu_bar.h"
+#include "editor/app/tooltip.h"
 
 #include <imgui.h>
 

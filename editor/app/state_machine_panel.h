@@ -78,6 +78,7 @@ class StateMachinePanel {
   bool rebuildFromDocument();
   void drawParameters();
   void drawDiagramCanvas();
+  void tooltipForDiagram(glm::vec2 origin) const;
   void drawStateEditor();
   void drawTransitionEditor();
   void drawAddControls();

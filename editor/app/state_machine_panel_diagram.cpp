@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "editor/app/menu_bar.h"
+#include "editor/app/tooltip.h"
 #include "editor/app/state_machine_panel.h"
 #include "facial/runtime/graph/graph_json.h"
 #include "facial/runtime/graph/preset_lookup.h"
@@ -150,6 +150,7 @@ void StateMachinePanel::drawDiagramCanvas() {
     selectedTransition_ = arrow ? int(diagram_.arrows()[*arrow].transition) : -1;
     if (selectedState_ >= 0) std::snprintf(renameInput_, sizeof renameInput_, "%s", states[size_t(selectedState_)].name.c_str());
   }
+  tooltipForDiagram(origin);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(o, {o.x + size.x, o.y + size.y}, IM_COL32(24, 27, 36, 255));
 
@@ -188,6 +189,26 @@ void StateMachinePanel::drawDiagramCanvas() {
                   ("-> " + current + "  " + std::to_string(int(100.0f * status->blendProgress)) + "%").c_str());
 }
 
+// Hovering a box names its state and expression, an arrow its transition; the empty diagram, after a rest, says what a click does.
+void StateMachinePanel::tooltipForDiagram(glm::vec2 origin) const {
+  const auto states = document_->states();
+  const auto transitions = document_->transitions();
+  const glm::vec2 m = glm::vec2(ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y) - origin;
+  if (const auto box = diagram_.boxAt(m); box && *box < states.size())
+    return tooltip("state " + states[*box].name + (states[*box].expression.empty() ? "" : " (" + states[*box].expression + ")") +
+                   ": click to rename or remove it");
+  if (const auto arrow = diagram_.arrowAt(m)) {
+    const GraphTransitionInfo& t = transitions[diagram_.arrows()[*arrow].transition];
+    char text[256];
+    std::snprintf(text, sizeof text, "%s -> %s%s%s, %.2f s %s: click to edit it", t.from.c_str(), t.to.c_str(),
+                  t.trigger.empty() ? "" : " when ", t.trigger.c_str(), double(t.duration), t.easing.c_str());
+    return tooltip(text);
+  }
+  tooltip("States as boxes (the active one green), transitions as arrows (the one blending green, a dot at its progress).\n"
+          "Click a box or an arrow to edit it",
+          kCanvasHelpDelay);
+}
+
 void StateMachinePanel::drawStateEditor() {
   const auto states = document_->states();
   if (selectedState_ < 0 || size_t(selectedState_) >= states.size()) {
@@ -199,6 +220,7 @@ void StateMachinePanel::drawStateEditor() {
   if (!state.expression.empty()) ImGui::TextDisabled("expression: %s", state.expression.c_str());
   ImGui::SetNextItemWidth(-60.0f);
   ImGui::InputText("##rename", renameInput_, sizeof renameInput_);
+  tooltip("The state's new name (then Rename)");
   ImGui::SameLine();
   if (ImGui::Button("Rename")) renameState(state.name, renameInput_);
   tooltip("Rename the state; transitions and the default state follow");
@@ -239,6 +261,7 @@ void StateMachinePanel::drawTransitionEditor() {
     ImGui::SetNextItemWidth(-1.0f);
     ImGui::DragFloat("##exit", &editingExit_, 0.01f, 0.0f, 30.0f, "%.2f s");
     commit |= ImGui::IsItemDeactivatedAfterEdit();
+    tooltip("The exit time in seconds (drag, or Ctrl+click to type)");
   }
   commit |= ImGui::Checkbox("interruptible", &t.interruptible);
   tooltip("May another transition cut in while this one blends");
@@ -256,32 +279,43 @@ void StateMachinePanel::drawAddControls() {
   ImGui::TextDisabled("add a state");
   ImGui::SetNextItemWidth(-1.0f);
   ImGui::InputText("##newstate", newStateInput_, sizeof newStateInput_);
+  tooltip("The new state's name");
   newExpression_ = std::clamp(newExpression_, 0, int(presets.size()) - 1);
   ImGui::SetNextItemWidth(-50.0f);
-  if (ImGui::BeginCombo("##expr", presets.empty() ? "" : std::string(presets[size_t(newExpression_)]).c_str())) {
-    for (size_t i = 0; i < presets.size(); ++i)
+  const bool choosing = ImGui::BeginCombo("##expr", presets.empty() ? "" : std::string(presets[size_t(newExpression_)]).c_str());
+  if (!choosing) tooltip("The expression preset the new state holds");
+  if (choosing) {
+    for (size_t i = 0; i < presets.size(); ++i) {
       if (ImGui::Selectable(std::string(presets[i]).c_str(), int(i) == newExpression_)) newExpression_ = int(i);
+      tooltip("The new state holds this preset");
+    }
     ImGui::EndCombo();
   }
   ImGui::SameLine();
   if (ImGui::Button("Add##state") && !presets.empty()) addState(newStateInput_, presets[size_t(newExpression_)]);
   tooltip("Add a state holding the chosen expression preset");
   ImGui::TextDisabled("add a transition");
-  const auto stateCombo = [&](const char* id, int& choice, bool withAny) {
+  const auto stateCombo = [&](const char* id, int& choice, bool withAny, const char* help) {
     const int count = int(states.size()) + (withAny ? 1 : 0);
     choice = std::clamp(choice, 0, count - 1);
     const auto name = [&](int i) { return i < int(states.size()) ? states[size_t(i)].name : std::string(GraphDocument::kAnyState); };
     ImGui::SetNextItemWidth(-1.0f);
-    if (ImGui::BeginCombo(id, name(choice).c_str())) {
-      for (int i = 0; i < count; ++i)
+    const bool open = ImGui::BeginCombo(id, name(choice).c_str());
+    if (!open) tooltip(help);
+    if (open) {
+      for (int i = 0; i < count; ++i) {
         if (ImGui::Selectable(name(i).c_str(), i == choice)) choice = i;
+        tooltip(help);
+      }
       ImGui::EndCombo();
     }
     return name(choice);
   };
-  const std::string from = stateCombo("##from", newFrom_, true), to = stateCombo("##to", newTo_, false);
+  const std::string from = stateCombo("##from", newFrom_, true, "The state the new transition leaves (any: from every state)"),
+                    to = stateCombo("##to", newTo_, false, "The state the new transition enters");
   ImGui::SetNextItemWidth(-50.0f);
   ImGui::InputTextWithHint("##trigger", "trigger (empty: none)", newTriggerInput_, sizeof newTriggerInput_);
+  tooltip("The trigger that fires the new transition (a new name is declared as a parameter; empty: none)");
   ImGui::SameLine();
   if (ImGui::Button("Add##transition")) addTransition(from, to, newTriggerInput_, 0.5f, "cosine");
   tooltip("Add a transition (0.5 s, cosine); a new trigger name is declared as a parameter");
@@ -297,6 +331,7 @@ void StateMachinePanel::drawAddControls() {
   ImGui::EndDisabled();
   ImGui::SetNextItemWidth(-50.0f);
   ImGui::InputText("##savepath", savePathInput_, sizeof savePathInput_);
+  tooltip("Where Save writes the graph (JSON)");
   ImGui::SameLine();
   if (ImGui::Button("Save##graph")) saveGraph(savePathInput_);
   tooltip("Write the graph file the runtime reads (facial play, --graph); save it beside the timeline files it names");

@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 
 #include "editor/app/editor_app.h"
+#include "editor/app/tooltip.h"
 #include "facial/runtime/graph/timeline.h"
 #include "facial/runtime/rig/emotions.h"
 
@@ -270,20 +271,25 @@ void TimelinePanel::drawFileAndTransport(FaceDelegate& face) {
   // Files.
   ImGui::SetNextItemWidth(220.0f);
   ImGui::InputText("##path", path_, sizeof path_);
+  tooltip("The timeline file Open reads and Save writes (JSON, as facial play reads it)");
   ImGui::SameLine();
   if (ImGui::Button("Open")) open(path_);
+  tooltip("Open the timeline file named on the left (unsaved edits stay in their autosave)");
   ImGui::SameLine();
   if (ImGui::Button(document_.dirty() ? "Save*" : "Save")) save(path_);
+  tooltip("Save the clip to the file named on the left (* : unsaved edits; File > Save, Ctrl+S, saves the whole project)");
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
   // Transport.
   if (ImGui::Button("|<")) setPlayhead(0.0f);
+  tooltip("Playhead to the start (Home; End: to the end)");
   ImGui::SameLine();
   if (ImGui::Button(playing_ ? "Pause" : "Play", {52.0f, 0.0f})) {
     togglePlaying();
     if (playing_) face.takeControl(FaceSource::Timeline);
   }
+  tooltip("Play / pause the clip on the face (Space)");
   ImGui::SameLine();
   // The clip's loop mode (saved with it, undoable): how the runtime plays it past its end.
   static constexpr const char* kLoopModes[] = {"once", "loop", "ping-pong"};
@@ -292,6 +298,7 @@ void TimelinePanel::drawFileAndTransport(FaceDelegate& face) {
   int loopChoice = int(std::find(std::begin(kLoopValues), std::end(kLoopValues), document_.loop()) - std::begin(kLoopValues));
   ImGui::SetNextItemWidth(90.0f);
   if (ImGui::Combo("##loop", &loopChoice, kLoopModes, 3)) (void)document_.setLoop(kLoopValues[loopChoice]);
+  tooltip("How the clip plays past its end: once, loop or ping-pong (saved with it; the runtime plays it so)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70.0f);
   float time = playhead_;
@@ -299,21 +306,25 @@ void TimelinePanel::drawFileAndTransport(FaceDelegate& face) {
     setPlayhead(time);
     face.takeControl(FaceSource::Timeline);
   }
+  tooltip("The playhead (drag, or double-click to type; Left / Right step a frame)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70.0f);
   float duration = document_.duration();
   if (ImGui::DragFloat("length", &duration, 0.01f, TimelineDocument::kMinDuration, 600.0f, "%.2f s")) {
     if (auto set = document_.setDuration(duration); !set) message_.report(set.error().message, true);
   }
+  tooltip("The clip's length in seconds (drag, or double-click to type)");
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
   if (!document_.canUndo()) ImGui::BeginDisabled();
   if (ImGui::Button("Undo")) undo();
+  tooltip(document_.canUndo() ? "Undo: " + std::string(document_.undoLabel()) + " (Ctrl+Z)" : std::string("Nothing to undo (Ctrl+Z)"));
   if (!document_.canUndo()) ImGui::EndDisabled();
   ImGui::SameLine();
   if (!document_.canRedo()) ImGui::BeginDisabled();
   if (ImGui::Button("Redo")) redo();
+  tooltip(document_.canRedo() ? "Redo: " + std::string(document_.redoLabel()) + " (Ctrl+Y, Ctrl+Shift+Z)" : std::string("Nothing to redo (Ctrl+Y)"));
   if (!document_.canRedo()) ImGui::EndDisabled();
 }
 
@@ -321,16 +332,19 @@ void TimelinePanel::drawFileAndTransport(FaceDelegate& face) {
 void TimelinePanel::drawKeyAndTrackControls(FaceDelegate& face) {
   // Keys.
   if (ImGui::Button("Key track")) keyTrack(face);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key the selected track at the playhead with the value on screen");
+  tooltip("Key the selected track at the playhead with the value on screen");
   ImGui::SameLine();
   if (ImGui::Button("Key all")) keyAll(face);
+  tooltip("Key every track at the playhead with the values on screen (K)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80.0f);
   ImGui::Combo("new keys", &newKeyInterpolation_, kInterpolationNames, 4);
+  tooltip("The interpolation Key track, Key all and K give new keys");
   ImGui::SameLine();
   const bool hasSelection = !document_.selection().empty();
   if (!hasSelection) ImGui::BeginDisabled();
   if (ImGui::Button("Delete")) deleteSelected();
+  tooltip("Delete the selected keys (Delete)");
   ImGui::SameLine();
   int selectedInterpolation = -1;
   if (hasSelection)
@@ -338,6 +352,7 @@ void TimelinePanel::drawKeyAndTrackControls(FaceDelegate& face) {
   ImGui::SetNextItemWidth(80.0f);
   if (ImGui::Combo("selected", &selectedInterpolation, kInterpolationNames, 4))
     (void)document_.setSelectedInterpolation(facial::KeyInterpolation(selectedInterpolation));
+  tooltip("The selected keys' interpolation (the segment each starts; the Curves tab sets tangents)");
   if (!hasSelection) ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::TextDisabled("|");
@@ -346,14 +361,18 @@ void TimelinePanel::drawKeyAndTrackControls(FaceDelegate& face) {
   const auto channels = pose_.channelNames();
   channelChoice_ = std::clamp(channelChoice_, 0, int(channels.size()) - 1);
   ImGui::SetNextItemWidth(190.0f);
-  if (ImGui::BeginCombo("##channel", channels.empty() ? "" : channels[size_t(channelChoice_)].c_str())) {
+  const bool choosing = ImGui::BeginCombo("##channel", channels.empty() ? "" : channels[size_t(channelChoice_)].c_str());
+  if (!choosing) tooltip("The channel Add track adds: an action unit, an emotion, a viseme or one of the model's targets");
+  if (choosing) {
     ImGui::SetNextItemWidth(-1.0f);
     ImGui::InputTextWithHint("##filter", "filter", channelFilter_, sizeof channelFilter_);
+    tooltip("Show only the channels whose name holds this text");
     for (size_t c = 0; c < channels.size(); ++c) {
       if (!textCaseInsensitiveContains(channels[c], channelFilter_)) continue;
       const bool used = document_.findTrack(channels[c]).has_value();
       if (ImGui::Selectable(channels[c].c_str(), int(c) == channelChoice_, used ? ImGuiSelectableFlags_Disabled : 0))
         channelChoice_ = int(c);
+      tooltip(used ? "The clip has a track on this channel already" : "Pick this channel for Add track");
     }
     ImGui::EndCombo();
   }
@@ -363,12 +382,14 @@ void TimelinePanel::drawKeyAndTrackControls(FaceDelegate& face) {
     if (added) currentTrack_ = int(*added);
     else message_.report(added.error().message, true);
   }
+  tooltip("Add a track on the channel picked on the left");
   ImGui::SameLine();
   if (currentTrack_ < 0) ImGui::BeginDisabled();
   if (ImGui::Button("Remove track") && currentTrack_ >= 0) {
     (void)document_.removeTrack(size_t(currentTrack_));
     currentTrack_ = std::min(currentTrack_, int(document_.tracks().size()) - 1);
   }
+  tooltip("Remove the current track and its keys (undoable)");
   if (currentTrack_ < 0) ImGui::EndDisabled();
 }
 
@@ -391,6 +412,7 @@ void TimelinePanel::drawTracks(FaceDelegate& face) {
   ImGui::InvisibleButton("canvas", {view.canvasWidth(), view.canvasHeight()},
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle);
   handleCanvasMouse(view, rows, face);
+  tooltipForCanvas(view, rows);
   drawCanvas(view, rows);
   ImGui::EndChild();
 }
@@ -408,7 +430,7 @@ void TimelinePanel::drawGroupHeader(TrackGroup group, float left, float y) {
   ImGui::PushID(int(group) + 100000);
   bool& collapsed = collapsed_[size_t(group)];
   if (ImGui::ArrowButton("##fold", collapsed ? ImGuiDir_Right : ImGuiDir_Down)) collapsed = !collapsed;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip(collapsed ? "Show the group's tracks" : "Fold the group's tracks away");
+  tooltip(collapsed ? "Show the group's tracks" : "Fold the group's tracks away");
   ImGui::SameLine();
   ImGui::AlignTextToFramePadding();
   ImGui::TextDisabled("%.*s", int(trackGroupName(group).size()), trackGroupName(group).data());
@@ -435,14 +457,15 @@ void TimelinePanel::drawTrackName(size_t t, float left, float y) {
     }
   }
   if (!known || !document_.audible(t)) ImGui::PopStyleColor();
-  if (!known && ImGui::IsItemHovered()) ImGui::SetTooltip("this face has no channel '%s'", track.channel.c_str());
+  tooltip((known ? std::string() : "This face has no channel '" + track.channel + "'.\n") +
+          "Click: the current track (Key track keys it). Ctrl+click or double-click: select all its keys (Shift adds)");
   for (const bool solo : {false, true}) {
     ImGui::SameLine(0.0f, 2.0f);
     const bool on = solo ? track.solo : track.muted;
     if (on) ImGui::PushStyleColor(ImGuiCol_Button, solo ? ImVec4(0.8f, 0.65f, 0.1f, 1.0f) : ImVec4(0.7f, 0.2f, 0.2f, 1.0f));
     if (ImGui::SmallButton(solo ? "S" : "M")) toggleTrackFlag(track.channel, solo);
     if (on) ImGui::PopStyleColor();
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip(solo ? "Solo: preview only the soloed tracks" : "Mute: leave this track out of the preview (still saved)");
+    tooltip(solo ? "Solo: preview only the soloed tracks" : "Mute: leave this track out of the preview (still saved)");
   }
   ImGui::PopID();
 }
@@ -506,6 +529,18 @@ void TimelinePanel::handleCanvasMouse(const TimelineView& view, const std::vecto
     draggingKeys_ = false;
     scrubbing_ = false;
   }
+}
+
+void TimelinePanel::tooltipForCanvas(const TimelineView& view, const std::vector<TrackRow>& rows) {
+  if (draggingKeys_ || scrubbing_ || panning_ || boxStart_) return;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (const auto hit = view.hitAt(document_.tracks(), rows, {mouse.x, mouse.y}); hit && hit->key && rows[hit->row].track)
+    if (const DocumentKey* k = document_.key(*hit->key))
+      return tooltip(keyHoverText(document_.tracks()[*rows[hit->row].track].channel, k->key, document_.frameRate()));
+  tooltip("Click a key: select (Shift / Ctrl: add / toggle), drag: move. Drag on empty rows: box select.\n"
+          "Ruler: scrub (Alt+click: the keys at that time). Wheel: zoom, middle drag: pan.\n"
+          "Space play, K key all, Delete, Ctrl+C / V / D / A, Left / Right nudge, Home / End",
+          kCanvasHelpDelay);
 }
 
 void TimelinePanel::finishBox(const TimelineView& view, const std::vector<TrackRow>& rows) {
@@ -621,18 +656,18 @@ void TimelinePanel::drawCanvas(const TimelineView& view, const std::vector<Track
 // The view row: time axis, frames, loop range, speed, then the status.
 void TimelinePanel::drawViewControls() {
   if (ImGui::SmallButton("Frame all")) frameAll();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show the whole clip (wheel: zoom, middle drag: pan)");
+  tooltip("Show the whole clip (wheel: zoom, middle drag: pan)");
   ImGui::SameLine();
   if (ImGui::SmallButton("Frame sel.")) frameSelection();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Show the selected keys ('.')");
+  tooltip("Show the selected keys ('.')");
   ImGui::SameLine();
   ImGui::Checkbox("snap", &snapping_);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Key drags move by whole frames");
+  tooltip("Key drags move by whole frames");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(50.0f);
   float fps = document_.frameRate();
   if (ImGui::InputFloat("fps", &fps, 0.0f, 0.0f, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue)) report(document_.snapToFrames(fps));
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Frame rate of nudges and snapping; Enter also snaps the selected keys (all if none)");
+  tooltip("Frame rate of nudges and snapping; Enter also snaps the selected keys (all if none)");
   ImGui::SameLine();
   const PlaybackSettings p = document_.playback();
   if (ImGui::SmallButton(p.hasLoopRange ? "Clear loop" : "Loop sel.")) {
@@ -643,11 +678,12 @@ void TimelinePanel::drawViewControls() {
       report(document_.setLoopRange(first, last));
     }
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Loop playback over the selected keys' times (green on the ruler)");
+  tooltip("Loop playback over the selected keys' times (green on the ruler)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(60.0f);
   float speed = p.speed;
   if (ImGui::InputFloat("speed", &speed, 0.0f, 0.0f, "%.2fx", ImGuiInputTextFlags_EnterReturnsTrue)) report(document_.setSpeed(speed));
+  tooltip("Playback speed (Enter sets it; a preview setting, kept in the project, not in the clip file)");
   ImGui::SameLine();
 }
 
@@ -656,14 +692,18 @@ void TimelinePanel::draw(FaceDelegate& face) {
   if (addKeysFromKeyboard_) keyAll(face);
   addKeysFromKeyboard_ = false;
   if (ImGui::BeginTabBar("timeline views")) {
-    if (ImGui::BeginTabItem("Dope sheet")) {
+    const bool dopeSheet = ImGui::BeginTabItem("Dope sheet");
+    tooltip("Keys on rows, one per track, grouped (select, move, copy, paste, nudge)");
+    if (dopeSheet) {
       drawViewControls();
       drawStatus(face);
       drawTracks(face);
       if (!showCurves_) shownCurves_ = curveTracks();  // picked in the dope sheet; clicks in the curve view keep them
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Curves", nullptr, showCurves_ ? ImGuiTabItemFlags_SetSelected : 0)) {
+    const bool curves = ImGui::BeginTabItem("Curves", nullptr, showCurves_ ? ImGuiTabItemFlags_SetSelected : 0);
+    tooltip("The selected keys' tracks as curves, with tangent handles");
+    if (curves) {
       curves_.draw(document_, shownCurves_, window_, playhead_);
       ImGui::EndTabItem();
     }

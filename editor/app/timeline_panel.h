@@ -118,6 +118,8 @@ class TimelinePanel {
   void drawTracks(FaceDelegate& face);
   void drawTrackNames(const TimelineView& view, const std::vector<TrackRow>& rows, float left);
   void handleCanvasMouse(const TimelineView& view, const std::vector<TrackRow>& rows, FaceDelegate& face);
+  // Hovering a key says its track, time, value and mode; the empty canvas, after a rest, how to use it.
+  void tooltipForCanvas(const TimelineView& view, const std::vector<TrackRow>& rows);
   void drawCanvas(const TimelineView& view, const std::vector<TrackRow>& rows);
   bool addKeys(FaceDelegate& face, bool allTracks);
   void refreshPose();

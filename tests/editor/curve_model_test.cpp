@@ -21,6 +21,18 @@ using editor::TimeWindow;
 
 constexpr editor::CurveArea kArea{.left = 100.0f, .top = 50.0f, .width = 800.0f, .height = 316.0f};
 
+// Hovering a key names its track, time, frame, value and mode.
+TEST(CurveKeyMode, AKeysHoverTextSaysWhereItIs) {
+  TimelineDocument doc("m", 2.0f);
+  const size_t track = *doc.addTrack("happy");
+  const KeyId onFrame = *doc.setKey(track, 1.0f, 0.75f, facial::KeyInterpolation::Cosine);
+  const KeyId between = *doc.setKey(track, 1.51f, 0.25f, facial::KeyInterpolation::Step);
+  EXPECT_EQ(editor::keyHoverText("happy", doc.key(onFrame)->key, 30.0f), "happy: 1.00 s (frame 30), value 0.750, cosine");
+  EXPECT_EQ(editor::keyHoverText("happy", doc.key(between)->key, 24.0f), "happy: 1.51 s (frame 36.2), value 0.250, step");
+  ASSERT_TRUE(editor::setCurveKeyMode(doc, onFrame, CurveKeyMode::Broken, -2.0f, 3.0f));
+  EXPECT_EQ(editor::keyHoverText("AU12", doc.key(onFrame)->key, 30.0f), "AU12: 1.00 s (frame 30), value 0.750, broken");
+}
+
 // Three tracks using all seven modes, one tangent bent by hand.
 TimelineDocument everyMode() {
   TimelineDocument doc("modes", 3.0f);
