@@ -43,6 +43,9 @@ struct PipelineShape {
   bool colorOutput = true;   // false: depth-only pass (no colour attachment)
   bool depthBias = false;    // slope-scaled bias against shadow acne
   bool blend = false;        // alpha blending over what is drawn (tests depth, writes none)
+  // At the far plane behind what is drawn (tests depth LESS_OR_EQUAL, writes
+  // none): drawn after the opaque draws, only the pixels they left are shaded.
+  bool behind = false;
 };
 
 // Long: one VkGraphicsPipelineCreateInfo filled state by state, in the order
@@ -109,8 +112,8 @@ Result<UniquePipeline> createPipeline(const Context& ctx, const SceneLayouts& la
 
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = shape.depth ? VK_TRUE : VK_FALSE;
-  depth.depthWriteEnable = shape.depth && !shape.blend ? VK_TRUE : VK_FALSE;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+  depth.depthWriteEnable = shape.depth && !shape.blend && !shape.behind ? VK_TRUE : VK_FALSE;
+  depth.depthCompareOp = shape.behind ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_LESS;
 
   VkPipelineColorBlendAttachmentState blendAttachment{};
   blendAttachment.colorWriteMask =
@@ -176,7 +179,7 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
                        stage(VK_SHADER_STAGE_FRAGMENT_BIT, bgFrag->get())};
   background.meshVertices = false;
   background.cull = VK_CULL_MODE_NONE;
-  background.depth = false;
+  background.behind = true;
   auto bg = createPipeline(ctx, layouts, renderPass, samples, background);
   if (!bg) return bg.error();
   p.background_ = std::move(bg).value();

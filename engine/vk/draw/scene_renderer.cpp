@@ -653,14 +653,16 @@ void SceneRenderer::record(VkCommandBuffer cmd, uint32_t slotIndex, VkExtent2D e
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layouts_->pipelineLayout(), 0, 1,
                           &slot.descriptorSet, 0, nullptr);
+  // Outlines after the opaque draws they surround and before the blended
+  // ones, which do not write depth and would otherwise be drawn over. The
+  // backdrop between them: behind the opaque draws (early depth rejects the
+  // pixels they cover), under the blended ones.
+  drawBatches(cmd, slot, DrawPass::Opaque);
+  drawBatches(cmd, slot, DrawPass::Outlines);
   if (drawBackdrop) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.background());
     vkCmdDraw(cmd, 3, 1, 0, 0);
   }
-  // Outlines after the opaque draws they surround and before the blended
-  // ones, which do not write depth and would otherwise be drawn over.
-  drawBatches(cmd, slot, DrawPass::Opaque);
-  drawBatches(cmd, slot, DrawPass::Outlines);
   drawBatches(cmd, slot, DrawPass::Blended);
 }
 
