@@ -416,7 +416,7 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
     // A blended surface (an eye highlight, a tear line) lets the light through.
     batch.castsShadow = !(lod.maxPixelError > 0.0f && prim.insideTheHead) &&
                         (prim.constants.flags & kDrawFlagAlphaBlend) == 0;
-    if (lod.maxPixelError > 0.0f && !prim.lods.empty() && pixelsAtUnitDepth > 0.0f) {
+    if (!prim.lods.empty()) {
       // The nearest instance decides: its model's bounding sphere's nearest
       // depth, and the largest scale of its primitive's transform.
       const Aabb& bounds = batch.model->bounds();
@@ -439,15 +439,16 @@ void SceneRenderer::pickLevelsOfDetail(Slot& slot, const FrameGlobals& globals,
         }
         pixelsPerUnit = std::max(pixelsPerUnit, drawnScale * pixelsAtUnitDepth / depth);
       }
-      for (size_t level = 0; level < prim.lods.size(); ++level) {
+      for (size_t level = 0; lod.maxPixelError > 0.0f && pixelsAtUnitDepth > 0.0f && level < prim.lods.size(); ++level) {
         if (prim.lods[level].error * pixelsPerUnit > lod.maxPixelError) break;
         batch.lod = static_cast<uint32_t>(level + 1);
       }
-      // The shadow map's casters: the coarsest level that strays no further
-      // than the receiver's push along its normal (lighting.glsl), so a
-      // coarser surface cannot shadow the fine one it stands for, and the
-      // shadow's outline moves by less than that -- well inside the
-      // filtered penumbra. Never finer than the view's level.
+      // The shadow map's casters, in every render (the view's own level or
+      // not): the coarsest level that strays no further than the receiver's
+      // push along its normal (lighting.glsl), so a coarser surface cannot
+      // shadow the fine one it stands for, and the shadow's outline moves by
+      // less than that -- well inside the filtered penumbra. Never finer than
+      // the view's level.
       batch.shadowLod = batch.lod;
       const float receiverOffset = globals.shadow.z;
       for (size_t level = batch.lod; level < prim.lods.size(); ++level) {
