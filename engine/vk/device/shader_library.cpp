@@ -4,6 +4,7 @@
 
 #include "engine/core/log.h"
 #include "engine/vk/device/shader_compiler.h"
+#include "engine/vk/device/vk_result.h"
 
 // Generated: the #includes of the SPIR-V headers and kEmbeddedShaders[].
 #include "engine/vk/shader_manifest.inc"
@@ -66,6 +67,17 @@ Result<void> ShaderLibrary::recompileAll() {
   overrides_ = std::move(compiled);
   ++generation_;
   return {};
+}
+
+Result<UniqueShaderModule> createShaderModule(const Context& ctx, const ShaderLibrary& shaders, const char* name) {
+  std::span<const uint32_t> code = shaders.spirv(name);
+  if (code.empty()) return makeError(ErrorKind::NotFound, std::string("shader program '") + name + "' is not in the shader library");
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = code.size_bytes();
+  info.pCode = code.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  ENG_VK_TRY(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+  return UniqueShaderModule(ctx.device(), module);
 }
 
 }  // namespace eng::vk

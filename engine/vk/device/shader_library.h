@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "engine/core/result.h"
+#include "engine/vk/device/context.h"
+#include "engine/vk/device/unique_handle.h"
 
 namespace eng::vk {
 
@@ -57,5 +59,8 @@ class ShaderLibrary {
   Snapshot lastSeen_;
   uint64_t generation_ = 0;
 };
+
+// A shader module of program `name`'s current SPIR-V (NotFound for an unknown name).
+Result<UniqueShaderModule> createShaderModule(const Context& ctx, const ShaderLibrary& shaders, const char* name);
 
 }  // namespace eng::vk

@@ -71,11 +71,14 @@ Result<void> OffscreenRenderer::createFrames(uint32_t count, const OffscreenOpti
   VkCommandPool pool = VK_NULL_HANDLE;
   ENG_VK_TRY(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
   pool_ = UniqueCommandPool(device, pool);
-  const VkSampleCountFlagBits samples = qualitySettings(options.quality).samples;
+  const QualitySettings tier = qualitySettings(options.quality);
+  if (tier.edgeAntialias && usableSampleCount(*ctx_, tier.samples) == VK_SAMPLE_COUNT_1_BIT)
+    antialias_ = std::make_unique<EdgeAntialiasPipeline>(
+        ENG_TRY_VALUE(EdgeAntialiasPipeline::create(*ctx_, *shaders_, VK_FORMAT_R8G8B8A8_SRGB)));
   for (uint32_t i = 0; i < count; ++i) {
     Frame frame;
     frame.target = ENG_TRY_VALUE(OffscreenTarget::create(*ctx_, options.width, options.height,
-                                                         samples));
+                                                         tier.samples, antialias_.get()));
     VkCommandBufferAllocateInfo allocInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     allocInfo.commandPool = pool;
     allocInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;

@@ -10,7 +10,8 @@
 namespace eng::vk {
 
 Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t width, uint32_t height,
-                                                VkSampleCountFlagBits samples) {
+                                                VkSampleCountFlagBits samples,
+                                                const EdgeAntialiasPipeline* antialias) {
   const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
   if (width == 0 || height == 0 || width > limits.maxFramebufferWidth || height > limits.maxFramebufferHeight)
     return makeError(ErrorKind::InvalidArgument, "offscreen target: size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -23,6 +24,10 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
   if (!depthFormat) return depthFormat.error();
   t.format_ = {VK_FORMAT_R8G8B8A8_SRGB, depthFormat.value(), usableSampleCount(ctx, samples)};
   const bool msaa = t.format_.samples != VK_SAMPLE_COUNT_1_BIT;
+  const bool filtered = antialias != nullptr && !msaa;
+  if (filtered && antialias->format() != t.format_.color)
+    return makeError(ErrorKind::InvalidArgument, "offscreen target: anti-aliasing pass for format " +
+                     std::to_string(antialias->format()) + ", target is " + std::to_string(t.format_.color));
 
   auto pass = createSceneRenderPass(ctx, t.format_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   if (!pass) return pass.error();
@@ -31,11 +36,13 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
   ImageDesc resolved;
   resolved.extent = t.extent_;
   resolved.format = t.format_.color;
-  resolved.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  resolved.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                   (filtered ? VK_IMAGE_USAGE_SAMPLED_BIT : 0);
   resolved.debugName = "offscreen resolved colour";
   auto resolvedImage = GpuImage::create(ctx, resolved);
   if (!resolvedImage) return resolvedImage.error();
   t.resolved_ = std::move(resolvedImage).value();
+  if (filtered) t.antialias_ = ENG_TRY_VALUE(EdgeAntialiasTarget::create(ctx, *antialias, t.resolved_, t.extent_));
 
   if (msaa) {
     ImageDesc color = resolved;
@@ -98,6 +105,7 @@ void OffscreenTarget::record(VkCommandBuffer cmd, const Recorders& recorders, co
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   if (recorders.inPass) recorders.inPass(cmd);
   vkCmdEndRenderPass(cmd);
+  if (edgeAntialiased()) antialias_.record(cmd);
   if (!recorders.readback) {
     if (recorders.afterPass) recorders.afterPass(cmd);
     return;
@@ -106,7 +114,8 @@ void OffscreenTarget::record(VkCommandBuffer cmd, const Recorders& recorders, co
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {extent_.width, extent_.height, 1};
-  vkCmdCopyImageToBuffer(cmd, resolved_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1,
+  const VkImage copied = edgeAntialiased() ? antialias_.output().handle() : resolved_.handle();
+  vkCmdCopyImageToBuffer(cmd, copied, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.handle(), 1,
                          &copy);
   VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;

@@ -9,7 +9,7 @@ QualitySettings qualitySettings(RenderQuality quality) {
               .secondarySpecular = false};
     case RenderQuality::Balanced:
       return {.samples = VK_SAMPLE_COUNT_2_BIT, .shadowMapSize = 1024, .shadowFilterRadius = 1,
-              .secondarySpecular = true};
+              .secondarySpecular = true, .edgeAntialias = true};
     case RenderQuality::High:
       break;
   }

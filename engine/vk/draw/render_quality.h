@@ -5,7 +5,8 @@
 // colour and depth, the fragment shader's terms), so a tier trades exactly
 // those. `high` is the reference look; `balanced` is the same look with 2x
 // instead of 4x multisampling (edges a little harder; lavapipe offers 1x or
-// 4x only, so there it is 1x); `fast` has no
+// 4x only, so there it is 1x, its edges softened by the edge-aware pass when
+// rendered headless); `fast` has no
 // multisampling, no key shadow and one highlight: flatter, but the face, eyes
 // and mouth still read.
 #include <cstdint>
@@ -36,6 +37,10 @@ struct QualitySettings {
   // them the fragment shader evaluates one specular lobe instead of three
   // (specialization constant 1).
   bool secondarySpecular = true;
+  // Where the target ends up with one sample: an edge-aware anti-aliasing
+  // pass (edge_antialias.h) over the image before it is read back. Headless
+  // targets only; a window shows its 1x image as drawn.
+  bool edgeAntialias = false;
 };
 
 QualitySettings qualitySettings(RenderQuality quality);

@@ -12,17 +12,6 @@
 namespace eng::vk {
 namespace {
 
-Result<UniqueShaderModule> createModule(const Context& ctx, const ShaderLibrary& shaders, const char* name) {
-  std::span<const uint32_t> code = shaders.spirv(name);
-  if (code.empty()) return makeError(ErrorKind::NotFound, std::string("shader program '") + name + "' is not in the shader library");
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = code.size_bytes();
-  info.pCode = code.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
-  return UniqueShaderModule(ctx.device(), module);
-}
-
 VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits flags, VkShaderModule module) {
   VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   s.stage = flags;
@@ -166,9 +155,9 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
                                               const QualitySettings& quality) {
   ScenePipelines p;
   if (auto made = p.createMeshPipelines(ctx, layouts, shaders, renderPass, samples, quality); !made) return made.error();
-  auto bgVert = createModule(ctx, shaders, "background_vert");
+  auto bgVert = createShaderModule(ctx, shaders, "background_vert");
   if (!bgVert) return bgVert.error();
-  auto bgFrag = createModule(ctx, shaders, "background_frag");
+  auto bgFrag = createShaderModule(ctx, shaders, "background_frag");
   if (!bgFrag) return bgFrag.error();
 
   PipelineShape background;
@@ -183,14 +172,14 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
 
   if (auto made = p.createShadowPipelines(ctx, layouts, shaders, shadowPass); !made) return made.error();
 
-  auto morphComp = createModule(ctx, shaders, "morph_comp");
+  auto morphComp = createShaderModule(ctx, shaders, "morph_comp");
   if (!morphComp) return morphComp.error();
   auto morph = createMorphPipeline(ctx, layouts, morphComp->get());
   if (!morph) return morph.error();
   p.morph_ = std::move(morph).value();
 
   if (ctx.deviceInfo().vertexPipelineStores) {
-    auto captureVert = createModule(ctx, shaders, "capture_vert");
+    auto captureVert = createShaderModule(ctx, shaders, "capture_vert");
     if (!captureVert) return captureVert.error();
     PipelineShape capture;
     capture.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, captureVert->get())};
@@ -210,9 +199,9 @@ Result<ScenePipelines> ScenePipelines::create(const Context& ctx, const SceneLay
 Result<void> ScenePipelines::createMeshPipelines(const Context& ctx, const SceneLayouts& layouts,
                                                  const ShaderLibrary& shaders, VkRenderPass renderPass,
                                                  VkSampleCountFlagBits samples, const QualitySettings& quality) {
-  auto meshVert = createModule(ctx, shaders, "mesh_vert");
+  auto meshVert = createShaderModule(ctx, shaders, "mesh_vert");
   if (!meshVert) return meshVert.error();
-  auto meshFrag = createModule(ctx, shaders, "mesh_frag");
+  auto meshFrag = createShaderModule(ctx, shaders, "mesh_frag");
   if (!meshFrag) return meshFrag.error();
   // The tier's switches in lighting.glsl (constant_id 0 and 1), and whether
   // mesh.frag may discard (constant_id 2: only the MASK pipelines, since a
@@ -268,7 +257,7 @@ Result<void> ScenePipelines::createMeshPipelines(const Context& ctx, const Scene
 // whose fragment shader discards where the base colour's alpha is below its cutoff.
 Result<void> ScenePipelines::createShadowPipelines(const Context& ctx, const SceneLayouts& layouts,
                                                    const ShaderLibrary& shaders, VkRenderPass shadowPass) {
-  auto shadowVert = createModule(ctx, shaders, "shadow_vert");
+  auto shadowVert = createShaderModule(ctx, shaders, "shadow_vert");
   if (!shadowVert) return shadowVert.error();
   PipelineShape shadow;
   shadow.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, shadowVert->get())};
@@ -278,9 +267,9 @@ Result<void> ScenePipelines::createShadowPipelines(const Context& ctx, const Sce
   auto shadowPipeline = createPipeline(ctx, layouts, shadowPass, VK_SAMPLE_COUNT_1_BIT, shadow);
   if (!shadowPipeline) return shadowPipeline.error();
   shadow_ = std::move(shadowPipeline).value();
-  auto shadowMaskVert = createModule(ctx, shaders, "shadow_mask_vert");
+  auto shadowMaskVert = createShaderModule(ctx, shaders, "shadow_mask_vert");
   if (!shadowMaskVert) return shadowMaskVert.error();
-  auto shadowMaskFrag = createModule(ctx, shaders, "shadow_mask_frag");
+  auto shadowMaskFrag = createShaderModule(ctx, shaders, "shadow_mask_frag");
   if (!shadowMaskFrag) return shadowMaskFrag.error();
   shadow.stages = {stage(VK_SHADER_STAGE_VERTEX_BIT, shadowMaskVert->get()),
                    stage(VK_SHADER_STAGE_FRAGMENT_BIT, shadowMaskFrag->get())};

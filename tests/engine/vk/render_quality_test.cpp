@@ -34,6 +34,10 @@ TEST(RenderQuality, TiersTradeSamplesShadowsAndHighlights) {
   EXPECT_EQ(fast.shadowMapSize, 0u);
   EXPECT_TRUE(high.secondarySpecular);
   EXPECT_FALSE(fast.secondarySpecular);
+  // The edge-aware pass stands in for multisampling where balanced gets 1x.
+  EXPECT_TRUE(balanced.edgeAntialias);
+  EXPECT_FALSE(high.edgeAntialias);
+  EXPECT_FALSE(fast.edgeAntialias);
 }
 
 eng::Image renderTier(eng::vk::RenderQuality quality, const eng::vk::SceneView& view, const eng::Model& model,
