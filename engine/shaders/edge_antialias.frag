@@ -12,7 +12,7 @@ layout(location = 0) in vec2 inUv;  // unused: positions come from gl_FragCoord
 layout(location = 0) out vec4 outColor;
 
 // FXAA 3.11's defaults for its quality preset 12.
-const float kSubpix = 0.75;            // how much sub-pixel aliasing is removed
+const float kSubpix = 0.75;  // how much sub-pixel aliasing is removed (0.25 and 0.5: docs/performance.md)
 const float kEdgeThreshold = 0.166;    // local contrast needed, relative to the brightest neighbour
 const float kEdgeThresholdMin = 0.0833;  // ... and absolute (skips dark noise)
 const int kSearchSteps = 5;
