@@ -36,7 +36,8 @@ eng::Result<eng::FramingMode> framingModeOption(const std::string& frame);
 // balanced on a CPU rasteriser, high on a GPU. The windows and `say` default
 // to it; the still-image commands stay at high (issue 38: at 1x the judge
 // reads the built-in head's fear as surprise at 384 px, and the sheets'
-// edges differ), until a cheaper anti-aliasing than 4x MSAA keeps the look.
+// edges differ; balanced's edge-aware pass did not keep the look either:
+// docs/performance.md), until a cheaper anti-aliasing than 4x MSAA does.
 inline constexpr const char* kQualityAuto = "auto";
 void addQualityOption(CLI::App& app, std::string& quality);
 // The --quality value as a tier, nullopt for "auto" (the device decides:
