@@ -106,10 +106,12 @@ Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetF
   return createOneSubpassPass(ctx, attachments, subpass, dependencies);
 }
 
-Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout) {
-  const VkAttachmentDescription attachment =
-      attachmentDescription(color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_LOAD, VK_ATTACHMENT_STORE_OP_STORE,
-                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
+Result<UniqueRenderPass> createColorPass(const Context& ctx, VkFormat color, VkAttachmentLoadOp load,
+                                         VkImageLayout finalLayout) {
+  const VkImageLayout initialLayout =
+      load == VK_ATTACHMENT_LOAD_OP_LOAD ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
+  const VkAttachmentDescription attachment = attachmentDescription(color, VK_SAMPLE_COUNT_1_BIT, load,
+                                                                   VK_ATTACHMENT_STORE_OP_STORE, initialLayout, finalLayout);
   const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -117,15 +119,19 @@ Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat co
   subpass.pColorAttachments = &colorRef;
   constexpr VkAccessFlags kColorAccess = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   const std::array dependencies{
-      // The blit that filled the image, before the overlay loads and draws over it.
+      // The blit that filled the image (or the last copy out of it), before the pass draws.
       VkSubpassDependency{VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, kColorAccess, 0},
-      // Screenshots copy the image after the pass.
+      // Read-backs and screenshots copy the image after the pass.
       VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                           VK_ACCESS_TRANSFER_READ_BIT, 0},
   };
   return createOneSubpassPass(ctx, {&attachment, 1}, subpass, dependencies);
+}
+
+Result<UniqueRenderPass> createOverlayRenderPass(const Context& ctx, VkFormat color, VkImageLayout finalLayout) {
+  return createColorPass(ctx, color, VK_ATTACHMENT_LOAD_OP_LOAD, finalLayout);
 }
 
 }  // namespace eng::vk

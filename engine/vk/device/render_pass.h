@@ -40,6 +40,13 @@ VkSampleCountFlagBits usableSampleCount(const Context& ctx, VkSampleCountFlagBit
 Result<UniqueRenderPass> createSceneRenderPass(const Context& ctx, const TargetFormat& format,
                                                VkImageLayout finalLayout);
 
+// One single-sample colour attachment, no depth, ending in `finalLayout` and
+// copyable right after the pass. load LOAD: drawn over what a transfer left
+// in it (starts in TRANSFER_DST_OPTIMAL); DONT_CARE: every pixel is drawn
+// (starts UNDEFINED, after any earlier copy out of it).
+Result<UniqueRenderPass> createColorPass(const Context& ctx, VkFormat color, VkAttachmentLoadOp load,
+                                         VkImageLayout finalLayout);
+
 // One single-sample colour attachment drawn over what a transfer (a blit of
 // the 3D view) left in it: starts in TRANSFER_DST_OPTIMAL, loads, ends in
 // `finalLayout`, and may be copied from right after the pass.

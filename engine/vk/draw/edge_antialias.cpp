@@ -5,31 +5,10 @@
 #include "engine/vk/device/descriptor_write.h"
 #include "engine/vk/device/render_pass.h"
 #include "engine/vk/device/vk_result.h"
+#include "engine/vk/draw/pipeline_shape.h"
 
 namespace eng::vk {
 namespace {
-
-// The filtered image: every pixel written (nothing loaded), copied after the pass.
-Result<UniqueRenderPass> createFilterPass(const Context& ctx, VkFormat color) {
-  const VkAttachmentDescription attachment =
-      attachmentDescription(color, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE,
-                            VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &colorRef;
-  const std::array dependencies{
-      // The previous frame's copy out of the image, before this pass writes it.
-      VkSubpassDependency{VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
-      // The read-back copy after the pass.
-      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                          VK_ACCESS_TRANSFER_READ_BIT, 0},
-  };
-  return createOneSubpassPass(ctx, {&attachment, 1}, subpass, dependencies);
-}
 
 // Bilinear (the edge search and the final blend read between texels), clamped to the edge.
 Result<UniqueSampler> createBilinearSampler(const Context& ctx) {
@@ -51,7 +30,9 @@ Result<EdgeAntialiasPipeline> EdgeAntialiasPipeline::create(const Context& ctx, 
                                                             VkFormat color) {
   EdgeAntialiasPipeline p;
   p.format_ = color;
-  p.renderPass_ = ENG_TRY_VALUE(createFilterPass(ctx, color));
+  // Every pixel written (nothing loaded), copied after the pass.
+  p.renderPass_ = ENG_TRY_VALUE(createColorPass(ctx, color, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
   p.sampler_ = ENG_TRY_VALUE(createBilinearSampler(ctx));
 
   const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
@@ -74,57 +55,17 @@ Result<EdgeAntialiasPipeline> EdgeAntialiasPipeline::create(const Context& ctx, 
 }
 
 // A full-screen triangle (background.vert) and the filter; no vertex input,
-// depth or blending; viewport and scissor set per target.
+// depth or blending.
 Result<void> EdgeAntialiasPipeline::createPipeline(const Context& ctx, const ShaderLibrary& shaders) {
   const UniqueShaderModule vert = ENG_TRY_VALUE(createShaderModule(ctx, shaders, "background_vert"));
   const UniqueShaderModule frag = ENG_TRY_VALUE(createShaderModule(ctx, shaders, "edge_antialias_frag"));
-  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-  for (VkPipelineShaderStageCreateInfo& s : stages) s.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vert.get();
-  stages[0].pName = "main";
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = frag.get();
-  stages[1].pName = "main";
-
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo inputAssembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  inputAssembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-  const std::array dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamic.dynamicStateCount = static_cast<uint32_t>(dynamicStates.size());
-  dynamic.pDynamicStates = dynamicStates.data();
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineColorBlendAttachmentState blendAttachment{};
-  blendAttachment.colorWriteMask =
-      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
-  blend.pAttachments = &blendAttachment;
-
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = static_cast<uint32_t>(stages.size());
-  info.pStages = stages.data();
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &inputAssembly;
-  info.pViewportState = &viewport;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &multisample;
-  info.pColorBlendState = &blend;
-  info.pDynamicState = &dynamic;
-  info.layout = layout_.get();
-  info.renderPass = renderPass_.get();
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  ENG_VK_TRY(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-  pipeline_ = UniquePipeline(ctx.device(), pipeline);
+  PipelineShape shape;
+  shape.stages = {shaderStage(VK_SHADER_STAGE_VERTEX_BIT, vert.get()),
+                  shaderStage(VK_SHADER_STAGE_FRAGMENT_BIT, frag.get())};
+  shape.meshVertices = false;
+  shape.cull = VK_CULL_MODE_NONE;
+  shape.depth = false;
+  pipeline_ = ENG_TRY_VALUE(createGraphicsPipeline(ctx, layout_.get(), renderPass_.get(), VK_SAMPLE_COUNT_1_BIT, shape));
   return {};
 }
 
