@@ -107,6 +107,8 @@ class OffscreenRenderer {
 
   VkExtent2D extent() const { return target().extent(); }
   VkSampleCountFlagBits samples() const { return target().format().samples; }
+  // The tier's edge-aware pass filters each frame (edgeAntialias on a 1-sample target).
+  bool edgeAntialiased() const { return target().edgeAntialiased(); }
   RenderQuality quality() const { return scene_.quality(); }
   bool canCapture() const { return scene_.canCapture(); }
 

@@ -13,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/vk/draw/offscreen_renderer.h"
 #include "engine/vk/draw/offscreen_target.h"
+#include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
 
 namespace {
@@ -123,6 +125,35 @@ TEST(EdgeAntialias, MultisampledTargetIsResolvedAsBefore) {
                                                  &antialiasPipeline());
   ASSERT_TRUE(target) << target.error().message;
   EXPECT_EQ(target->edgeAntialiased(), target->format().samples == VK_SAMPLE_COUNT_1_BIT);
+}
+
+// The tier switch reaches the renderer's targets, and a filtered sequence
+// with frames in flight gives the pictures single renders give.
+TEST(EdgeAntialias, BalancedFiltersWhereTheDeviceGivesOneSample) {
+  const eng::Model model = testing_support::makeSphereModel({});
+  const eng::vk::SceneView view = vk_test::viewOf(model.bounds());
+  auto high = eng::vk::OffscreenRenderer::create(vk_test::context(),
+                                                 {.width = 64, .height = 64, .quality = eng::vk::RenderQuality::High});
+  ASSERT_TRUE(high) << high.error().message;
+  EXPECT_FALSE(high->edgeAntialiased());
+  auto balanced = eng::vk::OffscreenRenderer::create(
+      vk_test::context(),
+      {.width = 64, .height = 64, .quality = eng::vk::RenderQuality::Balanced, .framesInFlight = 2});
+  ASSERT_TRUE(balanced) << balanced.error().message;
+  EXPECT_EQ(balanced->edgeAntialiased(), balanced->samples() == VK_SAMPLE_COUNT_1_BIT);
+  auto gpu = balanced->upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::vector<float> weights(gpu->weightCount(), 0.0f);
+  const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), weights};
+  auto single = balanced->render(view, {&instance, 1});
+  ASSERT_TRUE(single) << single.error().message;
+  ASSERT_TRUE(balanced->submit(view, {&instance, 1}));
+  ASSERT_TRUE(balanced->submit(view, {&instance, 1}));
+  for (int frame = 0; frame < 2; ++frame) {
+    auto collected = balanced->collect();
+    ASSERT_TRUE(collected) << collected.error().message;
+    EXPECT_EQ(collected->rgba8, single->rgba8) << "frame " << frame;
+  }
 }
 
 }  // namespace
