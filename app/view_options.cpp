@@ -27,7 +27,7 @@ namespace {
 
 constexpr const char* kQualityHelp =
     "Render quality: high (4x MSAA, soft key-light shadow, three highlights), balanced (the same with "
-    "2x MSAA, 1x where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
+    "2x MSAA, or 1x and an edge-aware anti-aliasing pass where the device has no 2x, e.g. lavapipe) or fast (no MSAA, no shadow map, key highlight only); on a CPU rasteriser (lavapipe) "
     "balanced takes about half and fast about a third of high's frame time; auto: balanced on a CPU "
     "rasteriser, high on a GPU";
 

@@ -112,10 +112,11 @@ void printResults(const BenchFramesOptions& o, uint32_t width, uint32_t height, 
   const eng::vk::FrameStats stats = offscreen.lastFrameStats();
   const eng::vk::RenderQuality quality = offscreen.quality();  // "auto" resolved by the device
   const eng::vk::QualitySettings tier = eng::vk::qualitySettings(quality);
-  std::printf("settings: quality=%s msaa=%d shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
+  std::printf("settings: quality=%s msaa=%d edge_aa=%s shadow_map=%u shadow_taps=%u secondary_specular=%s backdrop=studio "
               "camera=fov%.0f@%.1fxdiagonal camera_target=%g,%g,%g camera_distance=%g draws=%u active_weights=%u "
               "lod_error=%g triangles=%llu coarser_draws=%u timestamps=%s\n",
-              std::string(eng::vk::renderQualityName(quality)).c_str(), int(offscreen.samples()), tier.shadowMapSize,
+              std::string(eng::vk::renderQualityName(quality)).c_str(), int(offscreen.samples()),
+              offscreen.edgeAntialiased() ? "on" : "off", tier.shadowMapSize,
               tier.shadowMapSize > 0 ? (2 * tier.shadowFilterRadius + 1) * (2 * tier.shadowFilterRadius + 1) : 0u,
               tier.secondarySpecular ? "on" : "off", double(kFovYDegrees), double(kDistanceInDiagonals),
               double(view.camera.target.x), double(view.camera.target.y), double(view.camera.target.z),
