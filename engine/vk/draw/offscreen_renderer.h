@@ -143,7 +143,9 @@ class OffscreenRenderer {
   // Heap-held: the scene renderer and uploaded models point at them.
   std::unique_ptr<SceneLayouts> layouts_;
   std::unique_ptr<ShaderLibrary> shaders_;
-  std::unique_ptr<EdgeAntialiasPipeline> antialias_;  // the tier's edgeAntialias on a 1-sample target
+  // The tier's edgeAntialias on a 1-sample target; reloadChangedShaders()
+  // leaves it as built (hot reload is for the scene's look in a window).
+  std::unique_ptr<EdgeAntialiasPipeline> antialias_;
   UniqueCommandPool pool_;
   std::vector<Frame> frames_;  // [0] also serves the one-submission calls
   uint32_t next_ = 0;     // the slot submit() fills next
