@@ -261,10 +261,13 @@ Result<void> WindowRenderer::createViewResources() {
 }
 
 Result<bool> WindowRenderer::followStillness(uint64_t contentKey) {
+  const auto now = std::chrono::steady_clock::now();
+  if (contentKey != lastKey_) stillSince_ = now;
   stillFrames_ = contentKey == lastKey_ ? stillFrames_ + 1 : 0;
   lastKey_ = contentKey;
   if (!adaptive_) return false;
-  const bool sharp = stillFrames_ >= kStillFramesBeforeSharp;
+  const bool sharp = options_.sharpWhenStillFor >= 0.0f && stillFrames_ >= kStillFramesBeforeSharp &&
+                     std::chrono::duration<float>(now - stillSince_).count() >= options_.sharpWhenStillFor;
   if (sharp == sharpView_) return false;
   sharpView_ = sharp;
   vkDeviceWaitIdle(ctx_->device());  // the other frame in flight may still read the view's images

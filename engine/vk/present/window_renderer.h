@@ -75,6 +75,11 @@ struct WindowRendererOptions {
   // between AdaptiveRenderScale's floor and ceiling (frame_pacing.h), aiming
   // at 30 frames/s; false keeps kCpuRenderScale.
   bool adaptiveScale = true;
+  // With the adaptive scale: a 3D view still for this many seconds (and at
+  // least kStillFramesBeforeSharp frames) is drawn once at full resolution.
+  // Long enough that a pause in speech does not trigger it: the full-size
+  // frame costs several adaptive ones on a CPU device. Negative: never.
+  float sharpWhenStillFor = 1.0f;
   std::filesystem::path shaderSourceDir = defaultShaderSourceDir();
   // Injected faults for tests (fault_injection.h); empty: FACIAL_VK_FAULTS, if set.
   std::string faults;
@@ -120,8 +125,8 @@ struct ImGuiVulkanInfo {
 // 832x520, about 30 frames/s of the built-in head on lavapipe (2 cores).
 inline constexpr float kCpuRenderScale = 0.65f;
 // With the adaptive scale: frames in a row with nothing changed in the 3D
-// view after which it is drawn once at full resolution (and re-presented
-// until something changes).
+// view (and WindowRendererOptions::sharpWhenStillFor seconds) after which it
+// is drawn once at full resolution (and re-presented until something changes).
 inline constexpr uint32_t kStillFramesBeforeSharp = 3;
 
 using OverlayRecorder = std::function<void(VkCommandBuffer)>;
@@ -237,6 +242,7 @@ class WindowRenderer {
   // had it, and the key the view image holds (while viewValid_).
   uint64_t lastKey_ = 0;
   uint32_t stillFrames_ = 0;
+  std::chrono::steady_clock::time_point stillSince_{};
   bool sharpView_ = false;  // adaptive mode, still: the view at full resolution
   uint64_t viewKey_ = 0;
   bool viewValid_ = false;

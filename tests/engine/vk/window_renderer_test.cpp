@@ -211,7 +211,7 @@ TEST(WindowRenderer, AdaptiveScaleKeepsTheViewWithinItsLimits) {
 // would show.
 TEST(WindowRenderer, StillViewIsRepresentedAndDrawnSharp) {
   FACIAL_REQUIRE_DISPLAY();
-  WindowRig rig;
+  WindowRig rig({.sharpWhenStillFor = 0.0f});  // the frame count alone decides
   ASSERT_TRUE(rig.ok());
   if (!rig.renderer->adaptiveScale()) GTEST_SKIP() << "the view is blitted only with a scale (a CPU device)";
   SphereScene scene(*rig.renderer);
