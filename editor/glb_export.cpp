@@ -34,6 +34,19 @@ int busiestMesh(const eng::WeightLayout& layout, const std::vector<bool>& moves)
   return best;
 }
 
+// The baked targets at the editor's weights as every mesh's default weights:
+// the sculpt moves vertices of several meshes (teeth, eyes near the chin), and
+// a clip animates one mesh only; the others show their defaults.
+void holdBakedTargets(eng::Model& model, std::span<const std::pair<std::string, float>> held) {
+  for (eng::Mesh& mesh : model.meshes)
+    for (const auto& [name, weight] : held) {
+      const auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name);
+      if (it == mesh.targetNames.end()) continue;
+      mesh.defaultWeights.resize(mesh.targetNames.size(), 0.0f);
+      mesh.defaultWeights[size_t(it - mesh.targetNames.begin())] = weight;
+    }
+}
+
 }  // namespace
 
 eng::Result<SampledClip> sampleClipWeights(const TimelineDocument& clip, TimelinePose& pose, const eng::WeightLayout& layout,
@@ -74,6 +87,7 @@ eng::Result<GlbExportSummary> exportGlb(eng::Model model, std::span<const Timeli
                                         const eng::WeightLayout& layout, const fs::path& path, float sampleRate,
                                         std::span<const std::pair<std::string, float>> held) {
   GlbExportSummary summary;
+  holdBakedTargets(model, held);
   for (const TimelineDocument* clip : clips) {
     auto sampled = sampleClipWeights(*clip, pose, layout, sampleRate);
     if (!sampled) return sampled.error().prefixed(path.string() + ": clip '" + clip->name() + "': ");

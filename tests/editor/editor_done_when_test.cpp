@@ -214,6 +214,18 @@ TEST(EditorDoneWhen, OneSessionEditsSavesReopensAndExportsWhatFacialPlayRendersT
                            clipName + " --out played.json >play.log 2>&1 && FACIAL_VALIDATION=1 '" + facial.string() +
                            "' play played.json --model out.glb --fps 10 --seconds 1.25 --size 640x541 --out frames >>play.log 2>&1";
   ASSERT_EQ(std::system(play.c_str()), 0) << text(dir / "play.log");
+  // The sculpt moved vertices of several meshes; a clip animates one, so every
+  // mesh holds the baked target at the editor's slider weight by default.
+  auto exported = eng::loadModel(dir / "out.glb");
+  ASSERT_TRUE(exported) << exported.error().message;
+  size_t meshesWithSmirk = 0;
+  for (const eng::Mesh& mesh : exported->meshes)
+    for (size_t t = 0; t < mesh.targetNames.size(); ++t)
+      if (mesh.targetNames[t] == "smirk") {
+        ++meshesWithSmirk;
+        EXPECT_FLOAT_EQ(mesh.defaultWeights[t], project->sculptTargets[0].weight) << "a mesh's smirk";
+      }
+  EXPECT_GT(meshesWithSmirk, 1u) << "the chin's falloff reaches other meshes too";
   auto editorShot = eng::readImage(dir / "at_t.png");
   auto played = eng::readImage(dir / "frames" / "frame_0012.png"), start = eng::readImage(dir / "frames" / "frame_0000.png");
   ASSERT_TRUE(editorShot && played && start) << text(dir / "play.log");
@@ -229,11 +241,11 @@ TEST(EditorDoneWhen, OneSessionEditsSavesReopensAndExportsWhatFacialPlayRendersT
   const double same = faceDifference(crop, *played), other = faceDifference(crop, *start);
   std::printf("editor at %.1f s vs facial play: mean colour distance over the face %.2f at the same time, %.2f at 0 s\n", T, same,
               other);
-  // Same camera: the skin away from the moving features matches within a few levels (checked by eye
-  // and at sample pixels), the baked smirk is held at the editor's weight. The expression does not
-  // match within a small bound yet: the mouth differs most, and play's frame 0.1 s earlier is nearer
-  // the editor's than its frame at T (the runtime's face driver seems to trail the keys); until that
-  // is understood the check is only that play's frame at T is nearer the editor's than its frame at 0.
+  // Same camera. Measured (GlbExport.FacialPlayFrameKShowsTheEditorsPoseAtKOverFps and by hand on
+  // this session's files): play's frame 12 holds exactly the weights the editor showed at 1.2 s (the
+  // export, `timeline import` and the timeline node add no time shift), yet its picture is nearer
+  // play's frame 11 (about 27.7 against 34.1 here): what differs is how the two programs draw the
+  // same weights, not when. Until that is found the check stays loose: nearer than play's frame at 0.
   EXPECT_LT(same, other) << "see " << dir;
   unsetenv("FACIAL_RENDER_SCALE");
 }

@@ -2,13 +2,18 @@
 // as glTF weights animations that pose the face as the editor posed it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/face_setup.h"
 #include "bake/gltf_timeline.h"
 #include "editor/glb_export.h"
 #include "engine/scene/gltf_loader.h"
+#include "facial/runtime/character/face_driver.h"
+#include "facial/runtime/graph/graph_json.h"
+#include "facial/runtime/graph/preset_lookup.h"
 #include "facial/runtime/graph/timeline_json.h"
+#include "facial/runtime/json/json_document.h"
 #include "tests/common/test_support.h"
 
 namespace {
@@ -92,6 +97,61 @@ TEST(GlbExport, APlaceThatCannotBeWrittenLeavesNothing) {
   ASSERT_FALSE(failed);
   EXPECT_NE(failed.error().message.find("out.glb"), std::string::npos) << "[" << failed.error().message << "]";
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// What `facial play` does with an exported clip: `facial timeline import`, a
+// one-node graph on the imported tracks, stepped frame by frame (frame 0 with
+// dt 0, frame k at k / fps). The graph's channel for each target at frame k is
+// the editor's weight at k / fps: no sample off by one, no time shift. (Its
+// channels, not the driver's target weights: a head whose targets are all named
+// like action units has them mapped through the rig a second time by the
+// driver; see docs/editor.md.)
+TEST(GlbExport, FacialPlayFrameKShowsTheEditorsPoseAtKOverFps) {
+  Head head = headWithTalk();
+  auto happy = head.clip.addTrack("happy");
+  ASSERT_TRUE(happy) << happy.error().message;
+  ASSERT_TRUE(head.clip.setKey(*happy, 0.0f, 0.0f, facial::KeyInterpolation::Cosine));
+  ASSERT_TRUE(head.clip.setKey(*happy, 1.0f, 1.0f, facial::KeyInterpolation::Cosine));
+  ASSERT_TRUE(head.clip.setKey(*happy, 1.7f, 0.2f, facial::KeyInterpolation::Cosine));
+  editor::TimelinePose pose(head.face.rig(), head.face.baseWeights(), &head.face.expressions());
+  const fs::path dir = testing_support::freshTempDir("editor_glb_export_play");
+  const editor::TimelineDocument* clips[] = {&head.clip};
+  auto summary = editor::exportGlb(head.face.model(), clips, pose, head.face.layout(), dir / "out.glb");
+  ASSERT_TRUE(summary) << summary.error().message;
+  auto played = app::FaceSetup::load({.model = dir / "out.glb"});
+  ASSERT_TRUE(played) << played.error().message;
+  auto timeline = bake::importGltfTimeline(played->model(), played->model().animations.size() - 1);
+  ASSERT_TRUE(timeline) << timeline.error().message;
+  ASSERT_TRUE(facial::saveTimeline(*timeline, dir / "played.json"));
+  facial::Json channels = facial::Json::array();
+  for (const facial::TimelineTrack& track : timeline->tracks) channels.push_back(track.channel);
+  const facial::Json document = {{"version", facial::kGraphFileVersion},
+                                 {"channels", channels},
+                                 {"timelines", {{"clip", (dir / "played.json").string()}}},
+                                 {"root", {{"type", "timeline"}, {"timeline", "clip"}}}};
+  auto graph = facial::parseGraph(document, dir / "played.json",
+                                  {.presets = facial::presetLookup(played->expressions()), .allowOutsidePaths = true});
+  ASSERT_TRUE(graph) << graph.error().message;
+  const std::vector<std::string> names = played->layout().names();
+  auto driver = facial::FaceDriver::create(*graph, &played->graphRig(), names, played->baseWeights());
+  ASSERT_TRUE(driver) << driver.error().message;
+  ASSERT_EQ(names, head.face.layout().names());
+
+  const float fps = 10.0f;
+  std::vector<float> shown(head.face.layout().total());
+  float worst = 0.0f;
+  int worstFrame = -1;
+  for (int k = 0; float(k) / fps <= head.clip.duration(); ++k) {
+    ASSERT_TRUE(driver->update(k == 0 ? 0.0f : 1.0f / fps));
+    ASSERT_TRUE(pose.pose(head.clip, float(k) / fps, shown));
+    for (size_t c = 0; c < timeline->tracks.size(); ++c) {
+      const size_t target = size_t(std::find(names.begin(), names.end(), timeline->tracks[c].channel) - names.begin());
+      ASSERT_LT(target, names.size()) << timeline->tracks[c].channel;
+      const float error = std::abs(driver->channelWeights()[c] - shown[target]);
+      if (error > worst) worst = error, worstFrame = k;
+    }
+  }
+  EXPECT_LT(worst, 1e-4f) << "frame " << worstFrame << ": play's frame k holds the 30 Hz sample at k / fps exactly";
 }
 
 }  // namespace
