@@ -34,6 +34,7 @@ eng::Result<facial::Timeline> importGltfTimeline(const eng::Model& model, size_t
   const eng::Animation& source = model.animations[animation];
   const std::string label = animationLabel(model, animation);
   facial::Timeline timeline;
+  timeline.channels = facial::TimelineChannels::Targets;  // glTF animates the mesh's own targets
   timeline.name = source.name.empty() ? "animation" + std::to_string(animation) : source.name;
   std::vector<facial::Keyframe> keys;
   // Targets already animated, hashed: a scan of the tracks per target was

@@ -65,6 +65,12 @@ eng::Result<facial::SharedGraphDefinition> graphForTimeline(const app::FaceSetup
     channels.push_back(channel);
     allActionUnits = allActionUnits && facial::actionUnitIndex(channel).has_value();
   }
+  // The file's own mark wins (checked when the graph loads the file): an
+  // imported glTF animation holds target weights even where the targets are
+  // named like action units.
+  const nlohmann::json mark = document.value("channels", nlohmann::json());
+  if (mark == "targets") allActionUnits = false;
+  else if (mark == "actionUnits") allActionUnits = true;
   length = document.value("duration", 0.0f);
   nlohmann::json graph = {
       {"version", facial::kGraphFileVersion},

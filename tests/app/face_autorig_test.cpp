@@ -63,7 +63,9 @@ TEST(AutorigReason, SharedFacesWithRigsAreNeverAutorigged) {
   if (!fs::exists(shared / "assets" / "facecap.glb")) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   EXPECT_EQ(reasonFor(shared / "assets" / "facecap.glb"), "");
   EXPECT_EQ(reasonFor(shared / "assets" / "RobotExpressive.glb"), "") << "emotion-named targets";
-  if (fs::exists(shared / "candide3" / "candide3.wfm")) EXPECT_EQ(reasonFor(shared / "candide3" / "candide3.wfm"), "");
+  if (fs::exists(shared / "candide3" / "candide3.wfm")) {
+    EXPECT_EQ(reasonFor(shared / "candide3" / "candide3.wfm"), "");
+  }
   for (const fs::path& file : testing_support::sharedModelFiles()) {
     auto face = importers::loadFace(file);
     if (!face || face->format != importers::FaceFormat::Vrm) continue;
@@ -118,8 +120,9 @@ TEST(AutorigCache, LivesUnderTheUsersCacheFolder) {
   setenv("XDG_CACHE_HOME", "/tmp/some-cache", 1);
   EXPECT_EQ(app::autorigCacheDirectory(), fs::path("/tmp/some-cache/facial/autorig"));
   unsetenv("XDG_CACHE_HOME");
-  if (const char* home = std::getenv("HOME"); home && *home)
+  if (const char* home = std::getenv("HOME"); home && *home) {
     EXPECT_EQ(app::autorigCacheDirectory(), fs::path(home) / ".cache" / "facial" / "autorig");
+  }
   if (saved) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
 }
 

@@ -54,6 +54,10 @@ TEST(TimelineCommand, ExportThenImportKeepsTheCurves) {
   ASSERT_TRUE(original.ok()) << original.error().message;
   ASSERT_TRUE(back.ok()) << back.error().message;
   EXPECT_NEAR(back->duration, 2.0f, 1e-4f);
+  // A glTF animation holds the mesh's own weights: marked so that `facial
+  // play` drives the targets with them even where they are named like action
+  // units (this face's AU26_JawDrop), not through the rig a second time.
+  EXPECT_EQ(back->channels, facial::TimelineChannels::Targets);
   // Every target of the mesh gets a track on import (5 on the test face).
   EXPECT_EQ(back->tracks.size(), 5u);
   for (float t = 0.0f; t <= 2.0f; t += 0.05f) {

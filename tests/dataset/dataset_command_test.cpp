@@ -137,6 +137,13 @@ TEST_F(DatasetCommand, ARerunCompletesWhatAKilledRunLeft) {
 
 TEST_F(DatasetCommand, AWorkerKilledMidRunIsFinishedByARerun) {
   const fs::path reference = dir_ / "reference", out = dir_ / "killed";
+  // 40 items, so that the kill after the second lands well before the end on
+  // a quiet machine too (5 items could all be finished within one 0.1 s poll).
+  std::string longer = kTinySpec;
+  const std::string five = "\"count\": 5";
+  longer.replace(longer.find(five), five.size(), "\"count\": 40");
+  spec_ = dir_ / "longer.json";
+  testing_support::writeFile(spec_, longer);
   ASSERT_TRUE(ranCleanly(dataset(reference)));
   // SIGKILL once the second item is finished (at most a minute of waiting).
   const std::string script =

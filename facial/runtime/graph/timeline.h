@@ -31,6 +31,20 @@ inline constexpr eng::EnumName<LoopMode> kLoopModeNames[] = {
 std::string_view loopModeName(LoopMode value);
 std::optional<LoopMode> loopModeFromName(std::string_view name);
 
+// What a timeline's track names stand for, when a player must choose how to
+// drive a face with it (`facial play` of a timeline file). Needed because a
+// face's own targets may be named like action units (the built-in head): its
+// weights must then reach the targets as they are, not through the rig again.
+enum class TimelineChannels : uint8_t {
+  Unmarked,     // the player decides (all tracks action units: through the rig)
+  ActionUnits,  // every track is an action unit, mapped onto targets by the rig
+  Targets,      // every track is a morph target of the face, its weight as it is
+};
+inline constexpr eng::EnumName<TimelineChannels> kTimelineChannelsNames[] = {
+    {TimelineChannels::ActionUnits, "actionUnits"},
+    {TimelineChannels::Targets, "targets"},
+};
+
 // Playback time -> time inside the clip [0, duration] for `mode`.
 float clipTime(LoopMode mode, float duration, float playbackTime);
 
@@ -44,6 +58,7 @@ struct Timeline {
   std::string name;
   float duration = 0;
   LoopMode loop = LoopMode::Once;
+  TimelineChannels channels = TimelineChannels::Unmarked;
   std::vector<TimelineTrack> tracks;
   std::vector<Keyframe> keys;  // track after track
 

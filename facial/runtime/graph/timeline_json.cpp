@@ -7,6 +7,7 @@
 #include "facial/runtime/graph/curve_json.h"
 #include "facial/runtime/graph/detail/json_reader.h"
 #include "facial/runtime/graph/weight_range.h"
+#include "facial/runtime/rig/action_units.h"
 
 namespace facial {
 
@@ -35,7 +36,7 @@ eng::Result<void> parseTrack(const JsonNode& track, Timeline& timeline, eng::Nam
 }  // namespace
 
 eng::Result<Timeline> detail::parseTimeline(const JsonNode& node, std::string defaultName) {
-  ENG_TRY(node.allowOnly({"version", "name", "duration", "loop", "tracks"}));
+  ENG_TRY(node.allowOnly({"version", "name", "duration", "loop", "channels", "tracks"}));
   Timeline timeline;
   timeline.name = ENG_TRY_VALUE(node.stringOr("name", std::move(defaultName)));
   if (auto loop = node.find("loop")) {
@@ -48,6 +49,17 @@ eng::Result<Timeline> detail::parseTimeline(const JsonNode& node, std::string de
   const size_t trackCount = ENG_TRY_VALUE(tracks.size());
   eng::NameIndex channels;
   for (size_t i = 0; i < trackCount; ++i) ENG_TRY(parseTrack(tracks.element(i), timeline, channels));
+  if (auto mark = node.find("channels")) {
+    const std::string name = ENG_TRY_VALUE(mark->string());
+    const auto kind = eng::valueNamed(kTimelineChannelsNames, name);
+    if (!kind) return mark->error("unknown channels '" + name + "' (expected " + eng::nameList(kTimelineChannelsNames) + ")");
+    timeline.channels = *kind;
+    if (*kind == TimelineChannels::ActionUnits)
+      for (size_t i = 0; i < timeline.tracks.size(); ++i)
+        if (!actionUnitIndex(timeline.tracks[i].channel))
+          return tracks.element(i).error("channel '" + timeline.tracks[i].channel +
+                                         "' is not an action unit (the file says \"channels\": \"actionUnits\")");
+  }
   if (auto d = node.find("duration")) {
     timeline.duration = ENG_TRY_VALUE(d->number());
     if (timeline.duration <= 0.0f) return d->error("duration must be > 0");
@@ -90,11 +102,14 @@ Json timelineToJson(const Timeline& timeline) {
                       {"interpolation", keyInterpolationName(interp)},
                       {"keys", keyframesToJson(keys, interp)}});
   }
-  return {{"version", kTimelineFileVersion},
-          {"name", timeline.name},
-          {"duration", detail::jsonNumber(timeline.duration)},
-          {"loop", loopModeName(timeline.loop)},
-          {"tracks", std::move(tracks)}};
+  Json out = {{"version", kTimelineFileVersion},
+              {"name", timeline.name},
+              {"duration", detail::jsonNumber(timeline.duration)},
+              {"loop", loopModeName(timeline.loop)}};
+  if (timeline.channels != TimelineChannels::Unmarked)
+    out["channels"] = std::string(eng::nameOf(kTimelineChannelsNames, timeline.channels));
+  out["tracks"] = std::move(tracks);
+  return out;
 }
 
 eng::Result<void> saveTimeline(const Timeline& timeline, const std::filesystem::path& path) {

@@ -66,6 +66,36 @@ TEST(TimelineJson, SaveThenLoadGivesTheSameTimeline) {
   }
 }
 
+// The channels mark says what the track names stand for; unmarked files stay
+// unmarked when written back (the player decides for them, as before).
+TEST(TimelineJson, ChannelsMarkIsReadAndWrittenBack) {
+  auto targets = loadTimeline(writeTimeline("targets", R"({"version": 1, "channels": "targets", "tracks": [
+      {"channel": "AU26_JawDrop", "keys": [[0, 0], [1, 1]]}]})"));
+  ASSERT_TRUE(targets.ok()) << targets.error().message;
+  EXPECT_EQ(targets->channels, TimelineChannels::Targets);
+  EXPECT_EQ(timelineToJson(*targets).at("channels"), "targets");
+  auto units = loadTimeline(writeTimeline("units", R"({"version": 1, "channels": "actionUnits", "tracks": [
+      {"channel": "AU26_JawDrop", "keys": [[0, 0], [1, 1]]}]})"));
+  ASSERT_TRUE(units.ok()) << units.error().message;
+  EXPECT_EQ(units->channels, TimelineChannels::ActionUnits);
+  auto unmarked = loadTimeline(writeTimeline("unmarked", R"({"version": 1, "tracks": [
+      {"channel": "AU26_JawDrop", "keys": [[0, 0], [1, 1]]}]})"));
+  ASSERT_TRUE(unmarked.ok()) << unmarked.error().message;
+  EXPECT_EQ(unmarked->channels, TimelineChannels::Unmarked);
+  EXPECT_FALSE(timelineToJson(*unmarked).contains("channels"));
+}
+
+TEST(TimelineJsonValidity, ChannelsMarkMustBeKnownAndTrue) {
+  const std::string unknown = loadError("unknown_mark", R"({"version": 1, "channels": "weights", "tracks": [
+      {"channel": "a", "keys": [[0, 0], [1, 1]]}]})");
+  EXPECT_NE(unknown.find("unknown_mark.json: /channels: unknown channels 'weights' (expected actionUnits or targets)"),
+            std::string::npos) << unknown;
+  const std::string notUnit = loadError("not_unit", R"({"version": 1, "channels": "actionUnits", "tracks": [
+      {"channel": "AU26_JawDrop", "keys": [[0, 0], [1, 1]]}, {"channel": "mouthSmile", "keys": [[0, 1]]}]})");
+  EXPECT_NE(notUnit.find("not_unit.json: /tracks/1: channel 'mouthSmile' is not an action unit"), std::string::npos)
+      << notUnit;
+}
+
 TEST(TimelineJsonValidity, ErrorsNameFilePointerAndProblem) {
   const std::string unsorted = loadError("unsorted", R"({"version": 1, "tracks": [
       {"channel": "a", "keys": [[0, 0], [1, 1]]},
