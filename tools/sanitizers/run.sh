@@ -17,9 +17,8 @@
 # repeat of the seven transitions), the landmark finder and on-the-fly rigging
 # on whole avatars (test_app), the dataset and batch commands end to end
 # (test_dataset), three more whole-head transfers (test_autorig). Kept: the
-# other Vulkan-free tests, test_engine_vk
-# (window tests under xvfb-run), test_soak, and test_cli's, test_app's and
-# test_dataset's bad input, express, autorig, timeline, files, device-loss and
+# other Vulkan-free tests, test_engine_vk (window tests under xvfb-run),
+# test_soak, and test_cli's, test_app's and test_dataset's bad input, express, autorig, timeline, files, device-loss and
 # headless-demo tests through the sanitized `facial` program. Left to
 # FACIAL_SANITIZE_ALL=1: those left-out tests and test_cli_demo_window and
 # test_editor, the window demo and the editor driven by xdotool under Xvfb
