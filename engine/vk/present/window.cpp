@@ -46,8 +46,13 @@ Result<std::unique_ptr<Window>> Window::create(const WindowOptions& options) {
   w->window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
   if (!w->window_) return makeError(ErrorKind::Device, "cannot create a window: " + glfwErrorText());
   glfwSetWindowUserPointer(w->window_, w.get());
-  glfwSetFramebufferSizeCallback(w->window_, [](GLFWwindow* handle, int, int) {
-    static_cast<Window*>(glfwGetWindowUserPointer(handle))->resized_ = true;
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(w->window_, &width, &height);
+  w->extent_ = {uint32_t(std::max(width, 0)), uint32_t(std::max(height, 0))};
+  glfwSetFramebufferSizeCallback(w->window_, [](GLFWwindow* handle, int width, int height) {
+    Window* self = static_cast<Window*>(glfwGetWindowUserPointer(handle));
+    self->extent_ = {uint32_t(std::max(width, 0)), uint32_t(std::max(height, 0))};
+    self->resized_ = true;
   });
   glfwSetKeyCallback(w->window_, [](GLFWwindow* handle, int key, int, int action, int) {
     Window* self = static_cast<Window*>(glfwGetWindowUserPointer(handle));
@@ -66,12 +71,6 @@ Window::~Window() {
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
 void Window::pollEvents() const { glfwPollEvents(); }
 void Window::waitEvents(double seconds) const { glfwWaitEventsTimeout(seconds); }
-
-VkExtent2D Window::framebufferExtent() const {
-  int w = 0, h = 0;
-  glfwGetFramebufferSize(window_, &w, &h);
-  return {static_cast<uint32_t>(std::max(w, 0)), static_cast<uint32_t>(std::max(h, 0))};
-}
 
 bool Window::takeResized() { return std::exchange(resized_, false); }
 

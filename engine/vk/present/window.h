@@ -40,8 +40,11 @@ class Window {
   void pollEvents() const;
   // Blocks until an event arrives or `seconds` pass (a minimised window's idle wait).
   void waitEvents(double seconds) const;
-  // In pixels; 0x0 while minimised.
-  VkExtent2D framebufferExtent() const;
+  // In pixels; 0x0 while minimised. As the last event reported it (updated by
+  // pollEvents / waitEvents): asking the X server is a round trip, and behind
+  // a frame just presented by a CPU device (megabytes of image data) it waits
+  // until the server has drawn it -- every frame.
+  VkExtent2D framebufferExtent() const { return extent_; }
   // True once after each framebuffer resize.
   bool takeResized();
   // The keys pressed (GLFW_KEY_*) since the last call, oldest first; presses
@@ -58,6 +61,7 @@ class Window {
   Window() = default;
   GLFWwindow* window_ = nullptr;
   bool resized_ = false;
+  VkExtent2D extent_{};
   std::array<int, 32> keyPresses_{};
   uint32_t keyPressCount_ = 0;
   std::array<int, 32> takenKeys_{};

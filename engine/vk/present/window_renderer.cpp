@@ -71,7 +71,9 @@ float chooseLodPixelError(const WindowRendererOptions& options) {
 }  // namespace
 
 WindowRenderer::~WindowRenderer() {
-  if (ctx_) vkDeviceWaitIdle(ctx_->device());
+  if (!ctx_) return;
+  (void)presentPending();  // the last frame, drawn and submitted: shown (and its semaphore waited on)
+  vkDeviceWaitIdle(ctx_->device());
 }
 
 // One frame in flight's command pool and buffer, fence (signalled: the first
@@ -165,10 +167,14 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
     r->passTimes_ = std::move(timer).value();
   }
   r->lastShaderPoll_ = std::chrono::steady_clock::now();
+  // Two images acquired at once (this frame's and the one not yet presented) need one more than the minimum.
+  r->deferPresent_ = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+                     r->swapchain_.imageCount() > r->swapchain_.minImageCount();
   return r;
 }
 
 Result<void> WindowRenderer::recreateSwapchain() {
+  ENG_TRY(presentPending());
   vkDeviceWaitIdle(ctx_->device());
   swapchainStale_ = true;  // until everything below succeeded
   framebuffers_.clear();
@@ -363,6 +369,11 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   if (!frame.screenshot.empty()) ENG_TRY(ensureScreenshotBuffer(extent));
   ENG_TRY(recordFrame(f, slot, image, frame, reuseView));
   clock.lap(WindowFrameTimes::Record);
+  // The frame before this one, now that this one has its image: the X
+  // server draws it while this frame renders. (Acquired after it was sent,
+  // the image would wait for the server, which the acquire asks.)
+  ENG_TRY(presentPending());
+  clock.lap(WindowFrameTimes::Present);
   ENG_TRY(submitAndPresent(f, image, clock));
 
   lastSlot_ = slot;
@@ -471,19 +482,35 @@ Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image
       submitted != VK_SUCCESS)
     return vulkanError("vkQueueSubmit", submitted);
   clock.lap(WindowFrameTimes::Submit);
+  if (deferPresent_) {
+    pendingPresent_ = image;
+    return {};
+  }
+  ENG_TRY(present(image));
+  clock.lap(WindowFrameTimes::Present);
+  return {};
+}
 
+Result<void> WindowRenderer::present(uint32_t image) {
   const VkSwapchainKHR swapchain = swapchain_.handle();
+  const VkSemaphore rendered = renderFinished_[image].get();
   VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   present.waitSemaphoreCount = 1;
-  present.pWaitSemaphores = &signalSemaphore;
+  present.pWaitSemaphores = &rendered;
   present.swapchainCount = 1;
   present.pSwapchains = &swapchain;
   present.pImageIndices = &image;
   const VkResult presented = vkQueuePresentKHR(ctx_->queue(), &present);
-  clock.lap(WindowFrameTimes::Present);
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;
   else if (presented != VK_SUCCESS) return vulkanError("vkQueuePresentKHR", presented);
   return {};
+}
+
+Result<void> WindowRenderer::presentPending() {
+  if (!pendingPresent_) return {};
+  const uint32_t image = *pendingPresent_;
+  pendingPresent_.reset();
+  return present(image);
 }
 
 void WindowRenderer::adaptRenderScale() {

@@ -223,8 +223,13 @@ class WindowRenderer {
   Result<void> recordFrame(const FrameSync& f, uint32_t slot, uint32_t image, const FrameInput& frame, bool reuseView);
   // Swapchain image -> screenshotBuffer_, back to present layout, visible to the host.
   void recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) const;
-  // Submits the frame (signalling f's fence) and presents it; a stale swapchain is marked, not an error.
+  // Submits the frame (signalling f's fence) and presents it, or leaves it to the next drawFrame
+  // (deferPresent_); a stale swapchain is marked, not an error.
   Result<void> submitAndPresent(const FrameSync& f, uint32_t image, StepClock& clock);
+  // Presents swapchain image `image` (its render-finished semaphore signalled by the frame's submit).
+  Result<void> present(uint32_t image);
+  // The frame submitted by the last drawFrame, when its present was deferred.
+  Result<void> presentPending();
   // After a presented frame: times it, and on a new scale marks the view for rebuilding.
   void adaptRenderScale();
 
@@ -251,6 +256,14 @@ class WindowRenderer {
   std::chrono::steady_clock::time_point lastPresented_{};  // of the previous presented frame; {}: none to time from
   Swapchain swapchain_;
   bool swapchainStale_ = false;
+  // A CPU device's present (Mesa's software WSI) waits in the caller for the
+  // frame's rendering and then copies the image to the window: in line, the
+  // program's next frame (events, script, graph, UI) could not start until
+  // then. So there each frame is presented at the start of the next
+  // drawFrame, and the program builds its next frame while this one renders:
+  // the picture on screen is one frame later; a GPU presents at once.
+  bool deferPresent_ = false;
+  std::optional<uint32_t> pendingPresent_;  // the image to present first thing in the next drawFrame
   GpuImage msaaColor_;
   GpuImage depth_;
   GpuImage sceneColor_;                              // scaled: the 3D view before the blit
