@@ -124,6 +124,7 @@ class EditorApp : public FaceDelegate, public ProjectViewHost {
   static void onWindowClose(GLFWwindow* window);
   // The view camera as a picture (the window): what the landmarks are projected with.
   autorig::PictureCamera pictureCamera() const;
+  VkRect2D viewRegionPixels() const;
 
   std::optional<app::FaceSetup> setup_;
   StateMachinePanel machine_;
@@ -305,6 +306,17 @@ eng::OrbitCamera EditorApp::renderCamera() const {
   camera.distance = eng::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
   camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), layout_.top}, {layout_.x1(), layout_.y1()});
   return camera;
+}
+
+// The free middle in framebuffer pixels: the panels cover the rest, where the
+// renderer then draws nothing of the 3D view.
+VkRect2D EditorApp::viewRegionPixels() const {
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  const auto px = [](float v, float s) { return int32_t(std::lround(std::max(v, 0.0f) * s)); };
+  const int32_t x0 = px(layout_.x0(), scale.x), y0 = px(layout_.top, scale.y);
+  const int32_t x1 = px(layout_.x1(), scale.x), y1 = px(layout_.y1(), scale.y);
+  if (x1 <= x0 || y1 <= y0) return {};
+  return {{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
 }
 
 autorig::PictureCamera EditorApp::pictureCamera() const {
@@ -779,6 +791,7 @@ int EditorApp::run(const EditorOptions& o) {
     instance_ = {&*gpuModel_, glm::mat4(1.0f), displayWeights_, {}, materials_.materials()};
     app::WindowFramePlan plan{.input = {view_, {&instance_, 1}}, .requestedShot = pendingShot_, .quit = quitRequested_};
     plan.input.view.camera = renderCamera();
+    plan.input.viewRegion = viewRegionPixels();
     plan.input.overlay = eng::vk::ImGuiLayer::recorder();
     return plan;
   };

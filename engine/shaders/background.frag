@@ -10,9 +10,10 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   // Vulkan clip space: y = -1 is the top of the image.
-  float t = smoothstep(0.0, 1.0, inUv.y);
+  vec2 uv = frame.backdropUv.xy + inUv * frame.backdropUv.zw;
+  float t = smoothstep(0.0, 1.0, uv.y);
   vec3 color = mix(frame.backgroundTop.rgb, frame.backgroundBottom.rgb, t);
-  vec2 centered = inUv - vec2(0.5, 0.45);
+  vec2 centered = uv - vec2(0.5, 0.45);
   float vignette = 1.0 - 0.35 * smoothstep(0.25, 0.85, length(centered));
   outColor = vec4(color * vignette, 1.0);
 }

@@ -53,6 +53,7 @@ layout(std140, set = 0, binding = 0) uniform FrameGlobals {
   mat4 keyLightViewProj;  // world -> key light's shadow-map clip space
   vec4 shadow;            // y filter radius (shadow-map uv), z normal offset (world), w 1 = on
   vec4 shadowColor;       // what of the key light remains in its shadow (warm: light bleeding under skin)
+  vec4 backdropUv;        // the backdrop's uv in the whole picture = xy + the view's uv * zw
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData instances[]; };

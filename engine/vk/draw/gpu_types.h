@@ -65,8 +65,11 @@ struct FrameGlobals {
   glm::mat4 keyLightViewProj{1.0f};
   glm::vec4 shadow{0.0f};  // unused, filter radius (uv), normal offset (world), enabled
   glm::vec4 shadowColor{0.0f};
+  // The backdrop's place in the whole picture: its uv = xy + view uv * zw (a
+  // window's 3D view drawn for a region of it keeps the window's gradient).
+  glm::vec4 backdropUv{0.0f, 0.0f, 1.0f, 1.0f};
 };
-static_assert(sizeof(FrameGlobals) == 4 * 64 + 15 * 16);
+static_assert(sizeof(FrameGlobals) == 4 * 64 + 16 * 16);
 
 struct DrawConstants {
   float roughness = 0.6f;

@@ -121,6 +121,7 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   auto swapchain = Swapchain::create(ctx, window.framebufferExtent(), options.vsync);
   if (!swapchain) return swapchain.error();
   r->swapchain_ = std::move(swapchain).value();
+  r->viewRect_ = {{0, 0}, r->swapchain_.extent()};
   auto depth = chooseDepthFormat(ctx);
   if (!depth) return depth.error();
   r->format_ = {r->swapchain_.format(), depth.value(), usableSampleCount(ctx, qualitySettings(options.quality).samples)};
@@ -186,12 +187,31 @@ Result<void> WindowRenderer::recreateSwapchain() {
     return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
   swapchain_ = std::move(swapchain).value();
+  viewRect_ = {{0, 0}, swapchain_.extent()};  // a frame naming a region sets it again
   if (adaptive_) renderScale_ = sharpView_ ? 1.0f : adaptive_->scale();  // sceneExtent() follows the images
   return createSwapchainResources();
 }
 
-VkExtent2D WindowRenderer::sceneExtent() const {
+VkRect2D WindowRenderer::viewRectOf(const FrameInput& frame) const {
   const VkExtent2D window = swapchain_.extent();
+  const VkRect2D whole{{0, 0}, window};
+  const VkRect2D& r = frame.viewRegion;
+  if (!scaled() || r.extent.width == 0 || r.extent.height == 0) return whole;
+  const int32_t x0 = std::clamp(r.offset.x, 0, int32_t(window.width) - 1);
+  const int32_t y0 = std::clamp(r.offset.y, 0, int32_t(window.height) - 1);
+  const int32_t x1 = std::clamp(int32_t(int64_t(r.offset.x) + r.extent.width), x0 + 1, int32_t(window.width));
+  const int32_t y1 = std::clamp(int32_t(int64_t(r.offset.y) + r.extent.height), y0 + 1, int32_t(window.height));
+  return {{x0, y0}, {uint32_t(x1 - x0), uint32_t(y1 - y0)}};
+}
+
+bool WindowRenderer::viewIsWholeWindow() const {
+  const VkExtent2D window = swapchain_.extent();
+  return viewRect_.offset.x == 0 && viewRect_.offset.y == 0 && viewRect_.extent.width == window.width &&
+         viewRect_.extent.height == window.height;
+}
+
+VkExtent2D WindowRenderer::sceneExtent() const {
+  const VkExtent2D window = scaled() ? viewRect_.extent : swapchain_.extent();
   if (!scaled()) return window;
   return {std::max(1u, uint32_t(float(window.width) * renderScale_ + 0.5f)),
           std::max(1u, uint32_t(float(window.height) * renderScale_ + 0.5f))};
@@ -341,8 +361,28 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   clock.lap(WindowFrameTimes::WaitSlot);
 
   const VkExtent2D extent = swapchain_.extent();
+  if (const VkRect2D rect = viewRectOf(frame); std::memcmp(&rect, &viewRect_, sizeof rect) != 0) {
+    vkDeviceWaitIdle(device);  // the other frame in flight may still read the view's images
+    viewRect_ = rect;
+    ENG_TRY(createViewResources());
+  }
   const float aspect = float(extent.width) / float(extent.height);
-  const FrameGlobals globals = buildFrameGlobals(frame.view.camera, aspect, frame.view.lights);
+  FrameGlobals globals = buildFrameGlobals(frame.view.camera, aspect, frame.view.lights);
+  if (!viewIsWholeWindow()) {
+    // The window's clip space cropped to the view's rectangle: [n0, n1] -> [-1, 1] on each axis.
+    const auto ndc = [](int32_t at, uint32_t size) { return 2.0f * float(at) / float(size) - 1.0f; };
+    const float x0 = ndc(viewRect_.offset.x, extent.width), x1 = ndc(viewRect_.offset.x + int32_t(viewRect_.extent.width), extent.width);
+    const float y0 = ndc(viewRect_.offset.y, extent.height), y1 = ndc(viewRect_.offset.y + int32_t(viewRect_.extent.height), extent.height);
+    glm::mat4 crop(1.0f);
+    crop[0][0] = 2.0f / (x1 - x0);
+    crop[1][1] = 2.0f / (y1 - y0);
+    crop[3][0] = -(x0 + x1) / (x1 - x0);
+    crop[3][1] = -(y0 + y1) / (y1 - y0);
+    globals.proj = crop * globals.proj;
+    globals.viewProj = crop * globals.viewProj;
+    globals.backdropUv = {float(viewRect_.offset.x) / float(extent.width), float(viewRect_.offset.y) / float(extent.height),
+                          float(viewRect_.extent.width) / float(extent.width), float(viewRect_.extent.height) / float(extent.height)};
+  }
   ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
   auto rescaled = followStillness(scene_.contentKey(slot));
   if (!rescaled) return rescaled.error();
@@ -411,7 +451,7 @@ Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint
   if (reuseView) {
     passTimes_.mark(cmd, slot, 1);
     passTimes_.mark(cmd, slot, 2);
-    recordUpscaleAndOverlay(cmd, image, frame.overlay, slot);
+    recordUpscaleAndOverlay(cmd, image, frame, slot);
     if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
     ENG_VK_TRY(vkEndCommandBuffer(cmd));
     return {};
@@ -435,7 +475,7 @@ Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint
   vkCmdEndRenderPass(cmd);
   passTimes_.mark(cmd, slot, 2);
   if (scaled()) {
-    recordUpscaleAndOverlay(cmd, image, frame.overlay, slot);
+    recordUpscaleAndOverlay(cmd, image, frame, slot);
   } else {
     passTimes_.mark(cmd, slot, 3);  // nothing blitted; the overlay was drawn in the view's pass
     passTimes_.mark(cmd, slot, 4);
@@ -524,20 +564,30 @@ void WindowRenderer::adaptRenderScale() {
   adaptive_->restart();
 }
 
-void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay,
+void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const FrameInput& frame,
                                              uint32_t slot) const {
   const VkImage target = swapchain_.image(image);
   // Chained to the acquire semaphore's wait (colour-attachment-output stage).
   recordImageBarrier(cmd, {target, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
-  const VkExtent2D from = sceneExtent(), to = swapchain_.extent();
+  const VkExtent2D from = sceneExtent(), to = viewRect_.extent, window = swapchain_.extent();
+  if (!viewIsWholeWindow()) {
+    // Under the overlay around the view: the backdrop's middle colour (a
+    // clear is a fill on a CPU device; clearing only the bands around the view
+    // in the overlay's pass draws them, and cost more than the whole fill).
+    const glm::vec3 middle = 0.5f * (frame.view.lights.backgroundTop + frame.view.lights.backgroundBottom);
+    const VkClearColorValue colour{{middle.r, middle.g, middle.b, 1.0f}};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &all);
+  }
   // The scene pass left the view in TRANSFER_SRC_OPTIMAL, its writes ordered before transfers.
   if (from.width == to.width && from.height == to.height) {
     // A sharp still view: copied, not filtered (a CPU device's blit decodes and encodes every sRGB texel).
     VkImageCopy copy{};
     copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.dstOffset = {viewRect_.offset.x, viewRect_.offset.y, 0};
     copy.extent = {to.width, to.height, 1};
     vkCmdCopyImage(cmd, sceneColor_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
@@ -546,7 +596,8 @@ void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image
     blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = {int32_t(from.width), int32_t(from.height), 1};
     blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
+    blit.dstOffsets[0] = {viewRect_.offset.x, viewRect_.offset.y, 0};
+    blit.dstOffsets[1] = {viewRect_.offset.x + int32_t(to.width), viewRect_.offset.y + int32_t(to.height), 1};
     vkCmdBlitImage(cmd, sceneColor_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
   }
@@ -554,14 +605,14 @@ void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image
   VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   pass.renderPass = overlayPass_.get();
   pass.framebuffer = framebuffers_[image].get();
-  pass.renderArea = {{0, 0}, to};
+  pass.renderArea = {{0, 0}, window};
   vkCmdBeginRenderPass(cmd, &pass, VK_SUBPASS_CONTENTS_INLINE);
-  if (overlay) {
-    const VkViewport viewport{0.0f, 0.0f, float(to.width), float(to.height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, to};
+  if (frame.overlay) {
+    const VkViewport viewport{0.0f, 0.0f, float(window.width), float(window.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, window};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    overlay(cmd);
+    frame.overlay(cmd);
   }
   vkCmdEndRenderPass(cmd);
   passTimes_.mark(cmd, slot, 4);

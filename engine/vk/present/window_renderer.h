@@ -135,6 +135,12 @@ struct FrameInput {
   SceneView view;
   std::span<const ModelInstance> instances;
   OverlayRecorder overlay;            // recorded inside the render pass after the scene
+  // The window pixels the 3D view shows, where the overlay covers the rest
+  // (an editor's panels); empty: the whole window. The picture inside is the
+  // whole window's cropped (the camera still frames the whole window), and a
+  // 3D view drawn at a lower scale and blitted up spends nothing outside;
+  // there the overlay is drawn over the backdrop's middle colour.
+  VkRect2D viewRegion{};
   std::filesystem::path screenshot;   // non-empty: also write this frame (overlay included) as PNG
 };
 
@@ -214,8 +220,10 @@ class WindowRenderer {
   // scale changed (the frame is prepared again for it).
   Result<bool> followStillness(uint64_t contentKey);
   // Scaled: the 3D view blitted into the swapchain image, then the overlay pass.
-  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const OverlayRecorder& overlay,
-                               uint32_t slot) const;
+  void recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image, const FrameInput& frame, uint32_t slot) const;
+  // Scaled: the part of the window the frame's 3D view covers (FrameInput::viewRegion within the window).
+  VkRect2D viewRectOf(const FrameInput& frame) const;
+  bool viewIsWholeWindow() const;
   Result<void> saveScreenshot(const std::filesystem::path& path);
   // The steps of drawFrame after the swapchain image is acquired.
   Result<void> ensureScreenshotBuffer(VkExtent2D extent);
@@ -242,6 +250,7 @@ class WindowRenderer {
   UniqueRenderPass renderPass_;   // the 3D view (+ the overlay when not scaled)
   UniqueRenderPass overlayPass_;  // scaled: the overlay over the blitted view
   float renderScale_ = 1.0f;
+  VkRect2D viewRect_{};  // the window pixels the 3D view covers (scaled: its images are this size times the scale)
   bool blitView_ = false;
   // Stillness: the content key of the last frame, how many frames in a row
   // had it, and the key the view image holds (while viewValid_).
