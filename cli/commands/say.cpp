@@ -34,6 +34,8 @@ constexpr float kTailSeconds = 0.2f;
 
 eng::Result<void> checkOptions(const SayOptions& o) {
   constexpr auto invalid = eng::ErrorKind::InvalidArgument;
+  if (!std::isfinite(o.lodError) || o.lodError < 0.0f || o.lodError > 64.0f)
+    return eng::Error{invalid, "--lod-error must be a number of pixels in [0, 64], got " + std::to_string(o.lodError)};
   if (!std::isfinite(o.fps) || o.fps < 1.0f || o.fps > 240.0f)
     return eng::Error{invalid, "--fps must be a number in [1, 240], got " + std::to_string(o.fps)};
   if (!(o.intensity >= 0.0f && o.intensity <= 1.0f))  // NaN fails too
@@ -68,6 +70,7 @@ int runSay(const SayOptions& o) {
   if (auto checked = checkOptions(o); !checked) return fail(checked.error().message);
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
+  renderOptions->lodPixelError = o.lodError;
   auto speech = say::speechFor(o);
   if (!speech) return fail(speech.error().message);
   for (const std::string& note : speech->notes) std::fprintf(stderr, "facial say: note: %s\n", note.c_str());
@@ -106,6 +109,10 @@ CommandRegistrar reg("say", "A face speaks text, a presenter script or a recordi
   app::addShapeOption(app, o->shapes);
   app::addViewOptions(app, o->view);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
+  app.add_option("--lod-error", o->lodError,
+                 "Level of detail: each mesh at the coarsest level within this many pixels of the full one (0: every "
+                 "triangle)")
+      ->capture_default_str();
   app.add_option("--cues", o->cues, "Rhubarb Lip Sync cues (.json or .tsv) timing the mouth to --audio");
   app.add_option("--audio", o->audio, "A recording to speak (WAV, OGG, FLAC, MP3): with --cues, --text, or alone");
   app.add_option("--out,-o", o->out, "The video: .mp4 (H.264 + AAC) or .webm (VP9 + Opus)")->required();

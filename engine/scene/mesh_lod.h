@@ -44,7 +44,34 @@ struct LodChainOptions {
 // index < positions.size()), finest first, each with fewer triangles and a
 // larger error than the one before; empty when the list is too small or
 // does not simplify. Positions are the rest pose.
+//
+// Triangles flagged in `keep` (one flag per triangle, or empty: none) are in
+// every level as they are (keptTriangles); the rest simplifies with the
+// outline it shares with them locked, so no crack opens between them.
 std::vector<LodLevel> buildLodChain(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
-                                    const LodChainOptions& options = {});
+                                    const LodChainOptions& options = {}, std::span<const uint8_t> keep = {});
+
+struct Image;
+// What the simplifier cannot see, so a level keeps it as it is. It measures
+// how far the surface moves, not how far the picture painted on it slides
+// (the built-in head's lash lines wandered at half a pixel) nor how a crease
+// it flattens is lit (a dark spot at the inner corner of an eye, where the
+// flattened skin fell into the eyeball's shadow).
+struct KeptTriangleLimits {
+  // Painted: the largest channel range (0..1) of a triangle's base-colour
+  // texels or corner colours. Skin grain stays under it; lash lines, brows,
+  // lip edges and irises go over.
+  float paintedContrast = 0.15f;
+  // Creased: the largest angle between two of a triangle's corner normals.
+  float creaseDegrees = 30.0f;
+};
+// One flag per triangle of `indices`: 1 where the base-colour texture (read
+// through `texcoords`, wrapping; may be null) or the vertex colours vary
+// more than `limits.paintedContrast` within it, or its corner normals turn
+// more than `limits.creaseDegrees`. Arrays not one per vertex are ignored.
+std::vector<uint8_t> keptTriangles(std::span<const uint32_t> indices, std::span<const glm::vec2> texcoords,
+                                   const Image* texture, std::span<const glm::vec4> colors,
+                                   std::span<const glm::vec3> normals, size_t vertexCount,
+                                   const KeptTriangleLimits& limits = {});
 
 }  // namespace eng

@@ -288,6 +288,8 @@ TEST_F(SayCommand, BadInputIsRefusedInOneLineWithoutAVideo) {
   expectRefused({"hello", "--emotion", "bored"}, "--emotion 'bored'");
   expectRefused({"hello", "--intensity", "1.5"}, "--intensity must be a number in [0, 1]");
   expectRefused({"hello", "--intensity", "nan"}, "--intensity must be a number in [0, 1]");
+  expectRefused({"hello", "--lod-error", "-1"}, "--lod-error must be a number of pixels in [0, 64]");
+  expectRefused({"hello", "--lod-error", "nan"}, "--lod-error must be a number of pixels in [0, 64]");
   expectRefused({"hello", "--wav", (dir_ / "voice.mp3").string()}, "must end in .wav");
   expectRefused({"--audio", (dir_ / "missing.wav").string()}, "missing.wav");
   std::ofstream(dir_ / "corrupt.wav") << "RIFF not really a wave file";

@@ -120,8 +120,8 @@ namespace {
 // Vertex and index arrays of one primitive. The position array starts at a
 // storage-buffer offset: the morph pre-pass reads position .. tangent as one
 // storage range (DrawConstants::rest* are float offsets into it).
-GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, VkDeviceSize storageAlign,
-                            PrimitiveRanges& ranges) {
+GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, const Image* baseColour,
+                            VkDeviceSize storageAlign, PrimitiveRanges& ranges) {
   const size_t n = prim.vertexCount();
   GpuPrimitive gp;
   gp.vertexCount = static_cast<uint32_t>(n);
@@ -147,7 +147,9 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
     gp.colorOffset = vertices.append(std::span(white), 16);
   }
   gp.indexOffset = indices.append(std::span(prim.indices), 16);
-  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices))
+  const std::vector<uint8_t> kept =
+      keptTriangles(prim.indices, prim.texcoords, baseColour, prim.colors, prim.normals, prim.positions.size());
+  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices, {}, kept))
     gp.lods.push_back({indices.append(std::span(level.indices), 16), static_cast<uint32_t>(level.indices.size()),
                        level.error});
   return gp;
@@ -239,7 +241,12 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
       PrimitiveRanges& ranges = staging.ranges[m].emplace_back();
-      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, storageAlign, ranges);
+      const Material* material =
+          prim.material >= 0 && size_t(prim.material) < model.materials.size() ? &model.materials[size_t(prim.material)] : nullptr;
+      const Image* baseColour = material && material->baseColorImage >= 0 && size_t(material->baseColorImage) < model.images.size()
+                                    ? &model.images[size_t(material->baseColorImage)]
+                                    : nullptr;
+      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, baseColour, storageAlign, ranges);
 
       if (prim.targets.size() > kMaxSparseTargets)
         return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) +

@@ -1,11 +1,13 @@
 // Levels of detail over the same vertices (eng::buildLodChain).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <set>
 #include <utility>
 
 #include "engine/scene/mesh_lod.h"
+#include "engine/scene/model.h"
 
 namespace {
 
@@ -75,6 +77,73 @@ TEST(MeshLod, BordersKeepEveryVertex) {
     for (const auto& [a, b] : borderEdges(level.indices)) kept.insert({a, b});
     EXPECT_EQ(kept, rim);
   }
+}
+
+// The triangles of a list as sorted index triples (a level may rotate none: it copies kept ones).
+std::multiset<std::array<uint32_t, 3>> triangles(const std::vector<uint32_t>& indices) {
+  std::multiset<std::array<uint32_t, 3>> out;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) out.insert({indices[t], indices[t + 1], indices[t + 2]});
+  return out;
+}
+
+TEST(MeshLod, KeptTrianglesAreInEveryLevelAsTheyAre) {
+  // A band of rings across the cap is kept (a painted line, a crease).
+  const Grid g = cap(60, 80);
+  std::vector<uint8_t> keep(g.indices.size() / 3, 0);
+  std::vector<uint32_t> band;
+  for (size_t t = 0; t < keep.size(); ++t) {
+    const size_t ring = t / (2 * 80);
+    if (ring >= 20 && ring < 23) {
+      keep[t] = 1;
+      band.insert(band.end(), g.indices.begin() + std::ptrdiff_t(3 * t), g.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    }
+  }
+  const auto levels = eng::buildLodChain(g.positions, g.indices, {}, keep);
+  ASSERT_GE(levels.size(), 2u) << "the rest still simplifies";
+  const auto kept = triangles(band);
+  const auto outline = borderEdges(band), capRim = borderEdges(g.indices);
+  for (const eng::LodLevel& level : levels) {
+    const auto all = triangles(level.indices);
+    for (const auto& t : kept) EXPECT_EQ(all.count(t), kept.count(t)) << "a kept triangle changed";
+    // No crack: every edge of the band's outline is still shared by a triangle outside the band.
+    const auto levelBorder = borderEdges(level.indices);
+    for (const auto& e : outline)
+      if (!capRim.count(e)) EXPECT_FALSE(levelBorder.count(e)) << "edge " << e.first << "-" << e.second;
+  }
+  EXPECT_LT(levels.back().indices.size(), g.indices.size() / 2);
+  // Flags of the wrong length are no flags.
+  EXPECT_EQ(eng::buildLodChain(g.positions, g.indices, {}, std::vector<uint8_t>(7, 1)).size(),
+            eng::buildLodChain(g.positions, g.indices).size());
+}
+
+TEST(MeshLod, PaintedLinesCreasesAndCornerColoursAreKept) {
+  // Two triangles side by side in uv: the left over plain skin, the right over a one-texel dark line.
+  eng::Image texture{.name = "skin", .width = 64, .height = 64};
+  texture.rgba8.assign(64 * 64 * 4, 0);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      uint8_t* p = &texture.rgba8[size_t(y * 64 + x) * 4];
+      const uint8_t grain = uint8_t((x * 7 + y * 13) % 9);  // skin grain: a few levels
+      p[0] = uint8_t(210 + grain), p[1] = uint8_t(160 + grain), p[2] = uint8_t(140 + grain), p[3] = 255;
+      if (x == 45) p[0] = p[1] = p[2] = 30;  // the lash line
+    }
+  const std::vector<glm::vec2> uv{{0.05f, 0.1f}, {0.45f, 0.1f}, {0.25f, 0.9f}, {0.55f, 0.1f}, {0.95f, 0.1f}, {0.75f, 0.9f}};
+  const std::vector<uint32_t> indices{0, 1, 2, 3, 4, 5};
+  const std::vector<glm::vec3> flat(6, glm::vec3(0, 0, 1));
+  EXPECT_EQ(eng::keptTriangles(indices, uv, &texture, {}, flat, 6), (std::vector<uint8_t>{0, 1}));
+  EXPECT_EQ(eng::keptTriangles(indices, uv, nullptr, {}, flat, 6), (std::vector<uint8_t>{0, 0})) << "no texture";
+  // Corner colours: a painted edge across the first triangle.
+  std::vector<glm::vec4> colours(6, glm::vec4(0.8f, 0.6f, 0.5f, 1.0f));
+  colours[1] = glm::vec4(0.2f, 0.1f, 0.1f, 1.0f);
+  EXPECT_EQ(eng::keptTriangles(indices, {}, nullptr, colours, flat, 6), (std::vector<uint8_t>{1, 0}));
+  // A crease: the second triangle's corner normals turn 45 degrees.
+  std::vector<glm::vec3> normals = flat;
+  normals[4] = glm::normalize(glm::vec3(1, 0, 1));
+  EXPECT_EQ(eng::keptTriangles(indices, {}, nullptr, {}, normals, 6), (std::vector<uint8_t>{0, 1}));
+  // Arrays not one per vertex, and indices past the vertices, flag nothing.
+  EXPECT_EQ(eng::keptTriangles(indices, {}, nullptr, colours, std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)), 6),
+            (std::vector<uint8_t>{1, 0}));
+  EXPECT_EQ(eng::keptTriangles(std::vector<uint32_t>{0, 1, 99}, uv, &texture, colours, normals, 6), (std::vector<uint8_t>{0}));
 }
 
 TEST(MeshLod, SmallListsGetNoLevels) {
