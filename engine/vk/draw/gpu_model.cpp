@@ -121,7 +121,7 @@ namespace {
 // storage-buffer offset: the morph pre-pass reads position .. tangent as one
 // storage range (DrawConstants::rest* are float offsets into it).
 GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, const Image* baseColour,
-                            VkDeviceSize storageAlign, PrimitiveRanges& ranges) {
+                            const DetailRegions* regions, VkDeviceSize storageAlign, PrimitiveRanges& ranges) {
   const size_t n = prim.vertexCount();
   GpuPrimitive gp;
   gp.vertexCount = static_cast<uint32_t>(n);
@@ -146,12 +146,22 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
     const std::vector<glm::vec4> white(n, glm::vec4(1.0f));
     gp.colorOffset = vertices.append(std::span(white), 16);
   }
-  gp.indexOffset = indices.append(std::span(prim.indices), 16);
+  // Each level's list in runs by the detail layers that can show (when the primitive has any).
+  const auto appendLevel = [&](std::span<const uint32_t> list, std::vector<DetailRuns::Run>& runs) {
+    if (!regions) return indices.append(list, 16);
+    DetailRuns ordered = regions->runsOf(list, prim.texcoords);
+    runs = std::move(ordered.runs);
+    return indices.append(std::span<const uint32_t>(ordered.indices), 16);
+  };
+  gp.indexOffset = appendLevel(prim.indices, gp.detailRuns);
   const std::vector<uint8_t> kept =
       keptTriangles(prim.indices, prim.texcoords, baseColour, prim.colors, prim.normals, prim.positions.size());
-  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices, {}, kept))
-    gp.lods.push_back({indices.append(std::span(level.indices), 16), static_cast<uint32_t>(level.indices.size()),
-                       level.error});
+  for (const LodLevel& level : buildLodChain(prim.positions, prim.indices, {}, kept)) {
+    GpuLod& lod = gp.lods.emplace_back();
+    lod.indexOffset = appendLevel(level.indices, lod.detailRuns);
+    lod.indexCount = static_cast<uint32_t>(level.indices.size());
+    lod.error = level.error;
+  }
   return gp;
 }
 
@@ -246,7 +256,17 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       const Image* baseColour = material && material->baseColorImage >= 0 && size_t(material->baseColorImage) < model.images.size()
                                     ? &model.images[size_t(material->baseColorImage)]
                                     : nullptr;
-      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, baseColour, storageAlign, ranges);
+      // Runs by detail layer for an opaque primitive with layers (a blended one keeps its triangles' order).
+      std::optional<DetailRegions> regions;
+      if (material && !material->detailLayers.empty() && material->alphaMode != AlphaMode::Blend) {
+        std::vector<const Image*> layerImages;
+        for (const DetailLayer& layer : material->detailLayers)
+          layerImages.push_back(layer.image >= 0 && size_t(layer.image) < model.images.size() ? &model.images[size_t(layer.image)]
+                                                                                               : nullptr);
+        regions.emplace(layerImages);
+      }
+      GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, baseColour, regions ? &*regions : nullptr,
+                                       storageAlign, ranges);
 
       if (prim.targets.size() > kMaxSparseTargets)
         return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) +

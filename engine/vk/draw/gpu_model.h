@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/core/result.h"
+#include "engine/scene/detail_regions.h"
 #include "engine/scene/model.h"
 #include "engine/scene/skeleton_pose.h"
 #include "engine/vk/device/buffer.h"
@@ -32,6 +33,7 @@ struct GpuLod {
   VkDeviceSize indexOffset = 0;
   uint32_t indexCount = 0;
   float error = 0.0f;  // how far it may stray from the full mesh, model units
+  std::vector<DetailRuns::Run> detailRuns;  // as GpuPrimitive::detailRuns, for this level's indices
 };
 
 struct GpuPrimitive {
@@ -50,6 +52,10 @@ struct GpuPrimitive {
   // as the fragment shader reads them: the scene renderer picks the ones an
   // instance's weights can show. Only the first constants.detailLayerCount are drawn.
   std::vector<GpuDetailLayer> detailLayers;
+  // With detail layers (opaque primitives): the index list in runs of
+  // triangles the same layers can reach (eng::DetailRegions), drawn one run
+  // at a time with only those layers; empty: one draw with every layer.
+  std::vector<DetailRuns::Run> detailRuns;
   // Inside the head (engine/scene/inner_face_parts.h: eyeball, teeth, tongue, mouth interior):
   // a window's shadow pass leaves it out.
   bool insideTheHead = false;

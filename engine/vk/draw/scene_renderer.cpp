@@ -596,6 +596,18 @@ void SceneRenderer::drawBatches(VkCommandBuffer cmd, const Slot& slot, DrawPass 
     const bool full = level == 0;
     vkCmdBindIndexBuffer(cmd, batch.model->indexBuffer(), full ? prim.indexOffset : prim.lods[level - 1].indexOffset,
                          VK_INDEX_TYPE_UINT32);
+    const std::vector<DetailRuns::Run>& runs = full ? prim.detailRuns : prim.lods[level - 1].detailRuns;
+    if (colourPass && constants.detailLayerMask != 0 && !runs.empty()) {
+      // Each run with only the layers that can show on it (most triangles: none).
+      const uint32_t visible = constants.detailLayerMask;
+      for (const DetailRuns::Run& run : runs) {
+        constants.detailLayerMask = visible & run.layerMask;
+        vkCmdPushConstants(cmd, layouts_->pipelineLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(DrawConstants), &constants);
+        vkCmdDrawIndexed(cmd, run.indexCount, batch.instanceCount, run.firstIndex, 0, batch.firstInstance);
+      }
+      continue;
+    }
     vkCmdDrawIndexed(cmd, full ? prim.indexCount : prim.lods[level - 1].indexCount, batch.instanceCount, 0, 0,
                      batch.firstInstance);
   }
