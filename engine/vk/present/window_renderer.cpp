@@ -383,11 +383,11 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
     globals.backdropUv = {float(viewRect_.offset.x) / float(extent.width), float(viewRect_.offset.y) / float(extent.height),
                           float(viewRect_.extent.width) / float(extent.width), float(viewRect_.extent.height) / float(extent.height)};
   }
-  ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError, sceneExtent().height}));
+  ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
   auto rescaled = followStillness(scene_.contentKey(slot));
   if (!rescaled) return rescaled.error();
   if (*rescaled)  // the levels of detail follow the new size
-    ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError, sceneExtent().height}));
+    ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
   // Nothing changed since the view image was drawn: blit it again (and the overlay over it).
   const bool reuseView = scaled() && viewValid_ && viewKey_ == lastKey_;
   clock.lap(WindowFrameTimes::Upload);
