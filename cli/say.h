@@ -33,7 +33,7 @@ struct SayOptions {
   app::ViewOptions view{.quality = app::kQualityAuto};  // balanced on lavapipe, high on a GPU
   float fps = 25.0f;
   // Each mesh at the coarsest level of detail within this many pixels of the
-  // full one (0: every triangle). A CPU rasteriser shades whole blocks per
+  // full one, counted at 512 px tall (0: every triangle). A CPU rasteriser shades whole blocks per
   // triangle, and a head of 80k triangles at 512x512 has about one a pixel:
   // half a pixel takes the built-in head to 38k and its frame from 83 to
   // 54 ms on lavapipe; levels keep painted lines and creases whole

@@ -70,7 +70,9 @@ int runSay(const SayOptions& o) {
   if (auto checked = checkOptions(o); !checked) return fail(checked.error().message);
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
-  renderOptions->lodPixelError = o.lodError;
+  // Pixels of a 512-pixel-tall frame: a smaller one draws no coarser a level (at 256 px, half a
+  // pixel is a level that loses lip shapes only targets make; docs/performance.md).
+  renderOptions->lodPixelError = o.lodError * std::min(1.0f, float(renderOptions->height) / 512.0f);
   auto speech = say::speechFor(o);
   if (!speech) return fail(speech.error().message);
   for (const std::string& note : speech->notes) std::fprintf(stderr, "facial say: note: %s\n", note.c_str());
@@ -110,8 +112,8 @@ CommandRegistrar reg("say", "A face speaks text, a presenter script or a recordi
   app::addViewOptions(app, o->view);
   app.add_option("--fps", o->fps, "Frames per second")->capture_default_str();
   app.add_option("--lod-error", o->lodError,
-                 "Level of detail: each mesh at the coarsest level within this many pixels of the full one (0: every "
-                 "triangle)")
+                 "Level of detail: each mesh at the coarsest level within this many pixels of the full one, counted "
+                 "at 512 px tall (a smaller frame draws the same level; 0: every triangle)")
       ->capture_default_str();
   app.add_option("--cues", o->cues, "Rhubarb Lip Sync cues (.json or .tsv) timing the mouth to --audio");
   app.add_option("--audio", o->audio, "A recording to speak (WAV, OGG, FLAC, MP3): with --cues, --text, or alone");
