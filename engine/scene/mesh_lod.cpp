@@ -104,4 +104,21 @@ std::vector<uint8_t> keptTriangles(std::span<const uint32_t> indices, std::span<
   return flags;
 }
 
+std::vector<uint8_t> keptTriangles(const Primitive& prim, const Image* texture, const KeptTriangleLimits& limits) {
+  const size_t n = prim.positions.size();
+  std::vector<uint8_t> kept = keptTriangles(prim.indices, prim.texcoords, texture, prim.colors, prim.normals, n, limits);
+  std::vector<glm::vec3> posed(prim.normals.size());
+  for (const MorphTarget& target : prim.targets) {
+    if (target.normals.size() != prim.normals.size()) continue;
+    for (size_t v = 0; v < posed.size(); ++v) {
+      const glm::vec3 normal = prim.normals[v] + target.normals[v];
+      const float length = glm::length(normal);
+      posed[v] = length > 1e-6f ? normal / length : prim.normals[v];
+    }
+    const std::vector<uint8_t> creased = keptTriangles(prim.indices, {}, nullptr, {}, posed, n, limits);
+    for (size_t t = 0; t < kept.size(); ++t) kept[t] |= creased[t];
+  }
+  return kept;
+}
+
 }  // namespace eng

@@ -52,6 +52,7 @@ std::vector<LodLevel> buildLodChain(std::span<const glm::vec3> positions, std::s
                                     const LodChainOptions& options = {}, std::span<const uint8_t> keep = {});
 
 struct Image;
+struct Primitive;
 // What the simplifier cannot see, so a level keeps it as it is. It measures
 // how far the surface moves, not how far the picture painted on it slides
 // (the built-in head's lash lines wandered at half a pixel) nor how a crease
@@ -73,5 +74,10 @@ std::vector<uint8_t> keptTriangles(std::span<const uint32_t> indices, std::span<
                                    const Image* texture, std::span<const glm::vec4> colors,
                                    std::span<const glm::vec3> normals, size_t vertexCount,
                                    const KeptTriangleLimits& limits = {});
+// A primitive's: its painted triangles (base colour `texture`, may be null,
+// and vertex colours) and its creases at rest and in each target's pose (the
+// levels are made at rest, where a fold a target makes -- a stretched mouth
+// corner -- is smooth skin).
+std::vector<uint8_t> keptTriangles(const Primitive& prim, const Image* texture, const KeptTriangleLimits& limits = {});
 
 }  // namespace eng

@@ -154,21 +154,7 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
     return indices.append(std::span<const uint32_t>(ordered.indices), 16);
   };
   gp.indexOffset = appendLevel(prim.indices, gp.detailRuns);
-  std::vector<uint8_t> kept =
-      keptTriangles(prim.indices, prim.texcoords, baseColour, prim.colors, prim.normals, prim.positions.size());
-  // Creases a target makes (a fold at a stretched mouth corner) are creases too: the levels are
-  // made at rest, where that skin is smooth.
-  std::vector<glm::vec3> posed(prim.normals.size());
-  for (const MorphTarget& target : prim.targets) {
-    if (target.normals.size() != prim.normals.size()) continue;
-    for (size_t v = 0; v < posed.size(); ++v) {
-      const glm::vec3 n = prim.normals[v] + target.normals[v];
-      const float length = glm::length(n);
-      posed[v] = length > 1e-6f ? n / length : prim.normals[v];
-    }
-    const std::vector<uint8_t> creased = keptTriangles(prim.indices, {}, nullptr, {}, posed, prim.positions.size());
-    for (size_t t = 0; t < kept.size(); ++t) kept[t] |= creased[t];
-  }
+  const std::vector<uint8_t> kept = keptTriangles(prim, baseColour);
   for (const LodLevel& level : buildLodChain(prim.positions, prim.indices, {}, kept)) {
     GpuLod& lod = gp.lods.emplace_back();
     lod.indexOffset = appendLevel(level.indices, lod.detailRuns);

@@ -146,6 +146,23 @@ TEST(MeshLod, PaintedLinesCreasesAndCornerColoursAreKept) {
   EXPECT_EQ(eng::keptTriangles(std::vector<uint32_t>{0, 1, 99}, uv, &texture, colours, normals, 6), (std::vector<uint8_t>{0}));
 }
 
+TEST(MeshLod, CreasesATargetMakesAreKept) {
+  // Two flat triangles; a target turns one corner's normal 60 degrees (a fold at that pose only).
+  eng::Primitive prim;
+  prim.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {3, 0, 0}, {2, 1, 0}};
+  prim.normals.assign(6, glm::vec3(0, 0, 1));
+  prim.indices = {0, 1, 2, 3, 4, 5};
+  EXPECT_EQ(eng::keptTriangles(prim, nullptr), (std::vector<uint8_t>{0, 0})) << "smooth at rest";
+  eng::MorphTarget fold;
+  fold.positions.assign(6, glm::vec3(0.0f));
+  fold.normals.assign(6, glm::vec3(0.0f));
+  fold.normals[4] = glm::vec3(std::sqrt(3.0f), 0, 0);  // (0,0,1) + this: 60 degrees off
+  prim.targets.push_back(fold);
+  EXPECT_EQ(eng::keptTriangles(prim, nullptr), (std::vector<uint8_t>{0, 1}));
+  prim.targets[0].normals.resize(3);  // not one per vertex: ignored
+  EXPECT_EQ(eng::keptTriangles(prim, nullptr), (std::vector<uint8_t>{0, 0}));
+}
+
 TEST(MeshLod, SmallListsGetNoLevels) {
   const Grid g = cap(10, 12);  // 240 triangles
   EXPECT_TRUE(eng::buildLodChain(g.positions, g.indices).empty());
