@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <functional>
@@ -53,23 +54,52 @@ struct KillFigures {
   int killedMidSave = 0;  // a temporary sibling was left behind: the kill landed inside a save
 };
 
-// Forks a child that calls save(a) and save(b) in turn for ever; kills it
-// after a random 0-15 ms; checks the file. `path` holds version a at the start.
+// Forks a child that calls save(a) and save(b) in turn for ever, sending a
+// byte down a pipe as each save starts; after 1-3 starts, waits a random part
+// of one save's measured length and kills it, then checks the file. Counting
+// starts (not wall time from the fork) keeps the kills inside saves however
+// slowly a loaded machine or a sanitizer runs the child. `path` holds version
+// a at the start.
 KillFigures killRepeatedly(const fs::path& path, const std::string& a, const std::string& b, int rounds,
                            const std::function<void(int version)>& save) {
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  for (int i = 0; i < 4; ++i) save(0);  // version a stays; times one save
+  const auto saveTime = (Clock::now() - started) / 4;
+  const int saveMicros = std::max<int>(
+      1, int(std::chrono::duration_cast<std::chrono::microseconds>(saveTime).count()));
+
   KillFigures figures;
   std::mt19937 random(7);
   for (int round = 0; round < rounds; ++round) {
+    fs::remove(editor::temporarySibling(path));  // so a sibling found after the kill is this round's
+    int starts[2];
+    if (pipe(starts) != 0) {
+      ADD_FAILURE() << "pipe failed";
+      break;
+    }
     const pid_t child = fork();
     if (child == 0) {
-      for (int i = 0;; ++i) save(i & 1);
+      close(starts[0]);
+      for (int i = 0;; ++i) {
+        if (write(starts[1], "s", 1) != 1) _exit(4);
+        save(i & 1);
+      }
     }
+    close(starts[1]);
     EXPECT_GT(child, 0) << "fork failed";
-    if (child <= 0) break;
-    std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(500, 15000)(random)));
+    if (child <= 0) {
+      close(starts[0]);
+      break;
+    }
+    const int waitStarts = std::uniform_int_distribution<int>(1, 3)(random);
+    char byte = 0;
+    for (int seen = 0; seen < waitStarts && read(starts[0], &byte, 1) == 1;) ++seen;
+    std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, saveMicros)(random)));
     kill(child, SIGKILL);
     int status = 0;
     waitpid(child, &status, 0);
+    close(starts[0]);
     ++figures.rounds;
     if (fs::exists(editor::temporarySibling(path))) ++figures.killedMidSave;
     const std::string content = readAll(path);
