@@ -302,9 +302,9 @@ eng::Result<void> EditorApp::uploadDisplayModel() {
 // above the timeline): a lens shift, so orbiting still turns about the face.
 eng::OrbitCamera EditorApp::renderCamera() const {
   eng::OrbitCamera camera = view_.camera;
-  // Framed for the window as it is now (it may have been resized), then moved into the free part.
-  camera.distance = eng::OrbitCamera::frame(bounds_, layout_.width / layout_.height, camera.fovYDegrees).distance;
-  camera.fitToRegion(bounds_, {layout_.width, layout_.height}, {layout_.x0(), layout_.top}, {layout_.x1(), layout_.y1()});
+  // The free part shows what `facial play` draws at its size (same camera, same perspective),
+  // framed for the window as it is now (it may have been resized).
+  camera.viewRegionAsImage(bounds_, {layout_.width, layout_.height}, {layout_.x0(), layout_.top}, {layout_.x1(), layout_.y1()});
   return camera;
 }
 

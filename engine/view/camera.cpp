@@ -59,4 +59,15 @@ void OrbitCamera::fitToRegion(const Aabb& bounds, glm::vec2 imageSize, glm::vec2
   imageCentre = (lo + hi) / imageSize - 1.0f;
 }
 
+void OrbitCamera::viewRegionAsImage(const Aabb& bounds, glm::vec2 imageSize, glm::vec2 regionMin, glm::vec2 regionMax) {
+  if (!(imageSize.x >= 1.0f) || !(imageSize.y >= 1.0f)) return;
+  const glm::vec2 lo = glm::clamp(regionMin, glm::vec2(0.0f), imageSize - 1.0f);
+  const glm::vec2 hi = glm::clamp(regionMax, lo + 1.0f, imageSize);
+  const glm::vec2 region = hi - lo;
+  distance = frame(bounds, region.x / region.y, fovYDegrees).distance;
+  const float tanHalf = std::tan(glm::radians(fovYDegrees) * 0.5f) * imageSize.y / region.y;
+  fovYDegrees = glm::degrees(2.0f * std::atan(tanHalf));
+  imageCentre = (lo + hi) / imageSize - 1.0f;
+}
+
 }  // namespace eng

@@ -35,6 +35,16 @@ struct OrbitCamera {
   // window beside a panel: centres it there (imageCentre) and zooms out only
   // as far as the region's shape requires. Apply to a copy each frame.
   void fitToRegion(const Aabb& bounds, glm::vec2 imageSize, glm::vec2 regionMin, glm::vec2 regionMax);
+  // Shows the sub-rectangle [regionMin, regionMax] of an image of imageSize
+  // as a picture of the region's own size would show `bounds`: the camera
+  // where frame(bounds, region aspect) puts it (then this camera's zoom, yaw
+  // and pitch), the vertical field of view widened so that the region's
+  // height spans fovYDegrees, the lens shifted to the region's centre. The
+  // region is then that picture, pixel for pixel (an editor's view and
+  // `facial play` at the region's size draw the same face; fitToRegion
+  // instead keeps the whole image's framing, so its camera stands farther
+  // off and the face's depth reads flatter). Apply to a copy each frame.
+  void viewRegionAsImage(const Aabb& bounds, glm::vec2 imageSize, glm::vec2 regionMin, glm::vec2 regionMax);
 };
 
 }  // namespace eng

@@ -241,11 +241,12 @@ TEST(EditorDoneWhen, OneSessionEditsSavesReopensAndExportsWhatFacialPlayRendersT
   const double same = faceDifference(crop, *played), other = faceDifference(crop, *start);
   std::printf("editor at %.1f s vs facial play: mean colour distance over the face %.2f at the same time, %.2f at 0 s\n", T, same,
               other);
-  // Same camera. Measured (GlbExport.FacialPlayFrameKShowsTheEditorsPoseAtKOverFps and by hand on
-  // this session's files): play's frame 12 holds exactly the weights the editor showed at 1.2 s (the
-  // export, `timeline import` and the timeline node add no time shift), yet its picture is nearer
-  // play's frame 11 (about 27.7 against 34.1 here): what differs is how the two programs draw the
-  // same weights, not when. Until that is found the check stays loose: nearer than play's frame at 0.
+  // Same camera, same weights (GlbExport.FacialPlayFrameKShowsTheEditorsPoseAtKOverFps), so the
+  // same picture: measured 1.5 here, 29 against play's frame at 0 s. What is left is the editor's
+  // blush (app::FaceMaterials follows the emotions; the .glb carries target weights only) and
+  // anti-aliasing. Until the editor's view stood where play's camera stands (OrbitCamera::
+  // viewRegionAsImage) it measured 34 here: the same weights seen from 1.4x farther.
+  EXPECT_LT(same, 4.0) << "see " << dir;
   EXPECT_LT(same, other) << "see " << dir;
   unsetenv("FACIAL_RENDER_SCALE");
 }

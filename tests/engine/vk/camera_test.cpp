@@ -106,4 +106,31 @@ TEST(OrbitCamera, FitToRegionPutsTheFramingInTheFreePartOfTheWindow) {
   EXPECT_NEAR((project(region, aspect, region.target).x + 1.0f) * 0.5f * 960.0f, 700.0f, 1e-2f);
 }
 
+TEST(OrbitCamera, ViewRegionAsImageShowsTheRegionAsAPictureOfItsSizeShowsIt) {
+  // An editor's free middle (640x541 below a menu bar in 1280x800) and
+  // `facial play --size 640x541` of the same face, zoom and orbit.
+  const eng::Aabb head{{-0.08f, -0.16f, -0.11f}, {0.08f, 0.13f, 0.11f}};
+  const glm::vec2 window{1280.0f, 800.0f}, lo{320.0f, 19.0f}, hi{960.0f, 560.0f};
+  const glm::vec2 region = hi - lo;
+  eng::OrbitCamera picture = eng::OrbitCamera::frame(head, region.x / region.y);
+  picture.zoom = 1.15f;
+  picture.yawDegrees = 12.0f;
+  picture.pitchDegrees = -4.0f;
+  eng::OrbitCamera shown = picture;
+  shown.distance = 7.0f;  // whatever the window had: the region decides
+  shown.viewRegionAsImage(head, window, lo, hi);
+  EXPECT_NEAR(glm::length(shown.position() - picture.position()), 0.0f, 1e-5f) << "the same viewpoint, so the same perspective";
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p{corner & 1 ? head.max.x : head.min.x, corner & 2 ? head.max.y : head.min.y,
+                      corner & 4 ? head.max.z : head.min.z};
+    const glm::vec3 inPicture = project(picture, region.x / region.y, p);
+    const glm::vec3 inWindow = project(shown, window.x / window.y, p);
+    const glm::vec2 picturePixel = (glm::vec2(inPicture) * 0.5f + 0.5f) * region;
+    const glm::vec2 windowPixel = (glm::vec2(inWindow) * 0.5f + 0.5f) * window - lo;
+    EXPECT_NEAR(windowPixel.x, picturePixel.x, 1e-2f) << "corner " << corner;
+    EXPECT_NEAR(windowPixel.y, picturePixel.y, 1e-2f) << "corner " << corner;
+    EXPECT_NEAR(inWindow.z, inPicture.z, 1e-5f) << "corner " << corner;
+  }
+}
+
 }  // namespace
