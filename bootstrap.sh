@@ -16,7 +16,7 @@ cd "$(dirname "$0")"
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools glslang-dev
-  libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
+  libglfw3-dev libx11-dev libxext-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
   libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev

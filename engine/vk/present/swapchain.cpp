@@ -94,4 +94,25 @@ Result<Swapchain> Swapchain::create(const Context& ctx, VkExtent2D framebufferEx
   return s;
 }
 
+Result<Swapchain> Swapchain::createOwnImages(const Context& ctx, VkExtent2D extent, uint32_t count) {
+  if (extent.width == 0 || extent.height == 0) return makeError(ErrorKind::Device, "swapchain: window has no area (minimised)");
+  Swapchain s;
+  s.format_ = VK_FORMAT_B8G8R8A8_SRGB;
+  s.extent_ = extent;
+  s.minImageCount_ = count;
+  s.transferSource_ = s.transferDestination_ = true;
+  for (uint32_t i = 0; i < count; ++i) {
+    ImageDesc desc;
+    desc.extent = extent;
+    desc.format = s.format_;
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    desc.debugName = "window image";
+    auto image = GpuImage::create(ctx, desc);
+    if (!image) return image.error();
+    s.images_.push_back(image->handle());
+    s.ownImages_.push_back(std::move(image).value());
+  }
+  return s;
+}
+
 }  // namespace eng::vk

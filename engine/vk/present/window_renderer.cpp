@@ -72,6 +72,8 @@ float chooseLodPixelError(const WindowRendererOptions& options) {
 
 WindowRenderer::~WindowRenderer() {
   if (!ctx_) return;
+  if (presenter_) presenter_->waitIdle();  // its thread reads presentBuffers_ and waits on frame fences
+  presenter_.reset();
   (void)presentPending();  // the last frame, drawn and submitted: shown (and its semaphore waited on)
   vkDeviceWaitIdle(ctx_->device());
 }
@@ -118,7 +120,14 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   r->layouts_ = std::make_unique<SceneLayouts>(std::move(layouts).value());
   r->shaders_ = std::make_unique<ShaderLibrary>(options.shaderSourceDir);
 
-  auto swapchain = Swapchain::create(ctx, window.framebufferExtent(), options.vsync);
+  const char* shm = std::getenv("FACIAL_X11_SHM");
+  if (ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && !(shm && std::string_view(shm) == "0")) {
+    auto presenter = X11ShmPresenter::create(window.handle(), window.framebufferExtent(), kFramesInFlight);
+    if (presenter) r->presenter_ = std::move(presenter).value();
+    else logInfo("window: " + presenter.error().message + "; presenting through the Vulkan swapchain");
+  }
+  auto swapchain = r->presenter_ ? Swapchain::createOwnImages(ctx, window.framebufferExtent(), kFramesInFlight)
+                                 : Swapchain::create(ctx, window.framebufferExtent(), options.vsync);
   if (!swapchain) return swapchain.error();
   r->swapchain_ = std::move(swapchain).value();
   r->viewRect_ = {{0, 0}, r->swapchain_.extent()};
@@ -135,15 +144,16 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
     r->renderScale_ = r->adaptive_->scale();
   }
   auto pass = createSceneRenderPass(ctx, r->format_,
-                                    r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+                                    r->scaled() ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : r->presentLayout());
   if (!pass) return pass.error();
   r->renderPass_ = std::move(pass).value();
   if (r->scaled()) {
-    auto overlay = createOverlayRenderPass(ctx, r->format_.color, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    auto overlay = createOverlayRenderPass(ctx, r->format_.color, r->presentLayout());
     if (!overlay) return overlay.error();
     r->overlayPass_ = std::move(overlay).value();
   }
   ENG_TRY(r->createSwapchainResources());
+  if (r->presenter_) ENG_TRY(r->createPresentBuffers(r->swapchain_.extent()));
 
   for (FrameSync& f : r->frames_) ENG_TRY(createFrameSync(ctx, f));
 
@@ -169,20 +179,29 @@ Result<std::unique_ptr<WindowRenderer>> WindowRenderer::create(const Context& ct
   }
   r->lastShaderPoll_ = std::chrono::steady_clock::now();
   // Two images acquired at once (this frame's and the one not yet presented) need one more than the minimum.
-  r->deferPresent_ = ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+  r->deferPresent_ = !r->presenter_ && ctx.deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
                      r->swapchain_.imageCount() > r->swapchain_.minImageCount();
   return r;
 }
 
 Result<void> WindowRenderer::recreateSwapchain() {
+  if (presenter_) presenter_->waitIdle();
   ENG_TRY(presentPending());
   vkDeviceWaitIdle(ctx_->device());
   swapchainStale_ = true;  // until everything below succeeded
   framebuffers_.clear();
   sceneFramebuffer_ = {};
   renderFinished_.clear();
-  auto swapchain = Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
+  auto swapchain = presenter_ ? Swapchain::createOwnImages(*ctx_, window_->framebufferExtent(), kFramesInFlight)
+                             : Swapchain::create(*ctx_, window_->framebufferExtent(), options_.vsync, &swapchain_);
   if (!swapchain) return swapchain.error();
+  if (presenter_) {
+    const VkExtent2D now = swapchain->extent(), was = presenter_->extent();
+    if (now.width != was.width || now.height != was.height) {
+      ENG_TRY(presenter_->resize(now));
+      ENG_TRY(createPresentBuffers(now));
+    }
+  }
   if (swapchain->format() != format_.color)
     return makeError(ErrorKind::Device, "swapchain format changed from " + std::to_string(format_.color) + " to " +
                      std::to_string(swapchain->format()) + "; restart the window");
@@ -357,6 +376,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   VkFence fence = f.inFlight.get();
   StepClock clock(times_, options_.timeFrames);
   ENG_VK_TRY(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+  if (presenter_) presenter_->waitSlot(slot);  // done reading the slot's pixels
   if (options_.timeFrames) times_.gpuTimed = frameIndex_ >= kFramesInFlight && passTimes_.read(slot, times_.gpu);
   clock.lap(WindowFrameTimes::WaitSlot);
 
@@ -392,9 +412,9 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   const bool reuseView = scaled() && viewValid_ && viewKey_ == lastKey_;
   clock.lap(WindowFrameTimes::Upload);
 
-  uint32_t image = 0;
+  uint32_t image = slot;  // presenter_: the slot's own image, free once its fence is
   VkResult acquired = faults_.beforeAcquire();
-  if (acquired == VK_SUCCESS)
+  if (acquired == VK_SUCCESS && !presenter_)
     acquired = vkAcquireNextImageKHR(device, swapchain_.handle(), UINT64_MAX, f.imageAvailable.get(), VK_NULL_HANDLE,
                                      &image);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
@@ -453,6 +473,7 @@ Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint
     passTimes_.mark(cmd, slot, 2);
     recordUpscaleAndOverlay(cmd, image, frame, slot);
     if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
+    if (presenter_) recordPresentCopy(cmd, image);
     ENG_VK_TRY(vkEndCommandBuffer(cmd));
     return {};
   }
@@ -481,14 +502,40 @@ Result<void> WindowRenderer::recordFrame(const FrameSync& f, uint32_t slot, uint
     passTimes_.mark(cmd, slot, 4);
   }
   if (!frame.screenshot.empty()) recordScreenshotCopy(cmd, image);
+  if (presenter_) recordPresentCopy(cmd, image);
   ENG_VK_TRY(vkEndCommandBuffer(cmd));
+  return {};
+}
+
+void WindowRenderer::recordPresentCopy(VkCommandBuffer cmd, uint32_t slot) const {
+  // The frame's passes leave the image in TRANSFER_SRC_OPTIMAL (presentLayout()), their writes before transfers.
+  const VkExtent2D extent = swapchain_.extent();
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {extent.width, extent.height, 1};
+  vkCmdCopyImageToBuffer(cmd, swapchain_.image(slot), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, presentBuffers_[slot].handle(),
+                         1, &copy);
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                       nullptr);
+}
+
+Result<void> WindowRenderer::createPresentBuffers(VkExtent2D extent) {
+  const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * 4;
+  for (Buffer& buffer : presentBuffers_) {
+    auto created = Buffer::create(*ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "window frame for X11");
+    if (!created) return created.error();
+    buffer = std::move(created).value();
+  }
   return {};
 }
 
 void WindowRenderer::recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) const {
   const VkExtent2D extent = swapchain_.extent();
   const VkImage swapImage = swapchain_.image(image);
-  recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+  recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, presentLayout(),
                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
   VkBufferImageCopy copy{};
@@ -496,7 +543,7 @@ void WindowRenderer::recordScreenshotCopy(VkCommandBuffer cmd, uint32_t image) c
   copy.imageExtent = {extent.width, extent.height, 1};
   vkCmdCopyImageToBuffer(cmd, swapImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, screenshotBuffer_.handle(), 1, &copy);
   recordImageBarrier(cmd, {swapImage, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           presentLayout(), VK_PIPELINE_STAGE_TRANSFER_BIT,
                            VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0});
   VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -511,17 +558,25 @@ Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image
   const VkSemaphore signalSemaphore = renderFinished_[image].get();
   const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.waitSemaphoreCount = 1;
+  submit.waitSemaphoreCount = presenter_ ? 0 : 1;  // presenter_: no acquire, no presentation engine
   submit.pWaitSemaphores = &waitSemaphore;
   submit.pWaitDstStageMask = &waitStage;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
-  submit.signalSemaphoreCount = 1;
+  submit.signalSemaphoreCount = presenter_ ? 0 : 1;
   submit.pSignalSemaphores = &signalSemaphore;
   if (const VkResult submitted = faults_.afterSubmit(vkQueueSubmit(ctx_->queue(), 1, &submit, f.inFlight.get()));
       submitted != VK_SUCCESS)
     return vulkanError("vkQueueSubmit", submitted);
   clock.lap(WindowFrameTimes::Submit);
+  if (presenter_) {
+    presenter_->present(image, presentBuffers_[image].mapped(), [device = ctx_->device(), fence = f.inFlight.get()] {
+      // Only a lost device fails this; the frame then shows whatever the buffer held.
+      (void)vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+    });
+    clock.lap(WindowFrameTimes::Present);
+    return {};
+  }
   if (deferPresent_) {
     pendingPresent_ = image;
     return {};
@@ -544,6 +599,11 @@ Result<void> WindowRenderer::present(uint32_t image) {
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) swapchainStale_ = true;
   else if (presented != VK_SUCCESS) return vulkanError("vkQueuePresentKHR", presented);
   return {};
+}
+
+Result<void> WindowRenderer::finishPresenting() {
+  if (presenter_) presenter_->waitIdle();
+  return presentPending();
 }
 
 Result<void> WindowRenderer::presentPending() {

@@ -45,6 +45,7 @@
 #include "engine/vk/draw/scene_view.h"
 #include "engine/vk/device/shader_library.h"
 #include "engine/vk/present/swapchain.h"
+#include "engine/vk/present/x11_shm_presenter.h"
 #include "engine/vk/present/window.h"
 
 namespace eng::vk {
@@ -191,6 +192,11 @@ class WindowRenderer {
   FrameStats lastFrameStats() const { return scene_.stats(lastSlot_); }
   const WindowFrameTimes& lastFrameTimes() const { return times_; }
   const ShaderLibrary& shaders() const { return *shaders_; }
+  // Frames go to the window through X11 shared memory on a thread of the
+  // renderer's (a CPU device: x11_shm_presenter.h), not the Vulkan swapchain.
+  bool presentsThroughX11Shm() const { return presenter_ != nullptr; }
+  // Every frame drawn so far is in the window (a deferred present made, the X11 thread idle).
+  Result<void> finishPresenting();
   // Polls the shader sources now and rebuilds pipelines if they changed and compile.
   bool reloadChangedShaders();
 
@@ -236,6 +242,14 @@ class WindowRenderer {
   Result<void> submitAndPresent(const FrameSync& f, uint32_t image, StepClock& clock);
   // Presents swapchain image `image` (its render-finished semaphore signalled by the frame's submit).
   Result<void> present(uint32_t image);
+  // The layout a finished frame's image is left in: for the presentation
+  // engine, or for the copy into presentBuffers_ when presenter_ puts it.
+  VkImageLayout presentLayout() const {
+    return presenter_ ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  }
+  // presenter_: slot's image -> presentBuffers_[slot], visible to the host.
+  void recordPresentCopy(VkCommandBuffer cmd, uint32_t slot) const;
+  Result<void> createPresentBuffers(VkExtent2D extent);
   // The frame submitted by the last drawFrame, when its present was deferred.
   Result<void> presentPending();
   // After a presented frame: times it, and on a new scale marks the view for rebuilding.
@@ -289,6 +303,12 @@ class WindowRenderer {
   PassTimestamps passTimes_;  // timeFrames: marks between the passes, per slot
   WindowFrameTimes times_;
   std::chrono::steady_clock::time_point lastShaderPoll_{};
+  // A CPU device in an X11 window with MIT-SHM (FACIAL_X11_SHM=0 turns it
+  // off): frames are rendered into the swapchain's own images, copied into
+  // presentBuffers_ and put into the window by presenter_'s thread while the
+  // next frame renders (x11_shm_presenter.h); no VkSwapchainKHR.
+  std::array<Buffer, kFramesInFlight> presentBuffers_;
+  std::unique_ptr<X11ShmPresenter> presenter_;
 };
 
 }  // namespace eng::vk

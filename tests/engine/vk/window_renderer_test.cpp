@@ -23,6 +23,7 @@
 #include "tests/engine/vk/image_probe.h"
 #include "tests/common/test_meshes.h"
 #include "tests/engine/vk/vk_test_context.h"
+#include "tests/engine/vk/x11_window_pixels.h"
 
 namespace {
 
@@ -116,6 +117,41 @@ TEST(WindowRenderer, PresentsFramesAndSavesAScreenshot) {
   const glm::ivec4 corner = vk_test::pixel(shot, 2, 2);
   EXPECT_GT(centre.r, corner.r + 40) << "the warm sphere in the middle, backdrop in the corner";
   EXPECT_EQ(rig.renderer->lastFrameStats().draws, 1u);
+}
+
+// What the X server shows is the frame, whichever way it got there (ctest
+// runs these tests through X11 shared memory and again through the Vulkan
+// swapchain: vk.WindowTestsUnderXvfb*).
+TEST(WindowRenderer, TheWindowShowsTheFrame) {
+  FACIAL_REQUIRE_DISPLAY();
+  WindowRig rig;
+  ASSERT_TRUE(rig.ok());
+  const char* shm = std::getenv("FACIAL_X11_SHM");
+  if (rig.ctx->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && !(shm && std::string(shm) == "0"))
+    EXPECT_TRUE(rig.renderer->presentsThroughX11Shm()) << "a CPU device in an X11 window with MIT-SHM";
+  SphereScene scene(*rig.renderer);
+  for (int i = 0; i < 3; ++i) {
+    rig.window->pollEvents();
+    ASSERT_TRUE(rig.renderer->drawFrame(scene.frame()));
+  }
+  const eng::Image shot = screenshotOf(rig, scene.frame(), "shown");
+  ASSERT_TRUE(rig.renderer->finishPresenting());
+  std::string why;
+  const auto shown = vk_test::x11WindowPixels(rig.window->handle(), why);
+  if (!shown) GTEST_SKIP() << "cannot read the window back: " << why;
+  ASSERT_EQ(shown->width, shot.width);
+  ASSERT_EQ(shown->height, shot.height);
+  double sum = 0.0;
+  int worst = 0;
+  for (size_t i = 0; i < shot.rgba8.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const int d = std::abs(int(shot.rgba8[i]) - int(shown->rgba8[i]));
+    sum += d;
+    worst = std::max(worst, d);
+  }
+  EXPECT_LE(worst, 1) << "mean " << sum / double(shot.rgba8.size() * 3 / 4);
+  const glm::ivec4 centre = vk_test::pixel(*shown, shown->width / 2, shown->height / 2);
+  EXPECT_GT(centre.r, 60) << "the sphere, not an empty window";
 }
 
 TEST(WindowRenderer, FollowsAResize) {
