@@ -453,6 +453,7 @@ bool EditorApp::runAction(const EditorScriptAction& a) {
     case Kind::TimelineBoxSelect: case Kind::TimelineCopy: case Kind::TimelinePaste: case Kind::TimelineDuplicate:
     case Kind::TimelineNudge: case Kind::TimelineSnap: case Kind::TimelineLoop: case Kind::TimelineSpeed:
     case Kind::TimelineMute: case Kind::TimelineSolo: case Kind::CurveTangent: case Kind::TimelineKeyEmotion:
+    case Kind::TimelinePlay: case Kind::TimelinePause:
       return timeline_->runScriptAction(a, *this);
     case Kind::ProjectNew: case Kind::ProjectOpen: case Kind::ProjectSave: case Kind::ProjectSaveAs:
     case Kind::ExportGlb: case Kind::ExportGif: case Kind::ExportVideo: case Kind::QuitDiscard: case Kind::QuitSave:
@@ -569,7 +570,7 @@ void EditorApp::runScript(float elapsed) {
     if (k >= int(EditorScriptAction::Kind::GraphAddState) && k <= int(EditorScriptAction::Kind::GraphSave) && machine_.document())
       std::printf("graph: %zu states, %zu transitions%s\n", machine_.document()->states().size(),
                   machine_.document()->transitions().size(), machine_.document()->dirty() ? ", modified" : "");
-    if (k >= int(EditorScriptAction::Kind::TimelineBoxSelect) && k <= int(EditorScriptAction::Kind::TimelineKeyEmotion)) logTimeline();
+    if (k >= int(EditorScriptAction::Kind::TimelineBoxSelect) && k <= int(EditorScriptAction::Kind::TimelinePause)) logTimeline();
     if ((a.kind == EditorScriptAction::Kind::SculptMove || a.kind == EditorScriptAction::Kind::SculptDrag) && sculpt_.hasSelection()) {
       const SculptPoint& p = sculpt_.points()[size_t(sculpt_.selected())];
       std::printf("sculpt: '%s' displaced by (%.5f, %.5f, %.5f)\n", p.name.c_str(), p.displacement.x, p.displacement.y,

@@ -85,6 +85,8 @@ constexpr Verb kVerbs[] = {
     {"timeline-solo", Kind::TimelineSolo, "w"},
     {"curve-tangent", Kind::CurveTangent, "wnw?nn"},
     {"timeline-key-emotion", Kind::TimelineKeyEmotion, "wnw"},
+    {"timeline-play", Kind::TimelinePlay, ""},
+    {"timeline-pause", Kind::TimelinePause, ""},
 };
 
 // The dope sheet's and curve view's own checks ("" when fine).

@@ -96,7 +96,7 @@ struct EditorScriptAction {
     ProjectNew, ProjectOpen, ProjectSave, ProjectSaveAs, ExportGlb, ExportGif, ExportVideo, QuitDiscard, QuitSave,
     // Dope sheet and curve view (issue 34): TimelinePanel::runScriptAction runs these.
     TimelineBoxSelect, TimelineCopy, TimelinePaste, TimelineDuplicate, TimelineNudge, TimelineSnap, TimelineLoop,
-    TimelineSpeed, TimelineMute, TimelineSolo, CurveTangent, TimelineKeyEmotion,
+    TimelineSpeed, TimelineMute, TimelineSolo, CurveTangent, TimelineKeyEmotion, TimelinePlay, TimelinePause,
   };
   float time = 0.0f;
   int line = 0;

@@ -838,6 +838,13 @@ bool TimelinePanel::runScriptAction(const EditorScriptAction& a, FaceDelegate& f
                              a.numberCount == 3 ? std::optional(a.b) : std::nullopt,
                              a.numberCount == 3 ? std::optional(a.c) : std::nullopt);
     case Kind::TimelineKeyEmotion: return keyEmotion(a.words[0], a.a, *curveKeyModeFromName(a.words[1]), face);
+    case Kind::TimelinePlay:  // the Play button (Space)
+      if (!playing_) togglePlaying();
+      face.takeControl(FaceSource::Timeline);
+      return true;
+    case Kind::TimelinePause:
+      playing_ = false;
+      return true;
     default: return false;
   }
 }

@@ -99,4 +99,31 @@ TEST(EditorScriptDopeSheet, KeyEmotionsMoveTheLastKeysPasteThemLaterAndBendATang
   EXPECT_NE(run.log.find("undo: set tangent"), std::string::npos) << run.log;
 }
 
+// timeline-play is the Play button: the playhead runs with the clock until
+// timeline-pause (a script that plays a clip, e.g. to time the window).
+TEST(EditorScriptDopeSheet, PlayRunsThePlayheadUntilPause) {
+  REQUIRE_XVFB();
+  const fs::path dir = testing_support::freshTempDir("editor_script_play");
+  testing_support::writeFile(dir / "ramp.json",
+                             R"({"version": 1, "name": "ramp", "duration": 10.0, "loop": "once", "tracks": [)"
+                             R"({"channel": "AU26_JawDrop", "interpolation": "linear", "keys": [{"t": 0, "v": 0}, {"t": 10, "v": 1}]}]})");
+  testing_support::writeFile(dir / "play.txt",
+                             "0.3 timeline-open ramp.json\n"
+                             "0.4 timeline-play\n"
+                             "1.4 timeline-pause\n"
+                             "1.6 timeline-speed 1\n"
+                             "1.7 quit\n");
+  const editor_test::EditorRun run = editor_test::runEditor(dir, "--script play.txt", 20.0f);
+  ASSERT_TRUE(editor_test::ranCleanly(run));
+  std::vector<float> playheads;
+  const std::regex re(R"(playhead ([0-9.]+) s)");
+  for (std::sregex_iterator it(run.log.begin(), run.log.end(), re), end; it != end; ++it) playheads.push_back(std::stof((*it)[1]));
+  ASSERT_GE(playheads.size(), 3u) << run.log;
+  const float paused = playheads[playheads.size() - 2];
+  EXPECT_GT(paused, 0.5f) << "a second of play moved the playhead\n" << run.log;
+  EXPECT_LT(paused, 5.0f) << run.log;
+  EXPECT_FLOAT_EQ(playheads.back(), paused) << "paused: the playhead stays";
+  EXPECT_NE(run.log.find("face from timeline"), std::string::npos) << "playing puts the timeline on the face\n" << run.log;
+}
+
 }  // namespace
