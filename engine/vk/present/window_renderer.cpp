@@ -636,7 +636,8 @@ void WindowRenderer::recordUpscaleAndOverlay(VkCommandBuffer cmd, uint32_t image
     // Under the overlay around the view: the backdrop's middle colour (a
     // clear is a fill on a CPU device; clearing only the bands around the view
     // in the overlay's pass draws them, and cost more than the whole fill).
-    const glm::vec3 middle = 0.5f * (frame.view.lights.backgroundTop + frame.view.lights.backgroundBottom);
+    const glm::vec3 middle =
+        frame.surroundColour.value_or(0.5f * (frame.view.lights.backgroundTop + frame.view.lights.backgroundBottom));
     const VkClearColorValue colour{{middle.r, middle.g, middle.b, 1.0f}};
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &colour, 1, &all);

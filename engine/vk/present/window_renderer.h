@@ -142,6 +142,11 @@ struct FrameInput {
   // 3D view drawn at a lower scale and blitted up spends nothing outside;
   // there the overlay is drawn over the backdrop's middle colour.
   VkRect2D viewRegion{};
+  // The colour (linear RGB) the window is filled with around viewRegion,
+  // under the overlay; unset: the backdrop's middle colour. Panels that
+  // cover all of it can leave their backgrounds to this fill (a CPU device
+  // then blends none of those pixels twice).
+  std::optional<glm::vec3> surroundColour;
   std::filesystem::path screenshot;   // non-empty: also write this frame (overlay included) as PNG
 };
 
