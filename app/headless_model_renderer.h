@@ -61,8 +61,21 @@ class HeadlessModelRenderer {
   // An error counting the validation messages reported so far (they were
   // logged as they came), so a validation run fails loudly; ok otherwise.
   eng::Result<void> checkValidation() const;
+  VkPhysicalDeviceType deviceType() const { return context_->deviceInfo().type; }
 
  private:
+  // SequenceRenderers opens its lanes (device, pipelines) while the caller
+  // loads the model, then shows the model staged once on each.
+  friend class SequenceRenderers;
+  static eng::Result<std::unique_ptr<eng::vk::Context>> createContext(const HeadlessRenderOptions& options,
+                                                                      bool announce = true);
+  // The renderer on `context`, no model yet.
+  static eng::Result<HeadlessModelRenderer> open(const HeadlessRenderOptions& options,
+                                                 std::unique_ptr<eng::vk::Context> context);
+  // Uploads `model` (staging: null to stage it for this device alone) and frames it.
+  eng::Result<void> show(const eng::Model& model, const HeadlessRenderOptions& options,
+                         const eng::vk::GpuModelStaging* staging);
+
   // Declared in creation order: destroyed model first, context last.
   std::unique_ptr<eng::vk::Context> context_;  // stable address: the renderer points at it
   std::unique_ptr<eng::vk::OffscreenRenderer> renderer_;

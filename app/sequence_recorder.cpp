@@ -65,11 +65,12 @@ eng::Result<Outputs> openOutputs(const eng::vk::OffscreenRenderer& renderer, con
   return out;
 }
 
-// The oldest frame in flight, read back and written out.
-eng::Result<void> finishOldest(eng::vk::OffscreenRenderer& renderer, std::deque<FrameContext>& inFlight,
+// The oldest frame in flight, read back from its lane and written out.
+eng::Result<void> finishOldest(std::span<const SequenceLane> lanes, std::deque<FrameContext>& inFlight,
                                Outputs& out, StageProfile& profile, SequenceSummary& summary) {
   const FrameContext frame = inFlight.front();
   inFlight.pop_front();
+  eng::vk::OffscreenRenderer& renderer = *lanes[frame.lane].renderer;
   const Clock::time_point start = Clock::now();
   auto image = renderer.collect();
   if (!image) return image.error().prefixed("frame " + std::to_string(frame.index) + ": ");
@@ -87,8 +88,10 @@ eng::Result<void> finishOldest(eng::vk::OffscreenRenderer& renderer, std::deque<
 
 // Drops the frames still in flight when a sequence ends early.
 struct DiscardOnExit {
-  eng::vk::OffscreenRenderer& renderer;
-  ~DiscardOnExit() { renderer.discardPending(); }
+  std::span<const SequenceLane> lanes;
+  ~DiscardOnExit() {
+    for (const SequenceLane& lane : lanes) lane.renderer->discardPending();
+  }
 };
 
 }  // namespace
@@ -96,39 +99,57 @@ struct DiscardOnExit {
 eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
                                             const SequenceOptions& options, const FrameStep& step,
                                             const FrameSink& sink) {
+  const SequenceLane lane{&renderer, &view};
+  return recordSequence({&lane, 1}, options, step, sink);
+}
+
+eng::Result<SequenceSummary> recordSequence(std::span<const SequenceLane> lanes, const SequenceOptions& options,
+                                            const FrameStep& step, const FrameSink& sink) {
+  if (lanes.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "a sequence needs a renderer");
+  for (const SequenceLane& lane : lanes) {
+    const VkExtent2D extent = lane.renderer->extent(), first = lanes.front().renderer->extent();
+    if (extent.width != first.width || extent.height != first.height)
+      return eng::makeError(eng::ErrorKind::InvalidArgument,
+                            "a sequence's renderers draw " + std::to_string(first.width) + "x" +
+                                std::to_string(first.height) + " and " + std::to_string(extent.width) + "x" +
+                                std::to_string(extent.height) + ": one size for every frame");
+  }
   if (!(options.framesPerSecond > 0.0f) || !std::isfinite(options.framesPerSecond) || options.framesPerSecond > 240)
     return eng::makeError(eng::ErrorKind::InvalidArgument, "frame rate must be in (0, 240] fps");
   if (!(options.seconds > 0.0f) || !std::isfinite(options.seconds) || options.seconds > 3600)
     return eng::makeError(eng::ErrorKind::InvalidArgument, "duration must be in (0, 3600] seconds");
   const uint32_t frameCount = static_cast<uint32_t>(std::ceil(options.seconds * options.framesPerSecond));
   const float dt = 1.0f / options.framesPerSecond;
-  Outputs out = ENG_TRY_VALUE(openOutputs(renderer, options, sink));
+  Outputs out = ENG_TRY_VALUE(openOutputs(*lanes.front().renderer, options, sink));
 
   const Clock::time_point start = Clock::now();
   SequenceSummary summary;
   StageProfile profile = makeProfile();
   ProgressBar progress(options.progressLabel, frameCount);
-  DiscardOnExit discard{renderer};
-  renderer.timeGpuPasses(options.profile);
+  DiscardOnExit discard{lanes};
+  for (const SequenceLane& lane : lanes) lane.renderer->timeGpuPasses(options.profile);
   std::deque<FrameContext> inFlight;
   for (uint32_t i = 0; i < frameCount; ++i) {
-    const FrameContext frame{i, static_cast<float>(i) * dt, i == 0 ? 0.0f : dt};
+    const uint32_t laneIndex = i % static_cast<uint32_t>(lanes.size());
+    eng::vk::OffscreenRenderer& renderer = *lanes[laneIndex].renderer;
+    // In order: the lane's own oldest frames come back first.
+    while (renderer.pendingFrames() == renderer.framesInFlight())
+      ENG_TRY(finishOldest(lanes, inFlight, out, profile, summary));
+    const FrameContext frame{i, static_cast<float>(i) * dt, i == 0 ? 0.0f : dt, laneIndex};
     Clock::time_point stageStart = Clock::now();
     auto instances = step(frame);
     if (!instances) return instances.error();
     profile.add(kStep, msSince(stageStart));
     stageStart = Clock::now();
-    if (auto submitted = renderer.submit(view, *instances); !submitted)
+    if (auto submitted = renderer.submit(*lanes[laneIndex].view, *instances); !submitted)
       return submitted.error().prefixed("frame " + std::to_string(i) + ": ");
     const double submitMs = msSince(stageStart);
     profile.add(kSubmit, submitMs);
     summary.renderSeconds += submitMs * 1e-3;
     inFlight.push_back(frame);
-    if (renderer.pendingFrames() == renderer.framesInFlight())
-      ENG_TRY(finishOldest(renderer, inFlight, out, profile, summary));
     progress.update(i + 1);
   }
-  while (!inFlight.empty()) ENG_TRY(finishOldest(renderer, inFlight, out, profile, summary));
+  while (!inFlight.empty()) ENG_TRY(finishOldest(lanes, inFlight, out, profile, summary));
   progress.finish();
   if (out.gif) ENG_TRY(out.gif->finish());
   if (out.frames) ENG_TRY(out.frames->commit());

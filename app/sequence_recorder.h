@@ -39,6 +39,7 @@ struct FrameContext {
   uint32_t index = 0;
   float time = 0;
   float dt = 0;
+  uint32_t lane = 0;  // which SequenceLane renders the frame: its instances must be that lane's GpuModels
 };
 using FrameStep = std::function<eng::Result<std::span<const eng::vk::ModelInstance>>(const FrameContext&)>;
 // Called after a frame was rendered, with its pixels (e.g. to keep it for a
@@ -52,6 +53,14 @@ struct SequenceSummary {
   double totalSeconds = 0;    // wall time incl. encoding
 };
 
+// One renderer of a sequence and the camera it draws with. Several lanes (each
+// its own device) take frames in turn: on a CPU rasteriser one device's serial
+// vertex and binning work then overlaps another's rasterising.
+struct SequenceLane {
+  eng::vk::OffscreenRenderer* renderer = nullptr;
+  const eng::vk::SceneView* view = nullptr;
+};
+
 // Frames go through the renderer's frames in flight (OffscreenOptions::
 // framesInFlight): frame N is read back and encoded while the device renders
 // N+1. On an error the frames in flight are dropped and nothing is committed
@@ -59,5 +68,9 @@ struct SequenceSummary {
 eng::Result<SequenceSummary> recordSequence(eng::vk::OffscreenRenderer& renderer, const eng::vk::SceneView& view,
                                             const SequenceOptions& options, const FrameStep& step,
                                             const FrameSink& sink = {});
+// The same over several lanes: frame i goes to lane i % lanes.size(); the sink
+// still gets the frames in order.
+eng::Result<SequenceSummary> recordSequence(std::span<const SequenceLane> lanes, const SequenceOptions& options,
+                                            const FrameStep& step, const FrameSink& sink = {});
 
 }  // namespace app

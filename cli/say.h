@@ -13,6 +13,7 @@
 #include "app/face_setup.h"
 #include "app/headless_model_renderer.h"
 #include "app/sequence_recorder.h"
+#include "app/sequence_renderers.h"
 #include "app/view_options.h"
 #include "engine/core/result.h"
 #include "facial/character.h"
@@ -84,8 +85,9 @@ struct Presenter {
 eng::Result<Presenter> makePresenter(const SayOptions& o, const Speech& speech);
 
 // Renders the clip into the video (and the PNG frames), the audio clock
-// driving the mouth and the emotion changes.
+// driving the mouth and the emotion changes, on renderers opened (with
+// app::kSequenceFramesInFlight) while the face was loaded.
 eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
-                                             const app::HeadlessRenderOptions& renderOptions, float seconds);
+                                             app::SequenceRenderers::Opening& renderers, float seconds);
 
 }  // namespace cli::say

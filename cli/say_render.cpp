@@ -87,13 +87,12 @@ eng::Result<Presenter> makePresenter(const SayOptions& o, const Speech& speech) 
 }
 
 eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, const Speech& speech,
-                                             const app::HeadlessRenderOptions& renderOptions, float seconds) {
-  app::HeadlessRenderOptions pipelined = renderOptions;
-  pipelined.framesInFlight = app::kSequenceFramesInFlight;
-  auto renderer = app::HeadlessModelRenderer::create(p.setup.displayModel(), pipelined);
-  if (!renderer) return renderer.error();
-  auto writer = audio::VideoWriter::create(o.out, {.width = int(renderOptions.width),
-                                                   .height = int(renderOptions.height),
+                                             app::SequenceRenderers::Opening& opening, float seconds) {
+  auto renderers = opening.finish(p.setup.displayModel());
+  if (!renderers) return renderers.error();
+  const VkExtent2D size = renderers->lanes().front().renderer->extent();
+  auto writer = audio::VideoWriter::create(o.out, {.width = int(size.width),
+                                                   .height = int(size.height),
                                                    .framesPerSecond = o.fps,
                                                    .audioSamples = speech.samples,
                                                    .audioSampleRate = speech.sampleRate});
@@ -102,10 +101,10 @@ eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, 
   app::SequenceOptions sequence{.framesPerSecond = o.fps, .seconds = seconds, .frameDir = o.frames,
                                 .progressLabel = "say", .profile = o.profile};
   EmotionPlayer emotions(speech.emotions);
-  eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
+  eng::vk::ModelInstance instance{&renderers->gpuModel(0), glm::mat4(1.0f), {}};
   eng::Result<void> written;  // the sink cannot fail the recording itself: the next step does
   auto summary = app::recordSequence(
-      renderer->offscreen(), renderer->view(), sequence,
+      renderers->lanes(), sequence,
       [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         if (!written) return written.error();
         // A frame stands for the sound of its whole interval: the mouth at its middle
@@ -115,6 +114,7 @@ eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, 
         if (auto moved = emotions.advance(p.character, frame.time); !moved) return moved.error();
         if (auto stepped = p.character.update(frame.index == 0 ? kSettleStep : frame.dt); !stepped)
           return stepped.error();
+        instance.model = &renderers->gpuModel(frame.lane);
         instance.weights = p.character.weights();
         if (auto moved = p.materials.update(p.character.expressionWeights()); !moved) return moved.error();
         instance.materials = p.materials.materials();
@@ -125,7 +125,7 @@ eng::Result<app::SequenceSummary> renderClip(const SayOptions& o, Presenter& p, 
       });
   if (!summary) return summary.error();
   if (!written) return written.error();
-  if (auto clean = renderer->checkValidation(); !clean) return clean.error();
+  if (auto clean = renderers->checkValidation(); !clean) return clean.error();
   if (auto finished = writer->finish(); !finished) return finished.error();
   return summary;
 }

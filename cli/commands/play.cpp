@@ -17,7 +17,7 @@
 #include "app/view_options.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/sequence_recorder.h"
 #include "app/skeleton_motion.h"
 #include "app/program_error.h"
@@ -123,7 +123,7 @@ int runPlay(const PlayOptions& o) {
   auto quality = app::qualityOption(o.quality);
   if (!quality) return fail(quality.error().message);
 
-  auto renderer = app::HeadlessModelRenderer::create(setup->displayModel(), {.width = width,
+  auto renderers = app::SequenceRenderers::create(setup->displayModel(), {.width = width,
                                                                  .height = height,
                                                                  .zoom = faceViewZoom(setup->model(), *framing, eng::kFaceZoom,
                                                                                       float(width) / float(height)),
@@ -132,7 +132,7 @@ int runPlay(const PlayOptions& o) {
                                                                  .backdrop = *backdrop,
                                                                  .quality = *quality,
                                                                  .framesInFlight = app::kSequenceFramesInFlight});
-  if (!renderer) return fail(renderer.error().message);
+  if (!renderers) return fail(renderers.error().message);
 
   app::SequenceOptions sequence;
   sequence.framesPerSecond = o.fps;
@@ -143,10 +143,11 @@ int runPlay(const PlayOptions& o) {
   sequence.profile = o.profile;
   auto materials = app::FaceMaterials::create(*setup);  // VRM material binds follow the animated expressions
   if (!materials) return fail(materials.error().message);
-  eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
+  eng::vk::ModelInstance instance{&renderers->gpuModel(0), glm::mat4(1.0f), {}};
   auto summary = app::recordSequence(
-      renderer->offscreen(), renderer->view(), sequence,
+      renderers->lanes(), sequence,
       [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
+        instance.model = &renderers->gpuModel(frame.lane);
         face->update(frame.dt);
         instance.weights = face->targetWeights();
         if (auto moved = materials->update(face->expressionWeights()); !moved) return moved.error();
@@ -156,7 +157,7 @@ int runPlay(const PlayOptions& o) {
         return std::span<const eng::vk::ModelInstance>(&instance, 1);
       });
   if (!summary) return fail(summary.error().message);
-  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  if (auto clean = renderers->checkValidation(); !clean) return fail(clean.error().message);
   std::printf("played %s on %s: %u frames (%.1f s at %.0f fps) in %.1f s (%.1f ms/frame render) -> %s%s%s\n",
               o.file.c_str(), setup->name().c_str(), summary->frames, sequence.seconds, o.fps,
               summary->totalSeconds, 1000.0 * summary->renderSeconds / std::max<uint32_t>(1, summary->frames),

@@ -73,6 +73,9 @@ int runSay(const SayOptions& o) {
   // Pixels of a 512-pixel-tall frame: a smaller one draws no coarser a level (at 256 px, half a
   // pixel is a level that loses lip shapes only targets make; docs/performance.md).
   renderOptions->lodPixelError = o.lodError * std::min(1.0f, float(renderOptions->height) / 512.0f);
+  renderOptions->framesInFlight = app::kSequenceFramesInFlight;
+  // The devices and their pipelines open on threads while the voice is synthesised and the face loaded.
+  app::SequenceRenderers::Opening renderers = app::SequenceRenderers::open(*renderOptions);
   auto speech = say::speechFor(o);
   if (!speech) return fail(speech.error().message);
   for (const std::string& note : speech->notes) std::fprintf(stderr, "facial say: note: %s\n", note.c_str());
@@ -86,7 +89,7 @@ int runSay(const SayOptions& o) {
   speech->samples.resize(size_t(std::ceil(videoSeconds * speech->sampleRate)), 0.0f);
   if (!o.visemes.empty())
     if (auto json = say::writeVisemeJson(*speech->track, o.visemes); !json) return fail(json.error().message);
-  auto summary = say::renderClip(o, *presenter, *speech, *renderOptions, seconds);
+  auto summary = say::renderClip(o, *presenter, *speech, renderers, seconds);
   if (!summary) return fail(summary.error().message);
   if (!o.wav.empty())
     if (auto wav = audio::writeWavFile(o.wav, speech->samples, speech->sampleRate); !wav)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <random>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,7 +19,7 @@
 #include "cli/demo/demo_options.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/view_options.h"
 #include "app/sequence_recorder.h"
 #include "app/skeleton_motion.h"
@@ -160,20 +161,26 @@ class HeadlessCrowd {
 
 // One contact-sheet tile per state visit, taken once the state has been
 // held a moment (after its blend has finished).
+// The first frame of each state, 1.2 s in, picked when the frame is stepped
+// (the face has moved on by the time a frame in flight comes back).
 struct StateTiles {
   std::string machineName;
   std::vector<eng::ContactSheetTile> tiles;
   std::set<std::string> captured;
+  std::map<uint32_t, std::string> picked;  // frame index -> state
 
-  void capture(const facial::Character& face, const eng::Image& image) {
+  void note(uint32_t frame, const facial::Character& face) {
     const auto status = face.machineStatus(machineName);
     if (!status || status->blending) return;
     const std::string name(status->state);
-    if (status->secondsInState >= 1.2f && captured.insert(name).second) {
-      eng::ContactSheetTile tile{eng::Canvas(image.width, image.height), name};
-      tile.image.rgba = image.rgba8;
-      tiles.push_back(std::move(tile));
-    }
+    if (status->secondsInState >= 1.2f && captured.insert(name).second) picked.emplace(frame, name);
+  }
+  void capture(uint32_t frame, const eng::Image& image) {
+    const auto it = picked.find(frame);
+    if (it == picked.end()) return;
+    eng::ContactSheetTile tile{eng::Canvas(image.width, image.height), it->second};
+    tile.image.rgba = image.rgba8;
+    tiles.push_back(std::move(tile));
   }
 };
 
@@ -224,11 +231,12 @@ int runHeadlessDemo(const DemoOptions& o) {
   // The tour's frames are written, not watched: auto draws them at high.
   auto quality = app::qualityOption(o.quality == app::kWindowQualityAuto ? "high" : o.quality);
   if (!quality) return fail(quality.error().message);
-  auto renderer = app::HeadlessModelRenderer::create(
-      setup->displayModel(), {.width = width, .height = height, .device = o.device, .quality = *quality});
-  if (!renderer) return fail(renderer.error().message);
+  auto renderers = app::SequenceRenderers::create(
+      setup->displayModel(), {.width = width, .height = height, .device = o.device, .quality = *quality,
+                              .framesInFlight = app::kSequenceFramesInFlight});
+  if (!renderers) return fail(renderers.error().message);
 
-  eng::vk::SceneView& view = renderer->view();
+  eng::vk::SceneView& view = renderers->view();
   view.camera = eng::OrbitCamera::frame(app::crowdBounds(faces->offsets(), bounds), float(width) / float(height));
   // A crowd is framed as a whole.
   if (crowd == 1) view.camera.zoom = faceViewZoom(setup->model(), *framing, eng::kFaceZoom, float(width) / float(height));
@@ -243,9 +251,13 @@ int runHeadlessDemo(const DemoOptions& o) {
 
   StateTiles states{"emotions"};
   auto summary = app::recordSequence(
-      renderer->offscreen(), view, sequence,
-      [&](const app::FrameContext& frame) { return faces->pose(frame, renderer->gpuModel()); },
-      [&](const app::FrameContext&, const eng::Image& image) { states.capture(faces->first(), image); });
+      renderers->lanes(), sequence,
+      [&](const app::FrameContext& frame) {
+        auto posed = faces->pose(frame, renderers->gpuModel(frame.lane));
+        if (posed) states.note(frame.index, faces->first());
+        return posed;
+      },
+      [&](const app::FrameContext& frame, const eng::Image& image) { states.capture(frame.index, image); });
   if (!summary) return fail(summary.error().message);
 
   std::filesystem::path sheetPath;
@@ -254,13 +266,13 @@ int runHeadlessDemo(const DemoOptions& o) {
     if (!written) return fail(written.error().message);
     sheetPath = *written;
   }
-  if (auto clean = renderer->checkValidation(); !clean) return fail(clean.error().message);
+  if (auto clean = renderers->checkValidation(); !clean) return fail(clean.error().message);
 
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("facial demo: %u frames of %ux%u (%u face%s, %.1f s at %.0f fps) in %.1f s, %.1f ms/frame render on %s\n",
               summary->frames, width, height, crowd, crowd == 1 ? "" : "s", sequence.seconds, o.fps, total,
               1000.0 * summary->renderSeconds / std::max<uint32_t>(1, summary->frames),
-              renderer->deviceName().c_str());
+              renderers->deviceName().c_str());
   std::printf("  frames:        %s\n  animation:     %s\n", sequence.frameDir.string().c_str(),
               sequence.gifPath.string().c_str());
   if (!sheetPath.empty()) std::printf("  contact sheet: %s (%zu states)\n", sheetPath.string().c_str(), states.tiles.size());

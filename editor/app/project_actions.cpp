@@ -2,7 +2,7 @@
 
 #include <functional>
 
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/sequence_recorder.h"
 #include "audio/video_writer.h"
 #include "editor/glb_export.h"
@@ -179,25 +179,26 @@ eng::Result<app::SequenceSummary> ProjectActions::recordClip(const TimelineDocum
   const eng::Model& model = panels_.sculpt->workingModel();
   const std::optional<eng::Model> dressed = importers::dressedForDisplay(model);
   const ProjectView view = panels_.view->viewSettings();
-  auto renderer = ENG_TRY_VALUE(app::HeadlessModelRenderer::create(
+  auto renderers = ENG_TRY_VALUE(app::SequenceRenderers::create(
       dressed ? *dressed : model, {.width = kClipExportSize, .height = kClipExportSize, .yawDegrees = view.yawDegrees,
                                    .pitchDegrees = view.pitchDegrees, .zoom = view.zoom,
                                    .framing = view.wholeModel ? eng::FramingMode::All : eng::FramingMode::Face,
                                    .framesInFlight = app::kSequenceFramesInFlight}));
   TimelinePose pose(panels_.face->rig(), panels_.face->baseWeights(), &panels_.face->expressions());
   std::vector<float> faceWeights(panels_.face->layout().total()), weights;
-  eng::vk::ModelInstance instance{&renderer.gpuModel(), glm::mat4(1.0f), {}};
+  eng::vk::ModelInstance instance{&renderers.gpuModel(0), glm::mat4(1.0f), {}};
   sequence.seconds = clip.duration();
   auto recorded = ENG_TRY_VALUE(app::recordSequence(
-      renderer.offscreen(), renderer.view(), sequence,
+      renderers.lanes(), sequence,
       [&](const app::FrameContext& frame) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
+        instance.model = &renderers.gpuModel(frame.lane);
         if (auto posed = pose.pose(clip, frame.time, faceWeights); !posed) return posed.error();
         panels_.sculpt->bakedWeights(faceWeights, weights);
         instance.weights = weights;
         return std::span<const eng::vk::ModelInstance>(&instance, 1);
       },
       sink));
-  ENG_TRY(renderer.checkValidation());
+  ENG_TRY(renderers.checkValidation());
   return recorded;
 }
 

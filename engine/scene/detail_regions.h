@@ -46,9 +46,16 @@ class DetailRegions {
   size_t layerCount() const { return masks_.size(); }
 
  private:
+  // Square blocks of texels, each kNone, kAll or kSome painted: most
+  // footprints are answered from the few blocks they cover.
+  static constexpr int kBlock = 8;
+  static constexpr uint8_t kNone = 0, kAll = 1, kSome = 2;
   struct Mask {
     int width = 0, height = 0;   // 0: everywhere
     std::vector<uint8_t> texels;  // 1 inside the grown region
+    int blocksWide = 0;
+    std::vector<uint8_t> blocks;  // by row of blocks
+    uint8_t over(int x0, int y0, int x1, int y1) const;
   };
   std::vector<Mask> masks_;
 };

@@ -1,16 +1,17 @@
-// recordSequence with frames in flight: the PNGs and the sink get every frame
-// in order and the same pixels as one frame at a time; a failure midway
-// leaves no frame folder and no GIF, and the renderer still works; --profile
-// names its stages.
+// recordSequence with frames in flight and over several devices (lanes): the
+// PNGs and the sink get every frame in order and the same pixels as one frame
+// at a time; a failure midway leaves no frame folder and no GIF, and the
+// renderers still work; --profile names its stages.
 #include "app/sequence_recorder.h"
 
 #include <cmath>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/output_paths.h"
 #include "app/stage_profile.h"
 #include "tests/common/test_meshes.h"
@@ -25,18 +26,22 @@ struct Recording {
 
 // Plays the sphere's targets on their own phases (every frame differs);
 // fails at frame `failAt` when it is set.
-eng::Result<Recording> record(uint32_t framesInFlight, const app::SequenceOptions& options, int failAt = -1) {
+eng::Result<Recording> record(uint32_t framesInFlight, const app::SequenceOptions& options, int failAt = -1,
+                              uint32_t lanes = 1) {
   const eng::Model model = testing_support::makeSphereModel({});
-  auto renderer = app::HeadlessModelRenderer::create(
-      model, {.width = 48, .height = 48, .framing = eng::FramingMode::All, .framesInFlight = framesInFlight});
-  if (!renderer) return renderer.error();
-  eng::vk::ModelInstance instance{&renderer->gpuModel(), glm::mat4(1.0f), {}};
-  std::vector<float> weights(renderer->gpuModel().weightCount());
+  auto renderers = app::SequenceRenderers::create(
+      model, {.width = 48, .height = 48, .framing = eng::FramingMode::All, .framesInFlight = framesInFlight}, lanes);
+  if (!renderers) return renderers.error();
+  EXPECT_EQ(renderers->laneCount(), lanes);
+  eng::vk::ModelInstance instance{&renderers->gpuModel(0), glm::mat4(1.0f), {}};
+  std::vector<float> weights(renderers->gpuModel(0).weightCount());
   Recording out;
   auto summary = app::recordSequence(
-      renderer->offscreen(), renderer->view(), options,
+      renderers->lanes(), options,
       [&](const app::FrameContext& f) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
         if (int(f.index) == failAt) return eng::makeError(eng::ErrorKind::InvalidArgument, "stop here");
+        EXPECT_EQ(f.lane, f.index % lanes);
+        instance.model = &renderers->gpuModel(f.lane);
         for (size_t t = 0; t < weights.size(); ++t) weights[t] = 0.5f + 0.5f * std::sin(f.time * 7.0f + float(t));
         instance.weights = weights;
         return std::span<const eng::vk::ModelInstance>(&instance, 1);
@@ -45,10 +50,14 @@ eng::Result<Recording> record(uint32_t framesInFlight, const app::SequenceOption
         out.order.push_back(f.index);
         out.pixels.push_back(image.rgba8);
       });
-  EXPECT_TRUE(renderer->checkValidation());
-  // The renderer is whole after a failed sequence: nothing left in flight.
-  EXPECT_EQ(renderer->offscreen().pendingFrames(), 0u);
-  EXPECT_TRUE(renderer->render(weights)) << "rendering after the sequence";
+  EXPECT_TRUE(renderers->checkValidation());
+  // The renderers are whole after a failed sequence: nothing left in flight.
+  for (uint32_t k = 0; k < lanes; ++k) {
+    const app::SequenceLane lane = renderers->lanes()[k];
+    EXPECT_EQ(lane.renderer->pendingFrames(), 0u) << "lane " << k;
+    instance.model = &renderers->gpuModel(k);
+    EXPECT_TRUE(lane.renderer->render(*lane.view, {&instance, 1})) << "rendering after the sequence, lane " << k;
+  }
   if (!summary) return summary.error();
   return out;
 }
@@ -68,6 +77,77 @@ TEST(SequenceRecorder, FramesInFlightKeepOrderAndPixels) {
   for (size_t i = 0; i < serial->pixels.size(); ++i) EXPECT_EQ(pipelined->pixels[i], serial->pixels[i]) << i;
   EXPECT_NE(serial->pixels[0], serial->pixels[1]) << "the frames must differ, or order is not tested";
   EXPECT_TRUE(std::filesystem::exists(dir / "frames3" / app::frameFileName(7)));
+}
+
+TEST(SequenceRecorder, TwoDevicesTakingTurnsKeepOrderAndPixels) {
+  const auto dir = testing_support::freshTempDir("sequence_lanes");
+  app::SequenceOptions options{.framesPerSecond = 10, .seconds = 0.9f, .frameDir = dir / "frames"};
+  auto one = record(app::kSequenceFramesInFlight, options);
+  ASSERT_TRUE(one) << one.error().message;
+  options.frameDir = dir / "frames2";
+  auto two = record(app::kSequenceFramesInFlight, options, -1, /*lanes=*/2);
+  ASSERT_TRUE(two) << two.error().message;
+  const std::vector<uint32_t> expected{0, 1, 2, 3, 4, 5, 6, 7, 8};
+  EXPECT_EQ(two->order, expected);
+  ASSERT_EQ(two->pixels.size(), one->pixels.size());
+  for (size_t i = 0; i < one->pixels.size(); ++i) EXPECT_EQ(two->pixels[i], one->pixels[i]) << i;
+  EXPECT_NE(one->pixels[1], one->pixels[2]) << "the frames must differ, or order is not tested";
+  EXPECT_TRUE(std::filesystem::exists(dir / "frames2" / app::frameFileName(8)));
+}
+
+TEST(SequenceRecorder, TwoDevicesFailingMidwayLeaveNothingHalfWritten) {
+  const auto dir = testing_support::freshTempDir("sequence_lanes_failure");
+  const app::SequenceOptions options{
+      .framesPerSecond = 10, .seconds = 1.0f, .frameDir = dir / "frames", .gifPath = dir / "clip.gif"};
+  auto failed = record(app::kSequenceFramesInFlight, options, /*failAt=*/7, /*lanes=*/2);
+  ASSERT_FALSE(failed);
+  EXPECT_NE(failed.error().message.find("stop here"), std::string::npos) << failed.error().message;
+  EXPECT_FALSE(std::filesystem::exists(dir / "clip.gif"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "frames" / app::frameFileName(0)));
+}
+
+TEST(SequenceRecorder, LanesOfDifferentSizesAreRefused) {
+  const eng::Model model = testing_support::makeSphereModel({});
+  auto small = app::SequenceRenderers::create(model, {.width = 32, .height = 32}, 1);
+  auto large = app::SequenceRenderers::create(model, {.width = 48, .height = 32}, 1);
+  ASSERT_TRUE(small && large);
+  const app::SequenceLane lanes[] = {small->lanes()[0], large->lanes()[0]};
+  bool stepped = false;
+  auto summary = app::recordSequence(lanes, {.framesPerSecond = 10, .seconds = 0.5f},
+                                     [&](const app::FrameContext&) -> eng::Result<std::span<const eng::vk::ModelInstance>> {
+                                       stepped = true;
+                                       return std::span<const eng::vk::ModelInstance>();
+                                     });
+  ASSERT_FALSE(summary);
+  EXPECT_NE(summary.error().message.find("32x32 and 48x32"), std::string::npos) << summary.error().message;
+  EXPECT_FALSE(stepped);
+}
+
+TEST(SequenceRenderers, ACpuRasteriserGetsTwoDevicesAGpuOne) {
+  const eng::Model model = testing_support::makeSphereModel({});
+  auto renderers = app::SequenceRenderers::create(model, {.width = 32, .height = 32});
+  ASSERT_TRUE(renderers) << renderers.error().message;
+  auto probe = app::HeadlessModelRenderer::create(model, {.width = 8, .height = 8});
+  ASSERT_TRUE(probe) << probe.error().message;
+  const bool cpu = probe->deviceType() == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  EXPECT_EQ(renderers->laneCount(), cpu && std::thread::hardware_concurrency() >= 2 ? 2u : 1u) << renderers->deviceName();
+  EXPECT_TRUE(renderers->checkValidation());
+}
+
+TEST(SequenceRenderers, OpeningIsFinishedOnceOrDroppedCleanly) {
+  const eng::Model model = testing_support::makeSphereModel({});
+  { auto dropped = app::SequenceRenderers::open({.width = 32, .height = 32}, 2); }  // waits, then releases both
+  auto opening = app::SequenceRenderers::open({.width = 32, .height = 32}, 2);
+  auto renderers = opening.finish(model);
+  ASSERT_TRUE(renderers) << renderers.error().message;
+  EXPECT_EQ(renderers->laneCount(), 2u);
+  auto again = opening.finish(model);
+  ASSERT_FALSE(again);
+  EXPECT_NE(again.error().message.find("finished already"), std::string::npos) << again.error().message;
+  // A bad camera is reported when finished, by the renderers' own check.
+  auto bad = app::SequenceRenderers::open({.width = 32, .height = 32, .zoom = -1.0f}).finish(model);
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("zoom must be a positive number"), std::string::npos) << bad.error().message;
 }
 
 TEST(SequenceRecorder, FailureMidwayLeavesNothingHalfWritten) {

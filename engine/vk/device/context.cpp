@@ -93,9 +93,13 @@ Result<Context> Context::create(const ContextOptions& options) {
   if (auto made = ctx.createInstance(options); !made) return made.error();
   if (auto chosen = ctx.choosePhysicalDevice(options); !chosen) return chosen.error();
   if (auto made = ctx.createDevice(); !made) return made.error();
-  logInfo("vulkan: using " + ctx.info_.name + " (" + std::string(deviceTypeName(ctx.info_.type)) + ")" +
-          (ctx.validationEnabled_ ? ", validation on" : ""));
+  if (options.announce) ctx.announce();
   return ctx;
+}
+
+void Context::announce() const {
+  logInfo("vulkan: using " + info_.name + " (" + std::string(deviceTypeName(info_.type)) + ")" +
+          (validationEnabled_ ? ", validation on" : ""));
 }
 
 // The instance (with the validation layer and its messenger when on) and the

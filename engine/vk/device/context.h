@@ -37,6 +37,8 @@ struct ContextOptions {
   std::function<Result<VkSurfaceKHR>(VkInstance)> createSurface;
   // Called for every validation message, after it is logged and counted.
   ValidationCallback onValidationMessage;
+  // Logs which device is used (announce(), Info level) once it is made.
+  bool announce = true;
 };
 
 struct DeviceInfo {
@@ -65,6 +67,8 @@ class Context {
   VkSurfaceKHR surface() const { return surface_.get(); }  // VK_NULL_HANDLE when headless
   const DeviceInfo& deviceInfo() const { return info_; }
   bool validationEnabled() const { return validationEnabled_; }
+  // Logs "vulkan: using DEVICE (TYPE)[, validation on]" (Info).
+  void announce() const;
   // Validation messages seen so far (0 when validation is off).
   uint32_t validationMessageCount() const { return validation_->messageCount(); }
   // An error counting the validation messages so far (each was logged as it

@@ -38,7 +38,7 @@ Material defaultMaterial() {
 }  // namespace
 
 // Appends byte ranges at aligned offsets; the result becomes one buffer.
-// Outside the anonymous namespace: GpuModel::Staging (declared in the header)
+// Outside the anonymous namespace: GpuModelStaging (declared in the header)
 // holds these, and a type with linkage must not hold a file-local one.
 class ByteBlob {
  public:
@@ -199,20 +199,59 @@ VkDescriptorBufferInfo rangeOr(VkBuffer buffer, VkDeviceSize offset, VkDeviceSiz
 
 }  // namespace
 
-// What create() stages before anything reaches the device.
-struct GpuModel::Staging {
+// The device buffers' bytes.
+struct GpuModelStaging::Blobs {
   ByteBlob vertices, indices, deltas, detail, skin;
-  std::vector<std::vector<PrimitiveRanges>> ranges;  // by mesh, then primitive
 };
 
-Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& model) {
-  if (auto valid = checkModel(model, ModelCheck::gpuUpload()); !valid)
-    return valid.error().prefixed((model.sourcePath.empty() ? std::string("<model>") : model.sourcePath) + ": ");
+GpuModelStaging::GpuModelStaging() : blobs_(std::make_unique<Blobs>()) {}
+GpuModelStaging::GpuModelStaging(GpuModelStaging&&) noexcept = default;
+GpuModelStaging& GpuModelStaging::operator=(GpuModelStaging&&) noexcept = default;
+GpuModelStaging::~GpuModelStaging() = default;
 
+namespace {
+
+std::string modelName(const Model& model) {
+  return model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
+}
+
+VkDeviceSize storageAlignment(const VkPhysicalDeviceLimits& limits) {
+  return std::max<VkDeviceSize>(
+      {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
+}
+
+}  // namespace
+
+Result<void> GpuModelStaging::fits(const VkPhysicalDeviceLimits& limits) const {
+  const VkDeviceSize align = storageAlignment(limits);
+  if (storageAlign_ % align != 0)
+    return makeError(ErrorKind::InvalidArgument, "staged with buffer offsets aligned to " + std::to_string(storageAlign_) +
+                                                     " bytes, the device needs " + std::to_string(align));
+  if (largestTexelBuffer_ > limits.maxTexelBufferElements)
+    return makeError(ErrorKind::TooLarge, "staged texel buffers of " + std::to_string(largestTexelBuffer_) +
+                                              " elements, the device allows " +
+                                              std::to_string(limits.maxTexelBufferElements));
+  return {};
+}
+
+Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& model) {
+  auto staging = GpuModelStaging::build(model, ctx.deviceInfo().properties.limits);
+  if (!staging) return staging.error();
+  return create(ctx, layouts, model, *staging);
+}
+
+Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                  const GpuModelStaging& staging) {
+  if (auto fits = staging.fits(ctx.deviceInfo().properties.limits); !fits)
+    return fits.error().prefixed(modelName(model) + ": ");
+  if (staging.meshes_.size() != model.meshes.size())
+    return makeError(ErrorKind::InvalidArgument, modelName(model) + ": staged with " +
+                                                     std::to_string(staging.meshes_.size()) + " meshes, the model has " +
+                                                     std::to_string(model.meshes.size()));
   GpuModel gpu;
   static std::atomic<uint64_t> uploads{0};
   gpu.uploadSerial_ = ++uploads;
-  gpu.name_ = model.sourcePath.empty() ? std::string("<model>") : model.sourcePath;
+  gpu.name_ = modelName(model);
   gpu.bounds_ = model.skins.empty() ? model.bounds() : posedBounds(model, restPose(model));
   gpu.weightCount_ = WeightLayout(model).total();
   gpu.materialCount_ = static_cast<uint32_t>(model.materials.size());
@@ -222,8 +261,7 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
   gpu.skins_ = model.skins;
   poseWorldMatrices(model, restPose(model), gpu.restWorld_);
 
-  Staging staging;
-  ENG_TRY(gpu.stageMeshes(ctx, model, staging));
+  gpu.meshes_ = staging.meshes_;
   ENG_TRY(gpu.uploadBuffers(ctx, staging));
   ENG_TRY(gpu.uploadTextures(ctx, model));
   ENG_TRY(gpu.createDescriptorSets(ctx, layouts, model, staging));
@@ -231,25 +269,27 @@ Result<GpuModel> GpuModel::create(const Context& ctx, const SceneLayouts& layout
 }
 
 // Lays every primitive's geometry, sparse deltas, detail-layer parameters and
-// joint influences out in the staging blobs, and fills meshes_.
-Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Staging& staging) {
-  const VkPhysicalDeviceLimits& limits = ctx.deviceInfo().properties.limits;
-  const VkDeviceSize storageAlign = std::max<VkDeviceSize>(
-      {limits.minStorageBufferOffsetAlignment, limits.minTexelBufferOffsetAlignment, VkDeviceSize{16}});
+// joint influences out in the staging blobs, with the meshes' draw records.
+Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysicalDeviceLimits& limits) {
+  if (auto valid = checkModel(model, ModelCheck::gpuUpload()); !valid) return valid.error().prefixed(modelName(model) + ": ");
+  GpuModelStaging out;
+  Blobs& staging = *out.blobs_;
+  const VkDeviceSize storageAlign = storageAlignment(limits);
+  out.storageAlign_ = storageAlign;
   const WeightLayout weightLayout(model);
   const Material fallback = defaultMaterial();
   const std::vector<std::vector<bool>> insideTheHead = partsInsideTheHead(model);
-  meshes_.resize(model.meshes.size());
-  staging.ranges.resize(model.meshes.size());
+  out.meshes_.resize(model.meshes.size());
+  out.ranges_.resize(model.meshes.size());
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     const Mesh& mesh = model.meshes[m];
-    GpuMesh& gm = meshes_[m];
+    GpuMesh& gm = out.meshes_[m];
     gm.name = mesh.name;
     gm.targetCount = static_cast<uint32_t>(mesh.targetNames.size());
     gm.weightOffset = weightLayout.offset(static_cast<int>(m));
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
-      PrimitiveRanges& ranges = staging.ranges[m].emplace_back();
+      PrimitiveRanges& ranges = out.ranges_[m].emplace_back();
       const Material* material =
           prim.material >= 0 && size_t(prim.material) < model.materials.size() ? &model.materials[size_t(prim.material)] : nullptr;
       const Image* baseColour = material && material->baseColorImage >= 0 && size_t(material->baseColorImage) < model.images.size()
@@ -274,6 +314,7 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       const SparseDeltas sparse = compactDeltas(prim);
       const VkDeviceSize entryBytes = sparse.entries.size() * sizeof(glm::vec4);
       const size_t texels = std::max(sparse.entries.size(), size_t(ranges.restSize / sizeof(float)));
+      if (!sparse.entries.empty()) out.largestTexelBuffer_ = std::max(out.largestTexelBuffer_, texels);
       if (!sparse.entries.empty() && texels > limits.maxTexelBufferElements)
         return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) + " targets x " +
                          std::to_string(prim.vertexCount()) + " vertices need texel buffers of " +
@@ -315,10 +356,11 @@ Result<void> GpuModel::stageMeshes(const Context& ctx, const Model& model, Stagi
       gm.primitives.push_back(gp);
     }
   }
-  return {};
+  return out;
 }
 
-Result<void> GpuModel::uploadBuffers(const Context& ctx, const Staging& staging) {
+Result<void> GpuModel::uploadBuffers(const Context& ctx, const GpuModelStaging& staged) {
+  const GpuModelStaging::Blobs& staging = *staged.blobs_;
   auto upload = [&](const ByteBlob& blob, VkBufferUsageFlags usage, const char* what, Buffer& out) -> Result<void> {
     if (blob.empty()) return {};
     const std::string label = name_ + " " + what;
@@ -378,7 +420,7 @@ Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
 
 // One descriptor set per primitive (set 1, scene_layouts.h).
 Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
-                                           const Staging& staging) {
+                                           const GpuModelStaging& staging) {
   uint32_t sets = 0;
   for (const GpuMesh& mesh : meshes_) sets += static_cast<uint32_t>(mesh.primitives.size());
   if (sets == 0) return {};
@@ -402,7 +444,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
       alloc.descriptorSetCount = 1;
       alloc.pSetLayouts = &setLayout;
       ENG_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &alloc, &gp.descriptorSet));
-      const PrimitiveRanges& ranges = staging.ranges[m][p];
+      const PrimitiveRanges& ranges = staging.ranges_[m][p];
       auto texelView = [&](VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, VkFormat format,
                            VkBufferView placeholder) -> Result<VkBufferView> {
         if (size == 0) return placeholder;

@@ -8,6 +8,7 @@
 //
 // Lifetime: must not outlive the Context and SceneLayouts it was created with.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -71,6 +72,36 @@ struct GpuMesh {
 };
 
 struct PrimitiveRanges;  // gpu_model.cpp: where create() staged one primitive's data
+class ByteBlob;
+
+// The CPU half of an upload: every primitive's vertex arrays, levels of
+// detail, detail-layer runs, sparse deltas and joint influences laid out as
+// the device buffers hold them. Made once, it uploads to any number of
+// devices whose limits it fits (GpuModel::create), e.g. a sequence's device
+// lanes, without simplifying the meshes again.
+class GpuModelStaging {
+ public:
+  // Checks the model (eng::checkModel with ModelCheck::gpuUpload()); errors
+  // name the model file, then the mesh and primitive. `limits`: the devices'
+  // (storage and texel offset alignments, texel buffer size).
+  static Result<GpuModelStaging> build(const Model& model, const VkPhysicalDeviceLimits& limits);
+  // Whether a device with `limits` can take it (the alignments it was laid out with, its texel buffers).
+  Result<void> fits(const VkPhysicalDeviceLimits& limits) const;
+
+  GpuModelStaging();
+  GpuModelStaging(GpuModelStaging&&) noexcept;
+  GpuModelStaging& operator=(GpuModelStaging&&) noexcept;
+  ~GpuModelStaging();
+
+ private:
+  friend class GpuModel;
+  struct Blobs;
+  std::unique_ptr<Blobs> blobs_;
+  std::vector<GpuMesh> meshes_;  // descriptor sets still null
+  std::vector<std::vector<PrimitiveRanges>> ranges_;  // by mesh, then primitive
+  VkDeviceSize storageAlign_ = 16;
+  size_t largestTexelBuffer_ = 0;  // elements
+};
 
 class GpuModel {
  public:
@@ -79,6 +110,10 @@ class GpuModel {
   // as given: a face to be shown dressed (procedural eyes, skin tone, brows,
   // occlusion) is dressed by its loader first (importers/face_dressing.h).
   static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model);
+  // The same from a staging built from `model` (GpuModelStaging::build) for
+  // devices with this one's limits.
+  static Result<GpuModel> create(const Context& ctx, const SceneLayouts& layouts, const Model& model,
+                                 const GpuModelStaging& staging);
 
   const std::string& name() const { return name_; }
   // Unique per upload in this process (kept by moves): a new upload of
@@ -111,17 +146,15 @@ class GpuModel {
   VkBuffer indexBuffer() const { return indices_.handle(); }
 
  private:
-  struct Staging;
   // The morph pre-pass's texel buffers of one primitive (set 1 bindings 0-2).
   struct MorphInputViews {
     VkBufferView offsets, entries, rest;
   };
   // The steps of create(), in order.
-  Result<void> stageMeshes(const Context& ctx, const Model& model, Staging& staging);
-  Result<void> uploadBuffers(const Context& ctx, const Staging& staging);
+  Result<void> uploadBuffers(const Context& ctx, const GpuModelStaging& staging);
   Result<void> uploadTextures(const Context& ctx, const Model& model);
   Result<void> createDescriptorSets(const Context& ctx, const SceneLayouts& layouts, const Model& model,
-                                    const Staging& staging);
+                                    const GpuModelStaging& staging);
   void writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts, const Model& model, const Primitive& prim,
                          const PrimitiveRanges& ranges, const MorphInputViews& morph, GpuPrimitive& gp) const;
 

@@ -105,6 +105,10 @@ Result<GpuModel> OffscreenRenderer::upload(const Model& model) const {
   return GpuModel::create(*ctx_, *layouts_, model);
 }
 
+Result<GpuModel> OffscreenRenderer::upload(const Model& model, const GpuModelStaging& staging) const {
+  return GpuModel::create(*ctx_, *layouts_, model, staging);
+}
+
 namespace {
 
 glm::vec4 clearColour(const Backdrop& backdrop) {

@@ -65,6 +65,8 @@ class OffscreenRenderer {
   static Result<OffscreenRenderer> create(const Context& ctx, const OffscreenOptions& options = {});
 
   Result<GpuModel> upload(const Model& model) const;
+  // From a staging of `model` made once for several devices (GpuModelStaging).
+  Result<GpuModel> upload(const Model& model, const GpuModelStaging& staging) const;
   Result<eng::Image> render(const SceneView& view, std::span<const ModelInstance> instances);
   // Frames in flight: submit() prepares, records and submits a frame and
   // returns without waiting (the instances' data is copied, so the caller may

@@ -390,6 +390,49 @@ TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   EXPECT_LT(std::abs(centre.r - centre.g), 40);
 }
 
+TEST(OffscreenRender, AModelStagedOnceDrawsAsOneUploadedDirectly) {
+  const eng::Model model = testing_support::makeSphereModel({});
+  const VkPhysicalDeviceLimits& limits = vk_test::context().deviceInfo().properties.limits;
+  auto staging = eng::vk::GpuModelStaging::build(model, limits);
+  ASSERT_TRUE(staging) << staging.error().message;
+  auto direct = vk_test::renderer().upload(model);
+  auto first = vk_test::renderer().upload(model, *staging);
+  auto second = vk_test::renderer().upload(model, *staging);
+  ASSERT_TRUE(direct && first && second);
+  std::vector<float> weights(direct->weightCount(), 0.0f);
+  for (size_t t = 0; t < weights.size(); ++t) weights[t] = 0.3f + 0.2f * float(t % 3);
+  const auto draw = [&](const eng::vk::GpuModel& gpu) {
+    const eng::vk::ModelInstance instance{&gpu, glm::mat4(1.0f), weights};
+    return renderOrFail(viewOf(model.bounds()), {&instance, 1});
+  };
+  const eng::Image expected = draw(*direct);
+  EXPECT_EQ(draw(*first).rgba8, expected.rgba8);
+  EXPECT_EQ(draw(*second).rgba8, expected.rgba8);
+}
+
+TEST(OffscreenRenderValidity, AStagingMustFitTheModelAndTheDevice) {
+  const eng::Model sphere = testing_support::makeSphereModel({});
+  VkPhysicalDeviceLimits limits = vk_test::context().deviceInfo().properties.limits;
+  auto staging = eng::vk::GpuModelStaging::build(sphere, limits);
+  ASSERT_TRUE(staging) << staging.error().message;
+  // Another model (two meshes) is refused, naming both counts.
+  eng::Model two = sphere;
+  two.meshes.push_back(two.meshes.front());
+  two.sourcePath = "two.glb";
+  auto mismatched = vk_test::renderer().upload(two, *staging);
+  ASSERT_FALSE(mismatched);
+  EXPECT_NE(mismatched.error().message.find("two.glb: staged with 1 meshes, the model has 2"), std::string::npos)
+      << mismatched.error().message;
+  // A device that needs wider alignment than the staging was laid out with.
+  limits.minStorageBufferOffsetAlignment = 1024;
+  EXPECT_FALSE(staging->fits(limits));
+  limits = vk_test::context().deviceInfo().properties.limits;
+  limits.maxTexelBufferElements = 4;
+  auto small = staging->fits(limits);
+  ASSERT_FALSE(small);
+  EXPECT_NE(small.error().message.find("the device allows 4"), std::string::npos) << small.error().message;
+}
+
 TEST(OffscreenRenderValidity, WrongWeightCountNamesTheSizes) {
   const eng::Model model = testing_support::makeSphereModel({});
   auto gpu = vk_test::renderer().upload(model);

@@ -1,0 +1,110 @@
+#include "app/sequence_renderers.h"
+
+#include <optional>
+#include <thread>
+
+namespace app {
+
+using Lane = std::optional<eng::Result<HeadlessModelRenderer>>;
+
+struct SequenceRenderers::Opening::State {
+  HeadlessRenderOptions options;
+  uint32_t requestedLanes = 0;
+  std::vector<Lane> lanes;  // filled by `opener`
+  std::thread opener;
+
+  void open() {
+    // Announced by finish(): a program that fails before then says one line.
+    auto first = HeadlessModelRenderer::createContext(options, /*announce=*/false);
+    if (!first) {
+      lanes.emplace_back(first.error());
+      return;
+    }
+    uint32_t count = requestedLanes;
+    if (count == 0)
+      count = (*first)->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+    lanes.resize(count);
+    // Lanes after the first on threads of their own while this one opens the first.
+    std::vector<std::thread> others;
+    for (uint32_t k = 1; k < count; ++k)
+      others.emplace_back([this, k] {
+        auto context = HeadlessModelRenderer::createContext(options, /*announce=*/false);
+        if (!context)
+          lanes[k].emplace(context.error());
+        else
+          lanes[k].emplace(HeadlessModelRenderer::open(options, std::move(*context)));
+      });
+    lanes[0].emplace(HeadlessModelRenderer::open(options, std::move(*first)));
+    for (std::thread& thread : others) thread.join();
+  }
+
+  void wait() {
+    if (opener.joinable()) opener.join();
+  }
+};
+
+SequenceRenderers::Opening::Opening(std::unique_ptr<State> state) : state_(std::move(state)) {}
+SequenceRenderers::Opening::Opening(Opening&&) noexcept = default;
+SequenceRenderers::Opening& SequenceRenderers::Opening::operator=(Opening&& other) noexcept {
+  if (state_) state_->wait();
+  state_ = std::move(other.state_);
+  return *this;
+}
+SequenceRenderers::Opening::~Opening() {
+  if (state_) state_->wait();
+}
+
+SequenceRenderers::Opening SequenceRenderers::open(const HeadlessRenderOptions& options, uint32_t lanes) {
+  auto state = std::make_unique<Opening::State>();
+  state->options = options;
+  state->requestedLanes = lanes;
+  state->opener = std::thread([s = state.get()] { s->open(); });
+  return Opening(std::move(state));
+}
+
+eng::Result<SequenceRenderers> SequenceRenderers::Opening::finish(const eng::Model& model) {
+  if (!state_) return eng::makeError(eng::ErrorKind::InvalidArgument, "the sequence's renderers were finished already");
+  const std::unique_ptr<State> state = std::move(state_);
+  state->wait();
+  for (size_t k = 0; k < state->lanes.size(); ++k)
+    if (!*state->lanes[k])
+      return k == 0 ? state->lanes[k]->error() : state->lanes[k]->error().prefixed("another device for the sequence: ");
+  std::vector<HeadlessModelRenderer> renderers;
+  for (Lane& lane : state->lanes) renderers.push_back(std::move(**lane));
+  renderers.front().context_->announce();
+
+  // The CPU half of the upload once for every lane (they share the physical device's limits).
+  auto staging = eng::vk::GpuModelStaging::build(model, renderers.front().context_->deviceInfo().properties.limits);
+  if (!staging) return staging.error();
+  std::vector<eng::Result<void>> shown(renderers.size());
+  std::vector<std::thread> others;
+  for (size_t k = 1; k < renderers.size(); ++k)
+    others.emplace_back([&, k] { shown[k] = renderers[k].show(model, state->options, &*staging); });
+  shown[0] = renderers[0].show(model, state->options, &*staging);
+  for (std::thread& thread : others) thread.join();
+  for (const eng::Result<void>& result : shown)
+    if (!result) return result.error();
+
+  SequenceRenderers out;
+  out.view_ = renderers.front().view();
+  out.renderers_ = std::move(renderers);
+  return out;
+}
+
+eng::Result<SequenceRenderers> SequenceRenderers::create(const eng::Model& model, const HeadlessRenderOptions& options,
+                                                         uint32_t lanes) {
+  return open(options, lanes).finish(model);
+}
+
+std::vector<SequenceLane> SequenceRenderers::lanes() {
+  std::vector<SequenceLane> out;
+  for (HeadlessModelRenderer& renderer : renderers_) out.push_back({&renderer.offscreen(), &view_});
+  return out;
+}
+
+eng::Result<void> SequenceRenderers::checkValidation() const {
+  for (const HeadlessModelRenderer& renderer : renderers_) ENG_TRY(renderer.checkValidation());
+  return {};
+}
+
+}  // namespace app
