@@ -121,7 +121,8 @@ namespace {
 // storage-buffer offset: the morph pre-pass reads position .. tangent as one
 // storage range (DrawConstants::rest* are float offsets into it).
 GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primitive& prim, const Image* baseColour,
-                            const DetailRegions* regions, VkDeviceSize storageAlign, PrimitiveRanges& ranges) {
+                            const DetailRegions* regions, bool levelsOfDetail, VkDeviceSize storageAlign,
+                            PrimitiveRanges& ranges) {
   const size_t n = prim.vertexCount();
   GpuPrimitive gp;
   gp.vertexCount = static_cast<uint32_t>(n);
@@ -154,6 +155,7 @@ GpuPrimitive appendGeometry(ByteBlob& vertices, ByteBlob& indices, const Primiti
     return indices.append(std::span<const uint32_t>(ordered.indices), 16);
   };
   gp.indexOffset = appendLevel(prim.indices, gp.detailRuns);
+  if (!levelsOfDetail) return gp;
   const std::vector<uint8_t> kept = keptTriangles(prim, baseColour);
   for (const LodLevel& level : buildLodChain(prim.positions, prim.indices, {}, kept)) {
     GpuLod& lod = gp.lods.emplace_back();
@@ -304,8 +306,10 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
                                                                                                : nullptr);
         regions.emplace(layerImages);
       }
+      // No coarser levels inside the head: a simplified eyeball moves the
+      // catchlight on its cornea (the normals), which the simplifier cannot see.
       GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, baseColour, regions ? &*regions : nullptr,
-                                       storageAlign, ranges);
+                                       !insideTheHead[m][p], storageAlign, ranges);
 
       if (prim.targets.size() > kMaxSparseTargets)
         return makeError(ErrorKind::TooLarge, where(model, m, p) + ": " + std::to_string(prim.targets.size()) +
