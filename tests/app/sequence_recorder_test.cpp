@@ -62,6 +62,19 @@ eng::Result<Recording> record(uint32_t framesInFlight, const app::SequenceOption
   return out;
 }
 
+// Both recordings got frames 0..frames-1 in order, with the same pixels, and
+// the frames differ from one another (else order is not tested).
+void expectSameFramesInOrder(const Recording& reference, const Recording& other, uint32_t frames) {
+  std::vector<uint32_t> expected(frames);
+  for (uint32_t i = 0; i < frames; ++i) expected[i] = i;
+  EXPECT_EQ(reference.order, expected);
+  EXPECT_EQ(other.order, expected);
+  ASSERT_EQ(other.pixels.size(), reference.pixels.size());
+  for (size_t i = 0; i < reference.pixels.size(); ++i) EXPECT_EQ(other.pixels[i], reference.pixels[i]) << i;
+  for (size_t i = 1; i < reference.pixels.size(); ++i)
+    EXPECT_NE(reference.pixels[i - 1], reference.pixels[i]) << "frames " << i - 1 << " and " << i << " must differ";
+}
+
 TEST(SequenceRecorder, FramesInFlightKeepOrderAndPixels) {
   const auto dir = testing_support::freshTempDir("sequence_in_flight");
   app::SequenceOptions options{.framesPerSecond = 10, .seconds = 0.8f, .frameDir = dir / "frames"};
@@ -70,12 +83,7 @@ TEST(SequenceRecorder, FramesInFlightKeepOrderAndPixels) {
   options.frameDir = dir / "frames3";
   auto pipelined = record(app::kSequenceFramesInFlight, options);
   ASSERT_TRUE(pipelined) << pipelined.error().message;
-  const std::vector<uint32_t> expected{0, 1, 2, 3, 4, 5, 6, 7};
-  EXPECT_EQ(serial->order, expected);
-  EXPECT_EQ(pipelined->order, expected);
-  ASSERT_EQ(pipelined->pixels.size(), serial->pixels.size());
-  for (size_t i = 0; i < serial->pixels.size(); ++i) EXPECT_EQ(pipelined->pixels[i], serial->pixels[i]) << i;
-  EXPECT_NE(serial->pixels[0], serial->pixels[1]) << "the frames must differ, or order is not tested";
+  expectSameFramesInOrder(*serial, *pipelined, 8);
   EXPECT_TRUE(std::filesystem::exists(dir / "frames3" / app::frameFileName(7)));
 }
 
@@ -87,11 +95,7 @@ TEST(SequenceRecorder, TwoDevicesTakingTurnsKeepOrderAndPixels) {
   options.frameDir = dir / "frames2";
   auto two = record(app::kSequenceFramesInFlight, options, -1, /*lanes=*/2);
   ASSERT_TRUE(two) << two.error().message;
-  const std::vector<uint32_t> expected{0, 1, 2, 3, 4, 5, 6, 7, 8};
-  EXPECT_EQ(two->order, expected);
-  ASSERT_EQ(two->pixels.size(), one->pixels.size());
-  for (size_t i = 0; i < one->pixels.size(); ++i) EXPECT_EQ(two->pixels[i], one->pixels[i]) << i;
-  EXPECT_NE(one->pixels[1], one->pixels[2]) << "the frames must differ, or order is not tested";
+  expectSameFramesInOrder(*one, *two, 9);
   EXPECT_TRUE(std::filesystem::exists(dir / "frames2" / app::frameFileName(8)));
 }
 
