@@ -63,7 +63,16 @@ class HeadlessModelRenderer {
   eng::Result<void> checkValidation() const;
   VkPhysicalDeviceType deviceType() const { return context_->deviceInfo().type; }
 
+  HeadlessModelRenderer(HeadlessModelRenderer&&) noexcept = default;
+  HeadlessModelRenderer& operator=(HeadlessModelRenderer&&) = delete;  // member-wise, it would free the context first
+  // Frames still in flight (offscreen().submit() without collect(), e.g. a
+  // caller returning on an error) are dropped before the model they draw is freed.
+  ~HeadlessModelRenderer() {
+    if (renderer_) renderer_->discardPending();
+  }
+
  private:
+  HeadlessModelRenderer() = default;
   // SequenceRenderers opens its lanes (device, pipelines) while the caller
   // loads the model, then shows the model staged once on each.
   friend class SequenceRenderers;

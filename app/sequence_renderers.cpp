@@ -1,9 +1,22 @@
 #include "app/sequence_renderers.h"
 
+#include <sched.h>
+
 #include <optional>
 #include <thread>
 
 namespace app {
+namespace {
+
+// The cores this process may run on (a Slurm task's, a container's), not the machine's.
+unsigned usableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
+  return std::thread::hardware_concurrency();
+}
+
+}  // namespace
 
 using Lane = std::optional<eng::Result<HeadlessModelRenderer>>;
 
@@ -22,7 +35,7 @@ struct SequenceRenderers::Opening::State {
     }
     uint32_t count = requestedLanes;
     if (count == 0)
-      count = (*first)->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+      count = (*first)->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && usableCores() >= 2 ? 2 : 1;
     lanes.resize(count);
     // Lanes after the first on threads of their own while this one opens the first.
     std::vector<std::thread> others;

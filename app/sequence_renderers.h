@@ -45,8 +45,8 @@ class SequenceRenderers {
     std::unique_ptr<State> state_;
   };
 
-  // lanes: how many devices; 0 picks (2 on a CPU rasteriser when the machine
-  // has 2 or more hardware threads, else 1).
+  // lanes: how many devices; 0 picks (2 on a CPU rasteriser when the process
+  // may run on 2 or more cores, its CPU affinity, else 1).
   static Opening open(const HeadlessRenderOptions& options, uint32_t lanes = 0);
   // open(options, lanes).finish(model).
   static eng::Result<SequenceRenderers> create(const eng::Model& model, const HeadlessRenderOptions& options,

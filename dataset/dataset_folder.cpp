@@ -96,28 +96,44 @@ eng::Result<void> writeItem(const RenderedItem& item, const DatasetSpec& spec, c
   return writeWhole(options.out / labelName(item.label.index, spec.count), labelJson(item.label) + "\n");
 }
 
+// Items in flight (ItemRenderer): one is encoded and written while the
+// devices draw the next ones. On an error the items in flight are dropped;
+// every item written before it is whole.
 eng::Result<void> renderItems(const DatasetSpec& spec, const RunOptions& options, const std::vector<Todo>& todo,
                               RunSummary& summary) {
   std::optional<app::ProgressBar> progress;
   if (options.progress) progress.emplace("dataset shard " + options.shard.name(), todo.size(), options.progress);
   std::optional<ItemRenderer> renderer;
+  uint64_t oldest = 0;  // the index in `todo` of the oldest item in flight
+  const auto writeOldest = [&]() -> eng::Result<void> {
+    auto item = renderer->collect();
+    if (!item) return item.error().prefixed("item " + std::to_string(todo[oldest].index) + ": ");
+    ENG_TRY(writeItem(*item, spec, options));
+    ++oldest;
+    ++summary.rendered;
+    if (progress) progress->update(oldest);
+    return {};
+  };
+  const auto finishModel = [&]() -> eng::Result<void> {
+    if (!renderer) return {};
+    while (renderer->pending() > 0) ENG_TRY(writeOldest());
+    return renderer->checkValidation();
+  };
   for (size_t i = 0; i < todo.size(); ++i) {
-    if (!renderer || i == 0 || todo[i].model != todo[i - 1].model) {
-      if (renderer) ENG_TRY(renderer->checkValidation());
+    if (!renderer || todo[i].model != todo[i - 1].model) {
+      ENG_TRY(finishModel());
       renderer.reset();
-      auto made = ItemRenderer::create(spec, todo[i].model, options.device);
+      auto made = ItemRenderer::create(spec, todo[i].model, {.device = options.device});
       if (!made) return made.error().prefixed(spec.source + ": /models/" + std::to_string(todo[i].model) + ": ");
       renderer.emplace(std::move(*made));
       summary.device = renderer->deviceName();
     }
-    auto item = renderer->render(sampleItem(spec, todo[i].index));
-    if (!item) return item.error().prefixed("item " + std::to_string(todo[i].index) + ": ");
-    ENG_TRY(writeItem(*item, spec, options));
-    ++summary.rendered;
-    if (progress) progress->update(i + 1);
+    if (renderer->full()) ENG_TRY(writeOldest());
+    if (auto submitted = renderer->submit(sampleItem(spec, todo[i].index)); !submitted)
+      return submitted.error().prefixed("item " + std::to_string(todo[i].index) + ": ");
   }
+  ENG_TRY(finishModel());
   if (progress) progress->finish();
-  if (renderer) ENG_TRY(renderer->checkValidation());
   return {};
 }
 

@@ -25,23 +25,32 @@ eng::Result<autorig::FaceLandmarks> restLandmarks(const app::FaceSetup& face, bo
 
 }  // namespace
 
-ItemRenderer::ItemRenderer(const DatasetSpec& spec, app::FaceSetup face, app::HeadlessModelRenderer renderer)
-    : spec_(&spec), face_(std::make_unique<app::FaceSetup>(std::move(face))), renderer_(std::move(renderer)) {}
+ItemRenderer::ItemRenderer(const DatasetSpec& spec, app::FaceSetup face, app::SequenceRenderers renderers)
+    : spec_(&spec),
+      face_(std::make_unique<app::FaceSetup>(std::move(face))),
+      renderers_(std::make_unique<app::SequenceRenderers>(std::move(renderers))),
+      lanes_(renderers_->lanes()) {}
 
-eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t model, const std::string& device) {
+eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t model, const ItemRendererOptions& options) {
+  if (options.framesInFlight == 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "a dataset renderer needs at least one frame in flight");
   const std::filesystem::path file = modelFile(spec, model);
-  auto face = app::FaceSetup::load({.model = file, .program = "facial dataset"});
-  if (!face) return face.error();
   auto quality = app::qualityOption(spec.quality);
   if (!quality) return quality.error();
-  auto renderer = app::HeadlessModelRenderer::create(
-      face->displayModel(), {.width = spec.width, .height = spec.height, .device = device, .quality = *quality});
-  if (!renderer) return renderer.error();
-  ItemRenderer r(spec, std::move(*face), std::move(*renderer));
+  // The devices open while the face loads.
+  auto opening = app::SequenceRenderers::open(
+      {.width = spec.width, .height = spec.height, .device = options.device, .quality = *quality,
+       .framesInFlight = options.framesInFlight},
+      options.lanes);
+  auto face = app::FaceSetup::load({.model = file, .program = "facial dataset"});
+  if (!face) return face.error();
+  auto renderers = opening.finish(face->displayModel());
+  if (!renderers) return renderers.error();
+  ItemRenderer r(spec, std::move(*face), std::move(*renderers));
   auto materials = app::FaceMaterials::create(*r.face_);
   if (!materials) return materials.error();
   r.materials_.emplace(std::move(*materials));
-  auto rest = restLandmarks(*r.face_, file.empty(), device);
+  auto rest = restLandmarks(*r.face_, file.empty(), options.device);
   if (!rest) return rest.error();
   auto tracker = LandmarkTracker::bind(r.face_->model(), *rest);
   if (!tracker) return tracker.error();
@@ -54,7 +63,7 @@ eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t
 }
 
 void ItemRenderer::placeCamera(const ItemParams& item) {
-  eng::vk::SceneView& view = renderer_.view();
+  eng::vk::SceneView& view = renderers_->view();
   view.camera.yawDegrees = item.yaw;
   view.camera.pitchDegrees = item.pitch;
   view.camera.zoom = item.zoom;
@@ -62,20 +71,8 @@ void ItemRenderer::placeCamera(const ItemParams& item) {
   view.backdrop = *app::parseBackground(spec_->backgrounds[item.background]);  // checked with the spec
 }
 
-eng::Result<RenderedItem> ItemRenderer::render(const ItemParams& item) {
-  auto emotion = face_->findExpression(spec_->emotions[item.emotion]);
-  if (!emotion) return emotion.error();
-  const facial::ExpressionPreset preset = itemPreset(**emotion, item);
-  ENG_TRY(face_->expressionWeights(preset, 1.0f, weights_, vrmExpressions_));
-  ENG_TRY(facial::ExpressionLibrary::evaluate(preset, 1.0f, auWeights_));
-  ENG_TRY(materials_->update(vrmExpressions_));
-  placeCamera(item);
-  auto image = renderer_.render(weights_, materials_->materials());
-  if (!image) return image.error();
-  ENG_TRY(tracker_->evaluate(weights_, world_));
-
-  RenderedItem out{.image = std::move(*image), .label = {}};
-  ItemLabel& label = out.label;
+ItemLabel ItemRenderer::label(const ItemParams& item) const {
+  ItemLabel label;
   label.index = item.index;
   label.image = imageName(item.index, spec_->count);
   label.model = modelLabel(*spec_, item.model);
@@ -85,12 +82,57 @@ eng::Result<RenderedItem> ItemRenderer::render(const ItemParams& item) {
     if (auWeights_[c] != 0.0f) label.actionUnits.emplace_back(std::string(facial::actionUnits()[c].name), auWeights_[c]);
   for (size_t t = 0; t < weights_.size(); ++t)
     if (weights_[t] != 0.0f) label.targets.emplace_back(targetNames_[t], weights_[t]);
-  label.landmarks = projectLandmarks(world_, renderer_.view().camera, spec_->width, spec_->height);
+  const eng::OrbitCamera& camera = renderers_->view().camera;
+  label.landmarks = projectLandmarks(world_, camera, spec_->width, spec_->height);
   label.light = spec_->lights[item.light];
   label.background = spec_->backgrounds[item.background];
-  label.camera = renderer_.view().camera;
+  label.camera = camera;
   label.width = spec_->width, label.height = spec_->height;
-  return out;
+  return label;
+}
+
+bool ItemRenderer::full() const {
+  const eng::vk::OffscreenRenderer& next = *lanes_[nextLane_].renderer;
+  return next.pendingFrames() == next.framesInFlight();
+}
+
+eng::Result<void> ItemRenderer::submit(const ItemParams& item) {
+  if (full())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "item " + std::to_string(item.index) + ": " +
+                                                               std::to_string(pending_.size()) +
+                                                               " items in flight already: collect one first");
+  auto emotion = face_->findExpression(spec_->emotions[item.emotion]);
+  if (!emotion) return emotion.error();
+  const facial::ExpressionPreset preset = itemPreset(**emotion, item);
+  ENG_TRY(face_->expressionWeights(preset, 1.0f, weights_, vrmExpressions_));
+  ENG_TRY(facial::ExpressionLibrary::evaluate(preset, 1.0f, auWeights_));
+  ENG_TRY(materials_->update(vrmExpressions_));
+  ENG_TRY(tracker_->evaluate(weights_, world_));
+  placeCamera(item);
+  const uint32_t lane = nextLane_;
+  const eng::vk::ModelInstance instance{&renderers_->gpuModel(lane), glm::mat4(1.0f), weights_, {},
+                                        materials_->materials()};
+  // The renderer copies the weights, materials and camera: they may change at once.
+  if (auto submitted = lanes_[lane].renderer->submit(*lanes_[lane].view, {&instance, 1}); !submitted)
+    return submitted.error().prefixed(face_->model().sourcePath + ": rendering failed: ");
+  pending_.push_back({lane, label(item)});
+  nextLane_ = (nextLane_ + 1) % static_cast<uint32_t>(lanes_.size());
+  return {};
+}
+
+eng::Result<RenderedItem> ItemRenderer::collect() {
+  if (pending_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no dataset item is in flight");
+  Pending oldest = std::move(pending_.front());
+  pending_.pop_front();
+  auto image = lanes_[oldest.lane].renderer->collect();
+  if (!image) return image.error().prefixed(face_->model().sourcePath + ": rendering failed: ");
+  return RenderedItem{.image = std::move(*image), .label = std::move(oldest.label)};
+}
+
+void ItemRenderer::discardPending() {
+  for (const app::SequenceLane& lane : lanes_) lane.renderer->discardPending();
+  pending_.clear();
+  nextLane_ = 0;
 }
 
 }  // namespace dataset
