@@ -56,6 +56,7 @@ class HeadlessModelRenderer {
   // For sequences that draw their own instances (eng::vk::ModelInstance with
   // gpuModel()) through recordSequence: the renderer and the camera it uses.
   eng::vk::OffscreenRenderer& offscreen() { return *renderer_; }
+  const eng::vk::OffscreenRenderer& offscreen() const { return *renderer_; }
   eng::vk::SceneView& view() { return view_; }
   const eng::vk::GpuModel& gpuModel() const { return gpuModel_; }
   // An error counting the validation messages reported so far (they were

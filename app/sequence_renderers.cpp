@@ -6,17 +6,12 @@
 #include <thread>
 
 namespace app {
-namespace {
-
-// The cores this process may run on (a Slurm task's, a container's), not the machine's.
 unsigned usableCores() {
   cpu_set_t set;
   CPU_ZERO(&set);
   if (sched_getaffinity(0, sizeof(set), &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
   return std::thread::hardware_concurrency();
 }
-
-}  // namespace
 
 using Lane = std::optional<eng::Result<HeadlessModelRenderer>>;
 
@@ -113,6 +108,49 @@ std::vector<SequenceLane> SequenceRenderers::lanes() {
   std::vector<SequenceLane> out;
   for (HeadlessModelRenderer& renderer : renderers_) out.push_back({&renderer.offscreen(), &view_});
   return out;
+}
+
+bool SequenceRenderers::full() const {
+  const eng::vk::OffscreenRenderer& next = renderers_[nextLane_].offscreen();
+  return next.pendingFrames() == next.framesInFlight();
+}
+
+eng::Result<void> SequenceRenderers::submit(std::span<const float> weights,
+                                            std::span<const eng::vk::InstanceMaterial> materials) {
+  if (full())
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          std::to_string(pending_.size()) + " pictures in flight already: collect one first");
+  HeadlessModelRenderer& lane = renderers_[nextLane_];
+  const eng::vk::ModelInstance instance{&lane.gpuModel(), glm::mat4(1.0f), weights, {}, materials};
+  if (auto submitted = lane.offscreen().submit(view_, {&instance, 1}); !submitted)
+    return submitted.error().prefixed(lane.modelName_ + ": rendering failed: ");
+  pending_.push_back(nextLane_);
+  nextLane_ = (nextLane_ + 1) % laneCount();
+  return {};
+}
+
+eng::Result<eng::Image> SequenceRenderers::collect() {
+  if (pending_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no picture is in flight");
+  HeadlessModelRenderer& lane = renderers_[pending_.front()];
+  pending_.pop_front();
+  auto image = lane.offscreen().collect();
+  if (!image) return image.error().prefixed(lane.modelName_ + ": rendering failed: ");
+  return image;
+}
+
+eng::Result<eng::Image> SequenceRenderers::render(std::span<const float> weights,
+                                                  std::span<const eng::vk::InstanceMaterial> materials) {
+  if (!pending_.empty())
+    return eng::makeError(eng::ErrorKind::InvalidArgument,
+                          std::to_string(pending_.size()) + " pictures in flight: collect them before render()");
+  ENG_TRY(submit(weights, materials));
+  return collect();
+}
+
+void SequenceRenderers::discardPending() {
+  for (HeadlessModelRenderer& renderer : renderers_) renderer.offscreen().discardPending();
+  pending_.clear();
+  nextLane_ = 0;
 }
 
 eng::Result<void> SequenceRenderers::checkValidation() const {

@@ -18,13 +18,19 @@
 //   app::recordSequence(renderers->lanes(), options, [&](const app::FrameContext& f) {
 //     instance.model = &renderers->gpuModel(f.lane); ... });
 #include <cstdint>
+#include <deque>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "app/headless_model_renderer.h"
 #include "app/sequence_recorder.h"
 
 namespace app {
+
+// The cores this process may run on (its CPU affinity: a Slurm task's, a
+// container's), not the machine's.
+unsigned usableCores();
 
 class SequenceRenderers {
  public:
@@ -54,11 +60,29 @@ class SequenceRenderers {
 
   // recordSequence's lanes: every renderer with the one view().
   std::vector<SequenceLane> lanes();
+
+  // Pictures of the model in flight without a sequence (a dataset's items, a
+  // contact sheet's tiles): submit() draws it with `weights` and `materials`
+  // (HeadlessModelRenderer::render's) from view() as they are now, on the next
+  // lane in turn, and may be followed at once by changes to all three;
+  // collect() reads back the oldest. Refused when full() / nothing is pending.
+  eng::Result<void> submit(std::span<const float> weights, std::span<const eng::vk::InstanceMaterial> materials = {});
+  eng::Result<eng::Image> collect();
+  bool full() const;
+  size_t pending() const { return pending_.size(); }
+  // Drops the pictures in flight.
+  void discardPending();
+  // One picture: submit() then collect() (refused with others in flight).
+  // With one lane, a still command opens its device while it loads the face:
+  //   auto opening = SequenceRenderers::open(options, 1); ...load...; opening.finish(model)->render(weights);
+  eng::Result<eng::Image> render(std::span<const float> weights, std::span<const eng::vk::InstanceMaterial> materials = {});
+
   uint32_t laneCount() const { return static_cast<uint32_t>(renderers_.size()); }
   // The model as uploaded to lane `lane`'s device (FrameContext::lane).
   const eng::vk::GpuModel& gpuModel(uint32_t lane) const { return renderers_[lane].gpuModel(); }
   // The camera every lane draws with.
   eng::vk::SceneView& view() { return view_; }
+  const eng::vk::SceneView& view() const { return view_; }
   const std::string& deviceName() const { return renderers_.front().deviceName(); }
   // Every lane's validation messages (HeadlessModelRenderer::checkValidation).
   eng::Result<void> checkValidation() const;
@@ -66,6 +90,8 @@ class SequenceRenderers {
  private:
   std::vector<HeadlessModelRenderer> renderers_;
   eng::vk::SceneView view_;
+  std::deque<uint32_t> pending_;  // the lane of each submitted picture, oldest first
+  uint32_t nextLane_ = 0;
 };
 
 }  // namespace app

@@ -28,8 +28,7 @@ eng::Result<autorig::FaceLandmarks> restLandmarks(const app::FaceSetup& face, bo
 ItemRenderer::ItemRenderer(const DatasetSpec& spec, app::FaceSetup face, app::SequenceRenderers renderers)
     : spec_(&spec),
       face_(std::make_unique<app::FaceSetup>(std::move(face))),
-      renderers_(std::make_unique<app::SequenceRenderers>(std::move(renderers))),
-      lanes_(renderers_->lanes()) {}
+      renderers_(std::move(renderers)) {}
 
 eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t model, const ItemRendererOptions& options) {
   if (options.framesInFlight == 0)
@@ -63,7 +62,7 @@ eng::Result<ItemRenderer> ItemRenderer::create(const DatasetSpec& spec, uint32_t
 }
 
 void ItemRenderer::placeCamera(const ItemParams& item) {
-  eng::vk::SceneView& view = renderers_->view();
+  eng::vk::SceneView& view = renderers_.view();
   view.camera.yawDegrees = item.yaw;
   view.camera.pitchDegrees = item.pitch;
   view.camera.zoom = item.zoom;
@@ -82,7 +81,7 @@ ItemLabel ItemRenderer::label(const ItemParams& item) const {
     if (auWeights_[c] != 0.0f) label.actionUnits.emplace_back(std::string(facial::actionUnits()[c].name), auWeights_[c]);
   for (size_t t = 0; t < weights_.size(); ++t)
     if (weights_[t] != 0.0f) label.targets.emplace_back(targetNames_[t], weights_[t]);
-  const eng::OrbitCamera& camera = renderers_->view().camera;
+  const eng::OrbitCamera& camera = renderers_.view().camera;
   label.landmarks = projectLandmarks(world_, camera, spec_->width, spec_->height);
   label.light = spec_->lights[item.light];
   label.background = spec_->backgrounds[item.background];
@@ -91,15 +90,10 @@ ItemLabel ItemRenderer::label(const ItemParams& item) const {
   return label;
 }
 
-bool ItemRenderer::full() const {
-  const eng::vk::OffscreenRenderer& next = *lanes_[nextLane_].renderer;
-  return next.pendingFrames() == next.framesInFlight();
-}
-
 eng::Result<void> ItemRenderer::submit(const ItemParams& item) {
   if (full())
     return eng::makeError(eng::ErrorKind::InvalidArgument, "item " + std::to_string(item.index) + ": " +
-                                                               std::to_string(pending_.size()) +
+                                                               std::to_string(labels_.size()) +
                                                                " items in flight already: collect one first");
   auto emotion = face_->findExpression(spec_->emotions[item.emotion]);
   if (!emotion) return emotion.error();
@@ -109,30 +103,23 @@ eng::Result<void> ItemRenderer::submit(const ItemParams& item) {
   ENG_TRY(materials_->update(vrmExpressions_));
   ENG_TRY(tracker_->evaluate(weights_, world_));
   placeCamera(item);
-  const uint32_t lane = nextLane_;
-  const eng::vk::ModelInstance instance{&renderers_->gpuModel(lane), glm::mat4(1.0f), weights_, {},
-                                        materials_->materials()};
-  // The renderer copies the weights, materials and camera: they may change at once.
-  if (auto submitted = lanes_[lane].renderer->submit(*lanes_[lane].view, {&instance, 1}); !submitted)
-    return submitted.error().prefixed(face_->model().sourcePath + ": rendering failed: ");
-  pending_.push_back({lane, label(item)});
-  nextLane_ = (nextLane_ + 1) % static_cast<uint32_t>(lanes_.size());
+  ENG_TRY(renderers_.submit(weights_, materials_->materials()));
+  labels_.push_back(label(item));
   return {};
 }
 
 eng::Result<RenderedItem> ItemRenderer::collect() {
-  if (pending_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no dataset item is in flight");
-  Pending oldest = std::move(pending_.front());
-  pending_.pop_front();
-  auto image = lanes_[oldest.lane].renderer->collect();
-  if (!image) return image.error().prefixed(face_->model().sourcePath + ": rendering failed: ");
-  return RenderedItem{.image = std::move(*image), .label = std::move(oldest.label)};
+  if (labels_.empty()) return eng::makeError(eng::ErrorKind::InvalidArgument, "no dataset item is in flight");
+  ItemLabel oldest = std::move(labels_.front());
+  labels_.pop_front();
+  auto image = renderers_.collect();
+  if (!image) return image.error();
+  return RenderedItem{.image = std::move(*image), .label = std::move(oldest)};
 }
 
 void ItemRenderer::discardPending() {
-  for (const app::SequenceLane& lane : lanes_) lane.renderer->discardPending();
-  pending_.clear();
-  nextLane_ = 0;
+  renderers_.discardPending();
+  labels_.clear();
 }
 
 }  // namespace dataset

@@ -59,32 +59,25 @@ class ItemRenderer {
   eng::Result<void> submit(const ItemParams& item);
   // The oldest submitted item, drawn and labelled. Refused when none is pending.
   eng::Result<RenderedItem> collect();
-  size_t pending() const { return pending_.size(); }
+  size_t pending() const { return labels_.size(); }
   // The next submit() would be refused.
-  bool full() const;
+  bool full() const { return renderers_.full(); }
   // Drops the items in flight (after an error: nothing of them is kept).
   void discardPending();
 
-  eng::Result<void> checkValidation() const { return renderers_->checkValidation(); }
-  const std::string& deviceName() const { return renderers_->deviceName(); }
-  uint32_t laneCount() const { return renderers_->laneCount(); }
+  eng::Result<void> checkValidation() const { return renderers_.checkValidation(); }
+  const std::string& deviceName() const { return renderers_.deviceName(); }
+  uint32_t laneCount() const { return renderers_.laneCount(); }
 
  private:
   ItemRenderer(const DatasetSpec& spec, app::FaceSetup face, app::SequenceRenderers renderers);
   void placeCamera(const ItemParams& item);
   ItemLabel label(const ItemParams& item) const;
 
-  struct Pending {
-    uint32_t lane = 0;
-    ItemLabel label;
-  };
-
   const DatasetSpec* spec_;
   std::unique_ptr<app::FaceSetup> face_;  // stable address: the tracker points into its model
-  std::unique_ptr<app::SequenceRenderers> renderers_;  // stable address: lanes_ point into it
-  std::vector<app::SequenceLane> lanes_;
-  std::deque<Pending> pending_;  // submitted, oldest first
-  uint32_t nextLane_ = 0;
+  app::SequenceRenderers renderers_;
+  std::deque<ItemLabel> labels_;  // of the items in flight, oldest first
   std::optional<app::FaceMaterials> materials_;
   std::optional<LandmarkTracker> tracker_;
   std::vector<std::string> targetNames_;  // the model's, flat

@@ -12,7 +12,7 @@
 #include "cli/command.h"
 #include "app/face_materials.h"
 #include "app/face_setup.h"
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/view_options.h"
 #include "app/program_error.h"
 #include "app/output_paths.h"
@@ -46,6 +46,8 @@ int runExpress(const ExpressOptions& o) {
   if (o.intensity < 0.0f || o.intensity > 1.0f)
     std::fprintf(stderr, "facial express: note: intensity %g clamped to [0, 1]\n", o.intensity);
 
+  // The device opens while the face loads.
+  auto opening = app::SequenceRenderers::open(*renderOptions, /*lanes=*/1);
   auto face = app::FaceSetup::load({.model = o.model, .rigmap = o.rigmap, .shapes = o.shapes, .autorig = !o.noAutorig, .program = "facial express"});
   if (!face) return fail(face.error().message);
   auto preset = face->findExpression(o.expression);
@@ -58,7 +60,7 @@ int runExpress(const ExpressOptions& o) {
   if (!materials) return fail(materials.error().message);
   if (auto moved = materials->update(vrmExpressions); !moved) return fail(moved.error().message);
 
-  auto renderer = app::HeadlessModelRenderer::create(face->displayModel(), *renderOptions);
+  auto renderer = opening.finish(face->displayModel());
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights, materials->materials());
   if (!image) return fail(image.error().message);

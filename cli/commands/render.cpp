@@ -13,7 +13,7 @@
 
 #include "cli/command.h"
 #include "app/face_setup.h"
-#include "app/headless_model_renderer.h"
+#include "app/sequence_renderers.h"
 #include "app/view_options.h"
 #include "app/program_error.h"
 #include "app/output_paths.h"
@@ -65,6 +65,8 @@ int runRender(const RenderOptions& o) {
   auto renderOptions = app::headlessRenderOptions(o.view);
   if (!renderOptions) return fail(renderOptions.error().message);
 
+  // The device opens while the face loads.
+  auto opening = app::SequenceRenderers::open(*renderOptions, /*lanes=*/1);
   auto face = importers::loadFace(o.model, {.shapes = o.shapes, .dressForDisplay = true});
   if (!face) return fail(face.error().message);
   const eng::Model* model = &face->model;
@@ -83,7 +85,7 @@ int runRender(const RenderOptions& o) {
     }
   }
 
-  auto renderer = app::HeadlessModelRenderer::create(face->displayModel(), *renderOptions);
+  auto renderer = opening.finish(face->displayModel());
   if (!renderer) return fail(renderer.error().message);
   auto image = renderer->render(weights);
   if (!image) return fail(image.error().message);
