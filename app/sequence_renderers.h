@@ -1,6 +1,8 @@
 #pragma once
-// The renderers a sequence draws with (app::recordSequence's lanes): one
-// model and one camera, options.framesInFlight frames in flight each.
+// The renderers a sequence draws with (app::recordSequence's lanes), and
+// pictures drawn in flight without one (a dataset's items, a sheet's tiles,
+// a still command's one picture): one model and one camera,
+// options.framesInFlight frames in flight each.
 // On a CPU rasteriser a device renders a frame in two halves that do not
 // overlap: its queue thread shades vertices and bins triangles, then its
 // rasteriser threads fill them (lavapipe kept 2 cores about 80 % busy). A
