@@ -5,7 +5,8 @@
 // (the two halves add up to the unit), a unit of both lips into its upper and
 // lower lip by a mask across the lip line. The other direction of
 // facial/runtime/rig/arkit_scheme.cpp (ARKit -> units). Gaze, cheek puff,
-// dimples, mouth and jaw sideways and mouthClose have no unit to come from.
+// dimples, mouth and jaw sideways and mouthClose have no unit to come from:
+// autorig/arkit_from_geometry.h makes those.
 #include <span>
 #include <string>
 #include <vector>

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <glm/gtx/compatibility.hpp>
 
+#include "autorig/arkit_from_geometry.h"
 #include "autorig/arkit_from_units.h"
 #include "autorig/dense_correspondence.h"
 #include "autorig/face_frame.h"
@@ -175,6 +176,22 @@ struct Moved {
   std::vector<glm::vec3> positions;
   std::vector<NamedDeltas> units;
 };
+
+// Vertices no unit moves, after the others: every unit gets zeros for them.
+void appendStill(Moved& moved, const FaceSurface& still) {
+  moved.vertices.insert(moved.vertices.end(), still.vertices.begin(), still.vertices.end());
+  moved.positions.insert(moved.positions.end(), still.positions.begin(), still.positions.end());
+  for (NamedDeltas& unit : moved.units) unit.deltas.resize(moved.positions.size(), glm::vec3(0.0f));
+}
+
+// The skin's smooth normals, per vertex of `skin` (outward for glTF's
+// counter-clockwise front faces).
+std::vector<glm::vec3> skinNormals(const FaceSurface& skin) {
+  std::vector<uint32_t> indices;
+  indices.reserve(skin.triangles.size() * 3);
+  for (const auto& t : skin.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  return eng::computeSmoothNormals(skin.positions, indices);
+}
 
 // Lids slide over the eyeball: a vertex near an eye keeps its distance to
 // the eye's centre, so a blink closes along the ball instead of through it.
@@ -531,7 +548,10 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   if (!matched) return matched.error().prefixed("target transfer: ");
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
-  const Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
+  Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
+  // The eyeballs: no unit moves them, the gaze shapes turn them.
+  const FaceSurface eyes = gatherSurface(face, posed, parts, {FacePart::EyeballRight, FacePart::EyeballLeft});
+  appendStill(moved, eyes);
 
   TransferResult result{.model = face, .report = {}};
   TransferReport& report = result.report;
@@ -539,10 +559,22 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   if (options.actionUnits)
     for (const NamedDeltas& unit : moved.units) made.push_back(unit);
   if (options.arkit) {
-    std::vector<std::string> unmade;
-    for (NamedDeltas& shape : arkitFromUnits(moved.units, moved.positions, frame, unmade)) made.push_back(std::move(shape));
+    std::vector<std::string> fromGeometry, unmade;
+    std::vector<NamedDeltas> shapes = arkitFromUnits(moved.units, moved.positions, frame, fromGeometry);
+    std::vector<FacePart> vertexParts = tgt.parts;
+    vertexParts.insert(vertexParts.end(), jaw.parts.begin(), jaw.parts.end());
+    vertexParts.insert(vertexParts.end(), eyes.parts.begin(), eyes.parts.end());
+    std::vector<glm::vec3> normals = skinNormals(tgt);
+    normals.resize(moved.positions.size(), glm::vec3(0.0f));
+    const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,
+                                 .landmarks = &landmarks, .frame = &frame, .faceParts = &parts};
+    for (NamedDeltas& shape : arkitFromGeometry(fromGeometry, moved.units, geometry, unmade)) shapes.push_back(std::move(shape));
+    std::stable_sort(shapes.begin(), shapes.end(), [](const NamedDeltas& a, const NamedDeltas& b) {
+      return facial::arkitIndex(a.name).value_or(0) < facial::arkitIndex(b.name).value_or(0);
+    });
+    for (NamedDeltas& shape : shapes) made.push_back(std::move(shape));
     if (!unmade.empty()) {
-      std::string line = std::to_string(unmade.size()) + " ARKit shapes have no action unit to be made from:";
+      std::string line = std::to_string(unmade.size()) + " ARKit shapes were not made (the gaze shapes need eyeballs of the face's own; the others their action unit or the jaw drop):";
       for (const std::string& name : unmade) line += " " + name;
       report.warnings.push_back(line);
     }
