@@ -211,7 +211,7 @@ class Maker {
       const float above = f_.aboveLipLine(p);
       const float u = (f_.sideOf(p) - middle) / (1.6f * halfWidth);
       const float h = above > 0.0f ? above / toNose : -above / toChin;
-      const float w = fade(0.55f, 1.0f, std::sqrt(u * u + h * h)) * outer_[v];
+      const float w = fade(0.55f, 1.0f, std::sqrt(u * u + h * h)) * inFront(p);
       deltas[v] = sign * kMouthSideways * span_ * w * alongSurface(v, f_.side());
     }
     return deltas;

@@ -169,9 +169,9 @@ constexpr Row kGeometryRows[] = {
     {"eyeLookInLeft", "eyeLookIn_L", 0.75f, 0.69f},
     {"eyeLookOutLeft", "eyeLookOut_L", 0.79f, 0.75f},
     {"jawLeft", "jawLeft", 0.51f, 0.81f},
-    {"mouthLeft", "mouthLeft", 0.80f, 0.62f},
-    // The inside of the mouth closes with the lips (facecap's stays: ours held
-    // back tore the lips' inner rims), hence the RMS over 1.
+    {"mouthLeft", "mouthLeft", 0.99f, 0.56f},
+    // The inside of the mouth moves with the lips (facecap's stays: held back,
+    // it tore the lips' inner rims from them), hence mouthClose's RMS over 1.
     {"mouthClose", "mouthClose", 1.30f, 0.71f},
     {"cheekPuff", "cheekPuff", 0.69f, 0.71f},
     {"mouthDimpleLeft", "mouthDimple_L", 0.64f, 0.74f},
