@@ -435,11 +435,15 @@ eng::Result<void> RigMappingBuilder::markDrivenTargets(RigMapping& mapping) cons
         if (stage_->binds[b].target < driven.size()) driven[stage_->binds[b].target] = true;
     }
   }
+  // A name the model has on several meshes (a head, its teeth, its beard) is named once.
+  auto once = [](std::vector<std::string>& names, const std::string& name) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  };
   for (const std::string& name : targetNames_)
-    if (isViseme(name)) mapping.report_.visemes.push_back(name);
+    if (isViseme(name)) once(mapping.report_.visemes, name);
   for (uint32_t t = 0; t < driven.size(); ++t) {
     if (driven[t]) mapping.drivenTargets_.push_back(t);
-    else if (stage_ || !isViseme(mapping.targetNames_[t])) mapping.report_.unmappedTargets.push_back(mapping.targetNames_[t]);
+    else if (stage_ || !isViseme(mapping.targetNames_[t])) once(mapping.report_.unmappedTargets, mapping.targetNames_[t]);
   }
   const uint32_t inputs = rigInputCount();
   for (uint32_t i = 0; i < inputs; ++i)

@@ -88,10 +88,10 @@ std::optional<Viseme> rigVisemeIndex(std::string_view name);
 struct RigMappingReport {
   RigScheme scheme = RigScheme::ActionUnits;
   std::string detail;                        // how the scheme was recognised, e.g. "52 of 52 ARKit names (_L/_R spelling)"
-  std::vector<std::string> unmappedTargets;  // model targets that no input drives
+  std::vector<std::string> unmappedTargets;  // model targets that no input drives (each name once)
   std::vector<std::string> unmappedInputs;   // AU / emotion channels that drive no target
   std::vector<std::string> notes;            // approximations and other decisions worth knowing
-  std::vector<std::string> visemes;          // lip-sync shapes / expressions of the model
+  std::vector<std::string> visemes;          // lip-sync shapes / expressions of the model (each name once)
   std::string speech;                        // how the viseme block is realised ("" when the rig cannot speak)
   // How each emotion channel is realised when the rig binds emotions
   // ("happy <- 'joy'", "fear <- 'surprised' x0.55 + 'sad' x0.45"); empty when

@@ -156,6 +156,18 @@ TEST(RigMappingDetection, SameNameOnSeveralMeshesDrivesAll) {
   EXPECT_EQ(out, (std::vector<float>{1.0f, 1.0f, 0.0f}));
 }
 
+// A report names each target once, however many meshes carry it (a Ready
+// Player Me avatar has its visemes on the head, the teeth and the beard).
+TEST(RigMappingDetection, ReportNamesATargetOnSeveralMeshesOnce) {
+  const std::vector<std::string> targets = {"viseme_aa", "custom", "viseme_aa", "custom", "viseme_O"};
+  auto mapping = buildRigMapping(targets);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->report().visemes, (std::vector<std::string>{"viseme_aa", "viseme_O"}));
+  EXPECT_EQ(mapping->report().unmappedTargets, std::vector<std::string>{"custom"});
+  EXPECT_NE(mapping->report().summary().find("visemes (2, lip sync): viseme_aa, viseme_O\n"), std::string::npos)
+      << mapping->report().summary();
+}
+
 TEST(RigMappingDetection, RigMapFileInTheDirectoryWinsOverDetection) {
   const std::filesystem::path dir = testing_support::freshTempDir("rigmap_detection");
   testing_support::writeFile(dir / "bot.json",
