@@ -3,7 +3,7 @@
 // Never part of the product build.
 //
 //   cd tools/threejs-compare && npm install
-//   node render.mjs MODEL.glb OUT.png [--clip NAME|N|all] [--time S] [--yaw DEG] [--pitch DEG] [--size PX]
+//   node render.mjs MODEL.glb OUT.png [--clip NAME|N|all] [--time S] [--weights NAME=V,...] [--yaw DEG] [--pitch DEG] [--size PX]
 //
 // Needs Debian's `chromium` (apt-get install chromium). The page is served
 // by serve.mjs (shared with bench/peer/); the model's folder is under /files/.
@@ -19,7 +19,7 @@ for (let i = 0; i < args.length; ++i) {
   else positional.push(args[i]);
 }
 if (positional.length !== 2) {
-  console.error('usage: node render.mjs MODEL.glb OUT.png [--clip NAME|N|all] [--time S] [--yaw DEG] [--pitch DEG] [--size PX]');
+  console.error('usage: node render.mjs MODEL.glb OUT.png [--clip NAME|N|all] [--time S] [--weights NAME=V,...] [--yaw DEG] [--pitch DEG] [--size PX]');
   process.exit(2);
 }
 const model = path.resolve(positional[0]);
@@ -31,7 +31,8 @@ const size = Number(options.size || 256);
 const server = await startServer({ pageDir: here, filesDir: path.dirname(model) });
 const query = new URLSearchParams({ model: '/files/' + path.basename(model), size: String(size),
                                     yaw: options.yaw || '0', pitch: options.pitch || '0',
-                                    clip: options.clip || '', time: options.time || '0' });
+                                    clip: options.clip || '', time: options.time || '0',
+                                    weights: options.weights || '' });
 const url = `http://127.0.0.1:${server.address().port}/page.html?${query}`;
 const chromium = launchChromium(url, size, ['--virtual-time-budget=20000', `--screenshot=${out}`]);
 const code = await new Promise((resolve) => chromium.on('close', resolve));
