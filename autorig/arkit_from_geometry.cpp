@@ -98,7 +98,10 @@ class Maker {
   std::vector<float> outerSkin() const {
     auto cellOf = [&](const glm::vec3& p) {
       const glm::vec3 q = p - f_.origin();
-      return glm::ivec2(glm::floor(glm::vec2(glm::dot(q, f_.side()), glm::dot(q, f_.up())) / (kOuterCell * span_)));
+      // Clamped: a stray vertex far off (a hostile file) must not overflow the cast.
+      const glm::vec2 cell = glm::vec2(glm::dot(q, f_.side()), glm::dot(q, f_.up())) / (kOuterCell * span_);
+      if (!std::isfinite(cell.x) || !std::isfinite(cell.y)) return glm::ivec2(std::numeric_limits<int>::min());
+      return glm::ivec2(glm::clamp(glm::floor(cell), glm::vec2(-1e6f), glm::vec2(1e6f)));
     };
     auto key = [](glm::ivec2 c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); };
     std::unordered_map<int64_t, float> frontMost;
@@ -242,8 +245,9 @@ class Maker {
     for (size_t v = 0; v < count(); ++v) {
       const float below = -f_.aboveLipLine(g_.positions[v]);
       if (!isSkin(g_.parts[v]) || below < 0.0f || below > lowerLip || !(outer_[v] > 0.5f)) continue;
-      const int bin = int(std::floor((f_.sideOf(g_.positions[v]) - from) / binWidth));
-      if (bin < 0 || bin >= kBins) continue;
+      const float at = (f_.sideOf(g_.positions[v]) - from) / binWidth;
+      if (!(at >= 0.0f && at < float(kBins))) continue;
+      const int bin = int(at);
       sum[size_t(bin)] += opening(v), weight[size_t(bin)] += 1.0f;
     }
     std::array<glm::vec3, kBins> lowerOpening{};
