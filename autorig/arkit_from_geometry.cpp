@@ -100,7 +100,7 @@ class Maker {
       const glm::vec3 q = p - f_.origin();
       // Clamped: a stray vertex far off (a hostile file) must not overflow the cast.
       const glm::vec2 cell = glm::vec2(glm::dot(q, f_.side()), glm::dot(q, f_.up())) / (kOuterCell * span_);
-      if (!std::isfinite(cell.x) || !std::isfinite(cell.y)) return glm::ivec2(std::numeric_limits<int>::min());
+      if (!std::isfinite(cell.x) || !std::isfinite(cell.y)) return glm::ivec2(2000000);  // a cell of its own
       return glm::ivec2(glm::clamp(glm::floor(cell), glm::vec2(-1e6f), glm::vec2(1e6f)));
     };
     auto key = [](glm::ivec2 c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); };
