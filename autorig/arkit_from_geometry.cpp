@@ -47,12 +47,6 @@ float fade(float edge0, float edge1, float x) { return 1.0f - glm::smoothstep(ed
 
 bool isSkin(FacePart part) { return part == FacePart::Skin || part == FacePart::Lashes; }
 
-const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name, size_t vertices) {
-  for (const NamedDeltas& u : units)
-    if (u.name == name && u.deltas.size() == vertices) return &u;
-  return nullptr;
-}
-
 class Maker {
  public:
   Maker(std::span<const NamedDeltas> units, const ShapeGeometry& g)

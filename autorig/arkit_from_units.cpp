@@ -84,13 +84,14 @@ float maskWeight(Mask mask, const glm::vec3& p, const LandmarkFrame& frame) {
   return 1.0f;
 }
 
-const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name) {
-  for (const NamedDeltas& u : units)
-    if (u.name == name) return &u;
-  return nullptr;
-}
 
 }  // namespace
+
+const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name, size_t vertices) {
+  for (const NamedDeltas& u : units)
+    if (u.name == name && u.deltas.size() == vertices) return &u;
+  return nullptr;
+}
 
 std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
                                         const LandmarkFrame& frame, std::vector<std::string>& unmade) {
@@ -102,8 +103,8 @@ std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std:
     if (row != kShapes.end()) {
       for (const Term& term : row->terms) {
         if (term.unit.empty()) continue;
-        const NamedDeltas* unit = findUnit(units, term.unit);
-        if (!unit || unit->deltas.size() != positions.size()) continue;
+        const NamedDeltas* unit = findUnit(units, term.unit, positions.size());
+        if (!unit) continue;
         made = true;
         for (size_t v = 0; v < positions.size(); ++v)
           shape.deltas[v] += term.gain * maskWeight(term.mask, positions[v], frame) * unit->deltas[v];

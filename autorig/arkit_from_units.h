@@ -9,6 +9,7 @@
 // autorig/arkit_from_geometry.h makes those.
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -22,6 +23,9 @@ struct NamedDeltas {
   std::string name;
   std::vector<glm::vec3> deltas;
 };
+
+// The unit named `name` over `vertices` vertices among `units`, or null.
+const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name, size_t vertices);
 
 // Shapes with ARKit's exact names (facial/runtime/rig/arkit_names.h), in
 // ARKit's order, over the same vertices as `units` (positions: world space,
