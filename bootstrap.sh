@@ -19,7 +19,7 @@ PACKAGES=(
   libglfw3-dev libx11-dev libxext-dev libglm-dev libtinygltf-dev libimgui-dev libstb-dev nlohmann-json3-dev
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtinyobjloader-dev
   libcgif-dev libimagequant-dev fonts-dejavu-core xvfb xauth xdotool
-  libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev
+  libmeshoptimizer-dev libdraco-dev libwebp-dev zlib1g-dev libpng-dev
   libespeak-ng-dev espeak-ng-data libsndfile1-dev libavformat-dev libavcodec-dev libswscale-dev
   libswresample-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
   libpocketsphinx-dev pocketsphinx-en-us

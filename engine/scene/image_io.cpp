@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
 #include <cstring>
 #include <memory>
+#include <new>
 
+#include <png.h>
 #include <stb_image.h>
-#include <stb_image_write.h>
 #include <webp/decode.h>
 #include <zlib.h>
 
@@ -27,10 +29,52 @@ Result<void> checkRgbaSize(int w, int h, size_t bytes, const std::string& what) 
   return {};
 }
 
-void appendBytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<uint8_t>*>(context);
-  const auto* bytes = static_cast<const uint8_t*>(data);
-  out->insert(out->end(), bytes, bytes + size);
+// libpng reports an error by calling its error function, which must not
+// return: ours keeps the message and long-jumps back to encodeRows' setjmp.
+// So nothing with a destructor lives in the frames between them.
+struct PngSink {
+  std::vector<uint8_t>* out = nullptr;
+  char message[160] = {};
+};
+
+[[noreturn]] void pngFailed(png_structp png, png_const_charp message) {
+  auto* sink = static_cast<PngSink*>(png_get_error_ptr(png));
+  std::snprintf(sink->message, sizeof(sink->message), "%s", message);
+  png_longjmp(png, 1);
+}
+
+void pngWarning(png_structp, png_const_charp) {}  // (none for what we write)
+
+void pngAppend(png_structp png, png_bytep data, size_t size) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  bool grown = true;
+  try {
+    sink->out->insert(sink->out->end(), data, data + size);
+  } catch (const std::bad_alloc&) {
+    grown = false;  // (png_error outside the handler: a jump out of it would leak the exception)
+  }
+  if (!grown) png_error(png, "out of memory for the encoded image");
+}
+
+void pngFlush(png_structp) {}
+
+// zlib level 2 with the Sub filter on every row: a 512x512 rendered frame in
+// 6.3 ms and 162 KB, where stb_image_write (level 8, the best of five filters
+// per row) took 27.8 ms for 180 KB and zlib level 6 24 ms for 114 KB. Frames
+// written in a sequence are encoded while the next ones render, on the same
+// cores, so the encoder's time is the sequence's.
+bool encodeRows(png_structp png, png_infop info, int w, int h, const uint8_t* rgba8) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, PNG_COLOR_TYPE_RGBA,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_compression_level(png, 2);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+  png_write_info(png, info);
+  const size_t stride = static_cast<size_t>(w) * 4;
+  for (int y = 0; y < h; ++y)  // (libpng copies each row before filtering it: the pixels stay as given)
+    png_write_row(png, const_cast<png_bytep>(rgba8 + stride * static_cast<size_t>(y)));
+  png_write_end(png, nullptr);
+  return true;
 }
 
 // stb's own header check refuses what it could not decode (60000 x 60000 PNG, JPEG) and
@@ -166,10 +210,22 @@ bool isKtx2(std::span<const uint8_t> encoded) {
 
 Result<std::vector<uint8_t>> encodePng(int w, int h, std::span<const uint8_t> rgba8) {
   if (auto ok = checkRgbaSize(w, h, rgba8.size(), "encodePng"); !ok) return ok.error();
-  std::vector<uint8_t> png;
-  if (!stbi_write_png_to_func(appendBytes, &png, w, h, 4, rgba8.data(), w * 4))
-    return makeError(ErrorKind::Io, "encodePng: stb failed to encode a " + std::to_string(w) + "x" + std::to_string(h) + " image");
-  return png;
+  std::vector<uint8_t> encoded;
+  encoded.reserve(rgba8.size() / 2);
+  PngSink sink{&encoded};
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, pngFailed, pngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  bool written = false;
+  if (info) {
+    png_set_write_fn(png, &sink, pngAppend, pngFlush);
+    written = encodeRows(png, info, w, h, rgba8.data());
+  } else {
+    std::snprintf(sink.message, sizeof(sink.message), "libpng could not allocate its state");
+  }
+  png_destroy_write_struct(&png, &info);  // (either may be null)
+  if (!written)
+    return makeError(ErrorKind::Io, "encodePng: a " + std::to_string(w) + "x" + std::to_string(h) + " image: " + sink.message);
+  return encoded;
 }
 
 Result<void> writePng(const std::filesystem::path& path, int w, int h, std::span<const uint8_t> rgba8) {

@@ -1,5 +1,5 @@
 #pragma once
-// PNG writing and image reading (PNG, JPEG, ... via stb), RGBA8 only.
+// PNG writing (libpng) and image reading (PNG, JPEG, ... via stb), RGBA8 only.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

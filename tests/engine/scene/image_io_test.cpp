@@ -1,4 +1,4 @@
-// PNG writing and image reading through stb.
+// PNG writing (libpng) and image reading (stb).
 #include <string>
 
 #include <gtest/gtest.h>
@@ -70,6 +70,25 @@ TEST(ImageIo, EncodeDecodeInMemory) {
   EXPECT_EQ((*png)[1], 'P');
   auto img = eng::decodeImage(*png, "mem");
   ASSERT_TRUE(img.ok());
+  EXPECT_EQ(img->rgba8, pixels);
+}
+
+// Noise (every byte, alpha too) does not compress: the encoder's output
+// outgrows what it reserved, and each channel must still come back exactly.
+TEST(ImageIo, IncompressibleNoiseWithAlphaRoundTripsExactly) {
+  std::vector<uint8_t> pixels(size_t{97} * 61 * 4);
+  uint32_t state = 12345;
+  for (uint8_t& byte : pixels) {
+    state = state * 1664525u + 1013904223u;
+    byte = static_cast<uint8_t>(state >> 24);
+  }
+  auto png = eng::encodePng(97, 61, pixels);
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_GT(png->size(), pixels.size() / 2);
+  auto img = eng::decodeImage(*png, "noise");
+  ASSERT_TRUE(img.ok()) << img.error().message;
+  EXPECT_EQ(img->width, 97);
+  EXPECT_EQ(img->height, 61);
   EXPECT_EQ(img->rgba8, pixels);
 }
 
