@@ -154,6 +154,38 @@ float innerLipDepthLimit(const autorig::SurfaceCaster& caster, const autorig::Fa
   return caster.depth(before) + 0.2f * width;
 }
 
+// How deep a lid point (37, 38, 40, 41; 43, 44, 46, 47) may lie: no deeper
+// than the line between its eye's corners at its place, and a twentieth of
+// the eye's width. A lid bulges over the ball in front of that line; a ray
+// through the opening that meets the inside of a closed socket (Ready Player
+// Me's faces have no hole at the eyes) found a point 10 mm behind the lid,
+// which the warp then dragged the source's lid towards. Infinity until the
+// corners are on the surface.
+float lidDepthLimit(const autorig::SurfaceCaster& caster, const autorig::FaceLandmarks& landmarks, glm::vec2 pixel,
+                    size_t i) {
+  const bool right = i >= 37 && i <= 41 && i != 39, left = i >= 43 && i <= 47 && i != 45;
+  if (!right && !left) return std::numeric_limits<float>::infinity();
+  const glm::vec3& a = landmarks.points[right ? 36 : 42];
+  const glm::vec3& b = landmarks.points[right ? 39 : 45];
+  const std::optional<glm::vec2> pa = caster.project(a), pb = caster.project(b);
+  if (!pa || !pb || !std::isfinite(a.x) || !std::isfinite(b.x)) return std::numeric_limits<float>::infinity();
+  const glm::vec2 across = *pb - *pa;
+  const float span = glm::dot(across, across);
+  const float t = span > 0.0f ? std::clamp(glm::dot(pixel - *pa, across) / span, 0.0f, 1.0f) : 0.5f;
+  return glm::mix(caster.depth(a), caster.depth(b), t) + 0.05f * glm::distance(a, b);
+}
+
+// The order points are cast in: each eye's corners before its lids (whose
+// depth they bound), the outer lips before the inner ones (as numbered).
+constexpr std::array<size_t, autorig::kLandmarkCount> kCastOrder = [] {
+  std::array<size_t, autorig::kLandmarkCount> order{};
+  size_t n = 0;
+  for (size_t i = 0; i < 36; ++i) order[n++] = i;
+  for (size_t i : {36, 39, 42, 45, 37, 38, 40, 41, 43, 44, 46, 47}) order[n++] = i;
+  for (size_t i = 48; i < autorig::kLandmarkCount; ++i) order[n++] = i;
+  return order;
+}();
+
 // Each detected pixel cast onto the face; the first that misses is named.
 eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& caster, const Sighting& seen,
                                                  uint32_t size, const std::string& name,
@@ -161,9 +193,12 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
   autorig::FaceLandmarks landmarks;
   landmarks.source = describe(seen.face);
   std::optional<size_t> missed;
-  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {  // in order: the outer lips before the inner
-    const std::optional<autorig::SurfacePoint> hit =
-        caster.cast(seen.face.pixels[i], kReach * float(size), innerLipDepthLimit(caster, landmarks, i));
+  for (const size_t i : kCastOrder) {
+    const float limit = std::min(innerLipDepthLimit(caster, landmarks, i),
+                                 lidDepthLimit(caster, landmarks, seen.face.pixels[i], i));
+    std::optional<autorig::SurfacePoint> hit = caster.cast(seen.face.pixels[i], kReach * float(size), limit);
+    if (!hit && std::isfinite(limit))  // nothing in front of the limit: a deep point rigs better than none
+      hit = caster.cast(seen.face.pixels[i], kReach * float(size), std::numeric_limits<float>::infinity());
     if (hit) landmarks.points[i] = hit->position;
     else if (!missed) missed = i, landmarks.points[i] = glm::vec3(NAN);
   }

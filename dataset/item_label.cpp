@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -20,9 +19,9 @@ double weight(float value) { return rounded(value, 10000.0); }
 std::string numbered(const char* folder, uint64_t index, uint64_t count, const char* extension) {
   int digits = 6;
   for (uint64_t last = count > 0 ? count - 1 : 0; last >= 1000000; last /= 10) ++digits;
-  char text[64];
-  std::snprintf(text, sizeof text, "%s/%0*llu.%s", folder, digits, static_cast<unsigned long long>(index), extension);
-  return text;
+  std::string number = std::to_string(index);
+  if (number.size() < size_t(digits)) number.insert(0, size_t(digits) - number.size(), '0');
+  return std::string(folder) + "/" + number + "." + extension;
 }
 
 nlohmann::ordered_json weightObject(const std::vector<std::pair<std::string, float>>& weights) {

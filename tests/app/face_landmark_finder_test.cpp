@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 #include <numeric>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -78,6 +79,22 @@ void expectFaceLayout(const autorig::FaceLandmarks& l) {
   EXPECT_NEAR(glm::distance(p[36], p[39]) / span, 0.28f, 0.1f);
 }
 
+// Each lid point lies on its lid, which bulges over the eyeball: not behind
+// the line between its eye's corners (the face looks along +z here). A ray
+// through the eye opening of a closed socket found the socket's inside.
+void expectLidsInFrontOfTheirCorners(const autorig::FaceLandmarks& l) {
+  const auto& p = l.points;
+  for (const auto& [outer, inner, lids] :
+       {std::tuple{36, 39, std::array{37, 38, 40, 41}}, std::tuple{42, 45, std::array{43, 44, 46, 47}}}) {
+    const glm::vec3 a = p[size_t(outer)], b = p[size_t(inner)];
+    const float width = glm::distance(a, b);
+    for (const int k : lids) {
+      const float t = std::clamp((p[size_t(k)].x - a.x) / (b.x - a.x), 0.0f, 1.0f);
+      EXPECT_GT(p[size_t(k)].z, glm::mix(a.z, b.z, t) - 0.06f * width) << "landmark " << k;
+    }
+  }
+}
+
 // The share of the posed primitives of mesh `name` (all of them, or only
 // primitive `primitive`) that is `part`.
 float shareOf(const Found& f, const std::string& name, autorig::FacePart part, int primitive = -1) {
@@ -94,6 +111,7 @@ TEST(FaceLandmarkFinder, BuiltInHeadFeaturesWhereTheMeshHasThem) {
   Found f = find(testing_support::sourceDir() / "data" / "head.glb", "head");
   ASSERT_TRUE(f.landmarks.source.starts_with("dlib")) << f.landmarks.source;
   expectFaceLayout(f.landmarks);
+  expectLidsInFrontOfTheirCorners(f.landmarks);
   const auto& p = f.landmarks.points;
   const float span = glm::distance(p[36], p[45]);
   // The head is symmetric about x = 0, the eyes sit over the eyeball meshes
@@ -138,6 +156,7 @@ TEST(FaceLandmarkFinder, FacecapFeaturesWhereTheMeshHasThem) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   Found f = find(path, "facecap");
   expectFaceLayout(f.landmarks);
+  expectLidsInFrontOfTheirCorners(f.landmarks);
   // Its own ARKit targets say where its features are: the subject's left
   // lid ("_L": landmarks 42-47) closes most at the middle of 43-44, the left
   // smile pulls corner 54 most, the inner brows rise between 21 and 22, the
@@ -188,6 +207,7 @@ TEST(FaceLandmarkFinder, ReadyPlayerMeAvatarFeaturesInOrder) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "needs ../shared/speech/rpm-visemes.glb";
   Found f = find(path, "rpm-visemes");
   expectFaceLayout(f.landmarks);
+  expectLidsInFrontOfTheirCorners(f.landmarks);  // (37 and 47 were 10 mm deep, in its closed sockets)
   using autorig::FacePart;
   EXPECT_EQ(shareOf(f, "Wolf3D_Head", FacePart::Skin), 1.0f);
   EXPECT_EQ(shareOf(f, "EyeLeft", FacePart::EyeballLeft), 1.0f);  // ARKit's and RPM's Left: the subject's
