@@ -1,6 +1,7 @@
 #include "autorig/target_transfer.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -226,6 +227,8 @@ constexpr float kLidTurnInner = 1.25f, kLidTurnOuter = 1.75f;
 struct EyeLids {
   JawHinge axis;  // through the eye's centre, towards the subject's left
   glm::vec3 upper{0.0f}, lower{0.0f};  // the lids' margins (landmark pair middles)
+  glm::vec3 cornerRight{0.0f}, cornerLeft{0.0f};  // the eye's corners (36, 39 or 42, 45)
+  glm::vec3 forward{0.0f, 0.0f, 1.0f};             // out of the face
   float radius = 0.0f;
   float openAngle() const { return std::abs(hingeAngle(axis, upper, lower - upper)); }
 };
@@ -240,6 +243,9 @@ EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t e
   EyeLids lids{.axis = {.pivot = parts.eyeCentres[eye], .axis = frame.side()},
                .upper = (landmarks.points[l[0]] + landmarks.points[l[1]]) * 0.5f,
                .lower = (landmarks.points[l[2]] + landmarks.points[l[3]]) * 0.5f,
+               .cornerRight = landmarks.points[eye == 0 ? 36 : 42],
+               .cornerLeft = landmarks.points[eye == 0 ? 39 : 45],
+               .forward = frame.forward(),
                .radius = parts.eyeRadii[eye]};
   std::unordered_map<uint64_t, int> edges;
   for (const auto& t : surface.triangles)
@@ -264,6 +270,85 @@ EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t e
   }
   if (bestUpper < 0.1f && bestLower < 0.1f) lids.upper = rimUpper, lids.lower = rimLower;
   return lids;
+}
+
+// Columns across an eye for the closing turn's gain, and how far beyond the
+// corners (in eye widths) the gain fades back to 1.
+constexpr size_t kLidColumns = 8;
+constexpr float kColumnFade = 0.2f;
+constexpr float kMaxColumnGain = 2.0f;
+
+struct LidColumns {
+  std::array<float, kLidColumns> gain{};
+  float columnOf(const EyeLids& eye, const glm::vec3& p) const {
+    const float width = glm::dot(eye.cornerLeft - eye.cornerRight, eye.axis.axis);
+    return width > 0.0f ? glm::dot(p - eye.cornerRight, eye.axis.axis) / width : 0.5f;
+  }
+  // Between the columns' middles linearly; past the corners fading to 1.
+  float at(float t) const {
+    const float x = std::clamp(t, 0.0f, 1.0f) * float(kLidColumns) - 0.5f;
+    const size_t i = size_t(std::clamp(x, 0.0f, float(kLidColumns - 1)));
+    const size_t j = std::min(i + 1, kLidColumns - 1);
+    const float inside = glm::mix(gain[i], gain[j], std::clamp(x - float(i), 0.0f, 1.0f));
+    const float beyond = std::max(-t, t - 1.0f);
+    return glm::mix(inside, 1.0f, glm::smoothstep(0.0f, kColumnFade, beyond));
+  }
+};
+
+// The turn that closes the lid's middle by the source's share can leave a
+// column of the target's eye open: the share each vertex follows is carried
+// from the source, whose opening narrows towards its corners otherwise
+// (Ready Player Me's inner corners kept a sliver of white at a blink). In
+// each column across the eye the upper lid's margin (the upper-lid vertex on
+// the ball's front nearest the lower lid) is measured against the lower
+// lid's, and that column's turn scaled up so the margin closes the same share
+// of its own column's opening as the middle does (never down: a column the
+// turn closes already stays as it was).
+LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, const FaceSurface& tgt,
+                          const std::vector<FaceRegion>& regions, FaceRegion upper,
+                          const std::vector<float>& follow) {
+  LidColumns columns;
+  columns.gain.fill(1.0f);
+  const float closing = targetAngle < 0.0f ? -1.0f : 1.0f;
+  std::array<float, kLidColumns> upperAt, lowerAt, upperFollow{};
+  upperAt.fill(-std::numeric_limits<float>::infinity());
+  lowerAt.fill(std::numeric_limits<float>::infinity());
+  for (size_t v = 0; v < tgt.positions.size(); ++v) {
+    const glm::vec3& p = tgt.positions[v];
+    const glm::vec3 out = p - to.axis.pivot;
+    const float distance = glm::length(out);
+    // On the ball's front: the lids' margins, not the socket behind the ball.
+    if (distance < 0.9f * to.radius || distance > kLidTurnInner * to.radius ||
+        glm::dot(out, to.forward) < 0.3f * to.radius)
+      continue;
+    const float t = columns.columnOf(to, p);
+    if (!(t >= 0.0f && t < 1.0f)) continue;
+    const size_t k = size_t(t * float(kLidColumns));
+    const float along = closing * hingeAngle(to.axis, to.lower, p - to.lower);  // < 0: above the lower lid's middle
+    if (regions[v] == upper && along > upperAt[k]) upperAt[k] = along, upperFollow[k] = follow[v];
+    if (regions[v] == opposite(upper) && along < lowerAt[k]) lowerAt[k] = along;
+  }
+  std::array<bool, kLidColumns> measured{};
+  for (size_t k = 0; k < kLidColumns; ++k) {
+    const float got = upperFollow[k] * std::abs(targetAngle);
+    if (!std::isfinite(upperAt[k]) || !std::isfinite(lowerAt[k]) || !(got > 1e-4f)) continue;
+    const float needed = share * (lowerAt[k] - upperAt[k]);
+    columns.gain[k] = std::clamp(needed / got, 1.0f, kMaxColumnGain);
+    measured[k] = true;
+  }
+  // A column without a vertex on each margin (a coarse lid) takes its measured neighbours' mean.
+  const std::array<float, kLidColumns> gains = columns.gain;
+  for (size_t k = 0; k < kLidColumns; ++k) {
+    if (measured[k]) continue;
+    float sum = 0.0f;
+    int n = 0;
+    for (size_t i = k; i-- > 0;)
+      if (measured[i]) { sum += gains[i], ++n; break; }
+    for (size_t i = k + 1; i < kLidColumns; ++i)
+      if (measured[i]) { sum += gains[i], ++n; break; }
+    if (n > 0) columns.gain[k] = sum / float(n);
+  }
+  return columns;
 }
 
 // A closing unit as the upper lid turning over the eyeball about its centre
@@ -292,12 +377,21 @@ void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const Tri
       if (energy > 0.0f) follow[i].x = std::clamp(glm::dot(raw[i], full) / energy, 0.0f, 1.0f);
     }
     const float targetAngle = std::copysign(share * to.openAngle(), angle);
+    std::vector<float> targetFollow(tgt.positions.size(), 0.0f);
+    for (size_t v = 0; v < tgt.positions.size(); ++v)
+      if (corr.matches[v].found) targetFollow[v] = atMatch(follow, src, corr.matches[v]).x;
+    // Only a unit that closes the eye (its turn takes the upper lid towards the lower) is closed column by column.
+    const bool closes = angle * hingeAngle(from.axis, from.upper, from.lower - from.upper) > 0.0f;
+    const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
+    LidColumns columns;
+    columns.gain.fill(1.0f);
+    if (closes) columns = closingColumns(to, targetAngle, share, tgt, corr.targetRegions, upper, targetFollow);
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
       const float near = 1.0f - glm::smoothstep(kLidTurnInner * to.radius, kLidTurnOuter * to.radius,
                                                 glm::length(tgt.positions[v] - to.axis.pivot));
       if (near <= 0.0f || !corr.matches[v].found) continue;
-      const float f = atMatch(follow, src, corr.matches[v]).x;
-      deltas[v] = glm::mix(deltas[v], f * turnAboutHinge(to.axis, targetAngle, tgt.positions[v]), near);
+      const float turn = targetAngle * columns.at(columns.columnOf(to, tgt.positions[v]));
+      deltas[v] = glm::mix(deltas[v], targetFollow[v] * turnAboutHinge(to.axis, turn, tgt.positions[v]), near);
     }
   }
 }

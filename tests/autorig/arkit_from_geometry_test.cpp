@@ -109,7 +109,9 @@ TEST(ArkitFromGeometry, GazeTurnsOneEyeballAboutItsCentreAndTheLidsFollowIt) {
     size_t front = 0;
     float frontDepth = -INFINITY;
     for (size_t v = 0; v < d.size(); ++v) {
-      if (r->parts[v] == other) EXPECT_EQ(d[v], glm::vec3(0.0f));
+      if (r->parts[v] == other) {
+        EXPECT_EQ(d[v], glm::vec3(0.0f));
+      }
       if (r->parts[v] != ball) continue;
       // A turn: every point of the ball keeps its distance to the centre.
       EXPECT_NEAR(glm::distance(r->positions[v] + d[v], centre), glm::distance(r->positions[v], centre), 1e-3f * radius);
@@ -175,7 +177,9 @@ TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSide) {
     for (size_t corner : {48, 54, 51, 57}) EXPECT_GT(sign * glm::dot(d[nearestHeadSkin(*r, l[corner])], frame.side()), 0.08f * span) << corner;
     for (size_t still : {30, 8, 37, 44}) EXPECT_LT(glm::length(d[nearestHeadSkin(*r, l[still])]), 0.02f * span) << still;
     for (size_t v = 0; v < d.size(); ++v)
-      if (r->parts[v] == FacePart::LowerTeeth || r->parts[v] == FacePart::UpperTeeth) ASSERT_EQ(d[v], glm::vec3(0.0f));
+      if (r->parts[v] == FacePart::LowerTeeth || r->parts[v] == FacePart::UpperTeeth) {
+        ASSERT_EQ(d[v], glm::vec3(0.0f));
+      }
   }
   for (const auto& [name, corner] : {std::pair{"mouthDimpleLeft", 54}, std::pair{"mouthDimpleRight", 48}}) {
     const glm::vec3 d = headDeltas(*r, name)[nearestHeadSkin(*r, l[size_t(corner)])];

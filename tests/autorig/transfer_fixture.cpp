@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "autorig/builtin_source.h"
+#include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/common/test_support.h"
@@ -117,6 +118,34 @@ Comparison compareTargets(const eng::Mesh& made, const char* madeName, const eng
   if (!(trueEnergy > 0.0)) return {};
   return {float(std::sqrt(diff / trueEnergy)), float(dot / std::sqrt(std::max(trueEnergy * madeEnergy, 1e-300))),
           float(dot / trueEnergy)};
+}
+
+float lidGap(const eng::Model& model, size_t m, const autorig::PosedFace& posed, const autorig::FaceLandmarks& landmarks,
+             const char* target, std::span<const size_t> upper, std::span<const size_t> lower) {
+  const autorig::PosedPrimitive* p = posed.find(m, 0);
+  const eng::Mesh& mesh = model.meshes[m];
+  const size_t t = size_t(std::find(mesh.targetNames.begin(), mesh.targetNames.end(), target) - mesh.targetNames.begin());
+  if (!p || t >= mesh.targetNames.size()) {
+    ADD_FAILURE() << "no " << target;
+    return NAN;
+  }
+  auto at = [&](size_t landmark, float weight) {
+    size_t nearest = 0;
+    for (size_t v = 0; v < p->positions.size(); ++v)
+      if (glm::length(p->positions[v] - landmarks.points[landmark]) <
+          glm::length(p->positions[nearest] - landmarks.points[landmark]))
+        nearest = v;
+    return p->positions[nearest] +
+           weight * (glm::inverse(p->worldToLocal[nearest]) * mesh.primitives[0].targets[t].positions[nearest]);
+  };
+  const glm::vec3 up = autorig::LandmarkFrame(landmarks).up();
+  auto side = [&](std::span<const size_t> points, float w) {
+    glm::vec3 sum(0.0f);
+    for (const size_t l : points) sum += at(l, w);
+    return sum / float(points.size());
+  };
+  auto gap = [&](float w) { return glm::dot(side(upper, w) - side(lower, w), up); };
+  return gap(1.0f) / gap(0.0f);
 }
 
 }  // namespace transfer_fixture

@@ -2,6 +2,7 @@
 // The built-in head in transfer tests: loaded, set up as the source, and a
 // way to compare two targets vertex by vertex.
 #include <optional>
+#include <span>
 
 #include "autorig/target_transfer.h"
 #include "engine/scene/model.h"
@@ -22,6 +23,13 @@ eng::Model stripped(eng::Model model);
 std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
                                                               const char* landmarksFile,
                                                               autorig::FaceLandmarks* landmarks = nullptr);
+
+// The gap between an eye's lids with `target` at 1, over the gap at rest, along
+// the face's up: the skin vertices of mesh m nearest the upper lid landmarks
+// against those nearest the lower ones (each side's mean); below zero the
+// upper lid passed the lower. NaN, with a test failure, without the target.
+float lidGap(const eng::Model& model, size_t m, const autorig::PosedFace& posed, const autorig::FaceLandmarks& landmarks,
+             const char* target, std::span<const size_t> upper, std::span<const size_t> lower);
 
 // How far target B of b is from target A of a on one primitive of the mesh
 // named `mesh` (same vertices): the largest vertex difference over A's
