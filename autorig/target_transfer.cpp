@@ -278,12 +278,15 @@ constexpr size_t kLidColumns = 8;
 constexpr float kColumnFade = 0.2f;
 constexpr float kMaxColumnGain = 2.0f;
 
+// Where p lies across the eye: 0 at its corner on the subject's right, 1 at the other.
+float columnOf(const EyeLids& eye, const glm::vec3& p) {
+  const float width = glm::dot(eye.cornerLeft - eye.cornerRight, eye.axis.axis);
+  return width > 0.0f ? glm::dot(p - eye.cornerRight, eye.axis.axis) / width : 0.5f;
+}
+
 struct LidColumns {
-  std::array<float, kLidColumns> gain{};
-  float columnOf(const EyeLids& eye, const glm::vec3& p) const {
-    const float width = glm::dot(eye.cornerLeft - eye.cornerRight, eye.axis.axis);
-    return width > 0.0f ? glm::dot(p - eye.cornerRight, eye.axis.axis) / width : 0.5f;
-  }
+  LidColumns() { gain.fill(1.0f); }
+  std::array<float, kLidColumns> gain;
   // Between the columns' middles linearly; past the corners fading to 1.
   float at(float t) const {
     const float x = std::clamp(t, 0.0f, 1.0f) * float(kLidColumns) - 0.5f;
@@ -308,7 +311,6 @@ LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, con
                           const std::vector<FaceRegion>& regions, FaceRegion upper,
                           const std::vector<float>& follow) {
   LidColumns columns;
-  columns.gain.fill(1.0f);
   const float closing = targetAngle < 0.0f ? -1.0f : 1.0f;
   std::array<float, kLidColumns> upperAt, lowerAt, upperFollow{};
   upperAt.fill(-std::numeric_limits<float>::infinity());
@@ -321,7 +323,7 @@ LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, con
     if (distance < 0.9f * to.radius || distance > kLidTurnInner * to.radius ||
         glm::dot(out, to.forward) < 0.3f * to.radius)
       continue;
-    const float t = columns.columnOf(to, p);
+    const float t = columnOf(to, p);
     if (!(t >= 0.0f && t < 1.0f)) continue;
     const size_t k = size_t(t * float(kLidColumns));
     const float along = closing * hingeAngle(to.axis, to.lower, p - to.lower);  // < 0: above the lower lid's middle
@@ -384,13 +386,12 @@ void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const Tri
     const bool closes = angle * hingeAngle(from.axis, from.upper, from.lower - from.upper) > 0.0f;
     const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
     LidColumns columns;
-    columns.gain.fill(1.0f);
     if (closes) columns = closingColumns(to, targetAngle, share, tgt, corr.targetRegions, upper, targetFollow);
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
       const float near = 1.0f - glm::smoothstep(kLidTurnInner * to.radius, kLidTurnOuter * to.radius,
                                                 glm::length(tgt.positions[v] - to.axis.pivot));
       if (near <= 0.0f || !corr.matches[v].found) continue;
-      const float turn = targetAngle * columns.at(columns.columnOf(to, tgt.positions[v]));
+      const float turn = targetAngle * columns.at(columnOf(to, tgt.positions[v]));
       deltas[v] = glm::mix(deltas[v], targetFollow[v] * turnAboutHinge(to.axis, turn, tgt.positions[v]), near);
     }
   }
