@@ -15,6 +15,7 @@
 #include "app/face_setup.h"
 #include "autorig/builtin_source.h"
 #include "autorig/face_parts.h"
+#include "autorig/mouth_opening.h"
 #include "autorig/posed_face.h"
 #include "engine/core/fnv1a.h"
 #include "engine/scene/file_bytes.h"
@@ -118,15 +119,24 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
 
 eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
                                             const std::string& faceName) const {
-  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  autorig::PosedFace posed = autorig::poseAtRest(face);
   autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
-  auto transferred = autorig::transferTargets(source_, face, posed, landmarks, parts);
+  // Welded lips cut, a mouth bag where nothing is inside the mouth: then the
+  // changed face is posed and its parts found again.
+  eng::Model opened = face;
+  autorig::MouthOpening opening = autorig::openTheMouth(opened, posed, landmarks, parts);
+  if (opening.changed()) {
+    posed = autorig::poseAtRest(opened);
+    parts = autorig::findFaceParts(opened, posed, landmarks);
+  }
+  auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts);
   if (!transferred) return transferred.error().prefixed(faceName + ": ");
   AutorigResult result;
   result.model = std::move(transferred->model);
   result.report = std::move(transferred->report);
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
+  result.partNotes.insert(result.partNotes.end(), opening.notes.begin(), opening.notes.end());
   return result;
 }
 

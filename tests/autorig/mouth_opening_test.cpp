@@ -1,0 +1,264 @@
+#include "autorig/mouth_opening.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "autorig/face_frame.h"
+#include "engine/scene/weights.h"
+#include "tests/autorig/transfer_fixture.h"
+
+namespace {
+
+using transfer_fixture::headSource;
+using transfer_fixture::loadHead;
+using transfer_fixture::stripped;
+
+// The built-in head as a scan often comes: no targets and nothing inside the
+// mouth (its mouth's inside, teeth and tongue dropped), only the skin.
+eng::Model withoutTheInsideOfTheMouth(const eng::Model& head) {
+  eng::Model face = stripped(head);
+  for (eng::Mesh& mesh : face.meshes)
+    if (mesh.name == "Head") mesh.primitives.resize(1);
+  return face;
+}
+
+// The same with its lips welded, as a scan's are: the skin's open rim
+// inside the lips (where the dropped inside of the mouth joined it) closed by
+// moving each lower-lip rim vertex onto the upper-lip rim vertex across from
+// it and making them one.
+eng::Model welded(eng::Model face, const autorig::FaceLandmarks& landmarks) {
+  const autorig::LandmarkFrame frame(landmarks);
+  const float mouthWidth = glm::distance(landmarks.points[48], landmarks.points[54]);
+  glm::vec3 lipCentre(0.0f);
+  for (size_t i = 60; i < 68; ++i) lipCentre += landmarks.points[i] / 8.0f;
+  for (eng::Mesh& mesh : face.meshes) {
+    if (mesh.name != "Head") continue;
+    eng::Primitive& skin = mesh.primitives[0];  // unskinned, its node at the origin: world space
+    std::map<std::pair<uint32_t, uint32_t>, int> edgeUses;
+    for (size_t t = 0; t + 2 < skin.indices.size(); t += 3)
+      for (int k = 0; k < 3; ++k) ++edgeUses[std::minmax(skin.indices[t + size_t(k)], skin.indices[t + size_t((k + 1) % 3)])];
+    // A rim vertex's lip is where its triangles lie (the rims touch: both at the line).
+    std::vector<glm::vec3> around(skin.vertexCount(), glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < skin.indices.size(); t += 3) {
+      const uint32_t* i = &skin.indices[t];
+      const glm::vec3 centre = (skin.positions[i[0]] + skin.positions[i[1]] + skin.positions[i[2]]) / 3.0f;
+      for (int k = 0; k < 3; ++k) around[i[k]] += centre - skin.positions[i[k]];
+    }
+    std::vector<uint32_t> upper, lower;
+    for (const auto& [edge, uses] : edgeUses) {
+      if (uses != 1) continue;
+      for (uint32_t v : {edge.first, edge.second}) {
+        const glm::vec3& q = skin.positions[v];
+        if (glm::distance(q, lipCentre) > 0.7f * mouthWidth) continue;
+        std::vector<uint32_t>& rim = glm::dot(around[v], frame.up()) >= 0.0f ? upper : lower;
+        if (std::find(rim.begin(), rim.end(), v) == rim.end()) rim.push_back(v);
+      }
+    }
+    if (upper.empty()) continue;
+    std::map<uint32_t, uint32_t> into;
+    for (uint32_t v : lower) {
+      const uint32_t u = *std::min_element(upper.begin(), upper.end(), [&](uint32_t a, uint32_t b) {
+        return std::abs(frame.sideOf(skin.positions[a]) - frame.sideOf(skin.positions[v])) <
+               std::abs(frame.sideOf(skin.positions[b]) - frame.sideOf(skin.positions[v]));
+      });
+      into[v] = u;
+      skin.positions[u] = (skin.positions[u] + skin.positions[v]) * 0.5f;
+    }
+    std::vector<uint32_t> indices;
+    for (size_t t = 0; t + 2 < skin.indices.size(); t += 3) {
+      uint32_t tri[3];
+      for (int k = 0; k < 3; ++k) {
+        const auto it = into.find(skin.indices[t + size_t(k)]);
+        tri[k] = it == into.end() ? skin.indices[t + size_t(k)] : it->second;
+      }
+      if (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]) indices.insert(indices.end(), tri, tri + 3);
+    }
+    skin.indices = std::move(indices);
+  }
+  return face;
+}
+
+size_t vertexCount(const eng::Model& model) {
+  size_t n = 0;
+  for (const eng::Mesh& mesh : model.meshes)
+    for (const eng::Primitive& prim : mesh.primitives) n += prim.vertexCount();
+  return n;
+}
+
+struct Opened {
+  eng::Model face;
+  autorig::MouthOpening opening;
+};
+
+Opened open(eng::Model face, const autorig::FaceLandmarks& landmarks) {
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  const autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  Opened opened{std::move(face), {}};
+  opened.opening = autorig::openTheMouth(opened.face, posed, landmarks, parts);
+  return opened;
+}
+
+// Whether the skin of the mesh named "Head" joins the vertex nearest landmark
+// `from` to the one nearest `to` through the mouth's front between its corners
+// (`inset` of the mouth's width within them; below 0, past them), in front of its inside.
+bool lipsJoined(const eng::Model& face, const autorig::FaceLandmarks& landmarks, size_t from, size_t to,
+                float inset = 0.1f) {
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  const autorig::LandmarkFrame frame(landmarks);
+  const auto& p = landmarks.points;
+  const float left = frame.sideOf(p[48]), right = frame.sideOf(p[54]);
+  inset *= right - left;
+  glm::vec3 lipCentre(0.0f);
+  for (size_t i = 60; i < 68; ++i) lipCentre += p[i] / 8.0f;
+  for (const autorig::PosedPrimitive& pp : posed.primitives) {
+    if (face.meshes[pp.mesh].name != "Head" || pp.primitive != 0) continue;
+    const eng::Primitive& prim = face.meshes[pp.mesh].primitives[pp.primitive];
+    auto inMouth = [&](uint32_t v) {
+      const glm::vec3& q = pp.positions[v];
+      return frame.sideOf(q) > left + inset && frame.sideOf(q) < right - inset && std::abs(frame.aboveLipLine(q)) < 0.2f &&
+             glm::dot(q - lipCentre, frame.forward()) > -0.3f * frame.eyeSpan();
+    };
+    auto nearest = [&](const glm::vec3& q) {
+      uint32_t best = 0;
+      for (uint32_t v = 0; v < pp.positions.size(); ++v)
+        if (glm::distance(pp.positions[v], q) < glm::distance(pp.positions[best], q)) best = v;
+      return best;
+    };
+    std::vector<std::vector<uint32_t>> neighbours(prim.vertexCount());
+    for (size_t t = 0; t + 2 < prim.indices.size(); t += 3)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = prim.indices[t + size_t(k)], b = prim.indices[t + size_t((k + 1) % 3)];
+        if (inMouth(a) && inMouth(b)) neighbours[a].push_back(b), neighbours[b].push_back(a);
+      }
+    const uint32_t start = nearest(p[from]), goal = nearest(p[to]);
+    std::vector<char> seen(prim.vertexCount(), 0);
+    std::queue<uint32_t> queue;
+    queue.push(start);
+    seen[start] = 1;
+    while (!queue.empty()) {
+      const uint32_t v = queue.front();
+      queue.pop();
+      if (v == goal) return true;
+      for (uint32_t w : neighbours[v])
+        if (!seen[w]) seen[w] = 1, queue.push(w);
+    }
+  }
+  return false;
+}
+
+TEST(MouthOpening, LeavesAFaceWithSeparateLipsAndAMouthAlone) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const Opened opened = open(stripped(*head), source.landmarks);
+  EXPECT_FALSE(opened.opening.changed());
+  EXPECT_TRUE(opened.opening.notes.empty());
+  EXPECT_EQ(vertexCount(opened.face), vertexCount(*head));
+}
+
+TEST(MouthOpening, GivesAMouthWithNothingInsideABagBehindTheLips) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const eng::Model face = withoutTheInsideOfTheMouth(*head);
+  const Opened opened = open(face, source.landmarks);
+  EXPECT_EQ(opened.opening.cutVertices, 0u) << "the head's lips are separate";
+  ASSERT_GT(opened.opening.bagVertices, 0u);
+  ASSERT_EQ(opened.opening.notes.size(), 1u);
+  EXPECT_NE(opened.opening.notes[0].find("mouth bag"), std::string::npos) << opened.opening.notes[0];
+
+  const eng::Mesh* mesh = nullptr;
+  for (const eng::Mesh& m : opened.face.meshes)
+    if (m.name == "Head") mesh = &m;
+  ASSERT_TRUE(mesh);
+  ASSERT_EQ(mesh->primitives.size(), 2u);
+  const eng::Primitive& bag = mesh->primitives[1];
+  EXPECT_EQ(bag.vertexCount(), opened.opening.bagVertices);
+  EXPECT_EQ(bag.targets.size(), mesh->targetNames.size());
+  ASSERT_GE(bag.material, 0);
+  EXPECT_EQ(opened.face.materials[size_t(bag.material)].name, "MouthInterior");
+  EXPECT_LT(opened.face.materials[size_t(bag.material)].baseColorFactor.r, 0.2f) << "a dark inside";
+
+  // Behind the skin: every bag vertex outside the closed lips lies deeper
+  // (along the face's forward) than the skin in front of it.
+  const autorig::LandmarkFrame frame(source.landmarks);
+  const eng::Primitive& skin = mesh->primitives[0];  // the head is not skinned and its node is at the origin
+  const float cell = 0.03f * frame.eyeSpan();
+  size_t checked = 0;
+  for (const glm::vec3& v : bag.positions) {
+    float skinDepth = -INFINITY;
+    for (const glm::vec3& s : skin.positions) {
+      const glm::vec3 d = s - v;
+      if (std::abs(glm::dot(d, frame.side())) < cell && std::abs(glm::dot(d, frame.up())) < cell &&
+          std::abs(frame.aboveLipLine(s)) > 0.02f)
+        skinDepth = std::max(skinDepth, glm::dot(s, frame.forward()));
+    }
+    if (!std::isfinite(skinDepth)) continue;
+    ++checked;
+    EXPECT_LT(glm::dot(v, frame.forward()), skinDepth) << "a bag vertex in front of the skin";
+  }
+  EXPECT_GT(checked, opened.opening.bagVertices / 2);
+}
+
+TEST(MouthOpening, CutsWeldedLipsBetweenTheCorners) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const eng::Model face = welded(withoutTheInsideOfTheMouth(*head), source.landmarks);
+  ASSERT_TRUE(lipsJoined(face, source.landmarks, 62, 66)) << "the welded lips are one surface";
+  const Opened opened = open(face, source.landmarks);
+  EXPECT_GT(opened.opening.cutVertices, 10u);
+  EXPECT_FALSE(lipsJoined(opened.face, source.landmarks, 62, 66)) << "cut, the lips meet only past the corners";
+  // The corners stay joined: the cut ends inside them.
+  EXPECT_TRUE(lipsJoined(opened.face, source.landmarks, 49, 59, -0.1f));
+}
+
+// Rigged, the welded head opens its mouth: at AU26 the lips' middle parts.
+TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const eng::Model face = welded(withoutTheInsideOfTheMouth(*head), source.landmarks);
+  size_t before = 0;  // skin vertices before the cut: the copies come after them
+  for (const eng::Mesh& m : face.meshes)
+    if (m.name == "Head") before = m.primitives[0].vertexCount();
+  const Opened opened = open(face, source.landmarks);
+  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
+  const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  const eng::Mesh* mesh = nullptr;
+  for (const eng::Mesh& m : rigged->model.meshes)
+    if (m.name == "Head") mesh = &m;
+  ASSERT_TRUE(mesh);
+  const auto jaw = std::find(mesh->targetNames.begin(), mesh->targetNames.end(), "AU26_JawDrop");
+  ASSERT_NE(jaw, mesh->targetNames.end());
+  const eng::Primitive& skin = mesh->primitives[0];
+  const eng::MorphTarget& drop = skin.targets[size_t(jaw - mesh->targetNames.begin())];
+  ASSERT_EQ(drop.positions.size(), skin.vertexCount());
+  // The seam's twins (a vertex and its copy, at one place at rest) about the
+  // middle of the mouth move apart at AU26 1 by a good share of the mouth's width.
+  const float mouthWidth = glm::distance(source.landmarks.points[48], source.landmarks.points[54]);
+  const glm::vec3 middle = (source.landmarks.points[62] + source.landmarks.points[66]) * 0.5f;
+  size_t twins = 0;
+  float narrowest = INFINITY;
+  for (size_t a = 0; a < before; ++a) {
+    if (glm::distance(skin.positions[a], middle) > 0.15f * mouthWidth) continue;
+    for (size_t b = before; b < skin.vertexCount(); ++b) {
+      if (glm::distance(skin.positions[a], skin.positions[b]) > 1e-7f) continue;
+      ++twins;
+      narrowest = std::min(narrowest, glm::length(drop.positions[a] - drop.positions[b]) / mouthWidth);
+    }
+  }
+  std::printf("welded head at AU26 1: %zu seam twins about the middle, at least %.2f of the mouth's width apart\n", twins,
+              narrowest);
+  EXPECT_GE(twins, 3u);
+  EXPECT_GT(narrowest, 0.2f);
+}
+
+}  // namespace
