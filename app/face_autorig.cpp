@@ -121,10 +121,10 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
                                             const std::string& faceName) const {
   autorig::PosedFace posed = autorig::poseAtRest(face);
   autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
-  // Welded lips cut, a mouth bag where nothing is inside the mouth: then the
+  // Welded lips cut, the head's mouth inside where the face has none: then the
   // changed face is posed and its parts found again.
   eng::Model opened = face;
-  autorig::MouthOpening opening = autorig::openTheMouth(opened, posed, landmarks, parts);
+  autorig::MouthOpening opening = autorig::openTheMouth(opened, posed, landmarks, parts, source_);
   if (opening.changed()) {
     posed = autorig::poseAtRest(opened);
     parts = autorig::findFaceParts(opened, posed, landmarks);

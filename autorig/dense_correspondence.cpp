@@ -140,22 +140,28 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
   return surface;
 }
 
+LandmarkPairs distinctLandmarkPairs(const FaceLandmarks& source, const FaceLandmarks& target) {
+  LandmarkPairs pairs;
+  pairs.minSeparation = 1e-3f * LandmarkFrame(source).eyeSpan();
+  for (size_t i = 0; i < kLandmarkCount; ++i) {
+    const glm::vec3& s = source.points[i];
+    bool met = false;
+    for (const glm::vec3& earlier : pairs.source) met = met || glm::length(s - earlier) < 10.0f * pairs.minSeparation;
+    if (met) continue;
+    pairs.source.push_back(s);
+    pairs.target.push_back(target.points[i]);
+  }
+  return pairs;
+}
+
 eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLandmarks& sourceLandmarks,
                                        const FaceSurface& target, const FaceLandmarks& targetLandmarks,
                                        const CorrespondenceOptions& options) {
   const LandmarkFrame sourceFrame(sourceLandmarks), targetFrame(targetLandmarks);
-  // Landmarks that meet on the source (inner lips of a closed mouth) are one
-  // control point: the first pair holds it.
-  const float minSeparation = 1e-3f * sourceFrame.eyeSpan();
-  std::vector<glm::vec3> sourcePoints, targetPoints;
-  for (size_t i = 0; i < kLandmarkCount; ++i) {
-    const glm::vec3& s = sourceLandmarks.points[i];
-    bool met = false;
-    for (const glm::vec3& earlier : sourcePoints) met = met || glm::length(s - earlier) < 10.0f * minSeparation;
-    if (met) continue;
-    sourcePoints.push_back(s);
-    targetPoints.push_back(targetLandmarks.points[i]);
-  }
+  const LandmarkPairs pairs = distinctLandmarkPairs(sourceLandmarks, targetLandmarks);
+  const std::vector<glm::vec3>& sourcePoints = pairs.source;
+  const std::vector<glm::vec3>& targetPoints = pairs.target;
+  const float minSeparation = pairs.minSeparation;
   LandmarkWarp warp = ENG_TRY_VALUE(LandmarkWarp::build(sourcePoints, targetPoints, minSeparation));
   std::vector<glm::vec3> warped = warpAll(warp, source.positions);
   size_t grown = 0;

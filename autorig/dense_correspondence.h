@@ -47,6 +47,15 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
 // separate vertices at the same places.
 std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame);
 
+// The landmark pairs a warp from one face to another goes through. Landmarks
+// that meet on the source (the inner lips of a closed mouth) are one control
+// point, held by the first pair; closer than minSeparation, the RBF refuses them.
+struct LandmarkPairs {
+  std::vector<glm::vec3> source, target;
+  float minSeparation = 0.0f;  // world units of the source
+};
+LandmarkPairs distinctLandmarkPairs(const FaceLandmarks& source, const FaceLandmarks& target);
+
 struct CorrespondenceOptions {
   int growthRounds = 2;       // warp, match, re-solve
   int maxGrownPairs = 300;    // control points added to the 68 landmarks

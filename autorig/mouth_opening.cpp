@@ -5,11 +5,15 @@
 #include <cstdint>
 #include <limits>
 #include <map>
-#include <numbers>
+#include <optional>
 #include <queue>
+#include <span>
 #include <utility>
 
+#include "autorig/dense_correspondence.h"
 #include "autorig/face_frame.h"
+#include "autorig/landmark_warp.h"
+#include "engine/scene/inner_face_parts.h"
 
 namespace autorig {
 namespace {
@@ -29,8 +33,6 @@ struct MouthBox {
   float margin = 0.0f;              // past (or within) the corners, eye spans
 };
 
-// Linear albedo of the mouth bag: the dark red-brown of a mouth's inside in shadow.
-constexpr glm::vec4 kMouthBagColour{0.10f, 0.025f, 0.02f, 1.0f};
 
 // Appends a copy of vertex v (every attribute, its targets' deltas too) and returns its index.
 uint32_t duplicateVertex(eng::Primitive& prim, uint32_t v) {
@@ -179,48 +181,6 @@ bool meets(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const glm::ve
   return glm::dot(e2, q) * inv > 0.0f;
 }
 
-struct Bowl {
-  std::vector<glm::vec3> positions, normals;  // world space; normals point into the bowl
-  std::vector<uint32_t> indices;
-};
-
-// The back half of an ellipsoid (radii along the face's side, up and
-// forward), open towards the lips, its rim `rimDepth` behind `centre`.
-Bowl makeBowl(const LandmarkFrame& frame, const glm::vec3& centre, const glm::vec3& radii) {
-  constexpr int kRings = 8, kSegments = 24;
-  Bowl bowl;
-  const glm::vec3 axis[3] = {frame.side(), frame.up(), frame.forward()};
-  auto at = [&](float phi, float theta) {
-    const glm::vec3 unit(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), -std::cos(phi));
-    return unit;
-  };
-  bowl.positions.push_back(centre - axis[2] * radii.z);  // the back pole
-  bowl.normals.push_back(axis[2]);
-  for (int r = 1; r <= kRings; ++r) {
-    const float phi = 0.5f * std::numbers::pi_v<float> * float(r) / kRings;
-    for (int s = 0; s < kSegments; ++s) {
-      const glm::vec3 u = at(phi, 2.0f * std::numbers::pi_v<float> * float(s) / kSegments);
-      bowl.positions.push_back(centre + axis[0] * (u.x * radii.x) + axis[1] * (u.y * radii.y) + axis[2] * (u.z * radii.z));
-      const glm::vec3 outward = axis[0] * (u.x / radii.x) + axis[1] * (u.y / radii.y) + axis[2] * (u.z / radii.z);
-      bowl.normals.push_back(-glm::normalize(outward));
-    }
-  }
-  auto ringVertex = [&](int r, int s) { return uint32_t(1 + (r - 1) * kSegments + (s % kSegments)); };
-  auto triangle = [&](uint32_t a, uint32_t b, uint32_t c) {
-    // Wound to face into the bowl (what an open mouth shows).
-    const glm::vec3 normal = glm::cross(bowl.positions[b] - bowl.positions[a], bowl.positions[c] - bowl.positions[a]);
-    if (glm::dot(normal, bowl.normals[a] + bowl.normals[b] + bowl.normals[c]) < 0.0f) std::swap(b, c);
-    bowl.indices.insert(bowl.indices.end(), {a, b, c});
-  };
-  for (int s = 0; s < kSegments; ++s) triangle(0, ringVertex(1, s), ringVertex(1, s + 1));
-  for (int r = 1; r < kRings; ++r)
-    for (int s = 0; s < kSegments; ++s) {
-      triangle(ringVertex(r, s), ringVertex(r + 1, s), ringVertex(r + 1, s + 1));
-      triangle(ringVertex(r, s), ringVertex(r + 1, s + 1), ringVertex(r, s + 1));
-    }
-  return bowl;
-}
-
 struct SkinTriangles {
   std::vector<glm::vec3> corners;  // three per triangle, world space
 };
@@ -232,109 +192,186 @@ bool behindTheSkin(const glm::vec3& p, const SkinTriangles& skin, const glm::vec
   return false;
 }
 
-// Moves each bowl vertex that the closed lips do not cover back (along the
-// face's forward) until it lies behind the skin: the face curves back beside
-// the mouth faster than the bowl does. False when one cannot be hidden.
-bool tuckBehindTheSkin(Bowl& bowl, const SkinTriangles& skin, const LandmarkFrame& frame, const glm::vec3& lipCentre,
-                       float mouthWidth) {
-  constexpr int kSteps = 12;
-  for (glm::vec3& p : bowl.positions) {
-    const glm::vec3 d = p - lipCentre;
-    const float x = glm::dot(d, frame.side()) / (0.5f * mouthWidth), y = glm::dot(d, frame.up()) / (0.15f * mouthWidth);
-    if (x * x + y * y <= 1.0f) continue;  // seen only through the opening
-    int step = 0;
-    for (; step <= kSteps && !behindTheSkin(p, skin, frame.forward()); ++step) p -= frame.forward() * (0.05f * mouthWidth);
-    if (step > kSteps) return false;
+// How far back (along the face's forward, in steps of kTuckStep mouth widths)
+// `points` must move, all together, to lie behind the skin; -1 when no move
+// up to kTuckSteps hides them. Every `stride`-th point is tried.
+constexpr float kTuckStep = 0.05f;
+constexpr int kTuckSteps = 12;
+int stepsBehindTheSkin(std::span<const glm::vec3> points, size_t stride, const SkinTriangles& skin,
+                       const LandmarkFrame& frame, float mouthWidth) {
+  for (int step = 0; step <= kTuckSteps; ++step) {
+    const glm::vec3 back = frame.forward() * (-kTuckStep * mouthWidth * float(step));
+    bool hidden = true;
+    for (size_t v = 0; v < points.size() && hidden; v += stride) hidden = behindTheSkin(points[v] + back, skin, frame.forward());
+    if (hidden) return step;
   }
-  return true;
+  return -1;
 }
 
-// Adds the mouth bag to the skin primitive nearest the lips; its vertex count, or 0 with a note why not.
-size_t addMouthBag(eng::Model& face, const PosedFace& posed, const FaceParts& parts, const FaceLandmarks& landmarks,
-                   const LandmarkFrame& frame, std::vector<std::string>& notes) {
-  const auto& p = landmarks.points;
-  glm::vec3 lipCentre(0.0f);
-  for (size_t i = 60; i < 68; ++i) lipCentre += p[i] / 8.0f;
-  const float mouthWidth = glm::length(p[54] - p[48]);
-  // The skin primitive and vertex nearest the lips (the bag joins its mesh),
-  // and the vertex nearest the nose's base (the bag moves as it does: above
-  // the mouth, with the head, not the jaw).
-  size_t host = posed.primitives.size();
+// The face's skin primitive the inside of the mouth joins (the one nearest
+// the lips), the vertex whose motion it shares (nearest the nose's base:
+// above the mouth, with the head, not the jaw), and the skin about the mouth.
+struct MouthHost {
+  size_t primitive = 0;  // into PosedFace::primitives
   uint32_t anchor = 0;
-  float nearest = std::numeric_limits<float>::max();
   SkinTriangles skin;
+};
+
+std::optional<MouthHost> findMouthHost(const eng::Model& face, const PosedFace& posed, const FaceParts& parts,
+                                       const FaceLandmarks& landmarks, const glm::vec3& lipCentre, float mouthWidth) {
+  MouthHost host;
+  host.primitive = posed.primitives.size();
+  float nearest = std::numeric_limits<float>::max();
   for (size_t i = 0; i < posed.primitives.size(); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
     const eng::Primitive& prim = face.meshes[pp.mesh].primitives[pp.primitive];
     for (size_t v = 0; v < pp.positions.size(); ++v)
       if (parts.vertexParts[i][v] == FacePart::Skin && glm::distance(pp.positions[v], lipCentre) < nearest)
-        nearest = glm::distance(pp.positions[v], lipCentre), host = i;
+        nearest = glm::distance(pp.positions[v], lipCentre), host.primitive = i;
     for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
       const uint32_t* tri = &prim.indices[t];
       if (tri[0] >= pp.positions.size() || tri[1] >= pp.positions.size() || tri[2] >= pp.positions.size()) continue;
       if (parts.vertexParts[i][tri[0]] != FacePart::Skin) continue;
       if (glm::distance(pp.positions[tri[0]], lipCentre) > 2.0f * mouthWidth) continue;
-      skin.corners.insert(skin.corners.end(), {pp.positions[tri[0]], pp.positions[tri[1]], pp.positions[tri[2]]});
+      host.skin.corners.insert(host.skin.corners.end(), {pp.positions[tri[0]], pp.positions[tri[1]], pp.positions[tri[2]]});
     }
   }
-  if (host == posed.primitives.size()) return 0;
-  const PosedPrimitive& pp = posed.primitives[host];
+  if (host.primitive == posed.primitives.size()) return std::nullopt;
+  const PosedPrimitive& pp = posed.primitives[host.primitive];
   nearest = std::numeric_limits<float>::max();
   for (size_t v = 0; v < pp.positions.size(); ++v)
-    if (parts.vertexParts[host][v] == FacePart::Skin && glm::distance(pp.positions[v], p[33]) < nearest)
-      nearest = glm::distance(pp.positions[v], p[33]), anchor = uint32_t(v);
+    if (parts.vertexParts[host.primitive][v] == FacePart::Skin && glm::distance(pp.positions[v], landmarks.points[33]) < nearest)
+      nearest = glm::distance(pp.positions[v], landmarks.points[33]), host.anchor = uint32_t(v);
+  return host;
+}
 
-  // Behind the mouth corners (the deeper one), reaching above the lips and
-  // below them as far as a dropped jaw opens them.
-  const float cornerDepth = std::min(glm::dot(p[48] - lipCentre, frame.forward()), glm::dot(p[54] - lipCentre, frame.forward()));
-  const glm::vec3 rimCentre = lipCentre + frame.forward() * (std::min(cornerDepth, 0.0f) - 0.1f * mouthWidth) -
-                              frame.up() * (0.1f * mouthWidth);
-  Bowl bowl;
-  bool fits = false;
-  for (float scale = 1.0f; scale > 0.5f && !fits; scale *= 0.85f) {
-    bowl = makeBowl(frame, rimCentre, glm::vec3(0.62f, 0.6f, 0.6f) * (mouthWidth * scale));
-    fits = tuckBehindTheSkin(bowl, skin, frame, lipCentre, mouthWidth);
+// The source's inside of the mouth: its mouth's inside, teeth and tongue
+// (by their names, eng::partsInsideTheHead), not its eyeballs.
+std::vector<size_t> insideOfTheMouth(const SourceFace& source) {
+  const std::vector<std::vector<bool>> inside = eng::partsInsideTheHead(*source.model);
+  std::vector<size_t> picked;
+  for (size_t i = 0; i < source.posed.primitives.size(); ++i) {
+    const PosedPrimitive& pp = source.posed.primitives[i];
+    if (pp.mesh >= inside.size() || pp.primitive >= inside[pp.mesh].size() || !inside[pp.mesh][pp.primitive]) continue;
+    const std::vector<FacePart>& parts = source.parts.vertexParts[i];
+    const bool eyeball = std::any_of(parts.begin(), parts.end(),
+                                     [](FacePart p) { return p == FacePart::EyeballLeft || p == FacePart::EyeballRight; });
+    if (!eyeball) picked.push_back(i);
   }
-  const std::string label = meshLabel(face, pp.mesh);
-  if (!fits) {
-    notes.push_back(label + ": nothing inside the mouth, and no room for a mouth bag behind the lips "
-                    "(an open mouth shows what is behind the face)");
+  return picked;
+}
+
+// The source's inside of the mouth carried into the face by the landmark
+// warp, as primitives of the skin's mesh; the vertex count added, or 0 with a note why not.
+size_t transplantTheInsideOfTheMouth(eng::Model& face, const PosedFace& posed, const FaceParts& parts,
+                                     const FaceLandmarks& landmarks, const LandmarkFrame& frame, const SourceFace& source,
+                                     std::vector<std::string>& notes) {
+  const auto& p = landmarks.points;
+  glm::vec3 lipCentre(0.0f);
+  for (size_t i = 60; i < 68; ++i) lipCentre += p[i] / 8.0f;
+  const float mouthWidth = glm::length(p[54] - p[48]);
+  const std::optional<MouthHost> host = findMouthHost(face, posed, parts, landmarks, lipCentre, mouthWidth);
+  const std::vector<size_t> pieces = insideOfTheMouth(source);
+  if (!host || pieces.empty() || source.model == nullptr) return 0;
+  const LandmarkPairs pairs = distinctLandmarkPairs(source.landmarks, landmarks);
+  eng::Result<LandmarkWarp> warp = LandmarkWarp::build(pairs.source, pairs.target, pairs.minSeparation);
+  const PosedPrimitive& hostPosed = posed.primitives[host->primitive];
+  const std::string label = meshLabel(face, hostPosed.mesh);
+  if (!warp) {
+    notes.push_back(label + ": nothing inside the mouth, and the built-in head's could not be carried over (" +
+                    warp.error().message + ")");
     return 0;
   }
-
-  eng::Mesh& mesh = face.meshes[pp.mesh];
-  const eng::Primitive& hostPrim = mesh.primitives[pp.primitive];
-  eng::Primitive bag;
-  const glm::mat3 toLocal = pp.worldToLocal[anchor];
-  for (size_t v = 0; v < bowl.positions.size(); ++v) {
-    bag.positions.push_back(hostPrim.positions[anchor] + toLocal * (bowl.positions[v] - pp.positions[anchor]));
-    bag.normals.push_back(glm::normalize(toLocal * bowl.normals[v]));
-  }
-  const size_t sets = hostPrim.influenceSets();
-  for (size_t v = 0; v < bowl.positions.size(); ++v)
-    for (size_t s = 0; s < sets; ++s) {
-      bag.joints.push_back(hostPrim.joints[anchor * sets + s]);
-      bag.jointWeights.push_back(hostPrim.jointWeights[anchor * sets + s]);
+  // Each piece warped into the face; teeth and tongue then moved back as one
+  // until the closed lips and the skin hide them, the mouth's inside vertex
+  // by vertex beside the lips (the face may curve back there sooner than the
+  // head does).
+  struct Piece {
+    size_t source;
+    std::vector<glm::vec3> world;
+  };
+  std::vector<Piece> carried;
+  for (size_t i : pieces) {
+    Piece piece{i, {}};
+    for (const glm::vec3& q : source.posed.primitives[i].positions) piece.world.push_back(warp->apply(q));
+    const eng::Primitive& from = source.model->meshes[source.posed.primitives[i].mesh].primitives[source.posed.primitives[i].primitive];
+    const bool rigid = std::any_of(source.parts.vertexParts[i].begin(), source.parts.vertexParts[i].end(), [](FacePart q) {
+      return q == FacePart::UpperTeeth || q == FacePart::LowerTeeth || q == FacePart::Tongue;
+    });
+    if (rigid) {
+      const int steps = stepsBehindTheSkin(piece.world, 4, host->skin, frame, mouthWidth);
+      if (steps < 0) {
+        notes.push_back(label + ": nothing inside the mouth, and no room behind its lips for the built-in head's (" +
+                        std::to_string(from.vertexCount()) + "-vertex piece left out)");
+        continue;
+      }
+      for (glm::vec3& q : piece.world) q -= frame.forward() * (kTuckStep * mouthWidth * float(steps));
+    } else {
+      for (glm::vec3& q : piece.world) {
+        const glm::vec3 d = q - lipCentre;
+        const float x = glm::dot(d, frame.side()) / (0.5f * mouthWidth), y = glm::dot(d, frame.up()) / (0.15f * mouthWidth);
+        if (x * x + y * y <= 1.0f) continue;  // seen only through the opening
+        const int steps = stepsBehindTheSkin(std::span<const glm::vec3>(&q, 1), 1, host->skin, frame, mouthWidth);
+        if (steps > 0) q -= frame.forward() * (kTuckStep * mouthWidth * float(steps));
+      }
     }
-  bag.indices = std::move(bowl.indices);
-  bag.targets.resize(mesh.targetNames.size());  // empty: not moved by the face's own targets
-  eng::Material material;
-  material.name = "MouthInterior";
-  material.baseColorFactor = kMouthBagColour;
-  material.roughness = 0.9f;
-  material.doubleSided = true;
-  bag.material = int(face.materials.size());
-  face.materials.push_back(std::move(material));
-  const size_t count = bag.vertexCount();
-  mesh.primitives.push_back(std::move(bag));
-  notes.push_back(label + ": nothing inside the mouth (no teeth, no tongue): a mouth bag of " + std::to_string(count) +
-                  " vertices added behind the lips");
-  return count;
+    carried.push_back(std::move(piece));
+  }
+  if (carried.empty()) return 0;
+
+  eng::Mesh& mesh = face.meshes[hostPosed.mesh];
+  const size_t hostIndex = hostPosed.primitive;
+  const glm::mat3 toLocal = hostPosed.worldToLocal[host->anchor];
+  const glm::vec3 anchorLocal = mesh.primitives[hostIndex].positions[host->anchor];
+  const size_t sets = mesh.primitives[hostIndex].influenceSets();
+  const std::vector<glm::u16vec4> anchorJoints(mesh.primitives[hostIndex].joints.begin() + ptrdiff_t(host->anchor * sets),
+                                               mesh.primitives[hostIndex].joints.begin() + ptrdiff_t((host->anchor + 1) * sets));
+  const std::vector<glm::vec4> anchorWeights(mesh.primitives[hostIndex].jointWeights.begin() + ptrdiff_t(host->anchor * sets),
+                                             mesh.primitives[hostIndex].jointWeights.begin() + ptrdiff_t((host->anchor + 1) * sets));
+  const glm::mat3 turn = toLocal * warp->similarity().rotation;
+  std::map<int, int> materialOf;  // source material -> the face's copy
+  std::map<int, int> imageOf;     // source image -> the face's copy
+  size_t added = 0;
+  for (const Piece& piece : carried) {
+    const PosedPrimitive& sp = source.posed.primitives[piece.source];
+    const eng::Primitive& from = source.model->meshes[sp.mesh].primitives[sp.primitive];
+    eng::Primitive to;
+    to.indices = from.indices;
+    to.texcoords = from.texcoords;
+    for (size_t v = 0; v < piece.world.size(); ++v) {
+      to.positions.push_back(anchorLocal + toLocal * (piece.world[v] - hostPosed.positions[host->anchor]));
+      const glm::vec3 n = v < from.normals.size() ? turn * glm::inverse(sp.worldToLocal[v]) * from.normals[v] : glm::vec3(0, 0, 1);
+      to.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1));
+      to.joints.insert(to.joints.end(), anchorJoints.begin(), anchorJoints.end());
+      to.jointWeights.insert(to.jointWeights.end(), anchorWeights.begin(), anchorWeights.end());
+    }
+    to.targets.resize(mesh.targetNames.size());  // empty: the face's own targets leave it
+    if (from.material >= 0) {
+      auto [it, fresh] = materialOf.try_emplace(from.material, int(face.materials.size()));
+      if (fresh) {
+        eng::Material material = source.model->materials[size_t(from.material)];
+        material.detailLayers.clear();
+        if (material.baseColorImage >= 0) {
+          auto [image, newImage] = imageOf.try_emplace(material.baseColorImage, int(face.images.size()));
+          if (newImage) face.images.push_back(source.model->images[size_t(material.baseColorImage)]);
+          material.baseColorImage = image->second;
+        }
+        face.materials.push_back(std::move(material));
+      }
+      to.material = it->second;
+    }
+    added += to.vertexCount();
+    mesh.primitives.push_back(std::move(to));
+  }
+  notes.push_back(label + ": nothing inside the mouth (no teeth, no tongue): the built-in head's mouth, teeth and tongue "
+                  "carried in behind the lips (" + std::to_string(added) + " vertices)");
+  return added;
 }
 
 }  // namespace
 
-MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts) {
+MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
+                          const SourceFace& source) {
   MouthOpening opening;
   if (parts.vertexParts.size() != posed.primitives.size()) return opening;
   const LandmarkFrame frame(landmarks);
@@ -348,8 +385,8 @@ MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLa
   for (const std::vector<FacePart>& vertexParts : parts.vertexParts)
     for (FacePart part : vertexParts)
       hasInside |= part == FacePart::UpperTeeth || part == FacePart::LowerTeeth || part == FacePart::Tongue;
-  // The bag is placed from the face before the cut (the cut moves nothing).
-  if (!hasInside) opening.bagVertices = addMouthBag(face, posed, parts, landmarks, frame, opening.notes);
+  // Carried in from the face before the cut (the cut moves nothing).
+  if (!hasInside) opening.insideVertices = transplantTheInsideOfTheMouth(face, posed, parts, landmarks, frame, source, opening.notes);
   for (size_t i = 0; i < posed.primitives.size(); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
     const size_t cut = cutWeldedLips(face.meshes[pp.mesh].primitives[pp.primitive], pp, parts.vertexParts[i], frame, box);

@@ -8,11 +8,12 @@
 //  - welded lips are cut along the line where they meet, between the mouth
 //    corners (the corners stay joined): each vertex on the seam gets a copy
 //    that the lower lip's triangles use, so the lips part as separate edges;
-//  - a face with nothing inside its mouth (no teeth, no tongue found) gets a
-//    mouth bag: a dark bowl behind the lips, inside the head, that an open
-//    mouth shows instead of the background. It is a primitive of the skin's
-//    mesh (material "MouthInterior"), so it moves with the head and takes the
-//    transfer's motion like the inside of the built-in head's mouth.
+//  - a face with nothing inside its mouth (no teeth, no tongue found) gets the
+//    source's (the built-in head's mouth inside, teeth and tongue), carried in
+//    by the landmark warp and moved back until the skin and the closed lips
+//    hide them. They join the skin's mesh as primitives with the head's
+//    materials, so they move with the head, and the transfer turns the lower
+//    teeth and the tongue with the jaw as on any face that has them.
 // Faces whose lips are already separate and that have teeth are left as they are.
 #include <cstddef>
 #include <string>
@@ -21,22 +22,23 @@
 #include "autorig/face_landmarks.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
+#include "autorig/target_transfer.h"
 #include "engine/scene/model.h"
 
 namespace autorig {
 
 struct MouthOpening {
   size_t cutVertices = 0;  // seam vertices given a copy for the lower lip
-  size_t bagVertices = 0;  // vertices of the added mouth bag (0: none added)
+  size_t insideVertices = 0;  // vertices of the mouth's inside, teeth and tongue carried in (0: none)
   // One line per change ("Head: lips welded along 23 vertices, cut"), or why a
-  // bag was not added, for `facial rig` and the autorig report.
+  // carried in, for the autorig report.
   std::vector<std::string> notes;
-  bool changed() const { return cutVertices > 0 || bagVertices > 0; }
+  bool changed() const { return cutVertices > 0 || insideVertices > 0; }
 };
 
 // Changes `face` in place; `posed` and `parts` are `face`'s before the change
 // (pose and find them again after it when changed()).
 MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks,
-                          const FaceParts& parts);
+                          const FaceParts& parts, const SourceFace& source);
 
 }  // namespace autorig

@@ -95,11 +95,12 @@ struct Opened {
   autorig::MouthOpening opening;
 };
 
-Opened open(eng::Model face, const autorig::FaceLandmarks& landmarks) {
+Opened open(eng::Model face, const autorig::SourceFace& source) {
+  const autorig::FaceLandmarks& landmarks = source.landmarks;
   const autorig::PosedFace posed = autorig::poseAtRest(face);
   const autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
   Opened opened{std::move(face), {}};
-  opened.opening = autorig::openTheMouth(opened.face, posed, landmarks, parts);
+  opened.opening = autorig::openTheMouth(opened.face, posed, landmarks, parts, source);
   return opened;
 }
 
@@ -155,54 +156,75 @@ TEST(MouthOpening, LeavesAFaceWithSeparateLipsAndAMouthAlone) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
-  const Opened opened = open(stripped(*head), source.landmarks);
+  const Opened opened = open(stripped(*head), source);
   EXPECT_FALSE(opened.opening.changed());
   EXPECT_TRUE(opened.opening.notes.empty());
   EXPECT_EQ(vertexCount(opened.face), vertexCount(*head));
 }
 
-TEST(MouthOpening, GivesAMouthWithNothingInsideABagBehindTheLips) {
+TEST(MouthOpening, GivesAMouthWithNothingInsideTheHeadsTeethAndTongue) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
   const eng::Model face = withoutTheInsideOfTheMouth(*head);
-  const Opened opened = open(face, source.landmarks);
+  const Opened opened = open(face, source);
   EXPECT_EQ(opened.opening.cutVertices, 0u) << "the head's lips are separate";
-  ASSERT_GT(opened.opening.bagVertices, 0u);
+  ASSERT_GT(opened.opening.insideVertices, 0u);
   ASSERT_EQ(opened.opening.notes.size(), 1u);
-  EXPECT_NE(opened.opening.notes[0].find("mouth bag"), std::string::npos) << opened.opening.notes[0];
+  EXPECT_NE(opened.opening.notes[0].find("teeth and tongue"), std::string::npos) << opened.opening.notes[0];
 
   const eng::Mesh* mesh = nullptr;
   for (const eng::Mesh& m : opened.face.meshes)
     if (m.name == "Head") mesh = &m;
   ASSERT_TRUE(mesh);
-  ASSERT_EQ(mesh->primitives.size(), 2u);
-  const eng::Primitive& bag = mesh->primitives[1];
-  EXPECT_EQ(bag.vertexCount(), opened.opening.bagVertices);
-  EXPECT_EQ(bag.targets.size(), mesh->targetNames.size());
-  ASSERT_GE(bag.material, 0);
-  EXPECT_EQ(opened.face.materials[size_t(bag.material)].name, "MouthInterior");
-  EXPECT_LT(opened.face.materials[size_t(bag.material)].baseColorFactor.r, 0.2f) << "a dark inside";
+  ASSERT_EQ(mesh->primitives.size(), head->meshes[0].primitives.size()) << "the mouth's inside, two rows of teeth, a tongue";
+  size_t added = 0;
+  for (size_t i = 1; i < mesh->primitives.size(); ++i) {
+    const eng::Primitive& piece = mesh->primitives[i];
+    added += piece.vertexCount();
+    EXPECT_EQ(piece.targets.size(), mesh->targetNames.size());
+    ASSERT_GE(piece.material, 0);
+    EXPECT_EQ(opened.face.materials[size_t(piece.material)].name,
+              head->materials[size_t(head->meshes[0].primitives[i].material)].name);
+  }
+  EXPECT_EQ(added, opened.opening.insideVertices);
 
-  // Behind the skin: every bag vertex outside the closed lips lies deeper
-  // (along the face's forward) than the skin in front of it.
+  // The parts finder takes them for what they are.
+  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
+  const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
+  size_t upperTeeth = 0, lowerTeeth = 0, tongue = 0;
+  for (const std::vector<autorig::FacePart>& vertexParts : parts.vertexParts)
+    for (autorig::FacePart part : vertexParts) {
+      upperTeeth += part == autorig::FacePart::UpperTeeth;
+      lowerTeeth += part == autorig::FacePart::LowerTeeth;
+      tongue += part == autorig::FacePart::Tongue;
+    }
+  EXPECT_GT(upperTeeth, 0u);
+  EXPECT_GT(lowerTeeth, 0u);
+  EXPECT_GT(tongue, 0u);
+
+  // Behind the skin: every carried vertex lies deeper (along the face's
+  // forward) than the skin in front of it, the closed lips' line aside.
   const autorig::LandmarkFrame frame(source.landmarks);
   const eng::Primitive& skin = mesh->primitives[0];  // the head is not skinned and its node is at the origin
   const float cell = 0.03f * frame.eyeSpan();
-  size_t checked = 0;
-  for (const glm::vec3& v : bag.positions) {
-    float skinDepth = -INFINITY;
-    for (const glm::vec3& s : skin.positions) {
-      const glm::vec3 d = s - v;
-      if (std::abs(glm::dot(d, frame.side())) < cell && std::abs(glm::dot(d, frame.up())) < cell &&
-          std::abs(frame.aboveLipLine(s)) > 0.02f)
-        skinDepth = std::max(skinDepth, glm::dot(s, frame.forward()));
+  size_t checked = 0, inFront = 0;
+  for (size_t i = 1; i < mesh->primitives.size(); ++i)
+    for (size_t v = 0; v < mesh->primitives[i].vertexCount(); v += 7) {
+      const glm::vec3& q = mesh->primitives[i].positions[v];
+      float skinDepth = -INFINITY;
+      for (const glm::vec3& s : skin.positions) {
+        const glm::vec3 d = s - q;
+        if (std::abs(glm::dot(d, frame.side())) < cell && std::abs(glm::dot(d, frame.up())) < cell &&
+            std::abs(frame.aboveLipLine(s)) > 0.02f)
+          skinDepth = std::max(skinDepth, glm::dot(s, frame.forward()));
+      }
+      if (!std::isfinite(skinDepth)) continue;
+      ++checked;
+      inFront += glm::dot(q, frame.forward()) >= skinDepth;
     }
-    if (!std::isfinite(skinDepth)) continue;
-    ++checked;
-    EXPECT_LT(glm::dot(v, frame.forward()), skinDepth) << "a bag vertex in front of the skin";
-  }
-  EXPECT_GT(checked, opened.opening.bagVertices / 2);
+  EXPECT_GT(checked, 200u);
+  EXPECT_EQ(inFront, 0u) << "of " << checked << " carried vertices";
 }
 
 TEST(MouthOpening, CutsWeldedLipsBetweenTheCorners) {
@@ -211,7 +233,7 @@ TEST(MouthOpening, CutsWeldedLipsBetweenTheCorners) {
   const autorig::SourceFace source = headSource(*head);
   const eng::Model face = welded(withoutTheInsideOfTheMouth(*head), source.landmarks);
   ASSERT_TRUE(lipsJoined(face, source.landmarks, 62, 66)) << "the welded lips are one surface";
-  const Opened opened = open(face, source.landmarks);
+  const Opened opened = open(face, source);
   EXPECT_GT(opened.opening.cutVertices, 10u);
   EXPECT_FALSE(lipsJoined(opened.face, source.landmarks, 62, 66)) << "cut, the lips meet only past the corners";
   // The corners stay joined: the cut ends inside them.
@@ -227,7 +249,7 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   size_t before = 0;  // skin vertices before the cut: the copies come after them
   for (const eng::Mesh& m : face.meshes)
     if (m.name == "Head") before = m.primitives[0].vertexCount();
-  const Opened opened = open(face, source.landmarks);
+  const Opened opened = open(face, source);
   const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
   const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
   eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts);
@@ -259,6 +281,21 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
               narrowest);
   EXPECT_GE(twins, 3u);
   EXPECT_GT(narrowest, 0.2f);
+
+  // The teeth carried in: the lower row drops with the jaw, the upper stays.
+  std::vector<float> teethTravel;
+  for (const eng::Primitive& piece : mesh->primitives) {
+    if (piece.material < 0 || rigged->model.materials[size_t(piece.material)].name != "Teeth") continue;
+    const eng::MorphTarget& target = piece.targets[size_t(jaw - mesh->targetNames.begin())];
+    float travel = 0.0f;
+    for (const glm::vec3& d : target.positions) travel = std::max(travel, glm::length(d));
+    teethTravel.push_back(travel / mouthWidth);
+  }
+  ASSERT_EQ(teethTravel.size(), 2u);
+  std::sort(teethTravel.begin(), teethTravel.end());
+  std::printf("teeth at AU26 1: upper row %.3f, lower row %.3f of the mouth's width\n", teethTravel[0], teethTravel[1]);
+  EXPECT_LT(teethTravel[0], 0.01f);
+  EXPECT_GT(teethTravel[1], 0.2f);
 }
 
 }  // namespace
