@@ -14,6 +14,7 @@
 #include "autorig/face_frame.h"
 #include "autorig/landmark_warp.h"
 #include "engine/scene/inner_face_parts.h"
+#include "engine/scene/ray_triangle.h"
 
 namespace autorig {
 namespace {
@@ -161,34 +162,13 @@ size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const st
   return cut;
 }
 
-struct Ray {
-  glm::vec3 origin, direction;
-};
-
-// Möller-Trumbore: whether the ray meets the triangle in front of its origin.
-bool meets(const Ray& ray, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  const glm::vec3 e1 = b - a, e2 = c - a;
-  const glm::vec3 p = glm::cross(ray.direction, e2);
-  const float det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-12f) return false;
-  const float inv = 1.0f / det;
-  const glm::vec3 s = ray.origin - a;
-  const float u = glm::dot(s, p) * inv;
-  if (u < 0.0f || u > 1.0f) return false;
-  const glm::vec3 q = glm::cross(s, e1);
-  const float w = glm::dot(ray.direction, q) * inv;
-  if (w < 0.0f || u + w > 1.0f) return false;
-  return glm::dot(e2, q) * inv > 0.0f;
-}
-
 struct SkinTriangles {
   std::vector<glm::vec3> corners;  // three per triangle, world space
 };
 
 bool behindTheSkin(const glm::vec3& p, const SkinTriangles& skin, const glm::vec3& forward) {
-  const Ray ray{p, forward};
   for (size_t t = 0; t + 2 < skin.corners.size(); t += 3)
-    if (meets(ray, skin.corners[t], skin.corners[t + 1], skin.corners[t + 2])) return true;
+    if (eng::intersectRayTriangle(p, forward, skin.corners[t], skin.corners[t + 1], skin.corners[t + 2])) return true;
   return false;
 }
 

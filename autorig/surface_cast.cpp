@@ -1,5 +1,7 @@
 #include "autorig/surface_cast.h"
 
+#include "engine/scene/ray_triangle.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,25 +19,6 @@ const std::vector<uint32_t>* triangleIndices(const eng::Model& model, const Pose
 
 bool validTriangle(const std::vector<uint32_t>& indices, size_t t, size_t vertexCount) {
   return indices[3 * t] < vertexCount && indices[3 * t + 1] < vertexCount && indices[3 * t + 2] < vertexCount;
-}
-
-// Möller-Trumbore, both sides: the ray parameter, or nullopt.
-std::optional<float> intersect(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& a, const glm::vec3& b,
-                               const glm::vec3& c) {
-  const glm::vec3 e1 = b - a, e2 = c - a;
-  const glm::vec3 p = glm::cross(dir, e2);
-  const float det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-20f) return std::nullopt;
-  const float inv = 1.0f / det;
-  const glm::vec3 s = origin - a;
-  const float u = glm::dot(s, p) * inv;
-  if (u < 0.0f || u > 1.0f) return std::nullopt;
-  const glm::vec3 q = glm::cross(s, e1);
-  const float v = glm::dot(dir, q) * inv;
-  if (v < 0.0f || u + v > 1.0f) return std::nullopt;
-  const float t = glm::dot(e2, q) * inv;
-  if (t <= 0.0f) return std::nullopt;
-  return t;
 }
 
 // Ericson, Real-Time Collision Detection 5.1.5.
@@ -148,7 +131,8 @@ std::optional<SurfacePoint> SurfaceCaster::cast(glm::vec2 pixel, float reachPixe
     const glm::vec3& a = p.positions[idx[3 * ref.triangle]];
     const glm::vec3& b = p.positions[idx[3 * ref.triangle + 1]];
     const glm::vec3& c = p.positions[idx[3 * ref.triangle + 2]];
-    const std::optional<float> t = intersect(origin, dir, a, b, c);
+    const std::optional<eng::RayTriangleHit> hit = eng::intersectRayTriangle(origin, dir, a, b, c);
+    const std::optional<float> t = hit ? std::optional<float>(hit->distance) : std::nullopt;
     if (!t || *t >= bestT) continue;
     bestT = *t;
     best = SurfacePoint{ref.primitive, origin + dir * *t, true};

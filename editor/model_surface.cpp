@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/scene/cpu_morph.h"
+#include "engine/scene/ray_triangle.h"
 #include "engine/scene/skeleton_pose.h"
 #include "engine/scene/weights.h"
 
@@ -64,23 +65,13 @@ std::optional<SurfaceHit> ModelSurface::raycast(const eng::Model& model, const g
     for (size_t t = 0; t + 2 < indices.size(); t += 3) {
       const uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
       if (i0 >= sp.vertexCount || i1 >= sp.vertexCount || i2 >= sp.vertexCount) continue;
-      // Moller-Trumbore, both faces (a click on a back-facing lip still counts).
-      // The barycentric bounds are widened by kEdgeSlack: a ray over an edge
-      // shared by two triangles (the mirror plane of a symmetric face) must
-      // not fall through both of them by rounding.
-      const glm::vec3 e1 = v[i1] - v[i0], e2 = v[i2] - v[i0];
-      const glm::vec3 pv = glm::cross(direction, e2);
-      const float det = glm::dot(e1, pv);
-      if (std::abs(det) < 1e-20f) continue;
-      const float inv = 1.0f / det;
-      const glm::vec3 tv = origin - v[i0];
-      const float u = glm::dot(tv, pv) * inv;
-      if (u < -kEdgeSlack || u > 1.0f + kEdgeSlack) continue;
-      const glm::vec3 qv = glm::cross(tv, e1);
-      const float w = glm::dot(direction, qv) * inv;
-      if (w < -kEdgeSlack || u + w > 1.0f + kEdgeSlack) continue;
-      const float s = glm::dot(e2, qv) * inv;
-      if (s <= 0.0f || s >= bestDistance) continue;
+      // Either face (a click on a back-facing lip still counts), the bounds
+      // widened by kEdgeSlack: a ray over an edge shared by two triangles
+      // (the mirror plane of a symmetric face) must not fall through both.
+      const std::optional<eng::RayTriangleHit> found =
+          eng::intersectRayTriangle(origin, direction, v[i0], v[i1], v[i2], kEdgeSlack);
+      if (!found || found->distance >= bestDistance) continue;
+      const float s = found->distance, u = found->u, w = found->v;
       bestDistance = s;
       SurfaceHit hit;
       hit.distance = s;
