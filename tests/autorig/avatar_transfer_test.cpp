@@ -3,10 +3,13 @@
 // ARKit shapes; its visemes stay, its hair and clothes do not move.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "autorig/face_frame.h"
+#include "autorig/mouth_opening.h"
 #include "autorig/target_transfer.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -61,3 +64,56 @@ TEST(AvatarTransfer, RiggsAVisemesOnlyAvatar) {
 }
 
 }  // namespace
+
+// The same avatar without its teeth mesh (many avatars come without): the
+// built-in head's mouth, teeth and tongue are carried in, skinned as its
+// head is, and the rigged file saves and loads with them.
+TEST(AvatarTransfer, AnAvatarWithoutTeethGetsTheHeads) {
+  FACIAL_REQUIRE_SHARED();
+  eng::Result<eng::Model> avatar = eng::loadModel(testing_support::sharedDir() / "speech/rpm-visemes.glb");
+  ASSERT_TRUE(avatar) << avatar.error().message;
+  for (eng::Node& node : avatar->nodes)
+    if (node.name == "Wolf3D_Teeth") node.mesh = -1, node.skin = -1;
+  const autorig::PosedFace posed = autorig::poseAtRest(*avatar);
+  const std::optional<eng::Model> builtIn = transfer_fixture::loadHead();
+  ASSERT_TRUE(builtIn);
+  const autorig::SourceFace source = transfer_fixture::headSource(*builtIn);
+  eng::Result<autorig::FaceLandmarks> read =
+      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json");
+  ASSERT_TRUE(read) << read.error().message;
+  const autorig::FaceLandmarks& landmarks = *read;
+  eng::Model face = *avatar;
+  const autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  const autorig::MouthOpening opening = autorig::openTheMouth(face, posed, landmarks, parts, source);
+  EXPECT_EQ(opening.cutVertices, 0u);
+  ASSERT_GT(opening.insideVertices, 0u);
+  size_t head = 0;
+  while (head < face.meshes.size() && face.meshes[head].name != "Wolf3D_Head") ++head;
+  ASSERT_LT(head, face.meshes.size());
+  const eng::Mesh& mesh = face.meshes[head];
+  const size_t sets = mesh.primitives[0].influenceSets();
+  ASSERT_GT(sets, 0u) << "the avatar's head is skinned";
+  for (size_t i = 1; i < mesh.primitives.size(); ++i) {
+    EXPECT_EQ(mesh.primitives[i].influenceSets(), sets) << "carried piece " << i << " is skinned as the head";
+    EXPECT_EQ(mesh.primitives[i].targets.size(), mesh.targetNames.size());
+  }
+  // Posed as drawn, the carried teeth sit between the avatar's eyes and chin, behind its lips.
+  const autorig::PosedFace after = autorig::poseAtRest(face);
+  const autorig::LandmarkFrame frame(landmarks);
+  // The lips' front: the outer lips' middles (51 above, 57 below).
+  const float lipsFront = std::max(glm::dot(landmarks.points[51], frame.forward()), glm::dot(landmarks.points[57], frame.forward()));
+  for (const autorig::PosedPrimitive& pp : after.primitives) {
+    if (pp.mesh != head || pp.primitive == 0) continue;
+    for (const glm::vec3& q : pp.positions) {
+      EXPECT_LT(std::abs(frame.sideOf(q)), 0.6f);
+      EXPECT_LT(frame.aboveLipLine(q), 0.35f);
+      EXPECT_LT(glm::dot(q, frame.forward()), lipsFront);
+    }
+  }
+  const auto out = testing_support::freshTempDir("avatar_transfer") / "rpm-without-teeth-opened.glb";
+  eng::Result<void> saved = eng::saveModel(face, out);
+  ASSERT_TRUE(saved) << saved.error().message;
+  eng::Result<eng::Model> loaded = eng::loadModel(out);
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->meshes[head].primitives.size(), mesh.primitives.size());
+}
