@@ -8,6 +8,7 @@
 #include <optional>
 #include <queue>
 #include <span>
+#include <unordered_map>
 #include <utility>
 
 #include "autorig/dense_correspondence.h"
@@ -162,27 +163,53 @@ size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const st
   return cut;
 }
 
-struct SkinTriangles {
-  std::vector<glm::vec3> corners;  // three per triangle, world space
-};
+// The skin about the mouth, its triangles binned by where they fall on the
+// face's plane (side, up), so a ray straight out of the face tests only its
+// cell's few triangles, not every triangle of a dense scan's mouth.
+class SkinInFront {
+ public:
+  SkinInFront(const LandmarkFrame& frame, float cell) : side_(frame.side()), up_(frame.up()), forward_(frame.forward()), cell_(cell) {}
 
-bool behindTheSkin(const glm::vec3& p, const SkinTriangles& skin, const glm::vec3& forward) {
-  for (size_t t = 0; t + 2 < skin.corners.size(); t += 3)
-    if (eng::intersectRayTriangle(p, forward, skin.corners[t], skin.corners[t + 1], skin.corners[t + 2])) return true;
-  return false;
-}
+  void add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const uint32_t t = uint32_t(corners_.size() / 3);
+    corners_.insert(corners_.end(), {a, b, c});
+    const glm::vec2 pa = plane(a), pb = plane(b), pc = plane(c);
+    const glm::ivec2 lo = cellOf(glm::min(pa, glm::min(pb, pc))), hi = cellOf(glm::max(pa, glm::max(pb, pc)));
+    for (int x = lo.x; x <= hi.x; ++x)
+      for (int y = lo.y; y <= hi.y; ++y) cells_[key({x, y})].push_back(t);
+  }
+
+  // Whether a ray from p straight out of the face meets the skin.
+  bool covers(const glm::vec3& p) const {
+    const auto found = cells_.find(key(cellOf(plane(p))));
+    if (found == cells_.end()) return false;
+    for (uint32_t t : found->second)
+      if (eng::intersectRayTriangle(p, forward_, corners_[t * 3], corners_[t * 3 + 1], corners_[t * 3 + 2])) return true;
+    return false;
+  }
+
+ private:
+  glm::vec2 plane(const glm::vec3& p) const { return {glm::dot(p, side_), glm::dot(p, up_)}; }
+  glm::ivec2 cellOf(const glm::vec2& q) const { return glm::ivec2(glm::floor(q / cell_)); }
+  static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
+
+  glm::vec3 side_, up_, forward_;
+  float cell_;
+  std::vector<glm::vec3> corners_;  // three per triangle, world space
+  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
+};
 
 // How far back (along the face's forward, in steps of kTuckStep mouth widths)
 // `points` must move, all together, to lie behind the skin; -1 when no move
 // up to kTuckSteps hides them. Every `stride`-th point is tried.
 constexpr float kTuckStep = 0.05f;
 constexpr int kTuckSteps = 12;
-int stepsBehindTheSkin(std::span<const glm::vec3> points, size_t stride, const SkinTriangles& skin,
+int stepsBehindTheSkin(std::span<const glm::vec3> points, size_t stride, const SkinInFront& skin,
                        const LandmarkFrame& frame, float mouthWidth) {
   for (int step = 0; step <= kTuckSteps; ++step) {
     const glm::vec3 back = frame.forward() * (-kTuckStep * mouthWidth * float(step));
     bool hidden = true;
-    for (size_t v = 0; v < points.size() && hidden; v += stride) hidden = behindTheSkin(points[v] + back, skin, frame.forward());
+    for (size_t v = 0; v < points.size() && hidden; v += stride) hidden = skin.covers(points[v] + back);
     if (hidden) return step;
   }
   return -1;
@@ -194,13 +221,12 @@ int stepsBehindTheSkin(std::span<const glm::vec3> points, size_t stride, const S
 struct MouthHost {
   size_t primitive = 0;  // into PosedFace::primitives
   uint32_t anchor = 0;
-  SkinTriangles skin;
+  SkinInFront skin;
 };
 
 std::optional<MouthHost> findMouthHost(const eng::Model& face, const PosedFace& posed, const FaceParts& parts,
                                        const FaceLandmarks& landmarks, const glm::vec3& lipCentre, float mouthWidth) {
-  MouthHost host;
-  host.primitive = posed.primitives.size();
+  MouthHost host{posed.primitives.size(), 0, SkinInFront(LandmarkFrame(landmarks), 0.05f * mouthWidth)};
   float nearest = std::numeric_limits<float>::max();
   for (size_t i = 0; i < posed.primitives.size(); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
@@ -213,7 +239,7 @@ std::optional<MouthHost> findMouthHost(const eng::Model& face, const PosedFace& 
       if (tri[0] >= pp.positions.size() || tri[1] >= pp.positions.size() || tri[2] >= pp.positions.size()) continue;
       if (parts.vertexParts[i][tri[0]] != FacePart::Skin) continue;
       if (glm::distance(pp.positions[tri[0]], lipCentre) > 2.0f * mouthWidth) continue;
-      host.skin.corners.insert(host.skin.corners.end(), {pp.positions[tri[0]], pp.positions[tri[1]], pp.positions[tri[2]]});
+      host.skin.add(pp.positions[tri[0]], pp.positions[tri[1]], pp.positions[tri[2]]);
     }
   }
   if (host.primitive == posed.primitives.size()) return std::nullopt;
