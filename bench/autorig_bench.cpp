@@ -5,6 +5,8 @@
 //   build/bin/facial_bench --benchmark_filter=Autorig
 #include <benchmark/benchmark.h>
 
+#include <memory>
+
 #include "autorig/builtin_source.h"
 #include "autorig/mouth_opening.h"
 #include "autorig/target_transfer.h"
@@ -13,29 +15,48 @@
 
 namespace {
 
-void BM_AutorigDenseHead(benchmark::State& state) {
-  eng::Result<eng::Model> head = eng::loadModel(FACIAL_SOURCE_DIR "/data/head.glb");
-  if (!head) return state.SkipWithError(head.error().message.c_str());
-  eng::Model face = *head;
-  for (eng::Mesh& mesh : face.meshes) {
+// The built-in head (the source) and a dense face made from it: its targets
+// stripped, its skin Loop-subdivided once (120k skin vertices), with the
+// landmarks and parts builtInSource finds on it (as a user's file would give).
+struct DenseHead {
+  std::unique_ptr<eng::Model> head;  // the source refers to it
+  autorig::SourceFace source;
+  eng::Model face;
+  autorig::PosedFace posed;  // the dense face's
+  autorig::FaceLandmarks landmarks;
+  autorig::FaceParts parts;
+};
+
+eng::Result<DenseHead> denseHead() {
+  DenseHead d;
+  d.head = std::make_unique<eng::Model>(ENG_TRY_VALUE(eng::loadModel(FACIAL_SOURCE_DIR "/data/head.glb")));
+  d.face = *d.head;
+  for (eng::Mesh& mesh : d.face.meshes) {
     mesh.targetNames.clear();
     mesh.defaultWeights.clear();
     for (eng::Primitive& p : mesh.primitives) p.targets.clear();
   }
-  if (auto r = importers::loopSubdivide(face.meshes[0].primitives[0], "head skin"); !r)
-    return state.SkipWithError(r.error().message.c_str());
-  eng::Result<autorig::SourceFace> source = autorig::builtInSource(*head);
-  eng::Result<autorig::SourceFace> target = autorig::builtInSource(face);  // its landmarks and parts, as a user's file would give
-  if (!source || !target) return state.SkipWithError("built-in head not set up");
+  ENG_TRY(importers::loopSubdivide(d.face.meshes[0].primitives[0], "head skin"));
+  d.source = ENG_TRY_VALUE(autorig::builtInSource(*d.head));
+  autorig::SourceFace dense = ENG_TRY_VALUE(autorig::builtInSource(d.face));
+  d.posed = std::move(dense.posed);
+  d.landmarks = dense.landmarks;
+  d.parts = std::move(dense.parts);
+  return d;
+}
+
+void BM_AutorigDenseHead(benchmark::State& state) {
+  eng::Result<DenseHead> d = denseHead();
+  if (!d) return state.SkipWithError(d.error().message.c_str());
   size_t made = 0;
   for (auto _ : state) {
     eng::Result<autorig::TransferResult> rigged =
-        autorig::transferTargets(*source, face, target->posed, target->landmarks, target->parts);
+        autorig::transferTargets(d->source, d->face, d->posed, d->landmarks, d->parts);
     if (!rigged) return state.SkipWithError(rigged.error().message.c_str());
     made = rigged->report.made.size();
     benchmark::DoNotOptimize(rigged->model.meshes.data());
   }
-  state.SetLabel(std::to_string(target->posed.vertexCount()) + " vertices, " + std::to_string(made) + " targets made");
+  state.SetLabel(std::to_string(d->posed.vertexCount()) + " vertices, " + std::to_string(made) + " targets made");
 }
 BENCHMARK(BM_AutorigDenseHead)->Unit(benchmark::kSecond)->Iterations(1);
 
@@ -44,29 +65,20 @@ BENCHMARK(BM_AutorigDenseHead)->Unit(benchmark::kSecond)->Iterations(1);
 // ready (autorig/mouth_opening: the head's carried in, hidden behind the
 // lips), posing the changed face and finding its parts again, and the transfer.
 void BM_AutorigDenseScan(benchmark::State& state) {
-  eng::Result<eng::Model> head = eng::loadModel(FACIAL_SOURCE_DIR "/data/head.glb");
-  if (!head) return state.SkipWithError(head.error().message.c_str());
-  eng::Model scan = *head;
-  for (eng::Mesh& mesh : scan.meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  if (auto r = importers::loopSubdivide(scan.meshes[0].primitives[0], "head skin"); !r)
-    return state.SkipWithError(r.error().message.c_str());
-  eng::Result<autorig::SourceFace> source = autorig::builtInSource(*head);
-  eng::Result<autorig::SourceFace> dense = autorig::builtInSource(scan);  // its landmarks, as a user's file would give
-  if (!source || !dense) return state.SkipWithError("built-in head not set up");
+  eng::Result<DenseHead> d = denseHead();
+  if (!d) return state.SkipWithError(d.error().message.c_str());
+  eng::Model scan = d->face;
   scan.meshes[0].primitives.resize(1);
+  const autorig::FaceLandmarks& landmarks = d->landmarks;
   size_t added = 0, vertices = 0;
   for (auto _ : state) {
     eng::Model face = scan;
     autorig::PosedFace posed = autorig::poseAtRest(face);
-    autorig::FaceParts parts = autorig::findFaceParts(face, posed, dense->landmarks);
-    const autorig::MouthOpening opening = autorig::openTheMouth(face, posed, dense->landmarks, parts, *source);
+    autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+    const autorig::MouthOpening opening = autorig::openTheMouth(face, posed, landmarks, parts, d->source);
     posed = autorig::poseAtRest(face);
-    parts = autorig::findFaceParts(face, posed, dense->landmarks);
-    eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(*source, face, posed, dense->landmarks, parts);
+    parts = autorig::findFaceParts(face, posed, landmarks);
+    eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(d->source, face, posed, landmarks, parts);
     if (!rigged) return state.SkipWithError(rigged.error().message.c_str());
     added = opening.insideVertices;
     vertices = posed.vertexCount();
