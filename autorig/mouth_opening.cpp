@@ -35,7 +35,6 @@ struct MouthBox {
   float margin = 0.0f;              // past (or within) the corners, eye spans
 };
 
-
 // Appends a copy of vertex v (every attribute, its targets' deltas too) and returns its index.
 uint32_t duplicateVertex(eng::Primitive& prim, uint32_t v) {
   const size_t n = prim.vertexCount();
@@ -75,7 +74,7 @@ std::string meshLabel(const eng::Model& model, size_t mesh) {
 // mouth's inside joins the lips of any face). Lips that are separate meet
 // only beyond the mouth corners; welded lips meet between them.
 struct LipSides {
-  std::vector<char> inMouth;      // the vertex is in the mouth's box
+  std::vector<char> inMouth;            // the vertex is in the mouth's box
   std::vector<float> toUpper, toLower;  // distances along the edges
 };
 
