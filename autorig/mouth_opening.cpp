@@ -33,6 +33,7 @@ struct MouthBox {
   glm::vec3 lipCentre{0.0f};
   float left = 0.0f, right = 0.0f;  // the corners across the midline, eye spans
   float margin = 0.0f;              // past (or within) the corners, eye spans
+  glm::vec3 corners[2]{};           // landmarks 48 and 54
 };
 
 // Appends a copy of vertex v (every attribute, its targets' deltas too) and returns its index.
@@ -68,88 +69,203 @@ std::string meshLabel(const eng::Model& model, size_t mesh) {
   return name.empty() ? "mesh " + std::to_string(mesh) : name;
 }
 
-// The skin about the mouth, each vertex labelled by which lip it is nearer
-// along the surface: distances grown from the vertices clearly above the lip
-// line and from those clearly below, through the front of the mouth only (a
-// mouth's inside joins the lips of any face). Lips that are separate meet
-// only beyond the mouth corners; welded lips meet between them.
-struct LipSides {
-  std::vector<char> inMouth;            // the vertex is in the mouth's box
-  std::vector<float> toUpper, toLower;  // distances along the edges
+// Where welded lips meet: the cheapest way along the skin's edges from one
+// mouth corner to the other, an edge costing its length, less where it runs
+// recessed behind the lips' front (the crease between closed lips) and more
+// away from the lip line. A path by distance alone (or lips told apart by
+// which side's seeds are nearer) wanders a row or two off the crease: a strip
+// of one lip then stays with the other and the opening has steps.
+constexpr float kCreasePull = 4.0f;     // per radius of recess: half a radius behind costs e^-2
+constexpr float kCreaseRadius = 0.05f;  // eye spans: the skin about a vertex its recess is measured against
+constexpr float kLipLineBand = 0.06f;   // eye spans off the lip line where the cost has doubled
+
+struct MouthGraph {
+  std::vector<char> inMouth;                    // the vertex is skin in the mouth's box
+  std::vector<std::vector<uint32_t>> neighbours;  // edges within the box
 };
 
-LipSides lipSides(const eng::Primitive& prim, const std::vector<glm::vec3>& world, const std::vector<FacePart>& parts,
-                  const LandmarkFrame& frame, const MouthBox& box) {
+MouthGraph mouthGraph(const eng::Primitive& prim, const std::vector<glm::vec3>& world, const std::vector<FacePart>& parts,
+                      const LandmarkFrame& frame, const MouthBox& box) {
   const size_t n = world.size();
-  LipSides sides;
-  sides.inMouth.assign(n, 0);
+  MouthGraph g;
+  g.inMouth.assign(n, 0);
   for (size_t v = 0; v < n; ++v) {
     if (parts[v] != FacePart::Skin) continue;
     const float side = frame.sideOf(world[v]), above = frame.aboveLipLine(world[v]);
     const float depth = glm::dot(world[v] - box.lipCentre, frame.forward()) / frame.eyeSpan();
-    sides.inMouth[v] = side > box.left - box.margin && side < box.right + box.margin && std::abs(above) < kMouthBoxHeight &&
-                       depth > -kMouthBoxDepth;
+    g.inMouth[v] = side > box.left - box.margin && side < box.right + box.margin && std::abs(above) < kMouthBoxHeight &&
+                   depth > -kMouthBoxDepth;
   }
-  std::vector<std::vector<uint32_t>> neighbours(n);
+  g.neighbours.resize(n);
   for (size_t t = 0; t + 2 < prim.indices.size(); t += 3)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = prim.indices[t + size_t(k)], b = prim.indices[t + size_t((k + 1) % 3)];
-      if (a >= n || b >= n || !sides.inMouth[a] || !sides.inMouth[b]) continue;
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
+      if (a >= n || b >= n || !g.inMouth[a] || !g.inMouth[b]) continue;
+      g.neighbours[a].push_back(b);
+      g.neighbours[b].push_back(a);
     }
-  auto grow = [&](float sign) {
-    std::vector<float> distance(n, std::numeric_limits<float>::infinity());
-    using Entry = std::pair<float, uint32_t>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
-    for (size_t v = 0; v < n; ++v)
-      if (sides.inMouth[v] && sign * frame.aboveLipLine(world[v]) > kLipSeed) distance[v] = 0.0f, front.push({0.0f, uint32_t(v)});
-    while (!front.empty()) {
-      const auto [d, v] = front.top();
-      front.pop();
-      if (d > distance[v]) continue;
-      for (uint32_t w : neighbours[v]) {
-        const float through = d + glm::distance(world[v], world[w]);
-        if (through < distance[w]) distance[w] = through, front.push({through, w});
-      }
-    }
-    return distance;
-  };
-  sides.toUpper = grow(1.0f);
-  sides.toLower = grow(-1.0f);
-  return sides;
+  return g;
 }
 
-// Cuts the welded lips of one primitive; returns how many seam vertices got a copy.
+using Entry = std::pair<float, uint32_t>;
+using Front = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>;
+
+// The crease's vertices, corner to corner (empty when the corners are not joined in the box).
+std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
+                             const MouthBox& box) {
+  const size_t n = world.size();
+  std::vector<char> onPath(n, 0);
+  // How far each vertex lies behind the mean of the skin within the radius
+  // about it, over the radius: < 0 in a crease, about 0 on a plane or a slope.
+  const float radius = kCreaseRadius * frame.eyeSpan();
+  auto depthOf = [&](size_t v) { return glm::dot(world[v], frame.forward()); };
+  std::unordered_map<int64_t, std::vector<uint32_t>> cells;
+  auto cellKey = [&](const glm::ivec3& c) { return (int64_t(c.x) * 73856093) ^ (int64_t(c.y) * 19349663) ^ (int64_t(c.z) * 83492791); };
+  auto cellOf = [&](const glm::vec3& q) { return glm::ivec3(glm::floor(q / radius)); };
+  for (size_t v = 0; v < n; ++v)
+    if (g.inMouth[v]) cells[cellKey(cellOf(world[v]))].push_back(uint32_t(v));
+  std::vector<float> weight(n, 1.0f);
+  for (size_t v = 0; v < n; ++v) {
+    if (!g.inMouth[v]) continue;
+    const glm::ivec3 c = cellOf(world[v]);
+    float sum = 0.0f;
+    int count = 0;
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = -1; z <= 1; ++z) {
+          const auto found = cells.find(cellKey(c + glm::ivec3(x, y, z)));
+          if (found == cells.end()) continue;
+          for (uint32_t w : found->second)
+            if (glm::distance(world[w], world[v]) < radius) sum += depthOf(w), ++count;
+        }
+    const float recess = (depthOf(v) - sum / float(count)) / radius;
+    const float off = frame.aboveLipLine(world[v]) / kLipLineBand;
+    weight[v] = std::exp(kCreasePull * recess) * (1.0f + off * off);
+  }
+  auto nearest = [&](const glm::vec3& p) {
+    uint32_t best = uint32_t(n);
+    float bestDistance = std::numeric_limits<float>::max();
+    for (size_t v = 0; v < n; ++v)
+      if (g.inMouth[v] && glm::distance(world[v], p) < bestDistance) bestDistance = glm::distance(world[v], p), best = uint32_t(v);
+    return best;
+  };
+  const uint32_t from = nearest(box.corners[0]), to = nearest(box.corners[1]);
+  if (from == n || to == n || from == to) return onPath;
+  std::vector<float> cost(n, std::numeric_limits<float>::infinity());
+  std::vector<uint32_t> previous(n, uint32_t(n));
+  Front queue;
+  cost[from] = 0.0f;
+  queue.push({0.0f, from});
+  while (!queue.empty()) {
+    const auto [c, v] = queue.top();
+    queue.pop();
+    if (c > cost[v]) continue;
+    if (v == to) break;
+    for (uint32_t w : g.neighbours[v]) {
+      const float through = c + glm::distance(world[v], world[w]) * 0.5f * (weight[v] + weight[w]);
+      if (through < cost[w]) cost[w] = through, previous[w] = v, queue.push({through, w});
+    }
+  }
+  if (!std::isfinite(cost[to])) return onPath;
+  for (uint32_t v = to; v != n; v = previous[v]) onPath[v] = 1;
+  return onPath;
+}
+
+// Distances along the box's edges from the seeds, never through a barrier vertex.
+std::vector<float> distancesFrom(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& seeds,
+                                 const std::vector<char>& barrier) {
+  std::vector<float> distance(world.size(), std::numeric_limits<float>::infinity());
+  Front queue;
+  for (size_t v = 0; v < world.size(); ++v)
+    if (seeds[v] && !barrier[v]) distance[v] = 0.0f, queue.push({0.0f, uint32_t(v)});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (uint32_t w : g.neighbours[v]) {
+      const float through = d + glm::distance(world[v], world[w]);
+      if (!barrier[w] && through < distance[w]) distance[w] = through, queue.push({through, w});
+    }
+  }
+  return distance;
+}
+
+// The vertices of the box clearly above (sign 1) or below (-1) the lip line,
+// between the corners `within` of the mouth's width off its middle (1: all).
+std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
+                           const MouthBox& box, float sign, float within) {
+  const float middle = 0.5f * (box.left + box.right), half = within * 0.5f * (box.right - box.left);
+  std::vector<char> seeds(world.size(), 0);
+  for (size_t v = 0; v < world.size(); ++v)
+    seeds[v] = g.inMouth[v] && sign * frame.aboveLipLine(world[v]) > kLipSeed &&
+               (within >= 1.0f || std::abs(frame.sideOf(world[v]) - middle) < half);
+  return seeds;
+}
+
+// Welded lips are one surface between the corners: the upper lip's middle
+// reaches the lower's without going near a corner. Separate lips (and a
+// mouth's inside, whose back lies behind the box) join only round the corners.
+bool lipsJoinedBetweenTheCorners(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
+                                 const MouthBox& box) {
+  const float middle = 0.5f * (box.left + box.right), half = 0.5f * (box.right - box.left);
+  std::vector<char> nearACorner(world.size(), 0);
+  for (size_t v = 0; v < world.size(); ++v) nearACorner[v] = std::abs(frame.sideOf(world[v]) - middle) > 0.75f * half;
+  const std::vector<float> fromUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 0.5f), nearACorner);
+  const std::vector<char> lowerMiddle = lipSeeds(world, g, frame, box, -1.0f, 0.5f);
+  for (size_t v = 0; v < world.size(); ++v)
+    if (lowerMiddle[v] && std::isfinite(fromUpper[v])) return true;
+  return false;
+}
+
+// Each vertex of the mouth's box labelled lower lip or not: nearer, along the
+// edges and never through the crease, to the vertices clearly below the lip
+// line than to those clearly above it.
+std::vector<char> lowerLip(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& crease,
+                           const LandmarkFrame& frame, const MouthBox& box) {
+  const std::vector<float> toUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 1.0f), crease);
+  const std::vector<float> toLower = distancesFrom(world, g, lipSeeds(world, g, frame, box, -1.0f, 1.0f), crease);
+  std::vector<char> lower(world.size(), 0);
+  for (size_t v = 0; v < world.size(); ++v) lower[v] = g.inMouth[v] && !crease[v] && toLower[v] < toUpper[v];
+  return lower;
+}
+
+// Cuts the welded lips of one primitive along their crease; returns how many
+// seam vertices got a copy.
 size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const std::vector<FacePart>& parts,
                      const LandmarkFrame& frame, const MouthBox& box) {
   const std::vector<glm::vec3>& world = posed.positions;
   const size_t n = world.size();
   if (n != prim.vertexCount() || parts.size() != n) return 0;
-  const LipSides sides = lipSides(prim, world, parts, frame, box);
-  auto upper = [&](uint32_t v) { return sides.toUpper[v] < sides.toLower[v]; };
-  auto labelled = [&](uint32_t v) { return v < n && sides.inMouth[v] && std::isfinite(std::min(sides.toUpper[v], sides.toLower[v])); };
-  // The seam: upper-lip vertices between the corners that share a triangle
-  // with a lower-lip vertex. Each gets a copy for the triangles that reach the
-  // lower lip; past the corners the lips stay joined.
-  std::vector<char> seam(n, 0);
+  const MouthGraph graph = mouthGraph(prim, world, parts, frame, box);
+  if (!lipsJoinedBetweenTheCorners(world, graph, frame, box)) return 0;
+  const std::vector<char> crease = creasePath(world, graph, frame, box);
+  const std::vector<char> lower = lowerLip(world, graph, crease, frame, box);
+  // The seam: crease vertices between the corners with the upper lip on one
+  // side and the lower on the other (separate lips' crease runs along one
+  // lip's rim). Each gets a copy for the triangles that reach the lower lip;
+  // past the corners the lips stay joined.
+  std::vector<char> touchesUpper(n, 0), touchesLower(n, 0);
   const size_t triangles = prim.indices.size() / 3;
   for (size_t t = 0; t < triangles; ++t) {
     const uint32_t* i = &prim.indices[t * 3];
-    if (!labelled(i[0]) || !labelled(i[1]) || !labelled(i[2])) continue;
-    const bool lower = !upper(i[0]) || !upper(i[1]) || !upper(i[2]);
-    for (int k = 0; k < 3 && lower; ++k) {
-      const float side = frame.sideOf(world[i[k]]);
-      if (upper(i[k]) && side > box.left + box.margin && side < box.right - box.margin) seam[i[k]] = 1;
-    }
+    if (i[0] >= n || i[1] >= n || i[2] >= n) continue;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        if (!crease[i[a]] || a == b || crease[i[b]] || !graph.inMouth[i[b]]) continue;
+        (lower[i[b]] ? touchesLower : touchesUpper)[i[a]] = 1;
+      }
+  }
+  std::vector<char> seam(n, 0);
+  for (size_t v = 0; v < n; ++v) {
+    const float side = frame.sideOf(world[v]);
+    seam[v] = touchesUpper[v] && touchesLower[v] && side > box.left && side < box.right;
   }
   if (size_t(std::count(seam.begin(), seam.end(), 1)) < kMinSeamVertices) return 0;
   std::vector<uint32_t> copyOf(n, std::numeric_limits<uint32_t>::max());
   size_t cut = 0;
   for (size_t t = 0; t < triangles; ++t) {
     uint32_t* i = &prim.indices[t * 3];
-    if (!labelled(i[0]) || !labelled(i[1]) || !labelled(i[2])) continue;
-    if (upper(i[0]) && upper(i[1]) && upper(i[2])) continue;
+    if (i[0] >= n || i[1] >= n || i[2] >= n || !(lower[i[0]] || lower[i[1]] || lower[i[2]])) continue;
     for (int k = 0; k < 3; ++k) {
       if (!seam[i[k]]) continue;
       if (copyOf[i[k]] == std::numeric_limits<uint32_t>::max()) {
@@ -386,6 +502,8 @@ MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLa
   box.left = std::min(frame.sideOf(p[48]), frame.sideOf(p[54]));
   box.right = std::max(frame.sideOf(p[48]), frame.sideOf(p[54]));
   box.margin = 0.08f * (box.right - box.left);
+  box.corners[0] = p[48];
+  box.corners[1] = p[54];
   bool hasInside = false;
   for (const std::vector<FacePart>& vertexParts : parts.vertexParts)
     for (FacePart part : vertexParts)

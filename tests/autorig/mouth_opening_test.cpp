@@ -30,8 +30,8 @@ eng::Model withoutTheInsideOfTheMouth(const eng::Model& head) {
 // The same with its lips welded, as a scan's are: the skin's open rim
 // inside the lips (where the dropped inside of the mouth joined it) closed by
 // moving each lower-lip rim vertex onto the upper-lip rim vertex across from
-// it and making them one.
-eng::Model welded(eng::Model face, const autorig::FaceLandmarks& landmarks) {
+// it and making them one. `weld` (optional) receives where they were made one.
+eng::Model welded(eng::Model face, const autorig::FaceLandmarks& landmarks, std::vector<glm::vec3>* weld = nullptr) {
   const autorig::LandmarkFrame frame(landmarks);
   const float mouthWidth = glm::distance(landmarks.points[48], landmarks.points[54]);
   glm::vec3 lipCentre(0.0f);
@@ -79,6 +79,8 @@ eng::Model welded(eng::Model face, const autorig::FaceLandmarks& landmarks) {
       if (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]) indices.insert(indices.end(), tri, tri + 3);
     }
     skin.indices = std::move(indices);
+    if (weld)
+      for (uint32_t u : upper) weld->push_back(skin.positions[u]);
   }
   return face;
 }
@@ -231,10 +233,28 @@ TEST(MouthOpening, CutsWeldedLipsBetweenTheCorners) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
-  const eng::Model face = welded(withoutTheInsideOfTheMouth(*head), source.landmarks);
+  std::vector<glm::vec3> weld;
+  const eng::Model face = welded(withoutTheInsideOfTheMouth(*head), source.landmarks, &weld);
   ASSERT_TRUE(lipsJoined(face, source.landmarks, 62, 66)) << "the welded lips are one surface";
+  size_t before = 0;  // skin vertices before the cut: the copies come after them
+  for (const eng::Mesh& m : face.meshes)
+    if (m.name == "Head") before = m.primitives[0].vertexCount();
   const Opened opened = open(face, source);
   EXPECT_GT(opened.opening.cutVertices, 10u);
+  // The cut runs along the weld (the crease), not a row or two off it: a
+  // strip of the lower lip left on the upper made the opening's edge steps.
+  const autorig::LandmarkFrame frame(source.landmarks);
+  const float left = frame.sideOf(source.landmarks.points[48]), right = frame.sideOf(source.landmarks.points[54]);
+  size_t offTheWeld = 0, weldBetweenTheCorners = 0;
+  for (const glm::vec3& w : weld) weldBetweenTheCorners += frame.sideOf(w) > left && frame.sideOf(w) < right;
+  for (const eng::Mesh& m : opened.face.meshes) {
+    if (m.name != "Head") continue;
+    const eng::Primitive& skin = m.primitives[0];
+    for (size_t v = before; v < skin.vertexCount(); ++v)
+      offTheWeld += std::none_of(weld.begin(), weld.end(), [&](const glm::vec3& w) { return glm::distance(w, skin.positions[v]) < 1e-6f; });
+  }
+  EXPECT_EQ(offTheWeld, 0u) << "of " << opened.opening.cutVertices << " cut vertices";
+  EXPECT_GE(opened.opening.cutVertices + 2, weldBetweenTheCorners) << "the weld between the corners is cut";
   EXPECT_FALSE(lipsJoined(opened.face, source.landmarks, 62, 66)) << "cut, the lips meet only past the corners";
   // The corners stay joined: the cut ends inside them.
   EXPECT_TRUE(lipsJoined(opened.face, source.landmarks, 49, 59, -0.1f));
