@@ -128,6 +128,7 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   if (opening.changed()) {
     posed = autorig::poseAtRest(opened);
     parts = autorig::findFaceParts(opened, posed, landmarks);
+    parts.teethFromTheSource = opening.insideVertices > 0;
   }
   auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts);
   if (!transferred) return transferred.error().prefixed(faceName + ": ");

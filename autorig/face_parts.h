@@ -47,6 +47,10 @@ struct FaceParts {
   std::array<glm::vec3, 2> eyeCentres{};
   std::array<float, 2> eyeRadii{};
   bool eyeballsFound = false;
+  // The lower teeth and tongue are the source's own, carried in behind lips
+  // that had nothing inside (mouth_opening): they drop with the lower lip as
+  // far as the source's do.
+  bool teethFromTheSource = false;
   // One line per decision a user may want to check ("Wolf3D_Teeth: upper
   // and lower teeth, split at y = 1.62"), for `facial rig` and notes.
   std::vector<std::string> notes;

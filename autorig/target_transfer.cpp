@@ -440,27 +440,82 @@ void turnWithJaw(const JawTurn& turn, const JawSplit& split, const FaceSurface& 
     deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, turn.angle, jaw.positions[j]);
 }
 
-// The inner lips' gap a unit's displacements open (61-63 against 65-67, at
-// the nearest vertex on each landmark's own lip), along the face's up, over
-// the mouth's width (48-54).
+// How far a unit's displacements raise a lip's inner middle (landmarks
+// `first` to first + 2, at the nearest vertex on that lip), along the face's up.
+float lipRise(const FaceSurface& surface, const std::vector<FaceRegion>& regions, const FaceLandmarks& landmarks,
+              const std::vector<glm::vec3>& deltas, size_t first, FaceRegion lip) {
+  const glm::vec3 up = LandmarkFrame(landmarks).up();
+  float sum = 0.0f;
+  for (size_t i = first; i < first + 3; ++i) {
+    size_t best = surface.positions.size();
+    float bestDistance = std::numeric_limits<float>::max();
+    for (size_t v = 0; v < surface.positions.size(); ++v) {
+      const float d = glm::length(surface.positions[v] - landmarks.points[i]);
+      if (regions[v] == lip && d < bestDistance) bestDistance = d, best = v;
+    }
+    if (best < surface.positions.size()) sum += glm::dot(deltas[best], up);
+  }
+  return sum / 3.0f;
+}
+
+// The inner lips' gap a unit's displacements open (61-63 against 65-67),
+// over the mouth's width (48-54).
 float lipGapOverWidth(const FaceSurface& surface, const std::vector<FaceRegion>& regions, const FaceLandmarks& landmarks,
                       const std::vector<glm::vec3>& deltas) {
-  const glm::vec3 up = LandmarkFrame(landmarks).up();
-  auto rise = [&](size_t first, FaceRegion lip) {
-    float sum = 0.0f;
-    for (size_t i = first; i < first + 3; ++i) {
-      size_t best = surface.positions.size();
-      float bestDistance = std::numeric_limits<float>::max();
-      for (size_t v = 0; v < surface.positions.size(); ++v) {
-        const float d = glm::length(surface.positions[v] - landmarks.points[i]);
-        if (regions[v] == lip && d < bestDistance) bestDistance = d, best = v;
-      }
-      if (best < surface.positions.size()) sum += glm::dot(deltas[best], up);
-    }
-    return sum / 3.0f;
-  };
   const float width = glm::length(landmarks.points[54] - landmarks.points[48]);
-  return width > 0.0f ? (rise(61, FaceRegion::UpperLip) - rise(65, FaceRegion::LowerLip)) / width : 0.0f;
+  return width > 0.0f ? (lipRise(surface, regions, landmarks, deltas, 61, FaceRegion::UpperLip) -
+                         lipRise(surface, regions, landmarks, deltas, 65, FaceRegion::LowerLip)) / width
+                      : 0.0f;
+}
+
+// The frontmost lower-teeth vertex of a jaw surface, or its size when it has none.
+size_t frontTooth(const FaceSurface& jaw, const LandmarkFrame& frame) {
+  size_t front = jaw.positions.size();
+  float frontmost = -std::numeric_limits<float>::max();
+  for (size_t j = 0; j < jaw.positions.size(); ++j)
+    if (jaw.parts[j] == FacePart::LowerTeeth && glm::dot(jaw.positions[j], frame.forward()) > frontmost)
+      frontmost = glm::dot(jaw.positions[j], frame.forward()), front = j;
+  return front;
+}
+
+// How far the source's lower teeth drop under each unit for the lower lip's
+// middle (0 where it has no teeth or the unit opens nothing).
+std::vector<float> sourceTeethShares(const SourceFace& source, const FaceSurface& src, const std::vector<FaceRegion>& regions,
+                                     const std::vector<std::vector<glm::vec3>>& raw, const std::vector<std::string>& units) {
+  std::vector<float> shares(units.size(), 0.0f);
+  const FaceSurface jaw = gatherSurface(*source.model, source.posed, source.parts, {FacePart::LowerTeeth});
+  const LandmarkFrame frame(source.landmarks);
+  const size_t front = frontTooth(jaw, frame);
+  if (front == jaw.positions.size()) return shares;
+  const std::vector<std::vector<glm::vec3>> teeth = sourceDeltas(source, jaw, units);
+  for (size_t u = 0; u < units.size(); ++u) {
+    const float lip = lipRise(src, regions, source.landmarks, raw[u], 65, FaceRegion::LowerLip);
+    const float tooth = glm::dot(teeth[u][front], frame.up());
+    if (lip < 0.0f && tooth < 0.0f) shares[u] = tooth / lip;
+  }
+  return shares;
+}
+
+// The source's lower teeth carried into a face (and its tongue) drop at least
+// as far, for the lower lip's middle, as they do in the source: the turn found
+// for the lips (scaled down where they part more than the jaw turns them) left
+// them floating in a scan's open mouth at 0.6 of the head's travel. The turn
+// is only raised, up to kTeethScale. A face's own teeth keep the turn:
+// facecap's drop less for its lip than the head's, and its jawOpen is nearest
+// its own so (relative RMS 0.45 against 0.63).
+constexpr float kTeethScale = 2.0f;
+
+void lowerTeethWithTheLip(const JawTurn& turn, float share, const FaceSurface& tgt, const Correspondence& corr,
+                          const FaceLandmarks& landmarks, const FaceSurface& jaw, std::vector<glm::vec3>& deltas) {
+  const LandmarkFrame frame(landmarks);
+  const size_t front = frontTooth(jaw, frame);
+  if (front == jaw.positions.size() || !(share > 0.0f)) return;
+  const float lip = lipRise(tgt, corr.targetRegions, landmarks, deltas, 65, FaceRegion::LowerLip);
+  const float teeth = glm::dot(deltas[tgt.positions.size() + front], frame.up());
+  if (!(lip < 0.0f && teeth < 0.0f)) return;
+  const float angle = turn.angle * std::clamp(share * lip / teeth, 1.0f, kTeethScale);
+  for (size_t j = 0; j < jaw.positions.size(); ++j)
+    deltas[tgt.positions.size() + j] = turnAboutHinge(turn.target, angle, jaw.positions[j]);
 }
 
 // The jaw's turn that opens the target's mouth as wide, for its width, as
@@ -487,6 +542,8 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
                  const FaceParts& parts) {
   const LandmarkFrame sourceFrame(source.landmarks), targetFrame(landmarks);
   const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
+  const std::vector<float> teethShare =
+      parts.teethFromTheSource ? sourceTeethShares(source, src, corr.sourceRegions, raw, units) : std::vector<float>(units.size(), 0.0f);
   std::vector<glm::mat3> jacobians(src.positions.size());
   for (size_t i = 0; i < src.positions.size(); ++i)
     jacobians[i] = tamed(corr.warp.jacobian(src.positions[i], kJacobianStep * sourceFrame.eyeSpan()), corr.warp.similarity().scale);
@@ -528,6 +585,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const JawTurn matched = openingLikeSource(turn, split, src, raw[u], tgt, corr, source.landmarks, landmarks,
                                                 fullGap, maxGap, jaw, unit.deltas);
       turnWithJaw(matched, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
+      if (parts.teethFromTheSource) lowerTeethWithTheLip(matched, teethShare[u], tgt, corr, landmarks, jaw, unit.deltas);
     }
     moved.units.push_back(std::move(unit));
   }
