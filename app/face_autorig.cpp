@@ -30,7 +30,9 @@ namespace {
 std::string countOf(size_t n, std::string_view what) { return std::to_string(n) + " " + std::string(what); }
 
 std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalibration>& rig) {
-  const std::vector<std::string> names = eng::WeightLayout(model).names();
+  std::vector<std::string> names;  // each once, however many meshes carry it
+  for (const std::string& name : eng::WeightLayout(model).names())
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   if (names.empty()) return "it has no morph targets";
   if (!rig) {
     std::string sample;

@@ -32,11 +32,19 @@ std::string reasonFor(const fs::path& path, const fs::path& rigmap = {}) {
   return app::autorigReason(*face, app::buildFaceRig(*face, rigmap), rigmap);
 }
 
-fs::path testFaceNamed(const std::string& dir, const std::vector<std::string>& names) {
+// The test face with targets of these names; `meshes` copies of its mesh carry them all.
+fs::path testFaceNamed(const std::string& dir, const std::vector<std::string>& names, size_t meshes = 1) {
   eng::Model model = cli_test::makeTestFace();
   model.meshes[0].targetNames = names;
   model.meshes[0].primitives[0].targets.resize(names.size(), model.meshes[0].primitives[0].targets[0]);
   model.meshes[0].defaultWeights.assign(names.size(), 0.0f);
+  for (size_t m = 1; m < meshes; ++m) {
+    model.meshes.push_back(model.meshes[0]);
+    eng::Node node;
+    node.mesh = int(model.meshes.size() - 1);
+    model.nodes.push_back(node);
+    model.roots.push_back(int(model.nodes.size() - 1));
+  }
   const fs::path path = testing_support::freshTempDir(dir) / "face.glb";
   EXPECT_TRUE(eng::saveModel(model, path));
   return path;
@@ -78,6 +86,9 @@ TEST(AutorigReason, FacesThatCannotEmoteSayWhy) {
   EXPECT_NE(visemes.find("visemes only"), std::string::npos) << visemes;
   const std::string smile = reasonFor(testFaceNamed("autorig_reason_smile", {"mouthOpen", "mouthSmile"}));
   EXPECT_NE(smile.find("no scheme recognises its 2 target names (mouthOpen, mouthSmile)"), std::string::npos) << smile;
+  // A name is counted once however many meshes carry it (Ready Player Me's head, teeth and beard).
+  const std::string split = reasonFor(testFaceNamed("autorig_reason_split", {"mouthOpen", "mouthSmile"}, 3));
+  EXPECT_NE(split.find("no scheme recognises its 2 target names (mouthOpen, mouthSmile)"), std::string::npos) << split;
   const std::string blink = reasonFor(testFaceNamed("autorig_reason_blink", {"blink", "neutral"}));
   EXPECT_NE(blink.find("moves neither brows nor lip corners"), std::string::npos) << blink;
 
