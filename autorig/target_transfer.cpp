@@ -592,6 +592,48 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   return moved;
 }
 
+// A unit the face has its own shape for (Ready Player Me's basic
+// `mouthSmile`) is made from that shape, split at the midline, instead of
+// carried from the head: the author's smile, with its sides apart.
+struct OwnShape {
+  std::string_view name;         // the face's target
+  std::string_view left, right;  // the units made from its two halves
+};
+constexpr std::array kOwnShapes = {OwnShape{"mouthSmile", "AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R"}};
+// Eye spans either side of the midline over which the halves blend.
+constexpr float kMidlineBlend = 0.1f;
+
+void useOwnShapes(const eng::Model& face, const PosedFace& posed, const LandmarkFrame& frame, Moved& moved,
+                  std::vector<std::string>& notes) {
+  for (const OwnShape& own : kOwnShapes) {
+    std::vector<glm::vec3> deltas(moved.positions.size(), glm::vec3(0.0f));
+    bool found = false;
+    for (size_t k = 0; k < moved.vertices.size(); ++k) {
+      const PosedPrimitive& pp = posed.primitives[moved.vertices[k].primitive];
+      const eng::Mesh& mesh = face.meshes[pp.mesh];
+      const auto it = std::find_if(mesh.targetNames.begin(), mesh.targetNames.end(),
+                                   [&](const std::string& n) { return sameName(n, own.name); });
+      const eng::Primitive& primitive = mesh.primitives[pp.primitive];
+      const size_t t = size_t(it - mesh.targetNames.begin());
+      const uint32_t v = moved.vertices[k].vertex;
+      if (it == mesh.targetNames.end() || t >= primitive.targets.size() || v >= primitive.targets[t].positions.size()) continue;
+      deltas[k] = glm::inverse(pp.worldToLocal[v]) * primitive.targets[t].positions[v];
+      found = true;
+    }
+    if (!found) continue;
+    for (NamedDeltas& unit : moved.units) {
+      const bool left = unit.name == own.left;
+      if (!left && unit.name != own.right) continue;
+      for (size_t k = 0; k < deltas.size(); ++k) {
+        const float toLeft = glm::smoothstep(-kMidlineBlend, kMidlineBlend, frame.sideOf(moved.positions[k]));
+        unit.deltas[k] = deltas[k] * (left ? toLeft : 1.0f - toLeft);
+      }
+    }
+    notes.push_back(std::string(own.left) + ", " + std::string(own.right) + ": the face's own " + std::string(own.name) +
+                    ", split at the midline (not carried from the head)");
+  }
+}
+
 bool faceHas(const eng::Model& face, std::string_view name, bool arkit) {
   const std::optional<uint32_t> shape = arkit ? facial::arkitIndex(name) : std::nullopt;
   for (const eng::Mesh& mesh : face.meshes)
@@ -708,6 +750,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
 
   TransferResult result{.model = face, .report = {}};
   TransferReport& report = result.report;
+  useOwnShapes(face, posed, frame, moved, report.notes);
   std::vector<NamedDeltas> made;
   if (options.actionUnits)
     for (const NamedDeltas& unit : moved.units) made.push_back(unit);

@@ -42,6 +42,7 @@ struct TransferReport {
   std::vector<std::string> made;      // target names added to the face
   std::vector<std::string> kept;      // names the face already had (not replaced)
   std::vector<std::string> warnings;  // parts left out and why
+  std::vector<std::string> notes;     // units made from the face's own shapes
 };
 
 struct TransferResult {

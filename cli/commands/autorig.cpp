@@ -86,6 +86,7 @@ int runAutorig(const AutorigOptions& o) {
     std::printf(", its %zu kept (%s)", changes.kept.size(), joined(changes.kept, 6).c_str());
   std::printf("\nlandmarks: %s\n", landmarks->source.c_str());
   for (const std::string& note : rigged->partNotes) std::printf("parts: %s\n", note.c_str());
+  for (const std::string& note : rigged->report.notes) std::printf("units: %s\n", note.c_str());
   return 0;
 }
 

@@ -1,9 +1,11 @@
 #include "autorig/target_transfer.h"
 
+#include <algorithm>
 #include <string_view>
 
 #include <gtest/gtest.h>
 
+#include "autorig/face_frame.h"
 #include "tests/autorig/transfer_fixture.h"
 
 namespace {
@@ -33,6 +35,53 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
     EXPECT_LT(skin, std::string_view(unit) == "AU26_JawDrop" ? 0.6f : 0.03f) << unit;
     std::printf("identity %s: worst skin vertex %.4f, mouth %.4f of the unit's largest displacement\n", unit, skin, mouth);
   }
+}
+
+// A face's own smile (Ready Player Me's basic `mouthSmile`) is the smile:
+// its halves are the made AU12 sides, not the head's lip corner pullers.
+TEST(TargetTransfer, TheFacesOwnSmileMakesItsLipCornerPullers) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  // Its own smile: the head's two pullers together, half again as far (not what the head would carry).
+  eng::Mesh& mesh = face.meshes[0];
+  const eng::Mesh& own = head->meshes[0];
+  const size_t left = size_t(std::find(own.targetNames.begin(), own.targetNames.end(), "AU12_LipCornerPuller_L") - own.targetNames.begin());
+  const size_t right = size_t(std::find(own.targetNames.begin(), own.targetNames.end(), "AU12_LipCornerPuller_R") - own.targetNames.begin());
+  ASSERT_LT(right, own.targetNames.size());
+  mesh.targetNames = {"mouthSmile"};
+  mesh.defaultWeights = {0.0f};
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    eng::MorphTarget smile;
+    smile.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
+    const auto& targets = own.primitives[p].targets;
+    for (size_t v = 0; v < smile.positions.size() && v < targets[left].positions.size(); ++v)
+      smile.positions[v] = 1.5f * (targets[left].positions[v] + targets[right].positions[v]);
+    mesh.primitives[p].targets = {smile};
+  }
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  ASSERT_EQ(rigged->report.notes.size(), 1u);
+  EXPECT_NE(rigged->report.notes[0].find("own mouthSmile"), std::string::npos) << rigged->report.notes[0];
+  const eng::Mesh& made = rigged->model.meshes[0];
+  auto target = [&](const char* name) -> const eng::MorphTarget& {
+    const size_t t = size_t(std::find(made.targetNames.begin(), made.targetNames.end(), name) - made.targetNames.begin());
+    EXPECT_LT(t, made.targetNames.size()) << name;
+    return made.primitives[0].targets[std::min(t, made.targetNames.size() - 1)];
+  };
+  const eng::MorphTarget &smile = target("mouthSmile"), &madeLeft = target("AU12_LipCornerPuller_L"),
+                         &madeRight = target("AU12_LipCornerPuller_R");
+  const autorig::LandmarkFrame frame(source.landmarks);
+  float worst = 0.0f, largest = 0.0f, acrossTheMidline = 0.0f;
+  for (size_t v = 0; v < smile.positions.size(); ++v) {
+    largest = std::max(largest, glm::length(smile.positions[v]));
+    worst = std::max(worst, glm::length(madeLeft.positions[v] + madeRight.positions[v] - smile.positions[v]));
+    if (frame.sideOf(made.primitives[0].positions[v]) < -0.2f) acrossTheMidline = std::max(acrossTheMidline, glm::length(madeLeft.positions[v]));
+  }
+  ASSERT_GT(largest, 0.0f);
+  EXPECT_LT(worst / largest, 1e-4f) << "the two sides make up the face's own smile";
+  EXPECT_LT(acrossTheMidline / largest, 1e-4f) << "the left puller moves nothing on the right";
 }
 
 // A file that winds its triangles the other way (clockwise fronts) is the
