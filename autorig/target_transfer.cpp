@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <unordered_map>
 #include <string_view>
 
@@ -98,24 +99,38 @@ std::vector<std::string> sourceUnits(const eng::Model& model) {
 }
 
 // Each unit's world displacement of every source vertex.
-std::vector<std::vector<glm::vec3>> sourceDeltas(const SourceFace& source, const FaceSurface& surface,
-                                                 const std::vector<std::string>& units) {
-  std::vector<std::vector<glm::vec3>> deltas(units.size(), std::vector<glm::vec3>(surface.positions.size(), glm::vec3(0.0f)));
-  for (size_t i = 0; i < surface.vertices.size(); ++i) {
-    const PosedPrimitive& posed = source.posed.primitives[surface.vertices[i].primitive];
-    const eng::Mesh& mesh = source.model->meshes[posed.mesh];
-    const eng::Primitive& primitive = mesh.primitives[posed.primitive];
-    const uint32_t v = surface.vertices[i].vertex;
-    const glm::mat3 toWorld = glm::inverse(posed.worldToLocal[v]);
-    for (size_t u = 0; u < units.size(); ++u) {
-      auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), units[u]);
-      const size_t t = size_t(it - mesh.targetNames.begin());
-      if (it == mesh.targetNames.end() || t >= primitive.targets.size()) continue;
+// Each named target's displacement at each of `vertices` of `model` posed
+// as `posed`, in world space (zero where its mesh lacks the target).
+std::vector<std::vector<glm::vec3>> worldDeltas(const eng::Model& model, const PosedFace& posed,
+                                                std::span<const FaceSurface::VertexRef> vertices,
+                                                std::span<const std::string> names) {
+  std::vector<std::vector<glm::vec3>> deltas(names.size(), std::vector<glm::vec3>(vertices.size(), glm::vec3(0.0f)));
+  // Each mesh's target index for each name (its count where it has none).
+  std::vector<std::vector<size_t>> index(model.meshes.size(), std::vector<size_t>(names.size()));
+  for (size_t m = 0; m < model.meshes.size(); ++m)
+    for (size_t u = 0; u < names.size(); ++u) {
+      const std::vector<std::string>& own = model.meshes[m].targetNames;
+      index[m][u] = size_t(std::find_if(own.begin(), own.end(), [&](const std::string& n) { return sameName(n, names[u]); }) -
+                           own.begin());
+    }
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const PosedPrimitive& pp = posed.primitives[vertices[i].primitive];
+    const eng::Primitive& primitive = model.meshes[pp.mesh].primitives[pp.primitive];
+    const uint32_t v = vertices[i].vertex;
+    const glm::mat3 toWorld = glm::inverse(pp.worldToLocal[v]);
+    for (size_t u = 0; u < names.size(); ++u) {
+      const size_t t = index[pp.mesh][u];
+      if (t >= primitive.targets.size()) continue;
       const std::vector<glm::vec3>& local = primitive.targets[t].positions;
       if (v < local.size()) deltas[u][i] = toWorld * local[v];
     }
   }
   return deltas;
+}
+
+std::vector<std::vector<glm::vec3>> sourceDeltas(const SourceFace& source, const FaceSurface& surface,
+                                                 const std::vector<std::string>& units) {
+  return worldDeltas(*source.model, source.posed, surface.vertices, units);
 }
 
 glm::vec3 atMatch(const std::vector<glm::vec3>& perVertex, const FaceSurface& surface, const ClosestPoint& match) {
@@ -606,21 +621,9 @@ constexpr float kMidlineBlend = 0.1f;
 void useOwnShapes(const eng::Model& face, const PosedFace& posed, const LandmarkFrame& frame, Moved& moved,
                   std::vector<std::string>& notes) {
   for (const OwnShape& own : kOwnShapes) {
-    std::vector<glm::vec3> deltas(moved.positions.size(), glm::vec3(0.0f));
-    bool found = false;
-    for (size_t k = 0; k < moved.vertices.size(); ++k) {
-      const PosedPrimitive& pp = posed.primitives[moved.vertices[k].primitive];
-      const eng::Mesh& mesh = face.meshes[pp.mesh];
-      const auto it = std::find_if(mesh.targetNames.begin(), mesh.targetNames.end(),
-                                   [&](const std::string& n) { return sameName(n, own.name); });
-      const eng::Primitive& primitive = mesh.primitives[pp.primitive];
-      const size_t t = size_t(it - mesh.targetNames.begin());
-      const uint32_t v = moved.vertices[k].vertex;
-      if (it == mesh.targetNames.end() || t >= primitive.targets.size() || v >= primitive.targets[t].positions.size()) continue;
-      deltas[k] = glm::inverse(pp.worldToLocal[v]) * primitive.targets[t].positions[v];
-      found = true;
-    }
-    if (!found) continue;
+    const std::string name(own.name);
+    const std::vector<glm::vec3> deltas = worldDeltas(face, posed, moved.vertices, {&name, 1})[0];
+    if (std::all_of(deltas.begin(), deltas.end(), [](const glm::vec3& d) { return d == glm::vec3(0.0f); })) continue;
     for (NamedDeltas& unit : moved.units) {
       const bool left = unit.name == own.left;
       if (!left && unit.name != own.right) continue;
