@@ -110,6 +110,32 @@ MouthGraph mouthGraph(const eng::Primitive& prim, const std::vector<glm::vec3>& 
 using Entry = std::pair<float, uint32_t>;
 using Front = std::priority_queue<Entry, std::vector<Entry>, std::greater<>>;
 
+// Distances along the box's edges from the seeds, never through a barrier
+// vertex; an edge costs its length times the mean `weight` of its ends (none:
+// 1). `previous` (optional) receives each vertex's step back towards a seed.
+std::vector<float> distancesFrom(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& seeds,
+                                 const std::vector<char>& barrier, const std::vector<float>* weight = nullptr,
+                                 std::vector<uint32_t>* previous = nullptr) {
+  std::vector<float> distance(world.size(), std::numeric_limits<float>::infinity());
+  if (previous) previous->assign(world.size(), uint32_t(world.size()));
+  Front queue;
+  for (size_t v = 0; v < world.size(); ++v)
+    if (seeds[v] && !barrier[v]) distance[v] = 0.0f, queue.push({0.0f, uint32_t(v)});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (uint32_t w : g.neighbours[v]) {
+      const float cost = weight ? 0.5f * ((*weight)[v] + (*weight)[w]) : 1.0f;
+      const float through = d + glm::distance(world[v], world[w]) * cost;
+      if (barrier[w] || !(through < distance[w])) continue;
+      distance[w] = through, queue.push({through, w});
+      if (previous) (*previous)[w] = v;
+    }
+  }
+  return distance;
+}
+
 // The crease's vertices, corner to corner (empty when the corners are not joined in the box).
 std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
                              const MouthBox& box) {
@@ -151,44 +177,15 @@ std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGra
   };
   const uint32_t from = nearest(box.corners[0]), to = nearest(box.corners[1]);
   if (from == n || to == n || from == to) return onPath;
-  std::vector<float> cost(n, std::numeric_limits<float>::infinity());
-  std::vector<uint32_t> previous(n, uint32_t(n));
-  Front queue;
-  cost[from] = 0.0f;
-  queue.push({0.0f, from});
-  while (!queue.empty()) {
-    const auto [c, v] = queue.top();
-    queue.pop();
-    if (c > cost[v]) continue;
-    if (v == to) break;
-    for (uint32_t w : g.neighbours[v]) {
-      const float through = c + glm::distance(world[v], world[w]) * 0.5f * (weight[v] + weight[w]);
-      if (through < cost[w]) cost[w] = through, previous[w] = v, queue.push({through, w});
-    }
-  }
+  std::vector<char> seed(n, 0);
+  seed[from] = 1;
+  std::vector<uint32_t> previous;
+  const std::vector<float> cost = distancesFrom(world, g, seed, std::vector<char>(n, 0), &weight, &previous);
   if (!std::isfinite(cost[to])) return onPath;
   for (uint32_t v = to; v != n; v = previous[v]) onPath[v] = 1;
   return onPath;
 }
 
-// Distances along the box's edges from the seeds, never through a barrier vertex.
-std::vector<float> distancesFrom(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& seeds,
-                                 const std::vector<char>& barrier) {
-  std::vector<float> distance(world.size(), std::numeric_limits<float>::infinity());
-  Front queue;
-  for (size_t v = 0; v < world.size(); ++v)
-    if (seeds[v] && !barrier[v]) distance[v] = 0.0f, queue.push({0.0f, uint32_t(v)});
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > distance[v]) continue;
-    for (uint32_t w : g.neighbours[v]) {
-      const float through = d + glm::distance(world[v], world[w]);
-      if (!barrier[w] && through < distance[w]) distance[w] = through, queue.push({through, w});
-    }
-  }
-  return distance;
-}
 
 // The vertices of the box clearly above (sign 1) or below (-1) the lip line,
 // between the corners `within` of the mouth's width off its middle (1: all).
