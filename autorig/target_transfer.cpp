@@ -608,13 +608,15 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
 }
 
 // A unit the face has its own shape for (Ready Player Me's basic
-// `mouthSmile`) is made from that shape, split at the midline, instead of
-// carried from the head: the author's smile, with its sides apart.
+// `mouthSmile` and `mouthOpen`) is made from that shape instead of carried
+// from the head: the author's smile, its sides apart, and the author's open
+// mouth, teeth and all.
 struct OwnShape {
   std::string_view name;         // the face's target
-  std::string_view left, right;  // the units made from its two halves
+  std::string_view left, right;  // the units made from its two halves; right empty: left is made from the whole
 };
-constexpr std::array kOwnShapes = {OwnShape{"mouthSmile", "AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R"}};
+constexpr std::array kOwnShapes = {OwnShape{"mouthSmile", "AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R"},
+                                   OwnShape{"mouthOpen", "AU26_JawDrop", ""}};
 // Eye spans either side of the midline over which the halves blend.
 constexpr float kMidlineBlend = 0.1f;
 
@@ -624,16 +626,18 @@ void useOwnShapes(const eng::Model& face, const PosedFace& posed, const Landmark
     const std::string name(own.name);
     const std::vector<glm::vec3> deltas = worldDeltas(face, posed, moved.vertices, {&name, 1})[0];
     if (std::all_of(deltas.begin(), deltas.end(), [](const glm::vec3& d) { return d == glm::vec3(0.0f); })) continue;
+    const bool halves = !own.right.empty();
     for (NamedDeltas& unit : moved.units) {
       const bool left = unit.name == own.left;
-      if (!left && unit.name != own.right) continue;
+      if (!left && (!halves || unit.name != own.right)) continue;
       for (size_t k = 0; k < deltas.size(); ++k) {
         const float toLeft = glm::smoothstep(-kMidlineBlend, kMidlineBlend, frame.sideOf(moved.positions[k]));
-        unit.deltas[k] = deltas[k] * (left ? toLeft : 1.0f - toLeft);
+        unit.deltas[k] = deltas[k] * (!halves ? 1.0f : left ? toLeft : 1.0f - toLeft);
       }
     }
-    notes.push_back(std::string(own.left) + ", " + std::string(own.right) + ": the face's own " + std::string(own.name) +
-                    ", split at the midline (not carried from the head)");
+    notes.push_back(halves ? std::string(own.left) + ", " + std::string(own.right) + ": the face's own " + name +
+                                 ", split at the midline (not carried from the head)"
+                           : std::string(own.left) + ": the face's own " + name + " (not carried from the head)");
   }
 }
 
@@ -747,9 +751,10 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
-  // The eyeballs: no unit moves them, the gaze shapes turn them.
-  const FaceSurface eyes = gatherSurface(face, posed, parts, {FacePart::EyeballRight, FacePart::EyeballLeft});
-  appendStill(moved, eyes);
+  // The eyeballs: no unit moves them, the gaze shapes turn them. The upper
+  // teeth neither, but a face's own shape may (useOwnShapes).
+  const FaceSurface still = gatherSurface(face, posed, parts, {FacePart::EyeballRight, FacePart::EyeballLeft, FacePart::UpperTeeth});
+  appendStill(moved, still);
 
   TransferResult result{.model = face, .report = {}};
   TransferReport& report = result.report;
@@ -762,7 +767,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     std::vector<NamedDeltas> shapes = arkitFromUnits(moved.units, moved.positions, frame, fromGeometry);
     std::vector<FacePart> vertexParts = tgt.parts;
     vertexParts.insert(vertexParts.end(), jaw.parts.begin(), jaw.parts.end());
-    vertexParts.insert(vertexParts.end(), eyes.parts.begin(), eyes.parts.end());
+    vertexParts.insert(vertexParts.end(), still.parts.begin(), still.parts.end());
     std::vector<glm::vec3> normals = skinNormals(tgt);
     normals.resize(moved.positions.size(), glm::vec3(0.0f));
     const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,

@@ -37,51 +37,71 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   }
 }
 
-// A face's own smile (Ready Player Me's basic `mouthSmile`) is the smile:
-// its halves are the made AU12 sides, not the head's lip corner pullers.
-TEST(TargetTransfer, TheFacesOwnSmileMakesItsLipCornerPullers) {
+// A face's own shapes (Ready Player Me's basic `mouthSmile` and `mouthOpen`)
+// are its smile and its open mouth: the smile's halves are the made AU12
+// sides and the open mouth the made AU26, teeth and all, not the head's.
+TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
   eng::Model face = stripped(*head);
-  // Its own smile: the head's two pullers together, half again as far (not what the head would carry).
   eng::Mesh& mesh = face.meshes[0];
   const eng::Mesh& own = head->meshes[0];
-  const size_t left = size_t(std::find(own.targetNames.begin(), own.targetNames.end(), "AU12_LipCornerPuller_L") - own.targetNames.begin());
-  const size_t right = size_t(std::find(own.targetNames.begin(), own.targetNames.end(), "AU12_LipCornerPuller_R") - own.targetNames.begin());
-  ASSERT_LT(right, own.targetNames.size());
-  mesh.targetNames = {"mouthSmile"};
-  mesh.defaultWeights = {0.0f};
+  auto ownIndex = [&](std::string_view name) {
+    return size_t(std::find(own.targetNames.begin(), own.targetNames.end(), name) - own.targetNames.begin());
+  };
+  const size_t left = ownIndex("AU12_LipCornerPuller_L"), right = ownIndex("AU12_LipCornerPuller_R"), jaw = ownIndex("AU26_JawDrop");
+  ASSERT_LT(std::max({left, right, jaw}), own.targetNames.size());
+  // Not what the head would carry: its two pullers together half again as
+  // far, its jaw drop 1.3 times as far with a little upper lip raise in.
+  const size_t raise = ownIndex("AU10_UpperLipRaiser");
+  ASSERT_LT(raise, own.targetNames.size());
+  mesh.targetNames = {"mouthSmile", "mouthOpen"};
+  mesh.defaultWeights = {0.0f, 0.0f};
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-    eng::MorphTarget smile;
-    smile.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
     const auto& targets = own.primitives[p].targets;
-    for (size_t v = 0; v < smile.positions.size() && v < targets[left].positions.size(); ++v)
+    eng::MorphTarget smile, open;
+    smile.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
+    open.positions = smile.positions;
+    for (size_t v = 0; v < smile.positions.size() && v < targets[left].positions.size(); ++v) {
       smile.positions[v] = 1.5f * (targets[left].positions[v] + targets[right].positions[v]);
-    mesh.primitives[p].targets = {smile};
+      open.positions[v] = 1.3f * targets[jaw].positions[v] + 0.3f * targets[raise].positions[v];
+    }
+    mesh.primitives[p].targets = {smile, open};
   }
   eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
   ASSERT_TRUE(rigged) << rigged.error().message;
-  ASSERT_EQ(rigged->report.notes.size(), 1u);
+  ASSERT_EQ(rigged->report.notes.size(), 2u);
   EXPECT_NE(rigged->report.notes[0].find("own mouthSmile"), std::string::npos) << rigged->report.notes[0];
+  EXPECT_NE(rigged->report.notes[1].find("own mouthOpen"), std::string::npos) << rigged->report.notes[1];
   const eng::Mesh& made = rigged->model.meshes[0];
-  auto target = [&](const char* name) -> const eng::MorphTarget& {
+  auto target = [&](const char* name, size_t p) -> const eng::MorphTarget& {
     const size_t t = size_t(std::find(made.targetNames.begin(), made.targetNames.end(), name) - made.targetNames.begin());
     EXPECT_LT(t, made.targetNames.size()) << name;
-    return made.primitives[0].targets[std::min(t, made.targetNames.size() - 1)];
+    return made.primitives[p].targets[std::min(t, made.targetNames.size() - 1)];
   };
-  const eng::MorphTarget &smile = target("mouthSmile"), &madeLeft = target("AU12_LipCornerPuller_L"),
-                         &madeRight = target("AU12_LipCornerPuller_R");
   const autorig::LandmarkFrame frame(source.landmarks);
-  float worst = 0.0f, largest = 0.0f, acrossTheMidline = 0.0f;
-  for (size_t v = 0; v < smile.positions.size(); ++v) {
-    largest = std::max(largest, glm::length(smile.positions[v]));
-    worst = std::max(worst, glm::length(madeLeft.positions[v] + madeRight.positions[v] - smile.positions[v]));
-    if (frame.sideOf(made.primitives[0].positions[v]) < -0.2f) acrossTheMidline = std::max(acrossTheMidline, glm::length(madeLeft.positions[v]));
+  float worstSmile = 0.0f, largestSmile = 0.0f, acrossTheMidline = 0.0f, worstOpen = 0.0f, largestOpen = 0.0f;
+  size_t openMoving = 0;
+  for (size_t p = 0; p < made.primitives.size(); ++p) {
+    const eng::MorphTarget &smile = target("mouthSmile", p), &open = target("mouthOpen", p),
+                           &madeLeft = target("AU12_LipCornerPuller_L", p), &madeRight = target("AU12_LipCornerPuller_R", p),
+                           &madeJaw = target("AU26_JawDrop", p);
+    for (size_t v = 0; v < smile.positions.size(); ++v) {
+      largestSmile = std::max(largestSmile, glm::length(smile.positions[v]));
+      worstSmile = std::max(worstSmile, glm::length(madeLeft.positions[v] + madeRight.positions[v] - smile.positions[v]));
+      if (frame.sideOf(made.primitives[p].positions[v]) < -0.2f)
+        acrossTheMidline = std::max(acrossTheMidline, glm::length(madeLeft.positions[v]));
+      largestOpen = std::max(largestOpen, glm::length(open.positions[v]));
+      worstOpen = std::max(worstOpen, glm::length(madeJaw.positions[v] - open.positions[v]));
+      openMoving += open.positions[v] != glm::vec3(0.0f);
+    }
   }
-  ASSERT_GT(largest, 0.0f);
-  EXPECT_LT(worst / largest, 1e-4f) << "the two sides make up the face's own smile";
-  EXPECT_LT(acrossTheMidline / largest, 1e-4f) << "the left puller moves nothing on the right";
+  ASSERT_GT(largestSmile, 0.0f);
+  ASSERT_GT(largestOpen, 0.0f);
+  EXPECT_LT(worstSmile / largestSmile, 1e-4f) << "the two sides make up the face's own smile";
+  EXPECT_LT(acrossTheMidline / largestSmile, 1e-4f) << "the left puller moves nothing on the right";
+  EXPECT_LT(worstOpen / largestOpen, 1e-4f) << "AU26 is the face's own open mouth on every vertex it moves (" << openMoving << ")";
 }
 
 // A file that winds its triangles the other way (clockwise fronts) is the
