@@ -556,6 +556,100 @@ void splitTeethRows(const PosedFace& posed, const std::vector<TeethPiece>& teeth
   parts.notes.push_back(text);
 }
 
+// Where p lies in the plane of the face, about the eye's lid line centre.
+glm::vec2 inFacePlane(const FaceFrame& f, size_t eye, const glm::vec3& p) {
+  const glm::vec3 d = p - f.eyeCentre[eye];
+  return {glm::dot(d, f.right), glm::dot(d, f.up)};
+}
+
+// Whether q lies inside the eye's six lid landmarks (36-41 or 42-47, in the
+// face's plane) scaled by `scale` about their centre.
+bool insideTheLidLine(const FaceFrame& f, size_t eye, glm::vec2 q, float scale) {
+  std::array<glm::vec2, 6> ring{};
+  glm::vec2 centre(0.0f);
+  for (size_t k = 0; k < 6; ++k) centre += ring[k] = inFacePlane(f, eye, f.landmarks->points[36 + 6 * eye + k]);
+  centre /= 6.0f;
+  bool inside = false;
+  for (size_t k = 0, j = 5; k < 6; j = k++) {
+    const glm::vec2 a = centre + (ring[k] - centre) * scale, b = centre + (ring[j] - centre) * scale;
+    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) inside = !inside;
+  }
+  return inside;
+}
+
+// The skin inside the lid line that lies on a ball (a scan's eyes are its
+// skin, one surface with the lids): the ball is fitted through the skin well
+// inside the lid landmarks (kBallCore of their ring), convex towards the
+// viewer and of an eyeball's size; the eyeball is the skin on that ball
+// (within kOnBall of its radius) reached along edges from there, out to
+// kBallReach of the ring (the six landmarks cut the lids' curves short). The
+// units leave it still and the lids close over it.
+constexpr float kBallCore = 0.5f, kBallReach = 1.5f, kOnBall = 0.06f;
+
+void findEyesInTheSkin(const eng::Model& model, const PosedFace& posed, const FaceFrame& f, FaceParts& parts) {
+  for (size_t e = 0; e < 2; ++e) {
+    if (parts.eyeRadii[e] > 0.0f) continue;
+    const float width = f.eyeWidth[e];
+    // Skin vertices within reach, per primitive (index into `near`, or -1).
+    std::vector<std::vector<int>> slot(posed.primitives.size());
+    std::vector<std::pair<size_t, uint32_t>> near;
+    std::vector<glm::vec3> core;
+    for (size_t i = 0; i < posed.primitives.size(); ++i) {
+      slot[i].assign(posed.primitives[i].positions.size(), -1);
+      for (uint32_t v = 0; v < posed.primitives[i].positions.size(); ++v) {
+        const glm::vec3& p = posed.primitives[i].positions[v];
+        if (parts.vertexParts[i][v] != FacePart::Skin || std::abs(glm::dot(p - f.eyeCentre[e], f.forward)) > 0.5f * width) continue;
+        const glm::vec2 q = inFacePlane(f, e, p);
+        if (!insideTheLidLine(f, e, q, kBallReach)) continue;
+        slot[i][v] = int(near.size());
+        near.emplace_back(i, v);
+        if (insideTheLidLine(f, e, q, kBallCore)) core.push_back(p);
+      }
+    }
+    if (core.size() < 8) continue;
+    std::vector<uint32_t> all(core.size());
+    std::iota(all.begin(), all.end(), 0u);
+    const Component ball = describe(core, std::move(all));
+    const float coreFront = glm::dot(ball.centre - ball.sphereCentre, f.forward);
+    if (ball.spread > kOnBall || ball.radius < 0.25f * width || ball.radius > 0.8f * width || coreFront < 0.5f * ball.radius) continue;
+    auto onBall = [&](size_t k) {
+      const glm::vec3& p = posed.primitives[near[k].first].positions[near[k].second];
+      return std::abs(glm::distance(p, ball.sphereCentre) - ball.radius) <= kOnBall * ball.radius;
+    };
+    std::vector<char> taken(near.size(), 0);
+    std::vector<size_t> stack;
+    for (size_t k = 0; k < near.size(); ++k)
+      if (onBall(k) && insideTheLidLine(f, e, inFacePlane(f, e, posed.primitives[near[k].first].positions[near[k].second]), kBallCore))
+        taken[k] = 1, stack.push_back(k);
+    std::vector<std::vector<uint32_t>> neighbours(near.size());
+    for (size_t i = 0; i < posed.primitives.size(); ++i) {
+      const std::vector<uint32_t>& indices = model.meshes[posed.primitives[i].mesh].primitives[posed.primitives[i].primitive].indices;
+      for (size_t t = 0; t + 2 < indices.size(); t += 3)
+        for (size_t c = 0; c < 3; ++c) {
+          const uint32_t a = indices[t + c], b = indices[t + (c + 1) % 3];
+          if (a >= slot[i].size() || b >= slot[i].size() || slot[i][a] < 0 || slot[i][b] < 0) continue;
+          neighbours[size_t(slot[i][a])].push_back(uint32_t(slot[i][b]));
+          neighbours[size_t(slot[i][b])].push_back(uint32_t(slot[i][a]));
+        }
+    }
+    while (!stack.empty()) {
+      const size_t k = stack.back();
+      stack.pop_back();
+      for (uint32_t n : neighbours[k])
+        if (!taken[n] && onBall(n)) taken[n] = 1, stack.push_back(n);
+    }
+    size_t count = 0;
+    for (size_t k = 0; k < near.size(); ++k)
+      if (taken[k]) parts.vertexParts[near[k].first][near[k].second] = e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft, ++count;
+    parts.eyeCentres[e] = ball.sphereCentre;
+    parts.eyeRadii[e] = ball.radius;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s eyeball: %zu vertices of the skin inside the lids, on a ball of radius %.4g (a scan's eye)",
+                  e == 0 ? "right" : "left", count, double(ball.radius));
+    parts.notes.push_back(text);
+  }
+}
+
 // No eyeball mesh: the ball sits behind the lid line, its radius about 0.45
 // of the eye's width (a 24 mm ball behind a 28 mm opening).
 void estimateEyeballs(FaceParts& parts, const FaceFrame& f) {
@@ -578,6 +672,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);
+  findEyesInTheSkin(model, posed, frame, parts);
   for (size_t i = 0; i < posed.primitives.size(); ++i)
     notePrimitive(model, posed.primitives[i], parts.vertexParts[i], parts.notes);
   parts.eyeballsFound = parts.eyeRadii[0] > 0.0f && parts.eyeRadii[1] > 0.0f;

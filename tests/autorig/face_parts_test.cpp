@@ -4,6 +4,7 @@
 #include "autorig/face_parts.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -140,6 +141,62 @@ TEST(FaceParts, EyeballsEstimatedWithoutMeshes) {
   EXPECT_LT(parts.eyeCentres[0].z, l.points[36].z);
   EXPECT_LT(parts.eyeCentres[0].x, 0.0f);
   EXPECT_GT(parts.eyeCentres[1].x, 0.0f);
+}
+
+// A scan's eyes are its skin: one sheet whose eye openings are filled by the
+// fronts of two balls (radius 0.2, behind the plaster landmarks' lid lines).
+// The skin on each ball inside the lids is that eyeball, the rest stays
+// skin, and the balls are fitted from it.
+TEST(FaceParts, EyesThatAreTheSkin) {
+  constexpr float kRadius = 0.2f, kCentreZ = 0.77f, kFace = 0.98f;
+  eng::Primitive sheet = testing_support::flatSheet(161);
+  auto inOpening = [](const glm::vec3& p, float scale) {
+    const float dx = std::abs(p.x) - 0.35f, dy = p.y - 0.2f;
+    return (dx / 0.16f) * (dx / 0.16f) + (dy / 0.058f) * (dy / 0.058f) < scale * scale;
+  };
+  for (glm::vec3& p : sheet.positions) {
+    p = glm::vec3(p.x * 1.6f, p.y * 1.6f, kFace);
+    if (!inOpening(p, 1.0f)) continue;
+    const float dx = std::abs(p.x) - 0.35f, dy = p.y - 0.2f;
+    p.z = kCentreZ + std::sqrt(kRadius * kRadius - dx * dx - dy * dy);
+  }
+  eng::Mesh mesh;
+  mesh.primitives.push_back(sheet);
+  const eng::Model model = testing_support::singleMeshModel(mesh);
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  ASSERT_EQ(parts.vertexParts.size(), 1u);
+  size_t wrong = 0, inner = 0;
+  for (size_t v = 0; v < sheet.positions.size(); ++v) {
+    const glm::vec3& p = sheet.positions[v];
+    const autorig::FacePart part = parts.vertexParts[0][v];
+    const autorig::FacePart ball = p.x < 0.0f ? autorig::FacePart::EyeballRight : autorig::FacePart::EyeballLeft;
+    if (!inOpening(p, 1.0f)) wrong += part != autorig::FacePart::Skin;
+    else if (inOpening(p, 0.9f)) wrong += part != ball, ++inner;
+  }
+  EXPECT_GT(inner, 100u);
+  EXPECT_EQ(wrong, 0u) << "the lids are skin, the balls inside them eyeballs";
+  EXPECT_TRUE(parts.eyeballsFound);
+  for (size_t e = 0; e < 2; ++e) {
+    EXPECT_LT(glm::distance(parts.eyeCentres[e], glm::vec3(e == 0 ? -0.35f : 0.35f, 0.2f, kCentreZ)), 0.01f) << e;
+    EXPECT_NEAR(parts.eyeRadii[e], kRadius, 0.01f) << e;
+  }
+  EXPECT_TRUE(std::any_of(parts.notes.begin(), parts.notes.end(),
+                          [](const std::string& n) { return n.find("a scan's eye") != std::string::npos; }));
+}
+
+// A face without eyeballs whose skin runs flat over the eyes (painted eyes):
+// nothing of it is taken for an eyeball, the balls are estimated.
+TEST(FaceParts, PaintedEyesAreSkin) {
+  eng::Primitive sheet = testing_support::flatSheet(161);
+  for (glm::vec3& p : sheet.positions) p = glm::vec3(p.x * 1.6f, p.y * 1.6f, 0.95f);
+  eng::Mesh mesh;
+  mesh.primitives.push_back(sheet);
+  const eng::Model model = testing_support::singleMeshModel(mesh);
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  ASSERT_EQ(parts.vertexParts.size(), 1u);
+  EXPECT_EQ(count(parts.vertexParts[0], autorig::FacePart::Skin), sheet.positions.size());
+  EXPECT_FALSE(parts.eyeballsFound);
+  EXPECT_GT(parts.eyeRadii[0], 0.0f);
 }
 
 TEST(FaceParts, NamesOfParts) {
