@@ -607,16 +607,17 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   return moved;
 }
 
-// A unit the face has its own shape for (Ready Player Me's basic
-// `mouthSmile` and `mouthOpen`) is made from that shape instead of carried
-// from the head: the author's smile, its sides apart, and the author's open
-// mouth, teeth and all.
+// A unit the face has its own shape for (Ready Player Me's default
+// `mouthSmile`, `mouthOpen` and `eyesClosed`) is made from that shape instead
+// of carried from the head: the author's smile and blink, their sides apart,
+// and the author's open mouth, teeth and all.
 struct OwnShape {
   std::string_view name;         // the face's target
   std::string_view left, right;  // the units made from its two halves; right empty: left is made from the whole
 };
 constexpr std::array kOwnShapes = {OwnShape{"mouthSmile", "AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R"},
-                                   OwnShape{"mouthOpen", "AU26_JawDrop", ""}};
+                                   OwnShape{"mouthOpen", "AU26_JawDrop", ""},
+                                   OwnShape{"eyesClosed", "AU45_Blink_L", "AU45_Blink_R"}};
 // Eye spans either side of the midline over which the halves blend.
 constexpr float kMidlineBlend = 0.1f;
 

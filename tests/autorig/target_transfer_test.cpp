@@ -37,10 +37,11 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   }
 }
 
-// A face's own shapes (Ready Player Me's basic `mouthSmile` and `mouthOpen`)
-// are its smile and its open mouth: the smile's halves are the made AU12
-// sides and the open mouth the made AU26, teeth and all, not the head's.
-TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
+// A face's own shapes (Ready Player Me's default `mouthSmile`, `mouthOpen`
+// and `eyesClosed`) are its smile, open mouth and blink: the smile's halves
+// are the made AU12 sides, the blink's the AU45 sides and the open mouth the
+// made AU26, teeth and all, not the head's.
+TEST(TargetTransfer, TheFacesOwnShapesAreItsUnits) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
@@ -51,29 +52,33 @@ TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
     return size_t(std::find(own.targetNames.begin(), own.targetNames.end(), name) - own.targetNames.begin());
   };
   const size_t left = ownIndex("AU12_LipCornerPuller_L"), right = ownIndex("AU12_LipCornerPuller_R"), jaw = ownIndex("AU26_JawDrop");
-  ASSERT_LT(std::max({left, right, jaw}), own.targetNames.size());
+  const size_t blinkLeft = ownIndex("AU45_Blink_L"), blinkRight = ownIndex("AU45_Blink_R");
+  ASSERT_LT(std::max({left, right, jaw, blinkLeft, blinkRight}), own.targetNames.size());
   // Not what the head would carry: its two pullers together half again as
-  // far, its jaw drop 1.3 times as far with a little upper lip raise in.
+  // far, its jaw drop 1.3 times as far with a little upper lip raise in,
+  // its lids closing a tenth further.
   const size_t raise = ownIndex("AU10_UpperLipRaiser");
   ASSERT_LT(raise, own.targetNames.size());
-  mesh.targetNames = {"mouthSmile", "mouthOpen"};
-  mesh.defaultWeights = {0.0f, 0.0f};
+  mesh.targetNames = {"mouthSmile", "mouthOpen", "eyesClosed"};
+  mesh.defaultWeights = {0.0f, 0.0f, 0.0f};
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const auto& targets = own.primitives[p].targets;
-    eng::MorphTarget smile, open;
+    eng::MorphTarget smile, open, closed;
     smile.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
-    open.positions = smile.positions;
+    open.positions = closed.positions = smile.positions;
     for (size_t v = 0; v < smile.positions.size() && v < targets[left].positions.size(); ++v) {
       smile.positions[v] = 1.5f * (targets[left].positions[v] + targets[right].positions[v]);
       open.positions[v] = 1.3f * targets[jaw].positions[v] + 0.3f * targets[raise].positions[v];
+      closed.positions[v] = 1.1f * (targets[blinkLeft].positions[v] + targets[blinkRight].positions[v]);
     }
-    mesh.primitives[p].targets = {smile, open};
+    mesh.primitives[p].targets = {smile, open, closed};
   }
   eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
   ASSERT_TRUE(rigged) << rigged.error().message;
-  ASSERT_EQ(rigged->report.notes.size(), 2u);
+  ASSERT_EQ(rigged->report.notes.size(), 3u);
   EXPECT_NE(rigged->report.notes[0].find("own mouthSmile"), std::string::npos) << rigged->report.notes[0];
   EXPECT_NE(rigged->report.notes[1].find("own mouthOpen"), std::string::npos) << rigged->report.notes[1];
+  EXPECT_NE(rigged->report.notes[2].find("own eyesClosed"), std::string::npos) << rigged->report.notes[2];
   const eng::Mesh& made = rigged->model.meshes[0];
   auto target = [&](const char* name, size_t p) -> const eng::MorphTarget& {
     const size_t t = size_t(std::find(made.targetNames.begin(), made.targetNames.end(), name) - made.targetNames.begin());
@@ -82,11 +87,14 @@ TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
   };
   const autorig::LandmarkFrame frame(source.landmarks);
   float worstSmile = 0.0f, largestSmile = 0.0f, acrossTheMidline = 0.0f, worstOpen = 0.0f, largestOpen = 0.0f;
+  float worstBlink = 0.0f, largestBlink = 0.0f, blinkAcross = 0.0f, worstArkitBlink = 0.0f;
   size_t openMoving = 0;
   for (size_t p = 0; p < made.primitives.size(); ++p) {
     const eng::MorphTarget &smile = target("mouthSmile", p), &open = target("mouthOpen", p),
                            &madeLeft = target("AU12_LipCornerPuller_L", p), &madeRight = target("AU12_LipCornerPuller_R", p),
-                           &madeJaw = target("AU26_JawDrop", p);
+                           &madeJaw = target("AU26_JawDrop", p), &closed = target("eyesClosed", p),
+                           &blinkL = target("AU45_Blink_L", p), &blinkR = target("AU45_Blink_R", p),
+                           &arkitBlinkL = target("eyeBlinkLeft", p);
     for (size_t v = 0; v < smile.positions.size(); ++v) {
       largestSmile = std::max(largestSmile, glm::length(smile.positions[v]));
       worstSmile = std::max(worstSmile, glm::length(madeLeft.positions[v] + madeRight.positions[v] - smile.positions[v]));
@@ -95,6 +103,10 @@ TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
       largestOpen = std::max(largestOpen, glm::length(open.positions[v]));
       worstOpen = std::max(worstOpen, glm::length(madeJaw.positions[v] - open.positions[v]));
       openMoving += open.positions[v] != glm::vec3(0.0f);
+      largestBlink = std::max(largestBlink, glm::length(closed.positions[v]));
+      worstBlink = std::max(worstBlink, glm::length(blinkL.positions[v] + blinkR.positions[v] - closed.positions[v]));
+      if (frame.sideOf(made.primitives[p].positions[v]) < -0.2f) blinkAcross = std::max(blinkAcross, glm::length(blinkL.positions[v]));
+      worstArkitBlink = std::max(worstArkitBlink, glm::length(arkitBlinkL.positions[v] - blinkL.positions[v]));
     }
   }
   ASSERT_GT(largestSmile, 0.0f);
@@ -102,6 +114,10 @@ TEST(TargetTransfer, TheFacesOwnSmileAndOpenMouthAreItsUnits) {
   EXPECT_LT(worstSmile / largestSmile, 1e-4f) << "the two sides make up the face's own smile";
   EXPECT_LT(acrossTheMidline / largestSmile, 1e-4f) << "the left puller moves nothing on the right";
   EXPECT_LT(worstOpen / largestOpen, 1e-4f) << "AU26 is the face's own open mouth on every vertex it moves (" << openMoving << ")";
+  ASSERT_GT(largestBlink, 0.0f);
+  EXPECT_LT(worstBlink / largestBlink, 1e-4f) << "the two blinks make up the face's own eyesClosed";
+  EXPECT_LT(blinkAcross / largestBlink, 1e-4f) << "the left blink moves nothing on the right";
+  EXPECT_LT(worstArkitBlink / largestBlink, 1e-4f) << "ARKit's eyeBlinkLeft is the own blink's left half";
 }
 
 // A file that winds its triangles the other way (clockwise fronts) is the
