@@ -124,7 +124,7 @@ class Maker {
   // stays on the ball's sphere).
   std::optional<std::vector<glm::vec3>> gaze(int eye, const glm::vec3& toward) const {
     const FaceParts& parts = *g_.faceParts;
-    if (!parts.eyeballsFound || !(parts.eyeRadii[eye] > 0.0f)) return std::nullopt;
+    if (!parts.eyeballsFound || !(parts.eyeRadii[eye] > 0.0f) || parts.eyesInTheSkin[size_t(eye)]) return std::nullopt;
     const glm::vec3 centre = parts.eyeCentres[eye];
     const float radius = parts.eyeRadii[eye];
     const FacePart ball = eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft;

@@ -643,6 +643,7 @@ void findEyesInTheSkin(const eng::Model& model, const PosedFace& posed, const Fa
       if (taken[k]) parts.vertexParts[near[k].first][near[k].second] = e == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft, ++count;
     parts.eyeCentres[e] = ball.sphereCentre;
     parts.eyeRadii[e] = ball.radius;
+    parts.eyesInTheSkin[e] = true;
     char text[160];
     std::snprintf(text, sizeof text, "%s eyeball: %zu vertices of the skin inside the lids, on a ball of radius %.4g (a scan's eye)",
                   e == 0 ? "right" : "left", count, double(ball.radius));

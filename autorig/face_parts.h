@@ -47,6 +47,10 @@ struct FaceParts {
   std::array<glm::vec3, 2> eyeCentres{};
   std::array<float, 2> eyeRadii{};
   bool eyeballsFound = false;
+  // An eye that is the skin (a scan's: the eye painted on a ball inside the
+  // lids): it stays still, and no gaze turns it, since turning painted skin
+  // drags the lids' texels into the opening.
+  std::array<bool, 2> eyesInTheSkin{};
   // The lower teeth and tongue are the source's own, carried in behind lips
   // that had nothing inside (mouth_opening): they drop with the lower lip as
   // far as the source's do.

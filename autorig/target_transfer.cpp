@@ -779,7 +779,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     });
     for (NamedDeltas& shape : shapes) made.push_back(std::move(shape));
     if (!unmade.empty()) {
-      std::string line = std::to_string(unmade.size()) + " ARKit shapes were not made (the gaze shapes need eyeballs of the face's own; the others their action unit or the jaw drop):";
+      std::string line = std::to_string(unmade.size()) + " ARKit shapes were not made (the gaze shapes need eyeballs of the face's own, not eyes painted on its skin; the others their action unit or the jaw drop):";
       for (const std::string& name : unmade) line += " " + name;
       report.warnings.push_back(line);
     }

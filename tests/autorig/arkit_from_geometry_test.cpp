@@ -209,6 +209,19 @@ TEST(ArkitFromGeometryValidity, ShapesWhoseSourceIsMissingAreNamedUnmade) {
   EXPECT_EQ(made[0].name, "mouthLeft");
   for (const autorig::NamedDeltas& shape : made) EXPECT_EQ(shape.deltas.size(), r->positions.size());
 
+  // A scan's eye, painted on the skin inside its lids, is not turned: the
+  // gaze shapes of that eye are named unmade, the other eye's are made.
+  unmade.clear();
+  autorig::FaceParts scanEye = r->source.parts;
+  scanEye.eyesInTheSkin[1] = true;
+  autorig::ShapeGeometry scan = geometry;
+  scan.faceParts = &scanEye;
+  const std::vector<std::string> bothLooks = {"eyeLookUpLeft", "eyeLookUpRight"};
+  const std::vector<autorig::NamedDeltas> looks = autorig::arkitFromGeometry(bothLooks, {}, scan, unmade);
+  EXPECT_EQ(unmade, (std::vector<std::string>{"eyeLookUpLeft"}));
+  ASSERT_EQ(looks.size(), 1u);
+  EXPECT_EQ(looks[0].name, "eyeLookUpRight");
+
   // Parts that do not match the positions: nothing is made.
   unmade.clear();
   autorig::ShapeGeometry mismatched = geometry;

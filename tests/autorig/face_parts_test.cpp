@@ -137,6 +137,7 @@ TEST(FaceParts, EyeballsEstimatedWithoutMeshes) {
   const autorig::FaceLandmarks l = plasterLandmarks();
   const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), l);
   EXPECT_FALSE(parts.eyeballsFound);
+  EXPECT_FALSE(parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]);
   EXPECT_GT(parts.eyeRadii[0], 0.0f);
   EXPECT_LT(parts.eyeCentres[0].z, l.points[36].z);
   EXPECT_LT(parts.eyeCentres[0].x, 0.0f);
@@ -177,6 +178,7 @@ TEST(FaceParts, EyesThatAreTheSkin) {
   EXPECT_EQ(wrong, 0u) << "the lids are skin, the balls inside them eyeballs";
   EXPECT_TRUE(parts.eyeballsFound);
   for (size_t e = 0; e < 2; ++e) {
+    EXPECT_TRUE(parts.eyesInTheSkin[e]) << e;
     EXPECT_LT(glm::distance(parts.eyeCentres[e], glm::vec3(e == 0 ? -0.35f : 0.35f, 0.2f, kCentreZ)), 0.01f) << e;
     EXPECT_NEAR(parts.eyeRadii[e], kRadius, 0.01f) << e;
   }
