@@ -33,6 +33,9 @@ constexpr float kLipLineRamp = 0.03f;
 // jawOpen at 1 is the jaw as far open as it goes: AU26 (the relaxed drop)
 // and AU27 (the stretch beyond it) together, the sum arkit_scheme.cpp drives
 // jawOpen with (0.6 + 0.4).
+// AU26's share of jawOpen (arkit_scheme.cpp: AU26 drives jawOpen at 0.6).
+constexpr float kJawDropShare = 0.6f;
+
 constexpr std::array kShapes = {
     Shape{"browInnerUp", {Term{"AU1_InnerBrowRaiser"}}},
     Shape{"browDownLeft", {Term{"AU4_BrowLowerer", 1.0f, Mask::Left}}},
@@ -116,6 +119,20 @@ std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std:
       unmade.emplace_back(name);
   }
   return shapes;
+}
+
+std::vector<ShapeShare> shapesOfUnit(std::string_view unit) {
+  // jawOpen is AU26 and AU27 together; AU26's share of it is the runtime's.
+  if (unit == "AU26_JawDrop") return {ShapeShare{"jawOpen", kJawDropShare}};
+  std::vector<ShapeShare> shares;
+  for (const Shape& shape : kShapes) {
+    const bool uses = std::any_of(shape.terms.begin(), shape.terms.end(), [&](const Term& t) { return t.unit == unit; });
+    if (!uses) continue;
+    const bool alone = std::all_of(shape.terms.begin(), shape.terms.end(), [&](const Term& t) { return t.unit.empty() || t.unit == unit; });
+    if (!alone) return {};
+    shares.push_back(ShapeShare{shape.name, 1.0f});
+  }
+  return shares;
 }
 
 }  // namespace autorig

@@ -34,4 +34,18 @@ const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view
 std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std::span<const glm::vec3> positions,
                                         const LandmarkFrame& frame, std::vector<std::string>& unmade);
 
+// A unit made back from ARKit shapes a face already has: each shape's
+// canonical name and the share of it the unit is.
+struct ShapeShare {
+  std::string_view shape;
+  float gain = 1.0f;
+};
+
+// The ARKit shapes that together are unit `unit` alone (its halves, or its
+// upper and lower lip), as arkitFromUnits splits it: AU12_LipCornerPuller_L is
+// mouthSmileLeft, AU4_BrowLowerer browDownLeft + browDownRight, AU26_JawDrop
+// 0.6 of jawOpen (the share facial/runtime/rig/arkit_scheme.cpp drives
+// jawOpen with). Empty for a unit no shape is made of alone (AU27, AU25).
+std::vector<ShapeShare> shapesOfUnit(std::string_view unit);
+
 }  // namespace autorig

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <span>
 #include <unordered_map>
@@ -621,8 +622,52 @@ constexpr std::array kOwnShapes = {OwnShape{"mouthSmile", "AU12_LipCornerPuller_
 // Eye spans either side of the midline over which the halves blend.
 constexpr float kMidlineBlend = 0.1f;
 
+// The face's own spelling of ARKit shape `canonical` ("mouthSmile_L" for
+// mouthSmileLeft), empty when it has none.
+std::string ownArkitName(const eng::Model& face, std::string_view canonical) {
+  const std::optional<uint32_t> index = facial::arkitIndex(canonical);
+  for (const eng::Mesh& mesh : face.meshes)
+    for (const std::string& name : mesh.targetNames)
+      if (facial::arkitIndex(name) == index) return name;
+  return {};
+}
+
+// A unit whose every ARKit shape the face has (a few of ARKit's 52: a blink,
+// a smile, an open jaw) is made from them, as arkitFromUnits would split it:
+// the author's shapes, not the head's carried.
+void useOwnArkitShapes(const eng::Model& face, const PosedFace& posed, Moved& moved, std::vector<std::string>& taken,
+                       std::vector<std::string>& notes) {
+  for (NamedDeltas& unit : moved.units) {
+    if (std::find(taken.begin(), taken.end(), unit.name) != taken.end()) continue;
+    const std::vector<ShapeShare> shares = shapesOfUnit(unit.name);
+    if (shares.empty()) continue;
+    std::vector<std::string> names;
+    for (const ShapeShare& share : shares)
+      if (std::string name = ownArkitName(face, share.shape); !name.empty()) names.push_back(std::move(name));
+    if (names.size() != shares.size()) continue;
+    const std::vector<std::vector<glm::vec3>> deltas = worldDeltas(face, posed, moved.vertices, names);
+    std::vector<glm::vec3> sum(moved.vertices.size(), glm::vec3(0.0f));
+    for (size_t s = 0; s < shares.size(); ++s)
+      for (size_t k = 0; k < sum.size(); ++k) sum[k] += shares[s].gain * deltas[s][k];
+    if (std::all_of(sum.begin(), sum.end(), [](const glm::vec3& d) { return d == glm::vec3(0.0f); })) continue;
+    unit.deltas = std::move(sum);
+    std::string line = unit.name + ": the face's own ";
+    for (size_t s = 0; s < names.size(); ++s) {
+      if (s > 0) line += " + ";
+      if (shares[s].gain != 1.0f) {
+        char gain[32];
+        std::snprintf(gain, sizeof gain, "%.2g x ", double(shares[s].gain));
+        line += gain;
+      }
+      line += names[s];
+    }
+    notes.push_back(line + " (not carried from the head)");
+  }
+}
+
 void useOwnShapes(const eng::Model& face, const PosedFace& posed, const LandmarkFrame& frame, Moved& moved,
                   std::vector<std::string>& notes) {
+  std::vector<std::string> taken;
   for (const OwnShape& own : kOwnShapes) {
     const std::string name(own.name);
     const std::vector<glm::vec3> deltas = worldDeltas(face, posed, moved.vertices, {&name, 1})[0];
@@ -635,11 +680,13 @@ void useOwnShapes(const eng::Model& face, const PosedFace& posed, const Landmark
         const float toLeft = glm::smoothstep(-kMidlineBlend, kMidlineBlend, frame.sideOf(moved.positions[k]));
         unit.deltas[k] = deltas[k] * (!halves ? 1.0f : left ? toLeft : 1.0f - toLeft);
       }
+      taken.push_back(unit.name);
     }
     notes.push_back(halves ? std::string(own.left) + ", " + std::string(own.right) + ": the face's own " + name +
                                  ", split at the midline (not carried from the head)"
                            : std::string(own.left) + ": the face's own " + name + " (not carried from the head)");
   }
+  useOwnArkitShapes(face, posed, moved, taken, notes);
 }
 
 bool faceHas(const eng::Model& face, std::string_view name, bool arkit) {

@@ -1,6 +1,8 @@
 #include "autorig/target_transfer.h"
 
 #include <algorithm>
+#include <array>
+#include <tuple>
 #include <string_view>
 
 #include <gtest/gtest.h>
@@ -118,6 +120,74 @@ TEST(TargetTransfer, TheFacesOwnShapesAreItsUnits) {
   EXPECT_LT(worstBlink / largestBlink, 1e-4f) << "the two blinks make up the face's own eyesClosed";
   EXPECT_LT(blinkAcross / largestBlink, 1e-4f) << "the left blink moves nothing on the right";
   EXPECT_LT(worstArkitBlink / largestBlink, 1e-4f) << "ARKit's eyeBlinkLeft is the own blink's left half";
+}
+
+// A face with a few of ARKit's 52 (a smile, a blink, an open jaw): the units
+// each is alone are made from the face's own shapes (AU26 as 0.6 of jawOpen,
+// the share the runtime drives jawOpen with); a unit whose shapes the face
+// has only some of (AU4: browDownLeft, no browDownRight) is carried.
+TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  eng::Mesh& mesh = face.meshes[0];
+  const eng::Mesh& own = head->meshes[0];
+  auto ownIndex = [&](std::string_view name) {
+    return size_t(std::find(own.targetNames.begin(), own.targetNames.end(), name) - own.targetNames.begin());
+  };
+  const std::array<std::pair<const char*, float>, 4> made = {std::pair{"AU12_LipCornerPuller_L", 1.2f},
+                                                             std::pair{"AU45_Blink_R", 1.1f}, std::pair{"AU26_JawDrop", 1.5f},
+                                                             std::pair{"AU4_BrowLowerer", 0.5f}};
+  mesh.targetNames = {"mouthSmile_L", "eyeBlinkRight", "jawOpen", "browDownLeft"};
+  mesh.defaultWeights.assign(mesh.targetNames.size(), 0.0f);
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    mesh.primitives[p].targets.clear();
+    for (const auto& [unit, scale] : made) {
+      const size_t t = ownIndex(unit);
+      ASSERT_LT(t, own.targetNames.size()) << unit;
+      eng::MorphTarget target;
+      target.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
+      const auto& from = own.primitives[p].targets[t].positions;
+      for (size_t v = 0; v < target.positions.size() && v < from.size(); ++v) target.positions[v] = scale * from[v];
+      mesh.primitives[p].targets.push_back(std::move(target));
+    }
+  }
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  const std::vector<std::string>& notes = rigged->report.notes;
+  auto noted = [&](std::string_view text) {
+    return std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(noted("AU12_LipCornerPuller_L: the face's own mouthSmile_L"));
+  EXPECT_TRUE(noted("AU45_Blink_R: the face's own eyeBlinkRight"));
+  EXPECT_TRUE(noted("AU26_JawDrop: the face's own 0.6 x jawOpen"));
+  EXPECT_FALSE(noted("AU4_BrowLowerer")) << "browDownRight is missing: AU4 is carried";
+  const eng::Mesh& out = rigged->model.meshes[0];
+  auto target = [&](std::string_view name, size_t p) -> const eng::MorphTarget& {
+    const size_t t = size_t(std::find(out.targetNames.begin(), out.targetNames.end(), name) - out.targetNames.begin());
+    EXPECT_LT(t, out.targetNames.size()) << name;
+    return out.primitives[p].targets[std::min(t, out.targetNames.size() - 1)];
+  };
+  // Each made unit against the face's own shape times its share.
+  const std::array<std::tuple<const char*, const char*, float>, 4> pairs = {
+      std::tuple{"AU12_LipCornerPuller_L", "mouthSmile_L", 1.0f}, std::tuple{"AU45_Blink_R", "eyeBlinkRight", 1.0f},
+      std::tuple{"AU26_JawDrop", "jawOpen", 0.6f}, std::tuple{"AU4_BrowLowerer", "browDownLeft", 1.0f}};
+  for (const auto& [unit, shape, share] : pairs) {
+    float worst = 0.0f, largest = 0.0f;
+    for (size_t p = 0; p < out.primitives.size(); ++p) {
+      const eng::MorphTarget &m = target(unit, p), &o = target(shape, p);
+      for (size_t v = 0; v < o.positions.size(); ++v) {
+        largest = std::max(largest, glm::length(share * o.positions[v]));
+        worst = std::max(worst, glm::length(m.positions[v] - share * o.positions[v]));
+      }
+    }
+    ASSERT_GT(largest, 0.0f) << shape;
+    if (std::string_view(unit) == "AU4_BrowLowerer")
+      EXPECT_GT(worst / largest, 0.5f) << "carried from the head, not the face's one-sided brow";
+    else
+      EXPECT_LT(worst / largest, 1e-4f) << unit << " is the face's own " << shape;
+  }
 }
 
 // A file that winds its triangles the other way (clockwise fronts) is the
