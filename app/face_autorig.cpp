@@ -42,8 +42,11 @@ std::string reasonOf(const eng::Model& model, const eng::Result<facial::RigCalib
   }
   const facial::RigMappingReport& report = rig->rig.report();
   if (report.scheme == facial::RigScheme::Visemes) return "its targets are lip-sync visemes only: " + report.detail;
-  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig moves neither brows nor lip corners: " +
-         report.detail;
+  const facial::EmotionFeatures features = facial::emotionFeatures(rig->rig);
+  const char* missing = features.brows        ? "moves no lip corners"
+                        : features.lipCorners ? "moves no brows"
+                                              : "moves neither brows nor lip corners";
+  return "its " + std::string(facial::rigSchemeName(report.scheme)) + " rig " + missing + ": " + report.detail;
 }
 
 eng::Result<std::string> readBytes(const std::filesystem::path& path) {

@@ -41,7 +41,8 @@ inline constexpr std::string_view kAutorigVersion = "autorig-12";  // 2: the ARK
 // <data>/rigmaps, is the user's word), it is a glTF face (VRM, CANDIDE-3 and
 // OBJ keyframe sets have rigs of their own), and either no scheme recognises
 // its targets (`rig` failed as Unsupported) or the rig it has cannot emote
-// (facial::showsEmotions: visemes only, blink only). E.g. "its 15 targets are
+// (facial::showsEmotions: visemes only, blink only, mouth shapes without
+// brows). E.g. "its 15 targets are
 // visemes (lip sync) only", "it has no morph targets".
 std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
                           const std::filesystem::path& rigmapFile);

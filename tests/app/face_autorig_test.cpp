@@ -91,6 +91,13 @@ TEST(AutorigReason, FacesThatCannotEmoteSayWhy) {
   EXPECT_NE(split.find("no scheme recognises its 2 target names (mouthOpen, mouthSmile)"), std::string::npos) << split;
   const std::string blink = reasonFor(testFaceNamed("autorig_reason_blink", {"blink", "neutral"}));
   EXPECT_NE(blink.find("moves neither brows nor lip corners"), std::string::npos) << blink;
+  // ARKit's mouth shapes and a blink (a lip-sync set): no brows, so sad,
+  // surprise, fear and anger would show on the mouth alone.
+  const std::string mouth = reasonFor(testFaceNamed(
+      "autorig_reason_mouth", {"jawOpen", "mouthClose", "mouthFunnel", "mouthPucker", "mouthSmile_L", "mouthSmile_R",
+                               "mouthFrown_L", "mouthFrown_R", "mouthStretch_L", "mouthStretch_R", "mouthRollLower",
+                               "mouthRollUpper", "eyeBlink_L", "eyeBlink_R"}));
+  EXPECT_NE(mouth.find("its ARKit 52 blend shapes rig moves no brows"), std::string::npos) << mouth;
 
   eng::Model bare = testing_support::makeSphereModel(testing_support::whiteSphereSpec(0));
   const fs::path barePath = testing_support::freshTempDir("autorig_reason_bare") / "bare.glb";

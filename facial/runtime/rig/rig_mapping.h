@@ -275,11 +275,21 @@ void mapSpeech(RigMappingBuilder& builder, RigScheme scheme);
 // to move the mouth; none of its N targets is ...; a rig map can name ...".
 std::string cannotSpeakMessage(const RigMapping& rig, std::string_view model);
 
+// What of a face the rig's emotion inputs and action units move.
+struct EmotionFeatures {
+  bool emotions = false;    // an emotion input (a whole-expression target) drives something
+  bool brows = false;       // AU1, AU2 or AU4
+  bool lipCorners = false;  // AU12 or AU15
+};
+EmotionFeatures emotionFeatures(const RigMapping& rig);
+
 // Whether the rig can show the seven emotions: an emotion input drives
-// something, or the action units move the brows or the lip corners (AU1, AU2,
-// AU4, AU12, AU15), the features every basic emotion is read from. A viseme
-// rig (jaw and lips only) or a blink-only one speaks or blinks but cannot
-// emote: such faces are the ones worth giving action units (issue 33's autorig).
+// something, or the action units move both the brows and the lip corners,
+// the features every basic emotion is read from (sad, surprise, fear and
+// anger are first of all brows). A viseme rig (jaw and lips only), a
+// lip-sync set of ARKit's mouth shapes or a blink-only one speaks or blinks
+// but cannot emote: such faces are the ones worth giving action units
+// (issue 33's autorig), which keeps their own shapes.
 bool showsEmotions(const RigMapping& rig);
 
 // Forces one built-in scheme (not Custom); fails when it recognises none of the names.

@@ -75,15 +75,23 @@ eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames
                         "; write a rig map " + (rigmap.empty() ? std::string("data/rigmaps/<model>.json") : rigmap.string()));
 }
 
-bool showsEmotions(const RigMapping& rig) {
+EmotionFeatures emotionFeatures(const RigMapping& rig) {
+  EmotionFeatures features;
   for (uint32_t e = 0; e < kEmotionCount; ++e)
-    if (Emotion(e) != Emotion::Neutral && !rig.targets(emotionInput(Emotion(e))).empty()) return true;
+    if (Emotion(e) != Emotion::Neutral && !rig.targets(emotionInput(Emotion(e))).empty()) features.emotions = true;
   const std::span<const ActionUnitInfo> channels = actionUnits();
   for (uint32_t c = 0; c < channels.size(); ++c) {
+    if (rig.targets(c).empty()) continue;
     const int n = channels[c].facsNumber;
-    if ((n == 1 || n == 2 || n == 4 || n == 12 || n == 15) && !rig.targets(c).empty()) return true;
+    if (n == 1 || n == 2 || n == 4) features.brows = true;
+    if (n == 12 || n == 15) features.lipCorners = true;
   }
-  return false;
+  return features;
+}
+
+bool showsEmotions(const RigMapping& rig) {
+  const EmotionFeatures features = emotionFeatures(rig);
+  return features.emotions || (features.brows && features.lipCorners);
 }
 
 eng::Result<RigMapping> buildRigMapping(std::span<const std::string> targetNames, RigScheme scheme) {
