@@ -77,7 +77,8 @@ eng::Result<LandmarkWarp> LandmarkWarp::build(std::span<const glm::vec3> source,
     sum += double(glm::dot(residual[i], residual[i]));
   }
   facial::RbfInterpolator rbf = ENG_TRY_VALUE(
-      facial::RbfInterpolator::build(moved, facial::RbfKernel{.type = facial::RbfKernelType::Biharmonic}, minSeparation));
+      facial::RbfInterpolator::build(moved, facial::RbfKernel{.type = facial::RbfKernelType::Biharmonic},
+                                     minSeparation * similarity.scale));
   Eigen::MatrixX3d coefficients = ENG_TRY_VALUE(rbf.solve(residual));
   return LandmarkWarp(similarity, std::move(rbf), std::move(coefficients), float(std::sqrt(sum / double(source.size()))));
 }

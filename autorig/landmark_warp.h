@@ -29,8 +29,10 @@ eng::Result<Similarity> fitSimilarity(std::span<const glm::vec3> source, std::sp
 
 class LandmarkWarp {
  public:
-  // `minSeparation` (world units): pairs whose source points are closer are
-  // refused by the RBF (errors name them).
+  // `minSeparation` (world units of the source): pairs whose source points
+  // are closer are refused by the RBF (errors name them). The RBF's points
+  // are the source's carried onto the target by the similarity, so the bound
+  // is scaled with them: a face a thousandth the source's size is not refused.
   static eng::Result<LandmarkWarp> build(std::span<const glm::vec3> source, std::span<const glm::vec3> target,
                                          float minSeparation = 1e-6f);
 

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "autorig/face_frame.h"
+#include "autorig/face_parts.h"
+#include "autorig/posed_face.h"
 #include "tests/autorig/transfer_fixture.h"
 
 namespace {
@@ -120,6 +122,36 @@ TEST(TargetTransfer, TheFacesOwnShapesAreItsUnits) {
   EXPECT_LT(worstBlink / largestBlink, 1e-4f) << "the two blinks make up the face's own eyesClosed";
   EXPECT_LT(blinkAcross / largestBlink, 1e-4f) << "the left blink moves nothing on the right";
   EXPECT_LT(worstArkitBlink / largestBlink, 1e-4f) << "ARKit's eyeBlinkLeft is the own blink's left half";
+}
+
+// The transfer does not depend on the face's units: the head at a thousandth
+// of its size (a head in metres read as kilometres, or a model scaled down
+// twice) gets the head's units at a thousandth. The warp's bound on
+// coincident points was once the source's, in the source's units, and
+// refused this face's landmarks 0 and 1 as one point.
+TEST(TargetTransfer, AFaceAThousandthTheSizeIsRiggedAlike) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  constexpr float kScale = 1e-3f;
+  eng::Model face = stripped(*head);
+  for (eng::Node& node : face.nodes)
+    if (node.parent < 0) node.scale *= kScale, node.translation *= kScale;
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  autorig::FaceLandmarks landmarks = source.landmarks;
+  for (glm::vec3& p : landmarks.points) p *= kScale;
+  const autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, posed, landmarks, parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Result<autorig::TransferResult> full =
+      autorig::transferTargets(source, stripped(*head), source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(full) << full.error().message;
+  // Targets are in mesh space, which the node's scale leaves as it was: the
+  // same displacements come back.
+  for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU26_JawDrop", "AU45_Blink_L"}) {
+    const float error = transfer_fixture::relativeError(full->model, rigged->model, "Head", 0, unit, unit);
+    EXPECT_LT(error, 0.02f) << unit;
+  }
 }
 
 // A face with a few of ARKit's 52 (a smile, a blink, an open jaw): the units
