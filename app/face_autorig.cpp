@@ -95,9 +95,16 @@ std::string autorigReason(const importers::LoadedFace& face, const eng::Result<f
   return facial::showsEmotions(rig->rig) ? std::string() : reasonOf(face.model, rig);
 }
 
+bool emotesInPart(const eng::Result<facial::RigCalibration>& rig) {
+  if (!rig) return false;
+  const facial::EmotionFeatures features = facial::emotionFeatures(rig->rig);
+  return features.brows != features.lipCorners;
+}
+
 std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,
                             const eng::Result<facial::RigCalibration>& rig) {
-  return rig ? model.string() + ": cannot show emotions: " + reason : rig.error().message;
+  if (!rig) return rig.error().message;
+  return model.string() + (emotesInPart(rig) ? ": shows emotions only in part: " : ": cannot show emotions: ") + reason;
 }
 
 eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {

@@ -47,6 +47,12 @@ inline constexpr std::string_view kAutorigVersion = "autorig-12";  // 2: the ARK
 std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
                           const std::filesystem::path& rigmapFile);
 
+// Whether a face autorigReason() picked shows some emotions on its own: its
+// rig moves the brows or the lip corners, not both. Autorig fills in what it
+// lacks; when autorig cannot (no face found) or --no-autorig says not to,
+// the face is used as it is, with a warning, not refused.
+bool emotesInPart(const eng::Result<facial::RigCalibration>& rig);
+
 // What to say of a face autorigReason() picked, before what autorig did or
 // why it could not: the rig's own error when it has no rig (it names the file
 // and suggests a rig map), else "<model>: cannot show emotions: <reason>".

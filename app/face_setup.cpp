@@ -118,7 +118,8 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
     return eng::makeError(cached.error().kind, refusal + "; autorig: " + cached.error().message +
                           (std::filesystem::exists(beside, ec) ? "" : " (give its 68 landmarks in " + beside.string() + ")"));
   }
-  return model + " cannot show emotions (" + reason + "): rigged with the built-in head's action units (" +
+  return model + (emotesInPart(rig) ? " shows emotions only in part (" : " cannot show emotions (") + reason +
+         "): rigged with the built-in head's action units (" +
          std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
          " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +
          "; --no-autorig refuses instead";
@@ -133,11 +134,20 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   auto calibration = buildFaceRig(*face, options.rigmap);
   std::string note;
   if (const std::string reason = autorigReason(*face, calibration, options.rigmap); !reason.empty()) {
-    auto rigged = autorigInPlace(options, modelPath, reason, calibration, face);
-    if (!rigged) return rigged.error();
-    note = std::move(*rigged);
-    std::fprintf(stderr, "%.*s: note: %s\n", int(options.program.size()), options.program.data(), note.c_str());
-    calibration = buildFaceRig(*face, options.rigmap);
+    const bool inPart = emotesInPart(calibration);
+    if (options.autorig || !inPart) {
+      auto rigged = autorigInPlace(options, modelPath, reason, calibration, face);
+      if (rigged) {
+        note = std::move(*rigged);
+        std::fprintf(stderr, "%.*s: note: %s\n", int(options.program.size()), options.program.data(), note.c_str());
+        calibration = buildFaceRig(*face, options.rigmap);
+      } else if (!inPart) {
+        return rigged.error();
+      } else {  // its own rig still shows what it moves
+        note = rigged.error().message + "; shown with its own targets only";
+        std::fprintf(stderr, "%.*s: warning: %s\n", int(options.program.size()), options.program.data(), note.c_str());
+      }
+    }
   }
   if (!calibration) return calibration.error();
   auto rig = std::optional<facial::RigMapping>(std::move(calibration->rig));

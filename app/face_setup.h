@@ -78,7 +78,9 @@ struct FaceSetupOptions {
   // A glTF face that cannot show emotions (app::autorigReason: no scheme knows
   // its targets, or visemes only) is given the built-in head's action units
   // first (app::autorigCached), with one note on stderr naming `program`;
-  // false refuses it with one error line instead.
+  // false refuses it with one error line instead. A face that shows emotions
+  // in part (brows or lip corners: app::emotesInPart) is never refused: with
+  // false, or when autorig fails (with a warning), it keeps its own rig.
   bool autorig = true;
   std::string_view program = "facial";
 };
@@ -98,7 +100,8 @@ class FaceSetup {
   // The VRM expressions (null unless format() is Vrm).
   const facial::VrmExpressionSet* vrm() const { return vrm_.get(); }
   const std::string& name() const { return name_; }
-  // The note printed when the face was rigged on the fly, else "".
+  // The note printed when the face was rigged on the fly (or the warning when
+  // a face that shows emotions in part could not be: app::emotesInPart), else "".
   const std::string& autorigNote() const { return autorigNote_; }
   const eng::WeightLayout& layout() const { return layout_; }
   const facial::RigMapping& rig() const { return rig_; }

@@ -96,10 +96,15 @@ int runRig(const RigOptions& o) {
   if (!o.noAutorig) autorig.reason = app::autorigReason(*face, rig, o.rigmap);
   if (!autorig.reason.empty()) {
     auto cached = app::loadAutorigged(o.model, {.shapes = o.shapes}, *face);
-    if (!cached)
-      return fail(app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message);
-    autorig.cached = std::move(*cached);
-    rig = app::buildFaceRig(*face, o.rigmap);
+    const std::string failed = cached ? std::string() : app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message;
+    if (!cached && !app::emotesInPart(rig)) return fail(failed);
+    if (cached) {
+      autorig.cached = std::move(*cached);
+      rig = app::buildFaceRig(*face, o.rigmap);
+    } else {  // its own rig, which moves the brows or the lip corners, is listed
+      std::fprintf(stderr, "facial rig: warning: %s; its own rig is listed\n", failed.c_str());
+      autorig.reason.clear();
+    }
   }
   if (!rig) return fail(rig.error().message);
   // Which morph targets steer the eyes (the window demo's idle life and facial::Character drive them).

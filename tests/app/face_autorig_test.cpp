@@ -132,6 +132,29 @@ TEST(FaceSetupAutorig, NoAutorigRefusesAFaceThatCannotEmoteInOneLine) {
       << unknown.error().message;
 }
 
+// A face whose rig moves its brows but no lip corners shows emotions in
+// part: autorig would fill in the rest, but this test face has no face dlib
+// finds, so it keeps its own rig with one warning; --no-autorig keeps it too.
+TEST(FaceSetupAutorig, AFaceThatEmotesInPartKeepsItsOwnRigWhenAutorigCannot) {
+  const fs::path face = testFaceNamed("autorig_in_part", {"AU1_InnerBrowRaiser", "AU4_BrowLowerer", "AU5_UpperLidRaiser"});
+  const fs::path dir = face.parent_path();
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto setup = app::FaceSetup::load({.model = face, .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(setup) << setup.error().message;
+  const std::string& note = setup->autorigNote();
+  EXPECT_EQ(note.rfind(face.string() + ": shows emotions only in part: its FACS action units rig moves no lip corners", 0), 0u)
+      << note;
+  EXPECT_NE(note.find("autorig: no face found"), std::string::npos) << note;
+  EXPECT_NE(note.find("shown with its own targets only"), std::string::npos) << note;
+  EXPECT_EQ(setup->rig().scheme(), facial::RigScheme::ActionUnits);
+  EXPECT_EQ(setup->rig().targetCount(), 3u) << "nothing was made";
+
+  auto refused = app::FaceSetup::load({.model = face, .autorig = false});
+  ASSERT_TRUE(refused) << refused.error().message;
+  EXPECT_TRUE(refused->autorigNote().empty()) << refused->autorigNote();
+}
+
 TEST(AutorigCache, LivesUnderTheUsersCacheFolder) {
   const char* saved = std::getenv("XDG_CACHE_HOME");
   const std::string restore = saved ? saved : "";

@@ -300,10 +300,11 @@ TEST_F(SayCommand, BadInputIsRefusedInOneLineWithoutAVideo) {
 }
 
 TEST_F(SayCommand, FaceThatCannotSpeakIsRefused) {
-  // The test face with its mouth and jaw targets renamed to brow and lid units: nothing moves the mouth.
+  // The test face with its targets renamed to brow and lip-corner units: it
+  // emotes (so it is not rigged on the fly), but nothing opens or shapes the mouth.
   eng::Model face = makeTestFace();
   for (auto& mesh : face.meshes)
-    mesh.targetNames = {"AU1_InnerBrowRaiser", "AU2_OuterBrowRaiser", "AU4_BrowLowerer", "AU5_UpperLidRaiser",
+    mesh.targetNames = {"AU1_InnerBrowRaiser", "AU4_BrowLowerer", "AU12_LipCornerPuller_L", "AU15_LipCornerDepressor",
                         "custom_shape"};
   const fs::path model = dir_ / "mute_face.glb";
   ASSERT_TRUE(eng::saveModel(face, model));
