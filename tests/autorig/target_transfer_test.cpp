@@ -41,6 +41,37 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   }
 }
 
+// The head stripped, its skin mesh given shapes of its own, each a weighted
+// sum of the head's units: what an author made, not what the head would
+// carry. Nullopt, with a test failure, when a unit is not the head's.
+using Recipe = std::vector<std::pair<std::string_view, float>>;
+std::optional<eng::Model> faceWithOwnShapes(const eng::Model& head, const std::vector<std::pair<std::string, Recipe>>& shapes) {
+  eng::Model face = stripped(head);
+  eng::Mesh& mesh = face.meshes[0];
+  const eng::Mesh& own = head.meshes[0];
+  mesh.targetNames.clear();
+  for (const auto& [name, recipe] : shapes) mesh.targetNames.push_back(name);
+  mesh.defaultWeights.assign(shapes.size(), 0.0f);
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    mesh.primitives[p].targets.clear();
+    for (const auto& [name, recipe] : shapes) {
+      eng::MorphTarget target;
+      target.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
+      for (const auto& [unit, gain] : recipe) {
+        const size_t t = size_t(std::find(own.targetNames.begin(), own.targetNames.end(), unit) - own.targetNames.begin());
+        if (t >= own.targetNames.size()) {
+          ADD_FAILURE() << unit << " is not one of the head's targets";
+          return std::nullopt;
+        }
+        const auto& from = own.primitives[p].targets[t].positions;
+        for (size_t v = 0; v < target.positions.size() && v < from.size(); ++v) target.positions[v] += gain * from[v];
+      }
+      mesh.primitives[p].targets.push_back(std::move(target));
+    }
+  }
+  return face;
+}
+
 // A face's own shapes (Ready Player Me's default `mouthSmile`, `mouthOpen`
 // and `eyesClosed`) are its smile, open mouth and blink: the smile's halves
 // are the made AU12 sides, the blink's the AU45 sides and the open mouth the
@@ -49,35 +80,15 @@ TEST(TargetTransfer, TheFacesOwnShapesAreItsUnits) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
-  eng::Model face = stripped(*head);
-  eng::Mesh& mesh = face.meshes[0];
-  const eng::Mesh& own = head->meshes[0];
-  auto ownIndex = [&](std::string_view name) {
-    return size_t(std::find(own.targetNames.begin(), own.targetNames.end(), name) - own.targetNames.begin());
-  };
-  const size_t left = ownIndex("AU12_LipCornerPuller_L"), right = ownIndex("AU12_LipCornerPuller_R"), jaw = ownIndex("AU26_JawDrop");
-  const size_t blinkLeft = ownIndex("AU45_Blink_L"), blinkRight = ownIndex("AU45_Blink_R");
-  ASSERT_LT(std::max({left, right, jaw, blinkLeft, blinkRight}), own.targetNames.size());
   // Not what the head would carry: its two pullers together half again as
   // far, its jaw drop 1.3 times as far with a little upper lip raise in,
   // its lids closing a tenth further.
-  const size_t raise = ownIndex("AU10_UpperLipRaiser");
-  ASSERT_LT(raise, own.targetNames.size());
-  mesh.targetNames = {"mouthSmile", "mouthOpen", "eyesClosed"};
-  mesh.defaultWeights = {0.0f, 0.0f, 0.0f};
-  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-    const auto& targets = own.primitives[p].targets;
-    eng::MorphTarget smile, open, closed;
-    smile.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
-    open.positions = closed.positions = smile.positions;
-    for (size_t v = 0; v < smile.positions.size() && v < targets[left].positions.size(); ++v) {
-      smile.positions[v] = 1.5f * (targets[left].positions[v] + targets[right].positions[v]);
-      open.positions[v] = 1.3f * targets[jaw].positions[v] + 0.3f * targets[raise].positions[v];
-      closed.positions[v] = 1.1f * (targets[blinkLeft].positions[v] + targets[blinkRight].positions[v]);
-    }
-    mesh.primitives[p].targets = {smile, open, closed};
-  }
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  const std::optional<eng::Model> face = faceWithOwnShapes(
+      *head, {{"mouthSmile", {{"AU12_LipCornerPuller_L", 1.5f}, {"AU12_LipCornerPuller_R", 1.5f}}},
+              {"mouthOpen", {{"AU26_JawDrop", 1.3f}, {"AU10_UpperLipRaiser", 0.3f}}},
+              {"eyesClosed", {{"AU45_Blink_L", 1.1f}, {"AU45_Blink_R", 1.1f}}}});
+  ASSERT_TRUE(face);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts);
   ASSERT_TRUE(rigged) << rigged.error().message;
   ASSERT_EQ(rigged->report.notes.size(), 3u);
   EXPECT_NE(rigged->report.notes[0].find("own mouthSmile"), std::string::npos) << rigged->report.notes[0];
@@ -162,30 +173,12 @@ TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
-  eng::Model face = stripped(*head);
-  eng::Mesh& mesh = face.meshes[0];
-  const eng::Mesh& own = head->meshes[0];
-  auto ownIndex = [&](std::string_view name) {
-    return size_t(std::find(own.targetNames.begin(), own.targetNames.end(), name) - own.targetNames.begin());
-  };
-  const std::array<std::pair<const char*, float>, 4> made = {std::pair{"AU12_LipCornerPuller_L", 1.2f},
-                                                             std::pair{"AU45_Blink_R", 1.1f}, std::pair{"AU26_JawDrop", 1.5f},
-                                                             std::pair{"AU4_BrowLowerer", 0.5f}};
-  mesh.targetNames = {"mouthSmile_L", "eyeBlinkRight", "jawOpen", "browDownLeft"};
-  mesh.defaultWeights.assign(mesh.targetNames.size(), 0.0f);
-  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-    mesh.primitives[p].targets.clear();
-    for (const auto& [unit, scale] : made) {
-      const size_t t = ownIndex(unit);
-      ASSERT_LT(t, own.targetNames.size()) << unit;
-      eng::MorphTarget target;
-      target.positions.assign(mesh.primitives[p].vertexCount(), glm::vec3(0.0f));
-      const auto& from = own.primitives[p].targets[t].positions;
-      for (size_t v = 0; v < target.positions.size() && v < from.size(); ++v) target.positions[v] = scale * from[v];
-      mesh.primitives[p].targets.push_back(std::move(target));
-    }
-  }
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  const std::optional<eng::Model> face = faceWithOwnShapes(*head, {{"mouthSmile_L", {{"AU12_LipCornerPuller_L", 1.2f}}},
+                                                                   {"eyeBlinkRight", {{"AU45_Blink_R", 1.1f}}},
+                                                                   {"jawOpen", {{"AU26_JawDrop", 1.5f}}},
+                                                                   {"browDownLeft", {{"AU4_BrowLowerer", 0.5f}}}});
+  ASSERT_TRUE(face);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts);
   ASSERT_TRUE(rigged) << rigged.error().message;
   const std::vector<std::string>& notes = rigged->report.notes;
   auto noted = [&](std::string_view text) {
