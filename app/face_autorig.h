@@ -55,7 +55,8 @@ bool emotesInPart(const eng::Result<facial::RigCalibration>& rig);
 
 // What to say of a face autorigReason() picked, before what autorig did or
 // why it could not: the rig's own error when it has no rig (it names the file
-// and suggests a rig map), else "<model>: cannot show emotions: <reason>".
+// and suggests a rig map), else "<model>: cannot show emotions: <reason>"
+// ("shows emotions only in part" for a face that emotesInPart).
 std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,
                             const eng::Result<facial::RigCalibration>& rig);
 

@@ -122,7 +122,7 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
          "): rigged with the built-in head's action units (" +
          std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
          " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +
-         "; --no-autorig refuses instead";
+         (emotesInPart(rig) ? "; --no-autorig keeps its own rig instead" : "; --no-autorig refuses instead");
 }
 
 }  // namespace

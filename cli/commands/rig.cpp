@@ -96,12 +96,13 @@ int runRig(const RigOptions& o) {
   if (!o.noAutorig) autorig.reason = app::autorigReason(*face, rig, o.rigmap);
   if (!autorig.reason.empty()) {
     auto cached = app::loadAutorigged(o.model, {.shapes = o.shapes}, *face);
-    const std::string failed = cached ? std::string() : app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message;
-    if (!cached && !app::emotesInPart(rig)) return fail(failed);
     if (cached) {
       autorig.cached = std::move(*cached);
       rig = app::buildFaceRig(*face, o.rigmap);
-    } else {  // its own rig, which moves the brows or the lip corners, is listed
+    } else {
+      const std::string failed = app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message;
+      if (!app::emotesInPart(rig)) return fail(failed);
+      // Its own rig, which moves the brows or the lip corners, is listed.
       std::fprintf(stderr, "facial rig: warning: %s; its own rig is listed\n", failed.c_str());
       autorig.reason.clear();
     }
