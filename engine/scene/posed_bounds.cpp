@@ -130,24 +130,41 @@ int findHeadJoint(const Model& model) {
     for (int node : skin.joints)
       if (node >= 0 && static_cast<size_t>(node) < model.nodes.size() && lastNameWord(model.nodes[node].name) == "head")
         return node;
-  // No names to go by: the highest joint that moves a vertex itself.
-  std::vector<bool> weighted(model.nodes.size(), false);
-  for (const Node& node : model.nodes) {
-    if (node.mesh < 0 || node.skin < 0 || static_cast<size_t>(node.skin) >= model.skins.size()) continue;
-    const Skin& skin = model.skins[node.skin];
-    for (const Primitive& prim : model.meshes[node.mesh].primitives)
-      for (size_t i = 0; i < prim.joints.size(); ++i)
-        for (int k = 0; k < 4; ++k)
-          if (prim.jointWeights[i][k] > 0.0f && prim.joints[i][k] < skin.joints.size()) {
-            const int j = skin.joints[prim.joints[i][k]];
-            if (j >= 0 && static_cast<size_t>(j) < weighted.size()) weighted[j] = true;
-          }
-  }
+  // No names to go by: the highest joint that moves vertices itself, or the
+  // one it hangs from when that one moves more of them around it. An eye's
+  // joint sits higher than the head's (Ready Player Me: LeftEye, RightEye),
+  // and framing it shows one eyeball.
+  const Pose pose = restPose(model);
+  std::vector<size_t> moves(model.nodes.size(), 0);  // vertices each joint carries most of
+  std::vector<Aabb> region(model.nodes.size());
+  forEachPosedVertex(model, pose, {}, [&](const glm::vec3& p, const Primitive& prim, size_t v, int, int skin) {
+    if (skin < 0) return;
+    const size_t sets = prim.influenceSets();
+    for (size_t s = 0; s < sets; ++s)
+      for (int k = 0; k < 4; ++k) {
+        const size_t slot = prim.joints[v * sets + s][k];
+        if (prim.jointWeights[v * sets + s][k] < 0.5f || slot >= model.skins[skin].joints.size()) continue;
+        const int j = model.skins[skin].joints[slot];
+        if (j >= 0 && static_cast<size_t>(j) < moves.size()) ++moves[j], region[j].extend(p);
+      }
+  });
   std::vector<glm::mat4> world;
-  poseWorldMatrices(model, restPose(model), world);
+  poseWorldMatrices(model, pose, world);
+  std::vector<int> parent(model.nodes.size(), -1);
+  for (size_t n = 0; n < model.nodes.size(); ++n)
+    for (int c : model.nodes[n].children)
+      if (c >= 0 && static_cast<size_t>(c) < parent.size()) parent[c] = static_cast<int>(n);
   int best = -1;
   for (size_t n = 0; n < model.nodes.size(); ++n)
-    if (weighted[n] && (best < 0 || world[n][3].y > world[best][3].y)) best = static_cast<int>(n);
+    if (moves[n] > 0 && (best < 0 || world[n][3].y > world[best][3].y)) best = static_cast<int>(n);
+  for (size_t steps = 0; best >= 0 && steps < model.nodes.size(); ++steps) {
+    int up = parent[best];
+    while (up >= 0 && moves[up] == 0) up = parent[up];
+    if (up < 0 || moves[up] <= moves[best]) break;
+    const glm::vec3 c = region[best].center();
+    if (glm::any(glm::lessThan(c, region[up].min)) || glm::any(glm::greaterThan(c, region[up].max))) break;
+    best = up;
+  }
   return best;
 }
 

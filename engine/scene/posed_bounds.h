@@ -42,8 +42,9 @@ Aabb posedMorphedBounds(const Model& model, const Pose& pose);
 // joint named like a head, case-insensitively and after any "prefix:" or
 // "prefix_" (Head, head, mixamorig:Head, J_Bip_C_Head, Bip01 Head,
 // CC_Base_Head; not HeadTop_End / head_end / HeadEnd); else, for a skeleton
-// without such names (CesiumMan), the highest joint (world +Y, rest pose)
-// that directly moves some vertex.
+// without such names (CesiumMan, an export that lost them), the highest joint
+// (world +Y, rest pose) that carries some vertex, or the joint above it when
+// that one carries more vertices around it (an eye's joint is not the head).
 int findHeadJoint(const Model& model);
 
 }  // namespace eng

@@ -367,6 +367,24 @@ TEST(SkinningSharedAssets, RobotHandsSitOnItsArmsAndItsHeadJointIsNamed) {
   EXPECT_NEAR(face.max.y, posed.max.y, 0.05f * posed.size().y);
 }
 
+// Exports from converters and scanners often lose their joint names. Ready
+// Player Me's eye joints sit above its head joint: the highest joint that
+// moves vertices frames one eyeball, and no face is found in that view.
+TEST(SkinningSharedAssets, HeadJointWithoutNamesIsTheHeadNotAnEye) {
+  FACIAL_REQUIRE_SHARED();
+  auto named = eng::loadModel(testing_support::sharedDir() / "speech" / "rpm-visemes.glb");
+  ASSERT_TRUE(named.ok()) << named.error().message;
+  const int head = eng::findHeadJoint(*named);
+  ASSERT_GE(head, 0);
+  ASSERT_EQ(named->nodes[head].name, "Head");
+  eng::Model model = *named;
+  for (eng::Node& node : model.nodes) node.name = "node";
+  EXPECT_EQ(eng::findHeadJoint(model), head) << "found " << named->nodes[eng::findHeadJoint(model)].name;
+  const eng::Aabb region = eng::posedJointRegionBounds(model, eng::restPose(model), eng::findHeadJoint(model));
+  EXPECT_GT(region.size().y, 0.2f) << "a head, not an eyeball";
+}
+
+
 }  // namespace
 
 namespace {
