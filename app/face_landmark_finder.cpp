@@ -175,12 +175,32 @@ float lidDepthLimit(const autorig::SurfaceCaster& caster, const autorig::FaceLan
   return glm::mix(caster.depth(a), caster.depth(b), t) + 0.05f * glm::distance(a, b);
 }
 
-// The order points are cast in: each eye's corners before its lids (whose
-// depth they bound), the outer lips before the inner ones (as numbered).
+// How deep a jaw-line point (1-15) may lie: a fifth of the face's width
+// (0 to 16) deeper than its neighbour towards the ear, the jaw coming forward
+// from the ears to the chin. dlib puts these points on the face's outline,
+// and a ray just past an untextured jaw meets the neck behind it: a point
+// there bent the warped jaw back into the neck. Infinity until the
+// neighbours are on the surface.
+float jawLineDepthLimit(const autorig::SurfaceCaster& caster, const autorig::FaceLandmarks& landmarks, size_t i) {
+  if (i < 1 || i > 15) return std::numeric_limits<float>::infinity();
+  const auto& p = landmarks.points;
+  const float width = glm::distance(p[0], p[16]);
+  float neighbour = i < 8 ? caster.depth(p[i - 1]) : i > 8 ? caster.depth(p[i + 1]) : 0.0f;
+  if (i == 8) neighbour = std::max(caster.depth(p[7]), caster.depth(p[9]));
+  if (!std::isfinite(width) || !std::isfinite(neighbour)) return std::numeric_limits<float>::infinity();
+  return neighbour + 0.2f * width;
+}
+
+// The order points are cast in: the jaw line from the ears to the chin (each
+// point's depth bounded by the one before it), each eye's corners before its
+// lids (whose depth they bound), the outer lips before the inner ones (as
+// numbered).
 constexpr std::array<size_t, autorig::kLandmarkCount> kCastOrder = [] {
   std::array<size_t, autorig::kLandmarkCount> order{};
   size_t n = 0;
-  for (size_t i = 0; i < 36; ++i) order[n++] = i;
+  for (size_t i = 0; i < 8; ++i) order[n++] = i, order[n++] = 16 - i;
+  order[n++] = 8;
+  for (size_t i = 17; i < 36; ++i) order[n++] = i;
   for (size_t i : {36, 39, 42, 45, 37, 38, 40, 41, 43, 44, 46, 47}) order[n++] = i;
   for (size_t i = 48; i < autorig::kLandmarkCount; ++i) order[n++] = i;
   return order;
@@ -194,8 +214,9 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
   landmarks.source = describe(seen.face);
   std::optional<size_t> missed;
   for (const size_t i : kCastOrder) {
-    const float limit = std::min(innerLipDepthLimit(caster, landmarks, i),
-                                 lidDepthLimit(caster, landmarks, seen.face.pixels[i], i));
+    const float limit = std::min({innerLipDepthLimit(caster, landmarks, i),
+                                  lidDepthLimit(caster, landmarks, seen.face.pixels[i], i),
+                                  jawLineDepthLimit(caster, landmarks, i)});
     std::optional<autorig::SurfacePoint> hit = caster.cast(seen.face.pixels[i], kReach * float(size), limit);
     if (!hit && std::isfinite(limit))  // nothing in front of the limit: a deep point rigs better than none
       hit = caster.cast(seen.face.pixels[i], kReach * float(size), std::numeric_limits<float>::infinity());

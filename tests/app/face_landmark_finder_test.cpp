@@ -280,6 +280,33 @@ TEST(FaceLandmarkFinder, FacecapPartsByShape) {
   expectSamePartsByShape(f, -1, 0);
 }
 
+// The jaw line lies on the jaw, coming forward from the ears to the chin.
+// dlib puts it on the face's outline, and on an untextured head without
+// targets (framed whole) a ray just past the jaw met the neck behind it:
+// point 6 landed there, 0.77 eye spans deep, and the warp bent the jaw back.
+TEST(FaceLandmarkFinder, JawLineOnTheJawNotTheNeckBehindIt) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  for (eng::Mesh& mesh : model->meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& prim : mesh.primitives) prim.targets.clear();
+  }
+  for (eng::Material& material : model->materials) {
+    material.baseColorImage = -1;
+    material.baseColorFactor = glm::vec4(0.8f, 0.62f, 0.52f, 1.0f);
+  }
+  const autorig::PosedFace posed = autorig::poseAtRest(*model);
+  const auto picture = testing_support::freshTempDir("face_landmark_finder") / "head-untextured.png";
+  auto landmarks = app::findFaceLandmarks(*model, posed, {.picture = picture});
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  expectFaceLayout(*landmarks);
+  const auto& p = landmarks->points;
+  const float span = glm::distance(p[36], p[45]);
+  for (size_t i = 1; i < 16; ++i)
+    EXPECT_GT(p[i].z, std::min(p[i - 1].z, p[i + 1].z) - 0.25f * span) << "landmark " << i << " is behind the jaw";
+}
+
 TEST(FaceLandmarkFinder, NoFaceOnASphereOrACube) {
   eng::Model sphere = testing_support::makeSphereModel(testing_support::whiteSphereSpec(2));
   sphere.sourcePath = "ball.glb";
