@@ -48,7 +48,8 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
   const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   // Skin only on a model that is a face: it has eyeballs, or a mesh or node
   // says head or face. A morphing sphere or cube sample stays as authored.
-  bool isFace = !findUntexturedEyes(model).empty();
+  const std::vector<EyePrimitive> eyes = findUntexturedEyes(model);
+  bool isFace = !eyes.empty();
   for (size_t m = 0; m < model.meshes.size() && !isFace; ++m) {
     const std::vector<std::string_view> names = meshAndNodeNames(model, m, nodeOfMesh[m]);
     isFace = anyNameContains(names, "head") || anyNameContains(names, "face");
@@ -67,7 +68,10 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
         part = Part::Teeth;
       else if (anyNameContains(names, "tongue"))
         part = Part::Tongue;
-      else if (isFace && !eyeNamed && !materialNamesAnEyeball(model, prim.material) && !mesh.targetNames.empty())
+      else if (isFace && !eyeNamed && !materialNamesAnEyeball(model, prim.material) && !mesh.targetNames.empty() &&
+               std::none_of(eyes.begin(), eyes.end(), [&](const EyePrimitive& e) {
+                 return size_t(e.mesh) == m && size_t(e.primitive) == p;
+               }))
         part = Part::Skin;
       if (part != Part::None) planned.push_back({m, p, part});
     }

@@ -85,6 +85,60 @@ glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a + (b 
 constexpr float kIrisRadius = 0.47f;
 constexpr float kPupilRadius = 0.18f;
 
+// Eyeballs that no name tells (an export that lost them): two plain white
+// balls of one size, level and side by side a few radii apart (a person's
+// 12 mm eyeballs are about 5 radii apart, a stylised avatar's 4), inside the
+// box of another primitive, the head they sit in. Nothing when no pair is.
+std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<int>& nodeOfMesh) {
+  struct Ball {
+    EyePrimitive eye;
+    glm::vec3 world;
+    float radius;
+  };
+  std::vector<Ball> balls;
+  std::vector<Aabb> boxes;  // every primitive's, in world space
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const int node = nodeOfMesh[m];
+    if (node < 0) continue;
+    const glm::mat4 world = model.worldTransform(node);
+    for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+      const Primitive& prim = model.meshes[m].primitives[p];
+      Aabb box;
+      for (const glm::vec3& v : prim.positions) box.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
+      boxes.push_back(box);
+      // Plain white only: a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
+      const Material* material =
+          prim.material >= 0 && size_t(prim.material) < model.materials.size() ? &model.materials[size_t(prim.material)]
+                                                                               : nullptr;
+      if (material && (material->baseColorImage >= 0 || glm::any(glm::lessThan(glm::vec3(material->baseColorFactor),
+                                                                                glm::vec3(0.99f)))))
+        continue;
+      const SphereFit fit = fitSphere(prim.positions);
+      if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
+      EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre, .radius = fit.radius};
+      const glm::vec3 axis = glm::vec3(glm::inverse(world) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+      if (glm::dot(axis, axis) > 1e-20f) eye.gazeAxis = glm::normalize(axis);
+      balls.push_back({eye, glm::vec3(world * glm::vec4(fit.centre, 1.0f)), fit.radius * glm::length(glm::vec3(world[0]))});
+    }
+  }
+  for (size_t a = 0; a < balls.size(); ++a)
+    for (size_t b = a + 1; b < balls.size(); ++b) {
+      const float r = std::max(balls[a].radius, balls[b].radius);
+      const glm::vec3 d = glm::abs(balls[a].world - balls[b].world);
+      if (std::min(balls[a].radius, balls[b].radius) < 0.85f * r || d.y > 0.5f * r || d.z > 0.5f * r ||
+          d.x < 2.5f * r || d.x > 8.0f * r)
+        continue;
+      auto inside = [](const Aabb& box, const glm::vec3& p) {
+        return glm::all(glm::greaterThanEqual(p, box.min)) && glm::all(glm::lessThanEqual(p, box.max));
+      };
+      const bool inAHead = std::any_of(boxes.begin(), boxes.end(), [&](const Aabb& box) {
+        return box.size().x > d.x + 2.0f * r && inside(box, balls[a].world) && inside(box, balls[b].world);
+      });
+      if (inAHead) return {balls[a].eye, balls[b].eye};
+    }
+  return {};
+}
+
 }  // namespace
 
 Image proceduralEyeImage(int size) {
@@ -157,7 +211,7 @@ std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
       eyes.push_back(eye);
     }
   }
-  return eyes;
+  return eyes.empty() ? eyePairByShape(model, nodeOfMesh) : eyes;
 }
 
 size_t dressUntexturedEyes(Model& model) {

@@ -29,7 +29,9 @@ struct EyePrimitive {
   glm::vec3 gazeAxis{0.0f, 0.0f, 1.0f};  // mesh space, unit
 };
 
-// The untextured eyeballs of `model`, at rest.
+// The untextured eyeballs of `model`, at rest: the balls named as eyes, else
+// (no names to go by) a pair of balls of one size, level, a few radii apart,
+// inside the head.
 std::vector<EyePrimitive> findUntexturedEyes(const eng::Model& model);
 
 // Dresses every eyeball findUntexturedEyes() finds: adds the eye texture (one

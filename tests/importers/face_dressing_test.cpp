@@ -30,6 +30,49 @@ TEST(ProceduralEyes, UntexturedEyeballsAreFoundByNameAndShape) {
   }
 }
 
+// Names lost on export ("mesh_1", "Object_2"): the pair of balls of one
+// size, level and a few radii apart inside the head are its eyes.
+eng::Model withoutNames(eng::Model model) {
+  for (size_t i = 0; i < model.meshes.size(); ++i) model.meshes[i].name = "mesh_" + std::to_string(i);
+  for (size_t i = 0; i < model.nodes.size(); ++i) model.nodes[i].name = "node_" + std::to_string(i);
+  for (size_t i = 0; i < model.materials.size(); ++i) model.materials[i].name = "material_" + std::to_string(i);
+  return model;
+}
+
+TEST(ProceduralEyes, UnnamedEyeballsAreThePairOfBallsInTheHead) {
+  const eng::Model named = plasterHead();
+  const eng::Model model = withoutNames(named);
+  const std::vector<importers::EyePrimitive> eyes = importers::findUntexturedEyes(model);
+  ASSERT_EQ(eyes.size(), 2u);
+  const std::vector<importers::EyePrimitive> byName = importers::findUntexturedEyes(named);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(eyes[i].mesh, byName[i].mesh);
+    EXPECT_NEAR(eyes[i].radius, 1.0f, 0.02f);
+    EXPECT_NEAR(eyes[i].gazeAxis.z, 1.0f, 1e-4f);
+  }
+  const importers::FaceDressing plan = importers::planFaceDressing(model);
+  EXPECT_EQ(plan.eyes, 2u);
+  EXPECT_EQ(plan.skin, 1u) << "a face, so its skin is dressed too";
+}
+
+TEST(ProceduralEyes, BallsThatAreNoPairOfEyesAreLeftAlone) {
+  eng::Model oneEye = withoutNames(plasterHead());
+  oneEye.nodes[2].mesh = -1;
+  EXPECT_TRUE(importers::findUntexturedEyes(oneEye).empty()) << "one ball";
+  eng::Model farApart = withoutNames(plasterHead());
+  farApart.nodes[1].translation.x = 3.0f;
+  EXPECT_TRUE(importers::findUntexturedEyes(farApart).empty()) << "too far apart";
+  eng::Model uneven = withoutNames(plasterHead());
+  uneven.nodes[1].translation.y += 0.1f;
+  EXPECT_TRUE(importers::findUntexturedEyes(uneven).empty()) << "not level";
+  eng::Model unequal = withoutNames(plasterHead());
+  unequal.nodes[1].scale = glm::vec3(0.08f);
+  EXPECT_TRUE(importers::findUntexturedEyes(unequal).empty()) << "not of one size";
+  eng::Model noHead = withoutNames(plasterHead());
+  noHead.nodes[0].mesh = noHead.nodes[3].mesh = -1;
+  EXPECT_TRUE(importers::findUntexturedEyes(noHead).empty()) << "two balls in no head";
+}
+
 TEST(ProceduralEyes, TexturedEyesAndBrowsAreLeftAlone) {
   eng::Model model = plasterHead();
   model.nodes[1].name = "eyeBrowLeft";  // not a ball, whatever its shape
