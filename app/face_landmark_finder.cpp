@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "app/headless_model_renderer.h"
+#include "autorig/face_frame.h"
 #include "autorig/surface_cast.h"
 #include "engine/scene/image_io.h"
 #include "engine/scene/weights.h"
@@ -230,6 +231,57 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
   return landmarks;
 }
 
+// A face turned from the camera (a scan as it was captured, a head turned on
+// its neck) has its jaw line found on its outline, away from where a front
+// view puts it, and the warp carries the source's front-view points there:
+// the far cheek creased in every expression. Once found, the face is looked
+// at again from the front its own points give: square to its eyes (yaw),
+// and within kPitchSlack of the pitch a face seen level has (its eyes are
+// set back from its chin).
+constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f, kLevelPitch = 5.0f;  // degrees
+
+// The camera turned to face the face, or nullopt when it faces it already.
+std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, const autorig::FaceLandmarks& landmarks) {
+  const glm::vec3 forward = autorig::LandmarkFrame(landmarks).forward();
+  if (!std::isfinite(forward.x) || !std::isfinite(forward.y) || !std::isfinite(forward.z)) return std::nullopt;
+  const float yaw = glm::degrees(std::atan2(forward.x, forward.z));
+  const float pitch = glm::degrees(std::asin(std::clamp(forward.y, -1.0f, 1.0f)));
+  eng::OrbitCamera turned = camera;
+  if (std::abs(yaw - camera.yawDegrees) > kYawSlack) turned.yawDegrees = yaw;
+  if (std::abs(pitch - kLevelPitch - camera.pitchDegrees) > kPitchSlack) turned.pitchDegrees = pitch - kLevelPitch;
+  if (turned.yawDegrees == camera.yawDegrees && turned.pitchDegrees == camera.pitchDegrees) return std::nullopt;
+  return turned;
+}
+
+struct Seen {
+  autorig::FaceLandmarks landmarks;
+  bool detected = false;  // by dlib's detector, not only fitted in the targets' box
+};
+
+// From the renderer's camera: the face dlib finds, looked at closer when it
+// is small in the picture, its points cast onto the face. Nullopt when no
+// face is seen.
+eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const autorig::PosedFace& posed,
+                                                                 HeadlessModelRenderer& renderer,
+                                                                 std::span<const float> weights,
+                                                                 const autorig::LandmarkDetector& detector,
+                                                                 const FaceLandmarkOptions& options) {
+  std::optional<Sighting> seen = ENG_TRY_VALUE(look(renderer, weights, detector));
+  if (!seen) seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, renderer, weights, detector, options.size));
+  if (!seen) return std::optional<Seen>();
+  eng::OrbitCamera& camera = renderer.view().camera;
+  const eng::OrbitCamera wide = camera;
+  if (std::isfinite(seen->face.confidence) && closeIn(camera, seen->face.box, float(options.size))) {
+    std::optional<Sighting> close = ENG_TRY_VALUE(look(renderer, weights, detector));
+    if (close) seen = std::move(close);
+    else camera = wide;
+  }
+  const autorig::PictureCamera picture = pictureCamera(camera, options.size);
+  const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
+  return std::optional<Seen>(Seen{ENG_TRY_VALUE(castOntoFace(caster, *seen, options.size, modelName(model), options.picture)),
+                                   std::isfinite(seen->face.confidence)});
+}
+
 }  // namespace
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
@@ -246,19 +298,19 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       drawn, {.width = options.size, .height = options.size, .quality = eng::vk::RenderQuality::Fast});
   if (!renderer) return renderer.error();
   const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
-  std::optional<Sighting> seen = ENG_TRY_VALUE(look(*renderer, weights, **detector));
-  if (!seen) seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, *renderer, weights, **detector, options.size));
-  if (!seen) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
   eng::OrbitCamera& camera = renderer->view().camera;
-  const eng::OrbitCamera wide = camera;
-  if (std::isfinite(seen->face.confidence) && closeIn(camera, seen->face.box, float(options.size))) {
-    std::optional<Sighting> close = ENG_TRY_VALUE(look(*renderer, weights, **detector));
-    if (close) seen = std::move(close);
-    else camera = wide;
+  const eng::OrbitCamera front = camera;
+  std::optional<Seen> found = ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options));
+  if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
+  const std::optional<eng::OrbitCamera> facing =
+      found->detected ? facingTheFace(front, found->landmarks) : std::optional<eng::OrbitCamera>();
+  if (facing) {
+    camera = *facing;
+    // Should the turned view lose the face or a point, the first view's points stand.
+    auto again = landmarksSeen(model, posed, *renderer, weights, **detector, options);
+    if (again && *again && (*again)->detected) return std::move((*again)->landmarks);
   }
-  const autorig::PictureCamera picture = pictureCamera(camera, options.size);
-  const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
-  return castOntoFace(caster, *seen, options.size, name, options.picture);
+  return std::move(found->landmarks);
 }
 
 }  // namespace app
