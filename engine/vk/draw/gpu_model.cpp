@@ -183,15 +183,23 @@ VkDeviceSize appendInfluences(ByteBlob& blob, const Primitive& prim, VkDeviceSiz
 std::vector<GpuDetailLayer> detailLayers(const Model& model, size_t m, size_t p, const Material& mat) {
   const Mesh& mesh = model.meshes[m];
   std::vector<GpuDetailLayer> layers;
+  std::string missing;  // one warning for them all: a face stripped of its targets misses every one
+  size_t missingCount = 0;
   for (const DetailLayer& layer : mat.detailLayers) {
     auto it = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), layer.target);
     if (it == mesh.targetNames.end())
-      logWarning(where(model, m, p) + ": detail layer target '" + layer.target +
-                 "' is not a morph target of this mesh; the layer stays hidden");
+      missing += (missingCount++ ? ", '" : "'") + layer.target + "'";
     layers.push_back({it == mesh.targetNames.end() ? UINT32_MAX
                                                    : static_cast<uint32_t>(it - mesh.targetNames.begin()),
                       layer.strength});
   }
+  if (missingCount == 1)
+    logWarning(where(model, m, p) + ": detail layer target " + missing +
+               " is not a morph target of this mesh; the layer stays hidden");
+  else if (missingCount > 1)
+    logWarning(where(model, m, p) + ": detail layer targets " + missing + " are not morph targets of this mesh (" +
+               std::to_string(missingCount) + " of " + std::to_string(mat.detailLayers.size()) +
+               "); those layers stay hidden");
   return layers;
 }
 

@@ -79,6 +79,23 @@ TEST(DetailLayers, LayerOnAMissingTargetStaysHidden) {
   EXPECT_LT(std::abs(c.r - c.g), 15);
 }
 
+// A face stripped of its targets misses every layer's: one line names them all.
+TEST(DetailLayers, LayersOnMissingTargetsAreOneWarning) {
+  eng::Model model = layeredSphere();
+  model.materials[0].detailLayers = {{0, "browsUp", 1.0f}, {1, "noseWrinkle", 1.0f}, {0, testing_support::targetName(1), 1.0f}};
+  std::vector<std::string> warnings;
+  const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {
+    if (level == eng::LogLevel::Warning) warnings.emplace_back(m);
+  });
+  auto gpu = vk_test::renderer().upload(model);
+  eng::setLogSink(previous);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("detail layer targets 'browsUp', 'noseWrinkle' are not morph targets of this mesh (2 of 3)"),
+            std::string::npos)
+      << warnings[0];
+}
+
 TEST(DetailLayersValidity, LayerImageOutOfRangeIsAnError) {
   eng::Model model = layeredSphere();
   model.sourcePath = "layers.glb";
