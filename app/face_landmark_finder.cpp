@@ -240,6 +240,11 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
 // set back from its chin).
 constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f, kLevelPitch = 5.0f;  // degrees
 
+// dlib's detector finds faces turned up to about 35° from it: one turned
+// further is looked for from either side, above and below (yaw, pitch
+// degrees), and then from its own front. A face seen from the back is not.
+constexpr std::array<glm::vec2, 4> kSideViews = {{{-30.0f, 0.0f}, {30.0f, 0.0f}, {0.0f, 25.0f}, {0.0f, -25.0f}}};
+
 // The camera turned to face the face, or nullopt when it faces it already.
 std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, const autorig::FaceLandmarks& landmarks) {
   const glm::vec3 forward = autorig::LandmarkFrame(landmarks).forward();
@@ -255,7 +260,8 @@ std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, co
 
 struct Seen {
   autorig::FaceLandmarks landmarks;
-  bool detected = false;  // by dlib's detector, not only fitted in the targets' box
+  float confidence = NAN;  // dlib's detector's; NaN when only fitted in the targets' box
+  bool detected() const { return std::isfinite(confidence); }
 };
 
 // From the renderer's camera: the face dlib finds, looked at closer when it
@@ -265,9 +271,11 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
                                                                  HeadlessModelRenderer& renderer,
                                                                  std::span<const float> weights,
                                                                  const autorig::LandmarkDetector& detector,
-                                                                 const FaceLandmarkOptions& options) {
+                                                                 const FaceLandmarkOptions& options,
+                                                                 bool fitInTheTargetsBox) {
   std::optional<Sighting> seen = ENG_TRY_VALUE(look(renderer, weights, detector));
-  if (!seen) seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, renderer, weights, detector, options.size));
+  if (!seen && fitInTheTargetsBox)
+    seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, renderer, weights, detector, options.size));
   if (!seen) return std::optional<Seen>();
   eng::OrbitCamera& camera = renderer.view().camera;
   const eng::OrbitCamera wide = camera;
@@ -279,7 +287,7 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
   const autorig::PictureCamera picture = pictureCamera(camera, options.size);
   const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
   return std::optional<Seen>(Seen{ENG_TRY_VALUE(castOntoFace(caster, *seen, options.size, modelName(model), options.picture)),
-                                   std::isfinite(seen->face.confidence)});
+                                   seen->face.confidence});
 }
 
 }  // namespace
@@ -300,15 +308,27 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
   const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
   eng::OrbitCamera& camera = renderer->view().camera;
   const eng::OrbitCamera front = camera;
-  std::optional<Seen> found = ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options));
+  std::optional<Seen> found =
+      ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, true));
+  if (!found || !found->detected()) {
+    // Of the side views, the one the detector is surest of (the view turned away from the face
+    // sees it nearly in profile, where the points are a guess); else the points fitted in the
+    // targets' box from the front.
+    for (const glm::vec2& turn : kSideViews) {
+      camera = front;
+      camera.yawDegrees += turn.x, camera.pitchDegrees += turn.y;
+      std::optional<Seen> side = ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+      if (side && (!found || !found->detected() || side->confidence > found->confidence)) found = std::move(side);
+    }
+  }
   if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
   const std::optional<eng::OrbitCamera> facing =
-      found->detected ? facingTheFace(front, found->landmarks) : std::optional<eng::OrbitCamera>();
+      found->detected() ? facingTheFace(front, found->landmarks) : std::optional<eng::OrbitCamera>();
   if (facing) {
     camera = *facing;
-    // Should the turned view lose the face or a point, the first view's points stand.
-    auto again = landmarksSeen(model, posed, *renderer, weights, **detector, options);
-    if (again && *again && (*again)->detected) return std::move((*again)->landmarks);
+    // Should the turned view lose the face or a point, the points seen before stand.
+    auto again = landmarksSeen(model, posed, *renderer, weights, **detector, options, false);
+    if (again && *again && (*again)->detected()) return std::move((*again)->landmarks);
   }
   return std::move(found->landmarks);
 }

@@ -1,7 +1,9 @@
 #pragma once
 // The 68 iBUG landmarks of a face found on its mesh (issue 33, step 1): the
-// model rendered front-on headless (face framing), dlib's detector and shape
-// predictor run on the picture (autorig/landmark_detector.h), and each point
+// model rendered front-on headless (face framing; from the sides, above and
+// below when the detector misses it, then again from the face's own front
+// when it is turned), dlib's detector and shape predictor run on the
+// picture (autorig/landmark_detector.h), and each point
 // cast from the camera back onto the face's outer skin
 // (autorig/surface_cast.h).
 //
