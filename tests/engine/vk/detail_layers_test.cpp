@@ -63,15 +63,21 @@ TEST(DetailLayers, StrengthScalesTheWeightAndLayersOfOtherSizesWork) {
   EXPECT_GT(bothFull.r, 40);
 }
 
-TEST(DetailLayers, LayerOnAMissingTargetStaysHidden) {
-  eng::Model model = layeredSphere();
-  model.materials[0].detailLayers = {{0, "noSuchTarget", 1.0f}};
-  std::vector<std::string> warnings;
+// Uploads `model`, the warnings logged meanwhile kept in `warnings`.
+auto uploadKeepingWarnings(const eng::Model& model, std::vector<std::string>& warnings) {
   const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {
     if (level == eng::LogLevel::Warning) warnings.emplace_back(m);
   });
   auto gpu = vk_test::renderer().upload(model);
   eng::setLogSink(previous);
+  return gpu;
+}
+
+TEST(DetailLayers, LayerOnAMissingTargetStaysHidden) {
+  eng::Model model = layeredSphere();
+  model.materials[0].detailLayers = {{0, "noSuchTarget", 1.0f}};
+  std::vector<std::string> warnings;
+  auto gpu = uploadKeepingWarnings(model, warnings);
   ASSERT_TRUE(gpu) << gpu.error().message;
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("noSuchTarget"), std::string::npos) << warnings[0];
@@ -84,11 +90,7 @@ TEST(DetailLayers, LayersOnMissingTargetsAreOneWarning) {
   eng::Model model = layeredSphere();
   model.materials[0].detailLayers = {{0, "browsUp", 1.0f}, {1, "noseWrinkle", 1.0f}, {0, testing_support::targetName(1), 1.0f}};
   std::vector<std::string> warnings;
-  const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {
-    if (level == eng::LogLevel::Warning) warnings.emplace_back(m);
-  });
-  auto gpu = vk_test::renderer().upload(model);
-  eng::setLogSink(previous);
+  auto gpu = uploadKeepingWarnings(model, warnings);
   ASSERT_TRUE(gpu) << gpu.error().message;
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("detail layer targets 'browsUp', 'noseWrinkle' are not morph targets of this mesh (2 of 3)"),
