@@ -85,6 +85,12 @@ glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a + (b 
 constexpr float kIrisRadius = 0.47f;
 constexpr float kPupilRadius = 0.18f;
 
+// The face's forward (+Z, glTF's front) in the space of the mesh `node` draws.
+glm::vec3 gazeAxisOf(const Model& model, int node) {
+  const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(node)) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+  return glm::dot(axis, axis) > 1e-20f ? glm::normalize(axis) : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
 // Eyeballs that no name tells (an export that lost them): two plain white
 // balls of one size, level and side by side a few radii apart (a person's
 // 12 mm eyeballs are about 5 radii apart, a stylised avatar's 4), inside the
@@ -115,9 +121,8 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
         continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
-      EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre, .radius = fit.radius};
-      const glm::vec3 axis = glm::vec3(glm::inverse(world) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
-      if (glm::dot(axis, axis) > 1e-20f) eye.gazeAxis = glm::normalize(axis);
+      const EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre,
+                             .radius = fit.radius, .gazeAxis = gazeAxisOf(model, node)};
       balls.push_back({eye, glm::vec3(world * glm::vec4(fit.centre, 1.0f)), fit.radius * glm::length(glm::vec3(world[0]))});
     }
   }
@@ -204,10 +209,7 @@ std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
       eye.node = node;
       eye.centre = fit.centre;
       eye.radius = fit.radius;
-      // The face's forward (+Z, glTF's front) brought into the mesh's space.
-      const glm::mat4 toMesh = glm::inverse(model.worldTransform(node));
-      const glm::vec3 axis = glm::vec3(toMesh * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
-      if (glm::dot(axis, axis) > 1e-20f) eye.gazeAxis = glm::normalize(axis);
+      eye.gazeAxis = gazeAxisOf(model, node);
       eyes.push_back(eye);
     }
   }
