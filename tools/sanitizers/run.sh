@@ -16,7 +16,8 @@
 # judge, say, sheet, bench and face-format renders; test_cli_demo's golden
 # repeat of the seven transitions), the landmark finder and on-the-fly rigging
 # on whole avatars (test_app), the dataset and batch commands end to end
-# (test_dataset), three more whole-head transfers (test_autorig). Kept: the
+# (test_dataset), four more whole-head transfers (test_autorig: the head bent,
+# wound the other way, at a thousandth of its size; 53 s alone). Kept: the
 # other Vulkan-free tests, test_engine_vk (window tests under xvfb-run),
 # test_soak, and test_cli's, test_app's and test_dataset's bad input, express, autorig, timeline, files, device-loss and
 # headless-demo tests through the sanitized `facial` program. Left to
@@ -56,7 +57,7 @@ ci_excluded() {
     test_cli) echo "ExpressionJudge*:SayCommand.*:SaySync*:SheetCommand.*:BenchCommand.*:FaceFormats.*:ObjKeyframeSet*:AutorigAvatar*:FullBodyAvatar*" ;;
     test_app) echo "FaceLandmarkFinder*:FaceSetupAutorig*" ;;
     test_dataset) echo "DatasetCommand*:BatchCommand*" ;;
-    test_autorig) echo "TargetTransfer.BentHead*:TargetTransfer.Winding*:ExpressionAmounts.*" ;;
+    test_autorig) echo "TargetTransfer.BentHead*:TargetTransfer.Winding*:TargetTransfer.AFaceAThousandth*:ExpressionAmounts.*" ;;
   esac
 }
 export -f ci_excluded
