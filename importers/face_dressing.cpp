@@ -31,14 +31,6 @@ constexpr glm::vec3 kTeethColour{0.62f, 0.58f, 0.50f};
 constexpr glm::vec3 kTongueColour{0.42f, 0.13f, 0.12f};
 constexpr glm::vec3 kSkinColour{0.60f, 0.42f, 0.34f};
 
-// An untextured material left at white: the author gave it no colour.
-bool unauthoredWhite(const Model& model, int material) {
-  if (material < 0) return true;
-  const Material& m = model.materials[size_t(material)];
-  return m.baseColorImage < 0 && m.baseColorFactor.r >= 0.99f && m.baseColorFactor.g >= 0.99f &&
-         m.baseColorFactor.b >= 0.99f;
-}
-
 struct PlannedPrimitive {
   size_t mesh, primitive;
   Part part;

@@ -113,12 +113,7 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
       for (const glm::vec3& v : prim.positions) box.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
       boxes.push_back(box);
       // Plain white only: a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
-      const Material* material =
-          prim.material >= 0 && size_t(prim.material) < model.materials.size() ? &model.materials[size_t(prim.material)]
-                                                                               : nullptr;
-      if (material && (material->baseColorImage >= 0 || glm::any(glm::lessThan(glm::vec3(material->baseColorFactor),
-                                                                                glm::vec3(0.99f)))))
-        continue;
+      if (!unauthoredWhite(model, prim.material)) continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
       const EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre,
@@ -145,6 +140,13 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
 }
 
 }  // namespace
+
+bool unauthoredWhite(const Model& model, int material) {
+  if (material < 0 || size_t(material) >= model.materials.size()) return true;
+  const Material& m = model.materials[size_t(material)];
+  return m.baseColorImage < 0 && m.baseColorFactor.r >= 0.99f && m.baseColorFactor.g >= 0.99f &&
+         m.baseColorFactor.b >= 0.99f;
+}
 
 Image proceduralEyeImage(int size) {
   Image image;

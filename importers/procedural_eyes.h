@@ -29,6 +29,9 @@ struct EyePrimitive {
   glm::vec3 gazeAxis{0.0f, 0.0f, 1.0f};  // mesh space, unit
 };
 
+// An untextured material left at white (or none): the author gave it no colour.
+bool unauthoredWhite(const eng::Model& model, int material);
+
 // The untextured eyeballs of `model`, at rest: the balls named as eyes, else
 // (no names to go by) a pair of balls of one size, level, a few radii apart,
 // inside the head.
