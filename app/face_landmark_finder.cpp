@@ -89,8 +89,10 @@ bool closeIn(eng::OrbitCamera& camera, const autorig::PixelBox& box, float size)
   return true;
 }
 
-autorig::PictureCamera pictureCamera(const eng::OrbitCamera& camera, uint32_t size) {
-  return {camera.projection(1.0f) * camera.view(), glm::vec2(float(size))};
+// `placement`: where the renderer stands the model (HeadlessModelRenderer::place).
+autorig::PictureCamera pictureCamera(const eng::OrbitCamera& camera, uint32_t size,
+                                     const glm::mat4& placement = glm::mat4(1.0f)) {
+  return {camera.projection(1.0f) * camera.view() * placement, glm::vec2(float(size))};
 }
 
 // Where the face must be when dlib's detector misses it (a stylised face):
@@ -246,8 +248,10 @@ constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f, kLevelPitch = 5.0f;  // de
 constexpr std::array<glm::vec2, 4> kSideViews = {{{-30.0f, 0.0f}, {30.0f, 0.0f}, {0.0f, 25.0f}, {0.0f, -25.0f}}};
 
 // The camera turned to face the face, or nullopt when it faces it already.
-std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, const autorig::FaceLandmarks& landmarks) {
-  const glm::vec3 forward = autorig::LandmarkFrame(landmarks).forward();
+// `placement`: where the renderer stands the model.
+std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, const autorig::FaceLandmarks& landmarks,
+                                              const glm::mat4& placement) {
+  const glm::vec3 forward = glm::normalize(glm::mat3(placement) * autorig::LandmarkFrame(landmarks).forward());
   if (!std::isfinite(forward.x) || !std::isfinite(forward.y) || !std::isfinite(forward.z)) return std::nullopt;
   const float yaw = glm::degrees(std::atan2(forward.x, forward.z));
   const float pitch = glm::degrees(std::asin(std::clamp(forward.y, -1.0f, 1.0f)));
@@ -263,6 +267,59 @@ struct Seen {
   float confidence = NAN;  // dlib's detector's; NaN when only fitted in the targets' box
   bool detected() const { return std::isfinite(confidence); }
 };
+
+// A face that is not upright and facing +Z in its file (a Z-up export, a
+// scan as it was captured, a head looking sideways or away) is looked for
+// with the model stood in each of the other 23 quarter-turn orientations,
+// those turning it about the vertical first. Its front and top: the model's
+// axes that face the camera and point up.
+struct QuarterTurn {
+  glm::vec3 front, top;
+  glm::mat3 rotation() const { return glm::transpose(glm::mat3(glm::cross(top, front), top, front)); }
+};
+
+const std::vector<QuarterTurn>& quarterTurns() {
+  static const std::vector<QuarterTurn> turns = [] {
+    const std::array<glm::vec3, 6> axes = {{{1, 0, 0}, {-1, 0, 0}, {0, 0, -1}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}};
+    std::vector<QuarterTurn> all;
+    for (const glm::vec3& top : {glm::vec3(0, 1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(1, 0, 0),
+                                 glm::vec3(-1, 0, 0), glm::vec3(0, -1, 0)})
+      for (const glm::vec3& front : axes)
+        if (glm::dot(front, top) == 0.0f && !(front.z == 1.0f && top.y == 1.0f)) all.push_back({front, top});
+    return all;
+  }();
+  return turns;
+}
+
+std::string axisName(const glm::vec3& axis) {
+  const char* sign = axis.x + axis.y + axis.z > 0.0f ? "+" : "-";
+  return sign + std::string(axis.x != 0.0f ? "X" : axis.y != 0.0f ? "Y" : "Z");
+}
+
+// The model's framing box turned (about the origin): the camera frames the
+// turned model about as it frames one upright in its file.
+eng::OrbitCamera turnedFraming(const eng::Aabb& box, const glm::mat3& rotation) {
+  eng::Aabb turned;
+  for (int corner = 0; corner < 8; ++corner)
+    turned.extend(rotation * glm::vec3(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                                       corner & 4 ? box.max.z : box.min.z));
+  return eng::OrbitCamera::frame(turned, 1.0f);
+}
+
+// Exactly as it frames the model stood upright in its file: the head's box
+// is found along the file's axes (eng::framingBounds), so the turned box is
+// not it, and the jaw line, the face's outline, moves with the framing.
+eng::OrbitCamera uprightFraming(const eng::Model& model, const glm::mat3& rotation) {
+  eng::Model upright;  // all framingBounds reads; not the images
+  upright.nodes = model.nodes, upright.roots = model.roots, upright.meshes = model.meshes;
+  upright.skins = model.skins, upright.humanoidHead = model.humanoidHead;
+  for (eng::Node& node : upright.nodes) {
+    if (node.parent >= 0) continue;
+    if (node.hasMatrix) node.matrix = glm::mat4(rotation) * node.matrix;
+    else node.rotation = glm::quat_cast(rotation) * node.rotation, node.translation = rotation * node.translation;
+  }
+  return eng::OrbitCamera::frame(eng::framingBounds(upright, eng::FramingMode::Face), 1.0f);
+}
 
 // From the renderer's camera: the face dlib finds, looked at closer when it
 // is small in the picture, its points cast onto the face. Nullopt when no
@@ -284,7 +341,7 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
     if (close) seen = std::move(close);
     else camera = wide;
   }
-  const autorig::PictureCamera picture = pictureCamera(camera, options.size);
+  const autorig::PictureCamera picture = pictureCamera(camera, options.size, renderer.placement());
   const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
   return std::optional<Seen>(Seen{ENG_TRY_VALUE(castOntoFace(caster, *seen, options.size, modelName(model), options.picture)),
                                    seen->face.confidence});
@@ -321,14 +378,39 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       if (side && (!found || !found->detected() || side->confidence > found->confidence)) found = std::move(side);
     }
   }
-  if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in a front view of " + name);
+  eng::OrbitCamera base = front;  // the view the face is re-aimed from
+  std::string turnedNote;
+  if (!found || !found->detected()) {
+    const eng::Aabb box = eng::framingBounds(drawn, eng::FramingMode::Face);
+    for (const QuarterTurn& turn : box.valid() ? quarterTurns() : std::vector<QuarterTurn>()) {
+      const glm::mat3 rotation = turn.rotation();
+      renderer->place(glm::mat4(rotation));
+      camera = turnedFraming(box, rotation);
+      std::optional<Seen> turned =
+          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+      if (!turned || !turned->detected()) continue;
+      camera = base = uprightFraming(drawn, rotation);
+      std::optional<Seen> framed =
+          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+      found = framed && framed->detected() ? std::move(framed) : std::move(turned);
+      turnedNote = "; found turned: in the file the face looks along about " + axisName(turn.front) +
+                   ", its top along about " + axisName(turn.top) + " (glTF's front is +Z, its up +Y)";
+      break;
+    }
+    if (turnedNote.empty()) renderer->place(glm::mat4(1.0f));
+  }
+  if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in any view of " + name + " (the front, the sides, every quarter turn)");
+  found->landmarks.source += turnedNote;
   const std::optional<eng::OrbitCamera> facing =
-      found->detected() ? facingTheFace(front, found->landmarks) : std::optional<eng::OrbitCamera>();
+      found->detected() ? facingTheFace(base, found->landmarks, renderer->placement()) : std::optional<eng::OrbitCamera>();
   if (facing) {
     camera = *facing;
     // Should the turned view lose the face or a point, the points seen before stand.
     auto again = landmarksSeen(model, posed, *renderer, weights, **detector, options, false);
-    if (again && *again && (*again)->detected()) return std::move((*again)->landmarks);
+    if (again && *again && (*again)->detected()) {
+      (*again)->landmarks.source += turnedNote;
+      return std::move((*again)->landmarks);
+    }
   }
   return std::move(found->landmarks);
 }

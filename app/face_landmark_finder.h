@@ -1,15 +1,16 @@
 #pragma once
 // The 68 iBUG landmarks of a face found on its mesh (issue 33, step 1): the
 // model rendered front-on headless (face framing; from the sides, above and
-// below when the detector misses it, then again from the face's own front
-// when it is turned), dlib's detector and shape predictor run on the
+// below when the detector misses it, then stood in each other quarter-turn
+// orientation, as a Z-up export or a head looking away in its file needs,
+// then again from the face's own front when it is turned), dlib's detector and shape predictor run on the
 // picture (autorig/landmark_detector.h), and each point
 // cast from the camera back onto the face's outer skin
 // (autorig/surface_cast.h).
 //
 //   autorig::PosedFace posed = autorig::poseAtRest(model);
 //   auto landmarks = app::findFaceLandmarks(model, posed, {});
-//   if (!landmarks) reporter.fail(landmarks.error());  // "no face found in a front view of x.glb"
+//   if (!landmarks) reporter.fail(landmarks.error());  // "no face found in any view of x.glb (...)"
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -34,7 +35,7 @@ struct FaceLandmarkOptions {
   std::filesystem::path picture;
 };
 
-// Errors, each naming the model's file: no face in the front view, a point
+// Errors, each naming the model's file: no face in any view, a point
 // that falls off the surface, the predictor file missing, rendering failed.
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});

@@ -59,7 +59,7 @@ eng::Result<void> HeadlessModelRenderer::show(const eng::Model& model, const Hea
 
 eng::Result<eng::Image> HeadlessModelRenderer::render(std::span<const float> weights,
                                                       std::span<const eng::vk::InstanceMaterial> materials) {
-  const eng::vk::ModelInstance instance{&gpuModel_, glm::mat4(1.0f), weights, {}, materials};
+  const eng::vk::ModelInstance instance{&gpuModel_, placement_, weights, {}, materials};
   auto image = renderer_->render(view_, {&instance, 1});
   if (!image) return image.error().prefixed(modelName_ + ": rendering failed: ");
   return image;

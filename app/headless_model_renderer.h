@@ -58,6 +58,11 @@ class HeadlessModelRenderer {
   eng::vk::OffscreenRenderer& offscreen() { return *renderer_; }
   const eng::vk::OffscreenRenderer& offscreen() const { return *renderer_; }
   eng::vk::SceneView& view() { return view_; }
+  // Where the model stands in the view (identity: as its file places it);
+  // render() draws it there. The landmark finder turns a face lying or
+  // looking sideways in its file to the camera this way.
+  void place(const glm::mat4& modelToWorld) { placement_ = modelToWorld; }
+  const glm::mat4& placement() const { return placement_; }
   const eng::vk::GpuModel& gpuModel() const { return gpuModel_; }
   // An error counting the validation messages reported so far (they were
   // logged as they came), so a validation run fails loudly; ok otherwise.
@@ -91,6 +96,7 @@ class HeadlessModelRenderer {
   std::unique_ptr<eng::vk::OffscreenRenderer> renderer_;
   eng::vk::GpuModel gpuModel_;
   eng::vk::SceneView view_;
+  glm::mat4 placement_{1.0f};
   std::string modelName_;
 };
 
