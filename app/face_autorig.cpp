@@ -14,6 +14,7 @@
 #include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
 #include "autorig/builtin_source.h"
+#include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "autorig/mouth_opening.h"
 #include "autorig/posed_face.h"
@@ -204,10 +205,14 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
 
   auto face = importers::loadFace(modelPath, {.dressForDisplay = true});
   if (!face) return face.error();
+  const std::filesystem::path landmarksKept = landmarksBeside(cached.path);
   if (std::filesystem::is_regular_file(cached.path, ec)) {
-    if (auto rigged = eng::loadModel(cached.path)) {
+    auto rigged = eng::loadModel(cached.path);
+    auto kept = autorig::readLandmarksFile(landmarksKept);
+    if (rigged && kept) {
       cached.reused = true;
       static_cast<TargetChanges&>(cached) = targetChanges(face->model, *rigged);
+      cached.landmarks = std::move(*kept);
       return cached;
     }
     // An unreadable cache entry is made again below (and replaced).
@@ -222,8 +227,11 @@ eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath)
   if (ec)
     return eng::makeError(eng::ErrorKind::Io, cached.path.parent_path().string() + ": cannot make the autorig cache (" +
                           ec.message() + ")");
+  // The landmarks first: an entry is whole when its model is there.
+  if (auto saved = autorig::writeLandmarksFile(*landmarks, landmarksKept); !saved) return saved.error();
   if (auto saved = saveModelAtomically(rigged->model, cached.path); !saved) return saved.error();
   static_cast<TargetChanges&>(cached) = targetChanges(face->model, rigged->model);
+  cached.landmarks = std::move(*landmarks);
   cached.warnings = std::move(rigged->report.warnings);
   return cached;
 }
@@ -235,8 +243,35 @@ eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath
   auto rigged = importers::loadFace(cached->path, options);
   if (!rigged) return rigged.error();
   rigged->model.sourcePath = modelPath.string();
+  if (const std::optional<StandingUp> up = standingUp(cached->landmarks)) {
+    eng::turnAtRoots(rigged->model, up->turn);
+    if (rigged->dressed) eng::turnAtRoots(*rigged->dressed, up->turn);
+  }
   face = std::move(*rigged);
   return cached;
+}
+
+std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
+  const autorig::LandmarkFrame frame(landmarks);
+  // The axes nearest the face's front and top; a top along the front's axis
+  // (a face seen from straight above or below) takes the next nearest.
+  auto nearestAxis = [](const glm::vec3& v, const glm::vec3& unlike) {
+    glm::vec3 best(0.0f);
+    for (int a = 0; a < 3; ++a)
+      for (float sign : {1.0f, -1.0f}) {
+        glm::vec3 axis(0.0f);
+        axis[a] = sign;
+        if (std::abs(glm::dot(axis, unlike)) > 0.5f) continue;
+        if (glm::dot(axis, v) > glm::dot(best, v) || best == glm::vec3(0.0f)) best = axis;
+      }
+    return best;
+  };
+  const glm::vec3 front = nearestAxis(frame.forward(), glm::vec3(0.0f));
+  const glm::vec3 top = nearestAxis(frame.up(), front);
+  if (!std::isfinite(frame.forward().x) || (front.z == 1.0f && top.y == 1.0f)) return std::nullopt;
+  // Rows: where each file axis goes; the face's front to +Z, its top to +Y.
+  const glm::mat3 turn = glm::transpose(glm::mat3(glm::cross(top, front), top, front));
+  return StandingUp{glm::quat_cast(turn), "looks along " + signedAxisName(front) + ", its top along " + signedAxisName(top)};
 }
 
 }  // namespace app

@@ -19,6 +19,7 @@
 // reading both files, about 0.3 s of 2 s for `express` there).
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,7 +35,7 @@ namespace app {
 
 // Part of the cache key (with the program's size and time, so a rebuilt
 // program rigs anew): bump it when the rigged file's layout changes.
-inline constexpr std::string_view kAutorigVersion = "autorig-12";  // 2: the ARKit 52; 3: lid points on the lids, each column of an eye closed; 4: welded lips cut, a mouth bag; 5: cut along the crease; 6: lower teeth drop with the lip; 7: own mouthSmile split into AU12; 8: own mouthOpen as AU26; 9: a scan's eyes in its skin; 10: own eyesClosed as AU45; 11: no gaze for a scan's eyes; 12: units from own ARKit shapes
+inline constexpr std::string_view kAutorigVersion = "autorig-13";  // 2: the ARKit 52; 3: lid points on the lids, each column of an eye closed; 4: welded lips cut, a mouth bag; 5: cut along the crease; 6: lower teeth drop with the lip; 7: own mouthSmile split into AU12; 8: own mouthOpen as AU26; 9: a scan's eyes in its skin; 10: own eyesClosed as AU45; 11: no gaze for a scan's eyes; 12: units from own ARKit shapes; 13: its landmarks kept beside it
 
 // Why a loaded face cannot show emotions, or "" when it can (or when it is not
 // autorig's to decide): no rig map names its targets (a rig map, given or in
@@ -111,7 +112,21 @@ struct CachedAutorig : TargetChanges {
   std::filesystem::path path;        // the rigged .glb in the cache
   bool reused = false;               // found there, not made now
   std::vector<std::string> warnings; // parts left out (when made now)
+  // Where its landmarks lie (beside `path`, <stem>.landmarks.json): how the
+  // file holds the face.
+  autorig::FaceLandmarks landmarks;
 };
+
+// The quarter turn that stands up a face its file holds lying or looking
+// away (the face's front nearer another axis than +Z, or its top nearer
+// another than +Y: a Z-up export, a scan as captured), from its landmarks;
+// nullopt when it stands as glTF's axes say. With the axes it lies along,
+// for notes ("looks along -Y, its top along +Z").
+struct StandingUp {
+  glm::quat turn;
+  std::string howItLies;
+};
+std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks);
 
 // Where a face's own landmarks file is looked for when it is rigged on the
 // fly: beside it, <stem>.landmarks.json (for faces the detector misses).
@@ -123,7 +138,9 @@ std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath);
 eng::Result<CachedAutorig> autorigCached(const std::filesystem::path& modelPath);
 
 // `face` (loaded from the glTF file `modelPath` with `options`) replaced by
-// its rigged copy (autorigCached) loaded with the same options; its model
+// its rigged copy (autorigCached) loaded with the same options, stood up
+// when its file holds it lying or looking away (standingUp: the commands
+// that draw it show the face, not the top of its head); its model
 // keeps the user's file as sourcePath, so messages never name the cache.
 eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath,
                                           const importers::LoadFaceOptions& options, importers::LoadedFace& face);

@@ -291,10 +291,6 @@ const std::vector<QuarterTurn>& quarterTurns() {
   return turns;
 }
 
-std::string axisName(const glm::vec3& axis) {
-  const char* sign = axis.x + axis.y + axis.z > 0.0f ? "+" : "-";
-  return sign + std::string(axis.x != 0.0f ? "X" : axis.y != 0.0f ? "Y" : "Z");
-}
 
 // The model's framing box turned (about the origin): the camera frames the
 // turned model about as it frames one upright in its file.
@@ -313,11 +309,7 @@ eng::OrbitCamera uprightFraming(const eng::Model& model, const glm::mat3& rotati
   eng::Model upright;  // all framingBounds reads; not the images
   upright.nodes = model.nodes, upright.roots = model.roots, upright.meshes = model.meshes;
   upright.skins = model.skins, upright.humanoidHead = model.humanoidHead;
-  for (eng::Node& node : upright.nodes) {
-    if (node.parent >= 0) continue;
-    if (node.hasMatrix) node.matrix = glm::mat4(rotation) * node.matrix;
-    else node.rotation = glm::quat_cast(rotation) * node.rotation, node.translation = rotation * node.translation;
-  }
+  eng::turnAtRoots(upright, glm::quat_cast(rotation));
   return eng::OrbitCamera::frame(eng::framingBounds(upright, eng::FramingMode::Face), 1.0f);
 }
 
@@ -348,6 +340,11 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
 }
 
 }  // namespace
+
+std::string signedAxisName(const glm::vec3& axis) {
+  const char* sign = axis.x + axis.y + axis.z > 0.0f ? "+" : "-";
+  return sign + std::string(axis.x != 0.0f ? "X" : axis.y != 0.0f ? "Y" : "Z");
+}
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options) {
@@ -393,8 +390,8 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       std::optional<Seen> framed =
           ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
       found = framed && framed->detected() ? std::move(framed) : std::move(turned);
-      turnedNote = "; found turned: in the file the face looks along about " + axisName(turn.front) +
-                   ", its top along about " + axisName(turn.top) + " (glTF's front is +Z, its up +Y)";
+      turnedNote = "; found turned: in the file the face looks along about " + signedAxisName(turn.front) +
+                   ", its top along about " + signedAxisName(turn.top) + " (glTF's front is +Z, its up +Y)";
       break;
     }
     if (turnedNote.empty()) renderer->place(glm::mat4(1.0f));

@@ -37,6 +37,9 @@ struct FaceLandmarkOptions {
 
 // Errors, each naming the model's file: no face in any view, a point
 // that falls off the surface, the predictor file missing, rendering failed.
+// "+X", "-Z": a unit axis's name, for notes on how a file holds a face.
+std::string signedAxisName(const glm::vec3& axis);
+
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});
 

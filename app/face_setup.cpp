@@ -118,11 +118,13 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
     return eng::makeError(cached.error().kind, refusal + "; autorig: " + cached.error().message +
                           (std::filesystem::exists(beside, ec) ? "" : " (give its 68 landmarks in " + beside.string() + ")"));
   }
+  const std::optional<StandingUp> up = standingUp(cached->landmarks);
   return model + (emotesInPart(rig) ? " shows emotions only in part (" : " cannot show emotions (") + reason +
          "): rigged with the built-in head's action units (" +
          std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
          " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +
-         (emotesInPart(rig) ? "; --no-autorig keeps its own rig instead" : "; --no-autorig refuses instead");
+         (emotesInPart(rig) ? "; --no-autorig keeps its own rig instead" : "; --no-autorig refuses instead") +
+         (up ? "; shown stood up (in its file the face " + up->howItLies + ")" : "");
 }
 
 }  // namespace

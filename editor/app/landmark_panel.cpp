@@ -38,6 +38,10 @@ bool LandmarkPanel::pressShow(const app::FaceSetup& face) {
   const std::filesystem::path beside = app::landmarksBeside(file_);
   auto landmarks = app::faceLandmarks(*loaded, std::filesystem::is_regular_file(beside, ec) ? beside : std::filesystem::path());
   if (!landmarks) return failed(landmarks.error().message);
+  // The view shows such a face stood up (app::loadAutorigged); its points are the file's.
+  if (const std::optional<app::StandingUp> up = app::standingUp(*landmarks))
+    return failed(file_.string() + ": in its file the face " + up->howItLies +
+                  "; the landmark panel edits faces that stand as glTF's axes say (+Z front, +Y up)");
   auto edit = LandmarkEditModel::create(loaded->model, *landmarks, file_.string());
   if (!edit) return failed(edit.error().message);
   edit_.emplace(std::move(*edit));

@@ -84,4 +84,12 @@ size_t Model::totalVertexCount() const {
   return n;
 }
 
+void turnAtRoots(Model& model, const glm::quat& turn) {
+  for (Node& node : model.nodes) {
+    if (node.parent >= 0) continue;
+    if (node.hasMatrix) node.matrix = glm::mat4_cast(turn) * node.matrix;
+    else node.rotation = turn * node.rotation, node.translation = turn * node.translation;
+  }
+}
+
 }  // namespace eng

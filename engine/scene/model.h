@@ -251,4 +251,8 @@ struct Model {
   size_t totalVertexCount() const;
 };
 
+// `model` turned by `turn` at its parentless nodes, as an engine placing it
+// would (a face its file holds lying, stood up), in place.
+void turnAtRoots(Model& model, const glm::quat& turn);
+
 }  // namespace eng

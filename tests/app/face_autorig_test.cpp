@@ -12,7 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
+#include "autorig/posed_face.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
@@ -239,6 +241,62 @@ TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
   EXPECT_TRUE(facial::showsEmotions(face->rig()));
   EXPECT_TRUE(face->rig().speaks()) << "the made jaw and lip units speak";
   EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+}
+
+// The built-in head without its targets, as a Z-up export holds it (lying on
+// its back, looking along -Y): rigged on the fly, and shown stood up, so the
+// commands that draw it show its face, not the top of its head; its
+// landmarks are kept beside the cache entry, so a second run stands it up
+// from the cache too.
+TEST(FaceSetupAutorig, AFaceItsFileHoldsLyingIsShownStoodUp) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  for (eng::Mesh& mesh : model->meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
+  }
+  model->animations.clear();
+  const glm::mat4 upright = model->worldTransform(model->firstNodeOfEachMesh()[0]);
+  eng::turnAtRoots(*model, glm::angleAxis(glm::half_pi<float>(), glm::vec3(1, 0, 0)));
+  const fs::path dir = testing_support::freshTempDir("autorig_lying_head");
+  ASSERT_TRUE(eng::saveModel(*model, dir / "lying.glb"));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  for (const char* run : {"rigged now", "from the cache"}) {
+    SCOPED_TRACE(run);
+    auto face = app::FaceSetup::load({.model = dir / "lying.glb", .program = "test"});
+    ASSERT_TRUE(face) << face.error().message;
+    EXPECT_NE(face->autorigNote().find("shown stood up (in its file the face looks along -Y, its top along +Z)"),
+              std::string::npos) << face->autorigNote();
+    const glm::mat4 shown = face->model().worldTransform(face->model().firstNodeOfEachMesh()[0]);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(shown[c][r], upright[c][r], 1e-5f) << "column " << c << " row " << r;
+  }
+  unsetenv("XDG_CACHE_HOME");
+}
+
+// How a file holds the face, from its landmarks: the built-in head's own,
+// turned each quarter turn, stand up by the turn's inverse; upright, not at all.
+TEST(StandingUp, TheQuarterTurnBackFromTheLandmarks) {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto landmarks = app::findFaceLandmarks(*head, autorig::poseAtRest(*head));
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  EXPECT_FALSE(app::standingUp(*landmarks)) << "an upright face stands as it is";
+  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  for (const auto& [turn, lies] :
+       {std::pair{glm::angleAxis(glm::half_pi<float>(), x), "looks along -Y, its top along +Z"},
+        std::pair{glm::angleAxis(glm::pi<float>(), y), "looks along -Z, its top along +Y"},
+        std::pair{glm::angleAxis(-glm::half_pi<float>(), y), "looks along -X, its top along +Y"},
+        std::pair{glm::angleAxis(glm::half_pi<float>(), z), "looks along +Z, its top along -X"}}) {
+    SCOPED_TRACE(lies);
+    autorig::FaceLandmarks turned = *landmarks;
+    for (glm::vec3& p : turned.points) p = turn * p;
+    const std::optional<app::StandingUp> up = app::standingUp(turned);
+    ASSERT_TRUE(up);
+    EXPECT_EQ(up->howItLies, lies);
+    EXPECT_GT(std::abs(glm::dot(up->turn * turn, glm::quat(1, 0, 0, 0))), 0.9999f) << "stood up: the turn undone";
+  }
 }
 
 }  // namespace

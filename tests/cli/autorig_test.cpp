@@ -140,7 +140,7 @@ TEST_F(AutorigAvatar, ExpressHappySmilesAfterOneNoteAndTheCacheServesTheNextRun)
   EXPECT_NE(happy.err.find("facial express: note: " + avatar_.string() + " cannot show emotions"), std::string::npos)
       << happy.err;
   EXPECT_NE(happy.err.find("cached as " + cache_.string()), std::string::npos) << happy.err;
-  EXPECT_EQ(filesIn(rigCache()), 1u) << "one rigged face, no .partial";
+  EXPECT_EQ(filesIn(rigCache()), 2u) << "one rigged face and its landmarks, no .partial";
 
   const CommandOutput neutral = facial({"express", "neutral", "--model", avatar_.string(), "--size", "128x128",
                                         "--quality", "fast", "--out", neutralPng.string()});
