@@ -39,8 +39,8 @@ inline constexpr std::string_view kAutorigVersion = "autorig-13";  // 2: the ARK
 
 // Why a loaded face cannot show emotions, or "" when it can (or when it is not
 // autorig's to decide): no rig map names its targets (a rig map, given or in
-// <data>/rigmaps, is the user's word), it is a glTF face (VRM, CANDIDE-3 and
-// OBJ keyframe sets have rigs of their own), and either no scheme recognises
+// <data>/rigmaps, is the user's word), it is a glTF or OBJ face (VRM, CANDIDE-3
+// and OBJ keyframe sets have rigs of their own), and either no scheme recognises
 // its targets (`rig` failed as Unsupported) or the rig it has cannot emote
 // (facial::showsEmotions: visemes only, blink only, mouth shapes without
 // brows). E.g. "its 15 targets are

@@ -376,6 +376,19 @@ FacePart partOfComponent(std::optional<FacePart> named, const Component& c, bool
   return island && insideTheMouth(c, f) ? FacePart::UpperTeeth : FacePart::Skin;  // the row: splitTeethRows
 }
 
+// Both eyes' balls in one primitive (an OBJ groups faces by material, an
+// export may merge the two eye meshes): most of its vertices are eyeballs,
+// of either side. Across the eyes as a whole, it is no pair of glasses.
+bool bothEyeballs(const std::vector<Component>& pieces, const FaceFrame& f) {
+  std::array<size_t, 2> balls{};
+  size_t total = 0;
+  for (const Component& c : pieces) {
+    total += c.vertices.size();
+    if (const int e = eyeballSide(c, f); e >= 0) balls[size_t(e)] += c.vertices.size();
+  }
+  return balls[0] > 0 && balls[1] > 0 && 2 * (balls[0] + balls[1]) > total;
+}
+
 // Glasses and hair come in many pieces (rims, lenses, bridge, arms; locks):
 // an unnamed primitive that is glasses or hair as a whole is all of it.
 std::optional<FacePart> wholePrimitivePart(const std::vector<glm::vec3>& positions, const FaceFrame& f) {
@@ -399,19 +412,21 @@ void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimiti
   uint32_t count = 0;
   const std::vector<uint32_t> label =
       components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
-  if (!named) {
+  std::vector<std::vector<uint32_t>> members(count);
+  for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  std::vector<Component> pieces;
+  pieces.reserve(members.size());
+  for (std::vector<uint32_t>& vertices : members) pieces.push_back(describe(p.positions, std::move(vertices)));
+  if (!named && !bothEyeballs(pieces, f)) {
     if (const std::optional<FacePart> whole = wholePrimitivePart(p.positions, f)) {
       out.assign(p.positions.size(), *whole);
       return;
     }
   }
-  std::vector<std::vector<uint32_t>> members(count);
-  for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
   size_t largest = 0;
-  for (const std::vector<uint32_t>& m : members) largest = std::max(largest, m.size());
-  for (std::vector<uint32_t>& vertices : members) {
-    const bool island = vertices.size() < largest;
-    Component c = describe(p.positions, std::move(vertices));
+  for (const Component& c : pieces) largest = std::max(largest, c.vertices.size());
+  for (Component& c : pieces) {
+    const bool island = c.vertices.size() < largest;
     if (!named) c.bearsLandmarks = bearsLandmarks(p.positions, c, f);
     const FacePart part = partOfComponent(named, c, island, f, parts);
     for (uint32_t v : c.vertices) out[v] = part;

@@ -25,6 +25,7 @@ std::string_view faceFormatName(FaceFormat format) {
     case FaceFormat::Vrm: return "VRM";
     case FaceFormat::ObjSet: return "OBJ keyframe set";
     case FaceFormat::Candide3: return "CANDIDE-3";
+    case FaceFormat::Obj: return "OBJ";
   }
   return "?";
 }
@@ -48,6 +49,34 @@ eng::Result<LoadedFace> loadObjSet(const std::filesystem::path& dir) {
   if (!imported) return imported.error();
   LoadedFace face{std::move(imported->model), FaceFormat::ObjSet, nullptr, std::nullopt};
   face.model.sourcePath = dir.string();
+  return face;
+}
+
+// An OBJ file: its first line that is not blank or a comment starts with an
+// OBJ statement (exporters open with comment lines: a few kilobytes are read).
+bool looksLikeObj(std::span<const uint8_t> bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), std::min<size_t>(bytes.size(), 4096));
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    std::string_view line = text.substr(at, end - at);
+    at = end + 1;
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || line[first] == '#') continue;
+    line = line.substr(first);
+    const std::string_view word = line.substr(0, line.find_first_of(" \t\r"));
+    for (std::string_view statement : {"v", "vt", "vn", "f", "o", "g", "s", "mtllib", "usemtl"})
+      if (word == statement) return true;
+    return false;
+  }
+  return false;
+}
+
+eng::Result<LoadedFace> loadObjMesh(const std::filesystem::path& path) {
+  auto imported = importObjKeyframes(path, {});
+  if (!imported) return imported.error();
+  LoadedFace face{std::move(imported->model), FaceFormat::Obj, nullptr, std::nullopt};
+  face.model.sourcePath = path.string();
   return face;
 }
 
@@ -132,8 +161,10 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
   const std::string_view start = first == std::string_view::npos ? std::string_view() : text.substr(first);
   if (start.starts_with("glTF") || start.starts_with("{")) return finish(loadGltfOrVrm(bytes, path), path, options);
   if (start.starts_with("# VERTEX LIST")) return finish(loadCandide3(bytes, path), path, options);
+  // The OBJ importer reads the file and its .mtl beside it from `path`.
+  if (looksLikeObj(bytes)) return finish(loadObjMesh(path), path, options);
   return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
-                        "keyframes or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{' nor '# VERTEX LIST'");
+                        "keyframes, an OBJ or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', '# VERTEX LIST' nor an OBJ statement");
 }
 
 eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {

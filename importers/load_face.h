@@ -1,6 +1,6 @@
 #pragma once
 // Any face the programs open, for an embedder too: glTF / GLB, VRM, a folder
-// of OBJ keyframes or CANDIDE-3, told apart by content (not by extension),
+// of OBJ keyframes, one OBJ file or CANDIDE-3, told apart by content (not by extension),
 // with identity shapes baked in and, when asked for, dressed for display.
 //
 //   auto face = importers::loadFace("facecap.glb", {.dressForDisplay = true});
@@ -25,7 +25,9 @@
 namespace importers {
 
 // What a face file is, told by its content.
-enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3 };
+// Obj: one OBJ file, a face without targets (a scan, a sculpt), which
+// autorig gives the built-in head's action units.
+enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3, Obj };
 std::string_view faceFormatName(FaceFormat format);
 
 struct LoadFaceOptions {

@@ -52,9 +52,9 @@ int runAutorig(const AutorigOptions& o) {
   if (std::string refused = checkPaths(o); !refused.empty()) return fail(refused);
   auto face = importers::loadFace(o.model, {.dressForDisplay = true});
   if (!face) return fail(face.error().message);
-  if (face->format != importers::FaceFormat::Gltf)
+  if (face->format != importers::FaceFormat::Gltf && face->format != importers::FaceFormat::Obj)
     return fail(o.model + ": a " + std::string(importers::faceFormatName(face->format)) +
-                " face; autorig makes targets for glTF / GLB faces (convert it first: facial convert)");
+                " face; autorig makes targets for glTF / GLB and OBJ faces (convert it first: facial convert)");
   // Allowed (ground truth is measured this way), but the rigged copy's action
   // units then take over from the face's own rig: say so.
   if (auto rig = app::buildFaceRig(*face); rig && app::autorigReason(*face, rig, {}).empty())
@@ -93,7 +93,7 @@ int runAutorig(const AutorigOptions& o) {
 CommandRegistrar reg("autorig", "Make expression targets (FACS action units, ARKit 52) for a face that has none",
                      [](CLI::App& app) {
   auto o = std::make_shared<AutorigOptions>();
-  app.add_option("model", o->model, "Face: glTF / GLB")->required();
+  app.add_option("model", o->model, "Face: glTF / GLB, or one OBJ file (a scan, a sculpt)")->required();
   app.add_option("--landmarks", o->landmarks,
                  "The face's 68 landmarks as JSON ({\"landmarks68\": [[x, y, z], ...]}, world space) instead of "
                  "finding them on a front view (default: <model stem>.landmarks.json beside the model, when there)");

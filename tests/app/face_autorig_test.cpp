@@ -18,6 +18,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
+#include "tests/common/obj_test_files.h"
 #include "tests/common/test_face.h"
 #include "tests/common/test_meshes.h"
 #include "tests/common/test_support.h"
@@ -297,6 +298,23 @@ TEST(StandingUp, TheQuarterTurnBackFromTheLandmarks) {
     EXPECT_EQ(up->howItLies, lies);
     EXPECT_GT(std::abs(glm::dot(up->turn * turn, glm::quat(1, 0, 0, 0))), 0.9999f) << "stood up: the turn undone";
   }
+}
+
+// A head scan as one OBJ file (the built-in head at rest, untextured, no
+// targets): read as a face, rigged on the fly, and the states reach it.
+TEST(FaceSetupAutorig, AnObjScanIsRiggedOnTheFly) {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  const fs::path dir = testing_support::freshTempDir("autorig_obj_scan");
+  testing_support::writeFile(dir / "scan.obj", testing_support::modelAsObj(*head, "# a head scan\n"));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "scan.obj", .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
+  EXPECT_EQ(face->model().sourcePath, (dir / "scan.obj").string());
+  EXPECT_TRUE(facial::showsEmotions(face->rig()));
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
 }
 
 }  // namespace

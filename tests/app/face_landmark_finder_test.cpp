@@ -281,6 +281,48 @@ TEST(FaceLandmarkFinder, FacecapPartsByShape) {
   expectSamePartsByShape(f, -1, 0);
 }
 
+// Both eyeballs in one unnamed primitive, as an OBJ scan brings them (its
+// faces grouped by material) or an export that merged the eye meshes: the
+// primitive reaches across both eyes, yet it is two eyeballs, not glasses
+// (an OBJ of the head had its eyes taken for glasses, its gaze not made).
+TEST(FaceLandmarkFinder, BothEyeballsInOnePrimitiveAreEyeballsNotGlasses) {
+  Found f = find(testing_support::sourceDir() / "data" / "head.glb", "head-eyes-merged");
+  eng::Primitive eyes;
+  for (size_t n = 0; n < f.model.nodes.size(); ++n) {
+    eng::Node& node = f.model.nodes[n];
+    if (node.mesh < 0 || f.model.meshes[size_t(node.mesh)].name.rfind("Eye", 0) != 0) continue;
+    const glm::mat4 world = f.model.worldTransform(int(n));
+    const eng::Primitive& eye = f.model.meshes[size_t(node.mesh)].primitives[0];
+    const uint32_t base = uint32_t(eyes.positions.size());
+    for (const glm::vec3& v : eye.positions) eyes.positions.push_back(glm::vec3(world * glm::vec4(v, 1.0f)));
+    for (uint32_t i : eye.indices) eyes.indices.push_back(base + i);
+    eyes.material = eye.material;
+    node.mesh = -1;
+  }
+  ASSERT_GT(eyes.positions.size(), 0u);
+  const int merged = int(f.model.meshes.size());
+  f.model.meshes.push_back(eng::Mesh{.primitives = {eyes}});
+  eng::Node holder;
+  holder.mesh = merged;
+  f.model.nodes.push_back(holder);
+  f.model.roots.push_back(int(f.model.nodes.size() - 1));
+  for (eng::Mesh& m : f.model.meshes) m.name.clear();
+  for (eng::Node& n : f.model.nodes) n.name.clear();
+  for (eng::Material& m : f.model.materials) m.name.clear();
+  const autorig::PosedFace posed = autorig::poseAtRest(f.model);
+  const autorig::FaceParts parts = autorig::findFaceParts(f.model, posed, f.landmarks);
+  for (const std::string& note : parts.notes) std::printf("  %s\n", note.c_str());
+  EXPECT_TRUE(parts.eyeballsFound);
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    if (int(posed.primitives[i].mesh) != merged) continue;
+    size_t wrong = 0;
+    for (size_t v = 0; v < eyes.positions.size(); ++v)
+      wrong += parts.vertexParts[i][v] !=
+               (eyes.positions[v].x > 0.0f ? autorig::FacePart::EyeballLeft : autorig::FacePart::EyeballRight);
+    EXPECT_EQ(wrong, 0u) << "of " << eyes.positions.size();
+  }
+}
+
 // The jaw line lies on the jaw, coming forward from the ears to the chin.
 // dlib puts it on the face's outline, and on an untextured head without
 // targets (framed whole) a ray just past the jaw met the neck behind it:

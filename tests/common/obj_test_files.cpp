@@ -1,5 +1,6 @@
 #include "tests/common/obj_test_files.h"
 
+#include <cstdio>
 #include <sstream>
 
 namespace testing_support {
@@ -55,6 +56,43 @@ std::string GridObj::text() const {
       }
     }
   return out.str();
+}
+
+std::string modelAsObj(const eng::Model& model, const std::string& header) {
+  std::string text = header;
+  char line[160];
+  size_t base = 1;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const eng::Node& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    const glm::mat4 world = model.worldTransform(int(n));
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+    for (const eng::Primitive& p : model.meshes[size_t(node.mesh)].primitives) {
+      text += "o " + model.meshes[size_t(node.mesh)].name + "_" + std::to_string(base) + "\n";
+      for (const glm::vec3& v : p.positions) {
+        const glm::vec3 w(world * glm::vec4(v, 1.0f));
+        std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", double(w.x), double(w.y), double(w.z));
+        text += line;
+      }
+      for (size_t v = 0; v < p.positions.size(); ++v) {
+        const glm::vec2 uv = v < p.texcoords.size() ? p.texcoords[v] : glm::vec2(0.0f);
+        std::snprintf(line, sizeof line, "vt %.7g %.7g\n", double(uv.x), double(1.0f - uv.y));
+        text += line;
+      }
+      for (size_t v = 0; v < p.positions.size(); ++v) {
+        const glm::vec3 nrm = v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1);
+        std::snprintf(line, sizeof line, "vn %.7g %.7g %.7g\n", double(nrm.x), double(nrm.y), double(nrm.z));
+        text += line;
+      }
+      for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+        const size_t a = base + p.indices[i], b = base + p.indices[i + 1], c = base + p.indices[i + 2];
+        std::snprintf(line, sizeof line, "f %zu/%zu/%zu %zu/%zu/%zu %zu/%zu/%zu\n", a, a, a, b, b, b, c, c, c);
+        text += line;
+      }
+      base += p.positions.size();
+    }
+  }
+  return text;
 }
 
 }  // namespace testing_support

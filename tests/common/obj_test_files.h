@@ -1,12 +1,14 @@
 #pragma once
 // Small OBJ keyframe meshes written by the tests: a grid of quads (or
 // triangles) with optional normals, texcoords, CRLF endings, displaced
-// vertices and a shuffled vertex order.
+// vertices and a shuffled vertex order; any model as one OBJ.
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "engine/scene/model.h"
 
 namespace testing_support {
 
@@ -27,5 +29,10 @@ struct GridObj {
   glm::vec3 rest(int index) const;
   std::string text() const;
 };
+
+// A model at rest as one OBJ file, as a scan arrives: every mesh node's
+// primitives in world space (positions, texcoords, normals), one `o` each,
+// no targets and no materials, after `header` (comment lines).
+std::string modelAsObj(const eng::Model& model, const std::string& header = "");
 
 }  // namespace testing_support

@@ -10,6 +10,7 @@
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_writer.h"
 #include "importers/load_face.h"
+#include "tests/common/obj_test_files.h"
 #include "tests/common/test_face.h"
 #include "tests/common/test_support.h"
 
@@ -68,6 +69,33 @@ TEST(LoadFaceValidity, BytesOfNoFaceFormatAreNamed) {
   ASSERT_FALSE(face);
   EXPECT_EQ(face.error().kind, eng::ErrorKind::Unsupported);
   EXPECT_NE(face.error().message.find("cube.stl: not a face this program reads"), std::string::npos) << face.error().message;
+}
+
+// One OBJ file is a face without targets (a scan, a sculpt): told by its
+// first statement, past an exporter's comment lines longer than the bytes
+// that tell the other formats apart, whatever its name.
+TEST(LoadFace, OneObjFileIsAFaceWithoutTargets) {
+  const eng::Model face = makeTestFace();
+  const std::string header = "# Exported by a scanner's own software, version 12.3.4 (a long comment line)\n#\n\n";
+  const std::filesystem::path path = testing_support::freshTempDir("load_face_obj") / "scan.dat";
+  testing_support::writeFile(path, testing_support::modelAsObj(face, header));
+  auto loaded = importers::loadFace(path);
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  EXPECT_EQ(loaded->format, importers::FaceFormat::Obj);
+  EXPECT_EQ(loaded->model.sourcePath, path.string());
+  size_t vertices = 0, targets = 0;
+  for (const eng::Mesh& mesh : loaded->model.meshes)
+    for (const eng::Primitive& p : mesh.primitives) vertices += p.positions.size(), targets += p.targets.size();
+  EXPECT_EQ(vertices, face.totalVertexCount());
+  EXPECT_EQ(targets, 0u);
+}
+
+TEST(LoadFaceValidity, TextThatIsNoObjIsNamed) {
+  const std::string text = "# a comment\nsolid cube\nv 0 0 0\n";
+  const std::vector<uint8_t> bytes(text.begin(), text.end());
+  auto face = importers::loadFaceFromBytes(bytes, "cube.txt");
+  ASSERT_FALSE(face);
+  EXPECT_NE(face.error().message.find("cube.txt: not a face this program reads"), std::string::npos) << face.error().message;
 }
 
 TEST(LoadFace, DressingIsOffUnlessAskedFor) {
