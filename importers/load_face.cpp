@@ -72,8 +72,8 @@ bool looksLikeObj(std::span<const uint8_t> bytes) {
   return false;
 }
 
-eng::Result<LoadedFace> loadObjMesh(const std::filesystem::path& path) {
-  auto imported = importObjKeyframes(path, {});
+eng::Result<LoadedFace> loadObjMesh(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
+  auto imported = importObjKeyframes(path, {}, {}, bytes);
   if (!imported) return imported.error();
   LoadedFace face{std::move(imported->model), FaceFormat::Obj, nullptr, std::nullopt};
   face.model.sourcePath = path.string();
@@ -161,8 +161,8 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
   const std::string_view start = first == std::string_view::npos ? std::string_view() : text.substr(first);
   if (start.starts_with("glTF") || start.starts_with("{")) return finish(loadGltfOrVrm(bytes, path), path, options);
   if (start.starts_with("# VERTEX LIST")) return finish(loadCandide3(bytes, path), path, options);
-  // The OBJ importer reads the file and its .mtl beside it from `path`.
-  if (looksLikeObj(bytes)) return finish(loadObjMesh(path), path, options);
+  // Its .mtl and textures are read beside `path`.
+  if (looksLikeObj(bytes)) return finish(loadObjMesh(bytes, path), path, options);
   return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
                         "keyframes, an OBJ or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', '# VERTEX LIST' nor an OBJ statement");
 }

@@ -218,13 +218,13 @@ std::string lowerExtension(const std::filesystem::path& p) {
 }  // namespace
 
 Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutralPath, std::span<const ObjTargetFile> targets,
-                                             const ObjKeyframeOptions& options) {
+                                             const ObjKeyframeOptions& options, std::span<const uint8_t> neutralBytes) {
   if (auto named = checkTargetNames(targets); !named) return named.error();
   if (options.matchByPosition && !(options.relativeTolerance > 0.0f && options.relativeTolerance <= kMaxRelativeTolerance))
     return makeError(ErrorKind::InvalidArgument, "tolerance " + facial::formatNumber(options.relativeTolerance) +
                                                      " is outside (0, " + facial::formatNumber(kMaxRelativeTolerance) +
                                                      "] of the model's size: distinct vertices would be matched");
-  auto neutral = readObjPolygonMesh(neutralPath);
+  auto neutral = readObjPolygonMesh(neutralPath, {}, neutralBytes);
   if (!neutral) return neutral.error();
 
   ObjKeyframeImport result;

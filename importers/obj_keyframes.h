@@ -7,6 +7,7 @@
 // are mapped through the same corners, so UV seams and hard edges survive.
 // Faces are grouped into one primitive per material; n-gons are fanned.
 // Sparse storage of targets that move few vertices happens in saveModel.
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -46,8 +47,10 @@ struct ObjKeyframeImport {
   std::vector<ObjTargetReport> targets;
 };
 
+// `neutralBytes`: the neutral file's content when already read (empty: read from `neutral`).
 eng::Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutral, std::span<const ObjTargetFile> targets,
-                                             const ObjKeyframeOptions& options = {});
+                                             const ObjKeyframeOptions& options = {},
+                                             std::span<const uint8_t> neutralBytes = {});
 
 struct ObjKeyframeFolder {
   std::filesystem::path neutral;

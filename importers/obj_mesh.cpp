@@ -138,10 +138,16 @@ void copyMaterials(const std::vector<tinyobj::material_t>& materials, const std:
 
 }  // namespace
 
-Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options) {
+Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options,
+                                          std::span<const uint8_t> given) {
   const std::string file = path.string();
-  auto bytes = readFileBytes(path, options.maxFileBytes);
-  if (!bytes) return bytes.error();
+  std::vector<uint8_t> read;
+  if (given.empty()) {
+    auto bytes = readFileBytes(path, options.maxFileBytes);
+    if (!bytes) return bytes.error();
+    read = std::move(*bytes);
+    given = read;
+  }
   std::error_code ec;
   const std::filesystem::path dir = std::filesystem::absolute(path, ec).parent_path().lexically_normal();
 
@@ -150,9 +156,9 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
   ConfinedMaterialReader mtl(dir, options.materials);
-  std::istringstream in(std::string(bytes->begin(), bytes->end()));
-  bytes->clear();
-  bytes->shrink_to_fit();
+  std::istringstream in(std::string(given.begin(), given.end()));
+  read.clear();
+  read.shrink_to_fit();
   // triangulate = false: topology is compared on the file's own polygons.
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, false, false);
   if (!ok) {

@@ -5,6 +5,7 @@
 // is a (v, vt, vn) triple; -1 marks an absent vt or vn.
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,9 @@ struct ObjReadOptions {
 // Every index is checked against its array and every number for finiteness;
 // mtllib and map_Kd paths are confined to the OBJ's folder (a refused or
 // missing material file is a warning, as OBJ sets often carry stale paths).
-eng::Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options = {});
+// `bytes`: the file's content when already read (empty: read from `path`,
+// which still names it and places its .mtl).
+eng::Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, const ObjReadOptions& options = {},
+                                               std::span<const uint8_t> bytes = {});
 
 }  // namespace importers

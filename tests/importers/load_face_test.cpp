@@ -88,6 +88,12 @@ TEST(LoadFace, OneObjFileIsAFaceWithoutTargets) {
     for (const eng::Primitive& p : mesh.primitives) vertices += p.positions.size(), targets += p.targets.size();
   EXPECT_EQ(vertices, face.totalVertexCount());
   EXPECT_EQ(targets, 0u);
+  // The bytes given are the ones parsed: the path only names the file (and places its .mtl).
+  const std::string text = testing_support::modelAsObj(face, header);
+  auto fromBytes = importers::loadFaceFromBytes(std::vector<uint8_t>(text.begin(), text.end()),
+                                                path.parent_path() / "not-on-disk.obj");
+  ASSERT_TRUE(fromBytes) << fromBytes.error().message;
+  EXPECT_EQ(fromBytes->model.totalVertexCount(), loaded->model.totalVertexCount());
 }
 
 TEST(LoadFaceValidity, TextThatIsNoObjIsNamed) {
