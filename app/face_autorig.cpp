@@ -1,6 +1,7 @@
 #include "app/face_autorig.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,8 @@
 #include <system_error>
 
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
@@ -172,8 +175,79 @@ std::filesystem::path landmarksBeside(const std::filesystem::path& modelPath) {
 
 namespace {
 
+// "a%20b.png" -> "a b.png": a glTF URI as a relative path.
+std::string uriPath(std::string_view uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += char(std::stoi(std::string(uri.substr(i + 1, 2)), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// The last word of each line of `text` that starts with `key` (OBJ's mtllib,
+// an MTL's texture maps, whose options come before the file).
+std::vector<std::string> lastWordsAfter(std::string_view text, std::initializer_list<std::string_view> keys) {
+  std::vector<std::string> words;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    std::string_view line = text.substr(at, end - at);
+    at = end + 1;
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos) continue;
+    line = line.substr(first);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+    for (std::string_view key : keys) {
+      if (!line.starts_with(key) || line.size() <= key.size() || !std::isspace(static_cast<unsigned char>(line[key.size()])))
+        continue;
+      words.emplace_back(line.substr(line.find_last_of(" \t") + 1));
+    }
+  }
+  return words;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> filesReadWith(const std::filesystem::path& model, std::string_view bytes) {
+  std::vector<std::filesystem::path> files;
+  const std::filesystem::path dir = model.parent_path();
+  const size_t first = bytes.find_first_not_of(" \t\r\n");
+  if (bytes.starts_with("glTF")) return files;  // a GLB: its buffers and images are inside it
+  if (first != std::string::npos && bytes[first] == '{') {  // a .gltf: its buffers and images
+    const nlohmann::json gltf = nlohmann::json::parse(bytes, nullptr, false);
+    if (!gltf.is_object()) return files;
+    for (const char* array : {"buffers", "images"}) {
+      if (!gltf.contains(array) || !gltf[array].is_array()) continue;
+      for (const nlohmann::json& item : gltf[array])
+        if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
+          const std::string uri = item["uri"];
+          if (!uri.starts_with("data:")) files.push_back(dir / uriPath(uri));
+        }
+    }
+    return files;
+  }
+  for (const std::string& library : lastWordsAfter(bytes, {"mtllib"})) {  // an OBJ: its materials and their maps
+    const std::filesystem::path mtl = dir / library;
+    files.push_back(mtl);
+    if (auto text = readBytes(mtl))
+      for (const std::string& map : lastWordsAfter(*text, {"map_Kd", "map_Ka", "map_d", "map_Bump", "bump", "norm"}))
+        files.push_back(dir / map);
+  }
+  return files;
+}
+
+namespace {
+
 // The cache entry of `modelPath` rigged from `head` (and `landmarks`, when
-// not empty): named by the hash of everything that decides what is made.
+// not empty): named by the hash of everything that decides what is made,
+// the files the model reads beside it included (an edited texture is not
+// served stale).
 eng::Result<std::filesystem::path> cacheEntry(const std::filesystem::path& modelPath, const std::filesystem::path& head,
                                               const std::filesystem::path& landmarks) {
   eng::Fnv1a key;
@@ -185,6 +259,11 @@ eng::Result<std::filesystem::path> cacheEntry(const std::filesystem::path& model
     if (!bytes) return bytes.error();
     key.add(file == landmarks ? "landmarks" : "");
     key.add(*bytes);
+    if (file != modelPath) continue;
+    for (const std::filesystem::path& read : filesReadWith(modelPath, *bytes)) {
+      key.add(read.filename().string());
+      if (auto more = readBytes(read)) key.add(*more);  // a missing one: the loader warns, the face loads
+    }
   }
   char name[32];
   std::snprintf(name, sizeof name, "%016llx.glb", static_cast<unsigned long long>(key.h));

@@ -13,7 +13,8 @@
 //
 // Commands that pose emotions rig such faces on the fly (FaceSetup::load):
 // autorigCached() keeps the result under the user's cache, keyed by the
-// model's bytes, the head's bytes, the program's build and kAutorigVersion,
+// model's bytes (and those of the files it reads beside it: filesReadWith),
+// the head's bytes, the program's build and kAutorigVersion,
 // so only the first run pays for the render, the detection and the transfer
 // (3.5 s for rpm-visemes.glb on the 2-core CI machine; a cached run adds
 // reading both files, about 0.3 s of 2 s for `express` there).
@@ -127,6 +128,12 @@ struct StandingUp {
   std::string howItLies;
 };
 std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks);
+
+// The files a face file (`bytes`: its content) reads beside it, which key
+// its rig in the cache with its own bytes: a .gltf's buffers and images (not
+// data: URIs), an OBJ's material libraries and their texture maps. Missing
+// ones are listed too; a GLB reads none.
+std::vector<std::filesystem::path> filesReadWith(const std::filesystem::path& model, std::string_view bytes);
 
 // Where a face's own landmarks file is looked for when it is rigged on the
 // fly: beside it, <stem>.landmarks.json (for faces the detector misses).

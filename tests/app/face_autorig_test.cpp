@@ -170,6 +170,23 @@ TEST(AutorigCache, LivesUnderTheUsersCacheFolder) {
   if (saved) setenv("XDG_CACHE_HOME", restore.c_str(), 1);
 }
 
+// What keys a rig in the cache besides the face file: the files it reads
+// beside it, so an edited texture or .mtl rigs anew instead of showing the
+// cached copy's.
+TEST(AutorigCache, KeyedByTheFilesTheFaceReadsBesideIt) {
+  const fs::path dir = "/scans";
+  const std::string gltf = R"({"buffers": [{"uri": "head%20mesh.bin"}, {"uri": "data:application/octet-stream;base64,AA=="}],
+                              "images": [{"uri": "skin.png"}, {"bufferView": 3}]})";
+  EXPECT_EQ(app::filesReadWith(dir / "head.gltf", gltf),
+            (std::vector<fs::path>{dir / "head mesh.bin", dir / "skin.png"}));
+  const std::string obj = "# scan\nmtllib scan.mtl\nv 0 0 0\n";
+  const fs::path folder = testing_support::freshTempDir("autorig_cache_key");
+  testing_support::writeFile(folder / "scan.mtl", "newmtl skin\nKd 1 1 1\nmap_Kd -s 1 1 1 skin.jpg\n  map_Bump normal.png\n");
+  EXPECT_EQ(app::filesReadWith(folder / "scan.obj", obj),
+            (std::vector<fs::path>{folder / "scan.mtl", folder / "skin.jpg", folder / "normal.png"}));
+  EXPECT_TRUE(app::filesReadWith(dir / "head.glb", "glTF\x02\x00\x00\x00").empty());
+}
+
 TEST(SaveModelAtomically, WritesWholeOrNothing) {
   const fs::path dir = testing_support::freshTempDir("autorig_atomic");
   const eng::Model model = cli_test::makeTestFace();
