@@ -38,20 +38,22 @@ bool LandmarkPanel::pressShow(const app::FaceSetup& face) {
   const std::filesystem::path beside = app::landmarksBeside(file_);
   auto landmarks = app::faceLandmarks(*loaded, std::filesystem::is_regular_file(beside, ec) ? beside : std::filesystem::path());
   if (!landmarks) return failed(landmarks.error().message);
-  // The view shows such a face stood up (app::loadAutorigged); its points are the file's.
-  if (const std::optional<app::StandingUp> up = app::standingUp(*landmarks))
-    return failed(file_.string() + ": in its file the face " + up->howItLies +
-                  "; the landmark panel edits faces that stand as glTF's axes say (+Z front, +Y up)");
   auto edit = LandmarkEditModel::create(loaded->model, *landmarks, file_.string());
   if (!edit) return failed(edit.error().message);
   edit_.emplace(std::move(*edit));
+  const std::optional<app::StandingUp> up = app::standingUp(*landmarks);
+  standUp_ = up ? up->turn : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
   message_.report("68 landmarks from " + landmarks->source, false);
   return true;
 }
 
+autorig::PictureCamera LandmarkPanel::fileCamera(const autorig::PictureCamera& view) const {
+  return {view.viewProjection * glm::mat4_cast(standUp_), view.imageSize};
+}
+
 bool LandmarkPanel::clickAt(glm::vec2 pixel, const autorig::PictureCamera& camera) {
   if (!edit_) return false;
-  const int index = edit_->pointAt(pixel, kPickReachPixels, camera);
+  const int index = edit_->pointAt(pixel, kPickReachPixels, fileCamera(camera));
   if (index < 0) return false;
   (void)edit_->select(index);  // in range: pointAt found it
   return true;
@@ -59,7 +61,7 @@ bool LandmarkPanel::clickAt(glm::vec2 pixel, const autorig::PictureCamera& camer
 
 bool LandmarkPanel::dragSelected(glm::vec2 pixels, const autorig::PictureCamera& camera) {
   if (!edit_) return failed("landmarks: press Show first");
-  if (auto moved = edit_->moveSelected(pixels, camera); !moved) return failed(moved.error().message);
+  if (auto moved = edit_->moveSelected(pixels, fileCamera(camera)); !moved) return failed(moved.error().message);
   return true;
 }
 
@@ -87,6 +89,7 @@ bool LandmarkPanel::pressRerun(const app::FaceSetup& face) {
     return std::move(made->model);
   });
   if (!rigged) return failed(rigged.error().message);
+  eng::turnAtRoots(*rigged, standUp_);  // shown as the view shows the face
   rigged_.emplace(std::move(*rigged));
   ++riggedRevision_;
   message_.report(sameTargets(*rigged_, face.model())
@@ -129,7 +132,7 @@ void LandmarkPanel::drawOverlay(ImDrawList* draw, const autorig::PictureCamera& 
   if (!edit_) return;
   const ImU32 rim = IM_COL32(20, 24, 32, 220);
   for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
-    const std::optional<glm::vec2> at = autorig::projectToPicture(camera, edit_->points()[i]);
+    const std::optional<glm::vec2> at = autorig::projectToPicture(fileCamera(camera), edit_->points()[i]);
     if (!at) continue;
     const bool selected = int(i) == edit_->selected();
     const float radius = selected ? 4.5f : 3.0f;

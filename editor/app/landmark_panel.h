@@ -46,9 +46,13 @@ class LandmarkPanel {
 
  private:
   bool failed(const std::string& why);  // reported in the panel and the log
+  // The view's camera for the points, which are the file's: a face its file
+  // holds lying is shown stood up (app::loadAutorigged), turned by standUp_.
+  autorig::PictureCamera fileCamera(const autorig::PictureCamera& view) const;
 
   std::optional<LandmarkEditModel> edit_;
   std::filesystem::path file_;  // the face's own file
+  glm::quat standUp_{1.0f, 0.0f, 0.0f, 0.0f};
   std::optional<app::FaceAutorig> rigger_;
   std::optional<eng::Model> rigged_;
   uint64_t riggedRevision_ = 0;

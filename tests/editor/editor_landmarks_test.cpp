@@ -1,7 +1,8 @@
 // The editor's landmarks (issue 33) through --script under xvfb-run: a face
 // rigged on the fly (the visemes-only Ready Player Me avatar, with the
-// landmarks file beside it, so no detector runs), its 68 points shown, one
-// dragged, the transfer run again and the points saved beside the face.
+// landmarks file beside it, so no detector runs; upright, and lying as a
+// Z-up export holds it), its 68 points shown, one dragged, the transfer run
+// again and the points saved beside the face.
 #include <filesystem>
 #include <regex>
 #include <cstdlib>
@@ -11,6 +12,8 @@
 #include <sys/wait.h>
 
 #include "autorig/face_landmarks.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
 #include "engine/scene/image_io.h"
 #include "tests/common/test_support.h"
 #include "tests/editor/editor_run.h"
@@ -19,14 +22,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(EditorLandmarks, ShowMoveRerunAndSave) {
-  REQUIRE_XVFB();
-  FACIAL_REQUIRE_SHARED();
-  const fs::path dir = testing_support::freshTempDir("editor_landmarks");
-  fs::copy_file(testing_support::sharedDir() / "speech/rpm-visemes.glb", dir / "rpm.glb");
-  fs::copy_file(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json", dir / "rpm.landmarks.json");
-  auto original = autorig::readLandmarksFile(dir / "rpm.landmarks.json");
+// The avatar as its file holds it, turned by `turn` at its roots (identity:
+// as shared), with its landmarks file beside it turned alike.
+void showMoveRerunAndSave(const std::string& name, const glm::quat& turn) {
+  const fs::path dir = testing_support::freshTempDir(name);
+  auto avatar = eng::loadModel(testing_support::sharedDir() / "speech/rpm-visemes.glb");
+  ASSERT_TRUE(avatar) << avatar.error().message;
+  eng::turnAtRoots(*avatar, turn);
+  ASSERT_TRUE(eng::saveModel(*avatar, dir / "rpm.glb"));
+  auto original = autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json");
   ASSERT_TRUE(original) << original.error().message;
+  for (glm::vec3& p : original->points) p = turn * p;
+  ASSERT_TRUE(autorig::writeLandmarksFile(*original, dir / "rpm.landmarks.json"));
   testing_support::writeFile(dir / "landmarks.txt",
                              "0.2 landmarks-show\n"
                              "0.3 landmark-move 57 0 6     # the lower lip's middle, 6 px down\n"
@@ -58,15 +65,31 @@ TEST(EditorLandmarks, ShowMoveRerunAndSave) {
     }
   EXPECT_GT(green, 68u * 4u) << "68 dots of a few pixels each";
 
+  // Saved as the file holds the face; moved down the face, in its own frame.
   auto saved = autorig::readLandmarksFile(dir / "rpm.landmarks.json");
   ASSERT_TRUE(saved) << saved.error().message;
   const float eyeSpan = glm::distance(original->points[36], original->points[45]);
   const float lipMoved = glm::distance(saved->points[57], original->points[57]);
   EXPECT_GT(lipMoved, 0.01f * eyeSpan) << "6 px on a face about 200 px across";
   EXPECT_LT(lipMoved, 0.3f * eyeSpan);
-  EXPECT_LT(saved->points[57].y, original->points[57].y) << "down";
+  const glm::quat back = glm::inverse(turn);
+  EXPECT_LT((back * saved->points[57]).y, (back * original->points[57]).y) << "down";
   EXPECT_EQ(saved->points[8], original->points[8]);
   EXPECT_EQ(saved->points[30], original->points[30]);
+}
+
+TEST(EditorLandmarks, ShowMoveRerunAndSave) {
+  REQUIRE_XVFB();
+  FACIAL_REQUIRE_SHARED();
+  showMoveRerunAndSave("editor_landmarks", glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+}
+
+// The avatar lying on its back in its file (a Z-up export): shown stood up,
+// its points drawn on it, moved down its face and saved as the file holds it.
+TEST(EditorLandmarks, AFaceItsFileHoldsLyingIsEditedStoodUp) {
+  REQUIRE_XVFB();
+  FACIAL_REQUIRE_SHARED();
+  showMoveRerunAndSave("editor_landmarks_lying", glm::angleAxis(glm::half_pi<float>(), glm::vec3(1.0f, 0.0f, 0.0f)));
 }
 
 TEST(EditorLandmarks, AMoveOutsideTheLandmarksIsRefusedNamingTheLine) {
