@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -218,9 +219,16 @@ std::vector<std::filesystem::path> filesReadWith(const std::filesystem::path& mo
   std::vector<std::filesystem::path> files;
   const std::filesystem::path dir = model.parent_path();
   const size_t first = bytes.find_first_not_of(" \t\r\n");
-  if (bytes.starts_with("glTF")) return files;  // a GLB: its buffers and images are inside it
-  if (first != std::string::npos && bytes[first] == '{') {  // a .gltf: its buffers and images
-    const nlohmann::json gltf = nlohmann::json::parse(bytes, nullptr, false);
+  std::string_view json;
+  if (bytes.starts_with("glTF") && bytes.size() >= 20) {  // a GLB: its JSON chunk (its own buffer is inside)
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    json = bytes.substr(20, std::min<size_t>(length, bytes.size() - 20));
+  } else if (first != std::string::npos && bytes[first] == '{') {  // a .gltf
+    json = bytes;
+  }
+  if (!json.empty()) {  // its buffers and images outside it
+    const nlohmann::json gltf = nlohmann::json::parse(json, nullptr, false);
     if (!gltf.is_object()) return files;
     for (const char* array : {"buffers", "images"}) {
       if (!gltf.contains(array) || !gltf[array].is_array()) continue;

@@ -130,9 +130,9 @@ struct StandingUp {
 std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks);
 
 // The files a face file (`bytes`: its content) reads beside it, which key
-// its rig in the cache with its own bytes: a .gltf's buffers and images (not
-// data: URIs), an OBJ's material libraries and their texture maps. Missing
-// ones are listed too; a GLB reads none.
+// its rig in the cache with its own bytes: a .gltf's or GLB's buffers and
+// images outside it (not data: URIs), an OBJ's material libraries and their
+// texture maps. Missing ones are listed too.
 std::vector<std::filesystem::path> filesReadWith(const std::filesystem::path& model, std::string_view bytes);
 
 // Where a face's own landmarks file is looked for when it is rigged on the

@@ -12,9 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
-#include "autorig/posed_face.h"
+#include "autorig/builtin_source.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
@@ -184,6 +183,12 @@ TEST(AutorigCache, KeyedByTheFilesTheFaceReadsBesideIt) {
   testing_support::writeFile(folder / "scan.mtl", "newmtl skin\nKd 1 1 1\nmap_Kd -s 1 1 1 skin.jpg\n  map_Bump normal.png\n");
   EXPECT_EQ(app::filesReadWith(folder / "scan.obj", obj),
             (std::vector<fs::path>{folder / "scan.mtl", folder / "skin.jpg", folder / "normal.png"}));
+  // A GLB holds its own buffer; one it names by URI is outside it.
+  std::string glb("glTF\x02\x00\x00\x00....", 12);  // magic, version, total length (unread)
+  const std::string chunk = R"({"buffers": [{"byteLength": 4}], "images": [{"uri": "eyes.png"}]})";
+  const uint32_t length = uint32_t(chunk.size());
+  glb += std::string(reinterpret_cast<const char*>(&length), 4) + "JSON" + chunk;
+  EXPECT_EQ(app::filesReadWith(dir / "head.glb", glb), (std::vector<fs::path>{dir / "eyes.png"}));
   EXPECT_TRUE(app::filesReadWith(dir / "head.glb", "glTF\x02\x00\x00\x00").empty());
 }
 
@@ -298,8 +303,9 @@ TEST(FaceSetupAutorig, AFaceItsFileHoldsLyingIsShownStoodUp) {
 TEST(StandingUp, TheQuarterTurnBackFromTheLandmarks) {
   auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(head) << head.error().message;
-  auto landmarks = app::findFaceLandmarks(*head, autorig::poseAtRest(*head));
-  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  const autorig::FaceLandmarks* landmarks = &source->landmarks;
   EXPECT_FALSE(app::standingUp(*landmarks)) << "an upright face stands as it is";
   const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
   for (const auto& [turn, lies] :
