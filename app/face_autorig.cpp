@@ -356,9 +356,7 @@ std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   const glm::vec3 front = nearestAxis(frame.forward(), glm::vec3(0.0f));
   const glm::vec3 top = nearestAxis(frame.up(), front);
   if (!std::isfinite(frame.forward().x) || (front.z == 1.0f && top.y == 1.0f)) return std::nullopt;
-  // Rows: where each file axis goes; the face's front to +Z, its top to +Y.
-  const glm::mat3 turn = glm::transpose(glm::mat3(glm::cross(top, front), top, front));
-  return StandingUp{glm::quat_cast(turn), "looks along " + signedAxisName(front) + ", its top along " + signedAxisName(top)};
+  return StandingUp{glm::quat_cast(standingUpRotation(front, top)), "looks along " + signedAxisName(front) + ", its top along " + signedAxisName(top)};
 }
 
 }  // namespace app

@@ -275,7 +275,7 @@ struct Seen {
 // axes that face the camera and point up.
 struct QuarterTurn {
   glm::vec3 front, top;
-  glm::mat3 rotation() const { return glm::transpose(glm::mat3(glm::cross(top, front), top, front)); }
+  glm::mat3 rotation() const { return standingUpRotation(front, top); }
 };
 
 const std::vector<QuarterTurn>& quarterTurns() {
@@ -340,6 +340,11 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
 }
 
 }  // namespace
+
+glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top) {
+  // Rows: where each file axis goes.
+  return glm::transpose(glm::mat3(glm::cross(top, front), top, front));
+}
 
 std::string signedAxisName(const glm::vec3& axis) {
   const char* sign = axis.x + axis.y + axis.z > 0.0f ? "+" : "-";

@@ -39,6 +39,9 @@ struct FaceLandmarkOptions {
 // that falls off the surface, the predictor file missing, rendering failed.
 // "+X", "-Z": a unit axis's name, for notes on how a file holds a face.
 std::string signedAxisName(const glm::vec3& axis);
+// The rotation that stands a face looking along `front` with its top along
+// `top` (square unit axes) up: looking along +Z, its top along +Y.
+glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top);
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});

@@ -247,12 +247,7 @@ TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
   if (!fs::exists(facecap)) GTEST_SKIP() << "needs ../shared/assets/facecap.glb";
   auto model = eng::loadModel(facecap);
   ASSERT_TRUE(model) << model.error().message;
-  for (eng::Mesh& mesh : model->meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  model->animations.clear();
+  *model = testing_support::stripped(std::move(*model));
   const fs::path dir = testing_support::freshTempDir("autorig_bare_facecap");
   ASSERT_TRUE(eng::saveModel(*model, dir / "bare.glb"));
   setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
@@ -274,12 +269,7 @@ TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
 TEST(FaceSetupAutorig, AFaceItsFileHoldsLyingIsShownStoodUp) {
   auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(model) << model.error().message;
-  for (eng::Mesh& mesh : model->meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  model->animations.clear();
+  *model = testing_support::stripped(std::move(*model));
   const glm::mat4 upright = model->worldTransform(model->firstNodeOfEachMesh()[0]);
   eng::turnAtRoots(*model, glm::angleAxis(glm::half_pi<float>(), glm::vec3(1, 0, 0)));
   const fs::path dir = testing_support::freshTempDir("autorig_lying_head");

@@ -330,11 +330,7 @@ TEST(FaceLandmarkFinder, BothEyeballsInOnePrimitiveAreEyeballsNotGlasses) {
 TEST(FaceLandmarkFinder, JawLineOnTheJawNotTheNeckBehindIt) {
   auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(model) << model.error().message;
-  for (eng::Mesh& mesh : model->meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& prim : mesh.primitives) prim.targets.clear();
-  }
+  *model = testing_support::stripped(std::move(*model));
   for (eng::Material& material : model->materials) {
     material.baseColorImage = -1;
     material.baseColorFactor = glm::vec4(0.8f, 0.62f, 0.52f, 1.0f);

@@ -32,16 +32,6 @@ autorig::SourceFace headSource(const eng::Model& head) {
   return std::move(*source);
 }
 
-eng::Model stripped(eng::Model model) {
-  model.animations.clear();
-  for (eng::Mesh& mesh : model.meshes) {
-    mesh.targetNames.clear();
-    mesh.defaultWeights.clear();
-    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
-  }
-  return model;
-}
-
 std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
                                                               const char* landmarksFile,
                                                               autorig::FaceLandmarks* landmarks) {

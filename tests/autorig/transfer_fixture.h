@@ -6,6 +6,7 @@
 
 #include "autorig/target_transfer.h"
 #include "engine/scene/model.h"
+#include "tests/common/test_meshes.h"
 
 namespace transfer_fixture {
 
@@ -15,7 +16,7 @@ std::optional<eng::Model> loadHead();
 autorig::SourceFace headSource(const eng::Model& head);
 
 // The model without any morph target (nor the animations that weight them): a face to rig.
-eng::Model stripped(eng::Model model);
+using testing_support::stripped;
 
 // `face` (posed at rest) rigged from the built-in head with the landmarks of
 // tests/autorig/data/<landmarksFile> and the parts finder; nullopt, with a

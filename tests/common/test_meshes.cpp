@@ -128,4 +128,14 @@ eng::Model plasterHead() {
   return model;
 }
 
+eng::Model stripped(eng::Model model) {
+  model.animations.clear();
+  for (eng::Mesh& mesh : model.meshes) {
+    mesh.targetNames.clear();
+    mesh.defaultWeights.clear();
+    for (eng::Primitive& p : mesh.primitives) p.targets.clear();
+  }
+  return model;
+}
+
 }  // namespace testing_support

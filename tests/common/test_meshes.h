@@ -52,4 +52,8 @@ void addPartAsRoot(eng::Model& model, eng::Model part, const std::string& name, 
 // "teeth" at (0, -0.4, 0.8); one mesh per node, in that order.
 eng::Model plasterHead();
 
+// The model without any morph target (nor the animations that weight them):
+// a face to rig, as scans and sculpts come.
+eng::Model stripped(eng::Model model);
+
 }  // namespace testing_support
