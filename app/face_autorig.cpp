@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/face_landmark_finder.h"
@@ -340,6 +341,8 @@ eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath
 
 std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   const autorig::LandmarkFrame frame(landmarks);
+  if (!std::isfinite(frame.forward().x) || !std::isfinite(frame.forward().y) || !std::isfinite(frame.forward().z))
+    return std::nullopt;
   // The axes nearest the face's front and top; a top along the front's axis
   // (a face seen from straight above or below) takes the next nearest.
   auto nearestAxis = [](const glm::vec3& v, const glm::vec3& unlike) {
@@ -355,8 +358,23 @@ std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   };
   const glm::vec3 front = nearestAxis(frame.forward(), glm::vec3(0.0f));
   const glm::vec3 top = nearestAxis(frame.up(), front);
-  if (!std::isfinite(frame.forward().x) || (front.z == 1.0f && top.y == 1.0f)) return std::nullopt;
-  return StandingUp{glm::quat_cast(standingUpRotation(front, top)), "looks along " + signedAxisName(front) + ", its top along " + signedAxisName(top)};
+  const glm::mat3 quarterTurn = standingUpRotation(front, top);
+  // Stood up exactly, a face looks along +Z as a level one does.
+  const glm::mat3 level = glm::mat3(glm::angleAxis(glm::radians(-kLevelPitchDegrees), glm::vec3(1, 0, 0)));
+  const glm::mat3 exact = level * glm::transpose(glm::mat3(frame.side(), frame.up(), frame.forward()));
+  const float offQuarterTurn = glm::degrees(glm::angle(glm::quat_cast(exact * glm::transpose(quarterTurn))));
+  if (offQuarterTurn > kQuarterTurnSlackDegrees) {
+    auto direction = [](const glm::vec3& v) {
+      char text[64];
+      std::snprintf(text, sizeof text, "(%.2f, %.2f, %.2f)", double(v.x), double(v.y), double(v.z));
+      return std::string(text);
+    };
+    return StandingUp{glm::quat_cast(exact), "looks along " + direction(frame.forward()) + ", its top along " +
+                                                 direction(frame.up()) + ", turned " +
+                                                 std::to_string(int(std::lround(offQuarterTurn))) + "° from glTF's axes"};
+  }
+  if (front.z == 1.0f && top.y == 1.0f) return std::nullopt;
+  return StandingUp{glm::quat_cast(quarterTurn), "looks along " + signedAxisName(front) + ", its top along " + signedAxisName(top)};
 }
 
 }  // namespace app

@@ -118,11 +118,14 @@ struct CachedAutorig : TargetChanges {
   autorig::FaceLandmarks landmarks;
 };
 
-// The quarter turn that stands up a face its file holds lying or looking
-// away (the face's front nearer another axis than +Z, or its top nearer
-// another than +Y: a Z-up export, a scan as captured), from its landmarks;
-// nullopt when it stands as glTF's axes say. With the axes it lies along,
-// for notes ("looks along -Y, its top along +Z").
+// How to stand up a face its file holds lying, looking away or turned (a
+// Z-up export, a scan as captured), from its landmarks; nullopt when it
+// stands as glTF's axes say (its front within kQuarterTurnSlackDegrees of
+// +Z, its top of +Y). Within that slack of another quarter-turn pose, the
+// quarter turn (a Z-up export stands exactly as it was made); further off,
+// the face turned to look along +Z, level (kLevelPitchDegrees), its eyes
+// across X. With how it lies, for notes ("looks along -Y, its top along +Z").
+inline constexpr float kQuarterTurnSlackDegrees = 15.0f;
 struct StandingUp {
   glm::quat turn;
   std::string howItLies;

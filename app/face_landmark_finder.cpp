@@ -240,7 +240,7 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
 // at again from the front its own points give: square to its eyes (yaw),
 // and within kPitchSlack of the pitch a face seen level has (its eyes are
 // set back from its chin).
-constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f, kLevelPitch = 5.0f;  // degrees
+constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f;  // degrees
 
 // dlib's detector finds faces turned up to about 35° from it: one turned
 // further is looked for from either side, above and below (yaw, pitch
@@ -257,7 +257,7 @@ std::optional<eng::OrbitCamera> facingTheFace(const eng::OrbitCamera& camera, co
   const float pitch = glm::degrees(std::asin(std::clamp(forward.y, -1.0f, 1.0f)));
   eng::OrbitCamera turned = camera;
   if (std::abs(yaw - camera.yawDegrees) > kYawSlack) turned.yawDegrees = yaw;
-  if (std::abs(pitch - kLevelPitch - camera.pitchDegrees) > kPitchSlack) turned.pitchDegrees = pitch - kLevelPitch;
+  if (std::abs(pitch - kLevelPitchDegrees - camera.pitchDegrees) > kPitchSlack) turned.pitchDegrees = pitch - kLevelPitchDegrees;
   if (turned.yawDegrees == camera.yawDegrees && turned.pitchDegrees == camera.pitchDegrees) return std::nullopt;
   return turned;
 }

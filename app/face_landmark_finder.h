@@ -42,6 +42,10 @@ std::string signedAxisName(const glm::vec3& axis);
 // The rotation that stands a face looking along `front` with its top along
 // `top` (square unit axes) up: looking along +Z, its top along +Y.
 glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top);
+// Seen level, a face's points look this many degrees up (autorig::
+// LandmarkFrame::forward: its eyes are set back from its chin; 5-8° on the
+// built-in head, facecap and the Ready Player Me avatar).
+inline constexpr float kLevelPitchDegrees = 5.0f;
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});

@@ -313,6 +313,40 @@ TEST(StandingUp, TheQuarterTurnBackFromTheLandmarks) {
   }
 }
 
+// A face its file holds turned between the quarter-turn poses (a scan as
+// captured, 30° round and 20° rolled) is stood up exactly: looking along +Z,
+// level, as the head does upright; one within the slack of a quarter-turn
+// pose is turned by the quarter turn only (a Z-up export tilted a little).
+TEST(StandingUp, AFaceTurnedBetweenQuarterTurnsStandsUpLevel) {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  auto angleDegrees = [](const glm::quat& q) { return glm::degrees(glm::angle(q)); };
+  auto turnedBy = [&](const glm::quat& turn) {
+    autorig::FaceLandmarks turned = source->landmarks;
+    for (glm::vec3& p : turned.points) p = turn * p;
+    return turned;
+  };
+  {
+    const glm::quat turn = glm::angleAxis(glm::radians(20.0f), z) * glm::angleAxis(glm::radians(30.0f), y);
+    const std::optional<app::StandingUp> up = app::standingUp(turnedBy(turn));
+    ASSERT_TRUE(up);
+    EXPECT_LT(angleDegrees(up->turn * turn), 2.0f) << "stood as the head stands upright: " << up->howItLies;
+    EXPECT_NE(up->howItLies.find("turned 36° from glTF's axes"), std::string::npos) << up->howItLies;
+  }
+  {
+    const glm::quat lying = glm::angleAxis(glm::half_pi<float>(), x);
+    const glm::quat turn = glm::angleAxis(glm::radians(8.0f), y) * lying;
+    const std::optional<app::StandingUp> up = app::standingUp(turnedBy(turn));
+    ASSERT_TRUE(up);
+    EXPECT_EQ(up->howItLies, "looks along -Y, its top along +Z");
+    EXPECT_LT(angleDegrees(up->turn * lying), 0.01f) << "the quarter turn only";
+  }
+  EXPECT_FALSE(app::standingUp(turnedBy(glm::angleAxis(glm::radians(12.0f), y)))) << "a head turned a little stands as it is";
+}
+
 // A head scan as one OBJ file (the built-in head at rest, untextured, no
 // targets): read as a face, rigged on the fly, and the states reach it.
 TEST(FaceSetupAutorig, AnObjScanIsRiggedOnTheFly) {
