@@ -359,9 +359,7 @@ std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   const glm::vec3 front = nearestAxis(frame.forward(), glm::vec3(0.0f));
   const glm::vec3 top = nearestAxis(frame.up(), front);
   const glm::mat3 quarterTurn = standingUpRotation(front, top);
-  // Stood up exactly, a face looks along +Z as a level one does.
-  const glm::mat3 level = glm::mat3(glm::angleAxis(glm::radians(-kLevelPitchDegrees), glm::vec3(1, 0, 0)));
-  const glm::mat3 exact = level * glm::transpose(glm::mat3(frame.side(), frame.up(), frame.forward()));
+  const glm::mat3 exact = levelRotation(landmarks);
   const float offQuarterTurn = glm::degrees(glm::angle(glm::quat_cast(exact * glm::transpose(quarterTurn))));
   if (offQuarterTurn > kQuarterTurnSlackDegrees) {
     auto direction = [](const glm::vec3& v) {

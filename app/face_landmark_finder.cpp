@@ -341,6 +341,12 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
 
 }  // namespace
 
+glm::mat3 levelRotation(const autorig::FaceLandmarks& landmarks) {
+  const autorig::LandmarkFrame frame(landmarks);
+  const glm::mat3 level = glm::mat3(glm::angleAxis(glm::radians(-kLevelPitchDegrees), glm::vec3(1, 0, 0)));
+  return level * glm::transpose(glm::mat3(frame.side(), frame.up(), frame.forward()));
+}
+
 glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top) {
   // Rows: where each file axis goes.
   return glm::transpose(glm::mat3(glm::cross(top, front), top, front));
@@ -402,6 +408,28 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
     if (turnedNote.empty()) renderer->place(glm::mat4(1.0f));
   }
   if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in any view of " + name + " (the front, the sides, every quarter turn)");
+  // A face rolled as drawn (a scan captured with its head tilted to one
+  // side) is stood up level and framed as if its file held it so: its jaw
+  // line, the outline, is then found where an upright face has it (rolled
+  // 45°, it lay up to 0.33 eye spans off).
+  if (found->detected()) {
+    const glm::vec3 side = glm::mat3(renderer->placement()) * autorig::LandmarkFrame(found->landmarks).side();
+    if (std::abs(std::atan2(side.y, side.x)) > glm::radians(kLevelRollSlackDegrees)) {
+      const glm::mat3 level = levelRotation(found->landmarks);
+      const glm::mat4 placedBefore = renderer->placement();
+      const eng::OrbitCamera cameraBefore = camera;
+      renderer->place(glm::mat4(level));
+      camera = uprightFraming(drawn, level);
+      std::optional<Seen> levelled =
+          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+      if (levelled && levelled->detected()) {
+        found = std::move(levelled);
+        base = camera;
+      } else {
+        renderer->place(placedBefore), camera = cameraBefore;
+      }
+    }
+  }
   found->landmarks.source += turnedNote;
   const std::optional<eng::OrbitCamera> facing =
       found->detected() ? facingTheFace(base, found->landmarks, renderer->placement()) : std::optional<eng::OrbitCamera>();

@@ -46,6 +46,12 @@ glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top);
 // LandmarkFrame::forward: its eyes are set back from its chin; 5-8° on the
 // built-in head, facecap and the Ready Player Me avatar).
 inline constexpr float kLevelPitchDegrees = 5.0f;
+// The rotation that stands a face up exactly, from its points: looking
+// along +Z, level (kLevelPitchDegrees), its eyes across X.
+glm::mat3 levelRotation(const autorig::FaceLandmarks& landmarks);
+// How far a face's eye line may be rolled as drawn before the finder stands
+// it up level and looks again.
+inline constexpr float kLevelRollSlackDegrees = 10.0f;
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});
