@@ -19,6 +19,7 @@
 #include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
 #include "autorig/builtin_source.h"
+#include "autorig/eye_opening.h"
 #include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "autorig/mouth_opening.h"
@@ -146,8 +147,14 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   if (opening.changed()) {
     posed = autorig::poseAtRest(opened);
     parts = autorig::findFaceParts(opened, posed, landmarks);
-    parts.teethFromTheSource = opening.insideVertices > 0;
   }
+  // A scan's eyes in its skin cut free from the lids, the head's eyeballs behind them.
+  autorig::EyeOpening eyes = autorig::openTheEyes(opened, posed, landmarks, parts, source_);
+  if (eyes.changed()) {
+    posed = autorig::poseAtRest(opened);
+    parts = autorig::findFaceParts(opened, posed, landmarks);
+  }
+  parts.teethFromTheSource = opening.insideVertices > 0;
   auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts);
   if (!transferred) return transferred.error().prefixed(faceName + ": ");
   AutorigResult result;
@@ -156,6 +163,7 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
   result.partNotes.insert(result.partNotes.end(), opening.notes.begin(), opening.notes.end());
+  result.partNotes.insert(result.partNotes.end(), eyes.notes.begin(), eyes.notes.end());
   return result;
 }
 

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "autorig/carried_pieces.h"
 #include "autorig/dense_correspondence.h"
 #include "autorig/face_frame.h"
 #include "autorig/landmark_warp.h"
@@ -35,39 +36,6 @@ struct MouthBox {
   float margin = 0.0f;              // past (or within) the corners, eye spans
   glm::vec3 corners[2]{};           // landmarks 48 and 54
 };
-
-// Appends a copy of vertex v (every attribute, its targets' deltas too) and returns its index.
-uint32_t duplicateVertex(eng::Primitive& prim, uint32_t v) {
-  const size_t n = prim.vertexCount();
-  const size_t sets = prim.influenceSets();
-  auto copy = [&](auto& values) {
-    if (values.size() != n) return;
-    const auto value = values[v];
-    values.push_back(value);
-  };
-  copy(prim.positions);
-  copy(prim.normals);
-  copy(prim.texcoords);
-  copy(prim.tangents);
-  copy(prim.colors);
-  for (size_t s = 0; s < sets; ++s) {
-    const glm::u16vec4 joints = prim.joints[v * sets + s];
-    const glm::vec4 weights = prim.jointWeights[v * sets + s];
-    prim.joints.push_back(joints);
-    prim.jointWeights.push_back(weights);
-  }
-  for (eng::MorphTarget& target : prim.targets) {
-    copy(target.positions);
-    copy(target.normals);
-    copy(target.tangents);
-  }
-  return uint32_t(n);
-}
-
-std::string meshLabel(const eng::Model& model, size_t mesh) {
-  const std::string& name = model.meshes[mesh].name;
-  return name.empty() ? "mesh " + std::to_string(mesh) : name;
-}
 
 // Where welded lips meet: the cheapest way along the skin's edges from one
 // mouth corner to the other, an edge costing its length, less where it runs
@@ -266,7 +234,7 @@ size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const st
     for (int k = 0; k < 3; ++k) {
       if (!seam[i[k]]) continue;
       if (copyOf[i[k]] == std::numeric_limits<uint32_t>::max()) {
-        copyOf[i[k]] = duplicateVertex(prim, i[k]);
+        copyOf[i[k]] = appendVertexOf(prim, prim, i[k]);
         ++cut;
       }
       i[k] = copyOf[i[k]];
@@ -437,50 +405,9 @@ size_t transplantTheInsideOfTheMouth(eng::Model& face, const PosedFace& posed, c
   }
   if (carried.empty()) return 0;
 
-  eng::Mesh& mesh = face.meshes[hostPosed.mesh];
-  const size_t hostIndex = hostPosed.primitive;
-  const glm::mat3 toLocal = hostPosed.worldToLocal[host->anchor];
-  const glm::vec3 anchorLocal = mesh.primitives[hostIndex].positions[host->anchor];
-  const size_t sets = mesh.primitives[hostIndex].influenceSets();
-  const std::vector<glm::u16vec4> anchorJoints(mesh.primitives[hostIndex].joints.begin() + ptrdiff_t(host->anchor * sets),
-                                               mesh.primitives[hostIndex].joints.begin() + ptrdiff_t((host->anchor + 1) * sets));
-  const std::vector<glm::vec4> anchorWeights(mesh.primitives[hostIndex].jointWeights.begin() + ptrdiff_t(host->anchor * sets),
-                                             mesh.primitives[hostIndex].jointWeights.begin() + ptrdiff_t((host->anchor + 1) * sets));
-  const glm::mat3 turn = toLocal * warp->similarity().rotation;
-  std::map<int, int> materialOf;  // source material -> the face's copy
-  std::map<int, int> imageOf;     // source image -> the face's copy
+  CarriedPieces carrier(face, hostPosed, host->anchor);
   size_t added = 0;
-  for (const Piece& piece : carried) {
-    const PosedPrimitive& sp = source.posed.primitives[piece.source];
-    const eng::Primitive& from = source.model->meshes[sp.mesh].primitives[sp.primitive];
-    eng::Primitive to;
-    to.indices = from.indices;
-    to.texcoords = from.texcoords;
-    for (size_t v = 0; v < piece.world.size(); ++v) {
-      to.positions.push_back(anchorLocal + toLocal * (piece.world[v] - hostPosed.positions[host->anchor]));
-      const glm::vec3 n = v < from.normals.size() ? turn * glm::inverse(sp.worldToLocal[v]) * from.normals[v] : glm::vec3(0, 0, 1);
-      to.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1));
-      to.joints.insert(to.joints.end(), anchorJoints.begin(), anchorJoints.end());
-      to.jointWeights.insert(to.jointWeights.end(), anchorWeights.begin(), anchorWeights.end());
-    }
-    to.targets.resize(mesh.targetNames.size());  // empty: the face's own targets leave it
-    if (from.material >= 0) {
-      auto [it, fresh] = materialOf.try_emplace(from.material, int(face.materials.size()));
-      if (fresh) {
-        eng::Material material = source.model->materials[size_t(from.material)];
-        material.detailLayers.clear();
-        if (material.baseColorImage >= 0) {
-          auto [image, newImage] = imageOf.try_emplace(material.baseColorImage, int(face.images.size()));
-          if (newImage) face.images.push_back(source.model->images[size_t(material.baseColorImage)]);
-          material.baseColorImage = image->second;
-        }
-        face.materials.push_back(std::move(material));
-      }
-      to.material = it->second;
-    }
-    added += to.vertexCount();
-    mesh.primitives.push_back(std::move(to));
-  }
+  for (const Piece& piece : carried) added += carrier.add(source, piece.source, piece.world, warp->similarity().rotation);
   notes.push_back(label + ": nothing inside the mouth (no teeth, no tongue): the built-in head's mouth, teeth and tongue "
                   "carried in behind the lips (" + std::to_string(added) + " vertices)");
   return added;

@@ -1,0 +1,143 @@
+#include "autorig/eye_opening.h"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include "autorig/carried_pieces.h"
+#include "autorig/face_frame.h"
+
+namespace autorig {
+namespace {
+
+// The cut-free eye's distance from the ball's centre, of what it was: a lid
+// closing along the ball at its rim's distance passes in front of it.
+constexpr float kEyeSetBack = 0.99f;
+// The carried eyeball's radius, of the ball's: behind the cut-free eye.
+constexpr float kBallInside = 0.97f;
+// Fewer of an eye's triangles than this are no eye to cut free.
+constexpr size_t kMinEyeTriangles = 8;
+
+FacePart eyeballOf(size_t eye) { return eye == 0 ? FacePart::EyeballRight : FacePart::EyeballLeft; }
+
+glm::mat3 axesOf(const FaceLandmarks& landmarks) {
+  const LandmarkFrame frame(landmarks);
+  return glm::mat3(frame.side(), frame.up(), frame.forward());
+}
+
+// The source's primitives that are its eyeball of that side.
+std::vector<size_t> sourceEyeballs(const SourceFace& source, FacePart side) {
+  std::vector<size_t> balls;
+  for (size_t i = 0; i < source.parts.vertexParts.size(); ++i) {
+    const std::vector<FacePart>& parts = source.parts.vertexParts[i];
+    if (!parts.empty() && std::all_of(parts.begin(), parts.end(), [&](FacePart p) { return p == side; })) balls.push_back(i);
+  }
+  return balls;
+}
+
+// The skin vertex of a posed primitive nearest `point` (the carried eyeball
+// moves as it does: with the head, between the eyes), or nullopt without skin.
+std::optional<uint32_t> nearestSkinVertex(const PosedPrimitive& pp, const std::vector<FacePart>& parts, const glm::vec3& point) {
+  std::optional<uint32_t> nearest;
+  float best = std::numeric_limits<float>::max();
+  for (size_t v = 0; v < pp.positions.size(); ++v)
+    if (parts[v] == FacePart::Skin && glm::distance(pp.positions[v], point) < best)
+      best = glm::distance(pp.positions[v], point), nearest = uint32_t(v);
+  return nearest;
+}
+
+struct EyeCut {
+  size_t posed;  // into PosedFace::primitives
+  size_t eye;    // 0: right, 1: left
+  std::vector<uint32_t> triangles;
+};
+
+}  // namespace
+
+EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
+                       const SourceFace& source) {
+  EyeOpening opening;
+  if (parts.vertexParts.size() != posed.primitives.size() || !(parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]))
+    return opening;
+  // Each eye's triangles: all three corners on the ball.
+  std::vector<EyeCut> cuts;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const PosedPrimitive& pp = posed.primitives[i];
+    const std::vector<uint32_t>& indices = face.meshes[pp.mesh].primitives[pp.primitive].indices;
+    for (size_t e = 0; e < 2; ++e) {
+      if (!parts.eyesInTheSkin[e]) continue;
+      EyeCut cut{i, e, {}};
+      for (size_t t = 0; t + 2 < indices.size(); t += 3)
+        if (std::all_of(&indices[t], &indices[t] + 3, [&](uint32_t v) {
+              return v < parts.vertexParts[i].size() && parts.vertexParts[i][v] == eyeballOf(e);
+            }))
+          cut.triangles.push_back(uint32_t(t / 3));
+      if (cut.triangles.size() >= kMinEyeTriangles) cuts.push_back(std::move(cut));
+    }
+  }
+  if (cuts.empty()) return opening;
+
+  // The head's eyeballs behind them first: carried into the mesh as its
+  // primitives stand (the cut below rebuilds the skin's).
+  const glm::mat3 turn = axesOf(landmarks) * glm::transpose(axesOf(source.landmarks));
+  for (const EyeCut& cut : cuts) {
+    const PosedPrimitive& host = posed.primitives[cut.posed];
+    const std::optional<uint32_t> anchor = nearestSkinVertex(host, parts.vertexParts[cut.posed], landmarks.points[27]);
+    const float sourceRadius = source.parts.eyeRadii[cut.eye];
+    const std::vector<size_t> balls = sourceEyeballs(source, eyeballOf(cut.eye));
+    if (!anchor || !(sourceRadius > 0.0f) || balls.empty() || source.model == nullptr) continue;
+    const float scale = kBallInside * parts.eyeRadii[cut.eye] / sourceRadius;
+    CarriedPieces carrier(face, host, *anchor);
+    for (size_t ball : balls) {
+      std::vector<glm::vec3> world;
+      for (const glm::vec3& q : source.posed.primitives[ball].positions)
+        world.push_back(parts.eyeCentres[cut.eye] + turn * (q - source.parts.eyeCentres[cut.eye]) * scale);
+      opening.ballVertices += carrier.add(source, ball, world, turn);
+    }
+  }
+
+  // Then each eye cut free: its triangles a primitive of their own, the
+  // rest of the skin's primitive rebuilt without them.
+  std::map<int, int> eyeMaterialOf;  // the skin's material -> its copy for the eyes
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const PosedPrimitive& pp = posed.primitives[i];
+    eng::Mesh& mesh = face.meshes[pp.mesh];
+    const eng::Primitive& skin = mesh.primitives[pp.primitive];
+    std::vector<char> cutAway(skin.indices.size() / 3, 0);
+    std::vector<eng::Primitive> eyes;
+    for (const EyeCut& cut : cuts) {
+      if (cut.posed != i) continue;
+      std::vector<uint32_t> vertexOf;
+      eng::Primitive eye = withTriangles(skin, cut.triangles, &vertexOf);
+      const glm::vec3& centre = parts.eyeCentres[cut.eye];
+      for (size_t k = 0; k < vertexOf.size(); ++k) {
+        const glm::vec3& world = pp.positions[vertexOf[k]];
+        eye.positions[k] += pp.toLocal(vertexOf[k], (centre + (world - centre) * kEyeSetBack) - world);
+      }
+      auto [material, fresh] = eyeMaterialOf.try_emplace(skin.material, int(face.materials.size()));
+      if (fresh) {
+        eng::Material copy = skin.material >= 0 ? face.materials[size_t(skin.material)] : eng::Material{};
+        copy.name = "Eye (a scan's, cut free)";  // an eyeball by name (autorig::facePartFromNames)
+        copy.detailLayers.clear();
+        face.materials.push_back(std::move(copy));
+      }
+      eye.material = material->second;
+      for (uint32_t t : cut.triangles) cutAway[t] = 1;
+      opening.notes.push_back(meshLabel(face, pp.mesh) + ": the " + (cut.eye == 0 ? "right" : "left") + " eye (" +
+                              std::to_string(eye.vertexCount()) +
+                              " vertices of the skin) cut free from its lids, the built-in head's eyeball behind it");
+      eyes.push_back(std::move(eye));
+      ++opening.eyesCut;
+    }
+    if (eyes.empty()) continue;
+    std::vector<uint32_t> kept;
+    for (size_t t = 0; t < cutAway.size(); ++t)
+      if (!cutAway[t]) kept.push_back(uint32_t(t));
+    eng::Primitive rest = withTriangles(skin, kept);
+    mesh.primitives[pp.primitive] = std::move(rest);
+    for (eng::Primitive& eye : eyes) mesh.primitives.push_back(std::move(eye));
+  }
+  return opening;
+}
+
+}  // namespace autorig
