@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <functional>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -395,17 +396,34 @@ TEST(FaceLandmarkFinder, TurnedHeadIsSeenFromItsOwnFront) {
   }
 }
 
+// The built-in head and the landmarks the finder gives it upright: what a
+// head its file holds turned must come back to. Nullopt, with a test
+// failure, when either fails.
+struct UprightHead {
+  eng::Model model;
+  autorig::FaceLandmarks landmarks;
+};
+
+std::optional<UprightHead> uprightHead() {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  EXPECT_TRUE(head) << head.error().message;
+  if (!head) return std::nullopt;
+  auto landmarks = app::findFaceLandmarks(*head, autorig::poseAtRest(*head));
+  EXPECT_TRUE(landmarks) << landmarks.error().message;
+  if (!landmarks) return std::nullopt;
+  return UprightHead{std::move(*head), std::move(*landmarks)};
+}
+
 // The built-in head as files bring it turned: looking away (the camera sees
 // the back of its head), looking sideways, lying on its back as a Z-up
 // export does. Before, each was "no face found"; now it is
 // found with the model stood in another quarter-turn orientation, at the
 // points the upright head has, and the source says how the file holds it.
 TEST(FaceLandmarkFinder, HeadTurnedInItsFileIsFoundTurned) {
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto upright = app::findFaceLandmarks(*head, autorig::poseAtRest(*head));
-  ASSERT_TRUE(upright) << upright.error().message;
-  const auto& p = upright->points;
+  const std::optional<UprightHead> upright = uprightHead();
+  ASSERT_TRUE(upright);
+  const eng::Model* head = &upright->model;
+  const auto& p = upright->landmarks.points;
   const float span = glm::distance(p[36], p[45]);
   const glm::vec3 x(1, 0, 0), y(0, 1, 0);
   for (const auto& [turn, says] :
@@ -431,11 +449,10 @@ TEST(FaceLandmarkFinder, HeadTurnedInItsFileIsFoundTurned) {
 // where the upright head's do (the outline, 0-16, as seen: where a ray
 // grazing the cheek meets it, which a pixel moves).
 TEST(FaceLandmarkFinder, HeadRolledInItsFileIsLookedAtLevel) {
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto upright = app::findFaceLandmarks(*head, autorig::poseAtRest(*head));
-  ASSERT_TRUE(upright) << upright.error().message;
-  const auto& p = upright->points;
+  const std::optional<UprightHead> upright = uprightHead();
+  ASSERT_TRUE(upright);
+  const eng::Model* head = &upright->model;
+  const auto& p = upright->landmarks.points;
   const float span = glm::distance(p[36], p[45]);
   for (float degrees : {30.0f, 45.0f}) {
     SCOPED_TRACE(degrees);

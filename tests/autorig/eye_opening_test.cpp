@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -44,6 +46,35 @@ eng::Model eyesInTheSkin(const eng::Model& head, const autorig::SourceFace& sour
   return face;
 }
 
+// That face with the built-in head as its source, posed and its parts found.
+struct ScanFace {
+  std::unique_ptr<eng::Model> head;  // the source points into it
+  autorig::SourceFace source;
+  eng::Model face;
+  autorig::PosedFace posed;
+  autorig::FaceParts parts;
+
+  // openTheEyes, then the face posed and its parts found again.
+  autorig::EyeOpening open() {
+    autorig::EyeOpening opening = autorig::openTheEyes(face, posed, source.landmarks, parts, source);
+    posed = autorig::poseAtRest(face);
+    parts = autorig::findFaceParts(face, posed, source.landmarks);
+    return opening;
+  }
+};
+
+std::optional<ScanFace> scanFace() {
+  std::optional<eng::Model> head = loadHead();
+  if (!head) return std::nullopt;
+  ScanFace scan;
+  scan.head = std::make_unique<eng::Model>(std::move(*head));
+  scan.source = headSource(*scan.head);
+  scan.face = eyesInTheSkin(*scan.head, scan.source);
+  scan.posed = autorig::poseAtRest(scan.face);
+  scan.parts = autorig::findFaceParts(scan.face, scan.posed, scan.source.landmarks);
+  return scan;
+}
+
 size_t primitiveCount(const eng::Model& model) {
   size_t n = 0;
   for (const eng::Mesh& mesh : model.meshes) n += mesh.primitives.size();
@@ -75,25 +106,23 @@ TEST(EyeOpeningValidity, AFaceWithEyeballsIsLeftAsItIs) {
 // eyeballs by name (no eye in its skin) where the balls were, and the skin no
 // longer holds them.
 TEST(EyeOpening, AScansEyesAreCutFreeWithTheHeadsEyeballsBehind) {
-  const std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  eng::Model face = eyesInTheSkin(*head, source);
-  autorig::PosedFace posed = autorig::poseAtRest(face);
-  const autorig::FaceParts before = autorig::findFaceParts(face, posed, source.landmarks);
+  std::optional<ScanFace> scan = scanFace();
+  ASSERT_TRUE(scan);
+  const autorig::FaceParts before = scan->parts;
   ASSERT_TRUE(before.eyesInTheSkin[0] && before.eyesInTheSkin[1]) << "the fixture's eyes are its skin";
   const size_t onTheBalls = countOf(before, autorig::FacePart::EyeballRight) + countOf(before, autorig::FacePart::EyeballLeft);
-  const size_t primitives = primitiveCount(face);
+  const size_t primitives = primitiveCount(scan->face);
 
-  const autorig::EyeOpening opening = autorig::openTheEyes(face, posed, source.landmarks, before, source);
+  const autorig::EyeOpening opening = scan->open();
   EXPECT_EQ(opening.eyesCut, 2u);
   EXPECT_GT(opening.ballVertices, 1000u);
-  EXPECT_EQ(primitiveCount(face), primitives + 4) << "two cut-free eyes, two eyeballs behind them";
+  EXPECT_EQ(primitiveCount(scan->face), primitives + 4) << "two cut-free eyes, two eyeballs behind them";
   ASSERT_EQ(opening.notes.size(), 2u);
   EXPECT_NE(opening.notes[0].find("cut free from its lids"), std::string::npos) << opening.notes[0];
 
-  posed = autorig::poseAtRest(face);
-  const autorig::FaceParts after = autorig::findFaceParts(face, posed, source.landmarks);
+  const eng::Model& face = scan->face;
+  const autorig::PosedFace& posed = scan->posed;
+  const autorig::FaceParts& after = scan->parts;
   EXPECT_TRUE(after.eyeballsFound);
   for (size_t e = 0; e < 2; ++e) {
     SCOPED_TRACE(e);
@@ -125,16 +154,10 @@ TEST(EyeOpening, AScansEyesAreCutFreeWithTheHeadsEyeballsBehind) {
 // AU5 raises the upper lid and leaves the cut-free eye where it is, and the
 // gaze shapes (not made for eyes in the skin) are made.
 TEST(EyeOpening, TheCutFreeEyesTurnAndTheLidsOpenOverThem) {
-  const std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  eng::Model face = eyesInTheSkin(*head, source);
-  autorig::PosedFace posed = autorig::poseAtRest(face);
-  autorig::FaceParts parts = autorig::findFaceParts(face, posed, source.landmarks);
-  ASSERT_TRUE(autorig::openTheEyes(face, posed, source.landmarks, parts, source).changed());
-  posed = autorig::poseAtRest(face);
-  parts = autorig::findFaceParts(face, posed, source.landmarks);
-  auto rigged = autorig::transferTargets(source, face, posed, source.landmarks, parts);
+  std::optional<ScanFace> scan = scanFace();
+  ASSERT_TRUE(scan);
+  ASSERT_TRUE(scan->open().changed());
+  auto rigged = autorig::transferTargets(scan->source, scan->face, scan->posed, scan->source.landmarks, scan->parts);
   ASSERT_TRUE(rigged) << rigged.error().message;
   const std::vector<std::string>& made = rigged->report.made;
   EXPECT_NE(std::find(made.begin(), made.end(), "eyeLookOutLeft"), made.end());
@@ -149,7 +172,7 @@ TEST(EyeOpening, TheCutFreeEyesTurnAndTheLidsOpenOverThem) {
       const bool eye = prim.material >= 0 && rigged->model.materials[size_t(prim.material)].name.find("a scan's") != std::string::npos;
       for (const glm::vec3& d : prim.targets[t].positions) (eye ? eyeMoves : skinMoves) = std::max(eye ? eyeMoves : skinMoves, glm::length(d));
     }
-    EXPECT_GT(skinMoves, 0.1f * source.parts.eyeRadii[0]) << "the upper lid rises";
+    EXPECT_GT(skinMoves, 0.1f * scan->source.parts.eyeRadii[0]) << "the upper lid rises";
     EXPECT_LT(eyeMoves, 1e-6f) << "the eye stays";
   }
 }
