@@ -25,6 +25,7 @@
 #include "autorig/mouth_opening.h"
 #include "autorig/posed_face.h"
 #include "engine/core/fnv1a.h"
+#include "engine/core/text_lines.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -204,21 +205,14 @@ std::string uriPath(std::string_view uri) {
 // an MTL's texture maps, whose options come before the file).
 std::vector<std::string> lastWordsAfter(std::string_view text, std::initializer_list<std::string_view> keys) {
   std::vector<std::string> words;
-  size_t at = 0;
-  while (at < text.size()) {
-    const size_t end = std::min(text.find('\n', at), text.size());
-    std::string_view line = text.substr(at, end - at);
-    at = end + 1;
-    const size_t first = line.find_first_not_of(" \t");
-    if (first == std::string_view::npos) continue;
-    line = line.substr(first);
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+  eng::TextLines lines(text);
+  std::string_view line;
+  while (lines.nextNonBlank(line))
     for (std::string_view key : keys) {
-      if (!line.starts_with(key) || line.size() <= key.size() || !std::isspace(static_cast<unsigned char>(line[key.size()])))
+      if (!line.starts_with(key) || line.size() <= key.size() || (line[key.size()] != ' ' && line[key.size()] != '\t'))
         continue;
       words.emplace_back(line.substr(line.find_last_of(" \t") + 1));
     }
-  }
   return words;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "importers/candide_eyes.h"
+#include "engine/core/text_lines.h"
 #include "engine/scene/file_bytes.h"
 #include "facial/runtime/rig/candide_units.h"
 
@@ -16,13 +17,6 @@ namespace {
 constexpr size_t kMaxFileBytes = size_t{8} << 20;
 // Far above CANDIDE's 113 vertices; keeps a corrupt count from allocating gigabytes.
 constexpr size_t kMaxCount = 1'000'000;
-
-std::string_view trim(std::string_view s) {
-  const size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string_view::npos) return {};
-  const size_t e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
 
 // Whitespace-separated tokens of one line.
 std::vector<std::string_view> tokens(std::string_view line) {
@@ -51,55 +45,40 @@ bool parseIndex(std::string_view token, size_t& value) {
 class LineReader {
  public:
   LineReader(std::string_view text, std::string_view source, eng::LoadBudget& budget)
-      : text_(text), source_(source), budget_(budget) {}
+      : lines_(text), source_(source), budget_(budget) {}
 
   // Next non-blank line, trimmed; false at the end of the text.
-  bool next(std::string_view& line) {
-    while (pos_ < text_.size()) {
-      const size_t end = std::min(text_.find('\n', pos_), text_.size());
-      line = trim(text_.substr(pos_, end - pos_));
-      pos_ = end + 1;
-      ++lineNumber_;
-      if (!line.empty()) return true;
-    }
-    line = {};
-    return false;
-  }
+  bool next(std::string_view& line) { return lines_.nextNonBlank(line); }
   // Looks at the next non-blank line without consuming it.
-  bool peek(std::string_view& line) {
-    const size_t pos = pos_, number = lineNumber_;
-    const bool found = next(line);
-    pos_ = pos;
-    lineNumber_ = number;
-    return found;
+  bool peek(std::string_view& line) const {
+    eng::TextLines ahead = lines_;
+    return ahead.nextNonBlank(line);
   }
   eng::Error error(const std::string& problem) const {
-    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": " + problem);
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lines_.number()) + ": " + problem);
   }
   eng::Error endError(const std::string& what) const {
-    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lineNumber_) + ": file ends before " + what);
+    return eng::makeError(eng::ErrorKind::Malformed, std::string(source_) + ":" + std::to_string(lines_.number()) + ": file ends before " + what);
   }
   // Charges what the line's numbers make to the load's budget.
   eng::Result<void> charge(size_t count, size_t bytesEach, const std::string& what) {
     auto ok = budget_.charge(count, bytesEach, what);
-    if (!ok) return ok.error().prefixed(std::string(source_) + ":" + std::to_string(lineNumber_) + ": ");
+    if (!ok) return ok.error().prefixed(std::string(source_) + ":" + std::to_string(lines_.number()) + ": ");
     return {};
   }
 
  private:
-  std::string_view text_;
+  eng::TextLines lines_;
   std::string_view source_;
   eng::LoadBudget& budget_;
-  size_t pos_ = 0;
-  size_t lineNumber_ = 0;
 };
 
 // "# VERTEX LIST:" -> "VERTEX LIST", "# END OF FILE" -> "END OF FILE"; empty for
 // lines that are not section headers (unit names such as "# Jaw drop" are mixed case).
 std::string_view headerName(std::string_view line) {
   if (line.empty() || line[0] != '#') return {};
-  std::string_view name = trim(line.substr(1));
-  if (!name.empty() && name.back() == ':') name = trim(name.substr(0, name.size() - 1));
+  std::string_view name = eng::trimmed(line.substr(1));
+  if (!name.empty() && name.back() == ':') name = eng::trimmed(name.substr(0, name.size() - 1));
   if (name.empty()) return {};
   for (char c : name)
     if (!(c == ' ' || (c >= 'A' && c <= 'Z'))) return {};
@@ -181,10 +160,10 @@ eng::Result<std::vector<Unit>> readUnits(LineReader& in, size_t vertexCount, con
     std::string_view line;
     const std::string which = kind + " " + std::to_string(u) + " of " + std::to_string(*count);
     if (!in.next(line)) return in.endError(which);
-    if (line[0] != '#' || !headerName(line).empty() || trim(line.substr(1)).empty())
+    if (line[0] != '#' || !headerName(line).empty() || eng::trimmed(line.substr(1)).empty())
       return in.error("expected the name line '# <name>' of " + which + ", got '" + std::string(line) + "'");
     Unit& unit = units[u];
-    unit.name = std::string(trim(line.substr(1)));
+    unit.name = std::string(eng::trimmed(line.substr(1)));
     // A unit is a delta for every vertex, and becomes a target of position
     // and normal deltas: a few bytes of file each, whatever the vertex count.
     if (auto ok = in.charge(vertexCount, 3 * sizeof(glm::vec3), which + " ('" + unit.name.substr(0, 40) + "', " +

@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "engine/core/log.h"
+#include "engine/core/text_lines.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/weights.h"
@@ -55,16 +56,11 @@ eng::Result<LoadedFace> loadObjSet(const std::filesystem::path& dir) {
 // An OBJ file: its first line that is not blank or a comment starts with an
 // OBJ statement (exporters open with comment lines: a few kilobytes are read).
 bool looksLikeObj(std::span<const uint8_t> bytes) {
-  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), std::min<size_t>(bytes.size(), 4096));
-  size_t at = 0;
-  while (at < text.size()) {
-    const size_t end = std::min(text.find('\n', at), text.size());
-    std::string_view line = text.substr(at, end - at);
-    at = end + 1;
-    const size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos || line[first] == '#') continue;
-    line = line.substr(first);
-    const std::string_view word = line.substr(0, line.find_first_of(" \t\r"));
+  eng::TextLines lines(std::string_view(reinterpret_cast<const char*>(bytes.data()), std::min<size_t>(bytes.size(), 4096)));
+  std::string_view line;
+  while (lines.nextNonBlank(line)) {
+    if (line[0] == '#') continue;
+    const std::string_view word = line.substr(0, line.find_first_of(" \t"));
     for (std::string_view statement : {"v", "vt", "vn", "f", "o", "g", "s", "mtllib", "usemtl"})
       if (word == statement) return true;
     return false;
