@@ -6,6 +6,7 @@
 
 #include "autorig/carried_pieces.h"
 #include "autorig/face_frame.h"
+#include "autorig/skin_in_front.h"
 
 namespace autorig {
 namespace {
@@ -52,6 +53,31 @@ struct EyeCut {
   std::vector<uint32_t> triangles;
 };
 
+// Of an eye's triangles, those seen at rest: the rest lie under its lids,
+// where a scan's texture holds whatever the camera never saw (the lid's
+// underside, the socket); cut free, a turned eye would bring them into view.
+// They stay with the lids, and the eyeball behind fills what a turned eye
+// uncovers. A triangle is under a lid when a ray out of the face from just
+// in front of it meets the skin.
+void keepTheSeen(EyeCut& cut, const PosedPrimitive& pp, const std::vector<uint32_t>& indices, const FaceParts& parts,
+                 const LandmarkFrame& frame) {
+  const glm::vec3& centre = parts.eyeCentres[cut.eye];
+  const float radius = parts.eyeRadii[cut.eye];
+  SkinInFront skin(frame, 0.1f * radius);
+  std::vector<char> onTheEye(indices.size() / 3, 0);
+  for (uint32_t t : cut.triangles) onTheEye[t] = 1;
+  for (size_t t = 0; t < onTheEye.size(); ++t) {
+    if (onTheEye[t]) continue;
+    const glm::vec3 &a = pp.positions[indices[t * 3]], &b = pp.positions[indices[t * 3 + 1]], &c = pp.positions[indices[t * 3 + 2]];
+    if (glm::distance((a + b + c) / 3.0f, centre) < 3.0f * radius) skin.add(a, b, c);
+  }
+  std::erase_if(cut.triangles, [&](uint32_t t) {
+    const glm::vec3 middle =
+        (pp.positions[indices[t * 3]] + pp.positions[indices[t * 3 + 1]] + pp.positions[indices[t * 3 + 2]]) / 3.0f;
+    return skin.covers(middle + frame.forward() * (0.01f * radius));
+  });
+}
+
 }  // namespace
 
 EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
@@ -72,6 +98,7 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
               return v < parts.vertexParts[i].size() && parts.vertexParts[i][v] == eyeballOf(e);
             }))
           cut.triangles.push_back(uint32_t(t / 3));
+      keepTheSeen(cut, pp, indices, parts, LandmarkFrame(landmarks));
       if (cut.triangles.size() >= kMinEyeTriangles) cuts.push_back(std::move(cut));
     }
   }

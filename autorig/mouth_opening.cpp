@@ -15,6 +15,7 @@
 #include "autorig/dense_correspondence.h"
 #include "autorig/face_frame.h"
 #include "autorig/landmark_warp.h"
+#include "autorig/skin_in_front.h"
 #include "engine/scene/inner_face_parts.h"
 #include "engine/scene/ray_triangle.h"
 
@@ -242,42 +243,6 @@ size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const st
   }
   return cut;
 }
-
-// The skin about the mouth, its triangles binned by where they fall on the
-// face's plane (side, up), so a ray straight out of the face tests only its
-// cell's few triangles, not every triangle of a dense scan's mouth.
-class SkinInFront {
- public:
-  SkinInFront(const LandmarkFrame& frame, float cell) : side_(frame.side()), up_(frame.up()), forward_(frame.forward()), cell_(cell) {}
-
-  void add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    const uint32_t t = uint32_t(corners_.size() / 3);
-    corners_.insert(corners_.end(), {a, b, c});
-    const glm::vec2 pa = plane(a), pb = plane(b), pc = plane(c);
-    const glm::ivec2 lo = cellOf(glm::min(pa, glm::min(pb, pc))), hi = cellOf(glm::max(pa, glm::max(pb, pc)));
-    for (int x = lo.x; x <= hi.x; ++x)
-      for (int y = lo.y; y <= hi.y; ++y) cells_[key({x, y})].push_back(t);
-  }
-
-  // Whether a ray from p straight out of the face meets the skin.
-  bool covers(const glm::vec3& p) const {
-    const auto found = cells_.find(key(cellOf(plane(p))));
-    if (found == cells_.end()) return false;
-    for (uint32_t t : found->second)
-      if (eng::intersectRayTriangle(p, forward_, corners_[t * 3], corners_[t * 3 + 1], corners_[t * 3 + 2])) return true;
-    return false;
-  }
-
- private:
-  glm::vec2 plane(const glm::vec3& p) const { return {glm::dot(p, side_), glm::dot(p, up_)}; }
-  glm::ivec2 cellOf(const glm::vec2& q) const { return glm::ivec2(glm::floor(q / cell_)); }
-  static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
-
-  glm::vec3 side_, up_, forward_;
-  float cell_;
-  std::vector<glm::vec3> corners_;  // three per triangle, world space
-  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
-};
 
 // How far back (along the face's forward, in steps of kTuckStep mouth widths)
 // `points` must move, all together, to lie behind the skin; -1 when no move

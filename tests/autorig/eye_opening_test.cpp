@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "autorig/face_frame.h"
+#include "autorig/skin_in_front.h"
 #include "engine/scene/weights.h"
 #include "tests/autorig/transfer_fixture.h"
 
@@ -148,6 +150,29 @@ TEST(EyeOpening, AScansEyesAreCutFreeWithTheHeadsEyeballsBehind) {
   }
   EXPECT_GE(cutFree, onTheBalls * 9 / 10) << "the eyes' vertices, less those only at their rims";
   EXPECT_LE(cutFree, onTheBalls);
+
+  // What is cut free is what shows at rest: no triangle of it lies under the
+  // lids (a ray out of the face from its middle meets no skin).
+  const autorig::LandmarkFrame frame(scan->source.landmarks);
+  autorig::SkinInFront skin(frame, 0.1f * before.eyeRadii[0]);
+  for (size_t i = 0; i < posed.primitives.size(); ++i)
+    if (std::find(after.vertexParts[i].begin(), after.vertexParts[i].end(), autorig::FacePart::Skin) != after.vertexParts[i].end()) {
+      const eng::Primitive& prim = face.meshes[posed.primitives[i].mesh].primitives[posed.primitives[i].primitive];
+      for (size_t t = 0; t + 2 < prim.indices.size(); t += 3)
+        skin.add(posed.primitives[i].positions[prim.indices[t]], posed.primitives[i].positions[prim.indices[t + 1]],
+                 posed.primitives[i].positions[prim.indices[t + 2]]);
+    }
+  size_t underTheLids = 0;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const eng::Primitive& prim = face.meshes[posed.primitives[i].mesh].primitives[posed.primitives[i].primitive];
+    if (prim.material < 0 || face.materials[size_t(prim.material)].name.find("a scan's") == std::string::npos) continue;
+    for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
+      const auto& at = posed.primitives[i].positions;
+      const glm::vec3 middle = (at[prim.indices[t]] + at[prim.indices[t + 1]] + at[prim.indices[t + 2]]) / 3.0f;
+      underTheLids += skin.covers(middle + frame.forward() * (0.02f * before.eyeRadii[0]));
+    }
+  }
+  EXPECT_EQ(underTheLids, 0u);
 }
 
 // Rigged, such a face's eyes turn for a gaze and its lids open over them:
