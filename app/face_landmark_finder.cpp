@@ -243,9 +243,18 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
 constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f;  // degrees
 
 // dlib's detector finds faces turned up to about 35° from it: one turned
-// further is looked for from either side, above and below (yaw, pitch
-// degrees), and then from its own front. A face seen from the back is not.
-constexpr std::array<glm::vec2, 4> kSideViews = {{{-30.0f, 0.0f}, {30.0f, 0.0f}, {0.0f, 25.0f}, {0.0f, -25.0f}}};
+// further is looked for from either side, above and below, and from the
+// four corners between them (yaw, pitch degrees: a face looking 45° aside
+// and 30° up is seen from none of the four straight ones), and then from its
+// own front. A face seen from the back is not.
+constexpr std::array<glm::vec2, 8> kSideViews = {{{-30.0f, 0.0f},
+                                                   {30.0f, 0.0f},
+                                                   {0.0f, 25.0f},
+                                                   {0.0f, -25.0f},
+                                                   {-30.0f, 25.0f},
+                                                   {30.0f, 25.0f},
+                                                   {-30.0f, -25.0f},
+                                                   {30.0f, -25.0f}}};
 
 // The camera turned to face the face, or nullopt when it faces it already.
 // `placement`: where the renderer stands the model.
@@ -315,13 +324,16 @@ eng::OrbitCamera uprightFraming(const eng::Model& model, const glm::mat3& rotati
 
 // From the renderer's camera: the face dlib finds, looked at closer when it
 // is small in the picture, its points cast onto the face. Nullopt when no
-// face is seen.
+// face is seen, or when one of its points misses the surface (a face seen
+// at a slant, its outline past the mesh): `missed` keeps the first such line
+// ("x.glb: landmark 24 ... is not on the face's surface") for when no view
+// does better.
 eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const autorig::PosedFace& posed,
                                                                  HeadlessModelRenderer& renderer,
                                                                  std::span<const float> weights,
                                                                  const autorig::LandmarkDetector& detector,
                                                                  const FaceLandmarkOptions& options,
-                                                                 bool fitInTheTargetsBox) {
+                                                                 bool fitInTheTargetsBox, std::string& missed) {
   std::optional<Sighting> seen = ENG_TRY_VALUE(look(renderer, weights, detector));
   if (!seen && fitInTheTargetsBox)
     seen = ENG_TRY_VALUE(lookWhereTheTargetsAre(model, renderer, weights, detector, options.size));
@@ -335,8 +347,13 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
   }
   const autorig::PictureCamera picture = pictureCamera(camera, options.size, renderer.placement());
   const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
-  return std::optional<Seen>(Seen{ENG_TRY_VALUE(castOntoFace(caster, *seen, options.size, modelName(model), options.picture)),
-                                   seen->face.confidence});
+  auto cast = castOntoFace(caster, *seen, options.size, modelName(model), options.picture);
+  if (!cast) {
+    if (cast.error().kind != eng::ErrorKind::NotFound) return cast.error();
+    if (missed.empty()) missed = cast.error().message;
+    return std::optional<Seen>();
+  }
+  return std::optional<Seen>(Seen{std::move(*cast), seen->face.confidence});
 }
 
 }  // namespace
@@ -373,8 +390,11 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
   const std::vector<float> weights = eng::WeightLayout(drawn).defaults();
   eng::OrbitCamera& camera = renderer->view().camera;
   const eng::OrbitCamera front = camera;
-  std::optional<Seen> found =
-      ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, true));
+  std::string missed;  // the first view whose points missed the surface
+  auto seenNow = [&](bool fitInTheTargetsBox) {
+    return landmarksSeen(model, posed, *renderer, weights, **detector, options, fitInTheTargetsBox, missed);
+  };
+  std::optional<Seen> found = ENG_TRY_VALUE(seenNow(true));
   if (!found || !found->detected()) {
     // Of the side views, the one the detector is surest of (the view turned away from the face
     // sees it nearly in profile, where the points are a guess); else the points fitted in the
@@ -382,7 +402,7 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
     for (const glm::vec2& turn : kSideViews) {
       camera = front;
       camera.yawDegrees += turn.x, camera.pitchDegrees += turn.y;
-      std::optional<Seen> side = ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+      std::optional<Seen> side = ENG_TRY_VALUE(seenNow(false));
       if (side && (!found || !found->detected() || side->confidence > found->confidence)) found = std::move(side);
     }
   }
@@ -395,11 +415,11 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       renderer->place(glm::mat4(rotation));
       camera = turnedFraming(box, rotation);
       std::optional<Seen> turned =
-          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+          ENG_TRY_VALUE(seenNow(false));
       if (!turned || !turned->detected()) continue;
       camera = base = uprightFraming(drawn, rotation);
       std::optional<Seen> framed =
-          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+          ENG_TRY_VALUE(seenNow(false));
       found = framed && framed->detected() ? std::move(framed) : std::move(turned);
       turnedNote = "; found turned: in the file the face looks along about " + signedAxisName(turn.front) +
                    ", its top along about " + signedAxisName(turn.top) + " (glTF's front is +Z, its up +Y)";
@@ -407,6 +427,7 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
     }
     if (turnedNote.empty()) renderer->place(glm::mat4(1.0f));
   }
+  if (!found && !missed.empty()) return eng::makeError(eng::ErrorKind::NotFound, missed);
   if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in any view of " + name + " (the front, the sides, every quarter turn)");
   // A face rolled as drawn (a scan captured with its head tilted to one
   // side) is stood up level and framed as if its file held it so: its jaw
@@ -421,7 +442,7 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
       renderer->place(glm::mat4(level));
       camera = uprightFraming(drawn, level);
       std::optional<Seen> levelled =
-          ENG_TRY_VALUE(landmarksSeen(model, posed, *renderer, weights, **detector, options, false));
+          ENG_TRY_VALUE(seenNow(false));
       if (levelled && levelled->detected()) {
         found = std::move(levelled);
         base = camera;
@@ -436,7 +457,7 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
   if (facing) {
     camera = *facing;
     // Should the turned view lose the face or a point, the points seen before stand.
-    auto again = landmarksSeen(model, posed, *renderer, weights, **detector, options, false);
+    auto again = seenNow(false);
     if (again && *again && (*again)->detected()) {
       (*again)->landmarks.source += turnedNote;
       return std::move((*again)->landmarks);
