@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <optional>
+#include <span>
 
 #include "autorig/carried_pieces.h"
+#include "engine/core/uv_raster.h"
 #include "autorig/face_frame.h"
 #include "autorig/skin_in_front.h"
 
@@ -45,6 +49,35 @@ std::optional<uint32_t> nearestSkinVertex(const PosedPrimitive& pp, const std::v
     if (parts[v] == FacePart::Skin && glm::distance(pp.positions[v], point) < best)
       best = glm::distance(pp.positions[v], point), nearest = uint32_t(v);
   return nearest;
+}
+
+// The white of an eye as a material shows it: the brightest quarter of its
+// colour (linear) at the vertices' UVs, nearest texel; the factor alone
+// without a texture. Nullopt without UVs.
+std::optional<glm::vec3> whiteOf(const eng::Model& model, const eng::Primitive& prim, std::span<const uint32_t> vertices) {
+  if (prim.material < 0 || size_t(prim.material) >= model.materials.size()) return std::nullopt;
+  const eng::Material& material = model.materials[size_t(prim.material)];
+  const glm::vec3 factor(material.baseColorFactor);
+  if (material.baseColorImage < 0 || size_t(material.baseColorImage) >= model.images.size()) return factor;
+  const eng::Image& image = model.images[size_t(material.baseColorImage)];
+  if (prim.texcoords.size() != prim.vertexCount() || image.width <= 0 || image.height <= 0 ||
+      image.rgba8.size() != size_t(image.width) * size_t(image.height) * 4)
+    return std::nullopt;
+  std::vector<glm::vec3> colours;
+  for (uint32_t v : vertices) {
+    const glm::vec2 uv = prim.texcoords[v] - glm::floor(prim.texcoords[v]);  // repeat
+    const int x = std::clamp(int(uv.x * float(image.width)), 0, image.width - 1);
+    const int y = std::clamp(int(uv.y * float(image.height)), 0, image.height - 1);
+    const uint8_t* t = &image.rgba8[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+    colours.push_back(eng::srgb(t[0], t[1], t[2]) * factor);
+  }
+  if (colours.empty()) return std::nullopt;
+  auto brightness = [](const glm::vec3& c) { return c.r + c.g + c.b; };
+  std::sort(colours.begin(), colours.end(), [&](const glm::vec3& a, const glm::vec3& b) { return brightness(a) > brightness(b); });
+  glm::vec3 sum(0.0f);
+  const size_t quarter = std::max<size_t>(1, colours.size() / 4);
+  for (size_t i = 0; i < quarter; ++i) sum += colours[i];
+  return sum / float(quarter);
 }
 
 struct EyeCut {
@@ -105,8 +138,11 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
   if (cuts.empty()) return opening;
 
   // The head's eyeballs behind them first: carried into the mesh as its
-  // primitives stand (the cut below rebuilds the skin's).
+  // primitives stand (the cut below rebuilds the skin's), one carrier per
+  // skin primitive (the eyes share the head's eye material and its image).
   const glm::mat3 turn = axesOf(landmarks) * glm::transpose(axesOf(source.landmarks));
+  std::map<size_t, CarriedPieces> carriers;  // by posed skin primitive
+  std::map<size_t, std::vector<glm::vec3>> whiteRatios;  // the scan's white over the head's, per carrier
   for (const EyeCut& cut : cuts) {
     const PosedPrimitive& host = posed.primitives[cut.posed];
     const std::optional<uint32_t> anchor = nearestSkinVertex(host, parts.vertexParts[cut.posed], landmarks.points[27]);
@@ -114,13 +150,33 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
     const std::vector<size_t> balls = sourceEyeballs(source, eyeballOf(cut.eye));
     if (!anchor || !(sourceRadius > 0.0f) || balls.empty() || source.model == nullptr) continue;
     const float scale = kBallInside * parts.eyeRadii[cut.eye] / sourceRadius;
-    CarriedPieces carrier(face, host, *anchor);
+    CarriedPieces& carrier = carriers.try_emplace(cut.posed, face, host, *anchor).first->second;
     for (size_t ball : balls) {
       std::vector<glm::vec3> world;
       for (const glm::vec3& q : source.posed.primitives[ball].positions)
         world.push_back(parts.eyeCentres[cut.eye] + turn * (q - source.parts.eyeCentres[cut.eye]) * scale);
       opening.ballVertices += carrier.add(source, ball, world, turn);
     }
+    // The white a raised lid uncovers matched to the scan's painted one.
+    std::vector<uint32_t> onTheEye;
+    const std::vector<uint32_t>& indices = face.meshes[host.mesh].primitives[host.primitive].indices;
+    for (uint32_t t : cut.triangles) onTheEye.insert(onTheEye.end(), &indices[size_t(t) * 3], &indices[size_t(t) * 3] + 3);
+    const PosedPrimitive& ball = source.posed.primitives[balls.front()];
+    const eng::Primitive& ballPrim = source.model->meshes[ball.mesh].primitives[ball.primitive];
+    std::vector<uint32_t> allOfIt(ballPrim.vertexCount());
+    std::iota(allOfIt.begin(), allOfIt.end(), 0u);
+    const std::optional<glm::vec3> scanWhite = whiteOf(face, face.meshes[host.mesh].primitives[host.primitive], onTheEye);
+    const std::optional<glm::vec3> headWhite = whiteOf(*source.model, ballPrim, allOfIt);
+    if (scanWhite && headWhite) whiteRatios[cut.posed].push_back(*scanWhite / glm::max(*headWhite, glm::vec3(1e-3f)));
+  }
+  for (const auto& [host, ratios] : whiteRatios) {
+    glm::vec3 ratio(0.0f);
+    for (const glm::vec3& r : ratios) ratio += r / float(ratios.size());
+    // The carried balls are the mesh's last primitives, their material the carrier's copy of the head's.
+    const int material = face.meshes[posed.primitives[host].mesh].primitives.back().material;
+    if (material < 0) continue;
+    glm::vec4& colour = face.materials[size_t(material)].baseColorFactor;
+    colour = glm::vec4(glm::clamp(glm::vec3(colour) * ratio, glm::vec3(0.0f), glm::vec3(1.0f)), colour.a);
   }
 
   // Then each eye cut free: its triangles a primitive of their own, the

@@ -148,6 +148,19 @@ TEST(EyeOpening, AScansEyesAreCutFreeWithTheHeadsEyeballsBehind) {
     EXPECT_TRUE(std::all_of(after.vertexParts[i].begin(), after.vertexParts[i].end(),
                             [&](autorig::FacePart p) { return p == after.vertexParts[i].front(); }));
   }
+  // The white a raised lid uncovers is the scan's: the fixture's eye keeps
+  // the skin's texels (the socket's lining, moved), so the head's white
+  // eyeballs behind it are tinted towards skin.
+  size_t balls = 0;
+  for (const eng::Mesh& mesh : face.meshes)
+    for (const eng::Primitive& prim : mesh.primitives)
+      if (mesh.name == "Head" && prim.material >= 0 && face.materials[size_t(prim.material)].name == "Eye") {
+        const glm::vec4 tint = face.materials[size_t(prim.material)].baseColorFactor;
+        EXPECT_LT(tint.b, 0.95f);
+        EXPECT_GT(tint.r, tint.b) << "towards the skin's colour";
+        ++balls;
+      }
+  EXPECT_EQ(balls, 2u);
   EXPECT_GE(cutFree, onTheBalls * 9 / 10) << "the eyes' vertices, less those only at their rims";
   EXPECT_LE(cutFree, onTheBalls);
 
