@@ -363,7 +363,8 @@ std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   const glm::mat3 quarterTurn = standingUpRotation(front, top);
   const glm::mat3 exact = levelRotation(landmarks);
   const float offQuarterTurn = glm::degrees(glm::angle(glm::quat_cast(exact * glm::transpose(quarterTurn))));
-  if (offQuarterTurn > kQuarterTurnSlackDegrees) {
+  // Points only fitted in the targets' box (no face detected) say too little of the turn.
+  if (offQuarterTurn > kQuarterTurnSlackDegrees && !landmarks.source.starts_with(kFittedInTheTargetsBox)) {
     auto direction = [](const glm::vec3& v) {
       char text[64];
       std::snprintf(text, sizeof text, "(%.2f, %.2f, %.2f)", double(v.x), double(v.y), double(v.z));

@@ -124,7 +124,7 @@ struct CachedAutorig : TargetChanges {
 // +Z, its top of +Y). Within that slack of another quarter-turn pose, the
 // quarter turn (a Z-up export stands exactly as it was made); further off,
 // the face turned to look along +Z, level (kLevelPitchDegrees), its eyes
-// across X. With how it lies, for notes ("looks along -Y, its top along +Z").
+// across X, unless its points were only fitted in its targets' box. With how it lies, for notes ("looks along -Y, its top along +Z").
 inline constexpr float kQuarterTurnSlackDegrees = 15.0f;
 struct StandingUp {
   glm::quat turn;

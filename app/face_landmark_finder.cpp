@@ -54,7 +54,7 @@ std::string describe(const autorig::DetectedFace& face) {
     std::snprintf(text, sizeof text, "dlib (face box %.0f px, confidence %.2f)", double(face.box.max.x - face.box.min.x),
                   double(face.confidence));
   else
-    std::snprintf(text, sizeof text, "dlib's shape predictor in the box of the morph targets (%.0f px): no face detected",
+    std::snprintf(text, sizeof text, "%s (%.0f px): no face detected", std::string(kFittedInTheTargetsBox).c_str(),
                   double(face.box.max.x - face.box.min.x));
   return text;
 }

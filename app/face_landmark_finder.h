@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "autorig/face_landmarks.h"
 #include "autorig/landmark_detector.h"
@@ -49,6 +50,10 @@ inline constexpr float kLevelPitchDegrees = 5.0f;
 // The rotation that stands a face up exactly, from its points: looking
 // along +Z, level (kLevelPitchDegrees), its eyes across X.
 glm::mat3 levelRotation(const autorig::FaceLandmarks& landmarks);
+// How a face's landmarks' source begins when no face was detected and the
+// shape predictor was fitted in the box of the morph targets (a stylised
+// face): its points place the features roughly, not the face's turn.
+inline constexpr std::string_view kFittedInTheTargetsBox = "dlib's shape predictor in the box of the morph targets";
 // How far a face's eye line may be rolled as drawn before the finder stands
 // it up level and looks again.
 inline constexpr float kLevelRollSlackDegrees = 10.0f;

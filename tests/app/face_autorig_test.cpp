@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
 #include "autorig/builtin_source.h"
 #include "engine/scene/gltf_loader.h"
@@ -345,6 +346,9 @@ TEST(StandingUp, AFaceTurnedBetweenQuarterTurnsStandsUpLevel) {
     EXPECT_LT(angleDegrees(up->turn * lying), 0.01f) << "the quarter turn only";
   }
   EXPECT_FALSE(app::standingUp(turnedBy(glm::angleAxis(glm::radians(12.0f), y)))) << "a head turned a little stands as it is";
+  autorig::FaceLandmarks fitted = turnedBy(glm::angleAxis(glm::radians(30.0f), y));
+  fitted.source = std::string(app::kFittedInTheTargetsBox) + " (300 px): no face detected";
+  EXPECT_FALSE(app::standingUp(fitted)) << "points fitted in the targets' box say too little of the turn";
 }
 
 // A head scan as one OBJ file (the built-in head at rest, untextured, no
