@@ -44,6 +44,8 @@ class CarriedPieces {
   // (the face's world space); `turn` takes a source direction into the face's
   // world (normals). Returns the vertices added.
   size_t add(const SourceFace& source, size_t piece, std::span<const glm::vec3> world, const glm::mat3& turn);
+  // The materials added to the face so far: the source's index -> the face's.
+  const std::map<int, int>& materialsMade() const { return materialOf_; }
 
  private:
   eng::Model& face_;

@@ -8,9 +8,9 @@
 #include <span>
 
 #include "autorig/carried_pieces.h"
-#include "engine/core/uv_raster.h"
 #include "autorig/face_frame.h"
 #include "autorig/skin_in_front.h"
+#include "engine/core/uv_raster.h"
 
 namespace autorig {
 namespace {
@@ -94,6 +94,7 @@ struct EyeCut {
 // in front of it meets the skin.
 void keepTheSeen(EyeCut& cut, const PosedPrimitive& pp, const std::vector<uint32_t>& indices, const FaceParts& parts,
                  const LandmarkFrame& frame) {
+  if (cut.triangles.empty()) return;
   const glm::vec3& centre = parts.eyeCentres[cut.eye];
   const float radius = parts.eyeRadii[cut.eye];
   SkinInFront skin(frame, 0.1f * radius);
@@ -119,6 +120,7 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
   if (parts.vertexParts.size() != posed.primitives.size() || !(parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]))
     return opening;
   // Each eye's triangles: all three corners on the ball.
+  const LandmarkFrame frame(landmarks);
   std::vector<EyeCut> cuts;
   for (size_t i = 0; i < posed.primitives.size(); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
@@ -131,7 +133,7 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
               return v < parts.vertexParts[i].size() && parts.vertexParts[i][v] == eyeballOf(e);
             }))
           cut.triangles.push_back(uint32_t(t / 3));
-      keepTheSeen(cut, pp, indices, parts, LandmarkFrame(landmarks));
+      keepTheSeen(cut, pp, indices, parts, frame);
       if (cut.triangles.size() >= kMinEyeTriangles) cuts.push_back(std::move(cut));
     }
   }
@@ -172,11 +174,10 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
   for (const auto& [host, ratios] : whiteRatios) {
     glm::vec3 ratio(0.0f);
     for (const glm::vec3& r : ratios) ratio += r / float(ratios.size());
-    // The carried balls are the mesh's last primitives, their material the carrier's copy of the head's.
-    const int material = face.meshes[posed.primitives[host].mesh].primitives.back().material;
-    if (material < 0) continue;
-    glm::vec4& colour = face.materials[size_t(material)].baseColorFactor;
-    colour = glm::vec4(glm::clamp(glm::vec3(colour) * ratio, glm::vec3(0.0f), glm::vec3(1.0f)), colour.a);
+    for (const auto& [sourceMaterial, material] : carriers.at(host).materialsMade()) {
+      glm::vec4& colour = face.materials[size_t(material)].baseColorFactor;
+      colour = glm::vec4(glm::clamp(glm::vec3(colour) * ratio, glm::vec3(0.0f), glm::vec3(1.0f)), colour.a);
+    }
   }
 
   // Then each eye cut free: its triangles a primitive of their own, the
