@@ -365,13 +365,8 @@ std::optional<StandingUp> standingUp(const autorig::FaceLandmarks& landmarks) {
   const float offQuarterTurn = glm::degrees(glm::angle(glm::quat_cast(exact * glm::transpose(quarterTurn))));
   // Points only fitted in the targets' box (no face detected) say too little of the turn.
   if (offQuarterTurn > kQuarterTurnSlackDegrees && !landmarks.source.starts_with(kFittedInTheTargetsBox)) {
-    auto direction = [](const glm::vec3& v) {
-      char text[64];
-      std::snprintf(text, sizeof text, "(%.2f, %.2f, %.2f)", double(v.x), double(v.y), double(v.z));
-      return std::string(text);
-    };
-    return StandingUp{glm::quat_cast(exact), "looks along " + direction(frame.forward()) + ", its top along " +
-                                                 direction(frame.up()) + ", turned " +
+    return StandingUp{glm::quat_cast(exact), "looks along " + directionName(frame.forward()) + ", its top along " +
+                                                 directionName(frame.up()) + ", turned " +
                                                  std::to_string(int(std::lround(offQuarterTurn))) + "° from glTF's axes"};
   }
   if (front.z == 1.0f && top.y == 1.0f) return std::nullopt;

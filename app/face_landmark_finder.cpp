@@ -247,14 +247,8 @@ constexpr float kYawSlack = 5.0f, kPitchSlack = 8.0f;  // degrees
 // four corners between them (yaw, pitch degrees: a face looking 45° aside
 // and 30° up is seen from none of the four straight ones), and then from its
 // own front. A face seen from the back is not.
-constexpr std::array<glm::vec2, 8> kSideViews = {{{-30.0f, 0.0f},
-                                                   {30.0f, 0.0f},
-                                                   {0.0f, 25.0f},
-                                                   {0.0f, -25.0f},
-                                                   {-30.0f, 25.0f},
-                                                   {30.0f, 25.0f},
-                                                   {-30.0f, -25.0f},
-                                                   {30.0f, -25.0f}}};
+constexpr std::array<glm::vec2, 4> kStraightSideViews = {{{-30.0f, 0.0f}, {30.0f, 0.0f}, {0.0f, 25.0f}, {0.0f, -25.0f}}};
+constexpr std::array<glm::vec2, 4> kCornerViews = {{{-30.0f, 25.0f}, {30.0f, 25.0f}, {-30.0f, -25.0f}, {30.0f, -25.0f}}};
 
 // The camera turned to face the face, or nullopt when it faces it already.
 // `placement`: where the renderer stands the model.
@@ -299,6 +293,12 @@ const std::vector<QuarterTurn>& quarterTurns() {
   }();
   return turns;
 }
+
+// A file stands its model up along +Y (glTF) or +Z (a Z-up export); a face
+// turned between those axes as well (a scan captured looking aside and
+// down) is in no quarter turn's straight view, and is looked for from the
+// corners of the quarter turns that keep its top up.
+bool keepsTheFilesTopUp(const QuarterTurn& turn) { return turn.top.y == 1.0f || turn.top.z == 1.0f; }
 
 
 // The model's framing box turned (about the origin): the camera frames the
@@ -369,6 +369,12 @@ glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top) {
   return glm::transpose(glm::mat3(glm::cross(top, front), top, front));
 }
 
+std::string directionName(const glm::vec3& direction) {
+  char text[64];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f, %.2f)", double(direction.x), double(direction.y), double(direction.z));
+  return text;
+}
+
 std::string signedAxisName(const glm::vec3& axis) {
   const char* sign = axis.x + axis.y + axis.z > 0.0f ? "+" : "-";
   return sign + std::string(axis.x != 0.0f ? "X" : axis.y != 0.0f ? "Y" : "Z");
@@ -399,15 +405,17 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
     // Of the side views, the one the detector is surest of (the view turned away from the face
     // sees it nearly in profile, where the points are a guess); else the points fitted in the
     // targets' box from the front.
-    for (const glm::vec2& turn : kSideViews) {
-      camera = front;
-      camera.yawDegrees += turn.x, camera.pitchDegrees += turn.y;
-      std::optional<Seen> side = ENG_TRY_VALUE(seenNow(false));
-      if (side && (!found || !found->detected() || side->confidence > found->confidence)) found = std::move(side);
-    }
+    for (const auto* views : {&kStraightSideViews, &kCornerViews})
+      for (const glm::vec2& turn : *views) {
+        camera = front;
+        camera.yawDegrees += turn.x, camera.pitchDegrees += turn.y;
+        std::optional<Seen> side = ENG_TRY_VALUE(seenNow(false));
+        if (side && (!found || !found->detected() || side->confidence > found->confidence)) found = std::move(side);
+      }
   }
   eng::OrbitCamera base = front;  // the view the face is re-aimed from
   std::string turnedNote;
+  bool seenFromACorner = false;
   if (!found || !found->detected()) {
     const eng::Aabb box = eng::framingBounds(drawn, eng::FramingMode::Face);
     for (const QuarterTurn& turn : box.valid() ? quarterTurns() : std::vector<QuarterTurn>()) {
@@ -425,17 +433,37 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
                    ", its top along about " + signedAxisName(turn.top) + " (glTF's front is +Z, its up +Y)";
       break;
     }
-    if (turnedNote.empty()) renderer->place(glm::mat4(1.0f));
+    // From the corners: the view the detector is surest of. The face is then
+    // stood up level from its points (below), whatever the view's slant.
+    const QuarterTurn* cornerTurn = nullptr;
+    for (const QuarterTurn& turn : turnedNote.empty() && box.valid() ? quarterTurns() : std::vector<QuarterTurn>()) {
+      if (!keepsTheFilesTopUp(turn)) continue;
+      renderer->place(glm::mat4(turn.rotation()));
+      const eng::OrbitCamera framed = turnedFraming(box, turn.rotation());
+      for (const glm::vec2& corner : kCornerViews) {
+        camera = framed;
+        camera.yawDegrees += corner.x, camera.pitchDegrees += corner.y;
+        std::optional<Seen> seen = ENG_TRY_VALUE(seenNow(false));
+        if (seen && seen->detected() && (!found || !found->detected() || seen->confidence > found->confidence))
+          found = std::move(seen), cornerTurn = &turn;
+      }
+    }
+    if (cornerTurn) {
+      renderer->place(glm::mat4(cornerTurn->rotation()));
+      seenFromACorner = true;
+    } else if (turnedNote.empty()) {
+      renderer->place(glm::mat4(1.0f));
+    }
   }
   if (!found && !missed.empty()) return eng::makeError(eng::ErrorKind::NotFound, missed);
   if (!found) return eng::makeError(eng::ErrorKind::NotFound, "no face found in any view of " + name + " (the front, the sides, every quarter turn)");
   // A face rolled as drawn (a scan captured with its head tilted to one
-  // side) is stood up level and framed as if its file held it so: its jaw
-  // line, the outline, is then found where an upright face has it (rolled
-  // 45°, it lay up to 0.33 eye spans off).
+  // side), or seen from a corner, is stood up level and framed as if its
+  // file held it so: its jaw line, the outline, is then found where an
+  // upright face has it (rolled 45°, it lay up to 0.33 eye spans off).
   if (found->detected()) {
     const glm::vec3 side = glm::mat3(renderer->placement()) * autorig::LandmarkFrame(found->landmarks).side();
-    if (std::abs(std::atan2(side.y, side.x)) > glm::radians(kLevelRollSlackDegrees)) {
+    if (seenFromACorner || std::abs(std::atan2(side.y, side.x)) > glm::radians(autorig::kLevelRollSlackDegrees)) {
       const glm::mat3 level = levelRotation(found->landmarks);
       const glm::mat4 placedBefore = renderer->placement();
       const eng::OrbitCamera cameraBefore = camera;
@@ -450,6 +478,11 @@ eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, c
         renderer->place(placedBefore), camera = cameraBefore;
       }
     }
+  }
+  if (seenFromACorner) {
+    const autorig::LandmarkFrame frame(found->landmarks);
+    turnedNote = "; found turned between the axes: in the file the face looks along " + directionName(frame.forward()) +
+                 ", its top along " + directionName(frame.up()) + " (glTF's front is +Z, its up +Y)";
   }
   found->landmarks.source += turnedNote;
   const std::optional<eng::OrbitCamera> facing =

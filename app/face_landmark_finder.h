@@ -40,6 +40,8 @@ struct FaceLandmarkOptions {
 // that falls off the surface, the predictor file missing, rendering failed.
 // "+X", "-Z": a unit axis's name, for notes on how a file holds a face.
 std::string signedAxisName(const glm::vec3& axis);
+// "(0.70, 0.10, 0.71)": a direction between the axes, for the same notes.
+std::string directionName(const glm::vec3& direction);
 // The rotation that stands a face looking along `front` with its top along
 // `top` (square unit axes) up: looking along +Z, its top along +Y.
 glm::mat3 standingUpRotation(const glm::vec3& front, const glm::vec3& top);
@@ -54,9 +56,6 @@ glm::mat3 levelRotation(const autorig::FaceLandmarks& landmarks);
 // shape predictor was fitted in the box of the morph targets (a stylised
 // face): its points place the features roughly, not the face's turn.
 inline constexpr std::string_view kFittedInTheTargetsBox = "dlib's shape predictor in the box of the morph targets";
-// How far a face's eye line may be rolled as drawn before the finder stands
-// it up level and looks again.
-inline constexpr float kLevelRollSlackDegrees = 10.0f;
 
 eng::Result<autorig::FaceLandmarks> findFaceLandmarks(const eng::Model& model, const autorig::PosedFace& posed,
                                                       const FaceLandmarkOptions& options = {});

@@ -45,10 +45,6 @@ DetectedFace fitShape(const dlib::shape_predictor& predictor, const dlib::array2
   return face;
 }
 
-// How far a face's eye line may be rolled in the picture before it is
-// looked at level (radians; 10°).
-constexpr double kLevelSlack = 0.1745;
-
 bool usable(const eng::Image& image) {
   return image.width > 0 && image.height > 0 && image.rgba8.size() == size_t(image.width) * size_t(image.height) * 4;
 }
@@ -102,11 +98,11 @@ std::optional<DetectedFace> LandmarkDetector::detect(const eng::Image& image) co
   // dlib's detector finds faces rolled up to about 45° in the picture, but
   // its predictor places a rolled face's outline poorly (the built-in head
   // rolled 45°: jaw-line points 0.44 eye spans off). A face rolled more than
-  // kLevelSlack is looked at again in the picture turned to level its eyes,
-  // and the points are turned back.
+  // kLevelRollSlackDegrees is looked at again in the picture turned to level
+  // its eyes, and the points are turned back.
   const glm::vec2 eyeLine = face->pixels[45] - face->pixels[36];
   const double roll = std::atan2(double(eyeLine.y), double(eyeLine.x));
-  if (std::abs(roll) <= kLevelSlack) return face;
+  if (std::abs(roll) <= glm::radians(double(kLevelRollSlackDegrees))) return face;
   dlib::array2d<dlib::rgb_pixel> level;
   const dlib::point_transform_affine toLevel = dlib::rotate_image(pixels, level, roll);
   std::optional<DetectedFace> levelled = detectIn(*impl_, level);

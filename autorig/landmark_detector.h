@@ -19,6 +19,11 @@ namespace autorig {
 
 inline constexpr const char* kDefaultShapePredictor = "/usr/share/dlib/shape_predictor_68_face_landmarks.dat";
 
+// How far a face's eye line may be rolled before it is looked at level:
+// in the picture (LandmarkDetector::detect turns the picture) and as the
+// model is drawn (the finder stands the model up level).
+inline constexpr float kLevelRollSlackDegrees = 10.0f;
+
 // A pixel box: min and max corners, x right, y down.
 struct PixelBox {
   glm::vec2 min{0.0f};

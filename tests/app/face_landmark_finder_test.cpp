@@ -447,9 +447,13 @@ TEST(FaceLandmarkFinder, HeadTurnedInItsFileIsFoundTurned) {
 // rolled, but its predictor places a rolled face's outline poorly: the face
 // is stood up level and looked at again), and looking 45° aside and 40° up
 // (seen from none of the front, side, upper and lower views: before, "no
-// face found"; now from a corner between them). Its points lie where the
-// upright head's do (the outline, 0-16, as seen: where a ray grazing the
-// cheek meets it, which a pixel moves).
+// face found"; now from a corner between them). Turned further, between
+// the axes (135° aside and 40° down; lying Z-up, turned 135° about Z and
+// looking 35° up, along the diagonal (0.58, 0.58, 0.57), 55° from every
+// axis), it is in no quarter turn's straight view: it is found from the
+// corners of those that keep the file's +Y or +Z up. Its points lie where
+// the upright head's do (the outline, 0-16, as seen: where a ray grazing
+// the cheek meets it, which a pixel moves).
 TEST(FaceLandmarkFinder, HeadOffTheAxesInItsFileIsFound) {
   const std::optional<UprightHead> upright = uprightHead();
   ASSERT_TRUE(upright);
@@ -459,12 +463,20 @@ TEST(FaceLandmarkFinder, HeadOffTheAxesInItsFileIsFound) {
   for (const auto& [turn, how] : {std::pair{glm::angleAxis(glm::radians(30.0f), z), "rolled 30°"},
                                   std::pair{glm::angleAxis(glm::radians(45.0f), z), "rolled 45°"},
                                   std::pair{glm::angleAxis(glm::radians(45.0f), y) * glm::angleAxis(glm::radians(-40.0f), x),
-                                            "45° aside, 40° up"}}) {
+                                            "45° aside, 40° up"},
+                                  std::pair{glm::angleAxis(glm::radians(135.0f), y) * glm::angleAxis(glm::radians(40.0f), x),
+                                            "135° aside, 40° down"},
+                                  std::pair{glm::angleAxis(glm::radians(135.0f), z) * glm::angleAxis(glm::radians(55.0f), x),
+                                            "lying Z-up, 135° about Z, 35° up"}}) {
     SCOPED_TRACE(how);
     eng::Model model = upright->model;
     eng::turnAtRoots(model, turn);
     auto found = app::findFaceLandmarks(model, autorig::poseAtRest(model));
     ASSERT_TRUE(found) << found.error().message;
+    if (std::string(how).find("135°") != std::string::npos) {
+      EXPECT_NE(found->source.find("found turned between the axes: in the file the face looks along ("), std::string::npos)
+          << found->source;
+    }
     for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
       glm::vec3 off = glm::inverse(turn) * found->points[i] - p[i];
       if (i < 17) off.z = 0.0f;  // seen along -Z
