@@ -16,6 +16,7 @@
 #include "autorig/arkit_from_geometry.h"
 #include "autorig/arkit_from_units.h"
 #include "autorig/dense_correspondence.h"
+#include "autorig/detail_transfer.h"
 #include "autorig/face_frame.h"
 #include "autorig/jaw_hinge.h"
 #include "engine/scene/normals.h"
@@ -839,6 +840,11 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     }
     writeTarget(result.model, posed, moved, target, restNormals);
     report.made.push_back(target.name);
+  }
+  if (options.actionUnits) {
+    DetailTransferReport details = carryDetailLayers(source, src, tgt, corr, posed, result.model);
+    report.details = std::move(details.carried);
+    for (std::string& warning : details.warnings) report.warnings.push_back(std::move(warning));
   }
   if (jaw.positions.empty()) report.warnings.push_back("no lower teeth or tongue found: the jaw units move the skin only");
   if (!(parts.eyeRadii[0] > 0.0f) || !(parts.eyeRadii[1] > 0.0f))

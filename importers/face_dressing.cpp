@@ -71,17 +71,6 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
   return planned;
 }
 
-// The painted texture replaces whatever the skin's UVs were made for, so the
-// UVs may be re-fitted: a face whose texture was dropped (KTX2) can keep
-// quantized UVs that only its texture transform mapped into [0, 1].
-void fitIntoUnitSquare(std::vector<glm::vec2>& uvs) {
-  glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec2& uv : uvs) lo = glm::min(lo, uv), hi = glm::max(hi, uv);
-  if (lo.x >= 0.0f && lo.y >= 0.0f && hi.x <= 1.0f && hi.y <= 1.0f) return;
-  const glm::vec2 size = glm::max(hi - lo, glm::vec2(1e-12f));
-  for (glm::vec2& uv : uvs) uv = (uv - lo) / size;
-}
-
 // Brows on the dressed skin (painted_brows.h): into a texture through the
 // skin's UVs, one per dressed skin material, or into the vertex colours of a
 // primitive without UVs (coarser, but still a brow).
@@ -98,6 +87,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     if (frames.empty()) continue;
     const size_t n = prim.positions.size();
     if (prim.texcoords.size() == n) {
+      // The painted texture replaces whatever the skin's UVs were made for.
       fitIntoUnitSquare(prim.texcoords);
       PaintImage& image = textures.try_emplace(prim.material, kTextureSize, kTextureSize).first->second;
       rasterizeUv(kTextureSize, kTextureSize, prim.texcoords, prim.indices,

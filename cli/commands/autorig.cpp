@@ -87,6 +87,7 @@ int runAutorig(const AutorigOptions& o) {
   std::printf("\nlandmarks: %s\n", landmarks->source.c_str());
   for (const std::string& note : rigged->partNotes) std::printf("parts: %s\n", note.c_str());
   for (const std::string& note : rigged->report.notes) std::printf("units: %s\n", note.c_str());
+  for (const std::string& line : rigged->report.details) std::printf("details: %s\n", line.c_str());
   return 0;
 }
 

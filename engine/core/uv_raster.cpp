@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace eng {
 
@@ -31,6 +32,14 @@ void rasterizeUv(int width, int height, std::span<const glm::vec2> uvs, std::spa
         texel(x, y, static_cast<uint32_t>(t / 3), glm::vec3(b0, b1, b2));
       }
   }
+}
+
+void fitIntoUnitSquare(std::vector<glm::vec2>& uvs) {
+  glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (const glm::vec2& uv : uvs) lo = glm::min(lo, uv), hi = glm::max(hi, uv);
+  if (lo.x >= 0.0f && lo.y >= 0.0f && hi.x <= 1.0f && hi.y <= 1.0f) return;
+  const glm::vec2 size = glm::max(hi - lo, glm::vec2(1e-12f));
+  for (glm::vec2& uv : uvs) uv = (uv - lo) / size;
 }
 
 void PaintImage::dilate(int passes) {

@@ -35,6 +35,12 @@ struct PaintImage {
   std::vector<uint8_t> toSrgba8() const;
 };
 
+// UVs outside [0, 1] moved and scaled into it (their box onto the unit
+// square), for a texture painted anew that replaces whatever they were made
+// for: a face whose texture was dropped (KTX2) can keep quantized UVs that
+// only its texture transform mapped into [0, 1]. UVs inside are kept.
+void fitIntoUnitSquare(std::vector<glm::vec2>& uvs);
+
 float srgbToLinear(float c);
 float linearToSrgb(float c);
 glm::vec3 srgb(int r, int g, int b);  // 8-bit sRGB triple -> linear colour

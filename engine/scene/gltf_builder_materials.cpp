@@ -210,6 +210,16 @@ void GltfModelBuilder::loadMaterials() {
           warn(lw + " has no usable image or strength; ignored");
           continue;
         }
+        if (layer.Has("blend")) {
+          const tinygltf::Value& blend = layer.Get("blend");
+          if (blend.IsString() && blend.Get<std::string>() == "modulate") {
+            d.blend = DetailBlend::Modulate;
+          } else if (!blend.IsString() || blend.Get<std::string>() != "mix") {
+            warn(lw + " has blend " + (blend.IsString() ? "'" + blend.Get<std::string>() + "'" : std::string("that is not a string")) +
+                 " (known: 'mix', 'modulate'); ignored");
+            continue;
+          }
+        }
         mat.detailLayers.push_back(std::move(d));
       }
     }

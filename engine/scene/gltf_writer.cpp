@@ -279,8 +279,10 @@ Json materialJson(Json& doc, const Material& mat, int baseColorTexture) {
   if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);
   if (!mat.detailLayers.empty()) {
     Json layers = Json::array();
-    for (const DetailLayer& d : mat.detailLayers)
+    for (const DetailLayer& d : mat.detailLayers) {
       layers.push_back({{"image", d.image}, {"target", d.target}, {"strength", d.strength}});
+      if (d.blend == DetailBlend::Modulate) layers.back()["blend"] = "modulate";
+    }
     m["extras"] = {{"detailLayers", std::move(layers)}};
   }
   return m;

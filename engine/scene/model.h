@@ -72,6 +72,13 @@ struct Image {
   std::vector<uint8_t> rgba8;  // width * height * 4
 };
 
+// How a detail layer's colour meets the surface's.
+enum class DetailBlend {
+  Mix,       // cross-blended towards the layer's colour (painted for this very skin)
+  Modulate,  // the surface's colour times twice the layer's (0.5: unchanged), so a
+             // crease darkens whatever skin is under it: layers carried onto other faces
+};
+
 // A texture that fades in with a named morph target's weight (texture
 // cross-blending). The engine treats it generically: layer weight = weight of
 // `target` on the drawn mesh, blended in the fragment shader.
@@ -79,6 +86,7 @@ struct DetailLayer {
   int image = -1;      // index into Model::images (RGBA: rgb colour, a coverage)
   std::string target;  // morph target name whose weight drives this layer
   float strength = 1;  // scales the weight
+  DetailBlend blend = DetailBlend::Mix;
 };
 
 // glTF material.alphaMode: how the base colour's alpha is used.

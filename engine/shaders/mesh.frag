@@ -16,6 +16,7 @@ layout(constant_id = 2) const bool ALPHA_MASK_PIPELINE = false;
 struct DetailLayer {
   uint target;     // morph target of the drawn mesh whose weight drives the layer
   float strength;  // scales that weight
+  uint modulate;   // 1: the base times twice the layer's colour (DetailBlend::Modulate)
 };
 layout(std430, set = 1, binding = 5) readonly buffer DetailLayers { DetailLayer detailLayers[]; };
 
@@ -43,7 +44,8 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
   float w = clamp(activeWeight(inst, detailLayers[l].target) * detailLayers[l].strength, 0.0, 1.0);
   if (w > 0.0) {
     vec4 layer = texture(detailTextures, vec3(inTexcoord, float(l)));
-    base = mix(base, layer.rgb, layer.a * w);
+    base = detailLayers[l].modulate != 0u ? base * mix(vec3(1.0), 2.0 * layer.rgb, layer.a * w)
+                                          : mix(base, layer.rgb, layer.a * w);
   }
   return base;
 }

@@ -191,7 +191,7 @@ std::vector<GpuDetailLayer> detailLayers(const Model& model, size_t m, size_t p,
       missing += (missingCount++ ? ", '" : "'") + layer.target + "'";
     layers.push_back({it == mesh.targetNames.end() ? UINT32_MAX
                                                    : static_cast<uint32_t>(it - mesh.targetNames.begin()),
-                      layer.strength});
+                      layer.strength, layer.blend == DetailBlend::Modulate ? 1u : 0u});
   }
   if (missingCount == 1)
     logWarning(where(model, m, p) + ": detail layer target " + missing +

@@ -114,8 +114,9 @@ enum DrawFlags : uint32_t {
 struct GpuDetailLayer {
   uint32_t target = 0;
   float strength = 1.0f;
+  uint32_t modulate = 0;  // DetailBlend::Modulate
 };
-static_assert(sizeof(GpuDetailLayer) == 8);
+static_assert(sizeof(GpuDetailLayer) == 12);
 
 // One captured vertex (three vec4 in the capture buffer).
 struct GpuCapturedVertex {

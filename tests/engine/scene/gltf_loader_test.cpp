@@ -494,7 +494,11 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
                                                                {"roughnessFactor", 0.3},
                                                                {"metallicFactor", 0.1}}},
                                      {"extras", {{"detailLayers", Json::array({{{"image", 1}, {"target", "lift"},
-                                                                                {"strength", 0.75}}})}}}}});
+                                                                                {"strength", 0.75}},
+                                                                               {{"image", 1}, {"target", "crease"},
+                                                                                {"blend", "modulate"}},
+                                                                               {{"image", 1}, {"target", "odd"},
+                                                                                {"blend", "screen"}}})}}}}});
   b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   b.writeGlb(dir / "material.glb");
   const eng::Model model = loadOk(dir / "material.glb");
@@ -510,10 +514,14 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   EXPECT_EQ(m.baseColorImage, 0);
   EXPECT_FLOAT_EQ(m.roughness, 0.3f);
   EXPECT_FLOAT_EQ(m.metallic, 0.1f);
-  ASSERT_EQ(m.detailLayers.size(), 1u);
+  ASSERT_EQ(m.detailLayers.size(), 2u) << "the layer with an unknown blend is left out";
   EXPECT_EQ(m.detailLayers[0].image, 1);
   EXPECT_EQ(m.detailLayers[0].target, "lift");
   EXPECT_FLOAT_EQ(m.detailLayers[0].strength, 0.75f);
+  EXPECT_EQ(m.detailLayers[0].blend, eng::DetailBlend::Mix);
+  EXPECT_EQ(m.detailLayers[1].target, "crease");
+  EXPECT_EQ(m.detailLayers[1].blend, eng::DetailBlend::Modulate);
+  EXPECT_TRUE(hasWarningContaining(model, "detail layer 2 has blend 'screen' (known: 'mix', 'modulate'); ignored"));
   EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
 }
 

@@ -41,6 +41,7 @@ eng::Model richModel() {
   skin.unlit = true;
   skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
+  skin.detailLayers.push_back({1, "frown", 1.0f, eng::DetailBlend::Modulate});
   skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
                             eng::TextureFilter::Nearest, false, eng::TextureFilter::Linear};
   model.materials.push_back(skin);
@@ -186,6 +187,7 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
       EXPECT_EQ(x.detailLayers[l].image, y.detailLayers[l].image);
       EXPECT_EQ(x.detailLayers[l].target, y.detailLayers[l].target);
       EXPECT_EQ(x.detailLayers[l].strength, y.detailLayers[l].strength);
+      EXPECT_EQ(x.detailLayers[l].blend, y.detailLayers[l].blend);
     }
   }
   ASSERT_EQ(a.images.size(), b.images.size());

@@ -63,6 +63,28 @@ TEST(DetailLayers, StrengthScalesTheWeightAndLayersOfOtherSizesWork) {
   EXPECT_GT(bothFull.r, 40);
 }
 
+// A modulating layer (the head's creases carried onto another face) scales
+// the colour under it by twice its own: 0.5 (sRGB 188) leaves the grey as
+// it is, 0 blackens it, and at weight 0.5 the scale is half way.
+TEST(DetailLayers, ModulatingLayerScalesTheColourUnderIt) {
+  eng::Model model = layeredSphere();
+  model.images.push_back(solidImage(4, 4, {188, 188, 188, 255}));
+  model.images.push_back(solidImage(4, 4, {0, 0, 0, 255}));
+  model.materials[0].detailLayers = {{2, testing_support::targetName(1), 1.0f, eng::DetailBlend::Modulate},
+                                     {3, testing_support::targetName(2), 1.0f, eng::DetailBlend::Modulate}};
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const glm::ivec4 off = centreWith(*gpu, model, {0, 0, 0, 0});
+  const glm::ivec4 neutral = centreWith(*gpu, model, {0, 1.0f, 0, 0});
+  const glm::ivec4 black = centreWith(*gpu, model, {0, 0, 1.0f, 0});
+  const glm::ivec4 half = centreWith(*gpu, model, {0, 0, 0.5f, 0});
+  EXPECT_LT(std::abs(neutral.g - off.g), 4) << "0.5 modulates by 1";
+  EXPECT_LT(black.g, off.g / 6) << "0 modulates by 0";
+  EXPECT_GT(half.g, black.g + 20);
+  EXPECT_LT(half.g, off.g - 20) << "weight 0.5: half way (in linear light)";
+  EXPECT_LT(std::abs(half.r - half.g), 15) << "a grey modulation keeps the grey";
+}
+
 // Uploads `model`, the warnings logged meanwhile kept in `warnings`.
 auto uploadKeepingWarnings(const eng::Model& model, std::vector<std::string>& warnings) {
   const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {

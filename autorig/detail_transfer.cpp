@@ -1,0 +1,272 @@
+#include "autorig/detail_transfer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <optional>
+
+#include "engine/core/uv_raster.h"
+
+namespace autorig {
+namespace {
+
+// Source UVs farther apart than this (UV units) at one target triangle's
+// corners straddle a seam of the source's UV map: the triangle's texels
+// would read the space between its islands, so they stay unpainted.
+constexpr float kSeamGap = 0.08f;
+
+bool decoded(const eng::Image& image) {
+  return image.width > 0 && image.height > 0 && image.rgba8.size() == size_t(image.width) * size_t(image.height) * 4;
+}
+
+// Bilinear, repeating; rgb decoded from sRGB, alpha as stored.
+class Sampler {
+ public:
+  explicit Sampler(const eng::Image& image) : image_(image) {
+    for (int i = 0; i < 256; ++i) linear_[size_t(i)] = eng::srgbToLinear(float(i) / 255.0f);
+  }
+  glm::vec4 operator()(glm::vec2 uv) const {
+    uv -= glm::floor(uv);
+    const float x = uv.x * float(image_.width) - 0.5f, y = uv.y * float(image_.height) - 0.5f;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const float fx = x - float(x0), fy = y - float(y0);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx),
+                    fy);
+  }
+
+ private:
+  glm::vec4 texel(int x, int y) const {
+    x = ((x % image_.width) + image_.width) % image_.width;
+    y = ((y % image_.height) + image_.height) % image_.height;
+    const uint8_t* t = &image_.rgba8[(size_t(y) * size_t(image_.width) + size_t(x)) * 4];
+    return {linear_[t[0]], linear_[t[1]], linear_[t[2]], float(t[3]) / 255.0f};
+  }
+  const eng::Image& image_;
+  std::array<float, 256> linear_{};
+};
+
+const eng::Primitive& primitiveOf(const eng::Model& model, const PosedFace& posed, uint32_t posedPrimitive) {
+  const PosedPrimitive& pp = posed.primitives[posedPrimitive];
+  return model.meshes[pp.mesh].primitives[pp.primitive];
+}
+
+// The source skin's colour where the layers are painted over it: the median,
+// channel by channel, of its base colour at the skin vertices inside the
+// face (the landmarks' box in the face's plane: no scalp, few brow or lip
+// texels), the factor alone without a texture.
+std::optional<glm::vec3> skinToneOf(const SourceFace& source, const FaceSurface& src, int material) {
+  const eng::Material& m = source.model->materials[size_t(material)];
+  const glm::vec3 factor(m.baseColorFactor);
+  if (m.baseColorImage < 0 || !decoded(source.model->images[size_t(m.baseColorImage)])) return factor;
+  const Sampler base(source.model->images[size_t(m.baseColorImage)]);
+  const LandmarkFrame frame(source.landmarks);
+  glm::vec2 lo(INFINITY), hi(-INFINITY);
+  for (size_t i = 0; i <= 26; ++i) {
+    const glm::vec3 d = source.landmarks.points[i] - frame.origin();
+    const glm::vec2 p(glm::dot(d, frame.side()), glm::dot(d, frame.up()));
+    lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  std::array<std::vector<float>, 3> channels;
+  for (size_t v = 0; v < src.vertices.size(); ++v) {
+    const eng::Primitive& prim = primitiveOf(*source.model, source.posed, src.vertices[v].primitive);
+    if (prim.material != material || prim.texcoords.size() != prim.vertexCount()) continue;
+    const glm::vec3 d = src.positions[v] - frame.origin();
+    const glm::vec2 p(glm::dot(d, frame.side()), glm::dot(d, frame.up()));
+    if (p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y || glm::dot(d, frame.forward()) < 0.0f) continue;
+    const glm::vec3 c = glm::vec3(base(prim.texcoords[src.vertices[v].vertex])) * factor;
+    for (int k = 0; k < 3; ++k) channels[size_t(k)].push_back(c[k]);
+  }
+  if (channels[0].empty()) return std::nullopt;
+  glm::vec3 tone;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<float>& values = channels[size_t(k)];
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+    tone[k] = values[values.size() / 2];
+  }
+  if (!(tone.r > 0.0f && tone.g > 0.0f && tone.b > 0.0f)) return std::nullopt;
+  return tone;
+}
+
+// Whether every primitive drawn with `material` is on a mesh holding every
+// one of `targets` (the layers' weights come from the drawn mesh's targets).
+bool meshesHoldTheTargets(const eng::Model& face, int material, const std::vector<eng::DetailLayer>& layers) {
+  for (const eng::Mesh& mesh : face.meshes)
+    for (const eng::Primitive& prim : mesh.primitives) {
+      if (prim.material != material) continue;
+      for (const eng::DetailLayer& layer : layers)
+        if (std::find(mesh.targetNames.begin(), mesh.targetNames.end(), layer.target) == mesh.targetNames.end())
+          return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt,
+                                       const Correspondence& corr, const PosedFace& posed, eng::Model& face,
+                                       const DetailTransferOptions& options) {
+  DetailTransferReport report;
+  // The source's layered skin material (the head has one).
+  int sourceMaterial = -1;
+  for (const FaceSurface::VertexRef& ref : src.vertices) {
+    const int m = primitiveOf(*source.model, source.posed, ref.primitive).material;
+    if (m >= 0 && !source.model->materials[size_t(m)].detailLayers.empty()) {
+      sourceMaterial = m;
+      break;
+    }
+  }
+  if (sourceMaterial < 0) return report;
+  const std::vector<eng::DetailLayer>& layers = source.model->materials[size_t(sourceMaterial)].detailLayers;
+  std::vector<int> images;  // the source images the layers use, in order
+  for (const eng::DetailLayer& layer : layers)
+    if (std::find(images.begin(), images.end(), layer.image) == images.end()) images.push_back(layer.image);
+  for (int image : images)
+    if (image < 0 || size_t(image) >= source.model->images.size() || !decoded(source.model->images[size_t(image)]))
+      return report;
+  const std::optional<glm::vec3> tone = skinToneOf(source, src, sourceMaterial);
+  if (!tone) return report;
+
+  // Each target skin vertex's point in the source's UVs, where its match lies on the layered skin.
+  std::vector<glm::vec2> sourceUv(tgt.vertices.size(), glm::vec2(0.0f));
+  std::vector<uint8_t> mapped(tgt.vertices.size(), 0);
+  for (size_t v = 0; v < tgt.vertices.size(); ++v) {
+    const ClosestPoint& match = corr.matches[v];
+    if (tgt.parts[v] != FacePart::Skin || !match.found) continue;
+    glm::vec2 uv(0.0f);
+    bool onLayers = true;
+    for (int k = 0; k < 3 && onLayers; ++k) {
+      const FaceSurface::VertexRef& ref = src.vertices[src.triangles[match.triangle][size_t(k)]];
+      const eng::Primitive& prim = primitiveOf(*source.model, source.posed, ref.primitive);
+      onLayers = prim.material == sourceMaterial && prim.texcoords.size() == prim.vertexCount();
+      if (onLayers) uv += match.barycentric[k] * prim.texcoords[ref.vertex];
+    }
+    if (onLayers) sourceUv[v] = uv, mapped[v] = 1;
+  }
+  // posed primitive -> its vertices' indices in tgt (-1: not skin).
+  std::vector<std::vector<int32_t>> tgtIndex(posed.primitives.size());
+  for (size_t v = 0; v < tgt.vertices.size(); ++v) {
+    if (tgt.parts[v] != FacePart::Skin) continue;
+    std::vector<int32_t>& index = tgtIndex[tgt.vertices[v].primitive];
+    if (index.empty()) index.assign(posed.primitives[tgt.vertices[v].primitive].positions.size(), -1);
+    index[tgt.vertices[v].vertex] = int32_t(v);
+  }
+  std::map<int, std::vector<uint32_t>> skinByMaterial;  // target material -> its posed skin primitives
+  for (uint32_t p = 0; p < tgtIndex.size(); ++p)
+    if (!tgtIndex[p].empty()) skinByMaterial[primitiveOf(face, posed, p).material].push_back(p);
+
+  // Warnings are for the face's main skin material only: a mouth's inside
+  // or an ear with a material of its own is left quietly.
+  std::map<int, size_t> mappedByMaterial;
+  for (size_t v = 0; v < tgt.vertices.size(); ++v)
+    if (mapped[v]) ++mappedByMaterial[primitiveOf(face, posed, tgt.vertices[v].primitive).material];
+  int mainMaterial = -1;
+  for (const auto& [material, count] : mappedByMaterial)
+    if (mainMaterial < 0 || count > mappedByMaterial[mainMaterial]) mainMaterial = material;
+  auto warn = [&](int material, std::string line) {
+    if (material == mainMaterial) report.warnings.push_back(std::move(line));
+  };
+
+  std::vector<Sampler> layerImages;
+  for (int image : images) layerImages.emplace_back(source.model->images[size_t(image)]);
+  for (const auto& [skinMaterial, primitives] : skinByMaterial) {
+    if (skinMaterial < 0) continue;
+    int material = skinMaterial;
+    const std::string label = "material '" + face.materials[size_t(material)].name + "'";
+    if (!face.materials[size_t(material)].detailLayers.empty()) {
+      warn(material, label + " has detail layers of its own: the head's are not carried onto it");
+      continue;
+    }
+    if (!meshesHoldTheTargets(face, material, layers)) {
+      // Shared with meshes the targets are not on (facecap draws its eyes
+      // and teeth with its skin's material): the skin gets a copy of its own.
+      eng::Material copy = face.materials[size_t(material)];
+      copy.name += " (skin)";
+      material = int(face.materials.size());
+      face.materials.push_back(std::move(copy));
+      for (uint32_t p : primitives) {
+        const PosedPrimitive& pp = posed.primitives[p];
+        face.meshes[pp.mesh].primitives[pp.primitive].material = material;
+      }
+      if (!meshesHoldTheTargets(face, material, layers)) {
+        for (uint32_t p : primitives) {
+          const PosedPrimitive& pp = posed.primitives[p];
+          face.meshes[pp.mesh].primitives[pp.primitive].material = skinMaterial;
+        }
+        face.materials.pop_back();
+        warn(skinMaterial, label + "'s skin is on a mesh without the made targets: the head's wrinkle and colour layers are not carried onto it");
+        continue;
+      }
+    }
+    eng::Material& m = face.materials[size_t(material)];
+    const int size = options.size;
+    if (m.baseColorImage < 0 || size_t(m.baseColorImage) >= face.images.size() || !decoded(face.images[size_t(m.baseColorImage)])) {
+      // No texture reads the UVs: fitted into [0, 1] here, as the display's
+      // dressing would fit them for its painted brows, the layers and the
+      // brows agree (facecap's are quantized, 0-4095).
+      for (uint32_t p : primitives) {
+        const PosedPrimitive& pp = posed.primitives[p];
+        eng::fitIntoUnitSquare(face.meshes[pp.mesh].primitives[pp.primitive].texcoords);
+      }
+    }
+    // Unpainted texels hold the neutral modulation (0.5) so filtering at a
+    // layer's edge fades its coverage, never its colour.
+    std::vector<eng::PaintImage> painted(images.size(), eng::PaintImage(size, size));
+    for (eng::PaintImage& image : painted) std::fill(image.texels.begin(), image.texels.end(), glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
+    size_t texels = 0;
+    for (uint32_t p : primitives) {
+      const eng::Primitive& prim = primitiveOf(face, posed, p);
+      if (prim.texcoords.size() != prim.vertexCount()) continue;
+      const std::vector<int32_t>& index = tgtIndex[p];
+      std::vector<uint32_t> triangles;  // those wholly of mapped skin
+      for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+        bool whole = true;
+        for (size_t k = 0; k < 3 && whole; ++k) {
+          const uint32_t vertex = prim.indices[i + k];
+          whole = vertex < index.size() && index[vertex] >= 0 && mapped[size_t(index[vertex])];
+        }
+        if (!whole) continue;
+        const glm::vec2 a = sourceUv[size_t(index[prim.indices[i]])], b = sourceUv[size_t(index[prim.indices[i + 1]])],
+                        c = sourceUv[size_t(index[prim.indices[i + 2]])];
+        if (std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)}) > kSeamGap) continue;
+        triangles.insert(triangles.end(), {prim.indices[i], prim.indices[i + 1], prim.indices[i + 2]});
+      }
+      eng::rasterizeUv(size, size, prim.texcoords, triangles, [&](int x, int y, uint32_t tri, const glm::vec3& bary) {
+        glm::vec2 uv(0.0f);
+        for (size_t k = 0; k < 3; ++k) uv += bary[int(k)] * sourceUv[size_t(index[triangles[size_t(tri) * 3 + k]])];
+        for (size_t l = 0; l < images.size(); ++l) {
+          const glm::vec4 layer = layerImages[l](uv);
+          // The share by which the layer changes the head's skin, halved (0.5: unchanged).
+          const glm::vec3 modulation = glm::clamp(0.5f * glm::vec3(layer) / *tone, 0.0f, 1.0f);
+          painted[l].set(x, y, layer.a > 0.0f ? glm::vec4(modulation, layer.a) : glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
+        }
+        ++texels;
+      });
+    }
+    if (texels == 0) {
+      warn(skinMaterial, label + " has no UVs on the face's skin: the head's wrinkle and colour layers are not carried onto it");
+      continue;
+    }
+    std::vector<int> carried(images.size(), -1);  // source image -> face image
+    for (size_t l = 0; l < images.size(); ++l) {
+      painted[l].dilate(4);
+      eng::Image out;
+      out.name = m.name + " " + source.model->images[size_t(images[l])].name + " (carried)";
+      out.width = out.height = size;
+      out.rgba8 = painted[l].toSrgba8();
+      carried[l] = int(face.images.size());
+      face.images.push_back(std::move(out));
+    }
+    for (const eng::DetailLayer& layer : layers) {
+      const size_t l = size_t(std::find(images.begin(), images.end(), layer.image) - images.begin());
+      m.detailLayers.push_back({carried[l], layer.target, layer.strength, eng::DetailBlend::Modulate});
+    }
+    report.carried.push_back(label + ": " + std::to_string(layers.size()) + " wrinkle and colour layers over " +
+                             std::to_string(images.size()) + " images of " + std::to_string(size) + " px (" +
+                             std::to_string(texels) + " skin texels), modulating its own colour");
+  }
+  return report;
+}
+
+}  // namespace autorig

@@ -1,0 +1,169 @@
+// The head's wrinkle and colour layers (texture cross-blending) carried onto
+// a rigged face with its action units (autorig/detail_transfer.h): baked in
+// the face's own UVs, as modulations of its own colour.
+#include "autorig/detail_transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "autorig/face_frame.h"
+#include "autorig/posed_face.h"
+#include "engine/core/uv_raster.h"
+#include "tests/autorig/transfer_fixture.h"
+#include "tests/common/test_support.h"
+
+namespace {
+
+using transfer_fixture::headSource;
+using transfer_fixture::loadHead;
+using transfer_fixture::stripped;
+
+// The texel of `image` under `uv` (nearest, repeating): linear rgb, alpha.
+glm::vec4 texelAt(const eng::Image& image, glm::vec2 uv) {
+  uv -= glm::floor(uv);
+  const int x = std::clamp(int(uv.x * float(image.width)), 0, image.width - 1);
+  const int y = std::clamp(int(uv.y * float(image.height)), 0, image.height - 1);
+  const uint8_t* t = &image.rgba8[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
+  return {eng::srgbToLinear(t[0] / 255.0f), eng::srgbToLinear(t[1] / 255.0f), eng::srgbToLinear(t[2] / 255.0f),
+          t[3] / 255.0f};
+}
+
+const eng::Material* materialNamed(const eng::Model& model, const std::string& name) {
+  for (const eng::Material& m : model.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+// The head stripped of its targets and of its layers, rigged from itself:
+// its skin gets its nine layers back, modulating, on the same targets, and
+// each image's coverage lands where the head's own is painted (sampled at
+// the skin's vertices: the correspondence of the head with itself is near
+// the identity), a crease darkening the skin under it.
+TEST(DetailTransfer, TheHeadStrippedOfItsLayersGetsThemBack) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Material& m : face.materials) m.detailLayers.clear();
+  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  ASSERT_EQ(rigged->report.details.size(), 1u);
+  EXPECT_NE(rigged->report.details[0].find("material 'Skin': 9 wrinkle and colour layers over 5 images"), std::string::npos)
+      << rigged->report.details[0];
+  const eng::Material* own = materialNamed(*head, "Skin");
+  const eng::Material* carried = materialNamed(rigged->model, "Skin");
+  ASSERT_TRUE(own && carried);
+  ASSERT_EQ(carried->detailLayers.size(), own->detailLayers.size());
+  for (size_t l = 0; l < own->detailLayers.size(); ++l) {
+    EXPECT_EQ(carried->detailLayers[l].target, own->detailLayers[l].target);
+    EXPECT_EQ(carried->detailLayers[l].strength, own->detailLayers[l].strength);
+    EXPECT_EQ(carried->detailLayers[l].blend, eng::DetailBlend::Modulate);
+  }
+  const eng::Primitive& skin = rigged->model.meshes[0].primitives[0];
+  ASSERT_EQ(rigged->model.materials[size_t(skin.material)].name, "Skin");
+  for (size_t l = 0; l < own->detailLayers.size(); ++l) {
+    if (l > 0 && own->detailLayers[l].image == own->detailLayers[l - 1].image) continue;
+    const eng::Image& ownImage = head->images[size_t(own->detailLayers[l].image)];
+    const eng::Image& carriedImage = rigged->model.images[size_t(carried->detailLayers[l].image)];
+    SCOPED_TRACE(ownImage.name);
+    double ownCover = 0.0, apart = 0.0, creaseScale = 0.0;
+    size_t creases = 0;
+    for (const glm::vec2& uv : skin.texcoords) {
+      const glm::vec4 a = texelAt(ownImage, uv), b = texelAt(carriedImage, uv);
+      ownCover += a.a, apart += std::abs(a.a - b.a);
+      if (ownImage.name == "skin_forehead_furrows" && a.a > 0.4f && b.a > 0.4f) creaseScale += 2.0 * b.g, ++creases;
+    }
+    ASSERT_GT(ownCover, 1.0);
+    EXPECT_LT(apart / ownCover, 0.2) << "the carried coverage against the head's own, at the skin's vertices";
+    if (creases > 0) {
+      EXPECT_LT(creaseScale / double(creases), 0.85) << "a furrow darkens the skin under it";
+    }
+  }
+}
+
+// facecap draws its eyes and teeth with its skin's material and has no
+// texture (its UVs are quantized, 0-4095): the skin gets a copy of the
+// material of its own, its UVs fitted into [0, 1], and the furrows land on
+// its forehead, above its brows.
+TEST(DetailTransfer, FacecapsSkinGetsTheLayersOnAMaterialOfItsOwn) {
+  FACIAL_REQUIRE_SHARED();
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  auto loaded = eng::loadModel(testing_support::sharedDir() / "assets/facecap.glb");
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  const eng::Model bare = stripped(std::move(*loaded));
+  autorig::FaceLandmarks landmarks;
+  std::optional<autorig::TransferResult> rigged =
+      transfer_fixture::rigWithFixtureLandmarks(bare, autorig::poseAtRest(bare), "facecap.landmarks.json", &landmarks);
+  ASSERT_TRUE(rigged);
+  const eng::Model& model = rigged->model;
+  const autorig::PosedFace posed = autorig::poseAtRest(model);
+  const autorig::LandmarkFrame frame(landmarks);
+  const float brows = glm::dot(landmarks.points[19] + landmarks.points[24] - 2.0f * frame.origin(), frame.up()) * 0.5f;
+  size_t layered = 0, onTheForehead = 0, furrowed = 0;
+  for (const autorig::PosedPrimitive& pp : posed.primitives) {
+    const eng::Primitive& prim = model.meshes[pp.mesh].primitives[pp.primitive];
+    const eng::Material& m = model.materials[size_t(prim.material)];
+    if (m.detailLayers.empty()) continue;
+    ++layered;
+    EXPECT_EQ(m.name, "lambert5 (skin)");
+    EXPECT_FALSE(model.meshes[pp.mesh].targetNames.empty());
+    for (const glm::vec2& uv : prim.texcoords) EXPECT_TRUE(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f);
+    // Where on the face each furrowed texel lies (the creases are thinner
+    // than facecap's triangles: texels, not vertices).
+    const eng::Image& furrows = model.images[size_t(m.detailLayers[0].image)];  // AU1's
+    eng::rasterizeUv(furrows.width, furrows.height, prim.texcoords, prim.indices,
+                     [&](int x, int y, uint32_t tri, const glm::vec3& b) {
+                       if (furrows.rgba8[(size_t(y) * size_t(furrows.width) + size_t(x)) * 4 + 3] < 77) return;
+                       const uint32_t* t = &prim.indices[size_t(tri) * 3];
+                       const glm::vec3 p = b.x * pp.positions[t[0]] + b.y * pp.positions[t[1]] + b.z * pp.positions[t[2]];
+                       ++furrowed;
+                       onTheForehead += glm::dot(p - frame.origin(), frame.up()) > brows;
+                     });
+  }
+  EXPECT_EQ(layered, 1u) << "the skin alone";
+  ASSERT_GT(furrowed, 10u);
+  EXPECT_GT(double(onTheForehead) / double(furrowed), 0.95) << onTheForehead << " of " << furrowed;
+}
+
+// A face whose skin has layers of its own keeps them, untouched.
+TEST(DetailTransferValidity, AFaceWithLayersOfItsOwnKeepsThem) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const eng::Model face = stripped(*head);
+  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  EXPECT_TRUE(rigged->report.details.empty());
+  EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
+    return w == "material 'Skin' has detail layers of its own: the head's are not carried onto it";
+  }));
+  EXPECT_EQ(rigged->model.images.size(), head->images.size());
+  const eng::Material* skin = materialNamed(rigged->model, "Skin");
+  ASSERT_TRUE(skin);
+  ASSERT_EQ(skin->detailLayers.size(), 9u);
+  for (const eng::DetailLayer& layer : skin->detailLayers) EXPECT_EQ(layer.blend, eng::DetailBlend::Mix);
+}
+
+// A skin without UVs gets none, with a warning that says why.
+TEST(DetailTransferValidity, ASkinWithoutUvsGetsNoLayers) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Material& m : face.materials) m.detailLayers.clear();
+  for (eng::Mesh& mesh : face.meshes)
+    for (eng::Primitive& p : mesh.primitives) p.texcoords.clear();
+  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  EXPECT_TRUE(rigged->report.details.empty());
+  EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
+    return w.find("material 'Skin' has no UVs on the face's skin") != std::string::npos;
+  }));
+  for (const eng::Material& m : rigged->model.materials) EXPECT_TRUE(m.detailLayers.empty()) << m.name;
+}
+
+}  // namespace
