@@ -2,6 +2,7 @@
 // 0.x presets, or targets named after emotions such as RobotExpressive's
 // "Angry"/"Surprised"/"Sad"). The emotion channels drive them; AU45 drives blink.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "facial/runtime/rig/action_units.h"
@@ -56,6 +57,22 @@ std::vector<uint32_t> targetsOf(std::span<const std::string> names, Emotion emot
   return {};
 }
 
+// VRM 0.x has no surprised preset (1.0 has): such an avatar shows surprise
+// by the round open mouth of its vowel O ('o', VRM 1.0 'oh'), the one part
+// of surprise its presets have.
+constexpr std::array<std::string_view, 3> kRoundOpenMouth = {"oh", "o", "viseme_o"};
+constexpr float kSurpriseMouth = 0.8f;
+
+// The targets that show `emotion`, with their gains: its own at 1, else,
+// for surprise, the round open mouth.
+std::vector<std::pair<uint32_t, float>> shownBy(std::span<const std::string> names, Emotion emotion) {
+  std::vector<std::pair<uint32_t, float>> shown;
+  for (uint32_t t : targetsOf(names, emotion)) shown.emplace_back(t, 1.0f);
+  if (shown.empty() && emotion == Emotion::Surprise)
+    for (uint32_t t : findAll(names, kRoundOpenMouth)) shown.emplace_back(t, kSurpriseMouth);
+  return shown;
+}
+
 bool isExpressionName(const std::string& name) {
   const std::string k = key(name);
   auto in = [&](const auto& list) {
@@ -105,13 +122,21 @@ void mapExpressions(RigMappingBuilder& builder) {
     }
   }
 
+  if (targetsOf(names, Emotion::Surprise).empty()) {
+    const std::vector<std::pair<uint32_t, float>> mouth = shownBy(names, Emotion::Surprise);
+    for (auto [t, gain] : mouth) builder.add(emotionInput(Emotion::Surprise), t, gain);
+    if (!mouth.empty())
+      builder.note("surprise: the rig has no such expression; approximated as '" + names[mouth[0].first] + "' " +
+                   formatNumber(kSurpriseMouth) + " (the round open mouth)");
+  }
   for (const Fallback& f : kFallbacks) {
     if (!targetsOf(names, f.missing).empty()) continue;
     std::string how;
     for (auto [neighbour, gain] : {std::pair{f.a, f.gainA}, std::pair{f.b, f.gainB}}) {
-      const std::vector<uint32_t> targets = targetsOf(names, neighbour);
-      for (uint32_t t : targets) builder.add(emotionInput(f.missing), t, gain);
-      if (!targets.empty()) how += std::string(how.empty() ? "" : " + ") + "'" + names[targets[0]] + "' " + formatNumber(gain);
+      const std::vector<std::pair<uint32_t, float>> shown = shownBy(names, neighbour);
+      for (auto [t, own] : shown) builder.add(emotionInput(f.missing), t, gain * own);
+      if (!shown.empty())
+        how += std::string(how.empty() ? "" : " + ") + "'" + names[shown[0].first] + "' " + formatNumber(gain * shown[0].second);
     }
     if (!how.empty())
       builder.note(std::string(emotionName(f.missing)) + ": the rig has no such expression; approximated as " + how);

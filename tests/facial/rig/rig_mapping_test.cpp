@@ -144,6 +144,34 @@ TEST(RigMappingDetection, EmotionNamedTargetsTakeTheEmotionChannels) {
   EXPECT_NE(report.summary().find("scheme: emotion expressions (VRM)"), std::string::npos) << report.summary();
 }
 
+// VRM 0.x has no surprised preset: such an avatar (its presets only) shows
+// surprise by its vowel O's round open mouth, and fear, composed from
+// surprise and sorrow, opens it too. Before, surprise moved nothing.
+TEST(RigMappingDetection, AVrm0AvatarWithoutSurpriseOpensItsMouthRound) {
+  const std::vector<std::string> targets = {"neutral", "a", "i", "u", "e", "o", "blink", "joy", "angry", "sorrow", "fun"};
+  auto mapping = buildRigMapping(targets);
+  ASSERT_TRUE(mapping) << mapping.error().message;
+  EXPECT_EQ(mapping->scheme(), RigScheme::Expressions);
+  Buffers in;
+  std::vector<float> out(targets.size(), 0.0f);
+  in.emotions[static_cast<size_t>(Emotion::Surprise)] = 1.0f;
+  ASSERT_TRUE(mapping->apply(in.au, in.emotions, out));
+  EXPECT_FLOAT_EQ(out[5], 0.8f);
+  EXPECT_FLOAT_EQ(out[9], 0.0f);
+  in.emotions = std::vector<float>(kEmotionCount, 0.0f);
+  in.emotions[static_cast<size_t>(Emotion::Fear)] = 1.0f;
+  ASSERT_TRUE(mapping->apply(in.au, in.emotions, out));
+  EXPECT_FLOAT_EQ(out[5], 0.44f);
+  EXPECT_FLOAT_EQ(out[9], 0.45f);
+  const RigMappingReport& report = mapping->report();
+  for (const char* note : {"surprise: the rig has no such expression; approximated as 'o' 0.8 (the round open mouth)",
+                           "fear: the rig has no such expression; approximated as 'o' 0.44 + 'sorrow' 0.45"})
+    EXPECT_TRUE(std::any_of(report.notes.begin(), report.notes.end(),
+                            [&](const std::string& n) { return n.find(note) != std::string::npos; }))
+        << note << "\n" << report.summary();
+  EXPECT_FALSE(contains(report.unmappedInputs, "surprise"));
+}
+
 TEST(RigMappingDetection, SameNameOnSeveralMeshesDrivesAll) {
   const std::vector<std::string> targets = {"Face.blink", "Lashes.blink", "Face.joy"};
   auto mapping = buildRigMapping(targets);
