@@ -12,6 +12,11 @@
 namespace autorig {
 namespace {
 
+// Bounded work: the texels the skin's triangles' UV boxes cover, together,
+// at most this many times the image's (a face's UV islands barely overlap;
+// a hostile file's triangles may each span the whole square).
+constexpr double kMaxCoverage = 16.0;
+
 // Source UVs farther apart than this (UV units) at one target triangle's
 // corners straddle a seam of the source's UV map: the triangle's texels
 // would read the space between its islands, so they stay unpainted.
@@ -212,6 +217,24 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
     }
     // Unpainted texels hold the neutral modulation (0.5) so filtering at a
     // layer's edge fades its coverage, never its colour.
+    double boxes = 0.0;  // texels under the triangles' UV boxes
+    for (uint32_t p : primitives) {
+      const eng::Primitive& prim = primitiveOf(face, posed, p);
+      if (prim.texcoords.size() != prim.vertexCount()) continue;
+      for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+        glm::vec2 lo(INFINITY), hi(-INFINITY);
+        for (size_t k = 0; k < 3; ++k) {
+          const glm::vec2 uv = glm::clamp(prim.texcoords[prim.indices[i + k]], 0.0f, 1.0f);
+          lo = glm::min(lo, uv), hi = glm::max(hi, uv);
+        }
+        boxes += double(hi.x - lo.x) * double(hi.y - lo.y) * double(size) * double(size);
+      }
+    }
+    if (!(boxes <= kMaxCoverage * double(size) * double(size))) {
+      warn(skinMaterial, label + "'s UVs overlap " + std::to_string(int(boxes / (double(size) * size))) +
+                             " times over: the head's wrinkle and colour layers are not carried onto it");
+      continue;
+    }
     std::vector<eng::PaintImage> painted(images.size(), eng::PaintImage(size, size));
     for (eng::PaintImage& image : painted) std::fill(image.texels.begin(), image.texels.end(), glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
     size_t texels = 0;

@@ -166,4 +166,24 @@ TEST(DetailTransferValidity, ASkinWithoutUvsGetsNoLayers) {
   for (const eng::Material& m : rigged->model.materials) EXPECT_TRUE(m.detailLayers.empty()) << m.name;
 }
 
+// A skin whose triangles each span the whole UV square (a hostile or broken
+// file) would cost a pass over every texel per triangle: refused, with a
+// warning, in bounded time.
+TEST(DetailTransferValidity, UvsThatOverlapOverAndOverGetNoLayers) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Material& m : face.materials) m.detailLayers.clear();
+  eng::Primitive& skin = face.meshes[0].primitives[0];
+  for (size_t v = 0; v < skin.texcoords.size(); ++v)
+    skin.texcoords[v] = v % 3 == 0 ? glm::vec2(0.0f) : v % 3 == 1 ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
+  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  EXPECT_TRUE(rigged->report.details.empty());
+  EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
+    return w.find("material 'Skin''s UVs overlap") != std::string::npos;
+  }));
+}
+
 }  // namespace
