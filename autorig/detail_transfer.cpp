@@ -12,9 +12,10 @@
 namespace autorig {
 namespace {
 
-// Bounded work: the texels the skin's triangles' UV boxes cover, together,
-// at most this many times the image's (a face's UV islands barely overlap;
-// a hostile file's triangles may each span the whole square).
+// Bounded work: the skin's triangles' UV boxes cover the unit square at
+// most this many times over together (a face's UV islands barely overlap;
+// a hostile file's triangles may each span the whole square, a pass over
+// every texel each).
 constexpr double kMaxCoverage = 16.0;
 
 // Source UVs farther apart than this (UV units) at one target triangle's
@@ -107,35 +108,46 @@ bool meshesHoldTheTargets(const eng::Model& face, int material, const std::vecto
   return true;
 }
 
-}  // namespace
+// The source's layered skin material (the head has one), its layers'
+// images in order, and the skin tone they were painted over.
+struct LayeredSource {
+  int material = -1;
+  std::vector<int> images;
+  glm::vec3 tone{0.0f};
+};
 
-DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt,
-                                       const Correspondence& corr, const PosedFace& posed, eng::Model& face,
-                                       const DetailTransferOptions& options) {
-  DetailTransferReport report;
-  // The source's layered skin material (the head has one).
-  int sourceMaterial = -1;
+std::optional<LayeredSource> layeredSourceOf(const SourceFace& source, const FaceSurface& src) {
+  LayeredSource layered;
   for (const FaceSurface::VertexRef& ref : src.vertices) {
     const int m = primitiveOf(*source.model, source.posed, ref.primitive).material;
     if (m >= 0 && !source.model->materials[size_t(m)].detailLayers.empty()) {
-      sourceMaterial = m;
+      layered.material = m;
       break;
     }
   }
-  if (sourceMaterial < 0) return report;
-  const std::vector<eng::DetailLayer>& layers = source.model->materials[size_t(sourceMaterial)].detailLayers;
-  std::vector<int> images;  // the source images the layers use, in order
-  for (const eng::DetailLayer& layer : layers)
-    if (std::find(images.begin(), images.end(), layer.image) == images.end()) images.push_back(layer.image);
-  for (int image : images)
+  if (layered.material < 0) return std::nullopt;
+  for (const eng::DetailLayer& layer : source.model->materials[size_t(layered.material)].detailLayers)
+    if (std::find(layered.images.begin(), layered.images.end(), layer.image) == layered.images.end())
+      layered.images.push_back(layer.image);
+  for (int image : layered.images)
     if (image < 0 || size_t(image) >= source.model->images.size() || !decoded(source.model->images[size_t(image)]))
-      return report;
-  const std::optional<glm::vec3> tone = skinToneOf(source, src, sourceMaterial);
-  if (!tone) return report;
+      return std::nullopt;
+  const std::optional<glm::vec3> tone = skinToneOf(source, src, layered.material);
+  if (!tone) return std::nullopt;
+  layered.tone = *tone;
+  return layered;
+}
 
-  // Each target skin vertex's point in the source's UVs, where its match lies on the layered skin.
-  std::vector<glm::vec2> sourceUv(tgt.vertices.size(), glm::vec2(0.0f));
-  std::vector<uint8_t> mapped(tgt.vertices.size(), 0);
+// Each target skin vertex's point in the source's UVs, where its match lies
+// on the layered skin (`mapped`: it does).
+struct SourceUvs {
+  std::vector<glm::vec2> uv;
+  std::vector<uint8_t> mapped;
+};
+
+SourceUvs sourceUvsOf(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const Correspondence& corr,
+                      int material) {
+  SourceUvs out{std::vector<glm::vec2>(tgt.vertices.size(), glm::vec2(0.0f)), std::vector<uint8_t>(tgt.vertices.size(), 0)};
   for (size_t v = 0; v < tgt.vertices.size(); ++v) {
     const ClosestPoint& match = corr.matches[v];
     if (tgt.parts[v] != FacePart::Skin || !match.found) continue;
@@ -144,11 +156,95 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
     for (int k = 0; k < 3 && onLayers; ++k) {
       const FaceSurface::VertexRef& ref = src.vertices[src.triangles[match.triangle][size_t(k)]];
       const eng::Primitive& prim = primitiveOf(*source.model, source.posed, ref.primitive);
-      onLayers = prim.material == sourceMaterial && prim.texcoords.size() == prim.vertexCount();
+      onLayers = prim.material == material && prim.texcoords.size() == prim.vertexCount();
       if (onLayers) uv += match.barycentric[k] * prim.texcoords[ref.vertex];
     }
-    if (onLayers) sourceUv[v] = uv, mapped[v] = 1;
+    if (onLayers) out.uv[v] = uv, out.mapped[v] = 1;
   }
+  return out;
+}
+
+// How many times over the triangles' UV boxes cover the unit square.
+double uvCoverage(const eng::Primitive& prim) {
+  double boxes = 0.0;
+  for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+    glm::vec2 lo(INFINITY), hi(-INFINITY);
+    for (size_t k = 0; k < 3; ++k) {
+      const glm::vec2 uv = glm::clamp(prim.texcoords[prim.indices[i + k]], 0.0f, 1.0f);
+      lo = glm::min(lo, uv), hi = glm::max(hi, uv);
+    }
+    boxes += double(hi.x - lo.x) * double(hi.y - lo.y);
+  }
+  return boxes;
+}
+
+// The layers baked into `painted` (one image per source image) through one
+// target primitive's UVs; `index`: its vertices' indices in tgt (-1: not
+// skin). Returns the texels painted.
+size_t bakePrimitive(const eng::Primitive& prim, const std::vector<int32_t>& index, const SourceUvs& at,
+                     const std::vector<Sampler>& layers, const glm::vec3& tone, std::vector<eng::PaintImage>& painted) {
+  std::vector<uint32_t> triangles;  // those wholly of mapped skin, not across a seam of the source's UVs
+  for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+    bool whole = true;
+    for (size_t k = 0; k < 3 && whole; ++k) {
+      const uint32_t vertex = prim.indices[i + k];
+      whole = vertex < index.size() && index[vertex] >= 0 && at.mapped[size_t(index[vertex])];
+    }
+    if (!whole) continue;
+    const glm::vec2 a = at.uv[size_t(index[prim.indices[i]])], b = at.uv[size_t(index[prim.indices[i + 1]])],
+                    c = at.uv[size_t(index[prim.indices[i + 2]])];
+    if (std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)}) > kSeamGap) continue;
+    triangles.insert(triangles.end(), {prim.indices[i], prim.indices[i + 1], prim.indices[i + 2]});
+  }
+  size_t texels = 0;
+  const int size = painted.front().width;
+  eng::rasterizeUv(size, size, prim.texcoords, triangles, [&](int x, int y, uint32_t tri, const glm::vec3& bary) {
+    glm::vec2 uv(0.0f);
+    for (size_t k = 0; k < 3; ++k) uv += bary[int(k)] * at.uv[size_t(index[triangles[size_t(tri) * 3 + k]])];
+    for (size_t l = 0; l < layers.size(); ++l) {
+      const glm::vec4 layer = layers[l](uv);
+      // The share by which the layer changes the head's skin, halved (0.5: unchanged).
+      const glm::vec3 modulation = glm::clamp(0.5f * glm::vec3(layer) / tone, 0.0f, 1.0f);
+      painted[l].set(x, y, layer.a > 0.0f ? glm::vec4(modulation, layer.a) : glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
+    }
+    ++texels;
+  });
+  return texels;
+}
+
+// The material the layers go on: `material` itself, or, where meshes
+// without the layers' targets share it (facecap draws its eyes and teeth
+// with its skin's material), a copy the skin's primitives get to
+// themselves. -1 when the skin's own meshes lack the targets.
+int materialOfTheSkin(eng::Model& face, const PosedFace& posed, const std::vector<uint32_t>& primitives, int material,
+                      const std::vector<eng::DetailLayer>& layers) {
+  if (meshesHoldTheTargets(face, material, layers)) return material;
+  for (uint32_t p : primitives)
+    if (const PosedPrimitive& pp = posed.primitives[p]; !std::all_of(layers.begin(), layers.end(), [&](const eng::DetailLayer& l) {
+          const std::vector<std::string>& names = face.meshes[pp.mesh].targetNames;
+          return std::find(names.begin(), names.end(), l.target) != names.end();
+        }))
+      return -1;
+  eng::Material copy = face.materials[size_t(material)];
+  copy.name += " (skin)";
+  face.materials.push_back(std::move(copy));
+  for (uint32_t p : primitives) {
+    const PosedPrimitive& pp = posed.primitives[p];
+    face.meshes[pp.mesh].primitives[pp.primitive].material = int(face.materials.size() - 1);
+  }
+  return int(face.materials.size() - 1);
+}
+
+}  // namespace
+
+DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt,
+                                       const Correspondence& corr, const PosedFace& posed, eng::Model& face,
+                                       const DetailTransferOptions& options) {
+  DetailTransferReport report;
+  const std::optional<LayeredSource> layered = layeredSourceOf(source, src);
+  if (!layered) return report;
+  const std::vector<eng::DetailLayer>& layers = source.model->materials[size_t(layered->material)].detailLayers;
+  const SourceUvs at = sourceUvsOf(source, src, tgt, corr, layered->material);
   // posed primitive -> its vertices' indices in tgt (-1: not skin).
   std::vector<std::vector<int32_t>> tgtIndex(posed.primitives.size());
   for (size_t v = 0; v < tgt.vertices.size(); ++v) {
@@ -165,47 +261,25 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
   // or an ear with a material of its own is left quietly.
   std::map<int, size_t> mappedByMaterial;
   for (size_t v = 0; v < tgt.vertices.size(); ++v)
-    if (mapped[v]) ++mappedByMaterial[primitiveOf(face, posed, tgt.vertices[v].primitive).material];
+    if (at.mapped[v]) ++mappedByMaterial[primitiveOf(face, posed, tgt.vertices[v].primitive).material];
   int mainMaterial = -1;
   for (const auto& [material, count] : mappedByMaterial)
     if (mainMaterial < 0 || count > mappedByMaterial[mainMaterial]) mainMaterial = material;
-  auto warn = [&](int material, std::string line) {
-    if (material == mainMaterial) report.warnings.push_back(std::move(line));
+  auto warn = [&](int material, const std::string& line) {
+    if (material == mainMaterial) report.warnings.push_back(line + ": the head's wrinkle and colour layers are not carried onto it");
   };
 
-  std::vector<Sampler> layerImages;
-  for (int image : images) layerImages.emplace_back(source.model->images[size_t(image)]);
-  for (const auto& [skinMaterial, primitives] : skinByMaterial) {
-    if (skinMaterial < 0) continue;
-    int material = skinMaterial;
-    const std::string label = "material '" + face.materials[size_t(material)].name + "'";
-    if (!face.materials[size_t(material)].detailLayers.empty()) {
-      warn(material, label + " has detail layers of its own: the head's are not carried onto it");
+  std::vector<Sampler> samplers;
+  for (int image : layered->images) samplers.emplace_back(source.model->images[size_t(image)]);
+  const int size = options.size;
+  for (const auto& [material, primitives] : skinByMaterial) {
+    if (material < 0) continue;
+    const eng::Material& m = face.materials[size_t(material)];
+    const std::string label = "material '" + m.name + "'";
+    if (!m.detailLayers.empty()) {
+      warn(material, label + " has detail layers of its own");
       continue;
     }
-    if (!meshesHoldTheTargets(face, material, layers)) {
-      // Shared with meshes the targets are not on (facecap draws its eyes
-      // and teeth with its skin's material): the skin gets a copy of its own.
-      eng::Material copy = face.materials[size_t(material)];
-      copy.name += " (skin)";
-      material = int(face.materials.size());
-      face.materials.push_back(std::move(copy));
-      for (uint32_t p : primitives) {
-        const PosedPrimitive& pp = posed.primitives[p];
-        face.meshes[pp.mesh].primitives[pp.primitive].material = material;
-      }
-      if (!meshesHoldTheTargets(face, material, layers)) {
-        for (uint32_t p : primitives) {
-          const PosedPrimitive& pp = posed.primitives[p];
-          face.meshes[pp.mesh].primitives[pp.primitive].material = skinMaterial;
-        }
-        face.materials.pop_back();
-        warn(skinMaterial, label + "'s skin is on a mesh without the made targets: the head's wrinkle and colour layers are not carried onto it");
-        continue;
-      }
-    }
-    eng::Material& m = face.materials[size_t(material)];
-    const int size = options.size;
     if (m.baseColorImage < 0 || size_t(m.baseColorImage) >= face.images.size() || !decoded(face.images[size_t(m.baseColorImage)])) {
       // No texture reads the UVs: fitted into [0, 1] here, as the display's
       // dressing would fit them for its painted brows, the layers and the
@@ -215,78 +289,47 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
         eng::fitIntoUnitSquare(face.meshes[pp.mesh].primitives[pp.primitive].texcoords);
       }
     }
+    double coverage = 0.0;
+    for (uint32_t p : primitives)
+      if (const eng::Primitive& prim = primitiveOf(face, posed, p); prim.texcoords.size() == prim.vertexCount())
+        coverage += uvCoverage(prim);
+    if (!(coverage <= kMaxCoverage)) {
+      warn(material, label + "'s UVs overlap " + std::to_string(int(coverage)) + " times over");
+      continue;
+    }
     // Unpainted texels hold the neutral modulation (0.5) so filtering at a
     // layer's edge fades its coverage, never its colour.
-    double boxes = 0.0;  // texels under the triangles' UV boxes
-    for (uint32_t p : primitives) {
-      const eng::Primitive& prim = primitiveOf(face, posed, p);
-      if (prim.texcoords.size() != prim.vertexCount()) continue;
-      for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
-        glm::vec2 lo(INFINITY), hi(-INFINITY);
-        for (size_t k = 0; k < 3; ++k) {
-          const glm::vec2 uv = glm::clamp(prim.texcoords[prim.indices[i + k]], 0.0f, 1.0f);
-          lo = glm::min(lo, uv), hi = glm::max(hi, uv);
-        }
-        boxes += double(hi.x - lo.x) * double(hi.y - lo.y) * double(size) * double(size);
-      }
-    }
-    if (!(boxes <= kMaxCoverage * double(size) * double(size))) {
-      warn(skinMaterial, label + "'s UVs overlap " + std::to_string(int(boxes / (double(size) * size))) +
-                             " times over: the head's wrinkle and colour layers are not carried onto it");
-      continue;
-    }
-    std::vector<eng::PaintImage> painted(images.size(), eng::PaintImage(size, size));
+    std::vector<eng::PaintImage> painted(layered->images.size(), eng::PaintImage(size, size));
     for (eng::PaintImage& image : painted) std::fill(image.texels.begin(), image.texels.end(), glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
     size_t texels = 0;
-    for (uint32_t p : primitives) {
-      const eng::Primitive& prim = primitiveOf(face, posed, p);
-      if (prim.texcoords.size() != prim.vertexCount()) continue;
-      const std::vector<int32_t>& index = tgtIndex[p];
-      std::vector<uint32_t> triangles;  // those wholly of mapped skin
-      for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
-        bool whole = true;
-        for (size_t k = 0; k < 3 && whole; ++k) {
-          const uint32_t vertex = prim.indices[i + k];
-          whole = vertex < index.size() && index[vertex] >= 0 && mapped[size_t(index[vertex])];
-        }
-        if (!whole) continue;
-        const glm::vec2 a = sourceUv[size_t(index[prim.indices[i]])], b = sourceUv[size_t(index[prim.indices[i + 1]])],
-                        c = sourceUv[size_t(index[prim.indices[i + 2]])];
-        if (std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)}) > kSeamGap) continue;
-        triangles.insert(triangles.end(), {prim.indices[i], prim.indices[i + 1], prim.indices[i + 2]});
-      }
-      eng::rasterizeUv(size, size, prim.texcoords, triangles, [&](int x, int y, uint32_t tri, const glm::vec3& bary) {
-        glm::vec2 uv(0.0f);
-        for (size_t k = 0; k < 3; ++k) uv += bary[int(k)] * sourceUv[size_t(index[triangles[size_t(tri) * 3 + k]])];
-        for (size_t l = 0; l < images.size(); ++l) {
-          const glm::vec4 layer = layerImages[l](uv);
-          // The share by which the layer changes the head's skin, halved (0.5: unchanged).
-          const glm::vec3 modulation = glm::clamp(0.5f * glm::vec3(layer) / *tone, 0.0f, 1.0f);
-          painted[l].set(x, y, layer.a > 0.0f ? glm::vec4(modulation, layer.a) : glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
-        }
-        ++texels;
-      });
-    }
+    for (uint32_t p : primitives)
+      if (const eng::Primitive& prim = primitiveOf(face, posed, p); prim.texcoords.size() == prim.vertexCount())
+        texels += bakePrimitive(prim, tgtIndex[p], at, samplers, layered->tone, painted);
     if (texels == 0) {
-      warn(skinMaterial, label + " has no UVs on the face's skin: the head's wrinkle and colour layers are not carried onto it");
+      warn(material, label + " has no UVs on the face's skin");
       continue;
     }
-    std::vector<int> carried(images.size(), -1);  // source image -> face image
-    for (size_t l = 0; l < images.size(); ++l) {
+    const int skin = materialOfTheSkin(face, posed, primitives, material, layers);
+    if (skin < 0) {
+      warn(material, label + "'s skin is on a mesh without the made targets");
+      continue;
+    }
+    std::vector<int> carried;  // per source image, the face's
+    for (size_t l = 0; l < layered->images.size(); ++l) {
       painted[l].dilate(4);
       eng::Image out;
-      out.name = m.name + " " + source.model->images[size_t(images[l])].name + " (carried)";
+      out.name = face.materials[size_t(skin)].name + " " + source.model->images[size_t(layered->images[l])].name + " (carried)";
       out.width = out.height = size;
       out.rgba8 = painted[l].toSrgba8();
-      carried[l] = int(face.images.size());
+      carried.push_back(int(face.images.size()));
       face.images.push_back(std::move(out));
     }
     for (const eng::DetailLayer& layer : layers) {
-      const size_t l = size_t(std::find(images.begin(), images.end(), layer.image) - images.begin());
-      m.detailLayers.push_back({carried[l], layer.target, layer.strength, eng::DetailBlend::Modulate});
+      const size_t l = size_t(std::find(layered->images.begin(), layered->images.end(), layer.image) - layered->images.begin());
+      face.materials[size_t(skin)].detailLayers.push_back({carried[l], layer.target, layer.strength, eng::DetailBlend::Modulate});
     }
-    report.carried.push_back(label + ": " + std::to_string(layers.size()) + " wrinkle and colour layers over " +
-                             std::to_string(images.size()) + " images of " + std::to_string(size) + " px (" +
+    report.carried.push_back("material '" + face.materials[size_t(skin)].name + "': " + std::to_string(layers.size()) + " wrinkle and colour layers over " +
+                             std::to_string(layered->images.size()) + " images of " + std::to_string(size) + " px (" +
                              std::to_string(texels) + " skin texels), modulating its own colour");
   }
   return report;

@@ -139,7 +139,7 @@ TEST(DetailTransferValidity, AFaceWithLayersOfItsOwnKeepsThem) {
   ASSERT_TRUE(rigged) << rigged.error().message;
   EXPECT_TRUE(rigged->report.details.empty());
   EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
-    return w == "material 'Skin' has detail layers of its own: the head's are not carried onto it";
+    return w == "material 'Skin' has detail layers of its own: the head's wrinkle and colour layers are not carried onto it";
   }));
   EXPECT_EQ(rigged->model.images.size(), head->images.size());
   const eng::Material* skin = materialNamed(rigged->model, "Skin");
