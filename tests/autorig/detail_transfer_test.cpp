@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -37,23 +38,40 @@ const eng::Material* materialNamed(const eng::Model& model, const std::string& n
   return nullptr;
 }
 
+// The built-in head stripped of its targets (and of its layers, unless
+// `keepLayers`), changed by `edit`, rigged from itself; `head` keeps the
+// head as loaded. Nullopt, with a test failure, when a step fails.
+std::optional<autorig::TransferResult> headRiggedOntoItself(eng::Model& head, bool keepLayers,
+                                                            const std::function<void(eng::Model&)>& edit = {}) {
+  std::optional<eng::Model> loaded = loadHead();
+  if (!loaded) return std::nullopt;
+  head = std::move(*loaded);
+  const autorig::SourceFace source = headSource(head);
+  eng::Model face = stripped(head);
+  if (!keepLayers)
+    for (eng::Material& m : face.materials) m.detailLayers.clear();
+  if (edit) edit(face);
+  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
+  if (!rigged) {
+    ADD_FAILURE() << rigged.error().message;
+    return std::nullopt;
+  }
+  return std::move(*rigged);
+}
+
 // The head stripped of its targets and of its layers, rigged from itself:
 // its skin gets its nine layers back, modulating, on the same targets, and
 // each image's coverage lands where the head's own is painted (sampled at
 // the skin's vertices: the correspondence of the head with itself is near
 // the identity), a crease darkening the skin under it.
 TEST(DetailTransfer, TheHeadStrippedOfItsLayersGetsThemBack) {
-  std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  eng::Model face = stripped(*head);
-  for (eng::Material& m : face.materials) m.detailLayers.clear();
-  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Model head;
+  const std::optional<autorig::TransferResult> rigged = headRiggedOntoItself(head, false);
+  ASSERT_TRUE(rigged);
   ASSERT_EQ(rigged->report.details.size(), 1u);
   EXPECT_NE(rigged->report.details[0].find("material 'Skin': 9 wrinkle and colour layers over 5 images"), std::string::npos)
       << rigged->report.details[0];
-  const eng::Material* own = materialNamed(*head, "Skin");
+  const eng::Material* own = materialNamed(head, "Skin");
   const eng::Material* carried = materialNamed(rigged->model, "Skin");
   ASSERT_TRUE(own && carried);
   ASSERT_EQ(carried->detailLayers.size(), own->detailLayers.size());
@@ -66,7 +84,7 @@ TEST(DetailTransfer, TheHeadStrippedOfItsLayersGetsThemBack) {
   ASSERT_EQ(rigged->model.materials[size_t(skin.material)].name, "Skin");
   for (size_t l = 0; l < own->detailLayers.size(); ++l) {
     if (l > 0 && own->detailLayers[l].image == own->detailLayers[l - 1].image) continue;
-    const eng::Image& ownImage = head->images[size_t(own->detailLayers[l].image)];
+    const eng::Image& ownImage = head.images[size_t(own->detailLayers[l].image)];
     const eng::Image& carriedImage = rigged->model.images[size_t(carried->detailLayers[l].image)];
     SCOPED_TRACE(ownImage.name);
     double ownCover = 0.0, apart = 0.0, creaseScale = 0.0;
@@ -90,8 +108,6 @@ TEST(DetailTransfer, TheHeadStrippedOfItsLayersGetsThemBack) {
 // its forehead, above its brows.
 TEST(DetailTransfer, FacecapsSkinGetsTheLayersOnAMaterialOfItsOwn) {
   FACIAL_REQUIRE_SHARED();
-  std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
   auto loaded = eng::loadModel(testing_support::sharedDir() / "assets/facecap.glb");
   ASSERT_TRUE(loaded) << loaded.error().message;
   const eng::Model bare = stripped(std::move(*loaded));
@@ -131,17 +147,14 @@ TEST(DetailTransfer, FacecapsSkinGetsTheLayersOnAMaterialOfItsOwn) {
 
 // A face whose skin has layers of its own keeps them, untouched.
 TEST(DetailTransferValidity, AFaceWithLayersOfItsOwnKeepsThem) {
-  std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  const eng::Model face = stripped(*head);
-  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Model head;
+  const std::optional<autorig::TransferResult> rigged = headRiggedOntoItself(head, true);
+  ASSERT_TRUE(rigged);
   EXPECT_TRUE(rigged->report.details.empty());
   EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
     return w == "material 'Skin' has detail layers of its own: the head's wrinkle and colour layers are not carried onto it";
   }));
-  EXPECT_EQ(rigged->model.images.size(), head->images.size());
+  EXPECT_EQ(rigged->model.images.size(), head.images.size());
   const eng::Material* skin = materialNamed(rigged->model, "Skin");
   ASSERT_TRUE(skin);
   ASSERT_EQ(skin->detailLayers.size(), 9u);
@@ -150,15 +163,12 @@ TEST(DetailTransferValidity, AFaceWithLayersOfItsOwnKeepsThem) {
 
 // A skin without UVs gets none, with a warning that says why.
 TEST(DetailTransferValidity, ASkinWithoutUvsGetsNoLayers) {
-  std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  eng::Model face = stripped(*head);
-  for (eng::Material& m : face.materials) m.detailLayers.clear();
-  for (eng::Mesh& mesh : face.meshes)
-    for (eng::Primitive& p : mesh.primitives) p.texcoords.clear();
-  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Model head;
+  const std::optional<autorig::TransferResult> rigged = headRiggedOntoItself(head, false, [](eng::Model& face) {
+    for (eng::Mesh& mesh : face.meshes)
+      for (eng::Primitive& p : mesh.primitives) p.texcoords.clear();
+  });
+  ASSERT_TRUE(rigged);
   EXPECT_TRUE(rigged->report.details.empty());
   EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
     return w.find("material 'Skin' has no UVs on the face's skin") != std::string::npos;
@@ -170,16 +180,13 @@ TEST(DetailTransferValidity, ASkinWithoutUvsGetsNoLayers) {
 // file) would cost a pass over every texel per triangle: refused, with a
 // warning, in bounded time.
 TEST(DetailTransferValidity, UvsThatOverlapOverAndOverGetNoLayers) {
-  std::optional<eng::Model> head = loadHead();
-  ASSERT_TRUE(head);
-  const autorig::SourceFace source = headSource(*head);
-  eng::Model face = stripped(*head);
-  for (eng::Material& m : face.materials) m.detailLayers.clear();
-  eng::Primitive& skin = face.meshes[0].primitives[0];
-  for (size_t v = 0; v < skin.texcoords.size(); ++v)
-    skin.texcoords[v] = v % 3 == 0 ? glm::vec2(0.0f) : v % 3 == 1 ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
-  auto rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, source.parts);
-  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Model head;
+  const std::optional<autorig::TransferResult> rigged = headRiggedOntoItself(head, false, [](eng::Model& face) {
+    eng::Primitive& skin = face.meshes[0].primitives[0];
+    for (size_t v = 0; v < skin.texcoords.size(); ++v)
+      skin.texcoords[v] = v % 3 == 0 ? glm::vec2(0.0f) : v % 3 == 1 ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
+  });
+  ASSERT_TRUE(rigged);
   EXPECT_TRUE(rigged->report.details.empty());
   EXPECT_TRUE(std::any_of(rigged->report.warnings.begin(), rigged->report.warnings.end(), [](const std::string& w) {
     return w.find("material 'Skin''s UVs overlap") != std::string::npos;
