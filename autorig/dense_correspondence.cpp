@@ -1,15 +1,23 @@
 #include "autorig/dense_correspondence.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace autorig {
 namespace {
 
 constexpr uint32_t kNotGathered = UINT32_MAX;
+
+struct PositionBits {
+  size_t operator()(const std::array<uint32_t, 3>& bits) const {
+    return (size_t(bits[0]) * 73856093u) ^ (size_t(bits[1]) * 19349663u) ^ (size_t(bits[2]) * 83492791u);
+  }
+};
 
 // Within this distance of a closing line (eye spans) a vertex's side is the
 // mesh's to say: about the lips' and the lids' thickness.
@@ -78,7 +86,11 @@ std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkF
   using Entry = std::pair<float, uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
   std::vector<bool> unsure(n, false);
+  // A seam's copies are one point of the surface: labelled once, through the
+  // triangles on both sides (else a copy inside the mouth, reached round its
+  // corner, takes the other lip from the one on the lip's face).
   for (size_t v = 0; v < n; ++v) {
+    if (surface.rootOf(v) != v) continue;
     float margin = 0.0f;
     regions[v] = frame.region(surface.positions[v], &margin);
     if (regions[v] == FaceRegion::None) continue;
@@ -91,7 +103,10 @@ std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkF
   }
   std::vector<std::vector<uint32_t>> neighbours(n);
   for (const auto& t : surface.triangles)
-    for (int k = 0; k < 3; ++k) neighbours[t[size_t(k)]].push_back(t[size_t((k + 1) % 3)]), neighbours[t[size_t((k + 1) % 3)]].push_back(t[size_t(k)]);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = surface.rootOf(t[size_t(k)]), b = surface.rootOf(t[size_t((k + 1) % 3)]);
+      neighbours[a].push_back(b), neighbours[b].push_back(a);
+    }
   // Dijkstra from the sure vertices into the unsure ones along edges.
   while (!front.empty()) {
     const auto [distance, v] = front.top();
@@ -106,6 +121,7 @@ std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkF
       front.push({through, w});
     }
   }
+  for (size_t v = 0; v < n; ++v) regions[v] = regions[surface.rootOf(v)];
   return regions;
 }
 
@@ -125,6 +141,7 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
       surface.vertices.push_back({uint32_t(pi), uint32_t(v)});
       surface.parts.push_back(vertexParts[v]);
       surface.positions.push_back(p.positions[v]);
+      surface.seamRoot.push_back(index[v]);
     }
     for (size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
       std::array<uint32_t, 3> t{};
@@ -135,6 +152,14 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
         if (whole) t[size_t(k)] = index[v];
       }
       if (whole) surface.triangles.push_back(t);
+    }
+    if (primitive.texcoords.size() != primitive.vertexCount()) continue;
+    // Copies sit at bit-identical positions: an exporter duplicates a vertex, it does not move it.
+    std::unordered_map<std::array<uint32_t, 3>, uint32_t, PositionBits> first;
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      if (index[v] == kNotGathered) continue;
+      const auto [at, added] = first.try_emplace(std::bit_cast<std::array<uint32_t, 3>>(p.positions[v]), uint32_t(v));
+      if (!added && primitive.texcoords[at->second] != primitive.texcoords[v]) surface.seamRoot[index[v]] = index[at->second];
     }
   }
   return surface;

@@ -34,6 +34,13 @@ struct FaceSurface {
   std::vector<FacePart> parts;       // per vertex
   std::vector<glm::vec3> positions;  // per vertex, world space at rest
   std::vector<std::array<uint32_t, 3>> triangles;  // into vertices; only triangles wholly of the parts
+  // Per vertex, the first of its UV seam's copies (itself when it has none):
+  // vertices of one primitive at one position with different UVs are one
+  // point of the surface in two islands of its texture. Copies with the
+  // same UVs are a split the author made (a slit mouth, a closed lid's
+  // margins, a cut made to open them) and stay apart. Empty: no copies.
+  std::vector<uint32_t> seamRoot;
+  uint32_t rootOf(size_t v) const { return seamRoot.empty() ? uint32_t(v) : seamRoot[v]; }
 };
 
 // The vertices of `model` whose part is one of `wanted` (FaceParts order).
@@ -42,9 +49,9 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
 
 // Each vertex's region: by the landmarks' closing lines where it is clearly
 // above or below one, and near a line by the mesh instead (the region of the
-// nearest clearly labelled vertex along the surface's edges), because the
-// lips of a closed mouth and the lids of a closed eye meet there, often as
-// separate vertices at the same places.
+// nearest clearly labelled vertex along the surface's edges, a UV seam's
+// copies as one), because the lips of a closed mouth and the lids of a
+// closed eye meet there, often as separate vertices at the same places.
 std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame);
 
 // The landmark pairs a warp from one face to another goes through. Landmarks

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <limits>
 #include <span>
-#include <unordered_map>
 #include <string_view>
 
 #include <Eigen/Dense>
@@ -541,14 +540,84 @@ void lowerTeethWithTheLip(const JawTurn& turn, float share, const FaceSurface& t
 // chin does). Scaled within [1/kJawScale, kJawScale].
 constexpr float kJawScale = 2.5f;
 
+// A jaw unit opens the lips as one sheet of skin. Each skin vertex about the
+// mouth takes the lip it is labelled with, and where the lips' skin folds at
+// the meeting line's height (the lining inside the corners, a lip's rim) or
+// where a seam's copies were labelled apart, neighbours take different lips:
+// carried as they are, the jaw opens triangles there into slivers a lip's
+// height long and notches the rim. A few relaxation passes about each tear
+// (an edge the unit stretches past kTear times its length) grade the step
+// over a few edges, as skin stretches; the rest is held. Only jaw units: the
+// others move the lips by millimetres, as the source's own do.
+constexpr int kTearPasses = 8;
+constexpr float kTear = 3.0f;
+
+struct LipSheet {
+  std::vector<uint32_t> vertices;                 // skin about the mouth, a UV seam's copies by their first
+  std::vector<std::vector<uint32_t>> neighbours;  // per listed vertex, the vertices across its edges (seam copies by their first)
+};
+
+LipSheet lipSheetOf(const FaceSurface& tgt, const std::vector<FaceRegion>& regions) {
+  LipSheet sheet;
+  std::vector<int32_t> slot(tgt.positions.size(), -1);
+  for (uint32_t v = 0; v < tgt.positions.size(); ++v) {
+    const bool lip = regions[v] == FaceRegion::UpperLip || regions[v] == FaceRegion::LowerLip;
+    if (tgt.rootOf(v) != v || !lip || tgt.parts[v] != FacePart::Skin) continue;
+    slot[v] = int32_t(sheet.vertices.size());
+    sheet.vertices.push_back(v);
+  }
+  sheet.neighbours.resize(sheet.vertices.size());
+  for (const auto& t : tgt.triangles)
+    for (size_t k = 0; k < 3; ++k) {
+      const uint32_t a = tgt.rootOf(t[k]), b = tgt.rootOf(t[(k + 1) % 3]);
+      if (slot[a] >= 0) sheet.neighbours[size_t(slot[a])].push_back(b);
+      if (slot[b] >= 0) sheet.neighbours[size_t(slot[b])].push_back(a);
+    }
+  for (std::vector<uint32_t>& n : sheet.neighbours) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return sheet;
+}
+
+void mendTears(const LipSheet& sheet, const FaceSurface& tgt, std::vector<glm::vec3>& deltas) {
+  std::vector<int32_t> slot(tgt.positions.size(), -1);
+  for (size_t i = 0; i < sheet.vertices.size(); ++i) slot[sheet.vertices[i]] = int32_t(i);
+  // The torn vertices and their neighbours relax; every other vertex holds.
+  std::vector<bool> relaxed(sheet.vertices.size(), false);
+  for (size_t i = 0; i < sheet.vertices.size(); ++i) {
+    const uint32_t v = sheet.vertices[i];
+    const bool torn = std::any_of(sheet.neighbours[i].begin(), sheet.neighbours[i].end(), [&](uint32_t n) {
+      return glm::length(deltas[v] - deltas[n]) > kTear * glm::length(tgt.positions[v] - tgt.positions[n]);
+    });
+    if (!torn) continue;
+    relaxed[i] = true;
+    for (uint32_t n : sheet.neighbours[i])
+      if (slot[n] >= 0) relaxed[size_t(slot[n])] = true;
+  }
+  std::vector<glm::vec3> next(sheet.vertices.size());
+  for (int pass = 0; pass < kTearPasses; ++pass) {
+    for (size_t i = 0; i < sheet.vertices.size(); ++i) {
+      next[i] = deltas[sheet.vertices[i]];
+      if (!relaxed[i] || sheet.neighbours[i].empty()) continue;
+      glm::vec3 mean(0.0f);
+      for (uint32_t n : sheet.neighbours[i]) mean += deltas[n];
+      next[i] = 0.5f * next[i] + 0.5f * mean / float(sheet.neighbours[i].size());
+    }
+    for (size_t i = 0; i < sheet.vertices.size(); ++i) deltas[sheet.vertices[i]] = next[i];
+  }
+  for (size_t v = 0; v < tgt.positions.size(); ++v) deltas[v] = deltas[tgt.rootOf(v)];
+}
+
 JawTurn openingLikeSource(JawTurn turn, const JawSplit& split, const FaceSurface& src, const std::vector<glm::vec3>& raw,
                           const FaceSurface& tgt, const Correspondence& corr, const FaceLandmarks& sourceLandmarks,
                           const FaceLandmarks& landmarks, float fullGap, float maxGap, const FaceSurface& jaw,
-                          const std::vector<glm::vec3>& residual) {
+                          const LipSheet& lips, const std::vector<glm::vec3>& residual) {
   const float wanted = lipGapOverWidth(src, corr.sourceRegions, sourceLandmarks, raw);
   const float unturned = lipGapOverWidth(tgt, corr.targetRegions, landmarks, residual);
   std::vector<glm::vec3> turned = residual;
   turnWithJaw(turn, split, src, tgt, corr, fullGap, maxGap, jaw, turned);
+  mendTears(lips, tgt, turned);
   const float byTurn = lipGapOverWidth(tgt, corr.targetRegions, landmarks, turned) - unturned;
   if (byTurn > 1e-4f && wanted > 0.0f) turn.angle *= std::clamp((wanted - unturned) / byTurn, 1.0f / kJawScale, kJawScale);
   return turn;
@@ -582,6 +651,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
                             eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions)};
   const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions),
                             eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
+  const LipSheet lips = lipSheetOf(tgt, corr.targetRegions);
   std::vector<glm::vec3> carried(src.positions.size());
   for (size_t u = 0; u < units.size(); ++u) {
     const bool jawUnit = std::find(kJawUnits.begin(), kJawUnits.end(), units[u]) != kJawUnits.end() && chin.found;
@@ -600,9 +670,10 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
     if (jawUnit) {
       const JawTurn matched = openingLikeSource(turn, split, src, raw[u], tgt, corr, source.landmarks, landmarks,
-                                                fullGap, maxGap, jaw, unit.deltas);
+                                                fullGap, maxGap, jaw, lips, unit.deltas);
       turnWithJaw(matched, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
       if (parts.teethFromTheSource) lowerTeethWithTheLip(matched, teethShare[u], tgt, corr, landmarks, jaw, unit.deltas);
+      mendTears(lips, tgt, unit.deltas);
     }
     moved.units.push_back(std::move(unit));
   }

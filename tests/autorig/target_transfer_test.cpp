@@ -31,12 +31,13 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   EXPECT_TRUE(rigged->report.kept.empty());
   // Every vertex matches itself (measured 0 to 0.019, the lips' seam twins
   // facing apart), but for the jaw: at the mouth corners, where the lips'
-  // seam vertices meet, two of them take the other lip's motion (0.51).
+  // seam vertices meet, two of them take the other lip's motion, mended as a
+  // tear (0.096; 0.51 before).
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU4_BrowLowerer", "AU12_LipCornerPuller_L", "AU15_LipCornerDepressor",
                            "AU26_JawDrop", "AU45_Blink_L", "AU18_LipPucker"}) {
     const float skin = transfer_fixture::relativeError(*head, rigged->model, "Head", 0, unit, unit);
     const float mouth = transfer_fixture::relativeError(*head, rigged->model, "Head", 1, unit, unit);
-    EXPECT_LT(skin, std::string_view(unit) == "AU26_JawDrop" ? 0.6f : 0.03f) << unit;
+    EXPECT_LT(skin, std::string_view(unit) == "AU26_JawDrop" ? 0.2f : 0.03f) << unit;
     std::printf("identity %s: worst skin vertex %.4f, mouth %.4f of the unit's largest displacement\n", unit, skin, mouth);
   }
 }
@@ -267,8 +268,8 @@ TEST(TargetTransfer, BentHeadGetsJacobianCarriedUnits) {
                            "AU18_LipPucker", "AU26_JawDrop"}) {
     const float skin = transfer_fixture::relativeError(expected, rigged->model, "Head", 0, unit, unit);
     std::printf("bent %s: worst skin vertex %.4f of the unit's largest displacement\n", unit, skin);
-    // Measured 0.02-0.065 (AU26: the mouth corners seam, as in the identity test).
-    EXPECT_LT(skin, std::string_view(unit) == "AU26_JawDrop" ? 0.6f : 0.1f) << unit;
+    // Measured 0.02-0.065 (AU26 0.095: the mouth corners' seam, as in the identity test).
+    EXPECT_LT(skin, std::string_view(unit) == "AU26_JawDrop" ? 0.2f : 0.1f) << unit;
   }
 }
 

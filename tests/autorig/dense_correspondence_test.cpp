@@ -1,0 +1,41 @@
+#include "autorig/dense_correspondence.h"
+
+#include <gtest/gtest.h>
+
+#include "autorig/face_parts.h"
+#include "autorig/posed_face.h"
+#include "tests/common/test_meshes.h"
+
+namespace {
+
+// Two triangles side by side: the second's corner at (1, 0, 0) is a copy of
+// the first's with other texture coordinates (a UV seam: one point of the
+// surface), its corner at (0, 1, 0) a copy with the same ones (a slit the
+// author made, as between a closed mouth's lips). Labelled and moved, the
+// seam's copies are one vertex; the slit's stay two.
+TEST(FaceSurface, UvSeamCopiesAreOnePointAndSlitCopiesStayApart) {
+  eng::Primitive prim;
+  prim.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  prim.normals.assign(prim.positions.size(), glm::vec3(0, 0, 1));
+  prim.texcoords = {{0, 0}, {1, 0}, {0, 1}, {0.5f, 0.5f}, {0, 1}, {1, 1}};
+  prim.indices = {0, 1, 2, 3, 5, 4};
+  const eng::Model model = testing_support::singleMeshModel(eng::Mesh{.name = "skin", .primitives = {prim}});
+  const autorig::PosedFace posed = autorig::poseAtRest(model);
+  autorig::FaceParts parts;
+  parts.vertexParts = {std::vector<autorig::FacePart>(prim.positions.size(), autorig::FacePart::Skin)};
+  const autorig::FaceSurface surface = autorig::gatherSurface(model, posed, parts, {autorig::FacePart::Skin});
+  ASSERT_EQ(surface.positions.size(), 6u);
+  EXPECT_EQ(surface.rootOf(3), 1u);  // the seam's copy
+  EXPECT_EQ(surface.rootOf(4), 4u);  // the slit's copy
+  for (size_t v : {0u, 1u, 2u, 5u}) EXPECT_EQ(surface.rootOf(v), v);
+
+  // Without texture coordinates nothing tells a seam from a slit: no copies are joined.
+  eng::Primitive bare = prim;
+  bare.texcoords.clear();
+  const eng::Model untextured = testing_support::singleMeshModel(eng::Mesh{.name = "skin", .primitives = {bare}});
+  const autorig::FaceSurface plain =
+      autorig::gatherSurface(untextured, autorig::poseAtRest(untextured), parts, {autorig::FacePart::Skin});
+  for (size_t v = 0; v < plain.positions.size(); ++v) EXPECT_EQ(plain.rootOf(v), v);
+}
+
+}  // namespace
