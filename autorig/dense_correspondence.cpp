@@ -1,23 +1,18 @@
 #include "autorig/dense_correspondence.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <queue>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "engine/scene/position_hash.h"
+
 namespace autorig {
 namespace {
 
 constexpr uint32_t kNotGathered = UINT32_MAX;
-
-struct PositionBits {
-  size_t operator()(const std::array<uint32_t, 3>& bits) const {
-    return (size_t(bits[0]) * 73856093u) ^ (size_t(bits[1]) * 19349663u) ^ (size_t(bits[2]) * 83492791u);
-  }
-};
 
 // Within this distance of a closing line (eye spans) a vertex's side is the
 // mesh's to say: about the lips' and the lids' thickness.
@@ -154,11 +149,10 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
       if (whole) surface.triangles.push_back(t);
     }
     if (primitive.texcoords.size() != primitive.vertexCount()) continue;
-    // Copies sit at bit-identical positions: an exporter duplicates a vertex, it does not move it.
-    std::unordered_map<std::array<uint32_t, 3>, uint32_t, PositionBits> first;
+    std::unordered_map<eng::ExactPosition, uint32_t, eng::ExactPosition::Hash> first;
     for (size_t v = 0; v < p.positions.size(); ++v) {
       if (index[v] == kNotGathered) continue;
-      const auto [at, added] = first.try_emplace(std::bit_cast<std::array<uint32_t, 3>>(p.positions[v]), uint32_t(v));
+      const auto [at, added] = first.try_emplace(eng::ExactPosition(p.positions[v]), uint32_t(v));
       if (!added && primitive.texcoords[at->second] != primitive.texcoords[v]) surface.seamRoot[index[v]] = index[at->second];
     }
   }

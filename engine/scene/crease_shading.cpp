@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <unordered_map>
+
+#include "engine/scene/position_hash.h"
 
 namespace eng {
 namespace {
@@ -21,24 +22,6 @@ constexpr float kCompressionGain = 0.8f;
 // from sliding, rotating regions).
 constexpr float kThreshold = 0.03f;
 
-struct PositionKey {
-  uint32_t x, y, z;
-  bool operator==(const PositionKey&) const = default;
-};
-struct PositionKeyHash {
-  size_t operator()(const PositionKey& k) const {
-    return (size_t(k.x) * 73856093u) ^ (size_t(k.y) * 19349663u) ^ (size_t(k.z) * 83492791u);
-  }
-};
-
-PositionKey keyOf(const glm::vec3& p) {
-  PositionKey k;
-  std::memcpy(&k.x, &p.x, 4);
-  std::memcpy(&k.y, &p.y, 4);
-  std::memcpy(&k.z, &p.z, 4);
-  return k;
-}
-
 // Vertices split at seams (same position) become one node, so the fold is
 // measured on the surface rather than on each side of a UV cut.
 struct WeldedSurface {
@@ -52,10 +35,10 @@ struct WeldedSurface {
 WeldedSurface weld(const Primitive& p) {
   WeldedSurface s;
   s.nodeOf.resize(p.positions.size());
-  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> nodes;
+  std::unordered_map<ExactPosition, uint32_t, ExactPosition::Hash> nodes;
   nodes.reserve(p.positions.size());
   for (size_t v = 0; v < p.positions.size(); ++v) {
-    auto [it, added] = nodes.try_emplace(keyOf(p.positions[v]), uint32_t(s.firstVertex.size()));
+    auto [it, added] = nodes.try_emplace(ExactPosition(p.positions[v]), uint32_t(s.firstVertex.size()));
     if (added) s.firstVertex.push_back(uint32_t(v));
     s.nodeOf[v] = it->second;
   }

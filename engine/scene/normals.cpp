@@ -1,46 +1,20 @@
 #include "engine/scene/normals.h"
 
 #include <cmath>
-#include <cstring>
 #include <unordered_map>
 
+#include "engine/scene/position_hash.h"
+
 namespace eng {
-namespace {
-
-struct PositionKey {
-  uint32_t x, y, z;
-  bool operator==(const PositionKey&) const = default;
-};
-
-struct PositionKeyHash {
-  size_t operator()(const PositionKey& k) const {
-    uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= (k.y + 0x7F4A7C15ull + (h << 6) + (h >> 2)) * 0xBF58476D1CE4E5B9ull;
-    h ^= (k.z + 0x94D049BBull + (h << 6) + (h >> 2)) * 0x94D049BB133111EBull;
-    return static_cast<size_t>(h ^ (h >> 31));
-  }
-};
-
-PositionKey keyOf(const glm::vec3& p) {
-  // +0.0 and -0.0 are the same place.
-  const glm::vec3 q = p + glm::vec3(0.0f);
-  PositionKey k;
-  std::memcpy(&k.x, &q.x, 4);
-  std::memcpy(&k.y, &q.y, 4);
-  std::memcpy(&k.z, &q.z, 4);
-  return k;
-}
-
-}  // namespace
 
 std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions, std::span<const uint32_t> indices) {
   const size_t n = positions.size();
   // Group vertices by exact position.
   std::vector<uint32_t> group(n);
-  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> groups;
+  std::unordered_map<ExactPosition, uint32_t, ExactPosition::Hash> groups;
   groups.reserve(n);
   for (size_t v = 0; v < n; ++v)
-    group[v] = groups.try_emplace(keyOf(positions[v]), static_cast<uint32_t>(groups.size())).first->second;
+    group[v] = groups.try_emplace(ExactPosition(positions[v]), static_cast<uint32_t>(groups.size())).first->second;
 
   // In double: with coordinates near float's range (1e30 is a valid float)
   // the float cross product and its squared length overflow to inf and the

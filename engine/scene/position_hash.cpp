@@ -2,11 +2,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <tuple>
 
 #include "engine/core/work_counter.h"
 
 namespace eng {
+
+ExactPosition::ExactPosition(const glm::vec3& p) {
+  const glm::vec3 q = p + glm::vec3(0.0f);  // -0.0 + 0.0 is +0.0
+  std::memcpy(&x, &q.x, 4);
+  std::memcpy(&y, &q.y, 4);
+  std::memcpy(&z, &q.z, 4);
+}
+
+size_t ExactPosition::Hash::operator()(const ExactPosition& k) const {
+  uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
+  h ^= (k.y + 0x7F4A7C15ull + (h << 6) + (h >> 2)) * 0xBF58476D1CE4E5B9ull;
+  h ^= (k.z + 0x94D049BBull + (h << 6) + (h >> 2)) * 0x94D049BB133111EBull;
+  return static_cast<size_t>(h ^ (h >> 31));
+}
 
 size_t PositionHash::CellKeyHash::operator()(const CellKey& k) const {
   // Teschner et al.'s spatial hash primes.

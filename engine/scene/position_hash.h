@@ -11,6 +11,19 @@
 
 namespace eng {
 
+// A position as a hash key, for grouping vertices at exactly one place: the
+// copies an exporter splits a vertex into along a UV seam or a hard edge sit
+// at bit-identical positions. +0.0 and -0.0 are one place.
+struct ExactPosition {
+  uint32_t x = 0, y = 0, z = 0;
+  ExactPosition() = default;
+  explicit ExactPosition(const glm::vec3& p);
+  bool operator==(const ExactPosition&) const = default;
+  struct Hash {
+    size_t operator()(const ExactPosition& k) const;
+  };
+};
+
 class PositionHash {
  public:
   // Queries up to maxRadius look at the 8 cells of side 2 * maxRadius around p.
