@@ -554,12 +554,14 @@ constexpr float kTear = 3.0f;
 
 struct LipSheet {
   std::vector<uint32_t> vertices;                 // skin about the mouth, a UV seam's copies by their first
+  std::vector<int32_t> slot;                      // per target vertex, its index in `vertices` (-1: none)
   std::vector<std::vector<uint32_t>> neighbours;  // per listed vertex, the vertices across its edges (seam copies by their first)
 };
 
 LipSheet lipSheetOf(const FaceSurface& tgt, const std::vector<FaceRegion>& regions) {
   LipSheet sheet;
-  std::vector<int32_t> slot(tgt.positions.size(), -1);
+  std::vector<int32_t>& slot = sheet.slot;
+  slot.assign(tgt.positions.size(), -1);
   for (uint32_t v = 0; v < tgt.positions.size(); ++v) {
     const bool lip = regions[v] == FaceRegion::UpperLip || regions[v] == FaceRegion::LowerLip;
     if (tgt.rootOf(v) != v || !lip || tgt.parts[v] != FacePart::Skin) continue;
@@ -581,8 +583,7 @@ LipSheet lipSheetOf(const FaceSurface& tgt, const std::vector<FaceRegion>& regio
 }
 
 void mendTears(const LipSheet& sheet, const FaceSurface& tgt, std::vector<glm::vec3>& deltas) {
-  std::vector<int32_t> slot(tgt.positions.size(), -1);
-  for (size_t i = 0; i < sheet.vertices.size(); ++i) slot[sheet.vertices[i]] = int32_t(i);
+  const std::vector<int32_t>& slot = sheet.slot;
   // The torn vertices and their neighbours relax; every other vertex holds.
   std::vector<bool> relaxed(sheet.vertices.size(), false);
   for (size_t i = 0; i < sheet.vertices.size(); ++i) {
