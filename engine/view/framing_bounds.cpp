@@ -114,6 +114,14 @@ Aabb framingBounds(const Model& model, FramingMode mode) {
     if (const int head = findHeadJoint(model); head >= 0) {
       Aabb region = posedJointRegionBounds(model, pose, head);
       if (region.valid()) {
+        // Long hair skinned to the head reaches the chest: framed whole, it
+        // leaves the face a quarter of the image. The head joint sits at the
+        // skull's base; the chin is less than half the joint's depth under
+        // the crown below it.
+        std::vector<glm::mat4> world;
+        poseWorldMatrices(model, pose, world);
+        const float joint = world[size_t(head)][3].y, crown = region.max.y;
+        if (joint < crown) region.min.y = std::min(std::max(region.min.y, joint - 0.45f * (crown - joint)), joint);
         const float height = region.size().y;
         region.min.y -= 0.3f * height;  // the neck
         region.max.y += 0.05f * height;  // room above the crown

@@ -2,6 +2,7 @@
 // built here.
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "engine/view/camera.h"
@@ -29,6 +30,71 @@ TEST(FaceFraming, FullBodyIsFramedAtItsHead) {
   EXPECT_LT(face.min.y, 1.75f - 0.11f) << "the neck below the chin is in";
   const eng::Aabb moved = eng::morphedRegionBounds(model);
   EXPECT_NEAR(moved.center().y, 1.75f, 0.05f);
+}
+
+// A skinned figure: a neck joint at y 1.5 and the head joint above it at
+// 1.6; a head (a box to the crown at 1.85), a body under the neck, and, when
+// `hairTo` is below the chin, a lock of hair skinned to the head reaching it.
+eng::Model skinnedFigure(float hairTo) {
+  eng::Model model;
+  model.nodes.resize(3);
+  model.nodes[0].name = "Armature";
+  model.nodes[0].children = {1, 2};
+  model.nodes[0].mesh = 0;
+  model.nodes[0].skin = 0;
+  model.nodes[1].name = "Neck";
+  model.nodes[1].parent = 0;
+  model.nodes[1].translation = {0, 1.5f, 0};
+  model.nodes[2].name = "Head";
+  model.nodes[2].parent = 0;
+  model.nodes[2].translation = {0, 1.6f, 0};
+  model.roots = {0};
+  model.skins.push_back({"skin", {1, 2}, {glm::translate(glm::mat4(1.0f), {0, -1.5f, 0}),
+                                          glm::translate(glm::mat4(1.0f), {0, -1.6f, 0})}});
+  eng::Primitive prim;
+  auto add = [&](glm::vec3 p, int joint) {
+    prim.positions.push_back(p);
+    prim.normals.push_back({0, 0, 1});
+    prim.joints.push_back(glm::u16vec4(uint16_t(joint), 0, 0, 0));
+    prim.jointWeights.push_back({1, 0, 0, 0});
+  };
+  for (glm::vec3 p : {glm::vec3(-0.08f, 1.6f, 0.1f), glm::vec3(0.08f, 1.6f, 0.1f), glm::vec3(0, 1.85f, 0.0f),
+                      glm::vec3(0, 1.7f, 0.12f)})
+    add(p, 1);  // the head (joint slot 1: Head)
+  for (glm::vec3 p : {glm::vec3(-0.2f, 0.9f, 0.0f), glm::vec3(0.2f, 1.45f, 0.0f), glm::vec3(0, 1.2f, 0.1f)})
+    add(p, 0);  // the body (slot 0: Neck)
+  add({0.1f, hairTo, -0.05f}, 1);
+  add({-0.1f, hairTo, -0.05f}, 1);
+  prim.indices = {0, 1, 3, 1, 2, 3, 4, 5, 6, 7, 8, 2};
+  // The face's target moves the front of the head (the mouth).
+  eng::MorphTarget target;
+  target.positions.assign(prim.positions.size(), glm::vec3(0.0f));
+  target.positions[3] = {0, -0.02f, 0};
+  target.positions[0] = {0, -0.01f, 0};
+  prim.targets.push_back(target);
+  eng::Mesh mesh;
+  mesh.name = "figure";
+  mesh.targetNames = {"mouthOpen"};
+  mesh.primitives.push_back(prim);
+  model.meshes.push_back(mesh);
+  return model;
+}
+
+TEST(FaceFraming, LongHairSkinnedToTheHeadDoesNotWidenTheFaceView) {
+  // Short hair: the head and its neck, not the body.
+  const eng::Aabb cropped = eng::framingBounds(skinnedFigure(1.65f), eng::FramingMode::Face);
+  ASSERT_TRUE(cropped.valid());
+  EXPECT_NEAR(cropped.max.y, 1.85f + 0.05f * 0.25f, 1e-4f);
+  EXPECT_NEAR(cropped.min.y, 1.6f - 0.3f * 0.25f, 1e-4f) << "the neck below the head's lowest vertex";
+  // Hair down to the waist moves with the head joint; the face view still
+  // reaches only the neck.
+  const eng::Aabb longHair = eng::framingBounds(skinnedFigure(1.0f), eng::FramingMode::Face);
+  ASSERT_TRUE(longHair.valid());
+  const float chin = 1.6f - 0.45f * (1.85f - 1.6f), height = 1.85f - chin;
+  EXPECT_NEAR(longHair.max.y, 1.85f + 0.05f * height, 1e-4f);
+  EXPECT_NEAR(longHair.min.y, chin - 0.3f * height, 1e-4f);
+  EXPECT_LT(longHair.size().y, 0.5f);
+  EXPECT_GT(eng::framingBounds(skinnedFigure(1.0f), eng::FramingMode::All).size().y, 0.9f);
 }
 
 TEST(FaceFraming, ModelWithoutTargetsFallsBackToTheWholeModel) {
