@@ -547,8 +547,10 @@ constexpr float kJawScale = 2.5f;
 // carried as they are, the jaw opens triangles there into slivers a lip's
 // height long and notches the rim. A few relaxation passes about each tear
 // (an edge the unit stretches past kTear times its length) grade the step
-// over a few edges, as skin stretches; the rest is held. Only jaw units: the
-// others move the lips by millimetres, as the source's own do.
+// over a few edges, as skin stretches; the rest is held. Every unit: the
+// lips' own (the upper lip raiser, the lower lip depressor) open them by
+// millimetres, but the lining inside Ready Player Me's mouth corners is
+// finer still, and anger and disgust hung it over the teeth as dark spikes.
 constexpr int kTearPasses = 8;
 constexpr float kTear = 3.0f;
 
@@ -674,8 +676,8 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
                                                 fullGap, maxGap, jaw, lips, unit.deltas);
       turnWithJaw(matched, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
       if (parts.teethFromTheSource) lowerTeethWithTheLip(matched, teethShare[u], tgt, corr, landmarks, jaw, unit.deltas);
-      mendTears(lips, tgt, unit.deltas);
     }
+    mendTears(lips, tgt, unit.deltas);
     moved.units.push_back(std::move(unit));
   }
   return moved;
