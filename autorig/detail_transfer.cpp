@@ -90,14 +90,17 @@ void boxPass(std::vector<float>& values, size_t first, int n, size_t stride, int
 eng::Image withBroadHighlightsOnly(const eng::Image& image, const glm::vec3& tone) {
   const int w = image.width, h = image.height;
   const float toneLuma = luma(tone);
+  std::array<float, 256> linear{};
+  for (int i = 0; i < 256; ++i) linear[size_t(i)] = eng::srgbToLinear(float(i) / 255.0f);
   std::vector<float> bright(size_t(w) * size_t(h), 0.0f);
   std::vector<uint8_t> brightens(bright.size(), 0);
+  bool any = false;
   for (size_t i = 0; i < bright.size(); ++i) {
     const uint8_t* t = &image.rgba8[i * 4];
-    const glm::vec3 c(eng::srgbToLinear(float(t[0]) / 255.0f), eng::srgbToLinear(float(t[1]) / 255.0f),
-                      eng::srgbToLinear(float(t[2]) / 255.0f));
-    if (t[3] > 0 && luma(c) > toneLuma) brightens[i] = 1, bright[i] = float(t[3]) / 255.0f;
+    if (t[3] == 0 || luma({linear[t[0]], linear[t[1]], linear[t[2]]}) <= toneLuma) continue;
+    brightens[i] = 1, bright[i] = float(t[3]) / 255.0f, any = true;
   }
+  if (!any) return image;
   const int radius = std::max(1, kHighlightBoxRadius * w / 1024);
   std::vector<float> line;
   for (int pass = 0; pass < 3; ++pass) {
@@ -366,13 +369,16 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
     if (material == mainMaterial) report.warnings.push_back(line + ": the head's wrinkle and colour layers are not carried onto it");
   };
 
+  // A face as fine as the head everywhere (the head onto itself) reads the layers as painted.
+  const bool coarse = std::any_of(at.coarse.begin(), at.coarse.end(), [](float c) { return c > 0.0f; });
   std::vector<eng::Image> broad;
   broad.reserve(layered->images.size());  // the samplers keep references
   LayerSamplers samplers;
   for (int image : layered->images) {
-    samplers.asPainted.emplace_back(source.model->images[size_t(image)]);
-    broad.push_back(withBroadHighlightsOnly(source.model->images[size_t(image)], layered->tone));
-    samplers.broadOnly.emplace_back(broad.back());
+    const eng::Image& painted = source.model->images[size_t(image)];
+    samplers.asPainted.emplace_back(painted);
+    if (coarse) broad.push_back(withBroadHighlightsOnly(painted, layered->tone));
+    samplers.broadOnly.emplace_back(coarse ? broad.back() : painted);
   }
   const int size = options.size;
   for (const auto& [material, primitives] : skinByMaterial) {
