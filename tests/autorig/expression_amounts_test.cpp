@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -73,48 +74,45 @@ const Weighted kAngerMouth{{"AU9_NoseWrinkler", 0.35f}, {"AU10_UpperLipRaiser", 
 const Weighted kDisgustMouth{{"AU9_NoseWrinkler", 1.0f}, {"AU10_UpperLipRaiser", 0.9f}, {"AU15_LipCornerDepressor", 0.7f},
                              {"AU16_LowerLipDepressor", 0.5f}, {"AU17_ChinRaiser", 0.4f}, {"AU25_LipsPart", 0.3f}};
 
-// How many edges between two lip-region vertices `units` stretch past `times`
-// their length and by more than a hundredth of the skin's size.
-size_t tornLipEdges(const Measured& m, const Weighted& units, float times) {
+// Every edge between two lip-region vertices, at rest and with `units`
+// applied, both over the skin's size (its box's diagonal).
+struct LipEdge {
+  float rest = 0.0f, moved = 0.0f;
+};
+std::vector<LipEdge> lipEdges(const Measured& m, const Weighted& units) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const glm::vec3& p : m.skin.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const float size = glm::length(hi - lo);
   auto lip = [&](uint32_t v) { return m.regions[v] == autorig::FaceRegion::UpperLip || m.regions[v] == autorig::FaceRegion::LowerLip; };
-  auto opened = [&](uint32_t v) {
+  auto moved = [&](uint32_t v) {
     glm::vec3 p = m.skin.positions[v];
     for (const auto& [unit, weight] : units) p += weight * skinMotion(m, v, unit);
     return p;
   };
-  size_t torn = 0;
+  std::vector<LipEdge> edges;
   for (const auto& t : m.skin.triangles)
     for (size_t k = 0; k < 3; ++k) {
       const uint32_t a = t[k], b = t[(k + 1) % 3];
-      if (!lip(a) || !lip(b)) continue;
-      const float before = glm::length(m.skin.positions[a] - m.skin.positions[b]), after = glm::length(opened(a) - opened(b));
-      torn += after > times * before && after - before > 0.01f * glm::length(hi - lo);
+      if (lip(a) && lip(b))
+        edges.push_back({glm::length(m.skin.positions[a] - m.skin.positions[b]) / size, glm::length(moved(a) - moved(b)) / size});
     }
-  return torn;
+  return edges;
 }
 
-// How far `units` stretch the skin about the mouth: the largest growth of
-// an edge between two lip-region vertices, over the skin's size (its box's
-// diagonal).
+// How far `units` stretch the skin about the mouth: the largest growth of a
+// lip edge, over the skin's size.
 float largestLipStretch(const Measured& m, const Weighted& units) {
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const glm::vec3& p : m.skin.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  auto lip = [&](uint32_t v) { return m.regions[v] == autorig::FaceRegion::UpperLip || m.regions[v] == autorig::FaceRegion::LowerLip; };
-  auto opened = [&](uint32_t v) {
-    glm::vec3 p = m.skin.positions[v];
-    for (const auto& [unit, weight] : units) p += weight * skinMotion(m, v, unit);
-    return p;
-  };
   float largest = 0.0f;
-  for (const auto& t : m.skin.triangles)
-    for (size_t k = 0; k < 3; ++k) {
-      const uint32_t a = t[k], b = t[(k + 1) % 3];
-      if (!lip(a) || !lip(b)) continue;
-      largest = std::max(largest, glm::length(opened(a) - opened(b)) - glm::length(m.skin.positions[a] - m.skin.positions[b]));
-    }
-  return largest / glm::length(hi - lo);
+  for (const LipEdge& e : lipEdges(m, units)) largest = std::max(largest, e.moved - e.rest);
+  return largest;
+}
+
+// How many lip edges `units` stretch past `times` their length and by more
+// than a hundredth of the skin's size.
+size_t tornLipEdges(const Measured& m, const Weighted& units, float times) {
+  const std::vector<LipEdge> edges = lipEdges(m, units);
+  return size_t(std::count_if(edges.begin(), edges.end(),
+                              [&](const LipEdge& e) { return e.moved > times * e.rest && e.moved - e.rest > 0.01f; }));
 }
 
 // The features a unit moves, each as one number in the face's size.
