@@ -30,9 +30,7 @@ bool decoded(const eng::Image& image) {
 // Bilinear, repeating; rgb decoded from sRGB, alpha as stored.
 class Sampler {
  public:
-  explicit Sampler(const eng::Image& image) : image_(image) {
-    for (int i = 0; i < 256; ++i) linear_[size_t(i)] = eng::srgbToLinear(float(i) / 255.0f);
-  }
+  explicit Sampler(const eng::Image& image) : image_(image) {}
   glm::vec4 operator()(glm::vec2 uv) const {
     uv -= glm::floor(uv);
     const float x = uv.x * float(image_.width) - 0.5f, y = uv.y * float(image_.height) - 0.5f;
@@ -47,10 +45,9 @@ class Sampler {
     x = ((x % image_.width) + image_.width) % image_.width;
     y = ((y % image_.height) + image_.height) % image_.height;
     const uint8_t* t = &image_.rgba8[(size_t(y) * size_t(image_.width) + size_t(x)) * 4];
-    return {linear_[t[0]], linear_[t[1]], linear_[t[2]], float(t[3]) / 255.0f};
+    return {eng::srgb(t[0], t[1], t[2]), float(t[3]) / 255.0f};
   }
   const eng::Image& image_;
-  std::array<float, 256> linear_{};
 };
 
 // The head's narrow highlights (the cheek's lit edge along a nasolabial
@@ -90,14 +87,12 @@ void boxPass(std::vector<float>& values, size_t first, int n, size_t stride, int
 eng::Image withBroadHighlightsOnly(const eng::Image& image, const glm::vec3& tone) {
   const int w = image.width, h = image.height;
   const float toneLuma = luma(tone);
-  std::array<float, 256> linear{};
-  for (int i = 0; i < 256; ++i) linear[size_t(i)] = eng::srgbToLinear(float(i) / 255.0f);
   std::vector<float> bright(size_t(w) * size_t(h), 0.0f);
   std::vector<uint8_t> brightens(bright.size(), 0);
   bool any = false;
   for (size_t i = 0; i < bright.size(); ++i) {
     const uint8_t* t = &image.rgba8[i * 4];
-    if (t[3] == 0 || luma({linear[t[0]], linear[t[1]], linear[t[2]]}) <= toneLuma) continue;
+    if (t[3] == 0 || luma(eng::srgb(t[0], t[1], t[2])) <= toneLuma) continue;
     brightens[i] = 1, bright[i] = float(t[3]) / 255.0f, any = true;
   }
   if (!any) return image;

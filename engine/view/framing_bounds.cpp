@@ -121,7 +121,7 @@ Aabb framingBounds(const Model& model, FramingMode mode) {
         std::vector<glm::mat4> world;
         poseWorldMatrices(model, pose, world);
         const float joint = world[size_t(head)][3].y, crown = region.max.y;
-        if (joint < crown) region.min.y = std::min(std::max(region.min.y, joint - 0.45f * (crown - joint)), joint);
+        if (joint < crown) region.min.y = std::max(region.min.y, joint - 0.45f * (crown - joint));
         const float height = region.size().y;
         region.min.y -= 0.3f * height;  // the neck
         region.max.y += 0.05f * height;  // room above the crown
