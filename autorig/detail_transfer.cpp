@@ -51,15 +51,22 @@ class Sampler {
 };
 
 // The head's narrow highlights (the cheek's lit edge along a nasolabial
-// fold, a furrow's lip) go with folds its own dense mesh makes; carried onto
-// a face whose mesh is too coarse to fold there (Ready Player Me's), they
-// drew a pale outline around the mouth. There a layer's brightening is kept
-// as far as it is broad: its coverage at most the brightening's coverage
-// averaged over a few millimetres about it (pallor's wash keeps all of it),
-// each box pass this many texels of a 1024 image wide. On a mesh as fine
-// as the head's (the head rigged onto itself) the highlights stay: its sad
-// and fear brows read by them (6 of 7 states to the judge, 4 without).
+// fold, a furrow's lip) and narrow creases go with folds its own dense mesh
+// makes. Carried onto a face whose mesh is too coarse to fold there (Ready
+// Player Me's), the highlight drew a pale outline around the mouth and the
+// crease a pencil line. There a layer's brightening is kept as far as it is
+// broad: its coverage at most the brightening's coverage averaged over a few
+// millimetres about it (pallor's wash keeps all of it), each box pass this
+// many texels of a 1024 image wide. Its darkening is spread into the softer
+// shade of a fold: averaged over a narrower box, its coverage times
+// kCreaseGain, at most the darkest coverage near it (a broad darkening keeps
+// its own; a furrow's lines stay lines, a stronger spread blurred them into
+// one faint band). On a mesh as fine as the head's (the head rigged onto
+// itself) both stay as painted: its sad and fear brows read by them (6 of 7
+// states to the judge, 4 without).
 constexpr int kHighlightBoxRadius = 8;
+constexpr int kCreaseBoxRadius = 2;
+constexpr float kCreaseGain = 2.0f;
 // Target edges this many times the source's (warped onto the target) and
 // longer fold nothing the highlights go with: from the first ratio to the
 // second the broad-only layers take over.
@@ -82,31 +89,78 @@ void boxPass(std::vector<float>& values, size_t first, int n, size_t stride, int
   }
 }
 
-// `image` with its brightening texels' coverage capped by how broad the
-// brightening about them is (three box passes each way: about a Gaussian).
-eng::Image withBroadHighlightsOnly(const eng::Image& image, const glm::vec3& tone) {
-  const int w = image.width, h = image.height;
-  const float toneLuma = luma(tone);
-  std::vector<float> bright(size_t(w) * size_t(h), 0.0f);
-  std::vector<uint8_t> brightens(bright.size(), 0);
-  bool any = false;
-  for (size_t i = 0; i < bright.size(); ++i) {
-    const uint8_t* t = &image.rgba8[i * 4];
-    if (t[3] == 0 || luma(eng::srgb(t[0], t[1], t[2])) <= toneLuma) continue;
-    brightens[i] = 1, bright[i] = float(t[3]) / 255.0f, any = true;
-  }
-  if (!any) return image;
-  const int radius = std::max(1, kHighlightBoxRadius * w / 1024);
+// `values` (w x h) at most their largest within `radius` texels each way.
+void maxFilter(std::vector<float>& values, int w, int h, int radius) {
   std::vector<float> line;
+  auto pass = [&](size_t first, int n, size_t stride) {
+    line.resize(size_t(n));
+    for (int i = 0; i < n; ++i) line[size_t(i)] = values[first + size_t(i) * stride];
+    for (int i = 0; i < n; ++i) {
+      float m = 0.0f;
+      for (int k = std::max(0, i - radius); k <= std::min(n - 1, i + radius); ++k) m = std::max(m, line[size_t(k)]);
+      values[first + size_t(i) * stride] = m;
+    }
+  };
+  for (int y = 0; y < h; ++y) pass(size_t(y) * size_t(w), w, 1);
+  for (int x = 0; x < w; ++x) pass(size_t(x), h, size_t(w));
+}
+
+// `values` (w x h) averaged by three box passes each way (about a Gaussian).
+void blur(std::vector<float>& values, int w, int h, int radius, std::vector<float>& line) {
   for (int pass = 0; pass < 3; ++pass) {
-    for (int y = 0; y < h; ++y) boxPass(bright, size_t(y) * size_t(w), w, 1, radius, line);
-    for (int x = 0; x < w; ++x) boxPass(bright, size_t(x), h, size_t(w), radius, line);
+    for (int y = 0; y < h; ++y) boxPass(values, size_t(y) * size_t(w), w, 1, radius, line);
+    for (int x = 0; x < w; ++x) boxPass(values, size_t(x), h, size_t(w), radius, line);
   }
+}
+
+}  // namespace
+
+// Brightening texels' coverage capped by how broad the brightening about
+// them is; darkening spread premultiplied (the crease keeps its colour).
+eng::Image layerForACoarseMesh(const eng::Image& image, const glm::vec3& tone) {
+  const int w = image.width, h = image.height;
+  const size_t n = size_t(w) * size_t(h);
+  const float toneLuma = luma(tone);
+  std::vector<float> bright(n, 0.0f), dark(n, 0.0f);
+  std::array<std::vector<float>, 3> darkColour;  // premultiplied by the darkening's coverage
+  for (std::vector<float>& c : darkColour) c.assign(n, 0.0f);
+  std::vector<uint8_t> brightens(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t* t = &image.rgba8[i * 4];
+    if (t[3] == 0) continue;
+    const glm::vec3 colour = eng::srgb(t[0], t[1], t[2]);
+    const float coverage = float(t[3]) / 255.0f;
+    if (luma(colour) > toneLuma) {
+      brightens[i] = 1, bright[i] = coverage;
+    } else {
+      dark[i] = coverage;
+      for (int k = 0; k < 3; ++k) darkColour[size_t(k)][i] = colour[k] * coverage;
+    }
+  }
+  std::vector<float> line;
+  blur(bright, w, h, std::max(1, kHighlightBoxRadius * w / 1024), line);
+  const int creaseRadius = std::max(1, kCreaseBoxRadius * w / 1024);
+  std::vector<float> darkest = dark;  // a spread crease no darker than the crease nearby
+  maxFilter(darkest, w, h, 3 * creaseRadius);
+  blur(dark, w, h, creaseRadius, line);
+  for (std::vector<float>& c : darkColour) blur(c, w, h, creaseRadius, line);
   eng::Image out = image;
-  for (size_t i = 0; i < bright.size(); ++i)
-    if (brightens[i]) out.rgba8[i * 4 + 3] = uint8_t(std::min<float>(out.rgba8[i * 4 + 3], std::round(255.0f * bright[i])));
+  for (size_t i = 0; i < n; ++i) {
+    uint8_t* t = &out.rgba8[i * 4];
+    if (brightens[i]) {
+      t[3] = uint8_t(std::min<float>(t[3], std::round(255.0f * bright[i])));
+    } else if (dark[i] > 1e-4f) {
+      for (int k = 0; k < 3; ++k)
+        t[k] = uint8_t(std::round(255.0f * eng::linearToSrgb(std::clamp(darkColour[size_t(k)][i] / dark[i], 0.0f, 1.0f))));
+      t[3] = uint8_t(std::round(255.0f * std::min(kCreaseGain * dark[i], darkest[i])));
+    } else {
+      t[3] = 0;
+    }
+  }
   return out;
 }
+
+namespace {
 
 const eng::Primitive& primitiveOf(const eng::Model& model, const PosedFace& posed, uint32_t posedPrimitive) {
   const PosedPrimitive& pp = posed.primitives[posedPrimitive];
@@ -372,7 +426,7 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
   for (int image : layered->images) {
     const eng::Image& painted = source.model->images[size_t(image)];
     samplers.asPainted.emplace_back(painted);
-    if (coarse) broad.push_back(withBroadHighlightsOnly(painted, layered->tone));
+    if (coarse) broad.push_back(layerForACoarseMesh(painted, layered->tone));
     samplers.broadOnly.emplace_back(coarse ? broad.back() : painted);
   }
   const int size = options.size;

@@ -41,4 +41,12 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
                                        const Correspondence& corr, const PosedFace& posed, eng::Model& face,
                                        const DetailTransferOptions& options = {});
 
+// A layer image painted for the head's dense mesh as a face too coarse to
+// fold where it does shows it: narrow highlights (a fold's lit edge) kept
+// only as far as they are broad, narrow creases spread (about 1 mm more on
+// the head) into the softer shade of a fold, no darker than the crease.
+// `tone`: the skin colour the image was painted over (linear); texels
+// brighter than it are highlights, the others creases.
+eng::Image layerForACoarseMesh(const eng::Image& image, const glm::vec3& tone);
+
 }  // namespace autorig

@@ -177,12 +177,49 @@ TEST(DetailTransfer, FacecapsSkinGetsTheLayersOnAMaterialOfItsOwn) {
   // facecap's edges are about twice as long as the head's: it cannot fold
   // where the head's nasolabial folds do, and their narrow lit edge alone
   // drew a pale outline about its mouth. It is carried fainter (lit
-  // coverage 0.15 of the dark; 0.37 before, 0.44 on the head rigged onto
-  // itself), the crease beside it as dark.
+  // coverage 0.08 of the dark, the crease spread beside it; 0.37 with both
+  // as painted, 0.44 on the head rigged onto itself).
   const eng::Image* folds = imageNamed(model, "nasolabial_folds (carried)");
   ASSERT_TRUE(folds);
   const LightAndDark cover = coverageOf(*folds);
   EXPECT_LT(cover.light / cover.dark, 0.25) << "lit " << cover.light << " against dark " << cover.dark << " texels";
+}
+
+// A layer for a coarse mesh (autorig::layerForACoarseMesh): a narrow crease
+// spreads into a softer shade of its own colour, no darker than it was; a
+// broad darkening keeps its coverage; a narrow highlight fades; what was
+// left unpainted stays so.
+TEST(DetailTransfer, ACoarseMeshGetsSofterCreasesAndNoNarrowHighlights) {
+  const int size = 1024;
+  eng::Image painted;
+  painted.width = painted.height = size;
+  painted.rgba8.assign(size_t(size) * size_t(size) * 4, 0);
+  auto paint = [&](int x0, int x1, const glm::vec3& colour, float coverage) {
+    for (int y = 100; y < 900; ++y)
+      for (int x = x0; x < x1; ++x) {
+        uint8_t* t = &painted.rgba8[(size_t(y) * size_t(size) + size_t(x)) * 4];
+        for (int k = 0; k < 3; ++k) t[k] = uint8_t(std::lround(255.0f * eng::linearToSrgb(colour[k])));
+        t[3] = uint8_t(std::lround(255.0f * coverage));
+      }
+  };
+  const glm::vec3 tone(0.5f, 0.4f, 0.35f), crease(0.2f, 0.1f, 0.08f);
+  paint(100, 102, crease, 0.8f);                       // a crease two texels wide
+  paint(300, 302, glm::vec3(0.9f, 0.8f, 0.7f), 0.8f);  // a highlight as narrow
+  paint(500, 700, glm::vec3(0.3f, 0.2f, 0.2f), 0.5f);  // a broad darkening
+  const eng::Image coarse = autorig::layerForACoarseMesh(painted, tone);
+  ASSERT_EQ(coarse.rgba8.size(), painted.rgba8.size());
+  auto at = [&](const eng::Image& image, int x) { return texelAt(image, {(float(x) + 0.5f) / size, 0.5f}); };
+
+  const glm::vec4 onTheCrease = at(coarse, 100), beside = at(coarse, 105);
+  EXPECT_LE(onTheCrease.a, 0.8f + 0.5f / 255.0f) << "no darker than the crease";
+  EXPECT_GT(onTheCrease.a, 0.4f) << "the crease still reads";
+  EXPECT_GT(beside.a, 0.1f) << "spread 4 texels beside it";
+  EXPECT_EQ(at(painted, 105).a, 0.0f);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(beside[k], crease[k], 0.01f) << "its own colour, channel " << k;
+  EXPECT_EQ(at(coarse, 120).a, 0.0f) << "far from it, unpainted";
+
+  EXPECT_NEAR(at(coarse, 600).a, 0.5f, 1.0f / 255.0f) << "a broad darkening as it was";
+  EXPECT_LT(at(coarse, 300).a, 0.3f) << "a narrow highlight fades";
 }
 
 // A face whose skin has layers of its own keeps them, untouched.
