@@ -3,6 +3,7 @@
 #include <sched.h>
 
 #include <optional>
+#include <shared_mutex>
 #include <thread>
 
 namespace app {
@@ -18,31 +19,39 @@ using Lane = std::optional<eng::Result<HeadlessModelRenderer>>;
 struct SequenceRenderers::Opening::State {
   HeadlessRenderOptions options;
   uint32_t requestedLanes = 0;
+  std::vector<eng::Result<std::unique_ptr<eng::vk::Context>>> contexts;  // made by makeContexts()
   std::vector<Lane> lanes;  // filled by `opener`
   std::thread opener;
 
-  void open() {
+  // Each lane's context, one after another on the calling thread: made while
+  // another thread calls Vulkan, a context can crash the validation layer
+  // (eng::vk::contextLifetimeMutex), and the caller goes on to its own work
+  // (loading a face, which may render to find its landmarks) once they exist.
+  void makeContexts() {
     // Announced by finish(): a program that fails before then says one line.
-    auto first = HeadlessModelRenderer::createContext(options, /*announce=*/false);
-    if (!first) {
-      lanes.emplace_back(first.error());
-      return;
-    }
+    contexts.push_back(HeadlessModelRenderer::createContext(options, /*announce=*/false));
+    if (!contexts.front()) return;
     uint32_t count = requestedLanes;
     if (count == 0)
-      count = (*first)->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && usableCores() >= 2 ? 2 : 1;
-    lanes.resize(count);
-    // Lanes after the first on threads of their own while this one opens the first.
+      count = (*contexts.front())->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && usableCores() >= 2 ? 2 : 1;
+    for (uint32_t k = 1; k < count; ++k) contexts.push_back(HeadlessModelRenderer::createContext(options, /*announce=*/false));
+  }
+
+  // The renderers on the contexts (on `opener`): the lanes after the first on
+  // threads of their own while this one opens the first. No context is made
+  // or destroyed meanwhile (the shared lock covers the lanes' threads too).
+  void open() {
+    std::shared_lock lock(eng::vk::contextLifetimeMutex());
+    lanes.resize(contexts.size());
+    auto openLane = [this](size_t k) {
+      if (!contexts[k])
+        lanes[k].emplace(contexts[k].error());
+      else
+        lanes[k].emplace(HeadlessModelRenderer::open(options, std::move(*contexts[k])));
+    };
     std::vector<std::thread> others;
-    for (uint32_t k = 1; k < count; ++k)
-      others.emplace_back([this, k] {
-        auto context = HeadlessModelRenderer::createContext(options, /*announce=*/false);
-        if (!context)
-          lanes[k].emplace(context.error());
-        else
-          lanes[k].emplace(HeadlessModelRenderer::open(options, std::move(*context)));
-      });
-    lanes[0].emplace(HeadlessModelRenderer::open(options, std::move(*first)));
+    for (size_t k = 1; k < contexts.size(); ++k) others.emplace_back(openLane, k);
+    openLane(0);
     for (std::thread& thread : others) thread.join();
   }
 
@@ -66,6 +75,7 @@ SequenceRenderers::Opening SequenceRenderers::open(const HeadlessRenderOptions& 
   auto state = std::make_unique<Opening::State>();
   state->options = options;
   state->requestedLanes = lanes;
+  state->makeContexts();
   state->opener = std::thread([s = state.get()] { s->open(); });
   return Opening(std::move(state));
 }

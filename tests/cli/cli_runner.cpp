@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <gtest/gtest.h>
+
 #include "tests/common/test_support.h"
 
 namespace cli_test {
@@ -55,6 +57,14 @@ CommandOutput runProgram(const std::filesystem::path& program, const std::vector
   result.err = readAll(errFile);
   std::filesystem::remove(outFile);
   std::filesystem::remove(errFile);
+  // A crash is never a refusal, whatever the test expects of the exit code:
+  // the shell reports a child killed by signal N as 128 + N.
+  if (result.exitCode >= 128 || result.exitCode == -1) {
+    std::string line = program.filename().string();
+    for (const std::string& arg : args) line += " " + arg;
+    ADD_FAILURE() << line << ": killed by signal " << (result.exitCode >= 128 ? result.exitCode - 128 : -1)
+                  << " (a crash, not an exit)\n" << result.err;
+  }
   return result;
 }
 

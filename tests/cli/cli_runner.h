@@ -1,7 +1,7 @@
 #pragma once
 // Runs the built `facial` program (<build>/bin/facial) as a child process
 // with Vulkan validation on (FACIAL_VALIDATION=1), capturing its exit code,
-// stdout and stderr.
+// stdout and stderr. A child killed by a signal (a crash) fails the test.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -9,7 +9,7 @@
 namespace cli_test {
 
 struct CommandOutput {
-  int exitCode = -1;  // -1: did not exit normally (signal)
+  int exitCode = -1;  // -1 or 128 + N: killed (signal N), already a test failure
   std::string out;
   std::string err;
 };

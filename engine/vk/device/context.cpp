@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 
 #include "engine/core/log.h"
 #include "engine/vk/device/device_selection.h"
@@ -74,18 +75,55 @@ std::string whyUnsuitable(VkPhysicalDevice device, const VkPhysicalDevicePropert
 
 }  // namespace
 
+bool validationRequested(const ContextOptions& options) { return options.validation.value_or(envFlag("FACIAL_VALIDATION")); }
+
+std::shared_mutex& contextLifetimeMutex() {
+  static std::shared_mutex mutex;
+  return mutex;
+}
+
 Context::Context() = default;
 Context::Context(Context&&) noexcept = default;
-Context& Context::operator=(Context&&) noexcept = default;
+Context& Context::operator=(Context&& other) noexcept {
+  if (this != &other) {
+    destroy();
+    validation_ = std::move(other.validation_);
+    instance_ = std::move(other.instance_);
+    messenger_ = std::move(other.messenger_);
+    surface_ = std::move(other.surface_);
+    physicalDevice_ = other.physicalDevice_;
+    info_ = std::move(other.info_);
+    device_ = std::move(other.device_);
+    queueFamily_ = other.queueFamily_;
+    queue_ = other.queue_;
+    oneShotPool_ = std::move(other.oneShotPool_);
+    oneShotFence_ = std::move(other.oneShotFence_);
+    setObjectName_ = other.setObjectName_;
+    validationEnabled_ = other.validationEnabled_;
+  }
+  return *this;
+}
 
-Context::~Context() {
+Context::~Context() { destroy(); }
+
+// Everything the context made, in reverse order, under the lifetime mutex.
+void Context::destroy() {
+  if (!instance_) return;  // moved from, or never made
+  std::unique_lock lock(contextLifetimeMutex());
   if (device_) vkDeviceWaitIdle(device_.get());
+  oneShotFence_.reset();
+  oneShotPool_.reset();
+  device_.reset();
+  surface_.reset();
+  messenger_.reset();
+  instance_.reset();
 }
 
 Result<Context> Context::create(const ContextOptions& options) {
-  Context ctx;
+  Context ctx;  // before the lock: a context that failed halfway is destroyed after it is released
+  std::unique_lock lock(contextLifetimeMutex());
   ctx.validation_ = std::make_unique<ValidationMonitor>(options.onValidationMessage);
-  ctx.validationEnabled_ = options.validation.value_or(envFlag("FACIAL_VALIDATION"));
+  ctx.validationEnabled_ = validationRequested(options);
   if (ctx.validationEnabled_ && !hasLayer(kValidationLayer))
     return makeError(ErrorKind::Unsupported, std::string("Vulkan validation was requested but ") + kValidationLayer +
                          " is not installed (Debian package vulkan-validationlayers)",

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <shared_mutex>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,21 @@ struct ContextOptions {
   // Logs which device is used (announce(), Info level) once it is made.
   bool announce = true;
 };
+
+// Whether a context made with `options` runs the validation layer.
+bool validationRequested(const ContextOptions& options);
+
+// Making or destroying a Vulkan instance or device while another thread
+// calls Vulkan can crash under the Khronos validation layer Debian bookworm
+// ships (1.3.239): it finds its per-instance and per-device data in a map that
+// every call reads and that making or destroying either writes, without a lock
+// (KhronosGroup/Vulkan-ValidationLayers#4391; here a jump to address 0 in the
+// editor while a video export made its renderers beside the window's
+// presenter thread). Context holds this mutex exclusively while it makes or
+// destroys its instance and device (contexts made side by side, which
+// drivers have raced on too, queue up); a thread that calls Vulkan while
+// another may make or destroy a context holds it shared around those calls.
+std::shared_mutex& contextLifetimeMutex();
 
 struct DeviceInfo {
   std::string name;
@@ -104,6 +120,7 @@ class Context {
   Result<void> createInstance(const ContextOptions& options);
   Result<void> choosePhysicalDevice(const ContextOptions& options);
   Result<void> createDevice();
+  void destroy();
 
   std::unique_ptr<ValidationMonitor> validation_;  // stable address: the messenger's user data
   UniqueInstance instance_;

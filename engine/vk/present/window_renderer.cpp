@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <shared_mutex>
 #include <span>
 #include <string>
 
@@ -571,6 +572,9 @@ Result<void> WindowRenderer::submitAndPresent(const FrameSync& f, uint32_t image
   clock.lap(WindowFrameTimes::Submit);
   if (presenter_) {
     presenter_->present(image, presentBuffers_[image].mapped(), [device = ctx_->device(), fence = f.inFlight.get()] {
+      // On the presenter's thread, while this one may make other contexts
+      // (an editor's export): see contextLifetimeMutex.
+      std::shared_lock lock(contextLifetimeMutex());
       // Only a lost device fails this; the frame then shows whatever the buffer held.
       (void)vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
     });
