@@ -75,8 +75,6 @@ std::string whyUnsuitable(VkPhysicalDevice device, const VkPhysicalDevicePropert
 
 }  // namespace
 
-bool validationRequested(const ContextOptions& options) { return options.validation.value_or(envFlag("FACIAL_VALIDATION")); }
-
 std::shared_mutex& contextLifetimeMutex() {
   static std::shared_mutex mutex;
   return mutex;
@@ -84,26 +82,6 @@ std::shared_mutex& contextLifetimeMutex() {
 
 Context::Context() = default;
 Context::Context(Context&&) noexcept = default;
-Context& Context::operator=(Context&& other) noexcept {
-  if (this != &other) {
-    destroy();
-    validation_ = std::move(other.validation_);
-    instance_ = std::move(other.instance_);
-    messenger_ = std::move(other.messenger_);
-    surface_ = std::move(other.surface_);
-    physicalDevice_ = other.physicalDevice_;
-    info_ = std::move(other.info_);
-    device_ = std::move(other.device_);
-    queueFamily_ = other.queueFamily_;
-    queue_ = other.queue_;
-    oneShotPool_ = std::move(other.oneShotPool_);
-    oneShotFence_ = std::move(other.oneShotFence_);
-    setObjectName_ = other.setObjectName_;
-    validationEnabled_ = other.validationEnabled_;
-  }
-  return *this;
-}
-
 Context::~Context() { destroy(); }
 
 // Everything the context made, in reverse order, under the lifetime mutex.
@@ -123,7 +101,7 @@ Result<Context> Context::create(const ContextOptions& options) {
   Context ctx;  // before the lock: a context that failed halfway is destroyed after it is released
   std::unique_lock lock(contextLifetimeMutex());
   ctx.validation_ = std::make_unique<ValidationMonitor>(options.onValidationMessage);
-  ctx.validationEnabled_ = validationRequested(options);
+  ctx.validationEnabled_ = options.validation.value_or(envFlag("FACIAL_VALIDATION"));
   if (ctx.validationEnabled_ && !hasLayer(kValidationLayer))
     return makeError(ErrorKind::Unsupported, std::string("Vulkan validation was requested but ") + kValidationLayer +
                          " is not installed (Debian package vulkan-validationlayers)",

@@ -42,9 +42,6 @@ struct ContextOptions {
   bool announce = true;
 };
 
-// Whether a context made with `options` runs the validation layer.
-bool validationRequested(const ContextOptions& options);
-
 // Making or destroying a Vulkan instance or device while another thread
 // calls Vulkan can crash under the Khronos validation layer Debian bookworm
 // ships (1.3.239): it finds its per-instance and per-device data in a map that
@@ -72,7 +69,7 @@ class Context {
   static Result<Context> create(const ContextOptions& options = {});
 
   Context(Context&&) noexcept;
-  Context& operator=(Context&&) noexcept;
+  Context& operator=(Context&&) = delete;  // a live context is destroyed under contextLifetimeMutex
   ~Context();
 
   VkInstance instance() const { return instance_.get(); }
