@@ -62,8 +62,10 @@ CommandOutput runProgram(const std::filesystem::path& program, const std::vector
   if (result.exitCode >= 128 || result.exitCode == -1) {
     std::string line = program.filename().string();
     for (const std::string& arg : args) line += " " + arg;
-    ADD_FAILURE() << line << ": killed by signal " << (result.exitCode >= 128 ? result.exitCode - 128 : -1)
-                  << " (a crash, not an exit)\n" << result.err;
+    ADD_FAILURE() << line << ": "
+                  << (result.exitCode >= 128 ? "killed by signal " + std::to_string(result.exitCode - 128) + " (a crash, not an exit)"
+                                             : std::string("did not exit normally"))
+                  << "\n" << result.err;
   }
   return result;
 }
