@@ -138,7 +138,7 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
 }
 
 eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
-                                            const std::string& faceName) const {
+                                            const std::string& faceName, const autorig::TransferOptions& options) const {
   autorig::PosedFace posed = autorig::poseAtRest(face);
   autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
   // Welded lips cut, the head's mouth inside where the face has none: then the
@@ -156,7 +156,7 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
     parts = autorig::findFaceParts(opened, posed, landmarks);
   }
   parts.teethFromTheSource = opening.insideVertices > 0;
-  auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts);
+  auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts, options);
   if (!transferred) return transferred.error().prefixed(faceName + ": ");
   AutorigResult result;
   result.model = std::move(transferred->model);

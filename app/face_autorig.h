@@ -87,7 +87,7 @@ class FaceAutorig {
   // head's targets carried over, through `landmarks` (faceLandmarks). Errors
   // start with `faceName`.
   eng::Result<AutorigResult> rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
-                                 const std::string& faceName) const;
+                                 const std::string& faceName, const autorig::TransferOptions& options = {}) const;
 
   const std::filesystem::path& headPath() const { return headPath_; }
 

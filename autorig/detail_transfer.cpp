@@ -76,40 +76,76 @@ float luma(const glm::vec3& c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 
 
 // One box pass of `radius` along a line of `n` values `stride` apart, the
 // ends repeated.
-void boxPass(std::vector<float>& values, size_t first, int n, size_t stride, int radius, std::vector<float>& line) {
-  line.resize(size_t(n));
-  for (int i = 0; i < n; ++i) line[size_t(i)] = values[first + size_t(i) * stride];
-  auto at = [&](int i) { return line[size_t(std::clamp(i, 0, n - 1))]; };
-  float sum = 0.0f;
-  for (int k = -radius; k <= radius; ++k) sum += at(k);
+// One box pass along each row: a running sum over `radius` texels each way
+// (the edge texels repeated).
+void boxPassRows(std::vector<float>& values, int w, int h, int radius, std::vector<float>& line) {
+  line.resize(size_t(w));
   const float scale = 1.0f / float(2 * radius + 1);
-  for (int i = 0; i < n; ++i) {
-    values[first + size_t(i) * stride] = sum * scale;
-    sum += at(i + radius + 1) - at(i - radius);
+  for (int y = 0; y < h; ++y) {
+    float* row = &values[size_t(y) * size_t(w)];
+    std::copy(row, row + w, line.begin());
+    auto at = [&](int i) { return line[size_t(std::clamp(i, 0, w - 1))]; };
+    float sum = 0.0f;
+    for (int k = -radius; k <= radius; ++k) sum += at(k);
+    for (int i = 0; i < w; ++i) {
+      row[i] = sum * scale;
+      sum += at(i + radius + 1) - at(i - radius);
+    }
+  }
+}
+
+// The same down each column, every column at once, row after row: the image
+// is read in memory order (a column at a time strides a row per texel).
+void boxPassColumns(std::vector<float>& values, int w, int h, int radius, std::vector<float>& copy, std::vector<float>& sums) {
+  copy = values;
+  sums.assign(size_t(w), 0.0f);
+  auto row = [&](int y) { return &copy[size_t(std::clamp(y, 0, h - 1)) * size_t(w)]; };
+  const float scale = 1.0f / float(2 * radius + 1);
+  for (int k = -radius; k <= radius; ++k)
+    for (int x = 0; x < w; ++x) sums[size_t(x)] += row(k)[x];
+  for (int y = 0; y < h; ++y) {
+    float* out = &values[size_t(y) * size_t(w)];
+    const float *enter = row(y + radius + 1), *leave = row(y - radius);
+    for (int x = 0; x < w; ++x) {
+      out[x] = sums[size_t(x)] * scale;
+      sums[size_t(x)] += enter[x] - leave[x];
+    }
   }
 }
 
 // `values` (w x h) at most their largest within `radius` texels each way.
 void maxFilter(std::vector<float>& values, int w, int h, int radius) {
-  std::vector<float> line;
-  auto pass = [&](size_t first, int n, size_t stride) {
-    line.resize(size_t(n));
-    for (int i = 0; i < n; ++i) line[size_t(i)] = values[first + size_t(i) * stride];
-    for (int i = 0; i < n; ++i) {
+  std::vector<float> copy = values;
+  for (int y = 0; y < h; ++y) {
+    const float* in = &copy[size_t(y) * size_t(w)];
+    float* out = &values[size_t(y) * size_t(w)];
+    for (int x = 0; x < w; ++x) {
       float m = 0.0f;
-      for (int k = std::max(0, i - radius); k <= std::min(n - 1, i + radius); ++k) m = std::max(m, line[size_t(k)]);
-      values[first + size_t(i) * stride] = m;
+      for (int k = std::max(0, x - radius); k <= std::min(w - 1, x + radius); ++k) m = std::max(m, in[k]);
+      out[x] = m;
     }
-  };
-  for (int y = 0; y < h; ++y) pass(size_t(y) * size_t(w), w, 1);
-  for (int x = 0; x < w; ++x) pass(size_t(x), h, size_t(w));
+  }
+  copy = values;
+  for (int y = 0; y < h; ++y) {
+    float* out = &values[size_t(y) * size_t(w)];
+    std::fill(out, out + w, 0.0f);
+    for (int k = std::max(0, y - radius); k <= std::min(h - 1, y + radius); ++k) {
+      const float* in = &copy[size_t(k) * size_t(w)];
+      for (int x = 0; x < w; ++x) out[x] = std::max(out[x], in[x]);
+    }
+  }
 }
 
+// Scratch space of the box passes.
+struct BlurScratch {
+  std::vector<float> line, copy, sums;
+};
+
 // `values` (w x h) averaged by three box passes each way (about a Gaussian).
-void blur(std::vector<float>& values, int w, int h, int radius, std::vector<float>& line) {
+void blur(std::vector<float>& values, int w, int h, int radius, BlurScratch& scratch) {
   for (int pass = 0; pass < 3; ++pass) {
-    for (int y = 0; y < h; ++y) boxPass(values, size_t(y) * size_t(w), w, 1, radius, line);
-    for (int x = 0; x < w; ++x) boxPass(values, size_t(x), h, size_t(w), radius, line);
+    boxPassRows(values, w, h, radius, scratch.line);
+    boxPassColumns(values, w, h, radius, scratch.copy, scratch.sums);
   }
 }
 
@@ -137,13 +173,13 @@ eng::Image layerForACoarseMesh(const eng::Image& image, const glm::vec3& tone) {
       for (int k = 0; k < 3; ++k) darkColour[size_t(k)][i] = colour[k] * coverage;
     }
   }
-  std::vector<float> line;
-  blur(bright, w, h, std::max(1, kHighlightBoxRadius * w / 1024), line);
+  BlurScratch scratch;
+  blur(bright, w, h, std::max(1, kHighlightBoxRadius * w / 1024), scratch);
   const int creaseRadius = std::max(1, kCreaseBoxRadius * w / 1024);
   std::vector<float> darkest = dark;  // a spread crease no darker than the crease nearby
   maxFilter(darkest, w, h, 3 * creaseRadius);
-  blur(dark, w, h, creaseRadius, line);
-  for (std::vector<float>& c : darkColour) blur(c, w, h, creaseRadius, line);
+  blur(dark, w, h, creaseRadius, scratch);
+  for (std::vector<float>& c : darkColour) blur(c, w, h, creaseRadius, scratch);
   eng::Image out = image;
   for (size_t i = 0; i < n; ++i) {
     uint8_t* t = &out.rgba8[i * 4];
@@ -457,8 +493,9 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
     }
     // Unpainted texels hold the neutral modulation (0.5) so filtering at a
     // layer's edge fades its coverage, never its colour.
-    std::vector<eng::PaintImage> painted(layered->images.size(), eng::PaintImage(size, size));
-    for (eng::PaintImage& image : painted) std::fill(image.texels.begin(), image.texels.end(), glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
+    std::vector<eng::PaintImage> painted;
+    painted.reserve(layered->images.size());
+    for (size_t l = 0; l < layered->images.size(); ++l) painted.emplace_back(size, size, glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
     size_t texels = 0;
     for (uint32_t p : primitives)
       if (const eng::Primitive& prim = primitiveOf(face, posed, p); prim.texcoords.size() == prim.vertexCount())

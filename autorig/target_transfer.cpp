@@ -915,7 +915,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     writeTarget(result.model, posed, moved, target, restNormals);
     report.made.push_back(target.name);
   }
-  if (options.actionUnits) {
+  if (options.actionUnits && options.detailLayers) {
     DetailTransferReport details = carryDetailLayers(source, src, tgt, corr, posed, result.model);
     report.details = std::move(details.carried);
     for (std::string& warning : details.warnings) report.warnings.push_back(std::move(warning));

@@ -36,6 +36,11 @@ struct TransferOptions {
   // (63 targets of a 600k-vertex face are about 1.4 GB with their normals).
   // A face over this is refused with its count.
   size_t maxSkinVertices = 600000;
+  // The head's wrinkle and colour layers carried onto the skin's texture
+  // (autorig/detail_transfer.h, with the action units); off, the face's
+  // textures are left as they are: a file for an engine that does not read
+  // detail layers, or a test of the shapes alone.
+  bool detailLayers = true;
 };
 
 struct TransferReport {

@@ -25,6 +25,7 @@ struct AutorigOptions {
   std::string landmarks;
   std::string landmarksOut;
   std::string out;
+  bool noDetails = false;
 };
 
 // Refusals that need no work: an output that is an input (app::checkOutputs),
@@ -76,7 +77,7 @@ int runAutorig(const AutorigOptions& o) {
       return fail(written.error().message);
   auto rigger = app::FaceAutorig::load();
   if (!rigger) return fail(rigger.error().message);
-  auto rigged = rigger->rig(face->model, *landmarks, o.model);
+  auto rigged = rigger->rig(face->model, *landmarks, o.model, {.detailLayers = !o.noDetails});
   if (!rigged) return fail(rigged.error().message);
   if (auto saved = app::saveModelAtomically(rigged->model, o.out); !saved) return fail(saved.error().message);
   for (const std::string& w : rigged->report.warnings) app::printWarning("facial autorig", w);
@@ -100,6 +101,9 @@ CommandRegistrar reg("autorig", "Make expression targets (FACS action units, ARK
                  "finding them on a front view (default: <model stem>.landmarks.json beside the model, when there)");
   app.add_option("--landmarks-out", o->landmarksOut, "Also write the landmarks used, as a file --landmarks reads");
   app.add_option("--out,-o", o->out, "Output .glb / .gltf: the face with the new targets")->required();
+  app.add_flag("--no-details", o->noDetails,
+               "Shapes only: leave the face's textures as they are (no wrinkle and colour layers carried from the "
+               "head; engines other than this one do not read them)");
   return [o] { return runAutorig(*o); };
 });
 

@@ -24,7 +24,8 @@ struct PaintImage {
   std::vector<glm::vec4> texels;
   std::vector<uint8_t> covered;
 
-  PaintImage(int w, int h) : width(w), height(h), texels(size_t(w) * h, glm::vec4(0.0f)), covered(size_t(w) * h, 0) {}
+  PaintImage(int w, int h, const glm::vec4& fill = glm::vec4(0.0f))
+      : width(w), height(h), texels(size_t(w) * h, fill), covered(size_t(w) * h, 0) {}
   void set(int x, int y, const glm::vec4& c) {
     texels[size_t(y) * width + x] = c;
     covered[size_t(y) * width + x] = 1;

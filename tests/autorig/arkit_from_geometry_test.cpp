@@ -39,7 +39,8 @@ const RiggedHead* riggedHead() {
   cached->source = transfer_fixture::headSource(cached->head);
   const autorig::SourceFace& s = cached->source;
   eng::Result<autorig::TransferResult> result =
-      autorig::transferTargets(s, transfer_fixture::stripped(cached->head), s.posed, s.landmarks, s.parts);
+      autorig::transferTargets(s, transfer_fixture::stripped(cached->head), s.posed, s.landmarks, s.parts,
+                               transfer_fixture::kShapesOnly);
   if (!result) {
     ADD_FAILURE() << result.error().message;
     cached.reset();

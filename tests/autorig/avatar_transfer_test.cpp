@@ -25,7 +25,8 @@ TEST(AvatarTransfer, RiggsAVisemesOnlyAvatar) {
   const autorig::PosedFace posed = autorig::poseAtRest(*avatar);
   autorig::FaceLandmarks landmarks;
   const std::optional<autorig::TransferResult> rigged =
-      transfer_fixture::rigWithFixtureLandmarks(*avatar, posed, "rpm-visemes.landmarks.json", &landmarks);
+      transfer_fixture::rigWithFixtureLandmarks(*avatar, posed, "rpm-visemes.landmarks.json", &landmarks,
+                                                transfer_fixture::kShapesOnly);
   ASSERT_TRUE(rigged);
   const auto& made = rigged->report.made;
   for (const char* name : {"AU12_LipCornerPuller_L", "mouthSmileLeft", "eyeBlinkLeft", "jawOpen", "browInnerUp"})

@@ -173,7 +173,7 @@ std::optional<StrippedAndRigged> rigStripped(const std::filesystem::path& file, 
   const autorig::PosedFace posed = autorig::poseAtRest(bare);
   StrippedAndRigged r;
   std::optional<autorig::TransferResult> result =
-      transfer_fixture::rigWithFixtureLandmarks(bare, posed, landmarksFile, &r.landmarks);
+      transfer_fixture::rigWithFixtureLandmarks(bare, posed, landmarksFile, &r.landmarks, transfer_fixture::kShapesOnly);
   if (!result) return std::nullopt;
   r.model = std::move(result->model);
   return r;

@@ -50,7 +50,8 @@ const Rigged* rigFacecap() {
   autorig::PosedFace posed = autorig::poseAtRest(face);
   autorig::FaceLandmarks landmarks;
   std::optional<autorig::TransferResult> result =
-      transfer_fixture::rigWithFixtureLandmarks(face, posed, "facecap.landmarks.json", &landmarks);
+      transfer_fixture::rigWithFixtureLandmarks(face, posed, "facecap.landmarks.json", &landmarks,
+                                                transfer_fixture::kShapesOnly);
   if (!result) return nullptr;
   cached = Rigged{std::move(*truth), std::move(result->model), std::move(posed), landmarks, result->report};
   // For a person to look at (facial sheet -m ..., facial render ... --weight jawOpen=1).
@@ -118,7 +119,7 @@ TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
   ASSERT_TRUE(face) << face.error().message;
   const autorig::PosedFace posed = autorig::poseAtRest(*face);
   const std::optional<autorig::TransferResult> rigged =
-      transfer_fixture::rigWithFixtureLandmarks(*face, posed, "facecap.landmarks.json");
+      transfer_fixture::rigWithFixtureLandmarks(*face, posed, "facecap.landmarks.json", nullptr, transfer_fixture::kShapesOnly);
   ASSERT_TRUE(rigged);
   const autorig::TransferReport& report = rigged->report;
   EXPECT_EQ(report.kept.size(), 52u);  // every ARKit shape: facecap has all 52

@@ -273,7 +273,8 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
   autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
   parts.teethFromTheSource = true;  // as FaceAutorig::rig says of a face given the head's mouth
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts,
+                                                                         transfer_fixture::kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   const eng::Mesh* mesh = nullptr;
   for (const eng::Mesh& m : rigged->model.meshes)

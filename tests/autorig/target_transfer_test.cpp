@@ -15,6 +15,7 @@
 namespace {
 
 using transfer_fixture::headSource;
+using transfer_fixture::kShapesOnly;
 using transfer_fixture::loadHead;
 using transfer_fixture::stripped;
 
@@ -26,7 +27,7 @@ TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   // Without eyeball sizes: the lids as the head moves them, not slid over its balls.
   autorig::FaceParts parts = source.parts;
   parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   EXPECT_TRUE(rigged->report.kept.empty());
   // Every vertex matches itself (measured 0 to 0.019, the lips' seam twins
@@ -89,7 +90,7 @@ TEST(TargetTransfer, TheFacesOwnShapesAreItsUnits) {
               {"mouthOpen", {{"AU26_JawDrop", 1.3f}, {"AU10_UpperLipRaiser", 0.3f}}},
               {"eyesClosed", {{"AU45_Blink_L", 1.1f}, {"AU45_Blink_R", 1.1f}}}});
   ASSERT_TRUE(face);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   ASSERT_EQ(rigged->report.notes.size(), 3u);
   EXPECT_NE(rigged->report.notes[0].find("own mouthSmile"), std::string::npos) << rigged->report.notes[0];
@@ -153,10 +154,10 @@ TEST(TargetTransfer, AFaceAThousandthTheSizeIsRiggedAlike) {
   autorig::FaceLandmarks landmarks = source.landmarks;
   for (glm::vec3& p : landmarks.points) p *= kScale;
   const autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, posed, landmarks, parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, posed, landmarks, parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   eng::Result<autorig::TransferResult> full =
-      autorig::transferTargets(source, stripped(*head), source.posed, source.landmarks, source.parts);
+      autorig::transferTargets(source, stripped(*head), source.posed, source.landmarks, source.parts, kShapesOnly);
   ASSERT_TRUE(full) << full.error().message;
   // Targets are in mesh space, which the node's scale leaves as it was: the
   // same displacements come back.
@@ -179,7 +180,7 @@ TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
                                                                    {"jawOpen", {{"AU26_JawDrop", 1.5f}}},
                                                                    {"browDownLeft", {{"AU4_BrowLowerer", 0.5f}}}});
   ASSERT_TRUE(face);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   const std::vector<std::string>& notes = rigged->report.notes;
   auto noted = [&](std::string_view text) {
@@ -228,7 +229,7 @@ TEST(TargetTransfer, WindingDoesNotMatter) {
       for (size_t i = 0; i + 2 < p.indices.size(); i += 3) std::swap(p.indices[i + 1], p.indices[i + 2]);
   autorig::FaceParts parts = source.parts;
   parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
     EXPECT_LT(transfer_fixture::relativeError(*head, rigged->model, "Head", 0, unit, unit), 0.03f) << unit;
@@ -262,7 +263,7 @@ TEST(TargetTransfer, BentHeadGetsJacobianCarriedUnits) {
   const autorig::PosedFace posed = autorig::poseAtRest(face);
   autorig::FaceParts parts = source.parts;  // same vertices: the bend moves them all
   parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, posed, landmarks, parts);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, posed, landmarks, parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU15_LipCornerDepressor", "AU45_Blink_L",
                            "AU18_LipPucker", "AU26_JawDrop"}) {

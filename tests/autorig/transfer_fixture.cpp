@@ -34,7 +34,8 @@ autorig::SourceFace headSource(const eng::Model& head) {
 
 std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
                                                               const char* landmarksFile,
-                                                              autorig::FaceLandmarks* landmarks) {
+                                                              autorig::FaceLandmarks* landmarks,
+                                                              const autorig::TransferOptions& options) {
   static const std::optional<eng::Model> head = loadHead();
   if (!head) return std::nullopt;
   static const autorig::SourceFace source = headSource(*head);
@@ -46,7 +47,7 @@ std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model&
   }
   if (landmarks) *landmarks = *points;
   eng::Result<autorig::TransferResult> rigged =
-      autorig::transferTargets(source, face, posed, *points, autorig::findFaceParts(face, posed, *points));
+      autorig::transferTargets(source, face, posed, *points, autorig::findFaceParts(face, posed, *points), options);
   if (!rigged) {
     ADD_FAILURE() << rigged.error().message;
     return std::nullopt;

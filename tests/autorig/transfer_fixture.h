@@ -15,6 +15,10 @@ std::optional<eng::Model> loadHead();
 // autorig::builtInSource, a test failure when it fails; `head` must outlive it.
 autorig::SourceFace headSource(const eng::Model& head);
 
+// Transfers for tests of the made shapes: the detail layers (tested in
+// detail_transfer_test.cpp) are a third of a transfer's time and change no shape.
+inline constexpr autorig::TransferOptions kShapesOnly{.detailLayers = false};
+
 // The model without any morph target (nor the animations that weight them): a face to rig.
 using testing_support::stripped;
 
@@ -23,7 +27,8 @@ using testing_support::stripped;
 // test failure, when a step fails. `landmarks` (optional) receives them.
 std::optional<autorig::TransferResult> rigWithFixtureLandmarks(const eng::Model& face, const autorig::PosedFace& posed,
                                                               const char* landmarksFile,
-                                                              autorig::FaceLandmarks* landmarks = nullptr);
+                                                              autorig::FaceLandmarks* landmarks = nullptr,
+                                                              const autorig::TransferOptions& options = {});
 
 // The gap between an eye's lids with `target` at 1, over the gap at rest, along
 // the face's up: the skin vertices of mesh m nearest the upper lid landmarks

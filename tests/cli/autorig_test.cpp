@@ -196,12 +196,27 @@ TEST_F(AutorigAvatar, WritesTheRiggedFaceWithItsOwnTargetsKept) {
   for (const eng::Mesh& m : original->meshes) before += m.targetNames.size();
   for (const eng::Mesh& m : rigged->meshes) after += m.targetNames.size();
   EXPECT_GT(after, before);
-  // The landmarks written are read back: the same face rigged from them.
+  auto layers = [](const eng::Model& m) {
+    size_t n = 0;
+    for (const eng::Material& material : m.materials) n += material.detailLayers.size();
+    return n;
+  };
+  EXPECT_GT(layers(*rigged), 0u) << "the head's wrinkle and colour layers come with the targets";
+  EXPECT_GT(rigged->images.size(), original->images.size());
+  // The landmarks written are read back: the same face rigged from them;
+  // --no-details makes the same targets and leaves the textures as they were.
   const fs::path again = dir_ / "again.glb";
-  const CommandOutput reread =
-      facial({"autorig", avatar_.string(), "--landmarks", landmarks.string(), "--out", again.string()});
-  EXPECT_EQ(reread.exitCode, 0) << reread.err;
-  EXPECT_TRUE(fs::exists(again));
+  const CommandOutput reread = facial(
+      {"autorig", avatar_.string(), "--landmarks", landmarks.string(), "--no-details", "--out", again.string()});
+  ASSERT_EQ(reread.exitCode, 0) << reread.err;
+  EXPECT_EQ(reread.out.find("details:"), std::string::npos) << reread.out;
+  auto shapesOnly = eng::loadModel(again);
+  ASSERT_TRUE(shapesOnly) << shapesOnly.error().message;
+  EXPECT_EQ(layers(*shapesOnly), 0u);
+  EXPECT_EQ(shapesOnly->images.size(), original->images.size());
+  ASSERT_EQ(shapesOnly->meshes.size(), rigged->meshes.size());
+  for (size_t m = 0; m < rigged->meshes.size(); ++m)
+    EXPECT_EQ(shapesOnly->meshes[m].targetNames, rigged->meshes[m].targetNames) << rigged->meshes[m].name;
 }
 
 }  // namespace
