@@ -387,7 +387,9 @@ size_t bakePrimitive(const eng::Primitive& prim, const std::vector<int32_t>& ind
       coarse += bary[int(k)] * at.coarse[v];
     }
     for (size_t l = 0; l < layers.asPainted.size(); ++l) {
-      const glm::vec4 layer = glm::mix(layers.asPainted[l](uv), layers.broadOnly[l](uv), coarse);
+      const glm::vec4 layer = coarse <= 0.0f   ? layers.asPainted[l](uv)
+                              : coarse >= 1.0f ? layers.broadOnly[l](uv)
+                                               : glm::mix(layers.asPainted[l](uv), layers.broadOnly[l](uv), coarse);
       // The share by which the layer changes the head's skin, halved (0.5: unchanged).
       const glm::vec3 modulation = glm::clamp(0.5f * glm::vec3(layer) / tone, 0.0f, 1.0f);
       painted[l].set(x, y, layer.a > 0.0f ? glm::vec4(modulation, layer.a) : glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));

@@ -90,6 +90,11 @@ std::vector<uint8_t> PaintImage::toSrgba8() const {
   std::vector<uint8_t> out(texels.size() * 4);
   for (size_t i = 0; i < texels.size(); ++i) {
     const glm::vec4& c = texels[i];
+    // Runs of one value (the background an image was made with) are encoded once.
+    if (i > 0 && c == texels[i - 1]) {
+      std::copy_n(&out[(i - 1) * 4], 4, &out[i * 4]);
+      continue;
+    }
     out[i * 4 + 0] = static_cast<uint8_t>(std::lround(linearToSrgb(c.r) * 255.0f));
     out[i * 4 + 1] = static_cast<uint8_t>(std::lround(linearToSrgb(c.g) * 255.0f));
     out[i * 4 + 2] = static_cast<uint8_t>(std::lround(linearToSrgb(c.b) * 255.0f));
