@@ -74,8 +74,6 @@ constexpr float kFineMesh = 1.25f, kCoarseMesh = 2.0f;
 
 float luma(const glm::vec3& c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
 
-// One box pass of `radius` along a line of `n` values `stride` apart, the
-// ends repeated.
 // One box pass along each row: a running sum over `radius` texels each way
 // (the edge texels repeated).
 void boxPassRows(std::vector<float>& values, int w, int h, int radius, std::vector<float>& line) {
