@@ -108,7 +108,9 @@ TEST(MeshLod, KeptTrianglesAreInEveryLevelAsTheyAre) {
     // No crack: every edge of the band's outline is still shared by a triangle outside the band.
     const auto levelBorder = borderEdges(level.indices);
     for (const auto& e : outline)
-      if (!capRim.count(e)) EXPECT_FALSE(levelBorder.count(e)) << "edge " << e.first << "-" << e.second;
+      if (!capRim.count(e)) {
+        EXPECT_FALSE(levelBorder.count(e)) << "edge " << e.first << "-" << e.second;
+      }
   }
   EXPECT_LT(levels.back().indices.size(), g.indices.size() / 2);
   // Flags of the wrong length are no flags.

@@ -129,7 +129,9 @@ TEST(FramesInFlight, CollectedFramesSayWhereTheirTimeWent) {
   EXPECT_GT(times.readbackMs, 0.0);
   EXPECT_EQ(times.gpuShadowMs.has_value(), rig.renderer.hasGpuTimestamps());
   EXPECT_EQ(times.gpuViewMs.has_value(), rig.renderer.hasGpuTimestamps());
-  if (times.gpuViewMs) EXPECT_GT(*times.gpuViewMs, 0.0);
+  if (times.gpuViewMs) {
+    EXPECT_GT(*times.gpuViewMs, 0.0);
+  }
 }
 
 }  // namespace

@@ -127,8 +127,9 @@ TEST(WindowRenderer, TheWindowShowsTheFrame) {
   WindowRig rig;
   ASSERT_TRUE(rig.ok());
   const char* shm = std::getenv("FACIAL_X11_SHM");
-  if (rig.ctx->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && !(shm && std::string(shm) == "0"))
+  if (rig.ctx->deviceInfo().type == VK_PHYSICAL_DEVICE_TYPE_CPU && !(shm && std::string(shm) == "0")) {
     EXPECT_TRUE(rig.renderer->presentsThroughX11Shm()) << "a CPU device in an X11 window with MIT-SHM";
+  }
   SphereScene scene(*rig.renderer);
   for (int i = 0; i < 3; ++i) {
     rig.window->pollEvents();
