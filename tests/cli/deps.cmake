@@ -4,3 +4,5 @@
 # reopened with libavformat (through facial_audio's FFmpeg).
 set(TEST_DEPS facial_app facial_audio PkgConfig::FFMPEG)
 add_dependencies(test_cli facial_cli)
+# Their tests read one sentence rendered to a video per process.
+set(TEST_SUITES_IN_ONE_PROCESS SayCommand SaySync)
