@@ -49,12 +49,13 @@ cd "$(dirname "$0")/../.."
 
 build="${FACIAL_SANITIZE_BUILD_DIR:-build-sanitize}"
 # Each list longest first (sanitized, CI's filters, a clean clone on 2 cores,
-# 2026-12-05: test_autorig 300 s, test_cli 280, test_app 155, test_bake_head
-# 114, test_engine_vk 87, test_dataset 74, test_cli_demo 52, test_importers
-# 43, test_soak 39, the rest under 30), so that two at a time finish together.
+# 2026-12-05: test_cli 283 s, test_autorig 281, test_engine_vk 118,
+# test_dataset 69, test_app 63, test_bake_head 61, test_cli_demo 44,
+# test_soak 36, test_importers 36, the rest under 30), so that two at a time
+# finish together.
 vulkan_free=(test_autorig test_bake_head test_importers test_editor_files test_facial_graph test_engine_scene test_bake test_audio test_facial_rig test_facial_speech test_facial_character test_engine_view test_facial_json test_engine_image)
 # test_app (the landmark finder, on-the-fly rigging) and test_dataset render: the driver is preloaded for them.
-vulkan_ci=(test_cli test_app test_engine_vk test_dataset test_cli_demo test_soak)
+vulkan_ci=(test_cli test_engine_vk test_dataset test_app test_cli_demo test_soak)
 vulkan_windows=(test_cli_demo_window test_editor)
 # What CI leaves out of an executable (a gtest negative filter), unless FACIAL_SANITIZE_ALL=1.
 ci_excluded() {

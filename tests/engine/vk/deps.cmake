@@ -11,11 +11,11 @@ if(XVFB_RUN)
   add_test(NAME vk.WindowTestsUnderXvfb
            COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24 -noreset" $<TARGET_FILE:test_engine_vk> --gtest_filter=Window*
            WORKING_DIRECTORY ${PROJECT_BINARY_DIR})
-  set_tests_properties(vk.WindowTestsUnderXvfb PROPERTIES ENVIRONMENT "FACIAL_VALIDATION=1" TIMEOUT 120 COST 100)
+  set_tests_properties(vk.WindowTestsUnderXvfb PROPERTIES ENVIRONMENT "FACIAL_VALIDATION=1" TIMEOUT 120 COST ${FACIAL_LONG_TEST_COST})
   # The same through the Vulkan swapchain, which a CPU device leaves for X11 shared memory (what a GPU presents with).
   add_test(NAME vk.WindowTestsUnderXvfbThroughTheSwapchain
            COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24 -noreset" $<TARGET_FILE:test_engine_vk> --gtest_filter=Window*
            WORKING_DIRECTORY ${PROJECT_BINARY_DIR})
-  set_tests_properties(vk.WindowTestsUnderXvfbThroughTheSwapchain PROPERTIES ENVIRONMENT "FACIAL_VALIDATION=1;FACIAL_X11_SHM=0" TIMEOUT 120 COST 100)
+  set_tests_properties(vk.WindowTestsUnderXvfbThroughTheSwapchain PROPERTIES ENVIRONMENT "FACIAL_VALIDATION=1;FACIAL_X11_SHM=0" TIMEOUT 120 COST ${FACIAL_LONG_TEST_COST})
   set(TEST_DISCOVERY_FILTER "-Window*")
 endif()
