@@ -51,25 +51,32 @@ std::optional<uint32_t> nearestSkinVertex(const PosedPrimitive& pp, const std::v
   return nearest;
 }
 
-// The white of an eye as a material shows it: the brightest quarter of its
-// colour (linear) at the vertices' UVs, nearest texel; the factor alone
-// without a texture. Nullopt without UVs.
+// The white of an eye as the face shows it: the brightest quarter of its
+// colour (linear: texture at the vertices' UVs, nearest texel, times the
+// factor, times a scan's vertex colours). Nullopt for a texture without UVs.
 std::optional<glm::vec3> whiteOf(const eng::Model& model, const eng::Primitive& prim, std::span<const uint32_t> vertices) {
   if (prim.material < 0 || size_t(prim.material) >= model.materials.size()) return std::nullopt;
   const eng::Material& material = model.materials[size_t(prim.material)];
   const glm::vec3 factor(material.baseColorFactor);
-  if (material.baseColorImage < 0 || size_t(material.baseColorImage) >= model.images.size()) return factor;
-  const eng::Image& image = model.images[size_t(material.baseColorImage)];
-  if (prim.texcoords.size() != prim.vertexCount() || image.width <= 0 || image.height <= 0 ||
-      image.rgba8.size() != size_t(image.width) * size_t(image.height) * 4)
+  const eng::Image* image = material.baseColorImage >= 0 && size_t(material.baseColorImage) < model.images.size()
+                                ? &model.images[size_t(material.baseColorImage)]
+                                : nullptr;
+  if (image && (prim.texcoords.size() != prim.vertexCount() || image->width <= 0 || image->height <= 0 ||
+                image->rgba8.size() != size_t(image->width) * size_t(image->height) * 4))
     return std::nullopt;
+  const bool painted = prim.colors.size() == prim.vertexCount();
   std::vector<glm::vec3> colours;
   for (uint32_t v : vertices) {
-    const glm::vec2 uv = prim.texcoords[v] - glm::floor(prim.texcoords[v]);  // repeat
-    const int x = std::clamp(int(uv.x * float(image.width)), 0, image.width - 1);
-    const int y = std::clamp(int(uv.y * float(image.height)), 0, image.height - 1);
-    const uint8_t* t = &image.rgba8[(size_t(y) * size_t(image.width) + size_t(x)) * 4];
-    colours.push_back(eng::srgb(t[0], t[1], t[2]) * factor);
+    glm::vec3 colour = factor;
+    if (image) {
+      const glm::vec2 uv = prim.texcoords[v] - glm::floor(prim.texcoords[v]);  // repeat
+      const int x = std::clamp(int(uv.x * float(image->width)), 0, image->width - 1);
+      const int y = std::clamp(int(uv.y * float(image->height)), 0, image->height - 1);
+      const uint8_t* t = &image->rgba8[(size_t(y) * size_t(image->width) + size_t(x)) * 4];
+      colour *= eng::srgb(t[0], t[1], t[2]);
+    }
+    if (painted) colour *= glm::vec3(prim.colors[v]);
+    colours.push_back(colour);
   }
   if (colours.empty()) return std::nullopt;
   auto brightness = [](const glm::vec3& c) { return c.r + c.g + c.b; };

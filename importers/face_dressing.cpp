@@ -54,7 +54,7 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
                                       [](std::string_view n) { return namesAnEyeball(std::string(n)); });
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
-      if (!unauthoredWhite(model, prim.material)) continue;
+      if (!unauthoredWhite(model, prim)) continue;
       Part part = Part::None;
       if (anyNameContains(names, "teeth") || anyNameContains(names, "tooth"))
         part = Part::Teeth;
@@ -171,10 +171,11 @@ FaceDressing dressUntexturedFace(Model& model) {
       prim.colors[v] = glm::vec4(glm::vec3(prim.colors[v]) * light, prim.colors[v].a);
     }
   };
+  FaceDressing d;
+  // The eyes first: shaded, they would count as painted per vertex.
+  d.eyes = dressUntexturedEyes(model);
   for (const PlannedPrimitive& p : planned) shade(p.mesh, p.primitive, p.part == Part::Teeth ? 0.55f : 0.12f);
   for (const EyePrimitive& e : eyes) shade(size_t(e.mesh), size_t(e.primitive), 0.25f);
-  FaceDressing d;
-  d.eyes = dressUntexturedEyes(model);
   std::map<std::pair<int, Part>, int> dressedMaterial;  // (source material, part) -> new material
   for (const PlannedPrimitive& p : planned) {
     Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];

@@ -142,17 +142,18 @@ std::vector<uint32_t> splitTriangles(const std::vector<uint32_t>& oldIndices, Ed
   return indices;
 }
 
-// Texture coordinates are not smoothed: old vertices keep theirs, edge
-// vertices take their edge's midpoint, so seams and atlases stay put.
-std::vector<glm::vec2> interpolateTexcoords(const std::vector<glm::vec2>& texcoords, uint32_t vertexCount,
-                                            EdgeTable& table) {
-  std::vector<glm::vec2> uv = texcoords;
-  uv.resize(vertexCount);
+// Texture coordinates and vertex colours are not smoothed: old vertices keep
+// theirs, edge vertices take their edge's midpoint, so seams and atlases stay
+// put.
+template <class T>
+std::vector<T> interpolateAtMidpoints(const std::vector<T>& values, uint32_t vertexCount, EdgeTable& table) {
+  std::vector<T> out = values;
+  out.resize(vertexCount);
   for (uint64_t key : table.order) {
     const Edge& e = table.edges[key];
-    uv[e.newVertex] = 0.5f * (texcoords[e.a] + texcoords[e.b]);
+    out[e.newVertex] = 0.5f * (values[e.a] + values[e.b]);
   }
-  return uv;
+  return out;
 }
 
 // The same weights move each target's position deltas (Loop is linear);
@@ -182,10 +183,11 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what, eng
   if (auto checked = checkTriangleList(prim, what); !checked) return checked.error();
   const uint32_t n = static_cast<uint32_t>(prim.positions.size());
   EdgeTable edges = collectEdges(prim.indices);
-  // A vertex per edge: the base (position, normal, uv) and each target's
+  // A vertex per edge: the base (position, normal, uv, colour) and each target's
   // position and normal deltas grow by that, the triangles fourfold.
   const size_t grown = edges.order.size();
-  const size_t perVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2) + prim.targets.size() * 2 * sizeof(glm::vec3);
+  const size_t perVertex = 2 * sizeof(glm::vec3) + sizeof(glm::vec2) + (prim.colors.empty() ? 0 : sizeof(glm::vec4)) +
+                           prim.targets.size() * 2 * sizeof(glm::vec3);
   if (auto ok = budget.charge(grown, perVertex, "subdividing (" + std::to_string(n) + " + " + std::to_string(grown) +
                                                     " vertices, " + std::to_string(prim.targets.size()) + " targets)");
       !ok)
@@ -198,7 +200,8 @@ eng::Result<void> loopSubdivide(eng::Primitive& prim, std::string_view what, eng
   std::vector<uint32_t> indices = splitTriangles(prim.indices, edges);
 
   std::vector<glm::vec3> positions = op.apply(prim.positions);
-  if (!prim.texcoords.empty()) prim.texcoords = interpolateTexcoords(prim.texcoords, vertexCount, edges);
+  if (!prim.texcoords.empty()) prim.texcoords = interpolateAtMidpoints(prim.texcoords, vertexCount, edges);
+  if (!prim.colors.empty()) prim.colors = interpolateAtMidpoints(prim.colors, vertexCount, edges);
   const std::vector<glm::vec3> normals = eng::computeSmoothNormals(positions, indices);
   subdivideTargets(prim.targets, op, positions, normals, indices);
   prim.positions = std::move(positions);

@@ -4,6 +4,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "engine/core/uv_raster.h"  // srgbToLinear
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
@@ -48,7 +49,23 @@ void normalizeOr(glm::vec3& n, bool& ok) {
   else ok = false;
 }
 
+// The OBJ's vertex colours as linear RGBA (the file's are display values,
+// in 0-1 or, from some writers, 0-255); empty when it has none.
+std::vector<glm::vec4> linearColours(const ObjPolygonMesh& obj) {
+  float top = 0.0f;
+  for (const glm::vec3& c : obj.colors) top = std::max({top, c.r, c.g, c.b});
+  const float scale = top > 1.0f ? 1.0f / 255.0f : 1.0f;
+  std::vector<glm::vec4> out;
+  out.reserve(obj.colors.size());
+  for (const glm::vec3& c : obj.colors) {
+    const glm::vec3 display = glm::clamp(c * scale, 0.0f, 1.0f);
+    out.emplace_back(eng::srgbToLinear(display.r), eng::srgbToLinear(display.g), eng::srgbToLinear(display.b), 1.0f);
+  }
+  return out;
+}
+
 Result<std::vector<PrimitiveBuild>> buildNeutral(const ObjPolygonMesh& obj, std::vector<std::string>& warnings) {
+  const std::vector<glm::vec4> colours = linearColours(obj);
   std::vector<PrimitiveBuild> builds;
   std::vector<std::unordered_map<CornerKey, uint32_t, CornerKeyHash>> vertexOf;
   std::unordered_map<int, size_t> primOfMaterial;
@@ -70,6 +87,7 @@ Result<std::vector<PrimitiveBuild>> buildNeutral(const ObjPolygonMesh& obj, std:
       auto [vit, isNew] = map.try_emplace(CornerKey{c.v, c.vt, c.vn}, static_cast<uint32_t>(b.prim.positions.size()));
       if (isNew) {
         b.prim.positions.push_back(obj.positions[c.v]);
+        if (!colours.empty()) b.prim.colors.push_back(colours[size_t(c.v)]);
         // OBJ's V axis points up, glTF's down.
         b.prim.texcoords.push_back(c.vt >= 0 ? glm::vec2(obj.texcoords[c.vt].x, 1.0f - obj.texcoords[c.vt].y) : glm::vec2(0.0f));
         b.anyTexcoords |= c.vt >= 0;

@@ -175,6 +175,8 @@ Result<ObjPolygonMesh> readObjPolygonMesh(const std::filesystem::path& path, con
     return r.error().prefixed(file + ": ");
   if (auto r = copyFinite(attrib.normals, mesh.normals, "normal"); !r) return r.error().prefixed(file + ": ");
   if (mesh.positions.empty()) return makeError(ErrorKind::Malformed, file + ": no vertices ('v' lines)");
+  if (attrib.colors.size() == attrib.vertices.size())
+    if (auto r = copyFinite(attrib.colors, mesh.colors, "vertex colour"); !r) return r.error().prefixed(file + ": ");
 
   if (auto r = copyFaces(shapes, materials.size(), file, mesh); !r) return r.error();
   if (mesh.faceCount() == 0) return makeError(ErrorKind::Malformed, file + ": no faces ('f' lines)");

@@ -31,6 +31,10 @@ struct ObjPolygonMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> texcoords;  // as in the file (V up)
   std::vector<glm::vec3> normals;
+  // Per position, as the file gives them ('v x y z r g b', the extension
+  // MeshLab and ZBrush write; display values, 0-1 or 0-255); empty when not
+  // every vertex has one.
+  std::vector<glm::vec3> colors;
   std::vector<uint32_t> faceStart;   // faceCount() + 1 offsets into corners
   std::vector<ObjCorner> corners;
   std::vector<int> faceMaterial;     // index into materials, -1 = none

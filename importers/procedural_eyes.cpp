@@ -113,7 +113,7 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
       for (const glm::vec3& v : prim.positions) box.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
       boxes.push_back(box);
       // Plain white only: a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
-      if (!unauthoredWhite(model, prim.material)) continue;
+      if (!unauthoredWhite(model, prim)) continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
       const EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre,
@@ -139,13 +139,20 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
   return {};
 }
 
+bool white(const glm::vec4& c) { return c.r >= 0.99f && c.g >= 0.99f && c.b >= 0.99f; }
+
 }  // namespace
 
-bool unauthoredWhite(const Model& model, int material) {
+bool paintedPerVertex(const Primitive& primitive) {
+  return !std::all_of(primitive.colors.begin(), primitive.colors.end(), white);
+}
+
+bool unauthoredWhite(const Model& model, const Primitive& primitive) {
+  if (paintedPerVertex(primitive)) return false;
+  const int material = primitive.material;
   if (material < 0 || size_t(material) >= model.materials.size()) return true;
   const Material& m = model.materials[size_t(material)];
-  return m.baseColorImage < 0 && m.baseColorFactor.r >= 0.99f && m.baseColorFactor.g >= 0.99f &&
-         m.baseColorFactor.b >= 0.99f;
+  return m.baseColorImage < 0 && white(m.baseColorFactor);
 }
 
 Image proceduralEyeImage(int size) {
@@ -201,7 +208,7 @@ std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
       const Material* material =
           prim.material >= 0 && size_t(prim.material) < model.materials.size() ? &model.materials[size_t(prim.material)]
                                                                                : nullptr;
-      if (material && material->baseColorImage >= 0) continue;  // textured: left alone
+      if ((material && material->baseColorImage >= 0) || paintedPerVertex(prim)) continue;  // textured or painted: left alone
       if (!namedEye && !(material && namesAnEyeball(material->name))) continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;  // not a ball (a lid, a lash strip...)

@@ -29,8 +29,11 @@ struct EyePrimitive {
   glm::vec3 gazeAxis{0.0f, 0.0f, 1.0f};  // mesh space, unit
 };
 
-// An untextured material left at white (or none): the author gave it no colour.
-bool unauthoredWhite(const eng::Model& model, int material);
+// Vertex colours off white (a scan's or a sculpt's paint, COLOR_0).
+bool paintedPerVertex(const eng::Primitive& primitive);
+// An untextured material left at white (or none) and not painted per vertex:
+// the author gave the primitive no colour.
+bool unauthoredWhite(const eng::Model& model, const eng::Primitive& primitive);
 
 // The untextured eyeballs of `model`, at rest: the balls named as eyes, else
 // (no names to go by) a pair of balls of one size, level, a few radii apart,

@@ -68,7 +68,8 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                        {"triangles", p.indices.size() / 3},
                        {"material", p.material},
                        {"texcoords", !p.texcoords.empty()},
-                       {"tangents", !p.tangents.empty()}});
+                       {"tangents", !p.tangents.empty()},
+                       {"colors", !p.colors.empty()}});
     meshes.push_back({{"name", mesh.name},
                       {"weightOffset", layout.offset(static_cast<int>(m))},
                       {"primitives", std::move(prims)},
@@ -138,9 +139,9 @@ void printText(const eng::Model& model) {
                 mesh.name.c_str(), mesh.name.empty() ? "" : "'", mesh.primitives.size(), mesh.targetNames.size());
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const eng::Primitive& prim = mesh.primitives[p];
-      std::printf("    primitive %zu: %zu vertices, %zu triangles, material %d%s%s\n", p, prim.vertexCount(),
+      std::printf("    primitive %zu: %zu vertices, %zu triangles, material %d%s%s%s\n", p, prim.vertexCount(),
                   prim.indices.size() / 3, prim.material, prim.texcoords.empty() ? "" : ", uv",
-                  prim.tangents.empty() ? "" : ", tangents");
+                  prim.tangents.empty() ? "" : ", tangents", prim.colors.empty() ? "" : ", vertex colours");
     }
     for (size_t t = 0; t < mesh.targetNames.size(); ++t)
       std::printf("    target %3zu  %-24s default %.4g\n", t, mesh.targetNames[t].c_str(), mesh.defaultWeights[t]);

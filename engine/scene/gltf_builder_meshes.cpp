@@ -141,7 +141,40 @@ Result<void> GltfModelBuilder::readVertexAttributes(const tinygltf::Primitive& s
     if (!tangents) return tangents.error();
     out.tangents = std::move(*tangents);
   }
+  if (auto it = src.attributes.find("COLOR_0"); it != src.attributes.end())
+    if (auto ok = readVertexColours(it->second, label + " COLOR_0", out); !ok) return ok.error();
   if (auto ok = readSkinAttributes(reader_, gltf_, src, label, out, model_.warnings); !ok) return fail(ok.error());
+  return {};
+}
+
+Result<void> GltfModelBuilder::readVertexColours(int accessor, const std::string& what, Primitive& out) {
+  if (accessor < 0 || static_cast<size_t>(accessor) >= gltf_.accessors.size())
+    return fail(what + " names accessor " + std::to_string(accessor) + ", the file has " +
+                std::to_string(gltf_.accessors.size()));
+  const tinygltf::Accessor& acc = gltf_.accessors[static_cast<size_t>(accessor)];
+  const bool vec3 = acc.type == TINYGLTF_TYPE_VEC3, vec4 = acc.type == TINYGLTF_TYPE_VEC4;
+  const bool kind = acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                    (acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                        acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+  if (!(vec3 || vec4) || !kind) {
+    warn(what + " is not a VEC3 or VEC4 of floats or normalized unsigned bytes or shorts (glTF 2.0, 3.7.2.1); "
+         "drawn without vertex colours");
+    return {};
+  }
+  const size_t n = out.positions.size();
+  if (vec3) {
+    auto rgb = readAttribute<3>(accessor, n, what);
+    if (!rgb) return rgb.error();
+    if (auto ok = reader_.charge(n * sizeof(glm::vec4), what); !ok) return fail(ok.error());
+    out.colors.resize(n);
+    for (size_t v = 0; v < n; ++v) out.colors[v] = glm::vec4((*rgb)[v], 1.0f);
+  } else {
+    auto rgba = readAttribute<4>(accessor, n, what);
+    if (!rgba) return rgba.error();
+    out.colors = std::move(*rgba);
+  }
+  // Linear and within [0, 1] by the spec; a float file may stray outside.
+  for (glm::vec4& c : out.colors) c = glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f));
   return {};
 }
 

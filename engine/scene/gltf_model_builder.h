@@ -83,8 +83,11 @@ class GltfModelBuilder {
   Result<bool> loadPrimitive(int m, int p, Primitive& out, size_t& targetCount, bool& targetCountKnown);
   // The steps of loadPrimitive once out.positions is read. NORMAL (left empty
   // when the file has none: generated after the triangles), TEXCOORD_0,
-  // TANGENT, JOINTS_n / WEIGHTS_n:
+  // TANGENT, COLOR_0, JOINTS_n / WEIGHTS_n:
   Result<void> readVertexAttributes(const tinygltf::Primitive& src, const std::string& label, Primitive& out);
+  // COLOR_0 (VEC3 or VEC4; float, or normalized unsigned byte or short) into
+  // out.colors; an accessor of any other kind is skipped with a warning.
+  Result<void> readVertexColours(int accessor, const std::string& what, Primitive& out);
   // The triangle list from the indices (or 0..n-1) and the mode:
   Result<void> readTriangles(const tinygltf::Primitive& src, int mode, const std::string& label, Primitive& out);
   // The material (default when out of range) and its baked KHR_texture_transform:

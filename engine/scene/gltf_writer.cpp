@@ -296,6 +296,7 @@ Json primitiveJson(const Primitive& p, BufferBuilder& buffers) {
   if (!p.normals.empty()) attributes["NORMAL"] = buffers.addFloats(&p.normals[0].x, n, 3, kArrayBuffer, false);
   if (!p.texcoords.empty()) attributes["TEXCOORD_0"] = buffers.addFloats(&p.texcoords[0].x, n, 2, kArrayBuffer, false);
   if (!p.tangents.empty()) attributes["TANGENT"] = buffers.addFloats(&p.tangents[0].x, n, 4, kArrayBuffer, false);
+  if (p.colors.size() == n) attributes["COLOR_0"] = buffers.addFloats(&p.colors[0].x, n, 4, kArrayBuffer, false);
   for (size_t set = 0; set < p.influenceSets(); ++set) {
     attributes["JOINTS_" + std::to_string(set)] = buffers.addJoints(p, set);
     attributes["WEIGHTS_" + std::to_string(set)] = buffers.addJointWeights(p, set);

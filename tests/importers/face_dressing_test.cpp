@@ -200,6 +200,17 @@ TEST(FaceDressing, NonFaceModelsAndAuthoredColoursStayAsAuthored) {
   for (eng::Material& m : coloured.materials) m.baseColorFactor = glm::vec4(0.7f, 0.5f, 0.4f, 1.0f);
   EXPECT_EQ(importers::planFaceDressing(coloured).skin, 0u);
   EXPECT_EQ(importers::planFaceDressing(coloured).mouth, 0u);
+  // A scan painted per vertex (COLOR_0, an OBJ's 'v x y z r g b') on white
+  // materials is authored too; all-white vertex colours are no paint.
+  eng::Model painted = plasterHead();
+  const importers::FaceDressing plaster = importers::planFaceDressing(painted);
+  ASSERT_GT(plaster.total(), 0u);
+  for (eng::Mesh& mesh : painted.meshes)
+    for (eng::Primitive& prim : mesh.primitives) prim.colors.assign(prim.vertexCount(), glm::vec4(1.0f));
+  EXPECT_EQ(importers::planFaceDressing(painted).total(), plaster.total());
+  for (eng::Mesh& mesh : painted.meshes)
+    for (eng::Primitive& prim : mesh.primitives) prim.colors.assign(prim.vertexCount(), glm::vec4(0.8f, 0.6f, 0.5f, 1.0f));
+  EXPECT_EQ(importers::planFaceDressing(painted).total(), 0u);
 }
 
 TEST(VertexOcclusion, InsideOfAClosedShellIsDarkOutsideIsOpen) {

@@ -2,6 +2,8 @@
 // boundary and interior rules, and morph targets carried by the same weights.
 #include "importers/loop_subdivision.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "importers/candide_import.h"
@@ -42,6 +44,27 @@ TEST(LoopSubdivision, SquareSplitsIntoEightTrianglesWithBoundaryRules) {
   EXPECT_NEAR(p.targets[1].positions[2].z, 0.75f, 1e-6f);
   EXPECT_NEAR(p.targets[1].positions[0].z, 0.0f, 1e-6f);
   EXPECT_EQ(p.targets[1].normals.size(), 9u);
+}
+
+// A scan's paint: old vertices keep their colour, edge vertices take their
+// edge's midpoint (colours are painted, not shaped by Loop's weights).
+TEST(LoopSubdivision, VertexColoursAreKeptAndMidpointsAtNewVertices) {
+  eng::Primitive p = square();
+  p.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 0.5f}};
+  ASSERT_TRUE(importers::loopSubdivide(p, "square"));
+  ASSERT_EQ(p.colors.size(), p.positions.size());
+  EXPECT_EQ(p.colors[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(p.colors[3], glm::vec4(1, 1, 1, 0.5f));
+  // The new vertices are the 5 edges' midpoints, in the edges' order.
+  const std::vector<glm::vec4> midpoints = {{0.5f, 0.5f, 0, 1}, {0, 0.5f, 0.5f, 1}, {0.5f, 0, 0.5f, 1},
+                                            {0.5f, 0.5f, 1, 0.75f}, {1, 0.5f, 0.5f, 0.75f}};
+  const auto cmp = [](const glm::vec4& a, const glm::vec4& b) {
+    return std::lexicographical_compare(&a.x, &a.x + 4, &b.x, &b.x + 4);
+  };
+  std::vector<glm::vec4> made(p.colors.begin() + 4, p.colors.end()), expected = midpoints;
+  std::sort(made.begin(), made.end(), cmp);
+  std::sort(expected.begin(), expected.end(), cmp);
+  EXPECT_EQ(made, expected);
 }
 
 TEST(LoopSubdivision, CandideMaskBecomesSmoothWithItsUnits) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/core/uv_raster.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -93,6 +94,38 @@ TEST(ObjKeyframes, TrianglesAndNgonsAreTriangulated) {
   EXPECT_EQ(importOk(dir / "tris.obj", {}).model.meshes[0].primitives[0].indices.size(), 72u);
   const auto pentagon = importOk(dir / "pentagon.obj", {});
   EXPECT_EQ(pentagon.model.meshes[0].primitives[0].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
+}
+
+// An OBJ's vertex colours are display (sRGB) values, 0-1 or 0-255: the
+// model's are linear, on every vertex made from that position, and they
+// survive the GLB round trip.
+TEST(ObjKeyframes, VertexColoursBecomeLinearColoursOfThePrimitive) {
+  const auto dir = freshTempDir("obj_colours");
+  writeFile(dir / "unit.obj", "v 0 0 0 1 0.5 0\nv 1 0 0 0 0 0\nv 1 1 0 0.2 0.2 0.2\nvt 0 0\nvt 1 1\nf 1/1 2/1 3/1\nf 1/2 3/2 2/2\n");
+  writeFile(dir / "bytes.obj", "v 0 0 0 255 128 0\nv 1 0 0 0 0 0\nv 1 1 0 51 51 51\nf 1 2 3\n");
+  const auto unit = importOk(dir / "unit.obj", {});
+  const eng::Primitive& p = unit.model.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(p.positions.size(), 6u) << "two UVs per position: a vertex per corner";
+  ASSERT_EQ(p.colors.size(), 6u);
+  const int first = vertexAt(p, {0, 0, 0});
+  ASSERT_GE(first, 0);
+  EXPECT_EQ(p.colors[size_t(first)].r, 1.0f);
+  EXPECT_NEAR(p.colors[size_t(first)].g, 0.214f, 0.001f) << "sRGB 0.5 is linear 0.214";
+  EXPECT_EQ(p.colors[size_t(first)].a, 1.0f);
+  for (size_t v = 0; v < p.positions.size(); ++v)
+    if (p.positions[v] == glm::vec3(1, 1, 0)) {
+      EXPECT_NEAR(p.colors[v].b, 0.0331f, 0.0005f);
+    }
+  const auto bytes = importOk(dir / "bytes.obj", {});
+  const eng::Primitive& q = bytes.model.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(q.colors.size(), 3u);
+  EXPECT_NEAR(q.colors[0].g, eng::srgbToLinear(128.0f / 255.0f), 1e-6f) << "0-255 values are bytes";
+  EXPECT_NEAR(q.colors[2].r, p.colors[size_t(vertexAt(p, {1, 1, 0}))].r, 1e-3f);
+
+  ASSERT_TRUE(eng::saveModel(unit.model, dir / "unit.glb").ok());
+  auto reloaded = eng::loadModel(dir / "unit.glb");
+  ASSERT_TRUE(reloaded.ok()) << reloaded.error().message;
+  EXPECT_EQ(reloaded->meshes.at(0).primitives.at(0).colors, p.colors);
 }
 
 TEST(ObjKeyframes, MissingNormalsAreGeneratedAndMorphOnlyWhereTheShapeMoves) {

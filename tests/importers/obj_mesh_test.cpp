@@ -28,6 +28,20 @@ TEST(ObjMesh, KeepsPolygonsAndSeparateIndexStreams) {
   EXPECT_EQ(mesh->faceMaterial, (std::vector<int>{-1, -1, -1}));
 }
 
+// MeshLab's and ZBrush's vertex colours ('v x y z r g b'), kept only when
+// every vertex has one.
+TEST(ObjMesh, ReadsVertexColoursWhenEveryVertexHasOne) {
+  const auto dir = freshTempDir("obj_mesh_colours");
+  writeFile(dir / "painted.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 1 1 0 0 0 1\nf 1 2 3\n");
+  auto painted = importers::readObjPolygonMesh(dir / "painted.obj");
+  ASSERT_TRUE(painted.ok()) << painted.error().message;
+  EXPECT_EQ(painted->colors, (std::vector<glm::vec3>{{1, 0, 0}, {0, 0.5f, 0}, {0, 0, 1}}));
+  writeFile(dir / "partly.obj", "v 0 0 0 1 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  auto partly = importers::readObjPolygonMesh(dir / "partly.obj");
+  ASSERT_TRUE(partly.ok()) << partly.error().message;
+  EXPECT_TRUE(partly->colors.empty());
+}
+
 TEST(ObjMeshBadInput, MissingEmptyAndFacelessFiles) {
   const auto dir = freshTempDir("obj_mesh_bad_files");
   auto missing = importers::readObjPolygonMesh(dir / "none.obj");

@@ -126,6 +126,51 @@ TEST(GltfLoader, DecodesQuantizedNormalizedAndIntegerComponents) {
   EXPECT_TRUE(model.warnings.empty());
 }
 
+// COLOR_0 (a scan's or a sculpt's paint): VEC3 or VEC4, float or normalized
+// unsigned; linear RGBA out, alpha 1 for VEC3. Other kinds are skipped.
+TEST(GltfLoader, ReadsVertexColoursOfEveryKindTheSpecAllows) {
+  const auto dir = freshTempDir("loader_colours");
+  GltfFileBuilder b;
+  const int pos = b.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, true);
+  const std::vector<uint8_t> rgb8 = {255, 0, 0, 0, 0, 0, 0, 0, 0, 128, 255, 0};  // 4-byte stride
+  const int rgbAcc = b.addAccessor(b.addView(rgb8.data(), 12, 4), kUnsignedByte, 3, "VEC3", true);
+  const std::vector<uint16_t> rgba16 = {0, 65535, 0, 32768, 65535, 65535, 65535, 65535, 0, 0, 0, 0};
+  const int rgbaAcc = b.addAccessor(b.addView(rgba16), kUnsignedShort, 3, "VEC4", true);
+  const std::vector<float> rgbaF = {0.25f, 0.5f, 0.75f, 1.0f, 2.0f, -1.0f, 0.5f, 0.5f, 0, 0, 0, 1};
+  const int floatAcc = b.addAccessor(b.addView(rgbaF), kFloat, 3, "VEC4");
+  const int rawAcc = b.addAccessor(b.addView(rgb8.data(), 12, 4), kUnsignedByte, 3, "VEC3");  // not normalized
+  auto prim = [&](int colours) { return Json{{"attributes", {{"POSITION", pos}, {"COLOR_0", colours}}}}; };
+  b.addMeshWithNode({{"primitives", Json::array({prim(rgbAcc), prim(rgbaAcc), prim(floatAcc), prim(rawAcc)})}});
+  b.writeGltf(dir / "colours.gltf");
+  const eng::Model model = loadOk(dir / "colours.gltf");
+  const auto& prims = model.meshes.at(0).primitives;
+  ASSERT_EQ(prims.size(), 4u);
+  ASSERT_EQ(prims[0].colors.size(), 3u);
+  EXPECT_EQ(prims[0].colors[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(prims[0].colors[2], glm::vec4(0.0f, 128.0f / 255.0f, 1.0f, 1.0f));
+  EXPECT_EQ(prims[0].colors[2].a, 1.0f) << "VEC3 colours are opaque";
+  ASSERT_EQ(prims[1].colors.size(), 3u);
+  EXPECT_NEAR(prims[1].colors[0].a, 32768.0f / 65535.0f, 1e-6f);
+  EXPECT_EQ(prims[1].colors[1], glm::vec4(1.0f));
+  ASSERT_EQ(prims[2].colors.size(), 3u);
+  EXPECT_EQ(prims[2].colors[0], glm::vec4(0.25f, 0.5f, 0.75f, 1.0f));
+  EXPECT_EQ(prims[2].colors[1], glm::vec4(1.0f, 0.0f, 0.5f, 0.5f)) << "clamped to [0, 1]";
+  EXPECT_TRUE(prims[3].colors.empty());
+  EXPECT_TRUE(hasWarningContaining(model, "mesh 0 primitive 3 COLOR_0 is not a VEC3 or VEC4"));
+  EXPECT_EQ(model.warnings.size(), 1u);
+}
+
+TEST(GltfLoader, VertexColoursShortOfThePrimitivesVerticesAreAnError) {
+  const auto dir = freshTempDir("loader_colours_short");
+  GltfFileBuilder b;
+  const int pos = b.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, true);
+  const std::vector<float> two = {1, 1, 1, 1, 1, 1};
+  const int colours = b.addAccessor(b.addView(two), kFloat, 2, "VEC3");
+  b.addMeshWithNode({{"primitives", Json::array({{{"attributes", {{"POSITION", pos}, {"COLOR_0", colours}}}}})}});
+  b.writeGltf(dir / "short.gltf");
+  expectLoadError(dir / "short.gltf", "COLOR_0 has 2 elements, its primitive has 3 vertices");
+}
+
 TEST(GltfLoader, NonIndexedStripAndFanPrimitivesBecomeTriangleLists) {
   const auto dir = freshTempDir("loader_modes");
   GltfFileBuilder b;

@@ -68,6 +68,7 @@ eng::Model richModel() {
       prim.normals.push_back(glm::normalize(glm::vec3(0.1f * v, 1.0f, 0.5f)));
       prim.texcoords.push_back({v / float(n), 1.0f - v / float(n)});
       prim.tangents.push_back({1, 0, 0, v % 2 ? 1.0f : -1.0f});
+      if (p == 0) prim.colors.push_back({v / float(n), 0.5f, 1.0f - v / float(n), v % 2 ? 1.0f : 0.75f});
     }
     for (int v = 0; v + 2 < n; v += 3) prim.indices.insert(prim.indices.end(), {uint32_t(v), uint32_t(v + 1), uint32_t(v + 2)});
     prim.material = p;
@@ -153,6 +154,7 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
       EXPECT_EQ(P.normals, Q.normals);
       EXPECT_EQ(P.texcoords, Q.texcoords);
       EXPECT_EQ(P.tangents, Q.tangents);
+      EXPECT_EQ(P.colors, Q.colors);
       EXPECT_EQ(P.indices, Q.indices);
       EXPECT_EQ(P.material, Q.material);
       ASSERT_EQ(P.targets.size(), Q.targets.size());
