@@ -10,7 +10,10 @@
 #include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
 #include "tests/autorig/transfer_fixture.h"
+#include "tests/common/test_support.h"
 
 namespace {
 
@@ -233,6 +236,35 @@ TEST(TargetTransfer, WindingDoesNotMatter) {
   ASSERT_TRUE(rigged) << rigged.error().message;
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
     EXPECT_LT(transfer_fixture::relativeError(*head, rigged->model, "Head", 0, unit, unit), 0.03f) << unit;
+}
+
+// A scan painted per vertex (COLOR_0, an OBJ's 'v x y z r g b') keeps its
+// paint through the rig and the rigged file.
+TEST(TargetTransfer, AFacePaintedPerVertexKeepsItsPaint) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Mesh& mesh : face.meshes)
+    for (eng::Primitive& p : mesh.primitives) {
+      p.colors.resize(p.vertexCount());
+      for (size_t v = 0; v < p.colors.size(); ++v) p.colors[v] = glm::vec4(float(v % 7) / 7.0f, 0.5f, float(v % 3) / 3.0f, 1.0f);
+    }
+  autorig::FaceParts parts = source.parts;
+  parts.eyeRadii = {0.0f, 0.0f};
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  ASSERT_EQ(rigged->model.meshes.size(), face.meshes.size());
+  for (size_t m = 0; m < face.meshes.size(); ++m) {
+    ASSERT_EQ(rigged->model.meshes[m].primitives.size(), face.meshes[m].primitives.size());
+    for (size_t p = 0; p < face.meshes[m].primitives.size(); ++p)
+      EXPECT_EQ(rigged->model.meshes[m].primitives[p].colors, face.meshes[m].primitives[p].colors) << "mesh " << m << " primitive " << p;
+  }
+  const std::filesystem::path file = testing_support::freshTempDir("transfer_painted") / "rigged.glb";
+  ASSERT_TRUE(eng::saveModel(rigged->model, file).ok());
+  auto reloaded = eng::loadModel(file);
+  ASSERT_TRUE(reloaded.ok()) << reloaded.error().message;
+  EXPECT_EQ(reloaded->meshes.at(0).primitives.at(0).colors, face.meshes[0].primitives[0].colors);
 }
 
 // A smooth deformation of the head (scaled, bent sideways and backwards):
