@@ -22,15 +22,21 @@ using transfer_fixture::kShapesOnly;
 using transfer_fixture::loadHead;
 using transfer_fixture::stripped;
 
+// `face` (the head, changed) rigged from the head with the head's own
+// landmarks and parts, without eyeball sizes: the lids as the head moves
+// them, not slid over its balls.
+eng::Result<autorig::TransferResult> rigAsTheHead(const autorig::SourceFace& source, const eng::Model& face) {
+  autorig::FaceParts parts = source.parts;
+  parts.eyeRadii = {0.0f, 0.0f};
+  return autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
+}
+
 TEST(TargetTransfer, HeadOntoItselfGivesItsOwnUnitsBack) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
   const eng::Model face = stripped(*head);
-  // Without eyeball sizes: the lids as the head moves them, not slid over its balls.
-  autorig::FaceParts parts = source.parts;
-  parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
+  eng::Result<autorig::TransferResult> rigged = rigAsTheHead(source, face);
   ASSERT_TRUE(rigged) << rigged.error().message;
   EXPECT_TRUE(rigged->report.kept.empty());
   // Every vertex matches itself (measured 0 to 0.019, the lips' seam twins
@@ -230,9 +236,7 @@ TEST(TargetTransfer, WindingDoesNotMatter) {
   for (eng::Mesh& mesh : face.meshes)
     for (eng::Primitive& p : mesh.primitives)
       for (size_t i = 0; i + 2 < p.indices.size(); i += 3) std::swap(p.indices[i + 1], p.indices[i + 2]);
-  autorig::FaceParts parts = source.parts;
-  parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
+  eng::Result<autorig::TransferResult> rigged = rigAsTheHead(source, face);
   ASSERT_TRUE(rigged) << rigged.error().message;
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
     EXPECT_LT(transfer_fixture::relativeError(*head, rigged->model, "Head", 0, unit, unit), 0.03f) << unit;
@@ -250,9 +254,7 @@ TEST(TargetTransfer, AFacePaintedPerVertexKeepsItsPaint) {
       p.colors.resize(p.vertexCount());
       for (size_t v = 0; v < p.colors.size(); ++v) p.colors[v] = glm::vec4(float(v % 7) / 7.0f, 0.5f, float(v % 3) / 3.0f, 1.0f);
     }
-  autorig::FaceParts parts = source.parts;
-  parts.eyeRadii = {0.0f, 0.0f};
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, face, source.posed, source.landmarks, parts, kShapesOnly);
+  eng::Result<autorig::TransferResult> rigged = rigAsTheHead(source, face);
   ASSERT_TRUE(rigged) << rigged.error().message;
   ASSERT_EQ(rigged->model.meshes.size(), face.meshes.size());
   for (size_t m = 0; m < face.meshes.size(); ++m) {
