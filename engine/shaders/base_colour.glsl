@@ -6,8 +6,11 @@
 
 layout(set = 1, binding = 3) uniform sampler2D baseColorTexture;  // sRGB, white when absent
 
+// What multiplies the texture: the material's factor and the vertex colour.
+vec4 baseTint(uint material, vec4 vertexColour) { return instanceMaterials[material].baseColorFactor * vertexColour; }
+
 vec4 baseColour(vec2 uv, uint material, vec4 vertexColour) {
-  return texture(baseColorTexture, uv) * instanceMaterials[material].baseColorFactor * vertexColour;
+  return texture(baseColorTexture, uv) * baseTint(material, vertexColour);
 }
 
 // glTF alphaMode MASK: lashes, brows and hair cards cut out of their quads.

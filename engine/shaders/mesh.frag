@@ -75,8 +75,12 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
 
 void main() {
   InstanceMaterial material = instanceMaterials[inMaterial];
-  vec4 base = baseColour(inTexcoord, inMaterial, inColor);
-  if (ALPHA_MASK_PIPELINE && cutOut(base.a)) discard;
+  // Detail layers are other textures for the same UVs: they blend into the
+  // texel, and the material's factor and the vertex colour tint the result,
+  // so a layer painted for the texture follows a skin recoloured by its factor.
+  vec4 texel = texture(baseColorTexture, inTexcoord);
+  const vec4 tint = baseTint(inMaterial, inColor);
+  if (ALPHA_MASK_PIPELINE && cutOut(texel.a * tint.a)) discard;
 
   if (draw.detailLayerCount > 0u) {
     InstanceData inst = instances[inInstance];
@@ -85,9 +89,10 @@ void main() {
     // every layer it loops over for every pixel. Layers past 32 (no mask bit)
     // are all visited.
     for (uint bits = draw.detailLayerMask; bits != 0u; bits &= bits - 1u)
-      base.rgb = blendDetailLayer(base.rgb, inst, uint(findLSB(bits)));
-    for (uint l = 32u; l < draw.detailLayerCount; ++l) base.rgb = blendDetailLayer(base.rgb, inst, l);
+      texel.rgb = blendDetailLayer(texel.rgb, inst, uint(findLSB(bits)));
+    for (uint l = 32u; l < draw.detailLayerCount; ++l) texel.rgb = blendDetailLayer(texel.rgb, inst, l);
   }
+  const vec4 base = texel * tint;
 
   // BLEND draws go through a blending pipeline; every other mode is opaque.
   const float alpha = (draw.flags & DRAW_FLAG_ALPHA_BLEND) != 0u ? clamp(base.a, 0.0, 1.0) : 1.0;

@@ -85,6 +85,31 @@ TEST(DetailLayers, ModulatingLayerScalesTheColourUnderIt) {
   EXPECT_LT(std::abs(half.r - half.g), 15) << "a grey modulation keeps the grey";
 }
 
+// A mixing layer stands for the texture (painted over the same UVs): the
+// material's factor and the vertex colours tint it as they tint the texture,
+// so the head's creases and pallor, painted for its skin, stay dark on the
+// head made dark by its factor (they drew pale stripes and an ashen face).
+TEST(DetailLayers, MixingLayerIsTintedLikeTheTextureItStandsFor) {
+  eng::Model model = layeredSphere();
+  model.images.push_back(solidImage(4, 4, {160, 160, 160, 255}));  // a pale crease over a white texture
+  model.materials[0].detailLayers = {{2, testing_support::targetName(1), 1.0f}};
+  model.materials[0].baseColorFactor = {0.12f, 0.12f, 0.12f, 1.0f};  // a dark skin
+  auto gpu = vk_test::renderer().upload(model);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const glm::ivec4 off = centreWith(*gpu, model, {0, 0, 0, 0});
+  const glm::ivec4 creased = centreWith(*gpu, model, {0, 1.0f, 0, 0});
+  EXPECT_LT(creased.g, off.g - 10) << "the crease darkens the dark skin (" << creased.g << " against " << off.g << ")";
+
+  model.materials[0].baseColorFactor = glm::vec4(1.0f);
+  for (eng::Primitive& prim : model.meshes[0].primitives) prim.colors.assign(prim.vertexCount(), {0.12f, 0.12f, 0.12f, 1.0f});
+  auto painted = vk_test::renderer().upload(model);
+  ASSERT_TRUE(painted) << painted.error().message;
+  const glm::ivec4 paintedOff = centreWith(*painted, model, {0, 0, 0, 0});
+  const glm::ivec4 paintedCreased = centreWith(*painted, model, {0, 1.0f, 0, 0});
+  EXPECT_LT(std::abs(paintedOff.g - off.g), 4) << "vertex colours tint as the factor does";
+  EXPECT_LT(std::abs(paintedCreased.g - creased.g), 4);
+}
+
 // Uploads `model`, the warnings logged meanwhile kept in `warnings`.
 auto uploadKeepingWarnings(const eng::Model& model, std::vector<std::string>& warnings) {
   const eng::LogSink previous = eng::setLogSink([&](eng::LogLevel level, std::string_view m) {
