@@ -93,7 +93,7 @@ TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged) {
 
 std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
                           const std::filesystem::path& rigmapFile) {
-  if ((face.format != importers::FaceFormat::Gltf && face.format != importers::FaceFormat::Obj) || face.vrm) return {};
+  if (!importers::isPlainMesh(face.format) || face.vrm) return {};
   facial::RigMappingOptions options;
   options.modelName = modelNameOf(face.model.sourcePath);
   options.rigmapDirectory = dataDirectory() / "rigmaps";

@@ -16,9 +16,14 @@
 #include "importers/face_dressing.h"
 #include "importers/loop_subdivision.h"
 #include "importers/obj_keyframes.h"
+#include "importers/ply_mesh.h"
 #include "importers/vrm_import.h"
 
 namespace importers {
+
+bool isPlainMesh(FaceFormat format) {
+  return format == FaceFormat::Gltf || format == FaceFormat::Obj || format == FaceFormat::Ply;
+}
 
 std::string_view faceFormatName(FaceFormat format) {
   switch (format) {
@@ -27,6 +32,7 @@ std::string_view faceFormatName(FaceFormat format) {
     case FaceFormat::ObjSet: return "OBJ keyframe set";
     case FaceFormat::Candide3: return "CANDIDE-3";
     case FaceFormat::Obj: return "OBJ";
+    case FaceFormat::Ply: return "PLY";
   }
   return "?";
 }
@@ -66,6 +72,15 @@ bool looksLikeObj(std::span<const uint8_t> bytes) {
     return false;
   }
   return false;
+}
+
+eng::Result<LoadedFace> loadPlyMesh(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
+  auto mesh = readPlyPolygonMesh(bytes, path);
+  if (!mesh) return mesh.error();
+  auto model = modelFromPolygonMesh(*mesh, path);
+  if (!model) return model.error();
+  model->sourcePath = path.string();
+  return LoadedFace{std::move(*model), FaceFormat::Ply, nullptr, std::nullopt};
 }
 
 eng::Result<LoadedFace> loadObjMesh(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
@@ -159,8 +174,10 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
   if (start.starts_with("# VERTEX LIST")) return finish(loadCandide3(bytes, path), path, options);
   // Its .mtl and textures are read beside `path`.
   if (looksLikeObj(bytes)) return finish(loadObjMesh(bytes, path), path, options);
+  if (looksLikePly(bytes)) return finish(loadPlyMesh(bytes, path), path, options);
   return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
-                        "keyframes, an OBJ or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', '# VERTEX LIST' nor an OBJ statement");
+                        "keyframes, an OBJ, a PLY or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', '# VERTEX LIST', "
+                        "'ply' nor an OBJ statement");
 }
 
 eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {

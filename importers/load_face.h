@@ -27,8 +27,12 @@ namespace importers {
 // What a face file is, told by its content.
 // Obj: one OBJ file, a face without targets (a scan, a sculpt), which
 // autorig gives the built-in head's action units.
-enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3, Obj };
+enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3, Obj, Ply };
 std::string_view faceFormatName(FaceFormat format);
+// A mesh as exporters and scanners write it (glTF / GLB, OBJ, PLY), which
+// autorig makes targets for; not a VRM, an OBJ keyframe set or CANDIDE-3,
+// whose rigs come with them.
+bool isPlainMesh(FaceFormat format);
 
 struct LoadFaceOptions {
   // "NAME=VALUE" identity parameters baked into the rest mesh (bakeShapes).

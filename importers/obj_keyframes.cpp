@@ -232,6 +232,9 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
+// The model of `neutral` (read from `neutralPath`, which names the mesh and its messages) with `targets` on it.
+Result<ObjKeyframeImport> importKeyframesOnto(const ObjPolygonMesh& neutral, const std::filesystem::path& neutralPath,
+                                              std::span<const ObjTargetFile> targets, const ObjKeyframeOptions& options);
 
 }  // namespace
 
@@ -244,7 +247,20 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
                                                      "] of the model's size: distinct vertices would be matched");
   auto neutral = readObjPolygonMesh(neutralPath, {}, neutralBytes);
   if (!neutral) return neutral.error();
+  return importKeyframesOnto(*neutral, neutralPath, targets, options);
+}
 
+Result<Model> modelFromPolygonMesh(const ObjPolygonMesh& mesh, const std::filesystem::path& path) {
+  auto imported = importKeyframesOnto(mesh, path, {}, {});
+  if (!imported) return imported.error();
+  return std::move(imported->model);
+}
+
+namespace {
+
+Result<ObjKeyframeImport> importKeyframesOnto(const ObjPolygonMesh& neutralMesh, const std::filesystem::path& neutralPath,
+                                              std::span<const ObjTargetFile> targets, const ObjKeyframeOptions& options) {
+  const ObjPolygonMesh* neutral = &neutralMesh;
   ObjKeyframeImport result;
   Model& model = result.model;
   model.sourcePath = neutralPath.string();
@@ -280,6 +296,8 @@ Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutra
     return consistent.error().prefixed(neutralPath.string() + ": ");
   return result;
 }
+
+}  // namespace
 
 Result<ObjKeyframeFolder> findObjKeyframeFolder(const std::filesystem::path& dir) {
   std::error_code ec;

@@ -15,6 +15,7 @@
 
 #include "engine/core/result.h"
 #include "engine/scene/model.h"
+#include "importers/obj_mesh.h"
 
 namespace importers {
 
@@ -51,6 +52,10 @@ struct ObjKeyframeImport {
 eng::Result<ObjKeyframeImport> importObjKeyframes(const std::filesystem::path& neutral, std::span<const ObjTargetFile> targets,
                                              const ObjKeyframeOptions& options = {},
                                              std::span<const uint8_t> neutralBytes = {});
+
+// A face without targets from a polygon mesh another reader made (a PLY
+// scan, importers/ply_mesh.h): built as an OBJ's neutral is.
+eng::Result<eng::Model> modelFromPolygonMesh(const ObjPolygonMesh& mesh, const std::filesystem::path& path);
 
 struct ObjKeyframeFolder {
   std::filesystem::path neutral;

@@ -53,9 +53,9 @@ int runAutorig(const AutorigOptions& o) {
   if (std::string refused = checkPaths(o); !refused.empty()) return fail(refused);
   auto face = importers::loadFace(o.model, {.dressForDisplay = true});
   if (!face) return fail(face.error().message);
-  if (face->format != importers::FaceFormat::Gltf && face->format != importers::FaceFormat::Obj)
+  if (!importers::isPlainMesh(face->format))
     return fail(o.model + ": a " + std::string(importers::faceFormatName(face->format)) +
-                " face; autorig makes targets for glTF / GLB and OBJ faces (convert it first: facial convert)");
+                " face; autorig makes targets for glTF / GLB, OBJ and PLY faces (convert it first: facial convert)");
   // Allowed (ground truth is measured this way), but the rigged copy's action
   // units then take over from the face's own rig: say so.
   if (auto rig = app::buildFaceRig(*face); rig && app::autorigReason(*face, rig, {}).empty())

@@ -368,4 +368,19 @@ TEST(FaceSetupAutorig, AnObjScanIsRiggedOnTheFly) {
   EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
 }
 
+// The same head as a scanner's binary PLY: read, rigged on the fly, smiling.
+TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  const fs::path dir = testing_support::freshTempDir("autorig_ply_scan");
+  testing_support::writeFile(dir / "scan.ply", testing_support::modelAsPly(*head));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "scan.ply", .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
+  EXPECT_TRUE(facial::showsEmotions(face->rig()));
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+}
+
 }  // namespace

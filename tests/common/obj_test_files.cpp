@@ -1,5 +1,6 @@
 #include "tests/common/obj_test_files.h"
 
+#include <cstdint>
 #include <cstdio>
 #include <sstream>
 
@@ -93,6 +94,37 @@ std::string modelAsObj(const eng::Model& model, const std::string& header) {
     }
   }
   return text;
+}
+
+std::string modelAsPly(const eng::Model& model) {
+  std::vector<float> vertices;  // x y z nx ny nz
+  std::vector<uint32_t> triangles;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const eng::Node& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    const glm::mat4 world = model.worldTransform(int(n));
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+    for (const eng::Primitive& p : model.meshes[size_t(node.mesh)].primitives) {
+      const uint32_t base = uint32_t(vertices.size() / 6);
+      for (size_t v = 0; v < p.positions.size(); ++v) {
+        const glm::vec3 w(world * glm::vec4(p.positions[v], 1.0f));
+        const glm::vec3 nrm = v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1);
+        vertices.insert(vertices.end(), {w.x, w.y, w.z, nrm.x, nrm.y, nrm.z});
+      }
+      for (uint32_t i : p.indices) triangles.push_back(base + i);
+    }
+  }
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment a head scan\nelement vertex " +
+                    std::to_string(vertices.size() / 6) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                    "element face " + std::to_string(triangles.size() / 3) +
+                    "\nproperty list uchar uint vertex_indices\nend_header\n";
+  out.append(reinterpret_cast<const char*>(vertices.data()), vertices.size() * sizeof(float));
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    out.push_back('\3');
+    out.append(reinterpret_cast<const char*>(&triangles[t]), 3 * sizeof(uint32_t));
+  }
+  return out;
 }
 
 }  // namespace testing_support

@@ -35,4 +35,8 @@ struct GridObj {
 // no targets and no materials, after `header` (comment lines).
 std::string modelAsObj(const eng::Model& model, const std::string& header = "");
 
+// The same as one binary little-endian PLY file, as a scanner writes it:
+// positions and normals in world space, one list of triangles.
+std::string modelAsPly(const eng::Model& model);
+
 }  // namespace testing_support
