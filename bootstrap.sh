@@ -23,7 +23,7 @@ PACKAGES=(
   libespeak-ng-dev espeak-ng-data libsndfile1-dev libavformat-dev libavcodec-dev libswscale-dev
   libswresample-dev portaudio19-dev libasound2-dev libjack-jackd2-dev
   libpocketsphinx-dev pocketsphinx-en-us
-  libdlib-dev libdlib-data libassimp-dev
+  libdlib-dev libdlib-data
   clang libclang-rt-14-dev llvm lld liblsan0
   python3-numpy python3-opencv opencv-data python3-matplotlib
   # tests/cluster: a single-node Slurm, the deploy/ files' checks

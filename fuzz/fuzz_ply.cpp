@@ -1,6 +1,6 @@
 // PLY scans (ASCII or binary; vertex colours, texture coordinates, MeshLab's
-// texture comment), read through the header check and Assimp into a face
-// without targets, as the face loader opens them.
+// texture comment), read into a face without targets, as the face loader
+// opens them.
 #include "engine/scene/model_check.h"
 #include "importers/load_face.h"
 #include "fuzz/fuzz_support.h"

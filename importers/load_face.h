@@ -33,6 +33,8 @@ std::string_view faceFormatName(FaceFormat format);
 // autorig makes targets for; not a VRM, an OBJ keyframe set or CANDIDE-3,
 // whose rigs come with them.
 bool isPlainMesh(FaceFormat format);
+// What loadFace opens, for a MODEL option's help.
+inline constexpr const char* kFaceFormatsHelp = "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ, PLY or CANDIDE-3 .wfm";
 
 struct LoadFaceOptions {
   // "NAME=VALUE" identity parameters baked into the rest mesh (bakeShapes).

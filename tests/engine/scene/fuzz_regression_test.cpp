@@ -1,5 +1,6 @@
 // Inputs the fuzzers (fuzz/) found, kept as files under tests/engine/scene/fuzz_inputs/
 // and replayed the way the fuzzer that found them reads them.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "engine/scene/image_io.h"
 #include "engine/scene/model_check.h"
 #include "engine/scene/normals.h"
+#include "importers/load_face.h"
 #include "importers/obj_keyframes.h"
 #include "tests/common/test_support.h"
 
@@ -94,6 +96,20 @@ TEST(FuzzRegressionValidity, ObjTargetMovingFurtherThanAFloatIsRefused) {
   ASSERT_FALSE(imported.ok());
   EXPECT_NE(imported.error().message.find((dir / "neutral.obj").string()), std::string::npos) << imported.error().message;
   EXPECT_NE(imported.error().message.find("non-finite"), std::string::npos) << imported.error().message;
+}
+
+// fuzz_ply found it while PLY files went through Debian's Assimp 5.2.5, which
+// crashed on it: a header whose face property runs into "end_header" on one
+// line, so the binary body is read as header lines. The reader of our own
+// refuses it in one printable line.
+TEST(FuzzRegression, PlyPropertyRunIntoEndHeaderIsOneLine) {
+  const std::string bytes = fuzzInput("ply_property_run_into_end_header.ply");
+  ASSERT_EQ(bytes.size(), 440u);
+  auto face = importers::loadFaceFromBytes({reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()}, "input.ply");
+  ASSERT_FALSE(face);
+  const std::string& message = face.error().message;
+  EXPECT_EQ(message.rfind("input.ply: header line ", 0), 0u) << message;
+  EXPECT_TRUE(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << message;
 }
 
 }  // namespace
