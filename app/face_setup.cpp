@@ -19,7 +19,7 @@ namespace app {
 
 void addFaceOptions(CLI::App& app, std::string& model, std::string& rigmap, bool& noAutorig) {
   app.add_option("--model,-m", model,
-                 "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ or CANDIDE-3 .wfm (default: the built-in head, <data>/head.glb)");
+                 std::string(importers::kFaceFormatsHelp) + " (default: the built-in head, <data>/head.glb)");
   app.add_option("--rigmap", rigmap,
                  "Rig map JSON naming which targets are which action unit or emotion "
                  "(default: <data>/rigmaps/<model>.json, else detected from the target names)");

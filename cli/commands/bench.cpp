@@ -219,7 +219,7 @@ CommandRegistrar reg("bench", "Measure performance (bench frames: whole headless
   app.require_subcommand(1);
   CLI::App* frames = app.add_subcommand("frames", "Time whole frames: weight update, instanced draw, GPU finish");
   auto o = std::make_shared<BenchFramesOptions>();
-  frames->add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ or CANDIDE-3 .wfm")->required();
+  frames->add_option("model", o->model, importers::kFaceFormatsHelp)->required();
   frames->add_option("--size", o->size, "Image size WxH (default 512x512)");
   frames->add_option("--frames", o->frames, "Measured frames (default 100)");
   frames->add_option("--warmup", o->warmup, "Unmeasured frames first (default 10)");

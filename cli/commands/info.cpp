@@ -196,7 +196,7 @@ CommandRegistrar reg("info", "Describe a glTF model: meshes, morph targets, mate
                      [](CLI::App& app) {
                        auto path = std::make_shared<std::string>();
                        auto json = std::make_shared<bool>(false);
-                       app.add_option("model", *path, "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ or CANDIDE-3 .wfm")->required();
+                       app.add_option("model", *path, importers::kFaceFormatsHelp)->required();
                        app.add_flag("--json", *json, "Print machine-readable JSON instead of text");
                        return [path, json]() -> int {
                          auto face = importers::loadFace(*path);

@@ -99,7 +99,7 @@ int runRender(const RenderOptions& o) {
 
 CommandRegistrar reg("render", "Render a model to a PNG, headless", [](CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ or CANDIDE-3 .wfm")->required();
+  app.add_option("model", o->model, importers::kFaceFormatsHelp)->required();
   app.add_option("--weight,-w", o->weights, "Morph weight override NAME=VALUE (repeatable; all meshes with that target)");
   app::addShapeOption(app, o->shapes);
   app::addViewOptions(app, o->view);

@@ -130,7 +130,7 @@ int runRig(const RigOptions& o) {
 
 CommandRegistrar reg("rig", "Show how the expression runtime drives a model (rig mapping report)", [](CLI::App& app) {
   auto o = std::make_shared<RigOptions>();
-  app.add_option("model", o->model, "Face: glTF / GLB, VRM, OBJ keyframe folder, OBJ or CANDIDE-3 .wfm")->required();
+  app.add_option("model", o->model, importers::kFaceFormatsHelp)->required();
   app.add_option("--rigmap", o->rigmap, "Rig map JSON to use instead of <data>/rigmaps/<model>.json or detection");
   app::addShapeOption(app, o->shapes);
   app.add_flag("--json", o->json, "Print machine-readable JSON instead of text");
