@@ -59,61 +59,77 @@ std::string GridObj::text() const {
   return out.str();
 }
 
-std::string modelAsObj(const eng::Model& model, const std::string& header) {
-  std::string text = header;
-  char line[160];
-  size_t base = 1;
+namespace {
+
+// A model at rest as a scan holds it: every mesh node's primitives, positions
+// and normals in world space.
+struct PlacedPrimitive {
+  const std::string& meshName;
+  const eng::Primitive& primitive;
+  std::vector<glm::vec3> positions, normals;
+};
+
+template <typename Visit>
+void forEachPlacedPrimitive(const eng::Model& model, Visit visit) {
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const eng::Node& node = model.nodes[n];
     if (node.mesh < 0) continue;
     const glm::mat4 world = model.worldTransform(int(n));
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
     for (const eng::Primitive& p : model.meshes[size_t(node.mesh)].primitives) {
-      text += "o " + model.meshes[size_t(node.mesh)].name + "_" + std::to_string(base) + "\n";
-      for (const glm::vec3& v : p.positions) {
-        const glm::vec3 w(world * glm::vec4(v, 1.0f));
-        std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", double(w.x), double(w.y), double(w.z));
-        text += line;
-      }
+      PlacedPrimitive placed{model.meshes[size_t(node.mesh)].name, p, {}, {}};
       for (size_t v = 0; v < p.positions.size(); ++v) {
-        const glm::vec2 uv = v < p.texcoords.size() ? p.texcoords[v] : glm::vec2(0.0f);
-        std::snprintf(line, sizeof line, "vt %.7g %.7g\n", double(uv.x), double(1.0f - uv.y));
-        text += line;
+        placed.positions.emplace_back(world * glm::vec4(p.positions[v], 1.0f));
+        placed.normals.push_back(v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1));
       }
-      for (size_t v = 0; v < p.positions.size(); ++v) {
-        const glm::vec3 nrm = v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1);
-        std::snprintf(line, sizeof line, "vn %.7g %.7g %.7g\n", double(nrm.x), double(nrm.y), double(nrm.z));
-        text += line;
-      }
-      for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
-        const size_t a = base + p.indices[i], b = base + p.indices[i + 1], c = base + p.indices[i + 2];
-        std::snprintf(line, sizeof line, "f %zu/%zu/%zu %zu/%zu/%zu %zu/%zu/%zu\n", a, a, a, b, b, b, c, c, c);
-        text += line;
-      }
-      base += p.positions.size();
+      visit(placed);
     }
   }
+}
+
+}  // namespace
+
+std::string modelAsObj(const eng::Model& model, const std::string& header) {
+  std::string text = header;
+  char line[160];
+  size_t base = 1;
+  forEachPlacedPrimitive(model, [&](const PlacedPrimitive& placed) {
+    const eng::Primitive& p = placed.primitive;
+    text += "o " + placed.meshName + "_" + std::to_string(base) + "\n";
+    for (const glm::vec3& w : placed.positions) {
+      std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", double(w.x), double(w.y), double(w.z));
+      text += line;
+    }
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      const glm::vec2 uv = v < p.texcoords.size() ? p.texcoords[v] : glm::vec2(0.0f);
+      std::snprintf(line, sizeof line, "vt %.7g %.7g\n", double(uv.x), double(1.0f - uv.y));
+      text += line;
+    }
+    for (const glm::vec3& nrm : placed.normals) {
+      std::snprintf(line, sizeof line, "vn %.7g %.7g %.7g\n", double(nrm.x), double(nrm.y), double(nrm.z));
+      text += line;
+    }
+    for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+      const size_t a = base + p.indices[i], b = base + p.indices[i + 1], c = base + p.indices[i + 2];
+      std::snprintf(line, sizeof line, "f %zu/%zu/%zu %zu/%zu/%zu %zu/%zu/%zu\n", a, a, a, b, b, b, c, c, c);
+      text += line;
+    }
+    base += p.positions.size();
+  });
   return text;
 }
 
 std::string modelAsPly(const eng::Model& model) {
   std::vector<float> vertices;  // x y z nx ny nz
   std::vector<uint32_t> triangles;
-  for (size_t n = 0; n < model.nodes.size(); ++n) {
-    const eng::Node& node = model.nodes[n];
-    if (node.mesh < 0) continue;
-    const glm::mat4 world = model.worldTransform(int(n));
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
-    for (const eng::Primitive& p : model.meshes[size_t(node.mesh)].primitives) {
-      const uint32_t base = uint32_t(vertices.size() / 6);
-      for (size_t v = 0; v < p.positions.size(); ++v) {
-        const glm::vec3 w(world * glm::vec4(p.positions[v], 1.0f));
-        const glm::vec3 nrm = v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1);
-        vertices.insert(vertices.end(), {w.x, w.y, w.z, nrm.x, nrm.y, nrm.z});
-      }
-      for (uint32_t i : p.indices) triangles.push_back(base + i);
+  forEachPlacedPrimitive(model, [&](const PlacedPrimitive& placed) {
+    const uint32_t base = uint32_t(vertices.size() / 6);
+    for (size_t v = 0; v < placed.positions.size(); ++v) {
+      const glm::vec3 &w = placed.positions[v], &nrm = placed.normals[v];
+      vertices.insert(vertices.end(), {w.x, w.y, w.z, nrm.x, nrm.y, nrm.z});
     }
-  }
+    for (uint32_t i : placed.primitive.indices) triangles.push_back(base + i);
+  });
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment a head scan\nelement vertex " +
                     std::to_string(vertices.size() / 6) +
                     "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"

@@ -21,6 +21,12 @@ using testing_support::writeFile;
 
 std::vector<uint8_t> bytesOf(const std::string& text) { return {text.begin(), text.end()}; }
 
+// What loading `bytes` as the file `name` says: the error, or "loaded".
+std::string refusalOf(const std::string& bytes, const std::string& name) {
+  auto face = importers::loadFaceFromBytes(bytesOf(bytes), name);
+  return face ? std::string("loaded") : face.error().message;
+}
+
 // A unit square (a quad) and a triangle beside it, painted per vertex as MeshLab writes it.
 const std::string kPaintedAscii =
     "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 5\n"
@@ -121,62 +127,44 @@ TEST(PlyMesh, PerCornerTexcoordsJoinWhereTheyAgreeAndSplitAtSeams) {
 }
 
 TEST(PlyMeshValidity, BrokenFilesAreOneLineNamingTheFile) {
-  // Cut short: the header promises three vertices and a face the bytes do not hold.
-  const std::string cut = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n\1\2";
-  auto truncated = importers::loadFaceFromBytes(bytesOf(cut), "cut.ply");
-  ASSERT_FALSE(truncated);
-  EXPECT_NE(truncated.error().message.find("cut.ply: element 'vertex' claims 3 records of 3 values; the file has 2 bytes"),
-            std::string::npos)
-      << truncated.error().message;
-  EXPECT_EQ(truncated.error().message.find('\n'), std::string::npos) << truncated.error().message;
-
-  // A header claiming more than the bytes can hold is refused by its sizes, before anything is allocated for it.
-  const std::string claims = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
-                             "property float y\nproperty float z\nend_header\n0123456789ab";
-  auto huge = importers::loadFaceFromBytes(bytesOf(claims), "huge.ply");
-  ASSERT_FALSE(huge);
-  EXPECT_NE(huge.error().message.find("huge.ply: element 'vertex' claims 4000000000 records of 3 values; the file has 12 "
-                                      "bytes after its header"),
-            std::string::npos)
-      << huge.error().message;
-  auto noFormat = importers::loadFaceFromBytes(bytesOf("ply\nelement vertex 0\nend_header\n"), "bare.ply");
-  ASSERT_FALSE(noFormat);
-  EXPECT_NE(noFormat.error().message.find("bare.ply: no 'format' line"), std::string::npos) << noFormat.error().message;
-
-  // A point cloud: a face needs a surface.
-  const std::string points = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                             "end_header\n0 0 0\n1 0 0\n0 1 0\n";
-  auto cloud = importers::loadFaceFromBytes(bytesOf(points), "cloud.ply");
-  ASSERT_FALSE(cloud);
-  EXPECT_NE(cloud.error().message.find("cloud.ply: no faces (a point cloud: a face needs a surface)"), std::string::npos)
-      << cloud.error().message;
-
-  // Not a number, in either kind of file.
-  const std::string nan = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n";
-  auto asciiNan = importers::loadFaceFromBytes(bytesOf(nan), "nan.ply");
-  ASSERT_FALSE(asciiNan);
-  EXPECT_NE(asciiNan.error().message.find("nan.ply: line 11: 'nan' is not a finite number"), std::string::npos)
-      << asciiNan.error().message;
-  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  const float vertices[9] = {0, 0, 0, 1, 0, std::nanf(""), 0, 1, 0};
-  const int32_t corners[3] = {0, 1, 2};
-  binary.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
-  binary.push_back('\3');
-  binary.append(reinterpret_cast<const char*>(corners), sizeof corners);
-  auto binaryNan = importers::loadFaceFromBytes(bytesOf(binary), "nan_binary.ply");
-  ASSERT_FALSE(binaryNan);
-  EXPECT_NE(binaryNan.error().message.find("nan_binary.ply: vertex 1 is not finite"), std::string::npos)
-      << binaryNan.error().message;
-
-  // A face naming a vertex the file does not have.
-  const std::string beyond = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
-  auto outside = importers::loadFaceFromBytes(bytesOf(beyond), "beyond.ply");
-  ASSERT_FALSE(outside);
-  EXPECT_NE(outside.error().message.find("beyond.ply: face 0 names vertex 7"), std::string::npos) << outside.error().message;
+  const std::string vertices3 = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string oneFace = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  struct Case {
+    std::string name, bytes, says;
+  };
+  std::string binaryNan = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\n" + oneFace;
+  const float corners[9] = {0, 0, 0, 1, 0, std::nanf(""), 0, 1, 0};
+  const int32_t triangle[3] = {0, 1, 2};
+  binaryNan.append(reinterpret_cast<const char*>(corners), sizeof corners);
+  binaryNan.push_back('\3');
+  binaryNan.append(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  const Case cases[] = {
+      // Cut short: the header promises three vertices and a face the bytes do not hold.
+      {"cut.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" +
+           oneFace + "\1\2",
+       "cut.ply: element 'vertex' claims 3 records of 3 values; the file has 2 bytes"},
+      // A header claiming more than the bytes can hold is refused by its sizes, before anything is read for it.
+      {"huge.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+       "property float z\nend_header\n0123456789ab",
+       "huge.ply: element 'vertex' claims 4000000000 records of 3 values; the file has 12 bytes after its header"},
+      {"bare.ply", "ply\nelement vertex 0\nend_header\n", "bare.ply: no 'format' line"},
+      // A point cloud: a face needs a surface.
+      {"cloud.ply", vertices3 + "end_header\n0 0 0\n1 0 0\n0 1 0\n",
+       "cloud.ply: no faces (a point cloud: a face needs a surface)"},
+      // Not a number, in either kind of file.
+      {"nan.ply", vertices3 + oneFace + "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n", "nan.ply: line 11: 'nan' is not a finite number"},
+      {"nan_binary.ply", binaryNan, "nan_binary.ply: vertex 1 is not finite"},
+      // A face naming a vertex the file does not have.
+      {"beyond.ply", vertices3 + oneFace + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "beyond.ply: face 0 names vertex 7"},
+  };
+  for (const Case& c : cases) {
+    const std::string said = refusalOf(c.bytes, c.name);
+    EXPECT_NE(said.find(c.says), std::string::npos) << c.name << ": " << said;
+    EXPECT_EQ(said.find('\n'), std::string::npos) << said;
+  }
 }
 
 TEST(PlyMeshValidity, ATextureOutsideTheFilesFolderIsAWarning) {
