@@ -119,17 +119,91 @@ void keepTheSeen(EyeCut& cut, const PosedPrimitive& pp, const std::vector<uint32
   });
 }
 
+// Eyes whose openings have nothing in them (a head exported without its
+// eyeballs, the socket's lining or the inside of the skin behind the lids):
+// a ray out of the face from the middle of the lid margins (landmarks 36-41,
+// 42-47) meets no skin. A flat painted eye or an eye in the skin lies on or
+// in front of that point and is met. Only on faces without eyeballs of their own.
+std::vector<size_t> emptyOpenings(const eng::Model& face, const PosedFace& posed, const FaceParts& parts,
+                                  const FaceLandmarks& landmarks, const LandmarkFrame& frame) {
+  std::vector<size_t> empty;
+  if (parts.eyeballsFound) return empty;
+  for (size_t e = 0; e < 2; ++e) {
+    const glm::vec3& centre = parts.eyeCentres[e];
+    const float radius = parts.eyeRadii[e];
+    if (parts.eyesInTheSkin[e] || !(radius > 0.0f)) continue;
+    SkinInFront skin(frame, 0.25f * radius);
+    size_t around = 0;
+    for (size_t i = 0; i < posed.primitives.size(); ++i) {
+      const PosedPrimitive& pp = posed.primitives[i];
+      const std::vector<uint32_t>& indices = face.meshes[pp.mesh].primitives[pp.primitive].indices;
+      for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (!std::all_of(&indices[t], &indices[t] + 3, [&](uint32_t v) {
+              return v < pp.positions.size() && v < parts.vertexParts[i].size() && parts.vertexParts[i][v] == FacePart::Skin;
+            }))
+          continue;
+        const glm::vec3 &a = pp.positions[indices[t]], &b = pp.positions[indices[t + 1]], &c = pp.positions[indices[t + 2]];
+        if (glm::distance((a + b + c) / 3.0f, centre) > 3.0f * radius) continue;
+        skin.add(a, b, c);
+        ++around;
+      }
+    }
+    glm::vec3 margins(0.0f);
+    for (size_t k = 0; k < 6; ++k) margins += landmarks.points[36 + 6 * e + k] / 6.0f;
+    if (around >= kMinEyeTriangles && !skin.covers(margins)) empty.push_back(e);
+  }
+  return empty;
+}
+
+// The head's eyeball of side `eye` carried into the face at `at` (a little
+// smaller), by the carrier of posed primitive `host`, moving with the skin
+// between the eyes. Returns the vertices carried, 0 where there is nothing to
+// carry or no skin to hold it.
+size_t carryEyeball(eng::Model& face, const PosedFace& posed, size_t host, size_t eye, const Eyeball& at,
+                    const FaceLandmarks& landmarks, const FaceParts& parts, const SourceFace& source,
+                    std::map<size_t, CarriedPieces>& carriers) {
+  const PosedPrimitive& pp = posed.primitives[host];
+  const std::optional<uint32_t> anchor = nearestSkinVertex(pp, parts.vertexParts[host], landmarks.points[27]);
+  const float sourceRadius = source.parts.eyeRadii[eye];
+  const std::vector<size_t> balls = sourceEyeballs(source, eyeballOf(eye));
+  if (!anchor || !(sourceRadius > 0.0f) || balls.empty() || source.model == nullptr) return 0;
+  const glm::mat3 turn = axesOf(landmarks) * glm::transpose(axesOf(source.landmarks));
+  const float scale = kBallInside * at.radius / sourceRadius;
+  CarriedPieces& carrier = carriers.try_emplace(host, face, pp, *anchor).first->second;
+  size_t carried = 0;
+  for (size_t ball : balls) {
+    std::vector<glm::vec3> world;
+    for (const glm::vec3& q : source.posed.primitives[ball].positions)
+      world.push_back(at.centre + turn * (q - source.parts.eyeCentres[eye]) * scale);
+    carried += carrier.add(source, ball, world, turn);
+  }
+  return carried;
+}
+
+// The posed primitive holding the skin vertex nearest the bridge of the nose
+// (landmark 27): the skin an eyeball set in an empty opening moves with.
+std::optional<size_t> skinBetweenTheEyes(const PosedFace& posed, const FaceParts& parts, const FaceLandmarks& landmarks) {
+  std::optional<size_t> best;
+  float nearest = std::numeric_limits<float>::max();
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const std::optional<uint32_t> v = nearestSkinVertex(posed.primitives[i], parts.vertexParts[i], landmarks.points[27]);
+    if (!v) continue;
+    const float d = glm::distance(posed.primitives[i].positions[*v], landmarks.points[27]);
+    if (d < nearest) nearest = d, best = i;
+  }
+  return best;
+}
+
 }  // namespace
 
 EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
                        const SourceFace& source) {
   EyeOpening opening;
-  if (parts.vertexParts.size() != posed.primitives.size() || !(parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]))
-    return opening;
+  if (parts.vertexParts.size() != posed.primitives.size()) return opening;
   // Each eye's triangles: all three corners on the ball.
   const LandmarkFrame frame(landmarks);
   std::vector<EyeCut> cuts;
-  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+  for (size_t i = 0; i < posed.primitives.size() && (parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
     const std::vector<uint32_t>& indices = face.meshes[pp.mesh].primitives[pp.primitive].indices;
     for (size_t e = 0; e < 2; ++e) {
@@ -144,28 +218,38 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
       if (cut.triangles.size() >= kMinEyeTriangles) cuts.push_back(std::move(cut));
     }
   }
-  if (cuts.empty()) return opening;
+  std::vector<size_t> empty = emptyOpenings(face, posed, parts, landmarks, frame);
+  // A ball of skin inside the lids of which too little shows at rest to cut
+  // free is no painted eye but the socket's lining of a head exported
+  // without its eyeballs (what shows through its opening is the inside of
+  // the head): it gets an eyeball set in it, as an empty opening does.
+  for (size_t e = 0; e < 2; ++e)
+    if (parts.eyesInTheSkin[e] && std::none_of(cuts.begin(), cuts.end(), [&](const EyeCut& cut) { return cut.eye == e; }))
+      empty.push_back(e);
+  if (cuts.empty() && empty.empty()) return opening;
 
   // The head's eyeballs behind them first: carried into the mesh as its
   // primitives stand (the cut below rebuilds the skin's), one carrier per
   // skin primitive (the eyes share the head's eye material and its image).
-  const glm::mat3 turn = axesOf(landmarks) * glm::transpose(axesOf(source.landmarks));
   std::map<size_t, CarriedPieces> carriers;  // by posed skin primitive
   std::map<size_t, std::vector<glm::vec3>> whiteRatios;  // the scan's white over the head's, per carrier
+  const std::optional<size_t> bridge = empty.empty() ? std::nullopt : skinBetweenTheEyes(posed, parts, landmarks);
+  for (size_t e : empty) {
+    const size_t carried =
+        bridge ? carryEyeball(face, posed, *bridge, e, eyeballBehindTheLids(landmarks, e), landmarks, parts, source, carriers) : 0;
+    if (carried == 0) continue;
+    opening.ballVertices += carried;
+    ++opening.eyesFilled;
+    opening.notes.push_back(meshLabel(face, posed.primitives[*bridge].mesh) + ": nothing behind the " +
+                            (e == 0 ? "right" : "left") + " eye's opening; the built-in head's eyeball set in it");
+  }
   for (const EyeCut& cut : cuts) {
     const PosedPrimitive& host = posed.primitives[cut.posed];
-    const std::optional<uint32_t> anchor = nearestSkinVertex(host, parts.vertexParts[cut.posed], landmarks.points[27]);
-    const float sourceRadius = source.parts.eyeRadii[cut.eye];
     const std::vector<size_t> balls = sourceEyeballs(source, eyeballOf(cut.eye));
-    if (!anchor || !(sourceRadius > 0.0f) || balls.empty() || source.model == nullptr) continue;
-    const float scale = kBallInside * parts.eyeRadii[cut.eye] / sourceRadius;
-    CarriedPieces& carrier = carriers.try_emplace(cut.posed, face, host, *anchor).first->second;
-    for (size_t ball : balls) {
-      std::vector<glm::vec3> world;
-      for (const glm::vec3& q : source.posed.primitives[ball].positions)
-        world.push_back(parts.eyeCentres[cut.eye] + turn * (q - source.parts.eyeCentres[cut.eye]) * scale);
-      opening.ballVertices += carrier.add(source, ball, world, turn);
-    }
+    const size_t carried = carryEyeball(face, posed, cut.posed, cut.eye, {parts.eyeCentres[cut.eye], parts.eyeRadii[cut.eye]},
+                                        landmarks, parts, source, carriers);
+    if (carried == 0) continue;
+    opening.ballVertices += carried;
     // The white a raised lid uncovers matched to the scan's painted one.
     std::vector<uint32_t> onTheEye;
     const std::vector<uint32_t>& indices = face.meshes[host.mesh].primitives[host.primitive].indices;

@@ -12,6 +12,9 @@
 //  - gets the built-in head's eyeball behind it (scaled to the ball, a little
 //    smaller still, turned to the face), which fills what a raised lid or a
 //    turned eye uncovers with the white of an eye.
+// An eye whose opening has nothing behind it (a head exported without its
+// eyeballs: what shows through is the inside of the skin) gets the built-in
+// head's eyeball in it, at the ball the parts finder estimates behind the lids.
 // Faces with eyeballs of their own are left as they are.
 #include <cstddef>
 #include <string>
@@ -27,11 +30,12 @@ namespace autorig {
 
 struct EyeOpening {
   size_t eyesCut = 0;       // eyes cut free from the skin (0-2)
+  size_t eyesFilled = 0;    // empty openings given an eyeball (0-2)
   size_t ballVertices = 0;  // the head's eyeballs' vertices carried in
   // One line per eye ("Head: the right eye (412 vertices of the skin) cut free
   // from its lids, the built-in head's eyeball behind it"), for the report.
   std::vector<std::string> notes;
-  bool changed() const { return eyesCut > 0; }
+  bool changed() const { return eyesCut > 0 || eyesFilled > 0; }
 };
 
 // Changes `face` in place; `posed` and `parts` are `face`'s before the change

@@ -666,18 +666,26 @@ void findEyesInTheSkin(const eng::Model& model, const PosedFace& posed, const Fa
   }
 }
 
-// No eyeball mesh: the ball sits behind the lid line, its radius about 0.45
-// of the eye's width (a 24 mm ball behind a 28 mm opening).
+// No eyeball mesh: the ball sits behind the lid line (eyeballBehindTheLids).
 void estimateEyeballs(FaceParts& parts, const FaceFrame& f) {
   for (size_t e = 0; e < 2; ++e) {
     if (parts.eyeRadii[e] > 0.0f) continue;
-    parts.eyeRadii[e] = 0.45f * f.eyeWidth[e];
-    parts.eyeCentres[e] = f.eyeCentre[e] - f.forward * (0.8f * parts.eyeRadii[e]);
+    const Eyeball ball = eyeballBehindTheLids(*f.landmarks, e);
+    parts.eyeRadii[e] = ball.radius;
+    parts.eyeCentres[e] = ball.centre;
     parts.notes.push_back(std::string(e == 0 ? "right" : "left") + " eyeball: no mesh, estimated behind the lids");
   }
 }
 
 }  // namespace
+
+Eyeball eyeballBehindTheLids(const FaceLandmarks& landmarks, size_t eye) {
+  const FaceFrame f = faceFrame(landmarks);
+  Eyeball ball;
+  ball.radius = 0.45f * f.eyeWidth[eye];
+  ball.centre = f.eyeCentre[eye] - f.forward * (0.8f * ball.radius);
+  return ball;
+}
 
 FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const FaceLandmarks& landmarks) {
   FaceParts parts;

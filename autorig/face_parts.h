@@ -67,4 +67,13 @@ std::optional<FacePart> facePartFromNames(const eng::Model& model, const PosedPr
 
 FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const FaceLandmarks& landmarks);
 
+// The eyeball a face without one would have: centred behind the middle of
+// the lid margins (landmarks 36-41, 42-47), its radius 0.45 of the eye's
+// width (a 24 mm ball behind a 28 mm opening). `eye` 0: right, 1: left.
+struct Eyeball {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+Eyeball eyeballBehindTheLids(const FaceLandmarks& landmarks, size_t eye);
+
 }  // namespace autorig

@@ -89,6 +89,43 @@ size_t countOf(const autorig::FaceParts& parts, autorig::FacePart part) {
   return n;
 }
 
+// A head exported without its eyeballs: each opening shows the inside of the
+// skin (the sockets' lining). The head's eyeballs are set in them, at the
+// balls the parts finder estimates behind the lids; found again, the face has
+// eyeballs of its own there, and a second pass leaves it as it is.
+TEST(EyeOpening, EmptyEyeOpeningsGetTheHeadsEyeballs) {
+  const std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  eng::Model face = stripped(*head);
+  for (eng::Node& node : face.nodes)
+    if (node.name == "EyeLeft" || node.name == "EyeRight") node.mesh = -1;
+  autorig::PosedFace posed = autorig::poseAtRest(face);
+  autorig::FaceParts parts = autorig::findFaceParts(face, posed, source.landmarks);
+  ASSERT_FALSE(parts.eyeballsFound);
+  ASSERT_FALSE(parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]) << "open holes, not eyes in the skin";
+  const size_t primitives = primitiveCount(face);
+
+  const autorig::EyeOpening opening = autorig::openTheEyes(face, posed, source.landmarks, parts, source);
+  EXPECT_EQ(opening.eyesFilled, 2u);
+  EXPECT_EQ(opening.eyesCut, 0u);
+  EXPECT_GT(opening.ballVertices, 1000u);
+  EXPECT_EQ(primitiveCount(face), primitives + 2);
+  ASSERT_EQ(opening.notes.size(), 2u);
+  EXPECT_NE(opening.notes[0].find("nothing behind the right eye's opening"), std::string::npos) << opening.notes[0];
+
+  posed = autorig::poseAtRest(face);
+  parts = autorig::findFaceParts(face, posed, source.landmarks);
+  EXPECT_TRUE(parts.eyeballsFound);
+  for (size_t e = 0; e < 2; ++e) {
+    SCOPED_TRACE(e);
+    EXPECT_LT(glm::distance(parts.eyeCentres[e], source.parts.eyeCentres[e]), 0.35f * source.parts.eyeRadii[e])
+        << "about where the head's own eyeball was";
+    EXPECT_NEAR(parts.eyeRadii[e], source.parts.eyeRadii[e], 0.25f * source.parts.eyeRadii[e]);
+  }
+  EXPECT_FALSE(autorig::openTheEyes(face, posed, source.landmarks, parts, source).changed());
+}
+
 // A face with eyeballs of its own is left as it is.
 TEST(EyeOpeningValidity, AFaceWithEyeballsIsLeftAsItIs) {
   const std::optional<eng::Model> head = loadHead();
