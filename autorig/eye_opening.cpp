@@ -148,9 +148,7 @@ std::vector<size_t> emptyOpenings(const eng::Model& face, const PosedFace& posed
         ++around;
       }
     }
-    glm::vec3 margins(0.0f);
-    for (size_t k = 0; k < 6; ++k) margins += landmarks.points[36 + 6 * e + k] / 6.0f;
-    if (around >= kMinEyeTriangles && !skin.covers(margins)) empty.push_back(e);
+    if (around >= kMinEyeTriangles && !skin.covers(eyeballBehindTheLids(landmarks, e).margins)) empty.push_back(e);
   }
   return empty;
 }

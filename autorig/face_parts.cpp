@@ -684,6 +684,7 @@ Eyeball eyeballBehindTheLids(const FaceLandmarks& landmarks, size_t eye) {
   Eyeball ball;
   ball.radius = 0.45f * f.eyeWidth[eye];
   ball.centre = f.eyeCentre[eye] - f.forward * (0.8f * ball.radius);
+  ball.margins = f.eyeCentre[eye];
   return ball;
 }
 

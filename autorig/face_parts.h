@@ -73,6 +73,7 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
 struct Eyeball {
   glm::vec3 centre{0.0f};
   float radius = 0.0f;
+  glm::vec3 margins{0.0f};  // the middle of the lid margins it sits behind
 };
 Eyeball eyeballBehindTheLids(const FaceLandmarks& landmarks, size_t eye);
 
