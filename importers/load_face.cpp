@@ -14,6 +14,8 @@
 #include "facial/runtime/graph/weight_range.h"
 #include "importers/candide_import.h"
 #include "importers/face_dressing.h"
+#include "importers/fbx_document.h"
+#include "importers/fbx_scene.h"
 #include "importers/loop_subdivision.h"
 #include "importers/obj_keyframes.h"
 #include "importers/ply_mesh.h"
@@ -22,7 +24,7 @@
 namespace importers {
 
 bool isPlainMesh(FaceFormat format) {
-  return format == FaceFormat::Gltf || format == FaceFormat::Obj || format == FaceFormat::Ply;
+  return format == FaceFormat::Gltf || format == FaceFormat::Obj || format == FaceFormat::Ply || format == FaceFormat::Fbx;
 }
 
 std::string_view faceFormatName(FaceFormat format) {
@@ -33,6 +35,7 @@ std::string_view faceFormatName(FaceFormat format) {
     case FaceFormat::Candide3: return "CANDIDE-3";
     case FaceFormat::Obj: return "OBJ";
     case FaceFormat::Ply: return "PLY";
+    case FaceFormat::Fbx: return "FBX";
   }
   return "?";
 }
@@ -81,6 +84,12 @@ eng::Result<LoadedFace> loadPlyMesh(std::span<const uint8_t> bytes, const std::f
   if (!model) return model.error();
   model->sourcePath = path.string();
   return LoadedFace{std::move(*model), FaceFormat::Ply, nullptr, std::nullopt};
+}
+
+eng::Result<LoadedFace> loadFbx(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
+  auto model = importFbx(bytes, path);
+  if (!model) return model.error();
+  return LoadedFace{std::move(*model), FaceFormat::Fbx, nullptr, std::nullopt};
 }
 
 eng::Result<LoadedFace> loadObjMesh(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
@@ -175,9 +184,10 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
   // Its .mtl and textures are read beside `path`.
   if (looksLikeObj(bytes)) return finish(loadObjMesh(bytes, path), path, options);
   if (looksLikePly(bytes)) return finish(loadPlyMesh(bytes, path), path, options);
-  return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, a folder of OBJ "
-                        "keyframes, an OBJ, a PLY or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', '# VERTEX LIST', "
-                        "'ply' nor an OBJ statement");
+  if (fbx::looksLikeFbx(bytes)) return finish(loadFbx(bytes, path), path, options);
+  return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, FBX, a folder of "
+                        "OBJ keyframes, an OBJ, a PLY or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', 'Kaydara FBX', "
+                        "'; FBX', '# VERTEX LIST', 'ply' nor an OBJ statement");
 }
 
 eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {

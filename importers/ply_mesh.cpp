@@ -85,21 +85,7 @@ std::vector<std::string_view> wordsOf(std::string_view line) {
   return words;
 }
 
-// At most 40 characters of a line for a message, bytes outside printable
-// ASCII as \xNN (a binary body read as header lines stays one line).
-std::string shown(std::string_view line) {
-  std::string out;
-  for (char c : line.substr(0, 40)) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u < 0x7f) {
-      out += c;
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
-    }
-  }
-  return line.size() > 40 ? out + "..." : out;
-}
+std::string shown(std::string_view line) { return eng::shownText(line); }
 
 eng::Error plyError(const std::filesystem::path& path, const std::string& what) {
   return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": " + what);

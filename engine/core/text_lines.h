@@ -5,6 +5,7 @@
 // '\r' of Windows line ends, numbered from 1 for "<file>:<line>:" messages.
 #include <algorithm>
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 namespace eng {
@@ -14,6 +15,22 @@ inline std::string_view trimmed(std::string_view s) {
   const size_t first = s.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
   return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+// At most `most` characters of `text` for a message, bytes outside printable
+// ASCII as \xNN (a binary body read as text stays one line), "..." when cut.
+inline std::string shownText(std::string_view text, size_t most = 40) {
+  std::string out;
+  for (char c : text.substr(0, most)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out += c;
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+    }
+  }
+  return text.size() > most ? out + "..." : out;
 }
 
 class TextLines {

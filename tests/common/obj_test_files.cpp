@@ -1,4 +1,5 @@
 #include "tests/common/obj_test_files.h"
+#include "tests/common/placed_primitive.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -58,36 +59,6 @@ std::string GridObj::text() const {
     }
   return out.str();
 }
-
-namespace {
-
-// A model at rest as a scan holds it: every mesh node's primitives, positions
-// and normals in world space.
-struct PlacedPrimitive {
-  const std::string& meshName;
-  const eng::Primitive& primitive;
-  std::vector<glm::vec3> positions, normals;
-};
-
-template <typename Visit>
-void forEachPlacedPrimitive(const eng::Model& model, Visit visit) {
-  for (size_t n = 0; n < model.nodes.size(); ++n) {
-    const eng::Node& node = model.nodes[n];
-    if (node.mesh < 0) continue;
-    const glm::mat4 world = model.worldTransform(int(n));
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
-    for (const eng::Primitive& p : model.meshes[size_t(node.mesh)].primitives) {
-      PlacedPrimitive placed{model.meshes[size_t(node.mesh)].name, p, {}, {}};
-      for (size_t v = 0; v < p.positions.size(); ++v) {
-        placed.positions.emplace_back(world * glm::vec4(p.positions[v], 1.0f));
-        placed.normals.push_back(v < p.normals.size() ? glm::normalize(normalMatrix * p.normals[v]) : glm::vec3(0, 0, 1));
-      }
-      visit(placed);
-    }
-  }
-}
-
-}  // namespace
 
 std::string modelAsObj(const eng::Model& model, const std::string& header) {
   std::string text = header;

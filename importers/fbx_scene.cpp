@@ -1,0 +1,843 @@
+#include "importers/fbx_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/core/confined_path.h"
+#include "engine/core/load_budget.h"
+#include "engine/core/text_lines.h"
+#include "engine/core/uv_raster.h"
+#include "engine/scene/file_bytes.h"
+#include "engine/scene/image_io.h"
+#include "engine/scene/model_check.h"
+#include "engine/scene/normals.h"
+#include "importers/fbx_document.h"
+
+namespace importers {
+namespace {
+
+using fbx::Node;
+
+// "Name\0\1Class" (binary) or "Class::Name" (ASCII): the name.
+std::string objectName(std::string_view raw) {
+  if (const size_t k = raw.find(std::string_view("\0\1", 2)); k != std::string_view::npos) return std::string(raw.substr(0, k));
+  if (const size_t k = raw.find("::"); k != std::string_view::npos) return std::string(raw.substr(k + 2));
+  return std::string(raw);
+}
+
+struct Object {
+  const Node* node = nullptr;
+  std::string name;
+  std::string_view subclass;  // "Mesh", "Shape", "LimbNode", "BlendShape", "Cluster", ...
+};
+
+struct Link {
+  int64_t id = 0;
+  std::string_view property;  // an OP connection's property ("DiffuseColor"), empty for OO
+};
+
+// A Properties70 entry's values start after name, type, label and flags;
+// Properties60 (older 7.x writers) have no label.
+const Node* propertyNamed(const Node& object, std::string_view name, size_t& first) {
+  for (const char* block : {"Properties70", "Properties60"}) {
+    const Node* props = object.child(block);
+    if (!props) continue;
+    first = block[10] == '7' ? 4 : 3;
+    for (const Node& p : props->children)
+      if (p.text(0) == name) return &p;
+  }
+  return nullptr;
+}
+
+std::optional<double> numberProperty(const Node& object, std::string_view name) {
+  size_t first = 0;
+  const Node* p = propertyNamed(object, name, first);
+  if (!p) return std::nullopt;
+  const auto v = p->number(first);
+  if (!v || !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
+std::optional<glm::dvec3> vectorProperty(const Node& object, std::string_view name) {
+  size_t first = 0;
+  const Node* p = propertyNamed(object, name, first);
+  if (!p) return std::nullopt;
+  glm::dvec3 v;
+  for (int k = 0; k < 3; ++k) {
+    const auto c = p->number(first + size_t(k));
+    if (!c || !std::isfinite(*c)) return std::nullopt;
+    v[k] = *c;
+  }
+  return v;
+}
+
+glm::dmat4 translation(const glm::dvec3& t) { return glm::translate(glm::dmat4(1.0), t); }
+
+// FBX Euler angles in degrees; order 0 (XYZ) turns about X first.
+glm::dmat4 eulerRotation(const glm::dvec3& degrees, int order) {
+  const glm::dvec3 r = glm::radians(degrees);
+  const glm::dmat4 x = glm::rotate(glm::dmat4(1.0), r.x, glm::dvec3(1, 0, 0));
+  const glm::dmat4 y = glm::rotate(glm::dmat4(1.0), r.y, glm::dvec3(0, 1, 0));
+  const glm::dmat4 z = glm::rotate(glm::dmat4(1.0), r.z, glm::dvec3(0, 0, 1));
+  switch (order) {
+    case 1: return y * z * x;  // XZY
+    case 2: return x * z * y;  // YZX
+    case 3: return z * x * y;  // YXZ
+    case 4: return y * x * z;  // ZXY
+    case 5: return x * y * z;  // ZYX
+    default: return z * y * x;  // XYZ, and spheric XYZ
+  }
+}
+
+// The FBX SDK's local transform,
+// T * Roff * Rp * Rpre * R * Rpost^-1 * Rp^-1 * Soff * Sp * S * Sp^-1,
+// as the node's translation, rotation and scale: its linear part is the
+// rotation Rpre * R * Rpost^-1 times the scale S, so the split is exact
+// and the node can be posed like a glTF one.
+void setLocalTransform(const Node& model, eng::Node& node) {
+  const glm::dvec3 zero(0.0);
+  const int order = int(numberProperty(model, "RotationOrder").value_or(0));
+  const glm::dmat4 rp = translation(vectorProperty(model, "RotationPivot").value_or(zero));
+  const glm::dmat4 sp = translation(vectorProperty(model, "ScalingPivot").value_or(zero));
+  const glm::dvec3 scale = vectorProperty(model, "Lcl Scaling").value_or(glm::dvec3(1.0));
+  const glm::dmat4 rotation = eulerRotation(vectorProperty(model, "PreRotation").value_or(zero), 0) *
+                              eulerRotation(vectorProperty(model, "Lcl Rotation").value_or(zero), order) *
+                              glm::inverse(eulerRotation(vectorProperty(model, "PostRotation").value_or(zero), 0));
+  const glm::dmat4 local = translation(vectorProperty(model, "Lcl Translation").value_or(zero)) *
+                           translation(vectorProperty(model, "RotationOffset").value_or(zero)) * rp * rotation * glm::inverse(rp) *
+                           translation(vectorProperty(model, "ScalingOffset").value_or(zero)) * sp * glm::scale(glm::dmat4(1.0), scale) *
+                           glm::inverse(sp);
+  node.translation = glm::vec3(local[3]);
+  node.rotation = glm::normalize(glm::quat(glm::quat_cast(glm::dmat3(rotation))));
+  node.scale = glm::vec3(scale);
+}
+
+// The transform that applies to a Model's own geometry only.
+glm::dmat4 geometricTransform(const Node& model) {
+  const glm::dvec3 zero(0.0);
+  return translation(vectorProperty(model, "GeometricTranslation").value_or(zero)) *
+         eulerRotation(vectorProperty(model, "GeometricRotation").value_or(zero), 0) *
+         glm::scale(glm::dmat4(1.0), vectorProperty(model, "GeometricScaling").value_or(glm::dvec3(1.0)));
+}
+
+// A layer element (normals, UVs, colours) as it maps polygon corners to values.
+struct LayerElement {
+  enum class Mapping { PolygonVertex, Vertex, Polygon, AllSame } mapping = Mapping::PolygonVertex;
+  bool indexed = false;
+  std::vector<double> values;
+  std::vector<int64_t> index;
+  size_t width = 3;
+
+  // The element's value number for a corner, -1 when out of range.
+  int64_t valueFor(size_t polygon, size_t corner, int64_t controlPoint) const {
+    const size_t i = mapping == Mapping::PolygonVertex ? corner
+                     : mapping == Mapping::Vertex      ? size_t(controlPoint)
+                     : mapping == Mapping::Polygon     ? polygon
+                                                       : 0;
+    int64_t k = int64_t(i);
+    if (indexed) {
+      if (i >= index.size()) return -1;
+      k = index[i];
+    }
+    return k >= 0 && size_t(k) < values.size() / width ? k : -1;
+  }
+};
+
+// The first layer element called `name` with `valuesName` ("Normals") and,
+// when indexed, `indexName` ("NormalsIndex"); nullopt (with a warning) when
+// it is absent or unusable.
+std::optional<LayerElement> layerElement(const Node& geometry, std::string_view name, std::string_view valuesName,
+                                         std::string_view indexName, size_t width, const std::string& where,
+                                         std::vector<std::string>& warnings) {
+  const Node* node = nullptr;
+  for (const Node& c : geometry.children)
+    if (c.name == name && (!node || c.integer(0).value_or(1) == 0)) node = &c;
+  if (!node) return std::nullopt;
+  LayerElement e;
+  e.width = width;
+  const Node* mapping = node->child("MappingInformationType");
+  const Node* reference = node->child("ReferenceInformationType");
+  const std::string_view m = mapping ? mapping->text(0) : "ByPolygonVertex";
+  const std::string_view r = reference ? reference->text(0) : "Direct";
+  if (m == "ByPolygonVertex") e.mapping = LayerElement::Mapping::PolygonVertex;
+  else if (m == "ByVertex" || m == "ByVertice") e.mapping = LayerElement::Mapping::Vertex;
+  else if (m == "ByPolygon") e.mapping = LayerElement::Mapping::Polygon;
+  else if (m == "AllSame") e.mapping = LayerElement::Mapping::AllSame;
+  else {
+    warnings.push_back(where + ": " + std::string(name) + " mapped '" + eng::shownText(m) + "' is not read");
+    return std::nullopt;
+  }
+  e.indexed = r == "IndexToDirect" || r == "Index";
+  const Node* values = node->child(valuesName);
+  if (values) e.values = values->numbers(0);
+  if (e.indexed) {
+    const Node* index = node->child(indexName);
+    if (!index || !index->integers(0, e.index)) {
+      warnings.push_back(where + ": " + std::string(name) + " is indexed but has no " + std::string(indexName) + "; not read");
+      return std::nullopt;
+    }
+  }
+  if (e.values.empty() || e.values.size() % width != 0) {
+    warnings.push_back(where + ": " + std::string(name) + " holds " + std::to_string(e.values.size()) + " numbers, not a multiple of " +
+                       std::to_string(width) + "; not read");
+    return std::nullopt;
+  }
+  return e;
+}
+
+// A vertex of a primitive: one control point with one normal, UV and colour.
+struct VertexKey {
+  int64_t controlPoint;
+  float n[3];
+  float uv[2];
+  float colour[4];
+  bool operator==(const VertexKey& o) const { return std::memcmp(this, &o, sizeof(VertexKey)) == 0; }
+};
+struct VertexKeyHash {
+  size_t operator()(const VertexKey& k) const {
+    size_t h = std::hash<int64_t>()(k.controlPoint);
+    uint32_t bits[9];
+    std::memcpy(bits, k.n, sizeof(bits));
+    for (uint32_t b : bits) h = h * 1000003u ^ b;
+    return h;
+  }
+};
+
+struct PrimitiveBuild {
+  eng::Primitive prim;
+  std::vector<int64_t> controlPoint;  // per vertex
+  int64_t slot = 0;                   // the Model's material slot
+  bool fileNormals = true;
+  bool anyTexcoords = false;
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const fbx::Document& doc, const std::filesystem::path& path, eng::LoadBudget& budget)
+      : doc_(doc), path_(path), name_(path.string()), budget_(budget) {}
+
+  eng::Result<eng::Model> build() {
+    ENG_TRY(indexObjects());
+    const glm::dmat4 axes = axisConversion();
+    eng::Node root;
+    root.name = "FBX axes and units";
+    root.matrix = glm::mat4(axes);
+    root.hasMatrix = true;
+    model_.nodes.push_back(root);
+    model_.roots = {0};
+    ENG_TRY(addModels());
+    size_t curves = 0;
+    for (const auto& [id, object] : objects_) curves += object.node->name == "AnimationCurve";
+    if (curves > 0) warn("animations not read (" + std::to_string(curves) + " curves)");
+    if (model_.meshes.empty())
+      return eng::makeError(eng::ErrorKind::Malformed, name_ + ": no mesh to draw" + (firstSkipped_.empty() ? std::string(" (the file has no mesh geometry)") : "; " + firstSkipped_));
+    if (glm::determinant(axes) < 0.0)
+      for (eng::Mesh& mesh : model_.meshes)
+        for (eng::Primitive& prim : mesh.primitives)
+          for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) std::swap(prim.indices[t + 1], prim.indices[t + 2]);
+    model_.sourcePath = name_;
+    if (auto consistent = eng::checkModel(model_); !consistent) return consistent.error().prefixed(name_ + ": ");
+    return std::move(model_);
+  }
+
+ private:
+  void warn(std::string what) { model_.warnings.push_back(std::move(what)); }
+
+  eng::Result<void> indexObjects() {
+    const Node* objects = doc_.root.child("Objects");
+    if (!objects) return eng::makeError(eng::ErrorKind::Malformed, name_ + ": an FBX file without an Objects section");
+    for (const Node& o : objects->children) {
+      const auto id = o.integer(0);
+      if (!id) continue;  // FBX 7 numbers every object
+      objects_[*id] = Object{&o, objectName(o.text(1)), o.text(2)};
+    }
+    // Each Model's matrix at bind time (BindPose entries), for skins.
+    for (const Node& o : objects->children) {
+      if (o.name != "Pose" || o.text(2) != "BindPose") continue;
+      for (const Node& entry : o.children) {
+        if (entry.name != "PoseNode") continue;
+        const Node* node = entry.child("Node");
+        const auto matrix = matrixOf(entry.child("Matrix"));
+        if (node && node->integer(0) && matrix) bindPose_.try_emplace(*node->integer(0), *matrix);
+      }
+    }
+    if (const Node* connections = doc_.root.child("Connections"))
+      for (const Node& c : connections->children) {
+        if (c.name != "C") continue;
+        const auto child = c.integer(1), parent = c.integer(2);
+        if (!child || !parent) continue;
+        const Link down{*child, c.text(3)};
+        children_[*parent].push_back(down);
+        parents_[*child].push_back(Link{*parent, c.text(3)});
+      }
+    return {};
+  }
+
+  // The file's axes (GlobalSettings) turned to Y up, +Z front, +X right, and
+  // its unit (UnitScaleFactor centimetres) to metres.
+  glm::dmat4 axisConversion() {
+    const Node* settings = doc_.root.child("GlobalSettings");
+    auto setting = [&](std::string_view key, double fallback) {
+      return settings ? numberProperty(*settings, key).value_or(fallback) : fallback;
+    };
+    int up = int(setting("UpAxis", 1)), front = int(setting("FrontAxis", 2)), coord = int(setting("CoordAxis", 0));
+    double upSign = setting("UpAxisSign", 1) < 0 ? -1 : 1, frontSign = setting("FrontAxisSign", 1) < 0 ? -1 : 1,
+           coordSign = setting("CoordAxisSign", 1) < 0 ? -1 : 1;
+    const bool valid = up >= 0 && up < 3 && front >= 0 && front < 3 && coord >= 0 && coord < 3 && up != front && up != coord &&
+                       front != coord;
+    if (!valid) {
+      warn("GlobalSettings names the axes up " + std::to_string(up) + ", front " + std::to_string(front) + ", coord " +
+           std::to_string(coord) + ": read as Y up, Z front");
+      up = 1, front = 2, coord = 0, upSign = frontSign = coordSign = 1;
+    }
+    double unit = setting("UnitScaleFactor", 1.0);
+    if (!(unit > 0.0 && unit < 1e6)) {
+      warn("UnitScaleFactor " + std::to_string(unit) + " read as 1 (centimetres)");
+      unit = 1.0;
+    }
+    glm::dmat4 m(0.0);
+    m[coord][0] = coordSign;
+    m[up][1] = upSign;
+    m[front][2] = frontSign;
+    m[3][3] = 1.0;
+    return glm::scale(glm::dmat4(1.0), glm::dvec3(unit / 100.0)) * m;
+  }
+
+  std::vector<int64_t> linked(int64_t parent, std::string_view kind, std::string_view subclass = {}) const {
+    std::vector<int64_t> out;
+    const auto it = children_.find(parent);
+    if (it == children_.end()) return out;
+    for (const Link& l : it->second) {
+      const auto o = objects_.find(l.id);
+      if (o == objects_.end() || o->second.node->name != kind) continue;
+      if (!subclass.empty() && o->second.subclass != subclass) continue;
+      out.push_back(l.id);
+    }
+    return out;
+  }
+
+  eng::Result<void> addModels() {
+    // Nodes in file order, then parents, then meshes (which need the bones' nodes for skins).
+    std::vector<int64_t> models;
+    for (const Node& o : doc_.root.child("Objects")->children)
+      if (o.name == "Model")
+        if (const auto id = o.integer(0)) models.push_back(*id);
+    for (int64_t id : models) {
+      const Object& o = objects_.at(id);
+      eng::Node node;
+      node.name = o.name;
+      setLocalTransform(*o.node, node);
+      nodeOf_[id] = int(model_.nodes.size());
+      model_.nodes.push_back(std::move(node));
+    }
+    for (int64_t id : models) {
+      const int index = nodeOf_.at(id);
+      int parent = 0;
+      if (const auto it = parents_.find(id); it != parents_.end())
+        for (const Link& l : it->second)
+          if (const auto p = nodeOf_.find(l.id); p != nodeOf_.end() && p->second != index) {
+            parent = p->second;
+            break;
+          }
+      model_.nodes[size_t(index)].parent = parent;
+    }
+    // A parent chain that comes back to itself would hang every traversal.
+    for (size_t n = 1; n < model_.nodes.size(); ++n) {
+      int at = model_.nodes[n].parent;
+      for (size_t steps = 0; at > 0; ++steps, at = model_.nodes[size_t(at)].parent)
+        if (steps > model_.nodes.size() || at == int(n))
+          return eng::makeError(eng::ErrorKind::Malformed, name_ + ": Model '" + eng::shownText(model_.nodes[n].name) + "' is its own ancestor");
+    }
+    for (size_t n = 1; n < model_.nodes.size(); ++n) model_.nodes[size_t(model_.nodes[n].parent)].children.push_back(int(n));
+    for (int64_t id : models) {
+      const Object& o = objects_.at(id);
+      if (o.subclass != "Mesh") continue;
+      for (int64_t geometry : linked(id, "Geometry", "Mesh")) {
+        auto mesh = buildMesh(id, geometry);
+        if (!mesh) {
+          warn(mesh.error().message + "; mesh skipped");
+          if (firstSkipped_.empty()) firstSkipped_ = mesh.error().message;
+          continue;
+        }
+        eng::Node& node = model_.nodes[size_t(nodeOf_.at(id))];
+        if (node.mesh >= 0) {  // a second geometry on one Model: a child node draws it
+          eng::Node extra;
+          extra.name = node.name + " geometry " + std::to_string(model_.nodes.size());
+          extra.parent = nodeOf_.at(id);
+          extra.mesh = int(model_.meshes.size());
+          extra.skin = mesh->second;
+          node.children.push_back(int(model_.nodes.size()));
+          model_.nodes.push_back(std::move(extra));
+        } else {
+          node.mesh = int(model_.meshes.size());
+          node.skin = mesh->second;
+        }
+        model_.meshes.push_back(std::move(mesh->first));
+      }
+    }
+    return {};
+  }
+
+  eng::Error geometryError(const std::string& where, const std::string& what) const {
+    return eng::makeError(eng::ErrorKind::Malformed, name_ + ": " + where + ": " + what);
+  }
+
+  // The mesh of a Model's Geometry and its skin (-1 when it has none).
+  eng::Result<std::pair<eng::Mesh, int>> buildMesh(int64_t modelId, int64_t geometryId) {
+    const Object& modelObject = objects_.at(modelId);
+    const Object& geometryObject = objects_.at(geometryId);
+    const Node& g = *geometryObject.node;
+    const std::string where = "geometry '" + eng::shownText(geometryObject.name) + "'";
+    const Node* verticesNode = g.child("Vertices");
+    const Node* polygonsNode = g.child("PolygonVertexIndex");
+    if (!verticesNode || !polygonsNode) return geometryError(where, "no Vertices or PolygonVertexIndex");
+    const std::vector<double> vertices = verticesNode->numbers(0);
+    std::vector<int64_t> polygonIndex;
+    if (!polygonsNode->integers(0, polygonIndex)) return geometryError(where, "PolygonVertexIndex is not a list of whole numbers");
+    if (vertices.size() % 3 != 0) return geometryError(where, std::to_string(vertices.size()) + " vertex coordinates, not a multiple of 3");
+    const size_t controlPoints = vertices.size() / 3;
+    for (double v : vertices)
+      if (!std::isfinite(v)) return geometryError(where, "a vertex coordinate is not a finite number");
+    ENG_TRY(budget_.charge(polygonIndex.size(), sizeof(eng::Primitive) / 4 + 64, "FBX " + where));
+
+    const glm::dmat4 geometric = geometricTransform(*modelObject.node);
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(geometric)));
+    std::vector<glm::vec3> points(controlPoints);
+    for (size_t p = 0; p < controlPoints; ++p)
+      points[p] = glm::vec3(geometric * glm::dvec4(vertices[3 * p], vertices[3 * p + 1], vertices[3 * p + 2], 1.0));
+
+    std::vector<std::string>& warnings = model_.warnings;
+    const auto normals = layerElement(g, "LayerElementNormal", "Normals", "NormalsIndex", 3, where, warnings);
+    const auto uvs = layerElement(g, "LayerElementUV", "UV", "UVIndex", 2, where, warnings);
+    const auto colours = layerElement(g, "LayerElementColor", "Colors", "ColorIndex", 4, where, warnings);
+    std::vector<int64_t> polygonMaterial;
+    bool allSameMaterial = true;
+    for (const Node& c : g.children)
+      if (c.name == "LayerElementMaterial") {
+        if (const Node* m = c.child("Materials")) m->integers(0, polygonMaterial);
+        const Node* mapping = c.child("MappingInformationType");
+        allSameMaterial = !mapping || mapping->text(0) == "AllSame";
+        break;
+      }
+    const std::vector<int64_t> materialIds = linked(modelId, "Material");
+
+    // One primitive per material slot; vertices shared where a control point's corners agree.
+    std::map<int64_t, size_t> primitiveOfSlot;
+    std::vector<PrimitiveBuild> builds;
+    std::vector<std::unordered_map<VertexKey, uint32_t, VertexKeyHash>> vertexOf;
+    size_t polygon = 0, start = 0, badCorners = 0;
+    std::vector<uint32_t> face;
+    for (size_t corner = 0; corner < polygonIndex.size(); ++corner) {
+      const int64_t raw = polygonIndex[corner];
+      const bool last = raw < 0 || corner + 1 == polygonIndex.size();
+      if (!last) continue;
+      // The polygon is corners start..corner; the last one's index is stored as ~index.
+      int64_t slot = 0;
+      if (!polygonMaterial.empty()) {
+        const size_t i = allSameMaterial ? 0 : polygon;
+        slot = i < polygonMaterial.size() ? polygonMaterial[i] : 0;
+      }
+      if (slot < 0 || size_t(slot) >= std::max<size_t>(materialIds.size(), 1)) slot = 0;
+      auto [it, added] = primitiveOfSlot.try_emplace(slot, builds.size());
+      if (added) {
+        builds.emplace_back().slot = slot;
+        vertexOf.emplace_back();
+      }
+      PrimitiveBuild& b = builds[it->second];
+      auto& map = vertexOf[it->second];
+      face.clear();
+      for (size_t k = start; k <= corner; ++k) {
+        const int64_t cp = polygonIndex[k] < 0 ? ~polygonIndex[k] : polygonIndex[k];
+        if (cp < 0 || size_t(cp) >= controlPoints)
+          return geometryError(where, "polygon " + std::to_string(polygon) + " names vertex " + std::to_string(cp) + " of " +
+                                          std::to_string(controlPoints));
+        VertexKey key{};
+        key.controlPoint = cp;
+        if (normals) {
+          const int64_t e = normals->valueFor(polygon, k, cp);
+          glm::dvec3 n(0.0);
+          if (e >= 0) n = normalMatrix * glm::dvec3(normals->values[3 * e], normals->values[3 * e + 1], normals->values[3 * e + 2]);
+          const double len = glm::length(n);
+          if (std::isfinite(len) && len > 1e-12) {
+            n /= len;
+            key.n[0] = float(n.x), key.n[1] = float(n.y), key.n[2] = float(n.z);
+          } else {
+            b.fileNormals = false;
+            badCorners += e < 0;
+          }
+        }
+        if (uvs) {
+          const int64_t e = uvs->valueFor(polygon, k, cp);
+          if (e >= 0 && std::isfinite(uvs->values[2 * e]) && std::isfinite(uvs->values[2 * e + 1])) {
+            key.uv[0] = float(uvs->values[2 * e]);
+            key.uv[1] = float(1.0 - uvs->values[2 * e + 1]);  // FBX's V points up, glTF's down
+            b.anyTexcoords = true;
+          }
+        }
+        if (colours) {
+          const int64_t e = colours->valueFor(polygon, k, cp);
+          for (int c = 0; c < 4; ++c) {
+            const double v = e >= 0 ? colours->values[4 * e + c] : 1.0;
+            key.colour[c] = std::isfinite(v) ? float(std::clamp(v, 0.0, 1.0)) : 1.0f;
+          }
+        }
+        auto [vit, isNew] = map.try_emplace(key, uint32_t(b.prim.positions.size()));
+        if (isNew) {
+          b.prim.positions.push_back(points[size_t(cp)]);
+          b.prim.normals.push_back(glm::vec3(key.n[0], key.n[1], key.n[2]));
+          b.prim.texcoords.push_back(glm::vec2(key.uv[0], key.uv[1]));
+          if (colours)
+            b.prim.colors.push_back(glm::vec4(eng::srgbToLinear(key.colour[0]), eng::srgbToLinear(key.colour[1]),
+                                              eng::srgbToLinear(key.colour[2]), key.colour[3]));
+          b.controlPoint.push_back(cp);
+        }
+        face.push_back(vit->second);
+      }
+      // Fanned; points and edges (fewer than three corners) add nothing.
+      for (size_t k = 2; k < face.size(); ++k) b.prim.indices.insert(b.prim.indices.end(), {face[0], face[k - 1], face[k]});
+      ++polygon;
+      start = corner + 1;
+    }
+    if (badCorners > 0) warn(where + ": " + std::to_string(badCorners) + " corners' normals out of range; smooth normals made");
+    std::erase_if(builds, [](const PrimitiveBuild& b) { return b.prim.indices.empty(); });
+    if (builds.empty()) return geometryError(where, "no polygon with three corners or more");
+
+    eng::Mesh mesh;
+    mesh.name = modelObject.name;
+    for (PrimitiveBuild& b : builds) {
+      if (!b.anyTexcoords) b.prim.texcoords.clear();
+      if (!normals || !b.fileNormals) b.prim.normals = eng::computeSmoothNormals(b.prim.positions, b.prim.indices);
+      // The Model's material connections, in order, are its slots.
+      b.prim.material = size_t(b.slot) < materialIds.size() ? materialFor(materialIds[size_t(b.slot)]) : -1;
+    }
+    ENG_TRY(addTargets(geometryId, controlPoints, glm::dmat3(geometric), builds, mesh, where));
+    const int skin = ENG_TRY_VALUE(addSkin(geometryId, modelId, builds, where));
+    for (PrimitiveBuild& b : builds) mesh.primitives.push_back(std::move(b.prim));
+    return std::make_pair(std::move(mesh), skin);
+  }
+
+  // Blend shape channels as morph targets, each from its full shape.
+  eng::Result<void> addTargets(int64_t geometryId, size_t controlPoints, const glm::dmat3& linear, std::vector<PrimitiveBuild>& builds,
+                               eng::Mesh& mesh, const std::string& where) {
+    std::vector<std::vector<glm::vec3>> restNormals(builds.size());
+    std::vector<glm::dvec3> delta;
+    for (int64_t blendShape : linked(geometryId, "Deformer", "BlendShape")) {
+      const std::string& deformerName = objects_.at(blendShape).name;
+      for (int64_t channelId : linked(blendShape, "Deformer", "BlendShapeChannel")) {
+        const Object& channel = objects_.at(channelId);
+        std::string name = channel.name;
+        // Maya writes "<deformer>.<channel>"; the channel's own name is the target's.
+        if (!deformerName.empty() && name.size() > deformerName.size() + 1 && name.starts_with(deformerName + "."))
+          name.erase(0, deformerName.size() + 1);
+        const std::string what = where + ": blend shape '" + eng::shownText(name) + "'";
+        const std::vector<int64_t> shapes = linked(channelId, "Geometry", "Shape");
+        if (shapes.empty()) {
+          warn(what + " has no shape; left out");
+          continue;
+        }
+        // The full shape is the one at the largest FullWeights (the last, as written).
+        size_t full = shapes.size() - 1;
+        if (const Node* weights = channel.node->child("FullWeights"); weights && shapes.size() > 1) {
+          const std::vector<double> w = weights->numbers(0);
+          if (w.size() == shapes.size()) full = size_t(std::max_element(w.begin(), w.end()) - w.begin());
+          warn(what + ": " + std::to_string(shapes.size() - 1) + " in-between shape(s) not read; the full shape is");
+        }
+        const Node& shape = *objects_.at(shapes[full]).node;
+        std::vector<int64_t> indexes;
+        const Node* indexesNode = shape.child("Indexes");
+        const Node* verticesNode = shape.child("Vertices");
+        const std::vector<double> offsets = verticesNode ? verticesNode->numbers(0) : std::vector<double>();
+        if (!indexesNode || !indexesNode->integers(0, indexes) || offsets.size() != 3 * indexes.size()) {
+          warn(what + ": " + std::to_string(indexes.size()) + " indexes and " + std::to_string(offsets.size()) +
+               " offset coordinates do not pair; left out");
+          continue;
+        }
+        delta.assign(controlPoints, glm::dvec3(0.0));
+        bool usable = true;
+        for (size_t k = 0; k < indexes.size() && usable; ++k) {
+          const glm::dvec3 d(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]);
+          usable = indexes[k] >= 0 && size_t(indexes[k]) < controlPoints && std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z);
+          if (usable) delta[size_t(indexes[k])] = linear * d;
+        }
+        if (!usable) {
+          warn(what + " names a vertex past " + std::to_string(controlPoints) + " or a non-finite offset; left out");
+          continue;
+        }
+        for (size_t i = 0; i < builds.size(); ++i) {
+          PrimitiveBuild& b = builds[i];
+          eng::MorphTarget target;
+          bool moves = false;
+          for (int64_t cp : b.controlPoint) moves |= delta[size_t(cp)] != glm::dvec3(0.0);
+          if (moves) {
+            const size_t n = b.prim.positions.size();
+            ENG_TRY(budget_.charge(n, 2 * sizeof(glm::vec3), "FBX " + what));
+            target.positions.resize(n);
+            std::vector<glm::vec3> moved(b.prim.positions);
+            for (size_t v = 0; v < n; ++v) {
+              target.positions[v] = glm::vec3(delta[size_t(b.controlPoint[v])]);
+              moved[v] += target.positions[v];
+            }
+            // The shape's own normals are left: the change of the smooth normal
+            // is exactly zero where nothing moves.
+            if (restNormals[i].empty()) restNormals[i] = eng::computeSmoothNormals(b.prim.positions, b.prim.indices);
+            target.normals = eng::computeSmoothNormals(moved, b.prim.indices);
+            for (size_t v = 0; v < n; ++v) target.normals[v] -= restNormals[i][v];
+          }
+          b.prim.targets.push_back(std::move(target));
+        }
+        mesh.targetNames.push_back(name);
+        mesh.defaultWeights.push_back(float(std::clamp(channel.node->child("DeformPercent") ? channel.node->child("DeformPercent")->number(0).value_or(0.0) : 0.0, -1000.0, 1000.0) / 100.0));
+      }
+    }
+    return {};
+  }
+
+  // The 16 numbers of a cluster's matrix node, column by column as FBX stores them.
+  static std::optional<glm::dmat4> matrixOf(const Node* node) {
+    if (!node) return std::nullopt;
+    const std::vector<double> m = node->numbers(0);
+    if (m.size() != 16) return std::nullopt;
+    glm::dmat4 out;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        if (!std::isfinite(m[size_t(4 * c + r)])) return std::nullopt;
+        out[c][r] = m[size_t(4 * c + r)];
+      }
+    return out;
+  }
+
+  // The geometry's skin clusters as a skin over the bone Models; -1 without one.
+  eng::Result<int> addSkin(int64_t geometryId, int64_t modelId, std::vector<PrimitiveBuild>& builds, const std::string& where) {
+    const std::vector<int64_t> skins = linked(geometryId, "Deformer", "Skin");
+    if (skins.empty()) return -1;
+    size_t controlPoints = 0;
+    for (const PrimitiveBuild& b : builds)
+      for (int64_t cp : b.controlPoint) controlPoints = std::max(controlPoints, size_t(cp) + 1);
+    std::vector<std::vector<std::pair<float, uint16_t>>> influences(controlPoints);
+    eng::Skin skin;
+    skin.name = objects_.at(skins[0]).name;
+    // Where the mesh was when it was bound: its BindPose entry, else where it
+    // is now. (Clusters' "Transform" is written differently by different
+    // exporters; three.js and the FBX SDK's samples use the bind pose too.)
+    glm::dmat4 meshBind = fileSpaceWorld(nodeOf_.at(modelId));
+    if (const auto it = bindPose_.find(modelId); it != bindPose_.end()) meshBind = it->second;
+    for (int64_t clusterId : linked(skins[0], "Deformer", "Cluster")) {
+      const Object& cluster = objects_.at(clusterId);
+      const std::vector<int64_t> bones = linked(clusterId, "Model");
+      const std::string what = where + ": skin cluster '" + eng::shownText(cluster.name) + "'";
+      const auto bind = matrixOf(cluster.node->child("TransformLink"));
+      std::vector<int64_t> indexes;
+      const Node* indexesNode = cluster.node->child("Indexes");
+      const Node* weightsNode = cluster.node->child("Weights");
+      const std::vector<double> weights = weightsNode ? weightsNode->numbers(0) : std::vector<double>();
+      if (indexesNode && !indexesNode->integers(0, indexes)) indexes.clear();
+      if (bones.empty() || !bind || indexes.size() != weights.size()) {
+        warn(what + (bones.empty() ? " has no bone" : !bind ? " has no TransformLink matrix" : ": its indexes and weights do not pair") +
+             "; left out");
+        continue;
+      }
+      if (skin.joints.size() >= 65535) return geometryError(where, "a skin of more than 65535 bones");
+      const auto joint = uint16_t(skin.joints.size());
+      skin.joints.push_back(nodeOf_.at(bones[0]));
+      skin.inverseBindMatrices.push_back(glm::mat4(glm::inverse(*bind) * meshBind));
+      for (size_t k = 0; k < indexes.size(); ++k)
+        if (indexes[k] >= 0 && size_t(indexes[k]) < controlPoints && std::isfinite(weights[k]) && weights[k] > 0.0)
+          influences[size_t(indexes[k])].emplace_back(float(weights[k]), joint);
+    }
+    if (skin.joints.empty()) return -1;
+    // Control points no cluster moves stay with the mesh's own node (a joint whose bind is the identity).
+    int meshJoint = -1;
+    size_t most = 1;
+    for (auto& list : influences) {
+      std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+      most = std::max(most, list.size());
+    }
+    constexpr size_t kMostSets = 4;  // sixteen influences; the weakest beyond are dropped
+    const size_t sets = std::min(kMostSets, (most + 3) / 4);
+    for (PrimitiveBuild& b : builds) {
+      const size_t n = b.prim.positions.size();
+      ENG_TRY(budget_.charge(n * sets, sizeof(glm::u16vec4) + sizeof(glm::vec4), "FBX " + where + " skin"));
+      b.prim.joints.assign(n * sets, glm::u16vec4(0));
+      b.prim.jointWeights.assign(n * sets, glm::vec4(0.0f));
+      for (size_t v = 0; v < n; ++v) {
+        const auto& list = influences[size_t(b.controlPoint[v])];
+        float sum = 0.0f;
+        for (size_t k = 0; k < list.size() && k < 4 * sets; ++k) sum += list[k].first;
+        if (!(sum > 0.0f)) {
+          if (meshJoint < 0) {
+            meshJoint = int(skin.joints.size());
+            skin.joints.push_back(nodeOf_.at(modelId));
+            skin.inverseBindMatrices.push_back(glm::mat4(1.0f));
+          }
+          b.prim.joints[v * sets] = glm::u16vec4(uint16_t(meshJoint), 0, 0, 0);
+          b.prim.jointWeights[v * sets] = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+          continue;
+        }
+        for (size_t k = 0; k < list.size() && k < 4 * sets; ++k) {
+          b.prim.joints[v * sets + k / 4][int(k % 4)] = list[k].second;
+          b.prim.jointWeights[v * sets + k / 4][int(k % 4)] = list[k].first / sum;
+        }
+      }
+    }
+    if (skin.joints.size() > 65535) return geometryError(where, "a skin of more than 65535 bones");
+    model_.skins.push_back(std::move(skin));
+    return int(model_.skins.size()) - 1;
+  }
+
+  // A node's world matrix in the file's own axes and units (the root's conversion left out).
+  glm::dmat4 fileSpaceWorld(int node) const {
+    glm::dmat4 world(1.0);
+    for (int at = node; at > 0; at = model_.nodes[size_t(at)].parent) world = glm::dmat4(model_.nodes[size_t(at)].localTransform()) * world;
+    return world;
+  }
+
+  int materialFor(int64_t id) {
+    if (const auto it = materialOf_.find(id); it != materialOf_.end()) return it->second;
+    const Object& o = objects_.at(id);
+    eng::Material m;
+    m.name = o.name;
+    const glm::dvec3 diffuse = glm::clamp(vectorProperty(*o.node, "DiffuseColor").value_or(vectorProperty(*o.node, "Diffuse").value_or(glm::dvec3(0.8))), 0.0, 1.0);
+    m.baseColorImage = textureFor(id, {"DiffuseColor", "Diffuse", "Maya|baseColor", "base_color", "baseColor"});
+    // A texture stands for the colour (as Blender's and Maya's importers read it), a colour alone is the factor.
+    m.baseColorFactor = m.baseColorImage >= 0 ? glm::vec4(1.0f) : glm::vec4(glm::vec3(diffuse), 1.0f);
+    const double opacity = numberProperty(*o.node, "Opacity").value_or(1.0);
+    if (opacity >= 0.0 && opacity < 1.0) {
+      m.baseColorFactor.a = float(opacity);
+      m.alphaMode = eng::AlphaMode::Blend;
+    }
+    if (textureFor(id, {"TransparentColor", "TransparencyFactor"}, false) >= 0) m.alphaMode = eng::AlphaMode::Blend;
+    const int index = int(model_.materials.size());
+    model_.materials.push_back(std::move(m));
+    materialOf_[id] = index;
+    return index;
+  }
+
+  // The image of the texture linked to the material's first property of
+  // `properties` that has one (case-insensitive), -1 when none reads.
+  int textureFor(int64_t materialId, std::initializer_list<std::string_view> properties, bool decode = true) {
+    const auto it = children_.find(materialId);
+    if (it == children_.end()) return -1;
+    auto lower = [](std::string_view s) {
+      std::string out(s);
+      for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+      return out;
+    };
+    for (std::string_view property : properties)
+      for (const Link& l : it->second) {
+        const auto o = objects_.find(l.id);
+        if (o == objects_.end() || o->second.node->name != "Texture" || lower(l.property) != lower(property)) continue;
+        if (!decode) return 0;
+        return imageOf(l.id);
+      }
+    return -1;
+  }
+
+  // A Video's embedded bytes; writers embed a file once, and the other
+  // Videos naming the same file share them (as the FBX SDK reads them).
+  std::string_view embeddedContent(const Node& video) {
+    if (const Node* content = video.child("Content"); content && !content->text(0).empty()) return content->text(0);
+    if (contentOfFile_.empty())
+      for (const auto& [id, object] : objects_) {
+        if (object.node->name != "Video") continue;
+        const Node* content = object.node->child("Content");
+        if (!content || content->text(0).empty()) continue;
+        for (const char* field : {"RelativeFilename", "Filename", "FileName"})
+          if (const Node* f = object.node->child(field); f && !f->text(0).empty()) contentOfFile_.try_emplace(std::string(f->text(0)), content->text(0));
+      }
+    for (const char* field : {"RelativeFilename", "Filename", "FileName"})
+      if (const Node* f = video.child(field); f && !f->text(0).empty())
+        if (const auto it = contentOfFile_.find(std::string(f->text(0))); it != contentOfFile_.end()) return it->second;
+    return {};
+  }
+
+  int imageOf(int64_t textureId) {
+    if (const auto it = imageOfTexture_.find(textureId); it != imageOfTexture_.end()) return it->second;
+    int& index = imageOfTexture_[textureId];
+    index = -1;
+    const Object& texture = objects_.at(textureId);
+    const std::string what = "texture '" + eng::shownText(texture.name) + "'";
+    std::vector<std::string> files;
+    auto fileNames = [&](const Node& n) {
+      for (const char* field : {"RelativeFilename", "FileName", "Filename"})
+        if (const Node* f = n.child(field); f && !f->text(0).empty()) files.emplace_back(f->text(0));
+    };
+    fileNames(*texture.node);
+    for (int64_t videoId : linked(textureId, "Video")) {
+      const Node& video = *objects_.at(videoId).node;
+      fileNames(video);
+      const std::string_view bytes = embeddedContent(video);
+      if (bytes.empty()) continue;
+      auto image = eng::decodeImage(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()), objects_.at(videoId).name);
+      if (!image) {
+        warn(what + ": its embedded image: " + image.error().message);
+        continue;
+      }
+      index = int(model_.images.size());
+      model_.images.push_back(std::move(*image));
+      return index;
+    }
+    // Named by file: relative to the FBX's folder, else by name alone there
+    // or in the `<stem>.fbm` folder the FBX SDK extracts embedded media to.
+    const std::filesystem::path folder = path_.parent_path().empty() ? std::filesystem::path(".") : path_.parent_path();
+    for (std::string file : files) {
+      std::replace(file.begin(), file.end(), '\\', '/');
+      const std::string base = std::filesystem::path(file).filename().string();
+      for (const std::string& candidate : {file, base, path_.stem().string() + ".fbm/" + base}) {
+        if (candidate.empty() || candidate.front() == '/' || (candidate.size() > 1 && candidate[1] == ':')) continue;
+        auto resolved = eng::resolveInsideFolder(folder, candidate);
+        std::error_code ec;
+        if (!resolved || !std::filesystem::is_regular_file(*resolved, ec)) continue;
+        auto image = eng::readImage(*resolved);
+        if (!image) {
+          warn(what + ": " + image.error().message);
+          return index;
+        }
+        image->name = base;
+        index = int(model_.images.size());
+        model_.images.push_back(std::move(*image));
+        return index;
+      }
+    }
+    warn(what + (files.empty() ? std::string(" names no file and embeds none") : ": '" + eng::shownText(files.front(), 80) +
+                                                                                    "' is not beside the FBX") +
+         "; its material keeps its colour");
+    return index;
+  }
+
+  const fbx::Document& doc_;
+  std::filesystem::path path_;
+  std::string name_;
+  eng::LoadBudget& budget_;
+  eng::Model model_;
+  std::unordered_map<int64_t, Object> objects_;
+  std::unordered_map<int64_t, std::vector<Link>> children_;
+  std::unordered_map<int64_t, std::vector<Link>> parents_;
+  std::unordered_map<int64_t, int> nodeOf_;
+  std::unordered_map<int64_t, int> materialOf_;
+  std::unordered_map<int64_t, glm::dmat4> bindPose_;
+  std::unordered_map<int64_t, int> imageOfTexture_;
+  std::unordered_map<std::string, std::string_view> contentOfFile_;
+  std::string firstSkipped_;
+};
+
+}  // namespace
+
+eng::Result<eng::Model> importFbx(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
+  eng::LoadBudget budget;
+  auto doc = fbx::readFbxDocument(bytes, path.string(), budget);
+  if (!doc) return doc.error();
+  return SceneBuilder(*doc, path, budget).build();
+}
+
+}  // namespace importers
