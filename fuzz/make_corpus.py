@@ -58,6 +58,8 @@ def sources(name):
         seeds += sorted(shared.glob('candide3/*.wfm'))
     if name == 'image' and shared:
         seeds += sorted(shared.glob('assets/**/*.png')) + sorted(shared.glob('assets/**/*.jpg'))
+    if name == 'fbx':
+        seeds += sorted((ROOT / 'tests' / 'importers' / 'fbx').glob('*.fbx'))
     if name == 'expressions':
         seeds += [data / 'expressions.json']
     if name == 'rigmap':

@@ -47,6 +47,7 @@ run_one() {
   case "$name" in
     candide|obj_set|ply) dict=text.dict ;;
     image) dict=image.dict ;;
+    fbx) dict=fbx.dict ;;
     # Mutating whole 500 kB models runs at ~20 inputs/s under ASan; small
     # inputs (the big seeds truncated) run hundreds per second.
     gltf|vrm) maxlen=(-max_len=32768) ;;

@@ -113,7 +113,7 @@ class BinaryReader {
       // Each value takes two bytes at least: a count past that cannot be true.
       if (count > listBytes / 2)
         return malformed(name_, where + " claims " + std::to_string(count) + " values in " + std::to_string(listBytes) + " bytes");
-      ENG_TRY(budget_.charge(sizeof(Node) + count * sizeof(Value), "FBX node"));
+      ENG_TRY(charge(sizeof(Node) + count * sizeof(Value), "FBX node"));
       Node& node = parent.children.emplace_back();
       node.name.assign(reinterpret_cast<const char*>(&bytes_[at + header]), nameBytes);
       const size_t valuesEnd = valuesAt + size_t(listBytes);
@@ -174,7 +174,7 @@ class BinaryReader {
         const uint64_t length = readLittle(p, 4);
         if (left - 4 < length)
           return malformed(name_, where + ": a string of " + std::to_string(length) + " bytes with " + std::to_string(left - 4) + " left");
-        ENG_TRY(budget_.charge(size_t(length), "FBX string"));
+        ENG_TRY(charge(size_t(length), "FBX string"));
         node.values.emplace_back(std::string(reinterpret_cast<const char*>(p + 4), size_t(length)));
         return at + 4 + size_t(length);
       }
@@ -198,7 +198,7 @@ class BinaryReader {
                                   std::to_string(stored));
     if (encoding > 1) return malformed(name_, where + ": array encoding " + std::to_string(encoding) + " (0 plain, 1 zlib)");
     // What it inflates to and what it is kept as, before either is made.
-    ENG_TRY(budget_.charge(size_t(length), each + 8, "FBX array"));
+    ENG_TRY(charge(size_t(length), each + 8, "FBX array"));
     const uint8_t* data = &bytes_[at + 12];
     std::vector<uint8_t> inflated;
     if (encoding == 1) {
@@ -234,6 +234,13 @@ class BinaryReader {
     }
     return at + 12 + size_t(stored);
   }
+
+  // Charged to the load budget; over it, the file is named in front.
+  eng::Result<void> charge(size_t count, size_t each, std::string_view what) {
+    if (auto charged = budget_.charge(count, each, what); !charged) return charged.error().prefixed(name_ + ": ");
+    return {};
+  }
+  eng::Result<void> charge(size_t bytes, std::string_view what) { return charge(1, bytes, what); }
 
   std::span<const uint8_t> bytes_;
   const std::string& name_;
@@ -302,11 +309,11 @@ class AsciiReader {
     }
     const size_t start = at_;
     while (at_ < text_.size() && std::strchr(" \t\r\n,{}\";:", text_[at_]) == nullptr) ++at_;
+    if (at_ == start) return error("unexpected '" + eng::shownText(text_.substr(at_, 1)) + "'");
     if (at_ < text_.size() && text_[at_] == ':') {
       ++at_;
       return Token{Kind::Name, text_.substr(start, at_ - 1 - start)};
     }
-    if (at_ == start) return error("unexpected '" + eng::shownText(text_.substr(at_, 1)) + "'");
     return Token{Kind::Word, text_.substr(start, at_ - start)};
   }
 
@@ -316,7 +323,7 @@ class AsciiReader {
     if (depth > kMaxDepth) return error("nodes nested deeper than " + std::to_string(kMaxDepth));
     const Token name = ENG_TRY_VALUE(next());
     if (name.kind != Kind::Name) return error("a node name ('Name:') expected, found '" + eng::shownText(name.text) + "'");
-    ENG_TRY(budget_.charge(sizeof(Node), "FBX node"));
+    ENG_TRY(charge(sizeof(Node), "FBX node"));
     Node& node = parent.children.emplace_back();
     node.name = std::string(name.text);
     // Values, comma-separated, over as many lines as they take.
@@ -330,7 +337,7 @@ class AsciiReader {
       }
       if (!wantValue || (t.kind != Kind::String && t.kind != Kind::Word)) break;
       ENG_TRY(next());
-      ENG_TRY(budget_.charge(sizeof(Value) + t.text.size(), "FBX value"));
+      ENG_TRY(charge(sizeof(Value) + t.text.size(), "FBX value"));
       node.values.push_back(valueOf(t));
       wantValue = false;
     }
@@ -390,6 +397,11 @@ class AsciiReader {
     }
     node.values = {std::move(folded)};
     node.children.clear();
+    return {};
+  }
+
+  eng::Result<void> charge(size_t bytes, std::string_view what) {
+    if (auto charged = budget_.charge(bytes, what); !charged) return charged.error().prefixed(name_ + ": ");
     return {};
   }
 

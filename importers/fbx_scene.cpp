@@ -241,7 +241,8 @@ class SceneBuilder {
     for (const auto& [id, object] : objects_) curves += object.node->name == "AnimationCurve";
     if (curves > 0) warn("animations not read (" + std::to_string(curves) + " curves)");
     if (model_.meshes.empty())
-      return eng::makeError(eng::ErrorKind::Malformed, name_ + ": no mesh to draw" + (firstSkipped_.empty() ? std::string(" (the file has no mesh geometry)") : "; " + firstSkipped_));
+      return eng::makeError(eng::ErrorKind::Malformed, name_ + ": no mesh to draw" +
+                            (firstSkipped_.empty() ? std::string(" (the file has no mesh geometry)") : "; " + firstSkipped_));
     if (glm::determinant(axes) < 0.0)
       for (eng::Mesh& mesh : model_.meshes)
         for (eng::Primitive& prim : mesh.primitives)
@@ -389,8 +390,15 @@ class SceneBuilder {
     return {};
   }
 
+  eng::Result<void> charge(size_t count, size_t each, std::string_view what) {
+    if (auto charged = budget_.charge(count, each, what); !charged) return charged.error().prefixed(name_ + ": ");
+    return {};
+  }
+
+  // A geometry's problem, without the file's name: it becomes a warning (the
+  // mesh skipped) or, when nothing is left, part of the file's error.
   eng::Error geometryError(const std::string& where, const std::string& what) const {
-    return eng::makeError(eng::ErrorKind::Malformed, name_ + ": " + where + ": " + what);
+    return eng::makeError(eng::ErrorKind::Malformed, where + ": " + what);
   }
 
   // The mesh of a Model's Geometry and its skin (-1 when it has none).
@@ -409,7 +417,7 @@ class SceneBuilder {
     const size_t controlPoints = vertices.size() / 3;
     for (double v : vertices)
       if (!std::isfinite(v)) return geometryError(where, "a vertex coordinate is not a finite number");
-    ENG_TRY(budget_.charge(polygonIndex.size(), sizeof(eng::Primitive) / 4 + 64, "FBX " + where));
+    ENG_TRY(charge(polygonIndex.size(), sizeof(eng::Primitive) / 4 + 64, "FBX " + where));
 
     const glm::dmat4 geometric = geometricTransform(*modelObject.node);
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(geometric)));
@@ -581,7 +589,7 @@ class SceneBuilder {
           for (int64_t cp : b.controlPoint) moves |= delta[size_t(cp)] != glm::dvec3(0.0);
           if (moves) {
             const size_t n = b.prim.positions.size();
-            ENG_TRY(budget_.charge(n, 2 * sizeof(glm::vec3), "FBX " + what));
+            ENG_TRY(charge(n, 2 * sizeof(glm::vec3), "FBX " + what));
             target.positions.resize(n);
             std::vector<glm::vec3> moved(b.prim.positions);
             for (size_t v = 0; v < n; ++v) {
@@ -667,7 +675,7 @@ class SceneBuilder {
     const size_t sets = std::min(kMostSets, (most + 3) / 4);
     for (PrimitiveBuild& b : builds) {
       const size_t n = b.prim.positions.size();
-      ENG_TRY(budget_.charge(n * sets, sizeof(glm::u16vec4) + sizeof(glm::vec4), "FBX " + where + " skin"));
+      ENG_TRY(charge(n * sets, sizeof(glm::u16vec4) + sizeof(glm::vec4), "FBX " + where + " skin"));
       b.prim.joints.assign(n * sets, glm::u16vec4(0));
       b.prim.jointWeights.assign(n * sets, glm::vec4(0.0f));
       for (size_t v = 0; v < n; ++v) {

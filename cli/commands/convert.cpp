@@ -1,8 +1,9 @@
 // `facial convert`: OBJ keyframe sets (neutral.obj + one OBJ per
 // expression) to one glTF face with morph targets; also re-saves glTF
-// (e.g. .gltf -> .glb).
+// (e.g. .gltf -> .glb) and writes an FBX or PLY face as glTF.
 //   facial convert neutral.obj --target happy=happy.obj --target sad.obj --out face.glb
 //   facial convert DIR --out face.glb            (DIR/neutral.obj + every other DIR/*.obj)
+//   facial convert character.fbx --out character.glb
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "engine/scene/gltf_writer.h"
 #include "app/output_paths.h"
 #include "app/program_error.h"
+#include "importers/load_face.h"
 #include "importers/obj_keyframes.h"
 
 // Each command in a namespace of its own: the commands are compiled several
@@ -60,6 +62,12 @@ int run(const ConvertArgs& args) {
     return save(*model, args.out);
   }
 
+  if (ext == ".fbx" || ext == ".ply") {
+    if (!args.targets.empty()) return fail("--target applies to OBJ input only");
+    auto face = importers::loadFace(input);
+    if (!face) return fail(face.error().message);
+    return save(face->model, args.out);
+  }
   std::filesystem::path neutral;
   std::vector<importers::ObjTargetFile> targets;
   std::error_code ec;
@@ -70,7 +78,7 @@ int run(const ConvertArgs& args) {
     neutral = folder->neutral;
     targets = std::move(folder->targets);
   } else {
-    if (ext != ".obj") return fail(args.input + ": expected a .obj, a .gltf/.glb or a folder");
+    if (ext != ".obj") return fail(args.input + ": expected a .obj, a .gltf/.glb, an .fbx, a .ply or a folder");
     neutral = input;
     for (const std::string& spec : args.targets) {
       const size_t eq = spec.find('=');
@@ -98,10 +106,10 @@ int run(const ConvertArgs& args) {
   return save(imported->model, args.out);
 }
 
-CommandRegistrar reg("convert", "Convert an OBJ keyframe set (or a glTF) to a glTF face with morph targets",
+CommandRegistrar reg("convert", "Convert an OBJ keyframe set, an FBX, a PLY or a glTF to a glTF face with morph targets",
                      [](CLI::App& app) {
                        auto args = std::make_shared<ConvertArgs>();
-                       app.add_option("input", args->input, "neutral.obj, a folder holding neutral.obj + targets, or a .gltf/.glb")
+                       app.add_option("input", args->input, "neutral.obj, a folder holding neutral.obj + targets, a .gltf/.glb, an .fbx or a .ply")
                            ->required();
                        app.add_option("--target", args->targets, "NAME=FILE.obj (or FILE.obj, named after the file); repeatable");
                        app.add_option("--out", args->out, "Output .glb or .gltf")->required();

@@ -18,6 +18,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
+#include "tests/common/fbx_test_files.h"
 #include "tests/common/obj_test_files.h"
 #include "tests/common/test_face.h"
 #include "tests/common/test_meshes.h"
@@ -376,6 +377,21 @@ TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) {
   testing_support::writeFile(dir / "scan.ply", testing_support::modelAsPly(*head));
   setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
   auto face = app::FaceSetup::load({.model = dir / "scan.ply", .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
+  EXPECT_TRUE(facial::showsEmotions(face->rig()));
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+}
+
+TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) {
+  // A sculpt or scan as DCC tools hand it over: one FBX, no blend shapes.
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  const fs::path dir = testing_support::freshTempDir("autorig_fbx_face");
+  testing_support::writeFile(dir / "face.fbx", testing_support::modelAsFbx(*head));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "face.fbx", .program = "test"});
   unsetenv("XDG_CACHE_HOME");
   ASSERT_TRUE(face) << face.error().message;
   EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();

@@ -13,6 +13,7 @@
 #include "app/face_setup.h"
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/glb_container.h"
+#include "importers/load_face.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
 #include "tests/common/test_face.h"
@@ -186,6 +187,26 @@ void expressNeutralAndHappy(const std::filesystem::path& vrm, eng::Image& neutra
                                       (dir / (std::string(expression) + ".png")).string()})));
   neutral = readPngOrFail(dir / "neutral.png");
   happy = readPngOrFail(dir / "happy.png");
+}
+
+TEST(FaceFormats, AnFbxCharacterOpensInInfoAndConvertsToGltf) {
+  // Blender's FBX of a skinned face with two ARKit-named blend shapes (tests/importers/fbx).
+  const std::filesystem::path fbx = testing_support::sourceDir() / "tests" / "importers" / "fbx" / "rigged_face.fbx";
+  const CommandOutput info = runFacial({"info", fbx.string(), "--json"});
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const nlohmann::json report = nlohmann::json::parse(info.out, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << info.out;
+  EXPECT_EQ(report["meshes"][0]["targetNames"], nlohmann::json::array({"jawOpen", "mouthSmile_L"}));
+  EXPECT_EQ(report["warnings"], nlohmann::json::array()) << "a sound file reads without a warning";
+
+  const std::filesystem::path dir = testing_support::freshTempDir("face_formats_fbx");
+  const CommandOutput converted = runFacial({"convert", fbx.string(), "--out", (dir / "face.glb").string()});
+  ASSERT_EQ(converted.exitCode, 0) << converted.err;
+  EXPECT_TRUE(contains(converted.out, "288 vertices, 2 morph target(s)")) << converted.out;
+  auto glb = importers::loadFace(dir / "face.glb");
+  ASSERT_TRUE(glb) << glb.error().message;
+  EXPECT_EQ(glb->model.skins.size(), 1u) << "the skin is written with it";
+  EXPECT_EQ(glb->model.meshes[0].targetNames, (std::vector<std::string>{"jawOpen", "mouthSmile_L"}));
 }
 
 TEST(FaceFormats, SyntheticVrmShowsMorphAndMaterialColourBinds) {
