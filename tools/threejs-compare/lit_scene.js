@@ -2,6 +2,7 @@
 // a square WebGL canvas on the studio grey and the model under the comparison
 // lights (a hemisphere fill and one key). Served at /shared/lit_scene.js.
 import * as THREE from 'three';
+import { FBXLoader } from 'three/addons/loaders/FBXLoader.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 export function createRenderer(size, options = {}) {
@@ -13,9 +14,26 @@ export function createRenderer(size, options = {}) {
   return renderer;
 }
 
-// The glTF at modelUrl in a scene with the lights; returns { gltf, scene }.
+// The glTF (or, by its extension, FBX) at modelUrl in a scene with the
+// lights; returns { gltf, scene } (an FBX's group as gltf.scene).
 export async function loadLitScene(modelUrl) {
-  const gltf = await new GLTFLoader().loadAsync(modelUrl);
+  let gltf;
+  if (modelUrl.toLowerCase().endsWith('.fbx')) {
+    const group = await new FBXLoader().loadAsync(modelUrl);
+    // FBXLoader decodes embedded textures after it returns: wait for them.
+    const maps = [];
+    group.traverse((o) => {
+      for (const m of [].concat(o.material || [])) if (m.map) maps.push(m.map);
+    });
+    await Promise.all(maps.map((map) => new Promise((resolve) => {
+      const ready = () => (map.image && (map.image.complete || map.image.width) ? resolve() : setTimeout(ready, 20));
+      ready();
+    })));
+    for (const map of maps) map.needsUpdate = true;
+    gltf = { scene: group, animations: group.animations };
+  } else {
+    gltf = await new GLTFLoader().loadAsync(modelUrl);
+  }
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
   scene.add(new THREE.HemisphereLight(0xdde4ff, 0x4a3a30, 1.2));

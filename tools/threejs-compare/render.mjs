@@ -1,4 +1,4 @@
-// Renders a glTF with three.js in headless Chromium to a PNG, framed and
+// Renders a glTF (or an FBX, through three.js's FBXLoader) with three.js in headless Chromium to a PNG, framed and
 // posed like `facial render` / the skinning goldens, for a side-by-side check.
 // Never part of the product build.
 //
