@@ -32,9 +32,17 @@ std::string arrayOf(char type, std::span<const T> v, bool zlib) {
   return out + raw;
 }
 
-void writeNode(std::string& out, const FbxTestNode& node) {
+void put64(std::string& out, uint64_t v) {
+  put32(out, uint32_t(v));
+  put32(out, uint32_t(v >> 32));
+}
+
+// A node record: end offset, value count and value bytes in 32 bits before
+// FBX 7.5 (version 7500), in 64 bits from it; children end with a null record.
+void writeNode(std::string& out, const FbxTestNode& node, bool wide) {
+  const size_t header = wide ? 25 : 13;
   const size_t start = out.size();
-  out.append(13, '\0');
+  out.append(header, '\0');
   out += node.name;
   size_t valueBytes = 0;
   for (const std::string& v : node.values) {
@@ -42,15 +50,16 @@ void writeNode(std::string& out, const FbxTestNode& node) {
     valueBytes += v.size();
   }
   if (!node.children.empty()) {
-    for (const FbxTestNode& c : node.children) writeNode(out, c);
-    out.append(13, '\0');
+    for (const FbxTestNode& c : node.children) writeNode(out, c, wide);
+    out.append(header, '\0');
   }
-  std::string header;
-  put32(header, uint32_t(out.size()));
-  put32(header, uint32_t(node.values.size()));
-  put32(header, uint32_t(valueBytes));
-  header.push_back(char(node.name.size()));
-  out.replace(start, 13, header);
+  std::string fields;
+  for (uint64_t field : {uint64_t(out.size()), uint64_t(node.values.size()), uint64_t(valueBytes)}) {
+    if (wide) put64(fields, field);
+    else put32(fields, uint32_t(field));
+  }
+  fields.push_back(char(node.name.size()));
+  out.replace(start, header, fields);
 }
 
 FbxTestNode property(const std::string& name, const std::string& type, std::vector<std::string> values) {
@@ -69,8 +78,7 @@ std::string fbxInt(int32_t v) {
 
 std::string fbxLong(int64_t v) {
   std::string out(1, 'L');
-  put32(out, uint32_t(uint64_t(v)));
-  put32(out, uint32_t(uint64_t(v) >> 32));
+  put64(out, uint64_t(v));
   return out;
 }
 
@@ -97,8 +105,9 @@ std::string fbxName(std::string_view name, std::string_view objectClass) {
 std::string fbxBinary(const std::vector<FbxTestNode>& top, uint32_t version) {
   std::string out("Kaydara FBX Binary  \0\x1a\0", 23);
   put32(out, version);
-  for (const FbxTestNode& node : top) writeNode(out, node);
-  out.append(13, '\0');
+  const bool wide = version >= 7500;
+  for (const FbxTestNode& node : top) writeNode(out, node, wide);
+  out.append(wide ? 25 : 13, '\0');
   return out;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Binary FBX 7.4 written by hand for the tests: any node tree (broken ones
+// Binary FBX 7.x written by hand for the tests: any node tree (broken ones
 // too: a value's bytes are given as they are stored), and any model at rest
 // as an FBX of one mesh Model per primitive, as a scan or sculpt exports.
 #include <cstdint>
@@ -28,7 +28,8 @@ struct FbxTestNode {
   std::vector<FbxTestNode> children;
 };
 
-// The file: header, the top-level nodes, the closing null record.
+// The file: header, the top-level nodes, the closing null record; record
+// headers in 64 bits from version 7500 (FBX 2016 and later), as exporters write them.
 std::string fbxBinary(const std::vector<FbxTestNode>& top, uint32_t version = 7400);
 
 // Properties70 with one "P" entry per (name, x, y, z) vector property.

@@ -27,7 +27,7 @@ std::vector<uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.end()}
 // A triangle: one Geometry on one mesh Model, `vertices` and `polygons` as given.
 std::string triangle(const std::vector<double>& vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0},
                      const std::vector<int32_t>& polygons = {0, 1, ~2}, std::vector<FbxTestNode> extraObjects = {},
-                     std::vector<FbxTestNode> extraConnections = {}) {
+                     std::vector<FbxTestNode> extraConnections = {}, uint32_t version = 7400) {
   FbxTestNode objects{"Objects",
                       {},
                       {{"Geometry",
@@ -39,7 +39,7 @@ std::string triangle(const std::vector<double>& vertices = {0, 0, 0, 1, 0, 0, 0,
                           {},
                           {{"C", {fbxString("OO"), fbxLong(10), fbxLong(20)}, {}}, {"C", {fbxString("OO"), fbxLong(20), fbxLong(0)}, {}}}};
   for (FbxTestNode& c : extraConnections) connections.children.push_back(std::move(c));
-  return fbxBinary({objects, connections});
+  return fbxBinary({objects, connections}, version);
 }
 
 // What loading `bytes` as the file `name` says: the error, or "loaded" and its warnings.
@@ -58,6 +58,18 @@ TEST(FbxValidity, ASoundTriangleLoads) {
   EXPECT_EQ(face->format, importers::FaceFormat::Fbx);
   ASSERT_EQ(face->model.meshes.size(), 1u);
   EXPECT_EQ(face->model.meshes[0].primitives[0].indices.size(), 3u);
+}
+
+TEST(FbxValidity, SixtyFourBitRecordsOfFbx2016AndLaterLoad) {
+  for (uint32_t version : {7500u, 7700u}) {
+    auto face = importers::loadFaceFromBytes(bytesOf(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, ~2}, {}, {}, version)), "tri.fbx");
+    ASSERT_TRUE(face) << version << ": " << face.error().message;
+    EXPECT_EQ(face->model.meshes.at(0).primitives.at(0).indices.size(), 3u) << version;
+  }
+  // The same bytes read with 32-bit headers are not an FBX 7.4 file.
+  std::string misread = triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, ~2}, {}, {}, 7500);
+  misread[23] = char(0xe8), misread[24] = char(0x1c);  // version 7400
+  EXPECT_NE(outcomeOf(misread), "loaded");
 }
 
 TEST(FbxValidity, BrokenFilesAreOneLineNamingTheFile) {
