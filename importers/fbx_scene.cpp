@@ -258,11 +258,13 @@ class SceneBuilder {
   eng::Result<void> indexObjects() {
     const Node* objects = doc_.root.child("Objects");
     if (!objects) return eng::makeError(eng::ErrorKind::Malformed, name_ + ": an FBX file without an Objects section");
+    size_t repeated = 0;
     for (const Node& o : objects->children) {
       const auto id = o.integer(0);
       if (!id) continue;  // FBX 7 numbers every object
-      objects_[*id] = Object{&o, objectName(o.text(1)), o.text(2)};
+      repeated += !objects_.try_emplace(*id, Object{&o, objectName(o.text(1)), o.text(2)}).second;
     }
+    if (repeated > 0) warn(std::to_string(repeated) + " object(s) reuse an earlier object's id; the earlier one is read");
     // Each Model's matrix at bind time (BindPose entries), for skins.
     for (const Node& o : objects->children) {
       if (o.name != "Pose" || o.text(2) != "BindPose") continue;
@@ -333,7 +335,7 @@ class SceneBuilder {
     std::vector<int64_t> models;
     for (const Node& o : doc_.root.child("Objects")->children)
       if (o.name == "Model")
-        if (const auto id = o.integer(0)) models.push_back(*id);
+        if (const auto id = o.integer(0); id && objects_.at(*id).node == &o) models.push_back(*id);
     for (int64_t id : models) {
       const Object& o = objects_.at(id);
       eng::Node node;

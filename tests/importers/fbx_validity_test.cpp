@@ -10,6 +10,7 @@
 
 #include "importers/load_face.h"
 #include "tests/common/fbx_test_files.h"
+#include "tests/common/test_support.h"
 
 namespace {
 
@@ -178,6 +179,18 @@ TEST(FbxValidity, BlendShapesAndTexturesThatCannotBeUsedAreWarnings) {
   EXPECT_NE(warnings.find("blend shape 'jawOpen' names a vertex past 3"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("blend shape 'mouthSmile_L': 2 indexes and 3 offset coordinates do not pair"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("texture 'SkinTex': 'textures/skin.png' is not beside the FBX"), std::string::npos) << warnings;
+}
+
+TEST(FbxValidity, ObjectsThatReuseAnIdAreLeftOutWithAWarning) {
+  // The fuzzer's first finding: a second Model with the first one's id was
+  // made a node that no parent was ever set for (index -1 under UBSan).
+  const std::string bytes =
+      triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, ~2}, {{"Model", {fbxLong(20), fbxString(fbxName("Again", "Model")), fbxString("Null")}, {}}});
+  const std::string said = outcomeOf(bytes);
+  EXPECT_EQ(said, "loaded; 1 object(s) reuse an earlier object's id; the earlier one is read");
+  const std::string found = testing_support::readTextFile(testing_support::sourceDir() / "tests" / "importers" / "fbx" / "fuzz_model_id_twice.fbx");
+  EXPECT_FALSE(found.empty());
+  EXPECT_EQ(outcomeOf(found).find('\n'), std::string::npos) << "the fuzzer's input, loaded or refused in one line";
 }
 
 TEST(FbxValidity, AsciiFbxReadsAsTheBinaryDoes) {
