@@ -105,15 +105,22 @@ glm::dmat4 eulerRotation(const glm::dvec3& degrees, int order) {
 // as the node's translation, rotation and scale: its linear part is the
 // rotation Rpre * R * Rpost^-1 times the scale S, so the split is exact
 // and the node can be posed like a glTF one.
+// As the FBX SDK (and Blender's importer) reads it, pre- and post-rotation
+// and the rotation order count only while RotationActive is set.
 void setLocalTransform(const Node& model, eng::Node& node) {
   const glm::dvec3 zero(0.0);
-  const int order = int(numberProperty(model, "RotationOrder").value_or(0));
+  const bool rotationActive = numberProperty(model, "RotationActive").value_or(0.0) != 0.0;
+  const int order = rotationActive ? int(numberProperty(model, "RotationOrder").value_or(0)) : 0;
+  auto activeRotation = [&](std::string_view name) { return rotationActive ? vectorProperty(model, name).value_or(zero) : zero; };
   const glm::dmat4 rp = translation(vectorProperty(model, "RotationPivot").value_or(zero));
   const glm::dmat4 sp = translation(vectorProperty(model, "ScalingPivot").value_or(zero));
   const glm::dvec3 scale = vectorProperty(model, "Lcl Scaling").value_or(glm::dvec3(1.0));
-  const glm::dmat4 rotation = eulerRotation(vectorProperty(model, "PreRotation").value_or(zero), 0) *
+  // Pre- and post-rotation in the node's rotation order too, as Blender and
+  // three.js read them; the post-rotation inverted, as the FBX SDK and three.js
+  // have it (Blender 3.4 leaves it as it is).
+  const glm::dmat4 rotation = eulerRotation(activeRotation("PreRotation"), order) *
                               eulerRotation(vectorProperty(model, "Lcl Rotation").value_or(zero), order) *
-                              glm::inverse(eulerRotation(vectorProperty(model, "PostRotation").value_or(zero), 0));
+                              glm::inverse(eulerRotation(activeRotation("PostRotation"), order));
   const glm::dmat4 local = translation(vectorProperty(model, "Lcl Translation").value_or(zero)) *
                            translation(vectorProperty(model, "RotationOffset").value_or(zero)) * rp * rotation * glm::inverse(rp) *
                            translation(vectorProperty(model, "ScalingOffset").value_or(zero)) * sp * glm::scale(glm::dmat4(1.0), scale) *
@@ -123,11 +130,14 @@ void setLocalTransform(const Node& model, eng::Node& node) {
   node.scale = glm::vec3(scale);
 }
 
-// The transform that applies to a Model's own geometry only.
+// The transform that applies to a Model's own geometry only (its rotation
+// in the node's order, as Blender and three.js read it).
 glm::dmat4 geometricTransform(const Node& model) {
   const glm::dvec3 zero(0.0);
+  const bool rotationActive = numberProperty(model, "RotationActive").value_or(0.0) != 0.0;
+  const int order = rotationActive ? int(numberProperty(model, "RotationOrder").value_or(0)) : 0;
   return translation(vectorProperty(model, "GeometricTranslation").value_or(zero)) *
-         eulerRotation(vectorProperty(model, "GeometricRotation").value_or(zero), 0) *
+         eulerRotation(vectorProperty(model, "GeometricRotation").value_or(zero), order) *
          glm::scale(glm::dmat4(1.0), vectorProperty(model, "GeometricScaling").value_or(glm::dvec3(1.0)));
 }
 
