@@ -373,6 +373,23 @@ class SceneBuilder {
           return eng::makeError(eng::ErrorKind::Malformed, name_ + ": Model '" + eng::shownText(model_.nodes[n].name) + "' is its own ancestor");
     }
     for (size_t n = 1; n < model_.nodes.size(); ++n) model_.nodes[size_t(model_.nodes[n].parent)].children.push_back(int(n));
+    // A node graph multiplies parents' matrices in (FBX's InheritType 1, RSrs,
+    // what Maya and Blender write); the other two ways differ only under a
+    // non-uniform scale.
+    size_t otherInheritance = 0;
+    for (int64_t id : models) {
+      const int inherit = int(numberProperty(*objects_.at(id).node, "InheritType").value_or(1));
+      if (inherit == 1) continue;
+      bool uneven = false;
+      for (int at = model_.nodes[size_t(nodeOf_.at(id))].parent; at > 0 && !uneven; at = model_.nodes[size_t(at)].parent) {
+        const glm::vec3 s = glm::abs(model_.nodes[size_t(at)].scale);
+        uneven = std::max({s.x, s.y, s.z}) > 1.0001f * std::min({s.x, s.y, s.z});
+      }
+      otherInheritance += uneven;
+    }
+    if (otherInheritance > 0)
+      warn(std::to_string(otherInheritance) + " Model(s) under a non-uniform scale inherit it another way than RSrs (InheritType 0 or 2); "
+           "read as RSrs, they may show sheared");
     for (int64_t id : models) {
       const Object& o = objects_.at(id);
       if (o.subclass != "Mesh") continue;

@@ -193,6 +193,32 @@ TEST(FbxValidity, ObjectsThatReuseAnIdAreLeftOutWithAWarning) {
   EXPECT_EQ(outcomeOf(found).find('\n'), std::string::npos) << "the fuzzer's input, loaded or refused in one line";
 }
 
+TEST(FbxValidity, AnotherScaleInheritanceUnderANonUniformScaleIsAWarning) {
+  // The triangle's Model under a Null scaled (1, 2, 1), inheriting RrSs (InheritType 0).
+  auto build = [](int inheritType) {
+    FbxTestNode parent{"Model", {fbxLong(30), fbxString(fbxName("Stretched", "Model")), fbxString("Null")},
+                       {testing_support::fbxVectorProperties({{"Lcl Scaling", {1.0, 2.0, 1.0}}})}};
+    FbxTestNode child{"Model", {fbxLong(20), fbxString(fbxName("Tri", "Model")), fbxString("Mesh")},
+                      {{"Properties70", {}, {{"P", {fbxString("InheritType"), fbxString("enum"), fbxString(""), fbxString(""), fbxInt(inheritType)}, {}}}}}};
+    FbxTestNode objects{"Objects",
+                        {},
+                        {{"Geometry",
+                          {fbxLong(10), fbxString(fbxName("Tri", "Geometry")), fbxString("Mesh")},
+                          {{"Vertices", {fbxDoubles(std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0})}, {}},
+                           {"PolygonVertexIndex", {fbxInts(std::vector<int32_t>{0, 1, ~2})}, {}}}},
+                         child, parent}};
+    FbxTestNode connections{"Connections",
+                            {},
+                            {{"C", {fbxString("OO"), fbxLong(10), fbxLong(20)}, {}},
+                             {"C", {fbxString("OO"), fbxLong(20), fbxLong(30)}, {}},
+                             {"C", {fbxString("OO"), fbxLong(30), fbxLong(0)}, {}}}};
+    return fbxBinary({objects, connections});
+  };
+  EXPECT_EQ(outcomeOf(build(1)), "loaded") << "RSrs: a node graph's own way";
+  EXPECT_EQ(outcomeOf(build(0)),
+            "loaded; 1 Model(s) under a non-uniform scale inherit it another way than RSrs (InheritType 0 or 2); read as RSrs, they may show sheared");
+}
+
 TEST(FbxValidity, AsciiFbxReadsAsTheBinaryDoes) {
   const std::string ascii =
       "; FBX 7.4.0 project file\n"
