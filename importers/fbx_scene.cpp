@@ -366,30 +366,24 @@ class SceneBuilder {
       model_.nodes[size_t(index)].parent = parent;
     }
     // A parent chain that comes back to itself would hang every traversal.
+    // Each node is walked up once (a chain of 100,000 Models stays linear).
+    enum : uint8_t { kUnseen, kOnPath, kDone };
+    std::vector<uint8_t> state(model_.nodes.size(), kUnseen);
+    std::vector<int> path;
     for (size_t n = 1; n < model_.nodes.size(); ++n) {
-      int at = model_.nodes[n].parent;
-      for (size_t steps = 0; at > 0; ++steps, at = model_.nodes[size_t(at)].parent)
-        if (steps > model_.nodes.size() || at == int(n))
-          return eng::makeError(eng::ErrorKind::Malformed, name_ + ": Model '" + eng::shownText(model_.nodes[n].name) + "' is its own ancestor");
+      path.clear();
+      int at = int(n);
+      while (at > 0 && state[size_t(at)] == kUnseen) {
+        state[size_t(at)] = kOnPath;
+        path.push_back(at);
+        at = model_.nodes[size_t(at)].parent;
+      }
+      if (at > 0 && state[size_t(at)] == kOnPath)
+        return eng::makeError(eng::ErrorKind::Malformed, name_ + ": Model '" + eng::shownText(model_.nodes[size_t(at)].name) + "' is its own ancestor");
+      for (int p : path) state[size_t(p)] = kDone;
     }
     for (size_t n = 1; n < model_.nodes.size(); ++n) model_.nodes[size_t(model_.nodes[n].parent)].children.push_back(int(n));
-    // A node graph multiplies parents' matrices in (FBX's InheritType 1, RSrs,
-    // what Maya and Blender write); the other two ways differ only under a
-    // non-uniform scale.
-    size_t otherInheritance = 0;
-    for (int64_t id : models) {
-      const int inherit = int(numberProperty(*objects_.at(id).node, "InheritType").value_or(1));
-      if (inherit == 1) continue;
-      bool uneven = false;
-      for (int at = model_.nodes[size_t(nodeOf_.at(id))].parent; at > 0 && !uneven; at = model_.nodes[size_t(at)].parent) {
-        const glm::vec3 s = glm::abs(model_.nodes[size_t(at)].scale);
-        uneven = std::max({s.x, s.y, s.z}) > 1.0001f * std::min({s.x, s.y, s.z});
-      }
-      otherInheritance += uneven;
-    }
-    if (otherInheritance > 0)
-      warn(std::to_string(otherInheritance) + " Model(s) under a non-uniform scale inherit it another way than RSrs (InheritType 0 or 2); "
-           "read as RSrs, they may show sheared");
+    warnOfOtherScaleInheritance(models);
     for (int64_t id : models) {
       const Object& o = objects_.at(id);
       if (o.subclass != "Mesh") continue;
@@ -417,6 +411,34 @@ class SceneBuilder {
       }
     }
     return {};
+  }
+
+  // A node graph multiplies parents' matrices in (FBX's InheritType 1, RSrs,
+  // what Maya and Blender write); the other two ways differ only under a
+  // non-uniform scale, which is warned of. Parents come before children here
+  // only by chance, so whether a node is under a non-uniform scale is found
+  // once per node, walking up to the first node already known.
+  void warnOfOtherScaleInheritance(const std::vector<int64_t>& models) {
+    std::vector<int8_t> unevenAbove(model_.nodes.size(), -1);  // -1 unknown
+    unevenAbove[0] = 0;
+    std::vector<int> path;
+    auto isUnevenAbove = [&](int node) {
+      path.clear();
+      for (int at = node; unevenAbove[size_t(at)] < 0; at = model_.nodes[size_t(at)].parent) path.push_back(at);
+      for (auto it = path.rbegin(); it != path.rend(); ++it) {
+        const eng::Node& parent = model_.nodes[size_t(model_.nodes[size_t(*it)].parent)];
+        const glm::vec3 s = glm::abs(parent.scale);
+        const bool uneven = model_.nodes[size_t(*it)].parent > 0 && std::max({s.x, s.y, s.z}) > 1.0001f * std::min({s.x, s.y, s.z});
+        unevenAbove[size_t(*it)] = int8_t(uneven || unevenAbove[size_t(model_.nodes[size_t(*it)].parent)] > 0);
+      }
+      return unevenAbove[size_t(node)] > 0;
+    };
+    size_t otherInheritance = 0;
+    for (int64_t id : models)
+      if (int(numberProperty(*objects_.at(id).node, "InheritType").value_or(1)) != 1) otherInheritance += isUnevenAbove(nodeOf_.at(id));
+    if (otherInheritance > 0)
+      warn(std::to_string(otherInheritance) + " Model(s) under a non-uniform scale inherit it another way than RSrs (InheritType 0 or 2); "
+           "read as RSrs, they may show sheared");
   }
 
   eng::Result<void> charge(size_t count, size_t each, std::string_view what) {

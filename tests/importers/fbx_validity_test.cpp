@@ -219,6 +219,22 @@ TEST(FbxValidity, AnotherScaleInheritanceUnderANonUniformScaleIsAWarning) {
             "loaded; 1 Model(s) under a non-uniform scale inherit it another way than RSrs (InheritType 0 or 2); read as RSrs, they may show sheared");
 }
 
+TEST(FbxValidity, AChainOfFiftyThousandModelsLoadsInLinearWork) {
+  // Each Model the parent of the next, the triangle's at the end: a walk to
+  // the root per node (cycle check, inherited scale) would be 1.25e9 steps.
+  constexpr int kChain = 50000;
+  std::vector<FbxTestNode> models;
+  std::vector<FbxTestNode> links;
+  for (int k = 0; k < kChain; ++k) {
+    models.push_back({"Model", {fbxLong(1000 + k), fbxString(fbxName("Link", "Model")), fbxString("Null")}, {}});
+    links.push_back({"C", {fbxString("OO"), fbxLong(1000 + k), fbxLong(k == 0 ? 0 : 999 + k)}, {}});
+  }
+  links.push_back({"C", {fbxString("OO"), fbxLong(20), fbxLong(1000 + kChain - 1)}, {}});
+  auto face = importers::loadFaceFromBytes(bytesOf(triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, ~2}, models, links)), "chain.fbx");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_EQ(face->model.nodes.size(), size_t(kChain) + 2) << "the root, the chain and the triangle's Model";
+}
+
 TEST(FbxValidity, AsciiFbxReadsAsTheBinaryDoes) {
   const std::string ascii =
       "; FBX 7.4.0 project file\n"
