@@ -770,6 +770,13 @@ class SceneBuilder {
     m.baseColorImage = textureFor(id, {"DiffuseColor", "Diffuse", "Maya|baseColor", "base_color", "baseColor"});
     // A texture stands for the colour (as Blender's and Maya's importers read it), a colour alone is the factor.
     m.baseColorFactor = m.baseColorImage >= 0 ? glm::vec4(1.0f) : glm::vec4(glm::vec3(diffuse), 1.0f);
+    // Roughness from the Phong exponent as Blender writes and reads it
+    // ((10 (1 - roughness))^2); not below 0.2, where a Maya Phong's 100 would
+    // make skin a mirror. ReflectionFactor is Blender's metallic but Maya's
+    // reflectivity (0.5 by default): a skin read metallic would be grey, so
+    // every material stays a dielectric.
+    if (const auto shininess = numberProperty(*o.node, "Shininess"))
+      m.roughness = float(std::clamp(1.0 - std::sqrt(std::max(*shininess, 0.0)) / 10.0, 0.2, 1.0));
     const double opacity = numberProperty(*o.node, "Opacity").value_or(1.0);
     if (opacity >= 0.0 && opacity < 1.0) {
       m.baseColorFactor.a = float(opacity);

@@ -160,6 +160,7 @@ TEST(FbxScene, MaterialsKeepTheirColourAndEmbeddedTexture) {
     const eng::Material& b = both.gltf.materials[m];
     EXPECT_EQ(a.name, b.name);
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(a.baseColorFactor[c], b.baseColorFactor[c], 1e-3f) << a.name;
+    EXPECT_NEAR(a.roughness, b.roughness, 1e-3f) << a.name << ": from the Phong exponent, as Blender writes it";
     ASSERT_EQ(a.baseColorImage >= 0, b.baseColorImage >= 0) << a.name;
     if (a.baseColorImage < 0) continue;
     const eng::Image& ai = both.fbx.images[size_t(a.baseColorImage)];
