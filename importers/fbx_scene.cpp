@@ -1,6 +1,7 @@
 #include "importers/fbx_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -107,21 +108,25 @@ glm::dmat4 eulerRotation(const glm::dvec3& degrees, int order) {
 // and the node can be posed like a glTF one.
 // As the FBX SDK (and Blender's importer) reads it, pre- and post-rotation
 // and the rotation order count only while RotationActive is set.
-void setLocalTransform(const Node& model, eng::Node& node) {
+struct AnimatedTransform {
+  std::optional<glm::dvec3> translation, rotation, scale;  // Lcl values at a key, where animated
+};
+
+void setLocalTransform(const Node& model, eng::Node& node, const AnimatedTransform& at = {}) {
   const glm::dvec3 zero(0.0);
   const bool rotationActive = numberProperty(model, "RotationActive").value_or(0.0) != 0.0;
   const int order = rotationActive ? int(numberProperty(model, "RotationOrder").value_or(0)) : 0;
   auto activeRotation = [&](std::string_view name) { return rotationActive ? vectorProperty(model, name).value_or(zero) : zero; };
   const glm::dmat4 rp = translation(vectorProperty(model, "RotationPivot").value_or(zero));
   const glm::dmat4 sp = translation(vectorProperty(model, "ScalingPivot").value_or(zero));
-  const glm::dvec3 scale = vectorProperty(model, "Lcl Scaling").value_or(glm::dvec3(1.0));
+  const glm::dvec3 scale = at.scale ? *at.scale : vectorProperty(model, "Lcl Scaling").value_or(glm::dvec3(1.0));
   // Pre- and post-rotation in the node's rotation order too, as Blender and
   // three.js read them; the post-rotation inverted, as the FBX SDK and three.js
   // have it (Blender 3.4 leaves it as it is).
   const glm::dmat4 rotation = eulerRotation(activeRotation("PreRotation"), order) *
-                              eulerRotation(vectorProperty(model, "Lcl Rotation").value_or(zero), order) *
+                              eulerRotation(at.rotation ? *at.rotation : vectorProperty(model, "Lcl Rotation").value_or(zero), order) *
                               glm::inverse(eulerRotation(activeRotation("PostRotation"), order));
-  const glm::dmat4 local = translation(vectorProperty(model, "Lcl Translation").value_or(zero)) *
+  const glm::dmat4 local = translation(at.translation ? *at.translation : vectorProperty(model, "Lcl Translation").value_or(zero)) *
                            translation(vectorProperty(model, "RotationOffset").value_or(zero)) * rp * rotation * glm::inverse(rp) *
                            translation(vectorProperty(model, "ScalingOffset").value_or(zero)) * sp * glm::scale(glm::dmat4(1.0), scale) *
                            glm::inverse(sp);
@@ -247,9 +252,7 @@ class SceneBuilder {
     model_.nodes.push_back(root);
     model_.roots = {0};
     ENG_TRY(addModels());
-    size_t curves = 0;
-    for (const auto& [id, object] : objects_) curves += object.node->name == "AnimationCurve";
-    if (curves > 0) warn("animations not read (" + std::to_string(curves) + " curves)");
+    addAnimations();
     if (model_.meshes.empty())
       return eng::makeError(eng::ErrorKind::Malformed, name_ + ": no mesh to draw" +
                             (firstSkipped_.empty() ? std::string(" (the file has no mesh geometry)") : "; " + firstSkipped_));
@@ -655,6 +658,7 @@ class SceneBuilder {
           }
           b.prim.targets.push_back(std::move(target));
         }
+        targetOfChannel_[channelId] = {int(model_.meshes.size()), int(mesh.targetNames.size())};
         mesh.targetNames.push_back(name);
         mesh.defaultWeights.push_back(float(std::clamp(channel.node->child("DeformPercent") ? channel.node->child("DeformPercent")->number(0).value_or(0.0) : 0.0, -1000.0, 1000.0) / 100.0));
       }
@@ -752,6 +756,170 @@ class SceneBuilder {
     if (skin.joints.size() > 65535) return geometryError(where, "a skin of more than 65535 bones");
     model_.skins.push_back(std::move(skin));
     return int(model_.skins.size()) - 1;
+  }
+
+  // One animation curve: key times in seconds and values.
+  struct Curve {
+    std::vector<double> times, values;
+    double at(double t) const {
+      if (t <= times.front()) return values.front();
+      if (t >= times.back()) return values.back();
+      const size_t k = size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+      const double f = (t - times[k - 1]) / (times[k] - times[k - 1]);
+      return values[k - 1] + f * (values[k] - values[k - 1]);
+    }
+  };
+
+  // The curve linked to a curve node as `property` ("d|X"), nullopt (with a
+  // warning) when it has none or is unusable.
+  std::optional<Curve> curveOf(int64_t curveNode, std::string_view property, const std::string& what) {
+    const auto it = children_.find(curveNode);
+    if (it == children_.end()) return std::nullopt;
+    for (const Link& l : it->second) {
+      const auto o = objects_.find(l.id);
+      if (o == objects_.end() || o->second.node->name != "AnimationCurve" || l.property != property) continue;
+      const Node& c = *o->second.node;
+      std::vector<int64_t> ticks;
+      const Node* times = c.child("KeyTime");
+      const Node* values = c.child("KeyValueFloat");
+      Curve curve;
+      if (values) curve.values = values->numbers(0);
+      if (!times || !times->integers(0, ticks) || ticks.empty() || ticks.size() != curve.values.size()) {
+        warn(what + " " + std::string(property) + ": " + std::to_string(ticks.size()) + " key times and " +
+             std::to_string(curve.values.size()) + " values; not read");
+        return std::nullopt;
+      }
+      constexpr double kTicksPerSecond = 46186158000.0;  // FBX's KTime unit
+      bool usable = true;
+      for (size_t k = 0; k < ticks.size(); ++k) {
+        curve.times.push_back(double(ticks[k]) / kTicksPerSecond);
+        usable &= std::isfinite(curve.values[k]) && (k == 0 || ticks[k] > ticks[k - 1]);
+      }
+      if (!usable) {
+        warn(what + " " + std::string(property) + ": key times that do not increase or values that are not finite; not read");
+        return std::nullopt;
+      }
+      return curve;
+    }
+    return std::nullopt;
+  }
+
+  // Each AnimationStack's first layer as an animation: DeformPercent curves as
+  // the meshes' weights, Lcl Translation / Rotation / Scaling curves as node
+  // channels through the node's whole FBX transform. Keys are met linearly
+  // (exporters bake every frame); each channel is keyed at the union of its
+  // curves' key times.
+  void addAnimations() {
+    for (const Node& o : doc_.root.child("Objects")->children) {
+      const auto stackId = o.integer(0);
+      if (o.name != "AnimationStack" || !stackId || objects_.at(*stackId).node != &o) continue;
+      const std::vector<int64_t> layers = linked(*stackId, "AnimationLayer");
+      if (layers.empty()) continue;
+      const std::string stackName = objects_.at(*stackId).name;
+      if (layers.size() > 1) warn("animation '" + eng::shownText(stackName) + "': only its first of " + std::to_string(layers.size()) + " layers is read");
+      eng::Animation animation;
+      animation.name = stackName;
+      std::map<int, std::map<int, Curve>> weightCurves;                 // mesh -> target -> curve (percent)
+      std::map<int, std::array<std::array<std::optional<Curve>, 3>, 3>> nodeCurves;  // node -> T/R/S -> x/y/z
+      for (int64_t curveNode : linked(layers[0], "AnimationCurveNode")) {
+        const auto up = parents_.find(curveNode);
+        if (up == parents_.end()) continue;
+        for (const Link& l : up->second) {
+          const auto target = objects_.find(l.id);
+          if (target == objects_.end() || l.property.empty()) continue;
+          const std::string what = "animation '" + eng::shownText(stackName) + "': '" + eng::shownText(target->second.name) + "'";
+          if (l.property == "DeformPercent") {
+            const auto t = targetOfChannel_.find(l.id);
+            if (t == targetOfChannel_.end()) continue;
+            if (auto curve = curveOf(curveNode, "d|DeformPercent", what)) weightCurves[t->second.first][t->second.second] = std::move(*curve);
+            continue;
+          }
+          const int component = l.property == "Lcl Translation" ? 0 : l.property == "Lcl Rotation" ? 1 : l.property == "Lcl Scaling" ? 2 : -1;
+          const auto node = nodeOf_.find(l.id);
+          if (component < 0 || node == nodeOf_.end()) continue;
+          for (int axis = 0; axis < 3; ++axis)
+            nodeCurves[node->second][size_t(component)][size_t(axis)] = curveOf(curveNode, std::array{"d|X", "d|Y", "d|Z"}[size_t(axis)], what);
+        }
+      }
+      for (auto& [mesh, curves] : weightCurves) addWeightsChannel(animation, mesh, curves);
+      for (auto& [node, curves] : nodeCurves) addNodeChannels(animation, node, curves);
+      if (animation.channels.empty() && animation.nodeChannels.empty()) continue;
+      model_.animations.push_back(std::move(animation));
+    }
+  }
+
+  // The key times of all `curves`, each once, in order (glTF's times are
+  // strictly increasing and not negative).
+  static std::vector<float> keyTimes(const std::vector<const Curve*>& curves) {
+    std::vector<double> all;
+    for (const Curve* c : curves) all.insert(all.end(), c->times.begin(), c->times.end());
+    std::sort(all.begin(), all.end());
+    std::vector<float> out;
+    for (double t : all)
+      if (out.empty() || float(std::max(t, 0.0)) > out.back()) out.push_back(float(std::max(t, 0.0)));
+    return out;
+  }
+
+  void addWeightsChannel(eng::Animation& animation, int meshIndex, const std::map<int, Curve>& curves) {
+    const eng::Mesh& mesh = model_.meshes[size_t(meshIndex)];
+    eng::WeightsChannel channel;
+    channel.mesh = meshIndex;
+    for (size_t n = 0; n < model_.nodes.size(); ++n)
+      if (model_.nodes[n].mesh == meshIndex) channel.node = int(n);
+    channel.interpolation = eng::Interpolation::Linear;
+    channel.targetCount = mesh.targetNames.size();
+    std::vector<const Curve*> used;
+    for (const auto& [target, curve] : curves) used.push_back(&curve);
+    channel.times = keyTimes(used);
+    for (float t : channel.times)
+      for (size_t target = 0; target < channel.targetCount; ++target) {
+        const auto it = curves.find(int(target));
+        channel.values.push_back(it == curves.end() ? mesh.defaultWeights[target] : float(it->second.at(t) / 100.0));
+      }
+    animation.channels.push_back(std::move(channel));
+  }
+
+  void addNodeChannels(eng::Animation& animation, int node, const std::array<std::array<std::optional<Curve>, 3>, 3>& curves) {
+    int64_t modelId = 0;
+    for (const auto& [id, index] : nodeOf_)
+      if (index == node) modelId = id;
+    const Node& model = *objects_.at(modelId).node;
+    std::vector<const Curve*> used;
+    for (const auto& component : curves)
+      for (const auto& axis : component)
+        if (axis) used.push_back(&*axis);
+    const std::vector<float> times = keyTimes(used);
+    if (times.empty()) return;
+    const glm::dvec3 rest[3] = {vectorProperty(model, "Lcl Translation").value_or(glm::dvec3(0.0)),
+                                vectorProperty(model, "Lcl Rotation").value_or(glm::dvec3(0.0)),
+                                vectorProperty(model, "Lcl Scaling").value_or(glm::dvec3(1.0))};
+    eng::NodeChannel channels[3];
+    for (int c = 0; c < 3; ++c) {
+      channels[c].node = node;
+      channels[c].path = c == 0 ? eng::NodePath::Translation : c == 1 ? eng::NodePath::Rotation : eng::NodePath::Scale;
+      channels[c].interpolation = eng::Interpolation::Linear;
+      channels[c].times = times;
+    }
+    glm::quat previous(1.0f, 0.0f, 0.0f, 0.0f);
+    for (float t : times) {
+      AnimatedTransform at;
+      std::optional<glm::dvec3>* slots[3] = {&at.translation, &at.rotation, &at.scale};
+      for (int c = 0; c < 3; ++c) {
+        glm::dvec3 v = rest[c];
+        for (int axis = 0; axis < 3; ++axis)
+          if (curves[size_t(c)][size_t(axis)]) v[axis] = curves[size_t(c)][size_t(axis)]->at(t);
+        *slots[c] = v;
+      }
+      eng::Node posed;
+      setLocalTransform(model, posed, at);
+      // Neighbouring keys on the same side of the quaternion sphere, so linear keys turn the short way.
+      if (glm::dot(posed.rotation, previous) < 0.0f) posed.rotation = -posed.rotation;
+      previous = posed.rotation;
+      channels[0].values.insert(channels[0].values.end(), {posed.translation.x, posed.translation.y, posed.translation.z});
+      channels[1].values.insert(channels[1].values.end(), {posed.rotation.x, posed.rotation.y, posed.rotation.z, posed.rotation.w});
+      channels[2].values.insert(channels[2].values.end(), {posed.scale.x, posed.scale.y, posed.scale.z});
+    }
+    for (eng::NodeChannel& c : channels) animation.nodeChannels.push_back(std::move(c));
   }
 
   // A node's world matrix in the file's own axes and units (the root's conversion left out).
@@ -892,6 +1060,7 @@ class SceneBuilder {
   std::unordered_map<int64_t, int> nodeOf_;
   std::unordered_map<int64_t, int> materialOf_;
   std::unordered_map<int64_t, glm::dmat4> bindPose_;
+  std::unordered_map<int64_t, std::pair<int, int>> targetOfChannel_;  // blend shape channel -> (mesh, target)
   std::unordered_map<int64_t, int> imageOfTexture_;
   std::unordered_map<std::string, std::string_view> contentOfFile_;
   std::string firstSkipped_;

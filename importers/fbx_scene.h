@@ -16,8 +16,10 @@
 //  - materials take their diffuse colour and diffuse texture: embedded
 //    (Video Content) or a file beside the FBX (confined to its folder, also
 //    looked for in its `<name>.fbm` folder as the FBX SDK extracts them).
-// Not read, with a warning: animations, in-between shapes (the full shape is
-// kept), other layers than the first. Malformed geometry is skipped with a
+//  - each AnimationStack's first layer becomes an animation: blend shape
+//    DeformPercent curves as weights, Lcl T/R/S curves as node channels.
+// Not read, with a warning: in-between shapes (the full shape is kept),
+// animation layers after the first. Only the first geometry layer is read. Malformed geometry is skipped with a
 // warning naming it; a file with nothing drawable is an error.
 #include <cstdint>
 #include <filesystem>

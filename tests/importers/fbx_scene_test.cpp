@@ -2,6 +2,7 @@
 // the same scene: tests/importers/fbx/rigged_face.{fbx,glb} were both written
 // by Blender from one scene (make_rigged_face.py there), so the FBX importer
 // and the glTF loader must place, skin, morph and texture every vertex alike.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -177,6 +178,62 @@ TEST(FbxScene, MaterialsKeepTheirColourAndEmbeddedTexture) {
     for (const PlacedVertex& w : gltf)
       twins += glm::distance(v.position, w.position) < 1e-4f && glm::distance(v.uv, w.uv) < 1e-5f && v.material == w.material;
   EXPECT_GE(twins, fbx.size()) << "each vertex has a twin with its position, texture coordinate and material";
+}
+
+// Every animation of `model` at `time`: the nodes' channels into `pose`, the
+// weights (linear, as both files key them) by target name.
+std::map<std::string, float> sampleAll(const eng::Model& model, float time, eng::Pose& pose) {
+  std::map<std::string, float> weights;
+  for (const eng::Animation& animation : model.animations) {
+    eng::sampleAnimation(animation, time, pose);
+    for (const eng::WeightsChannel& c : animation.channels) {
+      if (c.times.empty()) continue;
+      size_t k = 0;
+      while (k + 1 < c.times.size() && c.times[k + 1] <= time) ++k;
+      const size_t next = std::min(k + 1, c.times.size() - 1);
+      const float f = next == k ? 0.0f : std::clamp((time - c.times[k]) / (c.times[next] - c.times[k]), 0.0f, 1.0f);
+      for (size_t t = 0; t < c.targetCount; ++t)
+        weights[model.meshes[size_t(c.mesh)].targetNames[t]] =
+            c.values[k * c.targetCount + t] + f * (c.values[next * c.targetCount + t] - c.values[k * c.targetCount + t]);
+    }
+  }
+  return weights;
+}
+
+TEST(FbxScene, BakedAnimationPlaysAsItsGltfDoes) {
+  // animated_face: the jaw and smile keyed, the Head bone nodding and lifting,
+  // baked by Blender into both files (24 frames a second, frames 1 to 25).
+  auto fbx = importers::loadFace(kFiles / "animated_face.fbx");
+  auto gltf = importers::loadFace(kFiles / "animated_face.glb");
+  ASSERT_TRUE(fbx) << fbx.error().message;
+  ASSERT_TRUE(gltf) << gltf.error().message;
+  ASSERT_EQ(fbx->model.animations.size(), 1u) << "one AnimationStack";
+  const eng::Animation& clip = fbx->model.animations[0];
+  EXPECT_EQ(clip.name, "Scene");
+  EXPECT_NEAR(clip.duration(), 25.0f / 24.0f, 1e-4f) << "key times in seconds, as the glTF has them";
+  ASSERT_EQ(clip.channels.size(), 1u) << "the Face's blend shapes";
+  EXPECT_EQ(clip.channels[0].times.size(), 25u);
+  for (float time : {0.1f, 0.3f, 0.45f, 0.6f, 0.8f, 1.0f}) {
+    eng::Pose fbxPose = eng::restPose(fbx->model), gltfPose = eng::restPose(gltf->model);
+    const auto fbxWeights = sampleAll(fbx->model, time, fbxPose);
+    const auto gltfWeights = sampleAll(gltf->model, time, gltfPose);
+    for (const char* target : {"jawOpen", "mouthSmile_L"}) {
+      ASSERT_TRUE(fbxWeights.count(target)) << target;
+      EXPECT_NEAR(fbxWeights.at(target), gltfWeights.at(target), 1e-4f) << target << " at " << time;
+    }
+    for (const char* node : {"Face", "Hat"}) {
+      const auto a = placedVertices(fbx->model, fbxPose, node, fbxWeights);
+      const auto b = placedVertices(gltf->model, gltfPose, node, gltfWeights);
+      EXPECT_LT(farthestFromItsTwin(a, b), 1e-3f) << node << " at " << time;
+    }
+  }
+  // The nod does move the face.
+  eng::Pose rest = eng::restPose(fbx->model), nodding = eng::restPose(fbx->model);
+  sampleAll(fbx->model, 0.5f, nodding);
+  const auto a = placedVertices(fbx->model, rest, "Face"), b = placedVertices(fbx->model, nodding, "Face");
+  float moved = 0.0f;
+  for (size_t v = 0; v < a.size(); ++v) moved = std::max(moved, glm::distance(a[v].position, b[v].position));
+  EXPECT_GT(moved, 0.3f);
 }
 
 TEST(FbxScene, PivotsOffsetsPreAndPostRotationsOrdersAndGeometricTransformsPlaceAsBlenderReadsThem) {

@@ -1,4 +1,4 @@
-# Makes rigged_face.fbx and rigged_face.glb beside this script: one small
+# Makes rigged_face.{fbx,glb} and animated_face.{fbx,glb} beside this script: one small
 # scene written by Blender's own FBX and glTF exporters, so that the FBX
 # importer is tested against another reader's idea of the same scene (the
 # glTF loader's), not against a writer of ours. Not part of the build: the
@@ -101,3 +101,31 @@ hat.parent = rig
 bpy.ops.export_scene.fbx(filepath=os.path.join(here, "rigged_face.fbx"), path_mode='COPY', embed_textures=True,
                          add_leaf_bones=False, bake_anim=False)
 bpy.ops.export_scene.gltf(filepath=os.path.join(here, "rigged_face.glb"), export_format='GLB', export_animations=False)
+
+# The same scene animated over one second at 24 frames per second (frames 1 to
+# 25): the jaw opens and closes, the smile comes in, the Head bone nods.
+# animated_face.fbx (baked, every frame keyed) and animated_face.glb.
+scene = bpy.context.scene
+scene.render.fps = 24
+scene.frame_start, scene.frame_end = 1, 25
+for frame, jaw_weight, smile_weight in ((1, 0.0, 0.0), (9, 1.0, 0.2), (17, 0.3, 1.0), (25, 0.0, 0.0)):
+    jaw.value, smile.value = jaw_weight, smile_weight
+    jaw.keyframe_insert("value", frame=frame)
+    smile.keyframe_insert("value", frame=frame)
+bpy.ops.object.select_all(action='DESELECT')
+rig.select_set(True)
+bpy.context.view_layer.objects.active = rig
+bpy.ops.object.mode_set(mode='POSE')
+nod = rig.pose.bones["Head"]
+nod.rotation_mode = 'XYZ'
+for frame, angle, lift in ((1, 0.0, 0.0), (13, 35.0, 0.15), (25, -10.0, 0.0)):
+    nod.rotation_euler = (math.radians(angle), 0.0, math.radians(angle / 3))
+    nod.location = (0.0, lift, 0.0)
+    nod.keyframe_insert("rotation_euler", frame=frame)
+    nod.keyframe_insert("location", frame=frame)
+bpy.ops.object.mode_set(mode='OBJECT')
+bpy.ops.export_scene.fbx(filepath=os.path.join(here, "animated_face.fbx"), path_mode='COPY', embed_textures=True,
+                         add_leaf_bones=False, bake_anim=True, bake_anim_use_all_actions=False,
+                         bake_anim_use_nla_strips=False, bake_anim_simplify_factor=0.0)
+bpy.ops.export_scene.gltf(filepath=os.path.join(here, "animated_face.glb"), export_format='GLB', export_animations=True,
+                          export_force_sampling=True, export_frame_range=True)
