@@ -85,6 +85,21 @@ TEST(TimelineCommand, FacecapAnimationImportsAndExportsOntoTheFaceMesh) {
   EXPECT_GT(take->duration, 10.0f);
 }
 
+TEST(TimelineCommand, AnFbxTakeImportsAsATimeline) {
+  // Blender's baked FBX clip (tests/importers/fbx/animated_face.fbx): the jaw
+  // keyed 0 at frame 1, 1 at frame 9, 0.3 at 17 and 0 at 25 (24 frames a second).
+  const fs::path take = testing_support::sourceDir() / "tests" / "importers" / "fbx" / "animated_face.fbx";
+  const fs::path dir = testing_support::freshTempDir("timeline_fbx");
+  const CommandOutput imported = runFacial({"timeline", "import", take.string(), "--out", (dir / "take.json").string()});
+  ASSERT_EQ(imported.exitCode, 0) << imported.err;
+  EXPECT_NE(imported.out.find("animation 'Scene'"), std::string::npos) << imported.out;
+  EXPECT_NE(imported.out.find("2 track(s)"), std::string::npos) << imported.out;
+  auto timeline = facial::loadTimeline(dir / "take.json");
+  ASSERT_TRUE(timeline.ok()) << timeline.error().message;
+  EXPECT_NEAR(sampleTrack(*timeline, "jawOpen", 9.0f / 24.0f), 1.0f, 1e-3f);
+  EXPECT_NEAR(sampleTrack(*timeline, "mouthSmile_L", 17.0f / 24.0f), 1.0f, 1e-3f);
+}
+
 TEST(TimelineCommandValidity, UnknownAnimationListsTheModelsAnimations) {
   FACIAL_REQUIRE_SHARED();
   const fs::path stress = testing_support::sharedDir() / "assets" / "khronos" / "MorphStressTest" / "MorphStressTest.gltf";
