@@ -369,14 +369,15 @@ TEST(FaceSetupAutorig, AnObjScanIsRiggedOnTheFly) {
   EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
 }
 
-// The same head as a scanner's binary PLY: read, rigged on the fly, smiling.
-TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) {
+// The built-in head written by `write` as the file `name` (a scan's or a DCC
+// tool's export, no targets): read, rigged on the fly, smiling.
+void expectRiggedOnTheFly(const std::string& name, std::string (*write)(const eng::Model&)) {
   auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(head) << head.error().message;
-  const fs::path dir = testing_support::freshTempDir("autorig_ply_scan");
-  testing_support::writeFile(dir / "scan.ply", testing_support::modelAsPly(*head));
+  const fs::path dir = testing_support::freshTempDir("autorig_" + fs::path(name).extension().string().substr(1));
+  testing_support::writeFile(dir / name, write(*head));
   setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
-  auto face = app::FaceSetup::load({.model = dir / "scan.ply", .program = "test"});
+  auto face = app::FaceSetup::load({.model = dir / name, .program = "test"});
   unsetenv("XDG_CACHE_HOME");
   ASSERT_TRUE(face) << face.error().message;
   EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
@@ -384,19 +385,8 @@ TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) {
   EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
 }
 
-TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) {
-  // A sculpt or scan as DCC tools hand it over: one FBX, no blend shapes.
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  const fs::path dir = testing_support::freshTempDir("autorig_fbx_face");
-  testing_support::writeFile(dir / "face.fbx", testing_support::modelAsFbx(*head));
-  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
-  auto face = app::FaceSetup::load({.model = dir / "face.fbx", .program = "test"});
-  unsetenv("XDG_CACHE_HOME");
-  ASSERT_TRUE(face) << face.error().message;
-  EXPECT_NE(face->autorigNote().find("(it has no morph targets)"), std::string::npos) << face->autorigNote();
-  EXPECT_TRUE(facial::showsEmotions(face->rig()));
-  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
-}
+TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) { expectRiggedOnTheFly("scan.ply", testing_support::modelAsPly); }
+
+TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) { expectRiggedOnTheFly("face.fbx", testing_support::modelAsFbx); }
 
 }  // namespace
