@@ -455,63 +455,99 @@ class SceneBuilder {
     return eng::makeError(eng::ErrorKind::Malformed, where + ": " + what);
   }
 
-  // The mesh of a Model's Geometry and its skin (-1 when it has none).
-  eng::Result<std::pair<eng::Mesh, int>> buildMesh(int64_t modelId, int64_t geometryId) {
-    const Object& modelObject = objects_.at(modelId);
-    const Object& geometryObject = objects_.at(geometryId);
-    const Node& g = *geometryObject.node;
-    const std::string where = "geometry '" + eng::shownText(geometryObject.name) + "'";
+  // What a geometry's first layer holds for its polygon corners.
+  struct GeometryLayers {
+    std::optional<LayerElement> normals, uvs, colours;
+    std::vector<int64_t> polygonMaterial;  // a material slot per polygon, or one for all
+    bool allSameMaterial = true;
+    glm::dmat3 normalMatrix{1.0};  // the geometric transform's, for normals
+  };
+
+  GeometryLayers layersOf(const Node& g, const glm::dmat4& geometric, const std::string& where) {
+    GeometryLayers layers;
+    layers.normalMatrix = glm::transpose(glm::inverse(glm::dmat3(geometric)));
+    layers.normals = layerElement(g, "LayerElementNormal", "Normals", "NormalsIndex", 3, where, model_.warnings);
+    layers.uvs = layerElement(g, "LayerElementUV", "UV", "UVIndex", 2, where, model_.warnings);
+    layers.colours = layerElement(g, "LayerElementColor", "Colors", "ColorIndex", 4, where, model_.warnings);
+    if (const Node* c = g.child("LayerElementMaterial")) {
+      if (const Node* m = c->child("Materials")) m->integers(0, layers.polygonMaterial);
+      const Node* mapping = c->child("MappingInformationType");
+      layers.allSameMaterial = !mapping || mapping->text(0) == "AllSame";
+    }
+    return layers;
+  }
+
+  // The geometry's control points through its geometric transform.
+  eng::Result<std::vector<glm::vec3>> controlPointsOf(const Node& g, const glm::dmat4& geometric, const std::string& where) {
     const Node* verticesNode = g.child("Vertices");
-    const Node* polygonsNode = g.child("PolygonVertexIndex");
-    if (!verticesNode || !polygonsNode) return geometryError(where, "no Vertices or PolygonVertexIndex");
+    if (!verticesNode) return geometryError(where, "no Vertices");
     const std::vector<double> vertices = verticesNode->numbers(0);
-    std::vector<int64_t> polygonIndex;
-    if (!polygonsNode->integers(0, polygonIndex)) return geometryError(where, "PolygonVertexIndex is not a list of whole numbers");
     if (vertices.size() % 3 != 0) return geometryError(where, std::to_string(vertices.size()) + " vertex coordinates, not a multiple of 3");
-    const size_t controlPoints = vertices.size() / 3;
     for (double v : vertices)
       if (!std::isfinite(v)) return geometryError(where, "a vertex coordinate is not a finite number");
-    ENG_TRY(charge(polygonIndex.size(), sizeof(eng::Primitive) / 4 + 64, "FBX " + where));
-
-    const glm::dmat4 geometric = geometricTransform(*modelObject.node);
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(geometric)));
-    std::vector<glm::vec3> points(controlPoints);
-    for (size_t p = 0; p < controlPoints; ++p)
+    std::vector<glm::vec3> points(vertices.size() / 3);
+    for (size_t p = 0; p < points.size(); ++p)
       points[p] = glm::vec3(geometric * glm::dvec4(vertices[3 * p], vertices[3 * p + 1], vertices[3 * p + 2], 1.0));
+    return points;
+  }
 
-    std::vector<std::string>& warnings = model_.warnings;
-    const auto normals = layerElement(g, "LayerElementNormal", "Normals", "NormalsIndex", 3, where, warnings);
-    const auto uvs = layerElement(g, "LayerElementUV", "UV", "UVIndex", 2, where, warnings);
-    const auto colours = layerElement(g, "LayerElementColor", "Colors", "ColorIndex", 4, where, warnings);
-    std::vector<int64_t> polygonMaterial;
-    bool allSameMaterial = true;
-    for (const Node& c : g.children)
-      if (c.name == "LayerElementMaterial") {
-        if (const Node* m = c.child("Materials")) m->integers(0, polygonMaterial);
-        const Node* mapping = c.child("MappingInformationType");
-        allSameMaterial = !mapping || mapping->text(0) == "AllSame";
-        break;
+  // What one polygon corner carries; `b` learns whether its normals and UVs are usable.
+  static VertexKey cornerKey(const GeometryLayers& layers, size_t polygon, size_t corner, int64_t cp, PrimitiveBuild& b,
+                             size_t& badNormals) {
+    VertexKey key{};
+    key.controlPoint = cp;
+    if (layers.normals) {
+      const LayerElement& e = *layers.normals;
+      const int64_t i = e.valueFor(polygon, corner, cp);
+      glm::dvec3 n(0.0);
+      if (i >= 0) n = layers.normalMatrix * glm::dvec3(e.values[3 * i], e.values[3 * i + 1], e.values[3 * i + 2]);
+      const double len = glm::length(n);
+      if (std::isfinite(len) && len > 1e-12) {
+        n /= len;
+        key.n[0] = float(n.x), key.n[1] = float(n.y), key.n[2] = float(n.z);
+      } else {
+        b.fileNormals = false;
+        ++badNormals;
       }
-    const std::vector<int64_t> materialIds = linked(modelId, "Material");
+    }
+    if (layers.uvs) {
+      const LayerElement& e = *layers.uvs;
+      const int64_t i = e.valueFor(polygon, corner, cp);
+      if (i >= 0 && std::isfinite(e.values[2 * i]) && std::isfinite(e.values[2 * i + 1])) {
+        key.uv[0] = float(e.values[2 * i]);
+        key.uv[1] = float(1.0 - e.values[2 * i + 1]);  // FBX's V points up, glTF's down
+        b.anyTexcoords = true;
+      }
+    }
+    if (layers.colours) {
+      const int64_t i = layers.colours->valueFor(polygon, corner, cp);
+      for (int c = 0; c < 4; ++c) {
+        const double v = i >= 0 ? layers.colours->values[size_t(4 * i + c)] : 1.0;
+        key.colour[c] = std::isfinite(v) ? float(std::clamp(v, 0.0, 1.0)) : 1.0f;
+      }
+    }
+    return key;
+  }
 
-    // One primitive per material slot; vertices shared where a control point's corners agree.
+  // The polygons fanned into one primitive per material slot, a vertex per
+  // control point where its corners agree.
+  eng::Result<std::vector<PrimitiveBuild>> buildPrimitives(const std::vector<int64_t>& polygonIndex, const std::vector<glm::vec3>& points,
+                                                           const GeometryLayers& layers, size_t slots, const std::string& where) {
     std::map<int64_t, size_t> primitiveOfSlot;
     std::vector<PrimitiveBuild> builds;
     std::vector<std::unordered_map<VertexKey, uint32_t, VertexKeyHash>> vertexOf;
-    size_t polygon = 0, start = 0, badCorners = 0;
+    size_t polygon = 0, start = 0, badNormals = 0;
     std::vector<uint32_t> face;
     for (size_t corner = 0; corner < polygonIndex.size(); ++corner) {
-      const int64_t raw = polygonIndex[corner];
-      const bool last = raw < 0 || corner + 1 == polygonIndex.size();
-      if (!last) continue;
-      // The polygon is corners start..corner; the last one's index is stored as ~index.
+      // A polygon's last corner is stored as ~index.
+      if (polygonIndex[corner] >= 0 && corner + 1 < polygonIndex.size()) continue;
       int64_t slot = 0;
-      if (!polygonMaterial.empty()) {
-        const size_t i = allSameMaterial ? 0 : polygon;
-        slot = i < polygonMaterial.size() ? polygonMaterial[i] : 0;
+      if (!layers.polygonMaterial.empty()) {
+        const size_t i = layers.allSameMaterial ? 0 : polygon;
+        slot = i < layers.polygonMaterial.size() ? layers.polygonMaterial[i] : 0;
       }
-      if (slot < 0 || size_t(slot) >= std::max<size_t>(materialIds.size(), 1)) slot = 0;
-      auto [it, added] = primitiveOfSlot.try_emplace(slot, builds.size());
+      if (slot < 0 || size_t(slot) >= std::max<size_t>(slots, 1)) slot = 0;
+      const auto [it, added] = primitiveOfSlot.try_emplace(slot, builds.size());
       if (added) {
         builds.emplace_back().slot = slot;
         vertexOf.emplace_back();
@@ -521,45 +557,16 @@ class SceneBuilder {
       face.clear();
       for (size_t k = start; k <= corner; ++k) {
         const int64_t cp = polygonIndex[k] < 0 ? ~polygonIndex[k] : polygonIndex[k];
-        if (cp < 0 || size_t(cp) >= controlPoints)
+        if (size_t(cp) >= points.size())
           return geometryError(where, "polygon " + std::to_string(polygon) + " names vertex " + std::to_string(cp) + " of " +
-                                          std::to_string(controlPoints));
-        VertexKey key{};
-        key.controlPoint = cp;
-        if (normals) {
-          const int64_t e = normals->valueFor(polygon, k, cp);
-          glm::dvec3 n(0.0);
-          if (e >= 0) n = normalMatrix * glm::dvec3(normals->values[3 * e], normals->values[3 * e + 1], normals->values[3 * e + 2]);
-          const double len = glm::length(n);
-          if (std::isfinite(len) && len > 1e-12) {
-            n /= len;
-            key.n[0] = float(n.x), key.n[1] = float(n.y), key.n[2] = float(n.z);
-          } else {
-            b.fileNormals = false;
-            badCorners += e < 0;
-          }
-        }
-        if (uvs) {
-          const int64_t e = uvs->valueFor(polygon, k, cp);
-          if (e >= 0 && std::isfinite(uvs->values[2 * e]) && std::isfinite(uvs->values[2 * e + 1])) {
-            key.uv[0] = float(uvs->values[2 * e]);
-            key.uv[1] = float(1.0 - uvs->values[2 * e + 1]);  // FBX's V points up, glTF's down
-            b.anyTexcoords = true;
-          }
-        }
-        if (colours) {
-          const int64_t e = colours->valueFor(polygon, k, cp);
-          for (int c = 0; c < 4; ++c) {
-            const double v = e >= 0 ? colours->values[4 * e + c] : 1.0;
-            key.colour[c] = std::isfinite(v) ? float(std::clamp(v, 0.0, 1.0)) : 1.0f;
-          }
-        }
-        auto [vit, isNew] = map.try_emplace(key, uint32_t(b.prim.positions.size()));
+                                          std::to_string(points.size()));
+        const VertexKey key = cornerKey(layers, polygon, k, cp, b, badNormals);
+        const auto [vit, isNew] = map.try_emplace(key, uint32_t(b.prim.positions.size()));
         if (isNew) {
           b.prim.positions.push_back(points[size_t(cp)]);
           b.prim.normals.push_back(glm::vec3(key.n[0], key.n[1], key.n[2]));
           b.prim.texcoords.push_back(glm::vec2(key.uv[0], key.uv[1]));
-          if (colours)
+          if (layers.colours)
             b.prim.colors.push_back(glm::vec4(eng::srgbToLinear(key.colour[0]), eng::srgbToLinear(key.colour[1]),
                                               eng::srgbToLinear(key.colour[2]), key.colour[3]));
           b.controlPoint.push_back(cp);
@@ -571,19 +578,37 @@ class SceneBuilder {
       ++polygon;
       start = corner + 1;
     }
-    if (badCorners > 0) warn(where + ": " + std::to_string(badCorners) + " corners' normals out of range; smooth normals made");
+    if (badNormals > 0) warn(where + ": " + std::to_string(badNormals) + " corners without a usable normal; smooth normals made");
     std::erase_if(builds, [](const PrimitiveBuild& b) { return b.prim.indices.empty(); });
     if (builds.empty()) return geometryError(where, "no polygon with three corners or more");
-
-    eng::Mesh mesh;
-    mesh.name = modelObject.name;
     for (PrimitiveBuild& b : builds) {
       if (!b.anyTexcoords) b.prim.texcoords.clear();
-      if (!normals || !b.fileNormals) b.prim.normals = eng::computeSmoothNormals(b.prim.positions, b.prim.indices);
-      // The Model's material connections, in order, are its slots.
-      b.prim.material = size_t(b.slot) < materialIds.size() ? materialFor(materialIds[size_t(b.slot)]) : -1;
+      if (!layers.normals || !b.fileNormals) b.prim.normals = eng::computeSmoothNormals(b.prim.positions, b.prim.indices);
     }
-    ENG_TRY(addTargets(geometryId, controlPoints, glm::dmat3(geometric), builds, mesh, where));
+    return builds;
+  }
+
+  // The mesh of a Model's Geometry and its skin (-1 when it has none).
+  eng::Result<std::pair<eng::Mesh, int>> buildMesh(int64_t modelId, int64_t geometryId) {
+    const Object& modelObject = objects_.at(modelId);
+    const Object& geometryObject = objects_.at(geometryId);
+    const Node& g = *geometryObject.node;
+    const std::string where = "geometry '" + eng::shownText(geometryObject.name) + "'";
+    const glm::dmat4 geometric = geometricTransform(*modelObject.node);
+    const std::vector<glm::vec3> points = ENG_TRY_VALUE(controlPointsOf(g, geometric, where));
+    const Node* polygonsNode = g.child("PolygonVertexIndex");
+    std::vector<int64_t> polygonIndex;
+    if (!polygonsNode || !polygonsNode->integers(0, polygonIndex))
+      return geometryError(where, "no PolygonVertexIndex of whole numbers");
+    ENG_TRY(charge(polygonIndex.size(), sizeof(eng::Primitive) / 4 + 64, "FBX " + where));
+    const std::vector<int64_t> materialIds = linked(modelId, "Material");
+    std::vector<PrimitiveBuild> builds =
+        ENG_TRY_VALUE(buildPrimitives(polygonIndex, points, layersOf(g, geometric, where), materialIds.size(), where));
+    eng::Mesh mesh;
+    mesh.name = modelObject.name;
+    // The Model's material connections, in order, are its slots.
+    for (PrimitiveBuild& b : builds) b.prim.material = size_t(b.slot) < materialIds.size() ? materialFor(materialIds[size_t(b.slot)]) : -1;
+    ENG_TRY(addTargets(geometryId, points.size(), glm::dmat3(geometric), builds, mesh, where));
     const int skin = ENG_TRY_VALUE(addSkin(geometryId, modelId, builds, where));
     for (PrimitiveBuild& b : builds) mesh.primitives.push_back(std::move(b.prim));
     return std::make_pair(std::move(mesh), skin);
