@@ -45,7 +45,7 @@ fi
 run_one() {
   local name="$1" dict=json.dict maxlen=()
   case "$name" in
-    candide|obj_set|ply) dict=text.dict ;;
+    candide|obj_set|ply|stl) dict=text.dict ;;
     image) dict=image.dict ;;
     fbx) dict=fbx.dict ;;
     # Mutating whole 500 kB models runs at ~20 inputs/s under ASan; small

@@ -19,12 +19,14 @@
 #include "importers/loop_subdivision.h"
 #include "importers/obj_keyframes.h"
 #include "importers/ply_mesh.h"
+#include "importers/stl_mesh.h"
 #include "importers/vrm_import.h"
 
 namespace importers {
 
 bool isPlainMesh(FaceFormat format) {
-  return format == FaceFormat::Gltf || format == FaceFormat::Obj || format == FaceFormat::Ply || format == FaceFormat::Fbx;
+  return format == FaceFormat::Gltf || format == FaceFormat::Obj || format == FaceFormat::Ply || format == FaceFormat::Fbx ||
+         format == FaceFormat::Stl;
 }
 
 std::string_view faceFormatName(FaceFormat format) {
@@ -36,6 +38,7 @@ std::string_view faceFormatName(FaceFormat format) {
     case FaceFormat::Obj: return "OBJ";
     case FaceFormat::Ply: return "PLY";
     case FaceFormat::Fbx: return "FBX";
+    case FaceFormat::Stl: return "STL";
   }
   return "?";
 }
@@ -77,13 +80,15 @@ bool looksLikeObj(std::span<const uint8_t> bytes) {
   return false;
 }
 
-eng::Result<LoadedFace> loadPlyMesh(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
-  auto mesh = readPlyPolygonMesh(bytes, path);
+// A scan read into polygons by `read` (PLY, STL), built as one OBJ file is.
+template <typename Read>
+eng::Result<LoadedFace> loadScan(std::span<const uint8_t> bytes, const std::filesystem::path& path, FaceFormat format, Read read) {
+  auto mesh = read(bytes, path);
   if (!mesh) return mesh.error();
   auto model = modelFromPolygonMesh(*mesh, path);
   if (!model) return model.error();
   model->sourcePath = path.string();
-  return LoadedFace{std::move(*model), FaceFormat::Ply, nullptr, std::nullopt};
+  return LoadedFace{std::move(*model), format, nullptr, std::nullopt};
 }
 
 eng::Result<LoadedFace> loadFbx(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
@@ -183,11 +188,13 @@ eng::Result<LoadedFace> loadFaceFromBytes(std::span<const uint8_t> bytes, const 
   if (start.starts_with("# VERTEX LIST")) return finish(loadCandide3(bytes, path), path, options);
   // Its .mtl and textures are read beside `path`.
   if (looksLikeObj(bytes)) return finish(loadObjMesh(bytes, path), path, options);
-  if (looksLikePly(bytes)) return finish(loadPlyMesh(bytes, path), path, options);
+  if (looksLikePly(bytes)) return finish(loadScan(bytes, path, FaceFormat::Ply, readPlyPolygonMesh), path, options);
   if (fbx::looksLikeFbx(bytes)) return finish(loadFbx(bytes, path), path, options);
+  if (looksLikeStl(bytes)) return finish(loadScan(bytes, path, FaceFormat::Stl, readStlPolygonMesh), path, options);
   return eng::makeError(eng::ErrorKind::Unsupported, path.string() + ": not a face this program reads (glTF / GLB, VRM, FBX, a folder of "
-                        "OBJ keyframes, an OBJ, a PLY or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', 'Kaydara FBX', "
-                        "'; FBX', '# VERTEX LIST', 'ply' nor an OBJ statement");
+                        "OBJ keyframes, an OBJ, a PLY, an STL or a CANDIDE-3 .wfm); the file starts with neither 'glTF', '{', "
+                        "'Kaydara FBX', '; FBX', '# VERTEX LIST', 'ply', 'solid' nor an OBJ statement, and is no binary STL "
+                        "(84 bytes and 50 per triangle)");
 }
 
 eng::Result<void> bakeShapes(eng::Model& model, std::span<const std::string> shapes) {

@@ -1,6 +1,6 @@
 #pragma once
 // Any face the programs open, for an embedder too: glTF / GLB, VRM, a folder
-// of OBJ keyframes, one OBJ or PLY file, FBX or CANDIDE-3, told apart by content (not by extension),
+// of OBJ keyframes, one OBJ, PLY or STL file, FBX or CANDIDE-3, told apart by content (not by extension),
 // with identity shapes baked in and, when asked for, dressed for display.
 //
 //   auto face = importers::loadFace("facecap.glb", {.dressForDisplay = true});
@@ -27,14 +27,14 @@ namespace importers {
 // What a face file is, told by its content.
 // Obj: one OBJ file, a face without targets (a scan, a sculpt), which
 // autorig gives the built-in head's action units.
-enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3, Obj, Ply, Fbx };
+enum class FaceFormat : uint8_t { Gltf, Vrm, ObjSet, Candide3, Obj, Ply, Fbx, Stl };
 std::string_view faceFormatName(FaceFormat format);
-// A mesh as exporters and scanners write it (glTF / GLB, FBX, OBJ, PLY), which
+// A mesh as exporters and scanners write it (glTF / GLB, FBX, OBJ, PLY, STL), which
 // autorig makes targets for; not a VRM, an OBJ keyframe set or CANDIDE-3,
 // whose rigs come with them.
 bool isPlainMesh(FaceFormat format);
 // What loadFace opens, for a MODEL option's help.
-inline constexpr const char* kFaceFormatsHelp = "Face: glTF / GLB, VRM, FBX, OBJ keyframe folder, OBJ, PLY or CANDIDE-3 .wfm";
+inline constexpr const char* kFaceFormatsHelp = "Face: glTF / GLB, VRM, FBX, OBJ keyframe folder, OBJ, PLY, STL or CANDIDE-3 .wfm";
 
 struct LoadFaceOptions {
   // "NAME=VALUE" identity parameters baked into the rest mesh (bakeShapes).

@@ -1,6 +1,6 @@
 // `facial convert`: OBJ keyframe sets (neutral.obj + one OBJ per
 // expression) to one glTF face with morph targets; also re-saves glTF
-// (e.g. .gltf -> .glb) and writes an FBX or PLY face as glTF.
+// (e.g. .gltf -> .glb) and writes an FBX, PLY or STL face as glTF.
 //   facial convert neutral.obj --target happy=happy.obj --target sad.obj --out face.glb
 //   facial convert DIR --out face.glb            (DIR/neutral.obj + every other DIR/*.obj)
 //   facial convert character.fbx --out character.glb
@@ -62,7 +62,7 @@ int run(const ConvertArgs& args) {
     return save(*model, args.out);
   }
 
-  if (ext == ".fbx" || ext == ".ply") {
+  if (ext == ".fbx" || ext == ".ply" || ext == ".stl") {
     if (!args.targets.empty()) return fail("--target applies to OBJ input only");
     auto face = importers::loadFace(input);
     if (!face) return fail(face.error().message);
@@ -78,7 +78,7 @@ int run(const ConvertArgs& args) {
     neutral = folder->neutral;
     targets = std::move(folder->targets);
   } else {
-    if (ext != ".obj") return fail(args.input + ": expected a .obj, a .gltf/.glb, an .fbx, a .ply or a folder");
+    if (ext != ".obj") return fail(args.input + ": expected a .obj, a .gltf/.glb, an .fbx, a .ply, an .stl or a folder");
     neutral = input;
     for (const std::string& spec : args.targets) {
       const size_t eq = spec.find('=');
@@ -106,10 +106,10 @@ int run(const ConvertArgs& args) {
   return save(imported->model, args.out);
 }
 
-CommandRegistrar reg("convert", "Convert an OBJ keyframe set, an FBX, a PLY or a glTF to a glTF face with morph targets",
+CommandRegistrar reg("convert", "Convert an OBJ keyframe set, an FBX, a PLY or STL scan or a glTF to a glTF face with morph targets",
                      [](CLI::App& app) {
                        auto args = std::make_shared<ConvertArgs>();
-                       app.add_option("input", args->input, "neutral.obj, a folder holding neutral.obj + targets, a .gltf/.glb, an .fbx or a .ply")
+                       app.add_option("input", args->input, "neutral.obj, a folder holding neutral.obj + targets, a .gltf/.glb, an .fbx, a .ply or an .stl")
                            ->required();
                        app.add_option("--target", args->targets, "NAME=FILE.obj (or FILE.obj, named after the file); repeatable");
                        app.add_option("--out", args->out, "Output .glb or .gltf")->required();

@@ -389,4 +389,8 @@ TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) { expectRiggedOnTheFly("scan.pl
 
 TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) { expectRiggedOnTheFly("face.fbx", testing_support::modelAsFbx); }
 
+TEST(FaceSetupAutorig, AnStlScanIsRiggedOnTheFly) {
+  expectRiggedOnTheFly("scan.stl", [](const eng::Model& head) { return testing_support::modelAsStl(head); });
+}
+
 }  // namespace

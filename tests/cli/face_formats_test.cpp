@@ -116,7 +116,7 @@ TEST(FaceFormatsValidity, BadShapesBackgroundsAndUnknownFilesAreNamed) {
   testing_support::writeFile(face.parent_path() / "notes.txt", "hello");
   const CommandOutput unknown = runFacial({"rig", (face.parent_path() / "notes.txt").string()});
   EXPECT_EQ(unknown.exitCode, 1);
-  EXPECT_TRUE(contains(unknown.err, "notes.txt: not a face this program reads (glTF / GLB, VRM, a folder of OBJ"))
+  EXPECT_TRUE(contains(unknown.err, "notes.txt: not a face this program reads (glTF / GLB, VRM, FBX, a folder of OBJ"))
       << unknown.err;
   const CommandOutput missing = runFacial({"info", (face.parent_path() / "absent.vrm").string()});
   EXPECT_EQ(missing.exitCode, 1);

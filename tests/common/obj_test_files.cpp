@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 namespace testing_support {
@@ -111,6 +112,24 @@ std::string modelAsPly(const eng::Model& model) {
     out.push_back('\3');
     out.append(reinterpret_cast<const char*>(&triangles[t]), 3 * sizeof(uint32_t));
   }
+  return out;
+}
+
+std::string modelAsStl(const eng::Model& model, const std::string& header) {
+  std::string out = header.substr(0, 80);
+  out.resize(84, '\0');
+  uint32_t count = 0;
+  forEachPlacedPrimitive(model, [&](const PlacedPrimitive& placed) {
+    const std::vector<uint32_t>& indices = placed.primitive.indices;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+      float record[12] = {};  // the facet normal left zero, as many exporters write it
+      for (int k = 0; k < 3; ++k) std::memcpy(&record[3 + 3 * k], &placed.positions[indices[t + size_t(k)]], sizeof(glm::vec3));
+      out.append(reinterpret_cast<const char*>(record), sizeof record);
+      out.append(2, '\0');
+      ++count;
+    }
+  });
+  std::memcpy(&out[80], &count, 4);
   return out;
 }
 

@@ -39,4 +39,8 @@ std::string modelAsObj(const eng::Model& model, const std::string& header = "");
 // positions and normals in world space, one list of triangles.
 std::string modelAsPly(const eng::Model& model);
 
+// The same as one binary STL file, as a scanner exports it: every triangle
+// with its own three corners (world space), `header` as its 80-byte header.
+std::string modelAsStl(const eng::Model& model, const std::string& header = "binary STL written by the tests");
+
 }  // namespace testing_support

@@ -17,6 +17,8 @@
 #include "tests/common/fbx_test_files.h"
 #include "tests/common/test_support.h"
 
+// Named, so that its helpers do not meet other files' in a unity build.
+namespace fbx_scene_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -274,3 +276,4 @@ TEST(FbxScene, TheBuiltInHeadAsAnFbxOfItsPrimitivesMatchesIt) {
 }
 
 }  // namespace
+}  // namespace fbx_scene_test

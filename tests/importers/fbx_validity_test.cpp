@@ -12,6 +12,8 @@
 #include "tests/common/fbx_test_files.h"
 #include "tests/common/test_support.h"
 
+// Named, so that its helpers do not meet other files' in a unity build.
+namespace fbx_validity_test {
 namespace {
 
 using testing_support::FbxTestNode;
@@ -268,3 +270,4 @@ TEST(FbxValidity, AsciiFbxReadsAsTheBinaryDoes) {
 }
 
 }  // namespace
+}  // namespace fbx_validity_test

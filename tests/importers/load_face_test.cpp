@@ -63,12 +63,15 @@ TEST(LoadFace, ParsesTheBytesItWasGivenWithoutReopeningTheFile) {
 }
 
 TEST(LoadFaceValidity, BytesOfNoFaceFormatAreNamed) {
-  const std::string text = "solid cube\nendsolid\n";
-  const std::vector<uint8_t> bytes(text.begin(), text.end());
-  auto face = importers::loadFaceFromBytes(bytes, "cube.stl");
-  ASSERT_FALSE(face);
-  EXPECT_EQ(face.error().kind, eng::ErrorKind::Unsupported);
-  EXPECT_NE(face.error().message.find("cube.stl: not a face this program reads"), std::string::npos) << face.error().message;
+  // A 3MF (a zip archive), and an STL-like text with no facet in it.
+  for (const auto& [text, name] : {std::pair<std::string, std::string>{std::string("PK\x03\x04\x14\0\0\0", 8), "cube.3mf"},
+                                   {"solid cube\nendsolid\n", "cube.stl"}}) {
+    const std::vector<uint8_t> bytes(text.begin(), text.end());
+    auto face = importers::loadFaceFromBytes(bytes, name);
+    ASSERT_FALSE(face) << name;
+    EXPECT_EQ(face.error().kind, eng::ErrorKind::Unsupported) << name;
+    EXPECT_NE(face.error().message.find(name + ": not a face this program reads"), std::string::npos) << face.error().message;
+  }
 }
 
 // One OBJ file is a face without targets (a scan, a sculpt): told by its
