@@ -31,6 +31,7 @@
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
 #include "facial/runtime/rig/rig_mapping.h"
+#include "facial/runtime/rig/rigmap_file.h"
 
 namespace app {
 namespace {
@@ -98,7 +99,15 @@ std::string autorigReason(const importers::LoadedFace& face, const eng::Result<f
   options.modelName = modelNameOf(face.model.sourcePath);
   options.rigmapDirectory = dataDirectory() / "rigmaps";
   options.rigmapFile = rigmapFile;
-  if (!facial::rigMapFileFor(options).empty()) return {};
+  // A rig map given, or one found by the face's name that maps targets, rigs
+  // the face its own way. One found by name that only calibrates (the
+  // built-in head's data/rigmaps/head.json) was written for another face of
+  // that name (a scan called head.stl) and keeps nothing from being rigged.
+  if (!rigmapFile.empty()) return {};
+  if (const std::filesystem::path found = facial::rigMapFileFor(options); !found.empty()) {
+    auto rigmap = facial::loadRigMapFile(found, eng::WeightLayout(face.model).names());
+    if (!rigmap || rigmap->mapping) return {};
+  }
   if (!rig) return rig.error().kind == eng::ErrorKind::Unsupported ? reasonOf(face.model, rig) : std::string();
   return facial::showsEmotions(rig->rig) ? std::string() : reasonOf(face.model, rig);
 }

@@ -67,11 +67,12 @@ std::vector<float> targetReach(const eng::Model& model) {
   return reach;
 }
 
-eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile) {
+eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile,
+                                                  RigMapLookup lookup) {
   const std::vector<std::string> targetNames = eng::WeightLayout(model).names();
   facial::RigMappingOptions options;
   options.modelName = modelNameOf(model.sourcePath);
-  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  if (lookup == RigMapLookup::GivenOrByName) options.rigmapDirectory = dataDirectory() / "rigmaps";
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildRigMapping(targetNames, options);
   if (!rig) return rig.error().prefixed(model.sourcePath + ": ");
@@ -86,11 +87,12 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
   return calibrated;
 }
 
-eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& face, const std::filesystem::path& rigmapFile) {
-  if (!face.vrm) return buildModelRig(face.model, rigmapFile);
+eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& face, const std::filesystem::path& rigmapFile,
+                                                 RigMapLookup lookup) {
+  if (!face.vrm) return buildModelRig(face.model, rigmapFile, lookup);
   facial::RigMappingOptions options;
   options.modelName = modelNameOf(face.model.sourcePath);
-  options.rigmapDirectory = dataDirectory() / "rigmaps";
+  if (lookup == RigMapLookup::GivenOrByName) options.rigmapDirectory = dataDirectory() / "rigmaps";
   options.rigmapFile = rigmapFile;
   auto rig = facial::buildVrmRigMapping(face.vrm, eng::WeightLayout(face.model).names(), options);
   if (!rig) return rig.error().prefixed(face.model.sourcePath + ": ");
@@ -142,7 +144,7 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
       if (rigged) {
         note = std::move(*rigged);
         std::fprintf(stderr, "%.*s: note: %s\n", int(options.program.size()), options.program.data(), note.c_str());
-        calibration = buildFaceRig(*face, options.rigmap);
+        calibration = buildFaceRig(*face, options.rigmap, RigMapLookup::GivenOnly);
       } else if (!inPart) {
         return rigged.error();
       } else {  // its own rig still shows what it moves

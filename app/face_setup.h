@@ -53,11 +53,20 @@ std::filesystem::path defaultExpressionsPath();
 // A model's name for titles and rig map look-up: the file name without extension.
 std::string modelNameOf(const std::filesystem::path& modelPath);
 
+// Where a face's rig map may come from: the one given, or else also the
+// shipped one named after the face (<data>/rigmaps/<model name>.json). A face
+// rigged on the fly looks for the given one only: a map found by its name was
+// written for another face of that name (the built-in head's head.json and a
+// scan called head.stl).
+enum class RigMapLookup : uint8_t { GivenOrByName, GivenOnly };
+
 // The rig mapping of a loaded model over its flat target names: `rigmapFile`
-// when given, else <data>/rigmaps/<model name>.json when it exists, else the
-// detected scheme; its action-unit strengths calibrated to the model
-// (facial/runtime/rig/rig_calibration.h). Errors start with the model file.
-eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile = {});
+// when given, else <data>/rigmaps/<model name>.json when it exists (and
+// `lookup` allows), else the detected scheme; its action-unit strengths
+// calibrated to the model (facial/runtime/rig/rig_calibration.h). Errors
+// start with the model file.
+eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const std::filesystem::path& rigmapFile = {},
+                                                  RigMapLookup lookup = RigMapLookup::GivenOrByName);
 // Per flat target: the largest world-space displacement at weight 1, divided
 // by the height of the region the targets move (the face).
 std::vector<float> targetReach(const eng::Model& model);
@@ -65,7 +74,8 @@ std::vector<float> targetReach(const eng::Model& model);
 // carried to the morph targets by their binds (facial::buildVrmRigMapping),
 // uncalibrated (its expressions are whole poses the author tuned); any other
 // face's as buildModelRig.
-eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& face, const std::filesystem::path& rigmapFile = {});
+eng::Result<facial::RigCalibration> buildFaceRig(const importers::LoadedFace& face, const std::filesystem::path& rigmapFile = {},
+                                                 RigMapLookup lookup = RigMapLookup::GivenOrByName);
 
 struct FaceSetupOptions {
   std::filesystem::path model;        // empty: defaultModelPath()

@@ -98,7 +98,7 @@ int runRig(const RigOptions& o) {
     auto cached = app::loadAutorigged(o.model, {.shapes = o.shapes}, *face);
     if (cached) {
       autorig.cached = std::move(*cached);
-      rig = app::buildFaceRig(*face, o.rigmap);
+      rig = app::buildFaceRig(*face, o.rigmap, app::RigMapLookup::GivenOnly);
     } else {
       const std::string failed = app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message;
       if (!app::emotesInPart(rig)) return fail(failed);

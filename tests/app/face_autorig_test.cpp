@@ -374,7 +374,8 @@ TEST(FaceSetupAutorig, AnObjScanIsRiggedOnTheFly) {
 void expectRiggedOnTheFly(const std::string& name, std::string (*write)(const eng::Model&)) {
   auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
   ASSERT_TRUE(head) << head.error().message;
-  const fs::path dir = testing_support::freshTempDir("autorig_" + fs::path(name).extension().string().substr(1));
+  const fs::path dir = testing_support::freshTempDir("autorig_" + fs::path(name).stem().string() + "_" +
+                                                     fs::path(name).extension().string().substr(1));
   testing_support::writeFile(dir / name, write(*head));
   setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
   auto face = app::FaceSetup::load({.model = dir / name, .program = "test"});
@@ -388,6 +389,12 @@ void expectRiggedOnTheFly(const std::string& name, std::string (*write)(const en
 TEST(FaceSetupAutorig, APlyScanIsRiggedOnTheFly) { expectRiggedOnTheFly("scan.ply", testing_support::modelAsPly); }
 
 TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) { expectRiggedOnTheFly("face.fbx", testing_support::modelAsFbx); }
+
+// A scan named as the built-in head is (data/rigmaps/head.json, a calibration
+// of the head's own targets, is found by that name): rigged all the same.
+TEST(FaceSetupAutorig, AScanCalledHeadIsRiggedDespiteTheHeadsRigMap) {
+  expectRiggedOnTheFly("head.ply", testing_support::modelAsPly);
+}
 
 TEST(FaceSetupAutorig, AnStlScanIsRiggedOnTheFly) {
   expectRiggedOnTheFly("scan.stl", [](const eng::Model& head) { return testing_support::modelAsStl(head); });
