@@ -23,6 +23,7 @@
 #include "autorig/face_frame.h"
 #include "autorig/face_parts.h"
 #include "autorig/mouth_opening.h"
+#include "autorig/part_primitives.h"
 #include "autorig/posed_face.h"
 #include "engine/core/fnv1a.h"
 #include "engine/core/text_lines.h"
@@ -31,6 +32,7 @@
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/weights.h"
 #include "facial/runtime/rig/rig_mapping.h"
+#include "importers/face_dressing.h"
 #include "facial/runtime/rig/rigmap_file.h"
 
 namespace app {
@@ -169,6 +171,10 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   if (!transferred) return transferred.error().prefixed(faceName + ": ");
   AutorigResult result;
   result.model = std::move(transferred->model);
+  // Eyeballs, teeth and tongue merged into an untextured skin get primitives
+  // of their own, which the display then dresses.
+  if (const size_t separated = autorig::separateInnerParts(result.model, posed, parts); separated > 0)
+    parts.notes.push_back(std::to_string(separated) + " eyeball, teeth or tongue piece(s) of an untextured primitive drawn apart, to be dressed");
   result.report = std::move(transferred->report);
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
@@ -339,13 +345,14 @@ eng::Result<CachedAutorig> loadAutorigged(const std::filesystem::path& modelPath
                                           const importers::LoadFaceOptions& options, importers::LoadedFace& face) {
   auto cached = autorigCached(modelPath);
   if (!cached) return cached.error();
-  auto rigged = importers::loadFace(cached->path, options);
+  // Dressed once stood up: the procedural eyes face the model's front (+Z).
+  importers::LoadFaceOptions undressed = options;
+  undressed.dressForDisplay = false;
+  auto rigged = importers::loadFace(cached->path, undressed);
   if (!rigged) return rigged.error();
   rigged->model.sourcePath = modelPath.string();
-  if (const std::optional<StandingUp> up = standingUp(cached->landmarks)) {
-    eng::turnAtRoots(rigged->model, up->turn);
-    if (rigged->dressed) eng::turnAtRoots(*rigged->dressed, up->turn);
-  }
+  if (const std::optional<StandingUp> up = standingUp(cached->landmarks)) eng::turnAtRoots(rigged->model, up->turn);
+  if (options.dressForDisplay) rigged->dressed = importers::dressedForDisplay(rigged->model);
   face = std::move(*rigged);
   return cached;
 }

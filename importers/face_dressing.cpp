@@ -55,10 +55,14 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
       if (!unauthoredWhite(model, prim)) continue;
+      // The mesh's and nodes' names, and the material's (a scan's merged
+      // mouth given its own primitive by the rig: autorig/part_primitives.h).
+      std::vector<std::string_view> partNames = names;
+      if (prim.material >= 0 && size_t(prim.material) < model.materials.size()) partNames.push_back(model.materials[size_t(prim.material)].name);
       Part part = Part::None;
-      if (anyNameContains(names, "teeth") || anyNameContains(names, "tooth"))
+      if (anyNameContains(partNames, "teeth") || anyNameContains(partNames, "tooth"))
         part = Part::Teeth;
-      else if (anyNameContains(names, "tongue"))
+      else if (anyNameContains(partNames, "tongue"))
         part = Part::Tongue;
       else if (isFace && !eyeNamed && !materialNamesAnEyeball(model, prim.material) && !mesh.targetNames.empty() &&
                std::none_of(eyes.begin(), eyes.end(), [&](const EyePrimitive& e) {
