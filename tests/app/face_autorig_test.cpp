@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "autorig/builtin_source.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
+#include "engine/scene/skeleton_pose.h"
 #include "engine/scene/weights.h"
 #include "tests/common/fbx_test_files.h"
 #include "tests/common/obj_test_files.h"
@@ -394,6 +396,49 @@ TEST(FaceSetupAutorig, AnFbxFaceWithoutTargetsIsRiggedOnTheFly) { expectRiggedOn
 // of the head's own targets, is found by that name): rigged all the same.
 TEST(FaceSetupAutorig, AScanCalledHeadIsRiggedDespiteTheHeadsRigMap) {
   expectRiggedOnTheFly("head.ply", testing_support::modelAsPly);
+}
+
+// The whole head as one untextured STL lying as Blender exports it (Z up):
+// the eyeballs, teeth and tongue merged into the skin get primitives of their
+// own, and the display, dressed once the face is stood up, gives the eyeballs
+// irises that face the front and the mouth its colours.
+TEST(FaceSetupAutorig, AMergedUntexturedScanLyingDownIsShownWithEyesAndMouthDressed) {
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  // Lay it down: its front along -Y, its top along +Z.
+  eng::turnAtRoots(*head, glm::angleAxis(glm::radians(90.0f), glm::vec3(1, 0, 0)));
+  const fs::path dir = testing_support::freshTempDir("autorig_merged_stl");
+  testing_support::writeFile(dir / "bust.stl", testing_support::modelAsStl(*head));
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "bust.stl", .program = "test"});  // dressed for display, the default
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  std::set<std::string> materials;
+  for (const eng::Material& m : face->model().materials) materials.insert(m.name);
+  EXPECT_TRUE(materials.count("Eyeball (right)") && materials.count("Eyeball (left)") && materials.count("Teeth") && materials.count("Tongue"))
+      << "the merged parts drawn apart";
+  // Each procedural eye's iris (the texture's centre) is on the side of the ball facing the camera (+Z, stood up).
+  const eng::Model& shown = face->displayModel();
+  const std::vector<glm::mat4> world = eng::restWorldMatrices(shown);
+  size_t eyes = 0;
+  for (size_t n = 0; n < shown.nodes.size(); ++n) {
+    if (shown.nodes[n].mesh < 0) continue;
+    for (const eng::Primitive& p : shown.meshes[size_t(shown.nodes[n].mesh)].primitives) {
+      if (p.material < 0 || shown.materials[size_t(p.material)].name.find("procedural eye") == std::string::npos) continue;
+      ++eyes;
+      glm::vec3 centre(0.0f), iris(0.0f);
+      size_t inIris = 0;
+      for (size_t v = 0; v < p.positions.size(); ++v) {
+        const glm::vec3 w(world[n] * glm::vec4(p.positions[v], 1.0f));
+        centre += w / float(p.positions.size());
+        if (glm::distance(p.texcoords[v], glm::vec2(0.5f)) < 0.1f) iris += w, ++inIris;
+      }
+      ASSERT_GT(inIris, 0u);
+      const glm::vec3 towardIris = glm::normalize(iris / float(inIris) - centre);
+      EXPECT_GT(towardIris.z, 0.8f) << "the iris faces the front, not the file's up";
+    }
+  }
+  EXPECT_EQ(eyes, 2u);
 }
 
 TEST(FaceSetupAutorig, AnStlScanIsRiggedOnTheFly) {
