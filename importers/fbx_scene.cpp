@@ -355,6 +355,8 @@ class SceneBuilder {
       node.name = o.name;
       setLocalTransform(*o.node, node);
       nodeOf_[id] = int(model_.nodes.size());
+      modelOfNode_.resize(model_.nodes.size() + 1, 0);
+      modelOfNode_.back() = id;
       model_.nodes.push_back(std::move(node));
     }
     for (int64_t id : models) {
@@ -618,7 +620,19 @@ class SceneBuilder {
   eng::Result<void> addTargets(int64_t geometryId, size_t controlPoints, const glm::dmat3& linear, std::vector<PrimitiveBuild>& builds,
                                eng::Mesh& mesh, const std::string& where) {
     std::vector<std::vector<glm::vec3>> restNormals(builds.size());
-    std::vector<glm::dvec3> delta;
+    // Which primitive vertices each control point became, so that a shape
+    // costs what it moves (and the primitives it moves, charged to the
+    // budget), not the mesh's size times the channels.
+    std::vector<uint32_t> firstOfPoint(controlPoints + 1, 0);
+    for (const PrimitiveBuild& b : builds)
+      for (int64_t cp : b.controlPoint) ++firstOfPoint[size_t(cp) + 1];
+    for (size_t p = 0; p < controlPoints; ++p) firstOfPoint[p + 1] += firstOfPoint[p];
+    std::vector<std::pair<uint32_t, uint32_t>> vertexOfPoint(firstOfPoint.back());  // (primitive, vertex)
+    {
+      std::vector<uint32_t> next(firstOfPoint.begin(), firstOfPoint.end() - 1);
+      for (uint32_t i = 0; i < builds.size(); ++i)
+        for (uint32_t v = 0; v < builds[i].controlPoint.size(); ++v) vertexOfPoint[next[size_t(builds[i].controlPoint[v])]++] = {i, v};
+    }
     for (int64_t blendShape : linked(geometryId, "Deformer", "BlendShape")) {
       const std::string& deformerName = objects_.at(blendShape).name;
       for (int64_t channelId : linked(blendShape, "Deformer", "BlendShapeChannel")) {
@@ -650,42 +664,47 @@ class SceneBuilder {
                " offset coordinates do not pair; left out");
           continue;
         }
-        delta.assign(controlPoints, glm::dvec3(0.0));
         bool usable = true;
+        std::vector<bool> moves(builds.size(), false);
         for (size_t k = 0; k < indexes.size() && usable; ++k) {
           const glm::dvec3 d(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]);
           usable = indexes[k] >= 0 && size_t(indexes[k]) < controlPoints && std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z);
-          if (usable) delta[size_t(indexes[k])] = linear * d;
+          if (!usable || d == glm::dvec3(0.0)) continue;
+          for (uint32_t j = firstOfPoint[size_t(indexes[k])]; j < firstOfPoint[size_t(indexes[k]) + 1]; ++j) moves[vertexOfPoint[j].first] = true;
         }
         if (!usable) {
           warn(what + " names a vertex past " + std::to_string(controlPoints) + " or a non-finite offset; left out");
           continue;
         }
+        std::vector<eng::MorphTarget> targets(builds.size());
+        for (size_t i = 0; i < builds.size(); ++i)
+          if (moves[i]) {
+            ENG_TRY(charge(builds[i].prim.positions.size(), 2 * sizeof(glm::vec3), "FBX " + what));
+            targets[i].positions.assign(builds[i].prim.positions.size(), glm::vec3(0.0f));
+          }
+        for (size_t k = 0; k < indexes.size(); ++k) {
+          const glm::vec3 d(linear * glm::dvec3(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]));
+          for (uint32_t j = firstOfPoint[size_t(indexes[k])]; j < firstOfPoint[size_t(indexes[k]) + 1]; ++j)
+            if (moves[vertexOfPoint[j].first]) targets[vertexOfPoint[j].first].positions[vertexOfPoint[j].second] = d;
+        }
         for (size_t i = 0; i < builds.size(); ++i) {
           PrimitiveBuild& b = builds[i];
-          eng::MorphTarget target;
-          bool moves = false;
-          for (int64_t cp : b.controlPoint) moves |= delta[size_t(cp)] != glm::dvec3(0.0);
-          if (moves) {
-            const size_t n = b.prim.positions.size();
-            ENG_TRY(charge(n, 2 * sizeof(glm::vec3), "FBX " + what));
-            target.positions.resize(n);
-            std::vector<glm::vec3> moved(b.prim.positions);
-            for (size_t v = 0; v < n; ++v) {
-              target.positions[v] = glm::vec3(delta[size_t(b.controlPoint[v])]);
-              moved[v] += target.positions[v];
-            }
+          eng::MorphTarget& target = targets[i];
+          if (moves[i]) {
             // The shape's own normals are left: the change of the smooth normal
             // is exactly zero where nothing moves.
+            std::vector<glm::vec3> moved(b.prim.positions);
+            for (size_t v = 0; v < moved.size(); ++v) moved[v] += target.positions[v];
             if (restNormals[i].empty()) restNormals[i] = eng::computeSmoothNormals(b.prim.positions, b.prim.indices);
             target.normals = eng::computeSmoothNormals(moved, b.prim.indices);
-            for (size_t v = 0; v < n; ++v) target.normals[v] -= restNormals[i][v];
+            for (size_t v = 0; v < moved.size(); ++v) target.normals[v] -= restNormals[i][v];
           }
           b.prim.targets.push_back(std::move(target));
         }
         targetOfChannel_[channelId] = {int(model_.meshes.size()), int(mesh.targetNames.size())};
         mesh.targetNames.push_back(name);
-        mesh.defaultWeights.push_back(float(std::clamp(channel.node->child("DeformPercent") ? channel.node->child("DeformPercent")->number(0).value_or(0.0) : 0.0, -1000.0, 1000.0) / 100.0));
+        const Node* percent = channel.node->child("DeformPercent");
+        mesh.defaultWeights.push_back(float(std::clamp(percent ? percent->number(0).value_or(0.0) : 0.0, -1000.0, 1000.0) / 100.0));
       }
     }
     return {};
@@ -835,6 +854,7 @@ class SceneBuilder {
   // (exporters bake every frame); each channel is keyed at the union of its
   // curves' key times.
   void addAnimations() {
+    const std::vector<int> nodeOfMesh = model_.firstNodeOfEachMesh();
     for (const Node& o : doc_.root.child("Objects")->children) {
       const auto stackId = o.integer(0);
       if (o.name != "AnimationStack" || !stackId || objects_.at(*stackId).node != &o) continue;
@@ -866,7 +886,7 @@ class SceneBuilder {
             nodeCurves[node->second][size_t(component)][size_t(axis)] = curveOf(curveNode, std::array{"d|X", "d|Y", "d|Z"}[size_t(axis)], what);
         }
       }
-      for (auto& [mesh, curves] : weightCurves) addWeightsChannel(animation, mesh, curves);
+      for (auto& [mesh, curves] : weightCurves) addWeightsChannel(animation, mesh, curves, nodeOfMesh);
       for (auto& [node, curves] : nodeCurves) addNodeChannels(animation, node, curves);
       if (animation.channels.empty() && animation.nodeChannels.empty()) continue;
       model_.animations.push_back(std::move(animation));
@@ -885,12 +905,12 @@ class SceneBuilder {
     return out;
   }
 
-  void addWeightsChannel(eng::Animation& animation, int meshIndex, const std::map<int, Curve>& curves) {
+  void addWeightsChannel(eng::Animation& animation, int meshIndex, const std::map<int, Curve>& curves,
+                         const std::vector<int>& nodeOfMesh) {
     const eng::Mesh& mesh = model_.meshes[size_t(meshIndex)];
     eng::WeightsChannel channel;
     channel.mesh = meshIndex;
-    for (size_t n = 0; n < model_.nodes.size(); ++n)
-      if (model_.nodes[n].mesh == meshIndex) channel.node = int(n);
+    channel.node = nodeOfMesh[size_t(meshIndex)];
     channel.interpolation = eng::Interpolation::Linear;
     channel.targetCount = mesh.targetNames.size();
     std::vector<const Curve*> used;
@@ -905,10 +925,7 @@ class SceneBuilder {
   }
 
   void addNodeChannels(eng::Animation& animation, int node, const std::array<std::array<std::optional<Curve>, 3>, 3>& curves) {
-    int64_t modelId = 0;
-    for (const auto& [id, index] : nodeOf_)
-      if (index == node) modelId = id;
-    const Node& model = *objects_.at(modelId).node;
+    const Node& model = *objects_.at(modelOfNode_[size_t(node)]).node;
     std::vector<const Curve*> used;
     for (const auto& component : curves)
       for (const auto& axis : component)
@@ -1083,6 +1100,7 @@ class SceneBuilder {
   std::unordered_map<int64_t, std::vector<Link>> children_;
   std::unordered_map<int64_t, std::vector<Link>> parents_;
   std::unordered_map<int64_t, int> nodeOf_;
+  std::vector<int64_t> modelOfNode_;  // node index -> its Model's id (0: the root)
   std::unordered_map<int64_t, int> materialOf_;
   std::unordered_map<int64_t, glm::dmat4> bindPose_;
   std::unordered_map<int64_t, std::pair<int, int>> targetOfChannel_;  // blend shape channel -> (mesh, target)
