@@ -217,7 +217,11 @@ struct VertexKey {
   float n[3];
   float uv[2];
   float colour[4];
-  bool operator==(const VertexKey& o) const { return std::memcmp(this, &o, sizeof(VertexKey)) == 0; }
+  // Field by field (a memcmp would read the padding after `colour`); exact
+  // floats: corners agree only when the file gives them the same values.
+  bool operator==(const VertexKey& o) const {
+    return controlPoint == o.controlPoint && std::memcmp(n, o.n, sizeof n + sizeof uv + sizeof colour) == 0;
+  }
 };
 struct VertexKeyHash {
   size_t operator()(const VertexKey& k) const {
