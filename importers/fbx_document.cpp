@@ -447,7 +447,6 @@ eng::Result<Document> readFbxDocument(std::span<const uint8_t> bytes, const std:
     return doc;
   }
   if (!text.starts_with("; FBX")) return malformed(name, "not an FBX file (neither the binary magic nor '; FBX' at its start)");
-  doc.binary = false;
   doc.version = asciiVersion(text.substr(0, 64));
   if (doc.version < kOldestVersion)
     return eng::makeError(eng::ErrorKind::Unsupported, name + ": ASCII FBX version " + std::to_string(doc.version) +

@@ -47,7 +47,6 @@ struct Node {
 
 struct Document {
   uint32_t version = 0;  // 7400 for FBX 7.4
-  bool binary = true;
   Node root;             // its children are the file's top-level nodes
 };
 

@@ -85,8 +85,6 @@ std::vector<std::string_view> wordsOf(std::string_view line) {
   return words;
 }
 
-std::string shown(std::string_view line) { return eng::shownText(line); }
-
 eng::Error plyError(const std::filesystem::path& path, const std::string& what) {
   return eng::makeError(eng::ErrorKind::Malformed, path.string() + ": " + what);
 }
@@ -115,18 +113,18 @@ eng::Result<Header> readHeader(std::span<const uint8_t> bytes, const std::filesy
       continue;
     }
     if (w[0] == "format") {
-      if (w.size() != 3 || w[2] != "1.0") return plyError(path, where + "'" + shown(line) + "' is not 'format <encoding> 1.0'");
+      if (w.size() != 3 || w[2] != "1.0") return plyError(path, where + "'" + eng::shownText(line) + "' is not 'format <encoding> 1.0'");
       if (w[1] == "ascii") header.encoding = Encoding::Ascii;
       else if (w[1] == "binary_little_endian") header.encoding = Encoding::LittleEndian;
       else if (w[1] == "binary_big_endian") header.encoding = Encoding::BigEndian;
-      else return plyError(path, where + "format '" + shown(w[1]) + "' is none of ascii, binary_little_endian, binary_big_endian");
+      else return plyError(path, where + "format '" + eng::shownText(w[1]) + "' is none of ascii, binary_little_endian, binary_big_endian");
       format = true;
     } else if (w[0] == "element") {
       uint64_t count = 0;
       const auto [end, ec] = w.size() == 3 ? std::from_chars(w[2].data(), w[2].data() + w[2].size(), count)
                                            : std::from_chars_result{nullptr, std::errc::invalid_argument};
       if (ec != std::errc() || end != w[2].data() + w[2].size())
-        return plyError(path, where + "'" + shown(line) + "' is not 'element <name> <count>'");
+        return plyError(path, where + "'" + eng::shownText(line) + "' is not 'element <name> <count>'");
       header.elements.push_back({std::string(w[1]), size_t(count), {}});
     } else if (w[0] == "property") {
       if (header.elements.empty()) return plyError(path, where + "a property before any element");
@@ -134,20 +132,20 @@ eng::Result<Header> readHeader(std::span<const uint8_t> bytes, const std::filesy
       if (w.size() == 5 && w[1] == "list") {
         const auto count = scalarNamed(w[2]), item = scalarNamed(w[3]);
         if (!count || !item || *count == Scalar::Float32 || *count == Scalar::Float64)
-          return plyError(path, where + "'" + shown(line) + "' has an unknown or non-integer count type");
+          return plyError(path, where + "'" + eng::shownText(line) + "' has an unknown or non-integer count type");
         p = {std::string(w[4]), *item, true, *count};
       } else if (w.size() == 3) {
         const auto type = scalarNamed(w[1]);
-        if (!type) return plyError(path, where + "'" + shown(line) + "' has an unknown type");
+        if (!type) return plyError(path, where + "'" + eng::shownText(line) + "' has an unknown type");
         p = {std::string(w[2]), *type, false, Scalar::UInt8};
       } else {
-        return plyError(path, where + "'" + shown(line) + "' is not 'property <type> <name>' or a list");
+        return plyError(path, where + "'" + eng::shownText(line) + "' is not 'property <type> <name>' or a list");
       }
       header.elements.back().properties.push_back(std::move(p));
     } else if (line == "end_header") {
       ended = true;
     } else {
-      return plyError(path, where + "'" + shown(line) + "' is not a PLY header line");
+      return plyError(path, where + "'" + eng::shownText(line) + "' is not a PLY header line");
     }
   }
   if (!ended) return plyError(path, "no 'end_header' line in the first " + std::to_string(text.size()) + " bytes");
@@ -217,7 +215,7 @@ class BodyReader {
     const char* start = word.data() + (word.starts_with('+') ? 1 : 0);
     const auto [stop, ec] = std::from_chars(start, word.data() + word.size(), value);
     if (ec != std::errc() || stop != word.data() + word.size() || !std::isfinite(value))
-      return plyError(path_, "line " + std::to_string(line_) + ": '" + shown(word) + "' is not a finite number");
+      return plyError(path_, "line " + std::to_string(line_) + ": '" + eng::shownText(word) + "' is not a finite number");
     at_ = end;
     return value;
   }
@@ -398,10 +396,10 @@ eng::Result<ObjPolygonMesh> readPlyPolygonMesh(std::span<const uint8_t> bytes, c
   // element without properties (nothing to read, a loop of billions) as well.
   size_t least = 0;
   for (const Element& e : header.elements) {
-    if (e.count > 0 && e.properties.empty()) return plyError(path, "element '" + shown(e.name) + "' has records but no properties");
+    if (e.count > 0 && e.properties.empty()) return plyError(path, "element '" + eng::shownText(e.name) + "' has records but no properties");
     least += std::min(e.count, bytes.size()) * e.properties.size();
     if (!body.roomFor(least))
-      return plyError(path, "element '" + shown(e.name) + "' claims " + std::to_string(e.count) + " records of " +
+      return plyError(path, "element '" + eng::shownText(e.name) + "' claims " + std::to_string(e.count) + " records of " +
                                 std::to_string(e.properties.size()) + " values; the file has " +
                                 std::to_string(bytes.size() - header.bodyStart) + " bytes after its header");
   }
@@ -420,7 +418,7 @@ eng::Result<ObjPolygonMesh> readPlyPolygonMesh(std::span<const uint8_t> bytes, c
     auto resolved = eng::resolveInsideFolder(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),
                                              header.textureFile);
     if (resolved) textured.diffuseTexture = *resolved;
-    else out.warnings.push_back("texture '" + shown(header.textureFile) + "' is outside the PLY's folder; ignored");
+    else out.warnings.push_back("texture '" + eng::shownText(header.textureFile) + "' is outside the PLY's folder; ignored");
     out.materials.push_back(std::move(textured));
     material = 0;
   }
