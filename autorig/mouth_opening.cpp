@@ -30,6 +30,13 @@ constexpr float kMouthBoxDepth = 0.12f;
 constexpr float kLipSeed = 0.05f;
 // Fewer seam vertices than this are no welded mouth.
 constexpr size_t kMinSeamVertices = 3;
+// Lips welded along more than one line are cut line by line, each cut's seam
+// left out of the next one's search, until they no longer join between the
+// corners: an STL welds every pair of coincident corners, so a game head's
+// closed lips come welded at their outer contact and again at their inner
+// rims, where the mouth's inside meets them. One cut (along the deeper line)
+// left the outer contact joined: a sheet of lip across the opening.
+constexpr int kCutPasses = 3;
 
 struct MouthBox {
   glm::vec3 lipCentre{0.0f};
@@ -54,12 +61,12 @@ struct MouthGraph {
 };
 
 MouthGraph mouthGraph(const eng::Primitive& prim, const std::vector<glm::vec3>& world, const std::vector<FacePart>& parts,
-                      const LandmarkFrame& frame, const MouthBox& box) {
+                      const std::vector<char>& leftOut, const LandmarkFrame& frame, const MouthBox& box) {
   const size_t n = world.size();
   MouthGraph g;
   g.inMouth.assign(n, 0);
   for (size_t v = 0; v < n; ++v) {
-    if (parts[v] != FacePart::Skin) continue;
+    if (parts[v] != FacePart::Skin || leftOut[v]) continue;
     const float side = frame.sideOf(world[v]), above = frame.aboveLipLine(world[v]);
     const float depth = glm::dot(world[v] - box.lipCentre, frame.forward()) / frame.eyeSpan();
     g.inMouth[v] = side > box.left - box.margin && side < box.right + box.margin && std::abs(above) < kMouthBoxHeight &&
@@ -195,14 +202,41 @@ std::vector<char> lowerLip(const std::vector<glm::vec3>& world, const MouthGraph
   return lower;
 }
 
+// The primitive's vertices at rest (world space) with their parts, and those
+// a cut leaves out of its search: the seams cut so far (a seam vertex and its
+// copy) and, after the first cut, the skin hidden behind the lips.
+struct CutSurface {
+  std::vector<glm::vec3> world;
+  std::vector<FacePart> parts;
+  std::vector<char> leftOut;
+};
+
+// Later cuts run where the lips meet in sight: the first may have taken a
+// line inside the mouth (the deeper one), which leaves the front joined.
+// Marks the skin about the mouth that other skin hides from the front.
+void leaveOutTheHiddenSkin(const eng::Primitive& prim, CutSurface& surface, const LandmarkFrame& frame, const MouthBox& box) {
+  const float mouthWidth = glm::distance(box.corners[0], box.corners[1]);
+  SkinInFront skin(frame, 0.05f * mouthWidth);
+  for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
+    const uint32_t* tri = &prim.indices[t];
+    if (std::max({tri[0], tri[1], tri[2]}) >= surface.world.size()) continue;
+    if (glm::distance(surface.world[tri[0]], box.lipCentre) > 1.5f * mouthWidth) continue;
+    skin.add(surface.world[tri[0]], surface.world[tri[1]], surface.world[tri[2]]);
+  }
+  for (size_t v = 0; v < surface.world.size(); ++v)
+    if (glm::distance(surface.world[v], box.lipCentre) < mouthWidth &&
+        skin.covers(surface.world[v] + 0.02f * mouthWidth * frame.forward()))
+      surface.leftOut[v] = 1;
+}
+
 // Cuts the welded lips of one primitive along their crease; returns how many
-// seam vertices got a copy.
-size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const std::vector<FacePart>& parts,
-                     const LandmarkFrame& frame, const MouthBox& box) {
-  const std::vector<glm::vec3>& world = posed.positions;
+// seam vertices got a copy (`surface` grows by them).
+size_t cutWeldedLips(eng::Primitive& prim, CutSurface& surface, const LandmarkFrame& frame, const MouthBox& box) {
+  const std::vector<glm::vec3>& world = surface.world;
+  const std::vector<FacePart>& parts = surface.parts;
   const size_t n = world.size();
   if (n != prim.vertexCount() || parts.size() != n) return 0;
-  const MouthGraph graph = mouthGraph(prim, world, parts, frame, box);
+  const MouthGraph graph = mouthGraph(prim, world, parts, surface.leftOut, frame, box);
   if (!lipsJoinedBetweenTheCorners(world, graph, frame, box)) return 0;
   const std::vector<char> crease = creasePath(world, graph, frame, box);
   const std::vector<char> lower = lowerLip(world, graph, crease, frame, box);
@@ -240,6 +274,13 @@ size_t cutWeldedLips(eng::Primitive& prim, const PosedPrimitive& posed, const st
       }
       i[k] = copyOf[i[k]];
     }
+  }
+  for (size_t v = 0; v < n; ++v) {
+    if (copyOf[v] == std::numeric_limits<uint32_t>::max()) continue;
+    surface.world.push_back(world[v]);
+    surface.parts.push_back(parts[v]);
+    surface.leftOut.push_back(1);
+    surface.leftOut[v] = 1;
   }
   return cut;
 }
@@ -401,7 +442,14 @@ MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLa
   if (!hasInside) opening.insideVertices = transplantTheInsideOfTheMouth(face, posed, parts, landmarks, frame, source, opening.notes);
   for (size_t i = 0; i < posed.primitives.size(); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
-    const size_t cut = cutWeldedLips(face.meshes[pp.mesh].primitives[pp.primitive], pp, parts.vertexParts[i], frame, box);
+    CutSurface surface{pp.positions, parts.vertexParts[i], std::vector<char>(pp.positions.size(), 0)};
+    size_t cut = 0;
+    for (int pass = 0; pass < kCutPasses; ++pass) {
+      if (pass == 1) leaveOutTheHiddenSkin(face.meshes[pp.mesh].primitives[pp.primitive], surface, frame, box);
+      const size_t made = cutWeldedLips(face.meshes[pp.mesh].primitives[pp.primitive], surface, frame, box);
+      if (made == 0) break;
+      cut += made;
+    }
     if (cut == 0) continue;
     opening.cutVertices += cut;
     opening.notes.push_back(meshLabel(face, pp.mesh) + ": lips welded along " + std::to_string(cut) +

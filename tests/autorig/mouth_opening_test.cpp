@@ -4,11 +4,13 @@
 #include <cmath>
 #include <map>
 #include <queue>
+#include <unordered_map>
 #include <utility>
 
 #include <gtest/gtest.h>
 
 #include "autorig/face_frame.h"
+#include "engine/scene/position_hash.h"
 #include "engine/scene/weights.h"
 #include "tests/autorig/transfer_fixture.h"
 
@@ -81,6 +83,34 @@ eng::Model welded(eng::Model face, const autorig::FaceLandmarks& landmarks, std:
     skin.indices = std::move(indices);
     if (weld)
       for (uint32_t u : upper) weld->push_back(skin.positions[u]);
+  }
+  return face;
+}
+
+// The head as an STL holds it (its one surface welded wherever two corners
+// meet): the skin and the mouth's inside made one primitive without UVs,
+// every pair of vertices at one place made one. The head's closed lips then
+// join twice: at their outer contact and at their inner rims, where the
+// mouth's inside meets them.
+eng::Model weldedLikeAnStl(eng::Model face) {
+  for (eng::Mesh& mesh : face.meshes) {
+    if (mesh.name != "Head") continue;
+    eng::Primitive merged;
+    merged.material = mesh.primitives[0].material;
+    std::unordered_map<eng::ExactPosition, uint32_t, eng::ExactPosition::Hash> at;
+    for (size_t p = 0; p < 2; ++p) {
+      const eng::Primitive& prim = mesh.primitives[p];
+      for (uint32_t i : prim.indices) {
+        const auto [it, added] = at.try_emplace(eng::ExactPosition(prim.positions[i]), uint32_t(merged.positions.size()));
+        if (added) {
+          merged.positions.push_back(prim.positions[i]);
+          merged.normals.push_back(prim.normals[i]);
+        }
+        merged.indices.push_back(it->second);
+      }
+    }
+    mesh.primitives.erase(mesh.primitives.begin(), mesh.primitives.begin() + 2);
+    mesh.primitives.insert(mesh.primitives.begin(), std::move(merged));
   }
   return face;
 }
@@ -332,6 +362,53 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   std::printf("the head's own lower row at AU26 1: %.3f of the mouth's width\n", own);
   EXPECT_GT(teethTravel[1], 0.85f * own);
   EXPECT_LT(teethTravel[1], 1.6f * own);
+}
+
+// Welded twice (an STL of a head whose closed lips are separate surfaces),
+// the lips are cut at both lines: rigged, no sheet of skin spans the opening
+// at AU26. One cut (along the inner line) left the outer contact joined, and
+// the lower lip stretched up to the upper across the mouth.
+TEST(MouthOpening, LipsWeldedTwiceOpenWithoutASheetAcrossTheMouth) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  const Opened opened = open(weldedLikeAnStl(stripped(*head)), source);
+  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
+  const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
+  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts,
+                                                                         transfer_fixture::kShapesOnly);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  const eng::Mesh* mesh = nullptr;
+  for (const eng::Mesh& m : rigged->model.meshes)
+    if (m.name == "Head") mesh = &m;
+  ASSERT_TRUE(mesh);
+  const auto jaw = std::find(mesh->targetNames.begin(), mesh->targetNames.end(), "AU26_JawDrop");
+  ASSERT_NE(jaw, mesh->targetNames.end());
+  const eng::Primitive& skin = mesh->primitives[0];
+  const std::vector<glm::vec3>& drop = skin.targets[size_t(jaw - mesh->targetNames.begin())].positions;
+  ASSERT_EQ(drop.size(), skin.vertexCount());
+  // Triangles about the mouth's middle that AU26 stretches to more than four
+  // times their rest length and past a tenth of the mouth's width.
+  const auto& p = source.landmarks.points;
+  const float mouthWidth = glm::distance(p[48], p[54]);
+  const glm::vec3 middle = (p[62] + p[66]) * 0.5f;
+  size_t stretched = 0;
+  for (size_t t = 0; t + 2 < skin.indices.size(); t += 3) {
+    const uint32_t* i = &skin.indices[t];
+    if (glm::distance(skin.positions[i[0]], middle) > 0.3f * mouthWidth) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = i[k], b = i[(k + 1) % 3];
+      const float rest = glm::distance(skin.positions[a], skin.positions[b]);
+      const float opened = glm::distance(skin.positions[a] + drop[a], skin.positions[b] + drop[b]);
+      if (opened > 4.0f * rest && opened > 0.1f * mouthWidth) {
+        ++stretched;
+        break;
+      }
+    }
+  }
+  std::printf("the head welded as an STL: %zu seam vertices cut, %zu triangles about the mouth stretched across it at AU26\n",
+              opened.opening.cutVertices, stretched);
+  EXPECT_EQ(stretched, 0u);
 }
 
 }  // namespace
