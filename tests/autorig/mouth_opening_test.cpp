@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <queue>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 
@@ -134,6 +136,27 @@ Opened open(eng::Model face, const autorig::SourceFace& source) {
   Opened opened{std::move(face), {}};
   opened.opening = autorig::openTheMouth(opened.face, posed, landmarks, parts, source);
   return opened;
+}
+
+// The opened face rigged (its shapes only), as FaceAutorig::rig rigs it.
+eng::Result<autorig::TransferResult> rigOpened(const Opened& opened, const autorig::SourceFace& source,
+                                               bool teethFromTheSource) {
+  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
+  autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
+  parts.teethFromTheSource = teethFromTheSource;
+  return autorig::transferTargets(source, opened.face, posed, source.landmarks, parts, transfer_fixture::kShapesOnly);
+}
+
+// The mesh named "Head" (nullptr: none), and the index of a target by name.
+const eng::Mesh* headMesh(const eng::Model& model) {
+  for (const eng::Mesh& m : model.meshes)
+    if (m.name == "Head") return &m;
+  return nullptr;
+}
+std::optional<size_t> targetIndex(const eng::Mesh& mesh, std::string_view name) {
+  const auto found = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name);
+  if (found == mesh.targetNames.end()) return std::nullopt;
+  return size_t(found - mesh.targetNames.begin());
 }
 
 // Whether the skin of the mesh named "Head" joins the vertex nearest landmark
@@ -300,20 +323,15 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   for (const eng::Mesh& m : face.meshes)
     if (m.name == "Head") before = m.primitives[0].vertexCount();
   const Opened opened = open(face, source);
-  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
-  autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
-  parts.teethFromTheSource = true;  // as FaceAutorig::rig says of a face given the head's mouth
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts,
-                                                                         transfer_fixture::kShapesOnly);
+  // As FaceAutorig::rig says of a face given the head's mouth.
+  eng::Result<autorig::TransferResult> rigged = rigOpened(opened, source, /*teethFromTheSource=*/true);
   ASSERT_TRUE(rigged) << rigged.error().message;
-  const eng::Mesh* mesh = nullptr;
-  for (const eng::Mesh& m : rigged->model.meshes)
-    if (m.name == "Head") mesh = &m;
+  const eng::Mesh* mesh = headMesh(rigged->model);
   ASSERT_TRUE(mesh);
-  const auto jaw = std::find(mesh->targetNames.begin(), mesh->targetNames.end(), "AU26_JawDrop");
-  ASSERT_NE(jaw, mesh->targetNames.end());
+  const std::optional<size_t> jaw = targetIndex(*mesh, "AU26_JawDrop");
+  ASSERT_TRUE(jaw);
   const eng::Primitive& skin = mesh->primitives[0];
-  const eng::MorphTarget& drop = skin.targets[size_t(jaw - mesh->targetNames.begin())];
+  const eng::MorphTarget& drop = skin.targets[*jaw];
   ASSERT_EQ(drop.positions.size(), skin.vertexCount());
   // The seam's twins (a vertex and its copy, at one place at rest) about the
   // middle of the mouth move apart at AU26 1 by a good share of the mouth's width.
@@ -338,7 +356,7 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   std::vector<float> teethTravel;
   for (const eng::Primitive& piece : mesh->primitives) {
     if (piece.material < 0 || rigged->model.materials[size_t(piece.material)].name != "Teeth") continue;
-    const eng::MorphTarget& target = piece.targets[size_t(jaw - mesh->targetNames.begin())];
+    const eng::MorphTarget& target = piece.targets[*jaw];
     float travel = 0.0f;
     for (const glm::vec3& d : target.positions) travel = std::max(travel, glm::length(d));
     teethTravel.push_back(travel / mouthWidth);
@@ -373,19 +391,14 @@ TEST(MouthOpening, LipsWeldedTwiceOpenWithoutASheetAcrossTheMouth) {
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
   const Opened opened = open(weldedLikeAnStl(stripped(*head)), source);
-  const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
-  const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
-  eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, opened.face, posed, source.landmarks, parts,
-                                                                         transfer_fixture::kShapesOnly);
+  eng::Result<autorig::TransferResult> rigged = rigOpened(opened, source, /*teethFromTheSource=*/false);
   ASSERT_TRUE(rigged) << rigged.error().message;
-  const eng::Mesh* mesh = nullptr;
-  for (const eng::Mesh& m : rigged->model.meshes)
-    if (m.name == "Head") mesh = &m;
+  const eng::Mesh* mesh = headMesh(rigged->model);
   ASSERT_TRUE(mesh);
-  const auto jaw = std::find(mesh->targetNames.begin(), mesh->targetNames.end(), "AU26_JawDrop");
-  ASSERT_NE(jaw, mesh->targetNames.end());
+  const std::optional<size_t> jaw = targetIndex(*mesh, "AU26_JawDrop");
+  ASSERT_TRUE(jaw);
   const eng::Primitive& skin = mesh->primitives[0];
-  const std::vector<glm::vec3>& drop = skin.targets[size_t(jaw - mesh->targetNames.begin())].positions;
+  const std::vector<glm::vec3>& drop = skin.targets[*jaw].positions;
   ASSERT_EQ(drop.size(), skin.vertexCount());
   // Triangles about the mouth's middle that AU26 stretches to more than four
   // times their rest length and past a tenth of the mouth's width.

@@ -262,8 +262,11 @@ TEST(FbxValidity, AsciiFbxReadsAsTheBinaryDoes) {
   EXPECT_EQ(p.positions.size(), 4u);
   EXPECT_EQ(p.indices.size(), 6u) << "the quad fanned into two triangles";
   ASSERT_EQ(p.texcoords.size(), 4u);
-  for (size_t v = 0; v < 4; ++v)
-    if (p.positions[v] == glm::vec3(1, 1, 0)) EXPECT_EQ(p.texcoords[v], glm::vec2(1, 0)) << "V flipped to glTF's";
+  for (size_t v = 0; v < 4; ++v) {
+    if (p.positions[v] == glm::vec3(1, 1, 0)) {
+      EXPECT_EQ(p.texcoords[v], glm::vec2(1, 0)) << "V flipped to glTF's";
+    }
+  }
   const eng::Aabb box = model.bounds();
   EXPECT_NEAR(box.min.x, 0.5f, 1e-6f) << "Lcl Translation, in metres (UnitScaleFactor 100)";
   EXPECT_NEAR(box.max.x, 1.5f, 1e-6f);
