@@ -97,10 +97,11 @@ size_t CarriedPieces::add(const SourceFace& source, size_t piece, std::span<cons
     if (fresh) {
       eng::Material material = source.model->materials[size_t(from.material)];
       material.detailLayers.clear();
-      if (material.baseColorImage >= 0) {
-        auto [image, newImage] = imageOf_.try_emplace(material.baseColorImage, int(face_.images.size()));
-        if (newImage) face_.images.push_back(source.model->images[size_t(material.baseColorImage)]);
-        material.baseColorImage = image->second;
+      for (int* image : {&material.baseColorImage, &material.metallicRoughnessImage}) {
+        if (*image < 0) continue;
+        auto [copy, newImage] = imageOf_.try_emplace(*image, int(face_.images.size()));
+        if (newImage) face_.images.push_back(source.model->images[size_t(*image)]);
+        *image = copy->second;
       }
       face_.materials.push_back(std::move(material));
     }

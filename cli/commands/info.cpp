@@ -88,6 +88,7 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"baseColorImage", mat.baseColorImage},
                          {"roughness", mat.roughness},
                          {"metallic", mat.metallic},
+                         {"metallicRoughnessImage", mat.metallicRoughnessImage},
                          {"doubleSided", mat.doubleSided},
                          {"alphaMode", eng::alphaModeName(mat.alphaMode)},
                          {"alphaCutoff", mat.alphaCutoff},
@@ -153,6 +154,7 @@ void printText(const eng::Model& model) {
                 i, mat.name.c_str(), mat.baseColorFactor.r, mat.baseColorFactor.g, mat.baseColorFactor.b,
                 mat.baseColorFactor.a, mat.baseColorImage, mat.roughness, mat.metallic,
                 mat.doubleSided ? ", double-sided" : "");
+    if (mat.metallicRoughnessImage >= 0) std::printf(", metallic-roughness image %d", mat.metallicRoughnessImage);
     if (mat.unlit) std::printf(", unlit");
     if (const std::optional<eng::ToonShading>& t = mat.toon)
       std::printf(", toon (MToon): shade (%.3g, %.3g, %.3g)%s, shift %.3g, toony %.3g, rim (%.3g, %.3g, %.3g)",

@@ -156,6 +156,7 @@ void GltfModelBuilder::loadMaterials() {
     if (mat.baseColorImage >= 0) mat.baseColorSampling = textureSampling(pbr.baseColorTexture.index, where);
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
+    readMetallicRoughnessTexture(pbr.metallicRoughnessTexture, baseColorUvs_.back(), mat, where);
     mat.doubleSided = src.doubleSided;
     if (src.extensions.count(kKhrMaterialsUnlit)) {
       mat.unlit = true;
@@ -225,6 +226,29 @@ void GltfModelBuilder::loadMaterials() {
     }
     model_.materials.push_back(std::move(mat));
   }
+}
+
+// The metallic-roughness texture is drawn through the primitive's one UV
+// set, the base colour's: a texture on another set, or moved by another
+// transform, would put the metal in the wrong places, so it is left out.
+void GltfModelBuilder::readMetallicRoughnessTexture(const tinygltf::TextureInfo& info, const BaseColorUv& base, Material& mat,
+                                                    const std::string& where) {
+  if (info.index < 0) return;
+  std::string problem;
+  const std::optional<UvTransform> transform = parseTextureTransform(info, problem);
+  const int set = transform && transform->texCoord >= 0 ? transform->texCoord : std::max(info.texCoord, 0);
+  auto same = [](const std::optional<UvTransform>& a, const std::optional<UvTransform>& b) {
+    if (!a || !b) return !a && !b;
+    return a->offset == b->offset && a->rotation == b->rotation && a->scale == b->scale;
+  };
+  if (!problem.empty() || set != base.set || !same(transform, base.transform)) {
+    warn(where + ": its metallicRoughnessTexture reads TEXCOORD_" + std::to_string(set) +
+         (transform ? " through a texture transform" : "") + ", unlike its base colour (TEXCOORD_" + std::to_string(base.set) +
+         (base.transform ? " through a texture transform" : "") + "); its factors alone are drawn");
+    return;
+  }
+  mat.metallicRoughnessImage = imageOfTexture(info.index, where);
+  if (mat.metallicRoughnessImage >= 0) mat.metallicRoughnessSampling = textureSampling(info.index, where);
 }
 
 GltfModelBuilder::BaseColorUv GltfModelBuilder::baseColorUv(const tinygltf::TextureInfo& info, int image,

@@ -112,6 +112,8 @@ class GltfModelBuilder {
     std::optional<UvTransform> transform;
   };
   BaseColorUv baseColorUv(const tinygltf::TextureInfo& info, int image, const std::string& where);
+  void readMetallicRoughnessTexture(const tinygltf::TextureInfo& info, const BaseColorUv& base, Material& mat,
+                                    const std::string& where);
   TextureSampling textureSampling(int texture, const std::string& where);
 
   std::string file_;

@@ -227,42 +227,54 @@ Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) 
   return {};
 }
 
-// One texture per (image, sampling) a base colour uses, one sampler per
-// sampling. Returns each material's base colour texture (-1: none).
-std::vector<int> writeTextures(Json& doc, const Model& model) {
+// Each material's textures in the document (-1: none).
+struct MaterialTextures {
+  int baseColor = -1;
+  int metallicRoughness = -1;
+};
+
+// One texture per (image, sampling) a material uses, one sampler per
+// sampling.
+std::vector<MaterialTextures> writeTextures(Json& doc, const Model& model) {
   std::vector<TextureSampling> samplings;
   std::vector<std::pair<int, size_t>> textureKeys;  // (image, sampling index)
-  std::vector<int> baseColorTexture(model.materials.size(), -1);
+  auto textureOf = [&](int image, const TextureSampling& wanted) {
+    if (image < 0) return -1;
+    const size_t sampling = static_cast<size_t>(std::find(samplings.begin(), samplings.end(), wanted) - samplings.begin());
+    if (sampling == samplings.size()) samplings.push_back(wanted);
+    const std::pair<int, size_t> key{image, sampling};
+    const auto found = std::find(textureKeys.begin(), textureKeys.end(), key);
+    const int texture = static_cast<int>(found - textureKeys.begin());
+    if (found == textureKeys.end()) textureKeys.push_back(key);
+    return texture;
+  };
+  std::vector<MaterialTextures> textures(model.materials.size());
   for (size_t m = 0; m < model.materials.size(); ++m) {
     const Material& mat = model.materials[m];
-    if (mat.baseColorImage < 0) continue;
-    const size_t sampling = static_cast<size_t>(
-        std::find(samplings.begin(), samplings.end(), mat.baseColorSampling) - samplings.begin());
-    if (sampling == samplings.size()) samplings.push_back(mat.baseColorSampling);
-    const std::pair<int, size_t> key{mat.baseColorImage, sampling};
-    const auto found = std::find(textureKeys.begin(), textureKeys.end(), key);
-    baseColorTexture[m] = static_cast<int>(found - textureKeys.begin());
-    if (found == textureKeys.end()) textureKeys.push_back(key);
+    textures[m].baseColor = textureOf(mat.baseColorImage, mat.baseColorSampling);
+    textures[m].metallicRoughness = textureOf(mat.metallicRoughnessImage, mat.metallicRoughnessSampling);
   }
   if (!textureKeys.empty()) {
-    Json samplers = Json::array(), textures = Json::array();
+    Json samplers = Json::array(), list = Json::array();
     for (const TextureSampling& sampling : samplings) {
       const GltfSamplerCodes c = gltfCodesOf(sampling);
       samplers.push_back({{"magFilter", c.magFilter}, {"minFilter", c.minFilter}, {"wrapS", c.wrapS}, {"wrapT", c.wrapT}});
     }
-    for (const auto& [image, sampling] : textureKeys) textures.push_back({{"sampler", sampling}, {"source", image}});
+    for (const auto& [image, sampling] : textureKeys) list.push_back({{"sampler", sampling}, {"source", image}});
     doc["samplers"] = std::move(samplers);
-    doc["textures"] = std::move(textures);
+    doc["textures"] = std::move(list);
   }
-  return baseColorTexture;
+  return textures;
 }
 
 // One material; lists the extensions it uses in the document.
-Json materialJson(Json& doc, const Material& mat, int baseColorTexture) {
+Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textures) {
+  const int baseColorTexture = textures.baseColor;
   Json pbr = {{"baseColorFactor", vec(&mat.baseColorFactor.x, 4)},
               {"metallicFactor", mat.metallic},
               {"roughnessFactor", mat.roughness}};
   if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
+  if (textures.metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", textures.metallicRoughness}};
   Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
   if (!mat.name.empty()) m["name"] = mat.name;
   if (mat.doubleSided) m["doubleSided"] = true;
@@ -384,11 +396,10 @@ Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
   Json doc;
   doc["asset"] = {{"version", "2.0"}, {"generator", "facial eng_scene"}};
   if (auto images = writeImages(doc, model, buffers); !images) return images.error();
-  const std::vector<int> baseColorTexture = writeTextures(doc, model);
+  const std::vector<MaterialTextures> textures = writeTextures(doc, model);
   if (!model.materials.empty()) {
     Json materials = Json::array();
-    for (size_t i = 0; i < model.materials.size(); ++i)
-      materials.push_back(materialJson(doc, model.materials[i], baseColorTexture[i]));
+    for (size_t i = 0; i < model.materials.size(); ++i) materials.push_back(materialJson(doc, model.materials[i], textures[i]));
     doc["materials"] = std::move(materials);
   }
   if (!model.meshes.empty()) {

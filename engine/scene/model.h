@@ -157,6 +157,11 @@ struct Material {
   glm::vec3 emissiveFactor{0.0f};  // linear RGB (emissive textures are not drawn: see the glTF loader)
   float roughness = 0.6f;
   float metallic = 0.0f;
+  // glTF's metallicRoughnessTexture, linear: green scales the roughness,
+  // blue the metallic factor (an outfit's cloth and buckle, glasses' lenses
+  // and frames in one material). Read through the base colour's UVs.
+  int metallicRoughnessImage = -1;  // index into Model::images
+  TextureSampling metallicRoughnessSampling;
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // AlphaMode::Mask only

@@ -8,6 +8,8 @@
 #include "base_colour.glsl"
 
 layout(set = 1, binding = 4) uniform sampler2DArray detailTextures;   // one layer per detail layer
+// glTF's metallicRoughnessTexture (linear): G scales the roughness, B the metallic factor.
+layout(set = 1, binding = 7) uniform sampler2D metallicRoughnessTexture;
 
 // True only in the MASK pipelines: a shader that can discard loses early
 // depth testing, so the others compile the test away.
@@ -132,8 +134,9 @@ void main() {
     outColor = vec4(toneMap(inside ? toon * 0.12 : toon + material.emissive.rgb), alpha);
     return;
   }
-  s.roughness = clamp(draw.roughness, 0.05, 1.0);
-  s.metallic = clamp(draw.metallic, 0.0, 1.0);
+  const vec2 roughnessMetal = texture(metallicRoughnessTexture, inTexcoord).gb;
+  s.roughness = clamp(draw.roughness * roughnessMetal.x, 0.05, 1.0);
+  s.metallic = clamp(draw.metallic * roughnessMetal.y, 0.0, 1.0);
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);

@@ -391,29 +391,38 @@ Result<void> GpuModel::uploadBuffers(const Context& ctx, const GpuModelStaging& 
   return {};
 }
 
-// Base colour images once each, one detail array per material.
+// Base colour (sRGB) and metallic-roughness (linear) images once each, one
+// detail array per material.
 Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
   textures_.resize(model.images.size());
-  for (const Material& mat : model.materials) {
-    if (mat.baseColorImage < 0) continue;
-    const eng::Image& img = model.images[static_cast<size_t>(mat.baseColorImage)];
-    GpuImage& tex = textures_[static_cast<size_t>(mat.baseColorImage)];
-    if (tex || img.rgba8.empty()) continue;  // already uploaded, or undecodable (loader warned): white
+  dataTextures_.resize(model.images.size());
+  auto upload = [&](int index, std::vector<GpuImage>& into, VkFormat format) -> Result<void> {
+    if (index < 0) return {};
+    const eng::Image& img = model.images[static_cast<size_t>(index)];
+    GpuImage& tex = into[static_cast<size_t>(index)];
+    if (tex || img.rgba8.empty()) return {};  // already uploaded, or undecodable (loader warned): white
     const std::array<std::span<const uint8_t>, 1> layer{img.rgba8};
     const std::string label = name_ + " image '" + img.name + "'";
     auto texture = createTexture(ctx, {static_cast<uint32_t>(img.width), static_cast<uint32_t>(img.height), layer,
-                                       VK_IMAGE_VIEW_TYPE_2D, label.c_str()});
+                                       VK_IMAGE_VIEW_TYPE_2D, label.c_str(), format});
     if (!texture) return texture.error().prefixed(name_ + ": ");
     tex = std::move(texture).value();
-  }
-  for (const Material& mat : model.materials) {
-    const TextureSampling& sampling = mat.baseColorSampling;
-    if (mat.baseColorImage < 0 || sampling == TextureSampling{} ||
+    return {};
+  };
+  auto addSampler = [&](int image, const TextureSampling& sampling) -> Result<void> {
+    if (image < 0 || sampling == TextureSampling{} ||
         std::any_of(samplers_.begin(), samplers_.end(), [&](const auto& s) { return s.first == sampling; }))
-      continue;
+      return {};
     auto sampler = createSampler(ctx, sampling);
     if (!sampler) return sampler.error().prefixed(name_ + ": " + describeSampling(sampling) + ": ");
     samplers_.emplace_back(sampling, std::move(sampler).value());
+    return {};
+  };
+  for (const Material& mat : model.materials) {
+    ENG_TRY(upload(mat.baseColorImage, textures_, VK_FORMAT_R8G8B8A8_SRGB));
+    ENG_TRY(upload(mat.metallicRoughnessImage, dataTextures_, VK_FORMAT_R8G8B8A8_UNORM));
+    ENG_TRY(addSampler(mat.baseColorImage, mat.baseColorSampling));
+    ENG_TRY(addSampler(mat.metallicRoughnessImage, mat.metallicRoughnessSampling));
   }
   detailArrays_.resize(model.materials.size());
   for (size_t i = 0; i < model.materials.size(); ++i) {
@@ -438,7 +447,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   if (sets == 0) return {};
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * sets}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -484,14 +493,23 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
                                  const Primitive& prim, const PrimitiveRanges& r, const MorphInputViews& morph,
                                  GpuPrimitive& gp) const {
   const GpuImage* base = &layouts.whiteTexture();
+  const GpuImage* metallicRoughness = &layouts.whiteTexture();  // white: the factors as they are
   const GpuImage* detail = &layouts.emptyDetailArray();
   VkSampler baseSampler = layouts.sampler();
+  VkSampler metallicRoughnessSampler = layouts.sampler();
+  auto samplerFor = [&](const TextureSampling& wanted, VkSampler& out) {
+    for (const auto& [sampling, sampler] : samplers_)
+      if (sampling == wanted) out = sampler.get();
+  };
   if (prim.material >= 0) {
     const size_t material = static_cast<size_t>(prim.material);
-    const int image = model.materials[material].baseColorImage;
-    if (image >= 0 && textures_[static_cast<size_t>(image)]) base = &textures_[static_cast<size_t>(image)];
-    for (const auto& [sampling, sampler] : samplers_)
-      if (sampling == model.materials[material].baseColorSampling) baseSampler = sampler.get();
+    const Material& mat = model.materials[material];
+    if (mat.baseColorImage >= 0 && textures_[static_cast<size_t>(mat.baseColorImage)])
+      base = &textures_[static_cast<size_t>(mat.baseColorImage)];
+    if (mat.metallicRoughnessImage >= 0 && dataTextures_[static_cast<size_t>(mat.metallicRoughnessImage)])
+      metallicRoughness = &dataTextures_[static_cast<size_t>(mat.metallicRoughnessImage)];
+    samplerFor(mat.baseColorSampling, baseSampler);
+    samplerFor(mat.metallicRoughnessSampling, metallicRoughnessSampler);
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
@@ -500,6 +518,8 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
   const VkBuffer placeholder = layouts.placeholderBuffer().handle();
   const VkDescriptorImageInfo baseInfo{baseSampler, base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkDescriptorImageInfo metallicRoughnessInfo{metallicRoughnessSampler, metallicRoughness->view(),
+                                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo detailParams = rangeOr(
       detailLayers_.handle(), r.detail, gp.constants.detailLayerCount * sizeof(GpuDetailLayer), placeholder);
   const VkDescriptorBufferInfo influences =
@@ -513,6 +533,7 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       imageWrite(gp.descriptorSet, 4, &detailInfo),
       bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
       bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
+      imageWrite(gp.descriptorSet, 7, &metallicRoughnessInfo),
   };
   vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -174,8 +174,9 @@ class GpuModel {
   std::vector<Skin> skins_;
   std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
+  std::vector<GpuImage> dataTextures_;  // the same, linear: metallic-roughness images
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
-  // The samplings base colours ask for other than the default (SceneLayouts::sampler()).
+  // The samplings materials' textures ask for other than the default (SceneLayouts::sampler()).
   std::vector<std::pair<TextureSampling, UniqueSampler>> samplers_;
   std::vector<UniqueBufferView> texelViews_;  // the morph pre-pass's inputs of the primitives with deltas
   UniqueDescriptorPool descriptorPool_;

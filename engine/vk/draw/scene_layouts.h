@@ -12,7 +12,8 @@
 //   set 1 (per primitive): 0-1 sparse deltas (per-vertex offsets, entries with crease
 //                          darkening: morph.glsl), 2 rest vertices (the vertex buffer), all
 //                          three texel buffers, 3 base colour,
-//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences
+//                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
+//                          7 metallic-roughness (linear: G roughness, B metallic; white when absent)
 //   push constants:        DrawConstants (52 bytes), vertex + fragment; the morph pre-pass has its
 //                          own pipeline layout (same sets, push constants for the compute stage)
 #include "engine/core/result.h"
@@ -33,7 +34,8 @@ class SceneLayouts {
   VkPipelineLayout morphPipelineLayout() const { return morphPipelineLayout_.get(); }
   VkSampler sampler() const { return sampler_.get(); }
 
-  // 1x1 white sRGB texture: base colour when a material has none.
+  // 1x1 white sRGB texture: base colour when a material has none (and, white
+  // read either way, its metallic-roughness).
   const GpuImage& whiteTexture() const { return white_; }
   // 1x1, one transparent layer: the detail array of materials without layers.
   const GpuImage& emptyDetailArray() const { return emptyDetail_; }

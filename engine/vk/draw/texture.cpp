@@ -10,11 +10,9 @@
 
 namespace eng::vk {
 namespace {
-constexpr VkFormat kTextureFormat = VK_FORMAT_R8G8B8A8_SRGB;
-
-bool canBlitLinear(const Context& ctx) {
+bool canBlitLinear(const Context& ctx, VkFormat format) {
   VkFormatProperties props;
-  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kTextureFormat, &props);
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), format, &props);
   constexpr VkFormatFeatureFlags kNeeded =
       VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   return (props.optimalTilingFeatures & kNeeded) == kNeeded;
@@ -34,11 +32,11 @@ Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source) 
   }
   const uint32_t layerCount = static_cast<uint32_t>(source.layers.size());
   const uint32_t mips =
-      canBlitLinear(ctx) ? static_cast<uint32_t>(std::bit_width(std::max(source.width, source.height))) : 1u;
+      canBlitLinear(ctx, source.format) ? static_cast<uint32_t>(std::bit_width(std::max(source.width, source.height))) : 1u;
 
   ImageDesc desc;
   desc.extent = {source.width, source.height};
-  desc.format = kTextureFormat;
+  desc.format = source.format;
   desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   desc.mipLevels = mips;
   desc.arrayLayers = layerCount;

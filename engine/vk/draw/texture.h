@@ -1,6 +1,7 @@
 #pragma once
-// sRGB RGBA8 textures with a full mip chain (generated on the GPU by blits),
-// and the samplers that read them.
+// RGBA8 textures (sRGB colour, or linear data such as a metallic-roughness
+// map) with a full mip chain (generated on the GPU by blits), and the
+// samplers that read them.
 #include <cstdint>
 #include <span>
 
@@ -19,6 +20,7 @@ struct TextureSource {
   std::span<const std::span<const uint8_t>> layers;
   VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;  // or 2D_ARRAY
   const char* debugName = "texture";
+  VkFormat format = VK_FORMAT_R8G8B8A8_SRGB;  // or R8G8B8A8_UNORM for data
 };
 
 // Ends in SHADER_READ_ONLY_OPTIMAL. Sizes are checked against the layer data.

@@ -519,6 +519,39 @@ TEST(GltfLoader, ReadsTextureSamplers) {
   EXPECT_TRUE(hasWarningContaining(model, "texture 4 refers to sampler 7, the file has 3"));
 }
 
+// The metallic-roughness texture is drawn through the base colour's UVs: one
+// on another UV set, or moved by another transform, is left out with a warning.
+TEST(GltfLoader, ReadsMetallicRoughnessTexturesReadThroughTheBaseColoursUvs) {
+  const auto dir = freshTempDir("loader_metallic_roughness");
+  GltfFileBuilder b = quadWithTarget();
+  addWhiteImage(b);
+  b.doc["samplers"] = Json::array({{{"wrapS", 33071}}});
+  b.doc["textures"] = Json::array({{{"source", 0}}, {{"source", 0}, {"sampler", 0}}});
+  const Json transform = {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}};
+  b.doc["extensionsUsed"] = Json::array({"KHR_texture_transform"});
+  b.doc["materials"] = Json::array(
+      {{{"name", "outfit"},
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 1}}}}}},
+       {{"name", "no base texture"}, {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}}},
+       {{"name", "other set"},
+        {"pbrMetallicRoughness",
+         {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}}},
+       {{"name", "other transform"},
+        {"pbrMetallicRoughness",
+         {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}, {"extensions", transform}}}}}}});
+  b.writeGlb(dir / "metal.glb");
+  const eng::Model model = loadOk(dir / "metal.glb");
+  ASSERT_EQ(model.materials.size(), 4u);
+  EXPECT_EQ(model.materials[0].metallicRoughnessImage, 0);
+  EXPECT_EQ(model.materials[0].metallicRoughnessSampling.wrapS, eng::TextureWrap::ClampToEdge);
+  EXPECT_EQ(model.materials[0].baseColorSampling, eng::TextureSampling{});
+  EXPECT_EQ(model.materials[1].metallicRoughnessImage, 0) << "TEXCOORD_0, as a material without a base texture reads";
+  EXPECT_EQ(model.materials[2].metallicRoughnessImage, -1);
+  EXPECT_TRUE(hasWarningContaining(model, "material 2: its metallicRoughnessTexture reads TEXCOORD_1, unlike its base colour (TEXCOORD_0)"));
+  EXPECT_EQ(model.materials[3].metallicRoughnessImage, -1);
+  EXPECT_TRUE(hasWarningContaining(model, "material 3: its metallicRoughnessTexture reads TEXCOORD_0 through a texture transform"));
+}
+
 TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   const auto dir = freshTempDir("loader_material");
   GltfFileBuilder b = quadWithTarget();

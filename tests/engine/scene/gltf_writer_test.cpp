@@ -42,6 +42,7 @@ eng::Model richModel() {
   skin.emissiveFactor = {0.25f, 0.0f, 0.5f};
   skin.detailLayers.push_back({1, "smile", 0.8f});
   skin.detailLayers.push_back({1, "frown", 1.0f, eng::DetailBlend::Modulate});
+  skin.metallicRoughnessImage = 1;
   skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
                             eng::TextureFilter::Nearest, false, eng::TextureFilter::Linear};
   model.materials.push_back(skin);
@@ -49,6 +50,8 @@ eng::Model richModel() {
   // The same image through another sampling: a second texture of one image.
   eng::Material decal{.name = "decal", .baseColorImage = 0};
   decal.baseColorSampling.mipFilter = eng::TextureFilter::Nearest;
+  decal.metallicRoughnessImage = 0;  // the base colour's image, its texture with another sampling
+  decal.metallicRoughnessSampling.wrapS = eng::TextureWrap::ClampToEdge;
   decal.toon = eng::ToonShading{.shadeColor = {0.5f, 0.25f, 0.125f}, .shadeFromBaseTexture = true, .shadingShift = -0.25f,
                                 .shadingToony = 0.75f, .giEqualization = 0.5f, .rimColor = {0.0f, 0.5f, 1.0f},
                                 .rimFresnelPower = 3.0f, .rimLift = 0.125f, .rimLightingMix = 0.5f,
@@ -173,6 +176,8 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.baseColorFactor, y.baseColorFactor);
     EXPECT_EQ(x.emissiveFactor, y.emissiveFactor);
     EXPECT_EQ(x.baseColorImage, y.baseColorImage);
+    EXPECT_EQ(x.metallicRoughnessImage, y.metallicRoughnessImage);
+    EXPECT_EQ(x.metallicRoughnessSampling, y.metallicRoughnessSampling) << x.name;
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);

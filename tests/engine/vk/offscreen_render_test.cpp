@@ -3,6 +3,7 @@
 #include "engine/vk/draw/offscreen_renderer.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -278,6 +279,36 @@ TEST(OffscreenRender, BaseColourFollowsTheSamplersWrapModes) {
   EXPECT_EQ(columns(eng::TextureWrap::Repeat), "RGRGRG");
   EXPECT_EQ(columns(eng::TextureWrap::ClampToEdge), "RRRGGG");
   EXPECT_EQ(columns(eng::TextureWrap::MirroredRepeat), "GRRGGR");
+}
+
+// glTF's metallicRoughnessTexture scales the factors: a material whose
+// factor says metal (1) but whose texture says none (blue 0) is drawn as the
+// same material with metallic 0, where it came out near black (a rough metal
+// under the studio lights: Ready Player Me's trousers and glasses).
+TEST(OffscreenRender, MetallicRoughnessTextureScalesTheFactors) {
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](float metallic, int blue) {
+    eng::Model model = testing_support::makeSphereModel({.targets = 0});
+    eng::Material& mat = model.materials.at(0);
+    mat.metallic = metallic;
+    mat.roughness = 1.0f;
+    if (blue >= 0) {
+      model.images.push_back({"metal", 1, 1, {0, 255, uint8_t(blue), 255}});
+      mat.metallicRoughnessImage = 0;
+    }
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const eng::Image dielectric = render(0.0f, -1), metal = render(1.0f, -1);
+  const eng::Image metalTextureSaysNone = render(1.0f, 0), metalTextureSaysMetal = render(1.0f, 255);
+  const double apart = meanDifference(dielectric, metal);
+  std::printf("mean difference from the dielectric: metal factor %.2f, the texture saying none %.2f, saying metal %.2f\n",
+              apart, meanDifference(dielectric, metalTextureSaysNone), meanDifference(dielectric, metalTextureSaysMetal));
+  EXPECT_GT(apart, 5.0) << "a rough metal and a dielectric look apart";
+  EXPECT_LT(meanDifference(dielectric, metalTextureSaysNone), 0.05);
+  EXPECT_LT(meanDifference(metal, metalTextureSaysMetal), 0.05);
 }
 
 TEST(OffscreenRender, UnlitMaterialShowsItsBaseColourEverywhere) {
