@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <optional>
 #include <queue>
-#include <string_view>
 #include <unordered_map>
 #include <utility>
 
@@ -138,25 +136,28 @@ Opened open(eng::Model face, const autorig::SourceFace& source) {
   return opened;
 }
 
-// The opened face rigged (its shapes only), as FaceAutorig::rig rigs it.
-eng::Result<autorig::TransferResult> rigOpened(const Opened& opened, const autorig::SourceFace& source,
-                                               bool teethFromTheSource) {
+// The opened face rigged (its shapes only), as FaceAutorig::rig rigs it: its
+// mesh named "Head" and the index of its AU26 (jaw drop) target.
+struct RiggedJaw {
+  eng::Model model;
+  const eng::Mesh* mesh = nullptr;
+  size_t jaw = 0;
+};
+void rigTheJaw(const Opened& opened, const autorig::SourceFace& source, bool teethFromTheSource, RiggedJaw& out) {
   const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
   autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
   parts.teethFromTheSource = teethFromTheSource;
-  return autorig::transferTargets(source, opened.face, posed, source.landmarks, parts, transfer_fixture::kShapesOnly);
-}
-
-// The mesh named "Head" (nullptr: none), and the index of a target by name.
-const eng::Mesh* headMesh(const eng::Model& model) {
-  for (const eng::Mesh& m : model.meshes)
-    if (m.name == "Head") return &m;
-  return nullptr;
-}
-std::optional<size_t> targetIndex(const eng::Mesh& mesh, std::string_view name) {
-  const auto found = std::find(mesh.targetNames.begin(), mesh.targetNames.end(), name);
-  if (found == mesh.targetNames.end()) return std::nullopt;
-  return size_t(found - mesh.targetNames.begin());
+  eng::Result<autorig::TransferResult> rigged =
+      autorig::transferTargets(source, opened.face, posed, source.landmarks, parts, transfer_fixture::kShapesOnly);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  out.model = std::move(rigged->model);
+  for (const eng::Mesh& m : out.model.meshes)
+    if (m.name == "Head") out.mesh = &m;
+  ASSERT_TRUE(out.mesh);
+  const auto jaw = std::find(out.mesh->targetNames.begin(), out.mesh->targetNames.end(), "AU26_JawDrop");
+  ASSERT_NE(jaw, out.mesh->targetNames.end());
+  out.jaw = size_t(jaw - out.mesh->targetNames.begin());
+  ASSERT_EQ(out.mesh->primitives[0].targets[out.jaw].positions.size(), out.mesh->primitives[0].vertexCount());
 }
 
 // Whether the skin of the mesh named "Head" joins the vertex nearest landmark
@@ -323,16 +324,11 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   for (const eng::Mesh& m : face.meshes)
     if (m.name == "Head") before = m.primitives[0].vertexCount();
   const Opened opened = open(face, source);
-  // As FaceAutorig::rig says of a face given the head's mouth.
-  eng::Result<autorig::TransferResult> rigged = rigOpened(opened, source, /*teethFromTheSource=*/true);
-  ASSERT_TRUE(rigged) << rigged.error().message;
-  const eng::Mesh* mesh = headMesh(rigged->model);
-  ASSERT_TRUE(mesh);
-  const std::optional<size_t> jaw = targetIndex(*mesh, "AU26_JawDrop");
-  ASSERT_TRUE(jaw);
+  RiggedJaw rigged;  // teeth from the source, as FaceAutorig::rig says of a face given the head's mouth
+  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, /*teethFromTheSource=*/true, rigged));
+  const eng::Mesh* mesh = rigged.mesh;
   const eng::Primitive& skin = mesh->primitives[0];
-  const eng::MorphTarget& drop = skin.targets[*jaw];
-  ASSERT_EQ(drop.positions.size(), skin.vertexCount());
+  const eng::MorphTarget& drop = skin.targets[rigged.jaw];
   // The seam's twins (a vertex and its copy, at one place at rest) about the
   // middle of the mouth move apart at AU26 1 by a good share of the mouth's width.
   const float mouthWidth = glm::distance(source.landmarks.points[48], source.landmarks.points[54]);
@@ -355,8 +351,8 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
   // The teeth carried in: the lower row drops with the jaw, the upper stays.
   std::vector<float> teethTravel;
   for (const eng::Primitive& piece : mesh->primitives) {
-    if (piece.material < 0 || rigged->model.materials[size_t(piece.material)].name != "Teeth") continue;
-    const eng::MorphTarget& target = piece.targets[*jaw];
+    if (piece.material < 0 || rigged.model.materials[size_t(piece.material)].name != "Teeth") continue;
+    const eng::MorphTarget& target = piece.targets[rigged.jaw];
     float travel = 0.0f;
     for (const glm::vec3& d : target.positions) travel = std::max(travel, glm::length(d));
     teethTravel.push_back(travel / mouthWidth);
@@ -391,15 +387,10 @@ TEST(MouthOpening, LipsWeldedTwiceOpenWithoutASheetAcrossTheMouth) {
   ASSERT_TRUE(head);
   const autorig::SourceFace source = headSource(*head);
   const Opened opened = open(weldedLikeAnStl(stripped(*head)), source);
-  eng::Result<autorig::TransferResult> rigged = rigOpened(opened, source, /*teethFromTheSource=*/false);
-  ASSERT_TRUE(rigged) << rigged.error().message;
-  const eng::Mesh* mesh = headMesh(rigged->model);
-  ASSERT_TRUE(mesh);
-  const std::optional<size_t> jaw = targetIndex(*mesh, "AU26_JawDrop");
-  ASSERT_TRUE(jaw);
-  const eng::Primitive& skin = mesh->primitives[0];
-  const std::vector<glm::vec3>& drop = skin.targets[*jaw].positions;
-  ASSERT_EQ(drop.size(), skin.vertexCount());
+  RiggedJaw rigged;
+  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, /*teethFromTheSource=*/false, rigged));
+  const eng::Primitive& skin = rigged.mesh->primitives[0];
+  const std::vector<glm::vec3>& drop = skin.targets[rigged.jaw].positions;
   // Triangles about the mouth's middle that AU26 stretches to more than four
   // times their rest length and past a tenth of the mouth's width.
   const auto& p = source.landmarks.points;
