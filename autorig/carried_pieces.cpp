@@ -97,7 +97,9 @@ size_t CarriedPieces::add(const SourceFace& source, size_t piece, std::span<cons
     if (fresh) {
       eng::Material material = source.model->materials[size_t(from.material)];
       material.detailLayers.clear();
-      for (int* image : {&material.baseColorImage, &material.metallicRoughnessImage}) {
+      std::vector<int*> images{&material.baseColorImage};
+      for (const eng::DataTexture& slot : eng::kDataTextures) images.push_back(&(material.*slot.image));
+      for (int* image : images) {
         if (*image < 0) continue;
         auto [copy, newImage] = imageOf_.try_emplace(*image, int(face_.images.size()));
         if (newImage) face_.images.push_back(source.model->images[size_t(*image)]);

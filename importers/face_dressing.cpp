@@ -121,7 +121,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     Material& m = model.materials[size_t(material)];
     m.baseColorImage = int(model.images.size());
     m.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, m.baseColorFactor.a);
-    m.metallicRoughnessImage = -1;  // made for the UVs the painting replaced
+    for (const DataTexture& slot : kDataTextures) m.*slot.image = -1;  // made for the UVs the painting replaced
     model.images.push_back(std::move(painted));
   }
   // A primitive without UVs would sample one texel of a texture made for its
@@ -133,7 +133,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     if (added) {
       Material plain = model.materials[size_t(prim->material)];
       plain.baseColorImage = -1;
-      plain.metallicRoughnessImage = -1;
+      for (const DataTexture& slot : kDataTextures) plain.*slot.image = -1;
       plain.baseColorFactor = glm::vec4(kSkinColour, plain.baseColorFactor.a);
       model.materials.push_back(std::move(plain));
     }

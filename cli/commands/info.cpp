@@ -89,6 +89,10 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"roughness", mat.roughness},
                          {"metallic", mat.metallic},
                          {"metallicRoughnessImage", mat.metallicRoughnessImage},
+                         {"normalImage", mat.normalImage},
+                         {"normalScale", mat.normalScale},
+                         {"occlusionImage", mat.occlusionImage},
+                         {"occlusionStrength", mat.occlusionStrength},
                          {"doubleSided", mat.doubleSided},
                          {"alphaMode", eng::alphaModeName(mat.alphaMode)},
                          {"alphaCutoff", mat.alphaCutoff},
@@ -155,6 +159,9 @@ void printText(const eng::Model& model) {
                 mat.baseColorFactor.a, mat.baseColorImage, mat.roughness, mat.metallic,
                 mat.doubleSided ? ", double-sided" : "");
     if (mat.metallicRoughnessImage >= 0) std::printf(", metallic-roughness image %d", mat.metallicRoughnessImage);
+    if (mat.normalImage >= 0) std::printf(", normal image %d (scale %.3g)", mat.normalImage, mat.normalScale);
+    if (mat.occlusionImage >= 0)
+      std::printf(", occlusion image %d (strength %.3g)", mat.occlusionImage, mat.occlusionStrength);
     if (mat.unlit) std::printf(", unlit");
     if (const std::optional<eng::ToonShading>& t = mat.toon)
       std::printf(", toon (MToon): shade (%.3g, %.3g, %.3g)%s, shift %.3g, toony %.3g, rim (%.3g, %.3g, %.3g)",

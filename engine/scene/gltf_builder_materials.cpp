@@ -156,7 +156,16 @@ void GltfModelBuilder::loadMaterials() {
     if (mat.baseColorImage >= 0) mat.baseColorSampling = textureSampling(pbr.baseColorTexture.index, where);
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
-    readMetallicRoughnessTexture(pbr.metallicRoughnessTexture, baseColorUvs_.back(), mat, where);
+    const BaseColorUv& uvs = baseColorUvs_.back();
+    const auto& [metalRough, normal, occlusion] = kDataTextures;
+    readDataTexture(metalRough, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                    pbr.metallicRoughnessTexture.extensions, uvs, mat, where);
+    readDataTexture(normal, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, uvs, mat,
+                    where);
+    readDataTexture(occlusion, src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
+                    uvs, mat, where);
+    mat.normalScale = static_cast<float>(src.normalTexture.scale);
+    mat.occlusionStrength = std::clamp(static_cast<float>(src.occlusionTexture.strength), 0.0f, 1.0f);  // NaN stays NaN
     mat.doubleSided = src.doubleSided;
     if (src.extensions.count(kKhrMaterialsUnlit)) {
       mat.unlit = true;
@@ -177,14 +186,16 @@ void GltfModelBuilder::loadMaterials() {
     }
     if (src.emissiveFactor.size() == 3)
       mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
-    if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) ||
-        glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
+    if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) || !std::isfinite(mat.normalScale) ||
+        !std::isfinite(mat.occlusionStrength) || glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
         glm::any(glm::isnan(mat.emissiveFactor)) || glm::any(glm::isinf(mat.emissiveFactor))) {
       warn(where + " has non-finite factors; defaults used");
       mat.baseColorFactor = glm::vec4(1.0f);
       mat.emissiveFactor = glm::vec3(0.0f);
       mat.roughness = 1.0f;
       mat.metallic = 1.0f;
+      mat.normalScale = 1.0f;
+      mat.occlusionStrength = 1.0f;
     }
     // Emission is drawn from the factor alone: with a texture masking it,
     // the factor would light the whole surface, so it is left out.
@@ -228,34 +239,35 @@ void GltfModelBuilder::loadMaterials() {
   }
 }
 
-// The metallic-roughness texture is drawn through the primitive's one UV
-// set, the base colour's: a texture on another set, or moved by another
-// transform, would put the metal in the wrong places, so it is left out.
-void GltfModelBuilder::readMetallicRoughnessTexture(const tinygltf::TextureInfo& info, const BaseColorUv& base, Material& mat,
-                                                    const std::string& where) {
-  if (info.index < 0) return;
+// Data textures are drawn through the primitive's one UV set, the base
+// colour's: a texture on another set, or moved by another transform, would
+// put the metal, the bumps or the shade in the wrong places, so it is left out.
+void GltfModelBuilder::readDataTexture(const DataTexture& slot, int texture, int texCoord,
+                                       const tinygltf::ExtensionMap& extensions, const BaseColorUv& base, Material& mat,
+                                       const std::string& where) {
+  if (texture < 0) return;
   std::string problem;
-  const std::optional<UvTransform> transform = parseTextureTransform(info, problem);
-  const int set = transform && transform->texCoord >= 0 ? transform->texCoord : std::max(info.texCoord, 0);
+  const std::optional<UvTransform> transform = parseTextureTransform(extensions, problem);
+  const int set = transform && transform->texCoord >= 0 ? transform->texCoord : std::max(texCoord, 0);
   auto same = [](const std::optional<UvTransform>& a, const std::optional<UvTransform>& b) {
     if (!a || !b) return !a && !b;
     return a->offset == b->offset && a->rotation == b->rotation && a->scale == b->scale;
   };
   if (!problem.empty() || set != base.set || !same(transform, base.transform)) {
-    warn(where + ": its metallicRoughnessTexture reads TEXCOORD_" + std::to_string(set) +
+    warn(where + ": its " + slot.name + " reads TEXCOORD_" + std::to_string(set) +
          (transform ? " through a texture transform" : "") + ", unlike its base colour (TEXCOORD_" + std::to_string(base.set) +
-         (base.transform ? " through a texture transform" : "") + "); its factors alone are drawn");
+         (base.transform ? " through a texture transform" : "") + "); it is not drawn");
     return;
   }
-  mat.metallicRoughnessImage = imageOfTexture(info.index, where);
-  if (mat.metallicRoughnessImage >= 0) mat.metallicRoughnessSampling = textureSampling(info.index, where);
+  mat.*slot.image = imageOfTexture(texture, where);
+  if (mat.*slot.image >= 0) mat.*slot.sampling = textureSampling(texture, where);
 }
 
 GltfModelBuilder::BaseColorUv GltfModelBuilder::baseColorUv(const tinygltf::TextureInfo& info, int image,
                                                             const std::string& where) {
   BaseColorUv uv;
   std::string problem;
-  uv.transform = parseTextureTransform(info, problem);
+  uv.transform = parseTextureTransform(info.extensions, problem);
   if (!problem.empty()) warn(where + ": " + kKhrTextureTransform + " " + problem + "; ignored");
   if (image < 0) return {};
   uv.set = uv.transform && uv.transform->texCoord >= 0 ? uv.transform->texCoord : std::max(info.texCoord, 0);

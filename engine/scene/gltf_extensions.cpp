@@ -67,10 +67,10 @@ int textureImageSource(const tinygltf::Texture& texture, bool& basisuOnly) {
   return -1;
 }
 
-std::optional<UvTransform> parseTextureTransform(const tinygltf::TextureInfo& info, std::string& problem) {
+std::optional<UvTransform> parseTextureTransform(const tinygltf::ExtensionMap& extensions, std::string& problem) {
   problem.clear();
-  auto it = info.extensions.find(kKhrTextureTransform);
-  if (it == info.extensions.end()) return std::nullopt;
+  auto it = extensions.find(kKhrTextureTransform);
+  if (it == extensions.end()) return std::nullopt;
   const tinygltf::Value& ext = it->second;
   if (!ext.IsObject()) {
     problem = "is not an object";

@@ -46,9 +46,9 @@ struct UvTransform {
   glm::vec2 scale{1.0f};
   int texCoord = -1;  // -1: the textureInfo's own set
 };
-// nullopt when the textureInfo has no (usable) transform; `problem` is set
-// when one is present but malformed.
-std::optional<UvTransform> parseTextureTransform(const tinygltf::TextureInfo& info, std::string& problem);
+// nullopt when the textureInfo's extensions have no (usable) transform;
+// `problem` is set when one is present but malformed.
+std::optional<UvTransform> parseTextureTransform(const tinygltf::ExtensionMap& extensions, std::string& problem);
 glm::vec2 applyUvTransform(const UvTransform& t, glm::vec2 uv);
 
 }  // namespace eng

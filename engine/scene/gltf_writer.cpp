@@ -230,8 +230,9 @@ Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) 
 // Each material's textures in the document (-1: none).
 struct MaterialTextures {
   int baseColor = -1;
-  int metallicRoughness = -1;
+  int data[3] = {-1, -1, -1};  // by kDataTextures
 };
+static_assert(std::size(kDataTextures) == 3);
 
 // One texture per (image, sampling) a material uses, one sampler per
 // sampling.
@@ -252,7 +253,8 @@ std::vector<MaterialTextures> writeTextures(Json& doc, const Model& model) {
   for (size_t m = 0; m < model.materials.size(); ++m) {
     const Material& mat = model.materials[m];
     textures[m].baseColor = textureOf(mat.baseColorImage, mat.baseColorSampling);
-    textures[m].metallicRoughness = textureOf(mat.metallicRoughnessImage, mat.metallicRoughnessSampling);
+    for (size_t d = 0; d < std::size(kDataTextures); ++d)
+      textures[m].data[d] = textureOf(mat.*kDataTextures[d].image, mat.*kDataTextures[d].sampling);
   }
   if (!textureKeys.empty()) {
     Json samplers = Json::array(), list = Json::array();
@@ -274,8 +276,11 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
               {"metallicFactor", mat.metallic},
               {"roughnessFactor", mat.roughness}};
   if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
-  if (textures.metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", textures.metallicRoughness}};
+  const auto [metallicRoughness, normal, occlusion] = textures.data;
+  if (metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", metallicRoughness}};
   Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
+  if (normal >= 0) m["normalTexture"] = {{"index", normal}, {"scale", mat.normalScale}};
+  if (occlusion >= 0) m["occlusionTexture"] = {{"index", occlusion}, {"strength", mat.occlusionStrength}};
   if (!mat.name.empty()) m["name"] = mat.name;
   if (mat.doubleSided) m["doubleSided"] = true;
   if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);

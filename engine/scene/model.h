@@ -162,6 +162,16 @@ struct Material {
   // and frames in one material). Read through the base colour's UVs.
   int metallicRoughnessImage = -1;  // index into Model::images
   TextureSampling metallicRoughnessSampling;
+  // glTF's normalTexture (tangent space, linear; x and y scaled by
+  // normalScale) and occlusionTexture (red: how much of the ambient light
+  // reaches the point, toward 1 as occlusionStrength falls). Both read through
+  // the base colour's UVs.
+  int normalImage = -1;  // index into Model::images
+  TextureSampling normalSampling;
+  float normalScale = 1.0f;
+  int occlusionImage = -1;  // index into Model::images
+  TextureSampling occlusionSampling;
+  float occlusionStrength = 1.0f;
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // AlphaMode::Mask only
@@ -172,6 +182,19 @@ struct Material {
   // toon shading instead of the skin shading; takes precedence over unlit.
   std::optional<ToonShading> toon;
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
+};
+
+// The textures a material reads as data (linear, not colour), for code that
+// treats them alike: copying, checking, writing, uploading.
+struct DataTexture {
+  const char* name;  // glTF's name: "metallicRoughnessTexture"
+  int Material::*image;
+  TextureSampling Material::*sampling;
+};
+inline constexpr DataTexture kDataTextures[] = {
+    {"metallicRoughnessTexture", &Material::metallicRoughnessImage, &Material::metallicRoughnessSampling},
+    {"normalTexture", &Material::normalImage, &Material::normalSampling},
+    {"occlusionTexture", &Material::occlusionImage, &Material::occlusionSampling},
 };
 
 struct Node {

@@ -60,7 +60,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Instances { InstanceData in
 layout(std430, set = 0, binding = 2) readonly buffer ActiveWeights { ActiveWeight activeWeights[]; };
 layout(std430, set = 0, binding = 6) readonly buffer InstanceMaterials { InstanceMaterial instanceMaterials[]; };
 
-// Per-draw constants (one primitive, its material). 60 bytes.
+// Per-draw constants (one primitive, its material). 68 bytes.
 layout(push_constant) uniform DrawConstants {
   float roughness;
   float metallic;
@@ -77,6 +77,8 @@ layout(push_constant) uniform DrawConstants {
   uint restTangent;
   uint detailLayerMask;   // bit l: detail layer l may show (some instance's weight for its target is not 0)
   float alphaCutoff;      // DRAW_FLAG_ALPHA_MASK: fragments with less base-colour alpha are discarded
+  float normalScale;      // DRAW_FLAG_NORMAL_MAP: scales the normal texture's x and y
+  float occlusionStrength;  // 0: no occlusion texture
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
@@ -91,6 +93,7 @@ const uint DRAW_FLAG_UNLIT = 256u;       // KHR_materials_unlit
 const uint DRAW_FLAG_TOON = 512u;        // MToon toon shading (InstanceMaterial.toon*)
 const uint DRAW_FLAG_TOON_SHADE_TEXTURE = 1024u;  // MToon: shade colour x the base colour's texture
 const uint DRAW_FLAG_TOON_OUTLINE = 2048u;        // MToon: also drawn as an outline
+const uint DRAW_FLAG_NORMAL_MAP = 4096u;          // glTF normalTexture (set 1 binding 8)
 
 // The outline pipelines (ScenePipelines::outline): the mesh pushed out along
 // its normals, back faces only, in the outline colour.

@@ -54,6 +54,7 @@ struct SurfacePoint {
   vec3 toViewer;    // unit
   float roughness;  // perceptual, [0.05, 1]
   float metallic;
+  float occlusion;  // share of the ambient light that reaches the point (glTF occlusionTexture)
 };
 
 vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor, bool withSpecular) {
@@ -93,7 +94,7 @@ vec3 shadeThreePoint(SurfacePoint s, float keyVisibility) {
   color += shadeLight(s, frame.rimDirection.xyz, frame.rimColor.rgb, SECONDARY_SPECULAR);
   // Hemisphere ambient: sky from above, bounce from below.
   float up = s.normal.y * 0.5 + 0.5;
-  color += s.albedo * (1.0 - s.metallic) * mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, up);
+  color += s.albedo * (1.0 - s.metallic) * s.occlusion * mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, up);
   return color;
 }
 

@@ -10,6 +10,9 @@
 layout(set = 1, binding = 4) uniform sampler2DArray detailTextures;   // one layer per detail layer
 // glTF's metallicRoughnessTexture (linear): G scales the roughness, B the metallic factor.
 layout(set = 1, binding = 7) uniform sampler2D metallicRoughnessTexture;
+// glTF's normalTexture (tangent space, linear) and occlusionTexture (R), white when absent.
+layout(set = 1, binding = 8) uniform sampler2D normalTexture;
+layout(set = 1, binding = 9) uniform sampler2D occlusionTexture;
 
 // True only in the MASK pipelines: a shader that can discard loses early
 // depth testing, so the others compile the test away.
@@ -28,6 +31,7 @@ layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec4 inColor;
 layout(location = 5) flat in uint inMaterial;
+layout(location = 6) in vec4 inWorldTangent;
 
 layout(location = 0) out vec4 outColor;
 
@@ -50,6 +54,43 @@ vec3 blendDetailLayer(vec3 base, InstanceData inst, uint l) {
                                           : mix(base, layer.rgb, layer.a * w);
   }
   return base;
+}
+
+// The normal texture's normal in world space around the unit normal n. glTF's
+// tangent space: x along the tangent (toward +u), y along the bitangent
+// cross(n, tangent) * handedness, z out of the surface. Without vertex tangents
+// the frame comes from the screen derivatives of position and UV (Mikkelsen's
+// cotangent frame, as three.js builds it), whose second axis runs toward +v,
+// the opposite of glTF's: y is negated there, as three.js's glTF loader does.
+// The derivatives come in from main(): taken in control flow that varies
+// between neighbouring pixels (or after a discard) they are undefined. Along
+// y they are taken upward, as in OpenGL, where Vulkan's window y runs down.
+struct ScreenDerivatives {
+  vec3 q0, q1;    // of the world position along x and y
+  vec2 st0, st1;  // of the texture coordinate
+};
+
+vec3 normalMapped(vec3 n, ScreenDerivatives d) {
+  vec3 texel = texture(normalTexture, inTexcoord).xyz * 2.0 - 1.0;
+  texel.xy *= draw.normalScale;
+  vec3 t = inWorldTangent.xyz - n * dot(n, inWorldTangent.xyz);
+  float t2 = dot(t, t);
+  mat3 tbn;
+  if (t2 > 1e-24) {
+    t *= inversesqrt(t2);
+    tbn = mat3(t, cross(n, t) * (inWorldTangent.w < 0.0 ? -1.0 : 1.0), n);
+  } else {
+    vec3 q1perp = cross(d.q1, n), q0perp = cross(n, d.q0);
+    vec3 tangent = q1perp * d.st0.x + q0perp * d.st1.x;
+    vec3 bitangent = q1perp * d.st0.y + q0perp * d.st1.y;
+    float larger = max(dot(tangent, tangent), dot(bitangent, bitangent));
+    float scale = larger > 0.0 ? inversesqrt(larger) : 0.0;
+    tbn = mat3(tangent * scale, bitangent * scale, n);
+    texel.y = -texel.y;
+  }
+  vec3 bent = tbn * texel;
+  float b2 = dot(bent, bent);
+  return b2 > 1e-24 ? bent * inversesqrt(b2) : n;
 }
 
 float linearstep(float a, float b, float t) { return clamp((t - a) / max(b - a, 1e-5), 0.0, 1.0); }
@@ -76,6 +117,8 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
 }
 
 void main() {
+  const ScreenDerivatives derivatives = ScreenDerivatives(dFdx(inWorldPosition), -dFdy(inWorldPosition),
+                                                          dFdx(inTexcoord), -dFdy(inTexcoord));
   InstanceMaterial material = instanceMaterials[inMaterial];
   // Detail layers are other textures for the same UVs: they blend into the
   // texel, and the material's factor and the vertex colour tint the result,
@@ -121,6 +164,9 @@ void main() {
   const bool frontFacing = gl_FrontFacing != ((draw.flags & DRAW_FLAG_MIRRORED) != 0u);
   const bool inside = !OUTLINE_PIPELINE && (draw.flags & DRAW_FLAG_DOUBLE_SIDED) != 0u && !frontFacing;
   if (inside) n = -n;
+  // The inside of the head is darkened, not modelled, and an outline is a
+  // hull: their normals stay.
+  if ((draw.flags & DRAW_FLAG_NORMAL_MAP) != 0u && !inside && !OUTLINE_PIPELINE) n = normalMapped(n, derivatives);
   s.normal = n;
   if (OUTLINE_PIPELINE) {
     // The hull's back faces: the outline colour, toward it times the shaded
@@ -137,6 +183,7 @@ void main() {
   const vec2 roughnessMetal = texture(metallicRoughnessTexture, inTexcoord).gb;
   s.roughness = clamp(draw.roughness * roughnessMetal.x, 0.05, 1.0);
   s.metallic = clamp(draw.metallic * roughnessMetal.y, 0.0, 1.0);
+  s.occlusion = 1.0 + draw.occlusionStrength * (texture(occlusionTexture, inTexcoord).r - 1.0);
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);

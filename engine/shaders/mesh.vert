@@ -34,6 +34,7 @@ layout(location = 2) out vec2 outTexcoord;
 layout(location = 3) flat out uint outInstance;
 layout(location = 4) out vec4 outColor;
 layout(location = 5) flat out uint outMaterial;  // index into instanceMaterials[]
+layout(location = 6) out vec4 outWorldTangent;  // w handedness; zeros where the primitive has no tangents
 #endif
 
 // The texture coordinate through the instance's material record's UV
@@ -68,6 +69,7 @@ void main() {
   vec4 world = inst.model * vec4(m.position, 1.0);
   outWorldPosition = world.xyz;
   outWorldNormal = mat3(inst.normalMatrix) * m.normal;
+  outWorldTangent = vec4(mat3(inst.model) * m.tangent, inTangent.w);
   outMaterial = inst.materialOffset + draw.material;
   // MToon outline, world width: the hull pushed out along the normal, in metres.
   vec3 outlineNormal = vec3(0.0);

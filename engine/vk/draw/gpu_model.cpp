@@ -363,8 +363,11 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
                            (mat.unlit && !mat.toon ? kDrawFlagUnlit : 0u) |
                            (mat.toon ? kDrawFlagToon : 0u) |
                            (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
-                           (hasOutline(mat) ? kDrawFlagToonOutline : 0u);
+                           (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
+                           (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u);
       gp.constants.alphaCutoff = mat.alphaCutoff;
+      gp.constants.normalScale = mat.normalScale;
+      gp.constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
       gm.primitives.push_back(gp);
     }
   }
@@ -391,8 +394,8 @@ Result<void> GpuModel::uploadBuffers(const Context& ctx, const GpuModelStaging& 
   return {};
 }
 
-// Base colour (sRGB) and metallic-roughness (linear) images once each, one
-// detail array per material.
+// Base colour (sRGB) and data (linear: metallic-roughness, normal,
+// occlusion) images once each, one detail array per material.
 Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
   textures_.resize(model.images.size());
   dataTextures_.resize(model.images.size());
@@ -420,9 +423,11 @@ Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
   };
   for (const Material& mat : model.materials) {
     ENG_TRY(upload(mat.baseColorImage, textures_, VK_FORMAT_R8G8B8A8_SRGB));
-    ENG_TRY(upload(mat.metallicRoughnessImage, dataTextures_, VK_FORMAT_R8G8B8A8_UNORM));
     ENG_TRY(addSampler(mat.baseColorImage, mat.baseColorSampling));
-    ENG_TRY(addSampler(mat.metallicRoughnessImage, mat.metallicRoughnessSampling));
+    for (const DataTexture& slot : kDataTextures) {
+      ENG_TRY(upload(mat.*slot.image, dataTextures_, VK_FORMAT_R8G8B8A8_UNORM));
+      ENG_TRY(addSampler(mat.*slot.image, mat.*slot.sampling));
+    }
   }
   detailArrays_.resize(model.materials.size());
   for (size_t i = 0; i < model.materials.size(); ++i) {
@@ -447,7 +452,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   if (sets == 0) return {};
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * sets}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -493,10 +498,12 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
                                  const Primitive& prim, const PrimitiveRanges& r, const MorphInputViews& morph,
                                  GpuPrimitive& gp) const {
   const GpuImage* base = &layouts.whiteTexture();
-  const GpuImage* metallicRoughness = &layouts.whiteTexture();  // white: the factors as they are
   const GpuImage* detail = &layouts.emptyDetailArray();
   VkSampler baseSampler = layouts.sampler();
-  VkSampler metallicRoughnessSampler = layouts.sampler();
+  // By kDataTextures. White: the factors as they are, no occlusion (the
+  // normal texture is read only under kDrawFlagNormalMap).
+  std::array<VkDescriptorImageInfo, std::size(kDataTextures)> dataInfo;
+  dataInfo.fill({layouts.sampler(), layouts.whiteTexture().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
   auto samplerFor = [&](const TextureSampling& wanted, VkSampler& out) {
     for (const auto& [sampling, sampler] : samplers_)
       if (sampling == wanted) out = sampler.get();
@@ -506,10 +513,17 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
     const Material& mat = model.materials[material];
     if (mat.baseColorImage >= 0 && textures_[static_cast<size_t>(mat.baseColorImage)])
       base = &textures_[static_cast<size_t>(mat.baseColorImage)];
-    if (mat.metallicRoughnessImage >= 0 && dataTextures_[static_cast<size_t>(mat.metallicRoughnessImage)])
-      metallicRoughness = &dataTextures_[static_cast<size_t>(mat.metallicRoughnessImage)];
     samplerFor(mat.baseColorSampling, baseSampler);
-    samplerFor(mat.metallicRoughnessSampling, metallicRoughnessSampler);
+    for (size_t d = 0; d < dataInfo.size(); ++d) {
+      const int image = mat.*kDataTextures[d].image;
+      if (image < 0 || !dataTextures_[static_cast<size_t>(image)]) continue;
+      dataInfo[d].imageView = dataTextures_[static_cast<size_t>(image)].view();
+      samplerFor(mat.*kDataTextures[d].sampling, dataInfo[d].sampler);
+    }
+    // Undecodable (the loader warned): drawn as without.
+    auto uploaded = [&](int image) { return image >= 0 && dataTextures_[static_cast<size_t>(image)]; };
+    if (!uploaded(mat.normalImage)) gp.constants.flags &= ~kDrawFlagNormalMap;
+    if (!uploaded(mat.occlusionImage)) gp.constants.occlusionStrength = 0.0f;
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
@@ -518,8 +532,6 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
   const VkBuffer placeholder = layouts.placeholderBuffer().handle();
   const VkDescriptorImageInfo baseInfo{baseSampler, base->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorImageInfo detailInfo{layouts.sampler(), detail->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo metallicRoughnessInfo{metallicRoughnessSampler, metallicRoughness->view(),
-                                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   const VkDescriptorBufferInfo detailParams = rangeOr(
       detailLayers_.handle(), r.detail, gp.constants.detailLayerCount * sizeof(GpuDetailLayer), placeholder);
   const VkDescriptorBufferInfo influences =
@@ -533,7 +545,9 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       imageWrite(gp.descriptorSet, 4, &detailInfo),
       bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
       bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
-      imageWrite(gp.descriptorSet, 7, &metallicRoughnessInfo),
+      imageWrite(gp.descriptorSet, 7, &dataInfo[0]),
+      imageWrite(gp.descriptorSet, 8, &dataInfo[1]),
+      imageWrite(gp.descriptorSet, 9, &dataInfo[2]),
   };
   vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -174,7 +174,7 @@ class GpuModel {
   std::vector<Skin> skins_;
   std::vector<glm::mat4> restWorld_;
   std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
-  std::vector<GpuImage> dataTextures_;  // the same, linear: metallic-roughness images
+  std::vector<GpuImage> dataTextures_;  // the same, linear: metallic-roughness, normal, occlusion images
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
   // The samplings materials' textures ask for other than the default (SceneLayouts::sampler()).
   std::vector<std::pair<TextureSampling, UniqueSampler>> samplers_;

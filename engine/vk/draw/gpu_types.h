@@ -93,8 +93,10 @@ struct DrawConstants {
   // every layer sampled costs every pixel of the skin, whatever its weight.
   uint32_t detailLayerMask = 0;
   float alphaCutoff = 0.5f;  // kDrawFlagAlphaMask: fragments with less base-colour alpha are discarded
+  float normalScale = 1.0f;        // kDrawFlagNormalMap: scales the normal texture's x and y
+  float occlusionStrength = 0.0f;  // 0: no occlusion texture (or one of strength 0)
 };
-static_assert(sizeof(DrawConstants) == 60);
+static_assert(sizeof(DrawConstants) == 68);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,
@@ -109,6 +111,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagToon = 512u,       // MToon: toon shading from InstanceMaterial's toon* values
   kDrawFlagToonShadeTexture = 1024u,  // MToon: the shade colour is multiplied by the base colour's texture
   kDrawFlagToonOutline = 2048u,       // MToon: drawn again as an outline (ScenePipelines::outline)
+  kDrawFlagNormalMap = 4096u,         // glTF normalTexture: the shading normal bent by it
 };
 
 struct GpuDetailLayer {

@@ -74,6 +74,8 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFs),
       binding(6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kVs),
       binding(7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
   };
   auto primitiveSet = createSetLayout(ctx, primitiveBindings);
   if (!primitiveSet) return primitiveSet.error();

@@ -13,8 +13,10 @@
 //                          darkening: morph.glsl), 2 rest vertices (the vertex buffer), all
 //                          three texel buffers, 3 base colour,
 //                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
-//                          7 metallic-roughness (linear: G roughness, B metallic; white when absent)
-//   push constants:        DrawConstants (52 bytes), vertex + fragment; the morph pre-pass has its
+//                          7 metallic-roughness (linear: G roughness, B metallic; white when absent),
+//                          8 normal (tangent space; DRAW_FLAG_NORMAL_MAP), 9 occlusion (R; white
+//                          when absent)
+//   push constants:        DrawConstants (68 bytes), vertex + fragment; the morph pre-pass has its
 //                          own pipeline layout (same sets, push constants for the compute stage)
 #include "engine/core/result.h"
 #include "engine/vk/device/buffer.h"

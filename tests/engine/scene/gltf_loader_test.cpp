@@ -552,6 +552,38 @@ TEST(GltfLoader, ReadsMetallicRoughnessTexturesReadThroughTheBaseColoursUvs) {
   EXPECT_TRUE(hasWarningContaining(model, "material 3: its metallicRoughnessTexture reads TEXCOORD_0 through a texture transform"));
 }
 
+// Normal and occlusion textures follow the same rule, and carry their scale
+// and strength (glTF clamps the strength to 0..1).
+TEST(GltfLoader, ReadsNormalAndOcclusionTexturesWithTheirScaleAndStrength) {
+  const auto dir = freshTempDir("loader_normal_occlusion");
+  GltfFileBuilder b = quadWithTarget();
+  addWhiteImage(b);
+  b.doc["textures"] = Json::array({{{"source", 0}}});
+  b.doc["materials"] = Json::array(
+      {{{"name", "skin"},
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+        {"normalTexture", {{"index", 0}, {"scale", 0.5}}},
+        {"occlusionTexture", {{"index", 0}, {"strength", 0.25}}}},
+       {{"name", "defaults"}, {"normalTexture", {{"index", 0}}}, {"occlusionTexture", {{"index", 0}}}},
+       {{"name", "occlusion on the second set"},
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+        {"occlusionTexture", {{"index", 0}, {"texCoord", 1}}}},
+       {{"name", "strength past 1"}, {"occlusionTexture", {{"index", 0}, {"strength", 3.0}}}}});
+  b.writeGlb(dir / "maps.glb");
+  const eng::Model model = loadOk(dir / "maps.glb");
+  ASSERT_EQ(model.materials.size(), 4u);
+  EXPECT_EQ(model.materials[0].normalImage, 0);
+  EXPECT_FLOAT_EQ(model.materials[0].normalScale, 0.5f);
+  EXPECT_EQ(model.materials[0].occlusionImage, 0);
+  EXPECT_FLOAT_EQ(model.materials[0].occlusionStrength, 0.25f);
+  EXPECT_EQ(model.materials[1].normalImage, 0);
+  EXPECT_FLOAT_EQ(model.materials[1].normalScale, 1.0f);
+  EXPECT_FLOAT_EQ(model.materials[1].occlusionStrength, 1.0f);
+  EXPECT_EQ(model.materials[2].occlusionImage, -1);
+  EXPECT_TRUE(hasWarningContaining(model, "material 2: its occlusionTexture reads TEXCOORD_1, unlike its base colour (TEXCOORD_0)"));
+  EXPECT_FLOAT_EQ(model.materials[3].occlusionStrength, 1.0f) << "glTF's range is 0..1";
+}
+
 TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   const auto dir = freshTempDir("loader_material");
   GltfFileBuilder b = quadWithTarget();

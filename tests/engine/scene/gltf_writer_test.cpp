@@ -43,6 +43,11 @@ eng::Model richModel() {
   skin.detailLayers.push_back({1, "smile", 0.8f});
   skin.detailLayers.push_back({1, "frown", 1.0f, eng::DetailBlend::Modulate});
   skin.metallicRoughnessImage = 1;
+  skin.normalImage = 1;
+  skin.normalScale = 0.5f;
+  skin.occlusionImage = 0;
+  skin.occlusionStrength = 0.75f;
+  skin.occlusionSampling.wrapT = eng::TextureWrap::ClampToEdge;
   skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
                             eng::TextureFilter::Nearest, false, eng::TextureFilter::Linear};
   model.materials.push_back(skin);
@@ -178,6 +183,12 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.baseColorImage, y.baseColorImage);
     EXPECT_EQ(x.metallicRoughnessImage, y.metallicRoughnessImage);
     EXPECT_EQ(x.metallicRoughnessSampling, y.metallicRoughnessSampling) << x.name;
+    EXPECT_EQ(x.normalImage, y.normalImage);
+    EXPECT_EQ(x.normalSampling, y.normalSampling) << x.name;
+    EXPECT_EQ(x.normalScale, y.normalScale);
+    EXPECT_EQ(x.occlusionImage, y.occlusionImage);
+    EXPECT_EQ(x.occlusionSampling, y.occlusionSampling) << x.name;
+    EXPECT_EQ(x.occlusionStrength, y.occlusionStrength);
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);

@@ -177,15 +177,27 @@ TEST(SharedAssets, SimpleMorphHasThreeVerticesTwoTargetsOneAnimation) {
   EXPECT_EQ(model.animations[0].channels.size(), 1u);
 }
 
+// Every file loads without warnings but the one that names what is not drawn:
+// MorphStressTest's ambient occlusion lies on a second UV set, and a primitive
+// carries one.
 TEST(SharedAssets, EveryFileLoadsWithoutWarnings) {
   FACIAL_REQUIRE_SHARED();
-  for (const char* file :
-       {"facecap.glb", "RobotExpressive.glb", "khronos/AnimatedMorphCube/AnimatedMorphCube.gltf",
-        "khronos/AnimatedMorphSphere/AnimatedMorphSphere.gltf", "khronos/MorphPrimitivesTest/MorphPrimitivesTest.gltf",
-        "khronos/MorphStressTest/MorphStressTest.gltf", "khronos/SimpleMorph/SimpleMorph.gltf"}) {
+  const std::pair<const char*, const char*> files[] = {
+      {"facecap.glb", nullptr},
+      {"RobotExpressive.glb", nullptr},
+      {"khronos/AnimatedMorphCube/AnimatedMorphCube.gltf", nullptr},
+      {"khronos/AnimatedMorphSphere/AnimatedMorphSphere.gltf", nullptr},
+      {"khronos/MorphPrimitivesTest/MorphPrimitivesTest.gltf", nullptr},
+      {"khronos/MorphStressTest/MorphStressTest.gltf",
+       "material 0: its occlusionTexture reads TEXCOORD_1, unlike its base colour (TEXCOORD_0); it is not drawn"},
+      {"khronos/SimpleMorph/SimpleMorph.gltf", nullptr}};
+  for (const auto& [file, expected] : files) {
     const eng::Model model = load(file);
     EXPECT_FALSE(model.meshes.empty()) << file;
-    EXPECT_TRUE(model.warnings.empty()) << file << ": " << (model.warnings.empty() ? "" : model.warnings.front());
+    if (expected)
+      EXPECT_EQ(model.warnings, std::vector<std::string>{expected}) << file;
+    else
+      EXPECT_TRUE(model.warnings.empty()) << file << ": " << (model.warnings.empty() ? "" : model.warnings.front());
     EXPECT_TRUE(model.bounds().valid()) << file;
   }
 }

@@ -311,6 +311,99 @@ TEST(OffscreenRender, MetallicRoughnessTextureScalesTheFactors) {
   EXPECT_LT(meanDifference(metal, metalTextureSaysMetal), 0.05);
 }
 
+// A square facing the camera with its texture upright on it (v runs down the
+// square, as glTF's image rows do), normals `normal`, and a one-texel normal
+// texture `texel` (none when x < 0): with glTF vertex tangents along +u, or
+// without, when the renderer derives the frame from the screen.
+eng::Model normalMappedSquare(glm::vec3 normal, glm::ivec3 texel, bool tangents) {
+  eng::Model model;
+  model.sourcePath = "<normal-mapped square>";
+  eng::Primitive& prim = model.meshes.emplace_back().primitives.emplace_back();
+  prim.positions = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 0.0f}, {-1.0f, 1.0f, 0.0f}};
+  prim.normals.assign(4, glm::normalize(normal));
+  prim.texcoords = {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}};
+  if (tangents) prim.tangents.assign(4, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+  prim.indices = {0, 1, 2, 0, 2, 3};
+  prim.material = 0;
+  eng::Material& mat = model.materials.emplace_back();
+  mat.baseColorFactor = {0.8f, 0.6f, 0.5f, 1.0f};
+  if (texel.x >= 0) {
+    model.images.push_back({"normal", 1, 1, {uint8_t(texel.x), uint8_t(texel.y), uint8_t(texel.z), 255}});
+    mat.normalImage = 0;
+  }
+  model.nodes.emplace_back().mesh = 0;
+  model.roots.push_back(0);
+  return model;
+}
+
+// glTF's normal texture: +X toward +u, +Y up the image, through the vertex
+// tangents or, without them, a frame from the screen derivatives. A texel
+// tilted 45 degrees up (or right) must light the square as normals tilted so
+// would, whichever frame; tilted the wrong way it would match the opposite
+// tilt, which the key light from the upper left tells apart.
+TEST(OffscreenRender, NormalTextureBendsTheNormalsAsGltfOrientsIt) {
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -0.2f}, {1, 1, 0.2f}});
+  auto render = [&](const eng::Model& model) {
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    if (!gpu) return eng::Image{};
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const glm::vec3 front(0.0f, 0.0f, 1.0f);
+  const struct {
+    const char* name;
+    glm::vec3 normal;
+    glm::ivec3 texel;
+  } tilts[] = {{"up", {0.0f, 1.0f, 1.0f}, {128, 218, 218}}, {"right", {1.0f, 0.0f, 1.0f}, {218, 128, 218}}};
+  for (const auto& tilt : tilts) {
+    const eng::Image tilted = render(normalMappedSquare(tilt.normal, {-1, 0, 0}, false));
+    const eng::Image opposite = render(normalMappedSquare(glm::vec3(-tilt.normal.x, -tilt.normal.y, 1.0f), {-1, 0, 0}, false));
+    ASSERT_GT(meanDifference(tilted, opposite), 5.0) << tilt.name << ": the key light tells the tilts apart";
+    for (const bool tangents : {true, false}) {
+      const eng::Image mapped = render(normalMappedSquare(front, tilt.texel, tangents));
+      const double off = meanDifference(mapped, tilted);
+      std::printf("tilted %s by the texture, %s: %.2f levels from normals so tilted, %.2f from the opposite tilt\n",
+                  tilt.name, tangents ? "vertex tangents" : "derived frame", off, meanDifference(mapped, opposite));
+      EXPECT_LT(off, 1.0) << tilt.name << (tangents ? ", vertex tangents" : ", derived frame");
+    }
+  }
+  // A flat texel changes nothing; a scale of 0 flattens a tilted one.
+  const eng::Image plain = render(normalMappedSquare(front, {-1, 0, 0}, false));
+  EXPECT_LT(meanDifference(render(normalMappedSquare(front, {128, 128, 255}, false)), plain), 0.5);
+  eng::Model unscaled = normalMappedSquare(front, {128, 218, 218}, true);
+  unscaled.materials[0].normalScale = 0.0f;
+  EXPECT_LT(meanDifference(render(unscaled), plain), 0.5);
+}
+
+// glTF's occlusionTexture shades the ambient light alone, toward none as
+// the strength falls.
+TEST(OffscreenRender, OcclusionTextureDarkensTheAmbientLight) {
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](int red, float strength) {
+    eng::Model model = testing_support::makeSphereModel({.targets = 0});
+    if (red >= 0) {
+      model.images.push_back({"occlusion", 1, 1, {uint8_t(red), 0, 0, 255}});
+      model.materials.at(0).occlusionImage = 0;
+      model.materials.at(0).occlusionStrength = strength;
+    }
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const eng::Image open = render(-1, 1.0f), occluded = render(0, 1.0f);
+  const glm::ivec4 lit = pixel(open, 90, 90), litOccluded = pixel(occluded, 90, 90);
+  const glm::ivec4 away = pixel(open, 170, 170), awayOccluded = pixel(occluded, 170, 170);
+  std::printf("occluded: %.2f levels darker on average; key side %d -> %d, far side %d -> %d (red)\n",
+              meanDifference(open, occluded), lit.r, litOccluded.r, away.r, awayOccluded.r);
+  EXPECT_GT(meanDifference(open, occluded), 1.0);  // the studio's ambient light is weak beside its key
+  EXPECT_LT(awayOccluded.r, away.r);
+  EXPECT_GT(litOccluded.r, lit.r / 2) << "the key light still reaches the occluded point";
+  EXPECT_LT(meanDifference(open, render(255, 1.0f)), 0.05) << "occlusion 1: all the ambient light";
+  EXPECT_LT(meanDifference(open, render(0, 0.0f)), 0.05) << "strength 0: no occlusion";
+}
+
 TEST(OffscreenRender, UnlitMaterialShowsItsBaseColourEverywhere) {
   // KHR_materials_unlit: no light, shadow, exposure or tone curve. The lit
   // sphere is brighter toward the key and darker away from it; the unlit one
