@@ -117,8 +117,11 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
 }
 
 void main() {
-  const ScreenDerivatives derivatives = ScreenDerivatives(dFdx(inWorldPosition), -dFdy(inWorldPosition),
-                                                          dFdx(inTexcoord), -dFdy(inTexcoord));
+  // Taken only for a normal texture: the flag is the same for the whole draw,
+  // so the branch is uniform, and other draws pay nothing for them.
+  ScreenDerivatives derivatives = ScreenDerivatives(vec3(0.0), vec3(0.0), vec2(0.0), vec2(0.0));
+  if ((draw.flags & DRAW_FLAG_NORMAL_MAP) != 0u)
+    derivatives = ScreenDerivatives(dFdx(inWorldPosition), -dFdy(inWorldPosition), dFdx(inTexcoord), -dFdy(inTexcoord));
   InstanceMaterial material = instanceMaterials[inMaterial];
   // Detail layers are other textures for the same UVs: they blend into the
   // texel, and the material's factor and the vertex colour tint the result,
@@ -183,7 +186,8 @@ void main() {
   const vec2 roughnessMetal = texture(metallicRoughnessTexture, inTexcoord).gb;
   s.roughness = clamp(draw.roughness * roughnessMetal.x, 0.05, 1.0);
   s.metallic = clamp(draw.metallic * roughnessMetal.y, 0.0, 1.0);
-  s.occlusion = 1.0 + draw.occlusionStrength * (texture(occlusionTexture, inTexcoord).r - 1.0);
+  s.occlusion = draw.occlusionStrength > 0.0 ? 1.0 + draw.occlusionStrength * (texture(occlusionTexture, inTexcoord).r - 1.0)
+                                              : 1.0;  // a CPU rasteriser samples what it is told to, white or not
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
