@@ -98,7 +98,7 @@ size_t CarriedPieces::add(const SourceFace& source, size_t piece, std::span<cons
       eng::Material material = source.model->materials[size_t(from.material)];
       material.detailLayers.clear();
       std::vector<int*> images{&material.baseColorImage};
-      for (const eng::DataTexture& slot : eng::kDataTextures) images.push_back(&(material.*slot.image));
+      for (const eng::MaterialTexture& slot : eng::kMaterialTextures) images.push_back(&(material.*slot.image));
       for (int* image : images) {
         if (*image < 0) continue;
         auto [copy, newImage] = imageOf_.try_emplace(*image, int(face_.images.size()));

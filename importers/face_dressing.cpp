@@ -22,6 +22,13 @@ using namespace eng;
 
 namespace {
 
+// The material's textures besides its base colour dropped; its emission goes
+// with its emissive texture (alone, the factor would light the whole surface).
+void dropOtherTextures(Material& m) {
+  if (m.emissiveImage >= 0) m.emissiveFactor = glm::vec3(0.0f);
+  for (const MaterialTexture& slot : kMaterialTextures) m.*slot.image = -1;
+}
+
 enum class Part { None, Teeth, Tongue, Skin };
 
 // Linear albedos: ivory teeth (a shade below white, so they do not glow in a
@@ -121,7 +128,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     Material& m = model.materials[size_t(material)];
     m.baseColorImage = int(model.images.size());
     m.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, m.baseColorFactor.a);
-    for (const DataTexture& slot : kDataTextures) m.*slot.image = -1;  // made for the UVs the painting replaced
+    dropOtherTextures(m);  // made for the UVs the painting replaced
     model.images.push_back(std::move(painted));
   }
   // A primitive without UVs would sample one texel of a texture made for its
@@ -133,7 +140,7 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     if (added) {
       Material plain = model.materials[size_t(prim->material)];
       plain.baseColorImage = -1;
-      for (const DataTexture& slot : kDataTextures) plain.*slot.image = -1;
+      dropOtherTextures(plain);
       plain.baseColorFactor = glm::vec4(kSkinColour, plain.baseColorFactor.a);
       model.materials.push_back(std::move(plain));
     }

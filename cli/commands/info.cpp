@@ -93,6 +93,8 @@ nlohmann::ordered_json toJson(const eng::Model& model) {
                          {"normalScale", mat.normalScale},
                          {"occlusionImage", mat.occlusionImage},
                          {"occlusionStrength", mat.occlusionStrength},
+                         {"emissiveFactor", {mat.emissiveFactor.r, mat.emissiveFactor.g, mat.emissiveFactor.b}},
+                         {"emissiveImage", mat.emissiveImage},
                          {"doubleSided", mat.doubleSided},
                          {"alphaMode", eng::alphaModeName(mat.alphaMode)},
                          {"alphaCutoff", mat.alphaCutoff},
@@ -162,6 +164,9 @@ void printText(const eng::Model& model) {
     if (mat.normalImage >= 0) std::printf(", normal image %d (scale %.3g)", mat.normalImage, mat.normalScale);
     if (mat.occlusionImage >= 0)
       std::printf(", occlusion image %d (strength %.3g)", mat.occlusionImage, mat.occlusionStrength);
+    if (mat.emissiveFactor != glm::vec3(0.0f))
+      std::printf(", emissive (%.3g, %.3g, %.3g)", mat.emissiveFactor.r, mat.emissiveFactor.g, mat.emissiveFactor.b);
+    if (mat.emissiveImage >= 0) std::printf(", emissive image %d", mat.emissiveImage);
     if (mat.unlit) std::printf(", unlit");
     if (const std::optional<eng::ToonShading>& t = mat.toon)
       std::printf(", toon (MToon): shade (%.3g, %.3g, %.3g)%s, shift %.3g, toony %.3g, rim (%.3g, %.3g, %.3g)",

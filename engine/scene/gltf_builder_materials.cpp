@@ -157,12 +157,12 @@ void GltfModelBuilder::loadMaterials() {
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     const BaseColorUv& uvs = baseColorUvs_.back();
-    const auto& [metalRough, normal, occlusion] = kDataTextures;
-    readDataTexture(metalRough, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+    const auto& [metalRough, normal, occlusion, emissive] = kMaterialTextures;
+    readMaterialTexture(metalRough, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                     pbr.metallicRoughnessTexture.extensions, uvs, mat, where);
-    readDataTexture(normal, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, uvs, mat,
+    readMaterialTexture(normal, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, uvs, mat,
                     where);
-    readDataTexture(occlusion, src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
+    readMaterialTexture(occlusion, src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
                     uvs, mat, where);
     mat.normalScale = static_cast<float>(src.normalTexture.scale);
     mat.occlusionStrength = std::clamp(static_cast<float>(src.occlusionTexture.strength), 0.0f, 1.0f);  // NaN stays NaN
@@ -197,11 +197,17 @@ void GltfModelBuilder::loadMaterials() {
       mat.normalScale = 1.0f;
       mat.occlusionStrength = 1.0f;
     }
-    // Emission is drawn from the factor alone: with a texture masking it,
-    // the factor would light the whole surface, so it is left out.
-    if (src.emissiveTexture.index >= 0 && mat.emissiveFactor != glm::vec3(0.0f)) {
-      warn(where + " has an emissiveTexture, which is not drawn; its emission is left out");
-      mat.emissiveFactor = glm::vec3(0.0f);
+    // The emissive texture masks the factor: without it (left out, or not
+    // decodable) the factor would light the whole surface, so it goes too.
+    if (mat.emissiveFactor != glm::vec3(0.0f)) {
+      readMaterialTexture(emissive, src.emissiveTexture.index, src.emissiveTexture.texCoord,
+                          src.emissiveTexture.extensions, uvs, mat, where);
+      const bool drawn = mat.emissiveImage >= 0 && !model_.images[static_cast<size_t>(mat.emissiveImage)].rgba8.empty();
+      if (src.emissiveTexture.index >= 0 && !drawn) {
+        warn(where + ": its emissiveFactor is left out with its emissiveTexture");
+        mat.emissiveFactor = glm::vec3(0.0f);
+        mat.emissiveImage = -1;
+      }
     }
     if (src.extras.IsObject() && src.extras.Has("detailLayers")) {
       const tinygltf::Value& layers = src.extras.Get("detailLayers");
@@ -242,7 +248,7 @@ void GltfModelBuilder::loadMaterials() {
 // Data textures are drawn through the primitive's one UV set, the base
 // colour's: a texture on another set, or moved by another transform, would
 // put the metal, the bumps or the shade in the wrong places, so it is left out.
-void GltfModelBuilder::readDataTexture(const DataTexture& slot, int texture, int texCoord,
+void GltfModelBuilder::readMaterialTexture(const MaterialTexture& slot, int texture, int texCoord,
                                        const tinygltf::ExtensionMap& extensions, const BaseColorUv& base, Material& mat,
                                        const std::string& where) {
   if (texture < 0) return;

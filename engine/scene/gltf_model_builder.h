@@ -112,7 +112,7 @@ class GltfModelBuilder {
     std::optional<UvTransform> transform;
   };
   BaseColorUv baseColorUv(const tinygltf::TextureInfo& info, int image, const std::string& where);
-  void readDataTexture(const DataTexture& slot, int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
+  void readMaterialTexture(const MaterialTexture& slot, int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
                        const BaseColorUv& base, Material& mat, const std::string& where);
   TextureSampling textureSampling(int texture, const std::string& where);
 

@@ -230,9 +230,9 @@ Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) 
 // Each material's textures in the document (-1: none).
 struct MaterialTextures {
   int baseColor = -1;
-  int data[3] = {-1, -1, -1};  // by kDataTextures
+  int others[4] = {-1, -1, -1, -1};  // by kMaterialTextures
 };
-static_assert(std::size(kDataTextures) == 3);
+static_assert(std::size(kMaterialTextures) == 4);
 
 // One texture per (image, sampling) a material uses, one sampler per
 // sampling.
@@ -253,8 +253,8 @@ std::vector<MaterialTextures> writeTextures(Json& doc, const Model& model) {
   for (size_t m = 0; m < model.materials.size(); ++m) {
     const Material& mat = model.materials[m];
     textures[m].baseColor = textureOf(mat.baseColorImage, mat.baseColorSampling);
-    for (size_t d = 0; d < std::size(kDataTextures); ++d)
-      textures[m].data[d] = textureOf(mat.*kDataTextures[d].image, mat.*kDataTextures[d].sampling);
+    for (size_t d = 0; d < std::size(kMaterialTextures); ++d)
+      textures[m].others[d] = textureOf(mat.*kMaterialTextures[d].image, mat.*kMaterialTextures[d].sampling);
   }
   if (!textureKeys.empty()) {
     Json samplers = Json::array(), list = Json::array();
@@ -276,11 +276,12 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
               {"metallicFactor", mat.metallic},
               {"roughnessFactor", mat.roughness}};
   if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
-  const auto [metallicRoughness, normal, occlusion] = textures.data;
+  const auto [metallicRoughness, normal, occlusion, emissive] = textures.others;
   if (metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", metallicRoughness}};
   Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
   if (normal >= 0) m["normalTexture"] = {{"index", normal}, {"scale", mat.normalScale}};
   if (occlusion >= 0) m["occlusionTexture"] = {{"index", occlusion}, {"strength", mat.occlusionStrength}};
+  if (emissive >= 0) m["emissiveTexture"] = {{"index", emissive}};
   if (!mat.name.empty()) m["name"] = mat.name;
   if (mat.doubleSided) m["doubleSided"] = true;
   if (mat.alphaMode != AlphaMode::Opaque) m["alphaMode"] = alphaModeName(mat.alphaMode);

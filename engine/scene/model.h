@@ -154,7 +154,9 @@ struct Material {
   glm::vec4 baseColorFactor{1.0f};
   int baseColorImage = -1;  // index into Model::images, sRGB encoded
   TextureSampling baseColorSampling;  // read through Primitive::texcoords
-  glm::vec3 emissiveFactor{0.0f};  // linear RGB (emissive textures are not drawn: see the glTF loader)
+  glm::vec3 emissiveFactor{0.0f};  // linear RGB, times the emissive texture where there is one
+  int emissiveImage = -1;          // index into Model::images, sRGB encoded
+  TextureSampling emissiveSampling;
   float roughness = 0.6f;
   float metallic = 0.0f;
   // glTF's metallicRoughnessTexture, linear: green scales the roughness,
@@ -184,17 +186,20 @@ struct Material {
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
 
-// The textures a material reads as data (linear, not colour), for code that
-// treats them alike: copying, checking, writing, uploading.
-struct DataTexture {
+// The textures a material reads besides its base colour, through the base
+// colour's UVs, for code that treats them alike: copying, checking, writing,
+// uploading.
+struct MaterialTexture {
   const char* name;  // glTF's name: "metallicRoughnessTexture"
   int Material::*image;
   TextureSampling Material::*sampling;
+  bool colour;  // sRGB encoded colour; else linear data
 };
-inline constexpr DataTexture kDataTextures[] = {
-    {"metallicRoughnessTexture", &Material::metallicRoughnessImage, &Material::metallicRoughnessSampling},
-    {"normalTexture", &Material::normalImage, &Material::normalSampling},
-    {"occlusionTexture", &Material::occlusionImage, &Material::occlusionSampling},
+inline constexpr MaterialTexture kMaterialTextures[] = {
+    {"metallicRoughnessTexture", &Material::metallicRoughnessImage, &Material::metallicRoughnessSampling, false},
+    {"normalTexture", &Material::normalImage, &Material::normalSampling, false},
+    {"occlusionTexture", &Material::occlusionImage, &Material::occlusionSampling, false},
+    {"emissiveTexture", &Material::emissiveImage, &Material::emissiveSampling, true},
 };
 
 struct Node {

@@ -54,7 +54,7 @@ Result<void> checkMaterials(const Model& model) {
     const std::string label = named("material", i, mat.name);
     if (mat.baseColorImage < -1 || mat.baseColorImage >= imageCount)
       return malformed(label + " base colour" + usesOf("image", mat.baseColorImage, model.images.size(), "images"));
-    for (const DataTexture& slot : kDataTextures)
+    for (const MaterialTexture& slot : kMaterialTextures)
       if (mat.*slot.image < -1 || mat.*slot.image >= imageCount)
         return malformed(label + " " + slot.name + usesOf("image", mat.*slot.image, model.images.size(), "images"));
     for (size_t l = 0; l < mat.detailLayers.size(); ++l) {

@@ -94,6 +94,7 @@ const uint DRAW_FLAG_TOON = 512u;        // MToon toon shading (InstanceMaterial
 const uint DRAW_FLAG_TOON_SHADE_TEXTURE = 1024u;  // MToon: shade colour x the base colour's texture
 const uint DRAW_FLAG_TOON_OUTLINE = 2048u;        // MToon: also drawn as an outline
 const uint DRAW_FLAG_NORMAL_MAP = 4096u;          // glTF normalTexture (set 1 binding 8)
+const uint DRAW_FLAG_EMISSIVE_TEXTURE = 8192u;    // glTF emissiveTexture (set 1 binding 10)
 
 // The outline pipelines (ScenePipelines::outline): the mesh pushed out along
 // its normals, back faces only, in the outline colour.

@@ -13,6 +13,7 @@ layout(set = 1, binding = 7) uniform sampler2D metallicRoughnessTexture;
 // glTF's normalTexture (tangent space, linear) and occlusionTexture (R), white when absent.
 layout(set = 1, binding = 8) uniform sampler2D normalTexture;
 layout(set = 1, binding = 9) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = 10) uniform sampler2D emissiveTexture;  // sRGB; read under DRAW_FLAG_EMISSIVE_TEXTURE
 
 // True only in the MASK pipelines: a shader that can discard loses early
 // depth testing, so the others compile the test away.
@@ -123,6 +124,8 @@ void main() {
   if ((draw.flags & DRAW_FLAG_NORMAL_MAP) != 0u)
     derivatives = ScreenDerivatives(dFdx(inWorldPosition), -dFdy(inWorldPosition), dFdx(inTexcoord), -dFdy(inTexcoord));
   InstanceMaterial material = instanceMaterials[inMaterial];
+  vec3 emission = material.emissive.rgb;
+  if ((draw.flags & DRAW_FLAG_EMISSIVE_TEXTURE) != 0u) emission *= texture(emissiveTexture, inTexcoord).rgb;
   // Detail layers are other textures for the same UVs: they blend into the
   // texel, and the material's factor and the vertex colour tint the result,
   // so a layer painted for the texture follows a skin recoloured by its factor.
@@ -147,7 +150,7 @@ void main() {
   // Unlit (KHR_materials_unlit): the colour the artist painted, untouched by
   // the lights and the exposure and tone curve that are there for them.
   if ((draw.flags & DRAW_FLAG_UNLIT) != 0u) {
-    outColor = vec4(clamp(base.rgb + material.emissive.rgb, 0.0, 1.0), alpha);
+    outColor = vec4(clamp(base.rgb + emission, 0.0, 1.0), alpha);
     return;
   }
 
@@ -174,13 +177,13 @@ void main() {
   if (OUTLINE_PIPELINE) {
     // The hull's back faces: the outline colour, toward it times the shaded
     // surface as much as the lighting mix says.
-    vec3 toon = shadeToon(material, base.rgb, n, s.toViewer, keyLightVisibility(inWorldPosition, n)) + material.emissive.rgb;
+    vec3 toon = shadeToon(material, base.rgb, n, s.toViewer, keyLightVisibility(inWorldPosition, n)) + emission;
     outColor = vec4(toneMap(material.toonOutline.rgb * mix(vec3(1.0), toon, material.toonOutlineStyle.y)), 1.0);
     return;
   }
   if ((draw.flags & DRAW_FLAG_TOON) != 0u) {
     vec3 toon = shadeToon(material, base.rgb, n, s.toViewer, inside ? 0.0 : keyLightVisibility(inWorldPosition, n));
-    outColor = vec4(toneMap(inside ? toon * 0.12 : toon + material.emissive.rgb), alpha);
+    outColor = vec4(toneMap(inside ? toon * 0.12 : toon + emission), alpha);
     return;
   }
   const vec2 roughnessMetal = texture(metallicRoughnessTexture, inTexcoord).gb;
@@ -191,5 +194,5 @@ void main() {
 
   float keyVisibility = keyLightVisibility(inWorldPosition, s.normal);
   vec3 lit = shadeThreePoint(s, inside ? 0.0 : keyVisibility);
-  outColor = vec4(toneMap(inside ? lit * 0.12 : lit + material.emissive.rgb), alpha);
+  outColor = vec4(toneMap(inside ? lit * 0.12 : lit + emission), alpha);
 }

@@ -364,7 +364,8 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
                            (mat.toon ? kDrawFlagToon : 0u) |
                            (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
                            (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
-                           (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u);
+                           (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u) |
+                           (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u);
       gp.constants.alphaCutoff = mat.alphaCutoff;
       gp.constants.normalScale = mat.normalScale;
       gp.constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
@@ -394,8 +395,8 @@ Result<void> GpuModel::uploadBuffers(const Context& ctx, const GpuModelStaging& 
   return {};
 }
 
-// Base colour (sRGB) and data (linear: metallic-roughness, normal,
-// occlusion) images once each, one detail array per material.
+// Colour (sRGB: base colour, emissive) and data (linear: metallic-roughness,
+// normal, occlusion) images once each, one detail array per material.
 Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
   textures_.resize(model.images.size());
   dataTextures_.resize(model.images.size());
@@ -424,8 +425,11 @@ Result<void> GpuModel::uploadTextures(const Context& ctx, const Model& model) {
   for (const Material& mat : model.materials) {
     ENG_TRY(upload(mat.baseColorImage, textures_, VK_FORMAT_R8G8B8A8_SRGB));
     ENG_TRY(addSampler(mat.baseColorImage, mat.baseColorSampling));
-    for (const DataTexture& slot : kDataTextures) {
-      ENG_TRY(upload(mat.*slot.image, dataTextures_, VK_FORMAT_R8G8B8A8_UNORM));
+    for (const MaterialTexture& slot : kMaterialTextures) {
+      if (slot.colour)
+        ENG_TRY(upload(mat.*slot.image, textures_, VK_FORMAT_R8G8B8A8_SRGB));
+      else
+        ENG_TRY(upload(mat.*slot.image, dataTextures_, VK_FORMAT_R8G8B8A8_UNORM));
       ENG_TRY(addSampler(mat.*slot.image, mat.*slot.sampling));
     }
   }
@@ -452,7 +456,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   if (sets == 0) return {};
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 * sets}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -500,10 +504,15 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
   const GpuImage* base = &layouts.whiteTexture();
   const GpuImage* detail = &layouts.emptyDetailArray();
   VkSampler baseSampler = layouts.sampler();
-  // By kDataTextures. White: the factors as they are, no occlusion (the
-  // normal texture is read only under kDrawFlagNormalMap).
-  std::array<VkDescriptorImageInfo, std::size(kDataTextures)> dataInfo;
-  dataInfo.fill({layouts.sampler(), layouts.whiteTexture().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  // By kMaterialTextures. White: the factors as they are, no occlusion (the
+  // normal and emissive textures are read only under their flags).
+  std::array<VkDescriptorImageInfo, std::size(kMaterialTextures)> others;
+  others.fill({layouts.sampler(), layouts.whiteTexture().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  auto uploaded = [&](const MaterialTexture& slot, int image) -> const GpuImage* {
+    if (image < 0) return nullptr;
+    const GpuImage& texture = (slot.colour ? textures_ : dataTextures_)[static_cast<size_t>(image)];
+    return texture ? &texture : nullptr;
+  };
   auto samplerFor = [&](const TextureSampling& wanted, VkSampler& out) {
     for (const auto& [sampling, sampler] : samplers_)
       if (sampling == wanted) out = sampler.get();
@@ -514,16 +523,18 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
     if (mat.baseColorImage >= 0 && textures_[static_cast<size_t>(mat.baseColorImage)])
       base = &textures_[static_cast<size_t>(mat.baseColorImage)];
     samplerFor(mat.baseColorSampling, baseSampler);
-    for (size_t d = 0; d < dataInfo.size(); ++d) {
-      const int image = mat.*kDataTextures[d].image;
-      if (image < 0 || !dataTextures_[static_cast<size_t>(image)]) continue;
-      dataInfo[d].imageView = dataTextures_[static_cast<size_t>(image)].view();
-      samplerFor(mat.*kDataTextures[d].sampling, dataInfo[d].sampler);
+    for (size_t t = 0; t < others.size(); ++t) {
+      const MaterialTexture& slot = kMaterialTextures[t];
+      const GpuImage* texture = uploaded(slot, mat.*slot.image);
+      if (!texture) continue;
+      others[t].imageView = texture->view();
+      samplerFor(mat.*slot.sampling, others[t].sampler);
     }
     // Undecodable (the loader warned): drawn as without.
-    auto uploaded = [&](int image) { return image >= 0 && dataTextures_[static_cast<size_t>(image)]; };
-    if (!uploaded(mat.normalImage)) gp.constants.flags &= ~kDrawFlagNormalMap;
-    if (!uploaded(mat.occlusionImage)) gp.constants.occlusionStrength = 0.0f;
+    const auto& [metalRough, normal, occlusion, emissive] = kMaterialTextures;
+    if (!uploaded(normal, mat.normalImage)) gp.constants.flags &= ~kDrawFlagNormalMap;
+    if (!uploaded(occlusion, mat.occlusionImage)) gp.constants.occlusionStrength = 0.0f;
+    if (!uploaded(emissive, mat.emissiveImage)) gp.constants.flags &= ~kDrawFlagEmissiveTexture;
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
@@ -545,9 +556,10 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       imageWrite(gp.descriptorSet, 4, &detailInfo),
       bufferWrite(gp.descriptorSet, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &detailParams),
       bufferWrite(gp.descriptorSet, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &influences),
-      imageWrite(gp.descriptorSet, 7, &dataInfo[0]),
-      imageWrite(gp.descriptorSet, 8, &dataInfo[1]),
-      imageWrite(gp.descriptorSet, 9, &dataInfo[2]),
+      imageWrite(gp.descriptorSet, 7, &others[0]),
+      imageWrite(gp.descriptorSet, 8, &others[1]),
+      imageWrite(gp.descriptorSet, 9, &others[2]),
+      imageWrite(gp.descriptorSet, 10, &others[3]),
   };
   vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -173,7 +173,7 @@ class GpuModel {
   Buffer skinInfluences_;
   std::vector<Skin> skins_;
   std::vector<glm::mat4> restWorld_;
-  std::vector<GpuImage> textures_;      // by Model image index; empty where unused as base colour
+  std::vector<GpuImage> textures_;      // by Model image index, sRGB; empty where unused as colour
   std::vector<GpuImage> dataTextures_;  // the same, linear: metallic-roughness, normal, occlusion images
   std::vector<GpuImage> detailArrays_;  // by material index; empty where it has no layers
   // The samplings materials' textures ask for other than the default (SceneLayouts::sampler()).

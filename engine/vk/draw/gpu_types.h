@@ -112,6 +112,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagToonShadeTexture = 1024u,  // MToon: the shade colour is multiplied by the base colour's texture
   kDrawFlagToonOutline = 2048u,       // MToon: drawn again as an outline (ScenePipelines::outline)
   kDrawFlagNormalMap = 4096u,         // glTF normalTexture: the shading normal bent by it
+  kDrawFlagEmissiveTexture = 8192u,   // glTF emissiveTexture: the emission masked by it
 };
 
 struct GpuDetailLayer {

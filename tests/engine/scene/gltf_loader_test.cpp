@@ -635,9 +635,10 @@ TEST(GltfLoader, ReadsMaterialFactorsTextureAndDetailLayers) {
   EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
 }
 
-// Emission is drawn from the factor; a factor masked by an emissive texture
-// (not drawn) would light the whole surface, so it is left out with a warning.
-TEST(GltfLoader, ReadsEmissiveFactorsAndLeavesOutTextureMaskedEmission) {
+// Emission is the factor times the emissive texture. A texture that cannot
+// be drawn (another UV set) takes the factor with it: alone, the factor would
+// light the whole surface.
+TEST(GltfLoader, ReadsEmissiveFactorsAndTexturesAndLeavesOutEmissionItCannotMask) {
   const auto dir = freshTempDir("loader_emissive");
   GltfFileBuilder b = quadWithTarget();
   const std::vector<uint8_t> pixels = {255, 255, 255, 255};
@@ -648,16 +649,23 @@ TEST(GltfLoader, ReadsEmissiveFactorsAndLeavesOutTextureMaskedEmission) {
   b.doc["materials"] = Json::array({{{"name", "glow"}, {"emissiveFactor", {0.5, 0.25, 0}}},
                                     {{"name", "masked"}, {"emissiveFactor", {1, 1, 1}},
                                      {"emissiveTexture", {{"index", 0}}}},
-                                    {{"name", "dark"}, {"emissiveTexture", {{"index", 0}}}}});
+                                    {{"name", "dark"}, {"emissiveTexture", {{"index", 0}}}},
+                                    {{"name", "masked on the second set"}, {"emissiveFactor", {1, 1, 1}},
+                                     {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}}});
   b.doc["meshes"][0]["primitives"][0]["material"] = 0;
   b.writeGlb(dir / "emissive.glb");
   const eng::Model model = loadOk(dir / "emissive.glb");
-  ASSERT_EQ(model.materials.size(), 3u);
+  ASSERT_EQ(model.materials.size(), 4u);
   EXPECT_EQ(model.materials[0].emissiveFactor, glm::vec3(0.5f, 0.25f, 0.0f));
-  EXPECT_EQ(model.materials[1].emissiveFactor, glm::vec3(0.0f));
+  EXPECT_EQ(model.materials[0].emissiveImage, -1);
+  EXPECT_EQ(model.materials[1].emissiveFactor, glm::vec3(1.0f));
+  EXPECT_EQ(model.materials[1].emissiveImage, 0);
   EXPECT_EQ(model.materials[2].emissiveFactor, glm::vec3(0.0f));
-  EXPECT_TRUE(hasWarningContaining(model, "material 1 has an emissiveTexture, which is not drawn; its emission is left out"));
-  EXPECT_FALSE(hasWarningContaining(model, "material 2")) << "no emission to leave out";
+  EXPECT_EQ(model.materials[2].emissiveImage, -1) << "no emission for the texture to mask";
+  EXPECT_FALSE(hasWarningContaining(model, "material 2")) << "nothing to leave out";
+  EXPECT_EQ(model.materials[3].emissiveFactor, glm::vec3(0.0f));
+  EXPECT_EQ(model.materials[3].emissiveImage, -1);
+  EXPECT_TRUE(hasWarningContaining(model, "material 3: its emissiveFactor is left out with its emissiveTexture"));
 }
 
 TEST(GltfLoader, BrokenImageIsSkippedWithAWarningAndTheMaterialLosesItsTexture) {

@@ -48,6 +48,7 @@ eng::Model richModel() {
   skin.occlusionImage = 0;
   skin.occlusionStrength = 0.75f;
   skin.occlusionSampling.wrapT = eng::TextureWrap::ClampToEdge;
+  skin.emissiveImage = 0;
   skin.baseColorSampling = {eng::TextureWrap::ClampToEdge, eng::TextureWrap::MirroredRepeat, eng::TextureFilter::Nearest,
                             eng::TextureFilter::Nearest, false, eng::TextureFilter::Linear};
   model.materials.push_back(skin);
@@ -189,6 +190,8 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.occlusionImage, y.occlusionImage);
     EXPECT_EQ(x.occlusionSampling, y.occlusionSampling) << x.name;
     EXPECT_EQ(x.occlusionStrength, y.occlusionStrength);
+    EXPECT_EQ(x.emissiveImage, y.emissiveImage);
+    EXPECT_EQ(x.emissiveSampling, y.emissiveSampling) << x.name;
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);

@@ -404,6 +404,33 @@ TEST(OffscreenRender, OcclusionTextureDarkensTheAmbientLight) {
   EXPECT_LT(meanDifference(open, render(0, 0.0f)), 0.05) << "strength 0: no occlusion";
 }
 
+// glTF's emissiveTexture masks the emissive factor: black where the surface
+// gives no light (a VRM's eye highlight painted on its texture), the factor
+// where white.
+TEST(OffscreenRender, EmissiveTextureMasksTheEmission) {
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  auto render = [&](glm::vec3 factor, int grey) {
+    eng::Model model = testing_support::makeSphereModel({.targets = 0});
+    model.materials.at(0).emissiveFactor = factor;
+    if (grey >= 0) {
+      model.images.push_back({"glow", 1, 1, {uint8_t(grey), uint8_t(grey), uint8_t(grey), 255}});
+      model.materials.at(0).emissiveImage = 0;
+    }
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const glm::vec3 glow(0.0f, 0.0f, 0.6f);
+  const eng::Image dark = render(glm::vec3(0.0f), -1), glowing = render(glow, -1);
+  std::printf("emission %.2f levels from none; masked black %.2f, white %.2f from the factor alone\n",
+              meanDifference(dark, glowing), meanDifference(dark, render(glow, 0)),
+              meanDifference(glowing, render(glow, 255)));
+  EXPECT_GT(meanDifference(dark, glowing), 5.0);
+  EXPECT_LT(meanDifference(dark, render(glow, 0)), 0.05) << "black: no emission";
+  EXPECT_LT(meanDifference(glowing, render(glow, 255)), 0.05) << "white: the factor";
+}
+
 TEST(OffscreenRender, UnlitMaterialShowsItsBaseColourEverywhere) {
   // KHR_materials_unlit: no light, shadow, exposure or tone curve. The lit
   // sphere is brighter toward the key and darker away from it; the unlit one
