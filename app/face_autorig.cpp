@@ -166,7 +166,6 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
     posed = autorig::poseAtRest(opened);
     parts = autorig::findFaceParts(opened, posed, landmarks);
   }
-  parts.teethFromTheSource = opening.insideVertices > 0;
   auto transferred = autorig::transferTargets(source_, opened, posed, landmarks, parts, options);
   if (!transferred) return transferred.error().prefixed(faceName + ": ");
   AutorigResult result;

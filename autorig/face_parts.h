@@ -51,10 +51,6 @@ struct FaceParts {
   // lids): it stays still, and no gaze turns it, since turning painted skin
   // drags the lids' texels into the opening.
   std::array<bool, 2> eyesInTheSkin{};
-  // The lower teeth and tongue are the source's own, carried in behind lips
-  // that had nothing inside (mouth_opening): they drop with the lower lip as
-  // far as the source's do.
-  bool teethFromTheSource = false;
   // One line per decision a user may want to check ("Wolf3D_Teeth: upper
   // and lower teeth, split at y = 1.62"), for `facial rig` and notes.
   std::vector<std::string> notes;

@@ -512,13 +512,13 @@ std::vector<float> sourceTeethShares(const SourceFace& source, const FaceSurface
   return shares;
 }
 
-// The source's lower teeth carried into a face (and its tongue) drop at least
-// as far, for the lower lip's middle, as they do in the source: the turn found
-// for the lips (scaled down where they part more than the jaw turns them) left
-// them floating in a scan's open mouth at 0.6 of the head's travel. The turn
-// is only raised, up to kTeethScale. A face's own teeth keep the turn:
-// facecap's drop less for its lip than the head's, and its jawOpen is nearest
-// its own so (relative RMS 0.45 against 0.63).
+// A face's lower teeth (and its tongue), carried from the source or its own,
+// drop at least as far, for the lower lip's middle, as they do in the source:
+// the turn found for the lips (scaled down where they part more than the jaw
+// turns them) left them floating in a scan's open mouth at 0.6 of the head's
+// travel, and bared facecap's own to the roots when surprise opened its
+// mouth (its own jawOpen drops them 0.9 of its lip's way). The turn is only
+// raised, up to kTeethScale.
 constexpr float kTeethScale = 2.0f;
 
 void lowerTeethWithTheLip(const JawTurn& turn, float share, const FaceSurface& tgt, const Correspondence& corr,
@@ -631,8 +631,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
                  const FaceParts& parts) {
   const LandmarkFrame sourceFrame(source.landmarks), targetFrame(landmarks);
   const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
-  const std::vector<float> teethShare =
-      parts.teethFromTheSource ? sourceTeethShares(source, src, corr.sourceRegions, raw, units) : std::vector<float>(units.size(), 0.0f);
+  const std::vector<float> teethShare = sourceTeethShares(source, src, corr.sourceRegions, raw, units);
   std::vector<glm::mat3> jacobians(src.positions.size());
   for (size_t i = 0; i < src.positions.size(); ++i)
     jacobians[i] = tamed(corr.warp.jacobian(src.positions[i], kJacobianStep * sourceFrame.eyeSpan()), corr.warp.similarity().scale);
@@ -675,7 +674,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const JawTurn matched = openingLikeSource(turn, split, src, raw[u], tgt, corr, source.landmarks, landmarks,
                                                 fullGap, maxGap, jaw, lips, unit.deltas);
       turnWithJaw(matched, split, src, tgt, corr, fullGap, maxGap, jaw, unit.deltas);
-      if (parts.teethFromTheSource) lowerTeethWithTheLip(matched, teethShare[u], tgt, corr, landmarks, jaw, unit.deltas);
+      lowerTeethWithTheLip(matched, teethShare[u], tgt, corr, landmarks, jaw, unit.deltas);
     }
     mendTears(lips, tgt, unit.deltas);
     moved.units.push_back(std::move(unit));

@@ -143,10 +143,9 @@ struct RiggedJaw {
   const eng::Mesh* mesh = nullptr;
   size_t jaw = 0;
 };
-void rigTheJaw(const Opened& opened, const autorig::SourceFace& source, bool teethFromTheSource, RiggedJaw& out) {
+void rigTheJaw(const Opened& opened, const autorig::SourceFace& source, RiggedJaw& out) {
   const autorig::PosedFace posed = autorig::poseAtRest(opened.face);
-  autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
-  parts.teethFromTheSource = teethFromTheSource;
+  const autorig::FaceParts parts = autorig::findFaceParts(opened.face, posed, source.landmarks);
   eng::Result<autorig::TransferResult> rigged =
       autorig::transferTargets(source, opened.face, posed, source.landmarks, parts, transfer_fixture::kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
@@ -325,7 +324,7 @@ TEST(MouthOpening, AWeldedMouthOpensWhenRigged) {
     if (m.name == "Head") before = m.primitives[0].vertexCount();
   const Opened opened = open(face, source);
   RiggedJaw rigged;  // teeth from the source, as FaceAutorig::rig says of a face given the head's mouth
-  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, /*teethFromTheSource=*/true, rigged));
+  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, rigged));
   const eng::Mesh* mesh = rigged.mesh;
   const eng::Primitive& skin = mesh->primitives[0];
   const eng::MorphTarget& drop = skin.targets[rigged.jaw];
@@ -388,7 +387,7 @@ TEST(MouthOpening, LipsWeldedTwiceOpenWithoutASheetAcrossTheMouth) {
   const autorig::SourceFace source = headSource(*head);
   const Opened opened = open(weldedLikeAnStl(stripped(*head)), source);
   RiggedJaw rigged;
-  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, /*teethFromTheSource=*/false, rigged));
+  ASSERT_NO_FATAL_FAILURE(rigTheJaw(opened, source, rigged));
   const eng::Primitive& skin = rigged.mesh->primitives[0];
   const std::vector<glm::vec3>& drop = skin.targets[rigged.jaw].positions;
   // Triangles about the mouth's middle that AU26 stretches to more than four
