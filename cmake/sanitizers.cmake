@@ -42,15 +42,23 @@ endif()
 # targets and sources of such loops keep -O2 (it comes after -O1, so it
 # wins); reports still name file and line.
 #   facial_optimize_when_sanitized(TARGETS facial_autorig SOURCES runtime/rbf.cpp)
+# In the fuzzing build they also leave out libFuzzer's comparison tracing
+# (trace-cmp: a call per compared integer, a tenth of a sanitized transfer):
+# the fuzzers feed parsers, and these loops branch on geometry, not on input
+# bytes; their edges are still counted.
 function(facial_optimize_when_sanitized)
   cmake_parse_arguments(ARG "" "" "TARGETS;SOURCES" ${ARGN})
   if(FACIAL_SANITIZE)
+    set(options -O2)
+    if(FACIAL_FUZZ)
+      list(APPEND options -fno-sanitize-coverage=trace-cmp)
+    endif()
     foreach(target IN LISTS ARG_TARGETS)
-      target_compile_options(${target} PRIVATE -O2)
+      target_compile_options(${target} PRIVATE ${options})
     endforeach()
     # A source with options of its own is compiled outside the unity batches.
     if(ARG_SOURCES)
-      set_property(SOURCE ${ARG_SOURCES} APPEND PROPERTY COMPILE_OPTIONS -O2)
+      set_property(SOURCE ${ARG_SOURCES} APPEND PROPERTY COMPILE_OPTIONS ${options})
     endif()
   endif()
 endfunction()

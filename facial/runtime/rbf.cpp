@@ -182,10 +182,29 @@ eng::Result<glm::vec3> RbfInterpolator::evaluate(const Eigen::MatrixX3d& coeffic
   if (auto r = requireSize(static_cast<size_t>(coefficients.rows()), points_.size() + 4, "coefficient matrix"); !r)
     return r.error();
   if (auto r = requireFinite(std::span<const glm::vec3>(&x, 1), "evaluation point"); !r) return r.error();
-  Eigen::RowVectorXd row(coefficients.rows());
-  basisRow(normalise(x), row);
-  const Eigen::RowVector3d value = row * coefficients;
-  return glm::vec3(static_cast<float>(value(0)), static_cast<float>(value(1)), static_cast<float>(value(2)));
+  // The basis row times the coefficients, summed as it is made, over plain
+  // arrays: no row to allocate, no Eigen or glm operator left out of line in
+  // a sanitized build (an autorig transfer evaluates a warp six times per
+  // vertex of the source face).
+  const glm::dvec3 p = normalise(x);
+  const size_t n = points_.size();
+  const double* cx = coefficients.col(0).data();
+  const double* cy = coefficients.col(1).data();
+  const double* cz = coefficients.col(2).data();
+  glm::dvec3 value(cx[n] + p.x * cx[n + 1] + p.y * cx[n + 2] + p.z * cx[n + 3],
+                   cy[n] + p.x * cy[n + 1] + p.y * cy[n + 2] + p.z * cy[n + 3],
+                   cz[n] + p.x * cz[n + 1] + p.y * cz[n + 2] + p.z * cz[n + 3]);
+  const bool biharmonic = normalisedKernel_.type == RbfKernelType::Biharmonic;
+  const glm::dvec3* points = points_.data();
+  for (size_t j = 0; j < n; ++j) {
+    const double dx = p.x - points[j].x, dy = p.y - points[j].y, dz = p.z - points[j].z;
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double phi = biharmonic ? r : normalisedKernel_(r);
+    value.x += phi * cx[j];
+    value.y += phi * cy[j];
+    value.z += phi * cz[j];
+  }
+  return glm::vec3(value);
 }
 
 eng::Result<Eigen::MatrixXd> RbfInterpolator::influenceMatrix(std::span<const glm::vec3> points) const {
