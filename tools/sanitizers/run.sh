@@ -51,8 +51,9 @@ build="${FACIAL_SANITIZE_BUILD_DIR:-build-sanitize}"
 # Each list longest first (sanitized, CI's filters, a clean clone on 2 cores,
 # 2026-12-05: test_cli 283 s, test_autorig 281, test_engine_vk 118,
 # test_dataset 69, test_app 63, test_bake_head 61, test_cli_demo 44,
-# test_soak 36, test_importers 36, the rest under 30), so that two at a time
-# finish together.
+# test_soak 36, test_importers 36, the rest under 30; since the cheaper
+# sanitized transfer of 2026-12-06, test_autorig 152 s and test_cli 129 s
+# alone), so that two at a time finish together.
 vulkan_free=(test_autorig test_bake_head test_importers test_editor_files test_facial_graph test_engine_scene test_bake test_audio test_facial_rig test_facial_speech test_facial_character test_engine_view test_facial_json test_engine_image)
 # test_app (the landmark finder, on-the-fly rigging) and test_dataset render: the driver is preloaded for them.
 vulkan_ci=(test_cli test_engine_vk test_dataset test_app test_cli_demo test_soak)
