@@ -80,7 +80,14 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
   if (const std::filesystem::path file = facial::rigMapFileFor(options); !file.empty()) {
     auto rigmap = facial::loadRigMapFile(file, targetNames);
     if (!rigmap) return rigmap.error().prefixed(model.sourcePath + ": ");
-    calibration.overrides = std::move(rigmap->calibration);
+    // A map found by the face's name that only calibrates was measured on the
+    // one file it ships beside (data/rigmaps/head.json: the built-in head's
+    // jaw, raised 1.6 times): another face of that name (a scan saved as
+    // head.glb with ARKit shapes of its own) is calibrated by its own targets.
+    std::error_code ec;
+    const bool byName = rigmapFile.empty(), mapsTargets = rigmap->mapping.has_value();
+    const bool beside = std::filesystem::equivalent(std::filesystem::path(model.sourcePath).parent_path(), dataDirectory(), ec);
+    if (!byName || mapsTargets || beside) calibration.overrides = std::move(rigmap->calibration);
   }
   auto calibrated = facial::calibrateRig(*rig, targetReach(model), calibration);
   if (!calibrated) return calibrated.error().prefixed(model.sourcePath + ": ");

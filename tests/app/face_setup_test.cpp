@@ -216,6 +216,25 @@ TEST(FaceSetupData, BuiltInHeadsRigMapRaisesItsJawOnTopOfTheMeasuredScale) {
   }
 }
 
+// The same head saved elsewhere under the same name (a user's head.glb) is
+// another face: the map found by its name only calibrates the built-in one.
+TEST(FaceSetupData, AnotherFaceCalledHeadIsNotCalibratedAsTheBuiltInHead) {
+  auto model = eng::loadModel(app::defaultModelPath());
+  ASSERT_TRUE(model) << model.error().message;
+  auto jawScale = [](const facial::RigCalibration& c) {
+    for (const facial::ActionUnitCalibration& u : c.units)
+      if (u.channel == "AU26_JawDrop") return u.scale;
+    return 0.0f;
+  };
+  auto builtIn = app::buildModelRig(*model);
+  ASSERT_TRUE(builtIn) << builtIn.error().message;
+  model->sourcePath = (testing_support::freshTempDir("face_setup_another_head") / "head.glb").string();
+  auto another = app::buildModelRig(*model);
+  ASSERT_TRUE(another) << another.error().message;
+  ASSERT_GT(jawScale(*another), 0.0f);
+  EXPECT_NEAR(jawScale(*builtIn), jawScale(*another) * 1.6f, 1e-4f);
+}
+
 TEST(FaceSetupShared, FacecapIsDrivenThroughTheArkitScheme) {
   FACIAL_REQUIRE_SHARED();
   auto face = app::FaceSetup::load({.model = testing_support::sharedDir() / "assets" / "facecap.glb"});
