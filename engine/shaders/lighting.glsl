@@ -82,7 +82,8 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor, bool withSpecular
   vec3 f0 = mix(vec3(0.028), s.albedo, s.metallic);  // 0.028: skin's reflectance at normal incidence
   float vDotH = clamp(dot(s.toViewer, h), 0.0, 1.0);
   vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - vDotH, 5.0);
-  vec3 specular = fresnel * normalisation * pow(nDotH, shininess) * lambert * frame.skin.z;
+  // The gentle strength is skin's; a metal's colour is its reflection, at full strength.
+  vec3 specular = fresnel * normalisation * pow(nDotH, shininess) * lambert * mix(frame.skin.z, 1.0, s.metallic);
 
   return (diffuse + specular) * lightColor;
 }
@@ -95,6 +96,18 @@ vec3 shadeThreePoint(SurfacePoint s, float keyVisibility) {
   // Hemisphere ambient: sky from above, bounce from below.
   float up = s.normal.y * 0.5 + 0.5;
   color += s.albedo * (1.0 - s.metallic) * s.occlusion * mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, up);
+  // The same hemisphere seen in reflection (Karis's analytic split-sum fit for
+  // the BRDF's share): without it a metal, which has no diffuse colour, is
+  // black wherever no light's highlight falls on it (gold frames, a buckle).
+  vec3 reflected = reflect(-s.toViewer, s.normal);
+  vec3 sky = mix(frame.groundAmbient.rgb, frame.skyAmbient.rgb, reflected.y * 0.5 + 0.5);
+  sky = mix(sky, 0.5 * (frame.groundAmbient.rgb + frame.skyAmbient.rgb), s.roughness);
+  const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022), c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+  vec4 r = s.roughness * c0 + c1;
+  float nDotV = clamp(dot(s.normal, s.toViewer), 0.0, 1.0);
+  float a004 = min(r.x * r.x, exp2(-9.28 * nDotV)) * r.x + r.y;
+  vec2 scaleBias = vec2(-1.04, 1.04) * a004 + r.zw;
+  color += s.metallic * (s.albedo * scaleBias.x + scaleBias.y) * sky * s.occlusion;
   return color;
 }
 
