@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <queue>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "engine/scene/position_hash.h"
@@ -149,11 +148,14 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
       if (whole) surface.triangles.push_back(t);
     }
     if (primitive.texcoords.size() != primitive.vertexCount()) continue;
-    std::unordered_map<eng::ExactPosition, uint32_t, eng::ExactPosition::Hash> first;
+    // A seam copy's root: the first gathered vertex at its place.
+    const eng::ExactPositionGroups groups = eng::groupExactPositions(p.positions);
+    std::vector<uint32_t> first(groups.firstVertex.size(), kNotGathered);
     for (size_t v = 0; v < p.positions.size(); ++v) {
       if (index[v] == kNotGathered) continue;
-      const auto [at, added] = first.try_emplace(eng::ExactPosition(p.positions[v]), uint32_t(v));
-      if (!added && primitive.texcoords[at->second] != primitive.texcoords[v]) surface.seamRoot[index[v]] = index[at->second];
+      uint32_t& root = first[groups.groupOf[v]];
+      if (root == kNotGathered) root = uint32_t(v);
+      else if (primitive.texcoords[root] != primitive.texcoords[v]) surface.seamRoot[index[v]] = index[root];
     }
   }
   return surface;

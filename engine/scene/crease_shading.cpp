@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 #include "engine/scene/position_hash.h"
 
@@ -34,14 +33,9 @@ struct WeldedSurface {
 
 WeldedSurface weld(const Primitive& p) {
   WeldedSurface s;
-  s.nodeOf.resize(p.positions.size());
-  std::unordered_map<ExactPosition, uint32_t, ExactPosition::Hash> nodes;
-  nodes.reserve(p.positions.size());
-  for (size_t v = 0; v < p.positions.size(); ++v) {
-    auto [it, added] = nodes.try_emplace(ExactPosition(p.positions[v]), uint32_t(s.firstVertex.size()));
-    if (added) s.firstVertex.push_back(uint32_t(v));
-    s.nodeOf[v] = it->second;
-  }
+  ExactPositionGroups groups = groupExactPositions(p.positions);
+  s.nodeOf = std::move(groups.groupOf);
+  s.firstVertex = std::move(groups.firstVertex);
   const size_t nodeCount = s.firstVertex.size();
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(p.indices.size() * 2);

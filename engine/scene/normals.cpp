@@ -1,45 +1,17 @@
 #include "engine/scene/normals.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "engine/scene/position_hash.h"
 
 namespace eng {
-namespace {
-
-// Each vertex's group of vertices at exactly its position, numbered from 0;
-// `count` receives the number of groups. By sorting the positions' bits: a
-// hash map allocated a node per vertex, and an autorig transfer computes the
-// normals of every target it makes (under AddressSanitizer those allocations
-// were most of a transfer's normals).
-std::vector<uint32_t> exactPositionGroups(std::span<const glm::vec3> positions, size_t& count) {
-  struct Keyed {
-    ExactPosition key;
-    uint32_t vertex;
-  };
-  std::vector<Keyed> keyed(positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) keyed[v] = {ExactPosition(positions[v]), static_cast<uint32_t>(v)};
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    if (a.key.x != b.key.x) return a.key.x < b.key.x;
-    return a.key.y != b.key.y ? a.key.y < b.key.y : a.key.z < b.key.z;
-  });
-  std::vector<uint32_t> group(positions.size());
-  count = 0;
-  for (size_t i = 0; i < keyed.size(); ++i) {
-    if (i > 0 && !(keyed[i].key == keyed[i - 1].key)) ++count;
-    group[keyed[i].vertex] = static_cast<uint32_t>(count);
-  }
-  if (!keyed.empty()) ++count;
-  return group;
-}
-
-}  // namespace
 
 std::vector<glm::vec3> computeSmoothNormals(std::span<const glm::vec3> positions, std::span<const uint32_t> indices) {
   const size_t n = positions.size();
-  size_t groupCount = 0;
-  const std::vector<uint32_t> group = exactPositionGroups(positions, groupCount);
+  // Seam copies share one normal.
+  const ExactPositionGroups groups = groupExactPositions(positions);
+  const std::vector<uint32_t>& group = groups.groupOf;
+  const size_t groupCount = groups.firstVertex.size();
 
   // In double: with coordinates near float's range (1e30 is a valid float)
   // the float cross product and its squared length overflow to inf and the

@@ -23,6 +23,38 @@ size_t ExactPosition::Hash::operator()(const ExactPosition& k) const {
   return static_cast<size_t>(h ^ (h >> 31));
 }
 
+ExactPositionGroups groupExactPositions(std::span<const glm::vec3> positions) {
+  struct Keyed {
+    ExactPosition key;
+    uint32_t vertex;
+  };
+  std::vector<Keyed> keyed(positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) keyed[v] = {ExactPosition(positions[v]), static_cast<uint32_t>(v)};
+  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
+    return std::tie(a.key.x, a.key.y, a.key.z, a.vertex) < std::tie(b.key.x, b.key.y, b.key.z, b.vertex);
+  });
+  // Runs of one key, numbered as sorted, then renumbered by first vertex.
+  std::vector<uint32_t> run(positions.size());
+  uint32_t runs = 0;
+  for (size_t i = 0; i < keyed.size(); ++i) {
+    if (i > 0 && !(keyed[i].key == keyed[i - 1].key)) ++runs;
+    run[keyed[i].vertex] = runs;
+  }
+  constexpr uint32_t kUnnumbered = UINT32_MAX;
+  std::vector<uint32_t> numberOfRun(keyed.empty() ? 0 : size_t(runs) + 1, kUnnumbered);
+  ExactPositionGroups groups;
+  groups.groupOf.resize(positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) {
+    uint32_t& number = numberOfRun[run[v]];
+    if (number == kUnnumbered) {
+      number = static_cast<uint32_t>(groups.firstVertex.size());
+      groups.firstVertex.push_back(static_cast<uint32_t>(v));
+    }
+    groups.groupOf[v] = number;
+  }
+  return groups;
+}
+
 size_t PositionHash::CellKeyHash::operator()(const CellKey& k) const {
   // Teschner et al.'s spatial hash primes.
   return static_cast<size_t>((static_cast<uint64_t>(static_cast<uint32_t>(k.x)) * 73856093u) ^

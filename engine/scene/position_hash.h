@@ -24,6 +24,17 @@ struct ExactPosition {
   };
 };
 
+// Vertices at exactly one place as groups, numbered in the order of their
+// first vertex (the lowest-numbered). By sorting the positions' bits: a hash
+// map allocated a node per vertex, and an autorig transfer groups the
+// vertices of every target it makes (under AddressSanitizer those
+// allocations were most of a transfer's normals).
+struct ExactPositionGroups {
+  std::vector<uint32_t> groupOf;      // per vertex
+  std::vector<uint32_t> firstVertex;  // per group
+};
+ExactPositionGroups groupExactPositions(std::span<const glm::vec3> positions);
+
 class PositionHash {
  public:
   // Queries up to maxRadius look at the 8 cells of side 2 * maxRadius around p.
