@@ -26,8 +26,11 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/scene/gltf_loader.h"
+#include "engine/scene/gltf_writer.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/cli_test_support.h"
+#include "tests/common/test_meshes.h"
 #include "tests/common/test_support.h"
 
 namespace cli_test {
@@ -98,6 +101,38 @@ TEST_F(ExpressionJudge, BuiltInHeadStatesAreNamed) { expectRecognised("head", ""
 
 TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
   expectRecognised("facecap", (testing_support::sharedDir() / "assets" / "facecap.glb").string(), {{256, 6}, {384, 6}});
+}
+
+// Faces without targets (issue 33), rigged on the fly by `facial express`:
+// the built-in head and facecap with every target stripped, and the Ready
+// Player Me avatar that has only visemes. The issue asks 5 of 7 on each; these
+// are floors under what they read today (2026-12-06; per state in
+// docs/autorig.md): facecap's surprise and fear at 384 px, and the avatar's
+// sad, surprise and fear, which the judge reads as anger under its painted
+// moustache and glasses (5 of 7 with both taken away), are below it.
+std::string strippedCopy(const std::string& name, const std::filesystem::path& from) {
+  eng::Result<eng::Model> face = eng::loadModel(from);
+  EXPECT_TRUE(face) << face.error().message;
+  if (!face) return {};
+  // The head's material names its own wrinkle layers by its targets; without them, none.
+  for (eng::Material& material : face->materials) material.detailLayers.clear();
+  const std::filesystem::path out = testing_support::freshTempDir("judge_stripped_" + name) / (name + ".glb");
+  eng::Result<void> saved = eng::saveModel(testing_support::stripped(std::move(*face)), out);
+  EXPECT_TRUE(saved) << saved.error().message;
+  return out.string();
+}
+
+TEST_F(ExpressionJudge, BuiltInHeadWithoutTargetsStatesAreNamed) {
+  expectRecognised("head_stripped", strippedCopy("head", testing_support::sourceDir() / "data" / "head.glb"), {{256, 5}, {384, 5}});
+}
+
+TEST_F(ExpressionJudge, FacecapWithoutTargetsStatesAreNamed) {
+  expectRecognised("facecap_stripped", strippedCopy("facecap", testing_support::sharedDir() / "assets" / "facecap.glb"),
+                   {{256, 5}, {384, 4}});
+}
+
+TEST_F(ExpressionJudge, VisemesOnlyAvatarStatesAreNamed) {
+  expectRecognised("rpm_visemes", (testing_support::sharedDir() / "speech" / "rpm-visemes.glb").string(), {{256, 2}, {384, 3}});
 }
 
 TEST_F(ExpressionJudge, CandideMaskStatesAreNamed) {
