@@ -121,6 +121,13 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   for (std::string& problem : mtoon.problems) warn(std::move(problem));
   if (!mtoon.toon) return;
   mat.toon = mtoon.toon;
+  // A VRM 0.x material keeps its normal map among MToon's textures; UniVRM
+  // exports it as the glTF material's normalTexture too, which then wins.
+  if (mtoon.normalTexture >= 0 && gltf_.materials[index].normalTexture.index < 0) {
+    const MaterialTexture& normal = kMaterialTextures[1];
+    readMaterialTexture(normal, mtoon.normalTexture, 0, {}, baseColorUvs_.back(), mat, where + " (VRM 0.x _BumpMap)");
+    mat.normalScale = mtoon.normalScale;
+  }
   const int baseTexture = gltf_.materials[index].pbrMetallicRoughness.baseColorTexture.index;
   if (mat.toon->shadeFromBaseTexture) {
     // The shade is drawn through the base colour's texture: exact when both

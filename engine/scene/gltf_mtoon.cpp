@@ -148,6 +148,8 @@ MtoonRead readVersion0(const tinygltf::Value& props, const std::string& where) {
   fv.colour("_OutlineColor", t.outlineColor, true);
   ff.number("_OutlineLightingMix", t.outlineLightingMix, 0.0f, 1.0f);
   if (colourMode == 0.0f) t.outlineLightingMix = 0.0f;
+  r.normalTexture = ft.texture("_BumpMap");
+  ff.number("_BumpScale", r.normalScale, -10.0f, 10.0f);
   if (ft.has("_SphereAdd")) r.problems.push_back(at + ": not drawn: matcap (_SphereAdd)");
   r.toon = t;
   return r;

@@ -23,6 +23,10 @@ struct MtoonRead {
   // The glTF texture the shade colour is multiplied by (-1: none), so the
   // caller can say when the base colour's texture stands in for it.
   int shadeTexture = -1;
+  // VRM 0.x's normal map (`_BumpMap`, -1: none) and its `_BumpScale`: the
+  // caller draws it where the glTF material has no normalTexture of its own.
+  int normalTexture = -1;
+  float normalScale = 1.0f;
   // One line each for values out of range or of the wrong type (kept at
   // their defaults) and for the parts of MToon that are not drawn.
   std::vector<std::string> problems;

@@ -447,28 +447,42 @@ TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
   // _ShadeToony 0.8 span the 0.x range [-0.2, 0.04], so 1.0's toony is
   // (2 - 0.24) / 2 = 0.88 and its shift -(0.04 - 0.2) / 2 = 0.08. Colours
   // are sRGB-encoded; without a _ShadeTexture the shade takes _MainTex; the
-  // outline width is in centimetres.
+  // outline width is in centimetres. The normal map (_BumpMap, by
+  // _BumpScale) is drawn where the glTF material has none of its own.
   const auto dir = freshTempDir("loader_mtoon0");
   GltfFileBuilder b = quadWithTarget();
   addWhiteImage(b);
   b.doc["textures"] = Json::array({{{"source", 0}}});
   b.doc["materials"] = Json::array({{{"name", "face"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
-                                    {{"name", "eyes"}}});
+                                    {{"name", "eyes"}},
+                                    {{"name", "hair"},
+                                     {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                     {"normalTexture", {{"index", 0}, {"scale", 0.8}}}}});
   b.doc["extensionsUsed"] = {"VRM"};
   b.doc["extensions"]["VRM"]["materialProperties"] = Json::array(
       {{{"name", "face"},
         {"shader", "VRM/MToon"},
         {"floatProperties",
          {{"_ShadeShift", -0.2}, {"_ShadeToony", 0.8}, {"_IndirectLightIntensity", 0.3}, {"_RimFresnelPower", 2},
-          {"_OutlineWidthMode", 1}, {"_OutlineWidth", 0.2}, {"_OutlineColorMode", 0}, {"_OutlineLightingMix", 1}}},
+          {"_OutlineWidthMode", 1}, {"_OutlineWidth", 0.2}, {"_OutlineColorMode", 0}, {"_OutlineLightingMix", 1},
+          {"_BumpScale", 0.5}}},
         {"vectorProperties", {{"_ShadeColor", {0.5, 0.5, 0.5, 1}}, {"_RimColor", {0, 0, 0, 1}}}},
-        {"textureProperties", {{"_MainTex", 0}}}},
-       {{"name", "eyes"}, {"shader", "VRM/UnlitTexture"}}});
+        {"textureProperties", {{"_MainTex", 0}, {"_BumpMap", 0}}}},
+       {{"name", "eyes"}, {"shader", "VRM/UnlitTexture"}},
+       {{"name", "hair"},
+        {"shader", "VRM/MToon"},
+        {"floatProperties", {{"_BumpScale", 2}}},
+        {"textureProperties", {{"_MainTex", 0}, {"_BumpMap", 0}}}}});
   b.writeGlb(dir / "mtoon0.glb");
   const eng::Model model = loadOk(dir / "mtoon0.glb");
-  ASSERT_EQ(model.materials.size(), 2u);
+  ASSERT_EQ(model.materials.size(), 3u);
   ASSERT_TRUE(model.materials[0].toon.has_value());
   const eng::ToonShading& face = *model.materials[0].toon;
+  EXPECT_GE(model.materials[0].normalImage, 0) << "_BumpMap drawn as the normal texture";
+  EXPECT_FLOAT_EQ(model.materials[0].normalScale, 0.5f);
+  EXPECT_GE(model.materials[2].normalImage, 0);
+  EXPECT_FLOAT_EQ(model.materials[2].normalScale, 0.8f) << "the glTF material's own normalTexture wins";
+  for (const std::string& warning : model.warnings) EXPECT_EQ(warning.find("_BumpMap"), std::string::npos) << warning;
   EXPECT_NEAR(face.shadingToony, 0.88f, 1e-5f);
   EXPECT_NEAR(face.shadingShift, 0.08f, 1e-5f);
   EXPECT_NEAR(face.giEqualization, 0.7f, 1e-5f);
