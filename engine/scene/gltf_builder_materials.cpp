@@ -121,8 +121,9 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   for (std::string& problem : mtoon.problems) warn(std::move(problem));
   if (!mtoon.toon) return;
   mat.toon = mtoon.toon;
-  // A VRM 0.x material keeps its normal map among MToon's textures; UniVRM
-  // exports it as the glTF material's normalTexture too, which then wins.
+  // A VRM 0.x material keeps its normal map among MToon's textures (the
+  // glTF material is a fallback for viewers without VRM); a normalTexture of
+  // the glTF material's own is drawn instead where it has one.
   if (mtoon.normalTexture >= 0 && gltf_.materials[index].normalTexture.index < 0) {
     const MaterialTexture& normal = kMaterialTextures[1];
     readMaterialTexture(normal, mtoon.normalTexture, 0, {}, baseColorUvs_.back(), mat, where + " (VRM 0.x _BumpMap)");
