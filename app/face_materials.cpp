@@ -26,6 +26,7 @@ eng::Result<FaceMaterials> FaceMaterials::create(const FaceSetup& face) {
       out.rest_[m].shade = {t->shadeColor.r, t->shadeColor.g, t->shadeColor.b};
       out.rest_[m].rim = {t->rimColor.r, t->rimColor.g, t->rimColor.b};
       out.rest_[m].outline = {t->outlineColor.r, t->outlineColor.g, t->outlineColor.b};
+      out.rest_[m].matcap = {t->matcapFactor.r, t->matcapFactor.g, t->matcapFactor.b};
     }
   }
   out.moved_ = out.rest_;
@@ -54,6 +55,7 @@ eng::Result<void> FaceMaterials::update(std::span<const float> expressionWeights
     out.toonShade = glm::vec4(rgb(s.shade), out.toonShade.w);
     out.toonRim = glm::vec4(rgb(s.rim), out.toonRim.w);
     out.toonOutline = glm::vec4(rgb(s.outline), out.toonOutline.w);
+    out.toonMatcap = glm::vec4(rgb(s.matcap), out.toonMatcap.w);
   }
   return {};
 }

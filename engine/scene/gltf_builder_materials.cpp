@@ -129,6 +129,11 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
     readMaterialTexture(normal, mtoon.normalTexture, 0, {}, baseColorUvs_.back(), mat, where + " (VRM 0.x _BumpMap)");
     mat.normalScale = mtoon.normalScale;
   }
+  // The matcap is looked up by the normal, so no UV set of its own matters.
+  if (mtoon.matcapTexture >= 0) {
+    mat.matcapImage = imageOfTexture(mtoon.matcapTexture, where + " MToon matcap");
+    if (mat.matcapImage >= 0) mat.matcapSampling = textureSampling(mtoon.matcapTexture, where);
+  }
   const int baseTexture = gltf_.materials[index].pbrMetallicRoughness.baseColorTexture.index;
   if (mat.toon->shadeFromBaseTexture) {
     // The shade is drawn through the base colour's texture: exact when both
@@ -146,7 +151,7 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   }
   outcomes_[kVrmcMaterialsMtoon] = "applied: " + std::to_string(++toonMaterials_) +
                                    " material(s) toon-shaded (shade colour, shading shift and toony, GI "
-                                   "equalization, parametric rim; no outline or matcap)";
+                                   "equalization, parametric rim, matcap, outline)";
 }
 
 void GltfModelBuilder::loadMaterials() {
@@ -165,7 +170,7 @@ void GltfModelBuilder::loadMaterials() {
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     const BaseColorUv& uvs = baseColorUvs_.back();
-    const auto& [metalRough, normal, occlusion, emissive] = kMaterialTextures;
+    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
     readMaterialTexture(metalRough, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                     pbr.metallicRoughnessTexture.extensions, uvs, mat, where);
     readMaterialTexture(normal, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, uvs, mat,

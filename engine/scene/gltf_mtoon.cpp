@@ -95,7 +95,9 @@ MtoonRead readVersion1(const tinygltf::Value& ext, const std::string& where) {
   f.colour("outlineColorFactor", t.outlineColor, false);
   f.number("outlineLightingMixFactor", t.outlineLightingMix, 0.0f, 1.0f);
   std::string skipped;
-  for (const char* part : {"matcapTexture", "shadingShiftTexture", "rimMultiplyTexture", "outlineWidthMultiplyTexture",
+  f.colour("matcapFactor", t.matcapFactor, false);
+  r.matcapTexture = f.texture("matcapTexture");
+  for (const char* part : {"shadingShiftTexture", "rimMultiplyTexture", "outlineWidthMultiplyTexture",
                            "uvAnimationMaskTexture"})
     if (f.has(part)) skipped += std::string(skipped.empty() ? "" : ", ") + part;
   if (!skipped.empty()) r.problems.push_back(where + " " + kVrmcMaterialsMtoon + ": not drawn: " + skipped);
@@ -150,7 +152,7 @@ MtoonRead readVersion0(const tinygltf::Value& props, const std::string& where) {
   if (colourMode == 0.0f) t.outlineLightingMix = 0.0f;
   r.normalTexture = ft.texture("_BumpMap");
   ff.number("_BumpScale", r.normalScale, -10.0f, 10.0f);
-  if (ft.has("_SphereAdd")) r.problems.push_back(at + ": not drawn: matcap (_SphereAdd)");
+  r.matcapTexture = ft.texture("_SphereAdd");  // added as it is (UniVRM: matcapFactor white)
   r.toon = t;
   return r;
 }

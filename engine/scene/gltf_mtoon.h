@@ -27,6 +27,8 @@ struct MtoonRead {
   // caller draws it where the glTF material has no normalTexture of its own.
   int normalTexture = -1;
   float normalScale = 1.0f;
+  // The matcap (1.0's matcapTexture, 0.x's _SphereAdd; -1: none).
+  int matcapTexture = -1;
   // One line each for values out of range or of the wrong type (kept at
   // their defaults) and for the parts of MToon that are not drawn.
   std::vector<std::string> problems;

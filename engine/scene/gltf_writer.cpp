@@ -167,8 +167,8 @@ void useExtension(Json& doc, const char* name) {
 }
 
 // VRMC_materials_mtoon 1.0 for `toon`; shadeMultiplyTexture is `shadeTexture`
-// (a texture index, -1: none).
-Json mtoonJson(const ToonShading& toon, int shadeTexture) {
+// and matcapTexture `matcapTexture` (texture indices, -1: none).
+Json mtoonJson(const ToonShading& toon, int shadeTexture, int matcapTexture) {
   Json j = {{"specVersion", "1.0"},
             {"shadeColorFactor", vec(&toon.shadeColor.x, 3)},
             {"shadingShiftFactor", toon.shadingShift},
@@ -179,6 +179,10 @@ Json mtoonJson(const ToonShading& toon, int shadeTexture) {
             {"parametricRimLiftFactor", toon.rimLift},
             {"rimLightingMixFactor", toon.rimLightingMix}};
   if (shadeTexture >= 0) j["shadeMultiplyTexture"] = {{"index", shadeTexture}};
+  if (matcapTexture >= 0) {
+    j["matcapTexture"] = {{"index", matcapTexture}};
+    j["matcapFactor"] = vec(&toon.matcapFactor.x, 3);
+  }
   if (toon.outlineMode != ToonShading::OutlineWidth::None) {
     j["outlineWidthMode"] = toon.outlineMode == ToonShading::OutlineWidth::World ? "worldCoordinates" : "screenCoordinates";
     j["outlineWidthFactor"] = toon.outlineWidth;
@@ -230,9 +234,9 @@ Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) 
 // Each material's textures in the document (-1: none).
 struct MaterialTextures {
   int baseColor = -1;
-  int others[4] = {-1, -1, -1, -1};  // by kMaterialTextures
+  int others[5] = {-1, -1, -1, -1, -1};  // by kMaterialTextures
 };
-static_assert(std::size(kMaterialTextures) == 4);
+static_assert(std::size(kMaterialTextures) == 5);
 
 // One texture per (image, sampling) a material uses, one sampler per
 // sampling.
@@ -276,7 +280,7 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
               {"metallicFactor", mat.metallic},
               {"roughnessFactor", mat.roughness}};
   if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
-  const auto [metallicRoughness, normal, occlusion, emissive] = textures.others;
+  const auto [metallicRoughness, normal, occlusion, emissive, matcap] = textures.others;
   if (metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", metallicRoughness}};
   Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
   if (normal >= 0) m["normalTexture"] = {{"index", normal}, {"scale", mat.normalScale}};
@@ -291,7 +295,8 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
     useExtension(doc, kKhrMaterialsUnlit);
   }
   if (mat.toon) {
-    m["extensions"][kVrmcMaterialsMtoon] = mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture : -1);
+    m["extensions"][kVrmcMaterialsMtoon] =
+        mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture : -1, matcap);
     useExtension(doc, kVrmcMaterialsMtoon);
   }
   if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);

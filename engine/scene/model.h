@@ -146,6 +146,8 @@ struct ToonShading {
   float outlineWidth = 0.0f;      // metres (World) or a fraction of the image height (Screen)
   glm::vec3 outlineColor{0.0f};
   float outlineLightingMix = 1.0f;  // 0 = outlineColor as it is, 1 = times the shaded surface colour
+  // The matcap (Material::matcapImage) is multiplied by this and added with the rim.
+  glm::vec3 matcapFactor{1.0f};
   bool operator==(const ToonShading&) const = default;
 };
 
@@ -182,13 +184,17 @@ struct Material {
   bool unlit = false;
   // VRM's MToon (VRMC_materials_mtoon, or VRM 0.x materialProperties):
   // toon shading instead of the skin shading; takes precedence over unlit.
+  // MToon's matcap (sRGB): looked up by the view-space normal, not through
+  // the UVs, and added as a light the surface reflects (hair and eye shine).
+  int matcapImage = -1;  // index into Model::images
+  TextureSampling matcapSampling;
   std::optional<ToonShading> toon;
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
 
-// The textures a material reads besides its base colour, through the base
-// colour's UVs, for code that treats them alike: copying, checking, writing,
-// uploading.
+// The textures a material reads besides its base colour (through the base
+// colour's UVs, the matcap excepted), for code that treats them alike:
+// copying, checking, writing, uploading.
 struct MaterialTexture {
   const char* name;  // glTF's name: "metallicRoughnessTexture"
   int Material::*image;
@@ -200,6 +206,7 @@ inline constexpr MaterialTexture kMaterialTextures[] = {
     {"normalTexture", &Material::normalImage, &Material::normalSampling, false},
     {"occlusionTexture", &Material::occlusionImage, &Material::occlusionSampling, false},
     {"emissiveTexture", &Material::emissiveImage, &Material::emissiveSampling, true},
+    {"matcapTexture", &Material::matcapImage, &Material::matcapSampling, true},
 };
 
 struct Node {

@@ -25,6 +25,7 @@ struct InstanceMaterial {
   vec4 toonRim;          // MToon: linear RGB rim colour, w fresnel power
   vec4 toonOutline;      // MToon: linear RGB outline colour, w width (metres, or image heights)
   vec4 toonOutlineStyle; // MToon: x 1 = world width, 2 = screen width; y outline lighting mix
+  vec4 toonMatcap;       // MToon: linear RGB matcap factor, w unused
 };
 
 // One non-zero morph weight: target index within the drawn mesh.
@@ -95,6 +96,7 @@ const uint DRAW_FLAG_TOON_SHADE_TEXTURE = 1024u;  // MToon: shade colour x the b
 const uint DRAW_FLAG_TOON_OUTLINE = 2048u;        // MToon: also drawn as an outline
 const uint DRAW_FLAG_NORMAL_MAP = 4096u;          // glTF normalTexture (set 1 binding 8)
 const uint DRAW_FLAG_EMISSIVE_TEXTURE = 8192u;    // glTF emissiveTexture (set 1 binding 10)
+const uint DRAW_FLAG_TOON_MATCAP = 16384u;       // MToon matcap texture (set 1 binding 11)
 
 // The outline pipelines (ScenePipelines::outline): the mesh pushed out along
 // its normals, back faces only, in the outline colour.

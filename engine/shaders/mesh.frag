@@ -14,6 +14,7 @@ layout(set = 1, binding = 7) uniform sampler2D metallicRoughnessTexture;
 layout(set = 1, binding = 8) uniform sampler2D normalTexture;
 layout(set = 1, binding = 9) uniform sampler2D occlusionTexture;
 layout(set = 1, binding = 10) uniform sampler2D emissiveTexture;  // sRGB; read under DRAW_FLAG_EMISSIVE_TEXTURE
+layout(set = 1, binding = 11) uniform sampler2D matcapTexture;    // sRGB; read under DRAW_FLAG_TOON_MATCAP
 
 // True only in the MASK pipelines: a shader that can discard loses early
 // depth testing, so the others compile the test away.
@@ -113,8 +114,18 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
   vec3 gi = mix(rawGi, 0.5 * (frame.groundAmbient.rgb + frame.skyAmbient.rgb), material.toonShading.z);
   color += gi * lit;
   float rim = pow(clamp(1.0 - dot(n, toViewer) + material.toonShade.w, 0.0, 1.0), max(material.toonRim.w, 1e-5));
+  vec3 rimLight = rim * material.toonRim.rgb;
+  if ((draw.flags & DRAW_FLAG_TOON_MATCAP) != 0u) {
+    // The matcap by the view-space normal (the spec's axes; the image's top row
+    // lights the surface that faces up, as matcaps are painted).
+    vec3 across = vec3(toViewer.z, 0.0, -toViewer.x);
+    vec3 viewX = dot(across, across) > 1e-10 ? normalize(across) : vec3(1.0, 0.0, 0.0);  // seen from straight above
+    vec3 viewY = cross(toViewer, viewX);
+    vec2 matcapUv = vec2(dot(viewX, n), -dot(viewY, n)) * 0.495 + 0.5;
+    rimLight += material.toonMatcap.rgb * texture(matcapTexture, matcapUv).rgb;
+  }
   vec3 lighting = frame.keyColor.rgb * keyVisibility + frame.fillColor.rgb + gi;
-  return color + rim * material.toonRim.rgb * mix(vec3(1.0), lighting, material.toonShading.w);
+  return color + rimLight * mix(vec3(1.0), lighting, material.toonShading.w);
 }
 
 void main() {

@@ -434,7 +434,6 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   happy["textureTransformBinds"] = Json::parse(R"([{"material": 1, "scale": [0.5, 0.5], "offset": [0.5, 0]}])");
   auto set = sharedSet(doc);
   ASSERT_TRUE(set);
-  EXPECT_EQ(set->unsupportedMaterialBinds(), 1u);
   std::vector<float> weights(set->expressions.size(), 0.0f);
   weights[expressionIndex(*set, "happy")] = 0.5f;
   std::vector<VrmMaterialState> rest(2), materials(2);
@@ -447,13 +446,14 @@ TEST(VrmRig, MaterialColourAndTextureTransformBindsMoveTheMaterials) {
   EXPECT_FLOAT_EQ(materials[1].emission[1], 0.5f);
   EXPECT_FLOAT_EQ(materials[1].uvScale[0], 0.75f);
   EXPECT_FLOAT_EQ(materials[1].uvOffset[0], 0.25f);
-  // MToon's colours move the same way (drawn by toon materials); the matcap's is not drawn.
+  // MToon's colours move the same way (drawn by toon materials), the matcap's too.
   EXPECT_FLOAT_EQ(materials[1].rim[0], 0.5f);
   EXPECT_FLOAT_EQ(materials[1].shade[2], 0.5f);
   EXPECT_FLOAT_EQ(materials[0].outline[0], 0.5f);
+  EXPECT_FLOAT_EQ(materials[0].matcap[1], 0.5f);
   auto rig = buildVrmRigMapping(set, morphNames(*set));
   ASSERT_TRUE(rig);
-  EXPECT_TRUE(contains(rig->report().notes, "1 material colour bind(s) address MToon's matcap colour")) << rig->report().summary();
+  EXPECT_FALSE(contains(rig->report().notes, "matcap colour")) << rig->report().summary();
   std::vector<VrmMaterialState> wrong(1);
   EXPECT_FALSE(set->applyMaterials(effective, rest, wrong));
   EXPECT_FALSE(set->applyMaterials(effective, wrong, wrong));

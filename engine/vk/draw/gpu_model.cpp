@@ -101,6 +101,7 @@ InstanceMaterial instanceMaterial(const Material& mat) {
                        : t->outlineMode == ToonShading::OutlineWidth::Screen ? 2.0f
                                                                              : 0.0f;
     out.toonOutlineStyle = glm::vec4(mode, t->outlineLightingMix, 0.0f, 0.0f);
+    out.toonMatcap = glm::vec4(t->matcapFactor, 0.0f);
   }
   return out;
 }
@@ -365,7 +366,8 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
                            (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
                            (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
                            (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u) |
-                           (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u);
+                           (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u) |
+                           (mat.toon && mat.matcapImage >= 0 ? kDrawFlagToonMatcap : 0u);
       gp.constants.alphaCutoff = mat.alphaCutoff;
       gp.constants.normalScale = mat.normalScale;
       gp.constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
@@ -456,7 +458,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   if (sets == 0) return {};
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 * sets}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 7 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -531,10 +533,11 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       samplerFor(mat.*slot.sampling, others[t].sampler);
     }
     // Undecodable (the loader warned): drawn as without.
-    const auto& [metalRough, normal, occlusion, emissive] = kMaterialTextures;
+    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
     if (!uploaded(normal, mat.normalImage)) gp.constants.flags &= ~kDrawFlagNormalMap;
     if (!uploaded(occlusion, mat.occlusionImage)) gp.constants.occlusionStrength = 0.0f;
     if (!uploaded(emissive, mat.emissiveImage)) gp.constants.flags &= ~kDrawFlagEmissiveTexture;
+    if (!uploaded(matcap, mat.matcapImage)) gp.constants.flags &= ~kDrawFlagToonMatcap;
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
@@ -560,6 +563,7 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       imageWrite(gp.descriptorSet, 8, &others[1]),
       imageWrite(gp.descriptorSet, 9, &others[2]),
       imageWrite(gp.descriptorSet, 10, &others[3]),
+      imageWrite(gp.descriptorSet, 11, &others[4]),
   };
   vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -41,8 +41,9 @@ struct InstanceMaterial {
   glm::vec4 toonRim{0.0f, 0.0f, 0.0f, 5.0f};      // linear RGB rim colour, w fresnel power
   glm::vec4 toonOutline{0.0f};                    // linear RGB outline colour, w width (metres or image heights)
   glm::vec4 toonOutlineStyle{0.0f, 1.0f, 0.0f, 0.0f};  // x: 1 world width, 2 screen width; y: lighting mix
+  glm::vec4 toonMatcap{1.0f, 1.0f, 1.0f, 0.0f};        // linear RGB matcap factor (kDrawFlagToonMatcap), w unused
 };
-static_assert(sizeof(InstanceMaterial) == 128);
+static_assert(sizeof(InstanceMaterial) == 144);
 
 // std140 uniform block; every member is a mat4 or vec4.
 struct FrameGlobals {
@@ -113,6 +114,7 @@ enum DrawFlags : uint32_t {
   kDrawFlagToonOutline = 2048u,       // MToon: drawn again as an outline (ScenePipelines::outline)
   kDrawFlagNormalMap = 4096u,         // glTF normalTexture: the shading normal bent by it
   kDrawFlagEmissiveTexture = 8192u,   // glTF emissiveTexture: the emission masked by it
+  kDrawFlagToonMatcap = 16384u,       // MToon matcap texture (set 1 binding 11), added with the rim
 };
 
 struct GpuDetailLayer {

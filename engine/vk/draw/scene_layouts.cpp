@@ -77,6 +77,7 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
   };
   auto primitiveSet = createSetLayout(ctx, primitiveBindings);
   if (!primitiveSet) return primitiveSet.error();

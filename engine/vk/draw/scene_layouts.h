@@ -15,7 +15,8 @@
 //                          4 detail-layer array, 5 detail-layer parameters, 6 joint influences,
 //                          7 metallic-roughness (linear: G roughness, B metallic; white when absent),
 //                          8 normal (tangent space; DRAW_FLAG_NORMAL_MAP), 9 occlusion (R; white
-//                          when absent), 10 emissive (sRGB; DRAW_FLAG_EMISSIVE_TEXTURE)
+//                          when absent), 10 emissive (sRGB; DRAW_FLAG_EMISSIVE_TEXTURE), 11 MToon
+//                          matcap (sRGB; DRAW_FLAG_TOON_MATCAP)
 //   push constants:        DrawConstants (68 bytes), vertex + fragment; the morph pre-pass has its
 //                          own pipeline layout (same sets, push constants for the compute stage)
 #include "engine/core/result.h"

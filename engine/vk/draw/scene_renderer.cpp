@@ -218,7 +218,7 @@ Result<void> SceneRenderer::checkInstances(std::span<const ModelInstance> instan
     for (size_t m = 0; m < inst.materials.size(); ++m) {
       const InstanceMaterial& mat = inst.materials[m];
       const glm::vec4 sum = mat.baseColorFactor + mat.emissive + mat.uvTransform + mat.toonShade + mat.toonShading +
-                            mat.toonRim + mat.toonOutline + mat.toonOutlineStyle;
+                            mat.toonRim + mat.toonOutline + mat.toonOutlineStyle + mat.toonMatcap;
       if (!std::isfinite(sum.x + sum.y + sum.z + sum.w))
         return refuse("material " + std::to_string(m) + " has a non-finite value");
     }

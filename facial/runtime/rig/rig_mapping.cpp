@@ -28,11 +28,8 @@ void describeStage(const VrmExpressionSet& vrm, RigMappingReport& report) {
     if (e.bindCount == 0 && e.materialColorBindCount == 0 && e.textureTransformBindCount == 0)
       empty += (empty.empty() ? "'" : ", '") + e.name + "'";
   if (!empty.empty()) report.notes.push_back("expressions that bind nothing (no visible change on this model): " + empty);
-  if (const size_t n = vrm.unsupportedMaterialBinds())
-    report.notes.push_back(std::to_string(n) + " material colour bind(s) address MToon's matcap colour, which is not "
-                           "drawn; not shown");
   if (vrm.hasMaterialBinds())
-    report.notes.push_back("material colour (base colour, emission; MToon shade, rim, outline) and texture transform "
+    report.notes.push_back("material colour (base colour, emission; MToon shade, matcap, rim, outline) and texture transform "
                            "binds follow the expression weights in every view (per-instance material overrides)");
   for (const std::string& w : vrm.warnings) report.notes.push_back(w);
 }

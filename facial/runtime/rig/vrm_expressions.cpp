@@ -208,7 +208,7 @@ eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effect
         case VrmMaterialColorType::ShadeColor: moveRgb(m.shade, r.shade); break;
         case VrmMaterialColorType::RimColor: moveRgb(m.rim, r.rim); break;
         case VrmMaterialColorType::OutlineColor: moveRgb(m.outline, r.outline); break;
-        case VrmMaterialColorType::MatcapColor: break;  // matcap is not drawn
+        case VrmMaterialColorType::MatcapColor: moveRgb(m.matcap, r.matcap); break;
       }
     }
     for (uint32_t b = e.firstTextureTransformBind; b < e.firstTextureTransformBind + e.textureTransformBindCount; ++b) {
@@ -222,13 +222,6 @@ eng::Result<void> VrmExpressionSet::applyMaterials(std::span<const float> effect
     }
   }
   return {};
-}
-
-size_t VrmExpressionSet::unsupportedMaterialBinds() const {
-  size_t n = 0;
-  for (const VrmMaterialColorBind& b : materialColorBinds)
-    n += b.type == VrmMaterialColorType::MatcapColor ? 1 : 0;
-  return n;
 }
 
 }  // namespace facial

@@ -65,6 +65,7 @@ struct VrmMaterialState {
   std::array<float, 3> shade{};            // MToon shade colour (linear RGB)
   std::array<float, 3> rim{};              // MToon parametric rim colour
   std::array<float, 3> outline{};          // MToon outline colour
+  std::array<float, 3> matcap{};           // MToon matcap factor
   std::array<float, 2> uvScale{1.0f, 1.0f};
   std::array<float, 2> uvOffset{0.0f, 0.0f};
 };
@@ -138,13 +139,10 @@ struct VrmExpressionSet {
   // effective: effectiveWeights()' output; rest: every material's own state
   // (materialCount entries); out (same size): rest moved by the material
   // colour and texture transform binds of the weighted expressions: base
-  // colour, emission and MToon's shade, rim and outline colours (drawn on MToon
-  // materials); the matcap colour is listed by unsupportedMaterialBinds(). No
-  // allocation (per frame).
+  // colour, emission and MToon's shade, matcap, rim and outline colours
+  // (drawn on MToon materials). No allocation (per frame).
   eng::Result<void> applyMaterials(std::span<const float> effective, std::span<const VrmMaterialState> rest,
                                    std::span<VrmMaterialState> out) const;
-  // Material colour binds that are not drawn (MToon's matcap colour).
-  size_t unsupportedMaterialBinds() const;
   bool hasMaterialBinds() const { return !materialColorBinds.empty() || !textureTransformBinds.empty(); }
 };
 

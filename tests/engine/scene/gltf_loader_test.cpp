@@ -404,7 +404,9 @@ TEST(GltfLoader, ReadsMtoonMaterials) {
                       {"outlineWidthMode", "screenCoordinates"},
                       {"outlineWidthFactor", 0.005},
                       {"outlineColorFactor", {0.1, 0.0, 0.0}},
-                      {"outlineLightingMixFactor", 0.5}};
+                      {"outlineLightingMixFactor", 0.5},
+                      {"matcapTexture", {{"index", 1}}},
+                      {"matcapFactor", {0.5, 0.25, 1.0}}};
   b.doc["materials"] = Json::array(
       {{{"name", "face"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
         {"extensions", {{"VRMC_materials_mtoon", mtoon}}}},
@@ -430,6 +432,10 @@ TEST(GltfLoader, ReadsMtoonMaterials) {
   EXPECT_FLOAT_EQ(face.outlineWidth, 0.005f);
   EXPECT_EQ(face.outlineColor, glm::vec3(0.1f, 0.0f, 0.0f));
   EXPECT_FLOAT_EQ(face.outlineLightingMix, 0.5f);
+  EXPECT_EQ(face.matcapFactor, glm::vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_GE(model.materials[0].matcapImage, 0) << "the matcap texture is read";
+  EXPECT_EQ(model.materials[1].matcapImage, -1);
+  EXPECT_EQ(model.materials[1].toon->matcapFactor, glm::vec3(1.0f)) << "white by default";
   EXPECT_EQ(model.materials[1].toon->outlineMode, eng::ToonShading::OutlineWidth::None) << "no outline by default";
   ASSERT_TRUE(model.materials[1].toon.has_value());
   EXPECT_FLOAT_EQ(model.materials[1].toon->shadingToony, 0.9f) << "out of range: the default";
@@ -467,7 +473,7 @@ TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
           {"_OutlineWidthMode", 1}, {"_OutlineWidth", 0.2}, {"_OutlineColorMode", 0}, {"_OutlineLightingMix", 1},
           {"_BumpScale", 0.5}}},
         {"vectorProperties", {{"_ShadeColor", {0.5, 0.5, 0.5, 1}}, {"_RimColor", {0, 0, 0, 1}}}},
-        {"textureProperties", {{"_MainTex", 0}, {"_BumpMap", 0}}}},
+        {"textureProperties", {{"_MainTex", 0}, {"_BumpMap", 0}, {"_SphereAdd", 0}}}},
        {{"name", "eyes"}, {"shader", "VRM/UnlitTexture"}},
        {{"name", "hair"},
         {"shader", "VRM/MToon"},
@@ -482,6 +488,9 @@ TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
   EXPECT_FLOAT_EQ(model.materials[0].normalScale, 0.5f);
   EXPECT_GE(model.materials[2].normalImage, 0);
   EXPECT_FLOAT_EQ(model.materials[2].normalScale, 0.8f) << "the glTF material's own normalTexture wins";
+  EXPECT_GE(model.materials[0].matcapImage, 0) << "_SphereAdd is the matcap";
+  EXPECT_EQ(face.matcapFactor, glm::vec3(1.0f));
+  EXPECT_EQ(model.materials[2].matcapImage, -1);
   for (const std::string& warning : model.warnings) EXPECT_EQ(warning.find("_BumpMap"), std::string::npos) << warning;
   EXPECT_NEAR(face.shadingToony, 0.88f, 1e-5f);
   EXPECT_NEAR(face.shadingShift, 0.08f, 1e-5f);

@@ -62,7 +62,10 @@ eng::Model richModel() {
                                 .shadingToony = 0.75f, .giEqualization = 0.5f, .rimColor = {0.0f, 0.5f, 1.0f},
                                 .rimFresnelPower = 3.0f, .rimLift = 0.125f, .rimLightingMix = 0.5f,
                                 .outlineMode = eng::ToonShading::OutlineWidth::Screen, .outlineWidth = 0.0078125f,
-                                .outlineColor = {0.25f, 0.0f, 0.5f}, .outlineLightingMix = 0.25f};
+                                .outlineColor = {0.25f, 0.0f, 0.5f}, .outlineLightingMix = 0.25f,
+                                .matcapFactor = {0.5f, 1.0f, 0.25f}};
+  decal.matcapImage = 1;
+  decal.matcapSampling.wrapS = eng::TextureWrap::ClampToEdge;
   model.materials.push_back(decal);
 
   eng::Mesh face;
@@ -192,6 +195,8 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.occlusionStrength, y.occlusionStrength);
     EXPECT_EQ(x.emissiveImage, y.emissiveImage);
     EXPECT_EQ(x.emissiveSampling, y.emissiveSampling) << x.name;
+    EXPECT_EQ(x.matcapImage, y.matcapImage) << x.name;
+    EXPECT_EQ(x.matcapSampling, y.matcapSampling) << x.name;
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);
