@@ -125,7 +125,7 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   // glTF material is a fallback for viewers without VRM); a normalTexture of
   // the glTF material's own is drawn instead where it has one.
   if (mtoon.normalTexture >= 0 && gltf_.materials[index].normalTexture.index < 0) {
-    const MaterialTexture& normal = kMaterialTextures[1];
+    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
     readMaterialTexture(normal, mtoon.normalTexture, 0, {}, baseColorUvs_.back(), mat, where + " (VRM 0.x _BumpMap)");
     mat.normalScale = mtoon.normalScale;
   }
