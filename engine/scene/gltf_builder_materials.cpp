@@ -121,11 +121,12 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   for (std::string& problem : mtoon.problems) warn(std::move(problem));
   if (!mtoon.toon) return;
   mat.toon = mtoon.toon;
+  const auto& [metalRough, normal, occlusion, emissive, matcap, shadingShift, rimMultiply, outlineWidth] =
+      kMaterialTextures;
   // A VRM 0.x material keeps its normal map among MToon's textures (the
   // glTF material is a fallback for viewers without VRM); a normalTexture of
   // the glTF material's own is drawn instead where it has one.
   if (mtoon.normalTexture >= 0 && gltf_.materials[index].normalTexture.index < 0) {
-    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
     readMaterialTexture(normal, mtoon.normalTexture, 0, {}, baseColorUvs_.back(), mat, where + " (VRM 0.x _BumpMap)");
     mat.normalScale = mtoon.normalScale;
   }
@@ -134,6 +135,11 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
     mat.matcapImage = imageOfTexture(mtoon.matcapTexture, where + " MToon matcap");
     if (mat.matcapImage >= 0) mat.matcapSampling = textureSampling(mtoon.matcapTexture, where);
   }
+  for (const auto& [slot, texture] : {std::pair{&shadingShift, &mtoon.shadingShiftTexture},
+                                      std::pair{&rimMultiply, &mtoon.rimMultiplyTexture},
+                                      std::pair{&outlineWidth, &mtoon.outlineWidthTexture}})
+    readMaterialTexture(*slot, texture->index, texture->texCoord, texture->extensions, baseColorUvs_.back(), mat,
+                        where + " MToon");
   const int baseTexture = gltf_.materials[index].pbrMetallicRoughness.baseColorTexture.index;
   if (mat.toon->shadeFromBaseTexture) {
     // The shade is drawn through the base colour's texture: exact when both
@@ -151,7 +157,7 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
   }
   outcomes_[kVrmcMaterialsMtoon] = "applied: " + std::to_string(++toonMaterials_) +
                                    " material(s) toon-shaded (shade colour, shading shift and toony, GI "
-                                   "equalization, parametric rim, matcap, outline)";
+                                   "equalization, parametric rim, matcap, outline, their masks)";
 }
 
 void GltfModelBuilder::loadMaterials() {
@@ -170,7 +176,8 @@ void GltfModelBuilder::loadMaterials() {
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     const BaseColorUv& uvs = baseColorUvs_.back();
-    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
+    const auto& [metalRough, normal, occlusion, emissive, matcap, shadingShift, rimMultiply, outlineWidth] =
+        kMaterialTextures;
     readMaterialTexture(metalRough, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
                     pbr.metallicRoughnessTexture.extensions, uvs, mat, where);
     readMaterialTexture(normal, src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, uvs, mat,

@@ -52,6 +52,26 @@ class Fields {
     return index.IsNumber() ? static_cast<int>(index.GetNumberAsDouble()) : -1;
   }
 
+  // A texture with its UV set and extensions: 1.0's textureInfo, or 0.x's bare index.
+  MtoonRead::Texture textureInfo(const char* name) const {
+    MtoonRead::Texture t;
+    t.index = texture(name);
+    if (t.index < 0) return t;
+    const tinygltf::Value& v = object_.Get(name);
+    if (!v.IsObject()) return t;
+    if (v.Has("texCoord") && v.Get("texCoord").IsNumber())
+      t.texCoord = static_cast<int>(v.Get("texCoord").GetNumberAsDouble());
+    if (v.Has("extensions") && v.Get("extensions").IsObject())
+      for (const std::string& key : v.Get("extensions").Keys()) t.extensions[key] = v.Get("extensions").Get(key);
+    return t;
+  }
+
+  // The named member, an object, for fields of its own ("shadingShiftTexture"'s scale).
+  Fields nested(const char* name) const {
+    static const tinygltf::Value kNone;
+    return Fields(has(name) ? object_.Get(name) : kNone, where_ + " " + name, problems_);
+  }
+
   bool has(const char* name) const { return object_.IsObject() && object_.Has(name); }
 
  private:
@@ -94,13 +114,19 @@ MtoonRead readVersion1(const tinygltf::Value& ext, const std::string& where) {
   f.number("outlineWidthFactor", t.outlineWidth, 0.0f, 1.0f);
   f.colour("outlineColorFactor", t.outlineColor, false);
   f.number("outlineLightingMixFactor", t.outlineLightingMix, 0.0f, 1.0f);
-  std::string skipped;
   f.colour("matcapFactor", t.matcapFactor, false);
   r.matcapTexture = f.texture("matcapTexture");
-  for (const char* part : {"shadingShiftTexture", "rimMultiplyTexture", "outlineWidthMultiplyTexture",
-                           "uvAnimationMaskTexture"})
-    if (f.has(part)) skipped += std::string(skipped.empty() ? "" : ", ") + part;
-  if (!skipped.empty()) r.problems.push_back(where + " " + kVrmcMaterialsMtoon + ": not drawn: " + skipped);
+  r.shadingShiftTexture = f.textureInfo("shadingShiftTexture");
+  f.nested("shadingShiftTexture").number("scale", t.shadingShiftTextureScale, -100.0f, 100.0f);
+  r.rimMultiplyTexture = f.textureInfo("rimMultiplyTexture");
+  r.outlineWidthTexture = f.textureInfo("outlineWidthMultiplyTexture");
+  // UV animation scrolls or turns the textures over time; drawn still.
+  float scrollX = 0.0f, scrollY = 0.0f, rotation = 0.0f;
+  f.number("uvAnimationScrollXSpeedFactor", scrollX, -1e6f, 1e6f);
+  f.number("uvAnimationScrollYSpeedFactor", scrollY, -1e6f, 1e6f);
+  f.number("uvAnimationRotationSpeedFactor", rotation, -1e6f, 1e6f);
+  if (scrollX != 0.0f || scrollY != 0.0f || rotation != 0.0f)
+    r.problems.push_back(where + " " + kVrmcMaterialsMtoon + ": its UV animation is not drawn (the textures stay still)");
   r.toon = t;
   return r;
 }
@@ -153,6 +179,20 @@ MtoonRead readVersion0(const tinygltf::Value& props, const std::string& where) {
   r.normalTexture = ft.texture("_BumpMap");
   ff.number("_BumpScale", r.normalScale, -10.0f, 10.0f);
   r.matcapTexture = ft.texture("_SphereAdd");  // added as it is (UniVRM: matcapFactor white)
+  r.rimMultiplyTexture = ft.textureInfo("_RimTexture");
+  r.outlineWidthTexture = ft.textureInfo("_OutlineWidthTexture");
+  // 0.x scales dot(N, L) by its shading grade where 1.0 shifts it: no 1.0
+  // equivalent (the grade rate's default is 1).
+  float gradeRate = 1.0f;
+  ff.number("_ShadingGradeRate", gradeRate, 0.0f, 1.0f);
+  if (ft.texture("_ShadingGradeTexture") >= 0 && gradeRate > 0.0f)
+    r.problems.push_back(at + ": its _ShadingGradeTexture is not drawn (0.x's shading grade has no 1.0 equivalent)");
+  float scrollX = 0.0f, scrollY = 0.0f, rotation = 0.0f;
+  ff.number("_UvAnimScrollX", scrollX, -1e6f, 1e6f);
+  ff.number("_UvAnimScrollY", scrollY, -1e6f, 1e6f);
+  ff.number("_UvAnimRotation", rotation, -1e6f, 1e6f);
+  if (scrollX != 0.0f || scrollY != 0.0f || rotation != 0.0f)
+    r.problems.push_back(at + ": its UV animation is not drawn (the textures stay still)");
   r.toon = t;
   return r;
 }

@@ -166,9 +166,18 @@ void useExtension(Json& doc, const char* name) {
   if (std::find(used.begin(), used.end(), name) == used.end()) used.push_back(name);
 }
 
+// Each material's textures in the document (-1: none).
+struct MaterialTextures {
+  int baseColor = -1;
+  int others[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  // by kMaterialTextures
+};
+static_assert(std::size(kMaterialTextures) == 8);
+
 // VRMC_materials_mtoon 1.0 for `toon`; shadeMultiplyTexture is `shadeTexture`
-// and matcapTexture `matcapTexture` (texture indices, -1: none).
-Json mtoonJson(const ToonShading& toon, int shadeTexture, int matcapTexture) {
+// (a texture index, -1: none), the matcap and masks are the material's.
+Json mtoonJson(const ToonShading& toon, int shadeTexture, const MaterialTextures& textures) {
+  const auto [metallicRoughness, normal, occlusion, emissive, matcapTexture, shadingShift, rimMultiply, outlineWidth] =
+      textures.others;
   Json j = {{"specVersion", "1.0"},
             {"shadeColorFactor", vec(&toon.shadeColor.x, 3)},
             {"shadingShiftFactor", toon.shadingShift},
@@ -183,6 +192,9 @@ Json mtoonJson(const ToonShading& toon, int shadeTexture, int matcapTexture) {
     j["matcapTexture"] = {{"index", matcapTexture}};
     j["matcapFactor"] = vec(&toon.matcapFactor.x, 3);
   }
+  if (shadingShift >= 0) j["shadingShiftTexture"] = {{"index", shadingShift}, {"scale", toon.shadingShiftTextureScale}};
+  if (rimMultiply >= 0) j["rimMultiplyTexture"] = {{"index", rimMultiply}};
+  if (outlineWidth >= 0) j["outlineWidthMultiplyTexture"] = {{"index", outlineWidth}};
   if (toon.outlineMode != ToonShading::OutlineWidth::None) {
     j["outlineWidthMode"] = toon.outlineMode == ToonShading::OutlineWidth::World ? "worldCoordinates" : "screenCoordinates";
     j["outlineWidthFactor"] = toon.outlineWidth;
@@ -231,13 +243,6 @@ Result<void> writeImages(Json& doc, const Model& model, BufferBuilder& buffers) 
   return {};
 }
 
-// Each material's textures in the document (-1: none).
-struct MaterialTextures {
-  int baseColor = -1;
-  int others[5] = {-1, -1, -1, -1, -1};  // by kMaterialTextures
-};
-static_assert(std::size(kMaterialTextures) == 5);
-
 // One texture per (image, sampling) a material uses, one sampler per
 // sampling.
 std::vector<MaterialTextures> writeTextures(Json& doc, const Model& model) {
@@ -280,7 +285,8 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
               {"metallicFactor", mat.metallic},
               {"roughnessFactor", mat.roughness}};
   if (baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", baseColorTexture}};
-  const auto [metallicRoughness, normal, occlusion, emissive, matcap] = textures.others;
+  const auto [metallicRoughness, normal, occlusion, emissive, matcap, shadingShift, rimMultiply, outlineWidth] =
+      textures.others;
   if (metallicRoughness >= 0) pbr["metallicRoughnessTexture"] = {{"index", metallicRoughness}};
   Json m = {{"pbrMetallicRoughness", std::move(pbr)}};
   if (normal >= 0) m["normalTexture"] = {{"index", normal}, {"scale", mat.normalScale}};
@@ -296,7 +302,7 @@ Json materialJson(Json& doc, const Material& mat, const MaterialTextures& textur
   }
   if (mat.toon) {
     m["extensions"][kVrmcMaterialsMtoon] =
-        mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture : -1, matcap);
+        mtoonJson(*mat.toon, mat.toon->shadeFromBaseTexture ? baseColorTexture : -1, textures);
     useExtension(doc, kVrmcMaterialsMtoon);
   }
   if (mat.emissiveFactor != glm::vec3(0.0f)) m["emissiveFactor"] = vec(&mat.emissiveFactor.x, 3);

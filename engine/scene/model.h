@@ -148,6 +148,9 @@ struct ToonShading {
   float outlineLightingMix = 1.0f;  // 0 = outlineColor as it is, 1 = times the shaded surface colour
   // The matcap (Material::matcapImage) is multiplied by this and added with the rim.
   glm::vec3 matcapFactor{1.0f};
+  // shadingShiftTexture (Material::shadingShiftImage): its red times this is
+  // added to shadingShift, point by point.
+  float shadingShiftTextureScale = 1.0f;
   bool operator==(const ToonShading&) const = default;
 };
 
@@ -188,6 +191,17 @@ struct Material {
   // the UVs, and added as a light the surface reflects (hair and eye shine).
   int matcapImage = -1;  // index into Model::images
   TextureSampling matcapSampling;
+  // MToon's masks, read through the base colour's UVs: shadingShiftTexture
+  // (linear, red: added to the shading shift, ToonShading::
+  // shadingShiftTextureScale), rimMultiplyTexture (sRGB: multiplies the rim
+  // and matcap) and outlineWidthMultiplyTexture (linear, green: multiplies the
+  // outline's width, so an artist keeps lines off the eyes and mouth).
+  int shadingShiftImage = -1;
+  TextureSampling shadingShiftSampling;
+  int rimMultiplyImage = -1;
+  TextureSampling rimMultiplySampling;
+  int outlineWidthImage = -1;
+  TextureSampling outlineWidthSampling;
   std::optional<ToonShading> toon;
   std::vector<DetailLayer> detailLayers;  // material.extras.detailLayers
 };
@@ -207,6 +221,9 @@ inline constexpr MaterialTexture kMaterialTextures[] = {
     {"occlusionTexture", &Material::occlusionImage, &Material::occlusionSampling, false},
     {"emissiveTexture", &Material::emissiveImage, &Material::emissiveSampling, true},
     {"matcapTexture", &Material::matcapImage, &Material::matcapSampling, true},
+    {"shadingShiftTexture", &Material::shadingShiftImage, &Material::shadingShiftSampling, false},
+    {"rimMultiplyTexture", &Material::rimMultiplyImage, &Material::rimMultiplySampling, true},
+    {"outlineWidthMultiplyTexture", &Material::outlineWidthImage, &Material::outlineWidthSampling, false},
 };
 
 struct Node {

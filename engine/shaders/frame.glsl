@@ -80,6 +80,7 @@ layout(push_constant) uniform DrawConstants {
   float alphaCutoff;      // DRAW_FLAG_ALPHA_MASK: fragments with less base-colour alpha are discarded
   float normalScale;      // DRAW_FLAG_NORMAL_MAP: scales the normal texture's x and y
   float occlusionStrength;  // 0: no occlusion texture
+  float toonShadingShiftScale;  // DRAW_FLAG_TOON_SHADING_SHIFT_TEXTURE: scales the texture's red
 } draw;
 
 const uint DRAW_FLAG_NORMAL_DELTAS = 1u;
@@ -97,6 +98,9 @@ const uint DRAW_FLAG_TOON_OUTLINE = 2048u;        // MToon: also drawn as an out
 const uint DRAW_FLAG_NORMAL_MAP = 4096u;          // glTF normalTexture (set 1 binding 8)
 const uint DRAW_FLAG_EMISSIVE_TEXTURE = 8192u;    // glTF emissiveTexture (set 1 binding 10)
 const uint DRAW_FLAG_TOON_MATCAP = 16384u;       // MToon matcap texture (set 1 binding 11)
+const uint DRAW_FLAG_TOON_SHADING_SHIFT_TEXTURE = 32768u;  // MToon shadingShiftTexture (set 1 binding 12)
+const uint DRAW_FLAG_TOON_RIM_MULTIPLY = 65536u;           // MToon rimMultiplyTexture (set 1 binding 13)
+const uint DRAW_FLAG_TOON_OUTLINE_WIDTH_TEXTURE = 131072u; // MToon outlineWidthMultiplyTexture (set 1 binding 14)
 
 // The outline pipelines (ScenePipelines::outline): the mesh pushed out along
 // its normals, back faces only, in the outline colour.

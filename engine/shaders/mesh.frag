@@ -15,6 +15,9 @@ layout(set = 1, binding = 8) uniform sampler2D normalTexture;
 layout(set = 1, binding = 9) uniform sampler2D occlusionTexture;
 layout(set = 1, binding = 10) uniform sampler2D emissiveTexture;  // sRGB; read under DRAW_FLAG_EMISSIVE_TEXTURE
 layout(set = 1, binding = 11) uniform sampler2D matcapTexture;    // sRGB; read under DRAW_FLAG_TOON_MATCAP
+// MToon's masks: the shading shift's (linear, R) and the rim's (sRGB).
+layout(set = 1, binding = 12) uniform sampler2D shadingShiftTexture;
+layout(set = 1, binding = 13) uniform sampler2D rimMultiplyTexture;
 
 // True only in the MASK pipelines: a shader that can discard loses early
 // depth testing, so the others compile the test away.
@@ -107,6 +110,8 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
   vec3 shade = material.toonShade.rgb;
   if ((draw.flags & DRAW_FLAG_TOON_SHADE_TEXTURE) != 0u) shade *= texture(baseColorTexture, inTexcoord).rgb;
   float shift = material.toonShading.x, toony = material.toonShading.y;
+  if ((draw.flags & DRAW_FLAG_TOON_SHADING_SHIFT_TEXTURE) != 0u)
+    shift += texture(shadingShiftTexture, inTexcoord).r * draw.toonShadingShiftScale;
   float key = linearstep(-1.0 + toony, 1.0 - toony, dot(n, frame.keyDirection.xyz) + shift) * keyVisibility;
   float fill = linearstep(-1.0 + toony, 1.0 - toony, dot(n, frame.fillDirection.xyz) + shift);
   vec3 color = mix(shade, lit, key) * frame.keyColor.rgb + mix(shade, lit, fill) * frame.fillColor.rgb;
@@ -124,6 +129,7 @@ vec3 shadeToon(InstanceMaterial material, vec3 lit, vec3 n, vec3 toViewer, float
     vec2 matcapUv = vec2(dot(viewX, n), -dot(viewY, n)) * 0.495 + 0.5;
     rimLight += material.toonMatcap.rgb * texture(matcapTexture, matcapUv).rgb;
   }
+  if ((draw.flags & DRAW_FLAG_TOON_RIM_MULTIPLY) != 0u) rimLight *= texture(rimMultiplyTexture, inTexcoord).rgb;
   vec3 lighting = frame.keyColor.rgb * keyVisibility + frame.fillColor.rgb + gi;
   return color + rimLight * mix(vec3(1.0), lighting, material.toonShading.w);
 }

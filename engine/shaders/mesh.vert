@@ -20,6 +20,9 @@ layout(location = 2) in vec2 inTexcoord;
 layout(location = 3) in vec4 inTangent;  // xyz direction, w handedness (zeros when absent)
 layout(location = 4) in vec4 inColor;    // multiplies the base colour (ones when absent)
 
+// MToon's outline width mask (linear, G), read by the outline pipelines.
+layout(set = 1, binding = 14) uniform sampler2D outlineWidthTexture;
+
 #if defined(MORPH_CAPTURE)
 // Three vec4 per captured vertex: position (w = 1), normal, tangent (w = handedness).
 layout(std430, set = 0, binding = 3) writeonly buffer Captured { vec4 captured[]; };
@@ -72,14 +75,19 @@ void main() {
   outWorldTangent = vec4(mat3(inst.model) * m.tangent, inTangent.w);
   outMaterial = inst.materialOffset + draw.material;
   // MToon outline, world width: the hull pushed out along the normal, in metres.
+  // The width mask scales it point by point (zero: no line there).
   vec3 outlineNormal = vec3(0.0);
+  float outlineWidth = 0.0;
+  outTexcoord = materialTexcoord(outMaterial);
   if (OUTLINE_PIPELINE) {
     float n2 = dot(outWorldNormal, outWorldNormal);
     outlineNormal = n2 > 1e-24 ? outWorldNormal * inversesqrt(n2) : vec3(0.0);
     InstanceMaterial material = instanceMaterials[outMaterial];
-    if (material.toonOutlineStyle.x == 1.0) world.xyz += outlineNormal * material.toonOutline.w;
+    outlineWidth = material.toonOutline.w;
+    if ((draw.flags & DRAW_FLAG_TOON_OUTLINE_WIDTH_TEXTURE) != 0u)
+      outlineWidth *= textureLod(outlineWidthTexture, outTexcoord, 0.0).g;
+    if (material.toonOutlineStyle.x == 1.0) world.xyz += outlineNormal * outlineWidth;
   }
-  outTexcoord = materialTexcoord(outMaterial);
   outInstance = uint(gl_InstanceIndex);
   // A fold in the skin catches shadow: up to 60% darker where a target (or a
   // mix) creases it fully; the rest of the light keeps the furrow from going
@@ -94,7 +102,7 @@ void main() {
     float length2 = dot(onImage, onImage);
     if (length2 > 1e-12)
       gl_Position.xy += onImage * inversesqrt(length2) * vec2(scale.x / scale.y, 1.0) *
-                        (2.0 * instanceMaterials[outMaterial].toonOutline.w * gl_Position.w);
+                        (2.0 * outlineWidth * gl_Position.w);
   }
 #endif
 }

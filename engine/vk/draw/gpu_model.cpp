@@ -367,7 +367,11 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
                            (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
                            (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u) |
                            (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u) |
-                           (mat.toon && mat.matcapImage >= 0 ? kDrawFlagToonMatcap : 0u);
+                           (mat.toon && mat.matcapImage >= 0 ? kDrawFlagToonMatcap : 0u) |
+                           (mat.toon && mat.shadingShiftImage >= 0 ? kDrawFlagToonShadingShiftTexture : 0u) |
+                           (mat.toon && mat.rimMultiplyImage >= 0 ? kDrawFlagToonRimMultiply : 0u) |
+                           (hasOutline(mat) && mat.outlineWidthImage >= 0 ? kDrawFlagToonOutlineWidthTexture : 0u);
+      if (mat.toon) gp.constants.toonShadingShiftScale = mat.toon->shadingShiftTextureScale;
       gp.constants.alphaCutoff = mat.alphaCutoff;
       gp.constants.normalScale = mat.normalScale;
       gp.constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
@@ -458,7 +462,7 @@ Result<void> GpuModel::createDescriptorSets(const Context& ctx, const SceneLayou
   if (sets == 0) return {};
   const std::array poolSizes{VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
                              VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * sets},
-                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 7 * sets}};
+                             VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 10 * sets}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = sets;
   poolInfo.poolSizeCount = static_cast<uint32_t>(poolSizes.size());
@@ -533,11 +537,15 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       samplerFor(mat.*slot.sampling, others[t].sampler);
     }
     // Undecodable (the loader warned): drawn as without.
-    const auto& [metalRough, normal, occlusion, emissive, matcap] = kMaterialTextures;
+    const auto& [metalRough, normal, occlusion, emissive, matcap, shadingShift, rimMultiply, outlineWidth] =
+        kMaterialTextures;
     if (!uploaded(normal, mat.normalImage)) gp.constants.flags &= ~kDrawFlagNormalMap;
     if (!uploaded(occlusion, mat.occlusionImage)) gp.constants.occlusionStrength = 0.0f;
     if (!uploaded(emissive, mat.emissiveImage)) gp.constants.flags &= ~kDrawFlagEmissiveTexture;
     if (!uploaded(matcap, mat.matcapImage)) gp.constants.flags &= ~kDrawFlagToonMatcap;
+    if (!uploaded(shadingShift, mat.shadingShiftImage)) gp.constants.flags &= ~kDrawFlagToonShadingShiftTexture;
+    if (!uploaded(rimMultiply, mat.rimMultiplyImage)) gp.constants.flags &= ~kDrawFlagToonRimMultiply;
+    if (!uploaded(outlineWidth, mat.outlineWidthImage)) gp.constants.flags &= ~kDrawFlagToonOutlineWidthTexture;
     if (detailArrays_[material])
       detail = &detailArrays_[material];
     else
@@ -564,6 +572,9 @@ void GpuModel::writePrimitiveSet(const Context& ctx, const SceneLayouts& layouts
       imageWrite(gp.descriptorSet, 9, &others[2]),
       imageWrite(gp.descriptorSet, 10, &others[3]),
       imageWrite(gp.descriptorSet, 11, &others[4]),
+      imageWrite(gp.descriptorSet, 12, &others[5]),
+      imageWrite(gp.descriptorSet, 13, &others[6]),
+      imageWrite(gp.descriptorSet, 14, &others[7]),
   };
   vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

@@ -96,8 +96,9 @@ struct DrawConstants {
   float alphaCutoff = 0.5f;  // kDrawFlagAlphaMask: fragments with less base-colour alpha are discarded
   float normalScale = 1.0f;        // kDrawFlagNormalMap: scales the normal texture's x and y
   float occlusionStrength = 0.0f;  // 0: no occlusion texture (or one of strength 0)
+  float toonShadingShiftScale = 1.0f;  // kDrawFlagToonShadingShiftTexture: scales the texture's red
 };
-static_assert(sizeof(DrawConstants) == 68);
+static_assert(sizeof(DrawConstants) == 72);
 
 enum DrawFlags : uint32_t {
   kDrawFlagNormalDeltas = 1u,
@@ -115,6 +116,9 @@ enum DrawFlags : uint32_t {
   kDrawFlagNormalMap = 4096u,         // glTF normalTexture: the shading normal bent by it
   kDrawFlagEmissiveTexture = 8192u,   // glTF emissiveTexture: the emission masked by it
   kDrawFlagToonMatcap = 16384u,       // MToon matcap texture (set 1 binding 11), added with the rim
+  kDrawFlagToonShadingShiftTexture = 32768u,  // MToon shadingShiftTexture (set 1 binding 12)
+  kDrawFlagToonRimMultiply = 65536u,          // MToon rimMultiplyTexture (set 1 binding 13)
+  kDrawFlagToonOutlineWidthTexture = 131072u, // MToon outlineWidthMultiplyTexture (set 1 binding 14)
 };
 
 struct GpuDetailLayer {

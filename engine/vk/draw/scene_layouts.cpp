@@ -78,6 +78,9 @@ Result<SceneLayouts> SceneLayouts::create(const Context& ctx) {
       binding(9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
       binding(11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kFs),
+      binding(14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kVs),
   };
   auto primitiveSet = createSetLayout(ctx, primitiveBindings);
   if (!primitiveSet) return primitiveSet.error();

@@ -16,8 +16,9 @@
 //                          7 metallic-roughness (linear: G roughness, B metallic; white when absent),
 //                          8 normal (tangent space; DRAW_FLAG_NORMAL_MAP), 9 occlusion (R; white
 //                          when absent), 10 emissive (sRGB; DRAW_FLAG_EMISSIVE_TEXTURE), 11 MToon
-//                          matcap (sRGB; DRAW_FLAG_TOON_MATCAP)
-//   push constants:        DrawConstants (68 bytes), vertex + fragment; the morph pre-pass has its
+//                          matcap (sRGB; DRAW_FLAG_TOON_MATCAP), 12 MToon shading shift (linear, R),
+//                          13 MToon rim multiply (sRGB), 14 MToon outline width (linear, G; vertex stage)
+//   push constants:        DrawConstants (72 bytes), vertex + fragment; the morph pre-pass has its
 //                          own pipeline layout (same sets, push constants for the compute stage)
 #include "engine/core/result.h"
 #include "engine/vk/device/buffer.h"

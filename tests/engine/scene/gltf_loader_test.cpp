@@ -406,12 +406,16 @@ TEST(GltfLoader, ReadsMtoonMaterials) {
                       {"outlineColorFactor", {0.1, 0.0, 0.0}},
                       {"outlineLightingMixFactor", 0.5},
                       {"matcapTexture", {{"index", 1}}},
-                      {"matcapFactor", {0.5, 0.25, 1.0}}};
+                      {"matcapFactor", {0.5, 0.25, 1.0}},
+                      {"shadingShiftTexture", {{"index", 1}, {"scale", 0.4}}},
+                      {"rimMultiplyTexture", {{"index", 1}}},
+                      {"outlineWidthMultiplyTexture", {{"index", 1}, {"texCoord", 0}}}};
   b.doc["materials"] = Json::array(
       {{{"name", "face"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
         {"extensions", {{"VRMC_materials_mtoon", mtoon}}}},
        {{"name", "hair"},
-        {"extensions", {{"VRMC_materials_mtoon", {{"specVersion", "1.0"}, {"shadingToonyFactor", 7}}},
+        {"extensions", {{"VRMC_materials_mtoon",
+                         {{"specVersion", "1.0"}, {"shadingToonyFactor", 7}, {"uvAnimationScrollXSpeedFactor", 0.5}}},
                         {"KHR_materials_unlit", Json::object()}}}},
        {{"name", "plain"}}});
   b.writeGlb(dir / "mtoon.glb");
@@ -435,14 +439,21 @@ TEST(GltfLoader, ReadsMtoonMaterials) {
   EXPECT_EQ(face.matcapFactor, glm::vec3(0.5f, 0.25f, 1.0f));
   EXPECT_GE(model.materials[0].matcapImage, 0) << "the matcap texture is read";
   EXPECT_EQ(model.materials[1].matcapImage, -1);
+  EXPECT_GE(model.materials[0].shadingShiftImage, 0) << "the masks are read";
+  EXPECT_GE(model.materials[0].rimMultiplyImage, 0);
+  EXPECT_GE(model.materials[0].outlineWidthImage, 0);
+  EXPECT_FLOAT_EQ(face.shadingShiftTextureScale, 0.4f);
+  EXPECT_EQ(model.materials[1].shadingShiftImage, -1);
+  EXPECT_FLOAT_EQ(model.materials[1].toon->shadingShiftTextureScale, 1.0f) << "the spec's default scale";
   EXPECT_EQ(model.materials[1].toon->matcapFactor, glm::vec3(1.0f)) << "white by default";
   EXPECT_EQ(model.materials[1].toon->outlineMode, eng::ToonShading::OutlineWidth::None) << "no outline by default";
   ASSERT_TRUE(model.materials[1].toon.has_value());
   EXPECT_FLOAT_EQ(model.materials[1].toon->shadingToony, 0.9f) << "out of range: the default";
   EXPECT_EQ(model.materials[1].toon->shadeColor, glm::vec3(0.0f));
   EXPECT_FALSE(model.materials[2].toon.has_value());
-  ASSERT_EQ(model.warnings.size(), 1u);
+  ASSERT_EQ(model.warnings.size(), 2u);
   EXPECT_EQ(model.warnings[0], "material 1 VRMC_materials_mtoon: shadingToonyFactor is not a number in [0, 1]; 0.9 used");
+  EXPECT_EQ(model.warnings[1], "material 1 VRMC_materials_mtoon: its UV animation is not drawn (the textures stay still)");
   const eng::ExtensionUse* record = extensionRecord(model, "VRMC_materials_mtoon");
   ASSERT_NE(record, nullptr);
   EXPECT_EQ(record->outcome.rfind("applied: 2 material(s) toon-shaded", 0), 0u) << record->outcome;
@@ -473,7 +484,9 @@ TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
           {"_OutlineWidthMode", 1}, {"_OutlineWidth", 0.2}, {"_OutlineColorMode", 0}, {"_OutlineLightingMix", 1},
           {"_BumpScale", 0.5}}},
         {"vectorProperties", {{"_ShadeColor", {0.5, 0.5, 0.5, 1}}, {"_RimColor", {0, 0, 0, 1}}}},
-        {"textureProperties", {{"_MainTex", 0}, {"_BumpMap", 0}, {"_SphereAdd", 0}}}},
+        {"textureProperties",
+         {{"_MainTex", 0}, {"_BumpMap", 0}, {"_SphereAdd", 0}, {"_RimTexture", 0}, {"_OutlineWidthTexture", 0},
+          {"_ShadingGradeTexture", 0}}}},
        {{"name", "eyes"}, {"shader", "VRM/UnlitTexture"}},
        {{"name", "hair"},
         {"shader", "VRM/MToon"},
@@ -491,7 +504,14 @@ TEST(GltfLoader, ReadsVrm0MtoonPropertiesAsUniVrmMigratesThem) {
   EXPECT_GE(model.materials[0].matcapImage, 0) << "_SphereAdd is the matcap";
   EXPECT_EQ(face.matcapFactor, glm::vec3(1.0f));
   EXPECT_EQ(model.materials[2].matcapImage, -1);
+  EXPECT_GE(model.materials[0].rimMultiplyImage, 0) << "_RimTexture masks the rim";
+  EXPECT_GE(model.materials[0].outlineWidthImage, 0) << "_OutlineWidthTexture masks the outline";
+  EXPECT_EQ(model.materials[0].shadingShiftImage, -1);
   for (const std::string& warning : model.warnings) EXPECT_EQ(warning.find("_BumpMap"), std::string::npos) << warning;
+  EXPECT_EQ(std::count(model.warnings.begin(), model.warnings.end(),
+                       "material 0 VRM materialProperties (VRM/MToon): its _ShadingGradeTexture is not drawn (0.x's "
+                       "shading grade has no 1.0 equivalent)"),
+            1);
   EXPECT_NEAR(face.shadingToony, 0.88f, 1e-5f);
   EXPECT_NEAR(face.shadingShift, 0.08f, 1e-5f);
   EXPECT_NEAR(face.giEqualization, 0.7f, 1e-5f);

@@ -63,8 +63,12 @@ eng::Model richModel() {
                                 .rimFresnelPower = 3.0f, .rimLift = 0.125f, .rimLightingMix = 0.5f,
                                 .outlineMode = eng::ToonShading::OutlineWidth::Screen, .outlineWidth = 0.0078125f,
                                 .outlineColor = {0.25f, 0.0f, 0.5f}, .outlineLightingMix = 0.25f,
-                                .matcapFactor = {0.5f, 1.0f, 0.25f}};
+                                .matcapFactor = {0.5f, 1.0f, 0.25f}, .shadingShiftTextureScale = 0.5f};
   decal.matcapImage = 1;
+  decal.shadingShiftImage = 1;  // MToon's masks
+  decal.rimMultiplyImage = 0;
+  decal.outlineWidthImage = 1;
+  decal.outlineWidthSampling.magFilter = eng::TextureFilter::Nearest;
   decal.matcapSampling.wrapS = eng::TextureWrap::ClampToEdge;
   model.materials.push_back(decal);
 
@@ -195,8 +199,10 @@ void expectSameModel(const eng::Model& a, const eng::Model& b) {
     EXPECT_EQ(x.occlusionStrength, y.occlusionStrength);
     EXPECT_EQ(x.emissiveImage, y.emissiveImage);
     EXPECT_EQ(x.emissiveSampling, y.emissiveSampling) << x.name;
-    EXPECT_EQ(x.matcapImage, y.matcapImage) << x.name;
-    EXPECT_EQ(x.matcapSampling, y.matcapSampling) << x.name;
+    for (const eng::MaterialTexture& slot : eng::kMaterialTextures) {
+      EXPECT_EQ(x.*slot.image, y.*slot.image) << x.name << " " << slot.name;
+      EXPECT_EQ(x.*slot.sampling, y.*slot.sampling) << x.name << " " << slot.name;
+    }
     EXPECT_EQ(x.roughness, y.roughness);
     EXPECT_EQ(x.metallic, y.metallic);
     EXPECT_EQ(x.doubleSided, y.doubleSided);

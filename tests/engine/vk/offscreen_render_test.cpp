@@ -608,6 +608,82 @@ TEST(OffscreenRender, ToonMatcapLightsWhatFacesItsRowsOfTheImage) {
   EXPECT_GT(topHalf.r, 20);
 }
 
+TEST(OffscreenRender, ToonMasksScaleTheOutlineTheRimAndTheShadingShift) {
+  // MToon's masks, one-pixel images over the whole sphere: the outline width
+  // mask's green scales the ring (0: none, half: half as wide), the rim mask
+  // multiplies the rim (black: as without a rim), and the shading shift
+  // texture's red times its scale moves the light/shade boundary.
+  const eng::vk::SceneView view = viewOf(eng::Aabb{{-1, -1, -1}, {1, 1, 1}});
+  enum class Mask { None, Outline, Rim, Shift };
+  auto render = [&](Mask mask, std::array<uint8_t, 4> texel, float rim, float shiftScale, bool outline = true) {
+    eng::ToonShading toon;
+    toon.shadeColor = {0.05f, 0.05f, 0.3f};
+    toon.outlineMode = outline ? eng::ToonShading::OutlineWidth::World : eng::ToonShading::OutlineWidth::None;
+    toon.outlineWidth = 0.08f;
+    toon.outlineColor = {1.0f, 0.0f, 0.0f};
+    toon.outlineLightingMix = 0.0f;
+    toon.rimColor = glm::vec3(rim);
+    toon.rimFresnelPower = 1.0f;
+    toon.rimLightingMix = 0.0f;
+    toon.shadingShiftTextureScale = shiftScale;
+    eng::Model model = testing_support::makeSphereModel({.targets = 0, .color = {0.9f, 0.8f, 0.2f, 1.0f}, .toon = toon});
+    if (mask != Mask::None) {
+      model.images.push_back({"mask", 1, 1, {texel.begin(), texel.end()}});
+      const int image = int(model.images.size()) - 1;
+      eng::Material& mat = model.materials.at(0);
+      (mask == Mask::Outline ? mat.outlineWidthImage : mask == Mask::Rim ? mat.rimMultiplyImage : mat.shadingShiftImage) = image;
+    }
+    auto gpu = vk_test::renderer().upload(model);
+    EXPECT_TRUE(gpu) << gpu.error().message;
+    const eng::vk::ModelInstance instance{&*gpu, glm::mat4(1.0f), {}};
+    return renderOrFail(view, {&instance, 1});
+  };
+  const std::array<uint8_t, 4> black{0, 0, 0, 255}, white{255, 255, 255, 255}, halfGreen{0, 128, 0, 255};
+  // Outline: the ring beyond the sphere's right edge on the middle row.
+  const eng::Image plain = render(Mask::None, white, 0.0f, 1.0f), bare = render(Mask::None, white, 0.0f, 1.0f, false);
+  int edge = 128;
+  while (edge < 255 && glm::compMax(glm::abs(pixel(bare, edge + 1, 128) - pixel(bare, 250, 128))) > 6) ++edge;
+  ASSERT_GT(edge, 180) << "the sphere fills most of the image";
+  auto ring = [&](const eng::Image& image) {
+    int width = 0;
+    while (edge + 1 + width < 256) {
+      const glm::ivec4 p = pixel(image, edge + 1 + width, 128);
+      if (!(p.r > 150 && p.g < 60 && p.b < 60)) break;
+      ++width;
+    }
+    return width;
+  };
+  const int full = ring(plain), masked = ring(render(Mask::Outline, black, 0.0f, 1.0f)),
+            half = ring(render(Mask::Outline, halfGreen, 0.0f, 1.0f)),
+            unmasked = ring(render(Mask::Outline, white, 0.0f, 1.0f));
+  std::printf("outline ring %d px, masked %d, half %d, white mask %d\n", full, masked, half, unmasked);
+  EXPECT_GE(full, 6) << "0.08 units at about 98 px per unit";
+  EXPECT_EQ(masked, 0) << "no line where the mask is black";
+  EXPECT_NEAR(half, full / 2.0, 1.5) << "half as wide at half green";
+  EXPECT_EQ(unmasked, full);
+  // Rim: a grey rim whitens the yellow sphere toward its silhouette (blue
+  // rises); a black mask takes it away, a white one keeps it.
+  const glm::ivec2 nearEdge(edge - 4, 128);
+  const glm::ivec4 noRim = pixel(plain, nearEdge.x, nearEdge.y),
+                   rimmed = pixel(render(Mask::None, white, 0.6f, 1.0f), nearEdge.x, nearEdge.y),
+                   rimBlack = pixel(render(Mask::Rim, black, 0.6f, 1.0f), nearEdge.x, nearEdge.y),
+                   rimWhite = pixel(render(Mask::Rim, white, 0.6f, 1.0f), nearEdge.x, nearEdge.y);
+  std::printf("near the edge: no rim %d, rim %d, black mask %d, white mask %d (blue)\n", noRim.b, rimmed.b, rimBlack.b,
+              rimWhite.b);
+  EXPECT_GT(rimmed.b, noRim.b + 25) << "the rim shows";
+  EXPECT_LE(std::abs(rimBlack.b - noRim.b), 2) << "masked out";
+  EXPECT_LE(std::abs(rimWhite.b - rimmed.b), 2) << "kept";
+  // Shading shift: on the shaded lower right, a red texel times +1 moves the
+  // boundary past it (the base colour's yellow), times -1 keeps the shade.
+  const glm::ivec4 shaded = pixel(plain, 186, 186), lifted = pixel(render(Mask::Shift, white, 0.0f, 1.0f), 186, 186),
+                   kept = pixel(render(Mask::Shift, white, 0.0f, -1.0f), 186, 186);
+  std::printf("lower right: shaded %d %d %d, shifted +1 %d %d %d, -1 %d %d %d\n", shaded.r, shaded.g, shaded.b, lifted.r,
+              lifted.g, lifted.b, kept.r, kept.g, kept.b);
+  EXPECT_GT(shaded.b, shaded.r) << "the shade colour";
+  EXPECT_GT(lifted.r, lifted.b + 60) << "lit: the base colour";
+  EXPECT_GT(kept.b, kept.r) << "still the shade";
+}
+
 TEST(OffscreenRender, PrimitiveWithoutMaterialUsesTheDefault) {
   testing_support::SphereSpec spec;
   spec.withMaterial = false;
