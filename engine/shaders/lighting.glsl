@@ -83,7 +83,20 @@ vec3 shadeLight(SurfacePoint s, vec3 toLight, vec3 lightColor, bool withSpecular
   float vDotH = clamp(dot(s.toViewer, h), 0.0, 1.0);
   vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - vDotH, 5.0);
   // The gentle strength is skin's; a metal's colour is its reflection, at full strength.
-  vec3 specular = fresnel * normalisation * pow(nDotH, shininess) * lambert * mix(frame.skin.z, 1.0, s.metallic);
+  float lobe = normalisation * pow(nDotH, shininess);
+  if (s.metallic > 0.0) {
+    // A metal's lobe is glTF's own, GGX with Smith's visibility (Schlick's
+    // fit), as three.js draws it: its long tail lights thin metal (glasses
+    // frames, a chain) along its length where Blinn-Phong's narrow peak
+    // leaves it dark.
+    float a2 = alpha * alpha;
+    float d = nDotH * nDotH * (a2 - 1.0) + 1.0;
+    float k = 0.5 * alpha;
+    float nDotV = max(dot(s.normal, s.toViewer), 1e-3);
+    float ggx = a2 / (PI * d * d) * 0.25 / ((lambert * (1.0 - k) + k) * (nDotV * (1.0 - k) + k));
+    lobe = mix(lobe, ggx, s.metallic);
+  }
+  vec3 specular = fresnel * lobe * lambert * mix(frame.skin.z, 1.0, s.metallic);
 
   return (diffuse + specular) * lightColor;
 }
