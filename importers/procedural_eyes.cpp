@@ -85,7 +85,7 @@ glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a + (b 
 constexpr float kIrisRadius = 0.47f;
 constexpr float kPupilRadius = 0.18f;
 
-// The face's forward (+Z, glTF's front) in the space of the mesh `node` draws.
+// glTF's front (+Z) in the space of the mesh `node` draws.
 glm::vec3 gazeAxisOf(const Model& model, int node) {
   const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(node)) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
   return glm::dot(axis, axis) > 1e-20f ? glm::normalize(axis) : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -222,7 +222,28 @@ std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
       eyes.push_back(eye);
     }
   }
-  return eyes.empty() ? eyePairByShape(model, nodeOfMesh) : eyes;
+  if (eyes.empty()) eyes = eyePairByShape(model, nodeOfMesh);
+  // A face its file holds turned aside or rolled looks square to the line
+  // between its eyes, its top toward +Y: forward is that line crossed with
+  // +Y made square to it, on glTF's front side (a pitch is not seen).
+  if (eyes.size() == 2) {
+    auto worldCentre = [&](const EyePrimitive& eye) {
+      return glm::vec3(model.worldTransform(eye.node) * glm::vec4(eye.centre, 1.0f));
+    };
+    const glm::vec3 across = worldCentre(eyes[1]) - worldCentre(eyes[0]);
+    if (glm::dot(across, across) > 1e-20f) {
+      const glm::vec3 line = glm::normalize(across);
+      const glm::vec3 up = glm::vec3(0.0f, 1.0f, 0.0f) - line * line.y;
+      glm::vec3 forward = glm::cross(line, up);
+      if (forward.z < 0.0f) forward = -forward;
+      if (glm::dot(up, up) > 0.25f && forward.z > 0.5f * glm::length(forward))  // within 60° of upright and of +Z
+        for (EyePrimitive& eye : eyes) {
+          const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(eye.node)) * glm::vec4(glm::normalize(forward), 0.0f));
+          if (glm::dot(axis, axis) > 1e-20f) eye.gazeAxis = glm::normalize(axis);
+        }
+    }
+  }
+  return eyes;
 }
 
 size_t dressUntexturedEyes(Model& model) {

@@ -3,8 +3,10 @@
 // scans, sculpts): a white ball reads as a blank stare, so nobody can tell
 // where the face looks or what it feels. Such an eyeball gets a procedural
 // eye material -- sclera, iris with radial fibres, pupil, dark limbal ring and
-// a catch-light -- mapped along the eye's gaze axis (the face's forward, +Z
-// in glTF) by planar texture coordinates computed from the rest pose, so the
+// a catch-light -- mapped along the eye's gaze axis (the face's forward: +Z
+// in glTF, turned square to the line between the two eyes where the file
+// holds the face turned aside or rolled) by planar texture coordinates
+// computed from the rest pose, so the
 // iris moves with the eyeball's node and with any morph of its vertices.
 // Textured eyes are left alone.
 //

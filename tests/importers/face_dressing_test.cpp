@@ -6,6 +6,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/quaternion.hpp>
 
 #include "importers/face_dressing.h"
 #include "importers/painted_brows.h"
@@ -27,6 +28,22 @@ TEST(ProceduralEyes, UntexturedEyeballsAreFoundByNameAndShape) {
   for (const importers::EyePrimitive& eye : eyes) {
     EXPECT_NEAR(eye.radius, 1.0f, 0.02f) << "sphere fit in mesh space";
     EXPECT_NEAR(eye.gazeAxis.z, 1.0f, 1e-4f) << "the face looks along +Z";
+  }
+}
+
+// A face its file holds turned 30° aside and rolled 20°: its eyes look
+// square to the line between them, where the face looks, not along +Z.
+TEST(ProceduralEyes, AFaceTurnedInItsFileLooksWhereItFaces) {
+  eng::Model model = plasterHead();
+  const glm::quat turn = glm::angleAxis(glm::radians(30.0f), glm::vec3(0, 1, 0)) *
+                         glm::angleAxis(glm::radians(20.0f), glm::vec3(0, 0, 1));
+  eng::turnAtRoots(model, turn);
+  const std::vector<importers::EyePrimitive> eyes = importers::findUntexturedEyes(model);
+  ASSERT_EQ(eyes.size(), 2u);
+  const glm::vec3 facing = turn * glm::vec3(0.0f, 0.0f, 1.0f);
+  for (const importers::EyePrimitive& eye : eyes) {
+    const glm::vec3 gaze = glm::normalize(glm::mat3(model.worldTransform(eye.node)) * eye.gazeAxis);
+    EXPECT_GT(glm::dot(gaze, facing), std::cos(glm::radians(1.0f))) << gaze.x << " " << gaze.y << " " << gaze.z;
   }
 }
 
