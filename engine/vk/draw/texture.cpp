@@ -17,6 +17,10 @@ bool canBlitLinear(const Context& ctx, VkFormat format) {
       VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
   return (props.optimalTilingFeatures & kNeeded) == kNeeded;
 }
+
+// Textures are read by fragment shaders and, for MToon's outline width
+// mask, by the outline pass's vertex shader.
+constexpr VkPipelineStageFlags kSampledIn = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
 }  // namespace
 
 Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source) {
@@ -83,11 +87,11 @@ Result<GpuImage> createTexture(const Context& ctx, const TextureSource& source) 
     if (mips > 1)
       recordImageBarrier(cmd, {img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                               VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                               VK_ACCESS_TRANSFER_READ_BIT, kSampledIn,
                                VK_ACCESS_SHADER_READ_BIT, 0, mips - 1});
     recordImageBarrier(cmd, {img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                             VK_ACCESS_TRANSFER_WRITE_BIT, kSampledIn,
                              VK_ACCESS_SHADER_READ_BIT, mips - 1, 1});
   }));
   return image;
