@@ -85,9 +85,10 @@ glm::vec3 mix3(const glm::vec3& a, const glm::vec3& b, float t) { return a + (b 
 constexpr float kIrisRadius = 0.47f;
 constexpr float kPupilRadius = 0.18f;
 
-// glTF's front (+Z) in the space of the mesh `node` draws.
-glm::vec3 gazeAxisOf(const Model& model, int node) {
-  const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(node)) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+// The world direction `world` (unit) in the space of the mesh `node` draws;
+// +Z where the node's transform collapses it.
+glm::vec3 gazeAxisOf(const Model& model, int node, const glm::vec3& world = glm::vec3(0.0f, 0.0f, 1.0f)) {
+  const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(node)) * glm::vec4(world, 0.0f));
   return glm::dot(axis, axis) > 1e-20f ? glm::normalize(axis) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
@@ -237,10 +238,7 @@ std::vector<EyePrimitive> findUntexturedEyes(const Model& model) {
       glm::vec3 forward = glm::cross(line, up);
       if (forward.z < 0.0f) forward = -forward;
       if (glm::dot(up, up) > 0.25f && forward.z > 0.5f * glm::length(forward))  // within 60° of upright and of +Z
-        for (EyePrimitive& eye : eyes) {
-          const glm::vec3 axis = glm::vec3(glm::inverse(model.worldTransform(eye.node)) * glm::vec4(glm::normalize(forward), 0.0f));
-          if (glm::dot(axis, axis) > 1e-20f) eye.gazeAxis = glm::normalize(axis);
-        }
+        for (EyePrimitive& eye : eyes) eye.gazeAxis = gazeAxisOf(model, eye.node, glm::normalize(forward));
     }
   }
   return eyes;

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 namespace eng {
 namespace {
+
+// UV animation scrolls or turns the textures over time; they are drawn still.
+constexpr const char* kUvAnimationNotDrawn = "its UV animation is not drawn (the textures stay still)";
 
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
@@ -74,6 +78,17 @@ class Fields {
 
   bool has(const char* name) const { return object_.IsObject() && object_.Has(name); }
 
+  // Whether any of the named numbers is set and not 0 (UV animation's speeds).
+  bool anyNonZero(std::initializer_list<const char*> names) {
+    bool any = false;
+    for (const char* name : names) {
+      float x = 0.0f;
+      number(name, x, -1e6f, 1e6f);
+      any = any || x != 0.0f;
+    }
+    return any;
+  }
+
  private:
   static std::string format(float x) {
     char text[32];
@@ -120,13 +135,8 @@ MtoonRead readVersion1(const tinygltf::Value& ext, const std::string& where) {
   f.nested("shadingShiftTexture").number("scale", t.shadingShiftTextureScale, -100.0f, 100.0f);
   r.rimMultiplyTexture = f.textureInfo("rimMultiplyTexture");
   r.outlineWidthTexture = f.textureInfo("outlineWidthMultiplyTexture");
-  // UV animation scrolls or turns the textures over time; drawn still.
-  float scrollX = 0.0f, scrollY = 0.0f, rotation = 0.0f;
-  f.number("uvAnimationScrollXSpeedFactor", scrollX, -1e6f, 1e6f);
-  f.number("uvAnimationScrollYSpeedFactor", scrollY, -1e6f, 1e6f);
-  f.number("uvAnimationRotationSpeedFactor", rotation, -1e6f, 1e6f);
-  if (scrollX != 0.0f || scrollY != 0.0f || rotation != 0.0f)
-    r.problems.push_back(where + " " + kVrmcMaterialsMtoon + ": its UV animation is not drawn (the textures stay still)");
+  if (f.anyNonZero({"uvAnimationScrollXSpeedFactor", "uvAnimationScrollYSpeedFactor", "uvAnimationRotationSpeedFactor"}))
+    r.problems.push_back(where + " " + kVrmcMaterialsMtoon + ": " + kUvAnimationNotDrawn);
   r.toon = t;
   return r;
 }
@@ -187,12 +197,7 @@ MtoonRead readVersion0(const tinygltf::Value& props, const std::string& where) {
   ff.number("_ShadingGradeRate", gradeRate, 0.0f, 1.0f);
   if (ft.texture("_ShadingGradeTexture") >= 0 && gradeRate > 0.0f)
     r.problems.push_back(at + ": its _ShadingGradeTexture is not drawn (0.x's shading grade has no 1.0 equivalent)");
-  float scrollX = 0.0f, scrollY = 0.0f, rotation = 0.0f;
-  ff.number("_UvAnimScrollX", scrollX, -1e6f, 1e6f);
-  ff.number("_UvAnimScrollY", scrollY, -1e6f, 1e6f);
-  ff.number("_UvAnimRotation", rotation, -1e6f, 1e6f);
-  if (scrollX != 0.0f || scrollY != 0.0f || rotation != 0.0f)
-    r.problems.push_back(at + ": its UV animation is not drawn (the textures stay still)");
+  if (ff.anyNonZero({"_UvAnimScrollX", "_UvAnimScrollY", "_UvAnimRotation"})) r.problems.push_back(at + ": " + kUvAnimationNotDrawn);
   r.toon = t;
   return r;
 }
