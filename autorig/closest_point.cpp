@@ -83,8 +83,10 @@ std::vector<glm::vec3> vertexNormals(std::span<const glm::vec3> positions, std::
 TriangleGrid::TriangleGrid(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles,
                            std::span<const FaceRegion> regions)
     : positions_(positions.begin(), positions.end()), triangles_(triangles.begin(), triangles.end()) {
-  regions_.assign(triangles.size(), FaceRegion::None);
-  if (regions.size() == triangles.size()) std::copy(regions.begin(), regions.end(), regions_.begin());
+  regionBits_.assign(triangles.size(), 0u);
+  if (regions.size() == positions.size())
+    for (size_t i = 0; i < triangles_.size(); ++i)
+      for (uint32_t v : triangles_[i]) regionBits_[i] |= 1u << unsigned(regions[v]);
   normals_.resize(triangles_.size());
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const auto& t = triangles_[i];
@@ -126,6 +128,21 @@ glm::ivec3 TriangleGrid::cellOf(const glm::vec3& p) const {
   return glm::clamp(glm::ivec3(glm::floor((p - min_) / cell_)), glm::ivec3(0), dims_ - 1);
 }
 
+namespace {
+
+// Whether a triangle with corners in `bits` is refused to a query that
+// refuses `refused` (the query's own region is its opposite). The lips part
+// up to their corners, so a triangle that reaches the other lip there is
+// refused: it would give the upper lip the lower lip's motion and tear it.
+// The lids meet at still corners: a triangle spanning them is both lids'.
+bool refuses(uint32_t bits, FaceRegion refused) {
+  if (refused == FaceRegion::None || !(bits >> unsigned(refused) & 1u)) return false;
+  const bool lip = refused == FaceRegion::UpperLip || refused == FaceRegion::LowerLip;
+  return lip || !(bits >> unsigned(opposite(refused)) & 1u);
+}
+
+}  // namespace
+
 ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float maxDistance, const glm::vec3& facing) const {
   const bool checkFacing = facing != glm::vec3(0.0f);
   ClosestPoint best;
@@ -148,7 +165,7 @@ ClosestPoint TriangleGrid::closest(const glm::vec3& p, FaceRegion refused, float
           const size_t cell = cellIndex({x, y, z});
           for (uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
             const uint32_t i = cellTriangles_[k];
-            if (refused != FaceRegion::None && regions_[i] == refused) continue;
+            if (refuses(regionBits_[i], refused)) continue;
             if (checkFacing && glm::dot(normals_[i], facing) < kMinFacing) continue;
             const auto& t = triangles_[i];
             glm::vec3 bary;

@@ -2,8 +2,8 @@
 // Closest points on a triangle soup, through a uniform grid of the triangles'
 // bounds, searched in growing shells until no unsearched cell can be closer:
 // O(log)-ish per query on a surface, never a scan of every triangle.
-// Triangles carry a FaceRegion so a query may refuse one region (an upper-lip
-// vertex never lands on the lower lip).
+// Vertices carry a FaceRegion so a query may refuse one region (an upper-lip
+// vertex never lands on the lower lip, nor on a triangle that reaches it).
 #include <array>
 #include <cstdint>
 #include <span>
@@ -25,12 +25,13 @@ struct ClosestPoint {
 
 class TriangleGrid {
  public:
-  // triangles index `positions`; regions: one per triangle (or empty: all None).
+  // triangles index `positions`; regions: one per position (or empty: all None).
   TriangleGrid(std::span<const glm::vec3> positions, std::span<const std::array<uint32_t, 3>> triangles,
                std::span<const FaceRegion> regions);
 
-  // The closest point on a triangle whose region is not `refused` (None
-  // refuses nothing) and, when `facing` is not zero, whose normal is within
+  // The closest point on a triangle not in region `refused` (None refuses
+  // nothing; a triangle spanning the lips' meeting line at a mouth corner is
+  // neither lip's, one spanning an eye's corner both lids') and, when `facing` is not zero, whose normal is within
   // about 70 degrees of it (the cheek never lands on the inside of the
   // mouth or the back of an ear), within maxDistance; found = false when
   // there is none.
@@ -43,7 +44,7 @@ class TriangleGrid {
 
   std::vector<glm::vec3> positions_;
   std::vector<std::array<uint32_t, 3>> triangles_;
-  std::vector<FaceRegion> regions_;
+  std::vector<uint32_t> regionBits_;  // per triangle, bit r: a corner is in FaceRegion r
   std::vector<glm::vec3> normals_;  // unit, per triangle (zero for a degenerate one)
   glm::vec3 min_{0.0f};
   float cell_ = 1.0f;

@@ -17,15 +17,6 @@ constexpr uint32_t kNotGathered = UINT32_MAX;
 // mesh's to say: about the lips' and the lids' thickness.
 constexpr float kLineBand = 0.06f;
 
-// A triangle is in a region when one of its vertices is (and none is in the opposite one).
-std::vector<FaceRegion> triangleRegions(const FaceSurface& surface, const std::vector<FaceRegion>& vertexRegions) {
-  std::vector<FaceRegion> regions(surface.triangles.size(), FaceRegion::None);
-  for (size_t i = 0; i < surface.triangles.size(); ++i)
-    for (uint32_t v : surface.triangles[i])
-      if (regions[i] == FaceRegion::None) regions[i] = vertexRegions[v];
-  return regions;
-}
-
 glm::vec3 onSource(const FaceSurface& source, const ClosestPoint& match) {
   const auto& t = source.triangles[match.triangle];
   return match.barycentric.x * source.positions[t[0]] + match.barycentric.y * source.positions[t[1]] +
@@ -199,7 +190,7 @@ eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLand
 
   // Regions come from each face's own landmarks: the source's at rest, carried by the warp.
   std::vector<FaceRegion> sourceRegions = labelRegions(source, sourceFrame);
-  const TriangleGrid grid(warped, source.triangles, triangleRegions(source, sourceRegions));
+  const TriangleGrid grid(warped, source.triangles, sourceRegions);
   const std::vector<FaceRegion> targetRegions = labelRegions(target, targetFrame);
   const std::vector<glm::vec3> targetNormals = vertexNormals(target.positions, target.triangles);
   Correspondence result{.warp = std::move(warp), .grownPairs = grown, .warpedSource = std::move(warped), .matches = {},

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "autorig/closest_point.h"
 #include "autorig/face_parts.h"
 #include "autorig/posed_face.h"
 #include "tests/common/test_meshes.h"
@@ -36,6 +37,34 @@ TEST(FaceSurface, UvSeamCopiesAreOnePointAndSlitCopiesStayApart) {
   const autorig::FaceSurface plain =
       autorig::gatherSurface(untextured, autorig::poseAtRest(untextured), parts, {autorig::FacePart::Skin});
   for (size_t v = 0; v < plain.positions.size(); ++v) EXPECT_EQ(plain.rootOf(v), v);
+}
+
+// A triangle reaching across the lips' meeting line (a mouth corner: one
+// corner on the upper lip, two on the lower) is neither lip's to match: upper
+// lip skin there took the lower lip's motion and tore when the lip rose. One
+// across an eye's corner stays both lids'. A query from outside any region
+// refuses nothing.
+TEST(TriangleGrid, ATriangleAcrossTheLipsIsNeitherLipsAndOneAcrossTheLidsIsBoth) {
+  using autorig::FaceRegion;
+  const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<std::array<uint32_t, 3>> triangles = {{0, 1, 2}};
+  const glm::vec3 onIt(0.2f, 0.2f, 0.0f);
+  auto found = [&](std::vector<FaceRegion> corners, FaceRegion refused) {
+    const autorig::TriangleGrid grid(positions, triangles, corners);
+    return grid.closest(onIt, refused, 1.0f).found;
+  };
+  const std::vector<FaceRegion> lips = {FaceRegion::UpperLip, FaceRegion::LowerLip, FaceRegion::LowerLip};
+  EXPECT_FALSE(found(lips, FaceRegion::LowerLip));  // an upper lip vertex's query
+  EXPECT_FALSE(found(lips, FaceRegion::UpperLip));  // a lower lip vertex's
+  EXPECT_TRUE(found(lips, FaceRegion::None));
+  const std::vector<FaceRegion> lids = {FaceRegion::LeftUpperLid, FaceRegion::LeftLowerLid, FaceRegion::None};
+  EXPECT_TRUE(found(lids, FaceRegion::LeftLowerLid));
+  EXPECT_TRUE(found(lids, FaceRegion::LeftUpperLid));
+  const std::vector<FaceRegion> lowerLid = {FaceRegion::LeftLowerLid, FaceRegion::LeftLowerLid, FaceRegion::None};
+  EXPECT_FALSE(found(lowerLid, FaceRegion::LeftLowerLid));
+  const std::vector<FaceRegion> upperLip = {FaceRegion::UpperLip, FaceRegion::None, FaceRegion::None};
+  EXPECT_TRUE(found(upperLip, FaceRegion::LowerLip));
+  EXPECT_FALSE(found(upperLip, FaceRegion::UpperLip));
 }
 
 }  // namespace

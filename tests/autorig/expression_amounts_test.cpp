@@ -191,15 +191,19 @@ TEST(ExpressionAmounts, TheMouthOpensWithoutTearingTheLips) {
                 disgust = largestLipStretch(m, kDisgustMouth);
     std::printf("%s: an edge of the lips' skin lengthens by at most %.4f of the skin's size (jaw), %.4f (anger's lips), "
                 "%.4f (disgust's)\n", file, jaw, anger, disgust);
-    // Measured 0.031 on facecap and 0.033 on the avatar; 0.051 and 0.061 before torn lips were
-    // mended (slivers hanging inside the mouth's corners, a notch in facecap's lower lip).
-    EXPECT_LT(jaw, 0.04f) << file;
+    // Measured 0.031 on facecap and 0.044 on the avatar (the lining inside its mouth corners
+    // opens with the lips, the edge across them the longest: 0.033 while the upper lip's skin
+    // there could take the lower lip's motion); 0.051 and 0.061 before torn lips were mended
+    // (slivers hanging inside the mouth's corners, a notch in facecap's lower lip).
+    EXPECT_LT(jaw, 0.05f) << file;
     EXPECT_LT(anger, 0.04f) << file;
     EXPECT_LT(disgust, 0.04f) << file;
     // Anger's and disgust's lips part without the jaw; torn there, the lining
     // inside the avatar's mouth corners hung over its teeth as dark spikes.
-    // Edges stretched past 3 times their length: 0 and 2 on facecap, 2 and 0
-    // on the avatar; 11 and 13, 16 and 18 when only jaw units mended tears.
+    // Edges stretched past 3 times their length: 0 and 0 on both (2 and 0 on
+    // the avatar while its upper lip's skin at the corners could take the
+    // lower lip's motion, 18 and 20 then with the upper lip drawn back);
+    // 11 and 13, 16 and 18 when only jaw units mended tears.
     const size_t angerTorn = tornLipEdges(m, kAngerMouth, 3.0f), disgustTorn = tornLipEdges(m, kDisgustMouth, 3.0f);
     std::printf("%s: anger's lips tear %zu edges, disgust's %zu\n", file, angerTorn, disgustTorn);
     EXPECT_LE(angerTorn, 4u) << file;
