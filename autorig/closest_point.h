@@ -31,10 +31,10 @@ class TriangleGrid {
 
   // The closest point on a triangle not in region `refused` (None refuses
   // nothing; a triangle spanning the lips' meeting line at a mouth corner is
-  // neither lip's, one spanning an eye's corner both lids') and, when `facing` is not zero, whose normal is within
-  // about 70 degrees of it (the cheek never lands on the inside of the
-  // mouth or the back of an ear), within maxDistance; found = false when
-  // there is none.
+  // neither lip's, one spanning an eye's corner both lids') and, when
+  // `facing` is not zero, whose normal is within about 70 degrees of it (the
+  // cheek never lands on the inside of the mouth or the back of an ear),
+  // within maxDistance; found = false when there is none.
   ClosestPoint closest(const glm::vec3& p, FaceRegion refused, float maxDistance,
                        const glm::vec3& facing = glm::vec3(0.0f)) const;
 
