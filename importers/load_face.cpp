@@ -120,6 +120,20 @@ void faceForward(eng::Model& model) {
   model.roots = {index};
 }
 
+// `facial info` lists each extension with what was done with it; the glTF
+// loader knows nothing of VRM's, so say here what the VRM importer read.
+void describeVrmExtensions(const facial::VrmExpressionSet& set, eng::Model& model) {
+  const char* used = set.specVersion == 0 ? "VRM" : "VRMC_vrm";
+  const size_t binds = set.binds.size() + set.materialColorBinds.size() + set.textureTransformBinds.size();
+  for (eng::ExtensionUse& e : model.extensions) {
+    if (e.name == used)
+      e.outcome = "applied: " + std::to_string(set.expressions.size()) + " expressions (" + std::to_string(binds) +
+                  " bind(s)), lookAt (" + (set.lookAt.type == facial::VrmLookAtType::Bone ? "bone" : "expression") + ")";
+    else if (e.name == "VRM" || e.name == "VRMC_vrm")
+      e.outcome = std::string("ignored: ") + used + " read instead";
+  }
+}
+
 eng::Result<LoadedFace> loadGltfOrVrm(std::span<const uint8_t> bytes, const std::filesystem::path& path) {
   auto model = eng::loadModelFromBytes(bytes, path);
   if (!model) return model.error();
@@ -140,6 +154,7 @@ eng::Result<LoadedFace> loadGltfOrVrm(std::span<const uint8_t> bytes, const std:
                           " meshes, the loaded model has " + std::to_string(layout.total()) + " over " +
                           std::to_string(layout.meshCount()));
   if (set.specVersion == 0) faceForward(*model);
+  describeVrmExtensions(set, *model);
   // What the VRM importer left out (a bind it cannot apply, ...): one line each, here and in `facial info`.
   for (const std::string& warning : set.warnings) {
     eng::logWarning(warning);

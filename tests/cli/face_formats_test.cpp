@@ -65,6 +65,10 @@ TEST(FaceFormats, VrmOpensInExpressRenderInfoAndSheet) {
                                       (dir / (tag + "_happy.png")).string()})));
     const CommandOutput info = runFacial({"info", model});
     EXPECT_EQ(info.exitCode, 0) << info.err;
+    // The extension the VRM importer reads is reported as read, not as unknown to the glTF loader.
+    EXPECT_TRUE(contains(info.out, version == 0 ? "VRM " : "VRMC_vrm ")) << info.out;
+    EXPECT_TRUE(contains(info.out, "applied: " + std::to_string(version == 0 ? 13 : 18) + " expressions")) << info.out;
+    EXPECT_FALSE(contains(info.out, "not supported by this loader")) << info.out;
     // The shape key the files bind to the open vowel moves the mesh.
     EXPECT_TRUE(ranCleanly(runFacial({"render", model, "--size", "96x96", "--out", (dir / (tag + "_rest.png")).string()})));
     EXPECT_TRUE(ranCleanly(runFacial({"render", model, "--weight", "A=1", "--size", "96x96", "--out",
