@@ -21,10 +21,7 @@ namespace {
 
 // A matrix that cannot be inverted (a joint scaled to zero) leaves its
 // vertices' deltas as they are rather than sending them to infinity.
-glm::mat3 safeInverse(const glm::mat3& m) {
-  float det = glm::determinant(m);
-  return std::abs(det) > 1e-12f ? glm::inverse(m) : glm::mat3(1.0f);
-}
+glm::mat3 safeInverse(const glm::mat3& m) { return eng::isInvertible(m) ? glm::inverse(m) : glm::mat3(1.0f); }
 
 }  // namespace
 

@@ -47,6 +47,11 @@ constexpr float kJacobianStep = 0.01f;
 // where grown pairs crowd, the RBF can fold, and a folded Jacobian would send
 // a unit's displacement the wrong way or tenfold.
 constexpr float kMaxStretch = 2.0f;
+// A vertex a made target moves less than this (eye spans: about a micrometre
+// on a person, far under a pixel) is left out of it, and a target that moves
+// none is not made. In the face's units a fixed bound made AU19 on facecap
+// drawn in centimetres and not in metres.
+constexpr float kStillShare = 1e-5f;
 
 bool sameName(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
@@ -793,17 +798,18 @@ void widenWeightChannels(eng::Model& model, size_t mesh) {
 
 // Appends `target` to every mesh it moves: displacements into each vertex's
 // mesh space, normal displacements from the smooth normals before and after.
+// False when it moves no vertex more than `still` (nothing written).
 // Rest normals as computeSmoothNormals gives them, per mesh and primitive,
 // made once and shared by every target written.
 using RestNormals = std::vector<std::vector<std::vector<glm::vec3>>>;
 
-void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target,
-                 RestNormals& restNormals) {
-  constexpr float kStill = 1e-7f;
+bool writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, const NamedDeltas& target,
+                 float still, RestNormals& restNormals) {
   std::vector<std::vector<size_t>> byMesh(model.meshes.size());
+  bool written = false;
   for (size_t k = 0; k < moved.vertices.size(); ++k)
-    if (glm::length(target.deltas[k]) > kStill)
-      byMesh[posed.primitives[moved.vertices[k].primitive].mesh].push_back(k);
+    if (glm::length(target.deltas[k]) > still)
+      byMesh[posed.primitives[moved.vertices[k].primitive].mesh].push_back(k), written = true;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     if (byMesh[m].empty()) continue;
     eng::Mesh& mesh = model.meshes[m];
@@ -833,6 +839,7 @@ void writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, 
     mesh.defaultWeights.push_back(0.0f);
     widenWeightChannels(model, m);
   }
+  return written;
 }
 
 }  // namespace
@@ -911,8 +918,8 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
       report.kept.push_back(target.name);
       continue;
     }
-    writeTarget(result.model, posed, moved, target, restNormals);
-    report.made.push_back(target.name);
+    if (writeTarget(result.model, posed, moved, target, kStillShare * frame.eyeSpan(), restNormals))
+      report.made.push_back(target.name);
   }
   if (options.actionUnits && options.detailLayers) {
     DetailTransferReport details = carryDetailLayers(source, src, tgt, corr, posed, result.model);

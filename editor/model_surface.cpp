@@ -22,7 +22,7 @@ eng::Result<ModelSurface> ModelSurface::create(const eng::Model& model) {
     placed[size_t(mesh)] = true;
     const glm::mat4& world = worlds[n];
     const glm::mat3 linear(world);
-    if (std::abs(glm::determinant(linear)) < 1e-20f) continue;  // collapsed node: nothing to pick
+    if (!eng::isInvertible(linear)) continue;  // collapsed node: nothing to pick
     for (size_t p = 0; p < model.meshes[size_t(mesh)].primitives.size(); ++p) {
       const eng::Primitive& primitive = model.meshes[size_t(mesh)].primitives[p];
       if (primitive.indices.size() < 3) continue;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -158,6 +159,13 @@ void poseWorldMatrices(const Model& model, const Pose& pose, std::vector<glm::ma
       for (int c : model.nodes[n].children) stack.push_back(c);
     }
   }
+}
+
+bool isInvertible(const glm::mat3& linear) {
+  const glm::dmat3 m(linear);
+  const double bound = glm::length(m[0]) * glm::length(m[1]) * glm::length(m[2]);
+  const double det = glm::determinant(m);
+  return std::isfinite(det) && bound > 0.0 && std::abs(det) > 1e-6 * bound;
 }
 
 std::vector<glm::mat4> restWorldMatrices(const Model& model) {

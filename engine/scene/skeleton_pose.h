@@ -53,6 +53,12 @@ void poseWorldMatrices(const Model& model, const Pose& pose, std::vector<glm::ma
 // and a chain of nodes never finished).
 std::vector<glm::mat4> restWorldMatrices(const Model& model);
 
+// Whether a transform's linear part can be inverted, judged against its own
+// size (Hadamard's bound: |det| <= the product of the column lengths), not an
+// absolute threshold: facecap's skin sits under scales of about 2e-5 per axis
+// (a determinant near 1e-14), which is a face, not a collapsed node.
+bool isInvertible(const glm::mat3& linear);
+
 // The matrices that move a skinned vertex from the bind pose into the space
 // of the mesh node that draws it: inverse(world[meshNode]) * world[joint] *
 // inverseBind (the glTF formulation; the mesh node's own transform then

@@ -168,8 +168,47 @@ TEST(TargetTransfer, AFaceAThousandthTheSizeIsRiggedAlike) {
   eng::Result<autorig::TransferResult> full =
       autorig::transferTargets(source, stripped(*head), source.posed, source.landmarks, source.parts, kShapesOnly);
   ASSERT_TRUE(full) << full.error().message;
+  EXPECT_EQ(rigged->report.made, full->report.made) << "the same targets are made at any size";
   // Targets are in mesh space, which the node's scale leaves as it was: the
   // same displacements come back.
+  for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU26_JawDrop", "AU45_Blink_L"}) {
+    const float error = transfer_fixture::relativeError(full->model, rigged->model, "Head", 0, unit, unit);
+    EXPECT_LT(error, 0.02f) << unit;
+  }
+}
+
+// A face stored in tiny units under a large scale down draws at its size and
+// is rigged as it is drawn: facecap's skin is in units of about 0.02 mm under
+// nodes scaling it by 2e-5, and scaled down ten times more, to a person's
+// size in metres, its node's determinant (1e-14) was taken for a collapsed
+// node: every made displacement was written in world units, 50,000 times too
+// small, and the rigged face did not move.
+TEST(TargetTransfer, AFaceInTinyUnitsUnderALargeScaleDownIsRiggedAlike) {
+  std::optional<eng::Model> head = loadHead();
+  ASSERT_TRUE(head);
+  const autorig::SourceFace source = headSource(*head);
+  constexpr float kUnits = 1e5f;  // mesh units per world unit
+  eng::Model face = stripped(*head);
+  for (eng::Mesh& mesh : face.meshes)
+    for (eng::Primitive& primitive : mesh.primitives)
+      for (glm::vec3& p : primitive.positions) p *= kUnits;
+  for (eng::Node& node : face.nodes) node.translation *= kUnits;
+  for (eng::Node& node : face.nodes)
+    if (node.parent < 0) node.scale /= kUnits, node.translation /= kUnits;
+  const autorig::PosedFace posed = autorig::poseAtRest(face);
+  const autorig::FaceParts parts = autorig::findFaceParts(face, posed, source.landmarks);
+  eng::Result<autorig::TransferResult> rigged =
+      autorig::transferTargets(source, face, posed, source.landmarks, parts, kShapesOnly);
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  eng::Result<autorig::TransferResult> full =
+      autorig::transferTargets(source, stripped(*head), source.posed, source.landmarks, source.parts, kShapesOnly);
+  ASSERT_TRUE(full) << full.error().message;
+  EXPECT_EQ(rigged->report.made, full->report.made);
+  // In mesh space the made displacements are kUnits times the head's.
+  for (eng::Mesh& mesh : rigged->model.meshes)
+    for (eng::Primitive& primitive : mesh.primitives)
+      for (eng::MorphTarget& target : primitive.targets)
+        for (glm::vec3& d : target.positions) d /= kUnits;
   for (const char* unit : {"AU1_InnerBrowRaiser", "AU12_LipCornerPuller_L", "AU26_JawDrop", "AU45_Blink_L"}) {
     const float error = transfer_fixture::relativeError(full->model, rigged->model, "Head", 0, unit, unit);
     EXPECT_LT(error, 0.02f) << unit;
