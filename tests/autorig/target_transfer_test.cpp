@@ -182,7 +182,9 @@ TEST(TargetTransfer, AFaceAThousandthTheSizeIsRiggedAlike) {
 // nodes scaling it by 2e-5, and scaled down ten times more, to a person's
 // size in metres, its node's determinant (1e-14) was taken for a collapsed
 // node: every made displacement was written in world units, 50,000 times too
-// small, and the rigged face did not move.
+// small, and the rigged face did not move. So did every quantized face
+// (KHR_mesh_quantization, as gltfpack writes it: 16-bit positions under a
+// node scale of a few 1e-6).
 TEST(TargetTransfer, AFaceInTinyUnitsUnderALargeScaleDownIsRiggedAlike) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);
