@@ -30,6 +30,7 @@
 #include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
+#include "engine/scene/mesh_weld.h"
 #include "engine/scene/weights.h"
 #include "facial/runtime/rig/rig_mapping.h"
 #include "importers/face_dressing.h"
@@ -150,11 +151,14 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
 
 eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
                                             const std::string& faceName, const autorig::TransferOptions& options) const {
-  autorig::PosedFace posed = autorig::poseAtRest(face);
-  autorig::FaceParts parts = autorig::findFaceParts(face, posed, landmarks);
+  // Copies of a vertex in every attribute (a triangle soup's corners) made
+  // one, so the lips and lids have edges to be labelled and mended along.
+  eng::Model opened = face;
+  const size_t welded = eng::weldIdenticalVertices(opened);
+  autorig::PosedFace posed = autorig::poseAtRest(opened);
+  autorig::FaceParts parts = autorig::findFaceParts(opened, posed, landmarks);
   // Welded lips cut, the head's mouth inside where the face has none: then the
   // changed face is posed and its parts found again.
-  eng::Model opened = face;
   autorig::MouthOpening opening = autorig::openTheMouth(opened, posed, landmarks, parts, source_);
   if (opening.changed()) {
     posed = autorig::poseAtRest(opened);
@@ -177,6 +181,8 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   result.report = std::move(transferred->report);
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
+  if (welded > 0)
+    result.partNotes.push_back(std::to_string(welded) + " vertices that copied another in every attribute welded to it (a triangle soup's corners)");
   result.partNotes.insert(result.partNotes.end(), opening.notes.begin(), opening.notes.end());
   result.partNotes.insert(result.partNotes.end(), eyes.notes.begin(), eyes.notes.end());
   return result;

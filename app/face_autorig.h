@@ -36,7 +36,7 @@ namespace app {
 
 // Part of the cache key (with the program's size and time, so a rebuilt
 // program rigs anew): bump it when the rigged file's layout changes.
-inline constexpr std::string_view kAutorigVersion = "autorig-20";  // 2: the ARKit 52; 3: lid points on the lids, each column of an eye closed; 4: welded lips cut, a mouth bag; 5: cut along the crease; 6: lower teeth drop with the lip; 7: own mouthSmile split into AU12; 8: own mouthOpen as AU26; 9: a scan's eyes in its skin; 10: own eyesClosed as AU45; 11: no gaze for a scan's eyes; 12: units from own ARKit shapes; 13: its landmarks kept beside it; 14: a scan's eyes cut free, eyeballs behind them; 15: the head's wrinkle and colour layers carried; 16: torn lips mended, seam copies labelled as one; 19: a face's own lower teeth drop with its lip; 20: made deltas kept in mesh units under a large scale down
+inline constexpr std::string_view kAutorigVersion = "autorig-21";  // 2: the ARKit 52; 3: lid points on the lids, each column of an eye closed; 4: welded lips cut, a mouth bag; 5: cut along the crease; 6: lower teeth drop with the lip; 7: own mouthSmile split into AU12; 8: own mouthOpen as AU26; 9: a scan's eyes in its skin; 10: own eyesClosed as AU45; 11: no gaze for a scan's eyes; 12: units from own ARKit shapes; 13: its landmarks kept beside it; 14: a scan's eyes cut free, eyeballs behind them; 15: the head's wrinkle and colour layers carried; 16: torn lips mended, seam copies labelled as one; 19: a face's own lower teeth drop with its lip; 20: made deltas kept in mesh units under a large scale down; 21: a triangle soup welded
 
 // Why a loaded face cannot show emotions, or "" when it can (or when it is not
 // autorig's to decide): no rig map names its targets (a rig map, given or in

@@ -365,7 +365,7 @@ eng::Result<std::optional<Seen>> landmarksSeen(const eng::Model& model, const au
     else camera = wide;
   }
   const autorig::PictureCamera picture = pictureCamera(camera, options.size, renderer.placement());
-  const autorig::SurfaceCaster caster(model, posed, autorig::outerSkinPrimitives(model, posed), picture);
+  const autorig::SurfaceCaster caster(model, posed, autorig::seenSkinPrimitives(model, posed, picture), picture);
   auto cast = castOntoFace(caster, *seen, options.size, modelName(model), options.picture);
   if (!cast) {
     if (cast.error().kind != eng::ErrorKind::NotFound) return cast.error();

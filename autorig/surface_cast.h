@@ -84,6 +84,13 @@ class SurfaceCaster {
 // rays pass through to the skin behind them. All of them when that leaves none.
 std::vector<bool> outerSkinPrimitives(const eng::Model& model, const PosedFace& posed);
 
+// outerSkinPrimitives, and those it leaves out only for lying inside
+// another's box that `camera` sees for the most part in front of everything
+// else: a piece of the skin with a material of its own (the lips, a scan's
+// texture chart, the nose), where the mouth's inside, an unnamed eyeball or
+// teeth stay hidden behind the skin.
+std::vector<bool> seenSkinPrimitives(const eng::Model& model, const PosedFace& posed, const PictureCamera& camera);
+
 // The distance from `point` to the nearest triangle of the primitives flagged
 // in `among` (all of them when empty); infinity when there are none.
 float distanceToSurface(const eng::Model& model, const PosedFace& posed, const glm::vec3& point, const std::vector<bool>& among = {});

@@ -5,10 +5,15 @@
 // emotions and its own visemes the speech.
 #include "app/face_autorig.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -440,3 +445,84 @@ TEST(FaceSetupAutorig, AMergedUntexturedScanLyingDownIsShownWithEyesAndMouthDres
 }
 
 }  // namespace
+
+namespace {
+
+// Every primitive of `model` as a triangle soup: each corner its own vertex,
+// as three.js's GLTFExporter writes a non-indexed geometry (an OBJ it read).
+eng::Model asTriangleSoup(eng::Model model) {
+  for (eng::Mesh& mesh : model.meshes)
+    for (eng::Primitive& p : mesh.primitives) {
+      auto spread = [&p](auto& values, size_t perVertex) {
+        if (values.empty()) return;
+        std::remove_reference_t<decltype(values)> out;
+        for (uint32_t i : p.indices)
+          out.insert(out.end(), values.begin() + ptrdiff_t(i * perVertex), values.begin() + ptrdiff_t((i + 1) * perVertex));
+        values = std::move(out);
+      };
+      const size_t sets = p.influenceSets();
+      spread(p.normals, 1), spread(p.texcoords, 1), spread(p.tangents, 1), spread(p.colors, 1);
+      spread(p.joints, sets), spread(p.jointWeights, sets);
+      for (eng::MorphTarget& t : p.targets) spread(t.positions, 1), spread(t.normals, 1), spread(t.tangents, 1);
+      spread(p.positions, 1);
+      for (size_t i = 0; i < p.indices.size(); ++i) p.indices[i] = uint32_t(i);
+    }
+  return model;
+}
+
+// The largest difference between `unit`'s displacement of each vertex of
+// `soup`'s skin and the nearest of `indexed`'s at the same place, over the
+// largest displacement.
+float soupAgainstIndexed(const eng::Model& indexed, const eng::Model& soup, const std::string& unit) {
+  auto target = [&unit](const eng::Primitive& p, const eng::Mesh& m) -> const std::vector<glm::vec3>* {
+    const auto it = std::find(m.targetNames.begin(), m.targetNames.end(), unit);
+    return it == m.targetNames.end() ? nullptr : &p.targets[size_t(it - m.targetNames.begin())].positions;
+  };
+  const eng::Mesh& a = indexed.meshes[0];
+  const eng::Mesh& b = soup.meshes[0];
+  const std::vector<glm::vec3>* da = target(a.primitives[0], a);
+  const std::vector<glm::vec3>* db = target(b.primitives[0], b);
+  if (!da || !db) return INFINITY;
+  std::multimap<std::tuple<float, float, float>, size_t> at;
+  const std::vector<glm::vec3>& pa = a.primitives[0].positions;
+  for (size_t v = 0; v < pa.size(); ++v) at.emplace(std::tuple(pa[v].x, pa[v].y, pa[v].z), v);
+  float largest = 0.0f, worst = 0.0f;
+  for (const glm::vec3& d : *da) largest = std::max(largest, glm::length(d));
+  const std::vector<glm::vec3>& pb = b.primitives[0].positions;
+  for (size_t v = 0; v < pb.size(); ++v) {
+    float nearest = INFINITY;
+    const auto [from, to] = at.equal_range(std::tuple(pb[v].x, pb[v].y, pb[v].z));
+    for (auto it = from; it != to; ++it) nearest = std::min(nearest, glm::length((*da)[it->second] - (*db)[v]));
+    worst = std::max(worst, nearest);
+  }
+  return largest > 0.0f ? worst / largest : INFINITY;
+}
+
+}  // namespace
+
+// A face written as a triangle soup is rigged as its indexed mesh: its
+// corners are welded first (eng::weldIdenticalVertices). Loose, its lips
+// had no edges to be labelled and mended along, and facecap's mouth opened
+// into jagged loose triangles in surprise.
+TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
+  auto rigger = app::FaceAutorig::load();
+  ASSERT_TRUE(rigger) << rigger.error().message;
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  const eng::Model indexed = testing_support::stripped(*head);
+  const eng::Model soup = asTriangleSoup(indexed);
+  ASSERT_EQ(soup.meshes[0].primitives[0].vertexCount(), indexed.meshes[0].primitives[0].indices.size());
+  const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
+  auto a = rigger->rig(indexed, source->landmarks, "head", shapes);
+  ASSERT_TRUE(a) << a.error().message;
+  auto b = rigger->rig(soup, source->landmarks, "soup", shapes);
+  ASSERT_TRUE(b) << b.error().message;
+  bool welded = false;
+  for (const std::string& note : b->partNotes) welded = welded || note.find("welded") != std::string::npos;
+  EXPECT_TRUE(welded);
+  EXPECT_LT(b->model.meshes[0].primitives[0].vertexCount(), soup.meshes[0].primitives[0].vertexCount() / 3);
+  for (const char* unit : {"AU26_JawDrop", "AU25_LipsPart", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
+    EXPECT_LT(soupAgainstIndexed(a->model, b->model, unit), 0.02f) << unit;
+}

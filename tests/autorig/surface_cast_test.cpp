@@ -105,4 +105,47 @@ TEST(SurfaceCaster, OuterSkinLeavesOutNamedAndEnclosedParts) {
   EXPECT_EQ(autorig::outerSkinPrimitives(model, posed), (std::vector<bool>{true, false, false, false, false}));
 }
 
+// A piece of the skin with a material of its own whose box lies inside the
+// rest's (the lips: the nose stands out further) is skin the camera sees,
+// and rays stop at it; a ball inside the head stays passed through.
+TEST(SurfaceCaster, AnEnclosedPieceOfSkinTheCameraSeesIsSkin) {
+  eng::Model model = testing_support::makeSphereModel({.rings = 32, .segments = 48, .targets = 0});
+  model.meshes[0].name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  // The triangles about (0, -0.5, 0.87) as a primitive of their own.
+  eng::Primitive& whole = model.meshes[0].primitives[0];
+  eng::Primitive patch = whole;
+  std::vector<uint32_t> rest;
+  patch.indices.clear();
+  for (size_t t = 0; t + 2 < whole.indices.size(); t += 3) {
+    const glm::vec3 centre = (whole.positions[whole.indices[t]] + whole.positions[whole.indices[t + 1]] +
+                              whole.positions[whole.indices[t + 2]]) / 3.0f;
+    std::vector<uint32_t>& to = glm::distance(centre, glm::vec3(0.0f, -0.5f, 0.87f)) < 0.3f ? patch.indices : rest;
+    to.insert(to.end(), whole.indices.begin() + ptrdiff_t(t), whole.indices.begin() + ptrdiff_t(t + 3));
+  }
+  ASSERT_FALSE(patch.indices.empty());
+  whole.indices = rest;
+  // The patch keeps only its own vertices (its box is theirs).
+  std::vector<uint32_t> renumbered(patch.vertexCount(), UINT32_MAX);
+  std::vector<glm::vec3> positions, normals;
+  for (uint32_t& i : patch.indices) {
+    if (renumbered[i] == UINT32_MAX) {
+      renumbered[i] = uint32_t(positions.size());
+      positions.push_back(patch.positions[i]), normals.push_back(patch.normals[i]);
+    }
+    i = renumbered[i];
+  }
+  patch.positions = positions, patch.normals = normals;
+  patch.texcoords.clear(), patch.tangents.clear(), patch.colors.clear(), patch.targets.clear();
+  model.meshes[0].primitives.push_back(patch);
+  testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), "",
+                                 {0.0f, 0.0f, 0.0f}, glm::vec3(0.3f));
+  model.meshes.back().name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  const autorig::PosedFace posed = autorig::poseAtRest(model);
+  ASSERT_EQ(posed.primitives.size(), 3u);
+  EXPECT_EQ(autorig::outerSkinPrimitives(model, posed), (std::vector<bool>{true, false, false})) << "both lie inside the sphere's box";
+  EXPECT_EQ(autorig::seenSkinPrimitives(model, posed, frontCamera()), (std::vector<bool>{true, true, false}));
+}
+
 }  // namespace
