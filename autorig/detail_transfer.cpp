@@ -478,10 +478,12 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
       // No texture reads the UVs: fitted into [0, 1] here, as the display's
       // dressing would fit them for its painted brows, the layers and the
       // brows agree (facecap's are quantized, 0-4095).
+      std::vector<std::vector<glm::vec2>*> uvs;  // together: primitives sharing the material share its texture
       for (uint32_t p : primitives) {
         const PosedPrimitive& pp = posed.primitives[p];
-        eng::fitIntoUnitSquare(face.meshes[pp.mesh].primitives[pp.primitive].texcoords);
+        uvs.push_back(&face.meshes[pp.mesh].primitives[pp.primitive].texcoords);
       }
+      eng::fitIntoUnitSquare(uvs);
     }
     double coverage = 0.0;
     for (uint32_t p : primitives)

@@ -91,6 +91,16 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
   const std::vector<int> nodeOfMesh = model.firstNodeOfEachMesh();
   std::map<int, PaintImage> textures;  // dressed skin material -> its texture
   std::vector<Primitive*> withoutUvs;   // painted through their vertex colours
+  // The painted texture replaces whatever the skin's UVs were made for: they
+  // are fitted into it per material, the primitives sharing it together (a
+  // face whose lips are a primitive of their own keeps them beside the rest).
+  std::map<int, std::vector<std::vector<glm::vec2>*>> uvsOfMaterial;
+  for (const PlannedPrimitive& p : planned)
+    if (Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];
+        p.part == Part::Skin && prim.texcoords.size() == prim.positions.size() &&
+        !browFrames(model, eyes, nodeOfMesh[p.mesh]).empty())
+      uvsOfMaterial[prim.material].push_back(&prim.texcoords);
+  for (auto& [material, uvs] : uvsOfMaterial) fitIntoUnitSquare(uvs);
   for (const PlannedPrimitive& p : planned) {
     if (p.part != Part::Skin) continue;
     Primitive& prim = model.meshes[p.mesh].primitives[p.primitive];
@@ -98,8 +108,6 @@ void paintBrows(Model& model, const std::vector<PlannedPrimitive>& planned, cons
     if (frames.empty()) continue;
     const size_t n = prim.positions.size();
     if (prim.texcoords.size() == n) {
-      // The painted texture replaces whatever the skin's UVs were made for.
-      fitIntoUnitSquare(prim.texcoords);
       PaintImage& image = textures.try_emplace(prim.material, kTextureSize, kTextureSize).first->second;
       rasterizeUv(kTextureSize, kTextureSize, prim.texcoords, prim.indices,
                   [&](int x, int y, uint32_t triangle, const glm::vec3& b) {

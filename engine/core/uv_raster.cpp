@@ -35,11 +35,18 @@ void rasterizeUv(int width, int height, std::span<const glm::vec2> uvs, std::spa
 }
 
 void fitIntoUnitSquare(std::vector<glm::vec2>& uvs) {
+  std::vector<glm::vec2>* one = &uvs;
+  fitIntoUnitSquare(std::span<std::vector<glm::vec2>* const>(&one, 1));
+}
+
+void fitIntoUnitSquare(std::span<std::vector<glm::vec2>* const> uvSets) {
   glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec2& uv : uvs) lo = glm::min(lo, uv), hi = glm::max(hi, uv);
+  for (const std::vector<glm::vec2>* uvs : uvSets)
+    for (const glm::vec2& uv : *uvs) lo = glm::min(lo, uv), hi = glm::max(hi, uv);
   if (lo.x >= 0.0f && lo.y >= 0.0f && hi.x <= 1.0f && hi.y <= 1.0f) return;
   const glm::vec2 size = glm::max(hi - lo, glm::vec2(1e-12f));
-  for (glm::vec2& uv : uvs) uv = (uv - lo) / size;
+  for (std::vector<glm::vec2>* uvs : uvSets)
+    for (glm::vec2& uv : *uvs) uv = (uv - lo) / size;
 }
 
 void PaintImage::dilate(int passes) {

@@ -41,6 +41,10 @@ struct PaintImage {
 // for: a face whose texture was dropped (KTX2) can keep quantized UVs that
 // only its texture transform mapped into [0, 1]. UVs inside are kept.
 void fitIntoUnitSquare(std::vector<glm::vec2>& uvs);
+// The same for the UV sets of several primitives that share one texture (a
+// material's): their common box onto the unit square, so they stay apart
+// as they were instead of each filling the whole texture.
+void fitIntoUnitSquare(std::span<std::vector<glm::vec2>* const> uvSets);
 
 float srgbToLinear(float c);
 float linearToSrgb(float c);
