@@ -32,6 +32,24 @@ TEST(FaceFraming, FullBodyIsFramedAtItsHead) {
   EXPECT_NEAR(moved.center().y, 1.75f, 0.05f);
 }
 
+// A head without targets standing on a floor 60 units wide: the face
+// framing leaves the floor out (a flat part), so the landmark finder's first
+// view shows a face, not a speck; with nothing but flat parts it keeps them.
+TEST(FaceFraming, AFaceWithoutTargetsIsFramedWithoutItsFloor) {
+  eng::Model model;
+  addPartAsRoot(model, makeSphereModel(whiteSphereSpec(0)), "head", {0, 1.7f, 0}, glm::vec3(0.1f, 0.12f, 0.11f));
+  const eng::Aabb alone = eng::framingBounds(model, eng::FramingMode::Face);
+  addPartAsRoot(model, makeSphereModel(whiteSphereSpec(0)), "floor", {0, 0, 0}, glm::vec3(30.0f, 0.001f, 30.0f));
+  const eng::Aabb face = eng::framingBounds(model, eng::FramingMode::Face);
+  ASSERT_TRUE(face.valid());
+  EXPECT_NEAR(face.size().x, alone.size().x, 1e-4f);
+  EXPECT_NEAR(face.center().y, 1.7f, 1e-3f);
+  EXPECT_GT(eng::framingBounds(model, eng::FramingMode::All).size().x, 50.0f) << "all of it: the floor too";
+  eng::Model floorOnly;
+  addPartAsRoot(floorOnly, makeSphereModel(whiteSphereSpec(0)), "floor", {0, 0, 0}, glm::vec3(30.0f, 0.001f, 30.0f));
+  EXPECT_GT(eng::framingBounds(floorOnly, eng::FramingMode::Face).size().x, 50.0f);
+}
+
 // A skinned figure: a neck joint at y 1.5 and the head joint above it at
 // 1.6; a head (a box to the crown at 1.85), a body under the neck, and, when
 // `hairTo` is below the chin, a lock of hair skinned to the head reaching it.
