@@ -142,7 +142,14 @@ eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
 eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& face,
                                                   const std::filesystem::path& landmarksFile) {
   const autorig::PosedFace posed = autorig::poseAtRest(face.model);
-  if (landmarksFile.empty()) return findFaceLandmarks(face.model, posed, {.display = &face.displayModel()});
+  if (landmarksFile.empty()) {
+    // Landmarks belong to the shape, not to its shading: a flat-shaded or
+    // hard-edged face is shown to the detector smooth (dlib's fit of the jaw
+    // line moved by up to a third of the eye span on facecap made flat).
+    eng::Model smooth = face.displayModel();
+    const bool hardEdged = eng::weldIdenticalVertices(smooth, {.acrossHardEdges = true}) > 0;
+    return findFaceLandmarks(face.model, posed, {.display = hardEdged ? &smooth : &face.displayModel()});
+  }
   auto landmarks = autorig::readLandmarksFile(landmarksFile);
   if (!landmarks) return landmarks.error();
   ENG_TRY(autorig::checkLandmarksOnSurface(*landmarks, face.model, posed, landmarksFile.string()));
@@ -152,9 +159,18 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
 eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autorig::FaceLandmarks& landmarks,
                                             const std::string& faceName, const autorig::TransferOptions& options) const {
   // Copies of a vertex in every attribute (a triangle soup's corners) made
-  // one, so the lips and lids have edges to be labelled and mended along.
+  // one, so the lips and lids have edges to be labelled and mended along; so
+  // are copies split only by their shading (a hard edge, a flat-shaded face),
+  // whose shading comes back once the targets are made.
   eng::Model opened = face;
   const size_t welded = eng::weldIdenticalVertices(opened);
+  std::vector<std::vector<size_t>> shadingWelded(opened.meshes.size());
+  size_t shadingWeldedCount = 0;
+  for (size_t m = 0; m < opened.meshes.size(); ++m)
+    for (eng::Primitive& primitive : opened.meshes[m].primitives) {
+      shadingWelded[m].push_back(eng::weldIdenticalVertices(primitive, {.acrossHardEdges = true}));
+      shadingWeldedCount += shadingWelded[m].back();
+    }
   autorig::PosedFace posed = autorig::poseAtRest(opened);
   autorig::FaceParts parts = autorig::findFaceParts(opened, posed, landmarks);
   // Welded lips cut, the head's mouth inside where the face has none: then the
@@ -178,11 +194,17 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
   // of their own, which the display then dresses.
   if (const size_t separated = autorig::separateInnerParts(result.model, posed, parts); separated > 0)
     parts.notes.push_back(std::to_string(separated) + " eyeball, teeth or tongue piece(s) of an untextured primitive drawn apart, to be dressed");
+  for (size_t m = 0; m < shadingWelded.size(); ++m)
+    for (size_t p = 0; p < shadingWelded[m].size() && p < result.model.meshes[m].primitives.size(); ++p)
+      if (shadingWelded[m][p] > 0) eng::restoreHardEdges(result.model.meshes[m].primitives[p], face.meshes[m].primitives[p]);
   result.report = std::move(transferred->report);
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
   if (welded > 0)
     result.partNotes.push_back(std::to_string(welded) + " vertices that copied another in every attribute welded to it (a triangle soup's corners)");
+  if (shadingWeldedCount > 0)
+    result.partNotes.push_back(std::to_string(shadingWeldedCount) +
+                               " vertices split from another only by their shading (hard edges, flat shading) rigged as one surface, their shading kept");
   result.partNotes.insert(result.partNotes.end(), opening.notes.begin(), opening.notes.end());
   result.partNotes.insert(result.partNotes.end(), eyes.notes.begin(), eyes.notes.end());
   return result;

@@ -470,6 +470,20 @@ eng::Model asTriangleSoup(eng::Model model) {
   return model;
 }
 
+// The soup of `model` flat-shaded: each corner's normal its triangle's (a
+// low-poly character, an export with every edge hard).
+eng::Model asFlatShaded(const eng::Model& model) {
+  eng::Model flat = asTriangleSoup(model);
+  for (eng::Mesh& mesh : flat.meshes)
+    for (eng::Primitive& p : mesh.primitives)
+      for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const glm::vec3 n = glm::normalize(glm::cross(p.positions[t + 1] - p.positions[t], p.positions[t + 2] - p.positions[t]));
+        if (!std::isfinite(glm::dot(n, n))) continue;
+        for (size_t k = 0; k < 3; ++k) p.normals[t + k] = n;
+      }
+  return flat;
+}
+
 // The largest difference between `unit`'s displacement of each vertex of
 // `soup`'s skin and the nearest of `indexed`'s at the same place, over the
 // largest displacement.
@@ -525,4 +539,59 @@ TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
   EXPECT_LT(b->model.meshes[0].primitives[0].vertexCount(), soup.meshes[0].primitives[0].vertexCount() / 3);
   for (const char* unit : {"AU26_JawDrop", "AU25_LipsPart", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
     EXPECT_LT(soupAgainstIndexed(a->model, b->model, unit), 0.02f) << unit;
+}
+
+// A flat-shaded face (every corner split by its normal) is rigged as its
+// smooth mesh and keeps its facets: the copies are welded for the rig
+// (eng::WeldOptions::acrossHardEdges) and split again after it
+// (eng::restoreHardEdges). Left apart, facecap made flat tore its lips and
+// lids into loose triangles in every state.
+TEST(FaceAutorigRig, AFlatShadedFaceIsRiggedAsItsSmoothMeshAndKeepsItsFacets) {
+  auto rigger = app::FaceAutorig::load();
+  ASSERT_TRUE(rigger) << rigger.error().message;
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  const eng::Model smooth = testing_support::stripped(*head);
+  const eng::Model flat = asFlatShaded(smooth);
+  const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
+  auto a = rigger->rig(smooth, source->landmarks, "head", shapes);
+  ASSERT_TRUE(a) << a.error().message;
+  auto b = rigger->rig(flat, source->landmarks, "flat", shapes);
+  ASSERT_TRUE(b) << b.error().message;
+  bool noted = false;
+  for (const std::string& note : b->partNotes) noted = noted || note.find("their shading kept") != std::string::npos;
+  EXPECT_TRUE(noted);
+  for (const char* unit : {"AU26_JawDrop", "AU25_LipsPart", "AU12_LipCornerPuller_L", "AU45_Blink_L", "AU1_InnerBrowRaiser"})
+    EXPECT_LT(soupAgainstIndexed(a->model, b->model, unit), 0.12f) << unit;  // its normals are its facets' mean, not the smooth file's
+  // Its facets: each skin triangle's corners carry its flat normal, at rest
+  // and moved by a unit (the normal deltas made for its own face).
+  const eng::Mesh& mesh = b->model.meshes[0];
+  const eng::Primitive& skin = mesh.primitives[0];
+  const size_t jaw = size_t(std::find(mesh.targetNames.begin(), mesh.targetNames.end(), "AU26_JawDrop") - mesh.targetNames.begin());
+  ASSERT_LT(jaw, mesh.targetNames.size());
+  const eng::MorphTarget& open = skin.targets[jaw];
+  ASSERT_EQ(open.normals.size(), skin.vertexCount());
+  size_t triangles = 0, flatAtRest = 0, flatMoved = 0;
+  for (size_t t = 0; t + 2 < skin.indices.size(); t += 3) {
+    const uint32_t i[3] = {skin.indices[t], skin.indices[t + 1], skin.indices[t + 2]};
+    auto faceNormal = [&](bool moved) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = skin.positions[i[k]] + (moved ? open.positions[i[k]] : glm::vec3(0.0f));
+      return glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+    };
+    const glm::vec3 rest = faceNormal(false), moved = faceNormal(true);
+    if (!std::isfinite(glm::dot(rest, rest)) || !std::isfinite(glm::dot(moved, moved))) continue;
+    ++triangles;
+    bool atRest = true, whenMoved = true;
+    for (uint32_t v : i) {
+      atRest = atRest && glm::dot(skin.normals[v], rest) > 0.9999f;
+      whenMoved = whenMoved && glm::dot(glm::normalize(skin.normals[v] + open.normals[v]), moved) > 0.999f;
+    }
+    flatAtRest += atRest, flatMoved += whenMoved;
+  }
+  ASSERT_GT(triangles, 1000u);
+  EXPECT_GT(flatAtRest, triangles * 99 / 100) << flatAtRest << " of " << triangles;
+  EXPECT_GT(flatMoved, triangles * 99 / 100) << flatMoved << " of " << triangles;
 }
