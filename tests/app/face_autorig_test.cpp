@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -512,6 +514,26 @@ float soupAgainstIndexed(const eng::Model& indexed, const eng::Model& soup, cons
   return largest > 0.0f ? worst / largest : INFINITY;
 }
 
+// The built-in head stripped of its targets, rigged (shapes only, from its
+// own landmarks) as it is (`asIs`) and as `rewrite` writes it (`rewritten`).
+void rigTheHeadAsItIsAndRewritten(const std::function<eng::Model(const eng::Model&)>& rewrite,
+                                  std::optional<app::AutorigResult>& asIs, std::optional<app::AutorigResult>& rewritten) {
+  auto rigger = app::FaceAutorig::load();
+  ASSERT_TRUE(rigger) << rigger.error().message;
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  const eng::Model stripped = testing_support::stripped(*head);
+  const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
+  auto a = rigger->rig(stripped, source->landmarks, "head", shapes);
+  ASSERT_TRUE(a) << a.error().message;
+  auto b = rigger->rig(rewrite(stripped), source->landmarks, "rewritten", shapes);
+  ASSERT_TRUE(b) << b.error().message;
+  asIs = std::move(*a);
+  rewritten = std::move(*b);
+}
+
 }  // namespace
 
 // A face written as a triangle soup is rigged as its indexed mesh: its
@@ -519,24 +541,12 @@ float soupAgainstIndexed(const eng::Model& indexed, const eng::Model& soup, cons
 // had no edges to be labelled and mended along, and facecap's mouth opened
 // into jagged loose triangles in surprise.
 TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
-  auto rigger = app::FaceAutorig::load();
-  ASSERT_TRUE(rigger) << rigger.error().message;
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto source = autorig::builtInSource(*head);
-  ASSERT_TRUE(source) << source.error().message;
-  const eng::Model indexed = testing_support::stripped(*head);
-  const eng::Model soup = asTriangleSoup(indexed);
-  ASSERT_EQ(soup.meshes[0].primitives[0].vertexCount(), indexed.meshes[0].primitives[0].indices.size());
-  const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
-  auto a = rigger->rig(indexed, source->landmarks, "head", shapes);
-  ASSERT_TRUE(a) << a.error().message;
-  auto b = rigger->rig(soup, source->landmarks, "soup", shapes);
-  ASSERT_TRUE(b) << b.error().message;
+  std::optional<app::AutorigResult> a, b;
+  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten([](const eng::Model& m) { return asTriangleSoup(m); }, a, b));
   bool welded = false;
   for (const std::string& note : b->partNotes) welded = welded || note.find("welded") != std::string::npos;
   EXPECT_TRUE(welded);
-  EXPECT_LT(b->model.meshes[0].primitives[0].vertexCount(), soup.meshes[0].primitives[0].vertexCount() / 3);
+  EXPECT_LT(b->model.meshes[0].primitives[0].vertexCount(), a->model.meshes[0].primitives[0].indices.size() / 3);
   for (const char* unit : {"AU26_JawDrop", "AU25_LipsPart", "AU12_LipCornerPuller_L", "AU45_Blink_L"})
     EXPECT_LT(soupAgainstIndexed(a->model, b->model, unit), 0.02f) << unit;
 }
@@ -547,19 +557,8 @@ TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
 // (eng::restoreHardEdges). Left apart, facecap made flat tore its lips and
 // lids into loose triangles in every state.
 TEST(FaceAutorigRig, AFlatShadedFaceIsRiggedAsItsSmoothMeshAndKeepsItsFacets) {
-  auto rigger = app::FaceAutorig::load();
-  ASSERT_TRUE(rigger) << rigger.error().message;
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto source = autorig::builtInSource(*head);
-  ASSERT_TRUE(source) << source.error().message;
-  const eng::Model smooth = testing_support::stripped(*head);
-  const eng::Model flat = asFlatShaded(smooth);
-  const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
-  auto a = rigger->rig(smooth, source->landmarks, "head", shapes);
-  ASSERT_TRUE(a) << a.error().message;
-  auto b = rigger->rig(flat, source->landmarks, "flat", shapes);
-  ASSERT_TRUE(b) << b.error().message;
+  std::optional<app::AutorigResult> a, b;
+  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten(asFlatShaded, a, b));
   bool noted = false;
   for (const std::string& note : b->partNotes) noted = noted || note.find("their shading kept") != std::string::npos;
   EXPECT_TRUE(noted);
