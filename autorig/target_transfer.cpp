@@ -257,8 +257,24 @@ struct EyeLids {
 // The lids' margins: where the skin has an opening over the eye, its rim's
 // middle above and below the ball (the landmarks sit on the visible edge,
 // a little inside the margins); else the lid landmarks.
+// The vertices on the rim of an opening in the surface (an edge of one
+// triangle only; UV seam copies count as their root, so a seam is no rim).
+std::vector<char> openingRims(const FaceSurface& surface) {
+  std::unordered_map<uint64_t, int> edges;
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = surface.rootOf(t[size_t(k)]), b = surface.rootOf(t[size_t((k + 1) % 3)]);
+      if (a != b) ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+    }
+  std::vector<char> rim(surface.positions.size(), 0);
+  for (const auto& [edge, count] : edges)
+    if (count == 1) rim[edge >> 32] = rim[edge & 0xffffffffu] = 1;
+  for (size_t v = 0; v < rim.size(); ++v) rim[v] = rim[surface.rootOf(v)];
+  return rim;
+}
+
 EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t eye, const FaceSurface& surface,
-                const std::vector<FaceRegion>& regions) {
+                const std::vector<FaceRegion>& regions, const std::vector<char>& onRim) {
   const auto& l = kLidLandmarks[eye];
   const LandmarkFrame frame(landmarks);
   EyeLids lids{.axis = {.pivot = parts.eyeCentres[eye], .axis = frame.side()},
@@ -268,26 +284,18 @@ EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t e
                .cornerLeft = landmarks.points[eye == 0 ? 39 : 45],
                .forward = frame.forward(),
                .radius = parts.eyeRadii[eye]};
-  std::unordered_map<uint64_t, int> edges;
-  for (const auto& t : surface.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
-      ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
-    }
   const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
   const FaceRegion lower = opposite(upper);
   const float middle = frame.sideOf(lids.axis.pivot);
   float bestUpper = std::numeric_limits<float>::max(), bestLower = bestUpper;
   glm::vec3 rimUpper(0.0f), rimLower(0.0f);
-  for (const auto& [edge, count] : edges) {
-    if (count != 1) continue;
-    for (const uint32_t v : {uint32_t(edge >> 32), uint32_t(edge & 0xffffffffu)}) {
-      const glm::vec3& p = surface.positions[v];
-      if (glm::length(p - lids.axis.pivot) > 1.6f * lids.radius || glm::dot(p - lids.axis.pivot, frame.forward()) < 0.0f) continue;
-      const float off = std::abs(frame.sideOf(p) - middle);
-      if (regions[v] == upper && off < bestUpper) bestUpper = off, rimUpper = p;
-      if (regions[v] == lower && off < bestLower) bestLower = off, rimLower = p;
-    }
+  for (size_t v = 0; v < surface.positions.size(); ++v) {
+    if (!onRim[v]) continue;
+    const glm::vec3& p = surface.positions[v];
+    if (glm::length(p - lids.axis.pivot) > 1.6f * lids.radius || glm::dot(p - lids.axis.pivot, frame.forward()) < 0.0f) continue;
+    const float off = std::abs(frame.sideOf(p) - middle);
+    if (regions[v] == upper && off < bestUpper) bestUpper = off, rimUpper = p;
+    if (regions[v] == lower && off < bestLower) bestLower = off, rimLower = p;
   }
   if (bestUpper < 0.1f && bestLower < 0.1f) lids.upper = rimUpper, lids.lower = rimLower;
   return lids;
@@ -327,15 +335,23 @@ struct LidColumns {
 // the ball's front nearest the lower lid) is measured against the lower
 // lid's, and that column's turn scaled up so the margin closes the same share
 // of its own column's opening as the middle does (never down: a column the
-// turn closes already stays as it was).
+// turn closes already stays as it was). Where the skin has an opening over
+// the eye, each margin is its rim, read at each column's middle between the
+// rim's vertices: a coarse lid (facecap's, a vertex or two per column) had
+// columns whose nearest lower-lid vertex lay below the rim, and their doubled
+// turn closed the eye in a V.
 LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, const FaceSurface& tgt,
                           const std::vector<FaceRegion>& regions, FaceRegion upper,
-                          const std::vector<float>& follow) {
+                          const std::vector<float>& follow, const std::vector<char>& onRim) {
   LidColumns columns;
   const float closing = targetAngle < 0.0f ? -1.0f : 1.0f;
   std::array<float, kLidColumns> upperAt, lowerAt, upperFollow{};
   upperAt.fill(-std::numeric_limits<float>::infinity());
   lowerAt.fill(std::numeric_limits<float>::infinity());
+  struct RimPoint {
+    float t, along, follow;
+  };
+  std::vector<RimPoint> upperRim, lowerRim;
   for (size_t v = 0; v < tgt.positions.size(); ++v) {
     const glm::vec3& p = tgt.positions[v];
     const glm::vec3 out = p - to.axis.pivot;
@@ -345,12 +361,35 @@ LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, con
         glm::dot(out, to.forward) < 0.3f * to.radius)
       continue;
     const float t = columnOf(to, p);
+    if (!(t >= -0.25f && t < 1.25f)) continue;
+    const float along = closing * hingeAngle(to.axis, to.lower, p - to.lower);  // < 0: above the lower lid's middle
+    if (onRim[v] && regions[v] == upper) upperRim.push_back({t, along, follow[v]});
+    if (onRim[v] && regions[v] == opposite(upper)) lowerRim.push_back({t, along, follow[v]});
     if (!(t >= 0.0f && t < 1.0f)) continue;
     const size_t k = size_t(t * float(kLidColumns));
-    const float along = closing * hingeAngle(to.axis, to.lower, p - to.lower);  // < 0: above the lower lid's middle
     if (regions[v] == upper && along > upperAt[k]) upperAt[k] = along, upperFollow[k] = follow[v];
     if (regions[v] == opposite(upper) && along < lowerAt[k]) lowerAt[k] = along;
   }
+  // The rim as a line across the eye: at t, between the rim vertices on either side.
+  auto acrossRim = [](std::vector<RimPoint>& rim, float t) {
+    const auto after = std::lower_bound(rim.begin(), rim.end(), t, [](const RimPoint& r, float x) { return r.t < x; });
+    if (after == rim.begin()) return *after;
+    if (after == rim.end()) return rim.back();
+    const RimPoint& before = *(after - 1);
+    const float w = after->t > before.t ? (t - before.t) / (after->t - before.t) : 0.0f;
+    return RimPoint{t, glm::mix(before.along, after->along, w), glm::mix(before.follow, after->follow, w)};
+  };
+  auto spans = [](const std::vector<RimPoint>& rim) { return rim.size() >= 3 && rim.front().t < 0.2f && rim.back().t > 0.8f; };
+  auto byT = [](const RimPoint& a, const RimPoint& b) { return a.t < b.t; };
+  std::sort(upperRim.begin(), upperRim.end(), byT);
+  std::sort(lowerRim.begin(), lowerRim.end(), byT);
+  if (spans(upperRim) && spans(lowerRim))
+    for (size_t k = 0; k < kLidColumns; ++k) {
+      const float middle = (float(k) + 0.5f) / float(kLidColumns);
+      const RimPoint up = acrossRim(upperRim, middle);
+      upperAt[k] = up.along, upperFollow[k] = up.follow;
+      lowerAt[k] = acrossRim(lowerRim, middle).along;
+    }
   std::array<bool, kLidColumns> measured{};
   for (size_t k = 0; k < kLidColumns; ++k) {
     const float got = upperFollow[k] * std::abs(targetAngle);
@@ -383,7 +422,7 @@ using BothEyes = std::array<EyeLids, 2>;  // right, left
 
 void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const TriangleGrid& sourceGrid,
                const FaceSurface& src, const std::vector<glm::vec3>& raw, const FaceSurface& tgt,
-               const Correspondence& corr, std::vector<glm::vec3>& deltas) {
+               const std::vector<char>& onRim, const Correspondence& corr, std::vector<glm::vec3>& deltas) {
   for (size_t eye = 0; eye < 2; ++eye) {
     const EyeLids& from = sourceEyes[eye];
     const EyeLids& to = targetEyes[eye];
@@ -407,7 +446,7 @@ void closeLids(const BothEyes& sourceEyes, const BothEyes& targetEyes, const Tri
     const bool closes = angle * hingeAngle(from.axis, from.upper, from.lower - from.upper) > 0.0f;
     const FaceRegion upper = eye == 0 ? FaceRegion::RightUpperLid : FaceRegion::LeftUpperLid;
     LidColumns columns;
-    if (closes) columns = closingColumns(to, targetAngle, share, tgt, corr.targetRegions, upper, targetFollow);
+    if (closes) columns = closingColumns(to, targetAngle, share, tgt, corr.targetRegions, upper, targetFollow, onRim);
     for (size_t v = 0; v < tgt.positions.size(); ++v) {
       const float near = 1.0f - glm::smoothstep(kLidTurnInner * to.radius, kLidTurnOuter * to.radius,
                                                 glm::length(tgt.positions[v] - to.axis.pivot));
@@ -654,10 +693,11 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
   const ClosestPoint chin = sourceGrid.closest(source.landmarks.points[8], FaceRegion::None, maxGap);
   const JawHinge sourceHinge = estimateJawHinge(source.landmarks), targetHinge = estimateJawHinge(landmarks);
 
-  const BothEyes sourceEyes{eyeLids(source.landmarks, source.parts, 0, src, corr.sourceRegions),
-                            eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions)};
-  const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions),
-                            eyeLids(landmarks, parts, 1, tgt, corr.targetRegions)};
+  const std::vector<char> sourceRims = openingRims(src), targetRims = openingRims(tgt);
+  const BothEyes sourceEyes{eyeLids(source.landmarks, source.parts, 0, src, corr.sourceRegions, sourceRims),
+                            eyeLids(source.landmarks, source.parts, 1, src, corr.sourceRegions, sourceRims)};
+  const BothEyes targetEyes{eyeLids(landmarks, parts, 0, tgt, corr.targetRegions, targetRims),
+                            eyeLids(landmarks, parts, 1, tgt, corr.targetRegions, targetRims)};
   const LipSheet lips = lipSheetOf(tgt, corr.targetRegions);
   std::vector<glm::vec3> carried(src.positions.size());
   for (size_t u = 0; u < units.size(); ++u) {
@@ -673,7 +713,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
       unit.deltas[v] = weight * atMatch(carried, src, match);
     }
-    closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, corr, unit.deltas);
+    closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, targetRims, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
     if (jawUnit) {
       const JawTurn matched = openingLikeSource(turn, split, src, raw[u], tgt, corr, source.landmarks, landmarks,
