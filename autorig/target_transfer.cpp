@@ -254,9 +254,6 @@ struct EyeLids {
   float openAngle() const { return std::abs(hingeAngle(axis, upper, lower - upper)); }
 };
 
-// The lids' margins: where the skin has an opening over the eye, its rim's
-// middle above and below the ball (the landmarks sit on the visible edge,
-// a little inside the margins); else the lid landmarks.
 // The vertices on the rim of an opening in the surface (an edge of one
 // triangle only; UV seam copies count as their root, so a seam is no rim).
 std::vector<char> openingRims(const FaceSurface& surface) {
@@ -273,6 +270,9 @@ std::vector<char> openingRims(const FaceSurface& surface) {
   return rim;
 }
 
+// The lids' margins: where the skin has an opening over the eye, its rim's
+// middle above and below the ball (the landmarks sit on the visible edge,
+// a little inside the margins); else the lid landmarks.
 EyeLids eyeLids(const FaceLandmarks& landmarks, const FaceParts& parts, size_t eye, const FaceSurface& surface,
                 const std::vector<FaceRegion>& regions, const std::vector<char>& onRim) {
   const auto& l = kLidLandmarks[eye];
@@ -371,7 +371,7 @@ LidColumns closingColumns(const EyeLids& to, float targetAngle, float share, con
     if (regions[v] == opposite(upper) && along < lowerAt[k]) lowerAt[k] = along;
   }
   // The rim as a line across the eye: at t, between the rim vertices on either side.
-  auto acrossRim = [](std::vector<RimPoint>& rim, float t) {
+  auto acrossRim = [](const std::vector<RimPoint>& rim, float t) {
     const auto after = std::lower_bound(rim.begin(), rim.end(), t, [](const RimPoint& r, float x) { return r.t < x; });
     if (after == rim.begin()) return *after;
     if (after == rim.end()) return rim.back();
