@@ -146,9 +146,18 @@ eng::Result<autorig::FaceLandmarks> faceLandmarks(const importers::LoadedFace& f
     // Landmarks belong to the shape, not to its shading: a flat-shaded or
     // hard-edged face is shown to the detector smooth (dlib's fit of the jaw
     // line moved by up to a third of the eye span on facecap made flat).
-    eng::Model smooth = face.displayModel();
-    const bool hardEdged = eng::weldIdenticalVertices(smooth, {.acrossHardEdges = true}) > 0;
-    return findFaceLandmarks(face.model, posed, {.display = hardEdged ? &smooth : &face.displayModel()});
+    // Each primitive is tried alone; the model (its images) is copied only
+    // when one of them has such copies.
+    const eng::Model& display = face.displayModel();
+    std::optional<eng::Model> smooth;
+    for (size_t m = 0; m < display.meshes.size(); ++m)
+      for (size_t p = 0; p < display.meshes[m].primitives.size(); ++p) {
+        eng::Primitive welded = display.meshes[m].primitives[p];
+        if (eng::weldIdenticalVertices(welded, {.acrossHardEdges = true}) == 0) continue;
+        if (!smooth) smooth = display;
+        smooth->meshes[m].primitives[p] = std::move(welded);
+      }
+    return findFaceLandmarks(face.model, posed, {.display = smooth ? &*smooth : &display});
   }
   auto landmarks = autorig::readLandmarksFile(landmarksFile);
   if (!landmarks) return landmarks.error();

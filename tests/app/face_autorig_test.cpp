@@ -450,42 +450,6 @@ TEST(FaceSetupAutorig, AMergedUntexturedScanLyingDownIsShownWithEyesAndMouthDres
 
 namespace {
 
-// Every primitive of `model` as a triangle soup: each corner its own vertex,
-// as three.js's GLTFExporter writes a non-indexed geometry (an OBJ it read).
-eng::Model asTriangleSoup(eng::Model model) {
-  for (eng::Mesh& mesh : model.meshes)
-    for (eng::Primitive& p : mesh.primitives) {
-      auto spread = [&p](auto& values, size_t perVertex) {
-        if (values.empty()) return;
-        std::remove_reference_t<decltype(values)> out;
-        for (uint32_t i : p.indices)
-          out.insert(out.end(), values.begin() + ptrdiff_t(i * perVertex), values.begin() + ptrdiff_t((i + 1) * perVertex));
-        values = std::move(out);
-      };
-      const size_t sets = p.influenceSets();
-      spread(p.normals, 1), spread(p.texcoords, 1), spread(p.tangents, 1), spread(p.colors, 1);
-      spread(p.joints, sets), spread(p.jointWeights, sets);
-      for (eng::MorphTarget& t : p.targets) spread(t.positions, 1), spread(t.normals, 1), spread(t.tangents, 1);
-      spread(p.positions, 1);
-      for (size_t i = 0; i < p.indices.size(); ++i) p.indices[i] = uint32_t(i);
-    }
-  return model;
-}
-
-// The soup of `model` flat-shaded: each corner's normal its triangle's (a
-// low-poly character, an export with every edge hard).
-eng::Model asFlatShaded(const eng::Model& model) {
-  eng::Model flat = asTriangleSoup(model);
-  for (eng::Mesh& mesh : flat.meshes)
-    for (eng::Primitive& p : mesh.primitives)
-      for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-        const glm::vec3 n = glm::normalize(glm::cross(p.positions[t + 1] - p.positions[t], p.positions[t + 2] - p.positions[t]));
-        if (!std::isfinite(glm::dot(n, n))) continue;
-        for (size_t k = 0; k < 3; ++k) p.normals[t + k] = n;
-      }
-  return flat;
-}
-
 // The largest difference between `unit`'s displacement of each vertex of
 // `soup`'s skin and the nearest of `indexed`'s at the same place, over the
 // largest displacement.
@@ -542,7 +506,7 @@ void rigTheHeadAsItIsAndRewritten(const std::function<eng::Model(const eng::Mode
 // into jagged loose triangles in surprise.
 TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
   std::optional<app::AutorigResult> a, b;
-  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten([](const eng::Model& m) { return asTriangleSoup(m); }, a, b));
+  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten([](const eng::Model& m) { return testing_support::asTriangleSoup(m); }, a, b));
   bool welded = false;
   for (const std::string& note : b->partNotes) welded = welded || note.find("welded") != std::string::npos;
   EXPECT_TRUE(welded);
@@ -558,7 +522,7 @@ TEST(FaceAutorigRig, ATriangleSoupIsRiggedAsItsIndexedMesh) {
 // lids into loose triangles in every state.
 TEST(FaceAutorigRig, AFlatShadedFaceIsRiggedAsItsSmoothMeshAndKeepsItsFacets) {
   std::optional<app::AutorigResult> a, b;
-  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten(asFlatShaded, a, b));
+  ASSERT_NO_FATAL_FAILURE(rigTheHeadAsItIsAndRewritten(testing_support::asFlatShaded, a, b));
   bool noted = false;
   for (const std::string& note : b->partNotes) noted = noted || note.find("their shading kept") != std::string::npos;
   EXPECT_TRUE(noted);

@@ -1,6 +1,7 @@
 #include "tests/common/test_meshes.h"
 
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace testing_support {
@@ -136,6 +137,38 @@ eng::Model stripped(eng::Model model) {
     for (eng::Primitive& p : mesh.primitives) p.targets.clear();
   }
   return model;
+}
+
+eng::Model asTriangleSoup(eng::Model model) {
+  for (eng::Mesh& mesh : model.meshes)
+    for (eng::Primitive& p : mesh.primitives) {
+      auto spread = [&p](auto& values, size_t perVertex) {
+        if (values.empty()) return;
+        std::remove_reference_t<decltype(values)> out;
+        for (uint32_t i : p.indices)
+          out.insert(out.end(), values.begin() + ptrdiff_t(i * perVertex), values.begin() + ptrdiff_t((i + 1) * perVertex));
+        values = std::move(out);
+      };
+      const size_t sets = p.influenceSets();
+      spread(p.normals, 1), spread(p.texcoords, 1), spread(p.tangents, 1), spread(p.colors, 1);
+      spread(p.joints, sets), spread(p.jointWeights, sets);
+      for (eng::MorphTarget& t : p.targets) spread(t.positions, 1), spread(t.normals, 1), spread(t.tangents, 1);
+      spread(p.positions, 1);
+      for (size_t i = 0; i < p.indices.size(); ++i) p.indices[i] = uint32_t(i);
+    }
+  return model;
+}
+
+eng::Model asFlatShaded(const eng::Model& model) {
+  eng::Model flat = asTriangleSoup(model);
+  for (eng::Mesh& mesh : flat.meshes)
+    for (eng::Primitive& p : mesh.primitives)
+      for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const glm::vec3 n = glm::normalize(glm::cross(p.positions[t + 1] - p.positions[t], p.positions[t + 2] - p.positions[t]));
+        if (!std::isfinite(glm::dot(n, n))) continue;
+        for (size_t k = 0; k < 3; ++k) p.normals[t + k] = n;
+      }
+  return flat;
 }
 
 }  // namespace testing_support

@@ -56,4 +56,11 @@ eng::Model plasterHead();
 // a face to rig, as scans and sculpts come.
 eng::Model stripped(eng::Model model);
 
+// Every primitive of `model` as a triangle soup: each corner its own vertex,
+// as three.js's GLTFExporter writes a non-indexed geometry (an OBJ it read).
+eng::Model asTriangleSoup(eng::Model model);
+// The soup of `model` flat-shaded: each corner's normal its triangle's (a
+// low-poly character, an export with every edge hard).
+eng::Model asFlatShaded(const eng::Model& model);
+
 }  // namespace testing_support
