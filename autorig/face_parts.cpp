@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -22,7 +23,7 @@ constexpr eng::EnumName<FacePart> kFacePartNames[] = {
     {FacePart::Skin, "skin"},           {FacePart::EyeballRight, "right eyeball"}, {FacePart::EyeballLeft, "left eyeball"},
     {FacePart::UpperTeeth, "upper teeth"}, {FacePart::LowerTeeth, "lower teeth"}, {FacePart::Tongue, "tongue"},
     {FacePart::Lashes, "lashes"},       {FacePart::Brows, "brows"},             {FacePart::Glasses, "glasses"},
-    {FacePart::Hair, "hair"},           {FacePart::Other, "other"},
+    {FacePart::Hair, "hair"},           {FacePart::Beard, "beard"},             {FacePart::Other, "other"},
 };
 
 struct NamedPart {
@@ -34,8 +35,10 @@ struct NamedPart {
 // lashes before "eye" can mean an eyeball; "Outfit_Top" is clothes before
 // "top" could mean the upper teeth; "MouthTeeth" is teeth while the mouth's
 // inside is skin (it moves with it).
-constexpr std::array<NamedPart, 22> kNamedParts = {{
+constexpr std::array<NamedPart, 26> kNamedParts = {{
     {"lash", FacePart::Lashes},     {"brow", FacePart::Brows},       {"tongue", FacePart::Tongue},
+    {"beard", FacePart::Beard},     {"moustache", FacePart::Beard},  {"mustache", FacePart::Beard},
+    {"stubble", FacePart::Beard},
     {"glass", FacePart::Glasses},   {"spectacle", FacePart::Glasses}, {"eyewear", FacePart::Glasses},
     {"", FacePart::EyeballRight},   {"hair", FacePart::Hair},        {"outfit", FacePart::Other},
     {"cloth", FacePart::Other},     {"body", FacePart::Other},       {"shirt", FacePart::Other},
@@ -319,7 +322,7 @@ std::string primitiveLabel(const eng::Model& model, const PosedPrimitive& p) {
 // plain skin.
 void notePrimitive(const eng::Model& model, const PosedPrimitive& p, const std::vector<FacePart>& parts,
                    std::vector<std::string>& notes) {
-  std::array<size_t, 11> counts{};
+  std::array<size_t, std::size(kFacePartNames)> counts{};
   for (FacePart v : parts) ++counts[size_t(v)];
   if (counts[size_t(FacePart::Skin)] == parts.size()) return;
   std::string line = primitiveLabel(model, p) + ":";

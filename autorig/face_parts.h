@@ -32,6 +32,9 @@ enum class FacePart : unsigned char {
   Brows,
   Glasses,
   Hair,
+  // A layer lying on the skin (a beard, a moustache, stubble as a mesh of
+  // its own): it moves as the skin under it.
+  Beard,
   Other,  // body, clothes, anything away from the face: never moved
 };
 

@@ -194,7 +194,7 @@ glm::mat3 tamed(const glm::mat3& j, float scale) {
 }
 
 struct Moved {
-  std::vector<FaceSurface::VertexRef> vertices;  // skin-following vertices, then lower teeth and tongue
+  std::vector<FaceSurface::VertexRef> vertices;  // skin-following vertices, lower teeth and tongue, layers on the skin, still parts
   std::vector<glm::vec3> positions;
   std::vector<NamedDeltas> units;
 };
@@ -204,6 +204,47 @@ void appendStill(Moved& moved, const FaceSurface& still) {
   moved.vertices.insert(moved.vertices.end(), still.vertices.begin(), still.vertices.end());
   moved.positions.insert(moved.positions.end(), still.positions.begin(), still.positions.end());
   for (NamedDeltas& unit : moved.units) unit.deltas.resize(moved.positions.size(), glm::vec3(0.0f));
+}
+
+// A layer on the skin (a beard, a moustache) moves as the skin under it:
+// each of its vertices takes the deltas of the skin below it, found from a
+// point the layer's depth behind it along its normal. Carried as skin of its
+// own, a beard's vertices over the lips were matched to the head's lips and
+// cheeks apart from the skin under them, and a smile broke the moustache
+// into pieces; the skin closest to it instead can be the other lip, where
+// the lips meet. Farther than a tenth of the eye span from the skin, a
+// vertex keeps still.
+void appendOnSkin(Moved& moved, const FaceSurface& layer, const FaceSurface& skin, const std::vector<glm::vec3>& skinNormal,
+                  float eyeSpan) {
+  const size_t first = moved.positions.size();
+  moved.vertices.insert(moved.vertices.end(), layer.vertices.begin(), layer.vertices.end());
+  moved.positions.insert(moved.positions.end(), layer.positions.begin(), layer.positions.end());
+  for (NamedDeltas& unit : moved.units) unit.deltas.resize(moved.positions.size(), glm::vec3(0.0f));
+  if (layer.positions.empty()) return;
+  const TriangleGrid grid(skin.positions, skin.triangles, {});
+  const float reach = 0.1f * eyeSpan;
+  std::vector<ClosestPoint> closest(layer.positions.size());
+  std::vector<float> depths;
+  for (size_t v = 0; v < layer.positions.size(); ++v) {
+    closest[v] = grid.closest(layer.positions[v], FaceRegion::None, reach);
+    if (closest[v].found) depths.push_back(closest[v].distance);
+  }
+  if (depths.empty()) return;
+  std::nth_element(depths.begin(), depths.begin() + ptrdiff_t(depths.size() / 2), depths.end());
+  const float depth = depths[depths.size() / 2];
+  std::vector<uint32_t> indices;
+  for (const auto& t : layer.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  const std::vector<glm::vec3> normals = eng::computeSmoothNormals(layer.positions, indices);
+  for (size_t v = 0; v < layer.positions.size(); ++v) {
+    if (!closest[v].found) continue;
+    // Its normal turned away from the skin (a card's winding says nothing).
+    glm::vec3 n = normals[v];
+    if (glm::dot(n, atMatch(skinNormal, skin, closest[v])) < 0.0f) n = -n;
+    ClosestPoint under = closest[v];
+    if (std::isfinite(glm::dot(n, n)))
+      if (const ClosestPoint below = grid.closest(layer.positions[v] - n * depth, FaceRegion::None, reach); below.found) under = below;
+    for (NamedDeltas& unit : moved.units) unit.deltas[first + v] = atMatch(unit.deltas, skin, under);
+  }
 }
 
 // The skin's smooth normals, per vertex of `skin` (outward for glTF's
@@ -920,6 +961,8 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
+  const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::Beard});
+  appendOnSkin(moved, onSkin, tgt, skinNormals(tgt), frame.eyeSpan());
   // The eyeballs: no unit moves them, the gaze shapes turn them. The upper
   // teeth neither, but a face's own shape may (useOwnShapes).
   const FaceSurface still = gatherSurface(face, posed, parts, {FacePart::EyeballRight, FacePart::EyeballLeft, FacePart::UpperTeeth});
@@ -936,6 +979,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     std::vector<NamedDeltas> shapes = arkitFromUnits(moved.units, moved.positions, frame, fromGeometry);
     std::vector<FacePart> vertexParts = tgt.parts;
     vertexParts.insert(vertexParts.end(), jaw.parts.begin(), jaw.parts.end());
+    vertexParts.insert(vertexParts.end(), onSkin.parts.begin(), onSkin.parts.end());
     vertexParts.insert(vertexParts.end(), still.parts.begin(), still.parts.end());
     std::vector<glm::vec3> normals = skinNormals(tgt);
     normals.resize(moved.positions.size(), glm::vec3(0.0f));

@@ -558,3 +558,89 @@ TEST(FaceAutorigRig, AFlatShadedFaceIsRiggedAsItsSmoothMeshAndKeepsItsFacets) {
   EXPECT_GT(flatAtRest, triangles * 99 / 100) << flatAtRest << " of " << triangles;
   EXPECT_GT(flatMoved, triangles * 99 / 100) << flatMoved << " of " << triangles;
 }
+
+// A beard or moustache of its own mesh (Ready Player Me's Wolf3D_Beard)
+// moves as the skin under it. Taken as skin, or by its shape as teeth inside
+// the mouth, a soul patch under the lower lip stayed where it was and floated
+// in the open mouth, and a smile left the moustache behind.
+TEST(FaceAutorigRig, ABeardMovesAsTheSkinUnderIt) {
+  auto rigger = app::FaceAutorig::load();
+  ASSERT_TRUE(rigger) << rigger.error().message;
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  auto source = autorig::builtInSource(*head);
+  ASSERT_TRUE(source) << source.error().message;
+  eng::Model face = testing_support::stripped(*head);
+  // A moustache above the upper lip and a goatee below the lower one: the
+  // skin's triangles there, 1 mm out along its normals.
+  const eng::Primitive& skin = face.meshes[0].primitives[0];
+  const auto& l = source->landmarks.points;
+  const float halfMouth = 0.5f * glm::distance(l[48], l[54]);
+  auto inBeard = [&](const glm::vec3& p) {
+    const bool moustache = p.y > l[51].y + 0.002f && p.y < l[33].y - 0.003f && std::abs(p.x) < 1.1f * halfMouth;
+    const bool goatee = p.y < l[57].y - 0.003f && p.y > l[8].y + 0.006f && std::abs(p.x) < 0.6f * halfMouth;
+    return (moustache || goatee) && p.z > l[33].z - 0.04f;
+  };
+  eng::Primitive beard;
+  std::map<uint32_t, uint32_t> copyOf;
+  std::vector<uint32_t> skinVertexOf;  // per beard vertex
+  for (size_t t = 0; t + 2 < skin.indices.size(); t += 3) {
+    const uint32_t c[3] = {skin.indices[t], skin.indices[t + 1], skin.indices[t + 2]};
+    if (!inBeard(skin.positions[c[0]]) || !inBeard(skin.positions[c[1]]) || !inBeard(skin.positions[c[2]])) continue;
+    for (uint32_t v : c) {
+      auto [it, added] = copyOf.emplace(v, uint32_t(beard.positions.size()));
+      if (added) {
+        beard.positions.push_back(skin.positions[v] + 0.001f * skin.normals[v]);
+        beard.normals.push_back(skin.normals[v]);
+        skinVertexOf.push_back(v);
+      }
+      beard.indices.push_back(it->second);
+    }
+  }
+  ASSERT_GT(beard.positions.size(), 100u);
+  eng::Model part;
+  part.meshes.push_back({});
+  part.meshes[0].name = "beard";
+  beard.material = 0;
+  part.meshes[0].primitives.push_back(beard);
+  eng::Material hair;
+  hair.name = "beard";
+  hair.baseColorFactor = {0.1f, 0.07f, 0.05f, 1.0f};
+  part.materials.push_back(hair);
+  testing_support::addPartAsRoot(face, std::move(part), "beard", glm::vec3(0.0f), glm::vec3(1.0f));
+  const int beardMesh = int(face.meshes.size()) - 1;
+  const std::vector<glm::vec3> skinRest(skin.positions);
+
+  auto rigged = rigger->rig(face, source->landmarks, "bearded", {.arkit = false, .detailLayers = false});
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  bool noted = false;
+  for (const std::string& note : rigged->partNotes) noted = noted || note.starts_with("beard: beard");
+  EXPECT_TRUE(noted);
+  // Each beard vertex moves as the skin vertex it was lifted from (found by
+  // place: the rig may add skin vertices).
+  const eng::Mesh& riggedSkin = rigged->model.meshes[0];
+  const eng::Mesh& riggedBeard = rigged->model.meshes[size_t(beardMesh)];
+  std::vector<uint32_t> riggedSkinVertex(skinVertexOf.size());
+  for (size_t b = 0; b < skinVertexOf.size(); ++b) {
+    const glm::vec3 at = skinRest[skinVertexOf[b]];
+    float nearest = INFINITY;
+    const std::vector<glm::vec3>& positions = riggedSkin.primitives[0].positions;
+    for (uint32_t v = 0; v < positions.size(); ++v)
+      if (const float d = glm::distance(positions[v], at); d < nearest) nearest = d, riggedSkinVertex[b] = v;
+  }
+  for (const char* unit : {"AU26_JawDrop", "AU25_LipsPart", "AU12_LipCornerPuller_L", "AU10_UpperLipRaiser", "AU16_LowerLipDepressor"}) {
+    const auto s = std::find(riggedSkin.targetNames.begin(), riggedSkin.targetNames.end(), unit);
+    const auto h = std::find(riggedBeard.targetNames.begin(), riggedBeard.targetNames.end(), unit);
+    ASSERT_TRUE(s != riggedSkin.targetNames.end() && h != riggedBeard.targetNames.end()) << unit;
+    const std::vector<glm::vec3>& skinDeltas = riggedSkin.primitives[0].targets[size_t(s - riggedSkin.targetNames.begin())].positions;
+    const std::vector<glm::vec3>& beardDeltas = riggedBeard.primitives[0].targets[size_t(h - riggedBeard.targetNames.begin())].positions;
+    ASSERT_EQ(beardDeltas.size(), skinVertexOf.size()) << unit;
+    float largest = 0.0f, worst = 0.0f;
+    for (const glm::vec3& d : skinDeltas) largest = std::max(largest, glm::length(d));
+    for (size_t b = 0; b < skinVertexOf.size(); ++b)
+      worst = std::max(worst, glm::distance(beardDeltas[b], skinDeltas[riggedSkinVertex[b]]));
+    std::printf("%s: a beard vertex moves at most %.3f of the unit's largest displacement apart from the skin under it\n",
+                unit, worst / largest);
+    EXPECT_LT(worst, 0.05f * largest) << unit;
+  }
+}
