@@ -23,7 +23,7 @@ constexpr eng::EnumName<FacePart> kFacePartNames[] = {
     {FacePart::Skin, "skin"},           {FacePart::EyeballRight, "right eyeball"}, {FacePart::EyeballLeft, "left eyeball"},
     {FacePart::UpperTeeth, "upper teeth"}, {FacePart::LowerTeeth, "lower teeth"}, {FacePart::Tongue, "tongue"},
     {FacePart::Lashes, "lashes"},       {FacePart::Brows, "brows"},             {FacePart::Glasses, "glasses"},
-    {FacePart::Hair, "hair"},           {FacePart::Beard, "beard"},             {FacePart::Other, "other"},
+    {FacePart::Hair, "hair"},           {FacePart::SkinLayer, "layer on the skin"}, {FacePart::Other, "other"},
 };
 
 struct NamedPart {
@@ -35,10 +35,11 @@ struct NamedPart {
 // lashes before "eye" can mean an eyeball; "Outfit_Top" is clothes before
 // "top" could mean the upper teeth; "MouthTeeth" is teeth while the mouth's
 // inside is skin (it moves with it).
-constexpr std::array<NamedPart, 26> kNamedParts = {{
+constexpr std::array<NamedPart, 29> kNamedParts = {{
     {"lash", FacePart::Lashes},     {"brow", FacePart::Brows},       {"tongue", FacePart::Tongue},
-    {"beard", FacePart::Beard},     {"moustache", FacePart::Beard},  {"mustache", FacePart::Beard},
-    {"stubble", FacePart::Beard},
+    {"beard", FacePart::SkinLayer}, {"moustache", FacePart::SkinLayer}, {"mustache", FacePart::SkinLayer},
+    {"stubble", FacePart::SkinLayer}, {"facewear", FacePart::SkinLayer}, {"makeup", FacePart::SkinLayer},
+    {"tattoo", FacePart::SkinLayer},
     {"glass", FacePart::Glasses},   {"spectacle", FacePart::Glasses}, {"eyewear", FacePart::Glasses},
     {"", FacePart::EyeballRight},   {"hair", FacePart::Hair},        {"outfit", FacePart::Other},
     {"cloth", FacePart::Other},     {"body", FacePart::Other},       {"shirt", FacePart::Other},

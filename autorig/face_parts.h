@@ -32,9 +32,10 @@ enum class FacePart : unsigned char {
   Brows,
   Glasses,
   Hair,
-  // A layer lying on the skin (a beard, a moustache, stubble as a mesh of
-  // its own): it moves as the skin under it.
-  Beard,
+  // A layer lying on the skin, a mesh of its own (a beard, a moustache,
+  // stubble, face paint, Ready Player Me's "facewear"): it moves as the skin
+  // under it.
+  SkinLayer,
   Other,  // body, clothes, anything away from the face: never moved
 };
 

@@ -206,7 +206,7 @@ void appendStill(Moved& moved, const FaceSurface& still) {
   for (NamedDeltas& unit : moved.units) unit.deltas.resize(moved.positions.size(), glm::vec3(0.0f));
 }
 
-// A layer on the skin (a beard, a moustache) moves as the skin under it:
+// A layer on the skin (a beard, a moustache, face paint) moves as the skin under it:
 // each of its vertices takes the deltas of the skin below it, found from a
 // point the layer's depth behind it along its normal. Carried as skin of its
 // own, a beard's vertices over the lips were matched to the head's lips and
@@ -961,7 +961,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
-  const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::Beard});
+  const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::SkinLayer});
   appendOnSkin(moved, onSkin, tgt, skinNormals(tgt), frame.eyeSpan());
   // The eyeballs: no unit moves them, the gaze shapes turn them. The upper
   // teeth neither, but a face's own shape may (useOwnShapes).

@@ -614,7 +614,7 @@ TEST(FaceAutorigRig, ABeardMovesAsTheSkinUnderIt) {
   auto rigged = rigger->rig(face, source->landmarks, "bearded", {.arkit = false, .detailLayers = false});
   ASSERT_TRUE(rigged) << rigged.error().message;
   bool noted = false;
-  for (const std::string& note : rigged->partNotes) noted = noted || note.starts_with("beard: beard");
+  for (const std::string& note : rigged->partNotes) noted = noted || note.starts_with("beard: layer on the skin");
   EXPECT_TRUE(noted);
   // Each beard vertex moves as the skin vertex it was lifted from (found by
   // place: the rig may add skin vertices).

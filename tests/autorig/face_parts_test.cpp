@@ -201,6 +201,22 @@ TEST(FaceParts, PaintedEyesAreSkin) {
   EXPECT_GT(parts.eyeRadii[0], 0.0f);
 }
 
+// A layer on the skin is told by its name, whatever its shape: a soul patch
+// below the lips lies in the mouth's box, where an unnamed piece is teeth.
+TEST(FaceParts, ALayerOnTheSkinIsToldByItsName) {
+  using autorig::FacePart;
+  for (const char* name : {"Wolf3D_Beard", "Moustache", "stubble_geo", "Wolf3D_Facewear", "face_makeup"}) {
+    eng::Model model = testing_support::plasterHead();
+    testing_support::addPartAsRoot(model, testing_support::makeSphereModel(testing_support::whiteSphereSpec(0)), name,
+                                   {0.0f, -0.45f, 0.95f}, glm::vec3(0.05f, 0.02f, 0.01f));
+    model.meshes.back().name = name;
+    const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+    ASSERT_EQ(parts.vertexParts.size(), model.meshes.size());
+    EXPECT_EQ(count(parts.vertexParts.back(), FacePart::SkinLayer), parts.vertexParts.back().size()) << name;
+  }
+  EXPECT_STREQ(autorig::facePartName(FacePart::SkinLayer), "layer on the skin");
+}
+
 TEST(FaceParts, NamesOfParts) {
   EXPECT_STREQ(autorig::facePartName(autorig::FacePart::EyeballLeft), "left eyeball");
   EXPECT_STREQ(autorig::facePartName(autorig::FacePart::Other), "other");
