@@ -2,14 +2,16 @@
 
 #include <algorithm>
 #include <array>
-#include <iterator>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <iterator>
 #include <numeric>
 #include <string_view>
 
 #include <Eigen/Dense>
 
+#include "autorig/closest_point.h"
 #include "autorig/face_frame.h"
 #include "engine/core/enum_names.h"
 #include "engine/scene/inner_face_parts.h"
@@ -234,14 +236,18 @@ int eyeOver(const Component& c, const FaceFrame& f) {
 
 // An eyeball's size under an eye's lid line, and round: a near-sphere, or a
 // ball's front half with an iris set in it (Ready Player Me's), at least
-// 0.4 as deep as it is wide, where lashes are thin strips.
+// 0.4 as deep as it is wide, where lashes are thin strips. A sphere that
+// fits it is a ball's only when no wider than the piece: a lens (glasses in
+// the one primitive of a Ready Player Me avatar exported with a texture
+// atlas) is a shallow cap of a sphere much wider than itself.
 int eyeballSide(const Component& c, const FaceFrame& f) {
   const int e = eyeOver(c, f);
   if (e < 0 || c.vertices.size() < 20) return -1;
   const glm::vec3 size = c.hi - c.lo;
   const float longest = std::max({size.x, size.y, size.z}), shortest = std::min({size.x, size.y, size.z});
   const float ratio = longest / f.eyeWidth[size_t(e)];
-  return (c.spread < 0.1f || shortest > 0.4f * longest) && ratio > 0.4f && ratio < 3.0f ? e : -1;
+  const bool ball = c.spread < 0.1f && c.radius < 0.8f * longest;
+  return (ball || shortest > 0.4f * longest) && ratio > 0.4f && ratio < 3.0f ? e : -1;
 }
 
 bool insideTheMouth(const Component& c, const FaceFrame& f) {
@@ -692,12 +698,94 @@ Eyeball eyeballBehindTheLids(const FaceLandmarks& landmarks, size_t eye) {
   return ball;
 }
 
+// Well behind the lips, inside the mouth: where the teeth and tongue lie
+// over the mouth's inside (the chin below the lips recedes less).
+bool insideTheLips(const glm::vec3& p, const FaceFrame& f) {
+  const glm::vec3 d = p - f.mouthCentre;
+  return std::abs(glm::dot(d, f.right)) < 0.6f * f.mouthWidth && std::abs(glm::dot(d, f.up)) < 0.25f * f.span &&
+         glm::dot(d, f.forward) < -0.1f * f.span;
+}
+
+// A piece no name tells, lying just off the face's skin on its outside, is a
+// layer on it: a beard or moustache merged into one primitive with the rest
+// (a Ready Player Me avatar exported with a texture atlas), whose soul patch
+// in the mouth's box was taken for teeth and whose moustache for lips to cut.
+// The skin it lies on: the skin pieces at least a quarter the size of the
+// largest; lying on it: seven in ten of its vertices within 5% of the eye
+// span outside it, on skin facing forward or not deep behind the lips (the
+// tongue lies as close over the mouth's floor, the teeth by the lips' inside).
+void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed, const FaceFrame& f, FaceParts& parts,
+                         std::vector<TeethPiece>& teeth) {
+  struct Piece {
+    size_t primitive;
+    std::vector<uint32_t> vertices;
+  };
+  std::vector<Piece> skinPieces, candidates;
+  size_t largest = 0;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const PosedPrimitive& p = posed.primitives[i];
+    const std::vector<FacePart>& part = parts.vertexParts[i];
+    if (p.positions.empty()) continue;
+    const bool named = facePartFromNames(model, p).has_value();
+    uint32_t count = 0;
+    const std::vector<uint32_t> label =
+        components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
+    std::vector<std::vector<uint32_t>> members(count);
+    for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+    for (std::vector<uint32_t>& piece : members) {
+      const FacePart kind = part[piece.front()];
+      if (kind == FacePart::Skin) largest = std::max(largest, piece.size());
+      if (kind == FacePart::Skin || (!named && (kind == FacePart::UpperTeeth || kind == FacePart::LowerTeeth)))
+        (kind == FacePart::Skin ? skinPieces : candidates).push_back({i, std::move(piece)});
+    }
+  }
+  // Small unnamed skin pieces are candidates too; the large ones are the skin.
+  std::vector<glm::vec3> positions;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  for (Piece& piece : skinPieces) {
+    const bool named = facePartFromNames(model, posed.primitives[piece.primitive]).has_value();
+    if (4 * piece.vertices.size() < largest) {
+      if (!named) candidates.push_back(std::move(piece));
+      continue;
+    }
+    const PosedPrimitive& p = posed.primitives[piece.primitive];
+    const std::vector<uint32_t>& indices = model.meshes[p.mesh].primitives[p.primitive].indices;
+    std::vector<uint32_t> at(p.positions.size(), UINT32_MAX);
+    for (uint32_t v : piece.vertices) at[v] = uint32_t(positions.size()), positions.push_back(p.positions[v]);
+    for (size_t t = 0; t + 2 < indices.size(); t += 3)
+      if (at[indices[t]] != UINT32_MAX && at[indices[t + 1]] != UINT32_MAX && at[indices[t + 2]] != UINT32_MAX)
+        triangles.push_back({at[indices[t]], at[indices[t + 1]], at[indices[t + 2]]});
+  }
+  if (triangles.empty() || candidates.empty()) return;
+  const TriangleGrid grid(positions, triangles, {});
+  for (const Piece& piece : candidates) {
+    const PosedPrimitive& p = posed.primitives[piece.primitive];
+    size_t on = 0;
+    for (uint32_t v : piece.vertices) {
+      const ClosestPoint q = grid.closest(p.positions[v], FaceRegion::None, 0.05f * f.span);
+      if (!q.found) continue;
+      const auto& t = triangles[q.triangle];
+      const glm::vec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+      const bool facesOut = glm::dot(glm::normalize(n), f.forward) > 0.5f || !insideTheLips(q.position, f);
+      on += glm::dot(p.positions[v] - q.position, n) > 0.0f && facesOut;
+    }
+    if (10 * on < 7 * piece.vertices.size()) continue;
+    for (uint32_t v : piece.vertices) parts.vertexParts[piece.primitive][v] = FacePart::SkinLayer;
+    std::erase_if(teeth, [&](TeethPiece& t) {
+      if (t.primitive != piece.primitive) return false;
+      std::erase_if(t.vertices, [&](uint32_t v) { return parts.vertexParts[t.primitive][v] == FacePart::SkinLayer; });
+      return t.vertices.empty();
+    });
+  }
+}
+
 FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const FaceLandmarks& landmarks) {
   FaceParts parts;
   const FaceFrame frame = faceFrame(landmarks);
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
   for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
+  findLayersOnTheSkin(model, posed, frame, parts, teeth);
   takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);

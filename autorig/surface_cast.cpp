@@ -179,6 +179,21 @@ std::optional<SurfacePoint> SurfaceCaster::nearestVertex(glm::vec2 pixel, float 
   return best;
 }
 
+namespace {
+
+// Named as skin or not named at all, and not see-through: a lens is no skin
+// the detector saw (Ready Player Me's glasses, in the transparent primitive a
+// texture atlas export makes, took the eyes' points 1.5 cm in front of the lids).
+bool mayBeSkin(const eng::Model& model, const PosedPrimitive& p) {
+  const std::optional<FacePart> named = facePartFromNames(model, p);
+  const int material = model.meshes[p.mesh].primitives[p.primitive].material;
+  const bool seeThrough = material >= 0 && size_t(material) < model.materials.size() &&
+                          model.materials[size_t(material)].alphaMode == eng::AlphaMode::Blend;
+  return (!named || *named == FacePart::Skin) && !seeThrough;
+}
+
+}  // namespace
+
 std::vector<bool> outerSkinPrimitives(const eng::Model& model, const PosedFace& posed) {
   const size_t n = posed.primitives.size();
   std::vector<glm::vec3> lo(n, glm::vec3(std::numeric_limits<float>::max()));
@@ -193,8 +208,7 @@ std::vector<bool> outerSkinPrimitives(const eng::Model& model, const PosedFace& 
   std::vector<bool> outer(n, false);
   bool any = false;
   for (size_t i = 0; i < n; ++i) {
-    const std::optional<FacePart> named = facePartFromNames(model, posed.primitives[i]);
-    outer[i] = (!named || *named == FacePart::Skin) && !enclosed(i);
+    outer[i] = mayBeSkin(model, posed.primitives[i]) && !enclosed(i);
     any = any || outer[i];
   }
   if (!any) outer.assign(n, true);
@@ -205,10 +219,7 @@ std::vector<bool> seenSkinPrimitives(const eng::Model& model, const PosedFace& p
   std::vector<bool> outer = outerSkinPrimitives(model, posed);
   const size_t n = posed.primitives.size();
   std::vector<bool> skin(n, false);
-  for (size_t i = 0; i < n; ++i) {
-    const std::optional<FacePart> named = facePartFromNames(model, posed.primitives[i]);
-    skin[i] = !named || *named == FacePart::Skin;
-  }
+  for (size_t i = 0; i < n; ++i) skin[i] = mayBeSkin(model, posed.primitives[i]);
   std::vector<size_t> enclosed;
   for (size_t i = 0; i < n; ++i)
     if (skin[i] && !outer[i]) enclosed.push_back(i);

@@ -217,6 +217,80 @@ TEST(FaceParts, ALayerOnTheSkinIsToldByItsName) {
   EXPECT_STREQ(autorig::facePartName(FacePart::SkinLayer), "layer on the skin");
 }
 
+// Without names, a piece lying just off the skin on its outside is a layer
+// on it: a soul patch on the chin, in the mouth's box, is no row of teeth (a
+// beard merged into an avatar's one primitive, as a texture atlas exports it).
+TEST(FaceParts, AnUnnamedLayerOnTheSkinIsToldByWhereItLies) {
+  eng::Model model = testing_support::plasterHead();
+  eng::Primitive patch;
+  constexpr int kSide = 6;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) {
+      const float x = -0.1f + 0.2f * float(i) / float(kSide - 1), y = -0.58f + 0.1f * float(j) / float(kSide - 1);
+      const float r = 1.015f;  // the head's unit sphere, 1.5% of its radius out
+      const glm::vec3 p(x, y, std::sqrt(r * r - x * x - y * y));
+      patch.positions.push_back(p);
+      patch.normals.push_back(glm::normalize(p));
+    }
+  for (uint32_t j = 0; j + 1 < kSide; ++j)
+    for (uint32_t i = 0; i + 1 < kSide; ++i) {
+      const uint32_t a = j * kSide + i, b = a + 1, c = a + kSide, d = c + 1;
+      patch.indices.insert(patch.indices.end(), {a, b, d, a, d, c});
+    }
+  eng::Mesh mesh;
+  mesh.primitives.push_back(patch);
+  eng::Model part;
+  part.meshes.push_back(mesh);
+  testing_support::addPartAsRoot(model, std::move(part), "", glm::vec3(0.0f), glm::vec3(1.0f));
+  for (eng::Node& n : model.nodes) n.name.clear();
+  for (eng::Mesh& m : model.meshes) m.name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  ASSERT_EQ(parts.vertexParts.size(), 5u);
+  EXPECT_EQ(count(parts.vertexParts[4], autorig::FacePart::SkinLayer), patch.positions.size());
+  EXPECT_EQ(count(parts.vertexParts[0], autorig::FacePart::Skin), parts.vertexParts[0].size());
+  const auto& teeth = parts.vertexParts[3];
+  EXPECT_EQ(count(teeth, autorig::FacePart::UpperTeeth) + count(teeth, autorig::FacePart::LowerTeeth), teeth.size());
+}
+
+// Glasses merged into one primitive with nothing else to tell them (a
+// texture atlas's transparent primitive): their lenses are shallow caps of a
+// sphere wider than themselves, no eyeballs, and the pair is glasses. Taken
+// for eyeballs, they put the eyes' centres in front of the face.
+TEST(FaceParts, LensesAreNoEyeballs) {
+  eng::Model model = testing_support::plasterHead();
+  eng::Primitive glasses;
+  for (const float cx : {-0.35f, 0.35f}) {
+    const uint32_t first = uint32_t(glasses.positions.size());
+    constexpr int kSide = 7;
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i) {
+        const float x = -0.13f + 0.26f * float(i) / float(kSide - 1), y = -0.1f + 0.2f * float(j) / float(kSide - 1);
+        const float r = 0.6f;  // a cap of a sphere 0.6 wide about a point behind the lens
+        glasses.positions.push_back({cx + x, 0.2f + y, 1.1f - r + std::sqrt(r * r - x * x - y * y)});
+        glasses.normals.push_back({0.0f, 0.0f, 1.0f});
+      }
+    for (uint32_t j = 0; j + 1 < kSide; ++j)
+      for (uint32_t i = 0; i + 1 < kSide; ++i) {
+        const uint32_t a = first + j * kSide + i, b = a + 1, c = a + kSide, d = c + 1;
+        glasses.indices.insert(glasses.indices.end(), {a, b, d, a, d, c});
+      }
+  }
+  eng::Mesh mesh;
+  mesh.primitives.push_back(glasses);
+  eng::Model part;
+  part.meshes.push_back(mesh);
+  testing_support::addPartAsRoot(model, std::move(part), "", glm::vec3(0.0f), glm::vec3(1.0f));
+  for (eng::Node& n : model.nodes) n.name.clear();
+  for (eng::Mesh& m : model.meshes) m.name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  ASSERT_EQ(parts.vertexParts.size(), 5u);
+  EXPECT_EQ(count(parts.vertexParts[4], autorig::FacePart::Glasses), glasses.positions.size());
+  EXPECT_LT(glm::distance(parts.eyeCentres[0], glm::vec3(-0.35f, 0.2f, 0.85f)), 0.01f);
+  EXPECT_LT(glm::distance(parts.eyeCentres[1], glm::vec3(0.35f, 0.2f, 0.85f)), 0.01f);
+}
+
 TEST(FaceParts, NamesOfParts) {
   EXPECT_STREQ(autorig::facePartName(autorig::FacePart::EyeballLeft), "left eyeball");
   EXPECT_STREQ(autorig::facePartName(autorig::FacePart::Other), "other");
