@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "autorig/face_frame.h"
+#include "autorig/face_parts.h"
 #include "autorig/mouth_opening.h"
+#include "autorig/surface_cast.h"
 #include "autorig/target_transfer.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
@@ -117,4 +119,71 @@ TEST(AvatarTransfer, AnAvatarWithoutTeethGetsTheHeads) {
   eng::Result<eng::Model> loaded = eng::loadModel(out);
   ASSERT_TRUE(loaded) << loaded.error().message;
   EXPECT_EQ(loaded->meshes[head].primitives.size(), mesh.primitives.size());
+}
+
+// The same avatar as Ready Player Me exports it with a texture atlas: every
+// opaque mesh merged into one primitive, the see-through glasses into a
+// second, no names but the avatar's. Its parts are told by shape as the
+// meshes' names tell them: its lenses once passed as a pair of eyeballs (the
+// lids turned about points in front of the face) and took the eyes'
+// landmarks onto them.
+TEST(AvatarTransfer, AnAvatarMergedByATextureAtlasHasItsPartsByShape) {
+  FACIAL_REQUIRE_SHARED();
+  eng::Result<eng::Model> avatar = eng::loadModel(testing_support::sharedDir() / "speech/rpm-visemes.glb");
+  ASSERT_TRUE(avatar) << avatar.error().message;
+  eng::Result<autorig::FaceLandmarks> landmarks =
+      autorig::readLandmarksFile(testing_support::sourceDir() / "tests/autorig/data/rpm-visemes.landmarks.json");
+  ASSERT_TRUE(landmarks) << landmarks.error().message;
+  const autorig::PosedFace posed = autorig::poseAtRest(*avatar);
+  const autorig::FaceParts asMeshes = autorig::findFaceParts(*avatar, posed, *landmarks);
+  // Drawn as it stands, in world space: one opaque primitive, one see-through.
+  eng::Model merged;
+  merged.meshes.push_back({});
+  merged.meshes[0].name = "Wolf3D_Avatar";
+  merged.meshes[0].primitives.resize(2);
+  for (const char* name : {"Wolf3D_Avatar", "Wolf3D_Avatar_Transparent"}) {
+    eng::Material material;
+    material.name = name;
+    merged.materials.push_back(material);
+  }
+  merged.materials[1].alphaMode = eng::AlphaMode::Blend;
+  size_t teeth = 0;
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const autorig::PosedPrimitive& pp = posed.primitives[i];
+    const eng::Primitive& from = avatar->meshes[pp.mesh].primitives[pp.primitive];
+    const bool seeThrough = from.material >= 0 && avatar->materials[size_t(from.material)].alphaMode == eng::AlphaMode::Blend;
+    eng::Primitive& to = merged.meshes[0].primitives[seeThrough ? 1 : 0];
+    to.material = seeThrough ? 1 : 0;
+    const uint32_t first = uint32_t(to.positions.size());
+    to.positions.insert(to.positions.end(), pp.positions.begin(), pp.positions.end());
+    for (uint32_t index : from.indices) to.indices.push_back(first + index);
+    for (autorig::FacePart part : asMeshes.vertexParts[i])
+      teeth += part == autorig::FacePart::UpperTeeth || part == autorig::FacePart::LowerTeeth || part == autorig::FacePart::Tongue;
+  }
+  for (eng::Primitive& p : merged.meshes[0].primitives) p.normals.assign(p.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+  eng::Node node;
+  node.name = "Wolf3D_Avatar";
+  node.mesh = 0;
+  merged.nodes.push_back(node);
+  merged.roots.push_back(0);
+  const autorig::PosedFace mergedPosed = autorig::poseAtRest(merged);
+  ASSERT_EQ(mergedPosed.primitives.size(), 2u);
+  const autorig::FaceParts parts = autorig::findFaceParts(merged, mergedPosed, *landmarks);
+  for (const std::string& note : parts.notes) std::printf("%s\n", note.c_str());
+  const auto count = [](const std::vector<autorig::FacePart>& of, std::initializer_list<autorig::FacePart> which) {
+    return size_t(std::count_if(of.begin(), of.end(), [&](autorig::FacePart p) { return std::find(which.begin(), which.end(), p) != which.end(); }));
+  };
+  EXPECT_EQ(count(parts.vertexParts[1], {autorig::FacePart::Glasses}), parts.vertexParts[1].size());
+  using P = autorig::FacePart;
+  EXPECT_EQ(count(parts.vertexParts[0], {P::UpperTeeth, P::LowerTeeth, P::Tongue}), teeth);
+  ASSERT_TRUE(parts.eyeballsFound && asMeshes.eyeballsFound);
+  const float span = autorig::LandmarkFrame(*landmarks).eyeSpan();
+  for (size_t e = 0; e < 2; ++e) {
+    EXPECT_LT(glm::distance(parts.eyeCentres[e], asMeshes.eyeCentres[e]), 0.02f * span) << e;
+    EXPECT_NEAR(parts.eyeRadii[e], asMeshes.eyeRadii[e], 0.02f * span) << e;
+  }
+  // The landmarks are cast onto the opaque primitive only.
+  const std::vector<bool> outer = autorig::outerSkinPrimitives(merged, mergedPosed);
+  EXPECT_TRUE(outer[0]);
+  EXPECT_FALSE(outer[1]);
 }
