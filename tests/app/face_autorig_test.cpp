@@ -478,17 +478,34 @@ float soupAgainstIndexed(const eng::Model& indexed, const eng::Model& soup, cons
   return largest > 0.0f ? worst / largest : INFINITY;
 }
 
+// The rigger and the built-in head as the source it carries from.
+struct BuiltInHeadRig {
+  std::optional<app::FaceAutorig> rigger;
+  eng::Model head;  // data/head.glb
+  std::optional<autorig::SourceFace> source;  // points into `head`
+};
+
+void loadBuiltInHeadRig(BuiltInHeadRig& out) {
+  auto rigger = app::FaceAutorig::load();
+  ASSERT_TRUE(rigger) << rigger.error().message;
+  out.rigger = std::move(*rigger);
+  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(head) << head.error().message;
+  out.head = std::move(*head);
+  auto source = autorig::builtInSource(out.head);
+  ASSERT_TRUE(source) << source.error().message;
+  out.source = std::move(*source);
+}
+
 // The built-in head stripped of its targets, rigged (shapes only, from its
 // own landmarks) as it is (`asIs`) and as `rewrite` writes it (`rewritten`).
 void rigTheHeadAsItIsAndRewritten(const std::function<eng::Model(const eng::Model&)>& rewrite,
                                   std::optional<app::AutorigResult>& asIs, std::optional<app::AutorigResult>& rewritten) {
-  auto rigger = app::FaceAutorig::load();
-  ASSERT_TRUE(rigger) << rigger.error().message;
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto source = autorig::builtInSource(*head);
-  ASSERT_TRUE(source) << source.error().message;
-  const eng::Model stripped = testing_support::stripped(*head);
+  BuiltInHeadRig built;
+  ASSERT_NO_FATAL_FAILURE(loadBuiltInHeadRig(built));
+  const auto& rigger = built.rigger;
+  const auto& source = built.source;
+  const eng::Model stripped = testing_support::stripped(built.head);
   const autorig::TransferOptions shapes{.arkit = false, .detailLayers = false};
   auto a = rigger->rig(stripped, source->landmarks, "head", shapes);
   ASSERT_TRUE(a) << a.error().message;
@@ -564,13 +581,11 @@ TEST(FaceAutorigRig, AFlatShadedFaceIsRiggedAsItsSmoothMeshAndKeepsItsFacets) {
 // the mouth, a soul patch under the lower lip stayed where it was and floated
 // in the open mouth, and a smile left the moustache behind.
 TEST(FaceAutorigRig, ABeardMovesAsTheSkinUnderIt) {
-  auto rigger = app::FaceAutorig::load();
-  ASSERT_TRUE(rigger) << rigger.error().message;
-  auto head = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
-  ASSERT_TRUE(head) << head.error().message;
-  auto source = autorig::builtInSource(*head);
-  ASSERT_TRUE(source) << source.error().message;
-  eng::Model face = testing_support::stripped(*head);
+  BuiltInHeadRig built;
+  ASSERT_NO_FATAL_FAILURE(loadBuiltInHeadRig(built));
+  const auto& rigger = built.rigger;
+  const auto& source = built.source;
+  eng::Model face = testing_support::stripped(built.head);
   // A moustache above the upper lip and a goatee below the lower one: the
   // skin's triangles there, 1 mm out along its normals.
   const eng::Primitive& skin = face.meshes[0].primitives[0];

@@ -64,6 +64,30 @@ void expectPlasterParts(const eng::Model& model, const autorig::FaceParts& parts
   (void)model;
 }
 
+// The plaster head with `piece` added as a mesh of its own and every name
+// gone, its parts (the piece's last).
+autorig::FaceParts partsOfThePlasterHeadUnnamedWith(const eng::Primitive& piece) {
+  eng::Model model = testing_support::plasterHead();
+  eng::Mesh mesh;
+  mesh.primitives.push_back(piece);
+  eng::Model part;
+  part.meshes.push_back(mesh);
+  testing_support::addPartAsRoot(model, std::move(part), "", glm::vec3(0.0f), glm::vec3(1.0f));
+  for (eng::Node& n : model.nodes) n.name.clear();
+  for (eng::Mesh& m : model.meshes) m.name.clear();
+  for (eng::Material& m : model.materials) m.name.clear();
+  return autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+}
+
+// Triangles over a side x side grid of vertices from `first`, row by row.
+void addGridTriangles(eng::Primitive& p, uint32_t first, uint32_t side) {
+  for (uint32_t j = 0; j + 1 < side; ++j)
+    for (uint32_t i = 0; i + 1 < side; ++i) {
+      const uint32_t a = first + j * side + i, b = a + 1, c = a + side, d = c + 1;
+      p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
+    }
+}
+
 // With a prop far away (Other), a bar across the eyes (glasses), a cap over
 // the head (hair), brow cards and lash strips.
 eng::Model plasterHeadWithProp() {
@@ -221,7 +245,6 @@ TEST(FaceParts, ALayerOnTheSkinIsToldByItsName) {
 // on it: a soul patch on the chin, in the mouth's box, is no row of teeth (a
 // beard merged into an avatar's one primitive, as a texture atlas exports it).
 TEST(FaceParts, AnUnnamedLayerOnTheSkinIsToldByWhereItLies) {
-  eng::Model model = testing_support::plasterHead();
   eng::Primitive patch;
   constexpr int kSide = 6;
   for (int j = 0; j < kSide; ++j)
@@ -232,20 +255,8 @@ TEST(FaceParts, AnUnnamedLayerOnTheSkinIsToldByWhereItLies) {
       patch.positions.push_back(p);
       patch.normals.push_back(glm::normalize(p));
     }
-  for (uint32_t j = 0; j + 1 < kSide; ++j)
-    for (uint32_t i = 0; i + 1 < kSide; ++i) {
-      const uint32_t a = j * kSide + i, b = a + 1, c = a + kSide, d = c + 1;
-      patch.indices.insert(patch.indices.end(), {a, b, d, a, d, c});
-    }
-  eng::Mesh mesh;
-  mesh.primitives.push_back(patch);
-  eng::Model part;
-  part.meshes.push_back(mesh);
-  testing_support::addPartAsRoot(model, std::move(part), "", glm::vec3(0.0f), glm::vec3(1.0f));
-  for (eng::Node& n : model.nodes) n.name.clear();
-  for (eng::Mesh& m : model.meshes) m.name.clear();
-  for (eng::Material& m : model.materials) m.name.clear();
-  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  addGridTriangles(patch, 0, uint32_t(kSide));
+  const autorig::FaceParts parts = partsOfThePlasterHeadUnnamedWith(patch);
   ASSERT_EQ(parts.vertexParts.size(), 5u);
   EXPECT_EQ(count(parts.vertexParts[4], autorig::FacePart::SkinLayer), patch.positions.size());
   EXPECT_EQ(count(parts.vertexParts[0], autorig::FacePart::Skin), parts.vertexParts[0].size());
@@ -258,7 +269,6 @@ TEST(FaceParts, AnUnnamedLayerOnTheSkinIsToldByWhereItLies) {
 // sphere wider than themselves, no eyeballs, and the pair is glasses. Taken
 // for eyeballs, they put the eyes' centres in front of the face.
 TEST(FaceParts, LensesAreNoEyeballs) {
-  eng::Model model = testing_support::plasterHead();
   eng::Primitive glasses;
   for (const float cx : {-0.35f, 0.35f}) {
     const uint32_t first = uint32_t(glasses.positions.size());
@@ -270,21 +280,9 @@ TEST(FaceParts, LensesAreNoEyeballs) {
         glasses.positions.push_back({cx + x, 0.2f + y, 1.1f - r + std::sqrt(r * r - x * x - y * y)});
         glasses.normals.push_back({0.0f, 0.0f, 1.0f});
       }
-    for (uint32_t j = 0; j + 1 < kSide; ++j)
-      for (uint32_t i = 0; i + 1 < kSide; ++i) {
-        const uint32_t a = first + j * kSide + i, b = a + 1, c = a + kSide, d = c + 1;
-        glasses.indices.insert(glasses.indices.end(), {a, b, d, a, d, c});
-      }
+    addGridTriangles(glasses, first, uint32_t(kSide));
   }
-  eng::Mesh mesh;
-  mesh.primitives.push_back(glasses);
-  eng::Model part;
-  part.meshes.push_back(mesh);
-  testing_support::addPartAsRoot(model, std::move(part), "", glm::vec3(0.0f), glm::vec3(1.0f));
-  for (eng::Node& n : model.nodes) n.name.clear();
-  for (eng::Mesh& m : model.meshes) m.name.clear();
-  for (eng::Material& m : model.materials) m.name.clear();
-  const autorig::FaceParts parts = autorig::findFaceParts(model, autorig::poseAtRest(model), plasterLandmarks());
+  const autorig::FaceParts parts = partsOfThePlasterHeadUnnamedWith(glasses);
   ASSERT_EQ(parts.vertexParts.size(), 5u);
   EXPECT_EQ(count(parts.vertexParts[4], autorig::FacePart::Glasses), glasses.positions.size());
   EXPECT_LT(glm::distance(parts.eyeCentres[0], glm::vec3(-0.35f, 0.2f, 0.85f)), 0.01f);
