@@ -718,6 +718,7 @@ void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed, const 
                          std::vector<TeethPiece>& teeth) {
   struct Piece {
     size_t primitive;
+    bool named;  // its primitive's names tell its part
     std::vector<uint32_t> vertices;
   };
   std::vector<Piece> skinPieces, candidates;
@@ -736,16 +737,15 @@ void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed, const 
       const FacePart kind = part[piece.front()];
       if (kind == FacePart::Skin) largest = std::max(largest, piece.size());
       if (kind == FacePart::Skin || (!named && (kind == FacePart::UpperTeeth || kind == FacePart::LowerTeeth)))
-        (kind == FacePart::Skin ? skinPieces : candidates).push_back({i, std::move(piece)});
+        (kind == FacePart::Skin ? skinPieces : candidates).push_back({i, named, std::move(piece)});
     }
   }
   // Small unnamed skin pieces are candidates too; the large ones are the skin.
   std::vector<glm::vec3> positions;
   std::vector<std::array<uint32_t, 3>> triangles;
   for (Piece& piece : skinPieces) {
-    const bool named = facePartFromNames(model, posed.primitives[piece.primitive]).has_value();
     if (4 * piece.vertices.size() < largest) {
-      if (!named) candidates.push_back(std::move(piece));
+      if (!piece.named) candidates.push_back(std::move(piece));
       continue;
     }
     const PosedPrimitive& p = posed.primitives[piece.primitive];

@@ -217,9 +217,7 @@ void appendStill(Moved& moved, const FaceSurface& still) {
 void appendOnSkin(Moved& moved, const FaceSurface& layer, const FaceSurface& skin, const std::vector<glm::vec3>& skinNormal,
                   float eyeSpan) {
   const size_t first = moved.positions.size();
-  moved.vertices.insert(moved.vertices.end(), layer.vertices.begin(), layer.vertices.end());
-  moved.positions.insert(moved.positions.end(), layer.positions.begin(), layer.positions.end());
-  for (NamedDeltas& unit : moved.units) unit.deltas.resize(moved.positions.size(), glm::vec3(0.0f));
+  appendStill(moved, layer);
   if (layer.positions.empty()) return;
   const TriangleGrid grid(skin.positions, skin.triangles, {});
   const float reach = 0.1f * eyeSpan;
