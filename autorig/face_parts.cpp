@@ -411,22 +411,29 @@ std::optional<FacePart> wholePrimitivePart(const std::vector<glm::vec3>& positio
   return std::nullopt;
 }
 
-void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p, const FaceFrame& f,
-                       FaceParts& parts, std::vector<TeethPiece>& teeth) {
+// A primitive's connected pieces, each its vertices (positions closer than
+// 1e-5 eye spans joined).
+std::vector<std::vector<uint32_t>> piecesOf(const eng::Model& model, const PosedPrimitive& p, const FaceFrame& f) {
+  uint32_t count = 0;
+  const std::vector<uint32_t> label =
+      components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
+  std::vector<std::vector<uint32_t>> members(count);
+  for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
+  return members;
+}
+
+void classifyPrimitive(const eng::Model& model, size_t index, const PosedPrimitive& p,
+                       const std::vector<std::vector<uint32_t>>& members, const FaceFrame& f, FaceParts& parts,
+                       std::vector<TeethPiece>& teeth) {
   std::vector<FacePart>& out = parts.vertexParts[index];
   out.assign(p.positions.size(), FacePart::Skin);
   if (p.positions.empty()) return;
   const std::optional<FacePart> named = facePartFromNames(model, p);
   const bool rowNamed = named == FacePart::LowerTeeth || (named == FacePart::UpperTeeth &&
                                                            teethRowNamed(primitiveNames(model, p)).has_value());
-  uint32_t count = 0;
-  const std::vector<uint32_t> label =
-      components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
-  std::vector<std::vector<uint32_t>> members(count);
-  for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
   std::vector<Component> pieces;
   pieces.reserve(members.size());
-  for (std::vector<uint32_t>& vertices : members) pieces.push_back(describe(p.positions, std::move(vertices)));
+  for (const std::vector<uint32_t>& vertices : members) pieces.push_back(describe(p.positions, vertices));
   if (!named && !bothEyeballs(pieces, f)) {
     if (const std::optional<FacePart> whole = wholePrimitivePart(p.positions, f)) {
       out.assign(p.positions.size(), *whole);
@@ -714,8 +721,9 @@ bool insideTheLips(const glm::vec3& p, const FaceFrame& f) {
 // largest; lying on it: seven in ten of its vertices within 5% of the eye
 // span outside it, on skin facing forward or not deep behind the lips (the
 // tongue lies as close over the mouth's floor, the teeth by the lips' inside).
-void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed, const FaceFrame& f, FaceParts& parts,
-                         std::vector<TeethPiece>& teeth) {
+void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed,
+                         const std::vector<std::vector<std::vector<uint32_t>>>& piecesOfPrimitive, const FaceFrame& f,
+                         FaceParts& parts, std::vector<TeethPiece>& teeth) {
   struct Piece {
     size_t primitive;
     bool named;  // its primitive's names tell its part
@@ -728,16 +736,11 @@ void findLayersOnTheSkin(const eng::Model& model, const PosedFace& posed, const 
     const std::vector<FacePart>& part = parts.vertexParts[i];
     if (p.positions.empty()) continue;
     const bool named = facePartFromNames(model, p).has_value();
-    uint32_t count = 0;
-    const std::vector<uint32_t> label =
-        components(p.positions, model.meshes[p.mesh].primitives[p.primitive].indices, 1e-5f * f.span, count);
-    std::vector<std::vector<uint32_t>> members(count);
-    for (uint32_t v = 0; v < label.size(); ++v) members[label[v]].push_back(v);
-    for (std::vector<uint32_t>& piece : members) {
+    for (const std::vector<uint32_t>& piece : piecesOfPrimitive[i]) {
       const FacePart kind = part[piece.front()];
       if (kind == FacePart::Skin) largest = std::max(largest, piece.size());
       if (kind == FacePart::Skin || (!named && (kind == FacePart::UpperTeeth || kind == FacePart::LowerTeeth)))
-        (kind == FacePart::Skin ? skinPieces : candidates).push_back({i, named, std::move(piece)});
+        (kind == FacePart::Skin ? skinPieces : candidates).push_back({i, named, piece});
     }
   }
   // Small unnamed skin pieces are candidates too; the large ones are the skin.
@@ -784,8 +787,12 @@ FaceParts findFaceParts(const eng::Model& model, const PosedFace& posed, const F
   const FaceFrame frame = faceFrame(landmarks);
   parts.vertexParts.resize(posed.primitives.size());
   std::vector<TeethPiece> teeth;
-  for (size_t i = 0; i < posed.primitives.size(); ++i) classifyPrimitive(model, i, posed.primitives[i], frame, parts, teeth);
-  findLayersOnTheSkin(model, posed, frame, parts, teeth);
+  std::vector<std::vector<std::vector<uint32_t>>> pieces(posed.primitives.size());
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    pieces[i] = piecesOf(model, posed.primitives[i], frame);
+    classifyPrimitive(model, i, posed.primitives[i], pieces[i], frame, parts, teeth);
+  }
+  findLayersOnTheSkin(model, posed, pieces, frame, parts, teeth);
   takeOutLining(posed, teeth, frame, parts);
   takeOutTongue(posed, teeth, frame, parts);
   splitTeethRows(posed, teeth, frame, parts);

@@ -960,7 +960,8 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
   Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
   const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::SkinLayer});
-  appendOnSkin(moved, onSkin, tgt, skinNormals(tgt), frame.eyeSpan());
+  const std::vector<glm::vec3> tgtNormals = skinNormals(tgt);
+  appendOnSkin(moved, onSkin, tgt, tgtNormals, frame.eyeSpan());
   // The eyeballs: no unit moves them, the gaze shapes turn them. The upper
   // teeth neither, but a face's own shape may (useOwnShapes).
   const FaceSurface still = gatherSurface(face, posed, parts, {FacePart::EyeballRight, FacePart::EyeballLeft, FacePart::UpperTeeth});
@@ -979,7 +980,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     vertexParts.insert(vertexParts.end(), jaw.parts.begin(), jaw.parts.end());
     vertexParts.insert(vertexParts.end(), onSkin.parts.begin(), onSkin.parts.end());
     vertexParts.insert(vertexParts.end(), still.parts.begin(), still.parts.end());
-    std::vector<glm::vec3> normals = skinNormals(tgt);
+    std::vector<glm::vec3> normals = tgtNormals;
     normals.resize(moved.positions.size(), glm::vec3(0.0f));
     const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,
                                  .landmarks = &landmarks, .frame = &frame, .faceParts = &parts};
