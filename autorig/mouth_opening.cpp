@@ -1,6 +1,7 @@
 #include "autorig/mouth_opening.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -26,7 +27,11 @@ namespace {
 // below the lip line, behind the lips' middle, and past the corners.
 constexpr float kMouthBoxHeight = 0.2f;
 constexpr float kMouthBoxDepth = 0.12f;
-// Vertices this far above (below) the lip line are the upper (lower) lip.
+// Vertices past the middle of a lip (halfway between its inner and outer
+// landmarks), and at least this far off the lip line, are surely that lip.
+// The line alone misled: closed lips under a moustache are seen parted by
+// 0.1 eye spans, the line runs between the rims, and the upper lip's rim,
+// curling in, reached below it as far as the lower lip's seeds.
 constexpr float kLipSeed = 0.05f;
 // Fewer seam vertices than this are no welded mouth.
 constexpr size_t kMinSeamVertices = 3;
@@ -43,7 +48,23 @@ struct MouthBox {
   float left = 0.0f, right = 0.0f;  // the corners across the midline, eye spans
   float margin = 0.0f;              // past (or within) the corners, eye spans
   glm::vec3 corners[2]{};           // landmarks 48 and 54
+  float upperSeed = kLipSeed;       // above the lip line, eye spans: surely the upper lip
+  float lowerSeed = kLipSeed;       // below it: surely the lower lip
 };
+
+// Each lip's middle off the lip line, in eye spans (at least kLipSeed): the
+// mean of its inner and outer landmarks across the mouth's middle.
+void placeLipSeeds(MouthBox& box, const LandmarkFrame& frame, const FaceLandmarks& landmarks) {
+  constexpr std::array<std::array<size_t, 2>, 3> kUpper{{{50, 61}, {51, 62}, {52, 63}}};
+  constexpr std::array<std::array<size_t, 2>, 3> kLower{{{58, 67}, {57, 66}, {56, 65}}};
+  float upper = 0.0f, lower = 0.0f;
+  for (const auto& [outer, inner] : kUpper)
+    upper += (frame.aboveLipLine(landmarks.points[outer]) + frame.aboveLipLine(landmarks.points[inner])) / 6.0f;
+  for (const auto& [outer, inner] : kLower)
+    lower -= (frame.aboveLipLine(landmarks.points[outer]) + frame.aboveLipLine(landmarks.points[inner])) / 6.0f;
+  box.upperSeed = std::max(kLipSeed, upper);
+  box.lowerSeed = std::max(kLipSeed, lower);
+}
 
 // Where welded lips meet: the cheapest way along the skin's edges from one
 // mouth corner to the other, an edge costing its length, less where it runs
@@ -163,14 +184,15 @@ std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGra
 }
 
 
-// The vertices of the box clearly above (sign 1) or below (-1) the lip line,
-// between the corners `within` of the mouth's width off its middle (1: all).
+// The vertices of the box more than `offLine` eye spans above (sign 1) or
+// below (-1) the lip line, between the corners `within` of the mouth's width
+// off its middle (1: all).
 std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
-                           const MouthBox& box, float sign, float within) {
+                           const MouthBox& box, float sign, float within, float offLine) {
   const float middle = 0.5f * (box.left + box.right), half = within * 0.5f * (box.right - box.left);
   std::vector<char> seeds(world.size(), 0);
   for (size_t v = 0; v < world.size(); ++v)
-    seeds[v] = g.inMouth[v] && sign * frame.aboveLipLine(world[v]) > kLipSeed &&
+    seeds[v] = g.inMouth[v] && sign * frame.aboveLipLine(world[v]) > offLine &&
                (within >= 1.0f || std::abs(frame.sideOf(world[v]) - middle) < half);
   return seeds;
 }
@@ -178,13 +200,14 @@ std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph
 // Welded lips are one surface between the corners: the upper lip's middle
 // reaches the lower's without going near a corner. Separate lips (and a
 // mouth's inside, whose back lies behind the box) join only round the corners.
+// Each lip's seeds lie past its middle, surely on it.
 bool lipsJoinedBetweenTheCorners(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
                                  const MouthBox& box) {
   const float middle = 0.5f * (box.left + box.right), half = 0.5f * (box.right - box.left);
   std::vector<char> nearACorner(world.size(), 0);
   for (size_t v = 0; v < world.size(); ++v) nearACorner[v] = std::abs(frame.sideOf(world[v]) - middle) > 0.75f * half;
-  const std::vector<float> fromUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 0.5f), nearACorner);
-  const std::vector<char> lowerMiddle = lipSeeds(world, g, frame, box, -1.0f, 0.5f);
+  const std::vector<float> fromUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 0.5f, box.upperSeed), nearACorner);
+  const std::vector<char> lowerMiddle = lipSeeds(world, g, frame, box, -1.0f, 0.5f, box.lowerSeed);
   for (size_t v = 0; v < world.size(); ++v)
     if (lowerMiddle[v] && std::isfinite(fromUpper[v])) return true;
   return false;
@@ -192,11 +215,13 @@ bool lipsJoinedBetweenTheCorners(const std::vector<glm::vec3>& world, const Mout
 
 // Each vertex of the mouth's box labelled lower lip or not: nearer, along the
 // edges and never through the crease, to the vertices clearly below the lip
-// line than to those clearly above it.
+// line than to those clearly above it. The seeds lie at one distance off the
+// line: where the lips are welded twice the other weld still joins them, and
+// seeds further off on one side drew the labels' border off the crease.
 std::vector<char> lowerLip(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& crease,
                            const LandmarkFrame& frame, const MouthBox& box) {
-  const std::vector<float> toUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 1.0f), crease);
-  const std::vector<float> toLower = distancesFrom(world, g, lipSeeds(world, g, frame, box, -1.0f, 1.0f), crease);
+  const std::vector<float> toUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 1.0f, kLipSeed), crease);
+  const std::vector<float> toLower = distancesFrom(world, g, lipSeeds(world, g, frame, box, -1.0f, 1.0f, kLipSeed), crease);
   std::vector<char> lower(world.size(), 0);
   for (size_t v = 0; v < world.size(); ++v) lower[v] = g.inMouth[v] && !crease[v] && toLower[v] < toUpper[v];
   return lower;
@@ -434,6 +459,7 @@ MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLa
   box.margin = 0.08f * (box.right - box.left);
   box.corners[0] = p[48];
   box.corners[1] = p[54];
+  placeLipSeeds(box, frame, landmarks);
   bool hasInside = false;
   for (const std::vector<FacePart>& vertexParts : parts.vertexParts)
     for (FacePart part : vertexParts)
