@@ -27,12 +27,17 @@ namespace {
 // below the lip line, behind the lips' middle, and past the corners.
 constexpr float kMouthBoxHeight = 0.2f;
 constexpr float kMouthBoxDepth = 0.12f;
-// Vertices past the middle of a lip (halfway between its inner and outer
-// landmarks), and at least this far off the lip line, are surely that lip.
-// The line alone misled: closed lips under a moustache are seen parted by
-// 0.1 eye spans, the line runs between the rims, and the upper lip's rim,
-// curling in, reached below it as far as the lower lip's seeds.
+// Vertices this far above (below) the lip line are the upper (lower) lip,
+// for telling the lips of a welded mouth apart.
 constexpr float kLipSeed = 0.05f;
+// Whether lips are welded is asked of the skin at each lip's outer border in
+// the middle (landmarks 50-52, 56-58): the vertex nearest each point and those
+// within half the way to the lip's inner point (at most this many eye spans).
+// Heights off the lip line misled: the line is where dlib sees the lips meet,
+// and a lip's rim can reach far across it (Ready Player Me's lips seen parted
+// under a moustache, the upper lip's rim curling in 0.05 eye span below it;
+// the built-in head's lower lip, its rim 0.04 above, the upper lip 0.04 thick).
+constexpr float kBorderSeed = 0.04f;
 // Fewer seam vertices than this are no welded mouth.
 constexpr size_t kMinSeamVertices = 3;
 // Lips welded along more than one line are cut line by line, each cut's seam
@@ -48,23 +53,9 @@ struct MouthBox {
   float left = 0.0f, right = 0.0f;  // the corners across the midline, eye spans
   float margin = 0.0f;              // past (or within) the corners, eye spans
   glm::vec3 corners[2]{};           // landmarks 48 and 54
-  float upperSeed = kLipSeed;       // above the lip line, eye spans: surely the upper lip
-  float lowerSeed = kLipSeed;       // below it: surely the lower lip
+  // Landmarks 50-52 and 56-58, each with how far about it is surely its lip.
+  std::array<std::pair<glm::vec3, float>, 3> upperBorder{}, lowerBorder{};
 };
-
-// Each lip's middle off the lip line, in eye spans (at least kLipSeed): the
-// mean of its inner and outer landmarks across the mouth's middle.
-void placeLipSeeds(MouthBox& box, const LandmarkFrame& frame, const FaceLandmarks& landmarks) {
-  constexpr std::array<std::array<size_t, 2>, 3> kUpper{{{50, 61}, {51, 62}, {52, 63}}};
-  constexpr std::array<std::array<size_t, 2>, 3> kLower{{{58, 67}, {57, 66}, {56, 65}}};
-  float upper = 0.0f, lower = 0.0f;
-  for (const auto& [outer, inner] : kUpper)
-    upper += (frame.aboveLipLine(landmarks.points[outer]) + frame.aboveLipLine(landmarks.points[inner])) / 6.0f;
-  for (const auto& [outer, inner] : kLower)
-    lower -= (frame.aboveLipLine(landmarks.points[outer]) + frame.aboveLipLine(landmarks.points[inner])) / 6.0f;
-  box.upperSeed = std::max(kLipSeed, upper);
-  box.lowerSeed = std::max(kLipSeed, lower);
-}
 
 // Where welded lips meet: the cheapest way along the skin's edges from one
 // mouth corner to the other, an edge costing its length, less where it runs
@@ -165,11 +156,14 @@ std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGra
     const float off = frame.aboveLipLine(world[v]) / kLipLineBand;
     weight[v] = std::exp(kCreasePull * recess) * (1.0f + off * off);
   }
+  // Of the box's vertices with an edge in it: a vertex no triangle uses
+  // (a welded copy left behind) can lie on a corner.
   auto nearest = [&](const glm::vec3& p) {
     uint32_t best = uint32_t(n);
     float bestDistance = std::numeric_limits<float>::max();
     for (size_t v = 0; v < n; ++v)
-      if (g.inMouth[v] && glm::distance(world[v], p) < bestDistance) bestDistance = glm::distance(world[v], p), best = uint32_t(v);
+      if (g.inMouth[v] && !g.neighbours[v].empty() && glm::distance(world[v], p) < bestDistance)
+        bestDistance = glm::distance(world[v], p), best = uint32_t(v);
     return best;
   };
   const uint32_t from = nearest(box.corners[0]), to = nearest(box.corners[1]);
@@ -184,44 +178,66 @@ std::vector<char> creasePath(const std::vector<glm::vec3>& world, const MouthGra
 }
 
 
-// The vertices of the box more than `offLine` eye spans above (sign 1) or
-// below (-1) the lip line, between the corners `within` of the mouth's width
-// off its middle (1: all).
-std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
-                           const MouthBox& box, float sign, float within, float offLine) {
-  const float middle = 0.5f * (box.left + box.right), half = within * 0.5f * (box.right - box.left);
+// The vertices of the box clearly above (sign 1) or below (-1) the lip line.
+std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame, float sign) {
   std::vector<char> seeds(world.size(), 0);
-  for (size_t v = 0; v < world.size(); ++v)
-    seeds[v] = g.inMouth[v] && sign * frame.aboveLipLine(world[v]) > offLine &&
-               (within >= 1.0f || std::abs(frame.sideOf(world[v]) - middle) < half);
+  for (size_t v = 0; v < world.size(); ++v) seeds[v] = g.inMouth[v] && sign * frame.aboveLipLine(world[v]) > kLipSeed;
   return seeds;
 }
 
-// Welded lips are one surface between the corners: the upper lip's middle
-// reaches the lower's without going near a corner. Separate lips (and a
-// mouth's inside, whose back lies behind the box) join only round the corners.
-// Each lip's seeds lie past its middle, surely on it.
+// The vertices of the box at a point of a lip's outer border: within its
+// reach, or nearest it (a coarse mesh's vertices lie further apart) when
+// within kBorderSeed.
+std::vector<char> atTheBorder(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
+                              const std::pair<glm::vec3, float>& border) {
+  const auto& [point, reach] = border;
+  std::vector<char> seeds(world.size(), 0);
+  size_t nearest = world.size();
+  float nearestDistance = kBorderSeed * frame.eyeSpan();
+  for (size_t v = 0; v < world.size(); ++v) {
+    if (!g.inMouth[v]) continue;
+    const float d = glm::distance(world[v], point);
+    if (d < reach) seeds[v] = 1;
+    if (d < nearestDistance) nearestDistance = d, nearest = v;
+  }
+  if (nearest < world.size()) seeds[nearest] = 1;
+  return seeds;
+}
+
+// Welded lips are one surface between the corners: the upper lip's outer
+// border reaches the lower's without leaving the mouth's middle half.
+// Separate lips (and a mouth's inside, whose back lies behind the box) join
+// only round the corners, and facecap's inside its corners, at 0.74 of the
+// half-width off the middle. Two of the three points of each border must
+// reach each other: one landmark can lie on the other lip (the built-in
+// head's upper lip is 0.04 eye span thick).
 bool lipsJoinedBetweenTheCorners(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
                                  const MouthBox& box) {
   const float middle = 0.5f * (box.left + box.right), half = 0.5f * (box.right - box.left);
-  std::vector<char> nearACorner(world.size(), 0);
-  for (size_t v = 0; v < world.size(); ++v) nearACorner[v] = std::abs(frame.sideOf(world[v]) - middle) > 0.75f * half;
-  const std::vector<float> fromUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 0.5f, box.upperSeed), nearACorner);
-  const std::vector<char> lowerMiddle = lipSeeds(world, g, frame, box, -1.0f, 0.5f, box.lowerSeed);
-  for (size_t v = 0; v < world.size(); ++v)
-    if (lowerMiddle[v] && std::isfinite(fromUpper[v])) return true;
-  return false;
+  std::vector<char> offTheMiddle(world.size(), 0);
+  for (size_t v = 0; v < world.size(); ++v) offTheMiddle[v] = std::abs(frame.sideOf(world[v]) - middle) > 0.5f * half;
+  std::vector<std::vector<char>> lower;
+  for (const auto& point : box.lowerBorder) lower.push_back(atTheBorder(world, g, frame, point));
+  int joined = 0;
+  for (const auto& point : box.upperBorder) {
+    const std::vector<float> fromUpper = distancesFrom(world, g, atTheBorder(world, g, frame, point), offTheMiddle);
+    const auto reached = std::count_if(lower.begin(), lower.end(), [&](const std::vector<char>& seeds) {
+      for (size_t v = 0; v < world.size(); ++v)
+        if (seeds[v] && std::isfinite(fromUpper[v])) return true;
+      return false;
+    });
+    joined += reached >= 2;
+  }
+  return joined >= 2;
 }
 
 // Each vertex of the mouth's box labelled lower lip or not: nearer, along the
 // edges and never through the crease, to the vertices clearly below the lip
-// line than to those clearly above it. The seeds lie at one distance off the
-// line: where the lips are welded twice the other weld still joins them, and
-// seeds further off on one side drew the labels' border off the crease.
+// line than to those clearly above it.
 std::vector<char> lowerLip(const std::vector<glm::vec3>& world, const MouthGraph& g, const std::vector<char>& crease,
-                           const LandmarkFrame& frame, const MouthBox& box) {
-  const std::vector<float> toUpper = distancesFrom(world, g, lipSeeds(world, g, frame, box, 1.0f, 1.0f, kLipSeed), crease);
-  const std::vector<float> toLower = distancesFrom(world, g, lipSeeds(world, g, frame, box, -1.0f, 1.0f, kLipSeed), crease);
+                           const LandmarkFrame& frame) {
+  const std::vector<float> toUpper = distancesFrom(world, g, lipSeeds(world, g, frame, 1.0f), crease);
+  const std::vector<float> toLower = distancesFrom(world, g, lipSeeds(world, g, frame, -1.0f), crease);
   std::vector<char> lower(world.size(), 0);
   for (size_t v = 0; v < world.size(); ++v) lower[v] = g.inMouth[v] && !crease[v] && toLower[v] < toUpper[v];
   return lower;
@@ -264,7 +280,7 @@ size_t cutWeldedLips(eng::Primitive& prim, CutSurface& surface, const LandmarkFr
   const MouthGraph graph = mouthGraph(prim, world, parts, surface.leftOut, frame, box);
   if (!lipsJoinedBetweenTheCorners(world, graph, frame, box)) return 0;
   const std::vector<char> crease = creasePath(world, graph, frame, box);
-  const std::vector<char> lower = lowerLip(world, graph, crease, frame, box);
+  const std::vector<char> lower = lowerLip(world, graph, crease, frame);
   // The seam: crease vertices between the corners with the upper lip on one
   // side and the lower on the other (separate lips' crease runs along one
   // lip's rim). Each gets a copy for the triangles that reach the lower lip;
@@ -459,7 +475,11 @@ MouthOpening openTheMouth(eng::Model& face, const PosedFace& posed, const FaceLa
   box.margin = 0.08f * (box.right - box.left);
   box.corners[0] = p[48];
   box.corners[1] = p[54];
-  placeLipSeeds(box, frame, landmarks);
+  auto border = [&](size_t outer, size_t inner) {
+    return std::pair{p[outer], std::min(kBorderSeed * frame.eyeSpan(), 0.5f * glm::distance(p[outer], p[inner]))};
+  };
+  box.upperBorder = {border(50, 61), border(51, 62), border(52, 63)};
+  box.lowerBorder = {border(58, 67), border(57, 66), border(56, 65)};
   bool hasInside = false;
   for (const std::vector<FacePart>& vertexParts : parts.vertexParts)
     for (FacePart part : vertexParts)
