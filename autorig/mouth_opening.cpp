@@ -70,6 +70,7 @@ constexpr float kLipLineBand = 0.06f;   // eye spans off the lip line where the 
 struct MouthGraph {
   std::vector<char> inMouth;                    // the vertex is skin in the mouth's box
   std::vector<std::vector<uint32_t>> neighbours;  // edges within the box
+  float typicalEdge = 0.0f;                     // their median length, world units
 };
 
 MouthGraph mouthGraph(const eng::Primitive& prim, const std::vector<glm::vec3>& world, const std::vector<FacePart>& parts,
@@ -85,13 +86,19 @@ MouthGraph mouthGraph(const eng::Primitive& prim, const std::vector<glm::vec3>& 
                    depth > -kMouthBoxDepth;
   }
   g.neighbours.resize(n);
+  std::vector<float> lengths;
   for (size_t t = 0; t + 2 < prim.indices.size(); t += 3)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = prim.indices[t + size_t(k)], b = prim.indices[t + size_t((k + 1) % 3)];
       if (a >= n || b >= n || !g.inMouth[a] || !g.inMouth[b]) continue;
       g.neighbours[a].push_back(b);
       g.neighbours[b].push_back(a);
+      lengths.push_back(glm::distance(world[a], world[b]));
     }
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+    g.typicalEdge = lengths[lengths.size() / 2];
+  }
   return g;
 }
 
@@ -187,13 +194,13 @@ std::vector<char> lipSeeds(const std::vector<glm::vec3>& world, const MouthGraph
 
 // The vertices of the box at a point of a lip's outer border: within its
 // reach, or nearest it (a coarse mesh's vertices lie further apart) when
-// within kBorderSeed.
+// within kBorderSeed or one and a half of the box's edges.
 std::vector<char> atTheBorder(const std::vector<glm::vec3>& world, const MouthGraph& g, const LandmarkFrame& frame,
                               const std::pair<glm::vec3, float>& border) {
   const auto& [point, reach] = border;
   std::vector<char> seeds(world.size(), 0);
   size_t nearest = world.size();
-  float nearestDistance = kBorderSeed * frame.eyeSpan();
+  float nearestDistance = std::max(kBorderSeed * frame.eyeSpan(), 1.5f * g.typicalEdge);
   for (size_t v = 0; v < world.size(); ++v) {
     if (!g.inMouth[v]) continue;
     const float d = glm::distance(world[v], point);
