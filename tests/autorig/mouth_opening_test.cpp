@@ -227,7 +227,8 @@ TEST(MouthOpening, LeavesAFaceWithSeparateLipsAndAMouthAlone) {
 // on that avatar). Told by the height off that line, 9 of these 11 separate
 // mouths were cut and one welded mouth was not (its corner's nearest vertex
 // was a welded copy no triangle used); with noise of 0.02 to 0.04 eye span on
-// dlib's lip points, 17 of 72 rigs of three faces cut separate lips.
+// dlib's points, 18 of 42 rigs of three faces cut separate lips
+// (tools/landmark_noise.py).
 TEST(MouthOpening, TellsWeldedFromSeparateLipsWhereverTheLipPointsLie) {
   std::optional<eng::Model> head = loadHead();
   ASSERT_TRUE(head);

@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""How a face's rig holds up when its landmarks are a little off, as dlib's
+are on a face it does not know.
+
+usage: tools/landmark_noise.py MODEL [--sigma 0.02,0.03] [--draws 4] [--seed 1]
+                               [--judge] [--size 384] [--keep DIR]
+                               [--facial build/bin/facial] [--judge-script ../shared/judge/fer_judge.py]
+
+Rigs MODEL once with the landmarks `facial autorig` finds (or reads beside
+it), then again for each draw with Gaussian noise of --sigma eye spans (the
+distance between the outer eye corners) on the points 17-67 in the face's
+plane (the jaw line, 0-16, is left as found: on the outline a step across
+the face is a step off the surface, which --landmarks refuses). Prints, per
+rig, what changed in `facial autorig`'s notes (a mouth cut open, a landmark
+refused) and, with --judge, how many of the seven states the shared
+expression judge names (tools/judged_sheet.py, --size px). --keep DIR keeps
+the landmark files, the rigs and the judged sheets there to look at.
+docs/autorig.md has what it found.
+Needs Debian's python3-numpy (./bootstrap.sh installs it), and python3-opencv with --judge.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+
+def face_plane(points):
+    """The face's side and up axes (as autorig::LandmarkFrame) and its eye span."""
+    span = np.linalg.norm(points[45] - points[36])
+    side = (points[45] - points[36]) / span
+    rise = (points[36] + points[39] + points[42] + points[45]) / 4.0 - points[8]
+    up = rise - rise.dot(side) * side
+    return side, up / np.linalg.norm(up), span
+
+
+def rig(facial, model, out, details, extra=()):
+    """Runs `facial autorig`; returns (ok, the notes worth comparing, its last error line)."""
+    cmd = [facial, "autorig", model, "--out", out, *extra] + ([] if details else ["--no-details"])
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    lines = (run.stdout + run.stderr).splitlines()
+    notes = [re.sub(r"^parts: ", "", l) for l in lines if "lips welded" in l or "error" in l or "warning" in l]
+    errors = [l for l in lines if "error" in l]
+    return run.returncode == 0, notes, errors[-1] if errors else "autorig failed"
+
+
+def judged(root, facial, judge, model, sheet, size):
+    """The judge's count of named states and the states it missed."""
+    run = subprocess.run([sys.executable, os.path.join(root, "tools", "judged_sheet.py"), sheet, "--model", model,
+                          "--facial", facial, "--judge", judge, "--size", str(size)], capture_output=True, text=True)
+    if run.returncode != 0:
+        return f"judge failed: {run.stderr.strip()}"
+    count = re.search(r"recognized (\d+/\d+)", run.stdout)
+    missed = [m.group(1) for m in re.finditer(r"^(\w+)\.png: .*MISS$", run.stdout, re.M)]
+    return f"{count.group(1) if count else '?'} named" + (f" (missed {', '.join(missed)})" if missed else "")
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("model")
+    ap.add_argument("--sigma", default="0.02", help="noise per coordinate, eye spans (comma-separated list)")
+    ap.add_argument("--draws", type=int, default=4)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--judge", action="store_true", help="judge each rig's seven states (about 20 s a rig)")
+    ap.add_argument("--size", type=int, default=384)
+    ap.add_argument("--keep", default="", help="folder for the landmarks, rigs and sheets")
+    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
+    ap.add_argument("--judge-script", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    a = ap.parse_args()
+    if not os.path.exists(a.model):
+        sys.exit(f"landmark_noise: {a.model}: no such file")
+    if a.judge and not os.path.exists(a.judge_script):
+        sys.exit(f"landmark_noise: {a.judge_script}: no judge here (it lives in ../shared/judge)")
+    try:
+        sigmas = [float(s) for s in a.sigma.split(",")]
+    except ValueError:
+        sys.exit(f"landmark_noise: --sigma {a.sigma}: not a comma-separated list of numbers")
+
+    with tempfile.TemporaryDirectory() as tmp:
+        work = a.keep or tmp
+        os.makedirs(work, exist_ok=True)
+        found = os.path.join(work, "landmarks.json")
+        clean = os.path.join(work, "rig.glb")
+        ok, baseline, error = rig(a.facial, a.model, clean, a.judge, ["--landmarks-out", found])
+        if not ok:
+            sys.exit(f"landmark_noise: {error}")
+        points = np.array(json.load(open(found))["landmarks68"], dtype=float)
+        side, up, span = face_plane(points)
+        line = f"as found: {'; '.join(baseline) or 'no mouth cut'}"
+        if a.judge:
+            line += "; " + judged(root, a.facial, a.judge_script, clean, os.path.join(work, "sheet.png"), a.size)
+        print(line, flush=True)
+
+        rng = np.random.default_rng(a.seed)
+        cut_before = any("lips welded" in n for n in baseline)
+        cut_otherwise = refused = total = 0
+        for sigma in sigmas:
+            for draw in range(a.draws):
+                noisy = points.copy()
+                shift = rng.standard_normal((68, 2)) * sigma * span
+                noisy[17:] += shift[17:, :1] * side + shift[17:, 1:] * up
+                name = f"sigma{sigma:g}_draw{draw}"
+                path = os.path.join(work, name + ".json")
+                with open(path, "w") as f:
+                    json.dump({"landmarks68": noisy.tolist()}, f)
+                out = os.path.join(work, name + ".glb")
+                ok, notes, _ = rig(a.facial, a.model, out, a.judge, ["--landmarks", path])
+                total += 1
+                refused += not ok
+                cut_otherwise += ok and any("lips welded" in n for n in notes) != cut_before
+                line = f"sigma {sigma:g} draw {draw}: {'; '.join(notes) or 'no mouth cut'}"
+                if ok and a.judge:
+                    line += "; " + judged(root, a.facial, a.judge_script, out, os.path.join(work, name + ".png"), a.size)
+                print(line, flush=True)
+        print(f"of {total} noisy landmark sets: {refused} refused (a point off the surface), "
+              f"{cut_otherwise} {'left the welded lips joined' if cut_before else 'cut the separate lips'}")
+
+
+if __name__ == "__main__":
+    main()
