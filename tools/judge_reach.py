@@ -30,6 +30,8 @@ import tempfile
 
 from judge_regions import JUDGE_LABEL, load_judge
 
+from tool_paths import ROOT, add_facial_and_judge
+
 # The default --extra: action units that often come with the basic states (lids, lip press, blink).
 DEFAULT_EXTRA = "AU6_CheekRaiser,AU7_LidTightener,AU24_LipPressor,AU45_Blink_L+AU45_Blink_R"
 
@@ -63,7 +65,6 @@ def sample_mix(rng, preset, extra):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("state")
     ap.add_argument("--model", default="", help="face file (default: the built-in head)")
@@ -73,9 +74,8 @@ def main():
                     help="action-unit channels to add to some mixes, comma-separated; + joins the sides of one unit")
     ap.add_argument("--size", type=int, default=256)
     ap.add_argument("--best", type=int, default=5)
-    ap.add_argument("--data", default=os.path.join(root, "data"), help="data folder whose expressions.json holds STATE")
-    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
-    ap.add_argument("--judge", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    ap.add_argument("--data", default=os.path.join(ROOT, "data"), help="data folder whose expressions.json holds STATE")
+    add_facial_and_judge(ap)
     a = ap.parse_args()
     if not os.path.exists(a.judge):
         sys.exit(f"judge_reach: {a.judge}: no judge here (it lives in ../shared/judge)")

@@ -27,6 +27,8 @@ import tempfile
 import cv2
 import numpy as np
 
+from tool_paths import add_facial_and_judge
+
 EYE_CASCADE = "/usr/share/opencv4/haarcascades/haarcascade_eye.xml"  # Debian's opencv-data
 JUDGE_LABEL = {"anger": "angry"}  # the judge's word for a state, where it differs
 # Rows and columns of the judge's 64x64 face crop (the detector's box plus a
@@ -115,15 +117,13 @@ def region_mask(rows_cols):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("state")
     ap.add_argument("--reference", required=True, help="a face the judge names STATE on")
     ap.add_argument("--model", default="", help="face file (default: the built-in head)")
     ap.add_argument("--size", type=int, default=256)
     ap.add_argument("--yaw", type=float, default=0.0)
-    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
-    ap.add_argument("--judge", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    add_facial_and_judge(ap)
     a = ap.parse_args()
     if not os.path.exists(a.judge):
         sys.exit(f"judge_regions: {a.judge}: no judge here (it lives in ../shared/judge)")

@@ -33,6 +33,8 @@ import numpy as np
 
 from judge_regions import JUDGE_LABEL, crop_box, face_box, load_judge
 
+from tool_paths import add_facial_and_judge
+
 STATES = ["neutral", "happy", "sad", "surprise", "fear", "anger", "disgust"]
 
 
@@ -41,11 +43,9 @@ def numbers(text, kind):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--model", default="", help="face file (default: the built-in head)")
-    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
-    ap.add_argument("--judge", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    add_facial_and_judge(ap)
     ap.add_argument("--sizes", default="224,256,320,384")
     ap.add_argument("--yaws", default="-4,0,4")
     ap.add_argument("--crop-scales", default="", help="also judge crops k times the detector's box (1.2 = the judge's)")

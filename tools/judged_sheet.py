@@ -20,17 +20,17 @@ import tempfile
 import cv2
 import numpy as np
 
+from tool_paths import add_facial_and_judge
+
 STATES = ["neutral", "happy", "sad", "surprise", "fear", "anger", "disgust"]
 JUDGE_LABEL = {"anger": "angry"}  # the judge's word for a state, where it differs
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out")
     ap.add_argument("--model", default="", help="face file (default: the built-in head)")
-    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
-    ap.add_argument("--judge", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    add_facial_and_judge(ap)
     ap.add_argument("--size", type=int, default=256)
     a = ap.parse_args()
     if not os.path.exists(a.judge):

@@ -28,6 +28,8 @@ import tempfile
 
 import numpy as np
 
+from tool_paths import ROOT, add_facial_and_judge
+
 
 def face_plane(points):
     """The face's side and up axes (as autorig::LandmarkFrame) and its eye span."""
@@ -48,9 +50,9 @@ def rig(facial, model, out, details, extra=()):
     return run.returncode == 0, notes, errors[-1] if errors else "autorig failed"
 
 
-def judged(root, facial, judge, model, sheet, size):
+def judged(facial, judge, model, sheet, size):
     """The judge's count of named states and the states it missed."""
-    run = subprocess.run([sys.executable, os.path.join(root, "tools", "judged_sheet.py"), sheet, "--model", model,
+    run = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "judged_sheet.py"), sheet, "--model", model,
                           "--facial", facial, "--judge", judge, "--size", str(size)], capture_output=True, text=True)
     if run.returncode != 0:
         return f"judge failed: {run.stderr.strip()}"
@@ -60,7 +62,6 @@ def judged(root, facial, judge, model, sheet, size):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("model")
     ap.add_argument("--sigma", default="0.02", help="noise per coordinate, eye spans (comma-separated list)")
@@ -69,8 +70,7 @@ def main():
     ap.add_argument("--judge", action="store_true", help="judge each rig's seven states (about 20 s a rig)")
     ap.add_argument("--size", type=int, default=384)
     ap.add_argument("--keep", default="", help="folder for the landmarks, rigs and sheets")
-    ap.add_argument("--facial", default=os.path.join(root, "build", "bin", "facial"))
-    ap.add_argument("--judge-script", default=os.path.join(os.path.dirname(root), "shared", "judge", "fer_judge.py"))
+    add_facial_and_judge(ap, "--judge-script")
     a = ap.parse_args()
     if not os.path.exists(a.model):
         sys.exit(f"landmark_noise: {a.model}: no such file")
@@ -93,7 +93,7 @@ def main():
         side, up, span = face_plane(points)
         line = f"as found: {'; '.join(baseline) or 'no mouth cut'}"
         if a.judge:
-            line += "; " + judged(root, a.facial, a.judge_script, clean, os.path.join(work, "sheet.png"), a.size)
+            line += "; " + judged(a.facial, a.judge_script, clean, os.path.join(work, "sheet.png"), a.size)
         print(line, flush=True)
 
         rng = np.random.default_rng(a.seed)
@@ -115,7 +115,7 @@ def main():
                 cut_otherwise += ok and any("lips welded" in n for n in notes) != cut_before
                 line = f"sigma {sigma:g} draw {draw}: {'; '.join(notes) or 'no mouth cut'}"
                 if ok and a.judge:
-                    line += "; " + judged(root, a.facial, a.judge_script, out, os.path.join(work, name + ".png"), a.size)
+                    line += "; " + judged(a.facial, a.judge_script, out, os.path.join(work, name + ".png"), a.size)
                 print(line, flush=True)
         print(f"of {total} noisy landmark sets: {refused} refused (a point off the surface), "
               f"{cut_otherwise} {'left the welded lips joined' if cut_before else 'cut the separate lips'}")
