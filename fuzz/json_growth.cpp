@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -80,12 +81,21 @@ void growObject(Json& object, std::mt19937& rng) {
   for (size_t k = 0; k < copies; ++k) object[key + "_" + std::to_string(k)] = value;
 }
 
-// Bigger: counts, indices, durations and times scaled up.
+// Bigger: counts, indices, durations and times scaled up; an integer
+// saturates at int64's bounds (grown again, it overflowed: the mutator's own
+// undefined behaviour, which the sanitizer rightly reported).
 void growNumber(Json& number, std::mt19937& rng) {
   constexpr double kFactors[] = {2.0, 16.0, 1000.0, 1e6};
   const double factor = kFactors[rng() % std::size(kFactors)];
-  if (number.is_number_integer()) number = number.get<int64_t>() * static_cast<int64_t>(factor);
-  else number = number.get<double>() * factor;
+  if (number.is_number_integer()) {
+    const int64_t value = number.get<int64_t>();
+    int64_t grown = 0;
+    if (__builtin_mul_overflow(value, static_cast<int64_t>(factor), &grown))
+      grown = value < 0 ? std::numeric_limits<int64_t>::min() : std::numeric_limits<int64_t>::max();
+    number = grown;
+  } else {
+    number = number.get<double>() * factor;
+  }
 }
 
 }  // namespace
