@@ -50,6 +50,10 @@ def rig(facial, model, out, details, extra=()):
     return run.returncode == 0, notes, errors[-1] if errors else "autorig failed"
 
 
+def cuts_the_mouth(notes):
+    return any("lips welded" in n for n in notes)
+
+
 def judged(facial, judge, model, sheet, size):
     """The judge's count of named states and the states it missed."""
     run = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "judged_sheet.py"), sheet, "--model", model,
@@ -97,7 +101,7 @@ def main():
         print(line, flush=True)
 
         rng = np.random.default_rng(a.seed)
-        cut_before = any("lips welded" in n for n in baseline)
+        cut_before = cuts_the_mouth(baseline)
         cut_otherwise = refused = total = 0
         for sigma in sigmas:
             for draw in range(a.draws):
@@ -112,7 +116,7 @@ def main():
                 ok, notes, _ = rig(a.facial, a.model, out, a.judge, ["--landmarks", path])
                 total += 1
                 refused += not ok
-                cut_otherwise += ok and any("lips welded" in n for n in notes) != cut_before
+                cut_otherwise += ok and cuts_the_mouth(notes) != cut_before
                 line = f"sigma {sigma:g} draw {draw}: {'; '.join(notes) or 'no mouth cut'}"
                 if ok and a.judge:
                     line += "; " + judged(a.facial, a.judge_script, out, os.path.join(work, name + ".png"), a.size)
