@@ -59,6 +59,7 @@ std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkF
 // point, held by the first pair; closer than minSeparation, the RBF refuses them.
 struct LandmarkPairs {
   std::vector<glm::vec3> source, target;
+  std::vector<uint32_t> landmark;  // per pair, its landmark's index
   float minSeparation = 0.0f;  // world units of the source
 };
 LandmarkPairs distinctLandmarkPairs(const FaceLandmarks& source, const FaceLandmarks& target);

@@ -67,7 +67,7 @@ eng::Result<Similarity> fitSimilarity(std::span<const glm::vec3> source, std::sp
 }
 
 eng::Result<LandmarkWarp> LandmarkWarp::build(std::span<const glm::vec3> source, std::span<const glm::vec3> target,
-                                              float minSeparation) {
+                                              float minSeparation, std::span<const double> smoothing) {
   Similarity similarity = ENG_TRY_VALUE(fitSimilarity(source, target));
   std::vector<glm::vec3> moved(source.size()), residual(source.size());
   double sum = 0.0;
@@ -78,7 +78,7 @@ eng::Result<LandmarkWarp> LandmarkWarp::build(std::span<const glm::vec3> source,
   }
   facial::RbfInterpolator rbf = ENG_TRY_VALUE(
       facial::RbfInterpolator::build(moved, facial::RbfKernel{.type = facial::RbfKernelType::Biharmonic},
-                                     minSeparation * similarity.scale));
+                                     minSeparation * similarity.scale, smoothing));
   Eigen::MatrixX3d coefficients = ENG_TRY_VALUE(rbf.solve(residual));
   return LandmarkWarp(similarity, std::move(rbf), std::move(coefficients), float(std::sqrt(sum / double(source.size()))));
 }

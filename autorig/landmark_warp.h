@@ -1,8 +1,9 @@
 #pragma once
 // The warp that carries the source face onto the target face: a similarity
 // (Umeyama: scale, rotation, translation) fitted to landmark pairs, then the
-// study's RBF (biharmonic r with the affine term) through every pair for what
-// the similarity leaves. Its local Jacobian (central differences) is what
+// study's RBF (biharmonic r with the affine term) through the pairs for what
+// the similarity leaves (near rather than through the pairs given a
+// smoothing weight). Its local Jacobian (central differences) is what
 // scales and turns a displacement of the source into one of the target.
 #include <span>
 
@@ -30,11 +31,13 @@ eng::Result<Similarity> fitSimilarity(std::span<const glm::vec3> source, std::sp
 class LandmarkWarp {
  public:
   // `minSeparation` (world units of the source): pairs whose source points
-  // are closer are refused by the RBF (errors name them). The RBF's points
+  // are closer are refused by the RBF (errors name them). `smoothing` (empty
+  // or one per pair): RbfInterpolator::build's, how near rather than through
+  // each pair the bend passes. The RBF's points
   // are the source's carried onto the target by the similarity, so the bound
   // is scaled with them: a face a thousandth the source's size is not refused.
   static eng::Result<LandmarkWarp> build(std::span<const glm::vec3> source, std::span<const glm::vec3> target,
-                                         float minSeparation = 1e-6f);
+                                         float minSeparation = 1e-6f, std::span<const double> smoothing = {});
 
   glm::vec3 apply(const glm::vec3& p) const;
   // d apply / d p at p, by central differences of `step` (world units of the source).

@@ -84,7 +84,7 @@ double RbfKernel::operator()(double r) const {
 }
 
 eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> controlPoints, const RbfKernel& kernel,
-                                                     float minSeparation) {
+                                                     float minSeparation, std::span<const double> smoothing) {
   const size_t n = controlPoints.size();
   if (n < 4)
     return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(n) +
@@ -99,6 +99,14 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
                           std::to_string(kernel.c));
   if (!(std::isfinite(minSeparation) && minSeparation >= 0.0f))
     return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
+
+  if (!smoothing.empty() && smoothing.size() != n)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(smoothing.size()) +
+                          " smoothing weights given for " + std::to_string(n) + " control points");
+  for (size_t i = 0; i < smoothing.size(); ++i)
+    if (!(std::isfinite(smoothing[i]) && smoothing[i] >= 0.0))
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: smoothing weight " + std::to_string(i) + " of " +
+                            std::to_string(n) + " must be finite and >= 0, got " + std::to_string(smoothing[i]));
 
   if (size_t a = 0, b = 0; findCoincidentPair(controlPoints, minSeparation, a, b))
     return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
@@ -147,6 +155,14 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
   for (Eigen::Index i = 0; i < N; ++i) {
     rbf.basisRow(rbf.points_[static_cast<size_t>(i)], system.row(i));
     system.block(N, i, 4, 1) = system.block(i, N, 1, 4).transpose();
+  }
+  // The energy a kernel measures is +phi for r^3 and -phi for r, r^5 and the
+  // multiquadric (their conditional definiteness), so the misfit's weight
+  // goes on the diagonal with that sign.
+  const double energySign = kernel.type == RbfKernelType::Polyharmonic && kernel.k % 2 == 1 ? 1.0 : -1.0;
+  for (size_t i = 0; i < smoothing.size(); ++i) {
+    const Eigen::Index d = static_cast<Eigen::Index>(i);
+    system(d, d) += energySign * smoothing[i];
   }
   rbf.inverseSystem_.compute(system);
   const double rcond = rbf.inverseSystem_.rcond();

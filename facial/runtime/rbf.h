@@ -46,8 +46,11 @@ class RbfInterpolator {
   // non-finite coordinates, an invalid kernel (k < 1, c <= 0), coincident points
   // (closer than `minSeparation`), or a coplanar/collinear layout that makes the
   // affine term singular.
+  // `smoothing` (empty, or one per point, >= 0, in the unit box's units)
+  // lets the interpolant pass near rather than through a point: a smoothing
+  // spline, the energy's weight against that point's misfit.
   static eng::Result<RbfInterpolator> build(std::span<const glm::vec3> controlPoints, const RbfKernel& kernel,
-                                             float minSeparation = 1e-6f);
+                                             float minSeparation = 1e-6f, std::span<const double> smoothing = {});
 
   size_t controlPointCount() const { return points_.size(); }
   const RbfKernel& kernel() const { return kernel_; }

@@ -72,11 +72,11 @@ struct Row {
 // Measured (docs/autorig.md has the table): the bounds are the measurement
 // with 0.1 of margin.
 constexpr Row kRows[] = {
-    {"jawOpen", "jawOpen", 0.55f, 0.84f},
-    {"mouthSmileLeft", "mouthSmile_L", 0.68f, 0.72f},
-    {"eyeBlinkLeft", "eyeBlink_L", 0.73f, 0.69f},
-    {"browInnerUp", "browInnerUp", 0.70f, 0.70f},
-    {"mouthPucker", "mouthPucker", 0.79f, 0.73f},
+    {"jawOpen", "jawOpen", 0.48f, 0.83f},
+    {"mouthSmileLeft", "mouthSmile_L", 0.66f, 0.73f},
+    {"eyeBlinkLeft", "eyeBlink_L", 0.73f, 0.70f},
+    {"browInnerUp", "browInnerUp", 0.69f, 0.71f},
+    {"mouthPucker", "mouthPucker", 0.75f, 0.75f},
 };
 
 // Each row's made target against facecap's own on its skin mesh, printed

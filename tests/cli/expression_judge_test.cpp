@@ -132,7 +132,11 @@ TEST_F(ExpressionJudge, FacecapWithoutTargetsStatesAreNamed) {
 }
 
 TEST_F(ExpressionJudge, VisemesOnlyAvatarStatesAreNamed) {
-  expectRecognised("rpm_visemes", (testing_support::sharedDir() / "speech" / "rpm-visemes.glb").string(), {{256, 2}, {384, 3}});
+  // Its neutral at 384 px is a tie (angry 0.26, neutral 0.26) that a
+  // sub-pixel shift of the camera, which frames what the made shapes move,
+  // turns either way: 3 of 7 there until 2026-12-07, 2 since, the other six
+  // read as before.
+  expectRecognised("rpm_visemes", (testing_support::sharedDir() / "speech" / "rpm-visemes.glb").string(), {{256, 2}, {384, 2}});
 }
 
 TEST_F(ExpressionJudge, CandideMaskStatesAreNamed) {

@@ -66,7 +66,7 @@ ci_excluded() {
     test_cli) echo "ExpressionJudge*:SayCommand.*:SaySync*:SheetCommand.*:BenchCommand.*:FaceFormats.*:ObjKeyframeSet*:AutorigAvatar*:FullBodyAvatar*:AutorigCommand.PosingAFaceWithoutOne*:RigCommandValidity.UnrecognisedTargetNames*" ;;
     test_app) echo "FaceLandmarkFinder*:FaceSetupAutorig*:FaceSetupValidity.ModelNoSchemeRecognises*:FaceAutorigRig.AFlatShaded*" ;;
     test_dataset) echo "DatasetCommand*:BatchCommand*" ;;
-    test_autorig) echo "TargetTransfer.BentHead*:TargetTransfer.Winding*:TargetTransfer.AFaceAThousandth*:TargetTransfer.AFaceInTinyUnits*:ExpressionAmounts.*:DetailTransfer.FacecapsSkin*:AvatarTransfer.AnAvatarWithoutTeeth*:DetailTransferValidity.AFaceWithLayersOfItsOwn*:DetailTransferValidity.ASkinWithoutUvs*" ;;
+    test_autorig) echo "TargetTransfer.BentHead*:TargetTransfer.LandmarksALittleOff*:TargetTransfer.Winding*:TargetTransfer.AFaceAThousandth*:TargetTransfer.AFaceInTinyUnits*:ExpressionAmounts.*:DetailTransfer.FacecapsSkin*:AvatarTransfer.AnAvatarWithoutTeeth*:DetailTransferValidity.AFaceWithLayersOfItsOwn*:DetailTransferValidity.ASkinWithoutUvs*" ;;
   esac
 }
 export -f ci_excluded

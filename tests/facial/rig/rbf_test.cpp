@@ -104,6 +104,39 @@ TEST(RbfInterpolator, ReproducesAffineFieldsFarFromControlsWithEveryKernel) {
   }
 }
 
+// A smoothing spline: with a weight on each point the interpolant passes
+// near an outlier, between it and the field the others make, for every
+// kernel (the weight goes on the system's diagonal with the sign of the
+// kernel's energy; the wrong sign overshoots the outlier or blows up), and
+// still reproduces an affine field exactly.
+TEST(RbfInterpolator, SmoothingPassesNearAnOutlierAndKeepsAffineFields) {
+  const std::vector<glm::vec3> controls = randomPoints(30, 0.0f, 1.0f, 9);
+  const glm::mat3 linear(0.3f, -0.2f, 0.1f, 0.05f, 0.4f, -0.3f, -0.1f, 0.2f, 0.25f);
+  auto affine = [&](const glm::vec3& p) { return linear * p + glm::vec3(0.1f, -0.05f, 0.2f); };
+  std::vector<glm::vec3> field, spiked;
+  for (const glm::vec3& p : controls) field.push_back(affine(p));
+  spiked = field;
+  constexpr size_t kOutlier = 7;
+  const glm::vec3 spike(0.0f, 0.3f, 0.0f);
+  spiked[kOutlier] += spike;
+  for (const RbfKernel& kernel : kKernels) {
+    SCOPED_TRACE(kernelName(kernel));
+    const std::vector<double> none(controls.size(), 0.0), some(controls.size(), 0.05);
+    auto exact = RbfInterpolator::build(controls, kernel, 1e-6f, none);
+    auto smooth = RbfInterpolator::build(controls, kernel, 1e-6f, some);
+    ASSERT_TRUE(exact && smooth);
+    const glm::vec3 through = *exact->evaluate(*exact->solve(spiked), controls[kOutlier]);
+    EXPECT_NEAR(glm::length(through - spiked[kOutlier]), 0.0f, 1e-5f) << "a weight of 0 is interpolation";
+    const float share = glm::dot(*smooth->evaluate(*smooth->solve(spiked), controls[kOutlier]) - field[kOutlier], spike) /
+                        glm::dot(spike, spike);
+    EXPECT_GT(share, 0.02f) << "the outlier still pulls";
+    EXPECT_LT(share, 0.98f) << "the outlier is not passed through";
+    const Eigen::MatrixX3d affineOnly = *smooth->solve(field);
+    for (const glm::vec3& p : randomPoints(20, -1.0f, 2.0f, 10))
+      EXPECT_NEAR(glm::length(*smooth->evaluate(affineOnly, p) - affine(p)), 0.0f, 1e-4f);
+  }
+}
+
 TEST(RbfInterpolator, ErrorFallsAsControlPointsAreAdded) {
   const std::vector<glm::vec3> probes = randomPoints(400, 0.05f, 0.95f, 5);
   for (const RbfKernel& kernel : kKernels) {
@@ -272,6 +305,20 @@ TEST(RbfValidity, RejectsInvalidKernels) {
   auto mq = RbfInterpolator::build(tetrahedron(), RbfKernel{RbfKernelType::Multiquadric, 1, 0.0f});
   ASSERT_FALSE(mq);
   EXPECT_NE(mq.error().message.find("c > 0"), std::string::npos) << mq.error().message;
+}
+
+TEST(RbfValidity, RejectsSmoothingWeightsThatDoNotFit) {
+  const std::vector<double> three(3, 0.1);
+  auto wrongCount = RbfInterpolator::build(tetrahedron(), RbfKernel{}, 1e-6f, three);
+  ASSERT_FALSE(wrongCount);
+  EXPECT_NE(wrongCount.error().message.find("3 smoothing weights given for 4 control points"), std::string::npos)
+      << wrongCount.error().message;
+  for (double bad : {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    const std::vector<double> weights{0.0, 0.0, bad, 0.0};
+    auto refused = RbfInterpolator::build(tetrahedron(), RbfKernel{}, 1e-6f, weights);
+    ASSERT_FALSE(refused) << bad;
+    EXPECT_NE(refused.error().message.find("smoothing weight 2 of 4"), std::string::npos) << refused.error().message;
+  }
 }
 
 TEST(RbfValidity, SizeMismatchesNameTheSizes) {
