@@ -13,7 +13,9 @@ plane (the jaw line, 0-16, is left as found: on the outline a step across
 the face is a step off the surface, which --landmarks refuses). Prints, per
 rig, what changed in `facial autorig`'s notes (a mouth cut open, a landmark
 refused) and, with --judge, how many of the seven states the shared
-expression judge names (tools/judged_sheet.py, --size px). --keep DIR keeps
+expression judge names (tools/judged_sheet.py, --size px), and how many
+skin triangles near the mouth the lips' units (AU10-AU27, each at 1) turn
+over: a warp bent by a point off folds the skin there. --keep DIR keeps
 the landmark files, the rigs and the judged sheets there to look at.
 docs/autorig.md has what it found.
 Needs Debian's python3-numpy (./bootstrap.sh installs it), and python3-opencv with --judge.
@@ -22,6 +24,7 @@ import argparse
 import json
 import os
 import re
+import struct
 import subprocess
 import sys
 import tempfile
@@ -38,6 +41,103 @@ def face_plane(points):
     rise = (points[36] + points[39] + points[42] + points[45]) / 4.0 - points[8]
     up = rise - rise.dot(side) * side
     return side, up / np.linalg.norm(up), span
+
+
+LIP_UNITS = ["AU10_UpperLipRaiser", "AU12_LipCornerPuller_L", "AU12_LipCornerPuller_R", "AU15_LipCornerDepressor",
+             "AU16_LowerLipDepressor", "AU18_LipPucker", "AU20_LipStretcher", "AU22_LipFunneler", "AU23_LipTightener",
+             "AU25_LipsPart", "AU26_JawDrop", "AU27_MouthStretch"]
+COMPONENTS = {5120: "b", 5121: "B", 5122: "h", 5123: "H", 5125: "I", 5126: "f"}
+WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
+
+
+class Glb:
+    """The JSON and the accessors of a binary glTF, as `facial autorig` writes it."""
+
+    def __init__(self, path):
+        data = open(path, "rb").read()
+        if data[:4] != b"glTF":
+            raise ValueError(f"{path}: not a binary glTF")
+        offset, self.bin = 12, b""
+        while offset + 8 <= len(data):
+            length, kind = struct.unpack_from("<II", data, offset)
+            chunk = data[offset + 8:offset + 8 + length]
+            if kind == 0x4E4F534A:
+                self.json = json.loads(chunk)
+            elif kind == 0x004E4942:
+                self.bin = chunk
+            offset += 8 + length
+
+    def accessor(self, index):
+        a = self.json["accessors"][index]
+        dtype = np.dtype("<" + COMPONENTS[a["componentType"]])
+        width, count = WIDTH[a["type"]], a["count"]
+        out = np.zeros((count, width), dtype)
+        if "bufferView" in a:
+            view = self.json["bufferViews"][a["bufferView"]]
+            start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+            stride = view.get("byteStride", 0) or width * dtype.itemsize
+            for i in range(width):
+                out[:, i] = np.ndarray((count,), dtype, self.bin, start + i * dtype.itemsize, (stride,))
+        sparse = a.get("sparse")
+        if sparse:
+            def read(part, kind, n):
+                view = self.json["bufferViews"][part["bufferView"]]
+                return np.frombuffer(self.bin, kind, n, view.get("byteOffset", 0) + part.get("byteOffset", 0))
+            rows = read(sparse["indices"], np.dtype("<" + COMPONENTS[sparse["indices"]["componentType"]]), sparse["count"])
+            out[rows] = read(sparse["values"], dtype, sparse["count"] * width).reshape(-1, width)
+        return out
+
+    def world(self, mesh):
+        """The world matrix of the first node that draws `mesh`."""
+        nodes = self.json["nodes"]
+        parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+
+        def local(n):
+            if "matrix" in n:
+                return np.array(n["matrix"], float).reshape(4, 4).T
+            x, y, z, w = n.get("rotation", [0, 0, 0, 1])
+            rotation = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                                 [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                                 [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+            m = np.eye(4)
+            m[:3, :3] = rotation @ np.diag(n.get("scale", [1, 1, 1]))
+            m[:3, 3] = n.get("translation", [0, 0, 0])
+            return m
+        i = next(i for i, n in enumerate(nodes) if n.get("mesh") == mesh)
+        m = np.eye(4)
+        while True:
+            m = local(nodes[i]) @ m
+            if i not in parent:
+                return m
+            i = parent[i]
+
+
+def folded_about_the_mouth(path, points):
+    """Skin triangles within 0.75 of the mouth's width of its middle that a lip unit at 1 turns
+    over, summed over LIP_UNITS, on the mesh with the most vertices among those with AU26."""
+    glb = Glb(path)
+    meshes = [(sum(glb.json["accessors"][p["attributes"]["POSITION"]]["count"] for p in m["primitives"]), i)
+              for i, m in enumerate(glb.json["meshes"]) if "AU26_JawDrop" in (m.get("extras") or {}).get("targetNames", [])]
+    if not meshes:
+        return 0
+    index = max(meshes)[1]
+    mesh, world = glb.json["meshes"][index], glb.world(index)
+    names = mesh["extras"]["targetNames"]
+    middle, width = points[48:68].mean(0), np.linalg.norm(points[54] - points[48])
+    folded = 0
+    for primitive in mesh["primitives"]:
+        rest = glb.accessor(primitive["attributes"]["POSITION"]).astype(float) @ world[:3, :3].T + world[:3, 3]
+        triangles = glb.accessor(primitive["indices"]).reshape(-1, 3).astype(int)
+        triangles = triangles[(np.linalg.norm(rest - middle, axis=1) < 0.75 * width)[triangles].all(1)]
+        a, b, c = (rest[triangles[:, k]] for k in range(3))
+        facing = np.cross(b - a, c - a)
+        for unit in LIP_UNITS:
+            if unit not in names:
+                continue
+            moved = rest + glb.accessor(primitive["targets"][names.index(unit)]["POSITION"]).astype(float) @ world[:3, :3].T
+            a2, b2, c2 = (moved[triangles[:, k]] for k in range(3))
+            folded += int(((facing * np.cross(b2 - a2, c2 - a2)).sum(1) < 0).sum())
+    return folded
 
 
 def rig(facial, model, out, details, extra=()):
@@ -95,7 +195,7 @@ def main():
             sys.exit(f"landmark_noise: {error}")
         points = np.array(json.load(open(found))["landmarks68"], dtype=float)
         side, up, span = face_plane(points)
-        line = f"as found: {'; '.join(baseline) or 'no mouth cut'}"
+        line = f"as found: {'; '.join(baseline) or 'no mouth cut'}; {folded_about_the_mouth(clean, points)} folded"
         if a.judge:
             line += "; " + judged(a.facial, a.judge_script, clean, os.path.join(work, "sheet.png"), a.size)
         print(line, flush=True)
@@ -118,6 +218,8 @@ def main():
                 refused += not ok
                 cut_otherwise += ok and cuts_the_mouth(notes) != cut_before
                 line = f"sigma {sigma:g} draw {draw}: {'; '.join(notes) or 'no mouth cut'}"
+                if ok:
+                    line += f"; {folded_about_the_mouth(out, points)} folded"
                 if ok and a.judge:
                     line += "; " + judged(a.facial, a.judge_script, out, os.path.join(work, name + ".png"), a.size)
                 print(line, flush=True)

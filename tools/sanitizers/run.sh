@@ -63,7 +63,7 @@ ci_excluded() {
   [ "${FACIAL_SANITIZE_ALL:-0}" = 1 ] && return
   case "$1" in
     test_cli_demo) echo "StudyTransition*" ;;
-    test_cli) echo "ExpressionJudge*:SayCommand.*:SaySync*:SheetCommand.*:BenchCommand.*:FaceFormats.*:ObjKeyframeSet*:AutorigAvatar*:FullBodyAvatar*:AutorigCommand.PosingAFaceWithoutOne*:RigCommandValidity.UnrecognisedTargetNames*" ;;
+    test_cli) echo "ExpressionJudge*:SayCommand.*:SaySync*:SheetCommand.*:BenchCommand.*:FaceFormats.*:ObjKeyframeSet*:AutorigAvatar*:FullBodyAvatar*:AutorigCommand.PosingAFaceWithoutOne*:AutorigCommand.TheLandmarkNoiseTool*:RigCommandValidity.UnrecognisedTargetNames*" ;;
     test_app) echo "FaceLandmarkFinder*:FaceSetupAutorig*:FaceSetupValidity.ModelNoSchemeRecognises*:FaceAutorigRig.AFlatShaded*" ;;
     test_dataset) echo "DatasetCommand*:BatchCommand*" ;;
     test_autorig) echo "TargetTransfer.BentHead*:TargetTransfer.LandmarksALittleOff*:TargetTransfer.Winding*:TargetTransfer.AFaceAThousandth*:TargetTransfer.AFaceInTinyUnits*:ExpressionAmounts.*:DetailTransfer.FacecapsSkin*:AvatarTransfer.AnAvatarWithoutTeeth*:DetailTransferValidity.AFaceWithLayersOfItsOwn*:DetailTransferValidity.ASkinWithoutUvs*" ;;
