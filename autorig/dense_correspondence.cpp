@@ -25,13 +25,13 @@ constexpr float kLineBand = 0.06f;
 // 227 against 96 over six draws; 0.015 folded more, and at 0.06 facecap's
 // made units moved further from its own).
 constexpr double kLandmarkSmoothing = 0.03;
-// Except where the lips and the lids meet and end: the source's mouth corners,
-// inner lips and lid lines must land on the target's, or a unit carries the
-// source's corner onto the skin beside the target's (Ready Player Me's anger
-// tore 6 edges of the lining in its mouth's corners with only the inner lips'
-// middles held, 2 with the corners held too; with the lids smoothed,
-// facecap's made eyeWide moved 0.85 of its own's size from it, held 0.76).
-constexpr std::array<uint32_t, 22> kExactLandmarks{36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 54, 60, 61, 62, 63, 64, 65, 66, 67};
+// Except where the lips and the lids meet and end (onClosingLine): the
+// source's mouth corners, inner lips and lid lines must land on the target's,
+// or a unit carries the source's corner onto the skin beside the target's
+// (Ready Player Me's anger tore 6 edges of the lining in its mouth's corners
+// with only the inner lips' middles held, 2 with the corners held too; with
+// the lids smoothed, facecap's made eyeWide moved 0.85 of its own's size from
+// it, held 0.76).
 
 glm::vec3 onSource(const FaceSurface& source, const ClosestPoint& match) {
   const auto& t = source.triangles[match.triangle];
@@ -193,8 +193,7 @@ eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLand
   const float minSeparation = pairs.minSeparation;
   std::vector<double> smoothing(sourcePoints.size(), 0.0);
   for (size_t i = 0; i < smoothing.size(); ++i)
-    if (std::find(kExactLandmarks.begin(), kExactLandmarks.end(), pairs.landmark[i]) == kExactLandmarks.end())
-      smoothing[i] = kLandmarkSmoothing;
+    if (!onClosingLine(pairs.landmark[i])) smoothing[i] = kLandmarkSmoothing;
   LandmarkWarp warp = ENG_TRY_VALUE(LandmarkWarp::build(sourcePoints, targetPoints, minSeparation, smoothing));
   std::vector<glm::vec3> warped = warpAll(warp, source.positions);
   size_t grown = 0;

@@ -32,6 +32,13 @@ FaceRegion opposite(FaceRegion region) {
   return FaceRegion::None;
 }
 
+bool onClosingLine(size_t index) {
+  auto in = [&](std::span<const std::array<int, 2>> pairs) {
+    return std::any_of(pairs.begin(), pairs.end(), [&](const std::array<int, 2>& p) { return size_t(p[0]) == index || size_t(p[1]) == index; });
+  };
+  return in(kLipLine) || in(kRightLidLine) || in(kLeftLidLine);
+}
+
 LandmarkFrame::LandmarkFrame(const FaceLandmarks& landmarks) {
   const auto& p = landmarks.points;
   const glm::vec3 rightEye = (p[36] + p[39]) * 0.5f, leftEye = (p[42] + p[45]) * 0.5f;

@@ -30,6 +30,10 @@ enum class FaceRegion : unsigned char {
 // None for None.
 FaceRegion opposite(FaceRegion region);
 
+// Whether landmark `index` draws a closing line (where the lips or the lids
+// meet and end: 36-48, 54, 60-67).
+bool onClosingLine(size_t index);
+
 class LandmarkFrame {
  public:
   explicit LandmarkFrame(const FaceLandmarks& landmarks);

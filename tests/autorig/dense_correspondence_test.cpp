@@ -68,3 +68,16 @@ TEST(TriangleGrid, ATriangleAcrossTheLipsIsNeitherLipsAndOneAcrossTheLidsIsBoth)
 }
 
 }  // namespace
+
+namespace {
+
+// The landmarks the warp passes through rather than near: where the lips and the lids meet and end.
+TEST(ClosingLines, NameTheLidsTheMouthCornersAndTheInnerLips) {
+  std::vector<size_t> held;
+  for (size_t i = 0; i < autorig::kLandmarkCount; ++i)
+    if (autorig::onClosingLine(i)) held.push_back(i);
+  const std::vector<size_t> expected{36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 54, 60, 61, 62, 63, 64, 65, 66, 67};
+  EXPECT_EQ(held, expected);
+}
+
+}  // namespace
