@@ -157,6 +157,29 @@ float innerLipDepthLimit(const autorig::SurfaceCaster& caster, const autorig::Fa
   return caster.depth(before) + 0.2f * width;
 }
 
+// How deep an eye corner (36, 39; 42, 45) may lie: a quarter of the brows'
+// width (17 to 26) behind the brow's end above it. A ray through the far
+// eye's outer corner of a face turned aside that slips between the lid and
+// the ball meets the inside of the head behind it: facecap turned 20 degrees
+// had its point 45 a head's depth back, its face's forward taken 56 degrees
+// aside, and its points found again from there on a face turned the other
+// way. Infinity until the brows are on the surface.
+float eyeCornerDepthLimit(const autorig::SurfaceCaster& caster, const autorig::FaceLandmarks& landmarks, size_t i) {
+  size_t brow = 0;
+  switch (i) {
+    case 36: brow = 17; break;
+    case 39: brow = 21; break;
+    case 42: brow = 22; break;
+    case 45: brow = 26; break;
+    default: return std::numeric_limits<float>::infinity();
+  }
+  const auto& p = landmarks.points;
+  const float width = glm::distance(p[17], p[26]);
+  const float above = caster.depth(p[brow]);
+  if (!std::isfinite(width) || !std::isfinite(above)) return std::numeric_limits<float>::infinity();
+  return above + 0.25f * width;
+}
+
 // How deep a lid point (37, 38, 40, 41; 43, 44, 46, 47) may lie: no deeper
 // than the line between its eye's corners at its place, and a twentieth of
 // the eye's width. A lid bulges over the ball in front of that line; a ray
@@ -235,7 +258,7 @@ eng::Result<autorig::FaceLandmarks> castOntoFace(const autorig::SurfaceCaster& c
   landmarks.source = describe(seen.face);
   std::optional<size_t> missed;
   for (const size_t i : kCastOrder) {
-    const float limit = std::min({innerLipDepthLimit(caster, landmarks, i),
+    const float limit = std::min({innerLipDepthLimit(caster, landmarks, i), eyeCornerDepthLimit(caster, landmarks, i),
                                   lidDepthLimit(caster, landmarks, seen.face.pixels[i], i),
                                   jawLineDepthLimit(caster, landmarks, i)});
     std::optional<autorig::SurfacePoint> hit = caster.cast(seen.face.pixels[i], kReach * float(size), limit);
