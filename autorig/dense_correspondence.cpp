@@ -25,13 +25,18 @@ constexpr float kLineBand = 0.06f;
 // 227 against 96 over six draws; 0.015 folded more, and at 0.06 facecap's
 // made units moved further from its own).
 constexpr double kLandmarkSmoothing = 0.03;
-// Except where the lips and the lids meet and end (onClosingLine): the
-// source's mouth corners, inner lips and lid lines must land on the target's,
-// or a unit carries the source's corner onto the skin beside the target's
-// (Ready Player Me's anger tore 6 edges of the lining in its mouth's corners
-// with only the inner lips' middles held, 2 with the corners held too; with
-// the lids smoothed, facecap's made eyeWide moved 0.85 of its own's size from
-// it, held 0.76).
+// Except the lids' lines and the mouth's corners (passedThrough): the
+// source's corners and lid lines must land on the target's, or a unit carries
+// the source's corner onto the skin beside the target's (Ready Player Me's
+// anger tore 6 edges of the lining in its mouth's corners with only the inner
+// lips' middles held, 2 with the corners held too; with the lids smoothed,
+// facecap's made eyeWide moved 0.85 of its own's size from it, held 0.76).
+// The inner lips' middles are passed near: dlib's points there are often off
+// by the lips' own gap, and a warp through them bends across the mouth (the
+// built-in head under noise of 0.02 eye spans folded 610 skin triangles about
+// the mouth over six draws through them, 454 near them; 218 with the corners
+// steadied too, below).
+bool passedThrough(size_t landmark) { return onLidLine(landmark) || atMouthCorner(landmark); }
 
 glm::vec3 onSource(const FaceSurface& source, const ClosestPoint& match) {
   const auto& t = source.triangles[match.triangle];
@@ -168,6 +173,36 @@ FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const
   return surface;
 }
 
+// A mouth corner's two points' spacing may differ from the source's by this
+// much of the mouth's width: the faces' own, as found, differ by up to 0.013
+// (facecap), and moving a corner that little off the mesh's own tore 7 of
+// facecap's lip edges in anger; noise of 0.02 eye spans moves it by 0.05.
+constexpr float kCornerSpacingTolerance = 0.02f;
+
+FaceLandmarks withSteadyMouthCorners(const FaceLandmarks& source, const FaceLandmarks& target) {
+  const LandmarkFrame sourceFrame(source), targetFrame(target);
+  auto plane = [](const LandmarkFrame& frame, const glm::vec3& v) {
+    return glm::vec2(glm::dot(v, frame.side()), glm::dot(v, frame.up()));
+  };
+  const float sourceWidth = glm::length(plane(sourceFrame, source.points[54] - source.points[48]));
+  const float targetWidth = glm::length(plane(targetFrame, target.points[54] - target.points[48]));
+  if (!(sourceWidth > 0.0f) || !std::isfinite(targetWidth)) return target;
+  FaceLandmarks steady = target;
+  for (const auto& [outer, inner] : {std::pair<size_t, size_t>{48, 60}, std::pair<size_t, size_t>{54, 64}}) {
+    const glm::vec2 expected = plane(sourceFrame, source.points[inner] - source.points[outer]) * (targetWidth / sourceWidth);
+    const glm::vec2 middle = 0.5f * plane(targetFrame, target.points[outer] + target.points[inner]);
+    const float tolerance = kCornerSpacingTolerance * targetWidth;
+    const glm::vec2 found = plane(targetFrame, target.points[inner] - target.points[outer]);
+    const glm::vec2 off = found - expected;
+    const glm::vec2 spacing = glm::length(off) > tolerance ? expected + off * (tolerance / glm::length(off)) : found;
+    for (const auto& [index, towardsInner] : {std::pair<size_t, float>{outer, -0.5f}, std::pair<size_t, float>{inner, 0.5f}}) {
+      const glm::vec2 move = middle + towardsInner * spacing - plane(targetFrame, target.points[index]);
+      steady.points[index] += move.x * targetFrame.side() + move.y * targetFrame.up();
+    }
+  }
+  return steady;
+}
+
 LandmarkPairs distinctLandmarkPairs(const FaceLandmarks& source, const FaceLandmarks& target) {
   LandmarkPairs pairs;
   pairs.minSeparation = 1e-3f * LandmarkFrame(source).eyeSpan();
@@ -193,7 +228,7 @@ eng::Result<Correspondence> correspond(const FaceSurface& source, const FaceLand
   const float minSeparation = pairs.minSeparation;
   std::vector<double> smoothing(sourcePoints.size(), 0.0);
   for (size_t i = 0; i < smoothing.size(); ++i)
-    if (!onClosingLine(pairs.landmark[i])) smoothing[i] = kLandmarkSmoothing;
+    if (!passedThrough(pairs.landmark[i])) smoothing[i] = kLandmarkSmoothing;
   LandmarkWarp warp = ENG_TRY_VALUE(LandmarkWarp::build(sourcePoints, targetPoints, minSeparation, smoothing));
   std::vector<glm::vec3> warped = warpAll(warp, source.positions);
   size_t grown = 0;

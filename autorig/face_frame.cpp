@@ -12,6 +12,10 @@ constexpr std::array<std::array<int, 2>, 7> kLipLine{{{48, 48}, {60, 60}, {61, 6
 constexpr std::array<std::array<int, 2>, 4> kRightLidLine{{{36, 36}, {37, 41}, {38, 40}, {39, 39}}};
 constexpr std::array<std::array<int, 2>, 4> kLeftLidLine{{{42, 42}, {43, 47}, {44, 46}, {45, 45}}};
 
+bool onLine(std::span<const std::array<int, 2>> pairs, size_t index) {
+  return std::any_of(pairs.begin(), pairs.end(), [&](const std::array<int, 2>& p) { return size_t(p[0]) == index || size_t(p[1]) == index; });
+}
+
 glm::vec3 normalizedOr(const glm::vec3& v, const glm::vec3& fallback) {
   float length = glm::length(v);
   return length > 1e-12f ? v / length : fallback;
@@ -32,11 +36,11 @@ FaceRegion opposite(FaceRegion region) {
   return FaceRegion::None;
 }
 
-bool onClosingLine(size_t index) {
-  auto in = [&](std::span<const std::array<int, 2>> pairs) {
-    return std::any_of(pairs.begin(), pairs.end(), [&](const std::array<int, 2>& p) { return size_t(p[0]) == index || size_t(p[1]) == index; });
-  };
-  return in(kLipLine) || in(kRightLidLine) || in(kLeftLidLine);
+bool onLidLine(size_t index) { return onLine(kRightLidLine, index) || onLine(kLeftLidLine, index); }
+
+bool atMouthCorner(size_t index) {
+  // The lip line's ends: its pairs of one index.
+  return std::any_of(kLipLine.begin(), kLipLine.end(), [&](const std::array<int, 2>& p) { return p[0] == p[1] && size_t(p[0]) == index; });
 }
 
 LandmarkFrame::LandmarkFrame(const FaceLandmarks& landmarks) {

@@ -30,9 +30,10 @@ enum class FaceRegion : unsigned char {
 // None for None.
 FaceRegion opposite(FaceRegion region);
 
-// Whether landmark `index` draws a closing line (where the lips or the lids
-// meet and end: 36-48, 54, 60-67).
-bool onClosingLine(size_t index);
+// Whether landmark `index` draws a lid line (where the lids meet and end: 36-47).
+bool onLidLine(size_t index);
+// Whether landmark `index` is a mouth corner (where the lips' lines end: 48, 54, 60, 64).
+bool atMouthCorner(size_t index);
 
 class LandmarkFrame {
  public:

@@ -950,14 +950,15 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
                           "target transfer: the face has " + std::to_string(tgt.positions.size()) +
                               " skin vertices, more than " + std::to_string(options.maxSkinVertices) +
                               ": simplify it first (a face reads at 10-50k)");
-  const LandmarkFrame frame(landmarks);
-  ENG_TRY(checkOnSurface(tgt, landmarks, frame));
+  ENG_TRY(checkOnSurface(tgt, landmarks, LandmarkFrame(landmarks)));
   ENG_TRY(checkFacing(source, landmarks));
-  eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, landmarks);
+  const FaceLandmarks steady = withSteadyMouthCorners(source.landmarks, landmarks);
+  const LandmarkFrame frame(steady);
+  eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, steady);
   if (!matched) return matched.error().prefixed("target transfer: ");
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
-  Moved moved = carryUnits(source, src, tgt, jaw, corr, units, landmarks, parts);
+  Moved moved = carryUnits(source, src, tgt, jaw, corr, units, steady, parts);
   const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::SkinLayer});
   const std::vector<glm::vec3> tgtNormals = skinNormals(tgt);
   appendOnSkin(moved, onSkin, tgt, tgtNormals, frame.eyeSpan());
@@ -982,7 +983,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
     std::vector<glm::vec3> normals = tgtNormals;
     normals.resize(moved.positions.size(), glm::vec3(0.0f));
     const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,
-                                 .landmarks = &landmarks, .frame = &frame, .faceParts = &parts};
+                                 .landmarks = &steady, .frame = &frame, .faceParts = &parts};
     for (NamedDeltas& shape : arkitFromGeometry(fromGeometry, moved.units, geometry, unmade)) shapes.push_back(std::move(shape));
     std::stable_sort(shapes.begin(), shapes.end(), [](const NamedDeltas& a, const NamedDeltas& b) {
       return facial::arkitIndex(a.name).value_or(0) < facial::arkitIndex(b.name).value_or(0);

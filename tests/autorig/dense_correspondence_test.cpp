@@ -71,13 +71,59 @@ TEST(TriangleGrid, ATriangleAcrossTheLipsIsNeitherLipsAndOneAcrossTheLidsIsBoth)
 
 namespace {
 
-// The landmarks the warp passes through rather than near: where the lips and the lids meet and end.
-TEST(ClosingLines, NameTheLidsTheMouthCornersAndTheInnerLips) {
-  std::vector<size_t> held;
-  for (size_t i = 0; i < autorig::kLandmarkCount; ++i)
-    if (autorig::onClosingLine(i)) held.push_back(i);
-  const std::vector<size_t> expected{36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 54, 60, 61, 62, 63, 64, 65, 66, 67};
-  EXPECT_EQ(held, expected);
+// The landmarks the warp passes through rather than near: the lids' lines
+// and the mouth's corners (the inner lips' middles it passes near).
+TEST(ClosingLines, NameTheLidsAndTheMouthCorners) {
+  std::vector<size_t> lids, corners;
+  for (size_t i = 0; i < autorig::kLandmarkCount; ++i) {
+    if (autorig::onLidLine(i)) lids.push_back(i);
+    if (autorig::atMouthCorner(i)) corners.push_back(i);
+  }
+  EXPECT_EQ(lids, (std::vector<size_t>{36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47}));
+  EXPECT_EQ(corners, (std::vector<size_t>{48, 54, 60, 64}));
+}
+
+// A face in the z = 0 plane with the landmarks a frame needs: eye corners
+// 36/39 and 42/45, the chin 8, and the mouth's corners.
+autorig::FaceLandmarks flatFace(float scale, const glm::vec2& rightOuter, const glm::vec2& rightInner,
+                                const glm::vec2& leftInner, const glm::vec2& leftOuter) {
+  autorig::FaceLandmarks l;
+  for (size_t i = 0; i < l.points.size(); ++i) l.points[i] = scale * glm::vec3(0.01f * float(i), 0.5f, 0.1f);
+  l.points[36] = scale * glm::vec3(-3, 2, 0), l.points[39] = scale * glm::vec3(-1, 2, 0);
+  l.points[42] = scale * glm::vec3(1, 2, 0), l.points[45] = scale * glm::vec3(3, 2, 0);
+  l.points[8] = scale * glm::vec3(0, -6, 0);
+  l.points[48] = glm::vec3(rightOuter, 0.3f), l.points[60] = glm::vec3(rightInner, 0.2f);
+  l.points[64] = glm::vec3(leftInner, 0.2f), l.points[54] = glm::vec3(leftOuter, 0.3f);
+  return l;
+}
+
+// dlib's outer and inner mouth corners, found a little off on a face twice
+// the source's size (the inner right one outside its outer one): each pair
+// keeps its middle and is spaced as the source's, twice as wide, give or take
+// 0.02 of the mouth's width; nothing else moves, nor any point out of the
+// face's plane. Pairs spaced within that of the source's stay as found.
+TEST(SteadyMouthCorners, KeepEachCornersMiddleAndNearlyTheSourcesSpacing) {
+  const autorig::FaceLandmarks source = flatFace(1.0f, {-2.0f, -3.0f}, {-1.6f, -3.1f}, {1.6f, -3.1f}, {2.0f, -3.0f});
+  const autorig::FaceLandmarks found = flatFace(2.0f, {-4.0f, -6.0f}, {-4.5f, -6.4f}, {3.0f, -6.3f}, {4.0f, -6.1f});
+  const autorig::FaceLandmarks steady = autorig::withSteadyMouthCorners(source, found);
+  const float width = glm::length(glm::vec2(found.points[54] - found.points[48]));
+  auto expectPair = [&](size_t outer, size_t inner, const glm::vec2& sourceSpacing) {
+    const glm::vec2 middle = 0.5f * glm::vec2(found.points[outer] + found.points[inner]);
+    EXPECT_NEAR(glm::length(0.5f * glm::vec2(steady.points[outer] + steady.points[inner]) - middle), 0.0f, 1e-5f) << outer;
+    const glm::vec2 spacing = glm::vec2(steady.points[inner] - steady.points[outer]);
+    EXPECT_NEAR(glm::distance(spacing, 0.25f * width * sourceSpacing), 0.02f * width, 1e-4f) << inner;
+    EXPECT_EQ(steady.points[outer].z, found.points[outer].z);
+    EXPECT_EQ(steady.points[inner].z, found.points[inner].z);
+  };
+  expectPair(48, 60, {0.4f, -0.1f});
+  expectPair(54, 64, {-0.4f, -0.1f});
+  for (size_t i = 0; i < found.points.size(); ++i) {
+    if (autorig::atMouthCorner(i)) continue;
+    EXPECT_EQ(steady.points[i], found.points[i]) << i;
+  }
+  const autorig::FaceLandmarks near = flatFace(2.0f, {-4.0f, -6.0f}, {-3.25f, -6.15f}, {3.2f, -6.2f}, {4.0f, -6.0f});
+  const autorig::FaceLandmarks kept = autorig::withSteadyMouthCorners(source, near);
+  for (size_t i : {48, 54, 60, 64}) EXPECT_NEAR(glm::distance(kept.points[i], near.points[i]), 0.0f, 1e-5f) << i;
 }
 
 }  // namespace
