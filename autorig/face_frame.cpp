@@ -55,6 +55,13 @@ LandmarkFrame::LandmarkFrame(const FaceLandmarks& landmarks) {
   origin_ = ((rightEye + leftEye) * 0.5f + mouth) * 0.5f;
 
   lips_ = makeLine(landmarks, kLipLine);
+  // The lips' line is the parabola nearest its points (least squares), not
+  // the polyline through them: dlib's inner-lip points on a face it does not
+  // know are often 0.02 eye spans off, and one lower point lifted over an
+  // upper one bent the polyline by a lip's thickness there, so the skin inside
+  // that lip took the other lip's motion (Ready Player Me's upper lip pulled
+  // into its dropped jaw's mouth in one draw of six).
+  lips_.fitParabola();
   lips_.halfWidth = 0.5f * glm::length(p[54] - p[48]) * 1.3f;
   lips_.halfHeight = 0.5f * glm::length(p[8] - p[33]);
   rightEye_ = makeLine(landmarks, kRightLidLine);
@@ -75,7 +82,28 @@ LandmarkFrame::Line LandmarkFrame::makeLine(const FaceLandmarks& landmarks, std:
   return line;
 }
 
+void LandmarkFrame::Line::fitParabola() {
+  const float halfSpan = 0.5f * (points.back().x - points.front().x);
+  if (!(halfSpan > 0.0f)) return;
+  glm::dmat3 normal(0.0);
+  glm::dvec3 rhs(0.0);
+  for (const glm::vec2& q : points) {
+    const double u = double((q.x - centre.x) / halfSpan);
+    const glm::dvec3 row(1.0, u, u * u);
+    normal += glm::outerProduct(row, row);
+    rhs += row * double(q.y);
+  }
+  if (std::abs(glm::determinant(normal)) < 1e-9) return;  // fewer than three distinct columns
+  coefficients = glm::vec3(glm::inverse(normal) * rhs);
+  parabola = true;
+}
+
 float LandmarkFrame::Line::heightAt(float x) const {
+  if (parabola) {
+    const float halfSpan = 0.5f * (points.back().x - points.front().x);
+    const float u = (std::clamp(x, points.front().x, points.back().x) - centre.x) / halfSpan;
+    return coefficients.x + coefficients.y * u + coefficients.z * u * u;
+  }
   if (x <= points.front().x) return points.front().y;
   for (size_t i = 1; i < points.size(); ++i) {
     if (x > points[i].x) continue;

@@ -59,6 +59,11 @@ class LandmarkFrame {
     glm::vec2 centre{0.0f};
     float halfWidth = 0.0f;  // of the region it labels, along side
     float halfHeight = 0.0f;  // and across
+    // A parabola between its ends instead of the polyline (the lips' line):
+    // y = c0 + c1 u + c2 u^2, u = (x - centre.x) over half the ends' spread.
+    bool parabola = false;
+    glm::vec3 coefficients{0.0f};
+    void fitParabola();
     float heightAt(float x) const;
   };
   glm::vec2 plane(const glm::vec3& p) const { return {glm::dot(p - origin_, side_), glm::dot(p - origin_, up_)}; }

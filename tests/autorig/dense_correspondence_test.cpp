@@ -1,5 +1,7 @@
 #include "autorig/dense_correspondence.h"
 
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include "autorig/closest_point.h"
@@ -124,6 +126,38 @@ TEST(SteadyMouthCorners, KeepEachCornersMiddleAndNearlyTheSourcesSpacing) {
   const autorig::FaceLandmarks near = flatFace(2.0f, {-4.0f, -6.0f}, {-3.25f, -6.15f}, {3.2f, -6.2f}, {4.0f, -6.0f});
   const autorig::FaceLandmarks kept = autorig::withSteadyMouthCorners(source, near);
   for (size_t i : {48, 54, 60, 64}) EXPECT_NEAR(glm::distance(kept.points[i], near.points[i]), 0.0f, 1e-5f) << i;
+}
+
+// The lips' line is the parabola nearest the mouth's corners and the inner
+// lips' midpoints: one inner point found 0.3 above its place (as dlib's are
+// on a face it does not know) moves the line there by less than half of
+// that, where the line through the points moved by all of it; with the
+// points on a parabola, the line is that parabola.
+TEST(LipLine, IsTheParabolaNearestItsPoints) {
+  auto lipsOn = [](float lift) {
+    autorig::FaceLandmarks l = flatFace(1.0f, {-2.0f, -3.0f}, {-1.6f, -3.0f}, {1.6f, -3.0f}, {2.0f, -3.0f});
+    auto at = [](float x) { return -3.0f - 0.25f * (1.0f - x * x / 4.0f); };  // 0 at the corners, -0.25 in the middle
+    const std::array<std::array<size_t, 2>, 3> pairs{{{61, 67}, {62, 66}, {63, 65}}};
+    const std::array<float, 3> xs{-0.8f, 0.0f, 0.8f};
+    for (size_t k = 0; k < 3; ++k) {
+      l.points[pairs[k][0]] = glm::vec3(xs[k], at(xs[k]) + 0.1f, 0.2f);
+      l.points[pairs[k][1]] = glm::vec3(xs[k], at(xs[k]) - 0.1f, 0.2f);
+    }
+    l.points[48].y = l.points[60].y = l.points[64].y = l.points[54].y = at(2.0f);
+    l.points[60].y = at(1.6f), l.points[64].y = at(1.6f);
+    l.points[65].y += lift;
+    return std::pair(l, at(0.8f));
+  };
+  const auto [clean, onLine] = lipsOn(0.0f);
+  const autorig::LandmarkFrame exact(clean);
+  EXPECT_NEAR(exact.aboveLipLine({0.8f, onLine, 0.2f}) * exact.eyeSpan(), 0.0f, 1e-3f);
+  EXPECT_NEAR(exact.aboveLipLine({0.0f, -3.25f, 0.2f}) * exact.eyeSpan(), 0.0f, 1e-3f);
+  const auto [lifted, unused] = lipsOn(0.6f);  // the pair's midpoint 0.3 up
+  const autorig::LandmarkFrame off(lifted);
+  const float moved = -off.aboveLipLine({0.8f, onLine, 0.2f}) * off.eyeSpan();
+  std::printf("one midpoint 0.3 off moves the lips' line %.3f there\n", double(moved));
+  EXPECT_GT(moved, 0.0f);
+  EXPECT_LT(moved, 0.15f);
 }
 
 }  // namespace
