@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "engine/scene/position_hash.h"
@@ -16,6 +17,12 @@ constexpr uint32_t kNotGathered = UINT32_MAX;
 // Within this distance of a closing line (eye spans) a vertex's side is the
 // mesh's to say: about the lips' and the lids' thickness.
 constexpr float kLineBand = 0.06f;
+// A rim vertex whose triangles lean up or down by this share of their
+// spread is on that lip: the built-in head's lips' rims lean 0.51-0.57, the
+// lining's inside its mouth 0.31-0.41 and facecap's few rims at its slit
+// 0.30-0.39 (both left to the edges: taken as sure at 0.3, they tore 8 of
+// facecap's lip edges in anger).
+constexpr float kRimLean = 0.45f;
 // The warp passes near, not through, the landmarks (a smoothing spline; the
 // weight in the RBF's unit box): dlib's points on a face it does not know are
 // often 0.02 eye spans off, and a warp through each of them bends between
@@ -85,6 +92,20 @@ std::vector<glm::vec3> warpAll(const LandmarkWarp& warp, const std::vector<glm::
 
 }  // namespace
 
+std::vector<char> openingRims(const FaceSurface& surface) {
+  std::unordered_map<uint64_t, int> edges;
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = surface.rootOf(t[size_t(k)]), b = surface.rootOf(t[size_t((k + 1) % 3)]);
+      if (a != b) ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+    }
+  std::vector<char> rim(surface.positions.size(), 0);
+  for (const auto& [edge, count] : edges)
+    if (count == 1) rim[edge >> 32] = rim[edge & 0xffffffffu] = 1;
+  for (size_t v = 0; v < rim.size(); ++v) rim[v] = rim[surface.rootOf(v)];
+  return rim;
+}
+
 std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame) {
   const size_t n = surface.positions.size();
   std::vector<FaceRegion> regions(n, FaceRegion::None);
@@ -113,6 +134,33 @@ std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkF
       const uint32_t a = surface.rootOf(t[size_t(k)]), b = surface.rootOf(t[size_t((k + 1) % 3)]);
       neighbours[a].push_back(b), neighbours[b].push_back(a);
     }
+  // A lip's rim where the mouth is slit (its edges of one triangle: the
+  // lips apart, or cut where they meet as separate vertices at the same
+  // places) lies on the side of the slit its triangles lie on, wherever the
+  // landmarks' line runs: a sure vertex of that lip. The line is the
+  // landmarks', a few millimetres off the mesh's slit at the corners (the
+  // built-in head's lower lip rises 0.03 eye spans above it there), and the
+  // lower lip's rim at a corner, reached round it from the upper lip, took
+  // the upper lip's motion: a flap stood up at each corner of fear's mouth.
+  const std::vector<char> rim = openingRims(surface);
+  std::vector<float> lean(n, 0.0f), spread(n, 0.0f);
+  for (const auto& t : surface.triangles) {
+    const glm::vec3 centroid = (surface.positions[t[0]] + surface.positions[t[1]] + surface.positions[t[2]]) / 3.0f;
+    for (uint32_t corner : t) {
+      const uint32_t v = surface.rootOf(corner);
+      if (!rim[v] || !unsure[v]) continue;
+      lean[v] += glm::dot(centroid - surface.positions[v], frame.up());
+      spread[v] += glm::length(centroid - surface.positions[v]);
+    }
+  }
+  for (size_t v = 0; v < n; ++v) {
+    const bool lip = regions[v] == FaceRegion::UpperLip || regions[v] == FaceRegion::LowerLip;
+    if (!lip || !unsure[v] || !rim[v] || !(std::abs(lean[v]) > kRimLean * spread[v])) continue;
+    regions[v] = lean[v] > 0.0f ? FaceRegion::UpperLip : FaceRegion::LowerLip;
+    unsure[v] = false;
+    reach[v] = 0.0f;
+    front.push({0.0f, uint32_t(v)});
+  }
   // Dijkstra from the sure vertices into the unsure ones along edges.
   while (!front.empty()) {
     const auto [distance, v] = front.top();

@@ -47,11 +47,16 @@ struct FaceSurface {
 FaceSurface gatherSurface(const eng::Model& model, const PosedFace& posed, const FaceParts& parts,
                           std::initializer_list<FacePart> wanted);
 
+// The vertices on the rim of an opening in the surface (an edge of one
+// triangle only; UV seam copies count as their root, so a seam is no rim).
+std::vector<char> openingRims(const FaceSurface& surface);
+
 // Each vertex's region: by the landmarks' closing lines where it is clearly
 // above or below one, and near a line by the mesh instead (the region of the
 // nearest clearly labelled vertex along the surface's edges, a UV seam's
 // copies as one), because the lips of a closed mouth and the lids of a
-// closed eye meet there, often as separate vertices at the same places.
+// closed eye meet there, often as separate vertices at the same places; a
+// lip's rim at the mouth's slit by the side its triangles lie on.
 std::vector<FaceRegion> labelRegions(const FaceSurface& surface, const LandmarkFrame& frame);
 
 // `target` with each mouth corner's pair of points (outer 48 and inner 60,

@@ -297,22 +297,6 @@ struct EyeLids {
   float openAngle() const { return std::abs(hingeAngle(axis, upper, lower - upper)); }
 };
 
-// The vertices on the rim of an opening in the surface (an edge of one
-// triangle only; UV seam copies count as their root, so a seam is no rim).
-std::vector<char> openingRims(const FaceSurface& surface) {
-  std::unordered_map<uint64_t, int> edges;
-  for (const auto& t : surface.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = surface.rootOf(t[size_t(k)]), b = surface.rootOf(t[size_t((k + 1) % 3)]);
-      if (a != b) ++edges[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
-    }
-  std::vector<char> rim(surface.positions.size(), 0);
-  for (const auto& [edge, count] : edges)
-    if (count == 1) rim[edge >> 32] = rim[edge & 0xffffffffu] = 1;
-  for (size_t v = 0; v < rim.size(); ++v) rim[v] = rim[surface.rootOf(v)];
-  return rim;
-}
-
 // The lids' margins: where the skin has an opening over the eye, its rim's
 // middle above and below the ball (the landmarks sit on the visible edge,
 // a little inside the margins); else the lid landmarks.
