@@ -61,7 +61,7 @@ std::vector<PlannedPrimitive> plan(const Model& model) {
                                       [](std::string_view n) { return namesAnEyeball(std::string(n)); });
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
-      if (!unauthoredWhite(model, prim)) continue;
+      if (!unauthoredPlain(model, prim)) continue;
       // The mesh's and nodes' names, and the material's (a scan's merged
       // mouth given its own primitive by the rig: autorig/part_primitives.h).
       std::vector<std::string_view> partNames = names;

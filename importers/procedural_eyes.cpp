@@ -114,7 +114,7 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
       for (const glm::vec3& v : prim.positions) box.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
       boxes.push_back(box);
       // Plain white only: a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
-      if (!unauthoredWhite(model, prim)) continue;
+      if (!unauthoredPlain(model, prim)) continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
       const EyePrimitive eye{.mesh = int(m), .primitive = int(p), .node = node, .centre = fit.centre,
@@ -142,18 +142,28 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
 
 bool white(const glm::vec4& c) { return c.r >= 0.99f && c.g >= 0.99f && c.b >= 0.99f; }
 
+// What an exporter writes for a material nobody coloured: white, or a
+// neutral grey of a half or more (Blender's default base colour 0.8, written
+// as a glTF's baseColorFactor and an OBJ's Kd; Maya's lambert1 0.5). A
+// sculpt exported from Blender untextured came out a grey plaster cast with
+// blank eyes.
+bool exportersDefault(const glm::vec4& c) {
+  const float lo = std::min({c.r, c.g, c.b}), hi = std::max({c.r, c.g, c.b});
+  return lo >= 0.49f && hi - lo <= 0.01f;
+}
+
 }  // namespace
 
 bool paintedPerVertex(const Primitive& primitive) {
   return !std::all_of(primitive.colors.begin(), primitive.colors.end(), white);
 }
 
-bool unauthoredWhite(const Model& model, const Primitive& primitive) {
+bool unauthoredPlain(const Model& model, const Primitive& primitive) {
   if (paintedPerVertex(primitive)) return false;
   const int material = primitive.material;
   if (material < 0 || size_t(material) >= model.materials.size()) return true;
   const Material& m = model.materials[size_t(material)];
-  return m.baseColorImage < 0 && white(m.baseColorFactor);
+  return m.baseColorImage < 0 && exportersDefault(m.baseColorFactor);
 }
 
 Image proceduralEyeImage(int size) {

@@ -33,9 +33,10 @@ struct EyePrimitive {
 
 // Vertex colours off white (a scan's or a sculpt's paint, COLOR_0).
 bool paintedPerVertex(const eng::Primitive& primitive);
-// An untextured material left at white (or none) and not painted per vertex:
-// the author gave the primitive no colour.
-bool unauthoredWhite(const eng::Model& model, const eng::Primitive& primitive);
+// An untextured material left at an exporter's default (white, or a neutral
+// grey of 0.5 or more), or none, and not painted per vertex: the author gave
+// the primitive no colour.
+bool unauthoredPlain(const eng::Model& model, const eng::Primitive& primitive);
 
 // The untextured eyeballs of `model`, at rest: the balls named as eyes, else
 // (no names to go by) a pair of balls of one size, level, a few radii apart,

@@ -210,6 +210,28 @@ TEST(PaintedBrowsValidity, NoBrowsWithoutExactlyTwoEyes) {
   EXPECT_TRUE(importers::browFrames(model, sameSpot, 0).empty());
 }
 
+// An exporter's default for a material nobody coloured is no colour either:
+// Blender writes its base colour 0.8 (glTF baseColorFactor, OBJ Kd), Maya's
+// lambert1 is 0.5. A tinted or dark skin or mouth is the author's.
+TEST(FaceDressing, AnExportersDefaultGreyIsDressedAsWhiteIs) {
+  const importers::FaceDressing white = importers::planFaceDressing(plasterHead());
+  ASSERT_EQ(white.eyes, 2u);
+  for (float grey : {0.8f, 0.5f}) {
+    eng::Model model = plasterHead();
+    for (eng::Material& m : model.materials) m.baseColorFactor = glm::vec4(grey, grey, grey, 1.0f);
+    const importers::FaceDressing plan = importers::planFaceDressing(model);
+    EXPECT_EQ(plan.eyes, white.eyes) << grey;
+    EXPECT_EQ(plan.mouth, white.mouth) << grey;
+    EXPECT_EQ(plan.skin, white.skin) << grey;
+  }
+  for (const glm::vec4& authored : {glm::vec4(0.3f, 0.3f, 0.3f, 1.0f), glm::vec4(0.8f, 0.78f, 0.8f, 1.0f)}) {
+    eng::Model model = plasterHead();
+    for (eng::Material& m : model.materials) m.baseColorFactor = authored;
+    EXPECT_EQ(importers::planFaceDressing(model).skin, 0u) << authored.r << " " << authored.g;
+    EXPECT_EQ(importers::planFaceDressing(model).mouth, 0u) << authored.r << " " << authored.g;
+  }
+}
+
 TEST(FaceDressing, NonFaceModelsAndAuthoredColoursStayAsAuthored) {
   eng::Model sphere = makeSphereModel(whiteSphereSpec(2));  // a morphing sample, no eyes, not named a face
   EXPECT_EQ(importers::planFaceDressing(sphere).total(), 0u);
