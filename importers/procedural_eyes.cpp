@@ -113,7 +113,7 @@ std::vector<EyePrimitive> eyePairByShape(const Model& model, const std::vector<i
       Aabb box;
       for (const glm::vec3& v : prim.positions) box.extend(glm::vec3(world * glm::vec4(v, 1.0f)));
       boxes.push_back(box);
-      // Plain white only: a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
+      // Plain only (white, or an exporter's grey): a ball its author coloured (a robot's lamp eyes) is no plaster eyeball.
       if (!unauthoredPlain(model, prim)) continue;
       const SphereFit fit = fitSphere(prim.positions);
       if (!(fit.radius > 0.0f) || fit.relativeRms > 0.12f) continue;
@@ -144,9 +144,8 @@ bool white(const glm::vec4& c) { return c.r >= 0.99f && c.g >= 0.99f && c.b >= 0
 
 // What an exporter writes for a material nobody coloured: white, or a
 // neutral grey of a half or more (Blender's default base colour 0.8, written
-// as a glTF's baseColorFactor and an OBJ's Kd; Maya's lambert1 0.5). A
-// sculpt exported from Blender untextured came out a grey plaster cast with
-// blank eyes.
+// as a glTF's baseColorFactor and an OBJ's Kd; Maya's lambert1 0.5): a face
+// exported from Blender untextured was drawn undressed, a grey plaster cast.
 bool exportersDefault(const glm::vec4& c) {
   const float lo = std::min({c.r, c.g, c.b}), hi = std::max({c.r, c.g, c.b});
   return lo >= 0.49f && hi - lo <= 0.01f;
