@@ -1,2 +1,3 @@
-# test_facial_rig: RBF, expression presets, rig mappings, CANDIDE/VRM import.
-set(TEST_DEPS facial facial_bake facial_importers)
+# test_facial_rig: RBF, expression presets, rig mappings, CANDIDE/VRM import, faces speaking
+# (the autorig: faces without targets made to speak).
+set(TEST_DEPS facial facial_bake facial_importers facial_autorig)
