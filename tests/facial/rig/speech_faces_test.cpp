@@ -1,8 +1,8 @@
 // Speech on the real faces of ../shared (skipped without it), on the built-in
 // head, and on the head stripped of its targets and rigged by the autorig,
-// measured on the morphed CPU mesh: at the mouth centre the gap between an upper-lip and a
-// lower-lip vertex is closed on p/b/m and at rest, open on aa; rounded vowels
-// narrow the mouth. The lip pair is found from the face itself: the lower lip
+// measured on the morphed CPU mesh: at the mouth centre the gap between an
+// upper-lip and a lower-lip vertex is closed on p/b/m and at rest, open on aa;
+// rounded vowels narrow the mouth. The lip pair is found from the face itself: the lower lip
 // is the top of what aa moves down in the centre column, the upper lip the
 // nearest vertex above it that aa leaves in place.
 #include <algorithm>
@@ -135,16 +135,15 @@ float lipGap(const SpeakingFace& f, const MouthProbe& probe, const std::vector<f
   return (at[probe.upper].y - at[probe.lower].y) / probe.height;
 }
 
-void expectLipsCloseAndOpen(const SpeakingFace& face, const std::string& name) {
+void expectLipsCloseAndOpen(const SpeakingFace& f, const std::string& name) {
   SCOPED_TRACE(name);
-  const SpeakingFace* f = &face;
-  ASSERT_TRUE(f->rig.speaks()) << f->rig.report().summary();
-  auto probe = findLips(*f);
+  ASSERT_TRUE(f.rig.speaks()) << f.rig.report().summary();
+  auto probe = findLips(f);
   ASSERT_TRUE(probe) << "no lip pair found";
-  const float rest = lipGap(*f, *probe, weightsAt(*f, std::nullopt));
-  const float aa = lipGap(*f, *probe, weightsAt(*f, Viseme::aa));
-  const float pp = lipGap(*f, *probe, weightsAt(*f, Viseme::PP));
-  const float o = lipGap(*f, *probe, weightsAt(*f, Viseme::O));
+  const float rest = lipGap(f, *probe, weightsAt(f, std::nullopt));
+  const float aa = lipGap(f, *probe, weightsAt(f, Viseme::aa));
+  const float pp = lipGap(f, *probe, weightsAt(f, Viseme::PP));
+  const float o = lipGap(f, *probe, weightsAt(f, Viseme::O));
   std::printf("%s: lip gap / face height: rest %.4f PP %.4f aa %.4f O %.4f (vertices %zu %zu)\n",
               name.c_str(), rest, pp, aa, o, probe->upper, probe->lower);
   EXPECT_GT(aa, 0.03f);             // the jaw opens on aa
