@@ -83,7 +83,7 @@ LandmarkFrame::Line LandmarkFrame::makeLine(const FaceLandmarks& landmarks, std:
 }
 
 void LandmarkFrame::Line::fitParabola() {
-  const float halfSpan = 0.5f * (points.back().x - points.front().x);
+  halfSpan = 0.5f * (points.back().x - points.front().x);
   if (!(halfSpan > 0.0f)) return;
   glm::dmat3 normal(0.0);
   glm::dvec3 rhs(0.0);
@@ -100,7 +100,6 @@ void LandmarkFrame::Line::fitParabola() {
 
 float LandmarkFrame::Line::heightAt(float x) const {
   if (parabola) {
-    const float halfSpan = 0.5f * (points.back().x - points.front().x);
     const float u = (std::clamp(x, points.front().x, points.back().x) - centre.x) / halfSpan;
     return coefficients.x + coefficients.y * u + coefficients.z * u * u;
   }

@@ -60,8 +60,9 @@ class LandmarkFrame {
     float halfWidth = 0.0f;  // of the region it labels, along side
     float halfHeight = 0.0f;  // and across
     // A parabola between its ends instead of the polyline (the lips' line):
-    // y = c0 + c1 u + c2 u^2, u = (x - centre.x) over half the ends' spread.
+    // y = c0 + c1 u + c2 u^2, u = (x - centre.x) / halfSpan, half the ends' spread.
     bool parabola = false;
+    float halfSpan = 0.0f;
     glm::vec3 coefficients{0.0f};
     void fitParabola();
     float heightAt(float x) const;
