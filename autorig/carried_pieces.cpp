@@ -97,6 +97,11 @@ size_t CarriedPieces::add(const SourceFace& source, size_t piece, std::span<cons
     if (fresh) {
       eng::Material material = source.model->materials[size_t(from.material)];
       material.detailLayers.clear();
+      // Seen only from inside the mouth, through the opening: drawn double-sided
+      // (the head's own mouth is, its back the dark inside of the head), the
+      // back of a carried mouth's corners, where the lips pulled wide pass it
+      // at a smile, showed as black spikes past the lips and over the teeth.
+      material.doubleSided = false;
       std::vector<int*> images{&material.baseColorImage};
       for (const eng::MaterialTexture& slot : eng::kMaterialTextures) images.push_back(&(material.*slot.image));
       for (int* image : images) {

@@ -287,6 +287,8 @@ TEST(MouthOpening, GivesAMouthWithNothingInsideTheHeadsTeethAndTongue) {
     ASSERT_GE(piece.material, 0);
     EXPECT_EQ(opened.face.materials[size_t(piece.material)].name,
               head->materials[size_t(head->meshes[0].primitives[i].material)].name);
+    // Seen from inside only: its back, where the face's lips pass it, is not drawn.
+    EXPECT_FALSE(opened.face.materials[size_t(piece.material)].doubleSided) << opened.face.materials[size_t(piece.material)].name;
   }
   EXPECT_EQ(added, opened.opening.insideVertices);
 
