@@ -243,6 +243,21 @@ TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
       }
 }
 
+// ARKit shapes made of two units: mouthPress is Apple's upward compression
+// of the lower lip, facecap's raising its lower lip by 0.87 of its motion;
+// the head's lip pressor alone drew the lips in and sideways, across it
+// (relative RMS 1.01, cosine 0.08), with the chin raiser's lift of the lower
+// lip added 0.86 and 0.54.
+constexpr Row kComposedRows[] = {
+    {"mouthPressLeft", "mouthPress_L", 0.96f, 0.44f},
+    {"mouthPressRight", "mouthPress_R", 0.96f, 0.43f},
+};
+
+TEST(FacecapGroundTruth, ShapesMadeOfTwoUnitsAreNearFacecapsOwn) {
+  FACIAL_REQUIRE_SHARED();
+  expectNearFacecap(kComposedRows);
+}
+
 // The shapes no unit gives, made from the face's geometry
 // (autorig/arkit_from_geometry.h): their amounts are facecap's own, in eye
 // spans, so the gain says little; where and which way they move does.
