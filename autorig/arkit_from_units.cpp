@@ -60,7 +60,7 @@ constexpr std::array kShapes = {
     Shape{"mouthPressLeft", {Term{"AU24_LipPressor", 1.0f, Mask::Left}, Term{"AU17_ChinRaiser", 1.0f, Mask::Left}}},
     Shape{"mouthPressRight", {Term{"AU24_LipPressor", 1.0f, Mask::Right}, Term{"AU17_ChinRaiser", 1.0f, Mask::Right}}},
     Shape{"mouthPucker", {Term{"AU18_LipPucker"}}},
-    Shape{"mouthRollLower", {Term{"AU28_LipSuck", 1.0f, Mask::LowerLip}}},
+    Shape{"mouthRollLower", {Term{"AU28_LipSuck", 1.0f, Mask::LowerLip}, Term{"AU17_ChinRaiser", 1.0f, Mask::LowerLip}}},
     Shape{"mouthRollUpper", {Term{"AU28_LipSuck", 1.0f, Mask::UpperLip}}},
     Shape{"mouthShrugLower", {Term{"AU17_ChinRaiser", 1.0f, Mask::LowerLip}}},
     Shape{"mouthShrugUpper", {Term{"AU17_ChinRaiser", 1.0f, Mask::UpperLip}}},

@@ -247,10 +247,13 @@ TEST(FacecapGroundTruth, NamesTheFaceHasAreKept) {
 // of the lower lip, facecap's raising its lower lip by 0.87 of its motion;
 // the head's lip pressor alone drew the lips in and sideways, across it
 // (relative RMS 1.01, cosine 0.08), with the chin raiser's lift of the lower
-// lip added 0.86 and 0.54.
+// lip added 0.86 and 0.54. mouthRollLower, the lower lip turned in over the
+// teeth, rises too (facecap's by 0.81 of its motion): the lip suck alone drew
+// it back (0.96, 0.32), with the lift 0.63 and 0.79.
 constexpr Row kComposedRows[] = {
     {"mouthPressLeft", "mouthPress_L", 0.96f, 0.44f},
     {"mouthPressRight", "mouthPress_R", 0.96f, 0.43f},
+    {"mouthRollLower", "mouthRollLower", 0.73f, 0.69f},
 };
 
 TEST(FacecapGroundTruth, ShapesMadeOfTwoUnitsAreNearFacecapsOwn) {
