@@ -97,10 +97,10 @@ size_t CarriedPieces::add(const SourceFace& source, size_t piece, std::span<cons
     if (fresh) {
       eng::Material material = source.model->materials[size_t(from.material)];
       material.detailLayers.clear();
-      // Seen only from inside the mouth, through the opening: drawn double-sided
-      // (the head's own mouth is, its back the dark inside of the head), the
-      // back of a carried mouth's corners, where the lips pulled wide pass it
-      // at a smile, showed as black spikes past the lips and over the teeth.
+      // A carried piece is seen from the front only, through the face's
+      // openings. Double-sided (the head's mouth is: its back is the dark inside
+      // of the head), the back of a carried mouth showed where a scan's lips,
+      // pulled wide at a smile, pass its corners: black spikes past the lips.
       material.doubleSided = false;
       std::vector<int*> images{&material.baseColorImage};
       for (const eng::MaterialTexture& slot : eng::kMaterialTextures) images.push_back(&(material.*slot.image));
