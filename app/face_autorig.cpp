@@ -95,9 +95,27 @@ TargetChanges targetChanges(const eng::Model& face, const eng::Model& rigged) {
   return changes;
 }
 
+namespace {
+
+// A VRM whose expressions for the emotions bind nothing (its rig maps the
+// emotions onto expressions that change nothing): shown as it is, every
+// emotion would be the neutral face, without a word.
+bool vrmEmotionsMoveNothing(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig) {
+  if (!face.vrm || !rig) return false;
+  for (uint32_t e = 0; e < facial::kEmotionCount; ++e) {
+    if (facial::Emotion(e) == facial::Emotion::Neutral) continue;
+    for (uint32_t expression : rig->rig.targets(facial::emotionInput(facial::Emotion(e))))
+      if (face.vrm->moves(expression)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::string autorigReason(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig,
                           const std::filesystem::path& rigmapFile) {
-  if (!importers::isPlainMesh(face.format) || face.vrm) return {};
+  const bool stillVrm = vrmEmotionsMoveNothing(face, rig);
+  if (!stillVrm && (!importers::isPlainMesh(face.format) || face.vrm)) return {};
   facial::RigMappingOptions options;
   options.modelName = modelNameOf(face.model.sourcePath);
   options.rigmapDirectory = dataDirectory() / "rigmaps";
@@ -111,6 +129,7 @@ std::string autorigReason(const importers::LoadedFace& face, const eng::Result<f
     auto rigmap = facial::loadRigMapFile(found, eng::WeightLayout(face.model).names());
     if (!rigmap || rigmap->mapping) return {};
   }
+  if (stillVrm) return "its VRM expressions for the emotions bind nothing: no morph target, material colour or texture transform";
   if (!rig) return rig.error().kind == eng::ErrorKind::Unsupported ? reasonOf(face.model, rig) : std::string();
   return facial::showsEmotions(rig->rig) ? std::string() : reasonOf(face.model, rig);
 }
@@ -119,6 +138,10 @@ bool emotesInPart(const eng::Result<facial::RigCalibration>& rig) {
   if (!rig) return false;
   const facial::EmotionFeatures features = facial::emotionFeatures(rig->rig);
   return features.brows != features.lipCorners;
+}
+
+bool keepsOwnRig(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig) {
+  return emotesInPart(rig) || face.vrm != nullptr;
 }
 
 std::string cannotEmoteLine(const std::filesystem::path& model, const std::string& reason,

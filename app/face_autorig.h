@@ -41,7 +41,8 @@ inline constexpr std::string_view kAutorigVersion = "autorig-33";  // 2: the ARK
 // Why a loaded face cannot show emotions, or "" when it can (or when it is not
 // autorig's to decide): no rig map names its targets (a rig map, given or in
 // <data>/rigmaps, is the user's word), it is a glTF or OBJ face (VRM, CANDIDE-3
-// and OBJ keyframe sets have rigs of their own), and either no scheme recognises
+// and OBJ keyframe sets have rigs of their own; a VRM whose expressions for the
+// emotions bind nothing is rigged as a glTF face), and either no scheme recognises
 // its targets (`rig` failed as Unsupported) or the rig it has cannot emote
 // (facial::showsEmotions: visemes only, blink only, mouth shapes without
 // brows). E.g. "its 15 targets are
@@ -54,6 +55,11 @@ std::string autorigReason(const importers::LoadedFace& face, const eng::Result<f
 // lacks; when autorig cannot (no face found) or --no-autorig says not to,
 // the face is used as it is, with a warning, not refused.
 bool emotesInPart(const eng::Result<facial::RigCalibration>& rig);
+
+// Whether a face autorigReason() picked keeps its own rig when autorig is not
+// wanted (--no-autorig) or cannot run, with a warning, instead of being
+// refused: it emotesInPart, or it is a VRM (its expressions are its author's).
+bool keepsOwnRig(const importers::LoadedFace& face, const eng::Result<facial::RigCalibration>& rig);
 
 // What to say of a face autorigReason() picked, before what autorig did or
 // why it could not: the rig's own error when it has no rig (it names the file

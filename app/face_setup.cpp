@@ -116,6 +116,7 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
                                         eng::Result<importers::LoadedFace>& face) {
   const std::string model = modelPath.string();
   const std::string refusal = cannotEmoteLine(modelPath, reason, rig);
+  const bool keepsOwn = keepsOwnRig(*face, rig);  // asked before the rigged copy takes the face's place
   if (!options.autorig)
     return eng::makeError(eng::ErrorKind::Unsupported, refusal + "; --no-autorig refuses to give it the built-in "
                           "head's action units (drop the flag, or write them once with `facial autorig " + model +
@@ -132,7 +133,7 @@ eng::Result<std::string> autorigInPlace(const FaceSetupOptions& options, const s
          "): rigged with the built-in head's action units (" +
          std::to_string(cached->made.size()) + " targets made, its " + std::to_string(cached->kept.size()) +
          " kept), " + (cached->reused ? "from the cache " : "cached as ") + cached->path.string() +
-         (emotesInPart(rig) ? "; --no-autorig keeps its own rig instead" : "; --no-autorig refuses instead") +
+         (keepsOwn ? "; --no-autorig keeps its own rig instead" : "; --no-autorig refuses instead") +
          (up ? "; shown stood up (in its file the face " + up->howItLies + ")" : "");
 }
 
@@ -145,7 +146,7 @@ eng::Result<FaceSetup> FaceSetup::load(const FaceSetupOptions& options) {
   auto calibration = buildFaceRig(*face, options.rigmap);
   std::string note;
   if (const std::string reason = autorigReason(*face, calibration, options.rigmap); !reason.empty()) {
-    const bool inPart = emotesInPart(calibration);
+    const bool inPart = keepsOwnRig(*face, calibration);
     if (options.autorig || !inPart) {
       auto rigged = autorigInPlace(options, modelPath, reason, calibration, face);
       if (rigged) {

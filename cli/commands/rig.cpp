@@ -101,8 +101,8 @@ int runRig(const RigOptions& o) {
       rig = app::buildFaceRig(*face, o.rigmap, app::RigMapLookup::GivenOnly);
     } else {
       const std::string failed = app::cannotEmoteLine(o.model, autorig.reason, rig) + "; autorig: " + cached.error().message;
-      if (!app::emotesInPart(rig)) return fail(failed);
-      // Its own rig, which moves the brows or the lip corners, is listed.
+      if (!app::keepsOwnRig(*face, rig)) return fail(failed);
+      // Its own rig (brows or lip corners, a VRM's expressions) is listed.
       std::fprintf(stderr, "facial rig: warning: %s; its own rig is listed\n", failed.c_str());
       autorig.reason.clear();
     }

@@ -19,10 +19,13 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "app/face_landmark_finder.h"
 #include "app/face_setup.h"
 #include "autorig/builtin_source.h"
+#include "engine/scene/glb_container.h"
+#include "engine/scene/file_bytes.h"
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/gltf_writer.h"
 #include "engine/scene/skeleton_pose.h"
@@ -270,6 +273,43 @@ TEST(FaceSetupAutorig, AFaceWithoutTargetsIsRiggedAndSmiles) {
   EXPECT_TRUE(facial::showsEmotions(face->rig()));
   EXPECT_TRUE(face->rig().speaks()) << "the made jaw and lip units speak";
   EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+}
+
+// A VRM whose preset expressions bind nothing (what an exporter writes for a
+// model without blend shapes): its emotions would all be the neutral face,
+// without a word. The built-in head stripped, written so: rigged on the fly.
+TEST(FaceSetupAutorig, AVrmWhoseExpressionsBindNothingIsRiggedAndSmiles) {
+  auto model = eng::loadModel(testing_support::sourceDir() / "data" / "head.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  *model = testing_support::stripped(std::move(*model));
+  const fs::path dir = testing_support::freshTempDir("autorig_vrm_without_binds");
+  ASSERT_TRUE(eng::saveModel(*model, dir / "head.glb"));
+  auto bytes = eng::readFileBytes(dir / "head.glb", size_t{1} << 26);
+  ASSERT_TRUE(bytes);
+  auto chunks = eng::parseGlb(*bytes);
+  ASSERT_TRUE(chunks);
+  nlohmann::json json = nlohmann::json::parse(chunks->json.begin(), chunks->json.end());
+  nlohmann::json presets = nlohmann::json::object();
+  for (const char* name : {"happy", "angry", "sad", "relaxed", "surprised", "neutral", "aa", "blink"})
+    presets[name] = nlohmann::json::object();
+  json["extensionsUsed"] = {"VRMC_vrm"};
+  json["extensions"]["VRMC_vrm"] = {{"specVersion", "1.0"}, {"expressions", {{"preset", presets}}}};
+  const std::vector<uint8_t> vrm = eng::buildGlb(json.dump(), chunks->bin);
+  ASSERT_TRUE(eng::writeFileBytes(dir / "head.vrm", vrm.data(), vrm.size()));
+
+  setenv("XDG_CACHE_HOME", (dir / "cache").c_str(), 1);
+  auto face = app::FaceSetup::load({.model = dir / "head.vrm", .program = "test"});
+  auto own = app::FaceSetup::load({.model = dir / "head.vrm", .autorig = false, .program = "test"});
+  unsetenv("XDG_CACHE_HOME");
+  ASSERT_TRUE(face) << face.error().message;
+  EXPECT_NE(face->autorigNote().find("its VRM expressions for the emotions bind nothing"), std::string::npos)
+      << face->autorigNote();
+  EXPECT_EQ(face->rig().scheme(), facial::RigScheme::ActionUnits);
+  EXPECT_GT(happyWeightOf(*face, "AU12_"), 0.5f);
+  // --no-autorig: the author's expressions, as they are (a VRM's rig is its own).
+  ASSERT_TRUE(own) << own.error().message;
+  EXPECT_TRUE(own->autorigNote().empty()) << own->autorigNote();
+  EXPECT_EQ(own->rig().scheme(), facial::RigScheme::Expressions);
 }
 
 // The built-in head without its targets, as a Z-up export holds it (lying on

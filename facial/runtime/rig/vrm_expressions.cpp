@@ -98,6 +98,15 @@ std::string_view vrmMaterialColorTypeName(VrmMaterialColorType type) {
   return "?";
 }
 
+bool VrmExpressionSet::moves(size_t e) const {
+  if (e >= expressions.size()) return false;
+  const VrmExpression& x = expressions[e];
+  if (x.materialColorBindCount > 0 || x.textureTransformBindCount > 0) return true;
+  for (uint32_t b = x.firstBind; b < x.firstBind + x.bindCount && b < binds.size(); ++b)
+    if (binds[b].weight > 0.0f) return true;
+  return false;
+}
+
 std::vector<std::string> VrmExpressionSet::expressionNames() const {
   std::vector<std::string> names;
   names.reserve(expressions.size());

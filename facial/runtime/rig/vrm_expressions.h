@@ -144,6 +144,10 @@ struct VrmExpressionSet {
   eng::Result<void> applyMaterials(std::span<const float> effective, std::span<const VrmMaterialState> rest,
                                    std::span<VrmMaterialState> out) const;
   bool hasMaterialBinds() const { return !materialColorBinds.empty() || !textureTransformBinds.empty(); }
+  // Whether expression e changes anything at weight 1: a morph bind of some
+  // weight, or a material colour or texture transform bind. A file exported
+  // from a model without blend shapes keeps the presets, binding nothing.
+  bool moves(size_t e) const;
 };
 
 }  // namespace facial

@@ -56,6 +56,25 @@ TEST(VrmExpressions, BindsAccumulateScaledByWeight) {
   EXPECT_FLOAT_EQ(run(set, {-1.0f, 0, 0, 0, 0, 0})[0], 0.0f);
 }
 
+// An expression moves the face when a bind of it has weight, or it binds a
+// material: a file exported from a model without blend shapes keeps the
+// presets with nothing bound.
+TEST(VrmExpressions, AnExpressionMovesWhenItBindsSomething) {
+  VrmExpressionSet set = makeSet();
+  EXPECT_TRUE(set.moves(0));
+  set.binds[set.expressions[2].firstBind].weight = 0.0f;  // angry's one bind at 0
+  EXPECT_FALSE(set.moves(2));
+  set.expressions[2].materialColorBindCount = 1;
+  set.materialColorBinds.push_back({});
+  EXPECT_TRUE(set.moves(2));
+  VrmExpression empty;
+  empty.name = "relaxed";
+  empty.firstBind = static_cast<uint32_t>(set.binds.size());
+  set.expressions.push_back(empty);
+  EXPECT_FALSE(set.moves(set.expressions.size() - 1));
+  EXPECT_FALSE(set.moves(set.expressions.size())) << "past the end";
+}
+
 TEST(VrmExpressions, BlockZeroesTheGroupWhileTheOverriderIsActive) {
   VrmExpressionSet set = makeSet();
   set.expressions[0].overrideBlink = VrmOverride::Block;
