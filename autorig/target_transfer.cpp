@@ -14,6 +14,7 @@
 
 #include "autorig/arkit_from_geometry.h"
 #include "autorig/arkit_from_units.h"
+#include "autorig/brow_band.h"
 #include "autorig/dense_correspondence.h"
 #include "autorig/detail_transfer.h"
 #include "autorig/face_frame.h"
@@ -693,9 +694,28 @@ JawTurn openingLikeSource(JawTurn turn, const FaceLandmarks& sourceLandmarks, co
   return turn;
 }
 
+// "brows found (the subject's right, left): 52 vertices, down to 0.11 and
+// 0.14 eye spans under the brow line, rise with them as one piece".
+std::string browsNote(const BrowBand& brows) {
+  auto reach = [](float r) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.2f", double(r));
+    return r > 0.0f ? std::string(text) : std::string("none");
+  };
+  return "brows found (the subject's right, left): " +
+         std::to_string(brows.brows[0].covered.size() + brows.brows[1].covered.size()) + " vertices, down to " +
+         reach(brows.brows[0].reach) + " and " + reach(brows.brows[1].reach) +
+         " eye spans under the brow line, rise with them as one piece";
+}
+
+// The units whose brows move as one piece (autorig/brow_band.h).
+bool raisesBrows(std::string_view unit) {
+  return unit == "AU1_InnerBrowRaiser" || unit.starts_with("AU2_OuterBrowRaiser");
+}
+
 Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt, const FaceSurface& jaw,
                  const Correspondence& corr, const std::vector<std::string>& units, const FaceLandmarks& landmarks,
-                 const FaceParts& parts) {
+                 const FaceParts& parts, const BrowBand& brows) {
   const LandmarkFrame sourceFrame(source.landmarks), targetFrame(landmarks);
   const std::vector<std::vector<glm::vec3>> raw = sourceDeltas(source, src, units);
   const std::vector<float> teethShare = sourceTeethShares(source, src, corr.sourceRegions, raw, units);
@@ -736,6 +756,7 @@ Moved carryUnits(const SourceFace& source, const FaceSurface& src, const FaceSur
       const float weight = 1.0f - glm::smoothstep(fullGap, maxGap, match.distance);
       unit.deltas[v] = weight * atMatch(carried, src, match);
     }
+    if (raisesBrows(units[u])) moveAsOnePiece(brows, targetFrame.up(), unit.deltas);
     closeLids(sourceEyes, targetEyes, sourceGrid, src, raw[u], tgt, targetRims, corr, unit.deltas);
     for (size_t v = 0; v < tgt.positions.size(); ++v) unit.deltas[v] = alongEyeball(tgt.positions[v], unit.deltas[v], parts);
     if (jawUnit) {
@@ -938,11 +959,12 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   ENG_TRY(checkFacing(source, landmarks));
   const FaceLandmarks steady = withSteadyMouthCorners(source.landmarks, landmarks);
   const LandmarkFrame frame(steady);
+  const BrowBand brows = findBrows(face, posed, tgt, steady);
   eng::Result<Correspondence> matched = correspond(src, source.landmarks, tgt, steady);
   if (!matched) return matched.error().prefixed("target transfer: ");
   const Correspondence corr = std::move(*matched);
   const FaceSurface jaw = gatherSurface(face, posed, parts, {FacePart::LowerTeeth, FacePart::Tongue});
-  Moved moved = carryUnits(source, src, tgt, jaw, corr, units, steady, parts);
+  Moved moved = carryUnits(source, src, tgt, jaw, corr, units, steady, parts, brows);
   const FaceSurface onSkin = gatherSurface(face, posed, parts, {FacePart::SkinLayer});
   const std::vector<glm::vec3> tgtNormals = skinNormals(tgt);
   appendOnSkin(moved, onSkin, tgt, tgtNormals, frame.eyeSpan());
@@ -954,6 +976,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   TransferResult result{.model = face, .report = {}};
   TransferReport& report = result.report;
   useOwnShapes(face, posed, frame, moved, report.notes);
+  if (brows.found()) report.notes.push_back(browsNote(brows));
   std::vector<NamedDeltas> made;
   if (options.actionUnits)
     for (const NamedDeltas& unit : moved.units) made.push_back(unit);
