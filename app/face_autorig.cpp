@@ -159,6 +159,9 @@ eng::Result<FaceAutorig> FaceAutorig::load(const std::filesystem::path& head) {
   auto source = autorig::builtInSource(*rigger.head_);
   if (!source) return source.error().prefixed(rigger.headPath_.string() + ": ");
   rigger.source_ = std::move(*source);
+  auto headRig = buildModelRig(*rigger.head_);
+  if (!headRig) return headRig.error();
+  for (const facial::ActionUnitCalibration& unit : headRig->units) rigger.headScales_.emplace_back(unit.channel, unit.scale);
   return rigger;
 }
 
@@ -230,6 +233,22 @@ eng::Result<AutorigResult> FaceAutorig::rig(const eng::Model& face, const autori
     for (size_t p = 0; p < shadingWelded[m].size() && p < result.model.meshes[m].primitives.size(); ++p)
       if (shadingWelded[m][p] > 0) eng::restoreHardEdges(result.model.meshes[m].primitives[p], face.meshes[m].primitives[p]);
   result.report = std::move(transferred->report);
+  // The units carried from the head move each feature as far as the head's
+  // for this face's proportions: they keep the head's strengths. Measured
+  // against this face's size instead, Ready Player Me's outer brows were
+  // driven x1.37 (the head's x0.93), its brows lowered x0.90 (x0.63) till
+  // the skin folded at the nose's root in anger, and its jaw x0.80 (x1.69).
+  // The units made from the face's own shapes are measured as its own.
+  const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  std::vector<std::pair<std::string, float>> calibration;
+  for (const auto& [channel, scale] : headScales_)
+    if (listed(result.report.made, channel) && !listed(result.report.own, channel)) calibration.emplace_back(channel, scale);
+  for (const auto& entry : result.model.calibration)
+    if (std::none_of(calibration.begin(), calibration.end(), [&](const auto& c) { return c.first == entry.first; }))
+      calibration.push_back(entry);
+  result.model.calibration = std::move(calibration);
   result.landmarks = landmarks;
   result.partNotes = std::move(parts.notes);
   if (welded > 0)

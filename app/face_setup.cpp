@@ -89,6 +89,7 @@ eng::Result<facial::RigCalibration> buildModelRig(const eng::Model& model, const
     const bool beside = std::filesystem::equivalent(std::filesystem::path(model.sourcePath).parent_path(), dataDirectory(), ec);
     if (!byName || mapsTargets || beside) calibration.overrides = std::move(rigmap->calibration);
   }
+  calibration.given = model.calibration;
   auto calibrated = facial::calibrateRig(*rig, targetReach(model), calibration);
   if (!calibrated) return calibrated.error().prefixed(model.sourcePath + ": ");
   return calibrated;

@@ -828,8 +828,7 @@ void useOwnArkitShapes(const eng::Model& face, const PosedFace& posed, Moved& mo
 }
 
 void useOwnShapes(const eng::Model& face, const PosedFace& posed, const LandmarkFrame& frame, Moved& moved,
-                  std::vector<std::string>& notes) {
-  std::vector<std::string> taken;
+                  std::vector<std::string>& taken, std::vector<std::string>& notes) {
   for (const OwnShape& own : kOwnShapes) {
     const std::string name(own.name);
     const std::vector<glm::vec3> deltas = worldDeltas(face, posed, moved.vertices, {&name, 1})[0];
@@ -975,7 +974,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
 
   TransferResult result{.model = face, .report = {}};
   TransferReport& report = result.report;
-  useOwnShapes(face, posed, frame, moved, report.notes);
+  useOwnShapes(face, posed, frame, moved, report.own, report.notes);
   if (brows.found()) report.notes.push_back(browsNote(brows));
   std::vector<NamedDeltas> made;
   if (options.actionUnits)

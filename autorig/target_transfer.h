@@ -48,6 +48,7 @@ struct TransferReport {
   std::vector<std::string> kept;      // names the face already had (not replaced)
   std::vector<std::string> warnings;  // parts left out and why
   std::vector<std::string> notes;     // units made from the face's own shapes
+  std::vector<std::string> own;       // those units' names (AU12_LipCornerPuller_L from mouthSmile, ...)
   std::vector<std::string> details;   // the head's wrinkle and colour layers carried (autorig/detail_transfer.h)
 };
 

@@ -1,6 +1,7 @@
 // The order of the glTF model builder's steps, and the extensions a file may require.
 #include "engine/scene/gltf_model_builder.h"
 
+#include <cmath>
 #include <string_view>
 #include <unordered_set>
 
@@ -20,6 +21,7 @@ Result<Model> GltfModelBuilder::build() {
   if (auto ok = loadNodes(); !ok) return ok.error();
   if (auto ok = readSkins(reader_, gltf_, model_); !ok) return fail(ok.error());
   if (auto ok = loadAnimations(); !ok) return ok.error();
+  loadCalibration();
   return std::move(model_);
 }
 
@@ -34,6 +36,22 @@ Result<void> GltfModelBuilder::checkExtensions() {
     if (!required.count(ext) && !isHandledExtension(ext)) warn("optional extension " + ext + " ignored");
   }
   return {};
+}
+
+void GltfModelBuilder::loadCalibration() {
+  if (!gltf_.extras.IsObject() || !gltf_.extras.Has("facialCalibration")) return;
+  const tinygltf::Value& table = gltf_.extras.Get("facialCalibration");
+  if (!table.IsObject()) return warn("extras.facialCalibration is not an object: ignored");
+  for (const std::string& channel : table.Keys()) {
+    countWork();
+    const tinygltf::Value& scale = table.Get(channel);
+    const double value = scale.IsNumber() ? scale.GetNumberAsDouble() : -1.0;
+    if (!std::isfinite(value) || value < 0.0 || value > 1e3) {
+      warn("extras.facialCalibration['" + channel + "'] is not a number from 0 to 1000: ignored");
+      continue;
+    }
+    model_.calibration.emplace_back(channel, float(value));
+  }
 }
 
 }  // namespace eng

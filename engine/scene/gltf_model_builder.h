@@ -51,6 +51,7 @@ class GltfModelBuilder {
 
   // gltf_model_builder.cpp
   Result<void> checkExtensions();
+  void loadCalibration();  // the root's extras.facialCalibration (Model::calibration)
 
   // gltf_builder_materials.cpp: images (checked up front, decoded once when a
   // material first uses them), textures and materials.

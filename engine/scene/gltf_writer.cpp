@@ -412,6 +412,11 @@ Json animationJson(const Animation& anim, BufferBuilder& buffers) {
 Result<Json> buildDocument(const Model& model, BufferBuilder& buffers) {
   Json doc;
   doc["asset"] = {{"version", "2.0"}, {"generator", "facial eng_scene"}};
+  if (!model.calibration.empty()) {
+    Json calibration = Json::object();
+    for (const auto& [channel, scale] : model.calibration) calibration[channel] = scale;
+    doc["extras"] = {{"facialCalibration", std::move(calibration)}};
+  }
   if (auto images = writeImages(doc, model, buffers); !images) return images.error();
   const std::vector<MaterialTextures> textures = writeTextures(doc, model);
   if (!model.materials.empty()) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -306,6 +307,10 @@ struct Model {
   int humanoidHead = -1;  // node of the VRM humanoid `head` bone (VRMC_vrm 1.0 / VRM 0.x), -1 when absent
   std::vector<std::string> warnings;  // non-fatal problems met while loading
   std::vector<ExtensionUse> extensions;  // in the file's order, used ones first
+  // Strength scales for the rig's channels (by name) stated by the tool that
+  // made its targets, in the glTF root's extras as "facialCalibration"
+  // (`facial autorig` writes the built-in head's); empty: measured on load.
+  std::vector<std::pair<std::string, float>> calibration;
 
   glm::mat4 worldTransform(int node) const;
   // Per mesh, the first node (in node order) that draws it; -1 for a mesh no

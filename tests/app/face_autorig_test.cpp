@@ -699,3 +699,35 @@ TEST(FaceAutorigRig, ABeardMovesAsTheSkinUnderIt) {
     EXPECT_LT(worst, 0.05f * largest) << unit;
   }
 }
+
+// The units carried from the head keep the head's strengths, in the file as
+// written too: measured against the face's size instead, Ready Player Me's
+// outer brows were driven x1.37 where the head's are x0.93 and its jaw
+// x0.80 where the head's is x1.69 (its rig map's jaw included).
+TEST(FaceAutorigRig, MadeUnitsKeepTheHeadsStrengths) {
+  BuiltInHeadRig built;
+  ASSERT_NO_FATAL_FAILURE(loadBuiltInHeadRig(built));
+  const eng::Model stripped = testing_support::stripped(built.head);
+  auto rigged = built.rigger->rig(stripped, built.source->landmarks, "head", {.arkit = false, .detailLayers = false});
+  ASSERT_TRUE(rigged) << rigged.error().message;
+  EXPECT_FALSE(rigged->model.calibration.empty());
+  const fs::path dir = testing_support::freshTempDir("autorig_calibration");
+  ASSERT_TRUE(eng::saveModel(rigged->model, dir / "made.glb"));
+  auto reloaded = eng::loadModel(dir / "made.glb");
+  ASSERT_TRUE(reloaded) << reloaded.error().message;
+  auto headRig = app::buildModelRig(built.head);
+  auto madeRig = app::buildModelRig(*reloaded);
+  ASSERT_TRUE(headRig) << headRig.error().message;
+  ASSERT_TRUE(madeRig) << madeRig.error().message;
+  auto scaleOf = [](const facial::RigCalibration& rig, const std::string& channel) {
+    for (const facial::ActionUnitCalibration& unit : rig.units)
+      if (unit.channel == channel) return unit.scale;
+    return -1.0f;
+  };
+  for (const char* channel : {"AU1_InnerBrowRaiser", "AU2_OuterBrowRaiser_L", "AU4_BrowLowerer", "AU12_LipCornerPuller_L",
+                              "AU26_JawDrop"}) {
+    EXPECT_GT(scaleOf(*headRig, channel), 0.0f) << channel;
+    EXPECT_FLOAT_EQ(scaleOf(*madeRig, channel), scaleOf(*headRig, channel)) << channel;
+  }
+  EXPECT_NEAR(scaleOf(*madeRig, "AU26_JawDrop"), 1.69f, 0.02f) << "the head's rig map's jaw";
+}

@@ -106,8 +106,8 @@ TEST_F(ExpressionJudge, FacecapStatesAreNamed) {
 // Faces without targets (issue 33), rigged on the fly by `facial express`:
 // the built-in head and facecap with every target stripped, and the Ready
 // Player Me avatar that has only visemes. The issue asks 5 of 7 on each; these
-// are floors under what they read today (2026-12-06; per state in
-// docs/autorig.md): facecap's surprise and fear at 384 px, and the avatar's
+// are floors under what they read today (2026-12-07; per state in
+// docs/autorig.md): facecap's surprise at 256 px and fear, and the avatar's
 // sad, surprise and fear, which the judge reads as anger under its painted
 // moustache and glasses (5 of 7 with both taken away), are below it.
 std::string strippedCopy(const std::string& name, const std::filesystem::path& from) {
@@ -131,8 +131,12 @@ TEST_F(ExpressionJudge, BuiltInHeadWithoutTargetsStatesAreNamed) {
 }
 
 TEST_F(ExpressionJudge, FacecapWithoutTargetsStatesAreNamed) {
+  // Since its made units keep the head's strengths (2026-12-07, late;
+  // docs/autorig.md) it reads 5 of 7 at 384 px, 4 before, and 4 at 256,
+  // 5 before: there its surprise is a tie with fear (0.39 and 0.41), its
+  // brows raised as the head's are rather than 1.3 times as far.
   expectRecognised("facecap_stripped", strippedCopy("facecap", testing_support::sharedDir() / "assets" / "facecap.glb"),
-                   {{256, 5}, {384, 4}});
+                   {{256, 4}, {384, 5}});
 }
 
 TEST_F(ExpressionJudge, VisemesOnlyAvatarStatesAreNamed) {

@@ -71,6 +71,15 @@ eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const 
       return eng::makeError(eng::ErrorKind::Malformed, "rig calibration: the scale of '" + channel + "' must be a finite number >= 0");
     overrideScale[*index] *= scale;
   }
+  // A file's own statement: a name no channel has, or a scale that is no
+  // number >= 0, is left out with a note (the file still loads).
+  std::vector<float> givenScale(units.size(), -1.0f);  // < 0: measured
+  std::vector<std::string> ignored;
+  for (const auto& [channel, scale] : options.given) {
+    const auto index = actionUnitIndex(channel);
+    if (index && std::isfinite(scale) && scale >= 0.0f) givenScale[*index] = scale;
+    else ignored.push_back(channel);
+  }
 
   RigCalibration result;
   RigMappingBuilder builder = RigMappingBuilder::startingFrom(rig, /*withRows=*/false);
@@ -84,7 +93,9 @@ eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const 
       unit.reference = referenceReach(unit.channel);
       for (size_t i = 0; i < targets.size(); ++i)
         unit.reach = std::max(unit.reach, std::abs(gains[i]) * targetReach[targets[i]]);
-      if (unit.reference > 0.0f && unit.reach > 0.0f)
+      if (givenScale[input] >= 0.0f)
+        unit.scale = givenScale[input];
+      else if (unit.reference > 0.0f && unit.reach > 0.0f)
         unit.scale = std::clamp(unit.reference / unit.reach, options.minScale, options.maxScale);
       unit.scale *= overrideScale[input];
       scale = unit.scale;
@@ -95,6 +106,13 @@ eng::Result<RigCalibration> calibrateRig(const RigMapping& rig, std::span<const 
   bool calibrated = false;
   for (const ActionUnitCalibration& u : result.units) calibrated |= std::abs(u.scale - 1.0f) > 1e-3f;
   if (calibrated) builder.note("action-unit strengths calibrated to the face's size (facial rig --calibration lists them)");
+  if (const auto given = std::count_if(givenScale.begin(), givenScale.end(), [](float g) { return g >= 0.0f; }); given > 0)
+    builder.note(std::to_string(given) + " of them as the file states (facialCalibration: a face rigged by facial autorig keeps the built-in head's)");
+  if (!ignored.empty()) {
+    std::string line = "facialCalibration: " + std::to_string(ignored.size()) + " entries name no action unit channel or no scale >= 0, ignored:";
+    for (const std::string& name : ignored) line += " " + name;
+    builder.note(line);
+  }
   auto built = builder.build();
   if (!built) return built.error();
   result.rig = std::move(*built);

@@ -30,6 +30,13 @@ struct RigCalibrationOptions {
   float maxScale = 1.6f;  // how far a too-weak row is raised (then clamped by the weight range)
   // Per action unit channel, multiplied after the measured scale (rig map overrides).
   std::vector<std::pair<std::string, float>> overrides;
+  // Per action unit channel, the scale a rigged file states for its own
+  // targets, taken instead of the measured one (overrides still multiply).
+  // A face rigged by `facial autorig` states the built-in head's: its units
+  // move each feature as far as the head's for the face's own proportions,
+  // and measured against the face's size they were driven unlike the head's
+  // (Ready Player Me's outer brows x1.37 where the head's are x0.93).
+  std::vector<std::pair<std::string, float>> given;
 };
 
 struct ActionUnitCalibration {

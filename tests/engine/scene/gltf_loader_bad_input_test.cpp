@@ -412,4 +412,27 @@ TEST(ErrorKinds, PrefixedKeepsKindAndCode) {
   EXPECT_EQ(eng::errorKindName(eng::ErrorKind::TooLarge), "too large");
 }
 
+// A rigged file's calibration ("facialCalibration" in the root's extras):
+// entries that are no scale are left out with a warning each, the rest kept.
+TEST(GltfLoaderBadInput, CalibrationEntriesThatAreNoScaleAreLeftOutWithAWarning) {
+  const auto dir = freshTempDir("bad_calibration");
+  GltfFileBuilder b = quadWithTarget();
+  b.doc["extras"] = {{"facialCalibration", {{"AU1_InnerBrowRaiser", 0.8}, {"AU2_OuterBrowRaiser_L", "high"}, {"AU4_BrowLowerer", -2.0}}}};
+  b.writeGlb(dir / "calibration.glb");
+  auto model = eng::loadModel(dir / "calibration.glb");
+  ASSERT_TRUE(model) << model.error().message;
+  ASSERT_EQ(model->calibration.size(), 1u);
+  EXPECT_EQ(model->calibration[0].first, "AU1_InnerBrowRaiser");
+  EXPECT_FLOAT_EQ(model->calibration[0].second, 0.8f);
+  ASSERT_EQ(model->warnings.size(), 2u);
+  EXPECT_NE(model->warnings[0].find("AU2_OuterBrowRaiser_L"), std::string::npos) << model->warnings[0];
+  GltfFileBuilder c = quadWithTarget();
+  c.doc["extras"] = {{"facialCalibration", {1, 2}}};
+  c.writeGlb(dir / "array.glb");
+  auto array = eng::loadModel(dir / "array.glb");
+  ASSERT_TRUE(array) << array.error().message;
+  EXPECT_TRUE(array->calibration.empty());
+  EXPECT_EQ(array->warnings.size(), 1u);
+}
+
 }  // namespace

@@ -151,10 +151,12 @@ eng::Model richModel() {
     anim.channels.push_back(ch);
   }
   model.animations.push_back(anim);
+  model.calibration = {{"AU1_InnerBrowRaiser", 0.79f}, {"AU26_JawDrop", 1.69f}};  // as facial autorig states
   return model;
 }
 
 void expectSameModel(const eng::Model& a, const eng::Model& b) {
+  EXPECT_EQ(a.calibration, b.calibration);
   ASSERT_EQ(a.meshes.size(), b.meshes.size());
   for (size_t m = 0; m < a.meshes.size(); ++m) {
     const eng::Mesh& x = a.meshes[m];

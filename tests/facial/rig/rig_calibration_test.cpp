@@ -1,6 +1,7 @@
 // Per-rig action-unit strength calibration: validity cases (sizes, bad
 // reaches, overrides) apart from result cases (scaling toward the reference,
 // bounds, blinks untouched, overrides applied).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -90,6 +91,35 @@ TEST(RigCalibration, OverridesMultiplyTheMeasuredScale) {
   auto calibrated = calibrateRig(rig, std::vector<float>{0.1f, jawRef, 0.1f, 0.1f}, options);
   ASSERT_TRUE(calibrated);
   EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU26_JawDrop"), 0.5f);
+}
+
+// A rigged file's own scales (a face rigged by facial autorig states the
+// built-in head's) stand for the measured ones; overrides still multiply.
+TEST(RigCalibration, ScalesAFileStatesReplaceTheMeasuredOnes) {
+  const RigMapping rig = facsRig(kNames);
+  const float smileRef = referenceReach("AU12_LipCornerPuller_L");
+  RigCalibrationOptions options;
+  options.given = {{"AU12_LipCornerPuller_L", 0.93f}, {"AU26_JawDrop", 1.69f}};
+  options.overrides = {{"AU26_JawDrop", 0.5f}};
+  // Measured, the smile would stay (its reach is the reference) and the jaw be raised to 1.6.
+  auto calibrated = calibrateRig(rig, std::vector<float>{smileRef, 0.01f, 0.1f, 0.1f}, options);
+  ASSERT_TRUE(calibrated) << calibrated.error().message;
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU12_LipCornerPuller_L"), 0.93f);
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU26_JawDrop"), 1.69f * 0.5f);
+}
+
+TEST(RigCalibrationValidity, ScalesAFileStatesForNoChannelOrAsNoNumberAreNotedAndLeftOut) {
+  const RigMapping rig = facsRig(kNames);
+  const float smileRef = referenceReach("AU12_LipCornerPuller_L");
+  RigCalibrationOptions options;
+  options.given = {{"AU99_Nothing", 1.2f}, {"AU12_LipCornerPuller_L", NAN}, {"AU4_BrowLowerer", -1.0f}};
+  auto calibrated = calibrateRig(rig, std::vector<float>{smileRef, 0.1f, 0.1f, 0.1f}, options);
+  ASSERT_TRUE(calibrated) << calibrated.error().message;  // the file still loads
+  EXPECT_FLOAT_EQ(gainOf(calibrated->rig, "AU12_LipCornerPuller_L"), 1.0f);  // measured
+  const std::vector<std::string>& notes = calibrated->rig.report().notes;
+  const auto noted = std::find_if(notes.begin(), notes.end(), [](const std::string& n) { return n.find("AU99_Nothing") != std::string::npos; });
+  ASSERT_NE(noted, notes.end());
+  EXPECT_NE(noted->find("3 entries"), std::string::npos) << *noted;
 }
 
 TEST(RigCalibration, UnmovedTargetsAreLeftAlone) {
