@@ -150,7 +150,6 @@ BrowBand findBrows(const eng::Model& face, const PosedFace& posed, const FaceSur
           (surface.parts[v] == FacePart::Brows || surface.parts[v] == FacePart::Skin)) {
         brow.about.push_back(v);
         brow.place.push_back(q);
-        brow.line.push_back(top);
       }
     }
     const float reference = forehead.size() >= kMinCovered ? median(forehead) : 0.0f;
@@ -183,7 +182,7 @@ BrowBand findBrows(const eng::Model& face, const PosedFace& posed, const FaceSur
       band.coverage[brow.about[i]] = coverage[i];
       brow.covered.push_back(brow.about[i]);
       brow.coveredAt.push_back(i);
-      if (coverage[i] >= 0.5f) depths.push_back(brow.line[i] - brow.place[i].y);
+      if (coverage[i] >= 0.5f) depths.push_back(heightAt(line, brow.place[i].x) - brow.place[i].y);
     }
     const float reach = depths.size() >= kMinCovered ? *std::max_element(depths.begin(), depths.end()) : 0.0f;
     if (!(reach > 0.0f) || reach > kMaxReach) {

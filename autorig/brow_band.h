@@ -34,14 +34,13 @@ struct BrowBand {
   std::vector<float> coverage;  // per surface vertex: how much a brow covers it, 0..1
   // Per brow (the subject's right, left): the vertices it covers, those
   // about it (across its length, from the upper lid to over the brow line),
-  // each vertex's place in the face plane (side, up; eye spans) and the brow
-  // line's height there. A vertex is covered as far as the darkest of its
-  // triangles is brow: on a coarse mesh a brow's edge crosses triangles
-  // whose corners lie above and below it, and they rise whole.
+  // and each vertex's place in the face plane (side, up; eye spans). A
+  // vertex is covered as far as the darkest of its triangles is brow: on a
+  // coarse mesh a brow's edge crosses triangles whose corners lie above and
+  // below it, and they rise whole.
   struct Brow {
     std::vector<size_t> covered, about;
     std::vector<glm::vec2> place;  // per `about` entry
-    std::vector<float> line;       // per `about` entry
     std::vector<size_t> coveredAt;  // per `covered` entry: its index in `about`
     float reach = 0.0f;  // how far under the line the mostly covered vertices go, eye spans; 0: none found
   };
