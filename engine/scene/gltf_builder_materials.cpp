@@ -160,6 +160,90 @@ void GltfModelBuilder::readToonShading(size_t index, Material& mat, const std::s
                                    "equalization, parametric rim, matcap, outline, their masks)";
 }
 
+void GltfModelBuilder::readAlphaMode(const tinygltf::Material& src, Material& mat, const std::string& where) {
+  if (src.alphaMode == "MASK") {
+    mat.alphaMode = AlphaMode::Mask;
+    mat.alphaCutoff = static_cast<float>(src.alphaCutoff);
+    if (!std::isfinite(mat.alphaCutoff) || mat.alphaCutoff < 0.0f) {
+      warn(where + " has alphaCutoff " + std::to_string(src.alphaCutoff) + ", not a number >= 0; 0.5 used");
+      mat.alphaCutoff = 0.5f;
+    }
+  } else if (src.alphaMode == "BLEND") {
+    mat.alphaMode = AlphaMode::Blend;
+  } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+    warn(where + " has alphaMode '" + src.alphaMode + "' (glTF knows OPAQUE, MASK, BLEND); drawn opaque");
+  }
+}
+
+// Factors that are not finite fall back to glTF's defaults together, so a
+// broken material draws plain rather than half of it broken.
+void GltfModelBuilder::readFactorsAndEmission(const tinygltf::Material& src, const BaseColorUv& uvs, Material& mat,
+                                              const std::string& where) {
+  if (src.emissiveFactor.size() == 3)
+    mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+  if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) || !std::isfinite(mat.normalScale) ||
+      !std::isfinite(mat.occlusionStrength) || glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
+      glm::any(glm::isnan(mat.emissiveFactor)) || glm::any(glm::isinf(mat.emissiveFactor))) {
+    warn(where + " has non-finite factors; defaults used");
+    mat.baseColorFactor = glm::vec4(1.0f);
+    mat.emissiveFactor = glm::vec3(0.0f);
+    mat.roughness = 1.0f;
+    mat.metallic = 1.0f;
+    mat.normalScale = 1.0f;
+    mat.occlusionStrength = 1.0f;
+  }
+  // The emissive texture masks the factor: without it (left out, or not
+  // decodable) the factor would light the whole surface, so it goes too.
+  if (mat.emissiveFactor != glm::vec3(0.0f)) {
+    const auto& [metalRough, normal, occlusion, emissive, matcap, shadingShift, rimMultiply, outlineWidth] =
+        kMaterialTextures;
+    readMaterialTexture(emissive, src.emissiveTexture.index, src.emissiveTexture.texCoord,
+                        src.emissiveTexture.extensions, uvs, mat, where);
+    const bool drawn = mat.emissiveImage >= 0 && !model_.images[static_cast<size_t>(mat.emissiveImage)].rgba8.empty();
+    if (src.emissiveTexture.index >= 0 && !drawn) {
+      warn(where + ": its emissiveFactor is left out with its emissiveTexture");
+      mat.emissiveFactor = glm::vec3(0.0f);
+      mat.emissiveImage = -1;
+    }
+  }
+}
+
+// A layer drawn over the base colour as a target's weight rises (the made
+// wrinkles of facial autorig): extras.detailLayers = [{image, target, strength, blend}].
+void GltfModelBuilder::readDetailLayers(const tinygltf::Material& src, Material& mat, const std::string& where) {
+  if (!src.extras.IsObject() || !src.extras.Has("detailLayers")) return;
+  const tinygltf::Value& layers = src.extras.Get("detailLayers");
+  for (size_t l = 0; layers.IsArray() && l < layers.ArrayLen(); ++l) {
+    const tinygltf::Value& layer = layers.Get(static_cast<int>(l));
+    const std::string lw = where + " detail layer " + std::to_string(l);
+    if (!layer.IsObject() || !layer.Has("image") || !layer.Get("image").IsNumber() || !layer.Has("target") ||
+        !layer.Get("target").IsString()) {
+      warn(lw + " needs an integer 'image' and a string 'target'; ignored");
+      continue;
+    }
+    DetailLayer d;
+    d.image = modelImage(layer.Get("image").GetNumberAsInt(), lw);
+    d.target = layer.Get("target").Get<std::string>();
+    if (layer.Has("strength") && layer.Get("strength").IsNumber())
+      d.strength = static_cast<float>(layer.Get("strength").GetNumberAsDouble());
+    if (d.image < 0 || !std::isfinite(d.strength)) {
+      warn(lw + " has no usable image or strength; ignored");
+      continue;
+    }
+    if (layer.Has("blend")) {
+      const tinygltf::Value& blend = layer.Get("blend");
+      if (blend.IsString() && blend.Get<std::string>() == "modulate") {
+        d.blend = DetailBlend::Modulate;
+      } else if (!blend.IsString() || blend.Get<std::string>() != "mix") {
+        warn(lw + " has blend " + (blend.IsString() ? "'" + blend.Get<std::string>() + "'" : std::string("that is not a string")) +
+             " (known: 'mix', 'modulate'); ignored");
+        continue;
+      }
+    }
+    mat.detailLayers.push_back(std::move(d));
+  }
+}
+
 void GltfModelBuilder::loadMaterials() {
   for (size_t i = 0; i < gltf_.materials.size(); ++i) {
     const tinygltf::Material& src = gltf_.materials[i];
@@ -192,75 +276,9 @@ void GltfModelBuilder::loadMaterials() {
       outcomes_[kKhrMaterialsUnlit] = "applied: " + std::to_string(++unlitMaterials_) + " material(s) drawn unlit";
     }
     readToonShading(i, mat, where);
-    if (src.alphaMode == "MASK") {
-      mat.alphaMode = AlphaMode::Mask;
-      mat.alphaCutoff = static_cast<float>(src.alphaCutoff);
-      if (!std::isfinite(mat.alphaCutoff) || mat.alphaCutoff < 0.0f) {
-        warn(where + " has alphaCutoff " + std::to_string(src.alphaCutoff) + ", not a number >= 0; 0.5 used");
-        mat.alphaCutoff = 0.5f;
-      }
-    } else if (src.alphaMode == "BLEND") {
-      mat.alphaMode = AlphaMode::Blend;
-    } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
-      warn(where + " has alphaMode '" + src.alphaMode + "' (glTF knows OPAQUE, MASK, BLEND); drawn opaque");
-    }
-    if (src.emissiveFactor.size() == 3)
-      mat.emissiveFactor = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
-    if (!std::isfinite(mat.roughness) || !std::isfinite(mat.metallic) || !std::isfinite(mat.normalScale) ||
-        !std::isfinite(mat.occlusionStrength) || glm::any(glm::isnan(mat.baseColorFactor)) || glm::any(glm::isinf(mat.baseColorFactor)) ||
-        glm::any(glm::isnan(mat.emissiveFactor)) || glm::any(glm::isinf(mat.emissiveFactor))) {
-      warn(where + " has non-finite factors; defaults used");
-      mat.baseColorFactor = glm::vec4(1.0f);
-      mat.emissiveFactor = glm::vec3(0.0f);
-      mat.roughness = 1.0f;
-      mat.metallic = 1.0f;
-      mat.normalScale = 1.0f;
-      mat.occlusionStrength = 1.0f;
-    }
-    // The emissive texture masks the factor: without it (left out, or not
-    // decodable) the factor would light the whole surface, so it goes too.
-    if (mat.emissiveFactor != glm::vec3(0.0f)) {
-      readMaterialTexture(emissive, src.emissiveTexture.index, src.emissiveTexture.texCoord,
-                          src.emissiveTexture.extensions, uvs, mat, where);
-      const bool drawn = mat.emissiveImage >= 0 && !model_.images[static_cast<size_t>(mat.emissiveImage)].rgba8.empty();
-      if (src.emissiveTexture.index >= 0 && !drawn) {
-        warn(where + ": its emissiveFactor is left out with its emissiveTexture");
-        mat.emissiveFactor = glm::vec3(0.0f);
-        mat.emissiveImage = -1;
-      }
-    }
-    if (src.extras.IsObject() && src.extras.Has("detailLayers")) {
-      const tinygltf::Value& layers = src.extras.Get("detailLayers");
-      for (size_t l = 0; layers.IsArray() && l < layers.ArrayLen(); ++l) {
-        const tinygltf::Value& layer = layers.Get(static_cast<int>(l));
-        const std::string lw = where + " detail layer " + std::to_string(l);
-        if (!layer.IsObject() || !layer.Has("image") || !layer.Get("image").IsNumber() || !layer.Has("target") ||
-            !layer.Get("target").IsString()) {
-          warn(lw + " needs an integer 'image' and a string 'target'; ignored");
-          continue;
-        }
-        DetailLayer d;
-        d.image = modelImage(layer.Get("image").GetNumberAsInt(), lw);
-        d.target = layer.Get("target").Get<std::string>();
-        if (layer.Has("strength") && layer.Get("strength").IsNumber())
-          d.strength = static_cast<float>(layer.Get("strength").GetNumberAsDouble());
-        if (d.image < 0 || !std::isfinite(d.strength)) {
-          warn(lw + " has no usable image or strength; ignored");
-          continue;
-        }
-        if (layer.Has("blend")) {
-          const tinygltf::Value& blend = layer.Get("blend");
-          if (blend.IsString() && blend.Get<std::string>() == "modulate") {
-            d.blend = DetailBlend::Modulate;
-          } else if (!blend.IsString() || blend.Get<std::string>() != "mix") {
-            warn(lw + " has blend " + (blend.IsString() ? "'" + blend.Get<std::string>() + "'" : std::string("that is not a string")) +
-                 " (known: 'mix', 'modulate'); ignored");
-            continue;
-          }
-        }
-        mat.detailLayers.push_back(std::move(d));
-      }
-    }
+    readAlphaMode(src, mat, where);
+    readFactorsAndEmission(src, uvs, mat, where);
+    readDetailLayers(src, mat, where);
     model_.materials.push_back(std::move(mat));
   }
 }

@@ -113,6 +113,10 @@ class GltfModelBuilder {
     std::optional<UvTransform> transform;
   };
   BaseColorUv baseColorUv(const tinygltf::TextureInfo& info, int image, const std::string& where);
+  // Parts of loadMaterials(), in the order it reads them.
+  void readAlphaMode(const tinygltf::Material& src, Material& mat, const std::string& where);
+  void readFactorsAndEmission(const tinygltf::Material& src, const BaseColorUv& uvs, Material& mat, const std::string& where);
+  void readDetailLayers(const tinygltf::Material& src, Material& mat, const std::string& where);
   void readMaterialTexture(const MaterialTexture& slot, int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
                        const BaseColorUv& base, Material& mat, const std::string& where);
   TextureSampling textureSampling(int texture, const std::string& where);

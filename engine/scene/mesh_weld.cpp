@@ -43,22 +43,18 @@ uint32_t rootOf(std::vector<uint32_t>& keeper, uint32_t v) {
   return v;
 }
 
-// Merges, in the forest `keeper`, the copies of a vertex that differ only in
-// shading and lie on one surface: two triangles that share an edge's two
-// places join their corners there, unless they are two sheets that touch
-// there: closing onto each other into a crack (a slit mouth's lips, the upper
-// lip's underside on the lower lip's top), or, where more than two faces meet
-// at the edge, faces that do not bound one solid (each face is paired with
-// the next one round the edge on its inner side).
-void joinAcrossHardEdges(const Primitive& p, const ExactPositionGroups& groups, float minCosine,
-                         std::vector<uint32_t>& keeper) {
+struct Side {
+  uint64_t places;  // the edge's two places, lower first
+  uint32_t corner;  // the edge's first corner (t * 3 + k): from corner k to k + 1
+};
+
+// Each triangle's unit normal (zero where degenerate) and its sides between
+// two places, sorted by place pair so the faces round one edge are adjacent.
+void sidesByEdge(const Primitive& p, const ExactPositionGroups& groups, std::vector<glm::vec3>& faceNormal,
+                 std::vector<Side>& sides) {
   const size_t triangles = p.indices.size() / 3;
-  std::vector<glm::vec3> faceNormal(triangles, glm::vec3(0.0f));
-  struct Side {
-    uint64_t places;  // the edge's two places, lower first
-    uint32_t corner;  // the edge's first corner (t * 3 + k): from corner k to k + 1
-  };
-  std::vector<Side> sides;
+  faceNormal.assign(triangles, glm::vec3(0.0f));
+  sides.clear();
   sides.reserve(p.indices.size());
   for (size_t t = 0; t < triangles; ++t) {
     const glm::dvec3 a(p.positions[p.indices[t * 3]]), b(p.positions[p.indices[t * 3 + 1]]), c(p.positions[p.indices[t * 3 + 2]]);
@@ -74,6 +70,20 @@ void joinAcrossHardEdges(const Primitive& p, const ExactPositionGroups& groups, 
   std::sort(sides.begin(), sides.end(), [](const Side& a, const Side& b) {
     return a.places < b.places || (a.places == b.places && a.corner < b.corner);
   });
+}
+
+// Merges, in the forest `keeper`, the copies of a vertex that differ only in
+// shading and lie on one surface: two triangles that share an edge's two
+// places join their corners there, unless they are two sheets that touch
+// there: closing onto each other into a crack (a slit mouth's lips, the upper
+// lip's underside on the lower lip's top), or, where more than two faces meet
+// at the edge, faces that do not bound one solid (each face is paired with
+// the next one round the edge on its inner side).
+void joinAcrossHardEdges(const Primitive& p, const ExactPositionGroups& groups, float minCosine,
+                         std::vector<uint32_t>& keeper) {
+  std::vector<glm::vec3> faceNormal;
+  std::vector<Side> sides;
+  sidesByEdge(p, groups, faceNormal, sides);
   auto cornerAt = [&](uint32_t corner, uint32_t place) {  // the side's vertex at `place`
     const uint32_t t = corner / 3, k = corner % 3;
     const uint32_t v = p.indices[t * 3 + k];
@@ -294,6 +304,56 @@ size_t weldIdenticalVertices(Model& model, const WeldOptions& options) {
   return removed;
 }
 
+namespace {
+
+// A copy of vertex v with every attribute and target delta, at the end; its index.
+uint32_t appendVertexCopy(Primitive& p, uint32_t v) {
+  const size_t sets = p.influenceSets();
+  const uint32_t copy = uint32_t(p.vertexCount());
+  p.positions.push_back(p.positions[v]);
+  appendCopy(p.normals, 1, v);
+  appendCopy(p.texcoords, 1, v);
+  appendCopy(p.tangents, 1, v);
+  appendCopy(p.colors, 1, v);
+  appendCopy(p.joints, sets, v);
+  appendCopy(p.jointWeights, sets, v);
+  for (MorphTarget& t : p.targets) {
+    appendCopy(t.positions, 1, v);
+    appendCopy(t.normals, 1, v);
+    appendCopy(t.tangents, 1, v);
+  }
+  return copy;
+}
+
+// The normal deltas of the targets from `firstMade` on (made since the file
+// was read) remade where a place has more than one normal (the hard edges).
+void remakeMadeNormalDeltas(Primitive& welded, size_t firstMade) {
+  const ExactPositionGroups groups = groupExactPositions(welded.positions);
+  std::vector<char> hard(groups.firstVertex.size(), 0);
+  for (size_t v = 0; v < welded.vertexCount(); ++v)
+    if (welded.normals[v] != welded.normals[groups.firstVertex[groups.groupOf[v]]]) hard[groups.groupOf[v]] = 1;
+  // A side: the vertices at one hard place with one normal; the vertices of
+  // each place as a list threaded through nextAtPlace.
+  std::vector<uint32_t> firstAtPlace(groups.firstVertex.size(), kNone), nextAtPlace(welded.vertexCount(), kNone);
+  std::vector<uint32_t> sideOf(welded.vertexCount(), kNone);
+  size_t sides = 0;
+  for (size_t v = 0; v < welded.vertexCount(); ++v) {
+    const uint32_t g = groups.groupOf[v];
+    if (!hard[g]) continue;
+    for (uint32_t w = firstAtPlace[g]; w != kNone && sideOf[v] == kNone; w = nextAtPlace[w])
+      if (welded.normals[w] == welded.normals[v]) sideOf[v] = sideOf[w];
+    if (sideOf[v] == kNone) sideOf[v] = uint32_t(sides++);
+    nextAtPlace[v] = firstAtPlace[g];
+    firstAtPlace[g] = uint32_t(v);
+  }
+  if (sides == 0) return;
+  for (size_t i = firstMade; i < welded.targets.size(); ++i)
+    if (welded.targets[i].normals.size() == welded.vertexCount())
+      remakeNormalDeltas(welded.targets[i], welded, sideOf, sides);
+}
+
+}  // namespace
+
 size_t restoreHardEdges(Primitive& welded, const Primitive& original) {
   if (!wellFormed(welded) || !wellFormed(original) || welded.normals.empty() || original.normals.empty()) return 0;
   const bool tangents = !welded.tangents.empty() && !original.tangents.empty();
@@ -301,7 +361,6 @@ size_t restoreHardEdges(Primitive& welded, const Primitive& original) {
   // Each corner's vertex: the vertex itself or a copy of it with the shading
   // the corner asks for. The copies of a vertex as a list threaded through nextCopy.
   const size_t n = welded.vertexCount();
-  const size_t sets = welded.influenceSets();
   std::vector<uint32_t> firstCopy(n, kNone), nextCopy;
   std::vector<uint32_t> originalOf(n, kNone);  // the original vertex whose shading a vertex took
   std::vector<char> claimed(n, 0);
@@ -326,19 +385,7 @@ size_t restoreHardEdges(Primitive& welded, const Primitive& original) {
     uint32_t copy = firstCopy[v];
     while (copy != kNone && !hasShading(copy, wanted)) copy = nextCopy[copy - n];
     if (copy == kNone) {
-      copy = uint32_t(welded.vertexCount());
-      welded.positions.push_back(welded.positions[v]);
-      appendCopy(welded.normals, 1, v);
-      appendCopy(welded.texcoords, 1, v);
-      appendCopy(welded.tangents, 1, v);
-      appendCopy(welded.colors, 1, v);
-      appendCopy(welded.joints, sets, v);
-      appendCopy(welded.jointWeights, sets, v);
-      for (MorphTarget& t : welded.targets) {
-        appendCopy(t.positions, 1, v);
-        appendCopy(t.normals, 1, v);
-        appendCopy(t.tangents, 1, v);
-      }
+      copy = appendVertexCopy(welded, v);
       welded.normals[copy] = wanted.first;
       if (tangents) welded.tangents[copy] = wanted.second;
       nextCopy.push_back(firstCopy[v]);
@@ -360,29 +407,7 @@ size_t restoreHardEdges(Primitive& welded, const Primitive& original) {
       if (!t.tangents.empty() && !o.tangents.empty()) t.tangents[v] = o.tangents[originalOf[v]];
     }
   }
-  if (own == welded.targets.size()) return added;
-  const ExactPositionGroups groups = groupExactPositions(welded.positions);
-  std::vector<char> hard(groups.firstVertex.size(), 0);
-  for (size_t v = 0; v < welded.vertexCount(); ++v)
-    if (welded.normals[v] != welded.normals[groups.firstVertex[groups.groupOf[v]]]) hard[groups.groupOf[v]] = 1;
-  // A side: the vertices at one hard place with one normal; the vertices of
-  // each place as a list threaded through nextAtPlace.
-  std::vector<uint32_t> firstAtPlace(groups.firstVertex.size(), kNone), nextAtPlace(welded.vertexCount(), kNone);
-  std::vector<uint32_t> sideOf(welded.vertexCount(), kNone);
-  size_t sides = 0;
-  for (size_t v = 0; v < welded.vertexCount(); ++v) {
-    const uint32_t g = groups.groupOf[v];
-    if (!hard[g]) continue;
-    for (uint32_t w = firstAtPlace[g]; w != kNone && sideOf[v] == kNone; w = nextAtPlace[w])
-      if (welded.normals[w] == welded.normals[v]) sideOf[v] = sideOf[w];
-    if (sideOf[v] == kNone) sideOf[v] = uint32_t(sides++);
-    nextAtPlace[v] = firstAtPlace[g];
-    firstAtPlace[g] = uint32_t(v);
-  }
-  if (sides == 0) return added;
-  for (size_t i = own; i < welded.targets.size(); ++i)
-    if (welded.targets[i].normals.size() == welded.vertexCount())
-      remakeNormalDeltas(welded.targets[i], welded, sideOf, sides);
+  if (own < welded.targets.size()) remakeMadeNormalDeltas(welded, own);
   return added;
 }
 

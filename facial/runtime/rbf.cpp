@@ -65,6 +65,60 @@ eng::Result<void> requireFinite(std::span<const glm::vec3> values, const char* w
   return {};
 }
 
+// The inputs build() accepts: enough finite, separated points, a kernel with
+// valid parameters and one finite, non-negative smoothing weight per point.
+eng::Result<void> validateBuildInputs(std::span<const glm::vec3> controlPoints, const RbfKernel& kernel, float minSeparation,
+                                      std::span<const double> smoothing) {
+  const size_t n = controlPoints.size();
+  if (n < 4)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(n) +
+                          " control points given, at least 4 are needed (the affine term has 4 unknowns)");
+  if (const long bad = firstNonFinite(controlPoints); bad >= 0)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control point " + std::to_string(bad) + " of " + std::to_string(n) +
+                          " is not finite " + describe(controlPoints[static_cast<size_t>(bad)]));
+  if (kernel.type == RbfKernelType::Polyharmonic && kernel.k < 1)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: polyharmonic kernel needs k >= 1 (exponent 2k+1), got k = " + std::to_string(kernel.k));
+  if (kernel.type == RbfKernelType::Multiquadric && !(std::isfinite(kernel.c) && kernel.c > 0.0f))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: multiquadric kernel needs a finite shape parameter c > 0, got c = " +
+                          std::to_string(kernel.c));
+  if (!(std::isfinite(minSeparation) && minSeparation >= 0.0f))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
+  if (!smoothing.empty() && smoothing.size() != n)
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(smoothing.size()) +
+                          " smoothing weights given for " + std::to_string(n) + " control points");
+  for (size_t i = 0; i < smoothing.size(); ++i)
+    if (!(std::isfinite(smoothing[i]) && smoothing[i] >= 0.0))
+      return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: smoothing weight " + std::to_string(i) + " of " +
+                            std::to_string(n) + " must be finite and >= 0, got " + std::to_string(smoothing[i]));
+  if (size_t a = 0, b = 0; findCoincidentPair(controlPoints, minSeparation, a, b))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
+                          std::to_string(n) + " coincide " + describe(controlPoints[a]) + " (closer than minSeparation " +
+                          std::to_string(minSeparation) + ")");
+  return {};
+}
+
+// The affine part is solvable only when the points span 3D: checked on the
+// singular values of the centred layout.
+eng::Result<void> requireSpans3D(const std::vector<glm::dvec3>& points) {
+  const size_t n = points.size();
+  Eigen::MatrixX3d centred(static_cast<Eigen::Index>(n), 3);
+  glm::dvec3 mean(0.0);
+  for (const glm::dvec3& p : points) mean += p;
+  mean /= double(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3 d = points[i] - mean;
+    centred.row(static_cast<Eigen::Index>(i)) << d.x, d.y, d.z;
+  }
+  const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixX3d>(centred).singularValues();
+  if (spread(1) <= kMinRelativeSpread * spread(0))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
+                          " control points are collinear; the affine term needs a layout that spans 3D");
+  if (spread(2) <= kMinRelativeSpread * spread(0))
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
+                          " control points are coplanar; the affine term needs a layout that spans 3D");
+  return {};
+}
+
 }  // namespace
 
 double RbfKernel::operator()(double r) const {
@@ -85,33 +139,8 @@ double RbfKernel::operator()(double r) const {
 
 eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> controlPoints, const RbfKernel& kernel,
                                                      float minSeparation, std::span<const double> smoothing) {
+  if (auto valid = validateBuildInputs(controlPoints, kernel, minSeparation, smoothing); !valid) return valid.error();
   const size_t n = controlPoints.size();
-  if (n < 4)
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(n) +
-                          " control points given, at least 4 are needed (the affine term has 4 unknowns)");
-  if (const long bad = firstNonFinite(controlPoints); bad >= 0)
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control point " + std::to_string(bad) + " of " + std::to_string(n) +
-                          " is not finite " + describe(controlPoints[static_cast<size_t>(bad)]));
-  if (kernel.type == RbfKernelType::Polyharmonic && kernel.k < 1)
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: polyharmonic kernel needs k >= 1 (exponent 2k+1), got k = " + std::to_string(kernel.k));
-  if (kernel.type == RbfKernelType::Multiquadric && !(std::isfinite(kernel.c) && kernel.c > 0.0f))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: multiquadric kernel needs a finite shape parameter c > 0, got c = " +
-                          std::to_string(kernel.c));
-  if (!(std::isfinite(minSeparation) && minSeparation >= 0.0f))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: minSeparation must be finite and >= 0, got " + std::to_string(minSeparation));
-
-  if (!smoothing.empty() && smoothing.size() != n)
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: " + std::to_string(smoothing.size()) +
-                          " smoothing weights given for " + std::to_string(n) + " control points");
-  for (size_t i = 0; i < smoothing.size(); ++i)
-    if (!(std::isfinite(smoothing[i]) && smoothing[i] >= 0.0))
-      return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: smoothing weight " + std::to_string(i) + " of " +
-                            std::to_string(n) + " must be finite and >= 0, got " + std::to_string(smoothing[i]));
-
-  if (size_t a = 0, b = 0; findCoincidentPair(controlPoints, minSeparation, a, b))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: control points " + std::to_string(a) + " and " + std::to_string(b) + " of " +
-                          std::to_string(n) + " coincide " + describe(controlPoints[a]) + " (closer than minSeparation " +
-                          std::to_string(minSeparation) + ")");
 
   RbfInterpolator rbf;
   rbf.kernel_ = kernel;
@@ -131,23 +160,7 @@ eng::Result<RbfInterpolator> RbfInterpolator::build(std::span<const glm::vec3> c
   rbf.points_.reserve(n);
   for (const glm::vec3& p : controlPoints) rbf.points_.push_back(rbf.normalise(p));
 
-  // The affine part is solvable only when the points span 3D: check the
-  // singular values of the centred layout.
-  Eigen::MatrixX3d centred(static_cast<Eigen::Index>(n), 3);
-  glm::dvec3 mean(0.0);
-  for (const glm::dvec3& p : rbf.points_) mean += p;
-  mean /= double(n);
-  for (size_t i = 0; i < n; ++i) {
-    const glm::dvec3 d = rbf.points_[i] - mean;
-    centred.row(static_cast<Eigen::Index>(i)) << d.x, d.y, d.z;
-  }
-  const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixX3d>(centred).singularValues();
-  if (spread(1) <= kMinRelativeSpread * spread(0))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
-                          " control points are collinear; the affine term needs a layout that spans 3D");
-  if (spread(2) <= kMinRelativeSpread * spread(0))
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "RBF: the " + std::to_string(n) +
-                          " control points are coplanar; the affine term needs a layout that spans 3D");
+  if (auto spans = requireSpans3D(rbf.points_); !spans) return spans.error();
 
   // [Phi P; P^T 0]: symmetric but indefinite, hence LU rather than Cholesky.
   const Eigen::Index N = static_cast<Eigen::Index>(n);

@@ -86,6 +86,45 @@ bool hasOutline(const Material& mat) {
          mat.alphaMode != AlphaMode::Blend;
 }
 
+// The material's factors and the draw flags the shaders branch on.
+void setMaterialConstants(DrawConstants& constants, const Material& mat, const SparseDeltas& sparse) {
+  constants.roughness = mat.roughness;
+  constants.metallic = mat.metallic;
+  constants.detailLayerCount = static_cast<uint32_t>(mat.detailLayers.size());
+  constants.flags = (sparse.hasNormals ? kDrawFlagNormalDeltas : 0u) |
+                    (sparse.hasTangents ? kDrawFlagTangentDeltas : 0u) |
+                    (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
+                    (sparse.hasCreases ? kDrawFlagCreases : 0u) |
+                    (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
+                    (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
+                    (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u) |
+                    (mat.unlit && !mat.toon ? kDrawFlagUnlit : 0u) |
+                    (mat.toon ? kDrawFlagToon : 0u) |
+                    (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
+                    (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
+                    (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u) |
+                    (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u) |
+                    (mat.toon && mat.matcapImage >= 0 ? kDrawFlagToonMatcap : 0u) |
+                    (mat.toon && mat.shadingShiftImage >= 0 ? kDrawFlagToonShadingShiftTexture : 0u) |
+                    (mat.toon && mat.rimMultiplyImage >= 0 ? kDrawFlagToonRimMultiply : 0u) |
+                    (hasOutline(mat) && mat.outlineWidthImage >= 0 ? kDrawFlagToonOutlineWidthTexture : 0u);
+  if (mat.toon) constants.toonShadingShiftScale = mat.toon->shadingShiftTextureScale;
+  constants.alphaCutoff = mat.alphaCutoff;
+  constants.normalScale = mat.normalScale;
+  constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
+}
+
+// Runs by detail layer for an opaque primitive with layers (a blended one
+// keeps its triangles' order).
+std::optional<DetailRegions> detailRegionsOf(const Model& model, const Material* material) {
+  if (!material || material->detailLayers.empty() || material->alphaMode == AlphaMode::Blend) return std::nullopt;
+  std::vector<const Image*> layerImages;
+  for (const DetailLayer& layer : material->detailLayers)
+    layerImages.push_back(layer.image >= 0 && size_t(layer.image) < model.images.size() ? &model.images[size_t(layer.image)]
+                                                                                         : nullptr);
+  return DetailRegions(layerImages);
+}
+
 }  // namespace
 
 InstanceMaterial instanceMaterial(const Material& mat) {
@@ -306,15 +345,7 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
       const Image* baseColour = material && material->baseColorImage >= 0 && size_t(material->baseColorImage) < model.images.size()
                                     ? &model.images[size_t(material->baseColorImage)]
                                     : nullptr;
-      // Runs by detail layer for an opaque primitive with layers (a blended one keeps its triangles' order).
-      std::optional<DetailRegions> regions;
-      if (material && !material->detailLayers.empty() && material->alphaMode != AlphaMode::Blend) {
-        std::vector<const Image*> layerImages;
-        for (const DetailLayer& layer : material->detailLayers)
-          layerImages.push_back(layer.image >= 0 && size_t(layer.image) < model.images.size() ? &model.images[size_t(layer.image)]
-                                                                                               : nullptr);
-        regions.emplace(layerImages);
-      }
+      const std::optional<DetailRegions> regions = detailRegionsOf(model, material);
       // No coarser levels inside the head: a simplified eyeball moves the
       // catchlight on its cornea (the normals), which the simplifier cannot see.
       GpuPrimitive gp = appendGeometry(staging.vertices, staging.indices, prim, baseColour, regions ? &*regions : nullptr,
@@ -350,31 +381,8 @@ Result<GpuModelStaging> GpuModelStaging::build(const Model& model, const VkPhysi
 
       gp.constants.material = prim.material >= 0 ? static_cast<uint32_t>(prim.material)
                                                  : static_cast<uint32_t>(model.materials.size());
-      gp.constants.roughness = mat.roughness;
-      gp.constants.metallic = mat.metallic;
-      gp.constants.detailLayerCount = static_cast<uint32_t>(mat.detailLayers.size());
       gp.constants.vertexCount = gp.vertexCount;
-      gp.constants.flags = (sparse.hasNormals ? kDrawFlagNormalDeltas : 0u) |
-                           (sparse.hasTangents ? kDrawFlagTangentDeltas : 0u) |
-                           (mat.doubleSided ? kDrawFlagDoubleSided : 0u) |
-                           (sparse.hasCreases ? kDrawFlagCreases : 0u) |
-                           (sparse.entries.empty() ? 0u : kDrawFlagMorphed) |
-                           (mat.alphaMode == AlphaMode::Mask ? kDrawFlagAlphaMask : 0u) |
-                           (mat.alphaMode == AlphaMode::Blend ? kDrawFlagAlphaBlend : 0u) |
-                           (mat.unlit && !mat.toon ? kDrawFlagUnlit : 0u) |
-                           (mat.toon ? kDrawFlagToon : 0u) |
-                           (mat.toon && mat.toon->shadeFromBaseTexture ? kDrawFlagToonShadeTexture : 0u) |
-                           (hasOutline(mat) ? kDrawFlagToonOutline : 0u) |
-                           (mat.normalImage >= 0 ? kDrawFlagNormalMap : 0u) |
-                           (mat.emissiveImage >= 0 ? kDrawFlagEmissiveTexture : 0u) |
-                           (mat.toon && mat.matcapImage >= 0 ? kDrawFlagToonMatcap : 0u) |
-                           (mat.toon && mat.shadingShiftImage >= 0 ? kDrawFlagToonShadingShiftTexture : 0u) |
-                           (mat.toon && mat.rimMultiplyImage >= 0 ? kDrawFlagToonRimMultiply : 0u) |
-                           (hasOutline(mat) && mat.outlineWidthImage >= 0 ? kDrawFlagToonOutlineWidthTexture : 0u);
-      if (mat.toon) gp.constants.toonShadingShiftScale = mat.toon->shadingShiftTextureScale;
-      gp.constants.alphaCutoff = mat.alphaCutoff;
-      gp.constants.normalScale = mat.normalScale;
-      gp.constants.occlusionStrength = mat.occlusionImage >= 0 ? mat.occlusionStrength : 0.0f;
+      setMaterialConstants(gp.constants, mat, sparse);
       gm.primitives.push_back(gp);
     }
   }

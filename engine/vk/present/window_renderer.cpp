@@ -69,6 +69,23 @@ float chooseLodPixelError(const WindowRendererOptions& options) {
       .value_or(options.lodPixelError);
 }
 
+// The window's clip space cropped to the view's rectangle: [n0, n1] -> [-1, 1]
+// on each axis, and the backdrop's UVs to the same part of the window.
+void cropToView(FrameGlobals& globals, const VkRect2D& view, VkExtent2D window) {
+  const auto ndc = [](int32_t at, uint32_t size) { return 2.0f * float(at) / float(size) - 1.0f; };
+  const float x0 = ndc(view.offset.x, window.width), x1 = ndc(view.offset.x + int32_t(view.extent.width), window.width);
+  const float y0 = ndc(view.offset.y, window.height), y1 = ndc(view.offset.y + int32_t(view.extent.height), window.height);
+  glm::mat4 crop(1.0f);
+  crop[0][0] = 2.0f / (x1 - x0);
+  crop[1][1] = 2.0f / (y1 - y0);
+  crop[3][0] = -(x0 + x1) / (x1 - x0);
+  crop[3][1] = -(y0 + y1) / (y1 - y0);
+  globals.proj = crop * globals.proj;
+  globals.viewProj = crop * globals.viewProj;
+  globals.backdropUv = {float(view.offset.x) / float(window.width), float(view.offset.y) / float(window.height),
+                        float(view.extent.width) / float(window.width), float(view.extent.height) / float(window.height)};
+}
+
 }  // namespace
 
 WindowRenderer::~WindowRenderer() {
@@ -348,25 +365,35 @@ bool WindowRenderer::reloadChangedShaders() {
   return scene_.refreshPipelines();
 }
 
-Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
-  if (options_.hotReload && std::chrono::steady_clock::now() - lastShaderPoll_ >= kShaderPollInterval)
-    reloadChangedShaders();
-  if (window_->takeResized()) swapchainStale_ = true;
+// A swapchain of the window's size, rebuilt where it went stale; false when
+// there is nothing to draw into (minimised) this frame.
+Result<bool> WindowRenderer::readySwapchain() {
   switch (decideFrameAction(window_->framebufferExtent(), swapchain_.extent(), swapchainStale_)) {
     case FrameAction::Skip:
       lastPresented_ = {};
       window_->waitEvents(0.05);
-      return FrameResult::Skipped;
+      return false;
     case FrameAction::RecreateSwapchain:
       if (auto rebuilt = recreateSwapchain(); !rebuilt) {
         // Minimised between the size query and the rebuild: not an error, try again later.
         const VkExtent2D now = window_->framebufferExtent();
-        if (now.width == 0 || now.height == 0) return FrameResult::Skipped;
+        if (now.width == 0 || now.height == 0) return false;
         return rebuilt.error();
       }
       break;
     case FrameAction::Draw:
       break;
+  }
+  return true;
+}
+
+Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
+  if (options_.hotReload && std::chrono::steady_clock::now() - lastShaderPoll_ >= kShaderPollInterval)
+    reloadChangedShaders();
+  if (window_->takeResized()) swapchainStale_ = true;
+  if (auto ready = readySwapchain(); !ready || !*ready) {
+    if (!ready) return ready.error();
+    return FrameResult::Skipped;
   }
   if (!frame.screenshot.empty() && !swapchain_.canCopyFrom())
     return makeError(ErrorKind::Device, "screenshot " + frame.screenshot.string() + ": this surface's images cannot be copied from");
@@ -389,21 +416,7 @@ Result<FrameResult> WindowRenderer::drawFrame(const FrameInput& frame) {
   }
   const float aspect = float(extent.width) / float(extent.height);
   FrameGlobals globals = buildFrameGlobals(frame.view.camera, aspect, frame.view.lights);
-  if (!viewIsWholeWindow()) {
-    // The window's clip space cropped to the view's rectangle: [n0, n1] -> [-1, 1] on each axis.
-    const auto ndc = [](int32_t at, uint32_t size) { return 2.0f * float(at) / float(size) - 1.0f; };
-    const float x0 = ndc(viewRect_.offset.x, extent.width), x1 = ndc(viewRect_.offset.x + int32_t(viewRect_.extent.width), extent.width);
-    const float y0 = ndc(viewRect_.offset.y, extent.height), y1 = ndc(viewRect_.offset.y + int32_t(viewRect_.extent.height), extent.height);
-    glm::mat4 crop(1.0f);
-    crop[0][0] = 2.0f / (x1 - x0);
-    crop[1][1] = 2.0f / (y1 - y0);
-    crop[3][0] = -(x0 + x1) / (x1 - x0);
-    crop[3][1] = -(y0 + y1) / (y1 - y0);
-    globals.proj = crop * globals.proj;
-    globals.viewProj = crop * globals.viewProj;
-    globals.backdropUv = {float(viewRect_.offset.x) / float(extent.width), float(viewRect_.offset.y) / float(extent.height),
-                          float(viewRect_.extent.width) / float(extent.width), float(viewRect_.extent.height) / float(extent.height)};
-  }
+  if (!viewIsWholeWindow()) cropToView(globals, viewRect_, extent);
   ENG_TRY(scene_.prepare(slot, globals, frame.instances, {options_.lodPixelError * renderScale_, sceneExtent().height}));
   auto rescaled = followStillness(scene_.contentKey(slot));
   if (!rescaled) return rescaled.error();

@@ -217,6 +217,7 @@ class WindowRenderer {
   WindowRenderer() = default;
   static Result<void> createFrameSync(const Context& ctx, FrameSync& f);
   Result<void> recreateSwapchain();
+  Result<bool> readySwapchain();
   // MSAA colour, depth, framebuffers and semaphores for the current swapchain.
   Result<void> createSwapchainResources();
   // The 3D view is drawn into its own image and blitted into the swapchain's
