@@ -19,6 +19,11 @@ namespace {
 // 0.10, mouthLeft 0.14, cheekPuff 0.11, mouthDimple 0.115 of its outer eye
 // corners' distance).
 constexpr float kJawSideways = 0.10f;
+// jawForward: the jaw slid forward, as the mandible's condyles glide down
+// their slope: facecap's travels 1.04 times its jawLeft, dropping 0.083 of
+// its travel (the whole jaw alike, where the head's AU29 pushes the chin).
+constexpr float kJawForward = 0.104f;
+constexpr float kJawForwardDrop = 0.083f;
 constexpr float kMouthSideways = 0.14f;
 constexpr float kCheekPuff = 0.11f;
 constexpr float kPuffOut = 0.15f;     // of the way from a lip corner to the jaw line
@@ -68,6 +73,7 @@ class Maker {
       if (name == look.name) return gaze(look.eye, look.toward);
     if (name == "jawLeft") return jawSideways(1.0f);
     if (name == "jawRight") return jawSideways(-1.0f);
+    if (name == "jawForward") return jawShifted(kJawForward * glm::normalize(f_.forward() - kJawForwardDrop * f_.up()));
     if (name == "mouthLeft") return mouthSideways(1.0f);
     if (name == "mouthRight") return mouthSideways(-1.0f);
     if (name == "mouthClose") return mouthClose();
@@ -177,11 +183,14 @@ class Maker {
     return share;
   }
 
-  std::optional<std::vector<glm::vec3>> jawSideways(float sign) const {
+  std::optional<std::vector<glm::vec3>> jawSideways(float sign) const { return jawShifted(sign * kJawSideways * f_.side()); }
+
+  // Each vertex moved by its share of the jaw's motion times `atTheChin` (in eye spans).
+  std::optional<std::vector<glm::vec3>> jawShifted(const glm::vec3& atTheChin) const {
     const std::optional<std::vector<float>> share = jawShare();
     if (!share) return std::nullopt;
     std::vector<glm::vec3> deltas(count());
-    for (size_t v = 0; v < count(); ++v) deltas[v] = sign * kJawSideways * span_ * (*share)[v] * f_.side();
+    for (size_t v = 0; v < count(); ++v) deltas[v] = span_ * (*share)[v] * atTheChin;
     return deltas;
   }
 

@@ -3,8 +3,8 @@
 // face's own geometry once its units are made: the eight gaze shapes (each
 // eyeball turned 30 degrees about its centre, the lids and the skin around
 // the eye turned with it by a share that fades away from the eye, as a lid
-// rides on the cornea), jawLeft / jawRight (each vertex's share of the made
-// jaw drop, shifted sideways), mouthLeft / mouthRight, mouthClose (the lips
+// rides on the cornea), jawLeft / jawRight / jawForward (each vertex's share
+// of the made jaw drop, shifted sideways or forward), mouthLeft / mouthRight, mouthClose (the lips
 // brought back together over the made jaw drop, the chin left down),
 // cheekPuff (the cheeks pushed out along their normals) and the dimples (the
 // lip corners drawn back and out). Their amounts are in eye spans, as a real

@@ -50,7 +50,6 @@ constexpr std::array kShapes = {
     Shape{"eyeSquintRight", {Term{"AU7_LidTightener", 1.0f, Mask::Right}}},
     Shape{"eyeWideLeft", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Left}}},
     Shape{"eyeWideRight", {Term{"AU5_UpperLidRaiser", 1.0f, Mask::Right}}},
-    Shape{"jawForward", {Term{"AU29_JawThrust"}}},
     Shape{"jawOpen", {Term{"AU26_JawDrop"}, Term{"AU27_MouthStretch"}}},
     Shape{"mouthFrownLeft", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Left}}},
     Shape{"mouthFrownRight", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Right}}},

@@ -153,7 +153,7 @@ TEST(ArkitFromGeometry, MouthCloseOverJawOpenClosesTheLips) {
   EXPECT_LT(glm::length(close[chin]), 0.25f * glm::length(open[chin]));
 }
 
-TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSide) {
+TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSideOrForward) {
   const RiggedHead* r = riggedHead();
   ASSERT_NE(r, nullptr);
   const autorig::LandmarkFrame frame(r->source.landmarks);
@@ -171,6 +171,20 @@ TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSide) {
     }
     EXPECT_GT(lowerTeeth, 0.05f * span);
     EXPECT_EQ(upperTeeth, 0.0f);
+  }
+  {
+    // jawForward: the whole jaw slides forward (and a little down), the
+    // lower teeth with it: not only the chin, as the head's AU29 pushes it.
+    const std::vector<glm::vec3> d = headDeltas(*r, "jawForward");
+    const glm::vec3 chin = d[nearestHeadSkin(*r, l[8])];
+    EXPECT_NEAR(glm::dot(chin, frame.forward()), 0.104f * span, 0.02f * span);
+    EXPECT_LT(glm::dot(chin, frame.up()), 0.0f);
+    EXPECT_GT(glm::dot(d[nearestHeadSkin(*r, l[6])], frame.forward()), 0.5f * glm::dot(chin, frame.forward()));  // the jaw line
+    EXPECT_LT(glm::length(d[nearestHeadSkin(*r, l[30])]), 0.01f * span);
+    float lowerTeeth = 0.0f;
+    for (size_t v = 0; v < d.size(); ++v)
+      if (r->parts[v] == FacePart::LowerTeeth) lowerTeeth = std::max(lowerTeeth, glm::dot(d[v], frame.forward()));
+    EXPECT_GT(lowerTeeth, 0.05f * span);
   }
   for (const auto& [name, sign] : {std::pair{"mouthLeft", 1.0f}, std::pair{"mouthRight", -1.0f}}) {
     SCOPED_TRACE(name);

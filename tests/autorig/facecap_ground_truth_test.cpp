@@ -271,6 +271,7 @@ constexpr Row kGeometryRows[] = {
     {"eyeLookInLeft", "eyeLookIn_L", 0.75f, 0.69f},
     {"eyeLookOutLeft", "eyeLookOut_L", 0.79f, 0.75f},
     {"jawLeft", "jawLeft", 0.51f, 0.81f},
+    {"jawForward", "jawForward", 0.39f, 0.86f},
     {"mouthLeft", "mouthLeft", 0.99f, 0.56f},
     // The inside of the mouth moves with the lips (facecap's stays: held back,
     // it tore the lips' inner rims from them), hence mouthClose's RMS over 1.
