@@ -29,6 +29,10 @@ constexpr float kCheekPuff = 0.11f;
 constexpr float kPuffOut = 0.15f;     // of the way from a lip corner to the jaw line
 constexpr float kPuffRadius = 0.6f;  // eye spans
 constexpr float kDimple = 0.115f;
+// mouthShrugUpper: facecap's upper lip rises 0.055 eye spans as one piece,
+// rim to top (the lower lip pushing it), the skin above it less toward the
+// nose's base and its corners little (0.007).
+constexpr float kShrugUpper = 0.055f;
 // mouthClose over jawOpen: facecap's lower lip goes back 0.65 of its opening
 // and its upper lip comes down 0.37 of it, so they meet.
 constexpr float kLowerLipReturn = 0.65f;
@@ -77,6 +81,7 @@ class Maker {
     if (name == "mouthLeft") return mouthSideways(1.0f);
     if (name == "mouthRight") return mouthSideways(-1.0f);
     if (name == "mouthClose") return mouthClose();
+    if (name == "mouthShrugUpper") return shrugUpper();
     if (name == "cheekPuff") return cheekPuff();
     if (name == "mouthDimpleLeft") return dimple(1.0f);
     if (name == "mouthDimpleRight") return dimple(-1.0f);
@@ -219,6 +224,27 @@ class Maker {
       const float h = above > 0.0f ? above / toNose : -above / toChin;
       const float w = fade(0.55f, 1.0f, std::sqrt(u * u + h * h)) * inFront(p);
       deltas[v] = sign * kMouthSideways * span_ * w * alongSurface(v, f_.side());
+    }
+    return deltas;
+  }
+
+  // The upper lip pushed straight up: in full from its inner rim to its top
+  // (a quarter of the way to the nose's base), fading out by the nose's base
+  // and at the corners. Which lip a vertex is by how far the jaw takes it
+  // (the lower lip goes with the jaw); the inside of the mouth stays.
+  std::optional<std::vector<glm::vec3>> shrugUpper() const {
+    const std::optional<std::vector<float>> share = jawShare();
+    const float halfWidth = mouthHalfWidth(), middle = mouthMiddle();
+    const float toNose = f_.aboveLipLine(l_[33]);
+    if (!share || !(halfWidth > 0.0f) || !(toNose > 0.0f)) return std::nullopt;
+    std::vector<glm::vec3> deltas(count(), glm::vec3(0.0f));
+    for (size_t v = 0; v < count(); ++v) {
+      if (!isSkin(g_.parts[v])) continue;
+      const glm::vec3& p = g_.positions[v];
+      const float upperLip = 1.0f - glm::smoothstep(0.2f, 0.5f, (*share)[v]);
+      const float towardNose = fade(0.25f, 1.0f, std::max(f_.aboveLipLine(p), 0.0f) / toNose);
+      const float across = fade(0.5f, 1.1f, std::abs(f_.sideOf(p) - middle) / halfWidth);
+      deltas[v] = kShrugUpper * span_ * upperLip * towardNose * across * outer_[v] * inFront(p) * f_.up();
     }
     return deltas;
   }

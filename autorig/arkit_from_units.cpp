@@ -62,7 +62,6 @@ constexpr std::array kShapes = {
     Shape{"mouthRollLower", {Term{"AU28_LipSuck", 1.0f, Mask::LowerLip}, Term{"AU17_ChinRaiser", 1.0f, Mask::LowerLip}}},
     Shape{"mouthRollUpper", {Term{"AU28_LipSuck", 1.0f, Mask::UpperLip}}},
     Shape{"mouthShrugLower", {Term{"AU17_ChinRaiser", 1.0f, Mask::LowerLip}}},
-    Shape{"mouthShrugUpper", {Term{"AU17_ChinRaiser", 1.0f, Mask::UpperLip}}},
     Shape{"mouthSmileLeft", {Term{"AU12_LipCornerPuller_L"}}},
     Shape{"mouthSmileRight", {Term{"AU12_LipCornerPuller_R"}}},
     Shape{"mouthStretchLeft", {Term{"AU20_LipStretcher", 1.0f, Mask::Left}}},

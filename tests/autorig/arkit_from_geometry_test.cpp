@@ -186,6 +186,18 @@ TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSideOrForward) {
       if (r->parts[v] == FacePart::LowerTeeth) lowerTeeth = std::max(lowerTeeth, glm::dot(d[v], frame.forward()));
     EXPECT_GT(lowerTeeth, 0.05f * span);
   }
+  {
+    // mouthShrugUpper: the upper lip up as one piece, the lower lip, the
+    // nose's base and the inside of the mouth still.
+    const std::vector<glm::vec3> d = headDeltas(*r, "mouthShrugUpper");
+    EXPECT_NEAR(glm::dot(d[nearestHeadSkin(*r, l[51])], frame.up()), 0.055f * span, 0.01f * span);
+    EXPECT_GT(glm::dot(d[nearestHeadSkin(*r, l[62])], frame.up()), 0.02f * span);  // the inner rim goes too
+    for (size_t still : {57, 66, 8, 33}) EXPECT_LT(glm::length(d[nearestHeadSkin(*r, l[still])]), 0.01f * span) << still;
+    for (size_t v = 0; v < d.size(); ++v)
+      if (r->parts[v] != FacePart::Skin && r->parts[v] != FacePart::Lashes) {
+        ASSERT_EQ(d[v], glm::vec3(0.0f));
+      }
+  }
   for (const auto& [name, sign] : {std::pair{"mouthLeft", 1.0f}, std::pair{"mouthRight", -1.0f}}) {
     SCOPED_TRACE(name);
     const std::vector<glm::vec3> d = headDeltas(*r, name);
