@@ -122,6 +122,9 @@ std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std:
 std::vector<ShapeShare> shapesOfUnit(std::string_view unit) {
   // jawOpen is AU26 and AU27 together; AU26's share of it is the runtime's.
   if (unit == "AU26_JawDrop") return {ShapeShare{"jawOpen", kJawDropShare}};
+  // jawForward is made from the geometry (the whole jaw slid forward), not
+  // from AU29, but a face's own jawForward is its jaw thrust all the same.
+  if (unit == "AU29_JawThrust") return {ShapeShare{"jawForward", 1.0f}};
   std::vector<ShapeShare> shares;
   for (const Shape& shape : kShapes) {
     const bool uses = std::any_of(shape.terms.begin(), shape.terms.end(), [&](const Term& t) { return t.unit == unit; });

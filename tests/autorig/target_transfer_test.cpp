@@ -271,7 +271,8 @@ TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
   const std::optional<eng::Model> face = faceWithOwnShapes(*head, {{"mouthSmile_L", {{"AU12_LipCornerPuller_L", 1.2f}}},
                                                                    {"eyeBlinkRight", {{"AU45_Blink_R", 1.1f}}},
                                                                    {"jawOpen", {{"AU26_JawDrop", 1.5f}}},
-                                                                   {"browDownLeft", {{"AU4_BrowLowerer", 0.5f}}}});
+                                                                   {"browDownLeft", {{"AU4_BrowLowerer", 0.5f}}},
+                                                                   {"jawForward", {{"AU29_JawThrust", 1.3f}}}});
   ASSERT_TRUE(face);
   eng::Result<autorig::TransferResult> rigged = autorig::transferTargets(source, *face, source.posed, source.landmarks, source.parts, kShapesOnly);
   ASSERT_TRUE(rigged) << rigged.error().message;
@@ -282,6 +283,7 @@ TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
   EXPECT_TRUE(noted("AU12_LipCornerPuller_L: the face's own mouthSmile_L"));
   EXPECT_TRUE(noted("AU45_Blink_R: the face's own eyeBlinkRight"));
   EXPECT_TRUE(noted("AU26_JawDrop: the face's own 0.6 x jawOpen"));
+  EXPECT_TRUE(noted("AU29_JawThrust: the face's own jawForward")) << "made from the geometry, yet the face's own is its thrust";
   EXPECT_FALSE(noted("AU4_BrowLowerer")) << "browDownRight is missing: AU4 is carried";
   const eng::Mesh& out = rigged->model.meshes[0];
   auto target = [&](std::string_view name, size_t p) -> const eng::MorphTarget& {
@@ -290,9 +292,10 @@ TEST(TargetTransfer, TheFacesOwnArkitShapesAreItsUnits) {
     return out.primitives[p].targets[std::min(t, out.targetNames.size() - 1)];
   };
   // Each made unit against the face's own shape times its share.
-  const std::array<std::tuple<const char*, const char*, float>, 4> pairs = {
+  const std::array<std::tuple<const char*, const char*, float>, 5> pairs = {
       std::tuple{"AU12_LipCornerPuller_L", "mouthSmile_L", 1.0f}, std::tuple{"AU45_Blink_R", "eyeBlinkRight", 1.0f},
-      std::tuple{"AU26_JawDrop", "jawOpen", 0.6f}, std::tuple{"AU4_BrowLowerer", "browDownLeft", 1.0f}};
+      std::tuple{"AU26_JawDrop", "jawOpen", 0.6f}, std::tuple{"AU4_BrowLowerer", "browDownLeft", 1.0f},
+      std::tuple{"AU29_JawThrust", "jawForward", 1.0f}};
   for (const auto& [unit, shape, share] : pairs) {
     float worst = 0.0f, largest = 0.0f;
     for (size_t p = 0; p < out.primitives.size(); ++p) {
