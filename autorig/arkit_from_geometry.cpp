@@ -33,6 +33,10 @@ constexpr float kDimple = 0.115f;
 // rim to top (the lower lip pushing it), the skin above it less toward the
 // nose's base and its corners little (0.007).
 constexpr float kShrugUpper = 0.055f;
+// mouthLowerDown: facecap's lower lip drawn down 0.085 eye spans beside the
+// middle, and back 0.2 of that, less toward the chin and the corners.
+constexpr float kLowerLipDown = 0.085f;
+constexpr float kLowerLipBack = 0.2f;
 // mouthClose over jawOpen: facecap's lower lip goes back 0.65 of its opening
 // and its upper lip comes down 0.37 of it, so they meet.
 constexpr float kLowerLipReturn = 0.65f;
@@ -82,6 +86,8 @@ class Maker {
     if (name == "mouthRight") return mouthSideways(-1.0f);
     if (name == "mouthClose") return mouthClose();
     if (name == "mouthShrugUpper") return shrugUpper();
+    if (name == "mouthLowerDownLeft") return lowerLipDown(true);
+    if (name == "mouthLowerDownRight") return lowerLipDown(false);
     if (name == "cheekPuff") return cheekPuff();
     if (name == "mouthDimpleLeft") return dimple(1.0f);
     if (name == "mouthDimpleRight") return dimple(-1.0f);
@@ -245,6 +251,29 @@ class Maker {
       const float towardNose = fade(0.25f, 1.0f, std::max(f_.aboveLipLine(p), 0.0f) / toNose);
       const float across = fade(0.5f, 1.1f, std::abs(f_.sideOf(p) - middle) / halfWidth);
       deltas[v] = kShrugUpper * span_ * upperLip * towardNose * across * outer_[v] * inFront(p) * f_.up();
+    }
+    return deltas;
+  }
+
+  // One half of the lower lip drawn down and back, in full beside the
+  // middle, fading out toward the chin and past the corner (a half of the
+  // whole, as the units' halves are); the lower lip is what the jaw takes,
+  // the inside of the mouth and the teeth stay.
+  std::optional<std::vector<glm::vec3>> lowerLipDown(bool left) const {
+    const std::optional<std::vector<float>> share = jawShare();
+    const float halfWidth = mouthHalfWidth(), middle = mouthMiddle();
+    const float toChin = -f_.aboveLipLine(l_[8]);
+    if (!share || !(halfWidth > 0.0f) || !(toChin > 0.0f)) return std::nullopt;
+    const glm::vec3 direction = glm::normalize(-f_.up() - kLowerLipBack * f_.forward());
+    std::vector<glm::vec3> deltas(count(), glm::vec3(0.0f));
+    for (size_t v = 0; v < count(); ++v) {
+      if (!isSkin(g_.parts[v])) continue;
+      const glm::vec3& p = g_.positions[v];
+      const float lowerLip = glm::smoothstep(0.2f, 0.5f, (*share)[v]);
+      const float towardChin = fade(0.0f, 1.0f, std::max(-f_.aboveLipLine(p), 0.0f) / toChin);
+      const float across = fade(0.6f, 1.1f, std::abs(f_.sideOf(p) - middle) / halfWidth);
+      const float half = left ? leftHalf(p, f_) : 1.0f - leftHalf(p, f_);
+      deltas[v] = kLowerLipDown * span_ * lowerLip * towardChin * across * half * outer_[v] * inFront(p) * direction;
     }
     return deltas;
   }

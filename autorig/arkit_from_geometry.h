@@ -6,7 +6,8 @@
 // rides on the cornea), jawLeft / jawRight / jawForward (each vertex's share
 // of the made jaw drop, shifted sideways or forward), mouthLeft / mouthRight, mouthClose (the lips
 // brought back together over the made jaw drop, the chin left down),
-// mouthShrugUpper (the upper lip pushed up as one piece),
+// mouthShrugUpper (the upper lip pushed up as one piece), mouthLowerDown
+// (a half of the lower lip drawn down and back),
 // cheekPuff (the cheeks pushed out along their normals) and the dimples (the
 // lip corners drawn back and out). Their amounts are in eye spans, as a real
 // ARKit capture moves its face (facecap in ../shared/assets; the facecap

@@ -54,8 +54,6 @@ constexpr std::array kShapes = {
     Shape{"mouthFrownLeft", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Left}}},
     Shape{"mouthFrownRight", {Term{"AU15_LipCornerDepressor", 1.0f, Mask::Right}}},
     Shape{"mouthFunnel", {Term{"AU22_LipFunneler"}}},
-    Shape{"mouthLowerDownLeft", {Term{"AU16_LowerLipDepressor", 1.0f, Mask::Left}}},
-    Shape{"mouthLowerDownRight", {Term{"AU16_LowerLipDepressor", 1.0f, Mask::Right}}},
     Shape{"mouthPressLeft", {Term{"AU24_LipPressor", 1.0f, Mask::Left}, Term{"AU17_ChinRaiser", 1.0f, Mask::Left}}},
     Shape{"mouthPressRight", {Term{"AU24_LipPressor", 1.0f, Mask::Right}, Term{"AU17_ChinRaiser", 1.0f, Mask::Right}}},
     Shape{"mouthPucker", {Term{"AU18_LipPucker"}}},
@@ -77,8 +75,8 @@ float maskWeight(Mask mask, const glm::vec3& p, const LandmarkFrame& frame) {
   auto ramp = [](float x, float halfWidth) { return glm::smoothstep(-halfWidth, halfWidth, x); };
   switch (mask) {
     case Mask::All: return 1.0f;
-    case Mask::Left: return ramp(frame.sideOf(p), kMidlineRamp);
-    case Mask::Right: return 1.0f - ramp(frame.sideOf(p), kMidlineRamp);
+    case Mask::Left: return leftHalf(p, frame);
+    case Mask::Right: return 1.0f - leftHalf(p, frame);
     case Mask::UpperLip: return ramp(frame.aboveLipLine(p), kLipLineRamp);
     case Mask::LowerLip: return 1.0f - ramp(frame.aboveLipLine(p), kLipLineRamp);
   }
@@ -87,6 +85,10 @@ float maskWeight(Mask mask, const glm::vec3& p, const LandmarkFrame& frame) {
 
 
 }  // namespace
+
+float leftHalf(const glm::vec3& p, const LandmarkFrame& frame) {
+  return glm::smoothstep(-kMidlineRamp, kMidlineRamp, frame.sideOf(p));
+}
 
 const NamedDeltas* findUnit(std::span<const NamedDeltas> units, std::string_view name, size_t vertices) {
   for (const NamedDeltas& u : units)
@@ -122,9 +124,11 @@ std::vector<NamedDeltas> arkitFromUnits(std::span<const NamedDeltas> units, std:
 std::vector<ShapeShare> shapesOfUnit(std::string_view unit) {
   // jawOpen is AU26 and AU27 together; AU26's share of it is the runtime's.
   if (unit == "AU26_JawDrop") return {ShapeShare{"jawOpen", kJawDropShare}};
-  // jawForward is made from the geometry (the whole jaw slid forward), not
-  // from AU29, but a face's own jawForward is its jaw thrust all the same.
+  // jawForward and mouthLowerDown are made from the geometry (the whole jaw
+  // slid forward, the lower lip drawn down and back), not from AU29 and
+  // AU16, but a face's own are its jaw thrust and lip depressor all the same.
   if (unit == "AU29_JawThrust") return {ShapeShare{"jawForward", 1.0f}};
+  if (unit == "AU16_LowerLipDepressor") return {ShapeShare{"mouthLowerDownLeft", 1.0f}, ShapeShare{"mouthLowerDownRight", 1.0f}};
   std::vector<ShapeShare> shares;
   for (const Shape& shape : kShapes) {
     const bool uses = std::any_of(shape.terms.begin(), shape.terms.end(), [&](const Term& t) { return t.unit == unit; });

@@ -5,8 +5,9 @@
 // (the two halves add up to the unit), a unit of both lips into its upper and
 // lower lip by a mask across the lip line. The other direction of
 // facial/runtime/rig/arkit_scheme.cpp (ARKit -> units). Gaze, cheek puff,
-// dimples, mouth and jaw sideways and mouthClose have no unit to come from:
-// autorig/arkit_from_geometry.h makes those.
+// dimples, mouth and jaw sideways and mouthClose have no unit to come from,
+// and jawForward, mouthShrugUpper and mouthLowerDown match a real capture
+// better made from the face: autorig/arkit_from_geometry.h makes those.
 #include <span>
 #include <string>
 #include <string_view>
@@ -41,11 +42,17 @@ struct ShapeShare {
   float gain = 1.0f;
 };
 
+// How much of a shape's left half (the subject's left) reaches `p`: a smooth
+// ramp across the midline, so the left and right halves of a unit add up to it.
+float leftHalf(const glm::vec3& p, const LandmarkFrame& frame);
+
 // The ARKit shapes that together are unit `unit` alone (its halves, or its
 // upper and lower lip), as arkitFromUnits splits it: AU12_LipCornerPuller_L is
 // mouthSmileLeft, AU4_BrowLowerer browDownLeft + browDownRight, AU26_JawDrop
 // 0.6 of jawOpen (the share facial/runtime/rig/arkit_scheme.cpp drives
-// jawOpen with). Empty for a unit no shape is made of alone (AU27, AU25).
+// jawOpen with), AU29 jawForward and AU16 the mouthLowerDown pair (made from
+// the geometry, yet a face's own are these units). Empty for a unit no shape
+// is made of alone (AU27, AU25).
 std::vector<ShapeShare> shapesOfUnit(std::string_view unit);
 
 }  // namespace autorig

@@ -198,6 +198,22 @@ TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSideOrForward) {
         ASSERT_EQ(d[v], glm::vec3(0.0f));
       }
   }
+  for (const auto& [name, sign] : {std::pair{"mouthLowerDownLeft", 1.0f}, std::pair{"mouthLowerDownRight", -1.0f}}) {
+    // One half of the lower lip down and back; the other half, the upper
+    // lip, the chin and the teeth still.
+    SCOPED_TRACE(name);
+    const std::vector<glm::vec3> d = headDeltas(*r, name);
+    const glm::vec3 own = d[nearestHeadSkin(*r, glm::mix(l[57], sign > 0.0f ? l[55] : l[59], 0.5f))];
+    const glm::vec3 other = d[nearestHeadSkin(*r, glm::mix(l[57], sign > 0.0f ? l[59] : l[55], 0.5f))];
+    EXPECT_LT(glm::dot(own, frame.up()), -0.05f * span);
+    EXPECT_LT(glm::dot(own, frame.forward()), 0.0f);
+    EXPECT_LT(glm::length(other), 0.3f * glm::length(own));
+    for (size_t still : {51, 8}) EXPECT_LT(glm::length(d[nearestHeadSkin(*r, l[still])]), 0.01f * span) << still;
+    for (size_t v = 0; v < d.size(); ++v)
+      if (r->parts[v] != FacePart::Skin && r->parts[v] != FacePart::Lashes) {
+        ASSERT_EQ(d[v], glm::vec3(0.0f));
+      }
+  }
   for (const auto& [name, sign] : {std::pair{"mouthLeft", 1.0f}, std::pair{"mouthRight", -1.0f}}) {
     SCOPED_TRACE(name);
     const std::vector<glm::vec3> d = headDeltas(*r, name);

@@ -273,6 +273,7 @@ constexpr Row kGeometryRows[] = {
     {"jawLeft", "jawLeft", 0.51f, 0.81f},
     {"jawForward", "jawForward", 0.39f, 0.86f},
     {"mouthShrugUpper", "mouthShrugUpper", 0.66f, 0.73f},
+    {"mouthLowerDownLeft", "mouthLowerDown_L", 0.63f, 0.75f},
     {"mouthLeft", "mouthLeft", 0.99f, 0.56f},
     // The inside of the mouth moves with the lips (facecap's stays: held back,
     // it tore the lips' inner rims from them), hence mouthClose's RMS over 1.
