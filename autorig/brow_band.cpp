@@ -107,6 +107,38 @@ float median(std::vector<float> values) {
   return values[values.size() / 2];
 }
 
+// How much brow each vertex about a brow is: a brow part all of it; skin as
+// much as the darkest of its triangles is painted brow against the
+// forehead's lightness `reference` (none without one).
+template <typename Plane>
+std::vector<float> paintedCoverage(const BrowBand::Brow& brow, const FaceSurface& surface, const SkinColour& colour,
+                                   float reference, const Plane& plane, std::span<const glm::vec2> line,
+                                   std::span<const glm::vec2> lid) {
+  std::vector<int> aboutIndex(surface.positions.size(), -1);
+  for (size_t i = 0; i < brow.about.size(); ++i) aboutIndex[brow.about[i]] = int(i);
+  std::vector<float> coverage(brow.about.size(), 0.0f);
+  for (size_t i = 0; i < brow.about.size(); ++i)
+    if (surface.parts[brow.about[i]] == FacePart::Brows) coverage[i] = 1.0f;
+  if (!(reference > 0.0f)) return coverage;
+  for (const std::array<uint32_t, 3>& t : surface.triangles) {
+    if (aboutIndex[t[0]] < 0 && aboutIndex[t[1]] < 0 && aboutIndex[t[2]] < 0) continue;
+    // Looked at only over the middle between lid and brow line: below,
+    // a low brow's triangles reach the shadow painted in the lid's crease
+    // and the lashes, and Ready Player Me's lids rose with the brows.
+    const std::optional<float> darkest = colour.darkestOn(t, [&](const glm::vec3& p) {
+      const glm::vec2 q = plane(p);
+      const float lidAt = heightAt(lid, q.x);
+      return q.y > lidAt + kOverLidShare * (heightAt(line, q.x) - lidAt);
+    });
+    if (!darkest) continue;
+    const float c = 1.0f - glm::smoothstep(kDark, kLight, *darkest / reference);
+    for (uint32_t v : t)
+      if (aboutIndex[v] >= 0 && surface.parts[v] == FacePart::Skin)
+        coverage[size_t(aboutIndex[v])] = std::max(coverage[size_t(aboutIndex[v])], c);
+  }
+  return coverage;
+}
+
 }  // namespace
 
 BrowBand findBrows(const eng::Model& face, const PosedFace& posed, const FaceSurface& surface,
@@ -153,29 +185,7 @@ BrowBand findBrows(const eng::Model& face, const PosedFace& posed, const FaceSur
       }
     }
     const float reference = forehead.size() >= kMinCovered ? median(forehead) : 0.0f;
-    // A vertex is as much brow as the darkest of its triangles that the brow is painted on.
-    std::vector<int> aboutIndex(surface.positions.size(), -1);
-    for (size_t i = 0; i < brow.about.size(); ++i) aboutIndex[brow.about[i]] = int(i);
-    std::vector<float> coverage(brow.about.size(), 0.0f);
-    for (size_t i = 0; i < brow.about.size(); ++i)
-      if (surface.parts[brow.about[i]] == FacePart::Brows) coverage[i] = 1.0f;  // a brow part is all brow
-    if (reference > 0.0f)
-      for (const std::array<uint32_t, 3>& t : surface.triangles) {
-        if (aboutIndex[t[0]] < 0 && aboutIndex[t[1]] < 0 && aboutIndex[t[2]] < 0) continue;
-        // Looked at only over the middle between lid and brow line: below,
-        // a low brow's triangles reach the shadow painted in the lid's crease
-        // and the lashes, and Ready Player Me's lids rose with the brows.
-        const std::optional<float> darkest = colour.darkestOn(t, [&](const glm::vec3& p) {
-          const glm::vec2 q = plane(p);
-          const float lidAt = heightAt(lid, q.x);
-          return q.y > lidAt + kOverLidShare * (heightAt(line, q.x) - lidAt);
-        });
-        if (!darkest) continue;
-        const float c = 1.0f - glm::smoothstep(kDark, kLight, *darkest / reference);
-        for (uint32_t v : t)
-          if (aboutIndex[v] >= 0 && surface.parts[v] == FacePart::Skin)
-            coverage[size_t(aboutIndex[v])] = std::max(coverage[size_t(aboutIndex[v])], c);
-      }
+    const std::vector<float> coverage = paintedCoverage(brow, surface, colour, reference, plane, line, lid);
     std::vector<float> depths;
     for (size_t i = 0; i < brow.about.size(); ++i) {
       if (coverage[i] <= 0.0f) continue;
