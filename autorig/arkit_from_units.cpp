@@ -11,7 +11,7 @@
 namespace autorig {
 namespace {
 
-enum class Mask : unsigned char { All, Left, Right, UpperLip, LowerLip };
+enum class Mask : unsigned char { All, Left, Right, UpperLip, LowerLip, LeftAwayFromLids, RightAwayFromLids };
 
 struct Term {
   std::string_view unit;
@@ -29,6 +29,9 @@ struct Shape {
 // leaves the other lip.
 constexpr float kMidlineRamp = 0.08f;
 constexpr float kLipLineRamp = 0.03f;
+// Away from the lids: none of a unit within kLidsNear eye spans of a lid
+// line, all of it from kLidsFar.
+constexpr float kLidsNear = 0.05f, kLidsFar = 0.12f;
 
 // jawOpen at 1 is the jaw as far open as it goes: AU26 (the relaxed drop)
 // and AU27 (the stretch beyond it) together, the sum arkit_scheme.cpp drives
@@ -42,8 +45,10 @@ constexpr std::array kShapes = {
     Shape{"browDownRight", {Term{"AU4_BrowLowerer", 1.0f, Mask::Right}}},
     Shape{"browOuterUpLeft", {Term{"AU2_OuterBrowRaiser_L"}}},
     Shape{"browOuterUpRight", {Term{"AU2_OuterBrowRaiser_R"}}},
-    Shape{"cheekSquintLeft", {Term{"AU6_CheekRaiser", 1.0f, Mask::Left}}},
-    Shape{"cheekSquintRight", {Term{"AU6_CheekRaiser", 1.0f, Mask::Right}}},
+    // ARKit's cheekSquint raises the cheek; eyeSquint narrows the eye (AU6
+    // does both, so a smile streamed with both closed the eyes twice over).
+    Shape{"cheekSquintLeft", {Term{"AU6_CheekRaiser", 1.0f, Mask::LeftAwayFromLids}}},
+    Shape{"cheekSquintRight", {Term{"AU6_CheekRaiser", 1.0f, Mask::RightAwayFromLids}}},
     Shape{"eyeBlinkLeft", {Term{"AU45_Blink_L"}}},
     Shape{"eyeBlinkRight", {Term{"AU45_Blink_R"}}},
     Shape{"eyeSquintLeft", {Term{"AU7_LidTightener", 1.0f, Mask::Left}}},
@@ -79,6 +84,14 @@ float maskWeight(Mask mask, const glm::vec3& p, const LandmarkFrame& frame) {
     case Mask::Right: return 1.0f - leftHalf(p, frame);
     case Mask::UpperLip: return ramp(frame.aboveLipLine(p), kLipLineRamp);
     case Mask::LowerLip: return 1.0f - ramp(frame.aboveLipLine(p), kLipLineRamp);
+    case Mask::LeftAwayFromLids:
+    case Mask::RightAwayFromLids: {
+      float margin = 0.0f;
+      const FaceRegion region = frame.region(p, &margin);
+      const bool nearLids = region != FaceRegion::None && region != FaceRegion::UpperLip && region != FaceRegion::LowerLip;
+      const float away = nearLids ? glm::smoothstep(kLidsNear, kLidsFar, margin) : 1.0f;
+      return away * (mask == Mask::LeftAwayFromLids ? leftHalf(p, frame) : 1.0f - leftHalf(p, frame));
+    }
   }
   return 1.0f;
 }

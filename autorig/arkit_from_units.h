@@ -3,7 +3,8 @@
 // once those are on the face: each shape a sum of units, a bilateral unit
 // split into its left and right halves by a smooth mask across the midline
 // (the two halves add up to the unit), a unit of both lips into its upper and
-// lower lip by a mask across the lip line. The other direction of
+// lower lip by a mask across the lip line; cheekSquint is AU6 away from the
+// lids (eyeSquint, AU7, narrows the eye). The other direction of
 // facial/runtime/rig/arkit_scheme.cpp (ARKit -> units). Gaze, cheek puff,
 // dimples, mouth and jaw sideways and mouthClose have no unit to come from,
 // and jawForward, mouthShrugUpper and mouthLowerDown match a real capture

@@ -234,6 +234,24 @@ TEST(ArkitFromGeometry, JawAndMouthGoToTheNamedSideOrForward) {
   EXPECT_LT(glm::length(puff[nearestHeadSkin(*r, l[30])]), 0.02f * span);
 }
 
+// cheekSquint raises the cheek and leaves the lids to eyeSquint: AU6 does
+// both, and a smile streamed with both closed the eyes twice over.
+TEST(ArkitFromUnits, CheekSquintRaisesTheCheekAndLeavesTheLids) {
+  const RiggedHead* r = riggedHead();
+  ASSERT_NE(r, nullptr);
+  const autorig::LandmarkFrame frame(r->source.landmarks);
+  const auto& l = r->source.landmarks.points;
+  const std::vector<glm::vec3> cheek = headDeltas(*r, "cheekSquintLeft"), squint = headDeltas(*r, "eyeSquintLeft");
+  float cheekRise = 0.0f;
+  for (size_t v = 0; v < cheek.size(); ++v) cheekRise = std::max(cheekRise, glm::dot(cheek[v], frame.up()));
+  EXPECT_GT(cheekRise, 0.02f * frame.eyeSpan());
+  for (size_t lid : {46, 47}) {  // the left eye's lower lid
+    const size_t v = nearestHeadSkin(*r, l[lid]);
+    EXPECT_LT(glm::length(cheek[v]), 0.1f * cheekRise) << lid;
+    EXPECT_GT(glm::dot(squint[v], frame.up()), 0.2f * cheekRise) << lid << ": eyeSquint raises it";
+  }
+}
+
 // Validity: what a face lacks, the shapes that need it are named, not made.
 TEST(ArkitFromGeometryValidity, ShapesWhoseSourceIsMissingAreNamedUnmade) {
   const RiggedHead* r = riggedHead();
