@@ -926,6 +926,54 @@ bool writeTarget(eng::Model& model, const PosedFace& posed, const Moved& moved, 
 
 }  // namespace
 
+namespace {
+
+// The ARKit 52 (those a face can have) over every vertex the units move:
+// split from the units, the rest made from the face's geometry, in ARKit's
+// order; what could not be made is named in `warnings`.
+std::vector<NamedDeltas> arkitShapes(const Moved& moved, std::span<const FaceSurface* const> surfaces,
+                                     std::span<const glm::vec3> skinNormals, const FaceLandmarks& steady,
+                                     const LandmarkFrame& frame, const FaceParts& parts, std::vector<std::string>& warnings) {
+  std::vector<std::string> fromGeometry, unmade;
+  std::vector<NamedDeltas> shapes = arkitFromUnits(moved.units, moved.positions, frame, fromGeometry);
+  std::vector<FacePart> vertexParts;  // in the order the units' vertices were appended
+  for (const FaceSurface* surface : surfaces) vertexParts.insert(vertexParts.end(), surface->parts.begin(), surface->parts.end());
+  std::vector<glm::vec3> normals(skinNormals.begin(), skinNormals.end());
+  normals.resize(moved.positions.size(), glm::vec3(0.0f));
+  const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,
+                               .landmarks = &steady, .frame = &frame, .faceParts = &parts};
+  for (NamedDeltas& shape : arkitFromGeometry(fromGeometry, moved.units, geometry, unmade)) shapes.push_back(std::move(shape));
+  std::stable_sort(shapes.begin(), shapes.end(), [](const NamedDeltas& a, const NamedDeltas& b) {
+    return facial::arkitIndex(a.name).value_or(0) < facial::arkitIndex(b.name).value_or(0);
+  });
+  if (!unmade.empty()) {
+    std::string line = std::to_string(unmade.size()) + " ARKit shapes were not made (the gaze shapes need eyeballs of the face's own, not eyes painted on its skin; the others their action unit or the jaw drop):";
+    for (const std::string& name : unmade) line += " " + name;
+    warnings.push_back(line);
+  }
+  return shapes;
+}
+
+// Both faces have skin to match, and the face no more than the transfer is bounded for.
+eng::Result<void> checkSkin(const FaceSurface& src, const FaceSurface& tgt, const PosedFace& posed,
+                            const TransferOptions& options) {
+  if (src.triangles.empty())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the source has no skin triangles (" +
+                                                               std::to_string(src.positions.size()) + " skin vertices)");
+  if (tgt.triangles.empty())
+    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the face has no skin triangles (" +
+                                                               std::to_string(tgt.positions.size()) + " skin vertices of " +
+                                                               std::to_string(posed.vertexCount()) + ")");
+  if (tgt.positions.size() > options.maxSkinVertices)
+    return eng::makeError(eng::ErrorKind::TooLarge,
+                          "target transfer: the face has " + std::to_string(tgt.positions.size()) +
+                              " skin vertices, more than " + std::to_string(options.maxSkinVertices) +
+                              ": simplify it first (a face reads at 10-50k)");
+  return {};
+}
+
+}  // namespace
+
 eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng::Model& face, const PosedFace& posed,
                                             const FaceLandmarks& landmarks, const FaceParts& parts,
                                             const TransferOptions& options) {
@@ -942,18 +990,7 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   }
   const FaceSurface src = gatherSurface(*source.model, source.posed, source.parts, {FacePart::Skin});
   const FaceSurface tgt = gatherSurface(face, posed, parts, {FacePart::Skin, FacePart::Lashes, FacePart::Brows});
-  if (src.triangles.empty())
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the source has no skin triangles (" +
-                                                               std::to_string(src.positions.size()) + " skin vertices)");
-  if (tgt.triangles.empty())
-    return eng::makeError(eng::ErrorKind::InvalidArgument, "target transfer: the face has no skin triangles (" +
-                                                               std::to_string(tgt.positions.size()) + " skin vertices of " +
-                                                               std::to_string(posed.vertexCount()) + ")");
-  if (tgt.positions.size() > options.maxSkinVertices)
-    return eng::makeError(eng::ErrorKind::TooLarge,
-                          "target transfer: the face has " + std::to_string(tgt.positions.size()) +
-                              " skin vertices, more than " + std::to_string(options.maxSkinVertices) +
-                              ": simplify it first (a face reads at 10-50k)");
+  ENG_TRY(checkSkin(src, tgt, posed, options));
   ENG_TRY(checkOnSurface(tgt, landmarks, LandmarkFrame(landmarks)));
   ENG_TRY(checkFacing(source, landmarks));
   const FaceLandmarks steady = withSteadyMouthCorners(source.landmarks, landmarks);
@@ -980,26 +1017,9 @@ eng::Result<TransferResult> transferTargets(const SourceFace& source, const eng:
   if (options.actionUnits)
     for (const NamedDeltas& unit : moved.units) made.push_back(unit);
   if (options.arkit) {
-    std::vector<std::string> fromGeometry, unmade;
-    std::vector<NamedDeltas> shapes = arkitFromUnits(moved.units, moved.positions, frame, fromGeometry);
-    std::vector<FacePart> vertexParts = tgt.parts;
-    vertexParts.insert(vertexParts.end(), jaw.parts.begin(), jaw.parts.end());
-    vertexParts.insert(vertexParts.end(), onSkin.parts.begin(), onSkin.parts.end());
-    vertexParts.insert(vertexParts.end(), still.parts.begin(), still.parts.end());
-    std::vector<glm::vec3> normals = tgtNormals;
-    normals.resize(moved.positions.size(), glm::vec3(0.0f));
-    const ShapeGeometry geometry{.positions = moved.positions, .parts = vertexParts, .normals = normals,
-                                 .landmarks = &steady, .frame = &frame, .faceParts = &parts};
-    for (NamedDeltas& shape : arkitFromGeometry(fromGeometry, moved.units, geometry, unmade)) shapes.push_back(std::move(shape));
-    std::stable_sort(shapes.begin(), shapes.end(), [](const NamedDeltas& a, const NamedDeltas& b) {
-      return facial::arkitIndex(a.name).value_or(0) < facial::arkitIndex(b.name).value_or(0);
-    });
-    for (NamedDeltas& shape : shapes) made.push_back(std::move(shape));
-    if (!unmade.empty()) {
-      std::string line = std::to_string(unmade.size()) + " ARKit shapes were not made (the gaze shapes need eyeballs of the face's own, not eyes painted on its skin; the others their action unit or the jaw drop):";
-      for (const std::string& name : unmade) line += " " + name;
-      report.warnings.push_back(line);
-    }
+    const std::array<const FaceSurface*, 4> surfaces{&tgt, &jaw, &onSkin, &still};
+    for (NamedDeltas& shape : arkitShapes(moved, surfaces, tgtNormals, steady, frame, parts, report.warnings))
+      made.push_back(std::move(shape));
   }
   RestNormals restNormals;
   for (const NamedDeltas& target : made) {
