@@ -396,6 +396,55 @@ int materialOfTheSkin(eng::Model& face, const PosedFace& posed, const std::vecto
 
 }  // namespace
 
+namespace {
+
+// Per posed primitive, each vertex's index in `tgt` (-1: not skin).
+std::vector<std::vector<int32_t>> skinIndexByPrimitive(const FaceSurface& tgt, const PosedFace& posed) {
+  std::vector<std::vector<int32_t>> tgtIndex(posed.primitives.size());
+  for (size_t v = 0; v < tgt.vertices.size(); ++v) {
+    if (tgt.parts[v] != FacePart::Skin) continue;
+    std::vector<int32_t>& index = tgtIndex[tgt.vertices[v].primitive];
+    if (index.empty()) index.assign(posed.primitives[tgt.vertices[v].primitive].positions.size(), -1);
+    index[tgt.vertices[v].vertex] = int32_t(v);
+  }
+  return tgtIndex;
+}
+
+// The material most of the mapped skin vertices have (the face's main skin), -1 with none.
+int mostMappedMaterial(const eng::Model& face, const PosedFace& posed, const FaceSurface& tgt, const SourceUvs& at) {
+  std::map<int, size_t> mappedByMaterial;
+  for (size_t v = 0; v < tgt.vertices.size(); ++v)
+    if (at.mapped[v]) ++mappedByMaterial[primitiveOf(face, posed, tgt.vertices[v].primitive).material];
+  int mainMaterial = -1;
+  for (const auto& [material, count] : mappedByMaterial)
+    if (mainMaterial < 0 || count > mappedByMaterial[mainMaterial]) mainMaterial = material;
+  return mainMaterial;
+}
+
+// The painted layers as images of the face, and the source's layers on
+// material `skin` reading them (each modulating the skin's own colour).
+void addCarriedLayers(const eng::Model& source, const LayeredSource& layered, std::vector<eng::PaintImage>& painted, int skin,
+                      eng::Model& face) {
+  std::vector<int> carried;  // per source image, the face's
+  for (size_t l = 0; l < layered.images.size(); ++l) {
+    painted[l].dilate(4);
+    eng::Image out;
+    out.name = face.materials[size_t(skin)].name + " " + source.images[size_t(layered.images[l])].name + " (carried)";
+    out.width = painted[l].width;
+    out.height = painted[l].height;
+    out.rgba8 = painted[l].toSrgba8();
+    carried.push_back(int(face.images.size()));
+    face.images.push_back(std::move(out));
+  }
+  const std::vector<eng::DetailLayer>& layers = source.materials[size_t(layered.material)].detailLayers;
+  for (const eng::DetailLayer& layer : layers) {
+    const size_t l = size_t(std::find(layered.images.begin(), layered.images.end(), layer.image) - layered.images.begin());
+    face.materials[size_t(skin)].detailLayers.push_back({carried[l], layer.target, layer.strength, eng::DetailBlend::Modulate});
+  }
+}
+
+}  // namespace
+
 DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurface& src, const FaceSurface& tgt,
                                        const Correspondence& corr, const PosedFace& posed, eng::Model& face,
                                        const DetailTransferOptions& options) {
@@ -404,26 +453,14 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
   if (!layered) return report;
   const std::vector<eng::DetailLayer>& layers = source.model->materials[size_t(layered->material)].detailLayers;
   const SourceUvs at = sourceUvsOf(source, src, tgt, corr, layered->material);
-  // posed primitive -> its vertices' indices in tgt (-1: not skin).
-  std::vector<std::vector<int32_t>> tgtIndex(posed.primitives.size());
-  for (size_t v = 0; v < tgt.vertices.size(); ++v) {
-    if (tgt.parts[v] != FacePart::Skin) continue;
-    std::vector<int32_t>& index = tgtIndex[tgt.vertices[v].primitive];
-    if (index.empty()) index.assign(posed.primitives[tgt.vertices[v].primitive].positions.size(), -1);
-    index[tgt.vertices[v].vertex] = int32_t(v);
-  }
+  const std::vector<std::vector<int32_t>> tgtIndex = skinIndexByPrimitive(tgt, posed);
   std::map<int, std::vector<uint32_t>> skinByMaterial;  // target material -> its posed skin primitives
   for (uint32_t p = 0; p < tgtIndex.size(); ++p)
     if (!tgtIndex[p].empty()) skinByMaterial[primitiveOf(face, posed, p).material].push_back(p);
 
   // Warnings are for the face's main skin material only: a mouth's inside
   // or an ear with a material of its own is left quietly.
-  std::map<int, size_t> mappedByMaterial;
-  for (size_t v = 0; v < tgt.vertices.size(); ++v)
-    if (at.mapped[v]) ++mappedByMaterial[primitiveOf(face, posed, tgt.vertices[v].primitive).material];
-  int mainMaterial = -1;
-  for (const auto& [material, count] : mappedByMaterial)
-    if (mainMaterial < 0 || count > mappedByMaterial[mainMaterial]) mainMaterial = material;
+  const int mainMaterial = mostMappedMaterial(face, posed, tgt, at);
   auto warn = [&](int material, const std::string& line) {
     if (material == mainMaterial) report.warnings.push_back(line + ": the head's wrinkle and colour layers are not carried onto it");
   };
@@ -485,20 +522,7 @@ DetailTransferReport carryDetailLayers(const SourceFace& source, const FaceSurfa
       warn(material, label + "'s skin is on a mesh without the made targets");
       continue;
     }
-    std::vector<int> carried;  // per source image, the face's
-    for (size_t l = 0; l < layered->images.size(); ++l) {
-      painted[l].dilate(4);
-      eng::Image out;
-      out.name = face.materials[size_t(skin)].name + " " + source.model->images[size_t(layered->images[l])].name + " (carried)";
-      out.width = out.height = size;
-      out.rgba8 = painted[l].toSrgba8();
-      carried.push_back(int(face.images.size()));
-      face.images.push_back(std::move(out));
-    }
-    for (const eng::DetailLayer& layer : layers) {
-      const size_t l = size_t(std::find(layered->images.begin(), layered->images.end(), layer.image) - layered->images.begin());
-      face.materials[size_t(skin)].detailLayers.push_back({carried[l], layer.target, layer.strength, eng::DetailBlend::Modulate});
-    }
+    addCarriedLayers(*source.model, *layered, painted, skin, face);
     report.carried.push_back("material '" + face.materials[size_t(skin)].name + "': " + std::to_string(layers.size()) + " wrinkle and colour layers over " +
                              std::to_string(layered->images.size()) + " images of " + std::to_string(size) + " px (" +
                              std::to_string(texels) + " skin texels), modulating its own colour");
