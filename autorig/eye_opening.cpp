@@ -194,12 +194,11 @@ std::optional<size_t> skinBetweenTheEyes(const PosedFace& posed, const FaceParts
 
 }  // namespace
 
-EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
-                       const SourceFace& source) {
-  EyeOpening opening;
-  if (parts.vertexParts.size() != posed.primitives.size()) return opening;
-  // Each eye's triangles: all three corners on the ball.
-  const LandmarkFrame frame(landmarks);
+namespace {
+
+// Each painted eye's triangles (all three corners on the ball) that show
+// enough at rest to be cut free.
+std::vector<EyeCut> eyesToCut(const eng::Model& face, const PosedFace& posed, const FaceParts& parts, const LandmarkFrame& frame) {
   std::vector<EyeCut> cuts;
   for (size_t i = 0; i < posed.primitives.size() && (parts.eyesInTheSkin[0] || parts.eyesInTheSkin[1]); ++i) {
     const PosedPrimitive& pp = posed.primitives[i];
@@ -216,6 +215,63 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
       if (cut.triangles.size() >= kMinEyeTriangles) cuts.push_back(std::move(cut));
     }
   }
+  return cuts;
+}
+
+// Each eye cut free: its triangles a primitive of their own (set back into
+// the head, with a copy of the skin's material named as an eye), the rest of
+// the skin's primitive rebuilt without them.
+void cutTheEyesFree(eng::Model& face, const PosedFace& posed, const FaceParts& parts, std::span<const EyeCut> cuts,
+                    EyeOpening& opening) {
+  std::map<int, int> eyeMaterialOf;  // the skin's material -> its copy for the eyes
+  for (size_t i = 0; i < posed.primitives.size(); ++i) {
+    const PosedPrimitive& pp = posed.primitives[i];
+    eng::Mesh& mesh = face.meshes[pp.mesh];
+    const eng::Primitive& skin = mesh.primitives[pp.primitive];
+    std::vector<char> cutAway(skin.indices.size() / 3, 0);
+    std::vector<eng::Primitive> eyes;
+    for (const EyeCut& cut : cuts) {
+      if (cut.posed != i) continue;
+      std::vector<uint32_t> vertexOf;
+      eng::Primitive eye = withTriangles(skin, cut.triangles, &vertexOf);
+      const glm::vec3& centre = parts.eyeCentres[cut.eye];
+      for (size_t k = 0; k < vertexOf.size(); ++k) {
+        const glm::vec3& world = pp.positions[vertexOf[k]];
+        eye.positions[k] += pp.toLocal(vertexOf[k], (centre + (world - centre) * kEyeSetBack) - world);
+      }
+      auto [material, fresh] = eyeMaterialOf.try_emplace(skin.material, int(face.materials.size()));
+      if (fresh) {
+        eng::Material copy = skin.material >= 0 ? face.materials[size_t(skin.material)] : eng::Material{};
+        copy.name = "Eye (a scan's, cut free)";  // an eyeball by name (autorig::facePartFromNames)
+        copy.detailLayers.clear();
+        face.materials.push_back(std::move(copy));
+      }
+      eye.material = material->second;
+      for (uint32_t t : cut.triangles) cutAway[t] = 1;
+      opening.notes.push_back(meshLabel(face, pp.mesh) + ": the " + (cut.eye == 0 ? "right" : "left") + " eye (" +
+                              std::to_string(eye.vertexCount()) +
+                              " vertices of the skin) cut free from its lids, the built-in head's eyeball behind it");
+      eyes.push_back(std::move(eye));
+      ++opening.eyesCut;
+    }
+    if (eyes.empty()) continue;
+    std::vector<uint32_t> kept;
+    for (size_t t = 0; t < cutAway.size(); ++t)
+      if (!cutAway[t]) kept.push_back(uint32_t(t));
+    eng::Primitive rest = withTriangles(skin, kept);
+    mesh.primitives[pp.primitive] = std::move(rest);
+    for (eng::Primitive& eye : eyes) mesh.primitives.push_back(std::move(eye));
+  }
+}
+
+}  // namespace
+
+EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandmarks& landmarks, const FaceParts& parts,
+                       const SourceFace& source) {
+  EyeOpening opening;
+  if (parts.vertexParts.size() != posed.primitives.size()) return opening;
+  const LandmarkFrame frame(landmarks);
+  const std::vector<EyeCut> cuts = eyesToCut(face, posed, parts, frame);
   std::vector<size_t> empty = emptyOpenings(face, posed, parts, landmarks, frame);
   // A ball of skin inside the lids of which too little shows at rest to cut
   // free is no painted eye but the socket's lining of a head exported
@@ -269,47 +325,7 @@ EyeOpening openTheEyes(eng::Model& face, const PosedFace& posed, const FaceLandm
     }
   }
 
-  // Then each eye cut free: its triangles a primitive of their own, the
-  // rest of the skin's primitive rebuilt without them.
-  std::map<int, int> eyeMaterialOf;  // the skin's material -> its copy for the eyes
-  for (size_t i = 0; i < posed.primitives.size(); ++i) {
-    const PosedPrimitive& pp = posed.primitives[i];
-    eng::Mesh& mesh = face.meshes[pp.mesh];
-    const eng::Primitive& skin = mesh.primitives[pp.primitive];
-    std::vector<char> cutAway(skin.indices.size() / 3, 0);
-    std::vector<eng::Primitive> eyes;
-    for (const EyeCut& cut : cuts) {
-      if (cut.posed != i) continue;
-      std::vector<uint32_t> vertexOf;
-      eng::Primitive eye = withTriangles(skin, cut.triangles, &vertexOf);
-      const glm::vec3& centre = parts.eyeCentres[cut.eye];
-      for (size_t k = 0; k < vertexOf.size(); ++k) {
-        const glm::vec3& world = pp.positions[vertexOf[k]];
-        eye.positions[k] += pp.toLocal(vertexOf[k], (centre + (world - centre) * kEyeSetBack) - world);
-      }
-      auto [material, fresh] = eyeMaterialOf.try_emplace(skin.material, int(face.materials.size()));
-      if (fresh) {
-        eng::Material copy = skin.material >= 0 ? face.materials[size_t(skin.material)] : eng::Material{};
-        copy.name = "Eye (a scan's, cut free)";  // an eyeball by name (autorig::facePartFromNames)
-        copy.detailLayers.clear();
-        face.materials.push_back(std::move(copy));
-      }
-      eye.material = material->second;
-      for (uint32_t t : cut.triangles) cutAway[t] = 1;
-      opening.notes.push_back(meshLabel(face, pp.mesh) + ": the " + (cut.eye == 0 ? "right" : "left") + " eye (" +
-                              std::to_string(eye.vertexCount()) +
-                              " vertices of the skin) cut free from its lids, the built-in head's eyeball behind it");
-      eyes.push_back(std::move(eye));
-      ++opening.eyesCut;
-    }
-    if (eyes.empty()) continue;
-    std::vector<uint32_t> kept;
-    for (size_t t = 0; t < cutAway.size(); ++t)
-      if (!cutAway[t]) kept.push_back(uint32_t(t));
-    eng::Primitive rest = withTriangles(skin, kept);
-    mesh.primitives[pp.primitive] = std::move(rest);
-    for (eng::Primitive& eye : eyes) mesh.primitives.push_back(std::move(eye));
-  }
+  cutTheEyesFree(face, posed, parts, cuts, opening);
   return opening;
 }
 
