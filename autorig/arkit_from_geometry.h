@@ -39,8 +39,9 @@ struct ShapeGeometry {
 // Those of `wanted` (ARKit names) that this file can make, each over every
 // vertex of `geometry`, in the order asked (a gaze shape turns its eye by
 // facial::kArkitLookDegrees, the angle the runtime's gaze drives it with); the others are left in `unmade`
-// (the gaze shapes where the face has no eyeballs of its own; the jaw's and
-// mouthClose where it has no jaw drop among `units`).
+// (the gaze shapes where the face has no eyeballs of its own; the jaw's, the
+// lips' made from its share and mouthClose where it has no jaw drop among
+// `units`).
 std::vector<NamedDeltas> arkitFromGeometry(std::span<const std::string> wanted, std::span<const NamedDeltas> units,
                                            const ShapeGeometry& geometry, std::vector<std::string>& unmade);
 

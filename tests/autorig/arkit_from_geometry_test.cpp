@@ -259,13 +259,14 @@ TEST(ArkitFromGeometryValidity, ShapesWhoseSourceIsMissingAreNamedUnmade) {
   const autorig::LandmarkFrame frame(r->source.landmarks);
   autorig::FaceParts noEyeballs = r->source.parts;
   noEyeballs.eyeballsFound = false;
-  const std::vector<std::string> wanted = {"eyeLookUpLeft", "jawLeft", "mouthClose", "mouthLeft", "cheekPuff", "mouthDimpleLeft",
-                                           "browInnerUp"};
+  const std::vector<std::string> wanted = {"eyeLookUpLeft", "jawLeft",     "jawForward", "mouthShrugUpper", "mouthLowerDownLeft",
+                                           "mouthClose",    "mouthLeft",   "cheekPuff",  "mouthDimpleLeft", "browInnerUp"};
   const autorig::ShapeGeometry geometry{.positions = r->positions, .parts = r->parts, .normals = {},
                                         .landmarks = &r->source.landmarks, .frame = &frame, .faceParts = &noEyeballs};
   std::vector<std::string> unmade;
   const std::vector<autorig::NamedDeltas> made = autorig::arkitFromGeometry(wanted, {}, geometry, unmade);
-  EXPECT_EQ(unmade, (std::vector<std::string>{"eyeLookUpLeft", "jawLeft", "mouthClose", "browInnerUp"}));
+  EXPECT_EQ(unmade, (std::vector<std::string>{"eyeLookUpLeft", "jawLeft", "jawForward", "mouthShrugUpper", "mouthLowerDownLeft",
+                                              "mouthClose", "browInnerUp"}));
   ASSERT_EQ(made.size(), 3u);
   EXPECT_EQ(made[0].name, "mouthLeft");
   for (const autorig::NamedDeltas& shape : made) EXPECT_EQ(shape.deltas.size(), r->positions.size());
